@@ -1,0 +1,116 @@
+# Shadow-rendering demo suite. `make help` lists the targets.
+#
+# Build outputs go to build/ (or build-san/ with SANITIZE=1: AddressSanitizer
+# and UBSan). The GL loader is generated here by Debian's glad, from its
+# bundled Khronos XML (--reproducible), never fetched or committed.
+
+SANITIZE ?= 0
+MAKEFLAGS += -j$(shell nproc)
+ifeq ($(SANITIZE),1)
+BUILD ?= build-san
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+else
+BUILD ?= build
+SAN_FLAGS :=
+endif
+
+CC ?= cc
+PKGS := glfw3 egl cglm libcjson assimp stb
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
+PKG_LIBS = $(shell pkg-config --libs $(PKGS))
+CFLAGS ?= -O2 -g
+ALL_CFLAGS = -std=c11 -Wall -Wextra -Werror -D_XOPEN_SOURCE=700 -DGLFW_INCLUDE_NONE \
+	$(SAN_FLAGS) -I$(BUILD)/glad/include -Icommon -Idemos -Itests $(PKG_CFLAGS) $(CFLAGS)
+LDLIBS = $(PKG_LIBS) -ldl -lm
+LDFLAGS += $(SAN_FLAGS)
+
+# GL 3.3 core plus the extensions used behind a check.
+GL_EXTENSIONS := GL_KHR_debug
+GLAD_C := $(BUILD)/glad/src/gl.c
+GLAD_H := $(BUILD)/glad/include/glad/gl.h
+
+COMMON_SRC := $(filter-out common/main_%.c,$(wildcard common/*.c))
+DEMO_SRC := $(filter-out demos/registry.c,$(wildcard demos/*.c))
+DEMOS := $(patsubst demos/%.c,%,$(DEMO_SRC))
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_SUPPORT := $(BUILD)/tests/support.o
+TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
+
+LIB := $(BUILD)/libshadows.a
+LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) demos/registry.c) $(BUILD)/glad/gl.o
+PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS))
+STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
+
+.PHONY: all deps demo gallery test test-plain test-san update-golden clean help
+all: $(PROGRAMS) $(TESTS)
+
+help:
+	@echo "make deps           install the Debian packages (apt-get; sudo when not root)"
+	@echo "make demo           build, then the interactive window (with a display) or the gallery"
+	@echo "make gallery        render every technique on each standard scene to out/gallery/"
+	@echo "make test           build and run every test, plain and under ASan+UBSan"
+	@echo "make update-golden  regenerate tests/golden/*.png on purpose (say why in the commit)"
+	@echo "make clean          remove build/, build-san/ and out/"
+
+DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \
+	libegl-mesa0 libgl1-mesa-dri libosmesa6 libcglm-dev libstb-dev libassimp-dev \
+	assimp-testmodels libcjson-dev libembree-dev libcmocka-dev gnuplot-nox xvfb xauth
+deps:
+	@if [ "$$(id -u)" = 0 ]; then SUDO=; elif command -v sudo >/dev/null; then SUDO=sudo; \
+	else echo "make deps: not root and no sudo; run as root:"; \
+	echo "  apt-get update && apt-get install -y --no-install-recommends $(DEB_PACKAGES)"; exit 1; fi; \
+	$$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
+	$$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $(DEB_PACKAGES)
+
+demo: $(PROGRAMS)
+	@if [ -n "$$DISPLAY$$WAYLAND_DISPLAY" ]; then $(BUILD)/shadows; else $(MAKE) --no-print-directory gallery; fi
+
+gallery: $(PROGRAMS)
+	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES)
+
+# The suite runs twice: plain, then built with ASan+UBSan (build-san/).
+# `make test SANITIZE=1` runs only the sanitizer pass.
+test: $(PROGRAMS) $(TESTS)
+ifeq ($(SANITIZE),1)
+	@tests/run.sh $(BUILD)
+else
+	@$(MAKE) --no-print-directory SANITIZE=1 all
+	@tests/run.sh $(BUILD) build-san
+endif
+
+update-golden: $(PROGRAMS)
+	BUILD=$(BUILD) tests/update_golden.sh
+
+clean:
+	rm -rf build build-san out
+
+$(GLAD_C) $(GLAD_H):
+	@mkdir -p $(BUILD)/glad
+	glad --quiet --reproducible --api gl:core=3.3 --extensions $(GL_EXTENSIONS) \
+		--out-path $(BUILD)/glad c
+
+$(BUILD)/glad/gl.o: $(GLAD_C)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/%.o: %.c $(GLAD_H)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -MMD -MP -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/shadows: $(BUILD)/common/main_registry.o $(LIB)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+# Each demo binary hosts one technique: the same main, told which one.
+$(BUILD)/main_%.o: common/main_single.c $(GLAD_H)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -MMD -MP -DDEMO_TECHNIQUE=$*_technique -c $< -o $@
+
+$(addprefix $(BUILD)/,$(DEMOS)): $(BUILD)/%: $(BUILD)/main_%.o $(LIB)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(BUILD)/tests/%: $(BUILD)/tests/%.o $(TEST_SUPPORT) $(LIB)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -lcmocka -o $@
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,504 @@
+#include "app.h"
+
+#include <GLFW/glfw3.h>
+#include <glad/gl.h>
+#include <errno.h>
+#include <libgen.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "context.h"
+#include "hud.h"
+#include "image.h"
+#include "shader.h"
+#include "target.h"
+
+#define APP_EXIT_RUNTIME 1
+#define APP_EXIT_USAGE 2
+#define APP_MAX_SIZE 16384
+#define APP_HEADLESS_FPS 60.0
+#define APP_ANIMATE_RAD_PER_S 0.5f
+#define APP_LIGHT_STEP_RAD 0.05f
+#define APP_ORBIT_RAD_PER_PIXEL 0.008f
+
+static struct {
+    const char *program;
+    const technique *const *techniques;
+    int technique_count, current;
+    /* flags */
+    context_backend backend;
+    int width, height, frames;
+    bool frames_given, verbose, animate;
+    const char *scene_path, *screenshot, *gallery_dir;
+    char **gallery_scenes;
+    int gallery_scene_count;
+    char shader_dir[PATH_MAX], default_scene[PATH_MAX];
+    /* run */
+    context ctx;
+    target target;
+    scene scene;
+    render_scene gpu;
+    scene_light base_lights[SCENE_MAX_LIGHTS]; /* before animation */
+    double time;
+    /* window */
+    bool show_help, dragging, resized;
+    double drag_x, drag_y, frame_ms;
+    int screenshot_count;
+} app;
+
+static void app_usage(FILE *out) {
+    fprintf(out,
+            "usage: %s [flags]\n"
+            "  --backend auto|glfw|egl|osmesa  context (auto: a window if interactive and a display\n"
+            "                                  is there, else EGL, else OSMesa)\n"
+            "  --size WxH                      framebuffer size (1280x720)\n"
+            "  --scene PATH                    scene file (assets/scenes/simple.json)\n"
+            "  --frames N                      render N frames headless (time i/60 s), then exit\n"
+            "  --screenshot PATH.png           save the last frame (implies headless)\n"
+            "  --shader-dir DIR                where the GLSL files are (shaders/ beside build/)\n"
+            "  --technique NAME                which technique to start with\n"
+            "  --animate                       turn the lights about the camera target over time\n"
+            "  --gallery DIR SCENE...          every technique on every scene, to DIR/TECH_SCENE.png\n"
+            "  --verbose                       print the backend and GL renderer\n"
+            "  --help                          this text\n",
+            app.program);
+    fprintf(out, "techniques (keys 1-9 in the window):\n");
+    for (int i = 0; i < app.technique_count; i++) {
+        const technique *t = app.techniques[i];
+        fprintf(out, "  %d %-12s %s\n", i + 1, t->name, t->title);
+        for (int k = 0; k < t->toggle_count; k++)
+            fprintf(out, "      --no-%-18s key %c: %s\n", t->toggles[k].name, t->toggles[k].key,
+                    t->toggles[k].help);
+    }
+    fprintf(out, "window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
+                 "        H help, F12 screenshot, Esc quits\n");
+}
+
+static int app_usage_error(const char *message, const char *value) {
+    fprintf(stderr, "%s: %s%s%s%s (see --help)\n", app.program, message, value ? " '" : "", value ? value : "",
+            value ? "'" : "");
+    return APP_EXIT_USAGE;
+}
+
+/* Turns --no-NAME off in every technique that has the toggle NAME. */
+static bool app_apply_toggle_flag(const char *flag) {
+    if (strncmp(flag, "--no-", 5) != 0)
+        return false;
+    bool found = false;
+    for (int i = 0; i < app.technique_count; i++) {
+        const technique *t = app.techniques[i];
+        for (int k = 0; k < t->toggle_count; k++) {
+            if (strcmp(flag + 5, t->toggles[k].name) == 0) {
+                *t->toggles[k].disabled = true;
+                found = true;
+            }
+        }
+    }
+    return found;
+}
+
+static bool app_parse_positive(const char *text, int max, int *out) {
+    char *end;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (errno || end == text || v < 1 || v > max)
+        return false;
+    *out = (int)v;
+    return *end == '\0' || *end == 'x';
+}
+
+static bool app_parse_size(const char *text, int *w, int *h) {
+    const char *x = strchr(text, 'x');
+    return x && app_parse_positive(text, APP_MAX_SIZE, w) && *x == 'x' &&
+           app_parse_positive(x + 1, APP_MAX_SIZE, h) && !strchr(x + 1, 'x');
+}
+
+static int app_find_technique(const char *name) {
+    for (int i = 0; i < app.technique_count; i++)
+        if (strcmp(app.techniques[i]->name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* Returns 0 to run, -1 after --help, or an exit status. */
+static int app_parse_flags(int argc, char **argv) {
+    for (int i = 1; i < argc; i++) {
+        char *flag = argv[i];
+        char *eq = strncmp(flag, "--", 2) == 0 ? strchr(flag, '=') : NULL;
+        char name[64];
+        snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - flag) : (int)strlen(flag), flag);
+        const char *value = eq ? eq + 1 : NULL;
+        static const char *const with_value[] = {"--backend", "--size", "--scene", "--frames", "--screenshot",
+                                                 "--shader-dir", "--technique", "--gallery"};
+        bool needs_value = false;
+        for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
+            needs_value |= strcmp(name, with_value[k]) == 0;
+        if (needs_value && !value) {
+            if (i + 1 >= argc)
+                return app_usage_error("missing value after", name);
+            value = argv[++i];
+        } else if (!needs_value && value) {
+            return app_usage_error("flag takes no value:", flag);
+        }
+        if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
+            app_usage(stdout);
+            return -1;
+        } else if (strcmp(name, "--backend") == 0) {
+            if (!context_backend_parse(value, &app.backend))
+                return app_usage_error("--backend: expected auto, glfw, egl or osmesa, got", value);
+        } else if (strcmp(name, "--size") == 0) {
+            if (!app_parse_size(value, &app.width, &app.height))
+                return app_usage_error("--size: expected WxH, each 1..16384, got", value);
+        } else if (strcmp(name, "--frames") == 0) {
+            if (!app_parse_positive(value, 1000000, &app.frames) || strchr(value, 'x'))
+                return app_usage_error("--frames: expected a count 1..1000000, got", value);
+            app.frames_given = true;
+        } else if (strcmp(name, "--scene") == 0) {
+            app.scene_path = value;
+        } else if (strcmp(name, "--screenshot") == 0) {
+            app.screenshot = value;
+        } else if (strcmp(name, "--shader-dir") == 0) {
+            snprintf(app.shader_dir, sizeof app.shader_dir, "%s", value);
+        } else if (strcmp(name, "--technique") == 0) {
+            if ((app.current = app_find_technique(value)) < 0)
+                return app_usage_error("--technique: unknown technique", value);
+        } else if (strcmp(name, "--gallery") == 0) {
+            app.gallery_dir = value;
+            app.gallery_scenes = argv + i + 1;
+            app.gallery_scene_count = argc - i - 1;
+            if (app.gallery_scene_count == 0)
+                return app_usage_error("--gallery: expected DIR then at least one scene file", NULL);
+            break;
+        } else if (strcmp(name, "--animate") == 0) {
+            app.animate = true;
+        } else if (strcmp(name, "--verbose") == 0) {
+            app.verbose = true;
+        } else if (!app_apply_toggle_flag(flag)) {
+            return app_usage_error("unknown flag", flag);
+        }
+    }
+    return 0;
+}
+
+/* Files the programs need are found beside the executable (build/..), so
+ * they run from any working directory. */
+static void app_locate_files(const char *argv0) {
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0)
+        exe[n] = '\0';
+    else
+        snprintf(exe, sizeof exe, "%s", argv0);
+    const char *dir = dirname(exe);
+    if (!app.shader_dir[0])
+        snprintf(app.shader_dir, sizeof app.shader_dir, "%s/../shaders", dir);
+    snprintf(app.default_scene, sizeof app.default_scene, "%s/../assets/scenes/simple.json", dir);
+    char *resolved = realpath(app.default_scene, NULL); /* shorter on the HUD */
+    if (resolved)
+        snprintf(app.default_scene, sizeof app.default_scene, "%s", resolved);
+    free(resolved);
+}
+
+static const technique *app_technique(void) { return app.techniques[app.current]; }
+
+static bool app_load_scene(const char *path) {
+    if (!scene_load(&app.scene, path))
+        return false;
+    memcpy(app.base_lights, app.scene.lights, sizeof app.base_lights);
+    if (!render_scene_create(&app.gpu, &app.scene)) {
+        scene_free(&app.scene);
+        return false;
+    }
+    return true;
+}
+
+static void app_unload_scene(void) {
+    render_scene_destroy(&app.gpu);
+    scene_free(&app.scene);
+}
+
+static bool app_render_frame(void) {
+    scene *s = &app.scene;
+    for (int i = 0; i < s->light_count; i++) {
+        s->lights[i] = app.base_lights[i];
+        if (app.animate)
+            camera_orbit_light(&s->lights[i], s->camera.target, (float)app.time * APP_ANIMATE_RAD_PER_S, 0);
+    }
+    render_scene_update_lights(&app.gpu);
+    camera_view view;
+    camera_view_compute(&s->camera, (float)app.target.width / (float)app.target.height, &view);
+    target_bind(&app.target);
+    glClearColor(RENDER_BACKGROUND_R, RENDER_BACKGROUND_G, RENDER_BACKGROUND_B, 1);
+    glClearDepth(1);
+    glClearStencil(0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    render_reset_state();
+    const technique_frame frame = {
+        .gpu = &app.gpu, .view = &view, .width = app.target.width, .height = app.target.height, .time = app.time};
+    app_technique()->render(&frame);
+    render_reset_state();
+    return context_gl_ok(app_technique()->name);
+}
+
+static bool app_save_screenshot(const char *path) {
+    size_t bytes = (size_t)app.target.width * (size_t)app.target.height * 4;
+    unsigned char *rgba = malloc(bytes);
+    bool ok = rgba && target_read_rgba(&app.target, rgba) &&
+              image_write_png(path, app.target.width, app.target.height, rgba);
+    if (!rgba)
+        fprintf(stderr, "%s: out of memory for a %dx%d screenshot\n", path, app.target.width, app.target.height);
+    free(rgba);
+    return ok;
+}
+
+static bool app_start_technique(int index) {
+    app.current = index;
+    return app_technique()->init(&app.gpu);
+}
+
+/* Renders `frames` frames at the fixed headless rate, then the screenshot. */
+static bool app_run_headless(int frames, const char *screenshot) {
+    for (int i = 0; i < frames; i++) {
+        app.time = i / APP_HEADLESS_FPS;
+        if (!app_render_frame())
+            return false;
+    }
+    return !screenshot || app_save_screenshot(screenshot);
+}
+
+/* mkdir -p */
+static bool app_make_directories(const char *path) {
+    char partial[PATH_MAX];
+    snprintf(partial, sizeof partial, "%s", path);
+    for (char *p = partial + 1;; p++) {
+        if (*p != '/' && *p != '\0')
+            continue;
+        char c = *p;
+        *p = '\0';
+        if (mkdir(partial, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "%s: cannot create directory: %s\n", partial, strerror(errno));
+            return false;
+        }
+        if (c == '\0')
+            return true;
+        *p = c;
+    }
+}
+
+static bool app_scene_basename(const char *path, char *out, size_t size) {
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    return snprintf(out, size, "%.*s", dot ? (int)(dot - base) : (int)strlen(base), base) < (int)size;
+}
+
+static bool app_run_gallery(void) {
+    if (!app_make_directories(app.gallery_dir))
+        return false;
+    for (int s = 0; s < app.gallery_scene_count; s++) {
+        const char *scene_path = app.gallery_scenes[s];
+        if (!app_load_scene(scene_path))
+            return false;
+        bool ok = true;
+        for (int t = 0; t < app.technique_count && ok; t++) {
+            char name[256], path[PATH_MAX];
+            app_scene_basename(scene_path, name, sizeof name);
+            snprintf(path, sizeof path, "%s/%s_%s.png", app.gallery_dir, app.techniques[t]->name, name);
+            ok = app_start_technique(t) && app_run_headless(1, path);
+            app_technique()->destroy();
+            if (ok)
+                printf("%s\n", path);
+        }
+        app_unload_scene();
+        if (!ok)
+            return false;
+    }
+    return true;
+}
+
+/* ---- the window ---- */
+
+static void app_hud(int width, int height) {
+    const technique *t = app_technique();
+    char text[2048];
+    int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s\n",
+                     app.current + 1, app.technique_count, t->name, t->title, app.scene_path, app.target.width,
+                     app.target.height, app.frame_ms, app.animate ? "   animating" : "");
+    for (int k = 0; k < t->toggle_count && n < (int)sizeof text; k++)
+        n += snprintf(text + n, sizeof text - (size_t)n, "[%c] %s: %s   ", t->toggles[k].key, t->toggles[k].name,
+                      *t->toggles[k].disabled ? "OFF" : "on");
+    if (n < (int)sizeof text)
+        snprintf(text + n, sizeof text - (size_t)n, "%s",
+                 app.show_help ? "\ndrag: orbit   scroll: zoom   arrows: move light   space: animate light\n"
+                                 "1-9: technique   F12: screenshot   H: hide help   Esc: quit"
+                               : "\nH: help");
+    hud_draw(text, width, height);
+}
+
+static void app_switch_technique(int index) {
+    if (index == app.current || index >= app.technique_count)
+        return;
+    app_technique()->destroy();
+    if (!app_start_technique(index))
+        glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
+}
+
+static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
+    (void)scancode, (void)mods;
+    if (action == GLFW_RELEASE)
+        return;
+    float yaw = 0, pitch = 0;
+    switch (key) {
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
+    case GLFW_KEY_H: app.show_help = !app.show_help; return;
+    case GLFW_KEY_SPACE: app.animate = !app.animate; return;
+    case GLFW_KEY_LEFT: yaw = -APP_LIGHT_STEP_RAD; break;
+    case GLFW_KEY_RIGHT: yaw = APP_LIGHT_STEP_RAD; break;
+    case GLFW_KEY_UP: pitch = APP_LIGHT_STEP_RAD; break;
+    case GLFW_KEY_DOWN: pitch = -APP_LIGHT_STEP_RAD; break;
+    case GLFW_KEY_F12: {
+        char path[64];
+        snprintf(path, sizeof path, "screenshot-%s-%d.png", app_technique()->name, ++app.screenshot_count);
+        if (app_save_screenshot(path))
+            printf("%s\n", path);
+        return;
+    }
+    default:
+        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && action == GLFW_PRESS) {
+            app_switch_technique(key - GLFW_KEY_1);
+            return;
+        }
+        for (int k = 0; k < app_technique()->toggle_count && action == GLFW_PRESS; k++)
+            if (app_technique()->toggles[k].key == key)
+                *app_technique()->toggles[k].disabled ^= true;
+        return;
+    }
+    for (int i = 0; i < app.scene.light_count; i++)
+        camera_orbit_light(&app.base_lights[i], app.scene.camera.target, yaw, pitch);
+}
+
+static void app_on_mouse_button(GLFWwindow *w, int button, int action, int mods) {
+    (void)mods;
+    if (button == GLFW_MOUSE_BUTTON_LEFT) {
+        app.dragging = action == GLFW_PRESS;
+        glfwGetCursorPos(w, &app.drag_x, &app.drag_y);
+    }
+}
+
+static void app_on_cursor(GLFWwindow *w, double x, double y) {
+    (void)w;
+    if (!app.dragging)
+        return;
+    camera_orbit(&app.scene.camera, -(float)(x - app.drag_x) * APP_ORBIT_RAD_PER_PIXEL,
+                 (float)(y - app.drag_y) * APP_ORBIT_RAD_PER_PIXEL, 1);
+    app.drag_x = x;
+    app.drag_y = y;
+}
+
+static void app_on_scroll(GLFWwindow *w, double dx, double dy) {
+    (void)w, (void)dx;
+    camera_orbit(&app.scene.camera, 0, 0, powf(0.9f, (float)dy));
+}
+
+static void app_on_resize(GLFWwindow *w, int width, int height) {
+    (void)w, (void)width, (void)height;
+    app.resized = true;
+}
+
+/* Interactive when frames <= 0; otherwise that many frames, then exit
+ * (how the window is tested under Xvfb). */
+static bool app_run_window(int frames) {
+    GLFWwindow *w = app.ctx.window;
+    glfwSetKeyCallback(w, app_on_key);
+    glfwSetMouseButtonCallback(w, app_on_mouse_button);
+    glfwSetCursorPosCallback(w, app_on_cursor);
+    glfwSetScrollCallback(w, app_on_scroll);
+    glfwSetFramebufferSizeCallback(w, app_on_resize);
+    if (!hud_init())
+        return false;
+    bool ok = true;
+    double last = glfwGetTime();
+    for (int frame = 0; ok && !glfwWindowShouldClose(w) && (frames <= 0 || frame < frames); frame++) {
+        int width, height;
+        glfwGetFramebufferSize(w, &width, &height);
+        if (app.resized && width > 0 && height > 0) {
+            target_destroy(&app.target);
+            ok = target_create(&app.target, width, height);
+            app.resized = false;
+        }
+        if (frames > 0)
+            app.time = frame / APP_HEADLESS_FPS;
+        ok = ok && app_render_frame();
+        target_blit_to_window(&app.target, width, height);
+        if (frames <= 0)
+            app_hud(width, height);
+        ok = ok && context_gl_ok("window");
+        glfwSwapBuffers(w);
+        glfwPollEvents();
+        double now = glfwGetTime();
+        /* The clock lives here, not in techniques: it only advances the
+         * animation and smooths the HUD's frame time. */
+        if (frames <= 0 && app.animate)
+            app.time += now - last;
+        app.frame_ms += ((now - last) * 1000.0 - app.frame_ms) * 0.1;
+        last = now;
+    }
+    hud_destroy();
+    return ok;
+}
+
+static bool app_run(void) {
+    bool interactive = !app.frames_given && !app.screenshot && !app.gallery_dir;
+    const context_settings settings = {
+        .backend = app.backend,
+        .want_window = interactive,
+        .width = app.width,
+        .height = app.height,
+        .title = "shadows",
+        .verbose = app.verbose,
+    };
+    if (!context_create(&app.ctx, &settings))
+        return false;
+    int width = app.width, height = app.height;
+    if (app.ctx.window)
+        glfwGetFramebufferSize(app.ctx.window, &width, &height);
+    bool ok = target_create(&app.target, width, height);
+    if (ok && app.gallery_dir) {
+        ok = app_run_gallery();
+    } else if (ok && (ok = app_load_scene(app.scene_path))) {
+        ok = app_start_technique(app.current);
+        if (ok && app.ctx.window)
+            ok = app_run_window(app.frames_given ? app.frames : 0) &&
+                 (!app.screenshot || app_save_screenshot(app.screenshot));
+        else if (ok)
+            ok = app_run_headless(app.frames, app.screenshot);
+        app_technique()->destroy();
+        app_unload_scene();
+    }
+    target_destroy(&app.target);
+    context_destroy(&app.ctx);
+    return ok;
+}
+
+int app_main(int argc, char **argv, const technique *const *techniques, int technique_count) {
+    const char *slash = strrchr(argv[0], '/');
+    app.program = slash ? slash + 1 : argv[0];
+    app.techniques = techniques;
+    app.technique_count = technique_count;
+    app.backend = CONTEXT_AUTO;
+    app.width = 1280;
+    app.height = 720;
+    app.frames = 1;
+    int status = app_parse_flags(argc, argv);
+    if (status)
+        return status < 0 ? 0 : status;
+    app_locate_files(argv[0]);
+    shader_set_directory(app.shader_dir);
+    if (!app.scene_path)
+        app.scene_path = app.default_scene;
+    return app_run() ? 0 : APP_EXIT_RUNTIME;
+}

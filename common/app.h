@@ -1,0 +1,25 @@
+/* app: main, command-line flags, the frame loop and the gallery, shared by
+ * every program (common/main_single.c hosts one technique, main_registry.c
+ * all of them).
+ *
+ * Common flags: --backend auto|glfw|egl|osmesa, --size WxH (1280x720),
+ * --scene PATH (assets/scenes/simple.json), --frames N, --screenshot PATH,
+ * --shader-dir DIR, --technique NAME, --animate, --verbose, --help, and
+ * --gallery DIR SCENE... (every technique on every scene, to
+ * DIR/TECHNIQUE_SCENE.png). Each technique toggle adds --no-NAME.
+ *
+ * A run with --frames, --screenshot or --gallery is headless (auto picks
+ * EGL, then OSMesa); otherwise auto opens a window when a display is there.
+ * Headless frame i is rendered at time i/60 s.
+ *
+ * Exit status: 0 success, 1 a run-time error (scene, model, shader, GL,
+ * file), 2 a bad command line. Every error is one line on stderr.
+ */
+#ifndef APP_H
+#define APP_H
+
+#include "technique.h"
+
+int app_main(int argc, char **argv, const technique *const *techniques, int technique_count);
+
+#endif

@@ -1,0 +1,130 @@
+#include "context.h"
+
+#include <glad/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const context_backend_names[] = {
+    [CONTEXT_AUTO] = "auto",
+    [CONTEXT_GLFW] = "glfw",
+    [CONTEXT_EGL] = "egl",
+    [CONTEXT_OSMESA] = "osmesa",
+};
+
+/* Errors seen by the KHR_debug callback since the last context_gl_ok. */
+static int context_debug_errors;
+static bool context_verbose;
+
+const char *context_backend_name(context_backend b) { return context_backend_names[b]; }
+
+bool context_backend_parse(const char *name, context_backend *b) {
+    for (int i = 0; i < (int)(sizeof context_backend_names / sizeof *context_backend_names); i++) {
+        if (strcmp(name, context_backend_names[i]) == 0) {
+            *b = (context_backend)i;
+            return true;
+        }
+    }
+    return false;
+}
+
+static void GLAD_API_PTR context_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity,
+                                           GLsizei length, const GLchar *message, const void *user) {
+    (void)id, (void)length, (void)user;
+    /* shader.c reports compile errors itself, with file names and lines. */
+    if (source == GL_DEBUG_SOURCE_SHADER_COMPILER)
+        return;
+    if (type == GL_DEBUG_TYPE_ERROR) {
+        context_debug_errors++;
+        fprintf(stderr, "GL error: %s\n", message);
+    } else if (severity == GL_DEBUG_SEVERITY_HIGH || (context_verbose && severity == GL_DEBUG_SEVERITY_MEDIUM)) {
+        fprintf(stderr, "GL: %s\n", message);
+    }
+}
+
+static const char *context_gl_error_name(GLenum e) {
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    default: return "unknown GL error";
+    }
+}
+
+bool context_gl_ok(const char *where) {
+    bool ok = context_debug_errors == 0;
+    context_debug_errors = 0;
+    for (GLenum e; (e = glGetError()) != GL_NO_ERROR;) {
+        fprintf(stderr, "%s: %s (0x%04x)\n", where, context_gl_error_name(e), e);
+        ok = false;
+    }
+    if (!ok && context_debug_errors == 0)
+        fprintf(stderr, "%s: GL errors reported (see above)\n", where);
+    return ok;
+}
+
+static context_loader context_create_backend(context *c, const context_settings *s, context_backend b) {
+    c->backend = b;
+    switch (b) {
+    case CONTEXT_GLFW: return context_glfw_create(c, s);
+    case CONTEXT_EGL: return context_egl_create(c, s);
+    case CONTEXT_OSMESA: return context_osmesa_create(c, s);
+    case CONTEXT_AUTO: break;
+    }
+    return NULL;
+}
+
+static bool context_display_available(void) {
+    const char *x11 = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+    return (x11 && *x11) || (wayland && *wayland);
+}
+
+bool context_create(context *c, const context_settings *s) {
+    *c = (context){0};
+    context_verbose = s->verbose;
+    context_loader loader = NULL;
+    if (s->backend != CONTEXT_AUTO) {
+        loader = context_create_backend(c, s, s->backend);
+    } else {
+        /* Each failed attempt has already said why on stderr. */
+        if (s->want_window && context_display_available())
+            loader = context_create_backend(c, s, CONTEXT_GLFW);
+        if (!loader)
+            loader = context_create_backend(c, s, CONTEXT_EGL);
+        if (!loader)
+            loader = context_create_backend(c, s, CONTEXT_OSMESA);
+    }
+    if (!loader) {
+        fprintf(stderr, "context: no OpenGL 3.3 core context could be created with backend %s\n",
+                context_backend_name(s->backend));
+        return false;
+    }
+    int version = gladLoadGL((GLADloadfunc)loader);
+    if (!version || GLAD_VERSION_MAJOR(version) * 10 + GLAD_VERSION_MINOR(version) < 33) {
+        fprintf(stderr, "context: %s: could not load OpenGL 3.3 core entry points\n", c->platform);
+        context_destroy(c);
+        return false;
+    }
+    snprintf(c->renderer, sizeof c->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    if (GLAD_GL_KHR_debug) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        glDebugMessageCallback(context_debug_message, NULL);
+    }
+    if (s->verbose)
+        fprintf(stderr, "backend: %s (%s)\nGL renderer: %s\nGL version: %s\n", context_backend_name(c->backend),
+                c->platform, c->renderer, (const char *)glGetString(GL_VERSION));
+    return context_gl_ok("context_create");
+}
+
+void context_destroy(context *c) {
+    switch (c->backend) {
+    case CONTEXT_GLFW: context_glfw_destroy(c); break;
+    case CONTEXT_EGL: context_egl_destroy(c); break;
+    case CONTEXT_OSMESA: context_osmesa_destroy(c); break;
+    case CONTEXT_AUTO: break;
+    }
+    *c = (context){0};
+}

@@ -1,0 +1,67 @@
+/* context: an OpenGL 3.3 core context on one of three backends.
+ *
+ *   CONTEXT_GLFW    a window (GLFW 3.3), for interactive demos;
+ *   CONTEXT_EGL     headless: EGL's device platform on a GPU
+ *                   (EGL_EXT_platform_device), else Mesa's surfaceless
+ *                   platform (software rasterizer);
+ *   CONTEXT_OSMESA  headless: libOSMesa, loaded at run time with dlopen
+ *                   because recent Mesa releases no longer ship it, so the
+ *                   programs build and run where it is missing;
+ *   CONTEXT_AUTO    a window when asked for one and a display is there,
+ *                   else EGL, else OSMesa.
+ *
+ * context_create also loads the GL entry points (glad, through the
+ * backend's get-proc-address: no GL symbol is linked directly) and turns on
+ * KHR_debug output where the driver has it. GL errors are bugs here:
+ * context_gl_ok reports every error raised since the last call, naming
+ * `where`, and returns false.
+ *
+ * Rendering never targets the window's framebuffer directly: see target.h.
+ */
+#ifndef CONTEXT_H
+#define CONTEXT_H
+
+#include <stdbool.h>
+
+typedef enum context_backend {
+    CONTEXT_AUTO,
+    CONTEXT_GLFW,
+    CONTEXT_EGL,
+    CONTEXT_OSMESA,
+} context_backend;
+
+typedef struct context_settings {
+    context_backend backend;
+    bool want_window;   /* AUTO picks GLFW only for interactive runs */
+    int width, height;  /* window size (headless: unused) */
+    const char *title;
+    bool verbose;       /* print backend, platform and GL renderer */
+} context_settings;
+
+typedef struct context {
+    context_backend backend; /* the one in use, never AUTO */
+    struct GLFWwindow *window; /* GLFW only */
+    char platform[64];         /* e.g. "EGL device (NVIDIA)", "EGL surfaceless" */
+    char renderer[256];        /* GL_RENDERER */
+    void *impl;                /* backend's own state */
+} context;
+
+const char *context_backend_name(context_backend b);
+bool context_backend_parse(const char *name, context_backend *b);
+
+bool context_create(context *c, const context_settings *s);
+void context_destroy(context *c);
+bool context_gl_ok(const char *where);
+
+/* Backends (context_<name>.c); each fills c->platform and c->impl, makes
+ * its context current and returns the loader glad should use. */
+typedef void (*context_proc)(void);
+typedef context_proc (*context_loader)(const char *name);
+context_loader context_glfw_create(context *c, const context_settings *s);
+context_loader context_egl_create(context *c, const context_settings *s);
+context_loader context_osmesa_create(context *c, const context_settings *s);
+void context_glfw_destroy(context *c);
+void context_egl_destroy(context *c);
+void context_osmesa_destroy(context *c);
+
+#endif

@@ -1,0 +1,86 @@
+/* mesh: one triangle-mesh layout for every technique.
+ *
+ * A mesh is an indexed triangle list of mesh_vertex (position + shading
+ * normal), with its axis-aligned bounds. Meshes come from procedural
+ * generators (mesh_make_*) or from model files through assimp
+ * (mesh_load_file). Every constructor ends in mesh_sanitize, which removes
+ * triangles that are degenerate (zero area once positions are welded) or
+ * that touch a non-finite vertex, warning once with the mesh's name, so
+ * techniques never see them.
+ *
+ * mesh_weld builds the welded-position view of the topology that silhouette
+ * and edge-based techniques need: vertices that share a position (within a
+ * tolerance relative to the mesh's size) get one id, so UV or normal seams
+ * do not split edges. mesh_topology_count_edges classifies the welded edges
+ * (boundary: used by one triangle, manifold: two, non-manifold: three+).
+ *
+ * Errors: functions returning bool print one line "NAME: problem" to stderr
+ * (or hand it to the handler set with mesh_set_error_handler) and return
+ * false; the mesh is left empty (safe to mesh_free).
+ */
+#ifndef MESH_H
+#define MESH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+typedef struct mesh_vertex {
+    float position[3];
+    float normal[3];
+} mesh_vertex;
+
+typedef struct mesh {
+    mesh_vertex *vertices;
+    uint32_t *indices; /* 3 per triangle */
+    uint32_t vertex_count;
+    uint32_t index_count;
+    float bounds_min[3];
+    float bounds_max[3];
+} mesh;
+
+typedef struct mesh_topology {
+    uint32_t *position_of_vertex; /* vertex index -> welded position id */
+    float (*positions)[3];        /* welded positions */
+    uint32_t position_count;
+} mesh_topology;
+
+typedef struct mesh_edge_counts {
+    uint32_t boundary;     /* edges used by exactly one triangle */
+    uint32_t manifold;     /* edges used by exactly two triangles */
+    uint32_t non_manifold; /* edges used by three or more */
+} mesh_edge_counts;
+
+#define MESH_MAX_SEGMENTS 1024
+
+/* Procedural meshes, centred on the origin, Y up. segments <= 0 means the
+ * default (32); otherwise 3..MESH_MAX_SEGMENTS. All are closed 2-manifolds
+ * once welded, except the plane. The torus needs minor < major radius. */
+bool mesh_make_plane(mesh *m, float size_x, float size_z);
+bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z);
+bool mesh_make_sphere(mesh *m, float radius, int segments);
+bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segments);
+bool mesh_make_cylinder(mesh *m, float radius, float height, int segments);
+
+/* Loads every triangle of a model file (all its meshes, node transforms
+ * applied) through assimp; generates smooth normals where the file has none.
+ * Files with no triangles, unreadable or malformed files are an error. */
+bool mesh_load_file(mesh *m, const char *path);
+
+/* Removes degenerate and non-finite triangles (warning "name: removed ..."),
+ * recomputes bounds; an error if no triangle is left. */
+bool mesh_sanitize(mesh *m, const char *name);
+
+void mesh_free(mesh *m);
+
+/* A caller that puts errors in its own context (the scene loader names the
+ * scene file and object) installs a handler; it gets NAME and problem
+ * separately, without a newline. NULL restores the default (stderr).
+ * Warnings always go to stderr. */
+typedef void (*mesh_error_handler)(const char *name, const char *problem, void *user_data);
+void mesh_set_error_handler(mesh_error_handler handler, void *user_data);
+
+bool mesh_weld(const mesh *m, mesh_topology *t);
+mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t);
+void mesh_topology_free(mesh_topology *t);
+
+#endif

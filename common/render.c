@@ -1,0 +1,167 @@
+#include "render.h"
+
+#include <glad/gl.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "context.h"
+#include "shader.h"
+
+/* std140 mirror of the Lights block in shaders/lighting.glsl. */
+typedef struct render_lights_block {
+    float ambient[4];
+    int count[4];
+    float position[SCENE_MAX_LIGHTS][4];
+    float direction[SCENE_MAX_LIGHTS][4];
+    float color[SCENE_MAX_LIGHTS][4];
+    float cone[SCENE_MAX_LIGHTS][4];
+} render_lights_block;
+
+bool render_program_load(render_program *p, const char *const *files, int count) {
+    *p = (render_program){.id = shader_load_program(files, count)};
+    if (!p->id)
+        return false;
+    p->model = glGetUniformLocation(p->id, "u_model");
+    p->normal_matrix = glGetUniformLocation(p->id, "u_normal_matrix");
+    p->albedo = glGetUniformLocation(p->id, "u_albedo");
+    p->view_projection = glGetUniformLocation(p->id, "u_view_projection");
+    return true;
+}
+
+void render_program_destroy(render_program *p) {
+    glDeleteProgram(p->id);
+    *p = (render_program){0};
+}
+
+void render_program_use(const render_program *p, const camera_view *v) {
+    glUseProgram(p->id);
+    glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)v->view_projection);
+}
+
+void render_draw_object(const render_scene *r, const render_program *p, int object) {
+    const scene_object *o = &r->scene->objects[object];
+    const render_mesh *m = &r->meshes[object];
+    glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
+    glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const float *)m->normal_matrix);
+    glUniform3fv(p->albedo, 1, o->color);
+    glBindVertexArray(m->vao);
+    glDrawElements(GL_TRIANGLES, m->index_count, GL_UNSIGNED_INT, NULL);
+}
+
+static void render_mesh_upload(render_mesh *g, const scene_object *o) {
+    const mesh *m = &o->mesh;
+    glGenVertexArrays(1, &g->vao);
+    glBindVertexArray(g->vao);
+    glGenBuffers(1, &g->vertex_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * sizeof *m->vertices), m->vertices,
+                 GL_STATIC_DRAW);
+    glGenBuffers(1, &g->index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->index_buffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m->index_count * sizeof *m->indices), m->indices,
+                 GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(mesh_vertex), (void *)offsetof(mesh_vertex, position));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(mesh_vertex), (void *)offsetof(mesh_vertex, normal));
+    glBindVertexArray(0);
+    g->index_count = (int)m->index_count;
+    /* Normals transform by the inverse transpose, so that non-uniform
+     * scale keeps them perpendicular to the surface. */
+    mat3 upper;
+    glm_mat4_pick3((vec4 *)o->model, upper);
+    glm_mat3_inv(upper, upper);
+    glm_mat3_transpose_to(upper, g->normal_matrix);
+}
+
+bool render_scene_create(render_scene *r, const scene *s) {
+    *r = (render_scene){.scene = s};
+    r->meshes = calloc((size_t)s->object_count, sizeof *r->meshes);
+    if (!r->meshes) {
+        fprintf(stderr, "render: out of memory\n");
+        return false;
+    }
+    for (int i = 0; i < s->object_count; i++)
+        render_mesh_upload(&r->meshes[i], &s->objects[i]);
+    glGenBuffers(1, &r->lights_buffer);
+    glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffer);
+    glBufferData(GL_UNIFORM_BUFFER, sizeof(render_lights_block), NULL, GL_DYNAMIC_DRAW);
+    glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffer);
+    render_scene_update_lights(r);
+    static const char *const lit_files[] = {"lit.vert", "lit.frag"};
+    if (!render_program_load(&r->lit, lit_files, 2)) {
+        render_scene_destroy(r);
+        return false;
+    }
+    r->lit_ambient = glGetUniformLocation(r->lit.id, "u_ambient");
+    r->lit_light_first = glGetUniformLocation(r->lit.id, "u_light_first");
+    r->lit_light_end = glGetUniformLocation(r->lit.id, "u_light_end");
+    return context_gl_ok("render_scene_create");
+}
+
+void render_light_homogeneous(const scene_light *l, float out[4]) {
+    bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
+    if (directional)
+        glm_vec3_negate_to((float *)l->direction, out);
+    else
+        glm_vec3_copy((float *)l->position, out);
+    out[3] = directional ? 0.0f : 1.0f;
+}
+
+void render_scene_update_lights(const render_scene *r) {
+    const scene *s = r->scene;
+    render_lights_block b = {.count = {s->light_count}};
+    glm_vec3_copy((float *)s->ambient, b.ambient);
+    for (int i = 0; i < s->light_count; i++) {
+        const scene_light *l = &s->lights[i];
+        render_light_homogeneous(l, b.position[i]);
+        glm_vec3_copy((float *)l->direction, b.direction[i]);
+        glm_vec3_scale((float *)l->color, l->intensity, b.color[i]);
+        bool spot = l->type == SCENE_LIGHT_SPOT;
+        /* Outside any cone: smoothstep(-3, -2, cos) is 1 for every angle. */
+        b.cone[i][0] = spot ? cosf(glm_rad(l->outer_angle_deg)) : -3.0f;
+        b.cone[i][1] = spot ? cosf(glm_rad(l->inner_angle_deg)) : -2.0f;
+    }
+    glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffer);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof b, &b);
+}
+
+void render_scene_destroy(render_scene *r) {
+    for (int i = 0; r->meshes && i < r->scene->object_count; i++) {
+        glDeleteVertexArrays(1, &r->meshes[i].vao);
+        glDeleteBuffers(1, &r->meshes[i].vertex_buffer);
+        glDeleteBuffers(1, &r->meshes[i].index_buffer);
+    }
+    free(r->meshes);
+    glDeleteBuffers(1, &r->lights_buffer);
+    render_program_destroy(&r->lit);
+    *r = (render_scene){0};
+}
+
+void render_use_lit(const render_scene *r, const camera_view *v, int light_first, int light_end, bool ambient) {
+    render_program_use(&r->lit, v);
+    glUniform1f(r->lit_ambient, ambient ? 1.0f : 0.0f);
+    glUniform1i(r->lit_light_first, light_first);
+    glUniform1i(r->lit_light_end, light_end);
+}
+
+void render_unshadowed(const render_scene *r, const camera_view *v) {
+    render_use_lit(r, v, 0, r->scene->light_count, true);
+    for (int i = 0; i < r->scene->object_count; i++)
+        render_draw_object(r, &r->lit, i);
+}
+
+void render_reset_state(void) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_STENCIL_TEST);
+    glStencilMask(0xff);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+}

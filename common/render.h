@@ -1,0 +1,69 @@
+/* render: a scene on the GPU and the drawing every technique shares.
+ *
+ * render_scene_create uploads each object's mesh (one VAO each: attribute
+ * 0 position, 1 normal), creates the uniform block of lights that
+ * shaders/lighting.glsl reads, and loads the "lit" program (lit.vert,
+ * lit.frag): Lambert plus ambient with no shadows, restricted to a range
+ * of lights. render_scene_update_lights copies the scene's lights into the
+ * block; the app calls it each frame, since the user can move lights.
+ *
+ * Techniques load their own programs with render_program_load, which finds
+ * the uniforms every scene-drawing program has (u_model, u_normal_matrix,
+ * u_albedo, u_view_projection; any may be absent), then draw objects with
+ * render_draw_object.
+ *
+ * State contract: the app binds the target, clears it to RENDER_BACKGROUND
+ * (depth 1, stencil 0) and calls render_reset_state before each technique
+ * frame; a technique may leave any state behind.
+ */
+#ifndef RENDER_H
+#define RENDER_H
+
+#include <stdbool.h>
+#include "camera.h"
+#include "scene.h"
+
+#define RENDER_BACKGROUND_R 0.06f
+#define RENDER_BACKGROUND_G 0.07f
+#define RENDER_BACKGROUND_B 0.09f
+
+typedef struct render_program {
+    unsigned id;
+    int model, normal_matrix, albedo, view_projection;
+} render_program;
+
+typedef struct render_mesh {
+    unsigned vao, vertex_buffer, index_buffer;
+    int index_count;
+    float normal_matrix[3][3];
+} render_mesh;
+
+typedef struct render_scene {
+    const scene *scene;
+    render_mesh *meshes; /* one per scene object */
+    unsigned lights_buffer;
+    render_program lit;
+    int lit_ambient, lit_light_first, lit_light_end;
+} render_scene;
+
+bool render_scene_create(render_scene *r, const scene *s);
+void render_scene_update_lights(const render_scene *r);
+void render_scene_destroy(render_scene *r);
+
+bool render_program_load(render_program *p, const char *const *files, int count);
+void render_program_destroy(render_program *p);
+void render_program_use(const render_program *p, const camera_view *v);
+void render_draw_object(const render_scene *r, const render_program *p, int object);
+
+/* Binds the lit program for lights [light_first, light_end), with or
+ * without the ambient term. */
+void render_use_lit(const render_scene *r, const camera_view *v, int light_first, int light_end, bool ambient);
+/* The whole scene lit by every light, nothing shadowed: the cost floor. */
+void render_unshadowed(const render_scene *r, const camera_view *v);
+void render_reset_state(void);
+
+/* A light as a homogeneous point: (position, 1), or (towards the light, 0)
+ * for a directional light, a point at infinity. */
+void render_light_homogeneous(const scene_light *l, float out[4]);
+
+#endif

@@ -1,0 +1,111 @@
+/* scene: scene files (JSON, parsed with cJSON) and the scene they describe.
+ *
+ * A scene file holds:
+ *   "camera":  { "position": [x,y,z], "target": [x,y,z],          (required)
+ *                "up": [0,1,0], "fov": 45 (vertical, degrees),
+ *                "near": 0.1, "far": 100 }
+ *   "ambient": [r,g,b]                                              (0.1 each)
+ *   "lights":  [ 1..SCENE_MAX_LIGHTS of
+ *                { "type": "point" | "spot" | "directional",       (required)
+ *                  "position": [x,y,z]        (point, spot: required)
+ *                  "direction": [x,y,z]       (spot, directional: required;
+ *                                              the way the light travels)
+ *                  "color": [1,1,1], "intensity": 1,
+ *                  "inner_angle": 20, "outer_angle": 30  (spot, degrees from
+ *                                              the axis: full light inside
+ *                                              inner, none outside outer)
+ *                  "radius": 0   (> 0: an area light, for soft shadows) } ]
+ *   "objects": [ 1..n of
+ *                { "name": "ground",                               (required)
+ *                  "mesh": { "kind": "plane", "size": [x,z] }      (required)
+ *                          | { "kind": "box", "size": [x,y,z] }
+ *                          | { "kind": "sphere", "radius": r, "segments": n }
+ *                          | { "kind": "torus", "major_radius": R,
+ *                              "minor_radius": r, "segments": n }
+ *                          | { "kind": "cylinder", "radius": r, "height": h,
+ *                              "segments": n }
+ *                          | { "kind": "model", "path": "file.obj" }
+ *                            (path relative to the scene file, or absolute)
+ *                  "translate": [0,0,0], "rotate": [0,0,0] (degrees about
+ *                  X, then Y, then Z), "scale": [1,1,1] or a number,
+ *                  "color": [0.8,0.8,0.8],
+ *                  "casts": true, "receives": true } ]
+ * Unknown keys are errors (they are usually typos), as are wrong types,
+ * non-finite numbers and out-of-range values.
+ *
+ * scene_load reports the first problem as one line
+ * "FILE: where: problem" (FILE:LINE for JSON syntax) on stderr and returns
+ * false, leaving the scene empty (safe to scene_free).
+ */
+#ifndef SCENE_H
+#define SCENE_H
+
+#include <stdbool.h>
+#include "mesh.h"
+
+#define SCENE_MAX_LIGHTS 8
+#define SCENE_NAME_MAX 64
+
+typedef enum scene_light_type {
+    SCENE_LIGHT_POINT,
+    SCENE_LIGHT_SPOT,
+    SCENE_LIGHT_DIRECTIONAL,
+} scene_light_type;
+
+typedef struct scene_camera {
+    float position[3];
+    float target[3];
+    float up[3];
+    float fov_deg;
+    float near_plane;
+    float far_plane;
+} scene_camera;
+
+typedef struct scene_light {
+    scene_light_type type;
+    float position[3];  /* point, spot */
+    float direction[3]; /* spot, directional: unit, the way light travels */
+    float color[3];
+    float intensity;
+    float inner_angle_deg; /* spot */
+    float outer_angle_deg; /* spot */
+    float radius;          /* > 0: area light */
+} scene_light;
+
+typedef enum scene_mesh_kind {
+    SCENE_MESH_PLANE,
+    SCENE_MESH_BOX,
+    SCENE_MESH_SPHERE,
+    SCENE_MESH_TORUS,
+    SCENE_MESH_CYLINDER,
+    SCENE_MESH_MODEL,
+} scene_mesh_kind;
+
+typedef struct scene_object {
+    char name[SCENE_NAME_MAX];
+    scene_mesh_kind mesh_kind;
+    mesh mesh;          /* in object space */
+    /* object -> world, column-major (cglm mat4). Aligned like a mat4, so
+     * cglm's SIMD code can use it in place. */
+    _Alignas(16) float model[4][4];
+    float color[3];
+    bool casts;
+    bool receives;
+} scene_object;
+
+typedef struct scene {
+    scene_camera camera;
+    float ambient[3];
+    scene_light lights[SCENE_MAX_LIGHTS];
+    int light_count;
+    scene_object *objects;
+    int object_count;
+} scene;
+
+bool scene_load(scene *s, const char *path);
+void scene_free(scene *s);
+
+/* World-space bounds of one object's mesh under its model matrix. */
+void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]);
+
+#endif

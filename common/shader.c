@@ -1,0 +1,199 @@
+#include "shader.h"
+
+#include <glad/gl.h>
+#include <ctype.h>
+#include <stdbool.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SHADER_MAX_SOURCES 16 /* files, includes counted, in one stage */
+#define SHADER_MAX_DEPTH 8
+
+static char shader_dir[4096] = "shaders";
+
+void shader_set_directory(const char *dir) { snprintf(shader_dir, sizeof shader_dir, "%s", dir); }
+const char *shader_directory(void) { return shader_dir; }
+
+/* One stage's text after includes, and which file each #line source number
+ * stands for. */
+typedef struct shader_source {
+    char *text;
+    size_t length, capacity;
+    char files[SHADER_MAX_SOURCES][256]; /* names in the shader directory */
+    int file_count;
+} shader_source;
+
+static bool shader_append(shader_source *s, const char *text, size_t n) {
+    if (s->length + n + 1 > s->capacity) {
+        size_t capacity = (s->length + n + 1) * 2;
+        char *grown = realloc(s->text, capacity);
+        if (!grown) {
+            fprintf(stderr, "shader: out of memory\n");
+            return false;
+        }
+        s->text = grown;
+        s->capacity = capacity;
+    }
+    memcpy(s->text + s->length, text, n);
+    s->length += n;
+    s->text[s->length] = '\0';
+    return true;
+}
+
+static bool shader_append_line_directive(shader_source *s, int line, int file) {
+    char directive[48];
+    int n = snprintf(directive, sizeof directive, "#line %d %d\n", line, file);
+    return shader_append(s, directive, (size_t)n);
+}
+
+static char *shader_read_file(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(stderr, "%s: cannot open: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    char *text = NULL;
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) >= 0 && fseek(f, 0, SEEK_SET) == 0 &&
+        (text = malloc((size_t)size + 1)) && fread(text, 1, (size_t)size, f) == (size_t)size) {
+        text[size] = '\0';
+    } else {
+        fprintf(stderr, "%s: cannot read: %s\n", path, size < 0 ? strerror(errno) : "short read");
+        free(text);
+        text = NULL;
+    }
+    fclose(f);
+    return text;
+}
+
+/* Appends `name` with its includes expanded. #version must stay the first
+ * line of a stage, so the first #line directive goes after it. */
+static bool shader_expand(shader_source *s, const char *name, int depth) {
+    if (depth > SHADER_MAX_DEPTH || s->file_count == SHADER_MAX_SOURCES) {
+        fprintf(stderr, "%s/%s: includes nested too deep or too many\n", shader_dir, name);
+        return false;
+    }
+    int file = s->file_count++;
+    snprintf(s->files[file], sizeof s->files[file], "%s", name);
+    char path[sizeof shader_dir + sizeof s->files[file] + 1];
+    snprintf(path, sizeof path, "%s/%s", shader_dir, name);
+    char *text = shader_read_file(path);
+    if (!text)
+        return false;
+    bool ok = depth == 0 || shader_append_line_directive(s, 1, file);
+    int line = 1;
+    for (char *p = text; ok && *p; line++) {
+        char *end = strchr(p, '\n');
+        size_t n = end ? (size_t)(end - p + 1) : strlen(p);
+        char included[256];
+        if (sscanf(p, " #include \"%255[^\"]\"", included) == 1) {
+            ok = shader_expand(s, included, depth + 1) && shader_append_line_directive(s, line + 1, file);
+            if (!ok)
+                fprintf(stderr, "%s/%s:%d: included from here\n", shader_dir, s->files[file], line);
+        } else {
+            ok = shader_append(s, p, n);
+            if (ok && depth == 0 && line == 1)
+                ok = shader_append_line_directive(s, 2, file);
+        }
+        p += n;
+    }
+    free(text);
+    return ok;
+}
+
+/* Drivers write "0:12(5): error" (Mesa), "0(12) : error" (NVIDIA) or
+ * "ERROR: 0:12: " (AMD); each line that names a source number and line is
+ * printed as "FILE:LINE: message". */
+static void shader_print_log(const shader_source *s, const char *log) {
+    for (const char *p = log; *p;) {
+        const char *end = strchr(p, '\n');
+        int n = end ? (int)(end - p) : (int)strlen(p);
+        const char *q = p;
+        if (strncmp(q, "ERROR: ", 7) == 0 || strncmp(q, "WARNING: ", 9) == 0)
+            q = strchr(q, ' ') + 1;
+        int source, line, used = 0;
+        if ((sscanf(q, "%d:%d%n", &source, &line, &used) == 2 || sscanf(q, "%d(%d)%n", &source, &line, &used) == 2) &&
+            source >= 0 && source < s->file_count) {
+            q += used;
+            while (*q == '(' || isdigit((unsigned char)*q) || *q == ')' || *q == ':' || *q == ' ')
+                q++;
+            fprintf(stderr, "%s/%s:%d: %.*s\n", shader_dir, s->files[source], line, (int)(p + n - q), q);
+        } else if (n > 0) {
+            fprintf(stderr, "%.*s\n", n, p);
+        }
+        p += n + (end != NULL);
+    }
+}
+
+static GLenum shader_stage(const char *file) {
+    const char *dot = strrchr(file, '.');
+    if (dot && strcmp(dot, ".vert") == 0)
+        return GL_VERTEX_SHADER;
+    if (dot && strcmp(dot, ".geom") == 0)
+        return GL_GEOMETRY_SHADER;
+    if (dot && strcmp(dot, ".frag") == 0)
+        return GL_FRAGMENT_SHADER;
+    return 0;
+}
+
+static GLuint shader_compile(const char *file) {
+    GLenum stage = shader_stage(file);
+    if (!stage) {
+        fprintf(stderr, "%s/%s: unknown shader stage (expected .vert, .geom or .frag)\n", shader_dir, file);
+        return 0;
+    }
+    shader_source s = {0};
+    GLuint shader = 0;
+    if (shader_expand(&s, file, 0)) {
+        shader = glCreateShader(stage);
+        const char *text = s.text;
+        glShaderSource(shader, 1, &text, NULL);
+        glCompileShader(shader);
+        GLint ok = GL_FALSE;
+        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            char log[8192] = "";
+            glGetShaderInfoLog(shader, sizeof log, NULL, log);
+            fprintf(stderr, "%s/%s: compile error:\n", shader_dir, file);
+            shader_print_log(&s, log);
+            glDeleteShader(shader);
+            shader = 0;
+        }
+    }
+    free(s.text);
+    return shader;
+}
+
+unsigned shader_load_program(const char *const *files, int count) {
+    GLuint program = glCreateProgram();
+    bool ok = true;
+    for (int i = 0; i < count && ok; i++) {
+        GLuint shader = shader_compile(files[i]);
+        ok = shader != 0;
+        if (ok) {
+            glAttachShader(program, shader);
+            glDeleteShader(shader); /* freed with the program */
+        }
+    }
+    if (ok) {
+        glLinkProgram(program);
+        GLint linked = GL_FALSE;
+        glGetProgramiv(program, GL_LINK_STATUS, &linked);
+        if (!linked) {
+            char log[8192] = "";
+            glGetProgramInfoLog(program, sizeof log, NULL, log);
+            fprintf(stderr, "%s/%s: link error:\n%s\n", shader_dir, files[0], log);
+            ok = false;
+        }
+    }
+    if (!ok) {
+        glDeleteProgram(program);
+        return 0;
+    }
+    GLuint lights = glGetUniformBlockIndex(program, "Lights");
+    if (lights != GL_INVALID_INDEX)
+        glUniformBlockBinding(program, lights, SHADER_LIGHTS_BINDING);
+    return program;
+}

@@ -1,0 +1,186 @@
+/* planar: planar projected shadows.
+ *
+ * Blinn, "Me and My (Fake) Shadow", IEEE CG&A 8(1), 1988: every caster is
+ * drawn a second time, squashed onto the receiver plane P by the shadow
+ * matrix S = (P.L) I - L P^T, which sends each point v to where the line
+ * from the light L (homogeneous: w = 1 point, w = 0 directional) through v
+ * meets the plane. Only planar receivers (mesh "plane", receives) get
+ * shadows; that is the technique's limit.
+ *
+ * For each light and receiver plane, three fixes, each a toggle so that a
+ * lecture can show the artifact it prevents:
+ *   stencil  the visible receiver pixels are marked 1; the projected
+ *            casters turn marked pixels into 2, each pixel once however many
+ *            projected triangles cover it; then the receiver is redrawn where
+ *            the stencil is 2 with this light's share subtracted, so a
+ *            shadowed pixel is exactly the picture without that light.
+ *            Off: casters are blended dark straight into the picture, and
+ *            overlapping triangles darken twice and spill past the
+ *            receiver's edges.
+ *   offset   the projected casters are coplanar with the receiver; polygon
+ *            offset pulls them towards the eye. Off: z-fighting speckles.
+ *   reject   the plane is oriented towards the light and clip distances
+ *            drop what is below it or beyond the light. Off: a light below
+ *            the plane or a caster above the light casts anti-shadows.
+ */
+#include <GLFW/glfw3.h>
+#include <glad/gl.h>
+#include <math.h>
+
+#include "planar.h"
+#include "technique.h"
+
+/* Factor (slope) and units (depth-buffer steps) towards the eye: one step
+ * is the smallest difference a 24-bit depth buffer resolves, and the
+ * slope term covers receivers seen at grazing angles. */
+#define PLANAR_OFFSET_FACTOR -1.0f
+#define PLANAR_OFFSET_UNITS -2.0f
+
+static struct {
+    planar_settings settings;
+    render_program flatten;
+    int shadow, plane, reject;
+} planar;
+
+static const technique_toggle planar_toggles[] = {
+    {"stencil", "shadows blend twice where projected triangles overlap and spill off the receiver", GLFW_KEY_S,
+     &planar.settings.no_stencil},
+    {"offset", "projected shadows z-fight with the receiver", GLFW_KEY_O, &planar.settings.no_offset},
+    {"reject", "lights below the plane and casters beyond the light cast anti-shadows", GLFW_KEY_R,
+     &planar.settings.no_reject},
+};
+
+void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]) {
+    float d = glm_vec4_dot((float *)plane, (float *)light);
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++)
+            out[col][row] = (row == col ? d : 0.0f) - light[row] * plane[col];
+}
+
+void planar_receiver_plane(const scene_object *o, float plane[4]) {
+    vec3 normal = {0, 1, 0}, origin;
+    mat3 normal_matrix;
+    glm_mat4_pick3((vec4 *)o->model, normal_matrix);
+    glm_mat3_inv(normal_matrix, normal_matrix);
+    glm_mat3_transpose(normal_matrix);
+    glm_mat3_mulv(normal_matrix, normal, normal);
+    glm_vec3_normalize(normal);
+    glm_vec3_copy((float *)o->model[3], origin);
+    glm_vec4(normal, -glm_vec3_dot(normal, origin), plane);
+}
+
+static bool planar_init(const render_scene *gpu) {
+    (void)gpu;
+    static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
+    if (!render_program_load(&planar.flatten, files, 2))
+        return false;
+    planar.shadow = glGetUniformLocation(planar.flatten.id, "u_shadow");
+    planar.plane = glGetUniformLocation(planar.flatten.id, "u_plane");
+    planar.reject = glGetUniformLocation(planar.flatten.id, "u_reject");
+    return true;
+}
+
+static void planar_destroy(void) { render_program_destroy(&planar.flatten); }
+
+static void planar_draw_casters(const technique_frame *f, int receiver, const float plane[4], const float light[4]) {
+    const scene *s = f->gpu->scene;
+    mat4 shadow;
+    planar_shadow_matrix(plane, light, shadow);
+    render_program_use(&planar.flatten, f->view);
+    glUniformMatrix4fv(planar.shadow, 1, GL_FALSE, (const float *)shadow);
+    glUniform4fv(planar.plane, 1, plane);
+    glUniform1i(planar.reject, !planar.settings.no_reject);
+    glEnable(GL_CLIP_DISTANCE0);
+    glEnable(GL_CLIP_DISTANCE1);
+    if (planar.settings.no_offset) {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    } else {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(PLANAR_OFFSET_FACTOR, PLANAR_OFFSET_UNITS);
+    }
+    glDepthMask(GL_FALSE);
+    for (int i = 0; i < s->object_count; i++)
+        if (i != receiver && s->objects[i].casts)
+            render_draw_object(f->gpu, &planar.flatten, i);
+    glDisable(GL_CLIP_DISTANCE0);
+    glDisable(GL_CLIP_DISTANCE1);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+/* The stencil path: mark, flatten into the mark, subtract the light. */
+static void planar_shadow_receiver(const technique_frame *f, int light, int receiver, const float plane[4],
+                                   const float light_h[4]) {
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_EQUAL);
+    render_use_lit(f->gpu, f->view, light, light + 1, false);
+    render_draw_object(f->gpu, &f->gpu->lit, receiver);
+
+    glStencilFunc(GL_EQUAL, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    glDepthFunc(GL_LESS);
+    planar_draw_casters(f, receiver, plane, light_h);
+
+    glStencilFunc(GL_EQUAL, 2, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
+    glBlendFunc(GL_ONE, GL_ONE);
+    render_use_lit(f->gpu, f->view, light, light + 1, false);
+    render_draw_object(f->gpu, &f->gpu->lit, receiver);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_STENCIL_TEST);
+}
+
+/* The textbook path the stencil fixes: darken by blending, once per layer. */
+static void planar_blend_receiver(const technique_frame *f, int receiver, const float plane[4],
+                                  const float light_h[4]) {
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ZERO, GL_SRC_COLOR);
+    planar_draw_casters(f, receiver, plane, light_h);
+    glDisable(GL_BLEND);
+}
+
+static void planar_render(const technique_frame *f) {
+    const scene *s = f->gpu->scene;
+    render_unshadowed(f->gpu, f->view);
+    for (int l = 0; l < s->light_count; l++) {
+        float light_h[4];
+        render_light_homogeneous(&s->lights[l], light_h);
+        for (int r = 0; r < s->object_count; r++) {
+            const scene_object *o = &s->objects[r];
+            if (!o->receives || o->mesh_kind != SCENE_MESH_PLANE)
+                continue;
+            float plane[4];
+            planar_receiver_plane(o, plane);
+            float facing = glm_vec4_dot(plane, light_h);
+            if (!planar.settings.no_reject && facing < 0) {
+                glm_vec4_negate(plane);
+                facing = -facing;
+            }
+            if (facing == 0) /* light in the plane: S is singular, the plane unlit */
+                continue;
+            if (planar.settings.no_stencil)
+                planar_blend_receiver(f, r, plane, light_h);
+            else
+                planar_shadow_receiver(f, l, r, plane, light_h);
+        }
+    }
+}
+
+const technique planar_technique = {
+    .name = "planar",
+    .title = "planar projected shadows (Blinn 1988) with stencil",
+    .toggles = planar_toggles,
+    .toggle_count = (int)(sizeof planar_toggles / sizeof *planar_toggles),
+    .init = planar_init,
+    .render = planar_render,
+    .destroy = planar_destroy,
+};

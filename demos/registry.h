@@ -1,0 +1,12 @@
+/* registry: the table of every technique. Adding a technique to the
+ * multi-technique window, the gallery and the benchmark is one line in
+ * registry.c. */
+#ifndef REGISTRY_H
+#define REGISTRY_H
+
+#include "technique.h"
+
+extern const technique *const registry_techniques[];
+extern const int registry_technique_count;
+
+#endif

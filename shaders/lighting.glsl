@@ -1,0 +1,33 @@
+// Shared lighting model: Lambert diffuse plus a constant ambient term, the
+// same model the ray-traced reference evaluates, so that pictures compare.
+// The lights live in one uniform block that common/render.c fills once per
+// frame for every program.
+
+#define LIGHTING_MAX_LIGHTS 8
+
+layout(std140) uniform Lights {
+    vec4 lights_ambient;                      // rgb
+    ivec4 lights_count;                       // x
+    vec4 lights_position[LIGHTING_MAX_LIGHTS];  // xyz; w = 1 positional, 0 directional
+    vec4 lights_direction[LIGHTING_MAX_LIGHTS]; // xyz: the way the light travels
+    vec4 lights_color[LIGHTING_MAX_LIGHTS];     // rgb: colour times intensity
+    vec4 lights_cone[LIGHTING_MAX_LIGHTS];      // x: cos(outer), y: cos(inner); a point light has x < -1
+};
+
+// Unit vector from the surface point towards light i.
+vec3 lighting_to_light(int i, vec3 position) {
+    vec4 l = lights_position[i];
+    return l.w == 0.0 ? -lights_direction[i].xyz : normalize(l.xyz - position);
+}
+
+// What light i would add at this point if nothing blocked it: the shadow
+// techniques decide visibility, this decides everything else.
+vec3 lighting_unshadowed(int i, vec3 position, vec3 normal, vec3 albedo) {
+    vec3 to_light = lighting_to_light(i, position);
+    float spot = smoothstep(lights_cone[i].x, lights_cone[i].y, dot(-to_light, lights_direction[i].xyz));
+    return albedo * lights_color[i].rgb * max(dot(normal, to_light), 0.0) * spot;
+}
+
+vec3 lighting_ambient(vec3 albedo) {
+    return albedo * lights_ambient.rgb;
+}

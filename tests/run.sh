@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Runs every test program of each build directory given (build/ and, for
+# the sanitizer run, build-san/) and ends with one line "N passed, N failed".
+# A program that dies before cmocka's summary counts as one failure.
+set -u
+cd "$(dirname "$0")/.."
+passed=0 failed=0 skipped=0
+for build in "$@"; do
+    export BUILD=$build
+    case $build in
+    *san*)
+        # Mesa unloads its drivers (dlclose) at eglTerminate; the driver's
+        # globals then vanish and LeakSanitizer calls everything they held
+        # a leak in an "<unknown module>". Programs under test therefore
+        # start with the drivers preloaded (after the ASan runtime, which
+        # must come first), so they stay mapped and nothing is hidden.
+        preload=$(readlink -f "$(${CC:-cc} -print-file-name=libasan.so)")
+        for lib in libEGL_mesa.so.0 libGLX_mesa.so.0 libOSMesa.so.8 dri/swrast_dri.so; do
+            path=/usr/lib/$(${CC:-cc} -print-multiarch)/$lib
+            [ -e "$path" ] && preload="$preload $path"
+        done
+        export TEST_PRELOAD=$preload
+        # assimp's OutOfMemory.off asks for a huge buffer and expects
+        # std::bad_alloc, not an ASan abort.
+        export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
+        export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
+        export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ;;
+    *) unset TEST_PRELOAD ;;
+    esac
+    for t in "$build"/tests/test_*; do
+        [ -x "$t" ] || continue
+        echo "== $t"
+        log=$("$t" 2>&1)
+        status=$?
+        printf '%s\n' "$log"
+        p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
+        f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
+        s=$(sed -n 's/^\[  SKIPPED \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
+        if [ -z "$p" ] && [ -z "$f" ]; then
+            echo "$t: exited with status $status before reporting its results"
+            f=1
+        elif [ "$status" -ne 0 ] && [ -z "$f" ]; then
+            echo "$t: exited with status $status after its tests (sanitizer report above?)"
+            f=1
+        fi
+        passed=$((passed + ${p:-0})) failed=$((failed + ${f:-0})) skipped=$((skipped + ${s:-0}))
+    done
+done
+if [ "$skipped" -gt 0 ]; then
+    echo "$passed passed, $failed failed, $skipped skipped"
+else
+    echo "$passed passed, $failed failed"
+fi
+[ "$failed" -eq 0 ]

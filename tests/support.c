@@ -1,0 +1,72 @@
+#include "support.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "image.h"
+
+const char *support_program(const char *name) {
+    static char command[4][2048];
+    static int next;
+    const char *build = getenv("BUILD"), *preload = getenv("TEST_PRELOAD");
+    char *out = command[next++ % 4];
+    snprintf(out, sizeof command[0], "%s%s%s%s/%s", preload ? "env LD_PRELOAD='" : "", preload ? preload : "",
+             preload ? "' " : "", build && *build ? build : "build", name);
+    return out;
+}
+
+int support_run(const char *command, char *stderr_text, size_t capacity) {
+    static const char *const err_path = "out/test/stderr.txt";
+    char full[4096];
+    snprintf(full, sizeof full, "mkdir -p out/test && %s 2>%s >/dev/null", command, err_path);
+    int status = system(full);
+    stderr_text[0] = '\0';
+    FILE *f = fopen(err_path, "r");
+    if (f) {
+        size_t n = fread(stderr_text, 1, capacity - 1, f);
+        stderr_text[n] = '\0';
+        fclose(f);
+    }
+    if (stderr_text[0])
+        fprintf(stderr, "    $ %s\n    %s", command, stderr_text);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int support_count_lines(const char *text) {
+    int lines = 0;
+    for (const char *p = text; *p; p++)
+        lines += *p == '\n';
+    return lines;
+}
+
+double support_compare_images(const char *golden, const char *actual) {
+    int gw, gh, aw, ah;
+    unsigned char *g = image_read_png(golden, &gw, &gh), *a = image_read_png(actual, &aw, &ah);
+    double fraction = -1;
+    if (g && a && gw == aw && gh == ah) {
+        unsigned char *diff = malloc((size_t)aw * ah * 4);
+        long over = image_compare(g, a, aw, ah, SUPPORT_TOLERANCE, diff);
+        fraction = (double)over / ((double)aw * ah);
+        if (fraction > SUPPORT_MAX_DIFFERING) {
+            char diff_path[1024];
+            snprintf(diff_path, sizeof diff_path, "%.*s_diff.png", (int)(strlen(actual) - 4), actual);
+            image_write_png(diff_path, aw, ah, diff);
+            fprintf(stderr, "    %s: %.3f %% of pixels differ from %s by more than %d/255; diff: %s\n", actual,
+                    fraction * 100, golden, SUPPORT_TOLERANCE, diff_path);
+        }
+        free(diff);
+    } else if (g && a) {
+        fprintf(stderr, "    %s is %dx%d, %s is %dx%d\n", actual, aw, ah, golden, gw, gh);
+    }
+    free(g);
+    free(a);
+    return fraction;
+}
+
+bool support_have_command(const char *name) {
+    char command[256];
+    snprintf(command, sizeof command, "command -v %s >/dev/null 2>&1", name);
+    return system(command) == 0;
+}

@@ -1,0 +1,31 @@
+/* support: what the tests share: running a program and capturing its
+ * exit status and stderr, and comparing a screenshot with a golden image.
+ *
+ * Tests run from the repository root; programs are in $BUILD (build/ by
+ * default, build-san/ for the sanitizer run) and write under out/test/.
+ */
+#ifndef SUPPORT_H
+#define SUPPORT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* Golden-image tolerance: at most 0.1 % of pixels may differ by more than
+ * 8/255 in any channel (rasterizers may round an edge pixel differently). */
+#define SUPPORT_TOLERANCE 8
+#define SUPPORT_MAX_DIFFERING 0.001
+
+/* "$BUILD/NAME", behind `env LD_PRELOAD=...` when run.sh asks for it
+ * (the sanitizer run; see run.sh). */
+const char *support_program(const char *name);
+/* Runs `command` through the shell with stderr captured; returns the exit
+ * status (-1 if it did not exit normally). */
+int support_run(const char *command, char *stderr_text, size_t capacity);
+int support_count_lines(const char *text);
+/* Fraction of pixels that differ by more than SUPPORT_TOLERANCE; -1 if an
+ * image is unreadable or the sizes differ. When the fraction is over
+ * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
+double support_compare_images(const char *golden, const char *actual);
+bool support_have_command(const char *name);
+
+#endif

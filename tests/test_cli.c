@@ -1,0 +1,108 @@
+/* Command-line behaviour of the programs: bad input gets one clear line
+ * naming the problem and a non-zero exit, never a crash or a silent
+ * picture. Everything runs headless with EGL. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "support.h"
+
+#define EXIT_RUNTIME 1
+#define EXIT_USAGE 2
+
+static char err[16384];
+
+/* Runs build/planar with `args` and checks the status and that stderr is
+ * one line containing each of the `expect` strings. */
+static void expect_failure(const char *args, int status, const char *expect1, const char *expect2) {
+    char command[2048];
+    snprintf(command, sizeof command, "%s --backend egl %s", support_program("planar"), args);
+    assert_int_equal(support_run(command, err, sizeof err), status);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, expect1));
+    if (expect2)
+        assert_non_null(strstr(err, expect2));
+}
+
+static void test_unknown_flag(void **state) {
+    (void)state;
+    expect_failure("--frames 1 --bogus", EXIT_USAGE, "unknown flag", "--bogus");
+}
+
+static void test_malformed_values(void **state) {
+    (void)state;
+    expect_failure("--size 640by480", EXIT_USAGE, "--size", "640by480");
+    expect_failure("--size 0x480", EXIT_USAGE, "--size", "0x480");
+    expect_failure("--frames -3", EXIT_USAGE, "--frames", "-3");
+    expect_failure("--backend vulkan", EXIT_USAGE, "--backend", "vulkan");
+    expect_failure("--frames", EXIT_USAGE, "missing value", "--frames");
+    expect_failure("--technique nonesuch --frames 1", EXIT_USAGE, "unknown technique", "nonesuch");
+    expect_failure("--verbose=yes", EXIT_USAGE, "takes no value", "--verbose");
+}
+
+static void test_missing_scene(void **state) {
+    (void)state;
+    expect_failure("--frames 1 --scene tests/data/no_such_scene.json", EXIT_RUNTIME, "no_such_scene.json",
+                   "No such file");
+}
+
+static void test_malformed_scene(void **state) {
+    (void)state;
+    expect_failure("--frames 1 --scene tests/data/cli_syntax_error.json", EXIT_RUNTIME,
+                   "cli_syntax_error.json", "syntax");
+}
+
+static void test_broken_model_file(void **state) {
+    (void)state;
+    expect_failure("--frames 1 --scene tests/data/cli_broken_model.json", EXIT_RUNTIME, "cli_broken_model.json",
+                   "malformed.obj");
+}
+
+static void test_missing_shader_dir(void **state) {
+    (void)state;
+    expect_failure("--frames 1 --shader-dir out/test/no_such_dir", EXIT_RUNTIME, "out/test/no_such_dir/lit.vert",
+                   "cannot open");
+}
+
+/* A shader with a syntax error: the message names the file and its line
+ * (also through an include), then the driver's log follows. */
+static void test_broken_shader_names_file_and_line(void **state) {
+    (void)state;
+    char command[2048];
+    assert_int_equal(system("rm -rf out/test/broken_shaders && mkdir -p out/test && "
+                            "cp -r shaders out/test/broken_shaders && "
+                            "sed -i '3s/.*/this is not GLSL;/' out/test/broken_shaders/lighting.glsl"),
+                     0);
+    snprintf(command, sizeof command, "%s --backend egl --frames 1 --shader-dir out/test/broken_shaders",
+             support_program("planar"));
+    assert_int_equal(support_run(command, err, sizeof err), EXIT_RUNTIME);
+    assert_non_null(strstr(err, "out/test/broken_shaders/lighting.glsl:3:"));
+    assert_non_null(strstr(err, "lit.frag"));
+}
+
+static void test_help_lists_flags_and_toggles(void **state) {
+    (void)state;
+    char command[4096];
+    snprintf(command, sizeof command, "%s --help | grep -q -- '--no-stencil' && %s --help | grep -q -- "
+             "'--backend auto|glfw|egl|osmesa'", support_program("planar"), support_program("shadows"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_unknown_flag),
+        cmocka_unit_test(test_malformed_values),
+        cmocka_unit_test(test_missing_scene),
+        cmocka_unit_test(test_malformed_scene),
+        cmocka_unit_test(test_broken_model_file),
+        cmocka_unit_test(test_missing_shader_dir),
+        cmocka_unit_test(test_broken_shader_names_file_and_line),
+        cmocka_unit_test(test_help_lists_flags_and_toggles),
+    };
+    return cmocka_run_group_tests_name("command line", tests, NULL, NULL);
+}

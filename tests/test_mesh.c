@@ -1,0 +1,687 @@
+/* Tests of common/mesh.c: generators, model loading, sanitizing, welding.
+ * Run from the repository root (the paths are relative to it). */
+#include <dirent.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "mesh.h"
+
+#define TESTMODELS_DIR "/usr/share/assimp/models"
+#define PI 3.14159265358979323846
+
+/* ASan's operator new aborts instead of throwing std::bad_alloc, whatever
+ * ASAN_OPTIONS say, so no ASan build can survive assimp asking for memory it
+ * cannot have. */
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+#ifndef UNDER_ASAN
+#define UNDER_ASAN 0
+#endif
+
+/* stderr capture: the calls under test report on stderr. cmocka reports
+ * failures there too, so no assertion runs while it is captured. */
+static FILE *capture_file;
+static int saved_stderr = -1;
+static char captured[8192];
+
+static void capture_stderr(void)
+{
+    fflush(stderr);
+    capture_file = tmpfile();
+    assert_non_null(capture_file);
+    saved_stderr = dup(STDERR_FILENO);
+    dup2(fileno(capture_file), STDERR_FILENO);
+}
+
+static const char *release_stderr(void)
+{
+    fflush(stderr);
+    dup2(saved_stderr, STDERR_FILENO);
+    close(saved_stderr);
+    rewind(capture_file);
+    size_t length = fread(captured, 1, sizeof captured - 1, capture_file);
+    captured[length] = '\0';
+    fclose(capture_file);
+    return captured;
+}
+
+/* The text is one line holding every one of the (NULL-terminated) parts. */
+static void assert_one_line_with(const char *text, ...)
+{
+    const char *newline = strchr(text, '\n');
+    if (!newline || newline[1] != '\0') fail_msg("expected exactly one line, got \"%s\"", text);
+    va_list parts;
+    va_start(parts, text);
+    for (const char *part = va_arg(parts, const char *); part; part = va_arg(parts, const char *)) {
+        if (!strstr(text, part)) fail_msg("expected \"%s\" in \"%s\"", part, text);
+    }
+    va_end(parts);
+}
+
+static void assert_empty_mesh(const mesh *m)
+{
+    assert_null(m->vertices);
+    assert_null(m->indices);
+    assert_int_equal(m->vertex_count, 0);
+    assert_int_equal(m->index_count, 0);
+}
+
+static mesh_edge_counts count_edges(const mesh *m)
+{
+    mesh_topology topology;
+    assert_true(mesh_weld(m, &topology));
+    mesh_edge_counts counts = mesh_topology_count_edges(m, &topology);
+    mesh_topology_free(&topology);
+    return counts;
+}
+
+static void cross_of(const mesh *m, uint32_t first_index, double cross[3])
+{
+    const float *a = m->vertices[m->indices[first_index]].position;
+    const float *b = m->vertices[m->indices[first_index + 1]].position;
+    const float *c = m->vertices[m->indices[first_index + 2]].position;
+    double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    cross[0] = ab[1] * ac[2] - ab[2] * ac[1];
+    cross[1] = ab[2] * ac[0] - ab[0] * ac[2];
+    cross[2] = ab[0] * ac[1] - ab[1] * ac[0];
+}
+
+/* Divergence theorem: positive when the triangles face outwards. */
+static double signed_volume(const mesh *m)
+{
+    double volume = 0;
+    for (uint32_t i = 0; i < m->index_count; i += 3) {
+        const float *a = m->vertices[m->indices[i]].position;
+        double cross[3];
+        cross_of(m, i, cross);
+        volume += (a[0] * cross[0] + a[1] * cross[1] + a[2] * cross[2]) / 6;
+    }
+    return volume;
+}
+
+/* What every mesh handed out must be: valid indices, finite positions inside
+ * the bounds, unit normals, no zero-area triangle. */
+static void assert_sane_mesh(const mesh *m)
+{
+    assert_true(m->index_count > 0);
+    assert_int_equal(m->index_count % 3, 0);
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        const mesh_vertex *vertex = &m->vertices[v];
+        double length = 0;
+        for (int k = 0; k < 3; k++) {
+            assert_true(isfinite(vertex->position[k]));
+            assert_true(vertex->position[k] >= m->bounds_min[k] && vertex->position[k] <= m->bounds_max[k]);
+            length += vertex->normal[k] * vertex->normal[k];
+        }
+        assert_float_equal(sqrt(length), 1.0, 1e-3);
+    }
+    double diagonal = 0;
+    for (int k = 0; k < 3; k++) diagonal += pow(m->bounds_max[k] - m->bounds_min[k], 2);
+    for (uint32_t i = 0; i < m->index_count; i += 3) {
+        double cross[3];
+        for (int k = 0; k < 3; k++) assert_true(m->indices[i + k] < m->vertex_count);
+        cross_of(m, i, cross);
+        assert_true(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 1e-20 * diagonal * diagonal);
+    }
+}
+
+/* The generators' normals lean the way the winding faces. (Not so for every
+ * model: the smooth normals of a tetrahedron's corners lean away from the
+ * opposite face.) */
+static void assert_normals_follow_winding(const mesh *m)
+{
+    for (uint32_t i = 0; i < m->index_count; i += 3) {
+        double cross[3], normal_sum[3] = {0, 0, 0};
+        cross_of(m, i, cross);
+        for (int k = 0; k < 3; k++) {
+            for (int j = 0; j < 3; j++) normal_sum[j] += m->vertices[m->indices[i + k]].normal[j];
+        }
+        assert_true(cross[0] * normal_sum[0] + cross[1] * normal_sum[1] + cross[2] * normal_sum[2] > 0);
+    }
+}
+
+/* What the generators promise beyond sanity. */
+static void assert_good_generated_mesh(const mesh *m)
+{
+    assert_sane_mesh(m);
+    assert_normals_follow_winding(m);
+}
+
+static void assert_bounds(const mesh *m, const float min[3], const float max[3])
+{
+    for (int k = 0; k < 3; k++) {
+        assert_float_equal(m->bounds_min[k], min[k], 1e-5);
+        assert_float_equal(m->bounds_max[k], max[k], 1e-5);
+    }
+}
+
+/* Bounds of a mesh centred on the origin. */
+static void assert_centred_bounds(const mesh *m, float x, float y, float z)
+{
+    assert_bounds(m, (const float[3]){-x, -y, -z}, (const float[3]){x, y, z});
+}
+
+static void assert_closed(const mesh *m)
+{
+    mesh_edge_counts edges = count_edges(m);
+    assert_int_equal(edges.boundary, 0);
+    assert_int_equal(edges.non_manifold, 0);
+    assert_true(edges.manifold > 0);
+    assert_true(signed_volume(m) > 0);
+}
+
+static void test_plane(void **state)
+{
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_plane(&m, 4, 2));
+    assert_good_generated_mesh(&m);
+    assert_int_equal(m.vertex_count, 4);
+    assert_int_equal(m.index_count, 6);
+    assert_centred_bounds(&m, 2, 0, 1);
+    for (uint32_t i = 0; i < m.index_count; i += 3) {
+        double cross[3];
+        cross_of(&m, i, cross);
+        assert_true(cross[1] > 0 && cross[0] == 0 && cross[2] == 0); /* facing +Y */
+    }
+    mesh_edge_counts edges = count_edges(&m);
+    assert_int_equal(edges.boundary, 4);
+    assert_int_equal(edges.manifold, 1);
+    assert_int_equal(edges.non_manifold, 0);
+    mesh_free(&m);
+    assert_empty_mesh(&m);
+}
+
+static void test_box(void **state)
+{
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_box(&m, 2, 4, 6));
+    assert_good_generated_mesh(&m);
+    assert_int_equal(m.vertex_count, 24);
+    assert_int_equal(m.index_count, 36);
+    assert_centred_bounds(&m, 1, 2, 3);
+    assert_closed(&m);
+    assert_float_equal(signed_volume(&m), 48, 1e-4);
+    /* Flat: every triangle's normals are its face normal. */
+    for (uint32_t i = 0; i < m.index_count; i += 3) {
+        double cross[3];
+        cross_of(&m, i, cross);
+        double length = sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+        for (int k = 0; k < 3; k++) {
+            for (int j = 0; j < 3; j++) {
+                assert_float_equal(m.vertices[m.indices[i + k]].normal[j], cross[j] / length, 1e-6);
+            }
+        }
+    }
+    mesh_free(&m);
+}
+
+static void test_sphere(void **state)
+{
+    (void)state;
+    const int segment_counts[] = {0, 3, 4, 7, 64};
+    for (size_t i = 0; i < sizeof segment_counts / sizeof *segment_counts; i++) {
+        mesh m;
+        assert_true(mesh_make_sphere(&m, 2, segment_counts[i]));
+        assert_good_generated_mesh(&m);
+        assert_closed(&m);
+        assert_float_equal(m.bounds_max[1], 2, 1e-6); /* the poles */
+        assert_float_equal(m.bounds_min[1], -2, 1e-6);
+        mesh_free(&m);
+    }
+    mesh m;
+    assert_true(mesh_make_sphere(&m, 2, 0)); /* default: 32 slices, 16 stacks */
+    assert_int_equal(m.vertex_count, 2 + 15 * 32);
+    assert_int_equal(m.index_count, 3 * 2 * 32 * 15);
+    assert_centred_bounds(&m, 2, 2, 2);
+    assert_float_equal(signed_volume(&m), 4.0 / 3.0 * PI * 8, 0.02 * 4.0 / 3.0 * PI * 8);
+    for (uint32_t v = 0; v < m.vertex_count; v++) {
+        const float *p = m.vertices[v].position;
+        assert_float_equal(sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 2, 1e-5);
+    }
+    mesh_free(&m);
+}
+
+static void test_torus(void **state)
+{
+    (void)state;
+    const int segment_counts[] = {0, 3, 5, 48};
+    for (size_t i = 0; i < sizeof segment_counts / sizeof *segment_counts; i++) {
+        mesh m;
+        assert_true(mesh_make_torus(&m, 3, 1, segment_counts[i]));
+        assert_good_generated_mesh(&m);
+        assert_closed(&m);
+        mesh_free(&m);
+    }
+    mesh m;
+    assert_true(mesh_make_torus(&m, 3, 1, 0));
+    assert_centred_bounds(&m, 4, 1, 4);
+    /* 2 pi^2 R r^2, less what the polygons cut off: 32 rings of 16 sides
+     * keep about 97% of it. */
+    assert_float_equal(signed_volume(&m), 2 * PI * PI * 3, 0.05 * 2 * PI * PI * 3);
+    mesh_free(&m);
+}
+
+static void test_cylinder(void **state)
+{
+    (void)state;
+    const int segment_counts[] = {0, 3, 5, 100};
+    for (size_t i = 0; i < sizeof segment_counts / sizeof *segment_counts; i++) {
+        mesh m;
+        assert_true(mesh_make_cylinder(&m, 1, 3, segment_counts[i]));
+        assert_good_generated_mesh(&m);
+        assert_closed(&m);
+        mesh_free(&m);
+    }
+    mesh m;
+    assert_true(mesh_make_cylinder(&m, 1, 3, 0));
+    assert_centred_bounds(&m, 1, 1.5f, 1);
+    assert_float_equal(signed_volume(&m), PI * 3, 0.01 * PI * 3);
+    mesh_free(&m);
+}
+
+static void expect_generator_error(bool made, mesh *m, const char *text, const char *generator, const char *what)
+{
+    assert_false(made);
+    assert_empty_mesh(m);
+    assert_one_line_with(text, generator, what, NULL);
+}
+
+static void test_generators_reject_bad_sizes(void **state)
+{
+    (void)state;
+    const float bad[] = {0, -1, NAN, INFINITY, -INFINITY};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        mesh m;
+        bool made;
+        capture_stderr();
+        made = mesh_make_plane(&m, 1, bad[i]);
+        expect_generator_error(made, &m, release_stderr(), "plane: ", "size_z");
+        capture_stderr();
+        made = mesh_make_box(&m, 1, bad[i], 1);
+        expect_generator_error(made, &m, release_stderr(), "box: ", "size_y");
+        capture_stderr();
+        made = mesh_make_sphere(&m, bad[i], 8);
+        expect_generator_error(made, &m, release_stderr(), "sphere: ", "radius");
+        capture_stderr();
+        made = mesh_make_torus(&m, 2, bad[i], 8);
+        expect_generator_error(made, &m, release_stderr(), "torus: ", "minor_radius");
+        capture_stderr();
+        made = mesh_make_cylinder(&m, 1, bad[i], 8);
+        expect_generator_error(made, &m, release_stderr(), "cylinder: ", "height");
+    }
+    mesh m;
+    bool made;
+    capture_stderr();
+    made = mesh_make_sphere(&m, 1, 2);
+    expect_generator_error(made, &m, release_stderr(), "sphere: ", "segments must be between 3 and 1024 (got 2)");
+    capture_stderr();
+    made = mesh_make_cylinder(&m, 1, 1, MESH_MAX_SEGMENTS + 1);
+    expect_generator_error(made, &m, release_stderr(), "cylinder: ", "segments");
+    capture_stderr();
+    made = mesh_make_torus(&m, 1, 1, 8);
+    expect_generator_error(made, &m, release_stderr(), "torus: ", "must be smaller than major_radius");
+}
+
+static void test_generators_at_extreme_scales(void **state)
+{
+    (void)state;
+    const float scales[] = {1e-30f, 1e30f};
+    for (size_t i = 0; i < sizeof scales / sizeof *scales; i++) {
+        mesh m;
+        assert_true(mesh_make_sphere(&m, scales[i], 16));
+        assert_good_generated_mesh(&m);
+        assert_closed(&m);
+        mesh_free(&m);
+        assert_true(mesh_make_box(&m, scales[i], scales[i], scales[i]));
+        assert_closed(&m);
+        mesh_free(&m);
+    }
+}
+
+static void test_weld_joins_copies_within_tolerance(void **state)
+{
+    (void)state;
+    /* Two triangles sharing the edge (1,0,0)-(0,1,0), through copies: one
+     * bit-identical, one off by far less than the tolerance (1e-6 of the
+     * diagonal). The last vertex is near (1,0,0) but well outside it. */
+    mesh_vertex vertices[] = {
+        {{0, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},        {{0, 1, 0}, {0, 0, 1}},
+        {{1, 0, 0}, {0, 0, 1}}, {{1, 1, 0}, {0, 0, 1}},        {{0, 1.0f + 1e-9f, 0}, {0, 0, 1}},
+        {{1.001f, 0, 0}, {0, 0, 1}},
+    };
+    uint32_t indices[] = {0, 1, 2, 3, 4, 5};
+    mesh m = {vertices, indices, 7, 6, {0, 0, 0}, {1, 1, 0}};
+    mesh_topology t;
+    assert_true(mesh_weld(&m, &t));
+    assert_int_equal(t.position_count, 5);
+    assert_int_equal(t.position_of_vertex[1], t.position_of_vertex[3]);
+    assert_int_equal(t.position_of_vertex[2], t.position_of_vertex[5]);
+    assert_int_not_equal(t.position_of_vertex[1], t.position_of_vertex[6]);
+    mesh_edge_counts edges = mesh_topology_count_edges(&m, &t);
+    assert_int_equal(edges.boundary, 4);
+    assert_int_equal(edges.manifold, 1);
+    assert_int_equal(edges.non_manifold, 0);
+    mesh_topology_free(&t);
+}
+
+static void test_edge_counts_see_non_manifold_edges(void **state)
+{
+    (void)state;
+    /* Three triangles on one edge, like pages of a book. */
+    mesh_vertex vertices[] = {
+        {{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
+        {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}},
+    };
+    uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4};
+    mesh m = {vertices, indices, 5, 9, {-1, 0, 0}, {1, 1, 1}};
+    mesh_edge_counts edges = count_edges(&m);
+    assert_int_equal(edges.non_manifold, 1);
+    assert_int_equal(edges.boundary, 6);
+    assert_int_equal(edges.manifold, 0);
+}
+
+static void test_sanitize_repairs_hand_made_mesh(void **state)
+{
+    (void)state;
+    /* A good triangle with a NaN normal, one touching a NaN vertex, one with
+     * an index past the vertices, one collinear, and an unused vertex far
+     * away that must not widen the bounds. */
+    mesh m = {0};
+    m.vertex_count = 6;
+    m.index_count = 12;
+    m.vertices = calloc(m.vertex_count, sizeof *m.vertices);
+    m.indices = calloc(m.index_count, sizeof *m.indices);
+    assert_non_null(m.vertices);
+    assert_non_null(m.indices);
+    const mesh_vertex vertices[] = {
+        {{0, 0, 0}, {NAN, 0, 0}}, {{2, 0, 0}, {0, 0, 1}}, {{0, 2, 0}, {0, 0, 0}},
+        {{NAN, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}}, {{1000, 1000, 1000}, {0, 0, 1}},
+    };
+    const uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 99, 0, 4, 1};
+    memcpy(m.vertices, vertices, sizeof vertices);
+    memcpy(m.indices, indices, sizeof indices);
+    capture_stderr();
+    bool sane = mesh_sanitize(&m, "hand-made");
+    const char *text = release_stderr();
+    assert_true(sane);
+    assert_one_line_with(text, "warning: hand-made: removed 1 degenerate and 2 non-finite triangles", NULL);
+    assert_int_equal(m.index_count, 3);
+    assert_int_equal(m.vertex_count, 3);
+    assert_sane_mesh(&m);
+    assert_float_equal(m.bounds_max[0], 2, 0);
+    assert_float_equal(m.bounds_max[2], 0, 0);
+    for (uint32_t v = 0; v < m.vertex_count; v++) assert_float_equal(m.vertices[v].normal[2], 1, 1e-6);
+    mesh_free(&m);
+}
+
+static void test_sanitize_of_nothing_is_an_error(void **state)
+{
+    (void)state;
+    mesh m = {0};
+    capture_stderr();
+    bool sane = mesh_sanitize(&m, "nothing");
+    const char *text = release_stderr();
+    assert_false(sane);
+    assert_empty_mesh(&m);
+    assert_one_line_with(text, "nothing: no triangles", NULL);
+}
+
+static mesh_edge_counts report_edges(const char *path, const mesh *m)
+{
+    assert_sane_mesh(m);
+    mesh_edge_counts edges = count_edges(m);
+    print_message("%s: %u vertices, %u triangles; edges: %u boundary, %u manifold, %u non-manifold\n", path,
+                  m->vertex_count, m->index_count / 3, edges.boundary, edges.manifold, edges.non_manifold);
+    return edges;
+}
+
+static void test_load_bunny(void **state)
+{
+    (void)state;
+    mesh m;
+    assert_true(mesh_load_file(&m, "assets/bunny.obj"));
+    mesh_edge_counts edges = report_edges("assets/bunny.obj", &m);
+    assert_int_equal(m.index_count / 3, 3674);
+    assert_int_equal(edges.boundary, 0);
+    assert_int_equal(edges.non_manifold, 0);
+    assert_int_equal(edges.manifold, 3674 * 3 / 2);
+    assert_true(signed_volume(&m) > 0);
+    mesh_free(&m);
+}
+
+static void test_load_teapot(void **state)
+{
+    (void)state;
+    mesh m;
+    assert_true(mesh_load_file(&m, "assets/teapot.obj"));
+    mesh_edge_counts edges = report_edges("assets/teapot.obj", &m);
+    assert_int_equal(m.index_count / 3, 992);
+    /* The file repeats 540 vertices bit for bit along its patch seams: over
+     * its own 792 indices it has 528 boundary edges, welded only the real
+     * openings are left (rims of lid and body, ends of spout and handle). */
+    assert_int_equal(edges.boundary, 64);
+    assert_int_equal(edges.non_manifold, 0);
+    mesh_free(&m);
+}
+
+static void test_load_testmodels(void **state)
+{
+    (void)state;
+    const char *paths[] = {TESTMODELS_DIR "/OBJ/spider.obj", TESTMODELS_DIR "/OBJ/WusonOBJ.obj"};
+    for (size_t i = 0; i < sizeof paths / sizeof *paths; i++) {
+        if (access(paths[i], R_OK) != 0) {
+            print_message("%s missing (Debian package assimp-testmodels): skipped\n", paths[i]);
+            continue;
+        }
+        mesh m;
+        /* spider.obj holds zero-area triangles: a warning is expected. */
+        capture_stderr();
+        bool loaded = mesh_load_file(&m, paths[i]);
+        print_message("%s", release_stderr());
+        assert_true(loaded);
+        assert_true(m.index_count > 0);
+        report_edges(paths[i], &m);
+        mesh_free(&m);
+    }
+}
+
+static void test_load_rejects_invalid_models(void **state)
+{
+    (void)state;
+    DIR *folder = opendir(TESTMODELS_DIR "/invalid");
+    if (!folder) skip();
+    /* OutOfMemory.off claims 353535235358 vertices, which assimp's reader
+     * wraps to 1347917086 and allocates (16 GB). Capping the address space
+     * turns that into std::bad_alloc, which assimp reports as an error. */
+    struct rlimit saved_limit;
+    assert_int_equal(getrlimit(RLIMIT_AS, &saved_limit), 0);
+    if (!UNDER_ASAN) {
+        struct rlimit capped = saved_limit;
+        capped.rlim_cur = (rlim_t)4 << 30;
+        if (saved_limit.rlim_cur == RLIM_INFINITY || saved_limit.rlim_cur > capped.rlim_cur) {
+            assert_int_equal(setrlimit(RLIMIT_AS, &capped), 0);
+        }
+    }
+    int rejected = 0, accepted = 0;
+    for (struct dirent *entry = readdir(folder); entry; entry = readdir(folder)) {
+        if (entry->d_name[0] == '.') continue;
+        if (UNDER_ASAN && strcmp(entry->d_name, "OutOfMemory.off") == 0) {
+            print_message("%s: skipped under ASan (it aborts on the 16 GB allocation)\n", entry->d_name);
+            continue;
+        }
+        char path[512];
+        snprintf(path, sizeof path, TESTMODELS_DIR "/invalid/%s", entry->d_name);
+        mesh m;
+        capture_stderr();
+        bool loaded = mesh_load_file(&m, path);
+        const char *text = release_stderr();
+        if (loaded) {
+            /* malformed2.obj is a whole cube with an unknown material. */
+            print_message("%s: accepted, %u triangles\n", entry->d_name, m.index_count / 3);
+            assert_sane_mesh(&m);
+            accepted++;
+        } else {
+            print_message("%s", text);
+            assert_empty_mesh(&m);
+            assert_one_line_with(text, path, NULL);
+            rejected++;
+        }
+        mesh_free(&m);
+    }
+    closedir(folder);
+    assert_int_equal(setrlimit(RLIMIT_AS, &saved_limit), 0);
+    assert_true(rejected > 0);
+    print_message("invalid models: %d rejected, %d accepted\n", rejected, accepted);
+}
+
+static void test_load_removes_non_finite_triangles(void **state)
+{
+    (void)state;
+    mesh m;
+    capture_stderr();
+    bool loaded = mesh_load_file(&m, "tests/data/mesh_nan_vertex.obj");
+    const char *text = release_stderr();
+    assert_true(loaded);
+    assert_one_line_with(text, "warning: tests/data/mesh_nan_vertex.obj: removed 0 degenerate and 2 non-finite triangles",
+                         NULL);
+    assert_int_equal(m.index_count, 12);
+    assert_sane_mesh(&m);
+    assert_bounds(&m, (const float[3]){0, 0, 0}, (const float[3]){1, 1, 1});
+    assert_closed(&m);
+    mesh_free(&m);
+}
+
+static void test_load_removes_degenerate_triangles(void **state)
+{
+    (void)state;
+    mesh m;
+    capture_stderr();
+    bool loaded = mesh_load_file(&m, "tests/data/mesh_degenerate_triangles.obj");
+    const char *text = release_stderr();
+    assert_true(loaded);
+    assert_one_line_with(text,
+                         "warning: tests/data/mesh_degenerate_triangles.obj: removed 3 degenerate and 0 non-finite triangles",
+                         NULL);
+    assert_int_equal(m.index_count, 12);
+    assert_int_equal(m.vertex_count, 4);
+    assert_sane_mesh(&m);
+    assert_closed(&m);
+    mesh_free(&m);
+}
+
+static void test_load_clean_model_is_quiet(void **state)
+{
+    (void)state;
+    mesh m;
+    capture_stderr();
+    bool loaded = mesh_load_file(&m, "tests/data/mesh_tetrahedron.obj");
+    const char *text = release_stderr();
+    assert_true(loaded);
+    assert_string_equal(text, "");
+    assert_int_equal(m.vertex_count, 4);
+    assert_closed(&m);
+    mesh_free(&m);
+}
+
+static void expect_load_error(const char *path, const char *problem)
+{
+    mesh m;
+    capture_stderr();
+    bool loaded = mesh_load_file(&m, path);
+    const char *text = release_stderr();
+    assert_false(loaded);
+    assert_empty_mesh(&m);
+    char expected[512];
+    snprintf(expected, sizeof expected, "%s: %s", path, problem);
+    assert_one_line_with(text, expected, NULL);
+    mesh_free(&m);
+}
+
+static void test_load_errors(void **state)
+{
+    (void)state;
+    expect_load_error("tests/data/mesh_only_degenerate.obj",
+                      "no triangles left after removing 2 degenerate and 0 non-finite");
+    expect_load_error("tests/data/mesh_lines_only.obj", "no triangles");
+    expect_load_error("tests/data/mesh_bad_index.obj", "OBJ:");
+    expect_load_error("tests/data/no_such_file.obj", "cannot open: No such file or directory");
+    expect_load_error("tests/data", "not a regular file");
+    expect_load_error("tests/data/scene_good.json", ""); /* assimp has no reader for it */
+}
+
+typedef struct reported_error {
+    char name[256];
+    char problem[256];
+    int count;
+} reported_error;
+
+static void record_error(const char *name, const char *problem, void *user_data)
+{
+    reported_error *error = user_data;
+    snprintf(error->name, sizeof error->name, "%s", name);
+    snprintf(error->problem, sizeof error->problem, "%s", problem);
+    error->count++;
+}
+
+static void test_error_handler_replaces_stderr(void **state)
+{
+    (void)state;
+    reported_error error = {.count = 0};
+    mesh m;
+    mesh_set_error_handler(record_error, &error);
+    capture_stderr();
+    bool made = mesh_make_sphere(&m, -1, 0);
+    const char *text = release_stderr();
+    mesh_set_error_handler(NULL, NULL);
+    assert_false(made);
+    assert_string_equal(text, "");
+    assert_int_equal(error.count, 1);
+    assert_string_equal(error.name, "sphere");
+    assert_non_null(strstr(error.problem, "radius"));
+    assert_null(strchr(error.problem, '\n'));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_plane),
+        cmocka_unit_test(test_box),
+        cmocka_unit_test(test_sphere),
+        cmocka_unit_test(test_torus),
+        cmocka_unit_test(test_cylinder),
+        cmocka_unit_test(test_generators_reject_bad_sizes),
+        cmocka_unit_test(test_generators_at_extreme_scales),
+        cmocka_unit_test(test_weld_joins_copies_within_tolerance),
+        cmocka_unit_test(test_edge_counts_see_non_manifold_edges),
+        cmocka_unit_test(test_sanitize_repairs_hand_made_mesh),
+        cmocka_unit_test(test_sanitize_of_nothing_is_an_error),
+        cmocka_unit_test(test_load_bunny),
+        cmocka_unit_test(test_load_teapot),
+        cmocka_unit_test(test_load_testmodels),
+        cmocka_unit_test(test_load_rejects_invalid_models),
+        cmocka_unit_test(test_load_removes_non_finite_triangles),
+        cmocka_unit_test(test_load_removes_degenerate_triangles),
+        cmocka_unit_test(test_load_clean_model_is_quiet),
+        cmocka_unit_test(test_load_errors),
+        cmocka_unit_test(test_error_handler_replaces_stderr),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
