@@ -19,10 +19,10 @@ PKGS := glfw3 egl cglm libcjson assimp stb
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
 PKG_LIBS = $(shell pkg-config --libs $(PKGS))
 CFLAGS ?= -O2 -g
-ALL_CFLAGS = -std=c11 -Wall -Wextra -Werror -D_XOPEN_SOURCE=700 -DGLFW_INCLUDE_NONE \
+ALL_CFLAGS = -std=c11 -fopenmp -Wall -Wextra -Werror -D_XOPEN_SOURCE=700 -DGLFW_INCLUDE_NONE \
 	$(SAN_FLAGS) -I$(BUILD)/glad/include -Icommon -Idemos -Itests $(PKG_CFLAGS) $(CFLAGS)
-LDLIBS = $(PKG_LIBS) -ldl -lm
-LDFLAGS += $(SAN_FLAGS)
+LDLIBS = $(PKG_LIBS) -lembree3 -ldl -lm
+LDFLAGS += $(SAN_FLAGS) -fopenmp
 
 # GL 3.3 core plus the extensions used behind a check.
 GL_EXTENSIONS := GL_KHR_debug
@@ -38,10 +38,13 @@ TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 
 LIB := $(BUILD)/libshadows.a
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) demos/registry.c) $(BUILD)/glad/gl.o
-PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS))
+# Programs whose main is common/main_NAME.c (the reference, the metrics,
+# the benchmark); the demos' main is common/main_single.c.
+TOOLS := raytrace shadowdiff bench
+PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
 
-.PHONY: all deps demo gallery test test-plain test-san update-golden clean help
+.PHONY: all deps demo gallery test bench update-golden clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -49,6 +52,7 @@ help:
 	@echo "make demo           build, then the interactive window (with a display) or the gallery"
 	@echo "make gallery        render every technique on each standard scene to out/gallery/"
 	@echo "make test           build and run every test, plain and under ASan+UBSan"
+	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
 	@echo "make update-golden  regenerate tests/golden/*.png on purpose (say why in the commit)"
 	@echo "make clean          remove build/, build-san/ and out/"
 
@@ -78,6 +82,9 @@ else
 	@tests/run.sh $(BUILD) build-san
 endif
 
+bench: $(PROGRAMS)
+	$(BUILD)/bench $(if $(filter 1,$(QUICK)),--quick)
+
 update-golden: $(PROGRAMS)
 	BUILD=$(BUILD) tests/update_golden.sh
 
@@ -100,6 +107,9 @@ $(LIB): $(LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
 $(BUILD)/shadows: $(BUILD)/common/main_registry.o $(LIB)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(addprefix $(BUILD)/,$(TOOLS)): $(BUILD)/%: $(BUILD)/common/main_%.o $(LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 # Each demo binary hosts one technique: the same main, told which one.

@@ -3,23 +3,21 @@
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
 #include <errno.h>
-#include <libgen.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
+#include "capture.h"
 #include "context.h"
+#include "flags.h"
 #include "hud.h"
 #include "image.h"
+#include "path.h"
 #include "shader.h"
 #include "target.h"
 
 #define APP_EXIT_RUNTIME 1
-#define APP_EXIT_USAGE 2
-#define APP_MAX_SIZE 16384
 #define APP_HEADLESS_FPS 60.0
 #define APP_ANIMATE_RAD_PER_S 0.5f
 #define APP_LIGHT_STEP_RAD 0.05f
@@ -33,7 +31,8 @@ static struct {
     context_backend backend;
     int width, height, frames;
     bool frames_given, verbose, animate;
-    const char *scene_path, *screenshot, *gallery_dir;
+    const char *scene_path, *screenshot, *dump_dir, *gallery_dir;
+    int light;
     char **gallery_scenes;
     int gallery_scene_count;
     char shader_dir[PATH_MAX], default_scene[PATH_MAX];
@@ -59,6 +58,10 @@ static void app_usage(FILE *out) {
             "  --scene PATH                    scene file (assets/scenes/simple.json)\n"
             "  --frames N                      render N frames headless (time i/60 s), then exit\n"
             "  --screenshot PATH.png           save the last frame (implies headless)\n"
+            "  --dump DIR                      write what the last frame decided per pixel for one\n"
+            "                                  light: visibility, depth, normal, position, ids, colour\n"
+            "                                  (see common/dump.h; implies headless)\n"
+            "  --light K                       the light --dump reports (0)\n"
             "  --shader-dir DIR                where the GLSL files are (shaders/ beside build/)\n"
             "  --technique NAME                which technique to start with\n"
             "  --animate                       turn the lights about the camera target over time\n"
@@ -79,42 +82,16 @@ static void app_usage(FILE *out) {
 }
 
 static int app_usage_error(const char *message, const char *value) {
-    fprintf(stderr, "%s: %s%s%s%s (see --help)\n", app.program, message, value ? " '" : "", value ? value : "",
-            value ? "'" : "");
-    return APP_EXIT_USAGE;
+    return flags_usage_error(app.program, message, value);
 }
 
-/* Turns --no-NAME off in every technique that has the toggle NAME. */
-static bool app_apply_toggle_flag(const char *flag) {
-    if (strncmp(flag, "--no-", 5) != 0)
-        return false;
+/* A technique's own flag, for every technique that has it (the
+ * multi-technique program shares flags such as --no-offset). */
+static bool app_apply_technique_flag(const char *flag) {
     bool found = false;
-    for (int i = 0; i < app.technique_count; i++) {
-        const technique *t = app.techniques[i];
-        for (int k = 0; k < t->toggle_count; k++) {
-            if (strcmp(flag + 5, t->toggles[k].name) == 0) {
-                *t->toggles[k].disabled = true;
-                found = true;
-            }
-        }
-    }
+    for (int i = 0; i < app.technique_count; i++)
+        found |= technique_apply_flag(app.techniques[i], flag);
     return found;
-}
-
-static bool app_parse_positive(const char *text, int max, int *out) {
-    char *end;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (errno || end == text || v < 1 || v > max)
-        return false;
-    *out = (int)v;
-    return *end == '\0' || *end == 'x';
-}
-
-static bool app_parse_size(const char *text, int *w, int *h) {
-    const char *x = strchr(text, 'x');
-    return x && app_parse_positive(text, APP_MAX_SIZE, w) && *x == 'x' &&
-           app_parse_positive(x + 1, APP_MAX_SIZE, h) && !strchr(x + 1, 'x');
 }
 
 static int app_find_technique(const char *name) {
@@ -133,7 +110,7 @@ static int app_parse_flags(int argc, char **argv) {
         snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - flag) : (int)strlen(flag), flag);
         const char *value = eq ? eq + 1 : NULL;
         static const char *const with_value[] = {"--backend", "--size", "--scene", "--frames", "--screenshot",
-                                                 "--shader-dir", "--technique", "--gallery"};
+                                                 "--shader-dir", "--technique", "--gallery", "--dump", "--light"};
         bool needs_value = false;
         for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
             needs_value |= strcmp(name, with_value[k]) == 0;
@@ -151,16 +128,21 @@ static int app_parse_flags(int argc, char **argv) {
             if (!context_backend_parse(value, &app.backend))
                 return app_usage_error("--backend: expected auto, glfw, egl or osmesa, got", value);
         } else if (strcmp(name, "--size") == 0) {
-            if (!app_parse_size(value, &app.width, &app.height))
+            if (!flags_parse_size(value, &app.width, &app.height))
                 return app_usage_error("--size: expected WxH, each 1..16384, got", value);
         } else if (strcmp(name, "--frames") == 0) {
-            if (!app_parse_positive(value, 1000000, &app.frames) || strchr(value, 'x'))
+            if (!flags_parse_int(value, 1, 1000000, &app.frames))
                 return app_usage_error("--frames: expected a count 1..1000000, got", value);
             app.frames_given = true;
         } else if (strcmp(name, "--scene") == 0) {
             app.scene_path = value;
         } else if (strcmp(name, "--screenshot") == 0) {
             app.screenshot = value;
+        } else if (strcmp(name, "--dump") == 0) {
+            app.dump_dir = value;
+        } else if (strcmp(name, "--light") == 0) {
+            if (!flags_parse_int(value, 0, SCENE_MAX_LIGHTS - 1, &app.light))
+                return app_usage_error("--light: expected a light index 0..7, got", value);
         } else if (strcmp(name, "--shader-dir") == 0) {
             snprintf(app.shader_dir, sizeof app.shader_dir, "%s", value);
         } else if (strcmp(name, "--technique") == 0) {
@@ -177,30 +159,11 @@ static int app_parse_flags(int argc, char **argv) {
             app.animate = true;
         } else if (strcmp(name, "--verbose") == 0) {
             app.verbose = true;
-        } else if (!app_apply_toggle_flag(flag)) {
+        } else if (!app_apply_technique_flag(flag)) {
             return app_usage_error("unknown flag", flag);
         }
     }
     return 0;
-}
-
-/* Files the programs need are found beside the executable (build/..), so
- * they run from any working directory. */
-static void app_locate_files(const char *argv0) {
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0)
-        exe[n] = '\0';
-    else
-        snprintf(exe, sizeof exe, "%s", argv0);
-    const char *dir = dirname(exe);
-    if (!app.shader_dir[0])
-        snprintf(app.shader_dir, sizeof app.shader_dir, "%s/../shaders", dir);
-    snprintf(app.default_scene, sizeof app.default_scene, "%s/../assets/scenes/simple.json", dir);
-    char *resolved = realpath(app.default_scene, NULL); /* shorter on the HUD */
-    if (resolved)
-        snprintf(app.default_scene, sizeof app.default_scene, "%s", resolved);
-    free(resolved);
 }
 
 static const technique *app_technique(void) { return app.techniques[app.current]; }
@@ -208,6 +171,11 @@ static const technique *app_technique(void) { return app.techniques[app.current]
 static bool app_load_scene(const char *path) {
     if (!scene_load(&app.scene, path))
         return false;
+    if (app.light >= app.scene.light_count) {
+        fprintf(stderr, "%s: --light %d: the scene has %d light(s)\n", path, app.light, app.scene.light_count);
+        scene_free(&app.scene);
+        return false;
+    }
     memcpy(app.base_lights, app.scene.lights, sizeof app.base_lights);
     if (!render_scene_create(&app.gpu, &app.scene)) {
         scene_free(&app.scene);
@@ -221,27 +189,24 @@ static void app_unload_scene(void) {
     scene_free(&app.scene);
 }
 
-static bool app_render_frame(void) {
+static void app_view(camera_view *view) {
+    camera_view_compute(&app.scene.camera, (float)app.target.width / (float)app.target.height, view);
+}
+
+/* visibility_of: -1 for the picture, K for light K's visibility (see
+ * capture.h). */
+static bool app_render_frame(int visibility_of) {
     scene *s = &app.scene;
     for (int i = 0; i < s->light_count; i++) {
         s->lights[i] = app.base_lights[i];
         if (app.animate)
             camera_orbit_light(&s->lights[i], s->camera.target, (float)app.time * APP_ANIMATE_RAD_PER_S, 0);
     }
-    render_scene_update_lights(&app.gpu);
     camera_view view;
-    camera_view_compute(&s->camera, (float)app.target.width / (float)app.target.height, &view);
-    target_bind(&app.target);
-    glClearColor(RENDER_BACKGROUND_R, RENDER_BACKGROUND_G, RENDER_BACKGROUND_B, 1);
-    glClearDepth(1);
-    glClearStencil(0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-    render_reset_state();
+    app_view(&view);
     const technique_frame frame = {
         .gpu = &app.gpu, .view = &view, .width = app.target.width, .height = app.target.height, .time = app.time};
-    app_technique()->render(&frame);
-    render_reset_state();
-    return context_gl_ok(app_technique()->name);
+    return technique_render_frame(app_technique(), &frame, &app.target, visibility_of);
 }
 
 static bool app_save_screenshot(const char *path) {
@@ -260,33 +225,24 @@ static bool app_start_technique(int index) {
     return app_technique()->init(&app.gpu);
 }
 
+static bool app_dump(const char *dir) {
+    camera_view view;
+    dump_frame dump;
+    app_view(&view);
+    bool ok = capture_dump(&app.gpu, &view, &app.target, app.light, app_render_frame, &dump);
+    ok = ok && dump_write(&dump, dir);
+    dump_frame_free(&dump);
+    return ok;
+}
+
 /* Renders `frames` frames at the fixed headless rate, then the screenshot. */
 static bool app_run_headless(int frames, const char *screenshot) {
     for (int i = 0; i < frames; i++) {
         app.time = i / APP_HEADLESS_FPS;
-        if (!app_render_frame())
+        if (!app_render_frame(-1))
             return false;
     }
     return !screenshot || app_save_screenshot(screenshot);
-}
-
-/* mkdir -p */
-static bool app_make_directories(const char *path) {
-    char partial[PATH_MAX];
-    snprintf(partial, sizeof partial, "%s", path);
-    for (char *p = partial + 1;; p++) {
-        if (*p != '/' && *p != '\0')
-            continue;
-        char c = *p;
-        *p = '\0';
-        if (mkdir(partial, 0777) != 0 && errno != EEXIST) {
-            fprintf(stderr, "%s: cannot create directory: %s\n", partial, strerror(errno));
-            return false;
-        }
-        if (c == '\0')
-            return true;
-        *p = c;
-    }
 }
 
 static bool app_scene_basename(const char *path, char *out, size_t size) {
@@ -297,7 +253,7 @@ static bool app_scene_basename(const char *path, char *out, size_t size) {
 }
 
 static bool app_run_gallery(void) {
-    if (!app_make_directories(app.gallery_dir))
+    if (!path_make_directories(app.gallery_dir))
         return false;
     for (int s = 0; s < app.gallery_scene_count; s++) {
         const char *scene_path = app.gallery_scenes[s];
@@ -432,7 +388,7 @@ static bool app_run_window(int frames) {
         }
         if (frames > 0)
             app.time = frame / APP_HEADLESS_FPS;
-        ok = ok && app_render_frame();
+        ok = ok && app_render_frame(-1);
         target_blit_to_window(&app.target, width, height);
         if (frames <= 0)
             app_hud(width, height);
@@ -452,7 +408,7 @@ static bool app_run_window(int frames) {
 }
 
 static bool app_run(void) {
-    bool interactive = !app.frames_given && !app.screenshot && !app.gallery_dir;
+    bool interactive = !app.frames_given && !app.screenshot && !app.dump_dir && !app.gallery_dir;
     const context_settings settings = {
         .backend = app.backend,
         .want_window = interactive,
@@ -476,6 +432,7 @@ static bool app_run(void) {
                  (!app.screenshot || app_save_screenshot(app.screenshot));
         else if (ok)
             ok = app_run_headless(app.frames, app.screenshot);
+        ok = ok && (!app.dump_dir || app_dump(app.dump_dir));
         app_technique()->destroy();
         app_unload_scene();
     }
@@ -496,7 +453,9 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     int status = app_parse_flags(argc, argv);
     if (status)
         return status < 0 ? 0 : status;
-    app_locate_files(argv[0]);
+    if (!app.shader_dir[0])
+        path_in_project("shaders", app.shader_dir, sizeof app.shader_dir);
+    path_in_project("assets/scenes/simple.json", app.default_scene, sizeof app.default_scene);
     shader_set_directory(app.shader_dir);
     if (!app.scene_path)
         app.scene_path = app.default_scene;

@@ -27,16 +27,14 @@
 static mesh_error_handler mesh_on_error;
 static void *mesh_on_error_user_data;
 
-void mesh_set_error_handler(mesh_error_handler handler, void *user_data)
-{
+void mesh_set_error_handler(mesh_error_handler handler, void *user_data) {
     mesh_on_error = handler;
     mesh_on_error_user_data = user_data;
 }
 
 /* Reports "NAME: problem" and empties the mesh (when given one), so that every
  * failure path leaves it safe to free. */
-static bool mesh_fail(mesh *m, const char *name, const char *format, ...)
-{
+static bool mesh_fail(mesh *m, const char *name, const char *format, ...) {
     char problem[512];
     va_list args;
     va_start(args, format);
@@ -55,15 +53,13 @@ static bool mesh_fail(mesh *m, const char *name, const char *format, ...)
     return false;
 }
 
-void mesh_free(mesh *m)
-{
+void mesh_free(mesh *m) {
     free(m->vertices);
     free(m->indices);
     *m = (mesh){0};
 }
 
-void mesh_topology_free(mesh_topology *t)
-{
+void mesh_topology_free(mesh_topology *t) {
     free(t->position_of_vertex);
     free(t->positions);
     *t = (mesh_topology){0};
@@ -71,8 +67,7 @@ void mesh_topology_free(mesh_topology *t)
 
 /* Room for the given counts; vertex_count and index_count stay 0 and serve as
  * the write cursors of mesh_push_vertex and mesh_push_triangle. */
-static bool mesh_alloc(mesh *m, const char *name, size_t vertex_count, size_t index_count)
-{
+static bool mesh_alloc(mesh *m, const char *name, size_t vertex_count, size_t index_count) {
     *m = (mesh){0};
     if (vertex_count > UINT32_MAX || index_count > UINT32_MAX) {
         return mesh_fail(m, name, "too large for 32-bit indices (%zu vertices, %zu indices)",
@@ -84,36 +79,31 @@ static bool mesh_alloc(mesh *m, const char *name, size_t vertex_count, size_t in
     return true;
 }
 
-static uint32_t mesh_push_vertex(mesh *m, const float position[3], const float normal[3])
-{
+static uint32_t mesh_push_vertex(mesh *m, const float position[3], const float normal[3]) {
     mesh_vertex *v = &m->vertices[m->vertex_count];
     memcpy(v->position, position, sizeof v->position);
     memcpy(v->normal, normal, sizeof v->normal);
     return m->vertex_count++;
 }
 
-static void mesh_push_triangle(mesh *m, uint32_t a, uint32_t b, uint32_t c)
-{
+static void mesh_push_triangle(mesh *m, uint32_t a, uint32_t b, uint32_t c) {
     m->indices[m->index_count++] = a;
     m->indices[m->index_count++] = b;
     m->indices[m->index_count++] = c;
 }
 
 /* a, b, c, d counter-clockwise seen from outside. */
-static void mesh_push_quad(mesh *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
-{
+static void mesh_push_quad(mesh *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
     mesh_push_triangle(m, a, b, c);
     mesh_push_triangle(m, a, c, d);
 }
 
-static bool mesh_check_size(mesh *m, const char *name, const char *what, float value)
-{
+static bool mesh_check_size(mesh *m, const char *name, const char *what, float value) {
     if (isfinite(value) && value > 0) return true;
     return mesh_fail(m, name, "%s must be finite and positive (got %g)", what, value);
 }
 
-static bool mesh_check_segments(mesh *m, const char *name, int *segments)
-{
+static bool mesh_check_segments(mesh *m, const char *name, int *segments) {
     if (*segments <= 0) *segments = MESH_DEFAULT_SEGMENTS;
     if (*segments >= 3 && *segments <= MESH_MAX_SEGMENTS) return true;
     return mesh_fail(m, name, "segments must be between 3 and %d (got %d)", MESH_MAX_SEGMENTS,
@@ -123,8 +113,7 @@ static bool mesh_check_segments(mesh *m, const char *name, int *segments)
 /* Point i of n on the unit circle around Y. It starts at +Z and turns towards
  * +X, which is counter-clockwise seen from +Y: the generators' windings rely
  * on that. */
-static void mesh_circle_point(int i, int n, float *x, float *z)
-{
+static void mesh_circle_point(int i, int n, float *x, float *z) {
     double angle = 2.0 * GLM_PI * i / n;
     *x = (float)sin(angle);
     *z = (float)cos(angle);
@@ -132,13 +121,11 @@ static void mesh_circle_point(int i, int n, float *x, float *z)
 
 /* Vertex (row, column) of a grid laid out row after row; columns wrap around,
  * which closes rings without duplicating their first vertex. */
-static uint32_t mesh_grid_vertex(uint32_t first, int row, int column, int columns)
-{
+static uint32_t mesh_grid_vertex(uint32_t first, int row, int column, int columns) {
     return first + (uint32_t)row * (uint32_t)columns + (uint32_t)(column % columns);
 }
 
-bool mesh_make_plane(mesh *m, float size_x, float size_z)
-{
+bool mesh_make_plane(mesh *m, float size_x, float size_z) {
     *m = (mesh){0};
     if (!mesh_check_size(m, "plane", "size_x", size_x) ||
         !mesh_check_size(m, "plane", "size_z", size_z) || !mesh_alloc(m, "plane", 4, 6)) {
@@ -154,8 +141,7 @@ bool mesh_make_plane(mesh *m, float size_x, float size_z)
     return mesh_sanitize(m, "plane");
 }
 
-bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z)
-{
+bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z) {
     *m = (mesh){0};
     if (!mesh_check_size(m, "box", "size_x", size_x) ||
         !mesh_check_size(m, "box", "size_y", size_y) ||
@@ -187,8 +173,7 @@ bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z)
     return mesh_sanitize(m, "box");
 }
 
-bool mesh_make_sphere(mesh *m, float radius, int segments)
-{
+bool mesh_make_sphere(mesh *m, float radius, int segments) {
     *m = (mesh){0};
     if (!mesh_check_size(m, "sphere", "radius", radius) ||
         !mesh_check_segments(m, "sphere", &segments)) {
@@ -232,8 +217,7 @@ bool mesh_make_sphere(mesh *m, float radius, int segments)
     return mesh_sanitize(m, "sphere");
 }
 
-bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segments)
-{
+bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segments) {
     *m = (mesh){0};
     if (!mesh_check_size(m, "torus", "major_radius", major_radius) ||
         !mesh_check_size(m, "torus", "minor_radius", minor_radius) ||
@@ -276,8 +260,7 @@ bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segmen
 
 /* A flat disc at height y facing away from the cylinder's centre: a fan
  * around its own centre vertex, with its own normals so the rim stays sharp. */
-static void mesh_push_cap(mesh *m, float radius, float y, int segments)
-{
+static void mesh_push_cap(mesh *m, float radius, float y, int segments) {
     const float normal[3] = {0, y > 0 ? 1.0f : -1.0f, 0};
     uint32_t centre = mesh_push_vertex(m, (const float[3]){0, y, 0}, normal);
     uint32_t first = m->vertex_count;
@@ -297,8 +280,7 @@ static void mesh_push_cap(mesh *m, float radius, float y, int segments)
     }
 }
 
-bool mesh_make_cylinder(mesh *m, float radius, float height, int segments)
-{
+bool mesh_make_cylinder(mesh *m, float radius, float height, int segments) {
     *m = (mesh){0};
     if (!mesh_check_size(m, "cylinder", "radius", radius) ||
         !mesh_check_size(m, "cylinder", "height", height) ||
@@ -327,8 +309,7 @@ bool mesh_make_cylinder(mesh *m, float radius, float height, int segments)
  * that NaN or infinite positions break: unrelated vertices then get joined.
  * Files with such positions skip those steps; mesh_sanitize drops the bad
  * triangles and computes the missing normals itself. */
-static bool mesh_scene_positions_finite(const struct aiScene *scene)
-{
+static bool mesh_scene_positions_finite(const struct aiScene *scene) {
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
         const struct aiMesh *am = scene->mMeshes[i];
         for (unsigned v = 0; v < am->mNumVertices; v++) {
@@ -339,8 +320,7 @@ static bool mesh_scene_positions_finite(const struct aiScene *scene)
     return true;
 }
 
-static unsigned mesh_count_assimp_triangles(const struct aiMesh *am)
-{
+static unsigned mesh_count_assimp_triangles(const struct aiMesh *am) {
     unsigned count = 0;
     for (unsigned f = 0; f < am->mNumFaces; f++) count += am->mFaces[f].mNumIndices == 3;
     return count;
@@ -348,8 +328,7 @@ static unsigned mesh_count_assimp_triangles(const struct aiMesh *am)
 
 /* Merges the triangles of every assimp mesh; points and lines are dropped,
  * with the vertices only they use. */
-static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct aiScene *scene)
-{
+static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct aiScene *scene) {
     size_t vertex_count = 0, triangle_count = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
         unsigned triangles = mesh_count_assimp_triangles(scene->mMeshes[i]);
@@ -388,8 +367,7 @@ static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct a
  * the OBJ reader's overflows were fixed upstream after Debian 12's 5.2.4).
  * Such files are refused before assimp reads them. Returns the offending
  * line's number, or 0. */
-static long mesh_obj_single_vertex_line(const char *path)
-{
+static long mesh_obj_single_vertex_line(const char *path) {
     const char *extension = strrchr(path, '.');
     FILE *f = extension && strcasecmp(extension, ".obj") == 0 ? fopen(path, "r") : NULL;
     if (!f) return 0;
@@ -398,22 +376,17 @@ static long mesh_obj_single_vertex_line(const char *path)
     long number = 0, found = 0;
     while (!found && getline(&text, &capacity, f) != -1) {
         number++;
-        char *statement = text + strspn(text, " \t");
-        if (statement[0] != 'l' || !isspace((unsigned char)statement[1])) continue;
-        int vertices = 0;
-        char *saved;
-        for (char *word = strtok_r(statement + 1, " \t\r\n", &saved); word; word = strtok_r(NULL, " \t\r\n", &saved)) {
-            vertices++;
-        }
-        if (vertices < 2) found = number;
+        const char *statement = text + strspn(text, " \t");
+        bool is_line = statement[0] == 'l' && (statement[1] == '\0' || isspace((unsigned char)statement[1]));
+        char second_vertex[2];
+        if (is_line && sscanf(statement + 1, "%*s %1s", second_vertex) != 1) found = number;
     }
     free(text);
     fclose(f);
     return found;
 }
 
-bool mesh_load_file(mesh *m, const char *path)
-{
+bool mesh_load_file(mesh *m, const char *path) {
     *m = (mesh){0};
     /* assimp reports a directory as an unknown format, or as an empty OBJ:
      * say what it is instead. */
@@ -422,8 +395,8 @@ bool mesh_load_file(mesh *m, const char *path)
     if (!S_ISREG(info.st_mode)) return mesh_fail(m, path, "not a regular file");
     long bad_line = mesh_obj_single_vertex_line(path);
     if (bad_line) {
-        return mesh_fail(m, path, "line %ld: a line statement needs 2 or more vertices (refused: assimp 5.2 "
-                         "overflows a buffer on it)", bad_line);
+        return mesh_fail(m, path, "line %ld: a line statement needs 2 or more vertices "
+                         "(refused: assimp 5.2 overflows a buffer on it)", bad_line);
     }
 
     const struct aiScene *scene =
@@ -441,8 +414,7 @@ bool mesh_load_file(mesh *m, const char *path)
 }
 
 /* Bounds over the finite positions only (zero when there is none). */
-static void mesh_measure_bounds(const mesh *m, float min[3], float max[3])
-{
+static void mesh_measure_bounds(const mesh *m, float min[3], float max[3]) {
     bool any = false;
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         const float *p = m->vertices[v].position;
@@ -460,8 +432,7 @@ static void mesh_measure_bounds(const mesh *m, float min[3], float max[3])
 }
 
 /* In double: float extents can overflow when squared. */
-static double mesh_diagonal(const float min[3], const float max[3])
-{
+static double mesh_diagonal(const float min[3], const float max[3]) {
     double sum = 0;
     for (int k = 0; k < 3; k++) sum += ((double)max[k] - min[k]) * ((double)max[k] - min[k]);
     return sqrt(sum);
@@ -469,8 +440,7 @@ static double mesh_diagonal(const float min[3], const float max[3])
 
 /* (b - a) x (c - a) in double: the differences of floats are exact there, so
  * a collinear triangle really gives zero, and twice the area is its length. */
-static void mesh_triangle_cross(const mesh *m, const uint32_t corner[3], double cross[3])
-{
+static void mesh_triangle_cross(const mesh *m, const uint32_t corner[3], double cross[3]) {
     const float *a = m->vertices[corner[0]].position;
     const float *b = m->vertices[corner[1]].position;
     const float *c = m->vertices[corner[2]].position;
@@ -489,8 +459,7 @@ typedef struct mesh_weld_key {
     uint32_t vertex;
 } mesh_weld_key;
 
-static int mesh_compare_weld_keys(const void *a, const void *b)
-{
+static int mesh_compare_weld_keys(const void *a, const void *b) {
     const mesh_weld_key *x = a, *y = b;
     for (int k = 0; k < 3; k++) {
         if (x->cell[k] != y->cell[k]) return x->cell[k] < y->cell[k] ? -1 : 1;
@@ -500,8 +469,7 @@ static int mesh_compare_weld_keys(const void *a, const void *b)
 }
 
 /* mesh_weld without the report, for callers that name the mesh themselves. */
-static bool mesh_build_topology(const mesh *m, mesh_topology *t)
-{
+static bool mesh_build_topology(const mesh *m, mesh_topology *t) {
     *t = (mesh_topology){0};
     if (m->vertex_count == 0) return true;
     float min[3], max[3];
@@ -544,20 +512,17 @@ static bool mesh_build_topology(const mesh *m, mesh_topology *t)
     return true;
 }
 
-bool mesh_weld(const mesh *m, mesh_topology *t)
-{
+bool mesh_weld(const mesh *m, mesh_topology *t) {
     if (mesh_build_topology(m, t)) return true;
     return mesh_fail(NULL, "mesh_weld", "out of memory");
 }
 
-static int mesh_compare_edges(const void *a, const void *b)
-{
+static int mesh_compare_edges(const void *a, const void *b) {
     uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
     return (x > y) - (x < y);
 }
 
-mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t)
-{
+mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t) {
     mesh_edge_counts counts = {0, 0, 0};
     size_t edge_count = m->index_count / 3 * 3;
     if (edge_count == 0) return counts;
@@ -595,8 +560,7 @@ typedef bool (*mesh_triangle_test)(const mesh *m, const uint32_t corner[3], cons
 
 /* Removes the triangles the test picks, keeping the order of the others;
  * returns how many went. */
-static uint32_t mesh_remove_triangles(mesh *m, mesh_triangle_test is_bad, const void *context)
-{
+static uint32_t mesh_remove_triangles(mesh *m, mesh_triangle_test is_bad, const void *context) {
     uint32_t kept = 0;
     for (uint32_t i = 0; i < m->index_count; i += 3) {
         if (is_bad(m, &m->indices[i], context)) continue;
@@ -609,8 +573,7 @@ static uint32_t mesh_remove_triangles(mesh *m, mesh_triangle_test is_bad, const 
 }
 
 /* Out-of-range indices count as non-finite: there is no position at all. */
-static bool mesh_triangle_non_finite(const mesh *m, const uint32_t corner[3], const void *unused)
-{
+static bool mesh_triangle_non_finite(const mesh *m, const uint32_t corner[3], const void *unused) {
     (void)unused;
     for (int k = 0; k < 3; k++) {
         if (corner[k] >= m->vertex_count) return true;
@@ -622,11 +585,10 @@ static bool mesh_triangle_non_finite(const mesh *m, const uint32_t corner[3], co
 
 typedef struct mesh_degeneracy {
     const mesh_topology *topology;
-    double min_cross_length; /* twice the smallest area kept */
+    double min_cross_length; /* |(b - a) x (c - a)| at or below it is degenerate */
 } mesh_degeneracy;
 
-static bool mesh_triangle_degenerate(const mesh *m, const uint32_t corner[3], const void *context)
-{
+static bool mesh_triangle_degenerate(const mesh *m, const uint32_t corner[3], const void *context) {
     const mesh_degeneracy *d = context;
     const uint32_t *welded = d->topology->position_of_vertex;
     uint32_t a = welded[corner[0]], b = welded[corner[1]], c = welded[corner[2]];
@@ -636,8 +598,7 @@ static bool mesh_triangle_degenerate(const mesh *m, const uint32_t corner[3], co
     return sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) <= d->min_cross_length;
 }
 
-static bool mesh_normal_usable(const float n[3])
-{
+static bool mesh_normal_usable(const float n[3]) {
     return isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2]) &&
            n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 1e-12f;
 }
@@ -645,8 +606,7 @@ static bool mesh_normal_usable(const float n[3])
 /* Vertices without a usable normal (missing, zero or non-finite) get the
  * area-weighted average of the faces around their welded position: a smooth
  * normal, as assimp would have generated. */
-static bool mesh_repair_normals(mesh *m, const mesh_topology *t)
-{
+static bool mesh_repair_normals(mesh *m, const mesh_topology *t) {
     bool any_broken = false;
     for (uint32_t v = 0; v < m->vertex_count && !any_broken; v++) {
         any_broken = !mesh_normal_usable(m->vertices[v].normal);
@@ -680,8 +640,7 @@ static bool mesh_repair_normals(mesh *m, const mesh_topology *t)
 
 /* Drops the vertices no triangle uses, keeping the order of the others, and
  * sets the bounds from those left: a stray vertex cannot widen them. */
-static bool mesh_remove_unused_vertices(mesh *m, const char *name)
-{
+static bool mesh_remove_unused_vertices(mesh *m, const char *name) {
     if (m->vertex_count > 0) {
         uint32_t *new_index = malloc(m->vertex_count * sizeof *new_index);
         if (!new_index) return mesh_fail(m, name, "out of memory");
@@ -701,16 +660,15 @@ static bool mesh_remove_unused_vertices(mesh *m, const char *name)
     return true;
 }
 
-bool mesh_sanitize(mesh *m, const char *name)
-{
+bool mesh_sanitize(mesh *m, const char *name) {
     m->index_count -= m->index_count % 3;
     uint32_t non_finite = mesh_remove_triangles(m, mesh_triangle_non_finite, NULL);
     if (!mesh_remove_unused_vertices(m, name)) return false;
 
     mesh_topology topology;
     if (!mesh_build_topology(m, &topology)) return mesh_fail(m, name, "out of memory");
-    /* Twice the area of a triangle whose sides are the weld tolerance: below
-     * that, the face has no usable normal and welding could collapse it. */
+    /* The cross product of two edges as short as the weld tolerance: a face
+     * smaller than that has no usable normal. */
     double tolerance = MESH_WELD_TOLERANCE * mesh_diagonal(m->bounds_min, m->bounds_max);
     mesh_degeneracy degeneracy = {&topology, tolerance * tolerance};
     uint32_t degenerate = mesh_remove_triangles(m, mesh_triangle_degenerate, &degeneracy);

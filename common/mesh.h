@@ -72,10 +72,11 @@ bool mesh_sanitize(mesh *m, const char *name);
 
 void mesh_free(mesh *m);
 
-/* A caller that puts errors in its own context (the scene loader names the
- * scene file and object) installs a handler; it gets NAME and problem
- * separately, without a newline. NULL restores the default (stderr).
- * Warnings always go to stderr. */
+/* A caller that puts errors in its own context installs a handler; it gets
+ * NAME and problem separately, without a newline. NULL restores the default
+ * (stderr). scene_load installs its own while it builds each object (to name
+ * the scene file and object), then restores the default. Warnings always go
+ * to stderr. */
 typedef void (*mesh_error_handler)(const char *name, const char *problem, void *user_data);
 void mesh_set_error_handler(mesh_error_handler handler, void *user_data);
 

@@ -88,7 +88,7 @@ bool render_scene_create(render_scene *r, const scene *s) {
     glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffer);
     glBufferData(GL_UNIFORM_BUFFER, sizeof(render_lights_block), NULL, GL_DYNAMIC_DRAW);
     glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffer);
-    render_scene_update_lights(r);
+    render_scene_update_lights(r, -1);
     static const char *const lit_files[] = {"lit.vert", "lit.frag"};
     if (!render_program_load(&r->lit, lit_files, 2)) {
         render_scene_destroy(r);
@@ -100,22 +100,13 @@ bool render_scene_create(render_scene *r, const scene *s) {
     return context_gl_ok("render_scene_create");
 }
 
-void render_light_homogeneous(const scene_light *l, float out[4]) {
-    bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
-    if (directional)
-        glm_vec3_negate_to((float *)l->direction, out);
-    else
-        glm_vec3_copy((float *)l->position, out);
-    out[3] = directional ? 0.0f : 1.0f;
-}
-
-void render_scene_update_lights(const render_scene *r) {
+void render_scene_update_lights(const render_scene *r, int visibility_of) {
     const scene *s = r->scene;
-    render_lights_block b = {.count = {s->light_count}};
+    render_lights_block b = {.count = {s->light_count, visibility_of}};
     glm_vec3_copy((float *)s->ambient, b.ambient);
     for (int i = 0; i < s->light_count; i++) {
         const scene_light *l = &s->lights[i];
-        render_light_homogeneous(l, b.position[i]);
+        scene_light_homogeneous(l, b.position[i]);
         glm_vec3_copy((float *)l->direction, b.direction[i]);
         glm_vec3_scale((float *)l->color, l->intensity, b.color[i]);
         bool spot = l->type == SCENE_LIGHT_SPOT;

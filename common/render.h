@@ -6,6 +6,8 @@
  * lit.frag): Lambert plus ambient with no shadows, restricted to a range
  * of lights. render_scene_update_lights copies the scene's lights into the
  * block; the app calls it each frame, since the user can move lights.
+ * With visibility_of = K >= 0 the block is in visibility mode for light K
+ * (see lighting.glsl): the frame then shows the technique's visibility.
  *
  * Techniques load their own programs with render_program_load, which finds
  * the uniforms every scene-drawing program has (u_model, u_normal_matrix,
@@ -47,7 +49,7 @@ typedef struct render_scene {
 } render_scene;
 
 bool render_scene_create(render_scene *r, const scene *s);
-void render_scene_update_lights(const render_scene *r);
+void render_scene_update_lights(const render_scene *r, int visibility_of);
 void render_scene_destroy(render_scene *r);
 
 bool render_program_load(render_program *p, const char *const *files, int count);
@@ -61,9 +63,5 @@ void render_use_lit(const render_scene *r, const camera_view *v, int light_first
 /* The whole scene lit by every light, nothing shadowed: the cost floor. */
 void render_unshadowed(const render_scene *r, const camera_view *v);
 void render_reset_state(void);
-
-/* A light as a homogeneous point: (position, 1), or (towards the light, 0)
- * for a directional light, a point at infinity. */
-void render_light_homogeneous(const scene_light *l, float out[4]);
 
 #endif

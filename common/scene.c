@@ -15,6 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "path.h"
+
 /* Far beyond any hand-written scene: a wrong path (a device, a huge file)
  * must not be read whole. */
 #define SCENE_MAX_FILE_SIZE (16u << 20)
@@ -52,8 +54,7 @@ static const scene_variant scene_mesh_kinds[] = {
 };
 
 /* Reports "FILE: WHERE.KEY: problem"; where may be "" and key NULL. */
-static bool scene_fail(const char *file, const char *where, const char *key, const char *format, ...)
-{
+static bool scene_fail(const char *file, const char *where, const char *key, const char *format, ...) {
     char problem[512];
     va_list args;
     va_start(args, format);
@@ -65,8 +66,7 @@ static bool scene_fail(const char *file, const char *where, const char *key, con
     return false;
 }
 
-static const char *scene_json_kind(const cJSON *item)
-{
+static const char *scene_json_kind(const cJSON *item) {
     if (cJSON_IsNumber(item)) return "a number";
     if (cJSON_IsString(item)) return "a string";
     if (cJSON_IsArray(item)) return "an array";
@@ -76,8 +76,7 @@ static const char *scene_json_kind(const cJSON *item)
 }
 
 /* "a, b, c or d" */
-static void scene_join_names(const char *const names[], char *out, size_t size)
-{
+static void scene_join_names(const char *const names[], char *out, size_t size) {
     size_t count = 0, used = 0;
     while (names[count]) count++;
     out[0] = '\0';
@@ -88,16 +87,15 @@ static void scene_join_names(const char *const names[], char *out, size_t size)
 }
 
 static bool scene_lookup(const char *file, const cJSON *object, const char *where, const char *key,
-                         bool required, const cJSON **item)
-{
+                         bool required, const cJSON **item) {
     *item = cJSON_GetObjectItemCaseSensitive(object, key);
     if (!*item && required) return scene_fail(file, where, key, "missing required field");
     return true;
 }
 
 /* Unknown keys are usually typos, and a repeated key hides one value. */
-static bool scene_check_keys(const char *file, const cJSON *object, const char *where, const char *const allowed[])
-{
+static bool scene_check_keys(const char *file, const cJSON *object, const char *where,
+                             const char *const allowed[]) {
     const cJSON *item;
     cJSON_ArrayForEach(item, object) {
         bool known = false;
@@ -116,8 +114,7 @@ static bool scene_check_keys(const char *file, const cJSON *object, const char *
 
 /* One JSON number, as a float in the range. */
 static bool scene_number(const char *file, const char *where, const char *key, const cJSON *item,
-                         scene_range range, float *out)
-{
+                         scene_range range, float *out) {
     if (!cJSON_IsNumber(item)) {
         return scene_fail(file, where, key, "expected a number, got %s", scene_json_kind(item));
     }
@@ -130,15 +127,14 @@ static bool scene_number(const char *file, const char *where, const char *key, c
         return scene_fail(file, where, key, "must be positive (got %g)", item->valuedouble);
     }
     if (range == SCENE_NON_NEGATIVE && value < 0) {
-        return scene_fail(file, where, key, "must not be negative (got %g)", value);
+        return scene_fail(file, where, key, "must not be negative (got %g)", item->valuedouble);
     }
     *out = value;
     return true;
 }
 
 static bool scene_read_float(const char *file, const cJSON *object, const char *where, const char *key,
-                             bool required, scene_range range, float *out)
-{
+                             bool required, scene_range range, float *out) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, required, &item)) return false;
     return !item || scene_number(file, where, key, item, range, out);
@@ -146,8 +142,7 @@ static bool scene_read_float(const char *file, const cJSON *object, const char *
 
 /* An array of exactly count numbers: every vector field. */
 static bool scene_read_floats(const char *file, const cJSON *object, const char *where, const char *key,
-                              bool required, scene_range range, float *out, int count)
-{
+                              bool required, scene_range range, float *out, int count) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, required, &item)) return false;
     if (!item) return true;
@@ -162,8 +157,7 @@ static bool scene_read_floats(const char *file, const cJSON *object, const char 
     return true;
 }
 
-static bool scene_read_int(const char *file, const cJSON *object, const char *where, const char *key, int *out)
-{
+static bool scene_read_int(const char *file, const cJSON *object, const char *where, const char *key, int *out) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, false, &item)) return false;
     if (!item) return true;
@@ -175,8 +169,7 @@ static bool scene_read_int(const char *file, const cJSON *object, const char *wh
     return true;
 }
 
-static bool scene_read_bool(const char *file, const cJSON *object, const char *where, const char *key, bool *out)
-{
+static bool scene_read_bool(const char *file, const cJSON *object, const char *where, const char *key, bool *out) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, false, &item)) return false;
     if (!item) return true;
@@ -189,8 +182,7 @@ static bool scene_read_bool(const char *file, const cJSON *object, const char *w
 
 /* The string stays owned by the JSON tree. */
 static bool scene_read_string(const char *file, const cJSON *object, const char *where, const char *key,
-                              const char **out)
-{
+                              const char **out) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, true, &item)) return false;
     if (!cJSON_IsString(item) || !item->valuestring) {
@@ -201,8 +193,7 @@ static bool scene_read_string(const char *file, const cJSON *object, const char 
 }
 
 static bool scene_read_json_object(const char *file, const cJSON *object, const char *where, const char *key,
-                                   const cJSON **out)
-{
+                                   const cJSON **out) {
     if (!scene_lookup(file, object, where, key, true, out)) return false;
     if (!cJSON_IsObject(*out)) {
         return scene_fail(file, where, key, "expected an object, got %s", scene_json_kind(*out));
@@ -213,8 +204,7 @@ static bool scene_read_json_object(const char *file, const cJSON *object, const 
 /* Reads a "type" or "kind" field, then checks the object's keys against
  * those of that variant. */
 static bool scene_read_variant(const char *file, const cJSON *object, const char *where, const char *key,
-                               const char *what, const scene_variant table[], const scene_variant **out)
-{
+                               const char *what, const scene_variant table[], const scene_variant **out) {
     const char *name;
     if (!scene_read_string(file, object, where, key, &name)) return false;
     const char *names[16];
@@ -233,8 +223,8 @@ static bool scene_read_variant(const char *file, const cJSON *object, const char
 }
 
 /* A list at the top level, with 1..max_count entries. */
-static bool scene_read_list(const char *file, const cJSON *root, const char *key, int max_count, const cJSON **out)
-{
+static bool scene_read_list(const char *file, const cJSON *root, const char *key, int max_count,
+                            const cJSON **out) {
     if (!scene_lookup(file, root, "", key, true, out)) return false;
     if (!cJSON_IsArray(*out)) {
         return scene_fail(file, "", key, "expected an array, got %s", scene_json_kind(*out));
@@ -249,20 +239,19 @@ static bool scene_read_list(const char *file, const cJSON *root, const char *key
 
 /* In double: cglm's float normalize overflows on huge vectors and turns
  * tiny ones to zero. */
-static bool scene_normalize(float v[3])
-{
+static bool scene_normalize(float v[3]) {
     double length = sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
     if (!(length > 0)) return false;
     for (int k = 0; k < 3; k++) v[k] = (float)(v[k] / length);
     return true;
 }
 
-static bool scene_read_camera(const char *file, const cJSON *root, scene_camera *c)
-{
+static bool scene_read_camera(const char *file, const cJSON *root, scene_camera *c) {
     static const char *const keys[] = {"position", "target", "up", "fov", "near", "far", NULL};
     *c = (scene_camera){.up = {0, 1, 0}, .fov_deg = 45, .near_plane = 0.1f, .far_plane = 100};
     const cJSON *json;
-    if (!scene_read_json_object(file, root, "", "camera", &json) || !scene_check_keys(file, json, "camera", keys) ||
+    if (!scene_read_json_object(file, root, "", "camera", &json) ||
+        !scene_check_keys(file, json, "camera", keys) ||
         !scene_read_floats(file, json, "camera", "position", true, SCENE_ANY, c->position, 3) ||
         !scene_read_floats(file, json, "camera", "target", true, SCENE_ANY, c->target, 3) ||
         !scene_read_floats(file, json, "camera", "up", false, SCENE_ANY, c->up, 3) ||
@@ -289,8 +278,7 @@ static bool scene_read_camera(const char *file, const cJSON *root, scene_camera 
     return true;
 }
 
-static bool scene_read_light(const char *file, const cJSON *json, const char *where, scene_light *l)
-{
+static bool scene_read_light(const char *file, const cJSON *json, const char *where, scene_light *l) {
     *l = (scene_light){.color = {1, 1, 1}, .intensity = 1, .inner_angle_deg = 20, .outer_angle_deg = 30};
     if (!cJSON_IsObject(json)) {
         return scene_fail(file, where, NULL, "expected an object, got %s", scene_json_kind(json));
@@ -328,15 +316,13 @@ typedef struct scene_mesh_context {
     const char *object;
 } scene_mesh_context;
 
-static void scene_report_mesh_error(const char *name, const char *problem, void *user_data)
-{
+static void scene_report_mesh_error(const char *name, const char *problem, void *user_data) {
     const scene_mesh_context *context = user_data;
     fprintf(stderr, "%s: %s: %s: %s\n", context->file, context->object, name, problem);
 }
 
 /* Model paths are relative to the scene file's folder, unless absolute. */
-static bool scene_load_model(const char *file, const char *path, mesh *m)
-{
+static bool scene_load_model(const char *file, const char *path, mesh *m) {
     const char *slash = strrchr(file, '/');
     int folder_length = path[0] == '/' || !slash ? 0 : (int)(slash - file + 1);
     size_t size = (size_t)folder_length + strlen(path) + 1;
@@ -349,8 +335,7 @@ static bool scene_load_model(const char *file, const char *path, mesh *m)
 }
 
 static bool scene_build_mesh(const char *file, const cJSON *json, const char *where, const char *object_where,
-                             scene_object *o)
-{
+                             scene_object *o) {
     char object[SCENE_NAME_MAX + 64];
     snprintf(object, sizeof object, "%s \"%s\"", object_where, o->name);
     scene_mesh_context context = {file, object};
@@ -393,24 +378,27 @@ static bool scene_build_mesh(const char *file, const cJSON *json, const char *wh
     return built;
 }
 
-static bool scene_check_name(const char *file, const char *where, const char *name)
-{
+static bool scene_check_name(const char *file, const char *where, const char *name) {
     size_t length = strlen(name);
     if (length == 0 || length >= SCENE_NAME_MAX) {
-        return scene_fail(file, where, "name", "must be 1 to %d bytes long (got %zu)", SCENE_NAME_MAX - 1, length);
+        return scene_fail(file, where, "name", "must be 1 to %d bytes long (got %zu)", SCENE_NAME_MAX - 1,
+                          length);
     }
     /* It is quoted in messages, which must stay one line. */
     for (const char *c = name; *c; c++) {
-        if (iscntrl((unsigned char)*c)) return scene_fail(file, where, "name", "must not contain control characters");
+        if (iscntrl((unsigned char)*c)) {
+            return scene_fail(file, where, "name", "must not contain control characters");
+        }
     }
     return true;
 }
 
 /* "scale" is a vector or one number for all three axes. */
-static bool scene_read_scale(const char *file, const cJSON *json, const char *where, float scale[3])
-{
+static bool scene_read_scale(const char *file, const cJSON *json, const char *where, float scale[3]) {
     const cJSON *item = cJSON_GetObjectItemCaseSensitive(json, "scale");
-    if (!cJSON_IsNumber(item)) return scene_read_floats(file, json, where, "scale", false, SCENE_POSITIVE, scale, 3);
+    if (!cJSON_IsNumber(item)) {
+        return scene_read_floats(file, json, where, "scale", false, SCENE_POSITIVE, scale, 3);
+    }
     if (!scene_number(file, where, "scale", item, SCENE_POSITIVE, &scale[0])) return false;
     scale[1] = scale[2] = scale[0];
     return true;
@@ -418,8 +406,7 @@ static bool scene_read_scale(const char *file, const cJSON *json, const char *wh
 
 /* M = T * Rz * Ry * Rx * S: scaled first, then turned about X, Y and Z, then
  * moved. */
-static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 scale, float out[4][4])
-{
+static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 scale, float out[4][4]) {
     mat4 model;
     glm_translate_make(model, translate);
     glm_rotate_z(model, glm_rad(rotate_deg[2]), model);
@@ -429,9 +416,9 @@ static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 s
     memcpy(out, model, sizeof model);
 }
 
-static bool scene_read_object(const char *file, const cJSON *json, const char *where, scene_object *o)
-{
-    static const char *const keys[] = {"name", "mesh", "translate", "rotate", "scale", "color", "casts", "receives", NULL};
+static bool scene_read_object(const char *file, const cJSON *json, const char *where, scene_object *o) {
+    static const char *const keys[] = {"name", "mesh", "translate", "rotate", "scale",
+                                       "color", "casts", "receives", NULL};
     vec3 translate = {0, 0, 0}, rotate_deg = {0, 0, 0}, scale = {1, 1, 1};
     *o = (scene_object){.color = {0.8f, 0.8f, 0.8f}, .casts = true, .receives = true};
     if (!cJSON_IsObject(json)) {
@@ -460,8 +447,7 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     return scene_build_mesh(file, mesh_json, mesh_where, where, o);
 }
 
-static bool scene_read_root(const char *file, const cJSON *root, scene *s)
-{
+static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     static const char *const keys[] = {"camera", "ambient", "lights", "objects", NULL};
     if (!cJSON_IsObject(root)) {
         return scene_fail(file, "", NULL, "expected an object at the top level, got %s", scene_json_kind(root));
@@ -491,43 +477,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s)
     return true;
 }
 
-/* The whole file, NUL-terminated; NULL after reporting why not. */
-static char *scene_read_text(const char *file, size_t *length)
-{
-    FILE *f = fopen(file, "rb");
-    if (!f) {
-        scene_fail(file, "", NULL, "cannot open: %s", strerror(errno));
-        return NULL;
-    }
-    size_t capacity = 4096, used = 0;
-    char *text = malloc(capacity);
-    const char *problem = NULL;
-    while (text && !problem) {
-        used += fread(text + used, 1, capacity - 1 - used, f);
-        if (used < capacity - 1) break; /* the end, or a read error */
-        if (capacity > SCENE_MAX_FILE_SIZE) {
-            problem = "too large for a scene file";
-        } else {
-            char *bigger = realloc(text, capacity *= 2);
-            if (!bigger) free(text);
-            text = bigger;
-        }
-    }
-    if (!text) problem = "out of memory";
-    if (!problem && ferror(f)) problem = strerror(errno);
-    fclose(f);
-    if (problem) {
-        scene_fail(file, "", NULL, "cannot read: %s", problem);
-        free(text);
-        return NULL;
-    }
-    text[used] = '\0';
-    *length = used;
-    return text;
-}
-
-static cJSON *scene_parse(const char *file, const char *text, size_t length)
-{
+static cJSON *scene_parse(const char *file, const char *text, size_t length) {
     const char *error = NULL;
     /* The length counts the terminating NUL: cJSON wants it to tell the end
      * of the document from trailing garbage. */
@@ -546,11 +496,10 @@ static cJSON *scene_parse(const char *file, const char *text, size_t length)
     return NULL;
 }
 
-bool scene_load(scene *s, const char *path)
-{
+bool scene_load(scene *s, const char *path) {
     *s = (scene){0};
     size_t length;
-    char *text = scene_read_text(path, &length);
+    char *text = path_read_text(path, SCENE_MAX_FILE_SIZE, &length);
     if (!text) return false;
     cJSON *root = scene_parse(path, text, length);
     free(text);
@@ -561,8 +510,7 @@ bool scene_load(scene *s, const char *path)
     return loaded;
 }
 
-void scene_free(scene *s)
-{
+void scene_free(scene *s) {
     for (int i = 0; i < s->object_count; i++) mesh_free(&s->objects[i].mesh);
     free(s->objects);
     *s = (scene){0};
@@ -571,8 +519,7 @@ void scene_free(scene *s)
 /* Arvo's method: each world axis gathers, per object axis, the smaller and
  * larger of that column's contribution at the two bounds. Exact for the
  * transformed box, without transforming its 8 corners. */
-void scene_object_world_bounds(const scene_object *o, float min[3], float max[3])
-{
+void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]) {
     for (int row = 0; row < 3; row++) {
         min[row] = max[row] = o->model[3][row];
         for (int column = 0; column < 3; column++) {
@@ -582,4 +529,11 @@ void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]
             max[row] += fmaxf(a, b);
         }
     }
+}
+
+void scene_light_homogeneous(const scene_light *l, float out[4]) {
+    bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
+    for (int i = 0; i < 3; i++)
+        out[i] = directional ? -l->direction[i] : l->position[i];
+    out[3] = directional ? 0.0f : 1.0f;
 }

@@ -105,6 +105,10 @@ typedef struct scene {
 bool scene_load(scene *s, const char *path);
 void scene_free(scene *s);
 
+/* A light as a homogeneous point: (position, 1), or (towards the light, 0)
+ * for a directional light, a point at infinity. */
+void scene_light_homogeneous(const scene_light *l, float out[4]);
+
 /* World-space bounds of one object's mesh under its model matrix. */
 void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]);
 

@@ -8,8 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "path.h"
+
 #define SHADER_MAX_SOURCES 16 /* files, includes counted, in one stage */
 #define SHADER_MAX_DEPTH 8
+#define SHADER_MAX_FILE_SIZE (1 << 20)
 
 static char shader_dir[4096] = "shaders";
 
@@ -48,26 +51,6 @@ static bool shader_append_line_directive(shader_source *s, int line, int file) {
     return shader_append(s, directive, (size_t)n);
 }
 
-static char *shader_read_file(const char *path) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        fprintf(stderr, "%s: cannot open: %s\n", path, strerror(errno));
-        return NULL;
-    }
-    char *text = NULL;
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) >= 0 && fseek(f, 0, SEEK_SET) == 0 &&
-        (text = malloc((size_t)size + 1)) && fread(text, 1, (size_t)size, f) == (size_t)size) {
-        text[size] = '\0';
-    } else {
-        fprintf(stderr, "%s: cannot read: %s\n", path, size < 0 ? strerror(errno) : "short read");
-        free(text);
-        text = NULL;
-    }
-    fclose(f);
-    return text;
-}
-
 /* Appends `name` with its includes expanded. #version must stay the first
  * line of a stage, so the first #line directive goes after it. */
 static bool shader_expand(shader_source *s, const char *name, int depth) {
@@ -79,7 +62,7 @@ static bool shader_expand(shader_source *s, const char *name, int depth) {
     snprintf(s->files[file], sizeof s->files[file], "%s", name);
     char path[sizeof shader_dir + sizeof s->files[file] + 1];
     snprintf(path, sizeof path, "%s/%s", shader_dir, name);
-    char *text = shader_read_file(path);
+    char *text = path_read_text(path, SHADER_MAX_FILE_SIZE, NULL);
     if (!text)
         return false;
     bool ok = depth == 0 || shader_append_line_directive(s, 1, file);

@@ -15,6 +15,11 @@
  * The app turns each into a command-line flag --no-NAME, a key in the
  * window, and a line on the HUD.
  *
+ * bench_configs is the technique's parameter sweep for the benchmark: each
+ * entry is a set of the technique's own flags ("" = its defaults), applied
+ * with technique_apply_config, the same parser the command line uses.
+ * destroy() is also called after a failed init.
+ *
  * Time comes in as frame->time, never from a clock: frames are
  * deterministic.
  */
@@ -24,6 +29,7 @@
 #include <stdbool.h>
 #include "camera.h"
 #include "render.h"
+#include "target.h"
 
 typedef struct technique_toggle {
     const char *name;  /* flag --no-NAME, and the HUD label */
@@ -44,9 +50,27 @@ typedef struct technique {
     const char *title; /* one line for --help and the HUD */
     const technique_toggle *toggles;
     int toggle_count;
+    const char *const *bench_configs;
+    int bench_config_count;
     bool (*init)(const render_scene *gpu);
     void (*render)(const technique_frame *frame);
     void (*destroy)(void);
 } technique;
+
+/* Applies one of the technique's own flags ("--no-NAME"); false if the
+ * flag is not one of its. */
+bool technique_apply_flag(const technique *t, const char *flag);
+/* Back to defaults, then the space-separated flags of `config`; prints
+ * "TECHNIQUE: unknown flag in configuration" and returns false on a flag
+ * that is not the technique's. */
+bool technique_apply_config(const technique *t, const char *config);
+
+/* One frame of `t` into `target`, as the app, the gallery and the benchmark
+ * all render it: the lights (visibility mode for light visibility_of, or
+ * -1) into the uniform block, the target bound and cleared to the
+ * background, default state, the technique, then any GL error reported.
+ * The caller has set f->gpu->scene's lights for this frame. */
+bool technique_render_frame(const technique *t, const technique_frame *f, const target *target,
+                            int visibility_of);
 
 #endif

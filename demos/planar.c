@@ -11,8 +11,8 @@
  * lecture can show the artifact it prevents:
  *   stencil  the visible receiver pixels are marked 1; the projected
  *            casters turn marked pixels into 2, each pixel once however many
- *            projected triangles cover it; then the receiver is redrawn where
- *            the stencil is 2 with this light's share subtracted, so a
+ *            projected triangles cover it; the light's share is then added
+ *            (after an ambient pass) only where the stencil is not 2, so a
  *            shadowed pixel is exactly the picture without that light.
  *            Off: casters are blended dark straight into the picture, and
  *            overlapping triangles darken twice and spill past the
@@ -107,72 +107,99 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
-/* The stencil path: mark, flatten into the mark, subtract the light. */
-static void planar_shadow_receiver(const technique_frame *f, int light, int receiver, const float plane[4],
-                                   const float light_h[4]) {
+/* The plane of receiver r as the shadow matrix needs it for this light;
+ * false when nothing is to be drawn. */
+static bool planar_receiver_facing(const scene_object *o, const float light_h[4], float plane[4]) {
+    if (!o->receives || o->mesh_kind != SCENE_MESH_PLANE)
+        return false;
+    planar_receiver_plane(o, plane);
+    float facing = glm_vec4_dot(plane, (float *)light_h);
+    if (!planar.settings.no_reject && facing < 0) {
+        glm_vec4_negate(plane);
+        facing = -facing;
+    }
+    return facing != 0; /* light in the plane: S is singular, the plane unlit */
+}
+
+/* Stencil 2 where light l is blocked: each visible receiver pixel is
+ * marked 1, and projected casters turn a 1 into a 2 once, however many of
+ * their triangles cover it. */
+static void planar_mark_shadows(const technique_frame *f, int light, const float light_h[4]) {
+    const scene *s = f->gpu->scene;
     glClear(GL_STENCIL_BUFFER_BIT);
     glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
-    glDepthFunc(GL_EQUAL);
-    render_use_lit(f->gpu, f->view, light, light + 1, false);
-    render_draw_object(f->gpu, &f->gpu->lit, receiver);
-
-    glStencilFunc(GL_EQUAL, 1, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-    glDepthFunc(GL_LESS);
-    planar_draw_casters(f, receiver, plane, light_h);
-
-    glStencilFunc(GL_EQUAL, 2, 0xff);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    for (int r = 0; r < s->object_count; r++) {
+        float plane[4];
+        if (!planar_receiver_facing(&s->objects[r], light_h, plane))
+            continue;
+        glStencilFunc(GL_ALWAYS, 1, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        glDepthFunc(GL_EQUAL);
+        render_use_lit(f->gpu, f->view, light, light + 1, false);
+        render_draw_object(f->gpu, &f->gpu->lit, r);
+        glStencilFunc(GL_EQUAL, 1, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+        glDepthFunc(GL_LESS);
+        planar_draw_casters(f, r, plane, light_h);
+    }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_EQUAL);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
-    glBlendFunc(GL_ONE, GL_ONE);
-    render_use_lit(f->gpu, f->view, light, light + 1, false);
-    render_draw_object(f->gpu, &f->gpu->lit, receiver);
-    glDisable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glDisable(GL_STENCIL_TEST);
 }
 
-/* The textbook path the stencil fixes: darken by blending, once per layer. */
-static void planar_blend_receiver(const technique_frame *f, int receiver, const float plane[4],
-                                  const float light_h[4]) {
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ZERO, GL_SRC_COLOR);
-    planar_draw_casters(f, receiver, plane, light_h);
-    glDisable(GL_BLEND);
-}
-
-static void planar_render(const technique_frame *f) {
+/* Ambient first, then each light added where the stencil does not mark it
+ * blocked. Adding non-negative terms clamps to the same 8-bit value in any
+ * order, so a shadowed pixel is exactly the picture without that light,
+ * however bright the other lights make it. */
+static void planar_render_stencil(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_unshadowed(f->gpu, f->view);
+    render_use_lit(f->gpu, f->view, 0, 0, true);
+    for (int i = 0; i < s->object_count; i++)
+        render_draw_object(f->gpu, &f->gpu->lit, i);
     for (int l = 0; l < s->light_count; l++) {
         float light_h[4];
-        render_light_homogeneous(&s->lights[l], light_h);
+        scene_light_homogeneous(&s->lights[l], light_h);
+        planar_mark_shadows(f, l, light_h);
+        glStencilFunc(GL_NOTEQUAL, 2, 0xff);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        glDepthFunc(GL_EQUAL);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        render_use_lit(f->gpu, f->view, l, l + 1, false);
+        for (int i = 0; i < s->object_count; i++)
+            render_draw_object(f->gpu, &f->gpu->lit, i);
+        glDisable(GL_BLEND);
+        glDisable(GL_STENCIL_TEST);
+    }
+}
+
+/* The textbook path the stencil fixes: the lit picture darkened by
+ * blending, once per layer of projected triangles. */
+static void planar_render_blended(const technique_frame *f) {
+    const scene *s = f->gpu->scene;
+    render_unshadowed(f->gpu, f->view);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ZERO, GL_SRC_COLOR);
+    for (int l = 0; l < s->light_count; l++) {
+        float light_h[4];
+        scene_light_homogeneous(&s->lights[l], light_h);
         for (int r = 0; r < s->object_count; r++) {
-            const scene_object *o = &s->objects[r];
-            if (!o->receives || o->mesh_kind != SCENE_MESH_PLANE)
-                continue;
             float plane[4];
-            planar_receiver_plane(o, plane);
-            float facing = glm_vec4_dot(plane, light_h);
-            if (!planar.settings.no_reject && facing < 0) {
-                glm_vec4_negate(plane);
-                facing = -facing;
-            }
-            if (facing == 0) /* light in the plane: S is singular, the plane unlit */
-                continue;
-            if (planar.settings.no_stencil)
-                planar_blend_receiver(f, r, plane, light_h);
-            else
-                planar_shadow_receiver(f, l, r, plane, light_h);
+            if (planar_receiver_facing(&s->objects[r], light_h, plane))
+                planar_draw_casters(f, r, plane, light_h);
         }
     }
+    glDisable(GL_BLEND);
+}
+
+/* The fixes cost little; the sweep shows what each one buys in accuracy. */
+static const char *const planar_bench_configs[] = {"", "--no-offset", "--no-stencil", "--no-reject"};
+
+static void planar_render(const technique_frame *f) {
+    if (planar.settings.no_stencil)
+        planar_render_blended(f);
+    else
+        planar_render_stencil(f);
 }
 
 const technique planar_technique = {
@@ -180,6 +207,8 @@ const technique planar_technique = {
     .title = "planar projected shadows (Blinn 1988) with stencil",
     .toggles = planar_toggles,
     .toggle_count = (int)(sizeof planar_toggles / sizeof *planar_toggles),
+    .bench_configs = planar_bench_configs,
+    .bench_config_count = (int)(sizeof planar_bench_configs / sizeof *planar_bench_configs),
     .init = planar_init,
     .render = planar_render,
     .destroy = planar_destroy,

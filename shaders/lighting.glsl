@@ -2,12 +2,19 @@
 // same model the ray-traced reference evaluates, so that pictures compare.
 // The lights live in one uniform block that common/render.c fills once per
 // frame for every program.
+//
+// Visibility mode (lights_count.y = K >= 0) turns any technique's picture
+// into its own shadow decision for light K, without the technique knowing:
+// light K contributes exactly 1 wherever it can reach (inside a spot's outer
+// cone), every other light and the ambient term 0, so whatever the technique
+// does to shadow light K leaves its visibility in the red channel (see
+// common/capture.c).
 
 #define LIGHTING_MAX_LIGHTS 8
 
 layout(std140) uniform Lights {
     vec4 lights_ambient;                      // rgb
-    ivec4 lights_count;                       // x
+    ivec4 lights_count;                       // x: count, y: visibility mode light or -1
     vec4 lights_position[LIGHTING_MAX_LIGHTS];  // xyz; w = 1 positional, 0 directional
     vec4 lights_direction[LIGHTING_MAX_LIGHTS]; // xyz: the way the light travels
     vec4 lights_color[LIGHTING_MAX_LIGHTS];     // rgb: colour times intensity
@@ -24,10 +31,13 @@ vec3 lighting_to_light(int i, vec3 position) {
 // techniques decide visibility, this decides everything else.
 vec3 lighting_unshadowed(int i, vec3 position, vec3 normal, vec3 albedo) {
     vec3 to_light = lighting_to_light(i, position);
-    float spot = smoothstep(lights_cone[i].x, lights_cone[i].y, dot(-to_light, lights_direction[i].xyz));
+    float cos_axis = dot(-to_light, lights_direction[i].xyz);
+    if (lights_count.y >= 0)
+        return vec3(i == lights_count.y && cos_axis > lights_cone[i].x ? 1.0 : 0.0);
+    float spot = smoothstep(lights_cone[i].x, lights_cone[i].y, cos_axis);
     return albedo * lights_color[i].rgb * max(dot(normal, to_light), 0.0) * spot;
 }
 
 vec3 lighting_ambient(vec3 albedo) {
-    return albedo * lights_ambient.rgb;
+    return lights_count.y >= 0 ? vec3(0.0) : albedo * lights_ambient.rgb;
 }

@@ -20,9 +20,7 @@ for build in "$@"; do
             [ -e "$path" ] && preload="$preload $path"
         done
         export TEST_PRELOAD=$preload
-        # assimp's OutOfMemory.off asks for a huge buffer and expects
-        # std::bad_alloc, not an ASan abort.
-        export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
+        export ASAN_OPTIONS=detect_leaks=1
         export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
         export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ;;
     *) unset TEST_PRELOAD ;;

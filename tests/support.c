@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "image.h"
 
@@ -69,4 +70,32 @@ bool support_have_command(const char *name) {
     char command[256];
     snprintf(command, sizeof command, "command -v %s >/dev/null 2>&1", name);
     return system(command) == 0;
+}
+
+static FILE *support_capture_file;
+static int support_saved_stderr = -1;
+
+void support_capture_stderr(void) {
+    fflush(stderr);
+    support_capture_file = tmpfile();
+    if (!support_capture_file)
+        return; /* then nothing is captured and the caller's checks fail */
+    support_saved_stderr = dup(STDERR_FILENO);
+    dup2(fileno(support_capture_file), STDERR_FILENO);
+}
+
+const char *support_release_stderr(void) {
+    static char captured[8192];
+    captured[0] = '\0';
+    if (!support_capture_file)
+        return captured;
+    fflush(stderr);
+    dup2(support_saved_stderr, STDERR_FILENO);
+    close(support_saved_stderr);
+    rewind(support_capture_file);
+    size_t length = fread(captured, 1, sizeof captured - 1, support_capture_file);
+    captured[length] = '\0';
+    fclose(support_capture_file);
+    support_capture_file = NULL;
+    return captured;
 }

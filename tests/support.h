@@ -27,5 +27,10 @@ int support_count_lines(const char *text);
  * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
 double support_compare_images(const char *golden, const char *actual);
 bool support_have_command(const char *name);
+/* Sends stderr to a temporary file until support_release_stderr, which
+ * returns what was written. cmocka reports failures on stderr too, so no
+ * assertion may run in between. */
+void support_capture_stderr(void);
+const char *support_release_stderr(void);
 
 #endif

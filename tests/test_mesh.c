@@ -14,6 +14,8 @@
 
 #include <cmocka.h>
 
+#include "support.h"
+
 #include "mesh.h"
 
 #define TESTMODELS_DIR "/usr/share/assimp/models"
@@ -33,36 +35,9 @@
 #define UNDER_ASAN 0
 #endif
 
-/* stderr capture: the calls under test report on stderr. cmocka reports
- * failures there too, so no assertion runs while it is captured. */
-static FILE *capture_file;
-static int saved_stderr = -1;
-static char captured[8192];
-
-static void capture_stderr(void)
-{
-    fflush(stderr);
-    capture_file = tmpfile();
-    assert_non_null(capture_file);
-    saved_stderr = dup(STDERR_FILENO);
-    dup2(fileno(capture_file), STDERR_FILENO);
-}
-
-static const char *release_stderr(void)
-{
-    fflush(stderr);
-    dup2(saved_stderr, STDERR_FILENO);
-    close(saved_stderr);
-    rewind(capture_file);
-    size_t length = fread(captured, 1, sizeof captured - 1, capture_file);
-    captured[length] = '\0';
-    fclose(capture_file);
-    return captured;
-}
 
 /* The text is one line holding every one of the (NULL-terminated) parts. */
-static void assert_one_line_with(const char *text, ...)
-{
+static void assert_one_line_with(const char *text, ...) {
     const char *newline = strchr(text, '\n');
     if (!newline || newline[1] != '\0') fail_msg("expected exactly one line, got \"%s\"", text);
     va_list parts;
@@ -73,16 +48,14 @@ static void assert_one_line_with(const char *text, ...)
     va_end(parts);
 }
 
-static void assert_empty_mesh(const mesh *m)
-{
+static void assert_empty_mesh(const mesh *m) {
     assert_null(m->vertices);
     assert_null(m->indices);
     assert_int_equal(m->vertex_count, 0);
     assert_int_equal(m->index_count, 0);
 }
 
-static mesh_edge_counts count_edges(const mesh *m)
-{
+static mesh_edge_counts count_edges(const mesh *m) {
     mesh_topology topology;
     assert_true(mesh_weld(m, &topology));
     mesh_edge_counts counts = mesh_topology_count_edges(m, &topology);
@@ -90,8 +63,7 @@ static mesh_edge_counts count_edges(const mesh *m)
     return counts;
 }
 
-static void cross_of(const mesh *m, uint32_t first_index, double cross[3])
-{
+static void cross_of(const mesh *m, uint32_t first_index, double cross[3]) {
     const float *a = m->vertices[m->indices[first_index]].position;
     const float *b = m->vertices[m->indices[first_index + 1]].position;
     const float *c = m->vertices[m->indices[first_index + 2]].position;
@@ -103,8 +75,7 @@ static void cross_of(const mesh *m, uint32_t first_index, double cross[3])
 }
 
 /* Divergence theorem: positive when the triangles face outwards. */
-static double signed_volume(const mesh *m)
-{
+static double signed_volume(const mesh *m) {
     double volume = 0;
     for (uint32_t i = 0; i < m->index_count; i += 3) {
         const float *a = m->vertices[m->indices[i]].position;
@@ -117,8 +88,7 @@ static double signed_volume(const mesh *m)
 
 /* What every mesh handed out must be: valid indices, finite positions inside
  * the bounds, unit normals, no zero-area triangle. */
-static void assert_sane_mesh(const mesh *m)
-{
+static void assert_sane_mesh(const mesh *m) {
     assert_true(m->index_count > 0);
     assert_int_equal(m->index_count % 3, 0);
     for (uint32_t v = 0; v < m->vertex_count; v++) {
@@ -144,8 +114,7 @@ static void assert_sane_mesh(const mesh *m)
 /* The generators' normals lean the way the winding faces. (Not so for every
  * model: the smooth normals of a tetrahedron's corners lean away from the
  * opposite face.) */
-static void assert_normals_follow_winding(const mesh *m)
-{
+static void assert_normals_follow_winding(const mesh *m) {
     for (uint32_t i = 0; i < m->index_count; i += 3) {
         double cross[3], normal_sum[3] = {0, 0, 0};
         cross_of(m, i, cross);
@@ -157,14 +126,12 @@ static void assert_normals_follow_winding(const mesh *m)
 }
 
 /* What the generators promise beyond sanity. */
-static void assert_good_generated_mesh(const mesh *m)
-{
+static void assert_good_generated_mesh(const mesh *m) {
     assert_sane_mesh(m);
     assert_normals_follow_winding(m);
 }
 
-static void assert_bounds(const mesh *m, const float min[3], const float max[3])
-{
+static void assert_bounds(const mesh *m, const float min[3], const float max[3]) {
     for (int k = 0; k < 3; k++) {
         assert_float_equal(m->bounds_min[k], min[k], 1e-5);
         assert_float_equal(m->bounds_max[k], max[k], 1e-5);
@@ -172,13 +139,11 @@ static void assert_bounds(const mesh *m, const float min[3], const float max[3])
 }
 
 /* Bounds of a mesh centred on the origin. */
-static void assert_centred_bounds(const mesh *m, float x, float y, float z)
-{
+static void assert_centred_bounds(const mesh *m, float x, float y, float z) {
     assert_bounds(m, (const float[3]){-x, -y, -z}, (const float[3]){x, y, z});
 }
 
-static void assert_closed(const mesh *m)
-{
+static void assert_closed(const mesh *m) {
     mesh_edge_counts edges = count_edges(m);
     assert_int_equal(edges.boundary, 0);
     assert_int_equal(edges.non_manifold, 0);
@@ -186,8 +151,7 @@ static void assert_closed(const mesh *m)
     assert_true(signed_volume(m) > 0);
 }
 
-static void test_plane(void **state)
-{
+static void test_plane(void **state) {
     (void)state;
     mesh m;
     assert_true(mesh_make_plane(&m, 4, 2));
@@ -208,8 +172,7 @@ static void test_plane(void **state)
     assert_empty_mesh(&m);
 }
 
-static void test_box(void **state)
-{
+static void test_box(void **state) {
     (void)state;
     mesh m;
     assert_true(mesh_make_box(&m, 2, 4, 6));
@@ -233,8 +196,7 @@ static void test_box(void **state)
     mesh_free(&m);
 }
 
-static void test_sphere(void **state)
-{
+static void test_sphere(void **state) {
     (void)state;
     const int segment_counts[] = {0, 3, 4, 7, 64};
     for (size_t i = 0; i < sizeof segment_counts / sizeof *segment_counts; i++) {
@@ -259,8 +221,7 @@ static void test_sphere(void **state)
     mesh_free(&m);
 }
 
-static void test_torus(void **state)
-{
+static void test_torus(void **state) {
     (void)state;
     const int segment_counts[] = {0, 3, 5, 48};
     for (size_t i = 0; i < sizeof segment_counts / sizeof *segment_counts; i++) {
@@ -279,8 +240,7 @@ static void test_torus(void **state)
     mesh_free(&m);
 }
 
-static void test_cylinder(void **state)
-{
+static void test_cylinder(void **state) {
     (void)state;
     const int segment_counts[] = {0, 3, 5, 100};
     for (size_t i = 0; i < sizeof segment_counts / sizeof *segment_counts; i++) {
@@ -297,51 +257,48 @@ static void test_cylinder(void **state)
     mesh_free(&m);
 }
 
-static void expect_generator_error(bool made, mesh *m, const char *text, const char *generator, const char *what)
-{
+static void expect_generator_error(bool made, mesh *m, const char *text, const char *generator, const char *what) {
     assert_false(made);
     assert_empty_mesh(m);
     assert_one_line_with(text, generator, what, NULL);
 }
 
-static void test_generators_reject_bad_sizes(void **state)
-{
+static void test_generators_reject_bad_sizes(void **state) {
     (void)state;
     const float bad[] = {0, -1, NAN, INFINITY, -INFINITY};
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         mesh m;
         bool made;
-        capture_stderr();
+        support_capture_stderr();
         made = mesh_make_plane(&m, 1, bad[i]);
-        expect_generator_error(made, &m, release_stderr(), "plane: ", "size_z");
-        capture_stderr();
+        expect_generator_error(made, &m, support_release_stderr(), "plane: ", "size_z");
+        support_capture_stderr();
         made = mesh_make_box(&m, 1, bad[i], 1);
-        expect_generator_error(made, &m, release_stderr(), "box: ", "size_y");
-        capture_stderr();
+        expect_generator_error(made, &m, support_release_stderr(), "box: ", "size_y");
+        support_capture_stderr();
         made = mesh_make_sphere(&m, bad[i], 8);
-        expect_generator_error(made, &m, release_stderr(), "sphere: ", "radius");
-        capture_stderr();
+        expect_generator_error(made, &m, support_release_stderr(), "sphere: ", "radius");
+        support_capture_stderr();
         made = mesh_make_torus(&m, 2, bad[i], 8);
-        expect_generator_error(made, &m, release_stderr(), "torus: ", "minor_radius");
-        capture_stderr();
+        expect_generator_error(made, &m, support_release_stderr(), "torus: ", "minor_radius");
+        support_capture_stderr();
         made = mesh_make_cylinder(&m, 1, bad[i], 8);
-        expect_generator_error(made, &m, release_stderr(), "cylinder: ", "height");
+        expect_generator_error(made, &m, support_release_stderr(), "cylinder: ", "height");
     }
     mesh m;
     bool made;
-    capture_stderr();
+    support_capture_stderr();
     made = mesh_make_sphere(&m, 1, 2);
-    expect_generator_error(made, &m, release_stderr(), "sphere: ", "segments must be between 3 and 1024 (got 2)");
-    capture_stderr();
+    expect_generator_error(made, &m, support_release_stderr(), "sphere: ", "segments must be between 3 and 1024 (got 2)");
+    support_capture_stderr();
     made = mesh_make_cylinder(&m, 1, 1, MESH_MAX_SEGMENTS + 1);
-    expect_generator_error(made, &m, release_stderr(), "cylinder: ", "segments");
-    capture_stderr();
+    expect_generator_error(made, &m, support_release_stderr(), "cylinder: ", "segments");
+    support_capture_stderr();
     made = mesh_make_torus(&m, 1, 1, 8);
-    expect_generator_error(made, &m, release_stderr(), "torus: ", "must be smaller than major_radius");
+    expect_generator_error(made, &m, support_release_stderr(), "torus: ", "must be smaller than major_radius");
 }
 
-static void test_generators_at_extreme_scales(void **state)
-{
+static void test_generators_at_extreme_scales(void **state) {
     (void)state;
     const float scales[] = {1e-30f, 1e30f};
     for (size_t i = 0; i < sizeof scales / sizeof *scales; i++) {
@@ -356,8 +313,7 @@ static void test_generators_at_extreme_scales(void **state)
     }
 }
 
-static void test_weld_joins_copies_within_tolerance(void **state)
-{
+static void test_weld_joins_copies_within_tolerance(void **state) {
     (void)state;
     /* Two triangles sharing the edge (1,0,0)-(0,1,0), through copies: one
      * bit-identical, one off by far less than the tolerance (1e-6 of the
@@ -382,8 +338,7 @@ static void test_weld_joins_copies_within_tolerance(void **state)
     mesh_topology_free(&t);
 }
 
-static void test_edge_counts_see_non_manifold_edges(void **state)
-{
+static void test_edge_counts_see_non_manifold_edges(void **state) {
     (void)state;
     /* Three triangles on one edge, like pages of a book. */
     mesh_vertex vertices[] = {
@@ -398,8 +353,7 @@ static void test_edge_counts_see_non_manifold_edges(void **state)
     assert_int_equal(edges.manifold, 0);
 }
 
-static void test_sanitize_repairs_hand_made_mesh(void **state)
-{
+static void test_sanitize_repairs_hand_made_mesh(void **state) {
     (void)state;
     /* A good triangle with a NaN normal, one touching a NaN vertex, one with
      * an index past the vertices, one collinear, and an unused vertex far
@@ -418,9 +372,9 @@ static void test_sanitize_repairs_hand_made_mesh(void **state)
     const uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 99, 0, 4, 1};
     memcpy(m.vertices, vertices, sizeof vertices);
     memcpy(m.indices, indices, sizeof indices);
-    capture_stderr();
+    support_capture_stderr();
     bool sane = mesh_sanitize(&m, "hand-made");
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     assert_true(sane);
     assert_one_line_with(text, "warning: hand-made: removed 1 degenerate and 2 non-finite triangles", NULL);
     assert_int_equal(m.index_count, 3);
@@ -432,20 +386,18 @@ static void test_sanitize_repairs_hand_made_mesh(void **state)
     mesh_free(&m);
 }
 
-static void test_sanitize_of_nothing_is_an_error(void **state)
-{
+static void test_sanitize_of_nothing_is_an_error(void **state) {
     (void)state;
     mesh m = {0};
-    capture_stderr();
+    support_capture_stderr();
     bool sane = mesh_sanitize(&m, "nothing");
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     assert_false(sane);
     assert_empty_mesh(&m);
     assert_one_line_with(text, "nothing: no triangles", NULL);
 }
 
-static mesh_edge_counts report_edges(const char *path, const mesh *m)
-{
+static mesh_edge_counts report_edges(const char *path, const mesh *m) {
     assert_sane_mesh(m);
     mesh_edge_counts edges = count_edges(m);
     print_message("%s: %u vertices, %u triangles; edges: %u boundary, %u manifold, %u non-manifold\n", path,
@@ -453,8 +405,7 @@ static mesh_edge_counts report_edges(const char *path, const mesh *m)
     return edges;
 }
 
-static void test_load_bunny(void **state)
-{
+static void test_load_bunny(void **state) {
     (void)state;
     mesh m;
     assert_true(mesh_load_file(&m, "assets/bunny.obj"));
@@ -467,8 +418,7 @@ static void test_load_bunny(void **state)
     mesh_free(&m);
 }
 
-static void test_load_teapot(void **state)
-{
+static void test_load_teapot(void **state) {
     (void)state;
     mesh m;
     assert_true(mesh_load_file(&m, "assets/teapot.obj"));
@@ -482,8 +432,7 @@ static void test_load_teapot(void **state)
     mesh_free(&m);
 }
 
-static void test_load_testmodels(void **state)
-{
+static void test_load_testmodels(void **state) {
     (void)state;
     const char *paths[] = {TESTMODELS_DIR "/OBJ/spider.obj", TESTMODELS_DIR "/OBJ/WusonOBJ.obj"};
     for (size_t i = 0; i < sizeof paths / sizeof *paths; i++) {
@@ -493,9 +442,9 @@ static void test_load_testmodels(void **state)
         }
         mesh m;
         /* spider.obj holds zero-area triangles: a warning is expected. */
-        capture_stderr();
+        support_capture_stderr();
         bool loaded = mesh_load_file(&m, paths[i]);
-        print_message("%s", release_stderr());
+        print_message("%s", support_release_stderr());
         assert_true(loaded);
         assert_true(m.index_count > 0);
         report_edges(paths[i], &m);
@@ -503,8 +452,7 @@ static void test_load_testmodels(void **state)
     }
 }
 
-static void test_load_rejects_invalid_models(void **state)
-{
+static void test_load_rejects_invalid_models(void **state) {
     (void)state;
     DIR *folder = opendir(TESTMODELS_DIR "/invalid");
     if (!folder) skip();
@@ -530,9 +478,9 @@ static void test_load_rejects_invalid_models(void **state)
         char path[512];
         snprintf(path, sizeof path, TESTMODELS_DIR "/invalid/%s", entry->d_name);
         mesh m;
-        capture_stderr();
+        support_capture_stderr();
         bool loaded = mesh_load_file(&m, path);
-        const char *text = release_stderr();
+        const char *text = support_release_stderr();
         if (loaded) {
             /* malformed2.obj is a whole cube with an unknown material. */
             print_message("%s: accepted, %u triangles\n", entry->d_name, m.index_count / 3);
@@ -552,16 +500,15 @@ static void test_load_rejects_invalid_models(void **state)
     print_message("invalid models: %d rejected, %d accepted\n", rejected, accepted);
 }
 
-static void test_load_removes_non_finite_triangles(void **state)
-{
+static void test_load_removes_non_finite_triangles(void **state) {
     (void)state;
     mesh m;
-    capture_stderr();
+    support_capture_stderr();
     bool loaded = mesh_load_file(&m, "tests/data/mesh_nan_vertex.obj");
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     assert_true(loaded);
-    assert_one_line_with(text, "warning: tests/data/mesh_nan_vertex.obj: removed 0 degenerate and 2 non-finite triangles",
-                         NULL);
+    assert_one_line_with(text, "warning: tests/data/mesh_nan_vertex.obj: ",
+                         "removed 0 degenerate and 2 non-finite triangles", NULL);
     assert_int_equal(m.index_count, 12);
     assert_sane_mesh(&m);
     assert_bounds(&m, (const float[3]){0, 0, 0}, (const float[3]){1, 1, 1});
@@ -569,17 +516,15 @@ static void test_load_removes_non_finite_triangles(void **state)
     mesh_free(&m);
 }
 
-static void test_load_removes_degenerate_triangles(void **state)
-{
+static void test_load_removes_degenerate_triangles(void **state) {
     (void)state;
     mesh m;
-    capture_stderr();
+    support_capture_stderr();
     bool loaded = mesh_load_file(&m, "tests/data/mesh_degenerate_triangles.obj");
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     assert_true(loaded);
-    assert_one_line_with(text,
-                         "warning: tests/data/mesh_degenerate_triangles.obj: removed 3 degenerate and 0 non-finite triangles",
-                         NULL);
+    assert_one_line_with(text, "warning: tests/data/mesh_degenerate_triangles.obj: ",
+                         "removed 3 degenerate and 0 non-finite triangles", NULL);
     assert_int_equal(m.index_count, 12);
     assert_int_equal(m.vertex_count, 4);
     assert_sane_mesh(&m);
@@ -587,13 +532,12 @@ static void test_load_removes_degenerate_triangles(void **state)
     mesh_free(&m);
 }
 
-static void test_load_clean_model_is_quiet(void **state)
-{
+static void test_load_clean_model_is_quiet(void **state) {
     (void)state;
     mesh m;
-    capture_stderr();
+    support_capture_stderr();
     bool loaded = mesh_load_file(&m, "tests/data/mesh_tetrahedron.obj");
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     assert_true(loaded);
     assert_string_equal(text, "");
     assert_int_equal(m.vertex_count, 4);
@@ -601,12 +545,11 @@ static void test_load_clean_model_is_quiet(void **state)
     mesh_free(&m);
 }
 
-static void expect_load_error(const char *path, const char *problem)
-{
+static void expect_load_error(const char *path, const char *problem) {
     mesh m;
-    capture_stderr();
+    support_capture_stderr();
     bool loaded = mesh_load_file(&m, path);
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     assert_false(loaded);
     assert_empty_mesh(&m);
     char expected[512];
@@ -615,13 +558,14 @@ static void expect_load_error(const char *path, const char *problem)
     mesh_free(&m);
 }
 
-static void test_load_errors(void **state)
-{
+static void test_load_errors(void **state) {
     (void)state;
     expect_load_error("tests/data/mesh_only_degenerate.obj",
                       "no triangles left after removing 2 degenerate and 0 non-finite");
     expect_load_error("tests/data/mesh_lines_only.obj", "no triangles");
     expect_load_error("tests/data/mesh_bad_index.obj", "OBJ:");
+    expect_load_error("tests/data/mesh_single_vertex_line.obj",
+                      "line 8: a line statement needs 2 or more vertices");
     expect_load_error("tests/data/no_such_file.obj", "cannot open: No such file or directory");
     expect_load_error("tests/data", "not a regular file");
     expect_load_error("tests/data/scene_good.json", ""); /* assimp has no reader for it */
@@ -633,23 +577,21 @@ typedef struct reported_error {
     int count;
 } reported_error;
 
-static void record_error(const char *name, const char *problem, void *user_data)
-{
+static void record_error(const char *name, const char *problem, void *user_data) {
     reported_error *error = user_data;
     snprintf(error->name, sizeof error->name, "%s", name);
     snprintf(error->problem, sizeof error->problem, "%s", problem);
     error->count++;
 }
 
-static void test_error_handler_replaces_stderr(void **state)
-{
+static void test_error_handler_replaces_stderr(void **state) {
     (void)state;
     reported_error error = {.count = 0};
     mesh m;
     mesh_set_error_handler(record_error, &error);
-    capture_stderr();
+    support_capture_stderr();
     bool made = mesh_make_sphere(&m, -1, 0);
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     mesh_set_error_handler(NULL, NULL);
     assert_false(made);
     assert_string_equal(text, "");
@@ -659,8 +601,7 @@ static void test_error_handler_replaces_stderr(void **state)
     assert_null(strchr(error.problem, '\n'));
 }
 
-int main(void)
-{
+int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_plane),
         cmocka_unit_test(test_box),

@@ -11,54 +11,27 @@
 
 #include <cmocka.h>
 
+#include "support.h"
+
 #include "scene.h"
 
 #define PI 3.14159265358979323846
 
-/* stderr capture: scene_load reports there. cmocka reports failures there
- * too, so no assertion runs while it is captured. */
-static FILE *capture_file;
-static int saved_stderr = -1;
-static char captured[8192];
 
-static void capture_stderr(void)
-{
-    fflush(stderr);
-    capture_file = tmpfile();
-    assert_non_null(capture_file);
-    saved_stderr = dup(STDERR_FILENO);
-    dup2(fileno(capture_file), STDERR_FILENO);
-}
-
-static const char *release_stderr(void)
-{
-    fflush(stderr);
-    dup2(saved_stderr, STDERR_FILENO);
-    close(saved_stderr);
-    rewind(capture_file);
-    size_t length = fread(captured, 1, sizeof captured - 1, capture_file);
-    captured[length] = '\0';
-    fclose(capture_file);
-    return captured;
-}
-
-static void assert_vec3(const float actual[3], double x, double y, double z)
-{
+static void assert_vec3(const float actual[3], double x, double y, double z) {
     assert_float_equal(actual[0], x, 1e-5);
     assert_float_equal(actual[1], y, 1e-5);
     assert_float_equal(actual[2], z, 1e-5);
 }
 
-static void assert_identity(const float m[4][4])
-{
+static void assert_identity(const float m[4][4]) {
     for (int column = 0; column < 4; column++) {
         for (int row = 0; row < 4; row++) assert_float_equal(m[column][row], column == row, 0);
     }
 }
 
 /* p' = M p for a column-major matrix and a point (w = 1). */
-static void transform_point(const float m[4][4], const double p[3], double out[3])
-{
+static void transform_point(const float m[4][4], const double p[3], double out[3]) {
     for (int row = 0; row < 3; row++) {
         out[row] = m[3][row];
         for (int column = 0; column < 3; column++) out[row] += m[column][row] * p[column];
@@ -66,8 +39,7 @@ static void transform_point(const float m[4][4], const double p[3], double out[3
 }
 
 /* Turns p about one axis (0: X, 1: Y, 2: Z), right-handed. */
-static void rotate_about(int axis, double degrees, double p[3])
-{
+static void rotate_about(int axis, double degrees, double p[3]) {
     int u = (axis + 1) % 3, v = (axis + 2) % 3;
     double c = cos(degrees * PI / 180), s = sin(degrees * PI / 180);
     double pu = p[u], pv = p[v];
@@ -75,8 +47,7 @@ static void rotate_about(int axis, double degrees, double p[3])
     p[v] = s * pu + c * pv;
 }
 
-static const scene_object *find_object(const scene *s, const char *name)
-{
+static const scene_object *find_object(const scene *s, const char *name) {
     for (int i = 0; i < s->object_count; i++) {
         if (strcmp(s->objects[i].name, name) == 0) return &s->objects[i];
     }
@@ -84,24 +55,21 @@ static const scene_object *find_object(const scene *s, const char *name)
     return NULL;
 }
 
-static void assert_empty_scene(const scene *s)
-{
+static void assert_empty_scene(const scene *s) {
     assert_null(s->objects);
     assert_int_equal(s->object_count, 0);
     assert_int_equal(s->light_count, 0);
 }
 
-static void load_quietly(scene *s, const char *path)
-{
-    capture_stderr();
+static void load_quietly(scene *s, const char *path) {
+    support_capture_stderr();
     bool loaded = scene_load(s, path);
-    const char *text = release_stderr();
+    const char *text = support_release_stderr();
     if (!loaded) fail_msg("%s did not load: %s", path, text);
     assert_string_equal(text, "");
 }
 
-static void test_good_scene_camera_and_lights(void **state)
-{
+static void test_good_scene_camera_and_lights(void **state) {
     (void)state;
     scene s;
     load_quietly(&s, "tests/data/scene_good.json");
@@ -139,8 +107,7 @@ static void test_good_scene_camera_and_lights(void **state)
     assert_empty_scene(&s);
 }
 
-static void test_good_scene_objects(void **state)
-{
+static void test_good_scene_objects(void **state) {
     (void)state;
     scene s;
     load_quietly(&s, "tests/data/scene_good.json");
@@ -186,8 +153,7 @@ static void test_good_scene_objects(void **state)
     scene_free(&s);
 }
 
-static void test_model_matrix_order(void **state)
-{
+static void test_model_matrix_order(void **state) {
     (void)state;
     scene s;
     load_quietly(&s, "tests/data/scene_good.json");
@@ -212,8 +178,7 @@ static void test_model_matrix_order(void **state)
     scene_free(&s);
 }
 
-static void test_world_bounds(void **state)
-{
+static void test_world_bounds(void **state) {
     (void)state;
     scene s;
     load_quietly(&s, "tests/data/scene_good.json");
@@ -236,8 +201,7 @@ static void test_world_bounds(void **state)
     scene_free(&s);
 }
 
-static void test_defaults(void **state)
-{
+static void test_defaults(void **state) {
     (void)state;
     scene s;
     load_quietly(&s, "tests/data/scene_defaults.json");
@@ -292,22 +256,22 @@ static const bad_scene bad_scenes[] = {
      ": lights[0].outer_angle: must not be less than inner_angle (20 < 30)"},
     {"tests/data/scene_spot_outer_90.json", ": lights[0].outer_angle: must be less than 90 degrees (got 90)"},
     {"tests/data/scene_zero_direction.json", ": lights[0].direction: must not be zero"},
-    {"tests/data/scene_camera_up_parallel.json", ": camera.up: must be non-zero and not parallel to the view direction"},
+    {"tests/data/scene_camera_up_parallel.json",
+     ": camera.up: must be non-zero and not parallel to the view direction"},
     {"tests/data/scene_name_too_long.json", ": objects[0].name: must be 1 to 63 bytes long (got 64)"},
     {"tests/data/no_such_scene.json", ": cannot open: No such file or directory"},
     {"tests/data", ": cannot read: Is a directory"},
 };
 
 /* Each bad file fails with one line: "PATH" then the problem. */
-static void test_bad_scenes(void **state)
-{
+static void test_bad_scenes(void **state) {
     (void)state;
     for (size_t i = 0; i < sizeof bad_scenes / sizeof *bad_scenes; i++) {
         const bad_scene *bad = &bad_scenes[i];
         scene s;
-        capture_stderr();
+        support_capture_stderr();
         bool loaded = scene_load(&s, bad->path);
-        const char *text = release_stderr();
+        const char *text = support_release_stderr();
         if (loaded) fail_msg("%s: loaded, expected \"%s\"", bad->path, bad->problem);
         assert_empty_scene(&s);
         char expected[512];
@@ -320,8 +284,7 @@ static void test_bad_scenes(void **state)
     }
 }
 
-int main(void)
-{
+int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_scene_camera_and_lights),
         cmocka_unit_test(test_good_scene_objects),

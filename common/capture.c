@@ -1,0 +1,108 @@
+#include "capture.h"
+
+#include <glad/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "context.h"
+
+/* The float buffers of the geometry pass: normal + distance, position + id. */
+typedef struct capture_buffers {
+    unsigned framebuffer, color[2], depth;
+} capture_buffers;
+
+static bool capture_buffers_create(capture_buffers *b, int width, int height) {
+    glGenFramebuffers(1, &b->framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, b->framebuffer);
+    glGenRenderbuffers(2, b->color);
+    for (int i = 0; i < 2; i++) {
+        glBindRenderbuffer(GL_RENDERBUFFER, b->color[i]);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_RENDERBUFFER, b->color[i]);
+    }
+    glGenRenderbuffers(1, &b->depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, b->depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, b->depth);
+    static const GLenum draw[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, draw);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        fprintf(stderr, "capture: %dx%d float framebuffer incomplete\n", width, height);
+        return false;
+    }
+    return context_gl_ok("capture_buffers_create");
+}
+
+static void capture_buffers_destroy(capture_buffers *b) {
+    glDeleteFramebuffers(1, &b->framebuffer);
+    glDeleteRenderbuffers(2, b->color);
+    glDeleteRenderbuffers(1, &b->depth);
+}
+
+/* Reads one RGBA float attachment, bottom row first as GL has it. */
+static void capture_read_floats(GLenum attachment, int width, int height, float *rgba) {
+    glReadBuffer(attachment);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba);
+}
+
+static bool capture_geometry(const render_scene *gpu, const camera_view *view, dump_frame *out) {
+    static const char *const files[] = {"geometry.vert", "geometry.geom", "geometry.frag"};
+    render_program program = {0};
+    capture_buffers b = {0};
+    size_t n = (size_t)out->width * (size_t)out->height;
+    float *normal_distance = malloc(n * 4 * sizeof(float)), *position_id = malloc(n * 4 * sizeof(float));
+    bool ok = normal_distance && position_id && render_program_load(&program, files, 3);
+    if (ok && (ok = capture_buffers_create(&b, out->width, out->height))) {
+        static const float none[4] = {0, 0, 0, -1};
+        glViewport(0, 0, out->width, out->height);
+        glClearBufferfv(GL_COLOR, 0, none);
+        glClearBufferfv(GL_COLOR, 1, none);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        render_reset_state();
+        render_program_use(&program, view);
+        glUniform3fv(glGetUniformLocation(program.id, "u_eye"), 1, view->eye);
+        int object = glGetUniformLocation(program.id, "u_object");
+        for (int i = 0; i < gpu->scene->object_count; i++) {
+            glUniform1f(object, (float)i);
+            render_draw_object(gpu, &program, i);
+        }
+        capture_read_floats(GL_COLOR_ATTACHMENT0, out->width, out->height, normal_distance);
+        capture_read_floats(GL_COLOR_ATTACHMENT1, out->width, out->height, position_id);
+        for (int y = 0; y < out->height; y++) {
+            for (int x = 0; x < out->width; x++) {
+                size_t gl = ((size_t)(out->height - 1 - y) * out->width + x) * 4, i = (size_t)y * out->width + x;
+                for (int c = 0; c < 3; c++) {
+                    out->normal[i * 3 + c] = normal_distance[gl + c];
+                    out->position[i * 3 + c] = position_id[gl + c];
+                }
+                out->depth[i] = normal_distance[gl + 3];
+                out->ids[i] = position_id[gl + 3];
+            }
+        }
+        ok = context_gl_ok("capture_geometry");
+    }
+    if (!normal_distance || !position_id)
+        fprintf(stderr, "capture: out of memory for a %dx%d frame\n", out->width, out->height);
+    capture_buffers_destroy(&b);
+    render_program_destroy(&program);
+    free(normal_distance);
+    free(position_id);
+    return ok;
+}
+
+bool capture_dump(const render_scene *gpu, const camera_view *view, const target *t, int light_index,
+                  capture_render_frame render_frame, dump_frame *out) {
+    if (!dump_frame_create(out, t->width, t->height, gpu->scene, light_index))
+        return false;
+    bool ok = target_read_rgba(t, out->color) && capture_geometry(gpu, view, out) && render_frame(light_index);
+    unsigned char *rgba = ok ? malloc((size_t)t->width * t->height * 4) : NULL;
+    ok = rgba && target_read_rgba(t, rgba);
+    for (long i = 0; ok && i < (long)t->width * t->height; i++)
+        out->visibility[i] = out->ids[i] < 0 ? -1.0f : rgba[i * 4] / 255.0f;
+    free(rgba);
+    /* Leave the target as it was: the picture, not the visibility. */
+    ok = ok && render_frame(-1);
+    if (!ok)
+        dump_frame_free(out);
+    return ok;
+}

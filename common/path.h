@@ -1,0 +1,21 @@
+/* path: file-system helpers every program shares. */
+#ifndef PATH_H
+#define PATH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/* mkdir -p; prints "DIR: cannot create directory: reason" on failure. */
+bool path_make_directories(const char *dir);
+
+/* The whole file as a NUL-terminated string (malloc'ed; *length without
+ * the NUL when length is not NULL), or NULL after printing "PATH: cannot
+ * open/read: reason" or "PATH: larger than N bytes". */
+char *path_read_text(const char *path, size_t max_size, size_t *length);
+
+/* "<directory of the executable>/../<relative>", resolved when it exists:
+ * the programs live in build/, their shaders and assets beside it, so they
+ * run from any working directory. */
+void path_in_project(const char *relative, char *out, size_t size);
+
+#endif

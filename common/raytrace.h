@@ -1,0 +1,69 @@
+/* raytrace: the ray-traced ground truth every shadow technique is measured
+ * against (Embree 3 on the CPU), filling the same per-pixel dump (dump.h)
+ * the raster programs write.
+ *
+ *   raytrace_settings settings = {.light_samples = 256};
+ *   dump_frame frame;
+ *   if (raytrace_render(&scene, 1280, 720, 0, &settings, &frame)) {
+ *       ... frame.visibility, frame.color ...
+ *       dump_frame_free(&frame);
+ *   }
+ *
+ * What it computes, pixel by pixel:
+ *   camera    one primary ray through the centre of each pixel of the
+ *             raster camera (camera_view_compute with aspect W/H), between
+ *             its near and far planes, so it sees what the rasterizer sees.
+ *   surface   the dump's normal is the triangle's own (face) normal turned
+ *             towards the eye; the shading normal is lit.frag's: the
+ *             vertex normals interpolated, through the inverse transpose of
+ *             the model matrix, negated on a back face.
+ *   colour    shaders/lighting.glsl exactly: albedo * (ambient + sum over
+ *             lights of visibility * colour * intensity * max(N.L, 0) *
+ *             spot), spot = smoothstep(cos outer, cos inner, cos of the
+ *             angle off the axis); clamped, rounded to 8 bits as GL does.
+ *             Every light's visibility is used; the background is
+ *             RENDER_BACKGROUND.
+ *   visibility of light `light_index` (the others only shade):
+ *             radius 0: one shadow ray, 0 or 1. radius > 0, an area light:
+ *             the fraction of `light_samples` shadow rays that get through
+ *             (stratified, with jitter hashed from the pixel: the same call
+ *             gives the same frame). A point or spot light is then a sphere
+ *             of that radius, sampled as the disk of that radius facing the
+ *             shaded point; a directional light's radius is the angular
+ *             radius (degrees) of the cone of directions it comes from.
+ *             A spot light reaches nothing outside its outer cone
+ *             (visibility 0 there, as in the raster capture). Objects with
+ *             "casts": false block no light; those with "receives": false
+ *             are never in shadow.
+ *
+ * Shadow rays start off the surface by RAYTRACE_EPSILON times the diagonal
+ * of the box holding the scene and the origin, along the face normal on the
+ * light's side, and stop that far short of the light: see raytrace.c.
+ *
+ * Rows are traced in parallel with OpenMP. raytrace_render creates the
+ * dump (dump_frame_create) and returns true; on failure (Embree, memory) it
+ * prints one line "raytrace: problem" and returns false with nothing to
+ * free. With `verbose`, it prints the Embree version, the thread count and
+ * where the time went on stderr.
+ */
+#ifndef RAYTRACE_H
+#define RAYTRACE_H
+
+#include <stdbool.h>
+#include "dump.h"
+#include "scene.h"
+
+#define RAYTRACE_DEFAULT_LIGHT_SAMPLES 256
+#define RAYTRACE_MAX_LIGHT_SAMPLES 65536
+/* Shadow-ray offset, relative to the scene's size (see raytrace.c). */
+#define RAYTRACE_EPSILON 1e-5f
+
+typedef struct raytrace_settings {
+    int light_samples; /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
+    bool verbose;
+} raytrace_settings;
+
+bool raytrace_render(const scene *s, int width, int height, int light_index, const raytrace_settings *settings,
+                     dump_frame *out);
+
+#endif

@@ -1,0 +1,164 @@
+#include "shadowdiff.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Compared pixels are AGREES and after. */
+typedef enum shadowdiff_pixel {
+    SHADOWDIFF_PIXEL_NO_SURFACE,
+    SHADOWDIFF_PIXEL_NOT_COMPARED,
+    SHADOWDIFF_PIXEL_AGREES,
+    SHADOWDIFF_PIXEL_FALSE_SHADOW,
+    SHADOWDIFF_PIXEL_FALSE_LIT,
+} shadowdiff_pixel;
+
+static double shadowdiff_length3(const float v[3]) {
+    return sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
+}
+
+/* Relative to the light's length, not per component: a component near 0
+ * (a light straight above) would otherwise have to match exactly. */
+static bool shadowdiff_same_light(const float a[4], const float b[4]) {
+    if (a[3] != b[3])
+        return false;
+    double tolerance = SHADOWDIFF_LIGHT_TOLERANCE * fmax(shadowdiff_length3(a), shadowdiff_length3(b));
+    for (int i = 0; i < 3; i++)
+        if (fabs((double)a[i] - b[i]) > tolerance)
+            return false;
+    return true;
+}
+
+/* Ids, depths and visibilities only mean the same when the dumps come from
+ * the same frame of the same scene; anything else would be compared
+ * silently and give plausible, meaningless numbers. */
+static bool shadowdiff_check_consistent(const dump_frame *r, const dump_frame *t, const char *r_name,
+                                        const char *t_name) {
+    if (r->width != t->width || r->height != t->height) {
+        fprintf(stderr, "shadowdiff: %s and %s differ in size: %dx%d and %dx%d\n", r_name, t_name, r->width, r->height,
+                t->width, t->height);
+        return false;
+    }
+    if (r->light_index != t->light_index || !shadowdiff_same_light(r->light, t->light)) {
+        fprintf(stderr,
+                "shadowdiff: %s and %s are lit differently: light %d at (%g, %g, %g, %g) and light %d at "
+                "(%g, %g, %g, %g)\n",
+                r_name, t_name, r->light_index, r->light[0], r->light[1], r->light[2], r->light[3], t->light_index,
+                t->light[0], t->light[1], t->light[2], t->light[3]);
+        return false;
+    }
+    if (r->object_count != t->object_count) {
+        fprintf(stderr, "shadowdiff: %s and %s have different objects: %d and %d\n", r_name, t_name, r->object_count,
+                t->object_count);
+        return false;
+    }
+    for (int i = 0; i < r->object_count; i++) {
+        if (strcmp(r->object_names[i], t->object_names[i]) != 0) {
+            fprintf(stderr, "shadowdiff: %s and %s have different objects: %d is '%s' and '%s'\n", r_name, t_name, i,
+                    r->object_names[i], t->object_names[i]);
+            return false;
+        }
+    }
+    return true;
+}
+
+static int shadowdiff_find_object(const dump_frame *d, const char *name) {
+    for (int i = 0; i < d->object_count; i++)
+        if (strcmp(d->object_names[i], name) == 0)
+            return i;
+    return -1;
+}
+
+static void shadowdiff_print_unknown_receiver(const dump_frame *d, const char *d_name, const char *receiver) {
+    fprintf(stderr, "shadowdiff: %s: unknown receiver '%s' (objects:", d_name, receiver);
+    for (int i = 0; i < d->object_count; i++)
+        fprintf(stderr, "%s %s", i > 0 ? "," : "", d->object_names[i]);
+    fprintf(stderr, ")\n");
+}
+
+/* light.xyz - w * position is the direction towards the light for both a
+ * point (w = 1) and a directional light (w = 0); only the sign of N . L
+ * matters, so it needs no normalizing. */
+static bool shadowdiff_faces_light(const dump_frame *d, size_t i) {
+    const float *n = d->normal + 3 * i, *p = d->position + 3 * i;
+    double n_dot_l = 0;
+    for (int k = 0; k < 3; k++)
+        n_dot_l += (double)n[k] * ((double)d->light[k] - (double)d->light[3] * p[k]);
+    return n_dot_l > 0;
+}
+
+/* Ids stay floats here: a damaged dump may hold values no int can. */
+static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, size_t i, int receiver) {
+    double r_depth = r->depth[i], t_depth = t->depth[i];
+    return r->ids[i] >= 0 && t->ids[i] >= 0 && fabs(t_depth - r_depth) <= SHADOWDIFF_DEPTH_TOLERANCE * r_depth &&
+           shadowdiff_faces_light(r, i) && (receiver < 0 || (r->ids[i] == receiver && t->ids[i] == receiver));
+}
+
+static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_frame *t, size_t i, int receiver) {
+    if (!shadowdiff_is_compared(r, t, i, receiver))
+        return r->ids[i] < 0 ? SHADOWDIFF_PIXEL_NO_SURFACE : SHADOWDIFF_PIXEL_NOT_COMPARED;
+    bool r_lit = r->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD, t_lit = t->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD;
+    if (r_lit && !t_lit)
+        return SHADOWDIFF_PIXEL_FALSE_SHADOW;
+    if (!r_lit && t_lit)
+        return SHADOWDIFF_PIXEL_FALSE_LIT;
+    return SHADOWDIFF_PIXEL_AGREES;
+}
+
+static void shadowdiff_paint(unsigned char *rgba, shadowdiff_pixel pixel, float reference_visibility) {
+    static const unsigned char colors[][3] = {
+        [SHADOWDIFF_PIXEL_NO_SURFACE] = {0, 0, 0},
+        [SHADOWDIFF_PIXEL_NOT_COMPARED] = {40, 40, 40},
+        [SHADOWDIFF_PIXEL_FALSE_SHADOW] = {255, 0, 0},
+        [SHADOWDIFF_PIXEL_FALSE_LIT] = {0, 0, 255},
+    };
+    if (pixel == SHADOWDIFF_PIXEL_AGREES) {
+        /* From 96, so that agreeing shadow stays apart from "not compared". */
+        float v = fminf(fmaxf(reference_visibility, 0), 1);
+        unsigned char grey = (unsigned char)lroundf(96 + 159 * v);
+        memset(rgba, grey, 3);
+    } else {
+        memcpy(rgba, colors[pixel], 3);
+    }
+    rgba[3] = 255;
+}
+
+static double shadowdiff_percent(long count, long of) { return of > 0 ? 100.0 * (double)count / (double)of : 0; }
+
+bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
+                        shadowdiff_result *out, unsigned char *heatmap_rgba) {
+    const shadowdiff_settings s = settings ? *settings : (shadowdiff_settings){0};
+    const char *r_name = s.reference_name ? s.reference_name : "reference";
+    const char *t_name = s.test_name ? s.test_name : "test";
+    if (!shadowdiff_check_consistent(reference, test, r_name, t_name))
+        return false;
+    int receiver = -1;
+    if (s.receiver && (receiver = shadowdiff_find_object(reference, s.receiver)) < 0) {
+        shadowdiff_print_unknown_receiver(reference, r_name, s.receiver);
+        return false;
+    }
+    *out = (shadowdiff_result){0};
+    double error_sum = 0;
+    size_t n = (size_t)reference->width * (size_t)reference->height;
+    for (size_t i = 0; i < n; i++) {
+        shadowdiff_pixel pixel = shadowdiff_classify(reference, test, i, receiver);
+        if (pixel >= SHADOWDIFF_PIXEL_AGREES) {
+            out->compared++;
+            out->false_shadow += pixel == SHADOWDIFF_PIXEL_FALSE_SHADOW;
+            out->false_lit += pixel == SHADOWDIFF_PIXEL_FALSE_LIT;
+            error_sum += fabs((double)reference->visibility[i] - (double)test->visibility[i]);
+        }
+        if (heatmap_rgba)
+            shadowdiff_paint(heatmap_rgba + 4 * i, pixel, reference->visibility[i]);
+    }
+    if (out->compared == 0)
+        fprintf(stderr,
+                "shadowdiff: warning: no pixel of %s and %s is compared (none is seen by both at the same "
+                "depth, facing the light%s%s); every percentage is 0\n",
+                r_name, t_name, s.receiver ? ", on " : "", s.receiver ? s.receiver : "");
+    out->false_shadow_percent = shadowdiff_percent(out->false_shadow, out->compared);
+    out->false_lit_percent = shadowdiff_percent(out->false_lit, out->compared);
+    out->misclassified_percent = shadowdiff_percent(out->false_shadow + out->false_lit, out->compared);
+    out->mean_abs_error = out->compared > 0 ? error_sum / (double)out->compared : 0;
+    return true;
+}

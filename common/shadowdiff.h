@@ -1,0 +1,67 @@
+/* shadowdiff: how far a technique's shadows are from the ray-traced
+ * reference, pixel by pixel, from two dumps (dump.h) of the same scene,
+ * camera, size and light.
+ *
+ * The two dumps must agree on width and height, light_index, the light
+ * (w exactly, x, y, z within 1e-4 of the light vector's length), and the
+ * objects (count and names); otherwise shadowdiff_compare prints one line
+ * naming both dumps and the difference, and returns false.
+ *
+ * A pixel is compared when all of these hold (the same rules for every
+ * technique, so that none can look better by comparing fewer pixels):
+ *   - both dumps see a surface there (ids >= 0 in both);
+ *   - their depths agree within 0.1 %: |d_test - d_ref| <= 0.001 * d_ref
+ *     (otherwise they see different surfaces, e.g. at a silhouette);
+ *   - the reference's surface faces the light: N . L > 0, N the reference
+ *     normal, L towards the light from the reference position
+ *     (light.xyz - position for a point or spot light, w = 1; light.xyz
+ *     for a directional one, w = 0). A surface turned away is dark by
+ *     shading alone, whatever a technique decides there;
+ *   - with a receiver: both ids are that object's index.
+ *
+ * A compared pixel is lit where its visibility is >= 0.5. It is a
+ *   false shadow  where the reference is lit and the test is not (acne,
+ *                 overgrown shadows), and
+ *   false lit     where the reference is shadowed and the test is lit
+ *                 (light leaks, peter-panning);
+ * misclassified counts both. The percentages are of the compared pixels;
+ * mean_abs_error is the mean of |v_ref - v_test| over them. With no pixel
+ * compared, all are 0 and a warning goes to stderr.
+ *
+ * The heat map (RGBA, top row first, opaque) shows
+ *   red  (255, 0, 0)    false shadow
+ *   blue (0, 0, 255)    false lit
+ *   grey 96..255        compared and agreeing, by the reference visibility
+ *                       (lighter where lit)
+ *   dark grey (40)      not compared
+ *   black               no surface in the reference
+ */
+#ifndef SHADOWDIFF_H
+#define SHADOWDIFF_H
+
+#include <stdbool.h>
+#include "dump.h"
+
+#define SHADOWDIFF_LIT_THRESHOLD 0.5f
+#define SHADOWDIFF_DEPTH_TOLERANCE 0.001
+#define SHADOWDIFF_LIGHT_TOLERANCE 1e-4
+
+typedef struct shadowdiff_settings {
+    const char *receiver;       /* object name; NULL: every object */
+    const char *reference_name; /* for messages (the dump directory); NULL: "reference" */
+    const char *test_name;      /* NULL: "test" */
+} shadowdiff_settings;
+
+typedef struct shadowdiff_result {
+    long compared;
+    long false_shadow, false_lit;
+    double false_shadow_percent, false_lit_percent, misclassified_percent;
+    double mean_abs_error;
+} shadowdiff_result;
+
+/* `settings` may be NULL (every object, default names). `heatmap_rgba`
+ * may be NULL, else width * height * 4 bytes. */
+bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
+                        shadowdiff_result *out, unsigned char *heatmap_rgba);
+
+#endif

@@ -1,0 +1,16 @@
+#version 330 core
+// What every pixel sees, for dumps (common/capture.c): world position in,
+// the face normal is made per triangle in geometry.geom.
+layout(location = 0) in vec3 in_position;
+
+uniform mat4 u_model;
+uniform mat4 u_view_projection;
+
+out vec3 v_world;
+invariant gl_Position;
+
+void main() {
+    vec4 world = u_model * vec4(in_position, 1.0);
+    v_world = world.xyz;
+    gl_Position = u_view_projection * world;
+}

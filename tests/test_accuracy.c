@@ -1,0 +1,123 @@
+/* Accuracy against the ray-traced reference, with shadowdiff's fixed
+ * rules. Each test prints the figures it measured. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "dump.h"
+#include "image.h"
+#include "shadowdiff.h"
+#include "support.h"
+
+#define SIZE "640x360"
+/* Planar shadows are exact on their plane: only pixels whose centre lies
+ * within float rounding of a shadow edge may disagree. */
+#define PLANAR_MAX_MISCLASSIFIED_PERCENT 0.05
+
+static char err[16384];
+
+static void dump_scene(const char *program, const char *scene, const char *flags, const char *dir) {
+    char command[2048];
+    snprintf(command, sizeof command, "%s --size " SIZE " --scene %s %s --dump %s", support_program(program), scene,
+             flags, dir);
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+}
+
+static void dump_program(const char *program, const char *flags, const char *dir) {
+    dump_scene(program, "assets/scenes/simple.json", flags, dir);
+}
+
+static shadowdiff_result compare_on_ground(const char *reference_dir, const char *test_dir) {
+    dump_frame reference, test;
+    assert_true(dump_read(&reference, reference_dir));
+    assert_true(dump_read(&test, test_dir));
+    const shadowdiff_settings settings = {.receiver = "ground"};
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(&reference, &test, &settings, &r, NULL));
+    /* The geometry pass sees the ground where the ray tracer does: nearly
+     * every ground pixel facing the light is compared. */
+    long ground_pixels = 0;
+    for (long i = 0; i < (long)reference.width * reference.height; i++)
+        ground_pixels += reference.ids[i] == 0 && reference.visibility[i] >= 0;
+    fprintf(stderr, "    %s vs %s, ground: %ld compared of %ld ground pixels; false-shadow %.4f %%, "
+                    "false-lit %.4f %%, misclassified %.4f %%, MAE %.5f\n",
+            test_dir, reference_dir, r.compared, ground_pixels, r.false_shadow_percent, r.false_lit_percent,
+            r.misclassified_percent, r.mean_abs_error);
+    assert_true(r.compared > ground_pixels / 2);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    return r;
+}
+
+static int make_reference(void **state) {
+    (void)state;
+    dump_program("raytrace", "", "out/test/accuracy/reference");
+    return 0;
+}
+
+static void test_planar_matches_reference_on_ground(void **state) {
+    (void)state;
+    dump_program("planar", "--backend egl", "out/test/accuracy/planar");
+    shadowdiff_result r = compare_on_ground("out/test/accuracy/reference", "out/test/accuracy/planar");
+    assert_true(r.misclassified_percent <= PLANAR_MAX_MISCLASSIFIED_PERCENT);
+}
+
+/* The bound bites: z-fighting without polygon offset leaves lit speckles
+ * inside the shadows. */
+static void test_planar_without_offset_exceeds_bound(void **state) {
+    (void)state;
+    dump_program("planar", "--backend egl --no-offset", "out/test/accuracy/planar_no_offset");
+    shadowdiff_result r = compare_on_ground("out/test/accuracy/reference", "out/test/accuracy/planar_no_offset");
+    assert_true(r.misclassified_percent > PLANAR_MAX_MISCLASSIFIED_PERCENT);
+    assert_true(r.false_lit > 0);
+}
+
+/* Several lights, one bright enough to saturate 8 bits: the ground's
+ * colour, not only its visibility, must be the reference's. A shadowed
+ * pixel is the picture without that light, whatever the others add. */
+static void test_planar_colour_with_three_lights(void **state) {
+    (void)state;
+    const char *scene = "tests/data/planar_three_lights.json";
+    dump_scene("raytrace", scene, "", "out/test/accuracy/three_reference");
+    dump_scene("planar", scene, "--backend egl", "out/test/accuracy/three_planar");
+    dump_frame reference, test;
+    int w, h, tw, th;
+    assert_true(dump_read(&reference, "out/test/accuracy/three_reference"));
+    assert_true(dump_read(&test, "out/test/accuracy/three_planar"));
+    unsigned char *ref_rgb = image_read_png("out/test/accuracy/three_reference/color.png", &w, &h);
+    unsigned char *test_rgb = image_read_png("out/test/accuracy/three_planar/color.png", &tw, &th);
+    assert_non_null(ref_rgb);
+    assert_non_null(test_rgb);
+    assert_true(w == tw && h == th && w == reference.width);
+    long ground = 0, differ = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        if (reference.ids[i] != 0 || test.ids[i] != 0)
+            continue;
+        ground++;
+        int worst = 0;
+        for (int c = 0; c < 3; c++)
+            worst = abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) > worst ? abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) : worst;
+        differ += worst > SUPPORT_TOLERANCE;
+    }
+    fprintf(stderr, "    three lights, ground colour: %ld of %ld pixels differ by more than %d/255 (%.4f %%)\n",
+            differ, ground, SUPPORT_TOLERANCE, 100.0 * differ / ground);
+    assert_true(ground > w * h / 4);
+    assert_true(differ <= ground * PLANAR_MAX_MISCLASSIFIED_PERCENT / 100);
+    free(ref_rgb);
+    free(test_rgb);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_planar_matches_reference_on_ground),
+        cmocka_unit_test(test_planar_without_offset_exceeds_bound),
+        cmocka_unit_test(test_planar_colour_with_three_lights),
+    };
+    return cmocka_run_group_tests_name("accuracy against the reference", tests, make_reference, NULL);
+}

@@ -1,0 +1,273 @@
+/* Tests of common/raytrace.c, in-process: shadows against their analytic
+ * shape, the spot cone, determinism, and the standard scenes. Run from the
+ * repository root. Each measuring test prints what it measured.
+ *
+ * tests/data/raytrace_square.json: a square occluder (side 2s) at height h
+ * straight below a point light at height H, over a ground plane at y = 0,
+ * seen from straight above and to the side of the shadow. The square's
+ * shadow is the square scaled by H / (H - h) about the point below the
+ * light; with a light of radius r its edges blur over
+ * w = 2 r h / (H - h) (similar triangles through the occluder's edge). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "raytrace.h"
+
+#define SQUARE_SCENE "tests/data/raytrace_square.json"
+#define SPOT_SCENE "tests/data/raytrace_spot.json"
+#define SIZE 200
+#define GROUND 0
+#define OCCLUDER 1
+#define AREA_LIGHT_RADIUS 0.5f
+/* Enough that a pixel whose light is 1/256 uncovered still counts as
+ * penumbra: the penumbra measured loses under a pixel at its two ends. */
+#define AREA_LIGHT_SAMPLES 256
+#define PENUMBRA_TOLERANCE_PIXELS 2.0
+
+static void load(scene *s, const char *path) { assert_true(scene_load(s, path)); }
+
+static void render(const scene *s, int width, int height, int samples, dump_frame *frame) {
+    const raytrace_settings settings = {.light_samples = samples};
+    assert_true(raytrace_render(s, width, height, 0, &settings, frame));
+}
+
+static const float *position_at(const dump_frame *f, int x, int y) {
+    return f->position + 3 * ((size_t)y * (size_t)f->width + (size_t)x);
+}
+
+static bool sees(const dump_frame *f, int x, int y, int object) {
+    return x >= 0 && y >= 0 && x < f->width && y < f->height &&
+           f->ids[(size_t)y * (size_t)f->width + (size_t)x] == object;
+}
+
+/* The ground distance one pixel spans there: the largest step to a
+ * neighbour that also sees the ground (0 when none does). */
+static float ground_pixel_size(const dump_frame *f, int x, int y) {
+    static const int steps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    float size = 0;
+    for (int k = 0; k < 4; k++) {
+        int nx = x + steps[k][0], ny = y + steps[k][1];
+        if (sees(f, nx, ny, GROUND)) {
+            const float *a = position_at(f, x, y), *b = position_at(f, nx, ny);
+            size = fmaxf(size, sqrtf((a[0] - b[0]) * (a[0] - b[0]) + (a[2] - b[2]) * (a[2] - b[2])));
+        }
+    }
+    return size;
+}
+
+/* The pixel seeing `object` whose position is nearest `target`. */
+static size_t pixel_nearest(const dump_frame *f, int object, const float target[3]) {
+    size_t best = 0;
+    float best_distance = INFINITY;
+    for (size_t i = 0; i < (size_t)f->width * (size_t)f->height; i++) {
+        const float *p = f->position + 3 * i;
+        float d = sqrtf((p[0] - target[0]) * (p[0] - target[0]) + (p[1] - target[1]) * (p[1] - target[1]) +
+                        (p[2] - target[2]) * (p[2] - target[2]));
+        if (f->ids[i] == object && d < best_distance) {
+            best_distance = d;
+            best = i;
+        }
+    }
+    assert_true(best_distance < 0.1f);
+    return best;
+}
+
+/* The analytic shadow of the square scene, read from the scene itself. */
+typedef struct square_shadow {
+    float light_height, occluder_height, half_side; /* H, h, s */
+    float shadow_half_side;                         /* s H / (H - h), about the origin */
+} square_shadow;
+
+static square_shadow square_shadow_of(const scene *s) {
+    square_shadow q = {
+        .light_height = s->lights[0].position[1],
+        .occluder_height = s->objects[OCCLUDER].model[3][1],
+        .half_side = s->objects[OCCLUDER].mesh.bounds_max[0],
+    };
+    /* The light stands over the square's centre, at the origin. */
+    assert_float_equal(s->lights[0].position[0], 0, 0);
+    assert_float_equal(s->lights[0].position[2], 0, 0);
+    q.shadow_half_side = q.half_side * q.light_height / (q.light_height - q.occluder_height);
+    return q;
+}
+
+/* Signed distance on the ground from (x, z) to the shadow's edge:
+ * negative inside. */
+static float square_shadow_distance(const square_shadow *q, float x, float z) {
+    float dx = fabsf(x) - q->shadow_half_side, dz = fabsf(z) - q->shadow_half_side;
+    float outside = sqrtf(fmaxf(dx, 0) * fmaxf(dx, 0) + fmaxf(dz, 0) * fmaxf(dz, 0));
+    return outside > 0 ? outside : fmaxf(dx, dz);
+}
+
+static void test_hard_shadow_matches_analytic_square(void **state) {
+    (void)state;
+    scene s;
+    dump_frame f;
+    load(&s, SQUARE_SCENE);
+    square_shadow q = square_shadow_of(&s);
+    render(&s, SIZE, SIZE, 1, &f);
+    long compared = 0, excluded = 0, shadowed = 0, mismatches = 0;
+    for (int y = 0; y < f.height; y++) {
+        for (int x = 0; x < f.width; x++) {
+            if (!sees(&f, x, y, GROUND))
+                continue;
+            const float *p = position_at(&f, x, y);
+            float distance = square_shadow_distance(&q, p[0], p[2]);
+            float pixel = ground_pixel_size(&f, x, y);
+            if (pixel == 0 || fabsf(distance) < pixel) {
+                excluded++;
+                continue;
+            }
+            float expected = distance < 0 ? 0.0f : 1.0f;
+            float visibility = f.visibility[(size_t)y * (size_t)f.width + (size_t)x];
+            compared++;
+            shadowed += expected == 0;
+            mismatches += visibility != expected;
+        }
+    }
+    printf("    hard shadow: %ld ground pixels compared (%ld in shadow), %ld within a pixel of the edge "
+           "excluded, %ld mismatches\n",
+           compared, shadowed, excluded, mismatches);
+    assert_true(shadowed > 1000 && compared - shadowed > 1000);
+    assert_int_equal(mismatches, 0);
+    dump_frame_free(&f);
+    scene_free(&s);
+}
+
+static void test_area_light_penumbra_width(void **state) {
+    (void)state;
+    scene s;
+    dump_frame f;
+    load(&s, SQUARE_SCENE);
+    s.lights[0].radius = AREA_LIGHT_RADIUS;
+    square_shadow q = square_shadow_of(&s);
+    render(&s, SIZE, SIZE, AREA_LIGHT_SAMPLES, &f);
+    /* The middle row crosses the shadow's straight edge x = s H / (H - h)
+     * at z ~ 0, far from its corners. */
+    int y = f.height / 2, first = -1, last = -1, penumbra = 0;
+    for (int x = 0; x < f.width; x++) {
+        if (!sees(&f, x, y, GROUND))
+            continue;
+        float v = f.visibility[(size_t)y * (size_t)f.width + (size_t)x];
+        penumbra += v > 0 && v < 1;
+        if (first < 0)
+            first = x;
+        last = x;
+    }
+    assert_true(last - first > f.width / 2);
+    assert_true(fabsf(position_at(&f, first, y)[2]) < 0.1f * q.shadow_half_side);
+    double pixel = (position_at(&f, last, y)[0] - position_at(&f, first, y)[0]) / (double)(last - first);
+    double predicted = 2.0 * AREA_LIGHT_RADIUS * q.occluder_height / (q.light_height - q.occluder_height) / pixel;
+    printf("    penumbra: predicted %.2f pixels (w = 2rh/(H-h) = %.3f, %.4f per pixel), measured %d pixels\n",
+           predicted, predicted * pixel, pixel, penumbra);
+    assert_true(fabs(penumbra - predicted) <= PENUMBRA_TOLERANCE_PIXELS);
+    dump_frame_free(&f);
+    scene_free(&s);
+}
+
+/* Ground points in tests/data/raytrace_spot.json: the spot hangs at
+ * (0, 5, 0) pointing down, inner 20, outer 30 degrees; the sphere "ghost"
+ * casts no shadow, though it stands between the light and ghost_shadow. */
+static const float outside_cone[3] = {4.5f, 0, 4.5f}; /* 52 degrees off the axis */
+static const float on_axis[3] = {0, 0, 0};
+static const float between_cones[3] = {0, 0, 2.4f}; /* 26 degrees */
+static const float ghost_shadow[3] = {2.5f, 0, 0};
+
+static void test_spot_cone_respected(void **state) {
+    (void)state;
+    scene s;
+    dump_frame f;
+    load(&s, SPOT_SCENE);
+    render(&s, SIZE, SIZE, 1, &f);
+    size_t outside = pixel_nearest(&f, GROUND, outside_cone);
+    size_t axis = pixel_nearest(&f, GROUND, on_axis);
+    size_t between = pixel_nearest(&f, GROUND, between_cones);
+    size_t ghost = pixel_nearest(&f, GROUND, ghost_shadow);
+    assert_float_equal(f.visibility[outside], 0, 0);
+    for (int k = 0; k < 3; k++) {
+        float ambient_only = s.objects[GROUND].color[k] * s.ambient[k];
+        assert_int_equal(f.color[4 * outside + (size_t)k], (int)(ambient_only * 255.0f + 0.5f));
+    }
+    assert_float_equal(f.visibility[axis], 1, 0);
+    /* Inside the outer cone the light reaches, dimmed by the spot's
+     * falloff: visibility says only whether something blocks it. */
+    assert_float_equal(f.visibility[between], 1, 0);
+    assert_true(f.color[4 * between] > f.color[4 * outside] && f.color[4 * between] < f.color[4 * axis]);
+    assert_float_equal(f.visibility[ghost], 1, 0);
+    dump_frame_free(&f);
+
+    /* ghost_shadow is truly behind the sphere: once it casts, it is dark. */
+    s.objects[1].casts = true;
+    render(&s, SIZE, SIZE, 1, &f);
+    assert_float_equal(f.visibility[ghost], 0, 0);
+    dump_frame_free(&f);
+    scene_free(&s);
+}
+
+static void test_render_is_deterministic(void **state) {
+    (void)state;
+    scene s;
+    dump_frame a, b;
+    load(&s, SQUARE_SCENE);
+    s.lights[0].radius = AREA_LIGHT_RADIUS; /* the jittered samples too */
+    render(&s, 100, 80, 10, &a);
+    render(&s, 100, 80, 10, &b);
+    size_t n = (size_t)a.width * (size_t)a.height;
+    assert_memory_equal(a.visibility, b.visibility, n * sizeof *a.visibility);
+    assert_memory_equal(a.depth, b.depth, n * sizeof *a.depth);
+    assert_memory_equal(a.normal, b.normal, 3 * n * sizeof *a.normal);
+    assert_memory_equal(a.position, b.position, 3 * n * sizeof *a.position);
+    assert_memory_equal(a.ids, b.ids, n * sizeof *a.ids);
+    assert_memory_equal(a.color, b.color, 4 * n);
+    dump_frame_free(&a);
+    dump_frame_free(&b);
+    scene_free(&s);
+}
+
+static bool all_finite(const float *values, size_t count) {
+    for (size_t i = 0; i < count; i++)
+        if (!isfinite(values[i]))
+            return false;
+    return true;
+}
+
+static void test_standard_scenes_are_sane(void **state) {
+    (void)state;
+    static const char *const scenes[] = {"assets/scenes/simple.json", "assets/scenes/bunny.json",
+                                         "assets/scenes/teapot.json"};
+    for (size_t k = 0; k < sizeof scenes / sizeof *scenes; k++) {
+        scene s;
+        dump_frame f;
+        load(&s, scenes[k]);
+        render(&s, 160, 90, 0, &f);
+        size_t n = (size_t)f.width * (size_t)f.height;
+        assert_true(all_finite(f.visibility, n) && all_finite(f.depth, n) && all_finite(f.ids, n) &&
+                    all_finite(f.normal, 3 * n) && all_finite(f.position, 3 * n));
+        long shadowed = 0, lit = 0;
+        for (size_t i = 0; i < n; i++) {
+            shadowed += f.ids[i] >= 0 && f.visibility[i] == 0;
+            lit += f.visibility[i] == 1;
+        }
+        printf("    %s: %ld shadowed, %ld lit pixels of %zu\n", scenes[k], shadowed, lit, n);
+        assert_true(shadowed > 0 && lit > 0);
+        dump_frame_free(&f);
+        scene_free(&s);
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hard_shadow_matches_analytic_square),
+        cmocka_unit_test(test_area_light_penumbra_width),
+        cmocka_unit_test(test_spot_cone_respected),
+        cmocka_unit_test(test_render_is_deterministic),
+        cmocka_unit_test(test_standard_scenes_are_sane),
+    };
+    return cmocka_run_group_tests_name("ray-traced reference", tests, NULL, NULL);
+}

@@ -1,0 +1,535 @@
+/* Tests of common/shadowdiff.c and build/shadowdiff on synthetic dumps
+ * whose answer is known: which pixels are compared, the counts, the heat
+ * map, the consistency checks, and the dump files' round trip. Run from
+ * the repository root. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <cJSON.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dump.h"
+#include "image.h"
+#include "shadowdiff.h"
+#include "support.h"
+
+#define EXIT_RUNTIME 1
+#define EXIT_USAGE 2
+#define SIZE 8
+#define PIXELS (SIZE * SIZE)
+#define GROUND 0
+#define BOX 1
+#define DEPTH 10.0f
+#define DIR "out/test/shadowdiff"
+
+static const scene_light point_light = {.type = SCENE_LIGHT_POINT, .position = {0, 10, 0}};
+/* Straight down: the dump's light is (0, 1, 0, 0). */
+static const scene_light sun = {.type = SCENE_LIGHT_DIRECTIONAL, .direction = {0, -1, 0}};
+
+static char err[16384];
+
+static void set_vec3(float *array, size_t i, float x, float y, float z) {
+    memcpy(array + 3 * i, (float[3]){x, y, z}, sizeof(float[3]));
+}
+
+/* Objects "ground" and "box" lit by `light`; every pixel sees the ground
+ * (plane y = 0, pixel (x, y) at (x, 0, y)) at depth 10, facing the light
+ * (above it), lit. */
+static void make_frame(dump_frame *d, int width, int height, scene_light light) {
+    scene_object objects[2] = {{.name = "ground"}, {.name = "box"}};
+    scene s = {.lights = {light}, .light_count = 1, .objects = objects, .object_count = 2};
+    assert_true(dump_frame_create(d, width, height, &s, 0));
+    for (int y = 0; y < height; y++) {
+        for (int x = 0; x < width; x++) {
+            size_t i = (size_t)y * (size_t)width + (size_t)x;
+            d->ids[i] = GROUND;
+            d->depth[i] = DEPTH;
+            d->visibility[i] = 1;
+            set_vec3(d->normal, i, 0, 1, 0);
+            set_vec3(d->position, i, (float)x, 0, (float)y);
+        }
+    }
+}
+
+static void make_pair(dump_frame *reference, dump_frame *test, scene_light light) {
+    make_frame(reference, SIZE, SIZE, light);
+    make_frame(test, SIZE, SIZE, light);
+}
+
+static void free_pair(dump_frame *reference, dump_frame *test) {
+    dump_frame_free(reference);
+    dump_frame_free(test);
+}
+
+static void set_visibility(dump_frame *reference, dump_frame *test, size_t i, float r, float t) {
+    reference->visibility[i] = r;
+    test->visibility[i] = t;
+}
+
+static void set_no_surface(dump_frame *d, size_t i) { d->ids[i] = d->depth[i] = d->visibility[i] = -1; }
+
+/* 5 false shadows and 3 false lit among 64 compared pixels; the others
+ * agree, lit or shadowed, some at the threshold. */
+static void set_known_verdicts(dump_frame *reference, dump_frame *test) {
+    for (size_t i = 0; i < 4; i++)
+        set_visibility(reference, test, i, 1, 0);
+    set_visibility(reference, test, 4, 0.5f, 0.49f);
+    for (size_t i = 10; i < 12; i++)
+        set_visibility(reference, test, i, 0, 1);
+    set_visibility(reference, test, 12, 0.49f, 0.5f);
+    for (size_t i = 20; i < 30; i++)
+        set_visibility(reference, test, i, 0, 0.25f);
+    set_visibility(reference, test, 30, 0.5f, 0.5f);
+}
+
+static shadowdiff_result compare(const dump_frame *reference, const dump_frame *test, const char *receiver) {
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(reference, test, &(shadowdiff_settings){.receiver = receiver}, &r, NULL));
+    return r;
+}
+
+static void assert_counts(const shadowdiff_result *r, long compared, long false_shadow, long false_lit) {
+    assert_int_equal(r->compared, compared);
+    assert_int_equal(r->false_shadow, false_shadow);
+    assert_int_equal(r->false_lit, false_lit);
+}
+
+static void test_counts_false_shadow_and_false_lit(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    set_known_verdicts(&reference, &test);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS, 5, 3);
+    assert_float_equal(r.false_shadow_percent, 7.8125, 1e-12);
+    assert_float_equal(r.false_lit_percent, 4.6875, 1e-12);
+    assert_float_equal(r.misclassified_percent, 12.5, 1e-12);
+    free_pair(&reference, &test);
+}
+
+static void test_mean_abs_error_on_fractions(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    for (size_t i = 0; i < PIXELS; i++) {
+        if (i < 16)
+            set_visibility(&reference, &test, i, 0.75f, 0.5f);
+        else
+            set_visibility(&reference, &test, i, 0.25f, 0.375f);
+    }
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS, 0, 0);
+    assert_float_equal(r.mean_abs_error, (16 * 0.25 + 48 * 0.125) / PIXELS, 1e-12);
+    free_pair(&reference, &test);
+}
+
+static void test_excludes_pixels_without_surface_in_either(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    set_no_surface(&reference, 0); /* each of 0..3 a wrong verdict if it counted */
+    set_visibility(&reference, &test, 0, -1, 1);
+    set_no_surface(&test, 1); /* visibility -1: "shadowed" if it counted */
+    /* Only the id says "no surface" here, so that no depth rule hides it. */
+    reference.ids[2] = -1;
+    set_visibility(&reference, &test, 2, 0, 1);
+    test.ids[3] = -1;
+    set_visibility(&reference, &test, 3, 1, 0);
+    set_visibility(&reference, &test, 4, 1, 0); /* the one that counts */
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS - 4, 1, 0);
+    assert_float_equal(r.false_shadow_percent, 100.0 / (PIXELS - 4), 1e-12);
+    free_pair(&reference, &test);
+}
+
+static void test_depth_tolerance(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    const struct {
+        float test_depth, r, t;
+    } pixels[] = {
+        {DEPTH * 1.002f, 1, 0},  /* 0.2 % further: another surface */
+        {DEPTH * 0.998f, 0, 1},  /* 0.2 % nearer */
+        {DEPTH * 1.0005f, 1, 0}, /* 0.05 %: the same surface */
+        {DEPTH * 0.9995f, 0, 1},
+    };
+    for (size_t i = 0; i < sizeof pixels / sizeof *pixels; i++) {
+        test.depth[i] = pixels[i].test_depth;
+        set_visibility(&reference, &test, i, pixels[i].r, pixels[i].t);
+    }
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS - 2, 1, 1);
+    free_pair(&reference, &test);
+}
+
+typedef struct surface {
+    float position[3], normal[3];
+} surface;
+
+/* Gives the first `count` pixels of the reference these surfaces, each a
+ * false shadow if it were compared. */
+static void set_reference_surfaces(dump_frame *reference, dump_frame *test, const surface *surfaces, size_t count) {
+    for (size_t i = 0; i < count; i++) {
+        memcpy(reference->position + 3 * i, surfaces[i].position, sizeof surfaces[i].position);
+        memcpy(reference->normal + 3 * i, surfaces[i].normal, sizeof surfaces[i].normal);
+        set_visibility(reference, test, i, 1, 0);
+    }
+}
+
+/* The light at (0, 10, 0): facing it depends on where the surface is. */
+static void test_excludes_back_facing_point_light(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    const surface surfaces[] = {
+        {{0, 20, 0}, {0, 1, 0}}, /* above the light, facing up */
+        {{5, 0, 0}, {1, 0, 0}},  /* right of it, facing right */
+        {{0, 0, 0}, {1, 0, 0}},  /* under it, edge on: N . L = 0 */
+        {{3, 0, 0}, {0, -1, 0}}, /* facing down; the test's normal faces up */
+        {{-5, 0, 0}, {1, 0, 0}}, /* left of it, facing right: compared */
+    };
+    set_reference_surfaces(&reference, &test, surfaces, sizeof surfaces / sizeof *surfaces);
+    set_vec3(test.normal, 5, 0, -1, 0); /* only the reference's normal counts: compared */
+    set_visibility(&reference, &test, 5, 0, 1);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS - 4, 1, 1);
+    free_pair(&reference, &test);
+}
+
+/* The light straight down, (0, 1, 0, 0). */
+static void test_excludes_back_facing_directional_light(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, sun);
+    const surface surfaces[] = {
+        {{0, 0, 0}, {0, -1, 0}},      /* facing down */
+        {{0, 0, 0}, {1, 0, 0}},       /* edge on */
+        {{0, 100, 0}, {0, 1, 0}},     /* far above (0, 1, 0), facing up: compared */
+        {{0, 0, 0}, {0.6f, 0.8f, 0}}, /* compared */
+    };
+    set_reference_surfaces(&reference, &test, surfaces, sizeof surfaces / sizeof *surfaces);
+    set_visibility(&reference, &test, 3, 0, 1);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS - 2, 1, 1);
+    free_pair(&reference, &test);
+}
+
+/* Rows 4..7 are the box, except one pixel the test sees as ground. */
+static void test_receiver_restricts(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    for (size_t i = PIXELS / 2; i < PIXELS; i++)
+        reference.ids[i] = test.ids[i] = BOX;
+    test.ids[PIXELS - 1] = GROUND;
+    set_visibility(&reference, &test, 0, 1, 0);
+    set_visibility(&reference, &test, 1, 1, 0);
+    set_visibility(&reference, &test, 40, 0, 1);
+    set_visibility(&reference, &test, 41, 0, 1);
+    set_visibility(&reference, &test, 42, 0, 1);
+    set_visibility(&reference, &test, 43, 1, 0);
+    set_visibility(&reference, &test, PIXELS - 1, 1, 0);
+    shadowdiff_result all = compare(&reference, &test, NULL);
+    shadowdiff_result ground = compare(&reference, &test, "ground");
+    shadowdiff_result box = compare(&reference, &test, "box");
+    assert_counts(&all, PIXELS, 4, 3);
+    assert_counts(&ground, PIXELS / 2, 2, 0);
+    assert_counts(&box, PIXELS / 2 - 1, 1, 3);
+    assert_float_equal(box.false_lit_percent, 300.0 / (PIXELS / 2 - 1), 1e-12);
+    shadowdiff_result unused;
+    assert_false(shadowdiff_compare(&reference, &test, &(shadowdiff_settings){.receiver = "teapot"}, &unused, NULL));
+    free_pair(&reference, &test);
+}
+
+static void test_nothing_compared_gives_zeros(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    for (size_t i = 0; i < PIXELS; i++) {
+        test.depth[i] = 2 * DEPTH;
+        set_visibility(&reference, &test, i, 1, 0);
+    }
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, 0, 0, 0);
+    assert_true(r.false_shadow_percent == 0 && r.false_lit_percent == 0 && r.misclassified_percent == 0);
+    assert_true(r.mean_abs_error == 0);
+    free_pair(&reference, &test);
+}
+
+static void assert_rgba(const unsigned char *rgba, size_t i, int r, int g, int b) {
+    assert_int_equal(rgba[4 * i + 0], r);
+    assert_int_equal(rgba[4 * i + 1], g);
+    assert_int_equal(rgba[4 * i + 2], b);
+    assert_int_equal(rgba[4 * i + 3], 255);
+}
+
+static void test_heatmap_colours(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    set_visibility(&reference, &test, 0, 1, 0);
+    set_visibility(&reference, &test, 1, 0, 1);
+    set_no_surface(&reference, 2);
+    set_no_surface(&test, 3);
+    set_visibility(&reference, &test, 5, 0, 0);
+    set_visibility(&reference, &test, 6, 0.5f, 0.75f);
+    unsigned char heatmap[PIXELS * 4];
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(&reference, &test, NULL, &r, heatmap));
+    assert_rgba(heatmap, 0, 255, 0, 0);     /* false shadow: red */
+    assert_rgba(heatmap, 1, 0, 0, 255);     /* false lit: blue */
+    assert_rgba(heatmap, 2, 0, 0, 0);       /* no surface: black */
+    assert_rgba(heatmap, 3, 40, 40, 40);    /* not compared: dark grey */
+    assert_rgba(heatmap, 4, 255, 255, 255); /* lit in both */
+    assert_rgba(heatmap, 5, 96, 96, 96);    /* shadowed in both */
+    assert_rgba(heatmap, 6, 176, 176, 176); /* half lit: 96 + 159 / 2 */
+    free_pair(&reference, &test);
+}
+
+static void test_rejects_inconsistent_dumps(void **state) {
+    (void)state;
+    dump_frame reference, test, small;
+    shadowdiff_result r;
+    make_pair(&reference, &test, point_light);
+    make_frame(&small, SIZE, SIZE / 2, point_light);
+    assert_false(shadowdiff_compare(&reference, &small, NULL, &r, NULL));
+    test.light[1] = 10.01f; /* 1e-3 relative */
+    assert_false(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    test.light[1] = 10.0001f; /* 1e-5 relative: the same light */
+    assert_true(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    test.light[3] = 0; /* a directional light */
+    assert_false(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    test.light[3] = 1;
+    test.light_index = 1;
+    assert_false(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    test.light_index = 0;
+    test.object_count = 1;
+    assert_false(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    test.object_count = 2;
+    strcpy(test.object_names[BOX], "cube");
+    assert_false(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    strcpy(test.object_names[BOX], "box");
+    assert_true(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    free_pair(&reference, &test);
+    dump_frame_free(&small);
+}
+
+static void assert_floats_equal(const float *a, const float *b, size_t count) {
+    assert_memory_equal(a, b, count * sizeof *a);
+}
+
+/* Not square and every value different, so that a swapped axis or an
+ * unflipped row shows. */
+static void test_dump_round_trip(void **state) {
+    (void)state;
+    const int width = 8, height = 5;
+    const size_t n = (size_t)width * (size_t)height;
+    dump_frame written, loaded;
+    make_frame(&written, width, height, sun);
+    for (size_t i = 0; i < n; i++) {
+        written.visibility[i] = (float)i / (float)n;
+        written.depth[i] = 1 + 0.25f * (float)i;
+        written.ids[i] = (float)(i % 3) - 1;
+        set_vec3(written.normal, i, 0.1f * (float)i, -1, 0.5f);
+        set_vec3(written.position, i, (float)i, 2 * (float)i, -(float)i);
+    }
+    assert_true(dump_write(&written, DIR "/round_trip"));
+    assert_true(dump_read(&loaded, DIR "/round_trip"));
+    assert_int_equal(loaded.width, width);
+    assert_int_equal(loaded.height, height);
+    assert_int_equal(loaded.light_index, written.light_index);
+    assert_floats_equal(loaded.light, written.light, 4);
+    assert_int_equal(loaded.object_count, written.object_count);
+    for (int i = 0; i < written.object_count; i++)
+        assert_string_equal(loaded.object_names[i], written.object_names[i]);
+    assert_floats_equal(loaded.visibility, written.visibility, n);
+    assert_floats_equal(loaded.depth, written.depth, n);
+    assert_floats_equal(loaded.ids, written.ids, n);
+    assert_floats_equal(loaded.normal, written.normal, 3 * n);
+    assert_floats_equal(loaded.position, written.position, 3 * n);
+    dump_frame_free(&written);
+    dump_frame_free(&loaded);
+}
+
+/* ---- build/shadowdiff ---- */
+
+/* DIR/ref and DIR/test hold the known verdicts; DIR/small is another
+ * size, DIR/moved another light, DIR/far sees everything further away. */
+static int write_cli_dumps(void **state) {
+    (void)state;
+    dump_frame reference, test, small, moved;
+    make_pair(&reference, &test, point_light);
+    set_known_verdicts(&reference, &test);
+    make_frame(&small, SIZE, SIZE / 2, point_light);
+    make_frame(&moved, SIZE, SIZE, (scene_light){.type = SCENE_LIGHT_POINT, .position = {0, 11, 0}});
+    bool ok = dump_write(&reference, DIR "/ref") && dump_write(&test, DIR "/test") &&
+              dump_write(&small, DIR "/small") && dump_write(&moved, DIR "/moved");
+    for (size_t i = 0; i < PIXELS; i++)
+        test.depth[i] = 2 * DEPTH;
+    ok = ok && dump_write(&test, DIR "/far");
+    free_pair(&reference, &test);
+    dump_frame_free(&small);
+    dump_frame_free(&moved);
+    return ok ? 0 : -1;
+}
+
+/* Runs build/shadowdiff with `args`; stdout goes to `out`, stderr to err. */
+static int run_shadowdiff(const char *args, char *out, size_t capacity) {
+    char command[4096];
+    snprintf(command, sizeof command, "(%s %s >" DIR "/stdout.txt)", support_program("shadowdiff"), args);
+    int status = support_run(command, err, sizeof err);
+    FILE *f = fopen(DIR "/stdout.txt", "r");
+    assert_non_null(f);
+    size_t length = fread(out, 1, capacity - 1, f);
+    out[length] = '\0';
+    fclose(f);
+    return status;
+}
+
+/* Checks the status and that stderr is one line with both strings. */
+static void expect_failure(const char *args, int status, const char *expect1, const char *expect2) {
+    char out[4096];
+    assert_int_equal(run_shadowdiff(args, out, sizeof out), status);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, expect1));
+    assert_non_null(strstr(err, expect2));
+}
+
+static void test_cli_text_report(void **state) {
+    (void)state;
+    char out[4096];
+    assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/test", out, sizeof out), 0);
+    assert_string_equal(err, "");
+    assert_int_equal(support_count_lines(out), 5);
+    assert_non_null(strstr(out, "64 of 64"));
+    assert_non_null(strstr(out, "7.812 %"));
+    assert_non_null(strstr(out, "4.688 %"));
+    assert_non_null(strstr(out, "12.500 %"));
+}
+
+static double json_number(const cJSON *root, const char *key) {
+    const cJSON *item = cJSON_GetObjectItemCaseSensitive(root, key);
+    assert_true(cJSON_IsNumber(item));
+    return item->valuedouble;
+}
+
+/* Runs build/shadowdiff --json with `args`; the caller deletes the result. */
+static cJSON *run_json(const char *args) {
+    char command_args[1024], out[4096];
+    snprintf(command_args, sizeof command_args, "%s --json", args);
+    assert_int_equal(run_shadowdiff(command_args, out, sizeof out), 0);
+    assert_int_equal(support_count_lines(out), 1);
+    cJSON *root = cJSON_Parse(out);
+    assert_non_null(root);
+    return root;
+}
+
+static void test_cli_json(void **state) {
+    (void)state;
+    cJSON *root = run_json(DIR "/ref " DIR "/test");
+    assert_float_equal(json_number(root, "compared"), PIXELS, 0);
+    assert_float_equal(json_number(root, "false_shadow_percent"), 7.8125, 1e-12);
+    assert_float_equal(json_number(root, "false_lit_percent"), 4.6875, 1e-12);
+    assert_float_equal(json_number(root, "misclassified_percent"), 12.5, 1e-12);
+    /* 4 x 1 + 0.01 + 2 x 1 + 0.01 + 10 x 0.25 */
+    assert_float_equal(json_number(root, "mean_abs_error"), (8.5 + 2 * (0.5 - 0.49f)) / PIXELS, 1e-12);
+    cJSON_Delete(root);
+}
+
+/* Every pixel is ground: the box has none, which is a warning, not an error. */
+static void test_cli_receiver(void **state) {
+    (void)state;
+    cJSON *ground = run_json(DIR "/ref " DIR "/test --receiver=ground");
+    assert_float_equal(json_number(ground, "compared"), PIXELS, 0);
+    assert_float_equal(json_number(ground, "false_shadow_percent"), 7.8125, 1e-12);
+    cJSON_Delete(ground);
+    cJSON *box = run_json(DIR "/ref " DIR "/test --receiver box");
+    assert_float_equal(json_number(box, "compared"), 0, 0);
+    assert_float_equal(json_number(box, "misclassified_percent"), 0, 0);
+    assert_float_equal(json_number(box, "mean_abs_error"), 0, 0);
+    cJSON_Delete(box);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "warning"));
+}
+
+static void test_cli_heatmap(void **state) {
+    (void)state;
+    char out[4096];
+    assert_int_equal(run_shadowdiff("--heatmap " DIR "/heat.png " DIR "/ref " DIR "/test", out, sizeof out), 0);
+    int width, height;
+    unsigned char *rgba = image_read_png(DIR "/heat.png", &width, &height);
+    assert_non_null(rgba);
+    assert_int_equal(width, SIZE);
+    assert_int_equal(height, SIZE);
+    assert_rgba(rgba, 0, 255, 0, 0);
+    assert_rgba(rgba, 10, 0, 0, 255);
+    assert_rgba(rgba, 63, 255, 255, 255);
+    free(rgba);
+}
+
+static void test_cli_nothing_compared_warns(void **state) {
+    (void)state;
+    char out[4096];
+    assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/far", out, sizeof out), 0);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "warning"));
+    assert_non_null(strstr(out, "0 of 64"));
+    assert_null(strstr(out, "nan"));
+}
+
+static void test_cli_usage_errors(void **state) {
+    (void)state;
+    expect_failure(DIR "/ref " DIR "/test --bogus", EXIT_USAGE, "unknown flag", "--bogus");
+    expect_failure(DIR "/ref " DIR "/test --receiver", EXIT_USAGE, "missing value", "--receiver");
+    expect_failure(DIR "/ref", EXIT_USAGE, "two dump directories", "REF_DIR");
+    expect_failure(DIR "/ref " DIR "/test " DIR "/far", EXIT_USAGE, "two dump directories", DIR "/far");
+    expect_failure(DIR "/ref " DIR "/test --json=yes", EXIT_USAGE, "takes no value", "--json");
+}
+
+static void test_cli_runtime_errors(void **state) {
+    (void)state;
+    expect_failure(DIR "/ref " DIR "/none", EXIT_RUNTIME, DIR "/none/meta.json", "No such file");
+    expect_failure(DIR "/ref " DIR "/small", EXIT_RUNTIME, DIR "/small", "8x8 and 8x4");
+    expect_failure(DIR "/ref " DIR "/moved", EXIT_RUNTIME, DIR "/moved", "lit differently");
+    expect_failure(DIR "/ref " DIR "/test --receiver teapot", EXIT_RUNTIME, "teapot", "objects: ground, box");
+    expect_failure(DIR "/ref " DIR "/test --heatmap " DIR "/none/heat.png", EXIT_RUNTIME, DIR "/none/heat.png",
+                   "cannot write");
+}
+
+static void test_cli_help(void **state) {
+    (void)state;
+    char out[4096];
+    assert_int_equal(run_shadowdiff("--help", out, sizeof out), 0);
+    assert_non_null(strstr(out, "red false shadow"));
+    assert_non_null(strstr(out, "blue false lit"));
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_counts_false_shadow_and_false_lit),
+        cmocka_unit_test(test_mean_abs_error_on_fractions),
+        cmocka_unit_test(test_excludes_pixels_without_surface_in_either),
+        cmocka_unit_test(test_depth_tolerance),
+        cmocka_unit_test(test_excludes_back_facing_point_light),
+        cmocka_unit_test(test_excludes_back_facing_directional_light),
+        cmocka_unit_test(test_receiver_restricts),
+        cmocka_unit_test(test_nothing_compared_gives_zeros),
+        cmocka_unit_test(test_heatmap_colours),
+        cmocka_unit_test(test_rejects_inconsistent_dumps),
+        cmocka_unit_test(test_dump_round_trip),
+        cmocka_unit_test(test_cli_text_report),
+        cmocka_unit_test(test_cli_json),
+        cmocka_unit_test(test_cli_receiver),
+        cmocka_unit_test(test_cli_heatmap),
+        cmocka_unit_test(test_cli_nothing_compared_warns),
+        cmocka_unit_test(test_cli_usage_errors),
+        cmocka_unit_test(test_cli_runtime_errors),
+        cmocka_unit_test(test_cli_help),
+    };
+    return cmocka_run_group_tests(tests, write_cli_dumps, NULL);
+}
