@@ -103,24 +103,12 @@ static int app_find_technique(const char *name) {
 
 /* Returns 0 to run, -1 after --help, or an exit status. */
 static int app_parse_flags(int argc, char **argv) {
-    for (int i = 1; i < argc; i++) {
-        char *flag = argv[i];
-        char *eq = strncmp(flag, "--", 2) == 0 ? strchr(flag, '=') : NULL;
-        char name[64];
-        snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - flag) : (int)strlen(flag), flag);
-        const char *value = eq ? eq + 1 : NULL;
-        static const char *const with_value[] = {"--backend", "--size", "--scene", "--frames", "--screenshot",
-                                                 "--shader-dir", "--technique", "--gallery", "--dump", "--light"};
-        bool needs_value = false;
-        for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
-            needs_value |= strcmp(name, with_value[k]) == 0;
-        if (needs_value && !value) {
-            if (i + 1 >= argc)
-                return app_usage_error("missing value after", name);
-            value = argv[++i];
-        } else if (!needs_value && value) {
-            return app_usage_error("flag takes no value:", flag);
-        }
+    static const char *const with_value[] = {"--backend",   "--size",    "--scene", "--frames", "--screenshot",
+                                             "--shader-dir", "--technique", "--gallery", "--dump", "--light", NULL};
+    flags_cursor c = {.program = app.program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
+    const char *name, *value;
+    int status;
+    while ((status = flags_next(&c, &name, &value)) == 1) {
         if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
             app_usage(stdout);
             return -1;
@@ -150,8 +138,8 @@ static int app_parse_flags(int argc, char **argv) {
                 return app_usage_error("--technique: unknown technique", value);
         } else if (strcmp(name, "--gallery") == 0) {
             app.gallery_dir = value;
-            app.gallery_scenes = argv + i + 1;
-            app.gallery_scene_count = argc - i - 1;
+            app.gallery_scenes = argv + c.next;
+            app.gallery_scene_count = argc - c.next;
             if (app.gallery_scene_count == 0)
                 return app_usage_error("--gallery: expected DIR then at least one scene file", NULL);
             break;
@@ -159,11 +147,11 @@ static int app_parse_flags(int argc, char **argv) {
             app.animate = true;
         } else if (strcmp(name, "--verbose") == 0) {
             app.verbose = true;
-        } else if (!app_apply_technique_flag(flag)) {
-            return app_usage_error("unknown flag", flag);
+        } else if (!app_apply_technique_flag(name)) {
+            return app_usage_error(name[0] == '-' ? "unknown flag" : "unexpected argument", name);
         }
     }
-    return 0;
+    return status == FLAGS_EXIT_USAGE ? status : 0; /* 1 when --gallery took the rest */
 }
 
 static const technique *app_technique(void) { return app.techniques[app.current]; }

@@ -1,6 +1,7 @@
 #include "flags.h"
 
 #include <errno.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,4 +34,31 @@ int flags_usage_error(const char *program, const char *message, const char *valu
     else
         fprintf(stderr, "%s: %s (see --help)\n", program, message);
     return FLAGS_EXIT_USAGE;
+}
+
+int flags_next(flags_cursor *c, const char **name, const char **value) {
+    if (c->next >= c->argc)
+        return 0;
+    const char *arg = c->argv[c->next++];
+    *value = NULL;
+    if (arg[0] != '-') {
+        *name = arg;
+        return 1;
+    }
+    const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+    snprintf(c->name, sizeof c->name, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
+    *name = c->name;
+    bool needs_value = false;
+    for (const char *const *w = c->with_value; w && *w; w++)
+        needs_value |= strcmp(c->name, *w) == 0;
+    if (needs_value && !eq) {
+        if (c->next >= c->argc)
+            return flags_usage_error(c->program, "missing value after", c->name);
+        *value = c->argv[c->next++];
+    } else if (needs_value) {
+        *value = eq + 1;
+    } else if (eq) {
+        return flags_usage_error(c->program, "flag takes no value:", arg);
+    }
+    return 1;
 }

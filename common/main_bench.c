@@ -48,7 +48,7 @@ static struct {
     const char *out_dir;
     int width, height, frames, warmup, light_samples;
     bool quick, verbose;
-    char *scenes[16];
+    const char *scenes[16];
     char scene_names[16][128];
     int scene_count;
     char default_scenes[3][PATH_MAX];
@@ -82,17 +82,13 @@ static void bench_usage(void) {
 }
 
 static int bench_parse_flags(int argc, char **argv) {
-    static const char *const names[] = {"--out", "--size", "--frames", "--warmup", "--light-samples", "--shader-dir"};
+    static const char *const with_value[] = {"--out",          "--size",       "--frames", "--warmup",
+                                             "--light-samples", "--shader-dir", NULL};
+    flags_cursor c = {.program = "bench", .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
+    const char *flag, *value;
+    int status;
     bench.out_dir = "out/bench";
-    for (int i = 1; i < argc; i++) {
-        const char *flag = argv[i], *value = NULL;
-        for (size_t k = 0; k < sizeof names / sizeof *names; k++) {
-            if (strcmp(flag, names[k]) == 0) {
-                if (i + 1 >= argc)
-                    return flags_usage_error("bench", "missing value after", flag);
-                value = argv[++i];
-            }
-        }
+    while ((status = flags_next(&c, &flag, &value)) == 1) {
         bool ok = true;
         if (strcmp(flag, "--help") == 0) {
             bench_usage();
@@ -116,13 +112,15 @@ static int bench_parse_flags(int argc, char **argv) {
         } else if (flag[0] == '-') {
             return flags_usage_error("bench", "unknown flag", flag);
         } else if (bench.scene_count < (int)(sizeof bench.scenes / sizeof *bench.scenes)) {
-            bench.scenes[bench.scene_count++] = argv[i];
+            bench.scenes[bench.scene_count++] = flag;
         } else {
             return flags_usage_error("bench", "too many scenes, from", flag);
         }
         if (!ok)
             return flags_usage_error("bench", "malformed value:", value);
     }
+    if (status)
+        return status;
     /* Zero means the default, which --quick makes small. */
     if (!bench.width)
         bench.width = bench.quick ? 320 : 1280, bench.height = bench.quick ? 180 : 720;

@@ -7,16 +7,15 @@
  * Exit status: 0 success, 1 a run-time error (scene, model, Embree, file),
  * 2 a bad command line. Every error is one line on stderr.
  */
-#include <libgen.h>
 #include <limits.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "flags.h"
 #include "image.h"
+#include "path.h"
 #include "raytrace.h"
 
 #define MAIN_EXIT_RUNTIME 1
@@ -55,24 +54,12 @@ static int main_usage_error(const char *message, const char *value) {
 
 /* Returns 0 to run, -1 after --help, or an exit status. */
 static int main_parse_flags(int argc, char **argv) {
-    for (int i = 1; i < argc; i++) {
-        char *flag = argv[i];
-        char *eq = strncmp(flag, "--", 2) == 0 ? strchr(flag, '=') : NULL;
-        char name[64];
-        snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - flag) : (int)strlen(flag), flag);
-        const char *value = eq ? eq + 1 : NULL;
-        static const char *const with_value[] = {"--scene", "--size", "--screenshot", "--dump", "--light",
-                                                 "--light-samples"};
-        bool needs_value = false;
-        for (size_t k = 0; k < sizeof with_value / sizeof *with_value; k++)
-            needs_value |= strcmp(name, with_value[k]) == 0;
-        if (needs_value && !value) {
-            if (i + 1 >= argc)
-                return main_usage_error("missing value after", name);
-            value = argv[++i];
-        } else if (!needs_value && value) {
-            return main_usage_error("flag takes no value:", flag);
-        }
+    static const char *const with_value[] = {"--scene", "--size",  "--screenshot", "--dump",
+                                             "--light", "--light-samples", NULL};
+    flags_cursor c = {.program = main_flags.program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
+    const char *name, *value;
+    int status;
+    while ((status = flags_next(&c, &name, &value)) == 1) {
         if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
             main_usage();
             return -1;
@@ -94,27 +81,10 @@ static int main_parse_flags(int argc, char **argv) {
         } else if (strcmp(name, "--verbose") == 0) {
             main_flags.settings.verbose = true;
         } else {
-            return main_usage_error("unknown flag", flag);
+            return main_usage_error(name[0] == '-' ? "unknown flag" : "unexpected argument", name);
         }
     }
-    return 0;
-}
-
-/* The default scene is found beside the executable (build/..), as the GL
- * programs find theirs, so it runs from any working directory. */
-static void main_locate_default_scene(const char *argv0) {
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0)
-        exe[n] = '\0';
-    else
-        snprintf(exe, sizeof exe, "%s", argv0);
-    snprintf(main_flags.default_scene, sizeof main_flags.default_scene, "%s/../assets/scenes/simple.json",
-             dirname(exe));
-    char *resolved = realpath(main_flags.default_scene, NULL); /* shorter in messages */
-    if (resolved)
-        snprintf(main_flags.default_scene, sizeof main_flags.default_scene, "%s", resolved);
-    free(resolved);
+    return status;
 }
 
 static int main_run(void) {
@@ -155,7 +125,7 @@ int main(int argc, char **argv) {
     int status = main_parse_flags(argc, argv);
     if (status)
         return status < 0 ? 0 : status;
-    main_locate_default_scene(argv[0]);
+    path_in_project("assets/scenes/simple.json", main_flags.default_scene, sizeof main_flags.default_scene);
     if (!main_flags.scene_path)
         main_flags.scene_path = main_flags.default_scene;
     return main_run();

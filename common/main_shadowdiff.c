@@ -38,26 +38,16 @@ static void main_usage(const char *program) {
 
 /* Returns 0 to run, -1 after --help, or an exit status. */
 static int main_parse_flags(int argc, char **argv, main_options *o) {
-    int positional = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *arg = argv[i];
-        if (arg[0] != '-') {
+    static const char *const with_value[] = {"--heatmap", "--receiver", NULL};
+    flags_cursor c = {.program = o->program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
+    const char *name, *value;
+    int status, positional = 0;
+    while ((status = flags_next(&c, &name, &value)) == 1) {
+        if (name[0] != '-') {
             if (positional == 2)
-                return flags_usage_error(o->program, "expected two dump directories, got also", arg);
-            *(positional++ == 0 ? &o->reference_dir : &o->test_dir) = arg;
+                return flags_usage_error(o->program, "expected two dump directories, got also", name);
+            *(positional++ == 0 ? &o->reference_dir : &o->test_dir) = name;
             continue;
-        }
-        const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
-        char name[64];
-        snprintf(name, sizeof name, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
-        const char *value = eq ? eq + 1 : NULL;
-        bool needs_value = strcmp(name, "--heatmap") == 0 || strcmp(name, "--receiver") == 0;
-        if (needs_value && !value) {
-            if (i + 1 >= argc)
-                return flags_usage_error(o->program, "missing value after", name);
-            value = argv[++i];
-        } else if (!needs_value && value) {
-            return flags_usage_error(o->program, "flag takes no value:", arg);
         }
         if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
             main_usage(o->program);
@@ -69,9 +59,11 @@ static int main_parse_flags(int argc, char **argv, main_options *o) {
         } else if (strcmp(name, "--json") == 0) {
             o->json = true;
         } else {
-            return flags_usage_error(o->program, "unknown flag", arg);
+            return flags_usage_error(o->program, "unknown flag", name);
         }
     }
+    if (status)
+        return status;
     if (positional < 2)
         return flags_usage_error(o->program, "expected two dump directories: REF_DIR TEST_DIR", NULL);
     return 0;

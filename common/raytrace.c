@@ -39,7 +39,7 @@ typedef struct raytrace_light {
 
 typedef struct raytrace_object {
     const float *vertices; /* world positions, 3 floats each, in Embree's buffer */
-    mat3 normal_matrix;    /* inverse transpose of the model matrix, as render.c */
+    mat3 normal_matrix;    /* scene_object_normal_matrix, as the raster side uses */
 } raytrace_object;
 
 typedef struct raytrace_tracer {
@@ -169,10 +169,7 @@ static bool raytrace_add_object(raytrace_tracer *t, int index) {
                 o->name);
         return false;
     }
-    mat3 upper;
-    glm_mat4_pick3((vec4 *)o->model, upper);
-    glm_mat3_inv(upper, upper);
-    glm_mat3_transpose_to(upper, t->objects[index].normal_matrix);
+    scene_object_normal_matrix(o, t->objects[index].normal_matrix);
     RTCGeometry geometry = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry)
         return false;

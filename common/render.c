@@ -67,12 +67,7 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(mesh_vertex), (void *)offsetof(mesh_vertex, normal));
     glBindVertexArray(0);
     g->index_count = (int)m->index_count;
-    /* Normals transform by the inverse transpose, so that non-uniform
-     * scale keeps them perpendicular to the surface. */
-    mat3 upper;
-    glm_mat4_pick3((vec4 *)o->model, upper);
-    glm_mat3_inv(upper, upper);
-    glm_mat3_transpose_to(upper, g->normal_matrix);
+    scene_object_normal_matrix(o, g->normal_matrix);
 }
 
 bool render_scene_create(render_scene *r, const scene *s) {

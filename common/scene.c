@@ -537,3 +537,10 @@ void scene_light_homogeneous(const scene_light *l, float out[4]) {
         out[i] = directional ? -l->direction[i] : l->position[i];
     out[3] = directional ? 0.0f : 1.0f;
 }
+
+void scene_object_normal_matrix(const scene_object *o, float out[3][3]) {
+    mat3 upper;
+    glm_mat4_pick3((vec4 *)o->model, upper);
+    glm_mat3_inv(upper, upper);
+    glm_mat3_transpose_to(upper, out);
+}

@@ -109,6 +109,11 @@ void scene_free(scene *s);
  * for a directional light, a point at infinity. */
 void scene_light_homogeneous(const scene_light *l, float out[4]);
 
+/* The matrix that takes the object's normals to world space: the inverse
+ * transpose of the model matrix's upper 3x3, so that non-uniform scale
+ * keeps them perpendicular to the surface. Column-major (cglm mat3). */
+void scene_object_normal_matrix(const scene_object *o, float out[3][3]);
+
 /* World-space bounds of one object's mesh under its model matrix. */
 void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]);
 

@@ -60,9 +60,7 @@ void planar_shadow_matrix(const float plane[4], const float light[4], float out[
 void planar_receiver_plane(const scene_object *o, float plane[4]) {
     vec3 normal = {0, 1, 0}, origin;
     mat3 normal_matrix;
-    glm_mat4_pick3((vec4 *)o->model, normal_matrix);
-    glm_mat3_inv(normal_matrix, normal_matrix);
-    glm_mat3_transpose(normal_matrix);
+    scene_object_normal_matrix(o, normal_matrix);
     glm_mat3_mulv(normal_matrix, normal, normal);
     glm_vec3_normalize(normal);
     glm_vec3_copy((float *)o->model[3], origin);
