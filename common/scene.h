@@ -14,7 +14,10 @@
  *                  "inner_angle": 20, "outer_angle": 30  (spot, degrees from
  *                                              the axis: full light inside
  *                                              inner, none outside outer)
- *                  "radius": 0   (> 0: an area light, for soft shadows) } ]
+ *                  "radius": 0   (> 0: an area light, for soft shadows: a
+ *                                 sphere of that radius for point and spot
+ *                                 lights; for a directional light, the
+ *                                 angular radius in degrees of its disc) } ]
  *   "objects": [ 1..n of
  *                { "name": "ground",                               (required)
  *                  "mesh": { "kind": "plane", "size": [x,z] }      (required)
@@ -69,7 +72,7 @@ typedef struct scene_light {
     float intensity;
     float inner_angle_deg; /* spot */
     float outer_angle_deg; /* spot */
-    float radius;          /* > 0: area light */
+    float radius;          /* > 0: area light (directional: degrees) */
 } scene_light;
 
 typedef enum scene_mesh_kind {
