@@ -5,7 +5,10 @@
 # bundled Khronos XML (--reproducible), never fetched or committed.
 
 SANITIZE ?= 0
+# Parallel by default; sub-makes share the top one's job slots.
+ifeq ($(MAKELEVEL),0)
 MAKEFLAGS += -j$(shell nproc)
+endif
 ifeq ($(SANITIZE),1)
 BUILD ?= build-san
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
@@ -122,5 +125,8 @@ $(addprefix $(BUILD)/,$(DEMOS)): $(BUILD)/%: $(BUILD)/main_%.o $(LIB)
 
 $(BUILD)/tests/%: $(BUILD)/tests/%.o $(TEST_SUPPORT) $(LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -lcmocka -o $@
+
+# Objects of tests and programs are kept: they are not throw-away.
+.SECONDARY:
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
