@@ -73,9 +73,17 @@ static void app_usage(FILE *out) {
     for (int i = 0; i < app.technique_count; i++) {
         const technique *t = app.techniques[i];
         fprintf(out, "  %d %-12s %s\n", i + 1, t->name, t->title);
-        for (int k = 0; k < t->toggle_count; k++)
-            fprintf(out, "      --no-%-18s key %c: %s\n", t->toggles[k].name, t->toggles[k].key,
-                    t->toggles[k].help);
+        for (int k = 0; k < t->param_count; k++) {
+            const technique_param *p = &t->params[k];
+            char flag[64], key[16] = "";
+            if (p->kind == TECHNIQUE_TOGGLE)
+                snprintf(flag, sizeof flag, "--no-%s", p->name);
+            else
+                snprintf(flag, sizeof flag, "--%s %s", p->name, p->kind == TECHNIQUE_CHOICE ? "NAME" : "X");
+            if (p->key)
+                snprintf(key, sizeof key, "key %c: ", p->key);
+            fprintf(out, "      %-26s %s%s\n", flag, key, p->help);
+        }
     }
     fprintf(out, "window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
                  "        H help, F12 screenshot, Esc quits\n");
@@ -86,12 +94,24 @@ static int app_usage_error(const char *message, const char *value) {
 }
 
 /* A technique's own flag, for every technique that has it (the
- * multi-technique program shares flags such as --no-offset). */
-static bool app_apply_technique_flag(const char *flag) {
+ * multi-technique program shares flags such as --no-offset). Returns 0, or
+ * the usage error's exit status. */
+static int app_apply_technique_flag(const char *name, const char *value) {
     bool found = false;
+    for (int i = 0; i < app.technique_count; i++) {
+        bool bad_value;
+        found |= technique_apply_flag(app.techniques[i], name, value, &bad_value);
+        if (bad_value)
+            return FLAGS_EXIT_USAGE;
+    }
+    return found ? 0 : app_usage_error(name[0] == '-' ? "unknown flag" : "unexpected argument", name);
+}
+
+static bool app_technique_flag_takes_value(const char *name) {
     for (int i = 0; i < app.technique_count; i++)
-        found |= technique_apply_flag(app.techniques[i], flag);
-    return found;
+        if (technique_flag_takes_value(app.techniques[i], name))
+            return true;
+    return false;
 }
 
 static int app_find_technique(const char *name) {
@@ -105,7 +125,12 @@ static int app_find_technique(const char *name) {
 static int app_parse_flags(int argc, char **argv) {
     static const char *const with_value[] = {"--backend",   "--size",    "--scene", "--frames", "--screenshot",
                                              "--shader-dir", "--technique", "--gallery", "--dump", "--light", NULL};
-    flags_cursor c = {.program = app.program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
+    flags_cursor c = {.program = app.program,
+                      .argc = argc,
+                      .argv = argv,
+                      .next = 1,
+                      .with_value = with_value,
+                      .takes_value = app_technique_flag_takes_value};
     const char *name, *value;
     int status;
     while ((status = flags_next(&c, &name, &value)) == 1) {
@@ -147,8 +172,8 @@ static int app_parse_flags(int argc, char **argv) {
             app.animate = true;
         } else if (strcmp(name, "--verbose") == 0) {
             app.verbose = true;
-        } else if (!app_apply_technique_flag(name)) {
-            return app_usage_error(name[0] == '-' ? "unknown flag" : "unexpected argument", name);
+        } else if ((status = app_apply_technique_flag(name, value))) {
+            return status;
         }
     }
     return status == FLAGS_EXIT_USAGE ? status : 0; /* 1 when --gallery took the rest */
@@ -272,9 +297,17 @@ static void app_hud(int width, int height) {
     int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s\n",
                      app.current + 1, app.technique_count, t->name, t->title, app.scene_path, app.target.width,
                      app.target.height, app.frame_ms, app.animate ? "   animating" : "");
-    for (int k = 0; k < t->toggle_count && n < (int)sizeof text; k++)
-        n += snprintf(text + n, sizeof text - (size_t)n, "[%c] %s: %s   ", t->toggles[k].key, t->toggles[k].name,
-                      *t->toggles[k].disabled ? "OFF" : "on");
+    for (int k = 0; k < t->param_count && n < (int)sizeof text; k++) {
+        const technique_param *p = &t->params[k];
+        char value[32];
+        technique_param_text(p, value, sizeof value);
+        char key[8] = "";
+        if (p->key)
+            snprintf(key, sizeof key, "[%c] ", p->key);
+        n += snprintf(text + n, sizeof text - (size_t)n, "%s%s: %s   ", key, p->name, value);
+        if (k % 4 == 3 && n < (int)sizeof text)
+            n += snprintf(text + n, sizeof text - (size_t)n, "\n");
+    }
     if (n < (int)sizeof text)
         snprintf(text + n, sizeof text - (size_t)n, "%s",
                  app.show_help ? "\ndrag: orbit   scroll: zoom   arrows: move light   space: animate light\n"
@@ -316,9 +349,8 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
             app_switch_technique(key - GLFW_KEY_1);
             return;
         }
-        for (int k = 0; k < app_technique()->toggle_count && action == GLFW_PRESS; k++)
-            if (app_technique()->toggles[k].key == key)
-                *app_technique()->toggles[k].disabled ^= true;
+        if (action == GLFW_PRESS)
+            technique_press_key(app_technique(), key);
         return;
     }
     for (int i = 0; i < app.scene.light_count; i++)

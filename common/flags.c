@@ -51,6 +51,7 @@ int flags_next(flags_cursor *c, const char **name, const char **value) {
     bool needs_value = false;
     for (const char *const *w = c->with_value; w && *w; w++)
         needs_value |= strcmp(c->name, *w) == 0;
+    needs_value |= c->takes_value && c->takes_value(c->name);
     if (needs_value && !eq) {
         if (c->next >= c->argc)
             return flags_usage_error(c->program, "missing value after", c->name);

@@ -20,6 +20,7 @@ typedef struct flags_cursor {
     char **argv;
     int next; /* index of the next argument: start at 1 */
     const char *const *with_value;
+    bool (*takes_value)(const char *name); /* more flags with values; may be NULL */
     char name[FLAGS_NAME_MAX];
 } flags_cursor;
 

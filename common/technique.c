@@ -2,35 +2,118 @@
 
 #include <glad/gl.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "context.h"
 
-bool technique_apply_flag(const technique *t, const char *flag) {
-    if (strncmp(flag, "--no-", 5) != 0)
-        return false;
-    for (int k = 0; k < t->toggle_count; k++) {
-        if (strcmp(flag + 5, t->toggles[k].name) == 0) {
-            *t->toggles[k].disabled = true;
-            return true;
+static const technique_param *technique_find(const technique *t, const char *name, bool toggle) {
+    const char *prefix = toggle ? "--no-" : "--";
+    size_t n = strlen(prefix);
+    if (strncmp(name, prefix, n) != 0)
+        return NULL;
+    for (int k = 0; k < t->param_count; k++)
+        if ((t->params[k].kind == TECHNIQUE_TOGGLE) == toggle && strcmp(name + n, t->params[k].name) == 0)
+            return &t->params[k];
+    return NULL;
+}
+
+bool technique_flag_takes_value(const technique *t, const char *name) {
+    return technique_find(t, name, false) != NULL;
+}
+
+static bool technique_set(const technique *t, const technique_param *p, const char *value) {
+    if (p->kind == TECHNIQUE_CHOICE) {
+        for (int c = 0; p->choices[c]; c++) {
+            if (strcmp(value, p->choices[c]) == 0) {
+                *p->index = c;
+                return true;
+            }
         }
+        char list[256] = "";
+        for (int c = 0; p->choices[c]; c++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", c ? ", " : "", p->choices[c]);
+        fprintf(stderr, "%s: --%s: expected one of %s, got '%s'\n", t->name, p->name, list, value);
+        return false;
     }
-    return false;
+    char *end;
+    float v = strtof(value, &end);
+    if (end == value || *end != '\0' || !(v >= p->min && v <= p->max)) {
+        fprintf(stderr, "%s: --%s: expected a number in %g..%g, got '%s'\n", t->name, p->name, p->min, p->max,
+                value);
+        return false;
+    }
+    *p->number = v;
+    return true;
+}
+
+bool technique_apply_flag(const technique *t, const char *name, const char *value, bool *bad_value) {
+    *bad_value = false;
+    const technique_param *p = technique_find(t, name, true);
+    if (p) {
+        *p->disabled = true;
+        return true;
+    }
+    p = technique_find(t, name, false);
+    if (!p)
+        return false;
+    *bad_value = !technique_set(t, p, value);
+    return !*bad_value;
 }
 
 bool technique_apply_config(const technique *t, const char *config) {
-    for (int k = 0; k < t->toggle_count; k++)
-        *t->toggles[k].disabled = false;
+    for (int k = 0; k < t->param_count; k++) {
+        const technique_param *p = &t->params[k];
+        if (p->kind == TECHNIQUE_TOGGLE)
+            *p->disabled = false;
+        else if (p->kind == TECHNIQUE_CHOICE)
+            *p->index = 0;
+        else
+            *p->number = 0;
+    }
     char copy[512];
     snprintf(copy, sizeof copy, "%s", config);
     char *rest = copy;
     for (char *flag; (flag = strtok_r(rest, " ", &rest));) {
-        if (!technique_apply_flag(t, flag)) {
-            fprintf(stderr, "%s: unknown flag '%s' in configuration \"%s\"\n", t->name, flag, config);
+        const char *value = technique_flag_takes_value(t, flag) ? strtok_r(rest, " ", &rest) : NULL;
+        bool bad_value;
+        if (technique_flag_takes_value(t, flag) && !value) {
+            fprintf(stderr, "%s: missing value after %s in configuration \"%s\"\n", t->name, flag, config);
+            return false;
+        }
+        if (!technique_apply_flag(t, flag, value, &bad_value)) {
+            if (!bad_value)
+                fprintf(stderr, "%s: unknown flag '%s' in configuration \"%s\"\n", t->name, flag, config);
             return false;
         }
     }
     return true;
+}
+
+float technique_number(const technique_param *p) { return *p->number != 0 ? *p->number : p->fallback; }
+
+void technique_param_text(const technique_param *p, char *out, size_t size) {
+    if (p->kind == TECHNIQUE_TOGGLE)
+        snprintf(out, size, "%s", *p->disabled ? "OFF" : "on");
+    else if (p->kind == TECHNIQUE_CHOICE)
+        snprintf(out, size, "%s", p->choices[*p->index]);
+    else
+        snprintf(out, size, "%g", technique_number(p));
+}
+
+bool technique_press_key(const technique *t, int key) {
+    bool found = false;
+    for (int k = 0; k < t->param_count; k++) {
+        const technique_param *p = &t->params[k];
+        if (p->key != key || key == 0)
+            continue;
+        found = true;
+        if (p->kind == TECHNIQUE_TOGGLE)
+            *p->disabled ^= true;
+        else if (p->kind == TECHNIQUE_CHOICE)
+            *p->index = p->choices[*p->index + 1] ? *p->index + 1 : 0;
+    }
+    return found;
 }
 
 bool technique_render_frame(const technique *t, const technique_frame *f, const target *target,

@@ -10,10 +10,16 @@
  *   destroy()     before another scene or technique takes its place.
  * init returns false after printing why; the app then exits non-zero.
  *
- * Toggles are the technique's on/off features (each on by default: the
- * setting is a `disabled` flag, so a zeroed settings struct is the default).
- * The app turns each into a command-line flag --no-NAME, a key in the
- * window, and a line on the HUD.
+ * Parameters are the technique's settings, each in its settings struct
+ * where zero means the default:
+ *   TECHNIQUE_TOGGLE  a feature, on by default (the field is `disabled`):
+ *                     flag --no-NAME, its key flips it;
+ *   TECHNIQUE_CHOICE  an index into `choices` (the default first): flag
+ *                     --NAME CHOICE, its key steps through them;
+ *   TECHNIQUE_NUMBER  a value in [min, max], 0 meaning `fallback`: flag
+ *                     --NAME X (no key).
+ * The app turns each into a flag, a key in the window and a HUD entry;
+ * the benchmark sweeps them through the same parser.
  *
  * bench_configs is the technique's parameter sweep for the benchmark: each
  * entry is a set of the technique's own flags ("" = its defaults), applied
@@ -31,12 +37,23 @@
 #include "render.h"
 #include "target.h"
 
-typedef struct technique_toggle {
-    const char *name;  /* flag --no-NAME, and the HUD label */
-    const char *help;  /* what turning it off shows */
-    int key;           /* GLFW_KEY_* in the window */
-    bool *disabled;    /* in the technique's settings */
-} technique_toggle;
+typedef enum technique_param_kind {
+    TECHNIQUE_TOGGLE,
+    TECHNIQUE_CHOICE,
+    TECHNIQUE_NUMBER,
+} technique_param_kind;
+
+typedef struct technique_param {
+    const char *name; /* the flag without "--" (toggles: "--no-" NAME) */
+    const char *help; /* toggles: what turning it off shows */
+    int key;          /* GLFW_KEY_*, or 0 */
+    technique_param_kind kind;
+    bool *disabled;              /* TOGGLE */
+    int *index;                  /* CHOICE */
+    const char *const *choices;  /* CHOICE: NULL-terminated */
+    float *number;               /* NUMBER */
+    float fallback, min, max;    /* NUMBER */
+} technique_param;
 
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
@@ -48,8 +65,8 @@ typedef struct technique_frame {
 typedef struct technique {
     const char *name;  /* "planar": its binary, its registry key */
     const char *title; /* one line for --help and the HUD */
-    const technique_toggle *toggles;
-    int toggle_count;
+    const technique_param *params;
+    int param_count;
     const char *const *bench_configs;
     int bench_config_count;
     bool (*init)(const render_scene *gpu);
@@ -57,13 +74,23 @@ typedef struct technique {
     void (*destroy)(void);
 } technique;
 
-/* Applies one of the technique's own flags ("--no-NAME"); false if the
- * flag is not one of its. */
-bool technique_apply_flag(const technique *t, const char *flag);
-/* Back to defaults, then the space-separated flags of `config`; prints
- * "TECHNIQUE: unknown flag in configuration" and returns false on a flag
- * that is not the technique's. */
+/* Applies one of the technique's own flags: NAME is "--no-X" for a toggle,
+ * "--X" with VALUE otherwise. Returns false if the flag is not the
+ * technique's; prints and returns false on a bad value (*bad_value set). */
+bool technique_apply_flag(const technique *t, const char *name, const char *value, bool *bad_value);
+/* True if "--X" is one of the technique's flags that take a value. */
+bool technique_flag_takes_value(const technique *t, const char *name);
+/* Back to defaults, then the flags of `config` ("--filter pcf5
+ * --no-offset"); prints and returns false on a flag that is not the
+ * technique's or a bad value. */
 bool technique_apply_config(const technique *t, const char *config);
+/* The value of a NUMBER parameter: its fallback while the field is 0. */
+float technique_number(const technique_param *p);
+/* "on", "OFF", the choice's name or the number, for the HUD. */
+void technique_param_text(const technique_param *p, char *out, size_t size);
+/* The window's key press: flips a toggle or steps a choice; false if no
+ * parameter has the key. */
+bool technique_press_key(const technique *t, int key);
 
 /* One frame of `t` into `target`, as the app, the gallery and the benchmark
  * all render it: the lights (visibility mode for light visibility_of, or

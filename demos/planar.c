@@ -42,12 +42,13 @@ static struct {
     int shadow, plane, reject;
 } planar;
 
-static const technique_toggle planar_toggles[] = {
+static const technique_param planar_params[] = {
     {"stencil", "shadows blend twice where projected triangles overlap and spill off the receiver", GLFW_KEY_S,
-     &planar.settings.no_stencil},
-    {"offset", "projected shadows z-fight with the receiver", GLFW_KEY_O, &planar.settings.no_offset},
+     TECHNIQUE_TOGGLE, .disabled = &planar.settings.no_stencil},
+    {"offset", "projected shadows z-fight with the receiver", GLFW_KEY_O, TECHNIQUE_TOGGLE,
+     .disabled = &planar.settings.no_offset},
     {"reject", "lights below the plane and casters beyond the light cast anti-shadows", GLFW_KEY_R,
-     &planar.settings.no_reject},
+     TECHNIQUE_TOGGLE, .disabled = &planar.settings.no_reject},
 };
 
 void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]) {
@@ -203,8 +204,8 @@ static void planar_render(const technique_frame *f) {
 const technique planar_technique = {
     .name = "planar",
     .title = "planar projected shadows (Blinn 1988) with stencil",
-    .toggles = planar_toggles,
-    .toggle_count = (int)(sizeof planar_toggles / sizeof *planar_toggles),
+    .params = planar_params,
+    .param_count = (int)(sizeof planar_params / sizeof *planar_params),
     .bench_configs = planar_bench_configs,
     .bench_config_count = (int)(sizeof planar_bench_configs / sizeof *planar_bench_configs),
     .init = planar_init,
