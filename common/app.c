@@ -297,6 +297,11 @@ static void app_hud(int width, int height) {
     int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s\n",
                      app.current + 1, app.technique_count, t->name, t->title, app.scene_path, app.target.width,
                      app.target.height, app.frame_ms, app.animate ? "   animating" : "");
+    if (t->describe && n < (int)sizeof text) {
+        t->describe(text + n, sizeof text - (size_t)n);
+        n += (int)strlen(text + n);
+        n += snprintf(text + n, sizeof text - (size_t)n, "\n");
+    }
     for (int k = 0; k < t->param_count && n < (int)sizeof text; k++) {
         const technique_param *p = &t->params[k];
         char value[32];
@@ -305,7 +310,7 @@ static void app_hud(int width, int height) {
         if (p->key)
             snprintf(key, sizeof key, "[%c] ", p->key);
         n += snprintf(text + n, sizeof text - (size_t)n, "%s%s: %s   ", key, p->name, value);
-        if (k % 4 == 3 && n < (int)sizeof text)
+        if (k % 4 == 3 && k + 1 < t->param_count && n < (int)sizeof text)
             n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
     if (n < (int)sizeof text)

@@ -72,6 +72,8 @@ typedef struct technique {
     bool (*init)(const render_scene *gpu);
     void (*render)(const technique_frame *frame);
     void (*destroy)(void);
+    /* Optional: one line of state for the HUD (e.g. a fitted range). */
+    void (*describe)(char *out, size_t size);
 } technique;
 
 /* Applies one of the technique's own flags: NAME is "--no-X" for a toggle,

@@ -45,6 +45,24 @@ static void test_malformed_values(void **state) {
     expect_failure("--verbose=yes", EXIT_USAGE, "takes no value", "--verbose");
 }
 
+static void test_bad_technique_parameters(void **state) {
+    (void)state;
+    char command[1024];
+    static const char *const cases[][3] = {
+        {"--map-size 3", "--map-size", "'3'"},
+        {"--filter blur", "--filter", "'blur'"},
+        {"--constant-texels -1", "--constant-texels", "'-1'"},
+        {"--normal-texels x", "--normal-texels", "'x'"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        snprintf(command, sizeof command, "%s --backend egl --frames 1 %s", support_program("shadowmap"), cases[i][0]);
+        assert_int_equal(support_run(command, err, sizeof err), EXIT_USAGE);
+        assert_int_equal(support_count_lines(err), 1);
+        assert_non_null(strstr(err, cases[i][1]));
+        assert_non_null(strstr(err, cases[i][2]));
+    }
+}
+
 static void test_missing_scene(void **state) {
     (void)state;
     expect_failure("--frames 1 --scene tests/data/no_such_scene.json", EXIT_RUNTIME, "no_such_scene.json",
@@ -97,6 +115,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unknown_flag),
         cmocka_unit_test(test_malformed_values),
+        cmocka_unit_test(test_bad_technique_parameters),
         cmocka_unit_test(test_missing_scene),
         cmocka_unit_test(test_malformed_scene),
         cmocka_unit_test(test_broken_model_file),

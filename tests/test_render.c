@@ -1,5 +1,6 @@
-/* Screenshot tests: each standard scene rendered headless by each backend
- * and compared with tests/golden/ (tolerance in support.h: at most 0.1 %
+/* Screenshot tests: each technique on each standard scene (spot,
+ * point and directional lights) rendered headless by each backend and
+ * compared with tests/golden/ (tolerance in support.h: at most 0.1 %
  * of pixels differ by more than 8/255). On a failure the actual image and a
  * diff image are left in out/test/. `make update-golden` regenerates the
  * goldens, on purpose only.
@@ -20,32 +21,45 @@
 #define SIZE "640x360"
 
 static const char *const scenes[] = {"simple", "bunny", "teapot"};
+static const char *const techniques[] = {"planar", "shadowmap"};
 static char err[16384];
 
-/* Renders `scene_file` with build/planar and extra flags to out/test/NAME.png. */
-static void render(const char *backend, const char *scene_file, const char *flags, const char *name) {
+/* Renders `scene_file` with build/TECHNIQUE and extra flags to
+ * out/test/NAME.png. */
+static void render_with(const char *technique, const char *backend, const char *scene_file, const char *flags,
+                        const char *name) {
     char command[2048];
     snprintf(command, sizeof command,
              "%s --backend %s --size " SIZE " --scene %s %s --screenshot out/test/%s.png",
-             support_program("planar"), backend, scene_file, flags, name);
+             support_program(technique), backend, scene_file, flags, name);
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
-static double compare_with_golden(const char *scene, const char *name) {
+static void render(const char *backend, const char *scene_file, const char *flags, const char *name) {
+    render_with("planar", backend, scene_file, flags, name);
+}
+
+static double compare_with_golden_of(const char *technique, const char *scene, const char *name) {
     char golden[512], actual[512];
-    snprintf(golden, sizeof golden, "tests/golden/planar_%s.png", scene);
+    snprintf(golden, sizeof golden, "tests/golden/%s_%s.png", technique, scene);
     snprintf(actual, sizeof actual, "out/test/%s.png", name);
     return support_compare_images(golden, actual);
 }
 
+static double compare_with_golden(const char *scene, const char *name) {
+    return compare_with_golden_of("planar", scene, name);
+}
+
 static void check_backend(const char *backend) {
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char scene_file[256], name[256];
-        snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", scenes[i]);
-        snprintf(name, sizeof name, "planar_%s_%s", scenes[i], backend);
-        render(backend, scene_file, "", name);
-        double fraction = compare_with_golden(scenes[i], name);
-        assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+    for (size_t t = 0; t < sizeof techniques / sizeof *techniques; t++) {
+        for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+            char scene_file[256], name[256];
+            snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", scenes[i]);
+            snprintf(name, sizeof name, "%s_%s_%s", techniques[t], scenes[i], backend);
+            render_with(techniques[t], backend, scene_file, "", name);
+            double fraction = compare_with_golden_of(techniques[t], scenes[i], name);
+            assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+        }
     }
 }
 
@@ -72,12 +86,14 @@ static void test_backends_agree(void **state) {
     (void)state;
     if (!osmesa_installed())
         skip();
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char egl[256], osmesa[256];
-        snprintf(egl, sizeof egl, "out/test/planar_%s_egl.png", scenes[i]);
-        snprintf(osmesa, sizeof osmesa, "out/test/planar_%s_osmesa.png", scenes[i]);
-        double fraction = support_compare_images(egl, osmesa);
-        assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+    for (size_t t = 0; t < sizeof techniques / sizeof *techniques; t++) {
+        for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+            char egl[256], osmesa[256];
+            snprintf(egl, sizeof egl, "out/test/%s_%s_egl.png", techniques[t], scenes[i]);
+            snprintf(osmesa, sizeof osmesa, "out/test/%s_%s_osmesa.png", techniques[t], scenes[i]);
+            double fraction = support_compare_images(egl, osmesa);
+            assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+        }
     }
 }
 
@@ -107,6 +123,14 @@ static void test_each_fix_shows_when_off(void **state) {
     render("egl", "tests/data/anti_shadow.json", "--no-reject", "reject_off");
     assert_true(support_compare_images("out/test/reject_on.png", "out/test/reject_off.png") >
                 SUPPORT_MAX_DIFFERING);
+}
+
+/* Without any bias the shadow map shadows the lit ground with acne. */
+static void test_shadowmap_without_bias_shows_acne(void **state) {
+    (void)state;
+    render_with("shadowmap", "egl", "assets/scenes/simple.json",
+                "--no-constant-bias --no-slope-bias", "shadowmap_no_bias");
+    assert_true(compare_with_golden_of("shadowmap", "simple", "shadowmap_no_bias") > SUPPORT_MAX_DIFFERING);
 }
 
 /* The GLFW window, under a virtual X server, shows the same picture. */
@@ -148,6 +172,7 @@ int main(void) {
         cmocka_unit_test(test_same_command_same_image),
         cmocka_unit_test(test_moved_light_fails_comparison),
         cmocka_unit_test(test_each_fix_shows_when_off),
+        cmocka_unit_test(test_shadowmap_without_bias_shows_acne),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
     };

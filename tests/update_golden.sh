@@ -4,8 +4,10 @@
 set -eu
 cd "$(dirname "$0")/.."
 build=${BUILD:-build}
-for scene in simple bunny teapot; do
-    "$build/planar" --backend egl --size 640x360 --scene "assets/scenes/$scene.json" \
-        --screenshot "tests/golden/planar_$scene.png"
-    echo "tests/golden/planar_$scene.png"
+for technique in planar shadowmap; do
+    for scene in simple bunny teapot; do
+        "$build/$technique" --backend egl --size 640x360 --scene "assets/scenes/$scene.json" \
+            --screenshot "tests/golden/${technique}_$scene.png"
+        echo "tests/golden/${technique}_$scene.png"
+    done
 done

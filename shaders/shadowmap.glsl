@@ -1,0 +1,52 @@
+// The camera pass of a shadow map (demos/shadowmap.c), shared by the 2D
+// map (spot, directional) and the cube map (point). The including file
+// defines the two functions declared here:
+//   shadowmap_texel_world(p)  world size of one map texel at p
+//   shadowmap_visibility(p)   the filtered comparison at p
+// This adds light u_light's share where the map says it reaches.
+
+float shadowmap_texel_world(vec3 p);
+float shadowmap_visibility(vec3 p);
+
+in vec3 v_position;
+in vec3 v_normal;
+
+uniform vec3 u_albedo;
+uniform int u_light;
+uniform float u_constant_bias;   // texels of world distance, towards the light
+uniform float u_normal_offset;   // texels, along the normal, times the slope
+
+out vec4 out_color;
+
+// Per-pixel rotation of the Poisson disc: a hash of the pixel, so the same
+// frame gives the same picture (no noise texture, no clock).
+float shadowmap_pixel_angle() {
+    uvec2 q = uvec2(gl_FragCoord.xy);
+    uint h = q.x * 1973u + q.y * 9277u;
+    h = (h ^ (h >> 13)) * 0x5bd1e995u;
+    return float(h ^ (h >> 15)) * (6.2831853 / 4294967296.0);
+}
+
+// 16 points of a Poisson disc in the unit circle (minimum distance 0.35).
+const vec2 shadowmap_poisson[16] = vec2[](
+    vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
+    vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
+    vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
+    vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
+    vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
+    vec2(0.14383161, -0.14100790));
+
+void main() {
+    vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
+    vec3 to_light = lighting_to_light(u_light, v_position);
+    // Both biases move the point where the map is read, in world units
+    // scaled by the map's texel there, so they hold at any map size,
+    // distance and scene scale. The normal offset grows with the slope
+    // (sin of the angle to the light), where a texel spans most depth.
+    float texel = shadowmap_texel_world(v_position);
+    float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
+    float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+    vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
+    float visibility = shadowmap_visibility(p);
+    out_color = vec4(visibility * lighting_unshadowed(u_light, v_position, n, u_albedo), 1.0);
+}

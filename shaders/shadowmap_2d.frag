@@ -1,0 +1,47 @@
+#version 330 core
+// Camera pass of a spot or directional light's 2D shadow map.
+#include "lighting.glsl"
+#include "shadowmap.glsl"
+
+uniform sampler2DShadow u_map;   // compare mode on: every read is a test
+uniform mat4 u_light_matrix;     // world -> the light's clip space
+uniform bool u_orthographic;
+uniform float u_texel_scale;     // world texel: this (ortho) or this x depth (perspective)
+uniform vec3 u_light_axis;       // where a perspective map looks
+uniform vec3 u_light_origin;
+uniform int u_filter;            // 0 one tap, 1 N x N grid, 2 Poisson disc
+uniform int u_kernel;            // N, or the disc's diameter in texels
+uniform float u_map_size;
+
+float shadowmap_texel_world(vec3 p) {
+    return u_orthographic ? u_texel_scale : u_texel_scale * max(dot(p - u_light_origin, u_light_axis), 0.0);
+}
+
+float shadowmap_poisson_disc(vec3 uvz) {
+    float a = shadowmap_pixel_angle();
+    mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
+    float sum = 0.0;
+    for (int i = 0; i < 16; i++)
+        sum += texture(u_map, vec3(uvz.xy + rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel) / u_map_size), uvz.z));
+    return sum / 16.0;
+}
+
+float shadowmap_visibility(vec3 p) {
+    vec4 clip = u_light_matrix * vec4(p, 1.0);
+    vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
+    // Outside the map nothing was rendered: lit, never a wrapped read.
+    if (clip.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
+        return 1.0;
+    uvz.z = min(uvz.z, 1.0);
+    if (u_filter == 0)
+        return texture(u_map, uvz);
+    if (u_filter == 2)
+        return shadowmap_poisson_disc(uvz);
+    float sum = 0.0;
+    int half_kernel = u_kernel / 2;
+    for (int y = -half_kernel; y <= half_kernel; y++)
+        for (int x = -half_kernel; x <= half_kernel; x++)
+            sum += texture(u_map, vec3(uvz.xy + vec2(x, y) / u_map_size, uvz.z));
+    return sum / float(u_kernel * u_kernel);
+}
+

@@ -1,0 +1,54 @@
+#version 330 core
+// Camera pass of a point light's cube shadow map: six 90-degree faces,
+// read by direction with seamless filtering across face edges.
+#include "lighting.glsl"
+#include "shadowmap.glsl"
+uniform samplerCubeShadow u_map;
+uniform vec3 u_light_origin;
+uniform float u_near;
+uniform float u_far;
+uniform int u_filter;
+uniform int u_kernel;
+uniform float u_map_size;
+
+// A 90-degree face spans 2 |major axis| over the map's size.
+float shadowmap_texel_world(vec3 p) {
+    vec3 d = abs(p - u_light_origin);
+    return 2.0 * max(d.x, max(d.y, d.z)) / u_map_size;
+}
+
+// The depth a face's projection stores for a point at this direction:
+// the perspective depth of its distance along the face's axis.
+float shadowmap_face_depth(vec3 d) {
+    vec3 a = abs(d);
+    float z = max(a.x, max(a.y, a.z));
+    float ndc = (u_far + u_near) / (u_far - u_near) - 2.0 * u_far * u_near / ((u_far - u_near) * z);
+    return min(ndc * 0.5 + 0.5, 1.0);
+}
+
+float shadowmap_visibility(vec3 p) {
+    vec3 d = p - u_light_origin;
+    float ref = shadowmap_face_depth(d);
+    if (u_filter == 0)
+        return texture(u_map, vec4(d, ref));
+    // Offsets in the plane across the direction, one texel apart there.
+    vec3 axis = normalize(d);
+    vec3 u = normalize(cross(abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
+    vec3 v = cross(axis, u);
+    float step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size;
+    float sum = 0.0;
+    if (u_filter == 2) {
+        float a = shadowmap_pixel_angle();
+        mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
+        for (int i = 0; i < 16; i++) {
+            vec2 o = rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel));
+            sum += texture(u_map, vec4(d + (u * o.x + v * o.y) * step, ref));
+        }
+        return sum / 16.0;
+    }
+    int half_kernel = u_kernel / 2;
+    for (int y = -half_kernel; y <= half_kernel; y++)
+        for (int x = -half_kernel; x <= half_kernel; x++)
+            sum += texture(u_map, vec4(d + (u * float(x) + v * float(y)) * step, ref));
+    return sum / float(u_kernel * u_kernel);
+}
