@@ -317,7 +317,13 @@ static bool bench_write_csv(void) {
 
 static const char *bench_time_basis(void) { return bench.software ? "CPU" : "GPU"; }
 
-static const char *bench_config_label(const char *config) { return config[0] ? config : "defaults"; }
+static const char *bench_config_label(const char *config) {
+    static char labels[4][128];
+    static int next;
+    char *out = labels[next++ % 4];
+    technique_config_label(config, out, sizeof labels[0]);
+    return out;
+}
 
 static bool bench_write_report(void) {
     char path[PATH_MAX];

@@ -71,8 +71,9 @@ bool technique_apply_config(const technique *t, const char *config) {
         else
             *p->number = 0;
     }
+    const char *label_end = strstr(config, ": ");
     char copy[512];
-    snprintf(copy, sizeof copy, "%s", config);
+    snprintf(copy, sizeof copy, "%s", label_end ? label_end + 2 : config);
     char *rest = copy;
     for (char *flag; (flag = strtok_r(rest, " ", &rest));) {
         const char *value = technique_flag_takes_value(t, flag) ? strtok_r(rest, " ", &rest) : NULL;
@@ -88,6 +89,14 @@ bool technique_apply_config(const technique *t, const char *config) {
         }
     }
     return true;
+}
+
+void technique_config_label(const char *config, char *out, size_t size) {
+    const char *label_end = strstr(config, ": ");
+    if (label_end)
+        snprintf(out, size, "%.*s", (int)(label_end - config), config);
+    else
+        snprintf(out, size, "%s", config[0] ? config : "defaults");
 }
 
 float technique_number(const technique_param *p) { return *p->number != 0 ? *p->number : p->fallback; }

@@ -23,7 +23,8 @@
  *
  * bench_configs is the technique's parameter sweep for the benchmark: each
  * entry is a set of the technique's own flags ("" = its defaults), applied
- * with technique_apply_config, the same parser the command line uses.
+ * with technique_apply_config, the same parser the command line uses; an
+ * entry "LABEL: flags" is shown by its label.
  * destroy() is also called after a failed init.
  *
  * Time comes in as frame->time, never from a clock: frames are
@@ -86,6 +87,9 @@ bool technique_flag_takes_value(const technique *t, const char *name);
  * --no-offset"); prints and returns false on a flag that is not the
  * technique's or a bad value. */
 bool technique_apply_config(const technique *t, const char *config);
+/* What a configuration is called in reports: its label, its flags, or
+ * "defaults". */
+void technique_config_label(const char *config, char *out, size_t size);
 /* The value of a NUMBER parameter: its fallback while the field is 0. */
 float technique_number(const technique_param *p);
 /* "on", "OFF", the choice's name or the number, for the HUD. */

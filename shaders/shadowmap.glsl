@@ -2,11 +2,12 @@
 // map (spot, directional) and the cube map (point). The including file
 // defines the two functions declared here:
 //   shadowmap_texel_world(p)  world size of one map texel at p
-//   shadowmap_visibility(p)   the filtered comparison at p
+//   shadowmap_visibility(p, b) the filtered comparison at p, its map depth
+//                             lowered by b first
 // This adds light u_light's share where the map says it reaches.
 
 float shadowmap_texel_world(vec3 p);
-float shadowmap_visibility(vec3 p);
+float shadowmap_visibility(vec3 p, float depth_bias);
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -15,6 +16,7 @@ uniform vec3 u_albedo;
 uniform int u_light;
 uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
+uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
 
 out vec4 out_color;
 
@@ -47,6 +49,6 @@ void main() {
     float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
     float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
     vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
-    float visibility = shadowmap_visibility(p);
+    float visibility = shadowmap_visibility(p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y));
     out_color = vec4(visibility * lighting_unshadowed(u_light, v_position, n, u_albedo), 1.0);
 }

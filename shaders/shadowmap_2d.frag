@@ -12,36 +12,55 @@ uniform vec3 u_light_origin;
 uniform int u_filter;            // 0 one tap, 1 N x N grid, 2 Poisson disc
 uniform int u_kernel;            // N, or the disc's diameter in texels
 uniform float u_map_size;
+uniform bool u_receiver_plane;
 
 float shadowmap_texel_world(vec3 p) {
     return u_orthographic ? u_texel_scale : u_texel_scale * max(dot(p - u_light_origin, u_light_axis), 0.0);
 }
 
-float shadowmap_poisson_disc(vec3 uvz) {
+// Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and
+// techniques", GDC 2006): how the receiver's map depth changes per unit of
+// map (u, v), from the screen derivatives of its (u, v, depth), so that each
+// tap of a wide kernel compares the receiver's own depth there, not the
+// centre's, which would shadow a slanted receiver with partial acne.
+vec2 shadowmap_depth_gradient(vec3 uvz) {
+    vec3 dx = dFdx(uvz), dy = dFdy(uvz);
+    mat2 screen_to_map = mat2(dx.xy, dy.xy);
+    if (!u_receiver_plane || abs(determinant(screen_to_map)) < 1e-14)
+        return vec2(0.0);
+    return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
+}
+
+float shadowmap_tap(vec3 uvz, vec2 gradient, vec2 offset) {
+    return texture(u_map, vec3(uvz.xy + offset, uvz.z + dot(gradient, offset)));
+}
+
+float shadowmap_poisson_disc(vec3 uvz, vec2 gradient) {
     float a = shadowmap_pixel_angle();
     mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
     float sum = 0.0;
     for (int i = 0; i < 16; i++)
-        sum += texture(u_map, vec3(uvz.xy + rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel) / u_map_size), uvz.z));
+        sum += shadowmap_tap(uvz, gradient, rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel) / u_map_size));
     return sum / 16.0;
 }
 
-float shadowmap_visibility(vec3 p) {
+float shadowmap_visibility(vec3 p, float depth_bias) {
     vec4 clip = u_light_matrix * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
+    vec2 gradient = shadowmap_depth_gradient(uvz); /* derivatives: before any branch */
     // Outside the map nothing was rendered: lit, never a wrapped read.
     if (clip.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
-    uvz.z = min(uvz.z, 1.0);
+    uvz.z = min(uvz.z - depth_bias, 1.0);
     if (u_filter == 0)
         return texture(u_map, uvz);
     if (u_filter == 2)
-        return shadowmap_poisson_disc(uvz);
+        return shadowmap_poisson_disc(uvz, gradient);
     float sum = 0.0;
     int half_kernel = u_kernel / 2;
     for (int y = -half_kernel; y <= half_kernel; y++)
         for (int x = -half_kernel; x <= half_kernel; x++)
-            sum += texture(u_map, vec3(uvz.xy + vec2(x, y) / u_map_size, uvz.z));
+            sum += shadowmap_tap(uvz, gradient, vec2(x, y) / u_map_size);
     return sum / float(u_kernel * u_kernel);
 }
 

@@ -10,6 +10,7 @@ uniform float u_far;
 uniform int u_filter;
 uniform int u_kernel;
 uniform float u_map_size;
+uniform bool u_receiver_plane;
 
 // A 90-degree face spans 2 |major axis| over the map's size.
 float shadowmap_texel_world(vec3 p) {
@@ -26,11 +27,23 @@ float shadowmap_face_depth(vec3 d) {
     return min(ndc * 0.5 + 0.5, 1.0);
 }
 
-float shadowmap_visibility(vec3 p) {
+// One tap, offset by w across the direction. With the receiver-plane bias
+// the tap point slides along its light ray onto the receiver's plane, and
+// compares that point's own depth (as Isidoro's receiver-plane bias does
+// for 2D maps), so a slanted receiver does not shadow its own kernel.
+float shadowmap_tap(vec3 d, vec3 w, vec3 receiver_normal, float depth_bias) {
+    vec3 t = d + w;
+    float facing = dot(normalize(t), receiver_normal);
+    if (u_receiver_plane && abs(facing) > 0.05)
+        t -= normalize(t) * (dot(w, receiver_normal) / facing);
+    return texture(u_map, vec4(d + w, shadowmap_face_depth(t) - depth_bias));
+}
+
+float shadowmap_visibility(vec3 p, float depth_bias) {
     vec3 d = p - u_light_origin;
-    float ref = shadowmap_face_depth(d);
+    vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (u_filter == 0)
-        return texture(u_map, vec4(d, ref));
+        return texture(u_map, vec4(d, shadowmap_face_depth(d) - depth_bias));
     // Offsets in the plane across the direction, one texel apart there.
     vec3 axis = normalize(d);
     vec3 u = normalize(cross(abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
@@ -42,13 +55,13 @@ float shadowmap_visibility(vec3 p) {
         mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
         for (int i = 0; i < 16; i++) {
             vec2 o = rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel));
-            sum += texture(u_map, vec4(d + (u * o.x + v * o.y) * step, ref));
+            sum += shadowmap_tap(d, (u * o.x + v * o.y) * step, receiver_normal, depth_bias);
         }
         return sum / 16.0;
     }
     int half_kernel = u_kernel / 2;
     for (int y = -half_kernel; y <= half_kernel; y++)
         for (int x = -half_kernel; x <= half_kernel; x++)
-            sum += texture(u_map, vec4(d + (u * float(x) + v * float(y)) * step, ref));
+            sum += shadowmap_tap(d, (u * float(x) + v * float(y)) * step, receiver_normal, depth_bias);
     return sum / float(u_kernel * u_kernel);
 }

@@ -25,25 +25,42 @@ static void dump_scene(const char *program, const char *scene, const char *flags
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
-/* Reference and shadow map of `scene`, compared over every object. */
-static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
+/* Reference and shadow map of `scene`, compared over every object; the
+ * dumps and the heat map (false-shadow and false-lit pixels) stay in
+ * `reference` and `test` and `heatmap` when given. */
+static shadowdiff_result measure_dumps(const char *scene, const char *flags, const char *name, dump_frame *reference,
+                                       dump_frame *test, unsigned char **heatmap) {
     char reference_dir[256], test_dir[256];
     snprintf(reference_dir, sizeof reference_dir, "out/test/shadowmap/%s_reference", name);
     snprintf(test_dir, sizeof test_dir, "out/test/shadowmap/%s", name);
     dump_scene("raytrace", scene, "", reference_dir);
     dump_scene("shadowmap", scene, flags, test_dir);
-    dump_frame reference, test;
-    assert_true(dump_read(&reference, reference_dir));
-    assert_true(dump_read(&test, test_dir));
+    assert_true(dump_read(reference, reference_dir));
+    assert_true(dump_read(test, test_dir));
+    *heatmap = malloc((size_t)reference->width * reference->height * 4);
+    assert_non_null(*heatmap);
     shadowdiff_result r;
-    assert_true(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+    assert_true(shadowdiff_compare(reference, test, NULL, &r, *heatmap));
     fprintf(stderr, "    %-26s %s: %ld compared, false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
                     "misclassified %.4f %%\n",
             name, flags, r.compared, r.false_shadow_percent, r.false_shadow, r.false_lit_percent, r.false_lit,
             r.misclassified_percent);
+    return r;
+}
+
+static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result r = measure_dumps(scene, flags, name, &reference, &test, &heatmap);
+    free(heatmap);
     dump_frame_free(&reference);
     dump_frame_free(&test);
     return r;
+}
+
+/* shadowdiff paints false-lit pixels pure blue in its heat map. */
+static bool false_lit(const unsigned char *heatmap, long i) {
+    return heatmap[i * 4] == 0 && heatmap[i * 4 + 1] == 0 && heatmap[i * 4 + 2] == 255;
 }
 
 /* Spot (simple), point with a cube map (bunny), directional (teapot). */
@@ -104,11 +121,126 @@ static void test_acne_without_bias(void **state) {
     assert_true(r.false_shadow_percent > 1);
 }
 
+/* The two configurations tutorials teach (as in the benchmark's sweep):
+ * our defaults must beat both on every standard scene. Their speed is for
+ * `make bench` to show. */
+static void test_defaults_beat_textbook_configurations(void **state) {
+    (void)state;
+    static const char *const textbook[] = {
+        "--map-size 1024 --no-constant-bias --no-slope-bias --depth-bias-slope 0.05 --depth-bias-min 0.005",
+        "--no-constant-bias --slope-factor 1.25 --slope-units 1.75",
+    };
+    static const char *const scenes[] = {"simple", "bunny", "teapot"};
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[256], name[64];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
+        shadowdiff_result defaults = measure(path, "", scenes[i]);
+        for (size_t k = 0; k < sizeof textbook / sizeof *textbook; k++) {
+            snprintf(name, sizeof name, "%s_textbook_%zu", scenes[i], k + 1);
+            shadowdiff_result r = measure(path, textbook[k], name);
+            assert_true(defaults.misclassified_percent < r.misclassified_percent);
+        }
+    }
+}
+
+/* Receiver-plane depth bias removes the partial acne of wide kernels on
+ * slanted receivers: the mean error drops, on a spot and a point light. */
+static void test_receiver_plane_reduces_partial_acne(void **state) {
+    (void)state;
+    static const char *const scenes[] = {"simple", "bunny"};
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[256], name[64];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
+        snprintf(name, sizeof name, "%s_pcf7_centre", scenes[i]);
+        shadowdiff_result centre = measure(path, "--filter pcf7", name);
+        snprintf(name, sizeof name, "%s_pcf7_receiver_plane", scenes[i]);
+        shadowdiff_result plane = measure(path, "--filter pcf7 --kernel-depth receiver-plane", name);
+        fprintf(stderr, "    %s, pcf7: mean error %.5f at the centre's depth, %.5f on the receiver plane\n",
+                scenes[i], centre.mean_abs_error, plane.mean_abs_error);
+        assert_true(plane.mean_abs_error < 0.5 * centre.mean_abs_error);
+    }
+}
+
+/* The widest false-lit gap between the box of tests/data/
+ * shadowmap_contact.json (a unit cube on the ground at the origin) and
+ * its shadow: the largest distance from the box's footprint of a false-lit
+ * ground pixel within half a unit of it. */
+static double contact_gap(const char *flags, const char *name) {
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    measure_dumps("tests/data/shadowmap_contact.json", flags, name, &reference, &test, &heatmap);
+    double widest = 0;
+    for (long i = 0; i < (long)reference.width * reference.height; i++) {
+        if (reference.ids[i] != 0 || !false_lit(heatmap, i))
+            continue;
+        const float *p = &reference.position[i * 3];
+        double dx = fmax(fabs(p[0]) - 0.5, 0), dz = fmax(fabs(p[2]) - 0.5, 0), d = sqrt(dx * dx + dz * dz);
+        if (d < 0.5)
+            widest = fmax(widest, d);
+    }
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    return widest;
+}
+
+/* Peter-panning: no lit band between a resting box and its shadow wider
+ * than one map texel. The map covers at most the 20 x 20 ground's
+ * diagonal, so a texel is at most that over the map size. */
+static void test_no_peter_panning_at_contact(void **state) {
+    (void)state;
+    const double texel = 20 * sqrt(2.0) / 2048;
+    double gap = contact_gap("", "contact");
+    fprintf(stderr, "    contact gap %.5f world units, one texel at most %.5f\n", gap, texel);
+    assert_true(gap <= texel);
+    /* The measure bites: a bias of 40 texels detaches the shadow. */
+    double detached = contact_gap("--constant-texels 40", "contact_detached");
+    fprintf(stderr, "    with a 40-texel bias: gap %.5f\n", detached);
+    assert_true(detached > 4 * texel);
+}
+
+/* A point light's cube map has no seams: false-lit pixels whose direction
+ * from the light lies within 1 % of a face edge (two largest components
+ * nearly equal) are at most 0.05 % of the compared pixels. */
+static void test_no_cube_seams(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result r =
+        measure_dumps("tests/data/shadowmap_cube_edges.json", "", "cube_edges", &reference, &test, &heatmap);
+    long on_edges = 0, false_lit_on_edges = 0;
+    for (long i = 0; i < (long)reference.width * reference.height; i++) {
+        if (reference.ids[i] < 0)
+            continue;
+        double a[3];
+        for (int k = 0; k < 3; k++)
+            a[k] = fabs(reference.position[i * 3 + k] - reference.light[k]);
+        double largest = fmax(a[0], fmax(a[1], a[2])), second = a[0] + a[1] + a[2] - largest -
+                                                                  fmin(a[0], fmin(a[1], a[2]));
+        if (largest - second > 0.01 * largest)
+            continue;
+        on_edges++;
+        false_lit_on_edges += false_lit(heatmap, i);
+    }
+    double percent = 100.0 * false_lit_on_edges / r.compared;
+    fprintf(stderr, "    %ld pixels near cube-face edges, %ld false lit: %.4f %% of %ld compared\n", on_edges,
+            false_lit_on_edges, percent, r.compared);
+    assert_true(on_edges > 1000);
+    assert_true(percent <= 0.05);
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_standard_scenes_within_bound),
         cmocka_unit_test(test_no_acne_at_any_elevation),
         cmocka_unit_test(test_acne_without_bias),
+        cmocka_unit_test(test_defaults_beat_textbook_configurations),
+        cmocka_unit_test(test_receiver_plane_reduces_partial_acne),
+        cmocka_unit_test(test_no_peter_panning_at_contact),
+        cmocka_unit_test(test_no_cube_seams),
     };
     return cmocka_run_group_tests_name("shadow maps against the reference", tests, NULL, NULL);
 }
