@@ -35,6 +35,11 @@
  * 0.0150 % at 1280x720), with no acne anywhere in the elevation sweep
  * (tests/test_shadowmap.c).
  *
+ * For lectures, --overlay (key V): the map's texel boundaries drawn on the
+ * receivers (aliasing made visible), the light frustum in wireframe, light
+ * 0's map as an inset of linear depth (2D maps; a cube map shows texels
+ * only). Overlays draw into the picture, so a dump taken with one shows it.
+ *
  * Filters: none (one nearest test), hw (one bilinear test: 2x2 in
  * hardware), pcf3/5/7 (an N x N grid of bilinear tests), poisson (16
  * bilinear tests on a Poisson disc four texels wide, rotated per pixel by a
@@ -58,6 +63,7 @@ typedef struct shadowmap_settings {
     int filter;   /* choice */
     int depth;    /* choice */
     int kernel_depth; /* choice */
+    int overlay;      /* choice */
     bool no_constant_bias, no_slope_bias;
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
     float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
@@ -67,6 +73,9 @@ static const char *const shadowmap_sizes[] = {"2048", "256", "512", "1024", "409
 static const char *const shadowmap_filters[] = {"pcf5", "none", "hw", "pcf3", "pcf7", "poisson", NULL};
 static const char *const shadowmap_depths[] = {"24", "32f", NULL};
 static const char *const shadowmap_kernel_depths[] = {"centre", "receiver-plane", NULL};
+static const char *const shadowmap_overlays[] = {"none", "all", "texels", "frustum", "map", NULL};
+enum { SHADOWMAP_OVERLAY_NONE, SHADOWMAP_OVERLAY_ALL, SHADOWMAP_OVERLAY_TEXELS, SHADOWMAP_OVERLAY_FRUSTUM,
+       SHADOWMAP_OVERLAY_MAP };
 enum { SHADOWMAP_FILTER_PCF5, SHADOWMAP_FILTER_NONE, SHADOWMAP_FILTER_HW, SHADOWMAP_FILTER_PCF3,
        SHADOWMAP_FILTER_PCF7, SHADOWMAP_FILTER_POISSON };
 
@@ -82,13 +91,13 @@ typedef struct shadowmap_light {
 
 static struct {
     shadowmap_settings settings;
-    render_program depth, camera_2d, camera_cube;
-    unsigned framebuffer;
+    render_program depth, camera_2d, camera_cube, lines, inset;
+    unsigned framebuffer, overlay_vao, overlay_buffer;
     shadowmap_light lights[SCENE_MAX_LIGHTS];
 } shadowmap;
 
 enum {
-    SHADOWMAP_PARAM_CONSTANT = 6,
+    SHADOWMAP_PARAM_CONSTANT = 7,
     SHADOWMAP_PARAM_SLOPE,
     SHADOWMAP_PARAM_UNITS,
     SHADOWMAP_PARAM_NORMAL,
@@ -109,6 +118,8 @@ static const technique_param shadowmap_params[] = {
      .disabled = &shadowmap.settings.no_slope_bias},
     {"kernel-depth", "what each kernel tap compares: the centre's depth, or the receiver plane's there",
      GLFW_KEY_P, TECHNIQUE_CHOICE, .index = &shadowmap.settings.kernel_depth, .choices = shadowmap_kernel_depths},
+    {"overlay", "for lectures: texel boundaries on receivers, the light frustum, the map as an inset", GLFW_KEY_V,
+     TECHNIQUE_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
     [SHADOWMAP_PARAM_CONSTANT] = {"constant-texels", "constant bias, in map texels of world distance", 0,
                                   TECHNIQUE_NUMBER, .number = &shadowmap.settings.constant_texels,
                                   .fallback = 1.0f, .min = 0.01f, .max = 64},
@@ -345,10 +356,21 @@ static bool shadowmap_init(const render_scene *gpu) {
     static const char *const depth_files[] = {"shadow_depth.vert", "shadow_depth.frag"};
     static const char *const files_2d[] = {"lit.vert", "shadowmap_2d.frag"};
     static const char *const files_cube[] = {"lit.vert", "shadowmap_cube.frag"};
+    static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
+    static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
     if (!render_program_load(&shadowmap.depth, depth_files, 2) ||
         !render_program_load(&shadowmap.camera_2d, files_2d, 2) ||
-        !render_program_load(&shadowmap.camera_cube, files_cube, 2))
+        !render_program_load(&shadowmap.camera_cube, files_cube, 2) ||
+        !render_program_load(&shadowmap.lines, lines_files, 2) || !render_program_load(&shadowmap.inset, inset_files, 2))
         return false;
+    glGenVertexArrays(1, &shadowmap.overlay_vao);
+    glBindVertexArray(shadowmap.overlay_vao);
+    glGenBuffers(1, &shadowmap.overlay_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
+    glBufferData(GL_ARRAY_BUFFER, 24 * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
+    glBindVertexArray(0);
     glGenFramebuffers(1, &shadowmap.framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, shadowmap.framebuffer);
     glDrawBuffer(GL_NONE);
@@ -362,8 +384,12 @@ static void shadowmap_destroy(void) {
     render_program_destroy(&shadowmap.depth);
     render_program_destroy(&shadowmap.camera_2d);
     render_program_destroy(&shadowmap.camera_cube);
+    render_program_destroy(&shadowmap.lines);
+    render_program_destroy(&shadowmap.inset);
+    glDeleteVertexArrays(1, &shadowmap.overlay_vao);
+    glDeleteBuffers(1, &shadowmap.overlay_buffer);
     glDeleteFramebuffers(1, &shadowmap.framebuffer);
-    shadowmap.framebuffer = 0;
+    shadowmap.framebuffer = shadowmap.overlay_vao = shadowmap.overlay_buffer = 0;
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         glDeleteTextures(1, &shadowmap.lights[l].texture);
     memset(shadowmap.lights, 0, sizeof shadowmap.lights);
@@ -394,6 +420,8 @@ static void shadowmap_add_light(const technique_frame *f, int l, const shadowmap
     shadowmap_uniform_int(p, "u_light", l);
     shadowmap_uniform_int(p, "u_filter", mode);
     shadowmap_uniform_int(p, "u_receiver_plane", st->kernel_depth == 1);
+    shadowmap_uniform_int(p, "u_show_texels",
+                          st->overlay == SHADOWMAP_OVERLAY_ALL || st->overlay == SHADOWMAP_OVERLAY_TEXELS);
     shadowmap_uniform_int(p, "u_kernel", kernels[st->filter]);
     shadowmap_uniform_float(p, "u_map_size", (float)m->size);
     shadowmap_uniform_float(p, "u_constant_bias",
@@ -415,6 +443,68 @@ static void shadowmap_add_light(const technique_frame *f, int l, const shadowmap
     }
     for (int i = 0; i < f->gpu->scene->object_count; i++)
         render_draw_object(f->gpu, p, i);
+}
+
+/* The 12 edges of a 2D map's frustum, from its clip-space cube. */
+static void shadowmap_draw_frustum(const technique_frame *f, const shadowmap_light *m) {
+    float lines[24][3];
+    mat4 inverse;
+    glm_mat4_inv((vec4 *)m->view_projection[0], inverse);
+    int n = 0;
+    for (int a = 0; a < 8; a++) {
+        for (int bit = 1; bit < 8; bit <<= 1) {
+            if (a & bit)
+                continue;
+            for (int end = 0; end < 2; end++) {
+                int c = end ? a | bit : a;
+                vec4 ndc = {c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1, 1}, world;
+                glm_mat4_mulv(inverse, ndc, world);
+                glm_vec3_scale(world, 1.0f / world[3], lines[n++]);
+            }
+        }
+    }
+    render_program_use(&shadowmap.lines, f->view);
+    glUniform3f(glGetUniformLocation(shadowmap.lines.id, "u_color"), 1.0f, 0.85f, 0.2f);
+    glBindVertexArray(shadowmap.overlay_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof lines, lines);
+    glDrawArrays(GL_LINES, 0, 24);
+}
+
+/* Light 0's 2D map in the bottom-right third of the picture. */
+static void shadowmap_draw_inset(const shadowmap_light *m, const int viewport[4]) {
+    static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    int size = viewport[3] / 3;
+    glViewport(viewport[0] + viewport[2] - size - 8, viewport[1] + 8, size, size);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(shadowmap.inset.id);
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    glUniformMatrix4fv(shadowmap.inset.view_projection, 1, GL_FALSE, (const float *)identity);
+    shadowmap_uniform_int(&shadowmap.inset, "u_map", 0);
+    shadowmap_uniform_int(&shadowmap.inset, "u_orthographic", m->orthographic);
+    shadowmap_uniform_float(&shadowmap.inset, "u_near", m->near_plane);
+    shadowmap_uniform_float(&shadowmap.inset, "u_far", m->far_plane);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, m->texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glBindVertexArray(shadowmap.overlay_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+}
+
+static void shadowmap_draw_overlays(const technique_frame *f, const bool *fitted, const int viewport[4]) {
+    int overlay = shadowmap.settings.overlay;
+    glDisable(GL_BLEND);
+    glDepthFunc(GL_LEQUAL);
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        if (fitted[l] && !shadowmap.lights[l].cube &&
+            (overlay == SHADOWMAP_OVERLAY_ALL || overlay == SHADOWMAP_OVERLAY_FRUSTUM))
+            shadowmap_draw_frustum(f, &shadowmap.lights[l]);
+    if (fitted[0] && !shadowmap.lights[0].cube && (overlay == SHADOWMAP_OVERLAY_ALL || overlay == SHADOWMAP_OVERLAY_MAP))
+        shadowmap_draw_inset(&shadowmap.lights[0], viewport);
 }
 
 static void shadowmap_render(const technique_frame *f) {
@@ -453,6 +543,7 @@ static void shadowmap_render(const technique_frame *f) {
                 render_draw_object(f->gpu, &f->gpu->lit, i);
         }
     }
+    shadowmap_draw_overlays(f, fitted, viewport);
 }
 
 static void shadowmap_describe(char *out, size_t size) {
@@ -462,12 +553,13 @@ static void shadowmap_describe(char *out, size_t size) {
 }
 
 /* The sweep: map size x filter x bias, and two configurations popular
- * tutorials use ("label: flags"), so the report shows where the defaults
- * stand: LearnOpenGL's bias max(0.05 (1 - N.L), 0.005) with 3x3 PCF at
+ * tutorials use ("label: flags"), so the report shows where our biases
+ * stand at the same cost (--map-size 1024 --filter pcf3 and --filter pcf3): LearnOpenGL's bias max(0.05 (1 - N.L), 0.005) with 3x3 PCF at
  * 1024, and polygon offset (1.25, 1.75) with 3x3 PCF at 2048. */
 static const char *const shadowmap_bench_configs[] = {
     "",
     "--map-size 1024",
+    "--map-size 1024 --filter pcf3",
     "--map-size 4096",
     "--filter none",
     "--filter hw",

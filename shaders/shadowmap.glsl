@@ -4,10 +4,13 @@
 //   shadowmap_texel_world(p)  world size of one map texel at p
 //   shadowmap_visibility(p, b) the filtered comparison at p, its map depth
 //                             lowered by b first
+//   shadowmap_texel_coord(p)  p's position in the map, in texels (for the
+//                             lecture's overlay of texel boundaries)
 // This adds light u_light's share where the map says it reaches.
 
 float shadowmap_texel_world(vec3 p);
 float shadowmap_visibility(vec3 p, float depth_bias);
+vec2 shadowmap_texel_coord(vec3 p);
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -16,6 +19,7 @@ uniform vec3 u_albedo;
 uniform int u_light;
 uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
+uniform bool u_show_texels;      // darken the map's texel boundaries
 uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
 
 out vec4 out_color;
@@ -50,5 +54,11 @@ void main() {
     float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
     vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
     float visibility = shadowmap_visibility(p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y));
-    out_color = vec4(visibility * lighting_unshadowed(u_light, v_position, n, u_albedo), 1.0);
+    vec3 c = visibility * lighting_unshadowed(u_light, v_position, n, u_albedo);
+    // Lines one pixel wide where texels meet: how big a texel is on screen
+    // is what aliasing is made of.
+    vec2 map_texel = shadowmap_texel_coord(v_position);
+    vec2 distance_to_edge = abs(fract(map_texel - 0.5) - 0.5) / max(fwidth(map_texel), vec2(1e-6));
+    float edge = 1.0 - min(min(distance_to_edge.x, distance_to_edge.y), 1.0);
+    out_color = vec4(u_show_texels ? c * (1.0 - 0.6 * edge) : c, 1.0);
 }

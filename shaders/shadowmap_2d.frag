@@ -64,3 +64,8 @@ float shadowmap_visibility(vec3 p, float depth_bias) {
     return sum / float(u_kernel * u_kernel);
 }
 
+
+vec2 shadowmap_texel_coord(vec3 p) {
+    vec4 clip = u_light_matrix * vec4(p, 1.0);
+    return (clip.xy / clip.w * 0.5 + 0.5) * u_map_size;
+}

@@ -65,3 +65,11 @@ float shadowmap_visibility(vec3 p, float depth_bias) {
             sum += shadowmap_tap(d, (u * float(x) + v * float(y)) * step, receiver_normal, depth_bias);
     return sum / float(u_kernel * u_kernel);
 }
+
+// On the face the direction falls on: the two other components over the
+// major one span -1..1 across the face.
+vec2 shadowmap_texel_coord(vec3 p) {
+    vec3 d = p - u_light_origin, a = abs(d);
+    vec2 face = a.x >= a.y && a.x >= a.z ? d.yz / a.x : a.y >= a.z ? d.xz / a.y : d.xy / a.z;
+    return (face * 0.5 + 0.5) * u_map_size;
+}

@@ -125,12 +125,16 @@ static void test_each_fix_shows_when_off(void **state) {
                 SUPPORT_MAX_DIFFERING);
 }
 
-/* Without any bias the shadow map shadows the lit ground with acne. */
+/* Without any bias the shadow map shadows the lit ground with acne; the
+ * overlays show. */
 static void test_shadowmap_without_bias_shows_acne(void **state) {
     (void)state;
     render_with("shadowmap", "egl", "assets/scenes/simple.json",
                 "--no-constant-bias --no-slope-bias", "shadowmap_no_bias");
     assert_true(compare_with_golden_of("shadowmap", "simple", "shadowmap_no_bias") > SUPPORT_MAX_DIFFERING);
+    /* The lecture overlays draw into the picture. */
+    render_with("shadowmap", "egl", "assets/scenes/simple.json", "--overlay all", "shadowmap_overlay");
+    assert_true(compare_with_golden_of("shadowmap", "simple", "shadowmap_overlay") > SUPPORT_MAX_DIFFERING);
 }
 
 /* The GLFW window, under a virtual X server, shows the same picture. */
