@@ -13,6 +13,10 @@
 #define SHADER_MAX_SOURCES 16 /* files, includes counted, in one stage */
 #define SHADER_MAX_DEPTH 8
 #define SHADER_MAX_FILE_SIZE (1 << 20)
+/* Some drivers (Mesa 22) report errors inside functions with source number
+ * 0 whatever #line said, but always with the line it gave: so the line
+ * carries the file too, as file * SHADER_LINE_STRIDE + line. */
+#define SHADER_LINE_STRIDE 100000
 
 static char shader_dir[4096] = "shaders";
 
@@ -47,7 +51,7 @@ static bool shader_append(shader_source *s, const char *text, size_t n) {
 
 static bool shader_append_line_directive(shader_source *s, int line, int file) {
     char directive[48];
-    int n = snprintf(directive, sizeof directive, "#line %d %d\n", line, file);
+    int n = snprintf(directive, sizeof directive, "#line %d %d\n", file * SHADER_LINE_STRIDE + line, file);
     return shader_append(s, directive, (size_t)n);
 }
 
@@ -97,8 +101,12 @@ static void shader_print_log(const shader_source *s, const char *log) {
         if (strncmp(q, "ERROR: ", 7) == 0 || strncmp(q, "WARNING: ", 9) == 0)
             q = strchr(q, ' ') + 1;
         int source, line, used = 0;
-        if ((sscanf(q, "%d:%d%n", &source, &line, &used) == 2 || sscanf(q, "%d(%d)%n", &source, &line, &used) == 2) &&
-            source >= 0 && source < s->file_count) {
+        bool located = sscanf(q, "%d:%d%n", &source, &line, &used) == 2 || sscanf(q, "%d(%d)%n", &source, &line, &used) == 2;
+        if (located) {
+            source = line / SHADER_LINE_STRIDE;
+            line %= SHADER_LINE_STRIDE;
+        }
+        if (located && source >= 0 && source < s->file_count) {
             q += used;
             while (*q == '(' || isdigit((unsigned char)*q) || *q == ')' || *q == ':' || *q == ' ')
                 q++;

@@ -101,6 +101,23 @@ static void test_broken_shader_names_file_and_line(void **state) {
     assert_int_equal(support_run(command, err, sizeof err), EXIT_RUNTIME);
     assert_non_null(strstr(err, "out/test/broken_shaders/lighting.glsl:3:"));
     assert_non_null(strstr(err, "lit.frag"));
+    /* An error inside a function of an included file: drivers report those
+     * differently from syntax errors, and the file must still be right. */
+    assert_int_equal(system("cp shaders/lighting.glsl out/test/broken_shaders/lighting.glsl && "
+                            "sed -i 's/return lights_count.y >= 0 ? vec3(0.0).*/return no_such_name;/' "
+                            "out/test/broken_shaders/lighting.glsl && "
+                            "grep -n no_such_name out/test/broken_shaders/lighting.glsl | "
+                            "cut -d: -f1 > out/test/broken_shaders/line.txt"),
+                     0);
+    char expected[128], line[16] = "";
+    FILE *f = fopen("out/test/broken_shaders/line.txt", "r");
+    assert_non_null(f);
+    assert_non_null(fgets(line, sizeof line, f));
+    fclose(f);
+    line[strcspn(line, "\n")] = '\0';
+    snprintf(expected, sizeof expected, "out/test/broken_shaders/lighting.glsl:%s:", line);
+    assert_int_equal(support_run(command, err, sizeof err), EXIT_RUNTIME);
+    assert_non_null(strstr(err, expected));
 }
 
 static void test_help_lists_flags_and_toggles(void **state) {
