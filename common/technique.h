@@ -1,6 +1,6 @@
 /* technique: the one interface every shadow technique implements, so that
  * the same code runs in its own demo, in the multi-technique window, in the
- * gallery and (later) in comparisons and the benchmark.
+ * gallery and the benchmark.
  *
  * A technique keeps its state in one static struct in its own file under
  * demos/ and exports one `const technique NAME_technique`. The app calls:

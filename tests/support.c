@@ -66,6 +66,14 @@ double support_compare_images(const char *golden, const char *actual) {
     return fraction;
 }
 
+int support_dump(const char *program, const char *scene, const char *flags, const char *dir) {
+    static char err[16384];
+    char command[2048];
+    snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --dump %s", support_program(program), scene,
+             flags, dir);
+    return support_run(command, err, sizeof err);
+}
+
 bool support_have_command(const char *name) {
     char command[256];
     snprintf(command, sizeof command, "command -v %s >/dev/null 2>&1", name);

@@ -27,6 +27,9 @@ int support_count_lines(const char *text);
  * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
 double support_compare_images(const char *golden, const char *actual);
 bool support_have_command(const char *name);
+/* Runs `program --size 640x360 --scene SCENE FLAGS --dump DIR` (the
+ * accuracy tests' size); returns its exit status. */
+int support_dump(const char *program, const char *scene, const char *flags, const char *dir);
 /* Sends stderr to a temporary file until support_release_stderr, which
  * returns what was written. cmocka reports failures on stderr too, so no
  * assertion may run in between. */

@@ -13,18 +13,12 @@
 #include "shadowdiff.h"
 #include "support.h"
 
-#define SIZE "640x360"
 /* Planar shadows are exact on their plane: only pixels whose centre lies
  * within float rounding of a shadow edge may disagree. */
 #define PLANAR_MAX_MISCLASSIFIED_PERCENT 0.05
 
-static char err[16384];
-
 static void dump_scene(const char *program, const char *scene, const char *flags, const char *dir) {
-    char command[2048];
-    snprintf(command, sizeof command, "%s --size " SIZE " --scene %s %s --dump %s", support_program(program), scene,
-             flags, dir);
-    assert_int_equal(support_run(command, err, sizeof err), 0);
+    assert_int_equal(support_dump(program, scene, flags, dir), 0);
 }
 
 static void dump_program(const char *program, const char *flags, const char *dir) {

@@ -13,16 +13,10 @@
 #include "shadowdiff.h"
 #include "support.h"
 
-#define SIZE "640x360"
 #define STANDARD_MAX_MISCLASSIFIED_PERCENT 0.5
 
-static char err[16384];
-
 static void dump_scene(const char *program, const char *scene, const char *flags, const char *dir) {
-    char command[2048];
-    snprintf(command, sizeof command, "%s --size " SIZE " --scene %s %s --dump %s", support_program(program), scene,
-             flags, dir);
-    assert_int_equal(support_run(command, err, sizeof err), 0);
+    assert_int_equal(support_dump(program, scene, flags, dir), 0);
 }
 
 /* Reference and shadow map of `scene`, compared over every object; the
