@@ -144,6 +144,11 @@ static const technique_param shadowmap_params[] = {
 
 /* ---- fitting ---- */
 
+static void shadowmap_corners(const vec3 lo, const vec3 hi, vec3 out[8]) {
+    for (int c = 0; c < 8; c++)
+        glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, out[c]);
+}
+
 /* The points shadows are decided for: the corners of every receiver's box
  * cut by the box of the camera's frustum. Returns how many (8 a box). */
 static int shadowmap_receiver_points(const technique_frame *f, vec3 *points, int max_points) {
@@ -168,8 +173,8 @@ static int shadowmap_receiver_points(const technique_frame *f, vec3 *points, int
         glm_vec3_minv(hi, view_max, hi);
         if (lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2])
             continue; /* not in view */
-        for (int c = 0; c < 8; c++, n++)
-            glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, points[n]);
+        shadowmap_corners(lo, hi, points + n);
+        n += 8;
     }
     return n;
 }
@@ -189,8 +194,7 @@ static void shadowmap_view_bounds(mat4 view, vec3 *points, int n, vec3 lo, vec3 
 static void shadowmap_box_corners(const scene_object *o, vec3 corners[8]) {
     vec3 lo, hi;
     scene_object_world_bounds(o, lo, hi);
-    for (int c = 0; c < 8; c++)
-        glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, corners[c]);
+    shadowmap_corners(lo, hi, corners);
 }
 
 static void shadowmap_light_view(const float eye[3], const float direction[3], mat4 view) {
