@@ -122,8 +122,10 @@ static int bench_parse_flags(int argc, char **argv) {
     if (status)
         return status;
     /* Zero means the default, which --quick makes small. */
-    if (!bench.width)
-        bench.width = bench.quick ? 320 : 1280, bench.height = bench.quick ? 180 : 720;
+    if (!bench.width) {
+        bench.width = bench.quick ? 320 : 1280;
+        bench.height = bench.quick ? 180 : 720;
+    }
     if (!bench.frames)
         bench.frames = bench.quick ? 5 : 30;
     if (!bench.warmup)

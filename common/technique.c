@@ -76,9 +76,10 @@ bool technique_apply_config(const technique *t, const char *config) {
     snprintf(copy, sizeof copy, "%s", label_end ? label_end + 2 : config);
     char *rest = copy;
     for (char *flag; (flag = strtok_r(rest, " ", &rest));) {
-        const char *value = technique_flag_takes_value(t, flag) ? strtok_r(rest, " ", &rest) : NULL;
+        bool takes_value = technique_flag_takes_value(t, flag);
+        const char *value = takes_value ? strtok_r(rest, " ", &rest) : NULL;
         bool bad_value;
-        if (technique_flag_takes_value(t, flag) && !value) {
+        if (takes_value && !value) {
             fprintf(stderr, "%s: missing value after %s in configuration \"%s\"\n", t->name, flag, config);
             return false;
         }

@@ -89,9 +89,19 @@ typedef struct shadowmap_light {
     bool orthographic;
 } shadowmap_light;
 
+/* A program and its uniform locations, found once when it is loaded rather
+ * than by name every frame (-1 where the program has no such uniform, which
+ * glUniform ignores). */
+typedef struct shadowmap_program {
+    render_program program;
+    int map, light, filter, receiver_plane, show_texels, kernel, map_size, constant_bias, normal_offset, depth_bias,
+        light_origin, near_plane, far_plane, light_matrix, orthographic, texel_scale, light_axis, color;
+} shadowmap_program;
+
 static struct {
     shadowmap_settings settings;
-    render_program depth, camera_2d, camera_cube, lines, inset;
+    render_program depth;
+    shadowmap_program camera_2d, camera_cube, lines, inset;
     unsigned framebuffer, overlay_vao, overlay_buffer;
     shadowmap_light lights[SCENE_MAX_LIGHTS];
 } shadowmap;
@@ -355,6 +365,31 @@ static void shadowmap_render_depth(const technique_frame *f, shadowmap_light *m)
 
 /* ---- the technique ---- */
 
+static bool shadowmap_program_load(shadowmap_program *p, const char *const files[2]) {
+    if (!render_program_load(&p->program, files, 2))
+        return false;
+    unsigned id = p->program.id;
+    p->map = glGetUniformLocation(id, "u_map");
+    p->light = glGetUniformLocation(id, "u_light");
+    p->filter = glGetUniformLocation(id, "u_filter");
+    p->receiver_plane = glGetUniformLocation(id, "u_receiver_plane");
+    p->show_texels = glGetUniformLocation(id, "u_show_texels");
+    p->kernel = glGetUniformLocation(id, "u_kernel");
+    p->map_size = glGetUniformLocation(id, "u_map_size");
+    p->constant_bias = glGetUniformLocation(id, "u_constant_bias");
+    p->normal_offset = glGetUniformLocation(id, "u_normal_offset");
+    p->depth_bias = glGetUniformLocation(id, "u_depth_bias");
+    p->light_origin = glGetUniformLocation(id, "u_light_origin");
+    p->near_plane = glGetUniformLocation(id, "u_near");
+    p->far_plane = glGetUniformLocation(id, "u_far");
+    p->light_matrix = glGetUniformLocation(id, "u_light_matrix");
+    p->orthographic = glGetUniformLocation(id, "u_orthographic");
+    p->texel_scale = glGetUniformLocation(id, "u_texel_scale");
+    p->light_axis = glGetUniformLocation(id, "u_light_axis");
+    p->color = glGetUniformLocation(id, "u_color");
+    return true;
+}
+
 static bool shadowmap_init(const render_scene *gpu) {
     (void)gpu;
     static const char *const depth_files[] = {"shadow_depth.vert", "shadow_depth.frag"};
@@ -363,9 +398,9 @@ static bool shadowmap_init(const render_scene *gpu) {
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
     if (!render_program_load(&shadowmap.depth, depth_files, 2) ||
-        !render_program_load(&shadowmap.camera_2d, files_2d, 2) ||
-        !render_program_load(&shadowmap.camera_cube, files_cube, 2) ||
-        !render_program_load(&shadowmap.lines, lines_files, 2) || !render_program_load(&shadowmap.inset, inset_files, 2))
+        !shadowmap_program_load(&shadowmap.camera_2d, files_2d) ||
+        !shadowmap_program_load(&shadowmap.camera_cube, files_cube) ||
+        !shadowmap_program_load(&shadowmap.lines, lines_files) || !shadowmap_program_load(&shadowmap.inset, inset_files))
         return false;
     glGenVertexArrays(1, &shadowmap.overlay_vao);
     glBindVertexArray(shadowmap.overlay_vao);
@@ -386,10 +421,10 @@ static bool shadowmap_init(const render_scene *gpu) {
 
 static void shadowmap_destroy(void) {
     render_program_destroy(&shadowmap.depth);
-    render_program_destroy(&shadowmap.camera_2d);
-    render_program_destroy(&shadowmap.camera_cube);
-    render_program_destroy(&shadowmap.lines);
-    render_program_destroy(&shadowmap.inset);
+    render_program_destroy(&shadowmap.camera_2d.program);
+    render_program_destroy(&shadowmap.camera_cube.program);
+    render_program_destroy(&shadowmap.lines.program);
+    render_program_destroy(&shadowmap.inset.program);
     glDeleteVertexArrays(1, &shadowmap.overlay_vao);
     glDeleteBuffers(1, &shadowmap.overlay_buffer);
     glDeleteFramebuffers(1, &shadowmap.framebuffer);
@@ -399,54 +434,40 @@ static void shadowmap_destroy(void) {
     memset(shadowmap.lights, 0, sizeof shadowmap.lights);
 }
 
-static void shadowmap_uniform_int(const render_program *p, const char *name, int v) {
-    glUniform1i(glGetUniformLocation(p->id, name), v);
-}
-
-static void shadowmap_uniform_float(const render_program *p, const char *name, float v) {
-    glUniform1f(glGetUniformLocation(p->id, name), v);
-}
-
 /* Light l's share, added where its map lets it through. */
 static void shadowmap_add_light(const technique_frame *f, int l, const shadowmap_light *m) {
     const scene_light *light = &f->gpu->scene->lights[l];
-    const render_program *p = m->cube ? &shadowmap.camera_cube : &shadowmap.camera_2d;
+    const shadowmap_program *p = m->cube ? &shadowmap.camera_cube : &shadowmap.camera_2d;
     const shadowmap_settings *st = &shadowmap.settings;
     static const int kernels[] = {[SHADOWMAP_FILTER_PCF3] = 3, [SHADOWMAP_FILTER_PCF5] = 5,
                                   [SHADOWMAP_FILTER_PCF7] = 7, [SHADOWMAP_FILTER_POISSON] = SHADOWMAP_POISSON_TEXELS};
     int mode = st->filter == SHADOWMAP_FILTER_NONE || st->filter == SHADOWMAP_FILTER_HW ? 0
                : st->filter == SHADOWMAP_FILTER_POISSON                                 ? 2
                                                                                         : 1;
-    render_program_use(p, f->view);
+    render_program_use(&p->program, f->view);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(m->cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D, m->texture);
-    shadowmap_uniform_int(p, "u_map", 0);
-    shadowmap_uniform_int(p, "u_light", l);
-    shadowmap_uniform_int(p, "u_filter", mode);
-    shadowmap_uniform_int(p, "u_receiver_plane", st->kernel_depth == 1);
-    shadowmap_uniform_int(p, "u_show_texels",
-                          st->overlay == SHADOWMAP_OVERLAY_ALL || st->overlay == SHADOWMAP_OVERLAY_TEXELS);
-    shadowmap_uniform_int(p, "u_kernel", kernels[st->filter]);
-    shadowmap_uniform_float(p, "u_map_size", (float)m->size);
-    shadowmap_uniform_float(p, "u_constant_bias",
-                            st->no_constant_bias ? 0 : technique_number(&shadowmap_params[SHADOWMAP_PARAM_CONSTANT]));
-    shadowmap_uniform_float(p, "u_normal_offset", technique_number(&shadowmap_params[SHADOWMAP_PARAM_NORMAL]));
-    glUniform2f(glGetUniformLocation(p->id, "u_depth_bias"),
-                technique_number(&shadowmap_params[SHADOWMAP_PARAM_DEPTH_SLOPE]),
+    glUniform1i(p->map, 0);
+    glUniform1i(p->light, l);
+    glUniform1i(p->filter, mode);
+    glUniform1i(p->receiver_plane, st->kernel_depth == 1);
+    glUniform1i(p->show_texels, st->overlay == SHADOWMAP_OVERLAY_ALL || st->overlay == SHADOWMAP_OVERLAY_TEXELS);
+    glUniform1i(p->kernel, kernels[st->filter]);
+    glUniform1f(p->map_size, (float)m->size);
+    glUniform1f(p->constant_bias,
+                st->no_constant_bias ? 0 : technique_number(&shadowmap_params[SHADOWMAP_PARAM_CONSTANT]));
+    glUniform1f(p->normal_offset, technique_number(&shadowmap_params[SHADOWMAP_PARAM_NORMAL]));
+    glUniform2f(p->depth_bias, technique_number(&shadowmap_params[SHADOWMAP_PARAM_DEPTH_SLOPE]),
                 technique_number(&shadowmap_params[SHADOWMAP_PARAM_DEPTH_MIN]));
-    glUniform3fv(glGetUniformLocation(p->id, "u_light_origin"), 1, light->position);
-    if (m->cube) {
-        shadowmap_uniform_float(p, "u_near", m->near_plane);
-        shadowmap_uniform_float(p, "u_far", m->far_plane);
-    } else {
-        glUniformMatrix4fv(glGetUniformLocation(p->id, "u_light_matrix"), 1, GL_FALSE,
-                           (const float *)m->view_projection[0]);
-        shadowmap_uniform_int(p, "u_orthographic", m->orthographic);
-        shadowmap_uniform_float(p, "u_texel_scale", m->texel_scale);
-        glUniform3fv(glGetUniformLocation(p->id, "u_light_axis"), 1, light->direction);
-    }
+    glUniform3fv(p->light_origin, 1, light->position);
+    glUniform1f(p->near_plane, m->near_plane);
+    glUniform1f(p->far_plane, m->far_plane);
+    glUniformMatrix4fv(p->light_matrix, 1, GL_FALSE, (const float *)m->view_projection[0]);
+    glUniform1i(p->orthographic, m->orthographic);
+    glUniform1f(p->texel_scale, m->texel_scale);
+    glUniform3fv(p->light_axis, 1, light->direction);
     for (int i = 0; i < f->gpu->scene->object_count; i++)
-        render_draw_object(f->gpu, p, i);
+        render_draw_object(f->gpu, &p->program, i);
 }
 
 /* The 12 edges of a 2D map's frustum, from its clip-space cube. */
@@ -467,8 +488,8 @@ static void shadowmap_draw_frustum(const technique_frame *f, const shadowmap_lig
             }
         }
     }
-    render_program_use(&shadowmap.lines, f->view);
-    glUniform3f(glGetUniformLocation(shadowmap.lines.id, "u_color"), 1.0f, 0.85f, 0.2f);
+    render_program_use(&shadowmap.lines.program, f->view);
+    glUniform3f(shadowmap.lines.color, 1.0f, 0.85f, 0.2f);
     glBindVertexArray(shadowmap.overlay_vao);
     glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof lines, lines);
@@ -481,13 +502,14 @@ static void shadowmap_draw_inset(const shadowmap_light *m, const int viewport[4]
     int size = viewport[3] / 3;
     glViewport(viewport[0] + viewport[2] - size - 8, viewport[1] + 8, size, size);
     glDisable(GL_DEPTH_TEST);
-    glUseProgram(shadowmap.inset.id);
+    const shadowmap_program *p = &shadowmap.inset;
+    glUseProgram(p->program.id);
     mat4 identity = GLM_MAT4_IDENTITY_INIT;
-    glUniformMatrix4fv(shadowmap.inset.view_projection, 1, GL_FALSE, (const float *)identity);
-    shadowmap_uniform_int(&shadowmap.inset, "u_map", 0);
-    shadowmap_uniform_int(&shadowmap.inset, "u_orthographic", m->orthographic);
-    shadowmap_uniform_float(&shadowmap.inset, "u_near", m->near_plane);
-    shadowmap_uniform_float(&shadowmap.inset, "u_far", m->far_plane);
+    glUniformMatrix4fv(p->program.view_projection, 1, GL_FALSE, (const float *)identity);
+    glUniform1i(p->map, 0);
+    glUniform1i(p->orthographic, m->orthographic);
+    glUniform1f(p->near_plane, m->near_plane);
+    glUniform1f(p->far_plane, m->far_plane);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, m->texture);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
