@@ -14,21 +14,24 @@
 #include "support.h"
 
 #define STANDARD_MAX_MISCLASSIFIED_PERCENT 0.5
+#define BENCH_SIZE "--size 1280x720" /* make bench's frame size */
 
 static void dump_scene(const char *program, const char *scene, const char *flags, const char *dir) {
     assert_int_equal(support_dump(program, scene, flags, dir), 0);
 }
 
-/* Reference and shadow map of `scene`, compared over every object; the
- * dumps and the heat map (false-shadow and false-lit pixels) stay in
- * `reference` and `test` and `heatmap` when given. */
-static shadowdiff_result measure_dumps(const char *scene, const char *flags, const char *name, dump_frame *reference,
-                                       dump_frame *test, unsigned char **heatmap) {
-    char reference_dir[256], test_dir[256];
+/* Reference and shadow map of `scene` at `size` ("--size WxH", or "" for
+ * the tests' 640x360), compared over every object; the dumps and the heat
+ * map (false-shadow and false-lit pixels) stay in `reference` and `test`
+ * and `heatmap`. */
+static shadowdiff_result measure_dumps(const char *scene, const char *size, const char *flags, const char *name,
+                                       dump_frame *reference, dump_frame *test, unsigned char **heatmap) {
+    char reference_dir[256], test_dir[256], test_flags[512];
     snprintf(reference_dir, sizeof reference_dir, "out/test/shadowmap/%s_reference", name);
     snprintf(test_dir, sizeof test_dir, "out/test/shadowmap/%s", name);
-    dump_scene("raytrace", scene, "", reference_dir);
-    dump_scene("shadowmap", scene, flags, test_dir);
+    snprintf(test_flags, sizeof test_flags, "%s %s", size, flags);
+    dump_scene("raytrace", scene, size, reference_dir);
+    dump_scene("shadowmap", scene, test_flags, test_dir);
     assert_true(dump_read(reference, reference_dir));
     assert_true(dump_read(test, test_dir));
     *heatmap = malloc((size_t)reference->width * reference->height * 4);
@@ -42,14 +45,18 @@ static shadowdiff_result measure_dumps(const char *scene, const char *flags, con
     return r;
 }
 
-static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
+static shadowdiff_result measure_sized(const char *scene, const char *size, const char *flags, const char *name) {
     dump_frame reference, test;
     unsigned char *heatmap;
-    shadowdiff_result r = measure_dumps(scene, flags, name, &reference, &test, &heatmap);
+    shadowdiff_result r = measure_dumps(scene, size, flags, name, &reference, &test, &heatmap);
     free(heatmap);
     dump_frame_free(&reference);
     dump_frame_free(&test);
     return r;
+}
+
+static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
+    return measure_sized(scene, "", flags, name);
 }
 
 /* shadowdiff paints false-lit pixels pure blue in its heat map. */
@@ -115,29 +122,35 @@ static void test_acne_without_bias(void **state) {
     assert_true(r.false_shadow_percent > 1);
 }
 
-/* The two configurations tutorials teach (as in the benchmark's sweep),
- * each against our biases at the same map size and filter, so at the same
- * cost (same passes, same taps): ours must misclassify no more on any
- * standard scene and less over all of them. Their times are for `make
- * bench` to show. */
-static void test_our_bias_beats_textbook_at_equal_cost(void **state) {
+/* The two configurations tutorials teach, as in the benchmark's sweep and
+ * at its frame size (where the criterion is stated; at 640x360 the whole
+ * margin is a handful of pixels). The defaults must misclassify less than
+ * each on every standard scene (that they also take no more time is for
+ * `make bench` to show: its report says so per scene). And our biases
+ * against theirs at the same map size and filter, so at the same cost
+ * (same passes, same taps): ours must misclassify no more on any standard
+ * scene and less over all of them. */
+static void test_defaults_and_our_bias_beat_textbook(void **state) {
     (void)state;
     static const char *const pairs[][2] = {
         {"--map-size 1024 --filter pcf3",
          "--map-size 1024 --filter pcf3 --no-constant-bias --no-slope-bias --depth-bias-slope 0.05 "
-         "--depth-bias-min 0.005"},
+                    "--depth-bias-min 0.005"},
         {"--filter pcf3", "--filter pcf3 --no-constant-bias --slope-factor 1.25 --slope-units 1.75"},
     };
     static const char *const scenes[] = {"simple", "bunny", "teapot"};
     double ours_total[2] = {0}, textbook_total[2] = {0};
     for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[256], name[64];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
+        snprintf(name, sizeof name, "%s_defaults", scenes[i]);
+        shadowdiff_result defaults = measure_sized(path, BENCH_SIZE, "", name);
         for (size_t k = 0; k < sizeof pairs / sizeof *pairs; k++) {
-            char path[256], name[64];
-            snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
             snprintf(name, sizeof name, "%s_ours_%zu", scenes[i], k + 1);
-            shadowdiff_result ours = measure(path, pairs[k][0], name);
+            shadowdiff_result ours = measure_sized(path, BENCH_SIZE, pairs[k][0], name);
             snprintf(name, sizeof name, "%s_textbook_%zu", scenes[i], k + 1);
-            shadowdiff_result textbook = measure(path, pairs[k][1], name);
+            shadowdiff_result textbook = measure_sized(path, BENCH_SIZE, pairs[k][1], name);
+            assert_true(defaults.misclassified_percent < textbook.misclassified_percent);
             assert_true(ours.misclassified_percent <= textbook.misclassified_percent);
             ours_total[k] += ours.misclassified_percent;
             textbook_total[k] += textbook.misclassified_percent;
@@ -175,7 +188,7 @@ static void test_receiver_plane_reduces_partial_acne(void **state) {
 static double contact_gap(const char *flags, const char *name) {
     dump_frame reference, test;
     unsigned char *heatmap;
-    measure_dumps("tests/data/shadowmap_contact.json", flags, name, &reference, &test, &heatmap);
+    measure_dumps("tests/data/shadowmap_contact.json", "", flags, name, &reference, &test, &heatmap);
     double widest = 0;
     for (long i = 0; i < (long)reference.width * reference.height; i++) {
         if (reference.ids[i] != 0 || !false_lit(heatmap, i))
@@ -214,7 +227,7 @@ static void test_no_cube_seams(void **state) {
     dump_frame reference, test;
     unsigned char *heatmap;
     shadowdiff_result r =
-        measure_dumps("tests/data/shadowmap_cube_edges.json", "", "cube_edges", &reference, &test, &heatmap);
+        measure_dumps("tests/data/shadowmap_cube_edges.json", "", "", "cube_edges", &reference, &test, &heatmap);
     long on_edges = 0, false_lit_on_edges = 0;
     for (long i = 0; i < (long)reference.width * reference.height; i++) {
         if (reference.ids[i] < 0)
@@ -244,7 +257,7 @@ int main(void) {
         cmocka_unit_test(test_standard_scenes_within_bound),
         cmocka_unit_test(test_no_acne_at_any_elevation),
         cmocka_unit_test(test_acne_without_bias),
-        cmocka_unit_test(test_our_bias_beats_textbook_at_equal_cost),
+        cmocka_unit_test(test_defaults_and_our_bias_beat_textbook),
         cmocka_unit_test(test_receiver_plane_reduces_partial_acne),
         cmocka_unit_test(test_no_peter_panning_at_contact),
         cmocka_unit_test(test_no_cube_seams),

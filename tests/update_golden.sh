@@ -4,10 +4,19 @@
 set -eu
 cd "$(dirname "$0")/.."
 build=${BUILD:-build}
+golden() { # NAME TECHNIQUE SCENE [FLAGS...]
+    local name=$1 technique=$2 scene=$3
+    shift 3
+    "$build/$technique" --backend egl --size 640x360 --scene "assets/scenes/$scene.json" "$@" \
+        --screenshot "tests/golden/$name.png"
+    echo "tests/golden/$name.png"
+}
 for technique in planar shadowmap; do
     for scene in simple bunny teapot; do
-        "$build/$technique" --backend egl --size 640x360 --scene "assets/scenes/$scene.json" \
-            --screenshot "tests/golden/${technique}_$scene.png"
-        echo "tests/golden/${technique}_$scene.png"
+        golden "${technique}_$scene" "$technique" "$scene"
     done
+done
+# Lecture overlays (tests/test_render.c): a 2D map and a cube map.
+for scene in simple bunny; do
+    golden "shadowmap-overlay_$scene" shadowmap "$scene" --overlay all
 done
