@@ -517,43 +517,96 @@ bool mesh_weld(const mesh *m, mesh_topology *t) {
     return mesh_fail(NULL, "mesh_weld", "out of memory");
 }
 
-static int mesh_compare_edges(const void *a, const void *b) {
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return (x > y) - (x < y);
+typedef struct mesh_corner_key {
+    uint64_t edge;   /* smaller welded id << 32 | larger: both directions match */
+    uint32_t corner; /* index into m->indices: the edge runs from it to the next corner */
+} mesh_corner_key;
+
+static int mesh_compare_corner_keys(const void *a, const void *b) {
+    const mesh_corner_key *x = a, *y = b;
+    if (x->edge != y->edge) return (x->edge > y->edge) - (x->edge < y->edge);
+    return (x->corner > y->corner) - (x->corner < y->corner);
+}
+
+static uint32_t mesh_next_corner(uint32_t corner) { return corner % 3 == 2 ? corner - 2 : corner + 1; }
+
+bool mesh_edges_build(const mesh *m, const mesh_topology *t, mesh_edges *e) {
+    memset(e, 0, sizeof *e);
+    uint32_t corner_count = m->index_count / 3 * 3;
+    mesh_corner_key *keys = malloc((corner_count ? corner_count : 1) * sizeof *keys);
+    e->uses = malloc((corner_count ? corner_count : 1) * sizeof *e->uses);
+    e->edges = malloc((corner_count ? corner_count : 1) * sizeof *e->edges);
+    if (!keys || !e->uses || !e->edges) {
+        free(keys);
+        mesh_edges_free(e);
+        return mesh_fail(NULL, "mesh_edges_build", "out of memory");
+    }
+    for (uint32_t i = 0; i < corner_count; i++) {
+        uint64_t a = t->position_of_vertex[m->indices[i]];
+        uint64_t b = t->position_of_vertex[m->indices[mesh_next_corner(i)]];
+        keys[i] = (mesh_corner_key){a < b ? a << 32 | b : b << 32 | a, i};
+    }
+    qsort(keys, corner_count, sizeof *keys, mesh_compare_corner_keys);
+    e->closed = corner_count > 0;
+    for (uint32_t i = 0; i < corner_count;) {
+        uint32_t uses = 1;
+        while (i + uses < corner_count && keys[i + uses].edge == keys[i].edge) uses++;
+        mesh_edge *edge = &e->edges[e->edge_count++];
+        uint32_t first = keys[i].corner;
+        edge->a = m->indices[first];
+        edge->b = m->indices[mesh_next_corner(first)];
+        edge->first_use = i;
+        edge->use_count = uses;
+        int direction_sum = 0;
+        for (uint32_t k = 0; k < uses; k++) {
+            uint32_t corner = keys[i + k].corner;
+            bool same = t->position_of_vertex[m->indices[corner]] == t->position_of_vertex[edge->a];
+            e->uses[i + k] = (mesh_edge_use){corner, same ? 1 : -1};
+            direction_sum += same ? 1 : -1;
+        }
+        if (uses != 2 || direction_sum != 0) e->closed = false;
+        i += uses;
+    }
+    free(keys);
+    return true;
+}
+
+void mesh_edges_free(mesh_edges *e) {
+    free(e->edges);
+    free(e->uses);
+    memset(e, 0, sizeof *e);
 }
 
 mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t) {
     mesh_edge_counts counts = {0, 0, 0};
-    size_t edge_count = m->index_count / 3 * 3;
-    if (edge_count == 0) return counts;
-    uint64_t *edges = malloc(edge_count * sizeof *edges);
-    if (!edges) {
-        mesh_fail(NULL, "mesh_topology_count_edges", "out of memory");
-        return counts;
-    }
-    /* Edge i runs from corner i to the next corner of its triangle; as a key,
-     * the smaller welded id comes first so both directions match. */
-    for (size_t i = 0; i < edge_count; i++) {
-        size_t next = i % 3 == 2 ? i - 2 : i + 1;
-        uint64_t a = t->position_of_vertex[m->indices[i]];
-        uint64_t b = t->position_of_vertex[m->indices[next]];
-        edges[i] = a < b ? a << 32 | b : b << 32 | a;
-    }
-    qsort(edges, edge_count, sizeof *edges, mesh_compare_edges);
-    for (size_t i = 0; i < edge_count;) {
-        size_t uses = 1;
-        while (i + uses < edge_count && edges[i + uses] == edges[i]) uses++;
-        if (uses == 1) {
+    mesh_edges e;
+    if (!mesh_edges_build(m, t, &e)) return counts;
+    for (uint32_t i = 0; i < e.edge_count; i++) {
+        if (e.edges[i].use_count == 1) {
             counts.boundary++;
-        } else if (uses == 2) {
+        } else if (e.edges[i].use_count == 2) {
             counts.manifold++;
         } else {
             counts.non_manifold++;
         }
-        i += uses;
     }
-    free(edges);
+    mesh_edges_free(&e);
     return counts;
+}
+
+bool mesh_adjacency_indices(const mesh *m, const mesh_edges *e, uint32_t *out) {
+    if (!e->closed) return false;
+    for (uint32_t i = 0; i < e->edge_count; i++) {
+        const mesh_edge_use *u = &e->uses[e->edges[i].first_use];
+        for (int k = 0; k < 2; k++) {
+            /* Triangle t's edge runs from corner c to the next; after the
+             * corner c, the vertex of the other triangle off the edge. */
+            uint32_t t = u[k].corner / 3, c = u[k].corner % 3, other = u[1 - k].corner;
+            out[t * 6 + c * 2] = m->indices[u[k].corner];
+            out[t * 6 + c * 2 + 1] = m->indices[mesh_next_corner(mesh_next_corner(other))];
+        }
+    }
+    return true;
 }
 
 typedef bool (*mesh_triangle_test)(const mesh *m, const uint32_t corner[3], const void *context);

@@ -12,7 +12,8 @@
  * and edge-based techniques need: vertices that share a position (within a
  * tolerance relative to the mesh's size) get one id, so UV or normal seams
  * do not split edges. mesh_topology_count_edges classifies the welded edges
- * (boundary: used by one triangle, manifold: two, non-manifold: three+).
+ * (boundary: used by one triangle, manifold: two, non-manifold: three+);
+ * mesh_edges_build lists them with the triangles that use each.
  *
  * Errors: functions returning bool print one line "NAME: problem" to stderr
  * (or hand it to the handler set with mesh_set_error_handler) and return
@@ -83,5 +84,36 @@ void mesh_set_error_handler(mesh_error_handler handler, void *user_data);
 bool mesh_weld(const mesh *m, mesh_topology *t);
 mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t);
 void mesh_topology_free(mesh_topology *t);
+
+/* The edge table of the welded topology, for silhouettes: every welded edge
+ * once, with every triangle corner that starts it. A use's direction is +1
+ * where the triangle runs along the edge from a to b, -1 from b to a; a
+ * consistently oriented closed 2-manifold (`closed`) has exactly two uses
+ * per edge, one each way. a and b are the vertex indices of the first use,
+ * so drawing with them repeats the mesh's own positions bit for bit. */
+typedef struct mesh_edge_use {
+    uint32_t corner; /* index into m->indices; the triangle is corner / 3 */
+    int direction;
+} mesh_edge_use;
+
+typedef struct mesh_edge {
+    uint32_t a, b;                 /* vertex indices */
+    uint32_t first_use, use_count; /* into uses */
+} mesh_edge;
+
+typedef struct mesh_edges {
+    mesh_edge *edges;
+    mesh_edge_use *uses; /* 3 per triangle, grouped by edge */
+    uint32_t edge_count;
+    bool closed;
+} mesh_edges;
+
+bool mesh_edges_build(const mesh *m, const mesh_topology *t, mesh_edges *e);
+void mesh_edges_free(mesh_edges *e);
+
+/* Index buffer for GL_TRIANGLES_ADJACENCY (6 per triangle: each corner, then
+ * the vertex across the edge it starts). Only a closed mesh has one: false
+ * otherwise, out untouched. */
+bool mesh_adjacency_indices(const mesh *m, const mesh_edges *e, uint32_t *out);
 
 #endif

@@ -3,12 +3,14 @@
 extern const technique unshadowed_technique;
 extern const technique planar_technique;
 extern const technique shadowmap_technique;
+extern const technique volumes_technique;
 
 /* Keys 1-9 in the window follow this order; the benchmark finds its cost
  * floor, "unshadowed", by name. */
 const technique *const registry_techniques[] = {
     &planar_technique,
     &shadowmap_technique,
+    &volumes_technique,
     &unshadowed_technique,
 };
 const int registry_technique_count = (int)(sizeof registry_techniques / sizeof *registry_techniques);

@@ -1,5 +1,9 @@
 #include "support.h"
 
+#include <setjmp.h>
+#include <stdarg.h>
+#include <cmocka.h>
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -106,4 +110,37 @@ const char *support_release_stderr(void) {
     fclose(support_capture_file);
     support_capture_file = NULL;
     return captured;
+}
+
+shadowdiff_result support_measure_dumps(const char *program, const char *scene, const char *size, const char *flags,
+                                        const char *name, dump_frame *reference, dump_frame *test,
+                                        unsigned char **heatmap) {
+    char reference_dir[256], test_dir[256], test_flags[1024];
+    snprintf(reference_dir, sizeof reference_dir, "out/test/%s/%s_reference", program, name);
+    snprintf(test_dir, sizeof test_dir, "out/test/%s/%s", program, name);
+    snprintf(test_flags, sizeof test_flags, "%s %s", size, flags);
+    assert_int_equal(support_dump("raytrace", scene, size, reference_dir), 0);
+    assert_int_equal(support_dump(program, scene, test_flags, test_dir), 0);
+    assert_true(dump_read(reference, reference_dir));
+    assert_true(dump_read(test, test_dir));
+    *heatmap = malloc((size_t)reference->width * reference->height * 4);
+    assert_non_null(*heatmap);
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(reference, test, NULL, &r, *heatmap));
+    fprintf(stderr, "    %-26s %s: %ld compared, false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
+                    "misclassified %.4f %%\n",
+            name, flags, r.compared, r.false_shadow_percent, r.false_shadow, r.false_lit_percent, r.false_lit,
+            r.misclassified_percent);
+    return r;
+}
+
+shadowdiff_result support_measure(const char *program, const char *scene, const char *size, const char *flags,
+                                  const char *name) {
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result r = support_measure_dumps(program, scene, size, flags, name, &reference, &test, &heatmap);
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    return r;
 }

@@ -10,6 +10,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "dump.h"
+#include "shadowdiff.h"
+
 /* Golden-image tolerance: at most 0.1 % of pixels may differ by more than
  * 8/255 in any channel (rasterizers may round an edge pixel differently). */
 #define SUPPORT_TOLERANCE 8
@@ -30,6 +33,18 @@ bool support_have_command(const char *name);
 /* Runs `program --size 640x360 --scene SCENE FLAGS --dump DIR` (the
  * accuracy tests' size); returns its exit status. */
 int support_dump(const char *program, const char *scene, const char *flags, const char *dir);
+/* The ray-traced reference and PROGRAM's dump of `scene` at `size`
+ * ("--size WxH", or "" for 640x360) with `flags`, in
+ * out/test/PROGRAM/NAME_reference and out/test/PROGRAM/NAME, compared with
+ * shadowdiff's rules over every object; prints the figures. Fails the
+ * running cmocka test when a program fails. support_measure_dumps hands
+ * back the dumps and the heat map (red false shadow, blue false lit) for
+ * the caller to free. */
+shadowdiff_result support_measure_dumps(const char *program, const char *scene, const char *size, const char *flags,
+                                        const char *name, dump_frame *reference, dump_frame *test,
+                                        unsigned char **heatmap);
+shadowdiff_result support_measure(const char *program, const char *scene, const char *size, const char *flags,
+                                  const char *name);
 /* Sends stderr to a temporary file until support_release_stderr, which
  * returns what was written. cmocka reports failures on stderr too, so no
  * assertion may run in between. */

@@ -48,18 +48,20 @@ static void test_malformed_values(void **state) {
 static void test_bad_technique_parameters(void **state) {
     (void)state;
     char command[1024];
-    static const char *const cases[][3] = {
-        {"--map-size 3", "--map-size", "'3'"},
-        {"--filter blur", "--filter", "'blur'"},
-        {"--constant-texels -1", "--constant-texels", "'-1'"},
-        {"--normal-texels x", "--normal-texels", "'x'"},
+    static const char *const cases[][4] = {
+        {"shadowmap", "--map-size 3", "--map-size", "'3'"},
+        {"shadowmap", "--filter blur", "--filter", "'blur'"},
+        {"shadowmap", "--constant-texels -1", "--constant-texels", "'-1'"},
+        {"shadowmap", "--normal-texels x", "--normal-texels", "'x'"},
+        {"volumes", "--mode zmiddle", "--mode", "'zmiddle'"},
+        {"volumes", "--silhouette tpu", "--silhouette", "'tpu'"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        snprintf(command, sizeof command, "%s --backend egl --frames 1 %s", support_program("shadowmap"), cases[i][0]);
+        snprintf(command, sizeof command, "%s --backend egl --frames 1 %s", support_program(cases[i][0]), cases[i][1]);
         assert_int_equal(support_run(command, err, sizeof err), EXIT_USAGE);
         assert_int_equal(support_count_lines(err), 1);
-        assert_non_null(strstr(err, cases[i][1]));
         assert_non_null(strstr(err, cases[i][2]));
+        assert_non_null(strstr(err, cases[i][3]));
     }
 }
 

@@ -353,6 +353,93 @@ static void test_edge_counts_see_non_manifold_edges(void **state) {
     assert_int_equal(edges.manifold, 0);
 }
 
+static void build_edges(const mesh *m, mesh_edges *e) {
+    mesh_topology topology;
+    assert_true(mesh_weld(m, &topology));
+    assert_true(mesh_edges_build(m, &topology, e));
+    mesh_topology_free(&topology);
+}
+
+/* Each use names a triangle corner that starts the edge, running a -> b
+ * (+1) or b -> a (-1), by welded position. */
+static void assert_uses_match_corners(const mesh *m, const mesh_edges *e) {
+    uint32_t total = 0;
+    for (uint32_t i = 0; i < e->edge_count; i++) {
+        const float *a = m->vertices[e->edges[i].a].position, *b = m->vertices[e->edges[i].b].position;
+        for (uint32_t k = 0; k < e->edges[i].use_count; k++, total++) {
+            const mesh_edge_use *u = &e->uses[e->edges[i].first_use + k];
+            uint32_t next = u->corner % 3 == 2 ? u->corner - 2 : u->corner + 1;
+            const float *from = m->vertices[m->indices[u->corner]].position;
+            const float *to = m->vertices[m->indices[next]].position;
+            assert_true(u->direction == 1 || u->direction == -1);
+            assert_memory_equal(from, u->direction > 0 ? a : b, sizeof(float[3]));
+            assert_memory_equal(to, u->direction > 0 ? b : a, sizeof(float[3]));
+        }
+    }
+    assert_int_equal(total, m->index_count);
+}
+
+/* A closed box: 18 welded edges, two uses each, one each way; its
+ * adjacency names, across each edge, the other triangle's third vertex. */
+static void test_edge_table_of_closed_box(void **state) {
+    (void)state;
+    mesh m;
+    mesh_edges e;
+    assert_true(mesh_make_box(&m, 1, 2, 3));
+    build_edges(&m, &e);
+    assert_true(e.closed);
+    assert_int_equal(e.edge_count, 18);
+    assert_uses_match_corners(&m, &e);
+    uint32_t *adjacency = malloc(m.index_count * 2 * sizeof *adjacency);
+    assert_non_null(adjacency);
+    assert_true(mesh_adjacency_indices(&m, &e, adjacency));
+    for (uint32_t t = 0; t < m.index_count / 3; t++) {
+        for (int c = 0; c < 3; c++) {
+            assert_int_equal(adjacency[t * 6 + c * 2], m.indices[t * 3 + c]);
+            /* The vertex across is off the edge and on neither end. */
+            const float *across = m.vertices[adjacency[t * 6 + c * 2 + 1]].position;
+            for (int k = 0; k < 3; k++)
+                if (k != (c + 2) % 3)
+                    assert_memory_not_equal(across, m.vertices[m.indices[t * 3 + k]].position, sizeof(float[3]));
+        }
+    }
+    free(adjacency);
+    mesh_edges_free(&e);
+    mesh_free(&m);
+}
+
+/* Open and non-manifold meshes are not closed and have no adjacency; an
+ * edge keeps every triangle that uses it. */
+static void test_edge_table_of_open_and_non_manifold_meshes(void **state) {
+    (void)state;
+    mesh_vertex vertices[] = {
+        {{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
+        {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}},
+    };
+    uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4};
+    mesh book = {vertices, indices, 5, 9, {-1, 0, 0}, {1, 1, 1}};
+    mesh_edges e;
+    build_edges(&book, &e);
+    assert_false(e.closed);
+    assert_int_equal(e.edge_count, 7);
+    assert_uses_match_corners(&book, &e);
+    uint32_t spine_uses = 0;
+    for (uint32_t i = 0; i < e.edge_count; i++)
+        spine_uses = e.edges[i].use_count > spine_uses ? e.edges[i].use_count : spine_uses;
+    assert_int_equal(spine_uses, 3);
+    uint32_t adjacency[18] = {0};
+    assert_false(mesh_adjacency_indices(&book, &e, adjacency));
+    mesh_edges_free(&e);
+
+    mesh teapot;
+    assert_true(mesh_load_file(&teapot, "assets/teapot.obj"));
+    build_edges(&teapot, &e);
+    assert_false(e.closed);
+    assert_uses_match_corners(&teapot, &e);
+    mesh_edges_free(&e);
+    mesh_free(&teapot);
+}
+
 static void test_sanitize_repairs_hand_made_mesh(void **state) {
     (void)state;
     /* A good triangle with a NaN normal, one touching a NaN vertex, one with
@@ -612,6 +699,8 @@ int main(void) {
         cmocka_unit_test(test_generators_at_extreme_scales),
         cmocka_unit_test(test_weld_joins_copies_within_tolerance),
         cmocka_unit_test(test_edge_counts_see_non_manifold_edges),
+        cmocka_unit_test(test_edge_table_of_closed_box),
+        cmocka_unit_test(test_edge_table_of_open_and_non_manifold_meshes),
         cmocka_unit_test(test_sanitize_repairs_hand_made_mesh),
         cmocka_unit_test(test_sanitize_of_nothing_is_an_error),
         cmocka_unit_test(test_load_bunny),

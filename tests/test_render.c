@@ -21,7 +21,7 @@
 #define SIZE "640x360"
 
 static const char *const scenes[] = {"simple", "bunny", "teapot"};
-static const char *const techniques[] = {"planar", "shadowmap"};
+static const char *const techniques[] = {"planar", "shadowmap", "volumes"};
 static char err[16384];
 
 /* Renders `scene_file` with build/TECHNIQUE and extra flags to
@@ -150,6 +150,19 @@ static void test_shadowmap_overlays_match_golden(void **state) {
     }
 }
 
+/* Each shadow-volume overlay draws into the picture. */
+static void test_volumes_overlays_show(void **state) {
+    (void)state;
+    static const char *const overlays[] = {"volumes", "silhouettes", "counts"};
+    for (size_t i = 0; i < sizeof overlays / sizeof *overlays; i++) {
+        char flags[64], name[64];
+        snprintf(flags, sizeof flags, "--overlay %s", overlays[i]);
+        snprintf(name, sizeof name, "volumes_overlay_%s", overlays[i]);
+        render_with("volumes", "egl", "assets/scenes/teapot.json", flags, name);
+        assert_true(compare_with_golden_of("volumes", "teapot", name) > SUPPORT_MAX_DIFFERING);
+    }
+}
+
 /* The GLFW window, under a virtual X server, shows the same picture. */
 static void test_window_matches_golden(void **state) {
     (void)state;
@@ -191,6 +204,7 @@ int main(void) {
         cmocka_unit_test(test_each_fix_shows_when_off),
         cmocka_unit_test(test_shadowmap_without_bias_shows_acne),
         cmocka_unit_test(test_shadowmap_overlays_match_golden),
+        cmocka_unit_test(test_volumes_overlays_show),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
     };

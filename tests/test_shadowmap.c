@@ -16,47 +16,17 @@
 #define STANDARD_MAX_MISCLASSIFIED_PERCENT 0.5
 #define BENCH_SIZE "--size 1280x720" /* make bench's frame size */
 
-static void dump_scene(const char *program, const char *scene, const char *flags, const char *dir) {
-    assert_int_equal(support_dump(program, scene, flags, dir), 0);
-}
-
-/* Reference and shadow map of `scene` at `size` ("--size WxH", or "" for
- * the tests' 640x360), compared over every object; the dumps and the heat
- * map (false-shadow and false-lit pixels) stay in `reference` and `test`
- * and `heatmap`. */
 static shadowdiff_result measure_dumps(const char *scene, const char *size, const char *flags, const char *name,
                                        dump_frame *reference, dump_frame *test, unsigned char **heatmap) {
-    char reference_dir[256], test_dir[256], test_flags[512];
-    snprintf(reference_dir, sizeof reference_dir, "out/test/shadowmap/%s_reference", name);
-    snprintf(test_dir, sizeof test_dir, "out/test/shadowmap/%s", name);
-    snprintf(test_flags, sizeof test_flags, "%s %s", size, flags);
-    dump_scene("raytrace", scene, size, reference_dir);
-    dump_scene("shadowmap", scene, test_flags, test_dir);
-    assert_true(dump_read(reference, reference_dir));
-    assert_true(dump_read(test, test_dir));
-    *heatmap = malloc((size_t)reference->width * reference->height * 4);
-    assert_non_null(*heatmap);
-    shadowdiff_result r;
-    assert_true(shadowdiff_compare(reference, test, NULL, &r, *heatmap));
-    fprintf(stderr, "    %-26s %s: %ld compared, false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
-                    "misclassified %.4f %%\n",
-            name, flags, r.compared, r.false_shadow_percent, r.false_shadow, r.false_lit_percent, r.false_lit,
-            r.misclassified_percent);
-    return r;
+    return support_measure_dumps("shadowmap", scene, size, flags, name, reference, test, heatmap);
 }
 
 static shadowdiff_result measure_sized(const char *scene, const char *size, const char *flags, const char *name) {
-    dump_frame reference, test;
-    unsigned char *heatmap;
-    shadowdiff_result r = measure_dumps(scene, size, flags, name, &reference, &test, &heatmap);
-    free(heatmap);
-    dump_frame_free(&reference);
-    dump_frame_free(&test);
-    return r;
+    return support_measure("shadowmap", scene, size, flags, name);
 }
 
 static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
-    return measure_sized(scene, "", flags, name);
+    return support_measure("shadowmap", scene, "", flags, name);
 }
 
 /* shadowdiff paints false-lit pixels pure blue in its heat map. */

@@ -11,7 +11,7 @@ golden() { # NAME TECHNIQUE SCENE [FLAGS...]
         --screenshot "tests/golden/$name.png"
     echo "tests/golden/$name.png"
 }
-for technique in planar shadowmap; do
+for technique in planar shadowmap volumes; do
     for scene in simple bunny teapot; do
         golden "${technique}_$scene" "$technique" "$scene"
     done
