@@ -73,7 +73,7 @@ demo: $(PROGRAMS)
 	@if [ -n "$$DISPLAY$$WAYLAND_DISPLAY" ]; then $(BUILD)/shadows; else $(MAKE) --no-print-directory gallery; fi
 
 gallery: $(PROGRAMS)
-	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES)
+	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json
 
 # The suite runs twice: plain, then built with ASan+UBSan (build-san/).
 # `make test SANITIZE=1` runs only the sanitizer pass.

@@ -66,7 +66,8 @@ static void app_usage(FILE *out) {
             "  --technique NAME                which technique to start with\n"
             "  --animate                       turn the lights about the camera target over time\n"
             "  --gallery DIR SCENE...          every technique on every scene, to DIR/TECH_SCENE.png\n"
-            "  --verbose                       print the backend and GL renderer\n"
+            "  --verbose                       print the backend and GL renderer, and at the end\n"
+            "                                  the technique's state line (the HUD's)\n"
             "  --help                          this text\n",
             app.program);
     fprintf(out, "techniques (keys 1-9 in the window):\n");
@@ -281,6 +282,16 @@ static bool app_run_gallery(void) {
             app_technique()->destroy();
             if (ok)
                 printf("%s\n", path);
+            const technique *lecture = app.techniques[t];
+            if (ok && lecture->gallery_config) {
+                snprintf(path, sizeof path, "%s/%s-lecture_%s.png", app.gallery_dir, lecture->name, name);
+                ok = technique_apply_config(lecture, lecture->gallery_config) && app_start_technique(t) &&
+                     app_run_headless(1, path);
+                app_technique()->destroy();
+                ok = technique_apply_config(lecture, "") && ok;
+                if (ok)
+                    printf("%s\n", path);
+            }
         }
         app_unload_scene();
         if (!ok)
@@ -458,6 +469,11 @@ static bool app_run(void) {
         else if (ok)
             ok = app_run_headless(app.frames, app.screenshot);
         ok = ok && (!app.dump_dir || app_dump(app.dump_dir));
+        if (ok && app.verbose && app_technique()->describe) {
+            char line[512];
+            app_technique()->describe(line, sizeof line);
+            fprintf(stderr, "%s: %s\n", app_technique()->name, line);
+        }
         app_technique()->destroy();
         app_unload_scene();
     }

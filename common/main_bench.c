@@ -53,7 +53,7 @@ static struct {
     const char *scenes[16];
     char scene_names[16][128];
     int scene_count;
-    char default_scenes[3][PATH_MAX];
+    char default_scenes[4][PATH_MAX]; /* the standard scenes */
     char shader_dir[PATH_MAX];
     /* run */
     context ctx;
@@ -71,7 +71,7 @@ static struct {
 static void bench_usage(void) {
     printf("usage: bench [flags] [SCENE.json...]\n"
            "Times every technique over its parameter sweep and measures its error against the\n"
-           "ray-traced reference, on each scene (default: the standard scenes).\n"
+           "ray-traced reference, on each scene (default: the standard scenes and long_view).\n"
            "  --out DIR            where results go (out/bench)\n"
            "  --size WxH           frame size (1280x720; --quick: 320x180)\n"
            "  --frames N           timed frames per configuration, after warm-up (30; --quick: 5)\n"
@@ -462,14 +462,16 @@ int main(int argc, char **argv) {
     if (!bench.shader_dir[0])
         path_in_project("shaders", bench.shader_dir, sizeof bench.shader_dir);
     shader_set_directory(bench.shader_dir);
-    static const char *const standard[] = {"simple", "bunny", "teapot"};
-    for (int i = 0; bench.scene_count == 0 && i < 3; i++) {
+    /* The standard scenes, and long_view, where perspective aliasing is. */
+    static const char *const standard[] = {"simple", "bunny", "teapot", "long_view"};
+    enum { standard_count = sizeof standard / sizeof *standard };
+    for (int i = 0; bench.scene_count == 0 && i < standard_count; i++) {
         char relative[64];
         snprintf(relative, sizeof relative, "assets/scenes/%s.json", standard[i]);
         path_in_project(relative, bench.default_scenes[i], sizeof bench.default_scenes[i]);
     }
     if (bench.scene_count == 0)
-        for (int i = 0; i < 3; i++)
+        for (int i = 0; i < standard_count; i++)
             bench.scenes[bench.scene_count++] = bench.default_scenes[i];
     const context_settings settings = {.backend = CONTEXT_AUTO, .verbose = bench.verbose};
     if (!context_create(&bench.ctx, &settings))

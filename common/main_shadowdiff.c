@@ -16,6 +16,7 @@ typedef struct main_options {
     const char *program;
     const char *reference_dir, *test_dir;
     const char *heatmap_path, *receiver;
+    int grazing_degrees;
     bool json;
 } main_options;
 
@@ -29,6 +30,8 @@ static void main_usage(const char *program) {
            "                      they agree, dark grey not compared, black no surface\n"
            "  --json              one JSON object on stdout instead of text\n"
            "  --receiver NAME     only pixels of that object\n"
+           "  --grazing DEG       also leave out surfaces within DEG degrees (0..45) of\n"
+           "                      edge-on to the light (0): for sweeps of light directions\n"
            "  --help              this text\n"
            "A pixel is compared where both see a surface at the same depth (0.1 %%) and the\n"
            "reference surface faces the light; lit means visibility >= 0.5. Percentages\n"
@@ -38,7 +41,7 @@ static void main_usage(const char *program) {
 
 /* Returns 0 to run, -1 after --help, or an exit status. */
 static int main_parse_flags(int argc, char **argv, main_options *o) {
-    static const char *const with_value[] = {"--heatmap", "--receiver", NULL};
+    static const char *const with_value[] = {"--heatmap", "--receiver", "--grazing", NULL};
     flags_cursor c = {.program = o->program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
     const char *name, *value;
     int status, positional = 0;
@@ -56,6 +59,9 @@ static int main_parse_flags(int argc, char **argv, main_options *o) {
             o->heatmap_path = value;
         } else if (strcmp(name, "--receiver") == 0) {
             o->receiver = value;
+        } else if (strcmp(name, "--grazing") == 0) {
+            if (!flags_parse_int(value, 0, 45, &o->grazing_degrees))
+                return flags_usage_error(o->program, "--grazing takes whole degrees 0..45, got", value);
         } else if (strcmp(name, "--json") == 0) {
             o->json = true;
         } else {
@@ -112,7 +118,11 @@ static bool main_run(const main_options *o) {
     size_t heatmap_bytes = (size_t)reference.width * (size_t)reference.height * 4;
     unsigned char *heatmap = o->heatmap_path ? malloc(heatmap_bytes) : NULL;
     const shadowdiff_settings settings = {
-        .receiver = o->receiver, .reference_name = o->reference_dir, .test_name = o->test_dir};
+        .receiver = o->receiver,
+        .reference_name = o->reference_dir,
+        .test_name = o->test_dir,
+        .grazing_degrees = o->grazing_degrees,
+    };
     shadowdiff_result result;
     bool ok = !o->heatmap_path || heatmap;
     if (!ok)

@@ -77,25 +77,30 @@ static void shadowdiff_print_unknown_receiver(const dump_frame *d, const char *d
 }
 
 /* light.xyz - w * position is the direction towards the light for both a
- * point (w = 1) and a directional light (w = 0); only the sign of N . L
- * matters, so it needs no normalizing. */
-static bool shadowdiff_faces_light(const dump_frame *d, size_t i) {
+ * point (w = 1) and a directional light (w = 0). */
+static bool shadowdiff_faces_light(const dump_frame *d, size_t i, double min_cosine) {
     const float *n = d->normal + 3 * i, *p = d->position + 3 * i;
-    double n_dot_l = 0;
-    for (int k = 0; k < 3; k++)
-        n_dot_l += (double)n[k] * ((double)d->light[k] - (double)d->light[3] * p[k]);
-    return n_dot_l > 0;
+    double n_dot_l = 0, n_length = 0, l_length = 0;
+    for (int k = 0; k < 3; k++) {
+        double l = (double)d->light[k] - (double)d->light[3] * p[k];
+        n_dot_l += (double)n[k] * l;
+        n_length += (double)n[k] * n[k];
+        l_length += l * l;
+    }
+    return n_dot_l > min_cosine * sqrt(n_length * l_length);
 }
 
 /* Ids stay floats here: a damaged dump may hold values no int can. */
-static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, size_t i, int receiver) {
+static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, size_t i, int receiver,
+                                   double min_cosine) {
     double r_depth = r->depth[i], t_depth = t->depth[i];
     return r->ids[i] >= 0 && t->ids[i] >= 0 && fabs(t_depth - r_depth) <= SHADOWDIFF_DEPTH_TOLERANCE * r_depth &&
-           shadowdiff_faces_light(r, i) && (receiver < 0 || (r->ids[i] == receiver && t->ids[i] == receiver));
+           shadowdiff_faces_light(r, i, min_cosine) && (receiver < 0 || (r->ids[i] == receiver && t->ids[i] == receiver));
 }
 
-static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_frame *t, size_t i, int receiver) {
-    if (!shadowdiff_is_compared(r, t, i, receiver))
+static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_frame *t, size_t i, int receiver,
+                                            double min_cosine) {
+    if (!shadowdiff_is_compared(r, t, i, receiver, min_cosine))
         return r->ids[i] < 0 ? SHADOWDIFF_PIXEL_NO_SURFACE : SHADOWDIFF_PIXEL_NOT_COMPARED;
     bool r_lit = r->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD, t_lit = t->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD;
     if (r_lit && !t_lit)
@@ -138,10 +143,10 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         return false;
     }
     *out = (shadowdiff_result){0};
-    double error_sum = 0;
+    double error_sum = 0, min_cosine = sin(s.grazing_degrees * (3.14159265358979 / 180));
     size_t n = (size_t)reference->width * (size_t)reference->height;
     for (size_t i = 0; i < n; i++) {
-        shadowdiff_pixel pixel = shadowdiff_classify(reference, test, i, receiver);
+        shadowdiff_pixel pixel = shadowdiff_classify(reference, test, i, receiver, min_cosine);
         if (pixel >= SHADOWDIFF_PIXEL_AGREES) {
             out->compared++;
             out->false_shadow += pixel == SHADOWDIFF_PIXEL_FALSE_SHADOW;

@@ -12,11 +12,16 @@
  *   - both dumps see a surface there (ids >= 0 in both);
  *   - their depths agree within 0.1 %: |d_test - d_ref| <= 0.001 * d_ref
  *     (otherwise they see different surfaces, e.g. at a silhouette);
- *   - the reference's surface faces the light: N . L > 0, N the reference
- *     normal, L towards the light from the reference position
+ *   - the reference's surface faces the light: N . L > sin(grazing), N the
+ *     reference normal, L towards the light from the reference position
  *     (light.xyz - position for a point or spot light, w = 1; light.xyz
- *     for a directional one, w = 0). A surface turned away is dark by
- *     shading alone, whatever a technique decides there;
+ *     for a directional one, w = 0), both unit; grazing is 0 unless the
+ *     settings say otherwise. A surface turned away is dark by shading
+ *     alone, whatever a technique decides there. A surface within a few
+ *     degrees of edge-on takes almost no light and is a silhouette seen from
+ *     the light, where a shadow decision is ill-conditioned for every
+ *     technique; sweeps of light directions, which meet such surfaces by
+ *     the dozen, may leave them out with `grazing`;
  *   - with a receiver: both ids are that object's index.
  *
  * A compared pixel is lit where its visibility is >= 0.5. It is a
@@ -50,6 +55,7 @@ typedef struct shadowdiff_settings {
     const char *receiver;       /* object name; NULL: every object */
     const char *reference_name; /* for messages (the dump directory); NULL: "reference" */
     const char *test_name;      /* NULL: "test" */
+    double grazing_degrees;     /* also skip surfaces within this of edge-on to the light */
 } shadowdiff_settings;
 
 typedef struct shadowdiff_result {

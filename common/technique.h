@@ -75,6 +75,10 @@ typedef struct technique {
     void (*destroy)(void);
     /* Optional: one line of state for the HUD (e.g. a fitted range). */
     void (*describe)(char *out, size_t size);
+    /* Optional: the technique's own flags for a second gallery picture,
+     * NAME-lecture_SCENE.png (an overlay for lectures), taken from its
+     * defaults plus these. */
+    const char *gallery_config;
 } technique;
 
 /* Applies one of the technique's own flags: NAME is "--no-X" for a toggle,

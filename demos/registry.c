@@ -3,6 +3,7 @@
 extern const technique unshadowed_technique;
 extern const technique planar_technique;
 extern const technique shadowmap_technique;
+extern const technique psm_technique;
 extern const technique volumes_technique;
 
 /* Keys 1-9 in the window follow this order; the benchmark finds its cost
@@ -10,6 +11,7 @@ extern const technique volumes_technique;
 const technique *const registry_techniques[] = {
     &planar_technique,
     &shadowmap_technique,
+    &psm_technique,
     &volumes_technique,
     &unshadowed_technique,
 };

@@ -14,8 +14,9 @@
  *                filtering so that kernels cross face edges
  *
  * Fitting: each frame the map's frustum is fitted to the receivers the
- * camera can see (their boxes cut by the camera frustum's box) and to the
- * casters whose shadow can reach them, even casters outside the view; the
+ * camera can see (the part of their boxes inside the camera's frustum) and
+ * to the casters whose shadow can reach them, even casters outside the
+ * view; the
  * tighter the depth range, the more of the depth buffer's precision is
  * spent where shadows are decided. The HUD shows the range.
  *
@@ -49,7 +50,6 @@
  * a hash of the pixel, so frames stay deterministic; three texels
  * misclassified least of 2 to 6 on the standard scenes).
  */
-#include <GLFW/glfw3.h>
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -57,158 +57,140 @@
 #include <string.h>
 
 #include "context.h"
-#include "technique.h"
+#include "shadowmap.h"
 
 #define SHADOWMAP_POISSON_TEXELS 3
 #define SHADOWMAP_NEAR_RATIO 1e-3f /* nearest near plane, as a fraction of far */
 
-typedef struct shadowmap_settings {
-    int map_size; /* choice */
-    int filter;   /* choice */
-    int depth;    /* choice */
-    int kernel_depth; /* choice */
-    int overlay;      /* choice */
-    bool no_constant_bias, no_slope_bias;
-    float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
-    float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
-} shadowmap_settings;
-
-static const char *const shadowmap_sizes[] = {"2048", "256", "512", "1024", "4096", NULL};
-static const char *const shadowmap_filters[] = {"poisson", "none", "hw", "pcf3", "pcf5", "pcf7", NULL};
-static const char *const shadowmap_depths[] = {"24", "32f", NULL};
-static const char *const shadowmap_kernel_depths[] = {"centre", "receiver-plane", NULL};
-static const char *const shadowmap_overlays[] = {"none", "all", "texels", "frustum", "map", NULL};
-enum { SHADOWMAP_OVERLAY_NONE, SHADOWMAP_OVERLAY_ALL, SHADOWMAP_OVERLAY_TEXELS, SHADOWMAP_OVERLAY_FRUSTUM,
-       SHADOWMAP_OVERLAY_MAP };
+const char *const shadowmap_sizes[] = {"2048", "256", "512", "1024", "4096", NULL};
+const char *const shadowmap_filters[] = {"poisson", "none", "hw", "pcf3", "pcf5", "pcf7", NULL};
+const char *const shadowmap_depths[] = {"24", "32f", NULL};
+const char *const shadowmap_kernel_depths[] = {"centre", "receiver-plane", NULL};
+static const char *const shadowmap_overlays[] = {SHADOWMAP_OVERLAY_NAMES, NULL};
 enum { SHADOWMAP_FILTER_POISSON, SHADOWMAP_FILTER_NONE, SHADOWMAP_FILTER_HW, SHADOWMAP_FILTER_PCF3,
        SHADOWMAP_FILTER_PCF5, SHADOWMAP_FILTER_PCF7 };
 
-/* What one light's map was fitted to, for the camera pass and the HUD. */
-typedef struct shadowmap_light {
-    unsigned texture;
-    bool cube;
-    int size, depth, filter; /* what the texture was made with */
-    mat4 view_projection[6]; /* one, or one per cube face */
-    float near_plane, far_plane, texel_scale;
-    bool orthographic;
-} shadowmap_light;
-
-/* A program and its uniform locations, found once when it is loaded rather
- * than by name every frame (-1 where the program has no such uniform, which
- * glUniform ignores). */
-typedef struct shadowmap_program {
-    render_program program;
-    int map, light, filter, receiver_plane, show_texels, kernel, map_size, constant_bias, normal_offset, depth_bias,
-        light_origin, near_plane, far_plane, light_matrix, orthographic, texel_scale, light_axis, color, cube_map, cube;
-} shadowmap_program;
-
 static struct {
     shadowmap_settings settings;
-    render_program depth;
-    shadowmap_program camera_2d, camera_cube, lines, inset;
-    unsigned framebuffer, overlay_vao, overlay_buffer;
-    shadowmap_light lights[SCENE_MAX_LIGHTS];
+    shadowmap_maps maps;
 } shadowmap;
 
-enum {
-    SHADOWMAP_PARAM_CONSTANT = 7,
-    SHADOWMAP_PARAM_SLOPE,
-    SHADOWMAP_PARAM_UNITS,
-    SHADOWMAP_PARAM_NORMAL,
-    SHADOWMAP_PARAM_DEPTH_SLOPE,
-    SHADOWMAP_PARAM_DEPTH_MIN,
+static const technique_param shadowmap_params[] = {
+    SHADOWMAP_PARAMS(shadowmap.settings),
+    {"overlay", "for lectures: texel boundaries on receivers, the light frustum, the map as an inset, texel size on "
+                "screen",
+     GLFW_KEY_V, TECHNIQUE_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
 };
 
-static const technique_param shadowmap_params[] = {
-    {"map-size", "texels on a side", GLFW_KEY_M, TECHNIQUE_CHOICE, .index = &shadowmap.settings.map_size,
-     .choices = shadowmap_sizes},
-    {"filter", "what reads the map", GLFW_KEY_F, TECHNIQUE_CHOICE, .index = &shadowmap.settings.filter,
-     .choices = shadowmap_filters},
-    {"depth", "depth format: 24-bit or 32-bit float", GLFW_KEY_D, TECHNIQUE_CHOICE,
-     .index = &shadowmap.settings.depth, .choices = shadowmap_depths},
-    {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, TECHNIQUE_TOGGLE,
-     .disabled = &shadowmap.settings.no_constant_bias},
-    {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, TECHNIQUE_TOGGLE,
-     .disabled = &shadowmap.settings.no_slope_bias},
-    {"kernel-depth", "what each kernel tap compares: the centre's depth, or the receiver plane's there",
-     GLFW_KEY_P, TECHNIQUE_CHOICE, .index = &shadowmap.settings.kernel_depth, .choices = shadowmap_kernel_depths},
-    {"overlay", "for lectures: texel boundaries on receivers, the light frustum, the map as an inset", GLFW_KEY_V,
-     TECHNIQUE_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
-    [SHADOWMAP_PARAM_CONSTANT] = {"constant-texels", "constant bias, in map texels of world distance", 0,
-                                  TECHNIQUE_NUMBER, .number = &shadowmap.settings.constant_texels,
-                                  .fallback = 1.0f, .min = 0.01f, .max = 64},
-    [SHADOWMAP_PARAM_SLOPE] = {"slope-factor", "slope-scaled bias: glPolygonOffset factor", 0, TECHNIQUE_NUMBER,
-                               .number = &shadowmap.settings.slope_factor, .fallback = 1.5f, .min = 0.01f, .max = 64},
-    [SHADOWMAP_PARAM_UNITS] = {"slope-units", "slope-scaled bias: glPolygonOffset units", 0, TECHNIQUE_NUMBER,
-                               .number = &shadowmap.settings.slope_units, .fallback = 1, .min = 0.01f, .max = 64},
-    /* Off by default: on the standard scenes it costs accuracy at contact
-     * shadows and the other two already keep the acne sweep clean. */
-    [SHADOWMAP_PARAM_NORMAL] = {"normal-texels", "normal offset, in map texels (0: off)", 0, TECHNIQUE_NUMBER,
-                                .number = &shadowmap.settings.normal_texels, .fallback = 0, .min = 0, .max = 64},
-    /* For comparison only: the bias popular tutorials subtract from the
-     * map depth, max(slope (1 - N.L), min), whose size in world units
-     * changes with the light's depth range. */
-    [SHADOWMAP_PARAM_DEPTH_SLOPE] = {"depth-bias-slope", "tutorial bias: slope, in map depth (0: off)", 0,
-                                     TECHNIQUE_NUMBER, .number = &shadowmap.settings.depth_bias_slope,
-                                     .fallback = 0, .min = 0, .max = 1},
-    [SHADOWMAP_PARAM_DEPTH_MIN] = {"depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0,
-                                   TECHNIQUE_NUMBER, .number = &shadowmap.settings.depth_bias_min, .fallback = 0,
-                                   .min = 0, .max = 1},
-};
+static float shadowmap_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
 /* ---- fitting ---- */
 
-static void shadowmap_corners(const vec3 lo, const vec3 hi, vec3 out[8]) {
+void shadowmap_corners(const float lo[3], const float hi[3], float out[8][3]) {
     for (int c = 0; c < 8; c++)
         glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, out[c]);
 }
 
-/* The points shadows are decided for: the corners of every receiver's box
- * cut by the box of the camera's frustum. Returns how many (8 a box). */
-static int shadowmap_receiver_points(const technique_frame *f, vec3 *points, int max_points) {
+static bool shadowmap_in_frustum(const mat4 view_projection, const float p[3]) {
+    vec4 clip, h = {p[0], p[1], p[2], 1};
+    glm_mat4_mulv((vec4 *)view_projection, h, clip);
+    float w = clip[3] * (1 + 1e-4f);
+    return clip[3] > 0 && fabsf(clip[0]) <= w && fabsf(clip[1]) <= w && fabsf(clip[2]) <= w;
+}
+
+/* Inside lo..hi, give or take a ten-thousandth of its largest side (a
+ * plane's box is flat: its own thickness is no measure). */
+static bool shadowmap_in_box(const vec3 lo, const vec3 hi, const float p[3]) {
+    float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+    for (int k = 0; k < 3; k++) {
+        float margin = 1e-4f * size + 1e-6f * fmaxf(fabsf(lo[k]), fabsf(hi[k]));
+        if (p[k] < lo[k] - margin || p[k] > hi[k] + margin)
+            return false;
+    }
+    return true;
+}
+
+/* The corners of the part of the box lo..hi that the camera's frustum
+ * holds: the vertices of the meeting of two convex bodies are the corners
+ * of each inside the other and the crossings of each one's edges with the
+ * other's faces. */
+static int shadowmap_visible_part(const mat4 view_projection, const vec3 frustum[8], const vec3 lo, const vec3 hi,
+                                  float (*out)[3], int capacity) {
+    vec3 box[8];
+    shadowmap_corners(lo, hi, box);
+    int n = 0;
+    for (int c = 0; c < 8 && n < capacity; c++) {
+        if (shadowmap_in_box(lo, hi, frustum[c]))
+            glm_vec3_copy((float *)frustum[c], out[n++]);
+        if (n < capacity && shadowmap_in_frustum(view_projection, box[c]))
+            glm_vec3_copy(box[c], out[n++]);
+    }
+    for (int a = 0; a < 8; a++) {
+        for (int bit = 1; bit < 8; bit <<= 1) {
+            if (a & bit)
+                continue;
+            /* The frustum's edge a..a|bit across the box's six planes. */
+            const float *fa = frustum[a], *fb = frustum[a | bit];
+            for (int k = 0; k < 6 && n < capacity; k++) {
+                float plane = k & 1 ? hi[k / 2] : lo[k / 2], da = fa[k / 2] - plane, db = fb[k / 2] - plane;
+                if (da * db >= 0)
+                    continue;
+                glm_vec3_lerp((float *)fa, (float *)fb, da / (da - db), out[n]);
+                out[n][k / 2] = plane;
+                if (shadowmap_in_box(lo, hi, out[n]))
+                    n++;
+            }
+            /* The box's edge a..a|bit across the frustum's six planes:
+             * clip x, y or z minus or plus w, linear along the edge. */
+            vec4 ca, cb, ha = {box[a][0], box[a][1], box[a][2], 1}, hb = {box[a | bit][0], box[a | bit][1],
+                                                                         box[a | bit][2], 1};
+            glm_mat4_mulv((vec4 *)view_projection, ha, ca);
+            glm_mat4_mulv((vec4 *)view_projection, hb, cb);
+            for (int k = 0; k < 6 && n < capacity; k++) {
+                float sign = k & 1 ? -1.0f : 1.0f, ga = ca[k / 2] * sign - ca[3], gb = cb[k / 2] * sign - cb[3];
+                if (ga * gb >= 0)
+                    continue;
+                glm_vec3_lerp(box[a], box[a | bit], ga / (ga - gb), out[n]);
+                if (shadowmap_in_frustum(view_projection, out[n]))
+                    n++;
+            }
+        }
+    }
+    return n;
+}
+
+int shadowmap_receiver_points(const technique_frame *f, float (*points)[3], int max_points) {
     const scene *s = f->gpu->scene;
-    vec3 view_min = {INFINITY, INFINITY, INFINITY}, view_max = {-INFINITY, -INFINITY, -INFINITY};
+    vec3 frustum[8];
     mat4 inverse;
     glm_mat4_inv((vec4 *)f->view->view_projection, inverse);
     for (int c = 0; c < 8; c++) {
         vec4 ndc = {c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1, 1}, world;
         glm_mat4_mulv(inverse, ndc, world);
-        glm_vec3_scale(world, 1.0f / world[3], world);
-        glm_vec3_minv(view_min, world, view_min);
-        glm_vec3_maxv(view_max, world, view_max);
+        glm_vec3_scale(world, 1.0f / world[3], frustum[c]);
     }
     int n = 0;
-    for (int i = 0; i < s->object_count && n + 8 <= max_points; i++) {
+    for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
         if (!s->objects[i].receives)
             continue;
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        glm_vec3_maxv(lo, view_min, lo);
-        glm_vec3_minv(hi, view_max, hi);
-        if (lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2])
-            continue; /* not in view */
-        shadowmap_corners(lo, hi, points + n);
-        n += 8;
+        n += shadowmap_visible_part(f->view->view_projection, (const vec3 *)frustum, lo, hi, points + n,
+                                    max_points - n);
     }
     return n;
 }
 
 /* Bounds of points in a light's view space. */
-static void shadowmap_view_bounds(mat4 view, vec3 *points, int n, vec3 lo, vec3 hi) {
+static void shadowmap_view_bounds(mat4 view, const float (*points)[3], int n, vec3 lo, vec3 hi) {
     glm_vec3_fill(lo, INFINITY);
     glm_vec3_fill(hi, -INFINITY);
     for (int i = 0; i < n; i++) {
         vec3 p;
-        glm_mat4_mulv3(view, points[i], 1, p);
+        glm_mat4_mulv3(view, (float *)points[i], 1, p);
         glm_vec3_minv(lo, p, lo);
         glm_vec3_maxv(hi, p, hi);
     }
-}
-
-static void shadowmap_box_corners(const scene_object *o, vec3 corners[8]) {
-    vec3 lo, hi;
-    scene_object_world_bounds(o, lo, hi);
-    shadowmap_corners(lo, hi, corners);
 }
 
 static void shadowmap_light_view(const float eye[3], const float direction[3], mat4 view) {
@@ -224,7 +206,7 @@ static void shadowmap_light_view(const float eye[3], const float direction[3], m
  * light. Spot: the cone, from the nearest such caster to the farthest
  * receiver. The depth range in view space runs along -z. */
 static bool shadowmap_fit_2d(const technique_frame *f, const scene_light *l, shadowmap_light *m,
-                             vec3 *receivers, int receiver_count) {
+                             const float (*receivers)[3], int receiver_count) {
     const scene *s = f->gpu->scene;
     bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
     mat4 view, projection;
@@ -232,7 +214,7 @@ static bool shadowmap_fit_2d(const technique_frame *f, const scene_light *l, sha
     if (directional) {
         vec3 center = GLM_VEC3_ZERO_INIT;
         for (int i = 0; i < receiver_count; i++)
-            glm_vec3_add(center, receivers[i], center);
+            glm_vec3_add(center, (float *)receivers[i], center);
         glm_vec3_scale(center, 1.0f / (float)receiver_count, center);
         glm_vec3_copy(center, eye); /* any point on the axis: depths are relative */
     } else {
@@ -242,11 +224,12 @@ static bool shadowmap_fit_2d(const technique_frame *f, const scene_light *l, sha
     shadowmap_view_bounds(view, receivers, receiver_count, lo, hi);
     float nearest = hi[2];
     for (int i = 0; i < s->object_count; i++) {
-        vec3 corners[8], clo, chi;
+        vec3 corners[8], clo, chi, blo, bhi;
         if (!s->objects[i].casts)
             continue;
-        shadowmap_box_corners(&s->objects[i], corners);
-        shadowmap_view_bounds(view, corners, 8, clo, chi);
+        scene_object_world_bounds(&s->objects[i], blo, bhi);
+        shadowmap_corners(blo, bhi, corners);
+        shadowmap_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
         /* A spot's caster counts if any of it is in front of the light. */
         bool overlaps = directional ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1]
                                     : clo[2] < 0;
@@ -260,11 +243,13 @@ static bool shadowmap_fit_2d(const technique_frame *f, const scene_light *l, sha
     m->orthographic = directional;
     if (directional) {
         glm_ortho(lo[0], hi[0], lo[1], hi[1], m->near_plane, m->far_plane, projection);
+        m->texel_kind = SHADOWMAP_TEXEL_ORTHOGRAPHIC;
         m->texel_scale = fmaxf(hi[0] - lo[0], hi[1] - lo[1]) / (float)m->size;
     } else {
         float half_angle = glm_rad(fminf(l->outer_angle_deg + 1.0f, 85.0f));
         m->near_plane = fmaxf(m->near_plane, m->far_plane * SHADOWMAP_NEAR_RATIO);
         glm_perspective(2 * half_angle, 1, m->near_plane, m->far_plane, projection);
+        m->texel_kind = SHADOWMAP_TEXEL_PERSPECTIVE;
         m->texel_scale = 2 * tanf(half_angle) / (float)m->size;
     }
     glm_mat4_mul(projection, view, m->view_projection[0]);
@@ -281,14 +266,14 @@ static float shadowmap_box_distance(const scene_object *o, const float p[3]) {
 
 /* Point: six faces from the nearest caster to the farthest receiver. */
 static bool shadowmap_fit_cube(const technique_frame *f, const scene_light *l, shadowmap_light *m,
-                               vec3 *receivers, int receiver_count) {
+                               const float (*receivers)[3], int receiver_count) {
     const scene *s = f->gpu->scene;
     static const float axes[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     /* GL's cube faces look along each axis with these "up" vectors. */
     static const float ups[6][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     float far_plane = 0, nearest = INFINITY;
     for (int i = 0; i < receiver_count; i++)
-        far_plane = fmaxf(far_plane, glm_vec3_distance((float *)l->position, receivers[i]));
+        far_plane = fmaxf(far_plane, glm_vec3_distance((float *)l->position, (float *)receivers[i]));
     for (int i = 0; i < s->object_count; i++)
         if (s->objects[i].casts)
             nearest = fminf(nearest, shadowmap_box_distance(&s->objects[i], l->position));
@@ -309,27 +294,39 @@ static bool shadowmap_fit_cube(const technique_frame *f, const scene_light *l, s
     return m->far_plane > m->near_plane;
 }
 
+bool shadowmap_fit_uniform(const technique_frame *f, int light, shadowmap_light *m, const float (*receivers)[3],
+                           int receiver_count) {
+    const scene_light *l = &f->gpu->scene->lights[light];
+    m->cube = l->type == SCENE_LIGHT_POINT;
+    m->casters = NULL;
+    return m->cube ? shadowmap_fit_cube(f, l, m, receivers, receiver_count)
+                   : shadowmap_fit_2d(f, l, m, receivers, receiver_count);
+}
+
 /* ---- maps ---- */
 
-static int shadowmap_size(void) { return atoi(shadowmap_sizes[shadowmap.settings.map_size]); }
+int shadowmap_settings_size(const shadowmap_settings *settings) {
+    return atoi(shadowmap_sizes[settings->map_size]);
+}
 
 /* (Re)creates a light's depth texture when its kind, size, format or
  * filter changed: compare mode on, so that every read is a depth test;
  * outside the map reads are clamped (the shader calls them lit). */
-static void shadowmap_prepare_texture(shadowmap_light *m, bool cube) {
-    int size = shadowmap_size(), depth = shadowmap.settings.depth, filter = shadowmap.settings.filter;
-    if (m->texture && m->cube == cube && m->size == size && m->depth == depth && m->filter == filter)
+static void shadowmap_prepare_texture(shadowmap_light *m, const shadowmap_settings *settings) {
+    int depth = settings->depth, filter = settings->filter;
+    if (m->texture && m->texture_cube == m->cube && m->texture_size == m->size && m->texture_depth == depth &&
+        m->texture_filter == filter)
         return;
     glDeleteTextures(1, &m->texture);
-    GLenum target = cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+    GLenum target = m->cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
     GLenum format = depth == 0 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
     GLenum type = depth == 0 ? GL_UNSIGNED_INT : GL_FLOAT;
     GLint texel_filter = filter == SHADOWMAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
     glGenTextures(1, &m->texture);
     glBindTexture(target, m->texture);
-    for (int face = 0; face < (cube ? 6 : 1); face++)
-        glTexImage2D(cube ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + face : GL_TEXTURE_2D, 0, (GLint)format, size, size, 0,
-                     GL_DEPTH_COMPONENT, type, NULL);
+    for (int face = 0; face < (m->cube ? 6 : 1); face++)
+        glTexImage2D(m->cube ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + face : GL_TEXTURE_2D, 0, (GLint)format, m->size,
+                     m->size, 0, GL_DEPTH_COMPONENT, type, NULL);
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, texel_filter);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, texel_filter);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -337,37 +334,38 @@ static void shadowmap_prepare_texture(shadowmap_light *m, bool cube) {
     glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    m->cube = cube;
-    m->size = size;
-    m->depth = depth;
-    m->filter = filter;
+    m->texture_cube = m->cube;
+    m->texture_size = m->size;
+    m->texture_depth = depth;
+    m->texture_filter = filter;
 }
 
-static void shadowmap_render_depth(const technique_frame *f, shadowmap_light *m) {
+static void shadowmap_render_depth(shadowmap_maps *k, const shadowmap_settings *settings, const technique_frame *f,
+                                   shadowmap_light *m) {
     const scene *s = f->gpu->scene;
-    glBindFramebuffer(GL_FRAMEBUFFER, shadowmap.framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, k->framebuffer);
     glViewport(0, 0, m->size, m->size);
-    if (shadowmap.settings.no_slope_bias) {
+    if (settings->no_slope_bias) {
         glDisable(GL_POLYGON_OFFSET_FILL);
     } else {
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(technique_number(&shadowmap_params[SHADOWMAP_PARAM_SLOPE]),
-                        technique_number(&shadowmap_params[SHADOWMAP_PARAM_UNITS]));
+        glPolygonOffset(shadowmap_setting(settings->slope_factor, SHADOWMAP_SLOPE_FACTOR),
+                        shadowmap_setting(settings->slope_units, SHADOWMAP_SLOPE_UNITS));
     }
-    glUseProgram(shadowmap.depth.id);
+    glUseProgram(k->depth.id);
     for (int face = 0; face < (m->cube ? 6 : 1); face++) {
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
                                m->cube ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + face : GL_TEXTURE_2D, m->texture, 0);
         glClear(GL_DEPTH_BUFFER_BIT);
-        glUniformMatrix4fv(shadowmap.depth.view_projection, 1, GL_FALSE, (const float *)m->view_projection[face]);
+        glUniformMatrix4fv(k->depth.view_projection, 1, GL_FALSE, (const float *)m->view_projection[face]);
         for (int i = 0; i < s->object_count; i++)
-            if (s->objects[i].casts)
-                render_draw_object(f->gpu, &shadowmap.depth, i);
+            if (s->objects[i].casts && (!m->casters || m->casters[i]))
+                render_draw_object(f->gpu, &k->depth, i);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
-/* ---- the technique ---- */
+/* ---- programs ---- */
 
 static bool shadowmap_program_load(shadowmap_program *p, const char *const files[2]) {
     if (!render_program_load(&p->program, files, 2))
@@ -378,6 +376,7 @@ static bool shadowmap_program_load(shadowmap_program *p, const char *const files
     p->filter = glGetUniformLocation(id, "u_filter");
     p->receiver_plane = glGetUniformLocation(id, "u_receiver_plane");
     p->show_texels = glGetUniformLocation(id, "u_show_texels");
+    p->show_texel_size = glGetUniformLocation(id, "u_show_texel_size");
     p->kernel = glGetUniformLocation(id, "u_kernel");
     p->map_size = glGetUniformLocation(id, "u_map_size");
     p->constant_bias = glGetUniformLocation(id, "u_constant_bias");
@@ -387,6 +386,7 @@ static bool shadowmap_program_load(shadowmap_program *p, const char *const files
     p->near_plane = glGetUniformLocation(id, "u_near");
     p->far_plane = glGetUniformLocation(id, "u_far");
     p->light_matrix = glGetUniformLocation(id, "u_light_matrix");
+    p->texel_kind = glGetUniformLocation(id, "u_texel_kind");
     p->orthographic = glGetUniformLocation(id, "u_orthographic");
     p->texel_scale = glGetUniformLocation(id, "u_texel_scale");
     p->light_axis = glGetUniformLocation(id, "u_light_axis");
@@ -396,55 +396,54 @@ static bool shadowmap_program_load(shadowmap_program *p, const char *const files
     return true;
 }
 
-static bool shadowmap_init(const render_scene *gpu) {
-    (void)gpu;
+bool shadowmap_maps_init(shadowmap_maps *k) {
     static const char *const depth_files[] = {"shadow_depth.vert", "shadow_depth.frag"};
     static const char *const files_2d[] = {"lit.vert", "shadowmap_2d.frag"};
     static const char *const files_cube[] = {"lit.vert", "shadowmap_cube.frag"};
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
-    if (!render_program_load(&shadowmap.depth, depth_files, 2) ||
-        !shadowmap_program_load(&shadowmap.camera_2d, files_2d) ||
-        !shadowmap_program_load(&shadowmap.camera_cube, files_cube) ||
-        !shadowmap_program_load(&shadowmap.lines, lines_files) || !shadowmap_program_load(&shadowmap.inset, inset_files))
+    if (!render_program_load(&k->depth, depth_files, 2) || !shadowmap_program_load(&k->camera_2d, files_2d) ||
+        !shadowmap_program_load(&k->camera_cube, files_cube) || !shadowmap_program_load(&k->lines, lines_files) ||
+        !shadowmap_program_load(&k->inset, inset_files))
         return false;
-    glGenVertexArrays(1, &shadowmap.overlay_vao);
-    glBindVertexArray(shadowmap.overlay_vao);
-    glGenBuffers(1, &shadowmap.overlay_buffer);
-    glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
+    glGenVertexArrays(1, &k->overlay_vao);
+    glBindVertexArray(k->overlay_vao);
+    glGenBuffers(1, &k->overlay_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, k->overlay_buffer);
     glBufferData(GL_ARRAY_BUFFER, 24 * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
     glBindVertexArray(0);
-    glGenFramebuffers(1, &shadowmap.framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, shadowmap.framebuffer);
+    glGenFramebuffers(1, &k->framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, k->framebuffer);
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
     /* Kernels that cross a cube face read on into the next face. */
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    return context_gl_ok("shadowmap_init");
+    return context_gl_ok("shadowmap_maps_init");
 }
 
-static void shadowmap_destroy(void) {
-    render_program_destroy(&shadowmap.depth);
-    render_program_destroy(&shadowmap.camera_2d.program);
-    render_program_destroy(&shadowmap.camera_cube.program);
-    render_program_destroy(&shadowmap.lines.program);
-    render_program_destroy(&shadowmap.inset.program);
-    glDeleteVertexArrays(1, &shadowmap.overlay_vao);
-    glDeleteBuffers(1, &shadowmap.overlay_buffer);
-    glDeleteFramebuffers(1, &shadowmap.framebuffer);
-    shadowmap.framebuffer = shadowmap.overlay_vao = shadowmap.overlay_buffer = 0;
+void shadowmap_maps_destroy(shadowmap_maps *k) {
+    render_program_destroy(&k->depth);
+    render_program_destroy(&k->camera_2d.program);
+    render_program_destroy(&k->camera_cube.program);
+    render_program_destroy(&k->lines.program);
+    render_program_destroy(&k->inset.program);
+    glDeleteVertexArrays(1, &k->overlay_vao);
+    glDeleteBuffers(1, &k->overlay_buffer);
+    glDeleteFramebuffers(1, &k->framebuffer);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        glDeleteTextures(1, &shadowmap.lights[l].texture);
-    memset(shadowmap.lights, 0, sizeof shadowmap.lights);
+        glDeleteTextures(1, &k->lights[l].texture);
+    memset(k, 0, sizeof *k);
 }
+
+/* ---- the camera pass ---- */
 
 /* Light l's share, added where its map lets it through. */
-static void shadowmap_add_light(const technique_frame *f, int l, const shadowmap_light *m) {
+static void shadowmap_add_light(shadowmap_maps *k, const shadowmap_settings *st, const technique_frame *f, int l,
+                                const shadowmap_light *m) {
     const scene_light *light = &f->gpu->scene->lights[l];
-    const shadowmap_program *p = m->cube ? &shadowmap.camera_cube : &shadowmap.camera_2d;
-    const shadowmap_settings *st = &shadowmap.settings;
+    const shadowmap_program *p = m->cube ? &k->camera_cube : &k->camera_2d;
     static const int kernels[] = {[SHADOWMAP_FILTER_PCF3] = 3, [SHADOWMAP_FILTER_PCF5] = 5,
                                   [SHADOWMAP_FILTER_PCF7] = 7, [SHADOWMAP_FILTER_POISSON] = SHADOWMAP_POISSON_TEXELS};
     int mode = st->filter == SHADOWMAP_FILTER_NONE || st->filter == SHADOWMAP_FILTER_HW ? 0
@@ -458,30 +457,42 @@ static void shadowmap_add_light(const technique_frame *f, int l, const shadowmap
     glUniform1i(p->filter, mode);
     glUniform1i(p->receiver_plane, st->kernel_depth == 1);
     glUniform1i(p->show_texels, st->overlay == SHADOWMAP_OVERLAY_ALL || st->overlay == SHADOWMAP_OVERLAY_TEXELS);
+    glUniform1i(p->show_texel_size, st->overlay == SHADOWMAP_OVERLAY_TEXEL_SIZE);
     glUniform1i(p->kernel, kernels[st->filter]);
     glUniform1f(p->map_size, (float)m->size);
     glUniform1f(p->constant_bias,
-                st->no_constant_bias ? 0 : technique_number(&shadowmap_params[SHADOWMAP_PARAM_CONSTANT]));
-    glUniform1f(p->normal_offset, technique_number(&shadowmap_params[SHADOWMAP_PARAM_NORMAL]));
-    glUniform2f(p->depth_bias, technique_number(&shadowmap_params[SHADOWMAP_PARAM_DEPTH_SLOPE]),
-                technique_number(&shadowmap_params[SHADOWMAP_PARAM_DEPTH_MIN]));
+                st->no_constant_bias ? 0 : shadowmap_setting(st->constant_texels, SHADOWMAP_CONSTANT_TEXELS));
+    glUniform1f(p->normal_offset, st->normal_texels);
+    glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
     glUniform3fv(p->light_origin, 1, light->position);
     glUniform1f(p->near_plane, m->near_plane);
     glUniform1f(p->far_plane, m->far_plane);
     glUniformMatrix4fv(p->light_matrix, 1, GL_FALSE, (const float *)m->view_projection[0]);
-    glUniform1i(p->orthographic, m->orthographic);
+    glUniform1i(p->texel_kind, (int)m->texel_kind);
     glUniform1f(p->texel_scale, m->texel_scale);
     glUniform3fv(p->light_axis, 1, light->direction);
     for (int i = 0; i < f->gpu->scene->object_count; i++)
         render_draw_object(f->gpu, &p->program, i);
 }
 
-/* The 12 edges of one map's frustum (a cube map has six), from its
- * clip-space cube. */
-static void shadowmap_draw_frustum(const technique_frame *f, const mat4 view_projection) {
+/* ---- overlays ---- */
+
+/* `count` (<= 24) line ends in world space, in one colour. */
+static void shadowmap_draw_lines(shadowmap_maps *k, const float (*points)[3], int count, const mat4 view_projection,
+                                 const float color[3]) {
+    glUseProgram(k->lines.program.id);
+    glUniformMatrix4fv(k->lines.program.view_projection, 1, GL_FALSE, (const float *)view_projection);
+    glUniform3fv(k->lines.color, 1, color);
+    glBindVertexArray(k->overlay_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, k->overlay_buffer);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *points * (size_t)count), points);
+    glDrawArrays(GL_LINES, 0, count);
+}
+
+void shadowmap_draw_frustum(shadowmap_maps *k, const mat4 frustum, const mat4 view_projection) {
     float lines[24][3];
     mat4 inverse;
-    glm_mat4_inv((vec4 *)view_projection, inverse);
+    glm_mat4_inv((vec4 *)frustum, inverse);
     int n = 0;
     for (int a = 0; a < 8; a++) {
         for (int bit = 1; bit < 8; bit <<= 1) {
@@ -495,22 +506,17 @@ static void shadowmap_draw_frustum(const technique_frame *f, const mat4 view_pro
             }
         }
     }
-    render_program_use(&shadowmap.lines.program, f->view);
-    glUniform3f(shadowmap.lines.color, 1.0f, 0.85f, 0.2f);
-    glBindVertexArray(shadowmap.overlay_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof lines, lines);
-    glDrawArrays(GL_LINES, 0, 24);
+    shadowmap_draw_lines(k, (const float(*)[3])lines, 24, view_projection, (const float[3]){1.0f, 0.85f, 0.2f});
 }
 
 /* Light 0's map in the bottom-right third of the picture: a 2D map as it
  * is, a cube map as its six faces in two rows (+X -X +Y, -Y +Z -Z). */
-static void shadowmap_draw_inset(const shadowmap_light *m, const int viewport[4]) {
+static void shadowmap_draw_inset(shadowmap_maps *k, const shadowmap_light *m, const int viewport[4]) {
     static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     int height = viewport[3] / 3, width = m->cube ? height * 3 / 2 : height;
     glViewport(viewport[0] + viewport[2] - width - 8, viewport[1] + 8, width, height);
     glDisable(GL_DEPTH_TEST);
-    const shadowmap_program *p = &shadowmap.inset;
+    const shadowmap_program *p = &k->inset;
     glUseProgram(p->program.id);
     mat4 identity = GLM_MAT4_IDENTITY_INIT;
     glUniformMatrix4fv(p->program.view_projection, 1, GL_FALSE, (const float *)identity);
@@ -525,8 +531,8 @@ static void shadowmap_draw_inset(const shadowmap_light *m, const int viewport[4]
     glActiveTexture(m->cube ? GL_TEXTURE1 : GL_TEXTURE0);
     glBindTexture(texture_target, m->texture);
     glTexParameteri(texture_target, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    glBindVertexArray(shadowmap.overlay_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, shadowmap.overlay_buffer);
+    glBindVertexArray(k->overlay_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, k->overlay_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
     glDrawArrays(GL_TRIANGLES, 0, 6);
     glTexParameteri(texture_target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
@@ -534,35 +540,35 @@ static void shadowmap_draw_inset(const shadowmap_light *m, const int viewport[4]
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
-static void shadowmap_draw_overlays(const technique_frame *f, const bool *fitted, const int viewport[4]) {
-    int overlay = shadowmap.settings.overlay;
+static void shadowmap_draw_overlays(shadowmap_maps *k, int overlay, const technique_frame *f, const bool *fitted,
+                                    const int viewport[4]) {
     glDisable(GL_BLEND);
     glDepthFunc(GL_LEQUAL);
-    for (int l = 0; l < f->gpu->scene->light_count; l++)
-        for (int k = 0; fitted[l] && (overlay == SHADOWMAP_OVERLAY_ALL || overlay == SHADOWMAP_OVERLAY_FRUSTUM) &&
-                        k < (shadowmap.lights[l].cube ? 6 : 1);
-             k++)
-            shadowmap_draw_frustum(f, shadowmap.lights[l].view_projection[k]);
+    bool frustum = overlay == SHADOWMAP_OVERLAY_ALL || overlay == SHADOWMAP_OVERLAY_FRUSTUM;
+    for (int l = 0; frustum && l < f->gpu->scene->light_count; l++)
+        for (int face = 0; fitted[l] && face < (k->lights[l].cube ? 6 : 1); face++)
+            shadowmap_draw_frustum(k, k->lights[l].view_projection[face], f->view->view_projection);
     if (fitted[0] && (overlay == SHADOWMAP_OVERLAY_ALL || overlay == SHADOWMAP_OVERLAY_MAP))
-        shadowmap_draw_inset(&shadowmap.lights[0], viewport);
+        shadowmap_draw_inset(k, &k->lights[0], viewport);
 }
 
-static void shadowmap_render(const technique_frame *f) {
+void shadowmap_maps_render(shadowmap_maps *k, const shadowmap_settings *settings, const technique_frame *f,
+                           shadowmap_fit_function fit) {
     const scene *s = f->gpu->scene;
     GLint target_framebuffer, viewport[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
     glGetIntegerv(GL_VIEWPORT, viewport);
-    vec3 receivers[8 * 64];
-    int receiver_count = shadowmap_receiver_points(f, receivers, 8 * 64);
+    static float receivers[SHADOWMAP_MAX_RECEIVER_POINTS][3];
+    int receiver_count = shadowmap_receiver_points(f, receivers, SHADOWMAP_MAX_RECEIVER_POINTS);
     bool fitted[SCENE_MAX_LIGHTS] = {false};
     for (int l = 0; l < s->light_count && receiver_count > 0; l++) {
-        shadowmap_light *m = &shadowmap.lights[l];
-        bool cube = s->lights[l].type == SCENE_LIGHT_POINT;
-        shadowmap_prepare_texture(m, cube);
-        fitted[l] = cube ? shadowmap_fit_cube(f, &s->lights[l], m, receivers, receiver_count)
-                         : shadowmap_fit_2d(f, &s->lights[l], m, receivers, receiver_count);
-        if (fitted[l])
-            shadowmap_render_depth(f, m);
+        shadowmap_light *m = &k->lights[l];
+        m->size = shadowmap_settings_size(settings);
+        fitted[l] = fit(f, l, m, (const float(*)[3])receivers, receiver_count);
+        if (fitted[l]) {
+            shadowmap_prepare_texture(m, settings);
+            shadowmap_render_depth(k, settings, f, m);
+        }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -576,26 +582,41 @@ static void shadowmap_render(const technique_frame *f) {
     glBlendFunc(GL_ONE, GL_ONE);
     for (int l = 0; l < s->light_count; l++) {
         if (fitted[l]) {
-            shadowmap_add_light(f, l, &shadowmap.lights[l]);
+            shadowmap_add_light(k, settings, f, l, &k->lights[l]);
         } else { /* nothing visible receives: no map needed, nothing shadowed */
             render_use_lit(f->gpu, f->view, l, l + 1, false);
             for (int i = 0; i < s->object_count; i++)
                 render_draw_object(f->gpu, &f->gpu->lit, i);
         }
     }
-    shadowmap_draw_overlays(f, fitted, viewport);
+    shadowmap_draw_overlays(k, settings->overlay, f, fitted, viewport);
+}
+
+/* ---- the technique ---- */
+
+static bool shadowmap_init(const render_scene *gpu) {
+    (void)gpu;
+    return shadowmap_maps_init(&shadowmap.maps);
+}
+
+static void shadowmap_destroy(void) { shadowmap_maps_destroy(&shadowmap.maps); }
+
+static void shadowmap_render(const technique_frame *f) {
+    shadowmap_maps_render(&shadowmap.maps, &shadowmap.settings, f, shadowmap_fit_uniform);
 }
 
 static void shadowmap_describe(char *out, size_t size) {
-    const shadowmap_light *m = &shadowmap.lights[0];
+    const shadowmap_light *m = &shadowmap.maps.lights[0];
     snprintf(out, size, "light 0: %s map %dx%d, depth range %.3g .. %.3g", m->cube ? "cube" : "2D", m->size, m->size,
              m->near_plane, m->far_plane);
 }
 
 /* The sweep: map size x filter x bias, and two configurations popular
  * tutorials use ("label: flags"), so the report shows where our biases
- * stand at the same cost (--map-size 1024 --filter pcf3 and --filter pcf3): LearnOpenGL's bias max(0.05 (1 - N.L), 0.005) with 3x3 PCF at
- * 1024, and polygon offset (1.25, 1.75) with 3x3 PCF at 2048. */
+ * stand at the same cost: LearnOpenGL's bias max(0.05 (1 - N.L), 0.005)
+ * with 3x3 PCF at 1024 (against --map-size 1024 --filter pcf3), and
+ * polygon offset (1.25, 1.75) with 3x3 PCF at 2048 (against --filter
+ * pcf3). */
 static const char *const shadowmap_bench_configs[] = {
     "",
     "--map-size 1024",

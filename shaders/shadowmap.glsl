@@ -1,5 +1,5 @@
-// The camera pass of a shadow map (demos/shadowmap.c), shared by the 2D
-// map (spot, directional) and the cube map (point). The including file
+// The camera pass of a shadow map (demos/shadowmap.c, demos/psm.c), shared
+// by the 2D map (spot, directional, warped) and the cube map (point). The including file
 // defines the two functions declared here:
 //   shadowmap_texel_world(p)  world size of one map texel at p
 //   shadowmap_visibility(p, b) the filtered comparison at p, its map depth
@@ -20,6 +20,7 @@ uniform int u_light;
 uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
 uniform bool u_show_texels;      // darken the map's texel boundaries
+uniform bool u_show_texel_size;  // colour by a texel's size on screen
 uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
 
 out vec4 out_color;
@@ -60,5 +61,18 @@ void main() {
     vec2 map_texel = shadowmap_texel_coord(v_position);
     vec2 distance_to_edge = abs(fract(map_texel - 0.5) - 0.5) / max(fwidth(map_texel), vec2(1e-6));
     float edge = 1.0 - min(min(distance_to_edge.x, distance_to_edge.y), 1.0);
-    out_color = vec4(u_show_texels ? c * (1.0 - 0.6 * edge) : c, 1.0);
+    if (u_show_texels)
+        c *= 1.0 - 0.6 * edge;
+    // The aliasing measure of the perspective shadow map papers (dp/ds):
+    // a texel's size in pixels, the square root of the pixel area it
+    // covers. Blue: a quarter pixel or less, green: one, red: 32 or more.
+    if (u_show_texel_size) {
+        vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
+        float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-12));
+        float t = clamp((log2(texel_pixels) + 2.0) / 7.0, 0.0, 1.0), one_pixel = 2.0 / 7.0;
+        vec3 heat = t < one_pixel ? mix(vec3(0.1, 0.2, 1.0), vec3(0.1, 0.9, 0.2), t / one_pixel)
+                                  : mix(vec3(0.1, 0.9, 0.2), vec3(1.0, 0.1, 0.05), (t - one_pixel) / (1.0 - one_pixel));
+        c = heat * (0.4 + 0.6 * min(dot(c, vec3(0.3, 0.6, 0.1)) * 2.0, 1.0));
+    }
+    out_color = vec4(c, 1.0);
 }

@@ -1,12 +1,13 @@
 #version 330 core
-// Camera pass of a spot or directional light's 2D shadow map.
+// Camera pass of a 2D shadow map: a spot or directional light's
+// (demos/shadowmap.c), or any light's warped map (demos/psm.c).
 #include "lighting.glsl"
 #include "shadowmap.glsl"
 
 uniform sampler2DShadow u_map;   // compare mode on: every read is a test
 uniform mat4 u_light_matrix;     // world -> the light's clip space
-uniform bool u_orthographic;
-uniform float u_texel_scale;     // world texel: this (ortho) or this x depth (perspective)
+uniform int u_texel_kind;        // 0 orthographic, 1 perspective, 2 any projective map (a warp)
+uniform float u_texel_scale;     // world texel: this (0) or this x depth along the axis (1)
 uniform vec3 u_light_axis;       // where a perspective map looks
 uniform vec3 u_light_origin;
 uniform int u_filter;            // 0 one tap, 1 N x N grid, 2 Poisson disc
@@ -14,8 +15,25 @@ uniform int u_kernel;            // N, or the disc's diameter in texels
 uniform float u_map_size;
 uniform bool u_receiver_plane;
 
+// A warped map's texel size changes across the map, and its depth is not
+// distance: the texel is how far p moves for its map coordinates to
+// change by one texel, from the matrix's derivatives at p. (Along the light
+// ray through p they do not change at all, so this measures across it.)
+float shadowmap_projective_texel(vec3 p) {
+    vec4 clip = u_light_matrix * vec4(p, 1.0);
+    mat4 m = u_light_matrix;
+    vec3 w_row = vec3(m[0][3], m[1][3], m[2][3]);
+    vec3 du = (vec3(m[0][0], m[1][0], m[2][0]) - clip.x / clip.w * w_row) / clip.w;
+    vec3 dv = (vec3(m[0][1], m[1][1], m[2][1]) - clip.y / clip.w * w_row) / clip.w;
+    return 2.0 / (u_map_size * max(min(length(du), length(dv)), 1e-20));
+}
+
 float shadowmap_texel_world(vec3 p) {
-    return u_orthographic ? u_texel_scale : u_texel_scale * max(dot(p - u_light_origin, u_light_axis), 0.0);
+    if (u_texel_kind == 0)
+        return u_texel_scale;
+    if (u_texel_kind == 1)
+        return u_texel_scale * max(dot(p - u_light_origin, u_light_axis), 0.0);
+    return shadowmap_projective_texel(p);
 }
 
 // Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and

@@ -55,6 +55,8 @@ static void test_bad_technique_parameters(void **state) {
         {"shadowmap", "--normal-texels x", "--normal-texels", "'x'"},
         {"volumes", "--mode zmiddle", "--mode", "'zmiddle'"},
         {"volumes", "--silhouette tpu", "--silhouette", "'tpu'"},
+        {"psm", "--warp tsm", "--warp", "'tsm'"},
+        {"psm", "--map-size 3", "--map-size", "'3'"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         snprintf(command, sizeof command, "%s --backend egl --frames 1 %s", support_program(cases[i][0]), cases[i][1]);

@@ -21,7 +21,7 @@
 #define SIZE "640x360"
 
 static const char *const scenes[] = {"simple", "bunny", "teapot"};
-static const char *const techniques[] = {"planar", "shadowmap", "volumes"};
+static const char *const techniques[] = {"planar", "shadowmap", "psm", "volumes"};
 static char err[16384];
 
 /* Renders `scene_file` with build/TECHNIQUE and extra flags to
@@ -150,6 +150,29 @@ static void test_shadowmap_overlays_match_golden(void **state) {
     }
 }
 
+/* Perspective shadow maps where they matter, long_view, with the light in
+ * front of the viewer and behind (the inverted case), on both headless
+ * backends; and the lecture's post-perspective view. */
+static void test_psm_long_view_matches_golden(void **state) {
+    (void)state;
+    static const char *const scenes[] = {"long_view", "long_view_behind"};
+    static const char *const backends[] = {"egl", "osmesa"};
+    for (size_t b = 0; b < (osmesa_installed() ? 2u : 1u); b++) {
+        for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+            char scene_file[256], name[256];
+            snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", scenes[i]);
+            snprintf(name, sizeof name, "psm_%s_%s", scenes[i], backends[b]);
+            render_with("psm", backends[b], scene_file, "", name);
+            double fraction = compare_with_golden_of("psm", scenes[i], name);
+            assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+        }
+    }
+    render_with("psm", "egl", "assets/scenes/long_view.json", "--overlay post-perspective", "psm_overlay_long_view");
+    assert_true(compare_with_golden_of("psm", "long_view", "psm_overlay_long_view") > SUPPORT_MAX_DIFFERING);
+    double fraction = compare_with_golden_of("psm-overlay", "long_view", "psm_overlay_long_view");
+    assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+}
+
 /* Each shadow-volume overlay draws into the picture. */
 static void test_volumes_overlays_show(void **state) {
     (void)state;
@@ -198,6 +221,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_egl_matches_golden),
         cmocka_unit_test(test_osmesa_matches_golden),
+        cmocka_unit_test(test_psm_long_view_matches_golden),
         cmocka_unit_test(test_backends_agree),
         cmocka_unit_test(test_same_command_same_image),
         cmocka_unit_test(test_moved_light_fails_comparison),

@@ -219,6 +219,27 @@ static void test_excludes_back_facing_directional_light(void **state) {
     free_pair(&reference, &test);
 }
 
+/* With `grazing`, surfaces within that many degrees of edge-on to the
+ * light are left out too; the same pixels count without it. The light
+ * straight down, (0, 1, 0, 0): 2 and 4 degrees off edge-on. */
+static void test_grazing_leaves_out_near_edge_on(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, sun);
+    const surface surfaces[] = {
+        {{0, 0, 0}, {0.99939f, 0.03490f, 0}}, /* 2 degrees: left out at 3 */
+        {{0, 0, 0}, {0.99756f, 0.06976f, 0}}, /* 4 degrees: compared */
+    };
+    set_reference_surfaces(&reference, &test, surfaces, sizeof surfaces / sizeof *surfaces);
+    set_visibility(&reference, &test, 0, 1, 0);
+    set_visibility(&reference, &test, 1, 0, 1);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, PIXELS, 1, 1);
+    assert_true(shadowdiff_compare(&reference, &test, &(shadowdiff_settings){.grazing_degrees = 3}, &r, NULL));
+    assert_counts(&r, PIXELS - 1, 0, 1);
+    free_pair(&reference, &test);
+}
+
 /* Rows 4..7 are the box, except one pixel the test sees as ground. */
 static void test_receiver_restricts(void **state) {
     (void)state;
@@ -489,6 +510,7 @@ static void test_cli_usage_errors(void **state) {
     expect_failure(DIR "/ref", EXIT_USAGE, "two dump directories", "REF_DIR");
     expect_failure(DIR "/ref " DIR "/test " DIR "/far", EXIT_USAGE, "two dump directories", DIR "/far");
     expect_failure(DIR "/ref " DIR "/test --json=yes", EXIT_USAGE, "takes no value", "--json");
+    expect_failure(DIR "/ref " DIR "/test --grazing 90", EXIT_USAGE, "--grazing", "'90'");
 }
 
 static void test_cli_runtime_errors(void **state) {
@@ -517,6 +539,7 @@ int main(void) {
         cmocka_unit_test(test_depth_tolerance),
         cmocka_unit_test(test_excludes_back_facing_point_light),
         cmocka_unit_test(test_excludes_back_facing_directional_light),
+        cmocka_unit_test(test_grazing_leaves_out_near_edge_on),
         cmocka_unit_test(test_receiver_restricts),
         cmocka_unit_test(test_nothing_compared_gives_zeros),
         cmocka_unit_test(test_heatmap_colours),

@@ -11,7 +11,7 @@ golden() { # NAME TECHNIQUE SCENE [FLAGS...]
         --screenshot "tests/golden/$name.png"
     echo "tests/golden/$name.png"
 }
-for technique in planar shadowmap volumes; do
+for technique in planar shadowmap psm volumes; do
     for scene in simple bunny teapot; do
         golden "${technique}_$scene" "$technique" "$scene"
     done
@@ -20,3 +20,9 @@ done
 for scene in simple bunny; do
     golden "shadowmap-overlay_$scene" shadowmap "$scene" --overlay all
 done
+# Perspective shadow maps where they matter: a light in front of the
+# viewer and one behind; the lecture's post-perspective view.
+for scene in long_view long_view_behind; do
+    golden "psm_$scene" psm "$scene"
+done
+golden "psm-overlay_long_view" psm long_view --overlay post-perspective

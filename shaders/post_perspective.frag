@@ -1,0 +1,14 @@
+#version 330 core
+// Flat shading of the warped scene, from the slope of its warped position:
+// normals do not survive a projective warp, faces do.
+in vec3 v_warped;
+
+uniform vec3 u_albedo;
+
+out vec4 out_color;
+
+void main() {
+    vec3 n = normalize(cross(dFdx(v_warped), dFdy(v_warped)));
+    float shade = 0.35 + 0.65 * abs(dot(n, normalize(vec3(0.4, 0.8, -0.45))));
+    out_color = vec4(u_albedo * shade, 1.0);
+}
