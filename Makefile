@@ -94,7 +94,9 @@ update-golden: $(PROGRAMS)
 clean:
 	rm -rf build build-san out
 
-$(GLAD_C) $(GLAD_H):
+# One run of glad makes both (a grouped target: with -j, two rules racing
+# to create the same directories made glad fail now and then).
+$(GLAD_C) $(GLAD_H) &:
 	@mkdir -p $(BUILD)/glad
 	glad --quiet --reproducible --api gl:core=3.3 --extensions $(GL_EXTENSIONS) \
 		--out-path $(BUILD)/glad c
