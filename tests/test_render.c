@@ -215,6 +215,9 @@ static void test_gallery_writes_every_technique(void **state) {
                 SUPPORT_MAX_DIFFERING);
     assert_true(support_compare_images("tests/golden/planar_teapot.png", "out/test/gallery/planar_teapot.png") <=
                 SUPPORT_MAX_DIFFERING);
+    /* A technique's lecture picture shows its overlay: psm's post-perspective view. */
+    assert_true(support_compare_images("out/test/gallery/psm_teapot.png", "out/test/gallery/psm-lecture_teapot.png") >
+                SUPPORT_MAX_DIFFERING);
 }
 
 int main(void) {
