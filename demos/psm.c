@@ -38,10 +38,11 @@
  * biases move the point in world units, one texel of the warped map there
  * (found from the matrix's derivatives), since the warp distorts depth.
  *
- * For lectures (--overlay): shadowmap.c's overlays, "texel-size" (the
- * dp/ds heat map) and "post-perspective": a second viewport with light 0's
- * warp space (PPS for psm: the unit cube is the view frustum), the scene
- * warped into it, the light's frustum there, and its map as an inset.
+ * For lectures (--overlay): shadowmap.c's overlays, among them
+ * "texel-size" (the dp/ds heat map: compare the warps on long_view), and
+ * "post-perspective": a second viewport with light 0's warp space (PPS for
+ * psm: its clip cube is the view frustum), the scene warped into it and the
+ * map's frustum there.
  */
 #include <glad/gl.h>
 #include <math.h>

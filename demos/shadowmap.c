@@ -41,8 +41,9 @@
  * For lectures, --overlay (key V): the map's texel boundaries drawn on the
  * receivers (aliasing made visible), the light frustum in wireframe (six
  * for a cube map), light 0's map as an inset of linear depth (a cube map's
- * six faces in two rows). Overlays draw into the picture, so a dump taken
- * with one shows it.
+ * six faces in two rows), or "texel-size": a heat map of a texel's size in
+ * pixels. Overlays draw into the picture, so a dump taken with one shows
+ * it.
  *
  * Filters: none (one nearest test), hw (one bilinear test: 2x2 in
  * hardware), pcf3/5/7 (an N x N grid of bilinear tests), poisson (16

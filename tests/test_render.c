@@ -152,7 +152,8 @@ static void test_shadowmap_overlays_match_golden(void **state) {
 
 /* Perspective shadow maps where they matter, long_view, with the light in
  * front of the viewer and behind (the inverted case), on both headless
- * backends; and the lecture's post-perspective view. */
+ * backends; the lecture's post-perspective view; the texel-size heat map
+ * draws into the picture. */
 static void test_psm_long_view_matches_golden(void **state) {
     (void)state;
     static const char *const scenes[] = {"long_view", "long_view_behind"};
@@ -171,6 +172,8 @@ static void test_psm_long_view_matches_golden(void **state) {
     assert_true(compare_with_golden_of("psm", "long_view", "psm_overlay_long_view") > SUPPORT_MAX_DIFFERING);
     double fraction = compare_with_golden_of("psm-overlay", "long_view", "psm_overlay_long_view");
     assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+    render_with("psm", "egl", "assets/scenes/long_view.json", "--overlay texel-size", "psm_texel_size_long_view");
+    assert_true(compare_with_golden_of("psm", "long_view", "psm_texel_size_long_view") > SUPPORT_MAX_DIFFERING);
 }
 
 /* Each shadow-volume overlay draws into the picture. */
