@@ -32,7 +32,7 @@
  * looks: rays through a grid of pixels hit the receivers' boxes, and at
  * each hit the map texel's size in pixels on that plane (the dp/ds of the
  * papers) is found from both matrices. The warp is kept only where its
- * mean is smaller; the HUD says which won and why.
+ * mean is at least a fifth smaller; the HUD says which won and why.
  *
  * Bias and filtering are shadowmap.c's: the constant and normal-offset
  * biases move the point in world units, one texel of the warped map there
@@ -133,7 +133,7 @@ static bool psm_finite(const mat4 m) {
  * PSM_MAX_HALF_ANGLE_DEG each side. */
 static bool psm_frustum_around(const float eye[3], const float (*points)[3], int n, mat4 out, float *near_plane,
                                float *far_plane) {
-    vec3 center = GLM_VEC3_ZERO_INIT, axis, target, up = {0, 1, 0};
+    vec3 center = GLM_VEC3_ZERO_INIT, axis;
     for (int i = 0; i < n; i++)
         glm_vec3_add(center, (float *)points[i], center);
     glm_vec3_scale(center, 1.0f / (float)n, center);
@@ -141,11 +141,8 @@ static bool psm_frustum_around(const float eye[3], const float (*points)[3], int
     if (!(glm_vec3_norm(axis) > 0))
         return false;
     glm_vec3_normalize(axis);
-    if (fabsf(axis[1]) > 0.99f)
-        glm_vec3_copy((vec3){1, 0, 0}, up);
-    glm_vec3_add((float *)eye, axis, target);
     mat4 view, projection;
-    glm_lookat((float *)eye, target, up, view);
+    shadowmap_light_view(eye, axis, view);
     float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, t_min = INFINITY, t_max = 0;
     for (int i = 0; i < n; i++) {
         vec3 q;
@@ -180,6 +177,13 @@ typedef struct psm_view {
     float z_near, z_far;
 } psm_view;
 
+/* How far ahead of the camera p lies. */
+static float psm_depth(const psm_view *v, const float p[3]) {
+    vec3 d;
+    glm_vec3_sub((float *)p, (float *)v->eye, d);
+    return glm_vec3_dot(d, (float *)v->forward);
+}
+
 static bool psm_view_of(const technique_frame *f, const float (*receivers)[3], int n, psm_view *v) {
     const camera_view *c = f->view;
     glm_vec3_copy((float *)c->eye, v->eye);
@@ -188,9 +192,7 @@ static bool psm_view_of(const technique_frame *f, const float (*receivers)[3], i
     v->z_near = INFINITY;
     v->z_far = 0;
     for (int i = 0; i < n; i++) {
-        vec3 d;
-        glm_vec3_sub((float *)receivers[i], v->eye, d);
-        float depth = glm_vec3_dot(d, v->forward);
+        float depth = psm_depth(v, receivers[i]);
         v->z_near = fminf(v->z_near, depth);
         v->z_far = fmaxf(v->z_far, depth);
     }
@@ -268,11 +270,8 @@ static bool psm_warp_psm(const technique_frame *f, const scene_light *l, const p
                          int n, shadowmap_light *m, psm_choice *choice) {
     const camera_view *c = f->view;
     float nearest = INFINITY;
-    for (int i = 0; i < n; i++) {
-        vec3 d;
-        glm_vec3_sub((float *)points[i], (float *)v->eye, d);
-        nearest = fminf(nearest, glm_vec3_dot(d, (float *)v->forward));
-    }
+    for (int i = 0; i < n; i++)
+        nearest = fminf(nearest, psm_depth(v, points[i]));
     float optimum = v->z_near + sqrtf(v->z_near * v->z_far);
     /* Far enough back for the optimum near plane, and for every point to
      * lie at least half the near distance in front (so none is near w = 0). */
@@ -299,31 +298,15 @@ static bool psm_warp_psm(const technique_frame *f, const scene_light *l, const p
     if (fabsf(light_pps[3]) * 1e3f < length) {
         /* Far enough to be a direction in PPS; on either side of infinity
          * the light comes from +xyz. */
-        vec3 travel, center = GLM_VEC3_ZERO_INIT, lo, hi, eye;
+        vec3 travel, lo, hi;
         glm_vec3_scale(light_pps, -1.0f / length, travel);
-        for (int i = 0; i < n; i++)
-            glm_vec3_add(center, warped[i], center);
-        glm_vec3_scale(center, 1.0f / (float)n, eye);
         mat4 light_view, box;
-        vec3 target, up = {0, 1, 0};
-        if (fabsf(travel[1]) > 0.99f)
-            glm_vec3_copy((vec3){1, 0, 0}, up);
-        glm_vec3_add(eye, travel, target);
-        glm_lookat(eye, target, up, light_view);
-        glm_vec3_fill(lo, INFINITY);
-        glm_vec3_fill(hi, -INFINITY);
-        for (int i = 0; i < n; i++) {
-            vec3 q;
-            glm_mat4_mulv3(light_view, warped[i], 1, q);
-            q[2] = -q[2]; /* depth grows away from the light */
-            glm_vec3_minv(lo, q, lo);
-            glm_vec3_maxv(hi, q, hi);
-        }
-        psm_fit_box(lo, hi, box);
-        box[2][2] = -box[2][2]; /* view z runs towards the light */
+        shadowmap_light_view(GLM_VEC3_ZERO, travel, light_view); /* any eye: depths are relative */
+        shadowmap_view_bounds(light_view, (const float(*)[3])warped, n, lo, hi);
+        m->near_plane = -hi[2];
+        m->far_plane = -lo[2];
+        glm_ortho(lo[0], hi[0], lo[1], hi[1], m->near_plane, m->far_plane, box);
         glm_mat4_mul(box, light_view, fit);
-        m->near_plane = lo[2];
-        m->far_plane = hi[2];
         m->orthographic = true;
         snprintf(choice->why, sizeof choice->why, "light at infinity in post-perspective space");
     } else {
@@ -355,11 +338,7 @@ static bool psm_warp_lispsm(const scene_light *l, const psm_view *v, const float
     mat4 space;
     float unused_near, unused_far;
     if (l->type == SCENE_LIGHT_DIRECTIONAL) {
-        vec3 target, up = {0, 1, 0};
-        if (fabsf(l->direction[1]) > 0.99f)
-            glm_vec3_copy((vec3){1, 0, 0}, up);
-        glm_vec3_add((float *)v->eye, (float *)l->direction, target);
-        glm_lookat((float *)v->eye, target, up, space);
+        shadowmap_light_view(v->eye, l->direction, space);
     } else {
         if (!psm_frustum_around(l->position, points, n, space, &unused_near, &unused_far)) {
             snprintf(choice->why, sizeof choice->why, "the seen scene surrounds the light");
@@ -459,21 +438,24 @@ static const vec4 *psm_map_matrix(const shadowmap_light *m, const float light[3]
     return m->view_projection[2 * axis + (d[axis] < 0)];
 }
 
-/* Mean size in pixels of a map texel on the receivers, over rays through
- * a grid of pixels to the receivers' boxes; INFINITY if a hit lies outside
- * the map. On each box face hit, a texel's footprint is the ratio of two
- * areas on that plane: a pixel's over a texel's. Faces within 3 degrees
+/* A point on a receiver where the camera looks, to measure maps at. */
+typedef struct psm_sample {
+    vec3 position, tangent[2]; /* on a face of a receiver's box */
+    float pixels;              /* pixels per unit area of that face there */
+} psm_sample;
+
+/* Rays through a grid of pixels to the receivers' boxes; each hit is a
+ * sample, with the pixel area on the face it hit. Faces within 3 degrees
  * of edge-on to the light are left out: every map's texels on them are of
  * unbounded length (and they take almost no light). Faces turned away
- * count: boxes stand for surfaces that may well face the light. */
-static float psm_texel_pixels(const technique_frame *f, const shadowmap_light *m, const scene_light *l) {
+ * count: boxes stand for surfaces that may well face the light. Outside a
+ * spot's cone the cone decides, not the map. Returns how many. */
+static int psm_samples(const technique_frame *f, const scene_light *l, psm_sample *out) {
     const scene *s = f->gpu->scene;
     mat4 inverse;
     glm_mat4_inv((vec4 *)f->view->view_projection, inverse);
     float screen_half[2] = {0.5f * (float)f->width, 0.5f * (float)f->height};
-    float map_half[2] = {0.5f * (float)m->size, 0.5f * (float)m->size};
-    double sum = 0;
-    int samples = 0;
+    int n = 0;
     for (int sy = 0; sy < PSM_SAMPLES_Y; sy++) {
         for (int sx = 0; sx < PSM_SAMPLES_X; sx++) {
             vec4 ndc = {(2.0f * (float)sx + 1) / PSM_SAMPLES_X - 1, (2.0f * (float)sy + 1) / PSM_SAMPLES_Y - 1, 1, 1};
@@ -505,43 +487,61 @@ static float psm_texel_pixels(const technique_frame *f, const shadowmap_light *m
             }
             if (!isfinite(best) || best > 1)
                 continue;
-            vec3 p, tangent[2] = {{0}, {0}}, normal = {0, 0, 0}, to_light;
-            glm_vec3_scale(direction, best, p);
-            glm_vec3_add(p, (float *)f->view->eye, p);
-            tangent[0][(best_axis + 1) % 3] = 1;
-            tangent[1][(best_axis + 2) % 3] = 1;
+            psm_sample *sample = &out[n];
+            vec3 normal = {0, 0, 0}, to_light;
+            glm_vec3_scale(direction, best, sample->position);
+            glm_vec3_add(sample->position, (float *)f->view->eye, sample->position);
+            glm_vec3_zero(sample->tangent[0]);
+            glm_vec3_zero(sample->tangent[1]);
+            sample->tangent[0][(best_axis + 1) % 3] = 1;
+            sample->tangent[1][(best_axis + 2) % 3] = 1;
             normal[best_axis] = direction[best_axis] > 0 ? -1.0f : 1.0f;
             if (l->type == SCENE_LIGHT_DIRECTIONAL)
                 glm_vec3_negate_to((float *)l->direction, to_light);
             else
-                glm_vec3_sub((float *)l->position, p, to_light);
+                glm_vec3_sub((float *)l->position, sample->position, to_light);
             if (!(fabsf(glm_vec3_dot(normal, to_light)) > PSM_GRAZING_SINE * glm_vec3_norm(to_light)))
                 continue;
-            /* Outside a spot's cone the cone decides, not the map. */
             if (l->type == SCENE_LIGHT_SPOT && -glm_vec3_dot(to_light, (float *)l->direction) <
                                                    cosf(glm_rad(l->outer_angle_deg)) * glm_vec3_norm(to_light))
                 continue;
-            const vec4 *map = psm_map_matrix(m, l->position, p);
-            vec4 map_clip, screen_clip, h = {p[0], p[1], p[2], 1};
-            glm_mat4_mulv((vec4 *)map, h, map_clip);
+            vec4 screen_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
             glm_mat4_mulv((vec4 *)f->view->view_projection, h, screen_clip);
-            if (!(map_clip[3] > 0) || fabsf(map_clip[0]) > map_clip[3] * 1.001f ||
-                fabsf(map_clip[1]) > map_clip[3] * 1.001f)
-                return INFINITY;
-            float a[2][2], b[2][2];
-            for (int k = 0; k < 2; k++) {
-                psm_derivative(map, map_clip, tangent[k], map_half, a[k]);
-                psm_derivative(f->view->view_projection, screen_clip, tangent[k], screen_half, b[k]);
-            }
-            float texels = fabsf(a[0][0] * a[1][1] - a[0][1] * a[1][0]);
-            float pixels = fabsf(b[0][0] * b[1][1] - b[0][1] * b[1][0]);
-            if (texels > 0 && isfinite(pixels / texels)) {
-                sum += sqrt((double)pixels / texels);
-                samples++;
-            }
+            float b[2][2];
+            for (int k = 0; k < 2; k++)
+                psm_derivative(f->view->view_projection, screen_clip, sample->tangent[k], screen_half, b[k]);
+            sample->pixels = fabsf(b[0][0] * b[1][1] - b[0][1] * b[1][0]);
+            n++;
         }
     }
-    return samples > 0 ? (float)(sum / samples) : INFINITY;
+    return n;
+}
+
+/* Mean size in pixels of a map texel at the samples; INFINITY if one lies
+ * outside the map (or none can be measured). On each sample's face, a
+ * texel's footprint is the ratio of two areas: a pixel's over a texel's. */
+static float psm_texel_pixels(const shadowmap_light *m, const scene_light *l, const psm_sample *samples, int n) {
+    float map_half[2] = {0.5f * (float)m->size, 0.5f * (float)m->size};
+    double sum = 0;
+    int measured = 0;
+    for (int i = 0; i < n; i++) {
+        const psm_sample *sample = &samples[i];
+        const vec4 *map = psm_map_matrix(m, l->position, sample->position);
+        vec4 map_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
+        glm_mat4_mulv((vec4 *)map, h, map_clip);
+        if (!(map_clip[3] > 0) || fabsf(map_clip[0]) > map_clip[3] * 1.001f ||
+            fabsf(map_clip[1]) > map_clip[3] * 1.001f)
+            return INFINITY;
+        float a[2][2];
+        for (int k = 0; k < 2; k++)
+            psm_derivative(map, map_clip, sample->tangent[k], map_half, a[k]);
+        float texels = fabsf(a[0][0] * a[1][1] - a[0][1] * a[1][0]);
+        if (texels > 0 && isfinite(sample->pixels / texels)) {
+            sum += sqrt((double)sample->pixels / texels);
+            measured++;
+        }
+    }
+    return measured > 0 ? (float)(sum / measured) : INFINITY;
 }
 
 /* ---- the fit ---- */
@@ -580,8 +580,10 @@ static bool psm_fit(const technique_frame *f, int light, shadowmap_light *m, con
     }
     if (!ok)
         return true;
-    choice->texel_pixels[0] = psm_texel_pixels(f, &warped, l);
-    choice->texel_pixels[1] = psm_texel_pixels(f, m, l);
+    static psm_sample samples[PSM_SAMPLES_X * PSM_SAMPLES_Y];
+    int sample_count = psm_samples(f, l, samples);
+    choice->texel_pixels[0] = psm_texel_pixels(&warped, l, samples, sample_count);
+    choice->texel_pixels[1] = psm_texel_pixels(m, l, samples, sample_count);
     if (!(choice->texel_pixels[0] < PSM_WARP_GAIN * choice->texel_pixels[1])) {
         snprintf(choice->why + strlen(choice->why), sizeof choice->why - strlen(choice->why),
                  "; the warp does not pay here");

@@ -160,16 +160,20 @@ static int shadowmap_visible_part(const mat4 view_projection, const vec3 frustum
     return n;
 }
 
-int shadowmap_receiver_points(const technique_frame *f, float (*points)[3], int max_points) {
-    const scene *s = f->gpu->scene;
-    vec3 frustum[8];
+void shadowmap_frustum_corners(const mat4 view_projection, float out[8][3]) {
     mat4 inverse;
-    glm_mat4_inv((vec4 *)f->view->view_projection, inverse);
+    glm_mat4_inv((vec4 *)view_projection, inverse);
     for (int c = 0; c < 8; c++) {
         vec4 ndc = {c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1, 1}, world;
         glm_mat4_mulv(inverse, ndc, world);
-        glm_vec3_scale(world, 1.0f / world[3], frustum[c]);
+        glm_vec3_scale(world, 1.0f / world[3], out[c]);
     }
+}
+
+int shadowmap_receiver_points(const technique_frame *f, float (*points)[3], int max_points) {
+    const scene *s = f->gpu->scene;
+    vec3 frustum[8];
+    shadowmap_frustum_corners(f->view->view_projection, frustum);
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
@@ -182,19 +186,18 @@ int shadowmap_receiver_points(const technique_frame *f, float (*points)[3], int 
     return n;
 }
 
-/* Bounds of points in a light's view space. */
-static void shadowmap_view_bounds(mat4 view, const float (*points)[3], int n, vec3 lo, vec3 hi) {
+void shadowmap_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]) {
     glm_vec3_fill(lo, INFINITY);
     glm_vec3_fill(hi, -INFINITY);
     for (int i = 0; i < n; i++) {
         vec3 p;
-        glm_mat4_mulv3(view, (float *)points[i], 1, p);
+        glm_mat4_mulv3((vec4 *)view, (float *)points[i], 1, p);
         glm_vec3_minv(lo, p, lo);
         glm_vec3_maxv(hi, p, hi);
     }
 }
 
-static void shadowmap_light_view(const float eye[3], const float direction[3], mat4 view) {
+void shadowmap_light_view(const float eye[3], const float direction[3], mat4 view) {
     vec3 target, up = {0, 1, 0};
     if (fabsf(direction[1]) > 0.99f)
         glm_vec3_copy((vec3){1, 0, 0}, up);
@@ -491,20 +494,15 @@ static void shadowmap_draw_lines(shadowmap_maps *k, const float (*points)[3], in
 }
 
 void shadowmap_draw_frustum(shadowmap_maps *k, const mat4 frustum, const mat4 view_projection) {
-    float lines[24][3];
-    mat4 inverse;
-    glm_mat4_inv((vec4 *)frustum, inverse);
+    float corners[8][3], lines[24][3];
+    shadowmap_frustum_corners(frustum, corners);
     int n = 0;
     for (int a = 0; a < 8; a++) {
         for (int bit = 1; bit < 8; bit <<= 1) {
             if (a & bit)
                 continue;
-            for (int end = 0; end < 2; end++) {
-                int c = end ? a | bit : a;
-                vec4 ndc = {c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1, 1}, world;
-                glm_mat4_mulv(inverse, ndc, world);
-                glm_vec3_scale(world, 1.0f / world[3], lines[n++]);
-            }
+            glm_vec3_copy(corners[a], lines[n++]);
+            glm_vec3_copy(corners[a | bit], lines[n++]);
         }
     }
     shadowmap_draw_lines(k, (const float(*)[3])lines, 24, view_projection, (const float[3]){1.0f, 0.85f, 0.2f});

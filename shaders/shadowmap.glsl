@@ -1,6 +1,6 @@
 // The camera pass of a shadow map (demos/shadowmap.c, demos/psm.c), shared
-// by the 2D map (spot, directional, warped) and the cube map (point). The including file
-// defines the two functions declared here:
+// by the 2D map (spot, directional, warped) and the cube map (point). The
+// including file defines the functions declared here:
 //   shadowmap_texel_world(p)  world size of one map texel at p
 //   shadowmap_visibility(p, b) the filtered comparison at p, its map depth
 //                             lowered by b first
