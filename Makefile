@@ -23,7 +23,7 @@ PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS))
 PKG_LIBS = $(shell pkg-config --libs $(PKGS))
 CFLAGS ?= -O2 -g
 ALL_CFLAGS = -std=c11 -fopenmp -Wall -Wextra -Werror -D_XOPEN_SOURCE=700 -DGLFW_INCLUDE_NONE \
-	$(SAN_FLAGS) -I$(BUILD)/glad/include -Icommon -Idemos -Itests $(PKG_CFLAGS) $(CFLAGS)
+	$(SAN_FLAGS) $(LAYER_INCLUDES) $(PKG_CFLAGS) $(CFLAGS)
 LDLIBS = $(PKG_LIBS) -lembree3 -ldl -lm
 LDFLAGS += $(SAN_FLAGS) -fopenmp
 
@@ -32,7 +32,32 @@ GL_EXTENSIONS := GL_KHR_debug
 GLAD_C := $(BUILD)/glad/src/gl.c
 GLAD_H := $(BUILD)/glad/include/glad/gl.h
 
-COMMON_SRC := $(filter-out common/main_%.c,$(wildcard common/*.c))
+# Layers, each compiled with only the include paths it may use, so that a
+# wrong include fails to build (README, "Layout"):
+#   common/data      scenes, meshes, camera, dumps, images, files, flags: no GL
+#   common/measure   the reference and the metrics: data only, no GL
+#   common/gl        contexts, target, shaders, HUD, the lit scene, capture,
+#                    the technique interface: data and the GL loader
+#   demos/           the techniques (demos/lib: what several share): gl, data
+#   common/programs  the frame loop and every main: all of common; only the
+#                    main files see demos/ (for the registry)
+GLAD_INCLUDE = -I$(BUILD)/glad/include
+INCLUDES_data = -Icommon/data
+INCLUDES_measure = -Icommon/measure $(INCLUDES_data)
+INCLUDES_gl = -Icommon/gl $(INCLUDES_data) $(GLAD_INCLUDE)
+INCLUDES_demos = -Idemos -Idemos/lib $(INCLUDES_gl)
+INCLUDES_programs = -Icommon/programs -Icommon/measure $(INCLUDES_gl)
+$(BUILD)/common/data/%.o: LAYER_INCLUDES = $(INCLUDES_data)
+$(BUILD)/common/measure/%.o: LAYER_INCLUDES = $(INCLUDES_measure)
+$(BUILD)/common/gl/%.o: LAYER_INCLUDES = $(INCLUDES_gl)
+$(BUILD)/glad/gl.o: LAYER_INCLUDES = $(GLAD_INCLUDE)
+$(BUILD)/demos/%.o: LAYER_INCLUDES = $(INCLUDES_demos)
+$(BUILD)/common/programs/%.o: LAYER_INCLUDES = $(INCLUDES_programs)
+$(BUILD)/common/programs/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs) -Idemos
+$(BUILD)/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs)
+$(BUILD)/tests/%.o: LAYER_INCLUDES = -Itests -Idemos -Idemos/lib $(INCLUDES_programs)
+
+COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) common/programs/app.c
 DEMO_SRC := $(filter-out demos/registry.c,$(wildcard demos/*.c))
 DEMOS := $(patsubst demos/%.c,%,$(DEMO_SRC))
 TEST_SRC := $(wildcard tests/test_*.c)
@@ -40,9 +65,10 @@ TEST_SUPPORT := $(BUILD)/tests/support.o
 TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 
 LIB := $(BUILD)/libshadows.a
-LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) demos/registry.c) $(BUILD)/glad/gl.o
-# Programs whose main is common/main_NAME.c (the reference, the metrics,
-# the benchmark); the demos' main is common/main_single.c.
+LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) $(wildcard demos/lib/*.c) demos/registry.c) \
+	$(BUILD)/glad/gl.o
+# Programs whose main is common/programs/main_NAME.c (the reference, the
+# metrics, the benchmark); the demos' main is common/programs/main_single.c.
 TOOLS := raytrace shadowdiff bench
 PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
@@ -111,14 +137,14 @@ $(BUILD)/%.o: %.c $(GLAD_H)
 $(LIB): $(LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
-$(BUILD)/shadows: $(BUILD)/common/main_registry.o $(LIB)
+$(BUILD)/shadows: $(BUILD)/common/programs/main_registry.o $(LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-$(addprefix $(BUILD)/,$(TOOLS)): $(BUILD)/%: $(BUILD)/common/main_%.o $(LIB)
+$(addprefix $(BUILD)/,$(TOOLS)): $(BUILD)/%: $(BUILD)/common/programs/main_%.o $(LIB)
 	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 # Each demo binary hosts one technique: the same main, told which one.
-$(BUILD)/main_%.o: common/main_single.c $(GLAD_H)
+$(BUILD)/main_%.o: common/programs/main_single.c $(GLAD_H)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -MMD -MP -DDEMO_TECHNIQUE=$*_technique -c $< -o $@
 

@@ -71,7 +71,7 @@ void planar_receiver_plane(const scene_object *o, float plane[4]) {
 static bool planar_init(const render_scene *gpu) {
     (void)gpu;
     static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
-    if (!render_program_load(&planar.flatten, files, 2))
+    if (!render_program_load(&planar.flatten, files, 2, NULL))
         return false;
     planar.shadow = glGetUniformLocation(planar.flatten.id, "u_shadow");
     planar.plane = glGetUniformLocation(planar.flatten.id, "u_plane");

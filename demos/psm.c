@@ -50,7 +50,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context.h"
 #include "shadowmap.h"
 
 #define PSM_MAX_POINTS (SHADOWMAP_MAX_RECEIVER_POINTS + 8 * 256) /* receivers' corners, then casters' */
@@ -142,7 +141,7 @@ static bool psm_frustum_around(const float eye[3], const float (*points)[3], int
         return false;
     glm_vec3_normalize(axis);
     mat4 view, projection;
-    shadowmap_light_view(eye, axis, view);
+    frustum_look_along(eye, axis, view);
     float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, t_min = INFINITY, t_max = 0;
     for (int i = 0; i < n; i++) {
         vec3 q;
@@ -237,7 +236,7 @@ static int psm_relevant_casters(const technique_frame *f, const scene_light *l, 
         if (!s->objects[i].casts)
             continue;
         scene_object_world_bounds(&s->objects[i], blo, bhi);
-        shadowmap_corners(blo, bhi, corners);
+        frustum_box_corners(blo, bhi, corners);
         if (directional) {
             float clo[2] = {INFINITY, INFINITY}, chi[2] = {-INFINITY, -INFINITY};
             for (int c = 0; c < 8; c++) {
@@ -301,8 +300,8 @@ static bool psm_warp_psm(const technique_frame *f, const scene_light *l, const p
         vec3 travel, lo, hi;
         glm_vec3_scale(light_pps, -1.0f / length, travel);
         mat4 light_view, box;
-        shadowmap_light_view(GLM_VEC3_ZERO, travel, light_view); /* any eye: depths are relative */
-        shadowmap_view_bounds(light_view, (const float(*)[3])warped, n, lo, hi);
+        frustum_look_along(GLM_VEC3_ZERO, travel, light_view); /* any eye: depths are relative */
+        frustum_view_bounds(light_view, (const float(*)[3])warped, n, lo, hi);
         m->near_plane = -hi[2];
         m->far_plane = -lo[2];
         glm_ortho(lo[0], hi[0], lo[1], hi[1], m->near_plane, m->far_plane, box);
@@ -338,7 +337,7 @@ static bool psm_warp_lispsm(const scene_light *l, const psm_view *v, const float
     mat4 space;
     float unused_near, unused_far;
     if (l->type == SCENE_LIGHT_DIRECTIONAL) {
-        shadowmap_light_view(v->eye, l->direction, space);
+        frustum_look_along(v->eye, l->direction, space);
     } else {
         if (!psm_frustum_around(l->position, points, n, space, &unused_near, &unused_far)) {
             snprintf(choice->why, sizeof choice->why, "the seen scene surrounds the light");
@@ -646,10 +645,10 @@ static bool psm_init(const render_scene *gpu) {
             return false;
         }
     }
-    if (!shadowmap_maps_init(&psm.maps) || !render_program_load(&psm.warped, warped_files, 2))
+    if (!shadowmap_maps_init(&psm.maps) || !render_program_load(&psm.warped, warped_files, 2, NULL))
         return false;
     psm.warped_space = glGetUniformLocation(psm.warped.id, "u_warp_space");
-    return context_gl_ok("psm_init");
+    return true;
 }
 
 static void psm_destroy(void) {

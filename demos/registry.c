@@ -6,8 +6,8 @@ extern const technique shadowmap_technique;
 extern const technique psm_technique;
 extern const technique volumes_technique;
 
-/* Keys 1-9 in the window follow this order; the benchmark finds its cost
- * floor, "unshadowed", by name. */
+/* Keys 1-9 in the window follow this order; the benchmark's cost floor is
+ * the technique marked cost_floor (unshadowed). */
 const technique *const registry_techniques[] = {
     &planar_technique,
     &shadowmap_technique,

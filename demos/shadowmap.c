@@ -57,7 +57,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context.h"
 #include "shadowmap.h"
 
 #define SHADOWMAP_POISSON_TEXELS 3
@@ -87,122 +86,20 @@ static float shadowmap_setting(float value, float fallback) { return value != 0 
 
 /* ---- fitting ---- */
 
-void shadowmap_corners(const float lo[3], const float hi[3], float out[8][3]) {
-    for (int c = 0; c < 8; c++)
-        glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, out[c]);
-}
-
-static bool shadowmap_in_frustum(const mat4 view_projection, const float p[3]) {
-    vec4 clip, h = {p[0], p[1], p[2], 1};
-    glm_mat4_mulv((vec4 *)view_projection, h, clip);
-    float w = clip[3] * (1 + 1e-4f);
-    return clip[3] > 0 && fabsf(clip[0]) <= w && fabsf(clip[1]) <= w && fabsf(clip[2]) <= w;
-}
-
-/* Inside lo..hi, give or take a ten-thousandth of its largest side (a
- * plane's box is flat: its own thickness is no measure). */
-static bool shadowmap_in_box(const vec3 lo, const vec3 hi, const float p[3]) {
-    float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
-    for (int k = 0; k < 3; k++) {
-        float margin = 1e-4f * size + 1e-6f * fmaxf(fabsf(lo[k]), fabsf(hi[k]));
-        if (p[k] < lo[k] - margin || p[k] > hi[k] + margin)
-            return false;
-    }
-    return true;
-}
-
-/* The corners of the part of the box lo..hi that the camera's frustum
- * holds: the vertices of the meeting of two convex bodies are the corners
- * of each inside the other and the crossings of each one's edges with the
- * other's faces. */
-static int shadowmap_visible_part(const mat4 view_projection, const vec3 frustum[8], const vec3 lo, const vec3 hi,
-                                  float (*out)[3], int capacity) {
-    vec3 box[8];
-    shadowmap_corners(lo, hi, box);
-    int n = 0;
-    for (int c = 0; c < 8 && n < capacity; c++) {
-        if (shadowmap_in_box(lo, hi, frustum[c]))
-            glm_vec3_copy((float *)frustum[c], out[n++]);
-        if (n < capacity && shadowmap_in_frustum(view_projection, box[c]))
-            glm_vec3_copy(box[c], out[n++]);
-    }
-    for (int a = 0; a < 8; a++) {
-        for (int bit = 1; bit < 8; bit <<= 1) {
-            if (a & bit)
-                continue;
-            /* The frustum's edge a..a|bit across the box's six planes. */
-            const float *fa = frustum[a], *fb = frustum[a | bit];
-            for (int k = 0; k < 6 && n < capacity; k++) {
-                float plane = k & 1 ? hi[k / 2] : lo[k / 2], da = fa[k / 2] - plane, db = fb[k / 2] - plane;
-                if (da * db >= 0)
-                    continue;
-                glm_vec3_lerp((float *)fa, (float *)fb, da / (da - db), out[n]);
-                out[n][k / 2] = plane;
-                if (shadowmap_in_box(lo, hi, out[n]))
-                    n++;
-            }
-            /* The box's edge a..a|bit across the frustum's six planes:
-             * clip x, y or z minus or plus w, linear along the edge. */
-            vec4 ca, cb, ha = {box[a][0], box[a][1], box[a][2], 1}, hb = {box[a | bit][0], box[a | bit][1],
-                                                                         box[a | bit][2], 1};
-            glm_mat4_mulv((vec4 *)view_projection, ha, ca);
-            glm_mat4_mulv((vec4 *)view_projection, hb, cb);
-            for (int k = 0; k < 6 && n < capacity; k++) {
-                float sign = k & 1 ? -1.0f : 1.0f, ga = ca[k / 2] * sign - ca[3], gb = cb[k / 2] * sign - cb[3];
-                if (ga * gb >= 0)
-                    continue;
-                glm_vec3_lerp(box[a], box[a | bit], ga / (ga - gb), out[n]);
-                if (shadowmap_in_frustum(view_projection, out[n]))
-                    n++;
-            }
-        }
-    }
-    return n;
-}
-
-void shadowmap_frustum_corners(const mat4 view_projection, float out[8][3]) {
-    mat4 inverse;
-    glm_mat4_inv((vec4 *)view_projection, inverse);
-    for (int c = 0; c < 8; c++) {
-        vec4 ndc = {c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1, 1}, world;
-        glm_mat4_mulv(inverse, ndc, world);
-        glm_vec3_scale(world, 1.0f / world[3], out[c]);
-    }
-}
-
 int shadowmap_receiver_points(const technique_frame *f, float (*points)[3], int max_points) {
     const scene *s = f->gpu->scene;
     vec3 frustum[8];
-    shadowmap_frustum_corners(f->view->view_projection, frustum);
+    frustum_corners(f->view->view_projection, frustum);
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
         if (!s->objects[i].receives)
             continue;
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        n += shadowmap_visible_part(f->view->view_projection, (const vec3 *)frustum, lo, hi, points + n,
+        n += frustum_box_part(f->view->view_projection, (const vec3 *)frustum, lo, hi, points + n,
                                     max_points - n);
     }
     return n;
-}
-
-void shadowmap_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]) {
-    glm_vec3_fill(lo, INFINITY);
-    glm_vec3_fill(hi, -INFINITY);
-    for (int i = 0; i < n; i++) {
-        vec3 p;
-        glm_mat4_mulv3((vec4 *)view, (float *)points[i], 1, p);
-        glm_vec3_minv(lo, p, lo);
-        glm_vec3_maxv(hi, p, hi);
-    }
-}
-
-void shadowmap_light_view(const float eye[3], const float direction[3], mat4 view) {
-    vec3 target, up = {0, 1, 0};
-    if (fabsf(direction[1]) > 0.99f)
-        glm_vec3_copy((vec3){1, 0, 0}, up);
-    glm_vec3_add((float *)eye, (float *)direction, target);
-    glm_lookat((float *)eye, target, up, view);
 }
 
 /* Directional: an orthographic box around the visible receivers, deepened
@@ -224,16 +121,16 @@ static bool shadowmap_fit_2d(const technique_frame *f, const scene_light *l, sha
     } else {
         glm_vec3_copy((float *)l->position, eye);
     }
-    shadowmap_light_view(eye, l->direction, view);
-    shadowmap_view_bounds(view, receivers, receiver_count, lo, hi);
+    frustum_look_along(eye, l->direction, view);
+    frustum_view_bounds(view, receivers, receiver_count, lo, hi);
     float nearest = hi[2];
     for (int i = 0; i < s->object_count; i++) {
         vec3 corners[8], clo, chi, blo, bhi;
         if (!s->objects[i].casts)
             continue;
         scene_object_world_bounds(&s->objects[i], blo, bhi);
-        shadowmap_corners(blo, bhi, corners);
-        shadowmap_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
+        frustum_box_corners(blo, bhi, corners);
+        frustum_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
         /* A spot's caster counts if any of it is in front of the light. */
         bool overlaps = directional ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1]
                                     : clo[2] < 0;
@@ -372,7 +269,7 @@ static void shadowmap_render_depth(shadowmap_maps *k, const shadowmap_settings *
 /* ---- programs ---- */
 
 static bool shadowmap_program_load(shadowmap_program *p, const char *const files[2]) {
-    if (!render_program_load(&p->program, files, 2))
+    if (!render_program_load(&p->program, files, 2, NULL))
         return false;
     unsigned id = p->program.id;
     p->map = glGetUniformLocation(id, "u_map");
@@ -406,7 +303,7 @@ bool shadowmap_maps_init(shadowmap_maps *k) {
     static const char *const files_cube[] = {"lit.vert", "shadowmap_cube.frag"};
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
-    if (!render_program_load(&k->depth, depth_files, 2) || !shadowmap_program_load(&k->camera_2d, files_2d) ||
+    if (!render_program_load(&k->depth, depth_files, 2, NULL) || !shadowmap_program_load(&k->camera_2d, files_2d) ||
         !shadowmap_program_load(&k->camera_cube, files_cube) || !shadowmap_program_load(&k->lines, lines_files) ||
         !shadowmap_program_load(&k->inset, inset_files))
         return false;
@@ -424,7 +321,7 @@ bool shadowmap_maps_init(shadowmap_maps *k) {
     glReadBuffer(GL_NONE);
     /* Kernels that cross a cube face read on into the next face. */
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    return context_gl_ok("shadowmap_maps_init");
+    return true;
 }
 
 void shadowmap_maps_destroy(shadowmap_maps *k) {
@@ -495,7 +392,7 @@ static void shadowmap_draw_lines(shadowmap_maps *k, const float (*points)[3], in
 
 void shadowmap_draw_frustum(shadowmap_maps *k, const mat4 frustum, const mat4 view_projection) {
     float corners[8][3], lines[24][3];
-    shadowmap_frustum_corners(frustum, corners);
+    frustum_corners(frustum, corners);
     int n = 0;
     for (int a = 0; a < 8; a++) {
         for (int bit = 1; bit < 8; bit <<= 1) {

@@ -22,6 +22,7 @@
 #include <GLFW/glfw3.h>
 #include <stdbool.h>
 
+#include "frustum.h"
 #include "technique.h"
 
 typedef struct shadowmap_settings {
@@ -142,15 +143,6 @@ int shadowmap_settings_size(const shadowmap_settings *settings);
 bool shadowmap_fit_uniform(const technique_frame *f, int light, shadowmap_light *m, const float (*receivers)[3],
                            int receiver_count);
 
-/* Corners of the box lo..hi (bit 0: x, 1: y, 2: z from hi). */
-void shadowmap_corners(const float lo[3], const float hi[3], float out[8][3]);
-/* Corners of the frustum of `view_projection`: its clip cube mapped back to
- * world space, numbered as shadowmap_corners numbers a box's. */
-void shadowmap_frustum_corners(const mat4 view_projection, float out[8][3]);
-/* A view from `eye` looking along `direction` (any up that is not along it). */
-void shadowmap_light_view(const float eye[3], const float direction[3], mat4 view);
-/* Bounds of points in the space of `view`. */
-void shadowmap_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]);
 /* The points shadows are decided for: the corners of the part of every
  * receiver's box inside the camera's frustum. Returns how many (at most
  * max_points; SHADOWMAP_MAX_RECEIVER_POINTS is enough for 50 receivers). */

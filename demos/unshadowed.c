@@ -26,4 +26,5 @@ const technique unshadowed_technique = {
     .init = unshadowed_init,
     .render = unshadowed_render,
     .destroy = unshadowed_destroy,
+    .cost_floor = true,
 };

@@ -62,7 +62,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "context.h"
 #include "technique.h"
 
 typedef struct volumes_settings {
@@ -304,8 +303,8 @@ static bool volumes_init(const render_scene *gpu) {
     static const char *const cpu_files[] = {"volume.vert", "volume.frag"};
     static const char *const gpu_files[] = {"volume_adjacency.vert", "volume_silhouette.geom", "volume.frag"};
     static const char *const flat_files[] = {"volume.vert", "volume.frag"};
-    if (!render_program_load(&volumes.cpu, cpu_files, 2) || !render_program_load(&volumes.gpu, gpu_files, 3) ||
-        !render_program_load(&volumes.flat, flat_files, 2))
+    if (!render_program_load(&volumes.cpu, cpu_files, 2, NULL) ||
+        !render_program_load(&volumes.gpu, gpu_files, 3, NULL) || !render_program_load(&volumes.flat, flat_files, 2, NULL))
         return false;
     volumes.gpu_light = glGetUniformLocation(volumes.gpu.id, "u_light");
     volumes.flat_color = glGetUniformLocation(volumes.flat.id, "u_color");
@@ -351,7 +350,7 @@ static bool volumes_init(const render_scene *gpu) {
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), NULL);
     glBindVertexArray(0);
-    return context_gl_ok("volumes_init");
+    return true;
 }
 
 static void volumes_destroy(void) {
@@ -600,7 +599,6 @@ static void volumes_render(const technique_frame *f) {
         scene_light_homogeneous(&s->lights[0], light);
         volumes_draw_overlay(f, light);
     }
-    context_gl_ok("volumes_render");
 }
 
 static void volumes_describe(char *out, size_t size) {

@@ -10,15 +10,15 @@
 // does to shadow light K leaves its visibility in the red channel (see
 // common/capture.c).
 
-#define LIGHTING_MAX_LIGHTS 8
-
+// SCENE_MAX_LIGHTS comes from C (common/data/scene.h), injected by the
+// shader loader; the block's layout is checked in common/gl/render.c.
 layout(std140) uniform Lights {
     vec4 lights_ambient;                      // rgb
     ivec4 lights_count;                       // x: count, y: visibility mode light or -1
-    vec4 lights_position[LIGHTING_MAX_LIGHTS];  // xyz; w = 1 positional, 0 directional
-    vec4 lights_direction[LIGHTING_MAX_LIGHTS]; // xyz: the way the light travels
-    vec4 lights_color[LIGHTING_MAX_LIGHTS];     // rgb: colour times intensity
-    vec4 lights_cone[LIGHTING_MAX_LIGHTS];      // x: cos(outer), y: cos(inner); a point light has x < -1
+    vec4 lights_position[SCENE_MAX_LIGHTS];  // xyz; w = 1 positional, 0 directional
+    vec4 lights_direction[SCENE_MAX_LIGHTS]; // xyz: the way the light travels
+    vec4 lights_color[SCENE_MAX_LIGHTS];     // rgb: colour times intensity
+    vec4 lights_cone[SCENE_MAX_LIGHTS];      // x: cos(outer), y: cos(inner); a point light has x < -1
 };
 
 // Unit vector from the surface point towards light i.

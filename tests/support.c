@@ -23,8 +23,9 @@ const char *support_program(const char *name) {
 }
 
 int support_run(const char *command, char *stderr_text, size_t capacity) {
-    static const char *const err_path = "out/test/stderr.txt";
-    char full[4096];
+    /* One file per test process: two test programs may run at once. */
+    char err_path[64], full[4096];
+    snprintf(err_path, sizeof err_path, "out/test/stderr-%ld.txt", (long)getpid());
     snprintf(full, sizeof full, "mkdir -p out/test && %s 2>%s >/dev/null", command, err_path);
     int status = system(full);
     stderr_text[0] = '\0';

@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "registry.h"
+#include "render.h"
 #include "support.h"
 
 #define EXIT_RUNTIME 1
@@ -132,6 +134,24 @@ static void test_help_lists_flags_and_toggles(void **state) {
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
+/* A GL error raised inside any technique's frame (the test hook of
+ * render.h: every object drawn also calls glEnable(0)) fails the run with
+ * exit 1 and a line naming the technique: no technique can swallow it. */
+static void test_gl_error_in_any_technique_fails(void **state) {
+    (void)state;
+    for (int t = 0; t < registry_technique_count; t++) {
+        const char *name = registry_techniques[t]->name;
+        char command[2048], expect[128];
+        snprintf(command, sizeof command,
+                 RENDER_INJECT_GL_ERROR_ENV "=1 %s --backend egl --size 64x36 --frames 1 --screenshot "
+                                            "out/test/gl_error_%s.png",
+                 support_program(name), name);
+        assert_int_equal(support_run(command, err, sizeof err), EXIT_RUNTIME);
+        snprintf(expect, sizeof expect, "%s: GL", name);
+        assert_non_null(strstr(err, expect));
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unknown_flag),
@@ -143,6 +163,7 @@ int main(void) {
         cmocka_unit_test(test_missing_shader_dir),
         cmocka_unit_test(test_broken_shader_names_file_and_line),
         cmocka_unit_test(test_help_lists_flags_and_toggles),
+        cmocka_unit_test(test_gl_error_in_any_technique_fails),
     };
     return cmocka_run_group_tests_name("command line", tests, NULL, NULL);
 }

@@ -8,6 +8,8 @@
 #include "context.h"
 #include "shader.h"
 
+#define RENDER_NOT_A_CAPABILITY 0 /* glEnable(0): GL_INVALID_ENUM, for the test hook */
+
 /* std140 mirror of the Lights block in shaders/lighting.glsl. */
 typedef struct render_lights_block {
     float ambient[4];
@@ -18,8 +20,22 @@ typedef struct render_lights_block {
     float cone[SCENE_MAX_LIGHTS][4];
 } render_lights_block;
 
-bool render_program_load(render_program *p, const char *const *files, int count) {
-    *p = (render_program){.id = shader_load_program(files, count)};
+/* std140: a vec4 or ivec4 and each element of an array of them take 16
+ * bytes, members follow in order. */
+#define RENDER_STD140_VEC4 16
+_Static_assert(offsetof(render_lights_block, ambient) == 0, "Lights.lights_ambient");
+_Static_assert(offsetof(render_lights_block, count) == RENDER_STD140_VEC4, "Lights.lights_count");
+_Static_assert(offsetof(render_lights_block, position) == 2 * RENDER_STD140_VEC4, "Lights.lights_position");
+_Static_assert(offsetof(render_lights_block, direction) == (2 + SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+               "Lights.lights_direction");
+_Static_assert(offsetof(render_lights_block, color) == (2 + 2 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+               "Lights.lights_color");
+_Static_assert(offsetof(render_lights_block, cone) == (2 + 3 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+               "Lights.lights_cone");
+_Static_assert(sizeof(render_lights_block) == (2 + 4 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4, "Lights size");
+
+bool render_program_load(render_program *p, const char *const *files, int count, const shader_define *defines) {
+    *p = (render_program){.id = shader_load_program(files, count, defines)};
     if (!p->id)
         return false;
     p->model = glGetUniformLocation(p->id, "u_model");
@@ -47,6 +63,8 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
     glUniform3fv(p->albedo, 1, o->color);
     glBindVertexArray(m->vao);
     glDrawElements(GL_TRIANGLES, m->index_count, GL_UNSIGNED_INT, NULL);
+    if (r->inject_gl_error)
+        glEnable(RENDER_NOT_A_CAPABILITY);
 }
 
 static void render_mesh_upload(render_mesh *g, const scene_object *o) {
@@ -71,7 +89,7 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
 }
 
 bool render_scene_create(render_scene *r, const scene *s) {
-    *r = (render_scene){.scene = s};
+    *r = (render_scene){.scene = s, .inject_gl_error = getenv(RENDER_INJECT_GL_ERROR_ENV) != NULL};
     r->meshes = calloc((size_t)s->object_count, sizeof *r->meshes);
     if (!r->meshes) {
         fprintf(stderr, "render: out of memory\n");
@@ -85,7 +103,7 @@ bool render_scene_create(render_scene *r, const scene *s) {
     glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffer);
     render_scene_update_lights(r, -1);
     static const char *const lit_files[] = {"lit.vert", "lit.frag"};
-    if (!render_program_load(&r->lit, lit_files, 2)) {
+    if (!render_program_load(&r->lit, lit_files, 2, NULL)) {
         render_scene_destroy(r);
         return false;
     }

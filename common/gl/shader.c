@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "path.h"
+#include "scene.h"
 
 #define SHADER_MAX_SOURCES 16 /* files, includes counted, in one stage */
 #define SHADER_MAX_DEPTH 8
@@ -19,6 +20,9 @@
 #define SHADER_LINE_STRIDE 100000
 
 static char shader_dir[4096] = "shaders";
+
+/* What every program sees (the lights block's size, shaders/lighting.glsl). */
+static const shader_define shader_common_defines[] = {SHADER_DEFINE(SCENE_MAX_LIGHTS), {NULL, 0}};
 
 void shader_set_directory(const char *dir) { snprintf(shader_dir, sizeof shader_dir, "%s", dir); }
 const char *shader_directory(void) { return shader_dir; }
@@ -55,9 +59,20 @@ static bool shader_append_line_directive(shader_source *s, int line, int file) {
     return shader_append(s, directive, (size_t)n);
 }
 
+static bool shader_append_defines(shader_source *s, const shader_define *defines) {
+    bool ok = true;
+    for (const shader_define *d = defines; ok && d && d->name; d++) {
+        char line[128];
+        int n = snprintf(line, sizeof line, "#define %s %d\n", d->name, d->value);
+        ok = n > 0 && (size_t)n < sizeof line && shader_append(s, line, (size_t)n);
+    }
+    return ok;
+}
+
 /* Appends `name` with its includes expanded. #version must stay the first
- * line of a stage, so the first #line directive goes after it. */
-static bool shader_expand(shader_source *s, const char *name, int depth) {
+ * line of a stage, so the defines and the first #line directive go after
+ * it. */
+static bool shader_expand(shader_source *s, const char *name, int depth, const shader_define *defines) {
     if (depth > SHADER_MAX_DEPTH || s->file_count == SHADER_MAX_SOURCES) {
         fprintf(stderr, "%s/%s: includes nested too deep or too many\n", shader_dir, name);
         return false;
@@ -76,13 +91,14 @@ static bool shader_expand(shader_source *s, const char *name, int depth) {
         size_t n = end ? (size_t)(end - p + 1) : strlen(p);
         char included[256];
         if (sscanf(p, " #include \"%255[^\"]\"", included) == 1) {
-            ok = shader_expand(s, included, depth + 1) && shader_append_line_directive(s, line + 1, file);
+            ok = shader_expand(s, included, depth + 1, NULL) && shader_append_line_directive(s, line + 1, file);
             if (!ok)
                 fprintf(stderr, "%s/%s:%d: included from here\n", shader_dir, s->files[file], line);
         } else {
             ok = shader_append(s, p, n);
             if (ok && depth == 0 && line == 1)
-                ok = shader_append_line_directive(s, 2, file);
+                ok = shader_append_defines(s, shader_common_defines) && shader_append_defines(s, defines) &&
+                     shader_append_line_directive(s, 2, file);
         }
         p += n;
     }
@@ -129,7 +145,7 @@ static GLenum shader_stage(const char *file) {
     return 0;
 }
 
-static GLuint shader_compile(const char *file) {
+static GLuint shader_compile(const char *file, const shader_define *defines) {
     GLenum stage = shader_stage(file);
     if (!stage) {
         fprintf(stderr, "%s/%s: unknown shader stage (expected .vert, .geom or .frag)\n", shader_dir, file);
@@ -137,7 +153,7 @@ static GLuint shader_compile(const char *file) {
     }
     shader_source s = {0};
     GLuint shader = 0;
-    if (shader_expand(&s, file, 0)) {
+    if (shader_expand(&s, file, 0, defines)) {
         shader = glCreateShader(stage);
         const char *text = s.text;
         glShaderSource(shader, 1, &text, NULL);
@@ -157,11 +173,11 @@ static GLuint shader_compile(const char *file) {
     return shader;
 }
 
-unsigned shader_load_program(const char *const *files, int count) {
+unsigned shader_load_program(const char *const *files, int count, const shader_define *defines) {
     GLuint program = glCreateProgram();
     bool ok = true;
     for (int i = 0; i < count && ok; i++) {
-        GLuint shader = shader_compile(files[i]);
+        GLuint shader = shader_compile(files[i], defines);
         ok = shader != 0;
         if (ok) {
             glAttachShader(program, shader);

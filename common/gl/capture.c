@@ -51,7 +51,7 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
     capture_buffers b = {0};
     size_t n = (size_t)out->width * (size_t)out->height;
     float *normal_distance = malloc(n * 4 * sizeof(float)), *position_id = malloc(n * 4 * sizeof(float));
-    bool ok = normal_distance && position_id && render_program_load(&program, files, 3);
+    bool ok = normal_distance && position_id && render_program_load(&program, files, 3, NULL);
     if (ok && (ok = capture_buffers_create(&b, out->width, out->height))) {
         static const float none[4] = {0, 0, 0, -1};
         glViewport(0, 0, out->width, out->height);

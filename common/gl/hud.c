@@ -24,7 +24,7 @@ static struct {
 
 bool hud_init(void) {
     static const char *const files[] = {"hud.vert", "hud.frag"};
-    hud.program = shader_load_program(files, 2);
+    hud.program = shader_load_program(files, 2, NULL);
     if (!hud.program)
         return false;
     hud.viewport = glGetUniformLocation(hud.program, "u_viewport");

@@ -35,10 +35,10 @@
 
 #define BENCH_MAX_ROWS 256
 #define BENCH_MAX_FRAMES 1000
-#define BENCH_FLOOR "unshadowed"
 
 typedef struct bench_row {
     const char *scene, *technique, *config;
+    bool cost_floor; /* the technique is the registry's cost floor */
     double gpu_median, gpu_p90, cpu_median, cpu_p90;
     double frame_ms; /* what the ratio, the front and the plot use */
     double ratio;
@@ -224,9 +224,10 @@ static bool bench_configuration(const char *scene_name, const char *config, cons
         return false;
     }
     bench_row *row = &bench.rows[bench.row_count];
-    *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config};
+    *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config,
+                      .cost_floor = bench.current->cost_floor};
     dump_frame dump;
-    bool ok = technique_apply_config(bench.current, config) && bench.current->init(&bench.gpu) &&
+    bool ok = technique_apply_config(bench.current, config) && technique_init(bench.current, &bench.gpu) &&
               bench_time_frames(row) &&
               capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, &dump);
     bench.current->destroy();
@@ -260,7 +261,7 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     /* The cost floor: how much each technique adds to a plain frame. */
     double floor_ms = 0;
     for (int r = first_row; r < bench.row_count; r++)
-        if (strcmp(bench.rows[r].technique, BENCH_FLOOR) == 0)
+        if (bench.rows[r].cost_floor)
             floor_ms = bench.rows[r].frame_ms;
     for (int r = first_row; r < bench.row_count; r++)
         bench.rows[r].ratio = floor_ms > 0 ? bench.rows[r].frame_ms / floor_ms : 0;

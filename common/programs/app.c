@@ -236,7 +236,7 @@ static bool app_save_screenshot(const char *path) {
 
 static bool app_start_technique(int index) {
     app.current = index;
-    return app_technique()->init(&app.gpu);
+    return technique_init(app_technique(), &app.gpu);
 }
 
 static bool app_dump(const char *dir) {

@@ -48,6 +48,11 @@
 
 #define SCENE_MAX_LIGHTS 8
 #define SCENE_NAME_MAX 64
+/* What every picture shows where no object is: the rasterizer clears to
+ * it, the reference paints it. */
+#define SCENE_BACKGROUND_R 0.06f
+#define SCENE_BACKGROUND_G 0.07f
+#define SCENE_BACKGROUND_B 0.09f
 
 typedef enum scene_light_type {
     SCENE_LIGHT_POINT,

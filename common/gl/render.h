@@ -14,7 +14,7 @@
  * u_albedo, u_view_projection; any may be absent), then draw objects with
  * render_draw_object.
  *
- * State contract: the app binds the target, clears it to RENDER_BACKGROUND
+ * State contract: the app binds the target, clears it to SCENE_BACKGROUND
  * (depth 1, stencil 0) and calls render_reset_state before each technique
  * frame; a technique may leave any state behind.
  */
@@ -24,10 +24,7 @@
 #include <stdbool.h>
 #include "camera.h"
 #include "scene.h"
-
-#define RENDER_BACKGROUND_R 0.06f
-#define RENDER_BACKGROUND_G 0.07f
-#define RENDER_BACKGROUND_B 0.09f
+#include "shader.h"
 
 typedef struct render_program {
     unsigned id;
@@ -46,13 +43,22 @@ typedef struct render_scene {
     unsigned lights_buffer;
     render_program lit;
     int lit_ambient, lit_light_first, lit_light_end;
+    bool inject_gl_error; /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
+
+/* A test-only hook: with this variable set in the environment, every
+ * render_draw_object also raises a GL error (GL_INVALID_ENUM), so that a
+ * test can show that an error raised inside any technique's frame reaches
+ * the frame's owner and fails the run (tests/test_cli.c). */
+#define RENDER_INJECT_GL_ERROR_ENV "SHADOWS_TEST_INJECT_GL_ERROR"
 
 bool render_scene_create(render_scene *r, const scene *s);
 void render_scene_update_lights(const render_scene *r, int visibility_of);
 void render_scene_destroy(render_scene *r);
 
-bool render_program_load(render_program *p, const char *const *files, int count);
+/* files: count shader files; defines: NULL or the program's own C
+ * constants (see shader.h). */
+bool render_program_load(render_program *p, const char *const *files, int count, const shader_define *defines);
 void render_program_destroy(render_program *p);
 void render_program_use(const render_program *p, const camera_view *v);
 void render_draw_object(const render_scene *r, const render_program *p, int object);

@@ -9,6 +9,10 @@
  *                 state it finds), with the camera and lights of that frame;
  *   destroy()     before another scene or technique takes its place.
  * init returns false after printing why; the app then exits non-zero.
+ * GL errors are the caller's to find: technique_init and
+ * technique_render_frame check after init and after each frame, and a
+ * technique never calls context_gl_ok (which clears what it reports), so
+ * no error raised inside a technique goes unseen.
  *
  * Parameters are the technique's settings, each in its settings struct
  * where zero means the default:
@@ -79,6 +83,9 @@ typedef struct technique {
      * NAME-lecture_SCENE.png (an overlay for lectures), taken from its
      * defaults plus these. */
     const char *gallery_config;
+    /* The benchmark's cost floor (demos/unshadowed.c): every ratio is to
+     * this technique's frame. One technique in the registry has it. */
+    bool cost_floor;
 } technique;
 
 /* Applies one of the technique's own flags: NAME is "--no-X" for a toggle,
@@ -101,6 +108,10 @@ void technique_param_text(const technique_param *p, char *out, size_t size);
 /* The window's key press: flips a toggle or steps a choice; false if no
  * parameter has the key. */
 bool technique_press_key(const technique *t, int key);
+
+/* t->init, then any GL error it raised reported: the caller owns the
+ * check, techniques never test for GL errors themselves. */
+bool technique_init(const technique *t, const render_scene *gpu);
 
 /* One frame of `t` into `target`, as the app, the gallery and the benchmark
  * all render it: the lights (visibility mode for light visibility_of, or

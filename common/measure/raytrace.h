@@ -22,7 +22,7 @@
  *             spot), spot = smoothstep(cos outer, cos inner, cos of the
  *             angle off the axis); clamped, rounded to 8 bits as GL does.
  *             Every light's visibility is used; the background is
- *             RENDER_BACKGROUND.
+ *             SCENE_BACKGROUND.
  *   visibility of light `light_index` (the others only shade):
  *             radius 0: one shadow ray, 0 or 1. radius > 0, an area light:
  *             the fraction of `light_samples` shadow rays that get through

@@ -126,11 +126,16 @@ bool technique_press_key(const technique *t, int key) {
     return found;
 }
 
+bool technique_init(const technique *t, const render_scene *gpu) {
+    bool ok = t->init(gpu);
+    return context_gl_ok(t->name) && ok;
+}
+
 bool technique_render_frame(const technique *t, const technique_frame *f, const target *target,
                             int visibility_of) {
     render_scene_update_lights(f->gpu, visibility_of);
     target_bind(target);
-    glClearColor(RENDER_BACKGROUND_R, RENDER_BACKGROUND_G, RENDER_BACKGROUND_B, 1);
+    glClearColor(SCENE_BACKGROUND_R, SCENE_BACKGROUND_G, SCENE_BACKGROUND_B, 1);
     glClearDepth(1);
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);

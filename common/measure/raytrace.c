@@ -24,7 +24,6 @@
 #include <string.h>
 
 #include "camera.h"
-#include "render.h"
 
 #define RAYTRACE_PI 3.14159265358979323846f
 
@@ -454,8 +453,8 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
         .light_index = light_index,
         .width = width,
         .height = height,
-        .background = {raytrace_unorm8(RENDER_BACKGROUND_R), raytrace_unorm8(RENDER_BACKGROUND_G),
-                       raytrace_unorm8(RENDER_BACKGROUND_B), 255},
+        .background = {raytrace_unorm8(SCENE_BACKGROUND_R), raytrace_unorm8(SCENE_BACKGROUND_G),
+                       raytrace_unorm8(SCENE_BACKGROUND_B), 255},
     };
     camera_view view;
     camera_view_compute(&s->camera, (float)width / (float)height, &view);

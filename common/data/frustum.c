@@ -1,0 +1,102 @@
+#include "frustum.h"
+
+#include <math.h>
+
+void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]) {
+    for (int c = 0; c < 8; c++)
+        glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, out[c]);
+}
+
+bool frustum_contains(const mat4 view_projection, const float p[3]) {
+    vec4 clip, h = {p[0], p[1], p[2], 1};
+    glm_mat4_mulv((vec4 *)view_projection, h, clip);
+    float w = clip[3] * (1 + FRUSTUM_CLIP_TOLERANCE);
+    return clip[3] > 0 && fabsf(clip[0]) <= w && fabsf(clip[1]) <= w && fabsf(clip[2]) <= w;
+}
+
+bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]) {
+    float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+    for (int k = 0; k < 3; k++) {
+        float margin = FRUSTUM_BOX_TOLERANCE * size + FRUSTUM_FLOAT_TOLERANCE * fmaxf(fabsf(lo[k]), fabsf(hi[k]));
+        if (p[k] < lo[k] - margin || p[k] > hi[k] + margin)
+            return false;
+    }
+    return true;
+}
+
+/* The vertices of the meeting of two convex bodies are the corners of each
+ * inside the other and the crossings of each one's edges with the other's
+ * faces. */
+int frustum_box_part(const mat4 view_projection, const vec3 frustum[8], const vec3 lo, const vec3 hi,
+                                  float (*out)[3], int capacity) {
+    vec3 box[8];
+    frustum_box_corners(lo, hi, box);
+    int n = 0;
+    for (int c = 0; c < 8 && n < capacity; c++) {
+        if (frustum_box_contains(lo, hi, frustum[c]))
+            glm_vec3_copy((float *)frustum[c], out[n++]);
+        if (n < capacity && frustum_contains(view_projection, box[c]))
+            glm_vec3_copy(box[c], out[n++]);
+    }
+    for (int a = 0; a < 8; a++) {
+        for (int bit = 1; bit < 8; bit <<= 1) {
+            if (a & bit)
+                continue;
+            /* The frustum's edge a..a|bit across the box's six planes. */
+            const float *fa = frustum[a], *fb = frustum[a | bit];
+            for (int k = 0; k < 6 && n < capacity; k++) {
+                float plane = k & 1 ? hi[k / 2] : lo[k / 2], da = fa[k / 2] - plane, db = fb[k / 2] - plane;
+                if (da * db >= 0)
+                    continue;
+                glm_vec3_lerp((float *)fa, (float *)fb, da / (da - db), out[n]);
+                out[n][k / 2] = plane;
+                if (frustum_box_contains(lo, hi, out[n]))
+                    n++;
+            }
+            /* The box's edge a..a|bit across the frustum's six planes:
+             * clip x, y or z minus or plus w, linear along the edge. */
+            vec4 ca, cb, ha = {box[a][0], box[a][1], box[a][2], 1}, hb = {box[a | bit][0], box[a | bit][1],
+                                                                         box[a | bit][2], 1};
+            glm_mat4_mulv((vec4 *)view_projection, ha, ca);
+            glm_mat4_mulv((vec4 *)view_projection, hb, cb);
+            for (int k = 0; k < 6 && n < capacity; k++) {
+                float sign = k & 1 ? -1.0f : 1.0f, ga = ca[k / 2] * sign - ca[3], gb = cb[k / 2] * sign - cb[3];
+                if (ga * gb >= 0)
+                    continue;
+                glm_vec3_lerp(box[a], box[a | bit], ga / (ga - gb), out[n]);
+                if (frustum_contains(view_projection, out[n]))
+                    n++;
+            }
+        }
+    }
+    return n;
+}
+
+void frustum_corners(const mat4 view_projection, float out[8][3]) {
+    mat4 inverse;
+    glm_mat4_inv((vec4 *)view_projection, inverse);
+    for (int c = 0; c < 8; c++) {
+        vec4 ndc = {c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1, 1}, world;
+        glm_mat4_mulv(inverse, ndc, world);
+        glm_vec3_scale(world, 1.0f / world[3], out[c]);
+    }
+}
+
+void frustum_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]) {
+    glm_vec3_fill(lo, INFINITY);
+    glm_vec3_fill(hi, -INFINITY);
+    for (int i = 0; i < n; i++) {
+        vec3 p;
+        glm_mat4_mulv3((vec4 *)view, (float *)points[i], 1, p);
+        glm_vec3_minv(lo, p, lo);
+        glm_vec3_maxv(hi, p, hi);
+    }
+}
+
+void frustum_look_along(const float eye[3], const float direction[3], mat4 view) {
+    vec3 target, up = {0, 1, 0};
+    if (fabsf(direction[1]) > FRUSTUM_NEARLY_VERTICAL)
+        glm_vec3_copy((vec3){1, 0, 0}, up);
+    glm_vec3_add((float *)eye, (float *)direction, target);
+    glm_lookat((float *)eye, target, up, view);
+}

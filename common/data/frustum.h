@@ -1,0 +1,41 @@
+/* frustum: boxes and frusta in world space, the geometry that fitting a
+ * shadow map, choosing a volume's mode and culling all need. Pure math on
+ * cglm types: no GL, no scene.
+ *
+ * A frustum is given by its view-projection matrix (world -> clip); its
+ * corners are the clip cube's mapped back, numbered as a box's corners
+ * are: bit 0 picks x, bit 1 y, bit 2 z from hi (for a frustum: +1 in
+ * NDC), so corners 0-3 lie on the near plane.
+ */
+#ifndef FRUSTUM_H
+#define FRUSTUM_H
+
+#include <cglm/cglm.h>
+#include <stdbool.h>
+
+/* A point on a clip plane counts as inside: |x|, |y|, |z| <= w (1 + this). */
+#define FRUSTUM_CLIP_TOLERANCE 1e-4f
+/* A point counts as inside a box within this fraction of its largest side
+ * (a plane's box is flat: its own thickness is no measure), plus float
+ * rounding at the box's coordinates. */
+#define FRUSTUM_BOX_TOLERANCE 1e-4f
+#define FRUSTUM_FLOAT_TOLERANCE 1e-6f
+/* |direction.y| above this: "up" for a view along it is +x instead of +y. */
+#define FRUSTUM_NEARLY_VERTICAL 0.99f
+
+/* Corners of the box lo..hi. */
+void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]);
+/* Corners of the frustum of `view_projection`. */
+void frustum_corners(const mat4 view_projection, float out[8][3]);
+bool frustum_contains(const mat4 view_projection, const float p[3]);
+bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]);
+/* The corners of the part of the box lo..hi inside the frustum (whose
+ * corners are `corners`), at most `capacity` of them; returns how many. */
+int frustum_box_part(const mat4 view_projection, const vec3 corners[8], const vec3 lo, const vec3 hi,
+                     float (*out)[3], int capacity);
+/* Bounds of points in the space of `view`. */
+void frustum_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]);
+/* A view from `eye` looking along `direction` (any up that is not along it). */
+void frustum_look_along(const float eye[3], const float direction[3], mat4 view);
+
+#endif

@@ -1,0 +1,39 @@
+/* shader: GLSL programs from files in the shader directory.
+ *
+ * shader_load_program(files, n) compiles each file (its stage from the
+ * extension: .vert, .geom, .frag) and links them. A line
+ *     #include "name.glsl"
+ * is replaced by that file from the same directory (nested includes too),
+ * with #line directives so that the driver's messages keep their lines; on
+ * a compile or link error the log is printed with each "source:line"
+ * rewritten as "FILE:LINE", and 0 is returned.
+ *
+ * A uniform block named "Lights" is bound to SHADER_LIGHTS_BINDING, where
+ * render.c keeps the scene's lights (see shaders/lighting.glsl).
+ *
+ * The C/GLSL contract: every enum value and limit a shader shares with C
+ * is defined once, in C, and reaches the shader as "#define NAME VALUE"
+ * right after its #version line (so #line numbers stay true): the limits
+ * every program needs (SCENE_MAX_LIGHTS) always, a program's own through
+ * `defines`, a list ended by {NULL} built with SHADER_DEFINE(CONSTANT),
+ * which names the constant as C does. A shader compares with those names,
+ * never with a bare number; one that uses a name it was not given fails
+ * to compile.
+ */
+#ifndef SHADER_H
+#define SHADER_H
+
+#define SHADER_LIGHTS_BINDING 0
+
+typedef struct shader_define {
+    const char *name; /* NULL ends a list */
+    int value;
+} shader_define;
+#define SHADER_DEFINE(constant) {#constant, (int)(constant)}
+
+void shader_set_directory(const char *dir);
+const char *shader_directory(void);
+/* defines: NULL, or a list ended by {NULL}. */
+unsigned shader_load_program(const char *const *files, int count, const shader_define *defines);
+
+#endif
