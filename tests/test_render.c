@@ -1,9 +1,16 @@
-/* Screenshot tests: each technique on each standard scene (spot,
- * point and directional lights) rendered headless by each backend and
- * compared with tests/golden/ (tolerance in support.h: at most 0.1 %
- * of pixels differ by more than 8/255). On a failure the actual image and a
- * diff image are left in out/test/. `make update-golden` regenerates the
- * goldens, on purpose only.
+/* Screenshot tests, driven by one table of golden cases: a technique, a
+ * scene, the technique's flags and the golden's name. Each case is
+ * rendered headless at 640x360 on EGL and (but for the lecture pictures)
+ * OSMesa; each picture must match tests/golden/NAME.png and the other
+ * backend's within the tolerance in support.h (at most 0.1 % of pixels
+ * differ by more than 8/255). On a failure the actual image and a diff
+ * image are left in out/test/, with the commands that reproduce the case
+ * and re-record its golden.
+ *
+ * The same table re-records, on purpose only (look at the pictures, say
+ * why in the commit): `test_render --record [NAME...]` renders every case,
+ * or the named ones, on EGL with exactly the flags the check uses, into
+ * tests/golden/NAME.png. `make update-golden [ONLY=NAME]` runs it.
  *
  * The comparison is shown to bite: a scene whose light moved slightly, and
  * each planar fix turned off, must fail it. */
@@ -12,26 +19,121 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "registry.h"
 #include "support.h"
 
 #define SIZE "640x360"
+#define GOLDEN_DIR "tests/golden"
+#define GOLDEN_MAX_CASES 64
+#define GOLDEN_NAME_SIZE 64
+/* The gallery names a technique's second picture, made with its
+ * gallery_config, NAME-lecture_SCENE.png; its goldens are named alike. */
+#define GOLDEN_LECTURE "-lecture_"
 
-static const char *const scenes[] = {"simple", "bunny", "teapot"};
-static const char *const techniques[] = {"planar", "shadowmap", "psm", "volumes"};
+typedef struct golden_case {
+    const char *technique; /* its program, $BUILD/TECHNIQUE */
+    const char *scene;     /* assets/scenes/SCENE.json */
+    const char *flags;     /* the technique's own flags; "" for its defaults */
+    char name[GOLDEN_NAME_SIZE]; /* tests/golden/NAME.png */
+    /* Checked on EGL alone: the lecture pictures, whose overlays add
+     * nothing about the backends to what the standard cases show. */
+    bool egl_only;
+} golden_case;
+
+/* A spot, a point and a directional light: every technique in the registry
+ * has a golden on each. */
+static const char *const golden_standard_scenes[] = {"simple", "bunny", "teapot"};
+
+/* The rows beyond technique x standard scene: the shadow map's lecture
+ * picture for a 2D map (simple's spot) and a cube map (bunny's point
+ * light); perspective shadow maps where they matter, long_view, with the
+ * light in front of the viewer and behind (the inverted case), and the
+ * lecture's post-perspective view. */
+static const golden_case golden_extra_cases[] = {
+    {"shadowmap", "simple", "--overlay all", "shadowmap-lecture_simple", true},
+    {"shadowmap", "bunny", "--overlay all", "shadowmap-lecture_bunny", true},
+    {"psm", "long_view", "", "psm_long_view", false},
+    {"psm", "long_view_behind", "", "psm_long_view_behind", false},
+    {"psm", "long_view", "--overlay post-perspective", "psm-lecture_long_view", true},
+};
+
+static const char *const golden_backends[] = {"egl", "osmesa"};
+#define GOLDEN_BACKEND_COUNT (sizeof golden_backends / sizeof *golden_backends)
+
+static golden_case golden_cases[GOLDEN_MAX_CASES];
+static int golden_case_count;
 static char err[16384];
 
-/* Renders `scene_file` with build/TECHNIQUE and extra flags to
- * out/test/NAME.png. */
+static bool golden_make_cases(void) {
+    int standard = (int)(sizeof golden_standard_scenes / sizeof *golden_standard_scenes);
+    int extra = (int)(sizeof golden_extra_cases / sizeof *golden_extra_cases);
+    if (registry_technique_count * standard + extra > GOLDEN_MAX_CASES) {
+        fprintf(stderr, "test_render: more golden cases than GOLDEN_MAX_CASES (%d)\n", GOLDEN_MAX_CASES);
+        return false;
+    }
+    for (int t = 0; t < registry_technique_count; t++) {
+        for (int s = 0; s < standard; s++) {
+            golden_case *c = &golden_cases[golden_case_count++];
+            *c = (golden_case){.technique = registry_techniques[t]->name, .scene = golden_standard_scenes[s],
+                               .flags = ""};
+            snprintf(c->name, sizeof c->name, "%s_%s", c->technique, c->scene);
+        }
+    }
+    for (int i = 0; i < extra; i++)
+        golden_cases[golden_case_count++] = golden_extra_cases[i];
+    return true;
+}
+
+static const golden_case *golden_find(const char *name) {
+    for (int i = 0; i < golden_case_count; i++)
+        if (strcmp(golden_cases[i].name, name) == 0)
+            return &golden_cases[i];
+    return NULL;
+}
+
+/* The case of the same technique and scene with the technique's defaults. */
+static const golden_case *golden_plain_of(const golden_case *c) {
+    for (int i = 0; i < golden_case_count; i++) {
+        const golden_case *p = &golden_cases[i];
+        if (!p->flags[0] && strcmp(p->technique, c->technique) == 0 && strcmp(p->scene, c->scene) == 0)
+            return p;
+    }
+    return NULL;
+}
+
+static const technique *golden_technique(const char *name) {
+    for (int t = 0; t < registry_technique_count; t++)
+        if (strcmp(registry_techniques[t]->name, name) == 0)
+            return registry_techniques[t];
+    return NULL;
+}
+
+/* The command line that renders `scene_file` with $BUILD/TECHNIQUE and its
+ * flags into `screenshot`: what the check runs, prints and re-records. */
+static void golden_command(char *out, size_t size, const char *technique, const char *backend,
+                           const char *scene_file, const char *flags, const char *screenshot) {
+    snprintf(out, size, "%s --backend %s --size " SIZE " --scene %s%s%s --screenshot %s", support_program(technique),
+             backend, scene_file, flags[0] ? " " : "", flags, screenshot);
+}
+
+static void golden_case_command(char *out, size_t size, const golden_case *c, const char *backend,
+                                const char *screenshot) {
+    char scene_file[256];
+    snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", c->scene);
+    golden_command(out, size, c->technique, backend, scene_file, c->flags, screenshot);
+}
+
+/* Renders `scene_file` with TECHNIQUE and extra flags to out/test/NAME.png. */
 static void render_with(const char *technique, const char *backend, const char *scene_file, const char *flags,
                         const char *name) {
-    char command[2048];
-    snprintf(command, sizeof command,
-             "%s --backend %s --size " SIZE " --scene %s %s --screenshot out/test/%s.png",
-             support_program(technique), backend, scene_file, flags, name);
+    char command[2048], screenshot[256];
+    snprintf(screenshot, sizeof screenshot, "out/test/%s.png", name);
+    golden_command(command, sizeof command, technique, backend, scene_file, flags, screenshot);
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
@@ -39,62 +141,109 @@ static void render(const char *backend, const char *scene_file, const char *flag
     render_with("planar", backend, scene_file, flags, name);
 }
 
-static double compare_with_golden_of(const char *technique, const char *scene, const char *name) {
-    char golden[512], actual[512];
-    snprintf(golden, sizeof golden, "tests/golden/%s_%s.png", technique, scene);
+/* support_compare_images of the golden of case GOLDEN (which must be in
+ * the table) and out/test/NAME.png. */
+static double compare_with_golden(const char *golden, const char *name) {
+    if (!golden_find(golden))
+        fail_msg("%s is not a golden case", golden);
+    char golden_path[256], actual[256];
+    snprintf(golden_path, sizeof golden_path, GOLDEN_DIR "/%s.png", golden);
     snprintf(actual, sizeof actual, "out/test/%s.png", name);
-    return support_compare_images(golden, actual);
-}
-
-static double compare_with_golden(const char *scene, const char *name) {
-    return compare_with_golden_of("planar", scene, name);
-}
-
-static void check_backend(const char *backend) {
-    for (size_t t = 0; t < sizeof techniques / sizeof *techniques; t++) {
-        for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-            char scene_file[256], name[256];
-            snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", scenes[i]);
-            snprintf(name, sizeof name, "%s_%s_%s", techniques[t], scenes[i], backend);
-            render_with(techniques[t], backend, scene_file, "", name);
-            double fraction = compare_with_golden_of(techniques[t], scenes[i], name);
-            assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
-        }
-    }
+    return support_compare_images(golden_path, actual);
 }
 
 static bool osmesa_installed(void) {
     return system("ldconfig -p | grep -q libOSMesa.so") == 0;
 }
 
-static void test_egl_matches_golden(void **state) {
-    (void)state;
-    check_backend("egl");
+static bool within_tolerance(double fraction) {
+    return fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING;
 }
 
-static void test_osmesa_matches_golden(void **state) {
-    (void)state;
-    if (!osmesa_installed()) {
-        fprintf(stderr, "    libOSMesa is not installed here: skipped\n");
-        skip();
+/* Fails the case, naming the commands that reproduce its picture on each
+ * backend involved and, where a new golden could be the answer, the one
+ * that re-records it. */
+static void golden_fail(const golden_case *c, const char *what, const char *const *backends, int backend_count,
+                        bool offer_record) {
+    for (int b = 0; b < backend_count; b++) {
+        char command[2048], screenshot[256];
+        snprintf(screenshot, sizeof screenshot, "out/test/%s_%s.png", c->name, backends[b]);
+        golden_case_command(command, sizeof command, c, backends[b], screenshot);
+        fprintf(stderr, "    reproduce: %s\n", command);
     }
-    check_backend("osmesa");
+    if (offer_record)
+        fprintf(stderr, "    re-record (on purpose only): make update-golden ONLY=%s\n", c->name);
+    fail_msg("%s: %s", c->name, what);
 }
 
-/* EGL and OSMesa agree with each other, not just each with the golden. */
-static void test_backends_agree(void **state) {
+/* One case: rendered on each of its backends, each picture compared with
+ * the golden, the backends with each other, and a picture with flags
+ * (a lecture overlay) with the technique's plain golden, which it must not
+ * match: the overlay draws. */
+static void test_golden_case(void **state) {
+    const golden_case *c = *state;
+    int backend_count = c->egl_only || !osmesa_installed() ? 1 : (int)GOLDEN_BACKEND_COUNT;
+    if (!c->egl_only && backend_count == 1)
+        fprintf(stderr, "    libOSMesa is not installed here: EGL only\n");
+    char actual[GOLDEN_BACKEND_COUNT][GOLDEN_NAME_SIZE + sizeof "_osmesa"];
+    for (int b = 0; b < backend_count; b++) {
+        char command[2048], screenshot[256];
+        snprintf(actual[b], sizeof actual[b], "%s_%s", c->name, golden_backends[b]);
+        snprintf(screenshot, sizeof screenshot, "out/test/%s.png", actual[b]);
+        golden_case_command(command, sizeof command, c, golden_backends[b], screenshot);
+        if (support_run(command, err, sizeof err) != 0)
+            golden_fail(c, "the program failed", &golden_backends[b], 1, false);
+        if (!within_tolerance(compare_with_golden(c->name, actual[b])))
+            golden_fail(c, "does not match its golden", &golden_backends[b], 1, true);
+    }
+    if (backend_count == (int)GOLDEN_BACKEND_COUNT) {
+        char egl[256], osmesa[256];
+        snprintf(egl, sizeof egl, "out/test/%s.png", actual[0]);
+        snprintf(osmesa, sizeof osmesa, "out/test/%s.png", actual[1]);
+        if (!within_tolerance(support_compare_images(egl, osmesa)))
+            golden_fail(c, "EGL and OSMesa disagree", golden_backends, backend_count, false);
+    }
+    const golden_case *plain = golden_plain_of(c);
+    if (c->flags[0] && plain && compare_with_golden(plain->name, actual[0]) <= SUPPORT_MAX_DIFFERING)
+        golden_fail(c, "its flags change nothing: it matches its technique's plain golden", golden_backends, 1,
+                        false);
+}
+
+/* The table names every case as the gallery names its picture (TECHNIQUE_
+ * SCENE, or TECHNIQUE-lecture_SCENE with the technique's gallery_config,
+ * where it has one), of a technique in the registry; and every file in
+ * tests/golden/ is a case's. */
+static void test_golden_table_is_consistent(void **state) {
     (void)state;
-    if (!osmesa_installed())
-        skip();
-    for (size_t t = 0; t < sizeof techniques / sizeof *techniques; t++) {
-        for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-            char egl[256], osmesa[256];
-            snprintf(egl, sizeof egl, "out/test/%s_%s_egl.png", techniques[t], scenes[i]);
-            snprintf(osmesa, sizeof osmesa, "out/test/%s_%s_osmesa.png", techniques[t], scenes[i]);
-            double fraction = support_compare_images(egl, osmesa);
-            assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+    for (int i = 0; i < golden_case_count; i++) {
+        const golden_case *c = &golden_cases[i];
+        const technique *t = golden_technique(c->technique);
+        if (!t)
+            fail_msg("%s: %s is not in the registry", c->name, c->technique);
+        bool lecture = strstr(c->name, GOLDEN_LECTURE) != NULL;
+        char expected[GOLDEN_NAME_SIZE];
+        snprintf(expected, sizeof expected, "%s%s%s", c->technique, lecture ? GOLDEN_LECTURE : "_", c->scene);
+        if (strcmp(c->name, expected) != 0)
+            fail_msg("%s: the gallery would call this picture %s", c->name, expected);
+        if (lecture != (c->flags[0] != '\0'))
+            fail_msg("%s: only a lecture picture has flags", c->name);
+        if (lecture && t->gallery_config && strcmp(c->flags, t->gallery_config) != 0)
+            fail_msg("%s: flags \"%s\", but the gallery uses \"%s\"", c->name, c->flags, t->gallery_config);
+    }
+    DIR *dir = opendir(GOLDEN_DIR);
+    assert_non_null(dir);
+    for (struct dirent *e; (e = readdir(dir));) {
+        size_t n = strlen(e->d_name);
+        if (e->d_name[0] == '.')
+            continue;
+        char name[256];
+        snprintf(name, sizeof name, "%.*s", n > 4 ? (int)(n - 4) : (int)n, e->d_name);
+        if (n <= 4 || strcmp(e->d_name + n - 4, ".png") != 0 || !golden_find(name)) {
+            closedir(dir);
+            fail_msg(GOLDEN_DIR "/%s is no golden case's", e->d_name);
         }
     }
+    closedir(dir);
 }
 
 static void test_same_command_same_image(void **state) {
@@ -108,15 +257,15 @@ static void test_same_command_same_image(void **state) {
 static void test_moved_light_fails_comparison(void **state) {
     (void)state;
     render("egl", "tests/data/simple_light_moved.json", "", "light_moved");
-    assert_true(compare_with_golden("simple", "light_moved") > SUPPORT_MAX_DIFFERING);
+    assert_true(compare_with_golden("planar_simple", "light_moved") > SUPPORT_MAX_DIFFERING);
 }
 
 static void test_each_fix_shows_when_off(void **state) {
     (void)state;
     render("egl", "assets/scenes/simple.json", "--no-stencil", "no_stencil");
-    assert_true(compare_with_golden("simple", "no_stencil") > SUPPORT_MAX_DIFFERING);
+    assert_true(compare_with_golden("planar_simple", "no_stencil") > SUPPORT_MAX_DIFFERING);
     render("egl", "assets/scenes/simple.json", "--no-offset", "no_offset");
-    assert_true(compare_with_golden("simple", "no_offset") > SUPPORT_MAX_DIFFERING);
+    assert_true(compare_with_golden("planar_simple", "no_offset") > SUPPORT_MAX_DIFFERING);
     /* A sphere sunk half into the ground: without rejection its buried
      * half throws an anti-shadow onto the ground on the light's side. */
     render("egl", "tests/data/anti_shadow.json", "", "reject_on");
@@ -128,52 +277,16 @@ static void test_each_fix_shows_when_off(void **state) {
 /* Without any bias the shadow map shadows the lit ground with acne. */
 static void test_shadowmap_without_bias_shows_acne(void **state) {
     (void)state;
-    render_with("shadowmap", "egl", "assets/scenes/simple.json",
-                "--no-constant-bias --no-slope-bias", "shadowmap_no_bias");
-    assert_true(compare_with_golden_of("shadowmap", "simple", "shadowmap_no_bias") > SUPPORT_MAX_DIFFERING);
+    render_with("shadowmap", "egl", "assets/scenes/simple.json", "--no-constant-bias --no-slope-bias",
+                "shadowmap_no_bias");
+    assert_true(compare_with_golden("shadowmap_simple", "shadowmap_no_bias") > SUPPORT_MAX_DIFFERING);
 }
 
-/* The lecture overlays (texels, frusta, the map as an inset) for a 2D map
- * (simple's spot) and a cube map (bunny's point light): they draw into the
- * picture, and what they draw matches its golden. */
-static void test_shadowmap_overlays_match_golden(void **state) {
+/* The texel-size heat map draws into psm's picture. */
+static void test_psm_texel_size_shows(void **state) {
     (void)state;
-    static const char *const overlay_scenes[] = {"simple", "bunny"};
-    for (size_t i = 0; i < sizeof overlay_scenes / sizeof *overlay_scenes; i++) {
-        char scene_file[256], name[256];
-        snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", overlay_scenes[i]);
-        snprintf(name, sizeof name, "shadowmap_overlay_%s", overlay_scenes[i]);
-        render_with("shadowmap", "egl", scene_file, "--overlay all", name);
-        assert_true(compare_with_golden_of("shadowmap", overlay_scenes[i], name) > SUPPORT_MAX_DIFFERING);
-        double fraction = compare_with_golden_of("shadowmap-overlay", overlay_scenes[i], name);
-        assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
-    }
-}
-
-/* Perspective shadow maps where they matter, long_view, with the light in
- * front of the viewer and behind (the inverted case), on both headless
- * backends; the lecture's post-perspective view; the texel-size heat map
- * draws into the picture. */
-static void test_psm_long_view_matches_golden(void **state) {
-    (void)state;
-    static const char *const scenes[] = {"long_view", "long_view_behind"};
-    static const char *const backends[] = {"egl", "osmesa"};
-    for (size_t b = 0; b < (osmesa_installed() ? 2u : 1u); b++) {
-        for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-            char scene_file[256], name[256];
-            snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", scenes[i]);
-            snprintf(name, sizeof name, "psm_%s_%s", scenes[i], backends[b]);
-            render_with("psm", backends[b], scene_file, "", name);
-            double fraction = compare_with_golden_of("psm", scenes[i], name);
-            assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
-        }
-    }
-    render_with("psm", "egl", "assets/scenes/long_view.json", "--overlay post-perspective", "psm_overlay_long_view");
-    assert_true(compare_with_golden_of("psm", "long_view", "psm_overlay_long_view") > SUPPORT_MAX_DIFFERING);
-    double fraction = compare_with_golden_of("psm-overlay", "long_view", "psm_overlay_long_view");
-    assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
     render_with("psm", "egl", "assets/scenes/long_view.json", "--overlay texel-size", "psm_texel_size_long_view");
-    assert_true(compare_with_golden_of("psm", "long_view", "psm_texel_size_long_view") > SUPPORT_MAX_DIFFERING);
+    assert_true(compare_with_golden("psm_long_view", "psm_texel_size_long_view") > SUPPORT_MAX_DIFFERING);
 }
 
 /* Each shadow-volume overlay draws into the picture. */
@@ -185,7 +298,7 @@ static void test_volumes_overlays_show(void **state) {
         snprintf(flags, sizeof flags, "--overlay %s", overlays[i]);
         snprintf(name, sizeof name, "volumes_overlay_%s", overlays[i]);
         render_with("volumes", "egl", "assets/scenes/teapot.json", flags, name);
-        assert_true(compare_with_golden_of("volumes", "teapot", name) > SUPPORT_MAX_DIFFERING);
+        assert_true(compare_with_golden("volumes_teapot", name) > SUPPORT_MAX_DIFFERING);
     }
 }
 
@@ -202,41 +315,105 @@ static void test_window_matches_golden(void **state) {
              " --frames 2 --screenshot out/test/planar_simple_glfw.png",
              support_program("planar"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
-    double fraction = compare_with_golden("simple", "planar_simple_glfw");
-    assert_true(fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING);
+    assert_true(within_tolerance(compare_with_golden("planar_simple", "planar_simple_glfw")));
 }
 
+/* The gallery writes every technique's picture of each scene, under the
+ * name of its golden case where it has one, and that case's golden is
+ * what it shows; a technique's lecture picture shows its overlay. */
 static void test_gallery_writes_every_technique(void **state) {
     (void)state;
+    static const char *const scenes[] = {"simple", "teapot"};
     char command[1024];
     snprintf(command, sizeof command,
              "rm -rf out/test/gallery && %s --size " SIZE
              " --gallery out/test/gallery assets/scenes/simple.json assets/scenes/teapot.json",
              support_program("shadows"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
-    assert_true(support_compare_images("tests/golden/planar_simple.png", "out/test/gallery/planar_simple.png") <=
-                SUPPORT_MAX_DIFFERING);
-    assert_true(support_compare_images("tests/golden/planar_teapot.png", "out/test/gallery/planar_teapot.png") <=
-                SUPPORT_MAX_DIFFERING);
-    /* A technique's lecture picture shows its overlay: psm's post-perspective view. */
-    assert_true(support_compare_images("out/test/gallery/psm_teapot.png", "out/test/gallery/psm-lecture_teapot.png") >
-                SUPPORT_MAX_DIFFERING);
+    for (int t = 0; t < registry_technique_count; t++) {
+        const technique *tech = registry_techniques[t];
+        for (size_t s = 0; s < sizeof scenes / sizeof *scenes; s++) {
+            char name[GOLDEN_NAME_SIZE], lecture[GOLDEN_NAME_SIZE];
+            snprintf(name, sizeof name, "%s_%s", tech->name, scenes[s]);
+            snprintf(lecture, sizeof lecture, "%s" GOLDEN_LECTURE "%s", tech->name, scenes[s]);
+            const char *const pictures[] = {name, lecture};
+            for (int p = 0; p < (tech->gallery_config ? 2 : 1); p++) {
+                char path[512], gallery_name[256];
+                snprintf(gallery_name, sizeof gallery_name, "gallery/%s", pictures[p]);
+                snprintf(path, sizeof path, "out/test/%s.png", gallery_name);
+                FILE *f = fopen(path, "rb");
+                if (!f)
+                    fail_msg("the gallery did not write %s", path);
+                fclose(f);
+                if (golden_find(pictures[p]))
+                    assert_true(within_tolerance(compare_with_golden(pictures[p], gallery_name)));
+            }
+            if (tech->gallery_config) {
+                char plain[256], with_overlay[256];
+                snprintf(plain, sizeof plain, "out/test/gallery/%s.png", name);
+                snprintf(with_overlay, sizeof with_overlay, "out/test/gallery/%s.png", lecture);
+                assert_true(support_compare_images(plain, with_overlay) > SUPPORT_MAX_DIFFERING);
+            }
+        }
+    }
 }
 
-int main(void) {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_egl_matches_golden),
-        cmocka_unit_test(test_osmesa_matches_golden),
-        cmocka_unit_test(test_psm_long_view_matches_golden),
-        cmocka_unit_test(test_backends_agree),
+/* --record [NAME...]: each case, or the named ones, on EGL into its golden. */
+static int golden_record(int name_count, char **names) {
+    for (int i = 0; i < name_count; i++) {
+        if (!golden_find(names[i])) {
+            fprintf(stderr, "test_render --record: no golden case %s\n", names[i]);
+            return 1;
+        }
+    }
+    for (int i = 0; i < golden_case_count; i++) {
+        const golden_case *c = &golden_cases[i];
+        bool named = name_count == 0;
+        for (int n = 0; n < name_count && !named; n++)
+            named = strcmp(names[n], c->name) == 0;
+        if (!named)
+            continue;
+        char command[2048], golden[256];
+        snprintf(golden, sizeof golden, GOLDEN_DIR "/%s.png", c->name);
+        golden_case_command(command, sizeof command, c, "egl", golden);
+        if (support_run(command, err, sizeof err) != 0) {
+            fprintf(stderr, "test_render --record: failed: %s\n", command);
+            return 1;
+        }
+        printf("%s\n", golden);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    if (!golden_make_cases())
+        return 1;
+    if (argc > 1 && strcmp(argv[1], "--record") == 0)
+        return golden_record(argc - 2, argv + 2);
+    if (argc > 1) {
+        fprintf(stderr, "usage: %s [--record [NAME...]]\n", argv[0]);
+        return 2;
+    }
+    static const struct CMUnitTest others[] = {
         cmocka_unit_test(test_same_command_same_image),
         cmocka_unit_test(test_moved_light_fails_comparison),
         cmocka_unit_test(test_each_fix_shows_when_off),
         cmocka_unit_test(test_shadowmap_without_bias_shows_acne),
-        cmocka_unit_test(test_shadowmap_overlays_match_golden),
+        cmocka_unit_test(test_psm_texel_size_shows),
         cmocka_unit_test(test_volumes_overlays_show),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
     };
-    return cmocka_run_group_tests_name("screenshots", tests, NULL, NULL);
+    enum { OTHER_COUNT = sizeof others / sizeof *others };
+    static struct CMUnitTest tests[1 + GOLDEN_MAX_CASES + OTHER_COUNT];
+    size_t count = 0;
+    tests[count++] = (struct CMUnitTest)cmocka_unit_test(test_golden_table_is_consistent);
+    for (int i = 0; i < golden_case_count; i++)
+        tests[count++] = (struct CMUnitTest){.name = golden_cases[i].name, .test_func = test_golden_case,
+                                             .initial_state = &golden_cases[i]};
+    for (size_t i = 0; i < OTHER_COUNT; i++)
+        tests[count++] = others[i];
+    /* What cmocka_run_group_tests_name expands to, with the count known
+     * only now (the table grows with the registry). */
+    return _cmocka_run_group_tests("screenshots", tests, count, NULL, NULL);
 }
