@@ -6,8 +6,9 @@
 // infinity, the sides of a z-pass volume (caps come from the CPU path, see
 // demos/volumes.c for why). Back-facing triangles emit nothing:
 // the light-facing prisms of a closed mesh already cover its shadow (see
-// demos/volumes.c). Same facing test and same orientation as the CPU path;
-// vertices on the mesh come placed from the vertex shader (see there).
+// demos/lib/volume_mesh.h). Same facing test and same orientation as the
+// CPU path; vertices on the mesh come placed from the vertex shader (see
+// there).
 layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 12) out;
 

@@ -1,0 +1,233 @@
+/* Tests of demos/lib/volume_mesh.c, the shadow volumes' CPU geometry, on
+ * procedural meshes and a camera of our own: no GL context.
+ *
+ * A volume's faces must all face out of it (front faces count +1 on the
+ * way in): a face (v0, v1, v2) faces away from a point q when
+ * det[v0; v1; v2; q] > 0, homogeneous rows; with w >= 0 throughout this
+ * holds for faces at infinity too, as in clip space. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "support.h"
+
+#include "volume_mesh.h"
+
+/* A side of an edge swept to infinity from a point light: two triangles. */
+#define SIDE_VERTICES 6
+/* The camera of the z-pass tests: at the origin looking down -z. */
+#define CAMERA_FOV_DEG 45.0f
+#define CAMERA_ASPECT (16.0f / 9.0f)
+#define CAMERA_NEAR 0.1f
+#define CAMERA_FAR 100.0f
+/* NDC of a near corner mapped back and forth, in float. */
+#define NDC_TOLERANCE 1e-4f
+
+static double det3(double a0, double a1, double a2, double b0, double b1, double b2, double c0, double c1,
+                   double c2) {
+    return a0 * (b1 * c2 - b2 * c1) - a1 * (b0 * c2 - b2 * c0) + a2 * (b0 * c1 - b1 * c0);
+}
+
+/* det[r0; r1; r2; r3] of homogeneous rows, along the last column. */
+static double det4(const float r[4][4]) {
+    double sum = 0;
+    for (int row = 0; row < 4; row++) {
+        const float *m[3];
+        for (int k = 0, n = 0; k < 4; k++)
+            if (k != row)
+                m[n++] = r[k];
+        double minor = det3(m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]);
+        sum += ((row + 3) % 2 ? -1 : 1) * r[row][3] * minor;
+    }
+    return sum;
+}
+
+/* Bit for bit: volumes repeat the mesh's own positions. */
+static bool same_point(const float *a, const float *b) {
+    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
+/* Every triangle of v faces away from the point q (w = 1). */
+static void assert_faces_out(const volume_mesh *v, const float q[3]) {
+    assert_int_equal(v->count % 3, 0);
+    for (size_t t = 0; t < v->count; t += 3) {
+        float rows[4][4] = {{0}, {0}, {0}, {q[0], q[1], q[2], 1}};
+        memcpy(rows, v->vertices[t], 3 * sizeof rows[0]);
+        if (det4(rows) <= 0)
+            fail_msg("triangle %zu of %zu faces into the volume", t / 3, v->count / 3);
+    }
+}
+
+static void build(volume_mesh *v, const mesh *m, const float light[4], volume_mesh_parts parts) {
+    mesh_edges e;
+    assert_true(volume_mesh_edges_build(m, &e));
+    assert_true(volume_mesh_build(v, m, &e, light, parts));
+    mesh_edges_free(&e);
+}
+
+/* A unit box lit from (10, 10, 10) shows the light three faces (+x, +y,
+ * +z); its silhouette is the hexagon of the six edges between a lit face
+ * and an unlit one, where one coordinate is +1/2 and another -1/2. Each
+ * has a side, once (multiplicity 1); no other edge has one. */
+static void test_closed_box_sides_on_silhouette_once(void **state) {
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_box(&m, 1, 1, 1));
+    const float light[4] = {10, 10, 10, 1}, inside[3] = {-1, -1, -1}, half = 0.5f;
+    volume_mesh v = {0};
+    build(&v, &m, light, VOLUME_MESH_SIDES);
+    enum { SILHOUETTE_EDGES = 6 };
+    assert_int_equal(v.count, SILHOUETTE_EDGES * SIDE_VERTICES);
+    for (int i = 0; i < SILHOUETTE_EDGES; i++) {
+        const float *a = v.vertices[i * SIDE_VERTICES], *b = v.vertices[i * SIDE_VERTICES + 1];
+        assert_true(a[3] == 1 && b[3] == 1 && v.vertices[i * SIDE_VERTICES + 2][3] == 0);
+        int along = 0, plus = 0, minus = 0;
+        for (int k = 0; k < 3; k++) {
+            along += a[k] != b[k];
+            plus += a[k] == b[k] && a[k] == half;
+            minus += a[k] == b[k] && a[k] == -half;
+        }
+        assert_true(along == 1 && plus == 1 && minus == 1);
+        for (int j = 0; j < i; j++) {
+            const float *c = v.vertices[j * SIDE_VERTICES], *d = v.vertices[j * SIDE_VERTICES + 1];
+            bool same = (same_point(c, a) && same_point(d, b)) || (same_point(c, b) && same_point(d, a));
+            assert_false(same);
+        }
+    }
+    assert_faces_out(&v, inside);
+    /* z-fail adds the lit faces' triangles and their images at infinity. */
+    enum { LIT_TRIANGLES = 6 };
+    build(&v, &m, light, VOLUME_MESH_SIDES_AND_CAPS);
+    assert_int_equal(v.count, SILHOUETTE_EDGES * SIDE_VERTICES + LIT_TRIANGLES * 2 * 3);
+    assert_faces_out(&v, inside);
+    build(&v, &m, light, VOLUME_MESH_SILHOUETTE_LINES);
+    assert_int_equal(v.count, SILHOUETTE_EDGES * 2);
+    volume_mesh_free(&v);
+    mesh_free(&m);
+}
+
+/* An open plane (two triangles, facing +y) lit from above has its prism
+ * below, lit from below (both triangles weigh -1) above: the same four
+ * border sides, reversed, and none on the diagonal inside. */
+static void test_plane_lit_from_behind_reverses_sides(void **state) {
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_plane(&m, 2, 2));
+    const float above[4] = {0.3f, 5, 0.2f, 1}, below[4] = {0.3f, -5, 0.2f, 1};
+    const float under[3] = {0, -1, 0}, over[3] = {0, 1, 0};
+    enum { BORDER_EDGES = 4 };
+    volume_mesh front = {0}, back = {0};
+    build(&front, &m, above, VOLUME_MESH_SIDES);
+    build(&back, &m, below, VOLUME_MESH_SIDES);
+    assert_int_equal(front.count, BORDER_EDGES * SIDE_VERTICES);
+    assert_int_equal(back.count, BORDER_EDGES * SIDE_VERTICES);
+    for (int i = 0; i < BORDER_EDGES; i++) {
+        assert_true(same_point(front.vertices[i * SIDE_VERTICES], back.vertices[i * SIDE_VERTICES + 1]));
+        assert_true(same_point(front.vertices[i * SIDE_VERTICES + 1], back.vertices[i * SIDE_VERTICES]));
+    }
+    assert_faces_out(&front, under);
+    assert_faces_out(&back, over);
+    /* With caps, wound the other way round for the triangles lit from
+     * behind, the prisms stay closed and facing out. */
+    build(&front, &m, above, VOLUME_MESH_SIDES_AND_CAPS);
+    build(&back, &m, below, VOLUME_MESH_SIDES_AND_CAPS);
+    assert_faces_out(&front, under);
+    assert_faces_out(&back, over);
+    volume_mesh_free(&front);
+    volume_mesh_free(&back);
+    mesh_free(&m);
+}
+
+static void camera(mat4 view_projection) {
+    mat4 view, projection;
+    glm_lookat((vec3){0, 0, 0}, (vec3){0, 0, -1}, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(CAMERA_FOV_DEG), CAMERA_ASPECT, CAMERA_NEAR, CAMERA_FAR, projection);
+    glm_mat4_mul(projection, view, view_projection);
+}
+
+/* The near rectangle goes round: NDC (-1 -1), (1 -1), (1 1), (-1 1). */
+static void test_near_rectangle_goes_round(void **state) {
+    (void)state;
+    static const float expected[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    mat4 view_projection;
+    camera(view_projection);
+    vec3 rectangle[4];
+    volume_mesh_near_rectangle(view_projection, rectangle);
+    for (int k = 0; k < 4; k++) {
+        vec4 clip;
+        glm_mat4_mulv(view_projection, (vec4){rectangle[k][0], rectangle[k][1], rectangle[k][2], 1}, clip);
+        assert_true(fabsf(clip[0] / clip[3] - expected[k][0]) < NDC_TOLERANCE);
+        assert_true(fabsf(clip[1] / clip[3] - expected[k][1]) < NDC_TOLERANCE);
+        assert_true(fabsf(clip[2] / clip[3] + 1) < NDC_TOLERANCE);
+    }
+}
+
+static bool zpass_safe(const float centre[3], const float light[4]) {
+    mat4 view_projection;
+    camera(view_projection);
+    vec3 rectangle[4];
+    volume_mesh_near_rectangle(view_projection, rectangle);
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) /* a box of side 2 */
+        lo[k] = centre[k] - 1, hi[k] = centre[k] + 1;
+    return volume_mesh_zpass_safe(lo, hi, light, rectangle);
+}
+
+/* Light 10 in front of the camera. A box of side 2 far beyond it casts its
+ * shadow away from the camera, and lies outside the hull's upper face
+ * (which beyond the light dips below the box); one between the camera and
+ * the light shadows the near rectangle itself. */
+static void test_zpass_safe_only_beyond_the_light(void **state) {
+    (void)state;
+    const float light[4] = {0, 0, -10, 1};
+    assert_true(zpass_safe((const float[3]){0, 0, -1000}, light));
+    assert_false(zpass_safe((const float[3]){0, 0, -5}, light));
+    /* A directional light from behind the camera: every caster in front
+     * of the near plane shadows away from it. */
+    const float from_behind[4] = {0, 0, 1, 0};
+    assert_true(zpass_safe((const float[3]){0, 0, -5}, from_behind));
+    const float towards_camera[4] = {0, 0, -1, 0};
+    assert_false(zpass_safe((const float[3]){0, 0, -5}, towards_camera));
+}
+
+/* The receivers' rectangle covers a box in front of the camera, is empty
+ * without receivers, and gives up on a box reaching behind the eye. */
+static void test_receivers_ndc(void **state) {
+    (void)state;
+    mat4 view_projection;
+    camera(view_projection);
+    scene_object o = {.receives = true};
+    assert_true(mesh_make_box(&o.mesh, 1, 1, 1));
+    glm_translate_make((vec4 *)o.model, (vec3){1, 0, -5});
+    scene s = {.objects = &o, .object_count = 1};
+    float lo[2], hi[2];
+    assert_true(volume_mesh_receivers_ndc(&s, view_projection, lo, hi));
+    vec4 centre;
+    glm_mat4_mulv(view_projection, (vec4){1, 0, -5, 1}, centre);
+    for (int k = 0; k < 2; k++)
+        assert_true(lo[k] < centre[k] / centre[3] && centre[k] / centre[3] < hi[k]);
+    assert_true(lo[0] > 0); /* the box lies right of the view's centre */
+    o.receives = false;
+    assert_true(volume_mesh_receivers_ndc(&s, view_projection, lo, hi));
+    assert_true(lo[0] > hi[0] && lo[1] > hi[1]);
+    o.receives = true;
+    glm_translate_make((vec4 *)o.model, (vec3){0, 0, 0});
+    assert_false(volume_mesh_receivers_ndc(&s, view_projection, lo, hi));
+    mesh_free(&o.mesh);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_closed_box_sides_on_silhouette_once),
+        cmocka_unit_test(test_plane_lit_from_behind_reverses_sides),
+        cmocka_unit_test(test_near_rectangle_goes_round),
+        cmocka_unit_test(test_zpass_safe_only_beyond_the_light),
+        cmocka_unit_test(test_receivers_ndc),
+    };
+    return cmocka_run_group_tests_name("shadow volumes' CPU geometry", tests, NULL, NULL);
+}
