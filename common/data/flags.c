@@ -1,14 +1,39 @@
 #include "flags.h"
 
 #include <errno.h>
-#include <stdbool.h>
-#include <stdio.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define FLAGS_MAX_SIZE 16384
+#define FLAGS_NAME_MAX 64   /* a flag as typed, before any '=' */
+#define FLAGS_LINE_MAX 1024 /* an error line; a flag's text in --help */
+/* The widest flag text that keeps its help on its own line in --help;
+ * wider ones (long choice lists) put the help on the next. */
+#define FLAGS_HELP_WIDTH 32
 
-bool flags_parse_int(const char *text, int min, int max, int *out) {
+const char *flags_program_name(const char *argv0) {
+    const char *slash = strrchr(argv0, '/');
+    return slash ? slash + 1 : argv0;
+}
+
+/* One line, written at once: "program: MESSAGE (see --help)". */
+static int flags_error(const char *program, const char *format, ...) {
+    char message[FLAGS_LINE_MAX];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    fprintf(stderr, "%s: %s (see --help)\n", program, message);
+    return FLAGS_EXIT_USAGE;
+}
+
+int flags_usage_error(const char *program, const char *message, const char *value) {
+    return value ? flags_error(program, "%s '%s'", message, value) : flags_error(program, "%s", message);
+}
+
+/* A whole decimal integer in [min, max]. */
+static bool flags_parse_int(const char *text, int min, int max, int *out) {
     char *end;
     errno = 0;
     long v = strtol(text, &end, 10);
@@ -18,7 +43,8 @@ bool flags_parse_int(const char *text, int min, int max, int *out) {
     return true;
 }
 
-bool flags_parse_size(const char *text, int *width, int *height) {
+/* "WxH", each 1..FLAGS_MAX_SIZE. */
+static bool flags_parse_size(const char *text, int *width, int *height) {
     char w[16], h[16];
     const char *x = strchr(text, 'x');
     if (!x || x - text >= (long)sizeof w || strlen(x + 1) >= sizeof h)
@@ -28,38 +54,198 @@ bool flags_parse_size(const char *text, int *width, int *height) {
     return flags_parse_int(w, 1, FLAGS_MAX_SIZE, width) && flags_parse_int(h, 1, FLAGS_MAX_SIZE, height);
 }
 
-int flags_usage_error(const char *program, const char *message, const char *value) {
-    if (value)
-        fprintf(stderr, "%s: %s '%s' (see --help)\n", program, message, value);
-    else
-        fprintf(stderr, "%s: %s (see --help)\n", program, message);
-    return FLAGS_EXIT_USAGE;
+static void flags_join(const char *const *choices, const char *separator, char *out, size_t size) {
+    size_t n = 0;
+    out[0] = '\0';
+    for (int c = 0; choices[c] && n < size; c++)
+        n += (size_t)snprintf(out + n, size - n, "%s%s", c ? separator : "", choices[c]);
 }
 
-int flags_next(flags_cursor *c, const char **name, const char **value) {
-    if (c->next >= c->argc)
-        return 0;
-    const char *arg = c->argv[c->next++];
-    *value = NULL;
-    if (arg[0] != '-') {
-        *name = arg;
-        return 1;
+/* Whether the typed flag names p: "--no-NAME" for a toggle, "--NAME"
+ * otherwise, and -h for help. */
+static bool flags_names(const flags_param *p, const char *flag) {
+    if (p->kind == FLAGS_HELP && strcmp(flag, "-h") == 0)
+        return true;
+    if (!p->name || strncmp(flag, "--", 2) != 0)
+        return false;
+    flag += 2;
+    if (p->kind == FLAGS_TOGGLE && strncmp(flag, "no-", 3) != 0)
+        return false;
+    return strcmp(p->kind == FLAGS_TOGGLE ? flag + 3 : flag, p->name) == 0;
+}
+
+static bool flags_takes_value(flags_kind kind) {
+    return kind == FLAGS_CHOICE || kind == FLAGS_NUMBER || kind == FLAGS_INT || kind == FLAGS_SIZE ||
+           kind == FLAGS_STRING;
+}
+
+/* Sets a flag that takes no value or one value; 0 or the usage error. */
+static int flags_set(const char *program, const flags_param *p, const char *value) {
+    char list[FLAGS_LINE_MAX], *end;
+    switch (p->kind) {
+    case FLAGS_TOGGLE: *p->disabled = true; return 0;
+    case FLAGS_SWITCH: *p->on = true; return 0;
+    case FLAGS_STRING: *p->text = value; return 0;
+    case FLAGS_CHOICE:
+        for (int c = 0; p->choices[c]; c++) {
+            if (strcmp(value, p->choices[c]) == 0) {
+                *p->index = c;
+                return 0;
+            }
+        }
+        flags_join(p->choices, ", ", list, sizeof list);
+        return flags_error(program, "--%s: unknown %s '%s', expected one of %s", p->name, p->name, value, list);
+    case FLAGS_NUMBER: {
+        float v = strtof(value, &end);
+        if (end != value && *end == '\0' && v >= p->min && v <= p->max) {
+            *p->number = v;
+            return 0;
+        }
+        return flags_error(program, "--%s: expected a number in %g..%g, got '%s'", p->name, p->min, p->max, value);
     }
-    const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
-    snprintf(c->name, sizeof c->name, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
-    *name = c->name;
-    bool needs_value = false;
-    for (const char *const *w = c->with_value; w && *w; w++)
-        needs_value |= strcmp(c->name, *w) == 0;
-    needs_value |= c->takes_value && c->takes_value(c->name);
-    if (needs_value && !eq) {
-        if (c->next >= c->argc)
-            return flags_usage_error(c->program, "missing value after", c->name);
-        *value = c->argv[c->next++];
-    } else if (needs_value) {
-        *value = eq + 1;
-    } else if (eq) {
-        return flags_usage_error(c->program, "flag takes no value:", arg);
+    case FLAGS_INT:
+        if (flags_parse_int(value, (int)p->min, (int)p->max, p->integer))
+            return 0;
+        return flags_error(program, "--%s: expected %s %d..%d, got '%s'", p->name, p->what ? p->what : "a whole number",
+                           (int)p->min, (int)p->max, value);
+    case FLAGS_SIZE:
+        if (flags_parse_size(value, p->width, p->height))
+            return 0;
+        return flags_error(program, "--%s: expected WxH, each 1..%d, got '%s'", p->name, FLAGS_MAX_SIZE, value);
+    case FLAGS_LIST: /* flags_parse fills lists itself */
+    case FLAGS_HELP: break;
     }
-    return 1;
+    return 0;
+}
+
+/* "--NAME: " for a named list, "" for the positional arguments. */
+static void flags_list_prefix(const flags_param *p, char *out, size_t size) {
+    if (p->name)
+        snprintf(out, size, "--%s: ", p->name);
+    else
+        out[0] = '\0';
+}
+
+static int flags_add(const char *program, const flags_param *p, const char *item) {
+    char prefix[FLAGS_NAME_MAX + 4];
+    flags_list_prefix(p, prefix, sizeof prefix);
+    if (*p->count >= (int)p->max)
+        return flags_error(program, "%sexpected %s, got also '%s'", prefix, p->what, item);
+    p->items[(*p->count)++] = item;
+    return 0;
+}
+
+static int flags_check_list(const char *program, const flags_param *p) {
+    char prefix[FLAGS_NAME_MAX + 4];
+    flags_list_prefix(p, prefix, sizeof prefix);
+    return *p->count < (int)p->min ? flags_error(program, "%sexpected %s", prefix, p->what) : 0;
+}
+
+static const flags_param *flags_find(const flags_param *params, int count, const char *flag) {
+    for (int k = 0; k < count; k++)
+        if (flag ? flags_names(&params[k], flag) : !params[k].name && params[k].kind == FLAGS_LIST)
+            return &params[k];
+    return NULL;
+}
+
+int flags_parse(const char *program, const flags_param *params, int count, int argc, char *const *argv) {
+    const flags_param *positional = flags_find(params, count, NULL);
+    int status = 0;
+    for (int i = 0; i < argc && !status;) {
+        const char *arg = argv[i++];
+        if (arg[0] != '-') {
+            status = positional ? flags_add(program, positional, arg)
+                                : flags_usage_error(program, "unexpected argument", arg);
+            continue;
+        }
+        const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+        char flag[FLAGS_NAME_MAX];
+        snprintf(flag, sizeof flag, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
+        const flags_param *first = flags_find(params, count, flag);
+        if (!first)
+            return flags_usage_error(program, "unknown flag", flag);
+        if (first->kind == FLAGS_LIST) {
+            if (eq)
+                status = flags_add(program, first, eq + 1);
+            while (i < argc && !status)
+                status = flags_add(program, first, argv[i++]);
+            status = status ? status : flags_check_list(program, first);
+            continue;
+        }
+        const char *value = NULL;
+        if (flags_takes_value(first->kind) && eq)
+            value = eq + 1;
+        else if (flags_takes_value(first->kind) && i < argc)
+            value = argv[i++];
+        else if (flags_takes_value(first->kind))
+            return flags_usage_error(program, "missing value after", flag);
+        else if (eq)
+            return flags_usage_error(program, "flag takes no value:", arg);
+        if (first->kind == FLAGS_HELP)
+            return FLAGS_HELP_ASKED;
+        for (const flags_param *p = first; p < params + count && !status; p++)
+            if (flags_names(p, flag))
+                status = flags_set(program, p, value);
+    }
+    return status || !positional ? status : flags_check_list(program, positional);
+}
+
+void flags_reset(const flags_param *params, int count) {
+    for (const flags_param *p = params; p < params + count; p++) {
+        switch (p->kind) {
+        case FLAGS_TOGGLE: *p->disabled = false; break;
+        case FLAGS_CHOICE: *p->index = 0; break;
+        case FLAGS_NUMBER: *p->number = 0; break;
+        case FLAGS_SWITCH: *p->on = false; break;
+        case FLAGS_INT: *p->integer = 0; break;
+        case FLAGS_SIZE: *p->width = *p->height = 0; break;
+        case FLAGS_STRING: *p->text = NULL; break;
+        case FLAGS_LIST: *p->count = 0; break;
+        case FLAGS_HELP: break;
+        }
+    }
+}
+
+float flags_number(const flags_param *p) { return *p->number != 0 ? *p->number : p->fallback; }
+
+/* The flag as --help shows it: "--no-stencil", "--size WxH", "--depth 24|32f". */
+static int flags_usage_text(const flags_param *p, char *out, size_t size) {
+    static const char *const value_names[FLAGS_HELP + 1] = {
+        [FLAGS_NUMBER] = "X", [FLAGS_INT] = "N", [FLAGS_SIZE] = "WxH", [FLAGS_STRING] = "TEXT", [FLAGS_LIST] = "ARG...",
+    };
+    int n = snprintf(out, size, "--%s%s", p->kind == FLAGS_TOGGLE ? "no-" : "", p->name);
+    if (p->kind == FLAGS_CHOICE && n + 1 < (int)size) {
+        out[n++] = ' ';
+        flags_join(p->choices, "|", out + n, size - (size_t)n);
+    } else if (p->value_name || value_names[p->kind]) {
+        snprintf(out + n, size - (size_t)n, " %s", p->value_name ? p->value_name : value_names[p->kind]);
+    }
+    return (int)strlen(out);
+}
+
+void flags_print_help(FILE *out, const flags_param *params, int count, int indent, int width) {
+    char text[FLAGS_LINE_MAX];
+    bool fit = width == 0;
+    for (const flags_param *p = params; p < params + count && fit; p++) {
+        int n = p->name ? flags_usage_text(p, text, sizeof text) : 0;
+        width = n > width && n <= FLAGS_HELP_WIDTH ? n : width;
+    }
+    /* Two spaces between the flag and its help, which continues there. */
+    int column = indent + width + 2;
+    for (const flags_param *p = params; p < params + count; p++) {
+        if (!p->name)
+            continue;
+        int n = flags_usage_text(p, text, sizeof text);
+        fprintf(out, "%*s%s", indent, "", text);
+        if (n > width)
+            fprintf(out, "\n%*s", column, "");
+        else
+            fprintf(out, "%*s", width - n + 2, "");
+        if (p->key)
+            fprintf(out, "key %c: ", p->key);
+        const char *line = p->help ? p->help : "";
+        for (const char *end; (end = strchr(line, '\n')); line = end + 1)
+            fprintf(out, "%.*s\n%*s", (int)(end - line), line, column, "");
+        fprintf(out, "%s\n", line);
+    }
 }

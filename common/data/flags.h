@@ -1,39 +1,95 @@
-/* flags: parsing of flag values, the same for every program, so that
- * "--size 640by480" fails alike everywhere. Each returns false on a
- * malformed or out-of-range value; the caller prints the one-line error
- * (program: --flag: expected ..., got 'value') and exits 2. */
+/* flags: every program's command line and every technique's parameters,
+ * declared once as a table of flags_param and walked by one parser, so that
+ * a flag's value, its error and its --help line come from the same entry
+ * ("--size 640by480" fails alike everywhere).
+ *
+ * Kinds, each with the fields it uses (zero means the default, as in the
+ * settings structs the fields point into):
+ *   FLAGS_TOGGLE  a feature, on by default: --no-NAME sets *disabled;
+ *   FLAGS_CHOICE  --NAME VALUE: *index into choices (NULL-terminated, the
+ *                 default first);
+ *   FLAGS_NUMBER  --NAME X: *number in [min, max], 0 meaning fallback;
+ *   FLAGS_SWITCH  --NAME sets *on;
+ *   FLAGS_INT     --NAME N: *integer, a whole number in [min, max], which
+ *                 errors call `what` ("a count");
+ *   FLAGS_SIZE    --NAME WxH: *width and *height, each 1..16384;
+ *   FLAGS_STRING  --NAME TEXT: *text (a path, a directory, a name);
+ *   FLAGS_LIST    arguments into items, *count of them, at least min and at
+ *                 most max, which errors call `what`: with a name, --NAME
+ *                 takes every argument after it (--gallery DIR SCENE...);
+ *                 without one (name NULL), the positional arguments;
+ *   FLAGS_HELP    --NAME or -h: flags_parse returns FLAGS_HELP_ASKED and the
+ *                 program prints its usage.
+ * A flag takes its value as "--name=value" or as the next argument. Several
+ * entries may have one name (the multi-technique program's --no-offset):
+ * the flag sets each of them.
+ *
+ * Every error is one line on stderr, "program: --flag: expected ..., got
+ * 'value' (see --help)", and flags_parse returns FLAGS_EXIT_USAGE, the
+ * program's exit status for a bad command line.
+ */
 #ifndef FLAGS_H
 #define FLAGS_H
 
 #include <stdbool.h>
+#include <stdio.h>
 
 #define FLAGS_EXIT_USAGE 2
-#define FLAGS_NAME_MAX 64
+#define FLAGS_HELP_ASKED (-1)
 
-/* Walks a command line. Flags take their value as "--name=value" or as
- * the next argument when the name is in with_value (NULL-terminated); a
- * flag not in with_value must not have a value. An argument that does not
- * start with '-' is positional: name is the argument, value NULL. */
-typedef struct flags_cursor {
-    const char *program;
-    int argc;
-    char **argv;
-    int next; /* index of the next argument: start at 1 */
-    const char *const *with_value;
-    bool (*takes_value)(const char *name); /* more flags with values; may be NULL */
-    char name[FLAGS_NAME_MAX];
-} flags_cursor;
+/* A numeric constant as text, for a help line ("1.." FLAGS_TEXT(MAX)). */
+#define FLAGS_TEXT(x) FLAGS_TEXT_(x)
+#define FLAGS_TEXT_(x) #x
 
-/* 1 with the next argument in *name and *value, 0 at the end, or
- * FLAGS_EXIT_USAGE after printing the one-line error. */
-int flags_next(flags_cursor *c, const char **name, const char **value);
+typedef enum flags_kind {
+    FLAGS_TOGGLE,
+    FLAGS_CHOICE,
+    FLAGS_NUMBER,
+    FLAGS_SWITCH,
+    FLAGS_INT,
+    FLAGS_SIZE,
+    FLAGS_STRING,
+    FLAGS_LIST,
+    FLAGS_HELP,
+} flags_kind;
 
-/* A whole decimal integer in [min, max]. */
-bool flags_parse_int(const char *text, int min, int max, int *out);
-/* "WxH", each 1..16384. */
-bool flags_parse_size(const char *text, int *width, int *height);
+typedef struct flags_param {
+    const char *name; /* the flag without "--" (toggles: "--no-" NAME) */
+    const char *help; /* toggles: what turning it off shows; may hold '\n' */
+    int key;          /* the window's key for it (GLFW_KEY_*), or 0 */
+    flags_kind kind;
+    bool *disabled;             /* TOGGLE */
+    int *index;                 /* CHOICE */
+    const char *const *choices; /* CHOICE: NULL-terminated */
+    float *number;              /* NUMBER */
+    float fallback;             /* NUMBER */
+    double min, max;            /* NUMBER, INT; LIST: how many items */
+    bool *on;                   /* SWITCH */
+    int *integer;               /* INT */
+    int *width, *height;        /* SIZE */
+    const char **text;          /* STRING */
+    const char **items;         /* LIST: room for max */
+    int *count;                 /* LIST */
+    const char *what;           /* INT, LIST: what errors call the value */
+    const char *value_name;     /* --help: "PATH", "K" (default by kind) */
+} flags_param;
+
+/* argv[0] without its directory: what errors begin with. */
+const char *flags_program_name(const char *argv0);
+/* Walks the arguments (argv[0] is the first argument, not the program)
+ * through the table. Returns 0, FLAGS_HELP_ASKED, or FLAGS_EXIT_USAGE after
+ * printing the one-line error. */
+int flags_parse(const char *program, const flags_param *params, int count, int argc, char *const *argv);
+/* Every value back to zero, its default. */
+void flags_reset(const flags_param *params, int count);
+/* A NUMBER's value: its fallback while the field is 0. */
+float flags_number(const flags_param *p);
+/* One --help line per flag, `indent` spaces in: the flag, its value
+ * (a choice's values as a|b|c), "key K: " and the help, which starts
+ * after a column `width` wide (0: as wide as the table's flags need). */
+void flags_print_help(FILE *out, const flags_param *params, int count, int indent, int width);
 /* Prints "program: message 'value' (see --help)" (value may be NULL) and
- * returns FLAGS_EXIT_USAGE. */
+ * returns FLAGS_EXIT_USAGE: for checks after parsing. */
 int flags_usage_error(const char *program, const char *message, const char *value);
 
 #endif

@@ -5,11 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const context_backend_names[] = {
+const char *const context_backend_names[] = {
     [CONTEXT_AUTO] = "auto",
     [CONTEXT_GLFW] = "glfw",
     [CONTEXT_EGL] = "egl",
     [CONTEXT_OSMESA] = "osmesa",
+    NULL,
 };
 
 /* Errors seen by the KHR_debug callback since the last context_gl_ok. */
@@ -17,16 +18,6 @@ static int context_debug_errors;
 static bool context_verbose;
 
 const char *context_backend_name(context_backend b) { return context_backend_names[b]; }
-
-bool context_backend_parse(const char *name, context_backend *b) {
-    for (int i = 0; i < (int)(sizeof context_backend_names / sizeof *context_backend_names); i++) {
-        if (strcmp(name, context_backend_names[i]) == 0) {
-            *b = (context_backend)i;
-            return true;
-        }
-    }
-    return false;
-}
 
 static void GLAD_API_PTR context_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity,
                                            GLsizei length, const GLchar *message, const void *user) {

@@ -47,7 +47,8 @@ typedef struct context {
 } context;
 
 const char *context_backend_name(context_backend b);
-bool context_backend_parse(const char *name, context_backend *b);
+/* By context_backend, NULL-terminated: the --backend flag's choices. */
+extern const char *const context_backend_names[];
 
 bool context_create(context *c, const context_settings *s);
 void context_destroy(context *c);

@@ -14,14 +14,15 @@
  * technique never calls context_gl_ok (which clears what it reports), so
  * no error raised inside a technique goes unseen.
  *
- * Parameters are the technique's settings, each in its settings struct
- * where zero means the default:
- *   TECHNIQUE_TOGGLE  a feature, on by default (the field is `disabled`):
- *                     flag --no-NAME, its key flips it;
- *   TECHNIQUE_CHOICE  an index into `choices` (the default first): flag
- *                     --NAME CHOICE, its key steps through them;
- *   TECHNIQUE_NUMBER  a value in [min, max], 0 meaning `fallback`: flag
- *                     --NAME X (no key).
+ * Parameters are the technique's settings, a flags_param table (flags.h)
+ * whose fields point into its settings struct, where zero means the
+ * default; a technique uses the kinds
+ *   FLAGS_TOGGLE  a feature, on by default (the field is `disabled`):
+ *                 flag --no-NAME, its key flips it;
+ *   FLAGS_CHOICE  an index into `choices` (the default first): flag
+ *                 --NAME CHOICE, its key steps through them;
+ *   FLAGS_NUMBER  a value in [min, max], 0 meaning `fallback`: flag
+ *                 --NAME X (no key).
  * The app turns each into a flag, a key in the window and a HUD entry;
  * the benchmark sweeps them through the same parser.
  *
@@ -39,26 +40,15 @@
 
 #include <stdbool.h>
 #include "camera.h"
+#include "flags.h"
 #include "render.h"
 #include "target.h"
 
-typedef enum technique_param_kind {
-    TECHNIQUE_TOGGLE,
-    TECHNIQUE_CHOICE,
-    TECHNIQUE_NUMBER,
-} technique_param_kind;
-
-typedef struct technique_param {
-    const char *name; /* the flag without "--" (toggles: "--no-" NAME) */
-    const char *help; /* toggles: what turning it off shows */
-    int key;          /* GLFW_KEY_*, or 0 */
-    technique_param_kind kind;
-    bool *disabled;              /* TOGGLE */
-    int *index;                  /* CHOICE */
-    const char *const *choices;  /* CHOICE: NULL-terminated */
-    float *number;               /* NUMBER */
-    float fallback, min, max;    /* NUMBER */
-} technique_param;
+/* TEMPORARY: removed at merge, once demos/ say flags_param and FLAGS_*. */
+typedef flags_param technique_param;
+#define TECHNIQUE_TOGGLE FLAGS_TOGGLE
+#define TECHNIQUE_CHOICE FLAGS_CHOICE
+#define TECHNIQUE_NUMBER FLAGS_NUMBER
 
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
@@ -70,7 +60,7 @@ typedef struct technique_frame {
 typedef struct technique {
     const char *name;  /* "planar": its binary, its registry key */
     const char *title; /* one line for --help and the HUD */
-    const technique_param *params;
+    const flags_param *params;
     int param_count;
     const char *const *bench_configs;
     int bench_config_count;
@@ -88,23 +78,15 @@ typedef struct technique {
     bool cost_floor;
 } technique;
 
-/* Applies one of the technique's own flags: NAME is "--no-X" for a toggle,
- * "--X" with VALUE otherwise. Returns false if the flag is not the
- * technique's; prints and returns false on a bad value (*bad_value set). */
-bool technique_apply_flag(const technique *t, const char *name, const char *value, bool *bad_value);
-/* True if "--X" is one of the technique's flags that take a value. */
-bool technique_flag_takes_value(const technique *t, const char *name);
 /* Back to defaults, then the flags of `config` ("--filter pcf5
- * --no-offset"); prints and returns false on a flag that is not the
- * technique's or a bad value. */
+ * --no-offset"), through the command line's parser; prints and returns
+ * false on a flag that is not the technique's or a bad value. */
 bool technique_apply_config(const technique *t, const char *config);
 /* What a configuration is called in reports: its label, its flags, or
  * "defaults". */
 void technique_config_label(const char *config, char *out, size_t size);
-/* The value of a NUMBER parameter: its fallback while the field is 0. */
-float technique_number(const technique_param *p);
 /* "on", "OFF", the choice's name or the number, for the HUD. */
-void technique_param_text(const technique_param *p, char *out, size_t size);
+void technique_param_text(const flags_param *p, char *out, size_t size);
 /* The window's key press: flips a toggle or steps a choice; false if no
  * parameter has the key. */
 bool technique_press_key(const technique *t, int key);

@@ -19,6 +19,11 @@
 
 #define APP_EXIT_RUNTIME 1
 #define APP_HEADLESS_FPS 60.0
+#define APP_HEADLESS_FRAMES 1 /* without --frames */
+#define APP_MAX_FRAMES 1000000
+#define APP_MAX_TECHNIQUES 9 /* keys 1-9 */
+#define APP_MAX_GALLERY_SCENES 256
+#define APP_TECHNIQUE_FLAG_WIDTH 26 /* one column for every technique in --help */
 #define APP_ANIMATE_RAD_PER_S 0.5f
 #define APP_LIGHT_STEP_RAD 0.05f
 #define APP_ORBIT_RAD_PER_PIXEL 0.008f
@@ -27,15 +32,17 @@ static struct {
     const char *program;
     const technique *const *techniques;
     int technique_count, current;
-    /* flags */
-    context_backend backend;
-    int width, height, frames;
-    bool frames_given, verbose, animate;
-    const char *scene_path, *screenshot, *dump_dir, *gallery_dir;
+    const char *technique_names[APP_MAX_TECHNIQUES + 1]; /* --technique's choices */
+    /* flags (zero: the default) */
+    int backend; /* context_backend */
+    int width, height;
+    int frames; /* 0: not given, so one frame headless or a window */
+    bool verbose, animate;
+    const char *scene_path, *screenshot, *dump_dir, *shader_dir;
     int light;
-    char **gallery_scenes;
-    int gallery_scene_count;
-    char shader_dir[PATH_MAX], default_scene[PATH_MAX];
+    const char *gallery[1 + APP_MAX_GALLERY_SCENES]; /* DIR SCENE... */
+    int gallery_count;
+    char default_shader_dir[PATH_MAX], default_scene[PATH_MAX];
     /* run */
     context ctx;
     target target;
@@ -49,135 +56,71 @@ static struct {
     int screenshot_count;
 } app;
 
-static void app_usage(FILE *out) {
-    fprintf(out,
-            "usage: %s [flags]\n"
-            "  --backend auto|glfw|egl|osmesa  context (auto: a window if interactive and a display\n"
-            "                                  is there, else EGL, else OSMesa)\n"
-            "  --size WxH                      framebuffer size (1280x720)\n"
-            "  --scene PATH                    scene file (assets/scenes/simple.json)\n"
-            "  --frames N                      render N frames headless (time i/60 s), then exit\n"
-            "  --screenshot PATH.png           save the last frame (implies headless)\n"
-            "  --dump DIR                      write what the last frame decided per pixel for one\n"
-            "                                  light: visibility, depth, normal, position, ids, colour\n"
-            "                                  (see common/dump.h; implies headless)\n"
-            "  --light K                       the light --dump reports (0)\n"
-            "  --shader-dir DIR                where the GLSL files are (shaders/ beside build/)\n"
-            "  --technique NAME                which technique to start with\n"
-            "  --animate                       turn the lights about the camera target over time\n"
-            "  --gallery DIR SCENE...          every technique on every scene, to DIR/TECH_SCENE.png\n"
-            "  --verbose                       print the backend and GL renderer, and at the end\n"
-            "                                  the technique's state line (the HUD's)\n"
-            "  --help                          this text\n",
-            app.program);
-    fprintf(out, "techniques (keys 1-9 in the window):\n");
+/* The flags every program takes; each technique's parameters follow. */
+static const flags_param app_flags[] = {
+    {"backend", "context (auto: a window if interactive and a display\nis there, else EGL, else OSMesa)", 0,
+     FLAGS_CHOICE, .index = &app.backend, .choices = context_backend_names},
+    {"size", "framebuffer size (1280x720)", 0, FLAGS_SIZE, .width = &app.width, .height = &app.height},
+    {"scene", "scene file (assets/scenes/simple.json)", 0, FLAGS_STRING, .text = &app.scene_path,
+     .value_name = "PATH"},
+    {"frames", "render N frames headless (time i/60 s), then exit", 0, FLAGS_INT, .integer = &app.frames, .min = 1,
+     .max = APP_MAX_FRAMES, .what = "a count"},
+    {"screenshot", "save the last frame (implies headless)", 0, FLAGS_STRING, .text = &app.screenshot,
+     .value_name = "PATH.png"},
+    {"dump",
+     "write what the last frame decided per pixel for one\nlight: visibility, depth, normal, position, ids, colour\n"
+     "(see common/dump.h; implies headless)",
+     0, FLAGS_STRING, .text = &app.dump_dir, .value_name = "DIR"},
+    {"light", "the light --dump reports (0)", 0, FLAGS_INT, .integer = &app.light, .min = 0,
+     .max = SCENE_MAX_LIGHTS - 1, .what = "a light index", .value_name = "K"},
+    {"shader-dir", "where the GLSL files are (shaders/ beside build/)", 0, FLAGS_STRING, .text = &app.shader_dir,
+     .value_name = "DIR"},
+    {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
+     .choices = app.technique_names},
+    {"animate", "turn the lights about the camera target over time", 0, FLAGS_SWITCH, .on = &app.animate},
+    {"gallery", "every technique on every scene, to DIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
+     .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
+     .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
+    {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line (the HUD's)", 0,
+     FLAGS_SWITCH, .on = &app.verbose},
+    {.name = "help", .help = "this text", .kind = FLAGS_HELP},
+};
+enum { app_flag_count = sizeof app_flags / sizeof *app_flags };
+
+static void app_usage(void) {
+    printf("usage: %s [flags]\n", app.program);
+    flags_print_help(stdout, app_flags, app_flag_count, 2, 0);
+    printf("techniques (keys 1-9 in the window):\n");
     for (int i = 0; i < app.technique_count; i++) {
         const technique *t = app.techniques[i];
-        fprintf(out, "  %d %-12s %s\n", i + 1, t->name, t->title);
-        for (int k = 0; k < t->param_count; k++) {
-            const technique_param *p = &t->params[k];
-            char flag[64], key[16] = "";
-            if (p->kind == TECHNIQUE_TOGGLE)
-                snprintf(flag, sizeof flag, "--no-%s", p->name);
-            else
-                snprintf(flag, sizeof flag, "--%s %s", p->name, p->kind == TECHNIQUE_CHOICE ? "NAME" : "X");
-            if (p->key)
-                snprintf(key, sizeof key, "key %c: ", p->key);
-            fprintf(out, "      %-26s %s%s\n", flag, key, p->help);
-        }
+        printf("  %d %-12s %s\n", i + 1, t->name, t->title);
+        flags_print_help(stdout, t->params, t->param_count, 6, APP_TECHNIQUE_FLAG_WIDTH);
     }
-    fprintf(out, "window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
-                 "        H help, F12 screenshot, Esc quits\n");
+    printf("window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
+           "        H help, F12 screenshot, Esc quits\n");
 }
 
-static int app_usage_error(const char *message, const char *value) {
-    return flags_usage_error(app.program, message, value);
-}
-
-/* A technique's own flag, for every technique that has it (the
- * multi-technique program shares flags such as --no-offset). Returns 0, or
- * the usage error's exit status. */
-static int app_apply_technique_flag(const char *name, const char *value) {
-    bool found = false;
-    for (int i = 0; i < app.technique_count; i++) {
-        bool bad_value;
-        found |= technique_apply_flag(app.techniques[i], name, value, &bad_value);
-        if (bad_value)
-            return FLAGS_EXIT_USAGE;
-    }
-    return found ? 0 : app_usage_error(name[0] == '-' ? "unknown flag" : "unexpected argument", name);
-}
-
-static bool app_technique_flag_takes_value(const char *name) {
-    for (int i = 0; i < app.technique_count; i++)
-        if (technique_flag_takes_value(app.techniques[i], name))
-            return true;
-    return false;
-}
-
-static int app_find_technique(const char *name) {
-    for (int i = 0; i < app.technique_count; i++)
-        if (strcmp(app.techniques[i]->name, name) == 0)
-            return i;
-    return -1;
-}
-
-/* Returns 0 to run, -1 after --help, or an exit status. */
+/* The app's flags and every technique's in one table, so that a flag
+ * several techniques share (--no-offset) sets each of them. Returns 0 to
+ * run, FLAGS_HELP_ASKED after --help, or an exit status. */
 static int app_parse_flags(int argc, char **argv) {
-    static const char *const with_value[] = {"--backend",   "--size",    "--scene", "--frames", "--screenshot",
-                                             "--shader-dir", "--technique", "--gallery", "--dump", "--light", NULL};
-    flags_cursor c = {.program = app.program,
-                      .argc = argc,
-                      .argv = argv,
-                      .next = 1,
-                      .with_value = with_value,
-                      .takes_value = app_technique_flag_takes_value};
-    const char *name, *value;
-    int status;
-    while ((status = flags_next(&c, &name, &value)) == 1) {
-        if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
-            app_usage(stdout);
-            return -1;
-        } else if (strcmp(name, "--backend") == 0) {
-            if (!context_backend_parse(value, &app.backend))
-                return app_usage_error("--backend: expected auto, glfw, egl or osmesa, got", value);
-        } else if (strcmp(name, "--size") == 0) {
-            if (!flags_parse_size(value, &app.width, &app.height))
-                return app_usage_error("--size: expected WxH, each 1..16384, got", value);
-        } else if (strcmp(name, "--frames") == 0) {
-            if (!flags_parse_int(value, 1, 1000000, &app.frames))
-                return app_usage_error("--frames: expected a count 1..1000000, got", value);
-            app.frames_given = true;
-        } else if (strcmp(name, "--scene") == 0) {
-            app.scene_path = value;
-        } else if (strcmp(name, "--screenshot") == 0) {
-            app.screenshot = value;
-        } else if (strcmp(name, "--dump") == 0) {
-            app.dump_dir = value;
-        } else if (strcmp(name, "--light") == 0) {
-            if (!flags_parse_int(value, 0, SCENE_MAX_LIGHTS - 1, &app.light))
-                return app_usage_error("--light: expected a light index 0..7, got", value);
-        } else if (strcmp(name, "--shader-dir") == 0) {
-            snprintf(app.shader_dir, sizeof app.shader_dir, "%s", value);
-        } else if (strcmp(name, "--technique") == 0) {
-            if ((app.current = app_find_technique(value)) < 0)
-                return app_usage_error("--technique: unknown technique", value);
-        } else if (strcmp(name, "--gallery") == 0) {
-            app.gallery_dir = value;
-            app.gallery_scenes = argv + c.next;
-            app.gallery_scene_count = argc - c.next;
-            if (app.gallery_scene_count == 0)
-                return app_usage_error("--gallery: expected DIR then at least one scene file", NULL);
-            break;
-        } else if (strcmp(name, "--animate") == 0) {
-            app.animate = true;
-        } else if (strcmp(name, "--verbose") == 0) {
-            app.verbose = true;
-        } else if ((status = app_apply_technique_flag(name, value))) {
-            return status;
-        }
+    int count = app_flag_count;
+    for (int i = 0; i < app.technique_count; i++)
+        count += app.techniques[i]->param_count;
+    flags_param *params = malloc((size_t)count * sizeof *params);
+    if (!params) {
+        fprintf(stderr, "%s: out of memory for %d flags\n", app.program, count);
+        return APP_EXIT_RUNTIME;
     }
-    return status == FLAGS_EXIT_USAGE ? status : 0; /* 1 when --gallery took the rest */
+    memcpy(params, app_flags, sizeof app_flags);
+    for (int i = 0, n = app_flag_count; i < app.technique_count; i++)
+        for (int k = 0; k < app.techniques[i]->param_count; k++)
+            params[n++] = app.techniques[i]->params[k];
+    int status = flags_parse(app.program, params, count, argc - 1, argv + 1);
+    free(params);
+    if (status == FLAGS_HELP_ASKED)
+        app_usage();
+    return status;
 }
 
 static const technique *app_technique(void) { return app.techniques[app.current]; }
@@ -267,24 +210,25 @@ static bool app_scene_basename(const char *path, char *out, size_t size) {
 }
 
 static bool app_run_gallery(void) {
-    if (!path_make_directories(app.gallery_dir))
+    const char *dir = app.gallery[0];
+    if (!path_make_directories(dir))
         return false;
-    for (int s = 0; s < app.gallery_scene_count; s++) {
-        const char *scene_path = app.gallery_scenes[s];
+    for (int s = 1; s < app.gallery_count; s++) {
+        const char *scene_path = app.gallery[s];
         if (!app_load_scene(scene_path))
             return false;
         bool ok = true;
         for (int t = 0; t < app.technique_count && ok; t++) {
             char name[256], path[PATH_MAX];
             app_scene_basename(scene_path, name, sizeof name);
-            snprintf(path, sizeof path, "%s/%s_%s.png", app.gallery_dir, app.techniques[t]->name, name);
+            snprintf(path, sizeof path, "%s/%s_%s.png", dir, app.techniques[t]->name, name);
             ok = app_start_technique(t) && app_run_headless(1, path);
             app_technique()->destroy();
             if (ok)
                 printf("%s\n", path);
             const technique *lecture = app.techniques[t];
             if (ok && lecture->gallery_config) {
-                snprintf(path, sizeof path, "%s/%s-lecture_%s.png", app.gallery_dir, lecture->name, name);
+                snprintf(path, sizeof path, "%s/%s-lecture_%s.png", dir, lecture->name, name);
                 ok = technique_apply_config(lecture, lecture->gallery_config) && app_start_technique(t) &&
                      app_run_headless(1, path);
                 app_technique()->destroy();
@@ -314,7 +258,7 @@ static void app_hud(int width, int height) {
         n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
     for (int k = 0; k < t->param_count && n < (int)sizeof text; k++) {
-        const technique_param *p = &t->params[k];
+        const flags_param *p = &t->params[k];
         char value[32];
         technique_param_text(p, value, sizeof value);
         char key[8] = "";
@@ -444,9 +388,9 @@ static bool app_run_window(int frames) {
 }
 
 static bool app_run(void) {
-    bool interactive = !app.frames_given && !app.screenshot && !app.dump_dir && !app.gallery_dir;
+    bool interactive = !app.frames && !app.screenshot && !app.dump_dir && !app.gallery_count;
     const context_settings settings = {
-        .backend = app.backend,
+        .backend = (context_backend)app.backend,
         .want_window = interactive,
         .width = app.width,
         .height = app.height,
@@ -459,15 +403,15 @@ static bool app_run(void) {
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);
     bool ok = target_create(&app.target, width, height);
-    if (ok && app.gallery_dir) {
+    if (ok && app.gallery_count) {
         ok = app_run_gallery();
     } else if (ok && (ok = app_load_scene(app.scene_path))) {
         ok = app_start_technique(app.current);
         if (ok && app.ctx.window)
-            ok = app_run_window(app.frames_given ? app.frames : 0) &&
+            ok = app_run_window(app.frames) &&
                  (!app.screenshot || app_save_screenshot(app.screenshot));
         else if (ok)
-            ok = app_run_headless(app.frames, app.screenshot);
+            ok = app_run_headless(app.frames ? app.frames : APP_HEADLESS_FRAMES, app.screenshot);
         ok = ok && (!app.dump_dir || app_dump(app.dump_dir));
         if (ok && app.verbose && app_technique()->describe) {
             char line[512];
@@ -483,21 +427,24 @@ static bool app_run(void) {
 }
 
 int app_main(int argc, char **argv, const technique *const *techniques, int technique_count) {
-    const char *slash = strrchr(argv[0], '/');
-    app.program = slash ? slash + 1 : argv[0];
+    app.program = flags_program_name(argv[0]);
+    if (technique_count > APP_MAX_TECHNIQUES) {
+        fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count,
+                APP_MAX_TECHNIQUES);
+        return APP_EXIT_RUNTIME;
+    }
     app.techniques = techniques;
     app.technique_count = technique_count;
-    app.backend = CONTEXT_AUTO;
+    for (int i = 0; i < technique_count; i++)
+        app.technique_names[i] = techniques[i]->name;
     app.width = 1280;
     app.height = 720;
-    app.frames = 1;
     int status = app_parse_flags(argc, argv);
     if (status)
-        return status < 0 ? 0 : status;
-    if (!app.shader_dir[0])
-        path_in_project("shaders", app.shader_dir, sizeof app.shader_dir);
+        return status == FLAGS_HELP_ASKED ? 0 : status;
+    path_in_project("shaders", app.default_shader_dir, sizeof app.default_shader_dir);
     path_in_project("assets/scenes/simple.json", app.default_scene, sizeof app.default_scene);
-    shader_set_directory(app.shader_dir);
+    shader_set_directory(app.shader_dir ? app.shader_dir : app.default_shader_dir);
     if (!app.scene_path)
         app.scene_path = app.default_scene;
     return app_run() ? 0 : APP_EXIT_RUNTIME;

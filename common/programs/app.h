@@ -6,7 +6,8 @@
  * --scene PATH (assets/scenes/simple.json), --frames N, --screenshot PATH,
  * --shader-dir DIR, --technique NAME, --animate, --verbose, --help, and
  * --gallery DIR SCENE... (every technique on every scene, to
- * DIR/TECHNIQUE_SCENE.png). Each technique toggle adds --no-NAME.
+ * DIR/TECHNIQUE_SCENE.png). Each technique parameter adds its flag
+ * (--no-NAME for a toggle); all are one flags_param table (flags.h).
  *
  * A run with --frames, --screenshot or --gallery is headless (auto picks
  * EGL, then OSMesa); otherwise auto opens a window when a display is there.

@@ -35,6 +35,7 @@
 
 #define BENCH_MAX_ROWS 256
 #define BENCH_MAX_FRAMES 1000
+#define BENCH_MAX_SCENES 16
 
 typedef struct bench_row {
     const char *scene, *technique, *config;
@@ -46,15 +47,16 @@ typedef struct bench_row {
 } bench_row;
 
 static struct {
-    /* flags */
+    /* flags (zero: the default, which --quick makes small) */
     const char *out_dir;
     int width, height, frames, warmup, light_samples;
     bool quick, verbose;
-    const char *scenes[16];
-    char scene_names[16][128];
+    const char *scenes[BENCH_MAX_SCENES];
+    char scene_names[BENCH_MAX_SCENES][128];
     int scene_count;
     char default_scenes[4][PATH_MAX]; /* the standard scenes */
-    char shader_dir[PATH_MAX];
+    const char *shader_dir;
+    char default_shader_dir[PATH_MAX];
     /* run */
     context ctx;
     target target;
@@ -68,61 +70,37 @@ static struct {
     int row_count;
 } bench;
 
-static void bench_usage(void) {
-    printf("usage: bench [flags] [SCENE.json...]\n"
-           "Times every technique over its parameter sweep and measures its error against the\n"
-           "ray-traced reference, on each scene (default: the standard scenes and long_view).\n"
-           "  --out DIR            where results go (out/bench)\n"
-           "  --size WxH           frame size (1280x720; --quick: 320x180)\n"
-           "  --frames N           timed frames per configuration, after warm-up (30; --quick: 5)\n"
-           "  --warmup N           untimed frames first (5; --quick: 2)\n"
-           "  --light-samples N    reference shadow rays per area light (256; --quick: 16)\n"
-           "  --quick              small and short: a smoke test of the whole pipeline\n"
-           "  --shader-dir DIR     where the GLSL files are\n"
-           "  --verbose            print the backend and GL renderer\n"
-           "  --help               this text\n");
-}
+static const flags_param bench_flags[] = {
+    {NULL, NULL, 0, FLAGS_LIST, .items = bench.scenes, .count = &bench.scene_count, .max = BENCH_MAX_SCENES,
+     .what = "at most " FLAGS_TEXT(BENCH_MAX_SCENES) " scene files"},
+    {"out", "where results go (out/bench)", 0, FLAGS_STRING, .text = &bench.out_dir, .value_name = "DIR"},
+    {"size", "frame size (1280x720; --quick: 320x180)", 0, FLAGS_SIZE, .width = &bench.width,
+     .height = &bench.height},
+    {"frames", "timed frames per configuration, after warm-up (30; --quick: 5)", 0, FLAGS_INT,
+     .integer = &bench.frames, .min = 1, .max = BENCH_MAX_FRAMES, .what = "a count"},
+    {"warmup", "untimed frames first (5; --quick: 2)", 0, FLAGS_INT, .integer = &bench.warmup, .min = 0,
+     .max = BENCH_MAX_FRAMES, .what = "a count"},
+    {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
+     .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
+    {"quick", "small and short: a smoke test of the whole pipeline", 0, FLAGS_SWITCH, .on = &bench.quick},
+    {"shader-dir", "where the GLSL files are", 0, FLAGS_STRING, .text = &bench.shader_dir, .value_name = "DIR"},
+    {"verbose", "print the backend and GL renderer", 0, FLAGS_SWITCH, .on = &bench.verbose},
+    {.name = "help", .help = "this text", .kind = FLAGS_HELP},
+};
 
 static int bench_parse_flags(int argc, char **argv) {
-    static const char *const with_value[] = {"--out",          "--size",       "--frames", "--warmup",
-                                             "--light-samples", "--shader-dir", NULL};
-    flags_cursor c = {.program = "bench", .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
-    const char *flag, *value;
-    int status;
-    bench.out_dir = "out/bench";
-    while ((status = flags_next(&c, &flag, &value)) == 1) {
-        bool ok = true;
-        if (strcmp(flag, "--help") == 0) {
-            bench_usage();
-            return -1;
-        } else if (strcmp(flag, "--quick") == 0) {
-            bench.quick = true;
-        } else if (strcmp(flag, "--verbose") == 0) {
-            bench.verbose = true;
-        } else if (strcmp(flag, "--out") == 0) {
-            bench.out_dir = value;
-        } else if (strcmp(flag, "--shader-dir") == 0) {
-            snprintf(bench.shader_dir, sizeof bench.shader_dir, "%s", value);
-        } else if (strcmp(flag, "--size") == 0) {
-            ok = flags_parse_size(value, &bench.width, &bench.height);
-        } else if (strcmp(flag, "--frames") == 0) {
-            ok = flags_parse_int(value, 1, BENCH_MAX_FRAMES, &bench.frames);
-        } else if (strcmp(flag, "--warmup") == 0) {
-            ok = flags_parse_int(value, 0, BENCH_MAX_FRAMES, &bench.warmup);
-        } else if (strcmp(flag, "--light-samples") == 0) {
-            ok = flags_parse_int(value, 1, 65536, &bench.light_samples);
-        } else if (flag[0] == '-') {
-            return flags_usage_error("bench", "unknown flag", flag);
-        } else if (bench.scene_count < (int)(sizeof bench.scenes / sizeof *bench.scenes)) {
-            bench.scenes[bench.scene_count++] = flag;
-        } else {
-            return flags_usage_error("bench", "too many scenes, from", flag);
-        }
-        if (!ok)
-            return flags_usage_error("bench", "malformed value:", value);
+    int count = (int)(sizeof bench_flags / sizeof *bench_flags);
+    int status = flags_parse("bench", bench_flags, count, argc - 1, argv + 1);
+    if (status == FLAGS_HELP_ASKED) {
+        printf("usage: bench [flags] [SCENE.json...]\n"
+               "Times every technique over its parameter sweep and measures its error against the\n"
+               "ray-traced reference, on each scene (default: the standard scenes and long_view).\n");
+        flags_print_help(stdout, bench_flags, count, 2, 0);
     }
     if (status)
         return status;
+    if (!bench.out_dir)
+        bench.out_dir = "out/bench";
     /* Zero means the default, which --quick makes small. */
     if (!bench.width) {
         bench.width = bench.quick ? 320 : 1280;
@@ -459,10 +437,9 @@ static bool bench_plot(const char *scene) {
 int main(int argc, char **argv) {
     int status = bench_parse_flags(argc, argv);
     if (status)
-        return status < 0 ? 0 : status;
-    if (!bench.shader_dir[0])
-        path_in_project("shaders", bench.shader_dir, sizeof bench.shader_dir);
-    shader_set_directory(bench.shader_dir);
+        return status == FLAGS_HELP_ASKED ? 0 : status;
+    path_in_project("shaders", bench.default_shader_dir, sizeof bench.default_shader_dir);
+    shader_set_directory(bench.shader_dir ? bench.shader_dir : bench.default_shader_dir);
     /* The standard scenes, and long_view, where perspective aliasing is. */
     static const char *const standard[] = {"simple", "bunny", "teapot", "long_view"};
     enum { standard_count = sizeof standard / sizeof *standard };

@@ -29,62 +29,40 @@ static struct {
     char default_scene[PATH_MAX];
 } main_flags;
 
+static const flags_param main_flag_table[] = {
+    {"scene", "scene file (assets/scenes/simple.json)", 0, FLAGS_STRING, .text = &main_flags.scene_path,
+     .value_name = "PATH"},
+    {"size", "image size (1280x720)", 0, FLAGS_SIZE, .width = &main_flags.width, .height = &main_flags.height},
+    {"screenshot", "save the picture", 0, FLAGS_STRING, .text = &main_flags.screenshot, .value_name = "PATH.png"},
+    {"dump", "save the per-pixel dump (see common/dump.h) for light K", 0, FLAGS_STRING, .text = &main_flags.dump_dir,
+     .value_name = "DIR"},
+    {"light", "the light whose visibility is dumped, from 0 (0)", 0, FLAGS_INT, .integer = &main_flags.light_index,
+     .min = 0, .max = SCENE_MAX_LIGHTS - 1, .what = "a light index", .value_name = "K"},
+    {"light-samples",
+     "shadow rays per pixel for each area light (radius > 0),\n"
+     "stratified, 1.." FLAGS_TEXT(RAYTRACE_MAX_LIGHT_SAMPLES) " (" FLAGS_TEXT(RAYTRACE_DEFAULT_LIGHT_SAMPLES) ")",
+     0, FLAGS_INT, .integer = &main_flags.settings.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES,
+     .what = "a count"},
+    {"verbose", "print the Embree version, thread count and timings", 0, FLAGS_SWITCH,
+     .on = &main_flags.settings.verbose},
+    {.name = "help", .help = "this text", .kind = FLAGS_HELP},
+};
+enum { main_flag_count = sizeof main_flag_table / sizeof *main_flag_table };
+
 static void main_usage(void) {
     printf("usage: %s [flags]\n"
-           "Ray-traces the reference picture and per-pixel dump of a scene (Embree, on the CPU).\n"
-           "  --scene PATH           scene file (assets/scenes/simple.json)\n"
-           "  --size WxH             image size (1280x720)\n"
-           "  --screenshot PATH.png  save the picture\n"
-           "  --dump DIR             save the per-pixel dump (see common/dump.h) for light K\n"
-           "  --light K              the light whose visibility is dumped, from 0 (0)\n"
-           "  --light-samples N      shadow rays per pixel for each area light (radius > 0),\n"
-           "                         stratified, 1..%d (%d)\n"
-           "  --verbose              print the Embree version, thread count and timings\n"
-           "  --help                 this text\n"
-           "Shadow rays start %g x the diagonal of the box holding the scene and the origin\n"
+           "Ray-traces the reference picture and per-pixel dump of a scene (Embree, on the CPU).\n",
+           main_flags.program);
+    flags_print_help(stdout, main_flag_table, main_flag_count, 2, 0);
+    printf("Shadow rays start %g x the diagonal of the box holding the scene and the origin\n"
            "off the surface, along its normal on the light's side, and stop as far short of\n"
            "the light: float rounding of hit points grows with the scene's coordinates.\n"
            "Threads: OMP_NUM_THREADS (default: every core).\n",
-           main_flags.program, RAYTRACE_MAX_LIGHT_SAMPLES, RAYTRACE_DEFAULT_LIGHT_SAMPLES, (double)RAYTRACE_EPSILON);
+           (double)RAYTRACE_EPSILON);
 }
 
 static int main_usage_error(const char *message, const char *value) {
     return flags_usage_error(main_flags.program, message, value);
-}
-
-/* Returns 0 to run, -1 after --help, or an exit status. */
-static int main_parse_flags(int argc, char **argv) {
-    static const char *const with_value[] = {"--scene", "--size",  "--screenshot", "--dump",
-                                             "--light", "--light-samples", NULL};
-    flags_cursor c = {.program = main_flags.program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
-    const char *name, *value;
-    int status;
-    while ((status = flags_next(&c, &name, &value)) == 1) {
-        if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
-            main_usage();
-            return -1;
-        } else if (strcmp(name, "--scene") == 0) {
-            main_flags.scene_path = value;
-        } else if (strcmp(name, "--size") == 0) {
-            if (!flags_parse_size(value, &main_flags.width, &main_flags.height))
-                return main_usage_error("--size: expected WxH, each 1..16384, got", value);
-        } else if (strcmp(name, "--screenshot") == 0) {
-            main_flags.screenshot = value;
-        } else if (strcmp(name, "--dump") == 0) {
-            main_flags.dump_dir = value;
-        } else if (strcmp(name, "--light") == 0) {
-            if (!flags_parse_int(value, 0, SCENE_MAX_LIGHTS - 1, &main_flags.light_index))
-                return main_usage_error("--light: expected a light index 0..7, got", value);
-        } else if (strcmp(name, "--light-samples") == 0) {
-            if (!flags_parse_int(value, 1, RAYTRACE_MAX_LIGHT_SAMPLES, &main_flags.settings.light_samples))
-                return main_usage_error("--light-samples: expected a count 1..65536, got", value);
-        } else if (strcmp(name, "--verbose") == 0) {
-            main_flags.settings.verbose = true;
-        } else {
-            return main_usage_error(name[0] == '-' ? "unknown flag" : "unexpected argument", name);
-        }
-    }
-    return status;
 }
 
 static int main_run(void) {
@@ -118,13 +96,16 @@ static int main_run(void) {
 }
 
 int main(int argc, char **argv) {
-    const char *slash = strrchr(argv[0], '/');
-    main_flags.program = slash ? slash + 1 : argv[0];
+    main_flags.program = flags_program_name(argv[0]);
     main_flags.width = 1280;
     main_flags.height = 720;
-    int status = main_parse_flags(argc, argv);
+    int status = flags_parse(main_flags.program, main_flag_table, main_flag_count, argc - 1, argv + 1);
+    if (status == FLAGS_HELP_ASKED) {
+        main_usage();
+        return 0;
+    }
     if (status)
-        return status < 0 ? 0 : status;
+        return status;
     path_in_project("assets/scenes/simple.json", main_flags.default_scene, sizeof main_flags.default_scene);
     if (!main_flags.scene_path)
         main_flags.scene_path = main_flags.default_scene;

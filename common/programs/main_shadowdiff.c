@@ -12,67 +12,51 @@
 
 #define MAIN_EXIT_RUNTIME 1
 
+#define MAIN_MAX_GRAZING_DEGREES 45
+
 typedef struct main_options {
     const char *program;
-    const char *reference_dir, *test_dir;
+    const char *dirs[2]; /* REF_DIR TEST_DIR */
+    int dir_count;
     const char *heatmap_path, *receiver;
     int grazing_degrees;
     bool json;
 } main_options;
 
-static void main_usage(const char *program) {
+static void main_usage(const char *program, const flags_param *params, int count) {
     printf("usage: %s REF_DIR TEST_DIR [flags]\n"
            "Compares the shadows of the dump TEST_DIR with the reference dump REF_DIR (both\n"
-           "written by --dump: same scene, camera, size and light).\n"
-           "  --heatmap PATH.png  picture of the verdicts: red false shadow (lit in the\n"
-           "                      reference, shadowed in the test), blue false lit (the\n"
-           "                      other way round), grey by the reference visibility where\n"
-           "                      they agree, dark grey not compared, black no surface\n"
-           "  --json              one JSON object on stdout instead of text\n"
-           "  --receiver NAME     only pixels of that object\n"
-           "  --grazing DEG       also leave out surfaces within DEG degrees (0..45) of\n"
-           "                      edge-on to the light (0): for sweeps of light directions\n"
-           "  --help              this text\n"
-           "A pixel is compared where both see a surface at the same depth (0.1 %%) and the\n"
-           "reference surface faces the light; lit means visibility >= 0.5. Percentages\n"
-           "are of the compared pixels; MAE is the mean |visibility difference| over them.\n",
+           "written by --dump: same scene, camera, size and light).\n",
            program);
+    flags_print_help(stdout, params, count, 2, 0);
+    printf("A pixel is compared where both see a surface at the same depth (0.1 %%) and the\n"
+           "reference surface faces the light; lit means visibility >= 0.5. Percentages\n"
+           "are of the compared pixels; MAE is the mean |visibility difference| over them.\n");
 }
 
-/* Returns 0 to run, -1 after --help, or an exit status. */
+/* Returns 0 to run, FLAGS_HELP_ASKED after --help, or an exit status. */
 static int main_parse_flags(int argc, char **argv, main_options *o) {
-    static const char *const with_value[] = {"--heatmap", "--receiver", "--grazing", NULL};
-    flags_cursor c = {.program = o->program, .argc = argc, .argv = argv, .next = 1, .with_value = with_value};
-    const char *name, *value;
-    int status, positional = 0;
-    while ((status = flags_next(&c, &name, &value)) == 1) {
-        if (name[0] != '-') {
-            if (positional == 2)
-                return flags_usage_error(o->program, "expected two dump directories, got also", name);
-            *(positional++ == 0 ? &o->reference_dir : &o->test_dir) = name;
-            continue;
-        }
-        if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
-            main_usage(o->program);
-            return -1;
-        } else if (strcmp(name, "--heatmap") == 0) {
-            o->heatmap_path = value;
-        } else if (strcmp(name, "--receiver") == 0) {
-            o->receiver = value;
-        } else if (strcmp(name, "--grazing") == 0) {
-            if (!flags_parse_int(value, 0, 45, &o->grazing_degrees))
-                return flags_usage_error(o->program, "--grazing takes whole degrees 0..45, got", value);
-        } else if (strcmp(name, "--json") == 0) {
-            o->json = true;
-        } else {
-            return flags_usage_error(o->program, "unknown flag", name);
-        }
-    }
-    if (status)
-        return status;
-    if (positional < 2)
-        return flags_usage_error(o->program, "expected two dump directories: REF_DIR TEST_DIR", NULL);
-    return 0;
+    const flags_param params[] = {
+        {NULL, NULL, 0, FLAGS_LIST, .items = o->dirs, .count = &o->dir_count, .min = 2, .max = 2,
+         .what = "two dump directories: REF_DIR TEST_DIR"},
+        {"heatmap",
+         "picture of the verdicts: red false shadow (lit in the\nreference, shadowed in the test), blue false lit (the\n"
+         "other way round), grey by the reference visibility where\nthey agree, dark grey not compared, black no surface",
+         0, FLAGS_STRING, .text = &o->heatmap_path, .value_name = "PATH.png"},
+        {"json", "one JSON object on stdout instead of text", 0, FLAGS_SWITCH, .on = &o->json},
+        {"receiver", "only pixels of that object", 0, FLAGS_STRING, .text = &o->receiver, .value_name = "NAME"},
+        {"grazing",
+         "also leave out surfaces within DEG degrees (0.." FLAGS_TEXT(MAIN_MAX_GRAZING_DEGREES) ") of\n"
+         "edge-on to the light (0): for sweeps of light directions",
+         0, FLAGS_INT, .integer = &o->grazing_degrees, .min = 0, .max = MAIN_MAX_GRAZING_DEGREES,
+         .what = "whole degrees", .value_name = "DEG"},
+        {.name = "help", .help = "this text", .kind = FLAGS_HELP},
+    };
+    int count = (int)(sizeof params / sizeof *params);
+    int status = flags_parse(o->program, params, count, argc - 1, argv + 1);
+    if (status == FLAGS_HELP_ASKED)
+        main_usage(o->program, params, count);
+    return status;
 }
 
 static void main_print_text(const shadowdiff_result *r, const dump_frame *reference, const char *receiver) {
@@ -109,9 +93,9 @@ static bool main_print_json(const shadowdiff_result *r) {
 /* Everything after the flags: both dumps are read, compared, reported. */
 static bool main_run(const main_options *o) {
     dump_frame reference, test;
-    if (!dump_read(&reference, o->reference_dir))
+    if (!dump_read(&reference, o->dirs[0]))
         return false;
-    if (!dump_read(&test, o->test_dir)) {
+    if (!dump_read(&test, o->dirs[1])) {
         dump_frame_free(&reference);
         return false;
     }
@@ -119,8 +103,8 @@ static bool main_run(const main_options *o) {
     unsigned char *heatmap = o->heatmap_path ? malloc(heatmap_bytes) : NULL;
     const shadowdiff_settings settings = {
         .receiver = o->receiver,
-        .reference_name = o->reference_dir,
-        .test_name = o->test_dir,
+        .reference_name = o->dirs[0],
+        .test_name = o->dirs[1],
         .grazing_degrees = o->grazing_degrees,
     };
     shadowdiff_result result;
@@ -140,10 +124,9 @@ static bool main_run(const main_options *o) {
 }
 
 int main(int argc, char **argv) {
-    const char *slash = strrchr(argv[0], '/');
-    main_options options = {.program = slash ? slash + 1 : argv[0]};
+    main_options options = {.program = flags_program_name(argv[0])};
     int status = main_parse_flags(argc, argv, &options);
     if (status)
-        return status < 0 ? 0 : status;
+        return status == FLAGS_HELP_ASKED ? 0 : status;
     return main_run(&options) ? 0 : MAIN_EXIT_RUNTIME;
 }

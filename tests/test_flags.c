@@ -1,0 +1,134 @@
+/* Tests of common/data/flags.c, in-process: one table parses every kind of
+ * flag the programs and techniques declare, and prints their --help. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "flags.h"
+
+#define TEST_MAX_ITEMS 3
+
+static struct {
+    bool no_stencil, other_no_stencil, verbose;
+    int filter, frames, width, height, item_count, rest_count;
+    float bias;
+    const char *scene;
+    const char *items[TEST_MAX_ITEMS], *rest[TEST_MAX_ITEMS];
+} v;
+
+static const char *const filters[] = {"poisson", "none", "pcf3", NULL};
+
+static const flags_param params[] = {
+    {NULL, NULL, 0, FLAGS_LIST, .items = v.items, .count = &v.item_count, .min = 1, .max = TEST_MAX_ITEMS,
+     .what = "one to three files"},
+    {"stencil", "shadows blend twice", 'S', FLAGS_TOGGLE, .disabled = &v.no_stencil},
+    {"stencil", "the same flag in a second technique", 0, FLAGS_TOGGLE, .disabled = &v.other_no_stencil},
+    {"filter", "what reads the map", 'F', FLAGS_CHOICE, .index = &v.filter, .choices = filters},
+    {"bias", "constant bias", 0, FLAGS_NUMBER, .number = &v.bias, .fallback = 1.5f, .min = 0.01f, .max = 64},
+    {"frames", "frames", 0, FLAGS_INT, .integer = &v.frames, .min = 1, .max = 100, .what = "a count"},
+    {"size", "size", 0, FLAGS_SIZE, .width = &v.width, .height = &v.height},
+    {"scene", "scene file", 0, FLAGS_STRING, .text = &v.scene, .value_name = "PATH"},
+    {"verbose", "say more\nover two lines", 0, FLAGS_SWITCH, .on = &v.verbose},
+    {"gallery", "the rest", 0, FLAGS_LIST, .items = v.rest, .count = &v.rest_count, .min = 2,
+     .max = TEST_MAX_ITEMS, .what = "DIR then a scene"},
+    {.name = "help", .help = "this text", .kind = FLAGS_HELP},
+};
+enum { param_count = sizeof params / sizeof *params };
+
+/* Parses a space-separated command line (no program name). */
+static int parse(const char *line) {
+    static char copy[512];
+    char *words[64];
+    int n = 0;
+    snprintf(copy, sizeof copy, "%s", line);
+    for (char *rest = copy, *word; (word = strtok_r(rest, " ", &rest));)
+        words[n++] = word;
+    flags_reset(params, param_count);
+    return flags_parse("test", params, param_count, n, words);
+}
+
+static void test_every_kind(void **state) {
+    (void)state;
+    assert_int_equal(parse("a --no-stencil --filter pcf3 --bias=2.5 --frames 7 --size 64x36 --scene s.json "
+                           "--verbose b"),
+                     0);
+    assert_true(v.no_stencil && v.other_no_stencil && v.verbose);
+    assert_int_equal(v.filter, 2);
+    assert_true(v.bias == 2.5f && flags_number(&params[4]) == 2.5f);
+    assert_int_equal(v.frames, 7);
+    assert_int_equal(v.width, 64);
+    assert_int_equal(v.height, 36);
+    assert_string_equal(v.scene, "s.json");
+    assert_int_equal(v.item_count, 2);
+    assert_string_equal(v.items[1], "b");
+}
+
+static void test_reset_gives_defaults(void **state) {
+    (void)state;
+    assert_int_equal(parse("a"), 0);
+    assert_false(v.no_stencil || v.verbose);
+    assert_int_equal(v.filter, 0);
+    assert_true(flags_number(&params[4]) == 1.5f);
+    assert_null(v.scene);
+}
+
+static void test_list_takes_the_rest(void **state) {
+    (void)state;
+    assert_int_equal(parse("a --gallery out --verbose"), 0);
+    assert_false(v.verbose);
+    assert_int_equal(v.rest_count, 2);
+    assert_string_equal(v.rest[1], "--verbose");
+    assert_int_equal(parse("a --gallery out"), FLAGS_EXIT_USAGE);
+    assert_int_equal(parse("a --gallery=out x y z"), FLAGS_EXIT_USAGE);
+}
+
+static void test_bad_command_lines(void **state) {
+    (void)state;
+    static const char *const bad[] = {
+        "a --bogus",   "a --filter blur", "a --bias 0",    "a --bias x",      "a --frames 101",
+        "a --size 3",  "a --frames",      "a --verbose=1", "a --no-stencil=1", "",
+        "a b c d",     "a --stencil",     "a --no-filter",
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
+        assert_int_equal(parse(bad[i]), FLAGS_EXIT_USAGE);
+    assert_int_equal(parse("a --help --bogus"), FLAGS_HELP_ASKED);
+    assert_int_equal(parse("-h"), FLAGS_HELP_ASKED);
+}
+
+static void test_help_lists_every_flag(void **state) {
+    (void)state;
+    char *text = NULL;
+    size_t size = 0;
+    FILE *out = open_memstream(&text, &size);
+    assert_non_null(out);
+    flags_print_help(out, params, param_count, 2, 0);
+    fclose(out);
+    static const char *const lines[] = {
+        "  --no-stencil                key S: shadows blend twice\n",
+        "  --filter poisson|none|pcf3  key F: what reads the map\n",
+        "  --bias X                    constant bias\n",
+        "  --scene PATH                scene file\n",
+        "  --verbose                   say more\n                              over two lines\n",
+        "  --gallery ARG...            the rest\n",
+        "  --help                      this text\n",
+    };
+    for (size_t i = 0; i < sizeof lines / sizeof *lines; i++)
+        assert_non_null(strstr(text, lines[i]));
+    free(text);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_every_kind),
+        cmocka_unit_test(test_reset_gives_defaults),
+        cmocka_unit_test(test_list_takes_the_rest),
+        cmocka_unit_test(test_bad_command_lines),
+        cmocka_unit_test(test_help_lists_every_flag),
+    };
+    return cmocka_run_group_tests_name("flags", tests, NULL, NULL);
+}
