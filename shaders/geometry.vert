@@ -1,5 +1,5 @@
 #version 330 core
-// What every pixel sees, for dumps (common/capture.c): world position in,
+// What every pixel sees, for dumps (common/gl/capture.c): world position in,
 // the face normal is made per triangle in geometry.geom.
 layout(location = 0) in vec3 in_position;
 

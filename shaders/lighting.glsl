@@ -1,6 +1,6 @@
 // Shared lighting model: Lambert diffuse plus a constant ambient term, the
 // same model the ray-traced reference evaluates, so that pictures compare.
-// The lights live in one uniform block that common/render.c fills once per
+// The lights live in one uniform block that common/gl/render.c fills once per
 // frame for every program.
 //
 // Visibility mode (lights_count.y = K >= 0) turns any technique's picture
@@ -8,7 +8,7 @@
 // light K contributes exactly 1 wherever it can reach (inside a spot's outer
 // cone), every other light and the ambient term 0, so whatever the technique
 // does to shadow light K leaves its visibility in the red channel (see
-// common/capture.c).
+// common/gl/capture.c).
 
 // SCENE_MAX_LIGHTS comes from C (common/data/scene.h), injected by the
 // shader loader; the block's layout is checked in common/gl/render.c.

@@ -1,4 +1,4 @@
-/* Tests of common/mesh.c: generators, model loading, sanitizing, welding.
+/* Tests of common/data/mesh.c: generators, model loading, sanitizing, welding.
  * Run from the repository root (the paths are relative to it). */
 #include <dirent.h>
 #include <math.h>

@@ -1,4 +1,4 @@
-/* Tests of common/raytrace.c, in-process: shadows against their analytic
+/* Tests of common/measure/raytrace.c, in-process: shadows against their analytic
  * shape, the spot cone, determinism, and the standard scenes. Run from the
  * repository root. Each measuring test prints what it measured.
  *

@@ -1,4 +1,4 @@
-/* Tests of common/scene.c: scene files, good and bad. Run from the
+/* Tests of common/data/scene.c: scene files, good and bad. Run from the
  * repository root (the paths are relative to it). */
 #include <math.h>
 #include <setjmp.h>

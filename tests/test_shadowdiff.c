@@ -1,4 +1,4 @@
-/* Tests of common/shadowdiff.c and build/shadowdiff on synthetic dumps
+/* Tests of common/measure/shadowdiff.c and build/shadowdiff on synthetic dumps
  * whose answer is known: which pixels are compared, the counts, the heat
  * map, the consistency checks, and the dump files' round trip. Run from
  * the repository root. */

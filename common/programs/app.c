@@ -69,7 +69,7 @@ static const flags_param app_flags[] = {
      .value_name = "PATH.png"},
     {"dump",
      "write what the last frame decided per pixel for one\nlight: visibility, depth, normal, position, ids, colour\n"
-     "(see common/dump.h; implies headless)",
+     "(see common/data/dump.h; implies headless)",
      0, FLAGS_STRING, .text = &app.dump_dir, .value_name = "DIR"},
     {"light", "the light --dump reports (0)", 0, FLAGS_INT, .integer = &app.light, .min = 0,
      .max = SCENE_MAX_LIGHTS - 1, .what = "a light index", .value_name = "K"},

@@ -34,7 +34,7 @@ static const flags_param main_flag_table[] = {
      .value_name = "PATH"},
     {"size", "image size (1280x720)", 0, FLAGS_SIZE, .width = &main_flags.width, .height = &main_flags.height},
     {"screenshot", "save the picture", 0, FLAGS_STRING, .text = &main_flags.screenshot, .value_name = "PATH.png"},
-    {"dump", "save the per-pixel dump (see common/dump.h) for light K", 0, FLAGS_STRING, .text = &main_flags.dump_dir,
+    {"dump", "save the per-pixel dump (see common/data/dump.h) for light K", 0, FLAGS_STRING, .text = &main_flags.dump_dir,
      .value_name = "DIR"},
     {"light", "the light whose visibility is dumped, from 0 (0)", 0, FLAGS_INT, .integer = &main_flags.light_index,
      .min = 0, .max = SCENE_MAX_LIGHTS - 1, .what = "a light index", .value_name = "K"},
