@@ -15,14 +15,15 @@ uniform float u_far;
 out vec4 out_color;
 
 // The direction through face coordinates st (-1..1) of cube face `face`,
-// by the table of the GL specification (cube map face selection).
+// by the table of the GL specification (cube map face selection); faces are
+// numbered in GL's order, SHADOW_MAP_FACE_* in C.
 vec3 overlay_cube_direction(int face, vec2 st) {
-    if (face == 0) return vec3(1.0, -st.y, -st.x);
-    if (face == 1) return vec3(-1.0, -st.y, st.x);
-    if (face == 2) return vec3(st.x, 1.0, st.y);
-    if (face == 3) return vec3(st.x, -1.0, -st.y);
-    if (face == 4) return vec3(st.x, -st.y, 1.0);
-    return vec3(-st.x, -st.y, -1.0);
+    if (face == SHADOW_MAP_FACE_POSITIVE_X) return vec3(1.0, -st.y, -st.x);
+    if (face == SHADOW_MAP_FACE_NEGATIVE_X) return vec3(-1.0, -st.y, st.x);
+    if (face == SHADOW_MAP_FACE_POSITIVE_Y) return vec3(st.x, 1.0, st.y);
+    if (face == SHADOW_MAP_FACE_NEGATIVE_Y) return vec3(st.x, -1.0, -st.y);
+    if (face == SHADOW_MAP_FACE_POSITIVE_Z) return vec3(st.x, -st.y, 1.0);
+    return vec3(-st.x, -st.y, -1.0); // SHADOW_MAP_FACE_NEGATIVE_Z
 }
 
 void main() {

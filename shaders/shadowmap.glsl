@@ -1,6 +1,9 @@
-// The camera pass of a shadow map (demos/shadowmap.c, demos/psm.c), shared
-// by the 2D map (spot, directional, warped) and the cube map (point). The
-// including file defines the functions declared here:
+// The camera pass of a shadow map (demos/lib/shadow_map.c, for
+// demos/shadowmap.c and demos/psm.c), shared by the 2D map (spot,
+// directional, warped) and the cube map (point). u_filter is a
+// shadow_map_kernel (SHADOW_MAP_KERNEL_*), u_texel_kind a
+// shadow_map_texel_kind (SHADOW_MAP_TEXEL_*): C enums, defined by C before
+// this file. The including file defines the functions declared here:
 //   shadowmap_texel_world(p)  world size of one map texel at p
 //   shadowmap_visibility(p, b) the filtered comparison at p, its map depth
 //                             lowered by b first
@@ -34,7 +37,11 @@ float shadowmap_pixel_angle() {
     return float(h ^ (h >> 15)) * (6.2831853 / 4294967296.0);
 }
 
-// 16 points of a Poisson disc in the unit circle (minimum distance 0.35).
+// 16 points of a Poisson disc (minimum distance 0.35), scaled by half of
+// u_kernel texels (SHADOW_MAP_POISSON_SCALE_TEXELS: 3). They are not all in
+// the unit circle: eight lie outside it, the farthest at radius 1.234, so
+// the taps span 3.7 texels across, not 3. The points are kept as they are:
+// the defaults were measured with them.
 const vec2 shadowmap_poisson[16] = vec2[](
     vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
     vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),

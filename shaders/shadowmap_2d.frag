@@ -6,12 +6,12 @@
 
 uniform sampler2DShadow u_map;   // compare mode on: every read is a test
 uniform mat4 u_light_matrix;     // world -> the light's clip space
-uniform int u_texel_kind;        // 0 orthographic, 1 perspective, 2 any projective map (a warp)
-uniform float u_texel_scale;     // world texel: this (0) or this x depth along the axis (1)
+uniform int u_texel_kind;        // SHADOW_MAP_TEXEL_*: orthographic, perspective, any projective map (a warp)
+uniform float u_texel_scale;     // world texel: this (orthographic) or this x depth along the axis (perspective)
 uniform vec3 u_light_axis;       // where a perspective map looks
 uniform vec3 u_light_origin;
-uniform int u_filter;            // 0 one tap, 1 N x N grid, 2 Poisson disc
-uniform int u_kernel;            // N, or the disc's diameter in texels
+uniform int u_filter;            // SHADOW_MAP_KERNEL_*: one tap, N x N grid, Poisson disc
+uniform int u_kernel;            // N, or the disc's scale in texels
 uniform float u_map_size;
 uniform bool u_receiver_plane;
 
@@ -29,9 +29,9 @@ float shadowmap_projective_texel(vec3 p) {
 }
 
 float shadowmap_texel_world(vec3 p) {
-    if (u_texel_kind == 0)
+    if (u_texel_kind == SHADOW_MAP_TEXEL_ORTHOGRAPHIC)
         return u_texel_scale;
-    if (u_texel_kind == 1)
+    if (u_texel_kind == SHADOW_MAP_TEXEL_PERSPECTIVE)
         return u_texel_scale * max(dot(p - u_light_origin, u_light_axis), 0.0);
     return shadowmap_projective_texel(p);
 }
@@ -70,9 +70,9 @@ float shadowmap_visibility(vec3 p, float depth_bias) {
     if (clip.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
     uvz.z = min(uvz.z - depth_bias, 1.0);
-    if (u_filter == 0)
+    if (u_filter == SHADOW_MAP_KERNEL_SINGLE)
         return texture(u_map, uvz);
-    if (u_filter == 2)
+    if (u_filter == SHADOW_MAP_KERNEL_POISSON)
         return shadowmap_poisson_disc(uvz, gradient);
     float sum = 0.0;
     int half_kernel = u_kernel / 2;

@@ -7,8 +7,8 @@ uniform samplerCubeShadow u_map;
 uniform vec3 u_light_origin;
 uniform float u_near;
 uniform float u_far;
-uniform int u_filter;
-uniform int u_kernel;
+uniform int u_filter; // SHADOW_MAP_KERNEL_*
+uniform int u_kernel; // N, or the Poisson disc's scale in texels
 uniform float u_map_size;
 uniform bool u_receiver_plane;
 
@@ -42,7 +42,7 @@ float shadowmap_tap(vec3 d, vec3 w, vec3 receiver_normal, float depth_bias) {
 float shadowmap_visibility(vec3 p, float depth_bias) {
     vec3 d = p - u_light_origin;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
-    if (u_filter == 0)
+    if (u_filter == SHADOW_MAP_KERNEL_SINGLE)
         return texture(u_map, vec4(d, shadowmap_face_depth(d) - depth_bias));
     // Offsets in the plane across the direction, one texel apart there.
     vec3 axis = normalize(d);
@@ -50,7 +50,7 @@ float shadowmap_visibility(vec3 p, float depth_bias) {
     vec3 v = cross(axis, u);
     float step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size;
     float sum = 0.0;
-    if (u_filter == 2) {
+    if (u_filter == SHADOW_MAP_KERNEL_POISSON) {
         float a = shadowmap_pixel_angle();
         mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
         for (int i = 0; i < 16; i++) {

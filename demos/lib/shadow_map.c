@@ -1,0 +1,278 @@
+/* shadow_map: storage, the depth pass, the camera pass and the frame (see
+ * shadow_map.h). */
+#include <glad/gl.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shadow_map.h"
+
+const char *const shadow_map_sizes[] = {"2048", "256", "512", "1024", "4096", NULL};
+const char *const shadow_map_filters[] = {
+    [SHADOW_MAP_FILTER_POISSON] = "poisson", [SHADOW_MAP_FILTER_NONE] = "none", [SHADOW_MAP_FILTER_HW] = "hw",
+    [SHADOW_MAP_FILTER_PCF3] = "pcf3",       [SHADOW_MAP_FILTER_PCF5] = "pcf5", [SHADOW_MAP_FILTER_PCF7] = "pcf7",
+    NULL};
+const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
+const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre",
+                                                [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", NULL};
+
+/* What each filter reads: the kernel's shape and its size (N, or the
+ * Poisson disc's scale in texels). */
+static const struct {
+    shadow_map_kernel shape;
+    int size;
+} shadow_map_kernels[] = {
+    [SHADOW_MAP_FILTER_POISSON] = {SHADOW_MAP_KERNEL_POISSON, SHADOW_MAP_POISSON_SCALE_TEXELS},
+    [SHADOW_MAP_FILTER_NONE] = {SHADOW_MAP_KERNEL_SINGLE, 0},
+    [SHADOW_MAP_FILTER_HW] = {SHADOW_MAP_KERNEL_SINGLE, 0},
+    [SHADOW_MAP_FILTER_PCF3] = {SHADOW_MAP_KERNEL_GRID, 3},
+    [SHADOW_MAP_FILTER_PCF5] = {SHADOW_MAP_KERNEL_GRID, 5},
+    [SHADOW_MAP_FILTER_PCF7] = {SHADOW_MAP_KERNEL_GRID, 7},
+};
+
+/* The C constants the camera pass compares with. */
+static const shader_define shadow_map_defines[] = {
+    SHADER_DEFINE(SHADOW_MAP_KERNEL_SINGLE),     SHADER_DEFINE(SHADOW_MAP_KERNEL_GRID),
+    SHADER_DEFINE(SHADOW_MAP_KERNEL_POISSON),    SHADER_DEFINE(SHADOW_MAP_TEXEL_ORTHOGRAPHIC),
+    SHADER_DEFINE(SHADOW_MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(SHADOW_MAP_TEXEL_PROJECTIVE),
+    {NULL, 0}};
+
+static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
+
+int shadow_map_settings_size(const shadow_map_settings *settings) { return atoi(shadow_map_sizes[settings->map_size]); }
+
+const char *shadow_map_kind_name(shadow_map_kind kind) { return kind == SHADOW_MAP_CUBE ? "cube" : "2D"; }
+
+static GLenum shadow_map_target(shadow_map_kind kind) {
+    return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+}
+
+/* The texture image a layer's depth is stored in. */
+static GLenum shadow_map_layer_image(shadow_map_kind kind, int layer) {
+    return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)layer : GL_TEXTURE_2D;
+}
+
+/* ---- storage ---- */
+
+/* (Re)creates a map's depth texture when its kind, size, format or filter
+ * changed: compare mode on, so that every read is a depth test; outside
+ * the map reads are clamped (the shader calls them lit). */
+static void shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
+    shadow_map_texture *t = &m->texture;
+    int depth = settings->depth, filter = settings->filter;
+    if (t->id && t->kind == m->kind && t->size == m->size && t->depth == depth && t->filter == filter)
+        return;
+    glDeleteTextures(1, &t->id);
+    GLenum target = shadow_map_target(m->kind);
+    GLenum format = depth == SHADOW_MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
+    GLenum type = depth == SHADOW_MAP_DEPTH_24 ? GL_UNSIGNED_INT : GL_FLOAT;
+    GLint texel_filter = filter == SHADOW_MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
+    glGenTextures(1, &t->id);
+    glBindTexture(target, t->id);
+    for (int layer = 0; layer < m->layer_count; layer++)
+        glTexImage2D(shadow_map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0,
+                     GL_DEPTH_COMPONENT, type, NULL);
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, texel_filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, texel_filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    t->kind = m->kind;
+    t->size = m->size;
+    t->depth = depth;
+    t->filter = filter;
+}
+
+/* ---- the depth pass ---- */
+
+static void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings,
+                                    const technique_frame *f, const shadow_map *m) {
+    const scene *s = f->gpu->scene;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
+    glViewport(0, 0, m->size, m->size);
+    if (settings->no_slope_bias) {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    } else {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(shadow_map_setting(settings->slope_factor, SHADOW_MAP_SLOPE_FACTOR),
+                        shadow_map_setting(settings->slope_units, SHADOW_MAP_SLOPE_UNITS));
+    }
+    glUseProgram(r->depth.id);
+    for (int layer = 0; layer < m->layer_count; layer++) {
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_map_layer_image(m->kind, layer),
+                               m->texture.id, 0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
+        for (int i = 0; i < s->object_count; i++)
+            if (s->objects[i].casts && (!m->casters || m->casters[i]))
+                render_draw_object(f->gpu, &r->depth, i);
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+/* ---- programs ---- */
+
+/* A uniform of a program: its name, and where its location is kept. */
+typedef struct shadow_map_uniform {
+    int *location;
+    const char *name;
+} shadow_map_uniform;
+
+static void shadow_map_find_uniforms(unsigned program, const shadow_map_uniform *uniforms, size_t count) {
+    for (size_t i = 0; i < count; i++)
+        *uniforms[i].location = glGetUniformLocation(program, uniforms[i].name);
+}
+
+static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const char *fragment) {
+    const char *const files[] = {"lit.vert", fragment};
+    if (!render_program_load(&p->program, files, 2, shadow_map_defines))
+        return false;
+    const shadow_map_uniform uniforms[] = {
+        {&p->map, "u_map"}, {&p->light, "u_light"}, {&p->filter, "u_filter"}, {&p->kernel, "u_kernel"},
+        {&p->map_size, "u_map_size"}, {&p->receiver_plane, "u_receiver_plane"}, {&p->show_texels, "u_show_texels"},
+        {&p->show_texel_size, "u_show_texel_size"}, {&p->constant_bias, "u_constant_bias"},
+        {&p->normal_offset, "u_normal_offset"}, {&p->depth_bias, "u_depth_bias"},
+        {&p->light_origin, "u_light_origin"}, {&p->map_2d.light_matrix, "u_light_matrix"},
+        {&p->map_2d.texel_kind, "u_texel_kind"}, {&p->map_2d.texel_scale, "u_texel_scale"},
+        {&p->map_2d.light_axis, "u_light_axis"}, {&p->cube.near_plane, "u_near"}, {&p->cube.far_plane, "u_far"},
+    };
+    shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
+    return true;
+}
+
+static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
+    static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
+    static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
+    static const shader_define inset_defines[] = {
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z), {NULL, 0}};
+    if (!render_program_load(&r->lines.program, lines_files, 2, NULL) ||
+        !render_program_load(&r->inset.program, inset_files, 2, inset_defines))
+        return false;
+    r->lines.color = glGetUniformLocation(r->lines.program.id, "u_color");
+    shadow_map_inset_program *p = &r->inset;
+    const shadow_map_uniform uniforms[] = {
+        {&p->map, "u_map"}, {&p->cube_map, "u_cube_map"}, {&p->cube, "u_cube"},
+        {&p->orthographic, "u_orthographic"}, {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"},
+    };
+    shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
+    return true;
+}
+
+bool shadow_map_init(shadow_map_renderer *r) {
+    static const char *const depth_files[] = {"shadow_depth.vert", "shadow_depth.frag"};
+    if (!render_program_load(&r->depth, depth_files, 2, NULL) ||
+        !shadow_map_camera_program_load(&r->camera_2d, "shadowmap_2d.frag") ||
+        !shadow_map_camera_program_load(&r->camera_cube, "shadowmap_cube.frag") ||
+        !shadow_map_overlay_programs_load(r))
+        return false;
+    glGenVertexArrays(1, &r->overlay_vao);
+    glBindVertexArray(r->overlay_vao);
+    glGenBuffers(1, &r->overlay_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
+    glBufferData(GL_ARRAY_BUFFER, SHADOW_MAP_OVERLAY_VERTICES * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
+    glBindVertexArray(0);
+    glGenFramebuffers(1, &r->framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    /* Kernels that cross a cube face read on into the next face. */
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    return true;
+}
+
+void shadow_map_destroy(shadow_map_renderer *r) {
+    render_program_destroy(&r->depth);
+    render_program_destroy(&r->camera_2d.program);
+    render_program_destroy(&r->camera_cube.program);
+    render_program_destroy(&r->lines.program);
+    render_program_destroy(&r->inset.program);
+    glDeleteVertexArrays(1, &r->overlay_vao);
+    glDeleteBuffers(1, &r->overlay_buffer);
+    glDeleteFramebuffers(1, &r->framebuffer);
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        glDeleteTextures(1, &r->maps[l].texture.id);
+    memset(r, 0, sizeof *r);
+}
+
+/* ---- the camera pass ---- */
+
+/* Light l's share, added where its map lets it through. */
+static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                                 int l, const shadow_map *m) {
+    const scene_light *light = &f->gpu->scene->lights[l];
+    bool cube = m->kind == SHADOW_MAP_CUBE;
+    const shadow_map_camera_program *p = cube ? &r->camera_cube : &r->camera_2d;
+    render_program_use(&p->program, f->view);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(shadow_map_target(m->kind), m->texture.id);
+    glUniform1i(p->map, 0);
+    glUniform1i(p->light, l);
+    glUniform1i(p->filter, (int)shadow_map_kernels[st->filter].shape);
+    glUniform1i(p->kernel, shadow_map_kernels[st->filter].size);
+    glUniform1f(p->map_size, (float)m->size);
+    glUniform1i(p->receiver_plane, st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE);
+    glUniform1i(p->show_texels, st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS);
+    glUniform1i(p->show_texel_size, st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE);
+    glUniform1f(p->constant_bias,
+                st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
+    glUniform1f(p->normal_offset, st->normal_texels);
+    glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
+    glUniform3fv(p->light_origin, 1, light->position);
+    if (cube) {
+        glUniform1f(p->cube.near_plane, m->near_plane);
+        glUniform1f(p->cube.far_plane, m->far_plane);
+    } else {
+        glUniformMatrix4fv(p->map_2d.light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
+        glUniform1i(p->map_2d.texel_kind, (int)m->texel_kind);
+        glUniform1f(p->map_2d.texel_scale, m->texel_scale);
+        glUniform3fv(p->map_2d.light_axis, 1, light->direction);
+    }
+    for (int i = 0; i < f->gpu->scene->object_count; i++)
+        render_draw_object(f->gpu, &p->program, i);
+}
+
+/* ---- the frame ---- */
+
+void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                       shadow_map_fit_function fit) {
+    const scene *s = f->gpu->scene;
+    GLint target_framebuffer, viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    int receiver_count = shadow_map_receiver_points(s, f->view, r->receivers, SHADOW_MAP_MAX_RECEIVER_POINTS);
+    bool fitted[SCENE_MAX_LIGHTS] = {false};
+    for (int l = 0; l < s->light_count && receiver_count > 0; l++) {
+        shadow_map *m = &r->maps[l];
+        m->size = shadow_map_settings_size(settings);
+        fitted[l] = fit(f, l, m, (const float(*)[3])r->receivers, receiver_count);
+        if (fitted[l]) {
+            shadow_map_prepare_texture(m, settings);
+            shadow_map_render_depth(r, settings, f, m);
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    /* Ambient, then each light added where its map lets it through. */
+    render_use_lit(f->gpu, f->view, 0, 0, true);
+    for (int i = 0; i < s->object_count; i++)
+        render_draw_object(f->gpu, &f->gpu->lit, i);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (int l = 0; l < s->light_count; l++) {
+        if (fitted[l]) {
+            shadow_map_add_light(r, settings, f, l, &r->maps[l]);
+        } else { /* nothing visible receives: no map needed, nothing shadowed */
+            render_use_lit(f->gpu, f->view, l, l + 1, false);
+            for (int i = 0; i < s->object_count; i++)
+                render_draw_object(f->gpu, &f->gpu->lit, i);
+        }
+    }
+    shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
+}

@@ -1,0 +1,300 @@
+/* shadow_map: the shadow-map library that demos/shadowmap.c (uniform maps)
+ * and demos/psm.c (warped maps) are built on. GL lives here, not in the
+ * techniques.
+ *
+ * Using it. A technique keeps a shadow_map_settings and a
+ * shadow_map_renderer in its static state, lists SHADOW_MAP_PARAMS(its
+ * settings) among its parameters (the same flags and keys everywhere),
+ * calls shadow_map_init / shadow_map_destroy from its own init / destroy,
+ * and each frame shadow_map_render with a fitting function: the one place
+ * where techniques differ is how a light's map is placed.
+ *
+ *   shadow_map_render(renderer, settings, frame, fit)
+ *     1. the receiver points: the corners of the part of every receiver's
+ *        box inside the camera's frustum (shadow_map_receiver_points);
+ *     2. per light: fit(frame, light, map, receivers) places the map, and
+ *        the depth pass renders it; a fit that returns false means nothing
+ *        can be shadowed, and the light is added unshadowed;
+ *     3. the camera pass: ambient, then each light added where its map
+ *        lets it through (GL_EQUAL depth, additive blending);
+ *     4. the overlays of settings->overlay.
+ *
+ * Storage (shadow_map). A map has a kind and layers: SHADOW_MAP_2D has
+ * one layer (spot, directional, any warped map), SHADOW_MAP_CUBE six, the
+ * faces in GL's order (SHADOW_MAP_FACE_*). Each layer has its own matrix,
+ * layer_view_projection[layer] (world -> that layer's clip space); the
+ * depth range, texel measure and caster list are the map's. The texture
+ * is (re)made only when kind, size, depth format or filter change. A 2D
+ * array kind (cascades: one layer per slice of the view) fits beside
+ * these: a kind, its layer count, its texture target and a layer attached
+ * per depth pass (glFramebufferTextureLayer); the camera pass then picks
+ * a layer per fragment.
+ *
+ * Fitting (shadow_map_fit.c, no GL). shadow_map_fit_uniform is
+ * demos/shadowmap.c's placement and the fallback of every warp:
+ *   spot         a perspective map around the cone, from the nearest
+ *                caster in front of the light to the farthest receiver;
+ *   directional  an orthographic box around the receivers seen along the
+ *                light, deepened towards it to every caster whose box
+ *                overlaps them seen from the light (caster selection: so
+ *                casters outside the view still cast);
+ *   point        a cube map, from the nearest caster to the farthest
+ *                receiver.
+ * A fit fills the map's kind, layer matrices, depth range (for the inset
+ * and the HUD), texel_kind / texel_scale (how the camera pass finds a
+ * texel's world size, which the constant and normal-offset biases are
+ * measured in) and casters (which objects the depth pass draws; NULL:
+ * every caster).
+ *
+ * The depth pass renders each layer's depth from its matrix, with
+ * glPolygonOffset as the slope-scaled bias (unless --no-slope-bias).
+ *
+ * The camera pass (shaders/shadowmap.glsl with shadowmap_2d.frag or
+ * shadowmap_cube.frag) moves each point towards the light by the constant
+ * bias and along its normal by the normal offset (both in map texels of
+ * world distance, so they hold at any map size and scene scale), then
+ * filters the hardware comparisons over the kernel of settings->filter:
+ *   none     one nearest test;          hw     one bilinear test (2x2);
+ *   pcf3/5/7 an N x N grid of bilinear tests;
+ *   poisson  16 bilinear tests on a Poisson disc rotated per pixel by a
+ *            hash of the pixel (frames stay deterministic). The disc's
+ *            points are scaled by SHADOW_MAP_POISSON_SCALE_TEXELS / 2 = 1.5
+ *            texels; they reach out to radius 1.234 of the unit scale, so
+ *            the taps span 3.7 texels across (the scale of 3 misclassified
+ *            least of 2 to 6 on the standard scenes).
+ * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
+ * the receiver's own depth there rather than the centre's.
+ *
+ * Overlays, for lectures (shadow_map_overlay.c), drawn into the picture:
+ *   texels      the map's texel boundaries on the receivers (camera pass);
+ *   texel-size  a heat map of a texel's size in pixels (camera pass);
+ *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
+ *   map         light 0's map as an inset of linear depth (a cube's faces
+ *               in two rows: +X -X +Y, then -Y +Z -Z);
+ *   all         texels, frustum and map.
+ * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
+ * go on with its own (psm's post-perspective view: shadow_map_warp_view).
+ *
+ * The C/GLSL contract: the camera pass's kernel shapes
+ * (shadow_map_kernel), texel kinds and cube faces are C enums passed to
+ * the shaders as defines (common/gl/shader.h); the shaders compare with
+ * their names.
+ */
+#ifndef SHADOW_MAP_H
+#define SHADOW_MAP_H
+
+#include <GLFW/glfw3.h>
+#include <stdbool.h>
+
+#include "technique.h"
+
+/* The defaults of the numbers, from `make bench` (see demos/shadowmap.c). */
+#define SHADOW_MAP_CONSTANT_TEXELS 1.0f
+#define SHADOW_MAP_SLOPE_FACTOR 1.5f
+#define SHADOW_MAP_SLOPE_UNITS 1.0f
+
+/* The choices of the settings, in the order of their names (the default
+ * first): shadow_map_filters, shadow_map_depths, shadow_map_kernel_depths. */
+typedef enum shadow_map_filter {
+    SHADOW_MAP_FILTER_POISSON,
+    SHADOW_MAP_FILTER_NONE,
+    SHADOW_MAP_FILTER_HW,
+    SHADOW_MAP_FILTER_PCF3,
+    SHADOW_MAP_FILTER_PCF5,
+    SHADOW_MAP_FILTER_PCF7,
+} shadow_map_filter;
+typedef enum shadow_map_depth { SHADOW_MAP_DEPTH_24, SHADOW_MAP_DEPTH_32F } shadow_map_depth;
+typedef enum shadow_map_kernel_depth {
+    SHADOW_MAP_KERNEL_DEPTH_CENTRE,
+    SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
+} shadow_map_kernel_depth;
+
+extern const char *const shadow_map_sizes[];
+extern const char *const shadow_map_filters[];
+extern const char *const shadow_map_depths[];
+extern const char *const shadow_map_kernel_depths[];
+
+typedef struct shadow_map_settings {
+    int map_size;     /* choice: shadow_map_sizes */
+    int filter;       /* choice: shadow_map_filter */
+    int depth;        /* choice: shadow_map_depth */
+    int kernel_depth; /* choice: shadow_map_kernel_depth */
+    int overlay;      /* choice: the technique's own list, SHADOW_MAP_OVERLAY_NAMES first */
+    bool no_constant_bias, no_slope_bias;
+    float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
+    float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
+} shadow_map_settings;
+
+#define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size"
+enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
+       SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_COUNT };
+
+/* The parameters every shadow-map technique shares, for its params array. */
+#define SHADOW_MAP_PARAMS(s)                                                                                         \
+    {"map-size", "texels on a side", GLFW_KEY_M, TECHNIQUE_CHOICE, .index = &(s).map_size,                         \
+     .choices = shadow_map_sizes},                                                                                 \
+    {"filter", "what reads the map", GLFW_KEY_F, TECHNIQUE_CHOICE, .index = &(s).filter,                           \
+     .choices = shadow_map_filters},                                                                               \
+    {"depth", "depth format: 24-bit or 32-bit float", GLFW_KEY_D, TECHNIQUE_CHOICE, .index = &(s).depth,           \
+     .choices = shadow_map_depths},                                                                                \
+    {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, TECHNIQUE_TOGGLE,                 \
+     .disabled = &(s).no_constant_bias},                                                                           \
+    {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, TECHNIQUE_TOGGLE,                   \
+     .disabled = &(s).no_slope_bias},                                                                              \
+    {"kernel-depth", "what each kernel tap compares: the centre's depth, or the receiver plane's there",           \
+     GLFW_KEY_P, TECHNIQUE_CHOICE, .index = &(s).kernel_depth, .choices = shadow_map_kernel_depths},               \
+    {"constant-texels", "constant bias, in map texels of world distance", 0, TECHNIQUE_NUMBER,                     \
+     .number = &(s).constant_texels, .fallback = SHADOW_MAP_CONSTANT_TEXELS, .min = 0.01f, .max = 64},             \
+    {"slope-factor", "slope-scaled bias: glPolygonOffset factor", 0, TECHNIQUE_NUMBER,                             \
+     .number = &(s).slope_factor, .fallback = SHADOW_MAP_SLOPE_FACTOR, .min = 0.01f, .max = 64},                   \
+    {"slope-units", "slope-scaled bias: glPolygonOffset units", 0, TECHNIQUE_NUMBER, .number = &(s).slope_units,   \
+     .fallback = SHADOW_MAP_SLOPE_UNITS, .min = 0.01f, .max = 64},                                                 \
+    /* Off by default: on the standard scenes it costs accuracy at contact                                        \
+     * shadows and the other two already keep the acne sweep clean. */                                            \
+    {"normal-texels", "normal offset, in map texels (0: off)", 0, TECHNIQUE_NUMBER, .number = &(s).normal_texels,  \
+     .fallback = 0, .min = 0, .max = 64},                                                                          \
+    /* For comparison only: the bias popular tutorials subtract from the                                          \
+     * map depth, max(slope (1 - N.L), min), whose size in world units                                            \
+     * changes with the light's depth range. */                                                                   \
+    {"depth-bias-slope", "tutorial bias: slope, in map depth (0: off)", 0, TECHNIQUE_NUMBER,                       \
+     .number = &(s).depth_bias_slope, .fallback = 0, .min = 0, .max = 1},                                          \
+    {"depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, TECHNIQUE_NUMBER,                       \
+     .number = &(s).depth_bias_min, .fallback = 0, .min = 0, .max = 1}
+
+/* The shape of the camera pass's kernel (the shaders' u_filter). */
+typedef enum shadow_map_kernel {
+    SHADOW_MAP_KERNEL_SINGLE,  /* one test: nearest or bilinear by the texture's filter */
+    SHADOW_MAP_KERNEL_GRID,    /* N x N bilinear tests a texel apart (u_kernel: N) */
+    SHADOW_MAP_KERNEL_POISSON, /* the rotated Poisson disc (u_kernel: its scale in texels) */
+} shadow_map_kernel;
+/* The Poisson disc's scale: its unit circle is this many texels across.
+ * Its points reach radius 1.234 of that circle, so the taps span 3.7
+ * texels (see shaders/shadowmap.glsl). */
+#define SHADOW_MAP_POISSON_SCALE_TEXELS 3
+
+/* How the camera pass finds the world size of a texel at a point (the
+ * shaders' u_texel_kind). */
+typedef enum shadow_map_texel_kind {
+    SHADOW_MAP_TEXEL_ORTHOGRAPHIC, /* texel_scale */
+    SHADOW_MAP_TEXEL_PERSPECTIVE,  /* texel_scale x depth along the light's axis */
+    SHADOW_MAP_TEXEL_PROJECTIVE,   /* from the matrix's derivatives: any warp */
+} shadow_map_texel_kind;
+
+typedef enum shadow_map_kind { SHADOW_MAP_2D, SHADOW_MAP_CUBE } shadow_map_kind;
+/* A cube's faces in GL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face). */
+enum { SHADOW_MAP_FACE_POSITIVE_X, SHADOW_MAP_FACE_NEGATIVE_X, SHADOW_MAP_FACE_POSITIVE_Y,
+       SHADOW_MAP_FACE_NEGATIVE_Y, SHADOW_MAP_FACE_POSITIVE_Z, SHADOW_MAP_FACE_NEGATIVE_Z, SHADOW_MAP_CUBE_FACES };
+#define SHADOW_MAP_MAX_LAYERS SHADOW_MAP_CUBE_FACES
+
+/* The GL texture behind a map, and what it was made with. */
+typedef struct shadow_map_texture {
+    unsigned id;
+    shadow_map_kind kind;
+    int size, depth, filter;
+} shadow_map_texture;
+
+/* One light's map: what it was fitted to, and its texture. */
+typedef struct shadow_map {
+    shadow_map_kind kind;
+    int layer_count; /* 1 (2D) or SHADOW_MAP_CUBE_FACES */
+    int size;        /* texels on a side, set before fitting */
+    mat4 layer_view_projection[SHADOW_MAP_MAX_LAYERS]; /* world -> each layer's clip space */
+    float near_plane, far_plane;
+    shadow_map_texel_kind texel_kind;
+    float texel_scale;
+    bool orthographic;   /* the stored depth is linear (the inset shows it as it is) */
+    const bool *casters; /* objects to draw into the map; NULL: every caster */
+    shadow_map_texture texture;
+} shadow_map;
+
+/* The camera pass's program (lit.vert with shadowmap_2d.frag or
+ * shadowmap_cube.frag) and its uniforms: those both kinds have, then
+ * each kind's own (the other kind's are never set). */
+typedef struct shadow_map_camera_program {
+    render_program program;
+    int map, light, filter, kernel, map_size, receiver_plane, show_texels, show_texel_size, constant_bias,
+        normal_offset, depth_bias, light_origin;
+    struct {
+        int light_matrix, texel_kind, texel_scale, light_axis;
+    } map_2d;
+    struct {
+        int near_plane, far_plane;
+    } cube;
+} shadow_map_camera_program;
+
+/* overlay.vert with overlay_lines.frag: world-space lines in one colour. */
+typedef struct shadow_map_lines_program {
+    render_program program;
+    int color;
+} shadow_map_lines_program;
+
+/* overlay.vert with overlay_map.frag: a map as an inset of linear depth. */
+typedef struct shadow_map_inset_program {
+    render_program program;
+    int map, cube_map, cube, orthographic, near_plane, far_plane;
+} shadow_map_inset_program;
+
+/* The points shadows are decided for; enough for 50 receivers' parts. */
+#define SHADOW_MAP_MAX_RECEIVER_POINTS 8192
+
+/* Room in the overlay buffer: the 24 line ends of a frustum's 12 edges. */
+#define SHADOW_MAP_OVERLAY_VERTICES 24
+
+/* A technique's maps: their GL objects, and the receiver points of the
+ * frame (scratch space, kept here rather than in a static buffer). */
+typedef struct shadow_map_renderer {
+    render_program depth;
+    shadow_map_camera_program camera_2d, camera_cube;
+    shadow_map_lines_program lines;
+    shadow_map_inset_program inset;
+    unsigned framebuffer, overlay_vao, overlay_buffer;
+    shadow_map maps[SCENE_MAX_LIGHTS];
+    float receivers[SHADOW_MAP_MAX_RECEIVER_POINTS][3];
+} shadow_map_renderer;
+
+typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
+                                        const float (*receivers)[3], int receiver_count);
+
+bool shadow_map_init(shadow_map_renderer *r);
+void shadow_map_destroy(shadow_map_renderer *r);
+/* The whole frame (see the top of this file). */
+void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                       shadow_map_fit_function fit);
+/* The map's size in the settings. */
+int shadow_map_settings_size(const shadow_map_settings *settings);
+/* "2D" or "cube", for HUD lines. */
+const char *shadow_map_kind_name(shadow_map_kind kind);
+
+/* ---- fitting (shadow_map_fit.c) ---- */
+
+/* The corners of the part of every receiver's box of `s` inside the
+ * frustum of `view`; returns how many (at most max_points). */
+int shadow_map_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points);
+/* The uniform placement of light `light` of `s` (see the top). */
+bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
+                            int receiver_count);
+
+/* ---- overlays (shadow_map_overlay.c) ---- */
+
+/* The 12 edges of the frustum of `frustum` (its clip cube mapped back to
+ * world space), drawn through `view_projection`. */
+void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const mat4 view_projection);
+/* Those of settings->overlay drawn after the camera pass: frusta, inset.
+ * fitted[l]: light l has a map this frame. */
+void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
+                              const int viewport[4]);
+
+/* A warp's space in a second viewport (psm's post-perspective view): the
+ * scene carried into `space` and clipped to its clip cube, the cube's
+ * edges and the map's frustum there (map_view_projection: world -> map
+ * clip), seen from above one side, in the bottom-left half of the picture. */
+typedef struct shadow_map_warp_view {
+    render_program program; /* post_perspective.vert/.frag */
+    int space;
+} shadow_map_warp_view;
+bool shadow_map_warp_view_init(shadow_map_warp_view *w);
+void shadow_map_warp_view_destroy(shadow_map_warp_view *w);
+void shadow_map_warp_view_draw(const shadow_map_warp_view *w, shadow_map_renderer *r, const technique_frame *f,
+                               const mat4 space, const mat4 map_view_projection);
+
+#endif

@@ -1,0 +1,142 @@
+/* shadow_map: the uniform fit and the receiver points (see shadow_map.h).
+ * Pure math on the scene: no GL. */
+#include <math.h>
+
+#include "frustum.h"
+#include "shadow_map.h"
+
+/* The nearest near plane, as a fraction of far: a perspective map's depth
+ * precision is spent near its near plane, and a caster touching the light
+ * must not push that to 0. */
+#define SHADOW_MAP_NEAR_RATIO 1e-3f
+/* The fitted depth range is widened by this fraction of itself at each end
+ * (plus float rounding at its distance), so the points it was fitted to
+ * are not clipped by rounding. */
+#define SHADOW_MAP_DEPTH_MARGIN 1e-3f
+/* A spot's map is one degree wider than its cone each side, so bilinear
+ * taps at the cone's edge read inside the map ... */
+#define SHADOW_MAP_SPOT_MARGIN_DEG 1.0f
+/* ... and at most this wide each side: a perspective map's texels grow as
+ * 1 / cos^2 towards its edge and without bound at 90 degrees. */
+#define SHADOW_MAP_SPOT_MAX_HALF_ANGLE_DEG 85.0f
+#define SHADOW_MAP_CUBE_FACE_FOV_DEG 90.0f
+
+int shadow_map_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points) {
+    vec3 frustum[8];
+    frustum_corners(view->view_projection, frustum);
+    int n = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        n += frustum_box_part(view->view_projection, (const vec3 *)frustum, lo, hi, points + n, max_points - n);
+    }
+    return n;
+}
+
+/* Directional: an orthographic box around the visible receivers, deepened
+ * towards the light to every caster whose box overlaps them seen from the
+ * light. Spot: the cone, from the nearest such caster to the farthest
+ * receiver. The depth range in view space runs along -z. */
+static bool shadow_map_fit_2d(const scene *s, const scene_light *l, shadow_map *m, const float (*receivers)[3],
+                              int receiver_count) {
+    bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
+    mat4 view, projection;
+    vec3 lo, hi, eye;
+    if (directional) {
+        vec3 center = GLM_VEC3_ZERO_INIT;
+        for (int i = 0; i < receiver_count; i++)
+            glm_vec3_add(center, (float *)receivers[i], center);
+        glm_vec3_scale(center, 1.0f / (float)receiver_count, center);
+        glm_vec3_copy(center, eye); /* any point on the axis: depths are relative */
+    } else {
+        glm_vec3_copy((float *)l->position, eye);
+    }
+    frustum_look_along(eye, l->direction, view);
+    frustum_view_bounds(view, receivers, receiver_count, lo, hi);
+    float nearest = hi[2];
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 corners[8], clo, chi, blo, bhi;
+        if (!s->objects[i].casts)
+            continue;
+        scene_object_world_bounds(&s->objects[i], blo, bhi);
+        frustum_box_corners(blo, bhi, corners);
+        frustum_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
+        /* A spot's caster counts if any of it is in front of the light. */
+        bool overlaps = directional ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1]
+                                    : clo[2] < 0;
+        if (overlaps)
+            nearest = fmaxf(nearest, chi[2]);
+    }
+    float far_plane = -lo[2], near_plane = -nearest;
+    float margin = SHADOW_MAP_DEPTH_MARGIN * (far_plane - near_plane) + FRUSTUM_FLOAT_TOLERANCE * fabsf(far_plane);
+    m->far_plane = far_plane + margin;
+    m->near_plane = near_plane - margin;
+    m->orthographic = directional;
+    if (directional) {
+        glm_ortho(lo[0], hi[0], lo[1], hi[1], m->near_plane, m->far_plane, projection);
+        m->texel_kind = SHADOW_MAP_TEXEL_ORTHOGRAPHIC;
+        m->texel_scale = fmaxf(hi[0] - lo[0], hi[1] - lo[1]) / (float)m->size;
+    } else {
+        float half_angle =
+            glm_rad(fminf(l->outer_angle_deg + SHADOW_MAP_SPOT_MARGIN_DEG, SHADOW_MAP_SPOT_MAX_HALF_ANGLE_DEG));
+        m->near_plane = fmaxf(m->near_plane, m->far_plane * SHADOW_MAP_NEAR_RATIO);
+        glm_perspective(2 * half_angle, 1, m->near_plane, m->far_plane, projection);
+        m->texel_kind = SHADOW_MAP_TEXEL_PERSPECTIVE;
+        m->texel_scale = 2 * tanf(half_angle) / (float)m->size;
+    }
+    glm_mat4_mul(projection, view, m->layer_view_projection[0]);
+    return m->far_plane > m->near_plane;
+}
+
+static float shadow_map_box_distance(const scene_object *o, const float p[3]) {
+    vec3 lo, hi, d;
+    scene_object_world_bounds(o, lo, hi);
+    for (int k = 0; k < 3; k++)
+        d[k] = fmaxf(fmaxf(lo[k] - p[k], 0), p[k] - hi[k]);
+    return glm_vec3_norm(d);
+}
+
+/* Point: six faces from the nearest caster to the farthest receiver. */
+static bool shadow_map_fit_cube(const scene *s, const scene_light *l, shadow_map *m, const float (*receivers)[3],
+                                int receiver_count) {
+    static const float axes[SHADOW_MAP_CUBE_FACES][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                                         {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+    /* GL's cube faces look along each axis with these "up" vectors. */
+    static const float ups[SHADOW_MAP_CUBE_FACES][3] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
+                                                        {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    float far_plane = 0, nearest = INFINITY;
+    for (int i = 0; i < receiver_count; i++)
+        far_plane = fmaxf(far_plane, glm_vec3_distance((float *)l->position, (float *)receivers[i]));
+    for (int i = 0; i < s->object_count; i++)
+        if (s->objects[i].casts)
+            nearest = fminf(nearest, shadow_map_box_distance(&s->objects[i], l->position));
+    m->far_plane = far_plane * (1 + SHADOW_MAP_DEPTH_MARGIN);
+    /* A face's near plane cuts along its axis, and a point's distance along
+     * the axis of its face is at least its distance over sqrt(3). */
+    m->near_plane = fmaxf(fminf(nearest, far_plane) * (1 - SHADOW_MAP_DEPTH_MARGIN) / sqrtf(3),
+                          m->far_plane * SHADOW_MAP_NEAR_RATIO);
+    m->orthographic = false;
+    mat4 projection;
+    glm_perspective(glm_rad(SHADOW_MAP_CUBE_FACE_FOV_DEG), 1, m->near_plane, m->far_plane, projection);
+    for (int face = 0; face < SHADOW_MAP_CUBE_FACES; face++) {
+        vec3 target;
+        mat4 view;
+        glm_vec3_add((float *)l->position, (float *)axes[face], target);
+        glm_lookat((float *)l->position, target, (float *)ups[face], view);
+        glm_mat4_mul(projection, view, m->layer_view_projection[face]);
+    }
+    return m->far_plane > m->near_plane;
+}
+
+bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
+                            int receiver_count) {
+    const scene_light *l = &s->lights[light];
+    bool cube = l->type == SCENE_LIGHT_POINT;
+    m->kind = cube ? SHADOW_MAP_CUBE : SHADOW_MAP_2D;
+    m->layer_count = cube ? SHADOW_MAP_CUBE_FACES : 1;
+    m->casters = NULL;
+    return cube ? shadow_map_fit_cube(s, l, m, receivers, receiver_count)
+                : shadow_map_fit_2d(s, l, m, receivers, receiver_count);
+}

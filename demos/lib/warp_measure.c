@@ -1,0 +1,132 @@
+/* warp: measuring a map where the camera looks, the dp/ds of the papers
+ * (see warp.h). */
+#include <math.h>
+
+#include "warp.h"
+
+/* A sample counts as inside a map within this fraction of w beyond its
+ * edge (rounding at a receiver fitted to the edge exactly). */
+#define WARP_MAP_EDGE_TOLERANCE 1e-3f
+
+/* The derivative of m's (x, y) / w at p along t, in units of `half`
+ * (half the map's or the viewport's size: clip units to texels or pixels). */
+static void warp_derivative(const mat4 m, const vec4 clip, const float t[3], const float half[2], float out[2]) {
+    for (int k = 0; k < 2; k++) {
+        float row = m[0][k] * t[0] + m[1][k] * t[1] + m[2][k] * t[2];
+        float w_row = m[0][3] * t[0] + m[1][3] * t[1] + m[2][3] * t[2];
+        out[k] = (row - clip[k] / clip[3] * w_row) / clip[3] * half[k];
+    }
+}
+
+/* The map's matrix for point p: a cube face by p's major axis from the
+ * light (GL's face order: +x -x +y -y +z -z), or the 2D map's. */
+static const vec4 *warp_map_matrix(const mat4 *layer_view_projection, int layer_count, const float light[3],
+                                   const float p[3]) {
+    if (layer_count == 1)
+        return layer_view_projection[0];
+    vec3 d;
+    glm_vec3_sub((float *)p, (float *)light, d);
+    int axis = fabsf(d[0]) >= fabsf(d[1]) && fabsf(d[0]) >= fabsf(d[2]) ? 0 : fabsf(d[1]) >= fabsf(d[2]) ? 1 : 2;
+    return layer_view_projection[2 * axis + (d[axis] < 0)];
+}
+
+/* Where the ray eye + t direction (t in 0..1) first enters a receiver's
+ * box: t (INFINITY if none) and the axis of the face it enters by. */
+static float warp_hit_receivers(const scene *s, const float eye[3], const vec3 direction, int *hit_axis) {
+    float best = INFINITY;
+    *hit_axis = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        float t0 = 0, t1 = best;
+        int axis = -1;
+        for (int k = 0; k < 3; k++) {
+            float a = (lo[k] - eye[k]) / direction[k], b = (hi[k] - eye[k]) / direction[k];
+            if (a > b) {
+                float swap = a;
+                a = b, b = swap;
+            }
+            if (a > t0)
+                t0 = a, axis = k;
+            t1 = fminf(t1, b);
+        }
+        if (axis >= 0 && t0 <= t1 && t0 < best)
+            best = t0, *hit_axis = axis;
+    }
+    return best;
+}
+
+int warp_samples(const scene *s, const camera_view *view, int width, int height, const scene_light *l,
+                 warp_sample *out) {
+    mat4 inverse;
+    glm_mat4_inv((vec4 *)view->view_projection, inverse);
+    float screen_half[2] = {0.5f * (float)width, 0.5f * (float)height};
+    int n = 0;
+    for (int sy = 0; sy < WARP_SAMPLES_Y; sy++) {
+        for (int sx = 0; sx < WARP_SAMPLES_X; sx++) {
+            vec4 ndc = {(2.0f * (float)sx + 1) / WARP_SAMPLES_X - 1, (2.0f * (float)sy + 1) / WARP_SAMPLES_Y - 1, 1,
+                        1};
+            vec3 direction, far_point;
+            glm_mat4_mulv(inverse, ndc, ndc);
+            glm_vec3_scale(ndc, 1.0f / ndc[3], far_point);
+            glm_vec3_sub(far_point, (float *)view->eye, direction);
+            int best_axis;
+            float best = warp_hit_receivers(s, view->eye, direction, &best_axis);
+            if (!isfinite(best) || best > 1)
+                continue;
+            warp_sample *sample = &out[n];
+            vec3 normal = {0, 0, 0}, to_light;
+            glm_vec3_scale(direction, best, sample->position);
+            glm_vec3_add(sample->position, (float *)view->eye, sample->position);
+            glm_vec3_zero(sample->tangent[0]);
+            glm_vec3_zero(sample->tangent[1]);
+            sample->tangent[0][(best_axis + 1) % 3] = 1;
+            sample->tangent[1][(best_axis + 2) % 3] = 1;
+            normal[best_axis] = direction[best_axis] > 0 ? -1.0f : 1.0f;
+            if (l->type == SCENE_LIGHT_DIRECTIONAL)
+                glm_vec3_negate_to((float *)l->direction, to_light);
+            else
+                glm_vec3_sub((float *)l->position, sample->position, to_light);
+            if (!(fabsf(glm_vec3_dot(normal, to_light)) > WARP_GRAZING_SINE * glm_vec3_norm(to_light)))
+                continue;
+            if (l->type == SCENE_LIGHT_SPOT && -glm_vec3_dot(to_light, (float *)l->direction) <
+                                                   cosf(glm_rad(l->outer_angle_deg)) * glm_vec3_norm(to_light))
+                continue;
+            vec4 screen_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
+            glm_mat4_mulv((vec4 *)view->view_projection, h, screen_clip);
+            float b[2][2];
+            for (int k = 0; k < 2; k++)
+                warp_derivative(view->view_projection, screen_clip, sample->tangent[k], screen_half, b[k]);
+            sample->pixels = fabsf(b[0][0] * b[1][1] - b[0][1] * b[1][0]);
+            n++;
+        }
+    }
+    return n;
+}
+
+float warp_texel_pixels(const mat4 *layer_view_projection, int layer_count, int size, const float light_position[3],
+                        const warp_sample *samples, int n) {
+    float map_half[2] = {0.5f * (float)size, 0.5f * (float)size};
+    double sum = 0;
+    int measured = 0;
+    for (int i = 0; i < n; i++) {
+        const warp_sample *sample = &samples[i];
+        const vec4 *map = warp_map_matrix(layer_view_projection, layer_count, light_position, sample->position);
+        vec4 map_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
+        glm_mat4_mulv((vec4 *)map, h, map_clip);
+        float edge = map_clip[3] * (1 + WARP_MAP_EDGE_TOLERANCE);
+        if (!(map_clip[3] > 0) || fabsf(map_clip[0]) > edge || fabsf(map_clip[1]) > edge)
+            return INFINITY;
+        float a[2][2];
+        for (int k = 0; k < 2; k++)
+            warp_derivative(map, map_clip, sample->tangent[k], map_half, a[k]);
+        float texels = fabsf(a[0][0] * a[1][1] - a[0][1] * a[1][0]);
+        if (texels > 0 && isfinite(sample->pixels / texels)) {
+            sum += sqrt((double)sample->pixels / texels);
+            measured++;
+        }
+    }
+    return measured > 0 ? (float)(sum / measured) : INFINITY;
+}
