@@ -42,13 +42,13 @@ static struct {
     int shadow, plane, reject;
 } planar;
 
-static const technique_param planar_params[] = {
+static const flags_param planar_params[] = {
     {"stencil", "shadows blend twice where projected triangles overlap and spill off the receiver", GLFW_KEY_S,
-     TECHNIQUE_TOGGLE, .disabled = &planar.settings.no_stencil},
-    {"offset", "projected shadows z-fight with the receiver", GLFW_KEY_O, TECHNIQUE_TOGGLE,
+     FLAGS_TOGGLE, .disabled = &planar.settings.no_stencil},
+    {"offset", "projected shadows z-fight with the receiver", GLFW_KEY_O, FLAGS_TOGGLE,
      .disabled = &planar.settings.no_offset},
     {"reject", "lights below the plane and casters beyond the light cast anti-shadows", GLFW_KEY_R,
-     TECHNIQUE_TOGGLE, .disabled = &planar.settings.no_reject},
+     FLAGS_TOGGLE, .disabled = &planar.settings.no_reject},
 };
 
 void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]) {

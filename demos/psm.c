@@ -89,12 +89,12 @@ static struct {
     warp_sample samples[WARP_SAMPLE_COUNT];
 } psm;
 
-static const technique_param psm_params[] = {
+static const flags_param psm_params[] = {
     {"warp", "how the map is placed: post-perspective, light-space perspective, or uniform", GLFW_KEY_W,
-     TECHNIQUE_CHOICE, .index = &psm.warp, .choices = psm_warps},
+     FLAGS_CHOICE, .index = &psm.warp, .choices = psm_warps},
     SHADOW_MAP_PARAMS(psm.settings),
     {"overlay", "for lectures: shadowmap's overlays, texel size on screen, the post-perspective view", GLFW_KEY_V,
-     TECHNIQUE_CHOICE, .index = &psm.settings.overlay, .choices = psm_overlays},
+     FLAGS_CHOICE, .index = &psm.settings.overlay, .choices = psm_overlays},
 };
 
 /* Light l's warp, fitted to the receivers and the casters that can shadow

@@ -64,11 +64,11 @@ static struct {
     shadow_map_renderer maps;
 } shadowmap;
 
-static const technique_param shadowmap_params[] = {
+static const flags_param shadowmap_params[] = {
     SHADOW_MAP_PARAMS(shadowmap.settings),
     {"overlay", "for lectures: texel boundaries on receivers, the light frustum, the map as an inset, texel size on "
                 "screen",
-     GLFW_KEY_V, TECHNIQUE_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
+     GLFW_KEY_V, FLAGS_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
 };
 
 /* The uniform placement: the light's own perspective (a spot), its

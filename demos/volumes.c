@@ -93,13 +93,13 @@ static struct {
     int zpass_count, zfail_count, gpu_fallback_count; /* light 0, last frame */
 } volumes;
 
-static const technique_param volumes_params[] = {
-    {"mode", "z-pass (no caps) where safe, else z-fail (caps); or force one", GLFW_KEY_Z, TECHNIQUE_CHOICE,
+static const flags_param volumes_params[] = {
+    {"mode", "z-pass (no caps) where safe, else z-fail (caps); or force one", GLFW_KEY_Z, FLAGS_CHOICE,
      .index = &volumes.settings.mode, .choices = volumes_modes},
     {"silhouette", "where silhouettes are found: the CPU edge table or a geometry shader", GLFW_KEY_G,
-     TECHNIQUE_CHOICE, .index = &volumes.settings.silhouette, .choices = volumes_silhouettes},
+     FLAGS_CHOICE, .index = &volumes.settings.silhouette, .choices = volumes_silhouettes},
     {"overlay", "for lectures: the volumes, the silhouette edges, or the stencil count as colour", GLFW_KEY_V,
-     TECHNIQUE_CHOICE, .index = &volumes.settings.overlay, .choices = volumes_overlays},
+     FLAGS_CHOICE, .index = &volumes.settings.overlay, .choices = volumes_overlays},
 };
 
 /* ---- set-up ---- */

@@ -44,12 +44,6 @@
 #include "render.h"
 #include "target.h"
 
-/* TEMPORARY: removed at merge, once demos/ say flags_param and FLAGS_*. */
-typedef flags_param technique_param;
-#define TECHNIQUE_TOGGLE FLAGS_TOGGLE
-#define TECHNIQUE_CHOICE FLAGS_CHOICE
-#define TECHNIQUE_NUMBER FLAGS_NUMBER
-
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
     const camera_view *view;

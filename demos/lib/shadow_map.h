@@ -131,34 +131,34 @@ enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXEL
 
 /* The parameters every shadow-map technique shares, for its params array. */
 #define SHADOW_MAP_PARAMS(s)                                                                                         \
-    {"map-size", "texels on a side", GLFW_KEY_M, TECHNIQUE_CHOICE, .index = &(s).map_size,                         \
+    {"map-size", "texels on a side", GLFW_KEY_M, FLAGS_CHOICE, .index = &(s).map_size,                             \
      .choices = shadow_map_sizes},                                                                                 \
-    {"filter", "what reads the map", GLFW_KEY_F, TECHNIQUE_CHOICE, .index = &(s).filter,                           \
+    {"filter", "what reads the map", GLFW_KEY_F, FLAGS_CHOICE, .index = &(s).filter,                               \
      .choices = shadow_map_filters},                                                                               \
-    {"depth", "depth format: 24-bit or 32-bit float", GLFW_KEY_D, TECHNIQUE_CHOICE, .index = &(s).depth,           \
+    {"depth", "depth format: 24-bit or 32-bit float", GLFW_KEY_D, FLAGS_CHOICE, .index = &(s).depth,               \
      .choices = shadow_map_depths},                                                                                \
-    {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, TECHNIQUE_TOGGLE,                 \
+    {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, FLAGS_TOGGLE,                     \
      .disabled = &(s).no_constant_bias},                                                                           \
-    {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, TECHNIQUE_TOGGLE,                   \
+    {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, FLAGS_TOGGLE,                       \
      .disabled = &(s).no_slope_bias},                                                                              \
     {"kernel-depth", "what each kernel tap compares: the centre's depth, or the receiver plane's there",           \
-     GLFW_KEY_P, TECHNIQUE_CHOICE, .index = &(s).kernel_depth, .choices = shadow_map_kernel_depths},               \
-    {"constant-texels", "constant bias, in map texels of world distance", 0, TECHNIQUE_NUMBER,                     \
+     GLFW_KEY_P, FLAGS_CHOICE, .index = &(s).kernel_depth, .choices = shadow_map_kernel_depths},                   \
+    {"constant-texels", "constant bias, in map texels of world distance", 0, FLAGS_NUMBER,                         \
      .number = &(s).constant_texels, .fallback = SHADOW_MAP_CONSTANT_TEXELS, .min = 0.01f, .max = 64},             \
-    {"slope-factor", "slope-scaled bias: glPolygonOffset factor", 0, TECHNIQUE_NUMBER,                             \
+    {"slope-factor", "slope-scaled bias: glPolygonOffset factor", 0, FLAGS_NUMBER,                                 \
      .number = &(s).slope_factor, .fallback = SHADOW_MAP_SLOPE_FACTOR, .min = 0.01f, .max = 64},                   \
-    {"slope-units", "slope-scaled bias: glPolygonOffset units", 0, TECHNIQUE_NUMBER, .number = &(s).slope_units,   \
+    {"slope-units", "slope-scaled bias: glPolygonOffset units", 0, FLAGS_NUMBER, .number = &(s).slope_units,       \
      .fallback = SHADOW_MAP_SLOPE_UNITS, .min = 0.01f, .max = 64},                                                 \
     /* Off by default: on the standard scenes it costs accuracy at contact                                        \
      * shadows and the other two already keep the acne sweep clean. */                                            \
-    {"normal-texels", "normal offset, in map texels (0: off)", 0, TECHNIQUE_NUMBER, .number = &(s).normal_texels,  \
+    {"normal-texels", "normal offset, in map texels (0: off)", 0, FLAGS_NUMBER, .number = &(s).normal_texels,      \
      .fallback = 0, .min = 0, .max = 64},                                                                          \
     /* For comparison only: the bias popular tutorials subtract from the                                          \
      * map depth, max(slope (1 - N.L), min), whose size in world units                                            \
      * changes with the light's depth range. */                                                                   \
-    {"depth-bias-slope", "tutorial bias: slope, in map depth (0: off)", 0, TECHNIQUE_NUMBER,                       \
+    {"depth-bias-slope", "tutorial bias: slope, in map depth (0: off)", 0, FLAGS_NUMBER,                           \
      .number = &(s).depth_bias_slope, .fallback = 0, .min = 0, .max = 1},                                          \
-    {"depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, TECHNIQUE_NUMBER,                       \
+    {"depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, FLAGS_NUMBER,                           \
      .number = &(s).depth_bias_min, .fallback = 0, .min = 0, .max = 1}
 
 /* The shape of the camera pass's kernel (the shaders' u_filter). */
