@@ -40,26 +40,43 @@ static float shadow_map_setting(float value, float fallback) { return value != 0
 
 int shadow_map_settings_size(const shadow_map_settings *settings) { return atoi(shadow_map_sizes[settings->map_size]); }
 
-const char *shadow_map_kind_name(shadow_map_kind kind) { return kind == SHADOW_MAP_CUBE ? "cube" : "2D"; }
-
-static GLenum shadow_map_target(shadow_map_kind kind) {
-    return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+const char *shadow_map_kind_name(shadow_map_kind kind) {
+    static const char *const names[] = {[SHADOW_MAP_2D] = "2D", [SHADOW_MAP_CUBE] = "cube",
+                                        [SHADOW_MAP_ARRAY] = "array"};
+    return names[kind];
 }
 
-/* The texture image a layer's depth is stored in. */
+static GLenum shadow_map_target(shadow_map_kind kind) {
+    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D, [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
+                                     [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
+    return targets[kind];
+}
+
+/* The texture image a 2D or cube map's layer is stored in. */
 static GLenum shadow_map_layer_image(shadow_map_kind kind, int layer) {
     return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)layer : GL_TEXTURE_2D;
 }
 
+/* Makes a layer of a map the depth pass's depth attachment: an array's
+ * layer by its index, a 2D map's or a cube face's by its image. */
+static void shadow_map_attach_layer(const shadow_map *m, int layer) {
+    if (m->kind == SHADOW_MAP_ARRAY)
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, m->texture.id, 0, layer);
+    else
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_map_layer_image(m->kind, layer),
+                               m->texture.id, 0);
+}
+
 /* ---- storage ---- */
 
-/* (Re)creates a map's depth texture when its kind, size, format or filter
- * changed: compare mode on, so that every read is a depth test; outside
- * the map reads are clamped (the shader calls them lit). */
+/* (Re)creates a map's depth texture when its kind, size, layer count,
+ * format or filter changed: compare mode on, so that every read is a depth
+ * test; outside the map reads are clamped (the shader calls them lit). */
 static void shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
     shadow_map_texture *t = &m->texture;
     int depth = settings->depth, filter = settings->filter;
-    if (t->id && t->kind == m->kind && t->size == m->size && t->depth == depth && t->filter == filter)
+    if (t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count && t->depth == depth &&
+        t->filter == filter)
         return;
     glDeleteTextures(1, &t->id);
     GLenum target = shadow_map_target(m->kind);
@@ -68,9 +85,12 @@ static void shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
     GLint texel_filter = filter == SHADOW_MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
     glGenTextures(1, &t->id);
     glBindTexture(target, t->id);
-    for (int layer = 0; layer < m->layer_count; layer++)
-        glTexImage2D(shadow_map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0,
-                     GL_DEPTH_COMPONENT, type, NULL);
+    if (m->kind == SHADOW_MAP_ARRAY)
+        glTexImage3D(target, 0, (GLint)format, m->size, m->size, m->layer_count, 0, GL_DEPTH_COMPONENT, type, NULL);
+    else
+        for (int layer = 0; layer < m->layer_count; layer++)
+            glTexImage2D(shadow_map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0,
+                         GL_DEPTH_COMPONENT, type, NULL);
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, texel_filter);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, texel_filter);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -80,15 +100,17 @@ static void shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
     glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     t->kind = m->kind;
     t->size = m->size;
+    t->layer_count = m->layer_count;
     t->depth = depth;
     t->filter = filter;
 }
 
 /* ---- the depth pass ---- */
 
-static void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings,
-                                    const technique_frame *f, const shadow_map *m) {
-    const scene *s = f->gpu->scene;
+void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
+                             shadow_map *m) {
+    const scene *s = gpu->scene;
+    shadow_map_prepare_texture(m, settings);
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     glViewport(0, 0, m->size, m->size);
     if (settings->no_slope_bias) {
@@ -100,13 +122,12 @@ static void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_set
     }
     glUseProgram(r->depth.id);
     for (int layer = 0; layer < m->layer_count; layer++) {
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_map_layer_image(m->kind, layer),
-                               m->texture.id, 0);
+        shadow_map_attach_layer(m, layer);
         glClear(GL_DEPTH_BUFFER_BIT);
         glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
         for (int i = 0; i < s->object_count; i++)
             if (s->objects[i].casts && (!m->casters || m->casters[i]))
-                render_draw_object(f->gpu, &r->depth, i);
+                render_draw_object(gpu, &r->depth, i);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -250,10 +271,8 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         shadow_map *m = &r->maps[l];
         m->size = shadow_map_settings_size(settings);
         fitted[l] = fit(f, l, m, (const float(*)[3])r->receivers, receiver_count);
-        if (fitted[l]) {
-            shadow_map_prepare_texture(m, settings);
-            shadow_map_render_depth(r, settings, f, m);
-        }
+        if (fitted[l])
+            shadow_map_render_depth(r, settings, f->gpu, m);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);

@@ -21,14 +21,14 @@
  *
  * Storage (shadow_map). A map has a kind and layers: SHADOW_MAP_2D has
  * one layer (spot, directional, any warped map), SHADOW_MAP_CUBE six, the
- * faces in GL's order (SHADOW_MAP_FACE_*). Each layer has its own matrix,
- * layer_view_projection[layer] (world -> that layer's clip space); the
- * depth range, texel measure and caster list are the map's. The texture
- * is (re)made only when kind, size, depth format or filter change. A 2D
- * array kind (cascades: one layer per slice of the view) fits beside
- * these: a kind, its layer count, its texture target and a layer attached
- * per depth pass (glFramebufferTextureLayer); the camera pass then picks
- * a layer per fragment.
+ * faces in GL's order (SHADOW_MAP_FACE_*), SHADOW_MAP_ARRAY layer_count
+ * of them (1..SHADOW_MAP_MAX_ARRAY_LAYERS) in one GL_TEXTURE_2D_ARRAY, for
+ * cascades (one layer per slice of the view). Each layer has its own
+ * matrix, layer_view_projection[layer] (world -> that layer's clip space);
+ * the depth range, texel measure and caster list are the map's. The
+ * texture is (re)made only when kind, size, layer count, depth format or
+ * filter change; every kind compares in hardware (compare mode on, clamped
+ * to its edges).
  *
  * Fitting (shadow_map_fit.c, no GL). shadow_map_fit_uniform is
  * demos/shadowmap.c's placement and the fallback of every warp:
@@ -46,8 +46,13 @@
  * measured in) and casters (which objects the depth pass draws; NULL:
  * every caster).
  *
- * The depth pass renders each layer's depth from its matrix, with
- * glPolygonOffset as the slope-scaled bias (unless --no-slope-bias).
+ * The depth pass (shadow_map_render_depth) renders each layer's depth from
+ * its matrix, with glPolygonOffset as the slope-scaled bias (unless
+ * --no-slope-bias); an array map's layers are attached one at a time
+ * (glFramebufferTextureLayer). The camera pass of an array map is the
+ * cascades technique's (it picks a layer per fragment): the camera pass
+ * below, shadow_map_render's fits and the map inset are for 2D and cube
+ * maps.
  *
  * The camera pass (shaders/shadowmap.glsl with shadowmap_2d.frag or
  * shadowmap_cube.frag) moves each point towards the light by the constant
@@ -180,23 +185,27 @@ typedef enum shadow_map_texel_kind {
     SHADOW_MAP_TEXEL_PROJECTIVE,   /* from the matrix's derivatives: any warp */
 } shadow_map_texel_kind;
 
-typedef enum shadow_map_kind { SHADOW_MAP_2D, SHADOW_MAP_CUBE } shadow_map_kind;
+typedef enum shadow_map_kind { SHADOW_MAP_2D, SHADOW_MAP_CUBE, SHADOW_MAP_ARRAY } shadow_map_kind;
 /* A cube's faces in GL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face). */
 enum { SHADOW_MAP_FACE_POSITIVE_X, SHADOW_MAP_FACE_NEGATIVE_X, SHADOW_MAP_FACE_POSITIVE_Y,
        SHADOW_MAP_FACE_NEGATIVE_Y, SHADOW_MAP_FACE_POSITIVE_Z, SHADOW_MAP_FACE_NEGATIVE_Z, SHADOW_MAP_CUBE_FACES };
-#define SHADOW_MAP_MAX_LAYERS SHADOW_MAP_CUBE_FACES
+/* An array map's most layers: the most cascades. */
+#define SHADOW_MAP_MAX_ARRAY_LAYERS 8
+/* Room for the layers of any kind. */
+#define SHADOW_MAP_MAX_LAYERS SHADOW_MAP_MAX_ARRAY_LAYERS
+_Static_assert(SHADOW_MAP_MAX_LAYERS >= SHADOW_MAP_CUBE_FACES, "a map holds a cube's faces");
 
 /* The GL texture behind a map, and what it was made with. */
 typedef struct shadow_map_texture {
     unsigned id;
     shadow_map_kind kind;
-    int size, depth, filter;
+    int size, layer_count, depth, filter;
 } shadow_map_texture;
 
 /* One light's map: what it was fitted to, and its texture. */
 typedef struct shadow_map {
     shadow_map_kind kind;
-    int layer_count; /* 1 (2D) or SHADOW_MAP_CUBE_FACES */
+    int layer_count; /* 1 (2D), SHADOW_MAP_CUBE_FACES, or 1..SHADOW_MAP_MAX_ARRAY_LAYERS (array) */
     int size;        /* texels on a side, set before fitting */
     mat4 layer_view_projection[SHADOW_MAP_MAX_LAYERS]; /* world -> each layer's clip space */
     float near_plane, far_plane;
@@ -257,12 +266,19 @@ typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, sha
 
 bool shadow_map_init(shadow_map_renderer *r);
 void shadow_map_destroy(shadow_map_renderer *r);
-/* The whole frame (see the top of this file). */
+/* The whole frame (see the top of this file); fit returns 2D and cube
+ * maps only. */
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit);
+/* The depth pass of a fitted map of any kind: (re)makes its texture when
+ * needed, then renders every layer from its matrix. Leaves r->framebuffer
+ * bound and the viewport at the map's size: the caller binds its target
+ * again. */
+void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
+                             shadow_map *m);
 /* The map's size in the settings. */
 int shadow_map_settings_size(const shadow_map_settings *settings);
-/* "2D" or "cube", for HUD lines. */
+/* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
 
 /* ---- fitting (shadow_map_fit.c) ---- */
