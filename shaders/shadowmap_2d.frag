@@ -15,6 +15,14 @@ uniform int u_kernel;            // N, or the disc's scale in texels
 uniform float u_map_size;
 uniform bool u_receiver_plane;
 
+// A matrix whose map coordinates hardly change with p (degenerate there)
+// gives a huge texel rather than a division by zero.
+const float SHADOWMAP_MIN_MAP_DERIVATIVE = 1e-20;
+// Below this the screen -> map Jacobian is singular (the receiver seen
+// edge-on, or no change across the pixel): no plane to follow, so every
+// tap compares the centre's depth.
+const float SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
+
 // A warped map's texel size changes across the map, and its depth is not
 // distance: the texel is how far p moves for its map coordinates to
 // change by one texel, from the matrix's derivatives at p. (Along the light
@@ -25,7 +33,7 @@ float shadowmap_projective_texel(vec3 p) {
     vec3 w_row = vec3(m[0][3], m[1][3], m[2][3]);
     vec3 du = (vec3(m[0][0], m[1][0], m[2][0]) - clip.x / clip.w * w_row) / clip.w;
     vec3 dv = (vec3(m[0][1], m[1][1], m[2][1]) - clip.y / clip.w * w_row) / clip.w;
-    return 2.0 / (u_map_size * max(min(length(du), length(dv)), 1e-20));
+    return 2.0 / (u_map_size * max(min(length(du), length(dv)), SHADOWMAP_MIN_MAP_DERIVATIVE));
 }
 
 float shadowmap_texel_world(vec3 p) {
@@ -44,7 +52,7 @@ float shadowmap_texel_world(vec3 p) {
 vec2 shadowmap_depth_gradient(vec3 uvz) {
     vec3 dx = dFdx(uvz), dy = dFdy(uvz);
     mat2 screen_to_map = mat2(dx.xy, dy.xy);
-    if (!u_receiver_plane || abs(determinant(screen_to_map)) < 1e-14)
+    if (!u_receiver_plane || abs(determinant(screen_to_map)) < SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT)
         return vec2(0.0);
     return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
 }
@@ -57,9 +65,9 @@ float shadowmap_poisson_disc(vec3 uvz, vec2 gradient) {
     float a = shadowmap_pixel_angle();
     mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
     float sum = 0.0;
-    for (int i = 0; i < 16; i++)
+    for (int i = 0; i < SHADOWMAP_POISSON_TAPS; i++)
         sum += shadowmap_tap(uvz, gradient, rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel) / u_map_size));
-    return sum / 16.0;
+    return sum / float(SHADOWMAP_POISSON_TAPS);
 }
 
 float shadowmap_visibility(vec3 p, float depth_bias) {

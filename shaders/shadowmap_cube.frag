@@ -12,6 +12,14 @@ uniform int u_kernel; // N, or the Poisson disc's scale in texels
 uniform float u_map_size;
 uniform bool u_receiver_plane;
 
+// A tap ray this close to parallel with the receiver's plane would slide
+// far along it onto the plane: such taps keep their own point.
+const float SHADOWMAP_MIN_PLANE_FACING = 0.05;
+// The kernel's plane is built across the direction from the up axis, or
+// from the x axis when the direction is this close to up (where the cross
+// product with up vanishes).
+const float SHADOWMAP_NEAR_UP = 0.9;
+
 // A 90-degree face spans 2 |major axis| over the map's size.
 float shadowmap_texel_world(vec3 p) {
     vec3 d = abs(p - u_light_origin);
@@ -34,7 +42,7 @@ float shadowmap_face_depth(vec3 d) {
 float shadowmap_tap(vec3 d, vec3 w, vec3 receiver_normal, float depth_bias) {
     vec3 t = d + w;
     float facing = dot(normalize(t), receiver_normal);
-    if (u_receiver_plane && abs(facing) > 0.05)
+    if (u_receiver_plane && abs(facing) > SHADOWMAP_MIN_PLANE_FACING)
         t -= normalize(t) * (dot(w, receiver_normal) / facing);
     return texture(u_map, vec4(d + w, shadowmap_face_depth(t) - depth_bias));
 }
@@ -46,18 +54,18 @@ float shadowmap_visibility(vec3 p, float depth_bias) {
         return texture(u_map, vec4(d, shadowmap_face_depth(d) - depth_bias));
     // Offsets in the plane across the direction, one texel apart there.
     vec3 axis = normalize(d);
-    vec3 u = normalize(cross(abs(axis.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
+    vec3 u = normalize(cross(abs(axis.y) < SHADOWMAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
     vec3 v = cross(axis, u);
     float step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size;
     float sum = 0.0;
     if (u_filter == SHADOW_MAP_KERNEL_POISSON) {
         float a = shadowmap_pixel_angle();
         mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
-        for (int i = 0; i < 16; i++) {
+        for (int i = 0; i < SHADOWMAP_POISSON_TAPS; i++) {
             vec2 o = rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel));
             sum += shadowmap_tap(d, (u * o.x + v * o.y) * step, receiver_normal, depth_bias);
         }
-        return sum / 16.0;
+        return sum / float(SHADOWMAP_POISSON_TAPS);
     }
     int half_kernel = u_kernel / 2;
     for (int y = -half_kernel; y <= half_kernel; y++)
