@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -70,26 +71,28 @@ static void test_planar_without_offset_exceeds_bound(void **state) {
     assert_true(r.false_lit > 0);
 }
 
-/* Several lights, one bright enough to saturate 8 bits: the ground's
- * colour, not only its visibility, must be the reference's. A shadowed
- * pixel is the picture without that light, whatever the others add. */
-static void test_planar_colour_with_three_lights(void **state) {
-    (void)state;
-    const char *scene = "tests/data/planar_three_lights.json";
-    dump_scene("raytrace", scene, "", "out/test/accuracy/three_reference");
-    dump_scene("planar", scene, "--backend egl", "out/test/accuracy/three_planar");
-    dump_frame reference, test;
+/* The ground's colour in `scene`, planar against the reference: all but
+ * PLANAR_MAX_MISCLASSIFIED_PERCENT of its pixels within the screenshot
+ * tolerance. The two dumps are handed back for more checks. */
+static void check_ground_colour(const char *scene, const char *name, dump_frame *reference, dump_frame *test) {
+    char reference_dir[256], test_dir[256], path[300];
+    snprintf(reference_dir, sizeof reference_dir, "out/test/accuracy/%s_reference", name);
+    snprintf(test_dir, sizeof test_dir, "out/test/accuracy/%s_planar", name);
+    dump_scene("raytrace", scene, "", reference_dir);
+    dump_scene("planar", scene, "--backend egl", test_dir);
     int w, h, tw, th;
-    assert_true(dump_read(&reference, "out/test/accuracy/three_reference"));
-    assert_true(dump_read(&test, "out/test/accuracy/three_planar"));
-    unsigned char *ref_rgb = image_read_png("out/test/accuracy/three_reference/color.png", &w, &h);
-    unsigned char *test_rgb = image_read_png("out/test/accuracy/three_planar/color.png", &tw, &th);
+    assert_true(dump_read(reference, reference_dir));
+    assert_true(dump_read(test, test_dir));
+    snprintf(path, sizeof path, "%s/color.png", reference_dir);
+    unsigned char *ref_rgb = image_read_png(path, &w, &h);
+    snprintf(path, sizeof path, "%s/color.png", test_dir);
+    unsigned char *test_rgb = image_read_png(path, &tw, &th);
     assert_non_null(ref_rgb);
     assert_non_null(test_rgb);
-    assert_true(w == tw && h == th && w == reference.width);
+    assert_true(w == tw && h == th && w == reference->width);
     long ground = 0, differ = 0;
     for (long i = 0; i < (long)w * h; i++) {
-        if (reference.ids[i] != 0 || test.ids[i] != 0)
+        if (reference->ids[i] != 0 || test->ids[i] != 0)
             continue;
         ground++;
         int worst = 0;
@@ -97,12 +100,53 @@ static void test_planar_colour_with_three_lights(void **state) {
             worst = abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) > worst ? abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) : worst;
         differ += worst > SUPPORT_TOLERANCE;
     }
-    fprintf(stderr, "    three lights, ground colour: %ld of %ld pixels differ by more than %d/255 (%.4f %%)\n",
-            differ, ground, SUPPORT_TOLERANCE, 100.0 * differ / ground);
+    fprintf(stderr, "    %s, ground colour: %ld of %ld pixels differ by more than %d/255 (%.4f %%)\n", name, differ,
+            ground, SUPPORT_TOLERANCE, 100.0 * differ / ground);
     assert_true(ground > w * h / 4);
     assert_true(differ <= ground * PLANAR_MAX_MISCLASSIFIED_PERCENT / 100);
     free(ref_rgb);
     free(test_rgb);
+}
+
+/* Several lights, one bright enough to saturate 8 bits: the ground's
+ * colour, not only its visibility, must be the reference's. A shadowed
+ * pixel is the picture without that light, whatever the others add. */
+static void test_planar_colour_with_three_lights(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    check_ground_colour("tests/data/planar_three_lights.json", "three", &reference, &test);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+}
+
+/* Lights with a range (the point light's reaches the ground out to 4.5
+ * units from below it, the spot's cuts its cone at 2.5): the colour
+ * follows the same window in the shaders and the reference, and light 0's
+ * visibility is 0 beyond its range in both dumps, lit inside it. */
+static void test_light_range_matches_reference(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    check_ground_colour("tests/data/range_lights.json", "range", &reference, &test);
+    const float light[3] = {3, 6, 1}, range = 7.5f;
+    long beyond = 0, beyond_lit = 0, inside_lit = 0;
+    for (long i = 0; i < (long)reference.width * reference.height; i++) {
+        if (reference.ids[i] != 0 || test.ids[i] != 0)
+            continue;
+        float d = 0;
+        for (int k = 0; k < 3; k++)
+            d += (reference.position[i * 3 + k] - light[k]) * (reference.position[i * 3 + k] - light[k]);
+        if (sqrtf(d) > range * (1 + 1e-3f)) {
+            beyond++;
+            beyond_lit += reference.visibility[i] > 0 || test.visibility[i] > 0;
+        } else {
+            inside_lit += reference.visibility[i] > 0 && test.visibility[i] > 0;
+        }
+    }
+    fprintf(stderr, "    range: %ld ground pixels beyond light 0's range, %ld of them lit; %ld lit inside\n", beyond,
+            beyond_lit, inside_lit);
+    assert_true(beyond > 0);
+    assert_int_equal(beyond_lit, 0);
+    assert_true(inside_lit > 0);
     dump_frame_free(&reference);
     dump_frame_free(&test);
 }
@@ -112,6 +156,7 @@ int main(void) {
         cmocka_unit_test(test_planar_matches_reference_on_ground),
         cmocka_unit_test(test_planar_without_offset_exceeds_bound),
         cmocka_unit_test(test_planar_colour_with_three_lights),
+        cmocka_unit_test(test_light_range_matches_reference),
     };
     return cmocka_run_group_tests_name("accuracy against the reference", tests, make_reference, NULL);
 }

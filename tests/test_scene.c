@@ -223,6 +223,28 @@ static void test_defaults(void **state) {
     scene_free(&s); /* freeing an empty scene is harmless */
 }
 
+/* A light's range: read from the file, and the window it sets (1 at the
+ * light, (1 - (d/r)^4)^2 between, exactly 0 from the range on); a light
+ * without one reaches everywhere. */
+static void test_light_range(void **state) {
+    (void)state;
+    scene s;
+    assert_true(scene_load(&s, "tests/data/range_lights.json"));
+    const scene_light *point = &s.lights[0], *spot = &s.lights[1], *sun = &s.lights[2];
+    assert_float_equal(point->range, 7.5f, 0);
+    assert_float_equal(spot->range, 5.6f, 0);
+    assert_float_equal(sun->range, 0, 0);
+    assert_float_equal(scene_light_range_window(point, 0), 1, 0);
+    assert_float_equal(scene_light_range_window(point, 3.75f), (15.0f / 16) * (15.0f / 16), 1e-6f);
+    assert_float_equal(scene_light_range_window(point, 7.5f), 0, 0);
+    assert_float_equal(scene_light_range_window(point, 100), 0, 0);
+    assert_true(scene_light_range_window(point, 7.4f) > 0);
+    for (float d = 0.1f; d < 7.5f; d += 0.1f)
+        assert_true(scene_light_range_window(point, d) < scene_light_range_window(point, d - 0.1f));
+    assert_float_equal(scene_light_range_window(sun, 1e6f), 1, 0);
+    scene_free(&s);
+}
+
 typedef struct bad_scene {
     const char *path;
     const char *problem; /* expected in the message, after the path */
@@ -237,6 +259,9 @@ static const bad_scene bad_scenes[] = {
     {"tests/data/scene_key_of_other_light_type.json",
      ": lights[0]: unknown key \"position\" (expected type, direction, color, intensity or radius)"},
     {"tests/data/scene_duplicate_key.json", ": objects[0].name: duplicate key"},
+    {"tests/data/scene_range_zero.json", ": lights[0].range: must be positive (got 0)"},
+    {"tests/data/scene_range_directional.json",
+     ": lights[0]: unknown key \"range\" (expected type, direction, color, intensity or radius)"},
     {"tests/data/scene_missing_model.json",
      ": objects[0] \"statue\": tests/data/no_such_model.obj: cannot open: No such file or directory"},
     {"tests/data/scene_bad_model.json",
@@ -291,6 +316,7 @@ int main(void) {
         cmocka_unit_test(test_model_matrix_order),
         cmocka_unit_test(test_world_bounds),
         cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_light_range),
         cmocka_unit_test(test_bad_scenes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -27,18 +27,21 @@ typedef enum scene_range {
     SCENE_POSITIVE,
 } scene_range;
 
+/* The most keys one kind of light or mesh takes (a spot light). */
+#define SCENE_VARIANT_MAX_KEYS 9
+
 /* One value of a "type" or "kind" field, with the keys an object of that
  * type may hold. */
 typedef struct scene_variant {
     const char *name;
     int value;
-    const char *keys[9]; /* NULL-terminated */
+    const char *keys[SCENE_VARIANT_MAX_KEYS + 1]; /* NULL-terminated */
 } scene_variant;
 
 static const scene_variant scene_light_types[] = {
-    {"point", SCENE_LIGHT_POINT, {"type", "position", "color", "intensity", "radius", NULL}},
+    {"point", SCENE_LIGHT_POINT, {"type", "position", "color", "intensity", "radius", "range", NULL}},
     {"spot", SCENE_LIGHT_SPOT,
-     {"type", "position", "direction", "color", "intensity", "inner_angle", "outer_angle", "radius", NULL}},
+     {"type", "position", "direction", "color", "intensity", "inner_angle", "outer_angle", "radius", "range", NULL}},
     {"directional", SCENE_LIGHT_DIRECTIONAL, {"type", "direction", "color", "intensity", "radius", NULL}},
     {NULL, 0, {NULL}},
 };
@@ -294,7 +297,8 @@ static bool scene_read_light(const char *file, const cJSON *json, const char *wh
         !scene_read_float(file, json, where, "intensity", false, SCENE_NON_NEGATIVE, &l->intensity) ||
         !scene_read_float(file, json, where, "inner_angle", false, SCENE_NON_NEGATIVE, &l->inner_angle_deg) ||
         !scene_read_float(file, json, where, "outer_angle", false, SCENE_NON_NEGATIVE, &l->outer_angle_deg) ||
-        !scene_read_float(file, json, where, "radius", false, SCENE_NON_NEGATIVE, &l->radius)) {
+        !scene_read_float(file, json, where, "radius", false, SCENE_NON_NEGATIVE, &l->radius) ||
+        !scene_read_float(file, json, where, "range", false, SCENE_POSITIVE, &l->range)) {
         return false;
     }
     if (aimed && !scene_normalize(l->direction)) return scene_fail(file, where, "direction", "must not be zero");
@@ -529,6 +533,13 @@ void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]
             max[row] += fmaxf(a, b);
         }
     }
+}
+
+float scene_light_range_window(const scene_light *l, float distance) {
+    if (!(l->range > 0))
+        return 1;
+    float x = distance / l->range, x4 = x * x * x * x, w = fmaxf(1 - x4, 0);
+    return w * w;
 }
 
 void scene_light_homogeneous(const scene_light *l, float out[4]) {

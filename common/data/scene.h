@@ -17,7 +17,9 @@
  *                  "radius": 0   (> 0: an area light, for soft shadows: a
  *                                 sphere of that radius for point and spot
  *                                 lights; for a directional light, the
- *                                 angular radius in degrees of its disc) } ]
+ *                                 angular radius in degrees of its disc)
+ *                  "range": none (point, spot: > 0, how far the light
+ *                                 reaches; see scene_light_range_window) } ]
  *   "objects": [ 1..n of
  *                { "name": "ground",                               (required)
  *                  "mesh": { "kind": "plane", "size": [x,z] }      (required)
@@ -78,6 +80,7 @@ typedef struct scene_light {
     float inner_angle_deg; /* spot */
     float outer_angle_deg; /* spot */
     float radius;          /* > 0: area light (directional: degrees) */
+    float range;           /* point, spot: > 0, it reaches no farther; 0: unlimited */
 } scene_light;
 
 typedef enum scene_mesh_kind {
@@ -112,6 +115,16 @@ typedef struct scene {
 
 bool scene_load(scene *s, const char *path);
 void scene_free(scene *s);
+
+/* A light's reach: what its contribution at `distance` from its position
+ * is multiplied by. With a range r, (1 - (d / r)^4)^2 for d < r and 0
+ * beyond: the window of Karis, "Real shading in Unreal Engine 4"
+ * (SIGGRAPH 2013 course), 1 at the light, smooth, and exactly 0 (with a
+ * flat tangent) at the range, so a light can be skipped where it cannot
+ * reach. There is no distance attenuation besides (the lighting model has
+ * none), so without a range it is 1 everywhere. shaders/lighting.glsl
+ * computes the same; the light reaches where this is above 0. */
+float scene_light_range_window(const scene_light *l, float distance);
 
 /* A light as a homogeneous point: (position, 1), or (towards the light, 0)
  * for a directional light, a point at infinity. */

@@ -17,7 +17,7 @@ typedef struct render_lights_block {
     float position[SCENE_MAX_LIGHTS][4];
     float direction[SCENE_MAX_LIGHTS][4];
     float color[SCENE_MAX_LIGHTS][4];
-    float cone[SCENE_MAX_LIGHTS][4];
+    float reach[SCENE_MAX_LIGHTS][4];
 } render_lights_block;
 
 /* std140: a vec4 or ivec4 and each element of an array of them take 16
@@ -30,8 +30,8 @@ _Static_assert(offsetof(render_lights_block, direction) == (2 + SCENE_MAX_LIGHTS
                "Lights.lights_direction");
 _Static_assert(offsetof(render_lights_block, color) == (2 + 2 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
                "Lights.lights_color");
-_Static_assert(offsetof(render_lights_block, cone) == (2 + 3 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
-               "Lights.lights_cone");
+_Static_assert(offsetof(render_lights_block, reach) == (2 + 3 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+               "Lights.lights_reach");
 _Static_assert(sizeof(render_lights_block) == (2 + 4 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4, "Lights size");
 
 bool render_program_load(render_program *p, const char *const *files, int count, const shader_define *defines) {
@@ -124,8 +124,9 @@ void render_scene_update_lights(const render_scene *r, int visibility_of) {
         glm_vec3_scale((float *)l->color, l->intensity, b.color[i]);
         bool spot = l->type == SCENE_LIGHT_SPOT;
         /* Outside any cone: smoothstep(-3, -2, cos) is 1 for every angle. */
-        b.cone[i][0] = spot ? cosf(glm_rad(l->outer_angle_deg)) : -3.0f;
-        b.cone[i][1] = spot ? cosf(glm_rad(l->inner_angle_deg)) : -2.0f;
+        b.reach[i][0] = spot ? cosf(glm_rad(l->outer_angle_deg)) : -3.0f;
+        b.reach[i][1] = spot ? cosf(glm_rad(l->inner_angle_deg)) : -2.0f;
+        b.reach[i][2] = l->type == SCENE_LIGHT_DIRECTIONAL ? 0 : l->range;
     }
     glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffer);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof b, &b);

@@ -394,9 +394,14 @@ static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext 
         }
         bool spot = light->light->type == SCENE_LIGHT_SPOT;
         float cos_axis = -raytrace_dot(to_light, light->light->direction);
+        float window = light->position[3] != 0
+                           ? scene_light_range_window(light->light, glm_vec3_distance((float *)light->position,
+                                                                                     h.position))
+                           : 1.0f;
         float unshadowed = fmaxf(raytrace_dot(h.shading_normal, to_light), 0.0f) *
-                           (spot ? raytrace_smoothstep(light->cos_outer, light->cos_inner, cos_axis) : 1.0f);
-        bool reaches = !spot || cos_axis > light->cos_outer;
+                           (spot ? raytrace_smoothstep(light->cos_outer, light->cos_inner, cos_axis) : 1.0f) *
+                           window;
+        bool reaches = (!spot || cos_axis > light->cos_outer) && window > 0;
         /* Light K's visibility is dumped wherever it reaches; the others
          * are traced only where they would add light. */
         float visibility = 0;

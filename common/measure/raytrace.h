@@ -19,8 +19,10 @@
  *             the model matrix, negated on a back face.
  *   colour    shaders/lighting.glsl exactly: albedo * (ambient + sum over
  *             lights of visibility * colour * intensity * max(N.L, 0) *
- *             spot), spot = smoothstep(cos outer, cos inner, cos of the
- *             angle off the axis); clamped, rounded to 8 bits as GL does.
+ *             spot * window), spot = smoothstep(cos outer, cos inner, cos
+ *             of the angle off the axis), window = the light's range window
+ *             (scene_light_range_window); clamped, rounded to 8 bits as GL
+ *             does.
  *             Every light's visibility is used; the background is
  *             SCENE_BACKGROUND.
  *   visibility of light `light_index` (the others only shade):
@@ -31,8 +33,9 @@
  *             of that radius, sampled as the disk of that radius facing the
  *             shaded point; a directional light's radius is the angular
  *             radius (degrees) of the cone of directions it comes from.
- *             A spot light reaches nothing outside its outer cone
- *             (visibility 0 there, as in the raster capture). Objects with
+ *             A spot light reaches nothing outside its outer cone, a light
+ *             with a range nothing beyond it (visibility 0 there, as in
+ *             the raster capture). Objects with
  *             "casts": false block no light; those with "receives": false
  *             are never in shadow.
  *
