@@ -68,12 +68,13 @@ LIB := $(BUILD)/libshadows.a
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) $(wildcard demos/lib/*.c) demos/registry.c) \
 	$(BUILD)/glad/gl.o
 # Programs whose main is common/programs/main_NAME.c (the reference, the
-# metrics, the benchmark); the demos' main is common/programs/main_single.c.
-TOOLS := raytrace shadowdiff bench
+# metrics, the benchmark, the scene generator); the demos' main is
+# common/programs/main_single.c.
+TOOLS := raytrace shadowdiff bench scenegen
 PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
 
-.PHONY: all deps demo gallery test bench update-golden clean help
+.PHONY: all deps demo gallery test bench scenes update-golden clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -82,6 +83,7 @@ help:
 	@echo "make gallery        render every technique on each standard scene to out/gallery/"
 	@echo "make test           build and run every test, plain and under ASan+UBSan"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
+	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
 	@echo "make clean          remove build/, build-san/ and out/"
 
@@ -113,6 +115,11 @@ endif
 
 bench: $(PROGRAMS)
 	$(BUILD)/bench $(if $(filter 1,$(QUICK)),--quick)
+
+# The generated scenes are committed; test_scenegen checks they are what
+# the generator writes.
+scenes: $(BUILD)/scenegen
+	$(BUILD)/scenegen --out assets/scenes
 
 # The screenshot test's table of cases records its own goldens (EGL, the
 # flags it checks with); ONLY="NAME..." re-records just those cases.
