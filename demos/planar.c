@@ -98,6 +98,8 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
         glPolygonOffset(PLANAR_OFFSET_FACTOR, PLANAR_OFFSET_UNITS);
     }
     glDepthMask(GL_FALSE);
+    /* Every caster, not only those in view: one outside the view may
+     * shadow a receiver inside it. */
     for (int i = 0; i < s->object_count; i++)
         if (i != receiver && s->objects[i].casts)
             render_draw_object(f->gpu, &planar.flatten, i);
@@ -153,8 +155,7 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
 static void planar_render_stencil(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     render_use_lit(f->gpu, f->view, 0, 0, true);
-    for (int i = 0; i < s->object_count; i++)
-        render_draw_object(f->gpu, &f->gpu->lit, i);
+    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
     for (int l = 0; l < s->light_count; l++) {
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
@@ -165,8 +166,7 @@ static void planar_render_stencil(const technique_frame *f) {
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
         render_use_lit(f->gpu, f->view, l, l + 1, false);
-        for (int i = 0; i < s->object_count; i++)
-            render_draw_object(f->gpu, &f->gpu->lit, i);
+        render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
         glDisable(GL_BLEND);
         glDisable(GL_STENCIL_TEST);
     }
@@ -176,7 +176,7 @@ static void planar_render_stencil(const technique_frame *f) {
  * blending, once per layer of projected triangles. */
 static void planar_render_blended(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_unshadowed(f->gpu, f->view);
+    render_unshadowed(f->gpu, f->view, f->in_view);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);
     for (int l = 0; l < s->light_count; l++) {

@@ -256,6 +256,8 @@ static void volumes_count(const technique_frame *f, int l, const float light[4])
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_LESS); /* a surface's own cap, at its depth, counts as behind it */
     glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
+    /* Every caster, not only those in view: a caster outside the view may
+     * cast a volume across it. */
     for (int i = 0; i < s->object_count; i++) {
         if (!s->objects[i].casts)
             continue;
@@ -308,6 +310,8 @@ static void volumes_add_light(const technique_frame *f, int l) {
     glBlendFunc(GL_ONE, GL_ONE);
     render_use_lit(f->gpu, f->view, l, l + 1, false);
     for (int i = 0; i < s->object_count; i++) {
+        if (!render_in_mask(f->in_view, i))
+            continue;
         glStencilFunc(s->objects[i].receives ? GL_EQUAL : GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
         render_draw_object(f->gpu, &f->gpu->lit, i);
     }
@@ -377,8 +381,7 @@ static void volumes_draw_shapes(const technique_frame *f, const float light[4]) 
 static void volumes_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     render_use_lit(f->gpu, f->view, 0, 0, true); /* ambient, and the depth every pass tests against */
-    for (int i = 0; i < s->object_count; i++)
-        render_draw_object(f->gpu, &f->gpu->lit, i);
+    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
     for (int l = 0; l < s->light_count; l++) {
         float light[4];
         scene_light_homogeneous(&s->lights[l], light);

@@ -15,7 +15,7 @@
 #include "support.h"
 
 #define OUT "out/test/bench"
-#define CSV_COLUMNS 14
+#define CSV_COLUMNS 15
 
 static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view"};
 static char err[65536];
@@ -57,7 +57,7 @@ static void test_csv_has_every_configuration(void **state) {
     char *rest = text, *line = strtok_r(rest, "\n", &rest);
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
-                              "mae,compared_pixels,renderer");
+                              "mae,compared_pixels,renderer,skips");
     int rows = 0, planar_rows = 0, floor_rows = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
@@ -69,6 +69,7 @@ static void test_csv_has_every_configuration(void **state) {
         }
         assert_true(atof(fields[3]) > 0);    /* a frame takes time */
         assert_true(atol(fields[12]) > 1000); /* pixels were compared */
+        assert_string_equal(fields[14], "on"); /* skips are on by default */
         planar_rows += strcmp(fields[1], "planar") == 0;
         floor_rows += strcmp(fields[1], "unshadowed") == 0;
         rows++;

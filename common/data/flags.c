@@ -249,3 +249,18 @@ void flags_print_help(FILE *out, const flags_param *params, int count, int inden
         fprintf(out, "%s\n", line);
     }
 }
+
+bool flags_press_key(const flags_param *params, int count, int key) {
+    bool found = false;
+    for (int k = 0; k < count; k++) {
+        const flags_param *p = &params[k];
+        if (p->key != key || key == 0)
+            continue;
+        found = true;
+        if (p->kind == FLAGS_TOGGLE)
+            *p->disabled ^= true;
+        else if (p->kind == FLAGS_CHOICE)
+            *p->index = p->choices[*p->index + 1] ? *p->index + 1 : 0;
+    }
+    return found;
+}

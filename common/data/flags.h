@@ -84,6 +84,9 @@ int flags_parse(const char *program, const flags_param *params, int count, int a
 void flags_reset(const flags_param *params, int count);
 /* A NUMBER's value: its fallback while the field is 0. */
 float flags_number(const flags_param *p);
+/* The window's key press: flips each toggle and steps each choice that
+ * has the key; false if none has it. */
+bool flags_press_key(const flags_param *params, int count, int key);
 /* One --help line per flag, `indent` spaces in: the flag, its value
  * (a choice's values as a|b|c), "key K: " and the help, which starts
  * after a column `width` wide (0: as wide as the table's flags need). */

@@ -24,6 +24,27 @@ bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]) {
     return true;
 }
 
+/* The frustum is where every clip plane's w + x, w - x, ... w - z is not
+ * negative: each is linear in the world point, so a box whose eight
+ * corners are all negative on one of them lies outside, whatever the sign
+ * of w (behind the eye included). */
+bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 hi) {
+    vec3 box[8];
+    vec4 clip[8];
+    frustum_box_corners(lo, hi, box);
+    for (int c = 0; c < 8; c++)
+        glm_mat4_mulv((vec4 *)view_projection, (vec4){box[c][0], box[c][1], box[c][2], 1}, clip[c]);
+    for (int k = 0; k < 6; k++) {
+        float sign = k & 1 ? -1.0f : 1.0f;
+        bool all_beyond = true;
+        for (int c = 0; c < 8 && all_beyond; c++)
+            all_beyond = clip[c][3] + sign * clip[c][k / 2] < -FRUSTUM_CLIP_TOLERANCE * fabsf(clip[c][3]);
+        if (all_beyond)
+            return true;
+    }
+    return false;
+}
+
 /* The vertices of the meeting of two convex bodies are the corners of each
  * inside the other and the crossings of each one's edges with the other's
  * faces. */

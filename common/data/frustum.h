@@ -33,6 +33,11 @@ bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]);
  * corners are `corners`), at most `capacity` of them; returns how many. */
 int frustum_box_part(const mat4 view_projection, const vec3 corners[8], const vec3 lo, const vec3 hi,
                      float (*out)[3], int capacity);
+/* The box lo..hi lies wholly outside the frustum: all its corners beyond
+ * one clip plane (by more than FRUSTUM_CLIP_TOLERANCE). Conservative, as
+ * culling needs: a box that meets the frustum is never outside, though a
+ * box beside a frustum's corner may not be found outside. */
+bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 hi);
 /* Bounds of points in the space of `view`. */
 void frustum_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]);
 /* A view from `eye` looking along `direction` (any up that is not along it). */

@@ -62,6 +62,8 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
         render_program_use(&program, view);
         glUniform3fv(glGetUniformLocation(program.id, "u_eye"), 1, view->eye);
         int object = glGetUniformLocation(program.id, "u_object");
+        /* Every object, never the frame's culling: the dump's geometry is
+         * the scene's, the ground truth that culling is checked against. */
         for (int i = 0; i < gpu->scene->object_count; i++) {
             glUniform1f(object, (float)i);
             render_draw_object(gpu, &program, i);

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "context.h"
+#include "frustum.h"
 #include "shader.h"
 
 #define RENDER_NOT_A_CAPABILITY 0 /* glEnable(0): GL_INVALID_ENUM, for the test hook */
@@ -67,6 +68,28 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
         glEnable(RENDER_NOT_A_CAPABILITY);
 }
 
+bool render_in_mask(const bool *mask, int object) { return !mask || mask[object]; }
+
+void render_draw_objects(const render_scene *r, const render_program *p, const bool *mask) {
+    for (int i = 0; i < r->scene->object_count; i++)
+        if (render_in_mask(mask, i))
+            render_draw_object(r, p, i);
+}
+
+bool render_view_culling(const render_skips *skips) { return !skips->no_skip && !skips->no_view_cull; }
+
+int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips) {
+    bool cull = render_view_culling(skips);
+    int count = 0;
+    for (int i = 0; i < r->scene->object_count; i++) {
+        float lo[3], hi[3];
+        scene_object_world_bounds(&r->scene->objects[i], lo, hi);
+        r->in_view[i] = !cull || !frustum_box_outside(v->view_projection, lo, hi);
+        count += r->in_view[i];
+    }
+    return count;
+}
+
 static void render_mesh_upload(render_mesh *g, const scene_object *o) {
     const mesh *m = &o->mesh;
     glGenVertexArrays(1, &g->vao);
@@ -91,7 +114,10 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
 bool render_scene_create(render_scene *r, const scene *s) {
     *r = (render_scene){.scene = s, .inject_gl_error = getenv(RENDER_INJECT_GL_ERROR_ENV) != NULL};
     r->meshes = calloc((size_t)s->object_count, sizeof *r->meshes);
-    if (!r->meshes) {
+    r->in_view = malloc((size_t)s->object_count * sizeof *r->in_view);
+    if (!r->meshes || !r->in_view) {
+        free(r->meshes);
+        free(r->in_view);
         fprintf(stderr, "render: out of memory\n");
         return false;
     }
@@ -139,6 +165,7 @@ void render_scene_destroy(render_scene *r) {
         glDeleteBuffers(1, &r->meshes[i].index_buffer);
     }
     free(r->meshes);
+    free(r->in_view);
     glDeleteBuffers(1, &r->lights_buffer);
     render_program_destroy(&r->lit);
     *r = (render_scene){0};
@@ -151,10 +178,9 @@ void render_use_lit(const render_scene *r, const camera_view *v, int light_first
     glUniform1i(r->lit_light_end, light_end);
 }
 
-void render_unshadowed(const render_scene *r, const camera_view *v) {
+void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask) {
     render_use_lit(r, v, 0, r->scene->light_count, true);
-    for (int i = 0; i < r->scene->object_count; i++)
-        render_draw_object(r, &r->lit, i);
+    render_draw_objects(r, &r->lit, mask);
 }
 
 void render_reset_state(void) {

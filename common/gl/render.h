@@ -12,7 +12,17 @@
  * Techniques load their own programs with render_program_load, which finds
  * the uniforms every scene-drawing program has (u_model, u_normal_matrix,
  * u_albedo, u_view_projection; any may be absent), then draw objects with
- * render_draw_object.
+ * render_draw_object, or render_draw_objects for those of a mask.
+ *
+ * View culling, the first of the skips (a scene's cost should follow what
+ * the camera sees): the frame's owner calls render_cull_view once per
+ * frame, which marks in r->in_view the objects whose world box meets the
+ * camera's frustum (every object when culling is off), and hands the mask
+ * to the technique in its frame. Techniques cull their camera passes with
+ * it and only those: a pass from a light's side or over the whole scene
+ * needs objects the camera does not see. The test is conservative (an
+ * object with a visible pixel is never culled), so culling changes no
+ * pixel.
  *
  * State contract: the app binds the target, clears it to SCENE_BACKGROUND
  * (depth 1, stencil 0) and calls render_reset_state before each technique
@@ -40,6 +50,7 @@ typedef struct render_mesh {
 typedef struct render_scene {
     const scene *scene;
     render_mesh *meshes; /* one per scene object */
+    bool *in_view;       /* one per scene object: render_cull_view's mask */
     unsigned lights_buffer;
     render_program lit;
     int lit_ambient, lit_light_first, lit_light_end;
@@ -52,6 +63,13 @@ typedef struct render_scene {
  * the frame's owner and fails the run (tests/test_cli.c). */
 #define RENDER_INJECT_GL_ERROR_ENV "SHADOWS_TEST_INJECT_GL_ERROR"
 
+/* The program-wide skips, each a toggle (--no-NAME) where zero means on;
+ * no_skip (--no-skip) turns every one off. */
+typedef struct render_skips {
+    bool no_skip;
+    bool no_view_cull; /* --no-view-cull */
+} render_skips;
+
 bool render_scene_create(render_scene *r, const scene *s);
 void render_scene_update_lights(const render_scene *r, int visibility_of);
 void render_scene_destroy(render_scene *r);
@@ -62,12 +80,25 @@ bool render_program_load(render_program *p, const char *const *files, int count,
 void render_program_destroy(render_program *p);
 void render_program_use(const render_program *p, const camera_view *v);
 void render_draw_object(const render_scene *r, const render_program *p, int object);
+/* Object i where mask is NULL or mask[i] holds. */
+bool render_in_mask(const bool *mask, int object);
+/* Every object in `mask` (NULL: all), in scene order. */
+void render_draw_objects(const render_scene *r, const render_program *p, const bool *mask);
+
+/* View culling is on under these skips. */
+bool render_view_culling(const render_skips *skips);
+/* Fills r->in_view for the camera view v: true where the object's world
+ * box meets v's frustum, or everywhere when culling is off. Returns how
+ * many objects are in the mask. */
+int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips);
 
 /* Binds the lit program for lights [light_first, light_end), with or
  * without the ambient term. */
 void render_use_lit(const render_scene *r, const camera_view *v, int light_first, int light_end, bool ambient);
-/* The whole scene lit by every light, nothing shadowed: the cost floor. */
-void render_unshadowed(const render_scene *r, const camera_view *v);
+/* The scene lit by every light, nothing shadowed: the cost floor, which
+ * culls as the techniques' camera passes do (mask: the frame's in_view,
+ * NULL: all), so that ratios to it measure shadows, not culling. */
+void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask);
 void render_reset_state(void);
 
 #endif

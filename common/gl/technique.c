@@ -41,20 +41,7 @@ void technique_param_text(const flags_param *p, char *out, size_t size) {
         snprintf(out, size, "%g", flags_number(p));
 }
 
-bool technique_press_key(const technique *t, int key) {
-    bool found = false;
-    for (int k = 0; k < t->param_count; k++) {
-        const flags_param *p = &t->params[k];
-        if (p->key != key || key == 0)
-            continue;
-        found = true;
-        if (p->kind == FLAGS_TOGGLE)
-            *p->disabled ^= true;
-        else if (p->kind == FLAGS_CHOICE)
-            *p->index = p->choices[*p->index + 1] ? *p->index + 1 : 0;
-    }
-    return found;
-}
+bool technique_press_key(const technique *t, int key) { return flags_press_key(t->params, t->param_count, key); }
 
 bool technique_init(const technique *t, const render_scene *gpu) {
     bool ok = t->init(gpu);

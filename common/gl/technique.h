@@ -47,6 +47,10 @@
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
     const camera_view *view;
+    /* Object i meets this frame's view (render_cull_view; all true with
+     * culling off; NULL: all): a technique culls its camera passes with
+     * it (render_draw_objects), never a pass that sees from elsewhere. */
+    const bool *in_view;
     int width, height;
     double time; /* seconds */
 } technique_frame;

@@ -38,6 +38,7 @@ static struct {
     int width, height;
     int frames; /* 0: not given, so one frame headless or a window */
     bool verbose, animate;
+    render_skips skips;
     const char *scene_path, *screenshot, *dump_dir, *shader_dir;
     int light;
     const char *gallery[1 + APP_MAX_GALLERY_SCENES]; /* DIR SCENE... */
@@ -50,6 +51,7 @@ static struct {
     render_scene gpu;
     scene_light base_lights[SCENE_MAX_LIGHTS]; /* before animation */
     double time;
+    int objects_in_view; /* the last frame's, from render_cull_view */
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
@@ -78,10 +80,14 @@ static const flags_param app_flags[] = {
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
      .choices = app.technique_names},
     {"animate", "turn the lights about the camera target over time", 0, FLAGS_SWITCH, .on = &app.animate},
+    {"skip", "no skips at all (view culling...): every pass draws the\nwhole scene; the same picture at the full cost", 0,
+     FLAGS_TOGGLE, .disabled = &app.skips.no_skip},
+    {"view-cull", "camera passes draw objects outside the view too", GLFW_KEY_K, FLAGS_TOGGLE,
+     .disabled = &app.skips.no_view_cull},
     {"gallery", "every technique on every scene, to DIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
      .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
-    {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line (the HUD's)", 0,
+    {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the culling line (the\nHUD's)", 0,
      FLAGS_SWITCH, .on = &app.verbose},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
@@ -97,7 +103,7 @@ static void app_usage(void) {
         flags_print_help(stdout, t->params, t->param_count, 6, APP_TECHNIQUE_FLAG_WIDTH);
     }
     printf("window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
-           "        H help, F12 screenshot, Esc quits\n");
+           "        K view culling, H help, F12 screenshot, Esc quits\n");
 }
 
 /* The app's flags and every technique's in one table, so that a flag
@@ -161,8 +167,13 @@ static bool app_render_frame(int visibility_of) {
     }
     camera_view view;
     app_view(&view);
-    const technique_frame frame = {
-        .gpu = &app.gpu, .view = &view, .width = app.target.width, .height = app.target.height, .time = app.time};
+    app.objects_in_view = render_cull_view(&app.gpu, &view, &app.skips);
+    const technique_frame frame = {.gpu = &app.gpu,
+                                   .view = &view,
+                                   .in_view = app.gpu.in_view,
+                                   .width = app.target.width,
+                                   .height = app.target.height,
+                                   .time = app.time};
     return technique_render_frame(app_technique(), &frame, &app.target, visibility_of);
 }
 
@@ -244,6 +255,16 @@ static bool app_run_gallery(void) {
     return true;
 }
 
+/* View culling's state for the HUD and --verbose: what the last frame's
+ * mask drew and left out, or OFF. */
+static void app_culling_text(char *out, size_t size) {
+    if (render_view_culling(&app.skips))
+        snprintf(out, size, "objects drawn %d / culled %d", app.objects_in_view,
+                 app.scene.object_count - app.objects_in_view);
+    else
+        snprintf(out, size, "OFF");
+}
+
 /* ---- the window ---- */
 
 static void app_hud(int width, int height) {
@@ -252,6 +273,11 @@ static void app_hud(int width, int height) {
     int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s\n",
                      app.current + 1, app.technique_count, t->name, t->title, app.scene_path, app.target.width,
                      app.target.height, app.frame_ms, app.animate ? "   animating" : "");
+    if (n < (int)sizeof text) {
+        char culling[96];
+        app_culling_text(culling, sizeof culling);
+        n += snprintf(text + n, sizeof text - (size_t)n, "[K] view culling: %s\n", culling);
+    }
     if (t->describe && n < (int)sizeof text) {
         t->describe(text + n, sizeof text - (size_t)n);
         n += (int)strlen(text + n);
@@ -271,7 +297,7 @@ static void app_hud(int width, int height) {
     if (n < (int)sizeof text)
         snprintf(text + n, sizeof text - (size_t)n, "%s",
                  app.show_help ? "\ndrag: orbit   scroll: zoom   arrows: move light   space: animate light\n"
-                                 "1-9: technique   F12: screenshot   H: hide help   Esc: quit"
+                                 "1-9: technique   K: view culling   F12: screenshot   H: hide help   Esc: quit"
                                : "\nH: help");
     hud_draw(text, width, height);
 }
@@ -309,7 +335,7 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
             app_switch_technique(key - GLFW_KEY_1);
             return;
         }
-        if (action == GLFW_PRESS)
+        if (action == GLFW_PRESS && !flags_press_key(app_flags, app_flag_count, key))
             technique_press_key(app_technique(), key);
         return;
     }
@@ -417,6 +443,11 @@ static bool app_run(void) {
             char line[512];
             app_technique()->describe(line, sizeof line);
             fprintf(stderr, "%s: %s\n", app_technique()->name, line);
+        }
+        if (ok && app.verbose) {
+            char culling[96];
+            app_culling_text(culling, sizeof culling);
+            fprintf(stderr, "view culling: %s\n", culling);
         }
         app_technique()->destroy();
         app_unload_scene();

@@ -14,6 +14,9 @@
  *   OUT/pareto_SCENE.png    ms per frame against misclassified %, by gnuplot
  * Timings are medians and 90th percentiles of the timed frames: single
  * frames on a shared machine are noise.
+ *
+ * Skips (render.h: view culling) are on, as in the app; --no-skip turns
+ * them off, and results.csv's `skips` column says which it was.
  */
 #include <glad/gl.h>
 #include <errno.h>
@@ -51,6 +54,7 @@ static struct {
     const char *out_dir;
     int width, height, frames, warmup, light_samples;
     bool quick, verbose;
+    render_skips skips;
     const char *scenes[BENCH_MAX_SCENES];
     char scene_names[BENCH_MAX_SCENES][128];
     int scene_count;
@@ -83,6 +87,8 @@ static const flags_param bench_flags[] = {
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
     {"quick", "small and short: a smoke test of the whole pipeline", 0, FLAGS_SWITCH, .on = &bench.quick},
+    {"skip", "no skips at all (view culling...): every pass draws the\nwhole scene; results.csv's skips column says off", 0, FLAGS_TOGGLE,
+     .disabled = &bench.skips.no_skip},
     {"shader-dir", "where the GLSL files are", 0, FLAGS_STRING, .text = &bench.shader_dir, .value_name = "DIR"},
     {"verbose", "print the backend and GL renderer", 0, FLAGS_SWITCH, .on = &bench.verbose},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
@@ -122,8 +128,13 @@ static double bench_now_ms(void) {
 }
 
 static bool bench_render_frame(int visibility_of) {
-    const technique_frame frame = {
-        .gpu = &bench.gpu, .view = &bench.view, .width = bench.width, .height = bench.height, .time = 0};
+    render_cull_view(&bench.gpu, &bench.view, &bench.skips);
+    const technique_frame frame = {.gpu = &bench.gpu,
+                                   .view = &bench.view,
+                                   .in_view = bench.gpu.in_view,
+                                   .width = bench.width,
+                                   .height = bench.height,
+                                   .time = 0};
     return technique_render_frame(bench.current, &frame, &bench.target, visibility_of);
 }
 
@@ -286,6 +297,9 @@ static bool bench_close(FILE *f, const char *path) {
     return true;
 }
 
+/* results.csv's `skips`: every skip on, or --no-skip. */
+static const char *bench_skips_text(void) { return bench.skips.no_skip ? "off" : "on"; }
+
 static bool bench_write_csv(void) {
     char path[PATH_MAX];
     FILE *f = bench_open("results.csv", path, sizeof path);
@@ -293,13 +307,13 @@ static bool bench_write_csv(void) {
         return false;
     fprintf(f, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,mae,"
-               "compared_pixels,renderer\n");
+               "compared_pixels,renderer,skips\n");
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\"\n", r->scene,
+        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s\n", r->scene,
                 r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
                 r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
-                r->error.mean_abs_error, r->error.compared, bench.ctx.renderer);
+                r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, bench_skips_text());
     }
     return bench_close(f, path);
 }
@@ -349,13 +363,14 @@ static bool bench_write_report(void) {
                "(shadowdiff rules; misclassified at visibility threshold 0.5). Pareto front: no other "
                "configuration of the scene is both faster and more accurate (own front: no other "
                "configuration of the same technique).\n\n"
-               "The ratio, the front and the plots use **%s time**. %s\n",
+               "The ratio, the front and the plots use **%s time**. %s Skips (view culling): %s.\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
                              "and glFinish is its real cost."
                            : "GPU time is what the frame costs the GPU; CPU time adds submission and the wait "
-                             "in glFinish.");
+                             "in glFinish.",
+            bench_skips_text());
     for (int s = 0; s < bench.scene_count; s++) {
         const char *scene = bench.scene_names[s];
         fprintf(f, "\n## %s\n\n![time against error](pareto_%s.png)\n\n"

@@ -125,6 +125,7 @@ void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *
         shadow_map_attach_layer(m, layer);
         glClear(GL_DEPTH_BUFFER_BIT);
         glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
+        /* Not the frame's in_view: the light sees casters the camera does not. */
         for (int i = 0; i < s->object_count; i++)
             if (s->objects[i].casts && (!m->casters || m->casters[i]))
                 render_draw_object(gpu, &r->depth, i);
@@ -253,8 +254,7 @@ static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settin
         glUniform1f(p->map_2d.texel_scale, m->texel_scale);
         glUniform3fv(p->map_2d.light_axis, 1, light->direction);
     }
-    for (int i = 0; i < f->gpu->scene->object_count; i++)
-        render_draw_object(f->gpu, &p->program, i);
+    render_draw_objects(f->gpu, &p->program, f->in_view);
 }
 
 /* ---- the frame ---- */
@@ -278,8 +278,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     /* Ambient, then each light added where its map lets it through. */
     render_use_lit(f->gpu, f->view, 0, 0, true);
-    for (int i = 0; i < s->object_count; i++)
-        render_draw_object(f->gpu, &f->gpu->lit, i);
+    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
@@ -289,8 +288,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
             shadow_map_add_light(r, settings, f, l, &r->maps[l]);
         } else { /* nothing visible receives: no map needed, nothing shadowed */
             render_use_lit(f->gpu, f->view, l, l + 1, false);
-            for (int i = 0; i < s->object_count; i++)
-                render_draw_object(f->gpu, &f->gpu->lit, i);
+            render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
         }
     }
     shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
