@@ -40,6 +40,15 @@ int support_run(const char *command, char *stderr_text, size_t capacity) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+const char *support_verbose_line(const char *program, const char *scene, const char *flags, const char *marker) {
+    static char text[16384];
+    char command[2048];
+    snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --frames 1 --verbose", support_program(program),
+             scene, flags);
+    assert_int_equal(support_run(command, text, sizeof text), 0);
+    return strstr(text, marker);
+}
+
 int support_count_lines(const char *text) {
     int lines = 0;
     for (const char *p = text; *p; p++)

@@ -30,6 +30,11 @@ int support_count_lines(const char *text);
  * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
 double support_compare_images(const char *golden, const char *actual);
 bool support_have_command(const char *name);
+/* Runs `PROGRAM --size 640x360 --scene SCENE FLAGS --frames 1 --verbose`,
+ * fails the running cmocka test unless it exits 0, and returns the first
+ * line of its stderr that starts with `marker` (the line goes on to the
+ * end of the text), or NULL. The text lives until the next call. */
+const char *support_verbose_line(const char *program, const char *scene, const char *flags, const char *marker);
 /* Runs `program --size 640x360 --scene SCENE FLAGS --dump DIR` (the
  * accuracy tests' size); returns its exit status. */
 int support_dump(const char *program, const char *scene, const char *flags, const char *dir);

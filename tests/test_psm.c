@@ -39,7 +39,6 @@ static const char *const warps[] = {"uniform", "psm", "lispsm"};
 static double over_bound(long warp_pixels, long uniform_pixels) {
     return (double)warp_pixels - (SWEEP_RATIO * (double)uniform_pixels + SWEEP_SLACK_PIXELS);
 }
-static char err[16384];
 
 static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
     char all[512];
@@ -49,11 +48,9 @@ static shadowdiff_result measure(const char *scene, const char *flags, const cha
 
 /* The HUD's line for light 0 after one frame (printed by --verbose). */
 static const char *describe(const char *scene, const char *flags) {
-    char command[1024];
-    snprintf(command, sizeof command, "%s --size 640x360 --scene %s " MAP " %s --frames 1 --verbose",
-             support_program("psm"), scene, flags);
-    assert_int_equal(support_run(command, err, sizeof err), 0);
-    const char *line = strstr(err, "psm: light 0:");
+    char all[512];
+    snprintf(all, sizeof all, MAP " %s", flags);
+    const char *line = support_verbose_line("psm", scene, all, "psm: light 0:");
     assert_non_null(line);
     return line;
 }

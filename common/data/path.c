@@ -71,3 +71,10 @@ char *path_read_text(const char *path, size_t max_size, size_t *length) {
         *length = used;
     return text;
 }
+
+bool path_stem(const char *path, char *out, size_t size) {
+    const char *base = strrchr(path, '/');
+    base = base ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    return snprintf(out, size, "%.*s", dot ? (int)(dot - base) : (int)strlen(base), base) < (int)size;
+}

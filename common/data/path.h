@@ -13,6 +13,11 @@ bool path_make_directories(const char *dir);
  * open/read: reason" or "PATH: larger than N bytes". */
 char *path_read_text(const char *path, size_t max_size, size_t *length);
 
+/* The file name of `path` without its directory and extension
+ * ("assets/scenes/simple.json" -> "simple"): what pictures and reports
+ * name a scene by. False if it did not fit in `size`. */
+bool path_stem(const char *path, char *out, size_t size);
+
 /* "<directory of the executable>/../<relative>", resolved when it exists:
  * the programs live in build/, their shaders and assets beside it, so they
  * run from any working directory. */

@@ -213,13 +213,6 @@ static bool app_run_headless(int frames, const char *screenshot) {
     return !screenshot || app_save_screenshot(screenshot);
 }
 
-static bool app_scene_basename(const char *path, char *out, size_t size) {
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    const char *dot = strrchr(base, '.');
-    return snprintf(out, size, "%.*s", dot ? (int)(dot - base) : (int)strlen(base), base) < (int)size;
-}
-
 static bool app_run_gallery(void) {
     const char *dir = app.gallery[0];
     if (!path_make_directories(dir))
@@ -231,7 +224,7 @@ static bool app_run_gallery(void) {
         bool ok = true;
         for (int t = 0; t < app.technique_count && ok; t++) {
             char name[256], path[PATH_MAX];
-            app_scene_basename(scene_path, name, sizeof name);
+            path_stem(scene_path, name, sizeof name);
             snprintf(path, sizeof path, "%s/%s_%s.png", dir, app.techniques[t]->name, name);
             ok = app_start_technique(t) && app_run_headless(1, path);
             app_technique()->destroy();

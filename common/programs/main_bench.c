@@ -178,13 +178,6 @@ static bool bench_time_frames(bench_row *row) {
     return true;
 }
 
-static void bench_scene_name(const char *path, char *out, size_t size) {
-    const char *base = strrchr(path, '/');
-    base = base ? base + 1 : path;
-    const char *dot = strrchr(base, '.');
-    snprintf(out, size, "%.*s", dot ? (int)(dot - base) : (int)strlen(base), base);
-}
-
 static bool bench_newer(const char *path, const char *than) {
     struct stat a, b;
     return stat(path, &a) == 0 && stat(than, &b) == 0 && a.st_mtime >= b.st_mtime;
@@ -230,7 +223,7 @@ static bool bench_configuration(const char *scene_name, const char *config, cons
 
 static bool bench_scene(const char *scene_path, int scene_index, int *done, int total) {
     char *name = bench.scene_names[scene_index];
-    bench_scene_name(scene_path, name, sizeof bench.scene_names[scene_index]);
+    path_stem(scene_path, name, sizeof bench.scene_names[scene_index]);
     fprintf(stderr, "[scene %d/%d] %s\n", scene_index + 1, bench.scene_count, name);
     if (!scene_load(&bench.scene, scene_path))
         return false;
