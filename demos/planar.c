@@ -26,6 +26,8 @@
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "planar.h"
 #include "technique.h"
@@ -40,6 +42,7 @@ static struct {
     planar_settings settings;
     render_program flatten;
     int shadow, plane, reject;
+    bool *casters; /* per object: it casts for the light at hand (caster culling) */
 } planar;
 
 static const flags_param planar_params[] = {
@@ -69,17 +72,25 @@ void planar_receiver_plane(const scene_object *o, float plane[4]) {
 }
 
 static bool planar_init(const render_scene *gpu) {
-    (void)gpu;
     static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
     if (!render_program_load(&planar.flatten, files, 2, NULL))
         return false;
     planar.shadow = glGetUniformLocation(planar.flatten.id, "u_shadow");
     planar.plane = glGetUniformLocation(planar.flatten.id, "u_plane");
     planar.reject = glGetUniformLocation(planar.flatten.id, "u_reject");
+    planar.casters = malloc((size_t)gpu->scene->object_count * sizeof *planar.casters);
+    if (!planar.casters) {
+        fprintf(stderr, "planar: out of memory\n");
+        return false;
+    }
     return true;
 }
 
-static void planar_destroy(void) { render_program_destroy(&planar.flatten); }
+static void planar_destroy(void) {
+    render_program_destroy(&planar.flatten);
+    free(planar.casters);
+    planar.casters = NULL;
+}
 
 static void planar_draw_casters(const technique_frame *f, int receiver, const float plane[4], const float light[4]) {
     const scene *s = f->gpu->scene;
@@ -98,10 +109,10 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
         glPolygonOffset(PLANAR_OFFSET_FACTOR, PLANAR_OFFSET_UNITS);
     }
     glDepthMask(GL_FALSE);
-    /* Every caster, not only those in view: one outside the view may
-     * shadow a receiver inside it. */
+    /* Not only casters in view: one outside the view may shadow a
+     * receiver inside it; planar.casters are those that may. */
     for (int i = 0; i < s->object_count; i++)
-        if (i != receiver && s->objects[i].casts)
+        if (i != receiver && planar.casters[i])
             render_draw_object(f->gpu, &planar.flatten, i);
     glDisable(GL_CLIP_DISTANCE0);
     glDisable(GL_CLIP_DISTANCE1);
@@ -127,6 +138,12 @@ static bool planar_receiver_facing(const scene_object *o, const float light_h[4]
  * their triangles cover it. */
 static void planar_mark_shadows(const technique_frame *f, int light, const float light_h[4]) {
     const scene *s = f->gpu->scene;
+    /* Stencil marks only the visible receivers' pixels, so a caster whose
+     * shadow reaches none of them marks nothing: culling it is exact. */
+    technique_hull hull;
+    technique_light_hull(f, light, &hull);
+    for (int i = 0; i < s->object_count; i++)
+        planar.casters[i] = technique_caster_needed(f, &hull, i);
     glClear(GL_STENCIL_BUFFER_BIT);
     glEnable(GL_STENCIL_TEST);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -138,7 +155,7 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
         glStencilFunc(GL_ALWAYS, 1, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         glDepthFunc(GL_EQUAL);
-        render_use_lit(f->gpu, f->view, light, light + 1, false);
+        render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(light), false);
         render_draw_object(f->gpu, &f->gpu->lit, r);
         glStencilFunc(GL_EQUAL, 1, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
@@ -154,9 +171,11 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
  * however bright the other lights make it. */
 static void planar_render_stencil(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_use_lit(f->gpu, f->view, 0, 0, true);
+    render_use_lit(f->gpu, f->view, 0, true);
     render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
     for (int l = 0; l < s->light_count; l++) {
+        if (!technique_light_on(f, l))
+            continue;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
         planar_mark_shadows(f, l, light_h);
@@ -165,7 +184,7 @@ static void planar_render_stencil(const technique_frame *f) {
         glDepthFunc(GL_EQUAL);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
-        render_use_lit(f->gpu, f->view, l, l + 1, false);
+        render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
         render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
         glDisable(GL_BLEND);
         glDisable(GL_STENCIL_TEST);
@@ -173,13 +192,19 @@ static void planar_render_stencil(const technique_frame *f) {
 }
 
 /* The textbook path the stencil fixes: the lit picture darkened by
- * blending, once per layer of projected triangles. */
+ * blending, once per layer of projected triangles. Its shadows spill off
+ * the receivers onto the whole plane, so every caster draws (no caster
+ * culling: it would change that picture). */
 static void planar_render_blended(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_unshadowed(f->gpu, f->view, f->in_view);
+    render_unshadowed(f->gpu, f->view, f->in_view, f->lights);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);
+    for (int i = 0; i < s->object_count; i++)
+        planar.casters[i] = s->objects[i].casts;
     for (int l = 0; l < s->light_count; l++) {
+        if (!technique_light_on(f, l))
+            continue;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
         for (int r = 0; r < s->object_count; r++) {

@@ -12,7 +12,7 @@ static bool unshadowed_init(const render_scene *gpu) {
     return true;
 }
 
-static void unshadowed_render(const technique_frame *f) { render_unshadowed(f->gpu, f->view, f->in_view); }
+static void unshadowed_render(const technique_frame *f) { render_unshadowed(f->gpu, f->view, f->in_view, f->lights); }
 
 static void unshadowed_destroy(void) {}
 

@@ -308,7 +308,7 @@ static void volumes_add_light(const technique_frame *f, int l) {
     glDepthFunc(GL_EQUAL);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    render_use_lit(f->gpu, f->view, l, l + 1, false);
+    render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
     for (int i = 0; i < s->object_count; i++) {
         if (!render_in_mask(f->in_view, i))
             continue;
@@ -380,9 +380,11 @@ static void volumes_draw_shapes(const technique_frame *f, const float light[4]) 
 
 static void volumes_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_use_lit(f->gpu, f->view, 0, 0, true); /* ambient, and the depth every pass tests against */
+    render_use_lit(f->gpu, f->view, 0, true); /* ambient, and the depth every pass tests against */
     render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
     for (int l = 0; l < s->light_count; l++) {
+        if (!technique_light_on(f, l))
+            continue;
         float light[4];
         scene_light_homogeneous(&s->lights[l], light);
         glEnable(GL_SCISSOR_TEST);

@@ -1,14 +1,14 @@
 #version 330 core
 #include "lighting.glsl"
-// Lights u_light_first .. u_light_end-1 fully visible, plus ambient when
-// u_ambient is 1: the unshadowed picture, or one light's share of it.
+// The lights of the set u_lights (bit i: light i, RENDER_LIGHT_BIT in
+// common/gl/render.h) fully visible, plus ambient when u_ambient is 1: the
+// unshadowed picture, or one light's share of it.
 in vec3 v_position;
 in vec3 v_normal;
 
 uniform vec3 u_albedo;
 uniform float u_ambient;
-uniform int u_light_first;
-uniform int u_light_end;
+uniform uint u_lights;
 
 out vec4 out_color;
 
@@ -16,7 +16,8 @@ void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
     vec3 c = u_ambient * lighting_ambient(u_albedo);
-    for (int i = u_light_first; i < u_light_end; i++)
-        c += lighting_unshadowed(i, v_position, n, u_albedo);
+    for (int i = 0; i < lights_count.x; i++)
+        if ((u_lights & (1u << uint(i))) != 0u)
+            c += lighting_unshadowed(i, v_position, n, u_albedo);
     out_color = vec4(c, 1.0);
 }

@@ -37,6 +37,7 @@ static struct {
     render_scene gpu;
     shadow_map_renderer maps;
     shadow_map fitted;     /* light 0's uniform fit */
+    float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
     unsigned readback; /* a framebuffer to read a layer's depth from */
     /* MAP_SIZE^2 depths each: the 2D map's, the array layer's, the 2D map of layer 0's */
     float *expected, *actual, *layer0;
@@ -53,11 +54,10 @@ static int gl_setup(void **state) {
         return -1;
     camera_view view;
     camera_view_compute(&gl.scene.camera, VIEW_ASPECT, &view);
-    int receiver_count =
-        shadow_map_receiver_points(&gl.scene, &view, gl.maps.receivers, SHADOW_MAP_MAX_RECEIVER_POINTS);
+    int receiver_count = technique_receiver_points(&gl.scene, &view, gl.receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
     gl.fitted.size = MAP_SIZE;
     if (receiver_count == 0 ||
-        !shadow_map_fit_uniform(&gl.scene, 0, &gl.fitted, (const float(*)[3])gl.maps.receivers, receiver_count) ||
+        !shadow_map_fit_uniform(&gl.scene, 0, &gl.fitted, (const float(*)[3])gl.receivers, receiver_count) ||
         gl.fitted.kind != SHADOW_MAP_2D)
         return -1;
     glGenFramebuffers(1, &gl.readback);

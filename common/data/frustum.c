@@ -121,3 +121,68 @@ void frustum_look_along(const float eye[3], const float direction[3], mat4 view)
     glm_vec3_add((float *)eye, (float *)direction, target);
     glm_lookat((float *)eye, target, up, view);
 }
+
+/* Face 2k + 1 is the box's +axis-k face, 2k its -axis-k face. */
+static void frustum_box_face(const vec3 lo, const vec3 hi, int face, vec4 out) {
+    int axis = face / 2;
+    float sign = face & 1 ? 1.0f : -1.0f;
+    glm_vec4_zero(out);
+    out[axis] = sign;
+    out[3] = -sign * (face & 1 ? hi[axis] : lo[axis]);
+}
+
+int frustum_light_hull(const float light[4], const vec3 lo, const vec3 hi, vec4 planes[FRUSTUM_HULL_MAX_PLANES]) {
+    enum { FACES = 6 };
+    bool towards[FACES];
+    int n = 0;
+    for (int face = 0; face < FACES; face++) {
+        vec4 plane;
+        frustum_box_face(lo, hi, face, plane);
+        towards[face] = glm_vec4_dot(plane, (float *)light) > 0;
+        if (!towards[face])
+            glm_vec4_copy(plane, planes[n++]);
+    }
+    vec3 center;
+    glm_vec3_center((float *)lo, (float *)hi, center);
+    /* The edges along axis k, between the faces of the other two axes. */
+    for (int k = 0; k < 3; k++) {
+        int a = (k + 1) % 3, b = (k + 2) % 3;
+        for (int side = 0; side < 4; side++) {
+            int face_a = 2 * a + (side & 1), face_b = 2 * b + (side >> 1);
+            if (towards[face_a] == towards[face_b])
+                continue;
+            vec3 start, end, edge, to_light, normal;
+            start[k] = lo[k];
+            end[k] = hi[k];
+            start[a] = end[a] = side & 1 ? hi[a] : lo[a];
+            start[b] = end[b] = side & 2 ? hi[b] : lo[b];
+            glm_vec3_sub(end, start, edge);
+            glm_vec3_scale(start, light[3], to_light);
+            glm_vec3_sub((float *)light, to_light, to_light);
+            glm_vec3_cross(edge, to_light, normal);
+            float length = glm_vec3_norm(normal);
+            if (!(length > 0))
+                continue; /* the light on the edge's line: the faces bound the hull */
+            glm_vec3_scale(normal, 1.0f / length, normal);
+            float offset = -glm_vec3_dot(normal, start);
+            if (glm_vec3_dot(normal, center) + offset > 0) {
+                glm_vec3_negate(normal);
+                offset = -offset;
+            }
+            glm_vec4(normal, offset, planes[n++]);
+        }
+    }
+    return n;
+}
+
+bool frustum_planes_box_outside(const vec4 *planes, int count, const vec3 lo, const vec3 hi, float margin) {
+    for (int i = 0; i < count; i++) {
+        /* The corner farthest inside the plane: beyond it, all are. */
+        float nearest = planes[i][3];
+        for (int k = 0; k < 3; k++)
+            nearest += planes[i][k] * (planes[i][k] > 0 ? lo[k] : hi[k]);
+        if (nearest > margin)
+            return true;
+    }
+    return false;
+}

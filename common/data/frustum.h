@@ -38,6 +38,23 @@ int frustum_box_part(const mat4 view_projection, const vec3 corners[8], const ve
  * culling needs: a box that meets the frustum is never outside, though a
  * box beside a frustum's corner may not be found outside. */
 bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 hi);
+/* The convex hull of a light and the box lo..hi, as planes (xyz: the unit
+ * outward normal, w: the offset; a point p is inside where n.p + w <= 0),
+ * at most FRUSTUM_HULL_MAX_PLANES of them; returns how many. The light is
+ * homogeneous (scene_light_homogeneous): w = 1 a point, w = 0 a point at
+ * infinity towards xyz, and the hull is then the box swept towards it.
+ * The planes are the box's faces that turn away from the light and, through
+ * each edge between a face turned towards it and one turned away, the
+ * plane through that edge and the light. A caster wholly outside the hull
+ * of a light and the receivers it might shadow cannot shadow them: every
+ * segment from the light to a receiver point lies inside (Doom 3's caster
+ * culling; Lengyel, "The mechanics of robust stencil shadows", 2002). */
+#define FRUSTUM_HULL_MAX_PLANES 18
+int frustum_light_hull(const float light[4], const vec3 lo, const vec3 hi, vec4 planes[FRUSTUM_HULL_MAX_PLANES]);
+/* The box lo..hi lies wholly outside the convex region of `planes`: all
+ * its corners beyond one plane by more than `margin` (world units).
+ * Conservative like frustum_box_outside. */
+bool frustum_planes_box_outside(const vec4 *planes, int count, const vec3 lo, const vec3 hi, float margin);
 /* Bounds of points in the space of `view`. */
 void frustum_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]);
 /* A view from `eye` looking along `direction` (any up that is not along it). */

@@ -542,6 +542,40 @@ float scene_light_range_window(const scene_light *l, float distance) {
     return w * w;
 }
 
+bool scene_light_reaches_box(const scene_light *l, const float lo[3], const float hi[3]) {
+    if (l->type == SCENE_LIGHT_DIRECTIONAL)
+        return true;
+    /* The range: the box's nearest point to the light. */
+    float nearest_sq = 0;
+    for (int k = 0; k < 3; k++) {
+        float d = fmaxf(fmaxf(lo[k] - l->position[k], 0), l->position[k] - hi[k]);
+        nearest_sq += d * d;
+    }
+    float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
+    if (l->range > 0 && nearest_sq > range * range)
+        return false;
+    if (l->type != SCENE_LIGHT_SPOT)
+        return true;
+    /* The cone against the box's bounding sphere: the sphere meets the cone
+     * when the angle from the axis to its centre is at most the cone's
+     * half-angle plus the angle the sphere subtends. */
+    float center[3], to_center[3], radius_sq = 0, distance_sq = 0;
+    for (int k = 0; k < 3; k++) {
+        center[k] = 0.5f * (lo[k] + hi[k]);
+        radius_sq += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+        to_center[k] = center[k] - l->position[k];
+        distance_sq += to_center[k] * to_center[k];
+    }
+    if (distance_sq <= radius_sq)
+        return true; /* the light is inside the sphere */
+    float distance = sqrtf(distance_sq), axis_cos = 0;
+    for (int k = 0; k < 3; k++)
+        axis_cos += to_center[k] * l->direction[k] / distance;
+    float axis_angle = acosf(fminf(fmaxf(axis_cos, -1), 1));
+    float subtended = asinf(sqrtf(radius_sq) / distance);
+    return axis_angle <= glm_rad(l->outer_angle_deg) + subtended + SCENE_REACH_ANGLE_MARGIN_RAD;
+}
+
 void scene_light_homogeneous(const scene_light *l, float out[4]) {
     bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
     for (int i = 0; i < 3; i++)

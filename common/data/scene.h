@@ -126,6 +126,18 @@ void scene_free(scene *s);
  * computes the same; the light reaches where this is above 0. */
 float scene_light_range_window(const scene_light *l, float distance);
 
+/* Whether light l can reach any point of the box lo..hi: within its range
+ * (a sphere) and inside a spot's outer cone; a directional light, or a
+ * point light without a range, reaches everything. Conservative, by the
+ * margins SCENE_REACH_*: false means every point of the box gets exactly
+ * 0 from the light, in lighting.glsl as here, so skipping the light there
+ * changes no pixel. */
+bool scene_light_reaches_box(const scene_light *l, const float lo[3], const float hi[3]);
+/* The reach test's margins: the range grows by this fraction, the cone by
+ * this angle, far more than float rounding in the shader's test. */
+#define SCENE_REACH_RANGE_MARGIN 1e-3f
+#define SCENE_REACH_ANGLE_MARGIN_RAD 1e-3f
+
 /* A light as a homogeneous point: (position, 1), or (towards the light, 0)
  * for a directional light, a point at infinity. */
 void scene_light_homogeneous(const scene_light *l, float out[4]);

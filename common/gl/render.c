@@ -134,8 +134,7 @@ bool render_scene_create(render_scene *r, const scene *s) {
         return false;
     }
     r->lit_ambient = glGetUniformLocation(r->lit.id, "u_ambient");
-    r->lit_light_first = glGetUniformLocation(r->lit.id, "u_light_first");
-    r->lit_light_end = glGetUniformLocation(r->lit.id, "u_light_end");
+    r->lit_lights = glGetUniformLocation(r->lit.id, "u_lights");
     return context_gl_ok("render_scene_create");
 }
 
@@ -171,15 +170,14 @@ void render_scene_destroy(render_scene *r) {
     *r = (render_scene){0};
 }
 
-void render_use_lit(const render_scene *r, const camera_view *v, int light_first, int light_end, bool ambient) {
+void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
     render_program_use(&r->lit, v);
     glUniform1f(r->lit_ambient, ambient ? 1.0f : 0.0f);
-    glUniform1i(r->lit_light_first, light_first);
-    glUniform1i(r->lit_light_end, light_end);
+    glUniform1ui(r->lit_lights, lights);
 }
 
-void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask) {
-    render_use_lit(r, v, 0, r->scene->light_count, true);
+void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights) {
+    render_use_lit(r, v, lights, true);
     render_draw_objects(r, &r->lit, mask);
 }
 

@@ -53,7 +53,7 @@ typedef struct render_scene {
     bool *in_view;       /* one per scene object: render_cull_view's mask */
     unsigned lights_buffer;
     render_program lit;
-    int lit_ambient, lit_light_first, lit_light_end;
+    int lit_ambient, lit_lights;
     bool inject_gl_error; /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
 
@@ -64,11 +64,20 @@ typedef struct render_scene {
 #define RENDER_INJECT_GL_ERROR_ENV "SHADOWS_TEST_INJECT_GL_ERROR"
 
 /* The program-wide skips, each a toggle (--no-NAME) where zero means on;
- * no_skip (--no-skip) turns every one off. */
+ * no_skip (--no-skip) turns every one off. What each skips is in
+ * technique.h (technique_frame); none changes a pixel. */
 typedef struct render_skips {
     bool no_skip;
-    bool no_view_cull; /* --no-view-cull */
+    bool no_view_cull;   /* --no-view-cull: camera passes draw objects outside the view */
+    bool no_light_reach; /* --no-light-reach: lights that reach nothing visible still render */
+    bool no_caster_cull; /* --no-caster-cull: every caster casts for every light */
+    bool no_cache;       /* --no-cache: maps and volumes are made again every frame */
 } render_skips;
+
+/* A set of lights as bits: bit l is light l (render_use_lit). */
+#define RENDER_LIGHT_BIT(l) (1u << (l))
+#define RENDER_ALL_LIGHTS(count) ((count) >= 32 ? ~0u : RENDER_LIGHT_BIT(count) - 1u)
+_Static_assert(SCENE_MAX_LIGHTS <= 32, "a light set is 32 bits");
 
 bool render_scene_create(render_scene *r, const scene *s);
 void render_scene_update_lights(const render_scene *r, int visibility_of);
@@ -92,13 +101,14 @@ bool render_view_culling(const render_skips *skips);
  * many objects are in the mask. */
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips);
 
-/* Binds the lit program for lights [light_first, light_end), with or
+/* Binds the lit program for the set `lights` (RENDER_LIGHT_BIT), with or
  * without the ambient term. */
-void render_use_lit(const render_scene *r, const camera_view *v, int light_first, int light_end, bool ambient);
-/* The scene lit by every light, nothing shadowed: the cost floor, which
- * culls as the techniques' camera passes do (mask: the frame's in_view,
- * NULL: all), so that ratios to it measure shadows, not culling. */
-void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask);
+void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
+/* The scene lit by the set `lights`, nothing shadowed: the cost floor,
+ * which skips as the techniques' camera passes do (mask: the frame's
+ * in_view, NULL: all; lights: those that reach the view), so that ratios
+ * to it measure shadows, not culling. */
+void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights);
 void render_reset_state(void);
 
 #endif

@@ -1,6 +1,7 @@
 #include "technique.h"
 
 #include <glad/gl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,4 +61,158 @@ bool technique_render_frame(const technique *t, const technique_frame *f, const 
     t->render(f);
     render_reset_state();
     return context_gl_ok(t->name);
+}
+
+/* ---- skips ---- */
+
+bool technique_light_on(const technique_frame *f, int l) { return (f->lights & RENDER_LIGHT_BIT(l)) != 0; }
+
+void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
+    const scene_light *l = &f->gpu->scene->lights[light];
+    *out = (technique_hull){.light = light};
+    vec3 lo, hi;
+    glm_vec3_copy((float *)f->receivers_lo, lo);
+    glm_vec3_copy((float *)f->receivers_hi, hi);
+    if (l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0) {
+        /* Receivers beyond the range take nothing from this light. */
+        float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmaxf(lo[k], l->position[k] - range);
+            hi[k] = fminf(hi[k], l->position[k] + range);
+        }
+    }
+    out->empty = !(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]);
+    if (out->empty)
+        return;
+    float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]), reach = 0;
+    for (int k = 0; k < 3; k++)
+        reach = fmaxf(reach, fmaxf(fabsf(lo[k]), fabsf(hi[k])));
+    if (l->type != SCENE_LIGHT_DIRECTIONAL)
+        for (int k = 0; k < 3; k++)
+            size = fmaxf(size, fabsf(l->position[k] - 0.5f * (lo[k] + hi[k])));
+    out->margin = FRUSTUM_BOX_TOLERANCE * size + FRUSTUM_FLOAT_TOLERANCE * reach;
+    float homogeneous[4];
+    scene_light_homogeneous(l, homogeneous);
+    out->plane_count = frustum_light_hull(homogeneous, lo, hi, out->planes);
+}
+
+bool technique_caster_needed(const technique_frame *f, const technique_hull *hull, int object) {
+    const scene_object *o = &f->gpu->scene->objects[object];
+    if (!o->casts)
+        return false;
+    bool needed = !f->cull_casters;
+    if (!needed && !hull->empty) {
+        vec3 lo, hi;
+        scene_object_world_bounds(o, lo, hi);
+        needed = !frustum_planes_box_outside((const vec4 *)hull->planes, hull->plane_count, lo, hi, hull->margin);
+    }
+    if (needed)
+        f->counts->casters_drawn[hull->light]++;
+    else
+        f->counts->casters_culled[hull->light]++;
+    return needed;
+}
+
+/* ---- the host ---- */
+
+bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips) {
+    h->technique = t;
+    h->gpu = gpu;
+    h->skips = skips;
+    h->started = false;
+    return technique_init(t, gpu);
+}
+
+void technique_host_stop(technique_host *h) { h->technique->destroy(); }
+
+/* Whether a light moved in any way a shadow depends on (not its colour). */
+static bool technique_light_moved(const scene_light *a, const scene_light *b) {
+    return a->type != b->type || !glm_vec3_eqv((float *)a->position, (float *)b->position) ||
+           !glm_vec3_eqv((float *)a->direction, (float *)b->direction) || a->outer_angle_deg != b->outer_angle_deg ||
+           a->inner_angle_deg != b->inner_angle_deg || a->range != b->range;
+}
+
+static technique_changes technique_host_changes(technique_host *h, const camera_view *view) {
+    const scene *s = h->gpu->scene;
+    bool everything = !h->started || h->skips->no_skip || h->skips->no_cache;
+    technique_changes c = {.scene = everything, .camera = everything};
+    if (everything)
+        c.lights = RENDER_ALL_LIGHTS(s->light_count);
+    if (!everything && memcmp(h->last_view_projection, view->view_projection, sizeof(mat4)) != 0)
+        c.camera = true;
+    for (int l = 0; !everything && l < s->light_count; l++)
+        if (technique_light_moved(&h->last_lights[l], &s->lights[l]))
+            c.lights |= RENDER_LIGHT_BIT(l);
+    h->started = true;
+    memcpy(h->last_view_projection, view->view_projection, sizeof(mat4));
+    memcpy(h->last_lights, s->lights, sizeof h->last_lights);
+    return c;
+}
+
+int technique_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points) {
+    vec3 frustum[8];
+    frustum_corners(view->view_projection, frustum);
+    int n = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        n += frustum_box_part(view->view_projection, (const vec3 *)frustum, lo, hi, points + n, max_points - n);
+    }
+    return n;
+}
+
+/* The receivers the camera sees, over every receiver (not the view mask:
+ * the points must not depend on a skip), and their bounds. */
+static void technique_host_receivers(technique_host *h, const camera_view *view, technique_frame *f) {
+    int n = technique_receiver_points(h->gpu->scene, view, h->receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
+    f->receivers = (const float(*)[3])h->receivers;
+    f->receiver_count = n;
+    glm_vec3_fill(f->receivers_lo, INFINITY);
+    glm_vec3_fill(f->receivers_hi, -INFINITY);
+    for (int i = 0; i < n; i++) {
+        glm_vec3_minv(f->receivers_lo, h->receivers[i], f->receivers_lo);
+        glm_vec3_maxv(f->receivers_hi, h->receivers[i], f->receivers_hi);
+    }
+}
+
+/* The lights that reach an object the camera sees. */
+static unsigned technique_host_lights(const technique_host *h) {
+    const scene *s = h->gpu->scene;
+    unsigned all = RENDER_ALL_LIGHTS(s->light_count);
+    if (h->skips->no_skip || h->skips->no_light_reach)
+        return all;
+    unsigned lights = 0;
+    for (int i = 0; i < s->object_count && lights != all; i++) {
+        if (!h->gpu->in_view[i])
+            continue;
+        vec3 lo, hi;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        for (int l = 0; l < s->light_count; l++)
+            if (!(lights & RENDER_LIGHT_BIT(l)) && scene_light_reaches_box(&s->lights[l], lo, hi))
+                lights |= RENDER_LIGHT_BIT(l);
+    }
+    return lights;
+}
+
+bool technique_host_frame(technique_host *h, const camera_view *view, const target *target, double time,
+                          int visibility_of) {
+    const scene *s = h->gpu->scene;
+    h->counts = (technique_counts){0};
+    h->objects_in_view = render_cull_view(h->gpu, view, h->skips);
+    technique_frame f = {.gpu = h->gpu,
+                         .view = view,
+                         .in_view = h->gpu->in_view,
+                         .lights = technique_host_lights(h),
+                         .cull_casters = !h->skips->no_skip && !h->skips->no_caster_cull,
+                         .changed = technique_host_changes(h, view),
+                         .counts = &h->counts,
+                         .width = target->width,
+                         .height = target->height,
+                         .time = time};
+    technique_host_receivers(h, view, &f);
+    for (int l = 0; l < s->light_count; l++)
+        h->counts.lights_skipped += !technique_light_on(&f, l);
+    return technique_render_frame(h->technique, &f, target, visibility_of);
 }

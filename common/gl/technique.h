@@ -41,8 +41,31 @@
 #include <stdbool.h>
 #include "camera.h"
 #include "flags.h"
+#include "frustum.h"
 #include "render.h"
 #include "target.h"
+
+/* What changed since the technique's last frame (technique_host_frame
+ * compares): a cache keeps what did not. All set on a technique's first
+ * frame and, with --no-cache, on every frame. */
+typedef struct technique_changes {
+    bool scene;      /* first frame: nothing is cached yet */
+    bool camera;     /* the view moved (camera, zoom, frame size) */
+    unsigned lights; /* RENDER_LIGHT_BIT(l): light l moved, turned or changed reach */
+} technique_changes;
+
+/* What the skips saved this frame, for the HUD and --verbose: the host
+ * fills lights_skipped, techniques the rest (casters per light: those
+ * that cast into the light's map or volume, and those culled). */
+typedef struct technique_counts {
+    int lights_skipped;
+    int casters_drawn[SCENE_MAX_LIGHTS], casters_culled[SCENE_MAX_LIGHTS];
+    int layers_rendered, layers_reused; /* map layers: a cube map has six */
+} technique_counts;
+
+/* The receivers the camera sees: the corners of the part of each visible
+ * receiver's box inside the view frustum. Enough for a few hundred boxes. */
+#define TECHNIQUE_MAX_RECEIVER_POINTS 16384
 
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
@@ -51,9 +74,44 @@ typedef struct technique_frame {
      * culling off; NULL: all): a technique culls its camera passes with
      * it (render_draw_objects), never a pass that sees from elsewhere. */
     const bool *in_view;
+    /* The lights that reach a visible object (scene_light_reaches_box);
+     * every light with --no-light-reach. A technique renders neither a
+     * shadow pass nor a lighting pass for the others: they add exactly 0
+     * to every visible pixel (technique_light_on). */
+    unsigned lights;
+    const float (*receivers)[3];
+    int receiver_count;
+    float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
+    bool cull_casters; /* technique_caster_needed culls (--no-caster-cull: never) */
+    technique_changes changed;
+    technique_counts *counts;
     int width, height;
     double time; /* seconds */
 } technique_frame;
+
+/* The corners of the part of every receiver's box of `s` inside the
+ * frustum of `view`, at most max_points; returns how many (the frame's
+ * receivers). */
+int technique_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points);
+
+/* Light l reaches the view this frame. */
+bool technique_light_on(const technique_frame *f, int l);
+
+/* Caster culling for one light: the hull of the light and the visible
+ * receivers it can reach (their bounds, clipped to its range), outside
+ * which a caster shadows nothing the camera sees (frustum_light_hull). */
+typedef struct technique_hull {
+    int light;
+    bool empty; /* no visible receiver in reach: no caster is needed */
+    vec4 planes[FRUSTUM_HULL_MAX_PLANES];
+    int plane_count;
+    float margin; /* world units: FRUSTUM_BOX_TOLERANCE of the hull's size */
+} technique_hull;
+void technique_light_hull(const technique_frame *f, int light, technique_hull *out);
+/* Object i casts and its shadow may reach a visible receiver for the
+ * hull's light (always, when f->cull_casters is off); counts it, drawn or
+ * culled, in f->counts. */
+bool technique_caster_needed(const technique_frame *f, const technique_hull *hull, int object);
 
 typedef struct technique {
     const char *name;  /* "planar": its binary, its registry key */
@@ -100,5 +158,30 @@ bool technique_init(const technique *t, const render_scene *gpu);
  * The caller has set f->gpu->scene's lights for this frame. */
 bool technique_render_frame(const technique *t, const technique_frame *f, const target *target,
                             int visibility_of);
+
+/* The frame's owner (the app, the benchmark): one technique on one scene,
+ * the skips it runs under, and what the last frame saw, so that each frame
+ * tells the technique what changed. */
+typedef struct technique_host {
+    const technique *technique;
+    render_scene *gpu;
+    const render_skips *skips;
+    technique_counts counts; /* the last frame's */
+    int objects_in_view;     /* the last frame's, from render_cull_view */
+    bool started;            /* a frame was rendered since technique_host_start */
+    mat4 last_view_projection;
+    scene_light last_lights[SCENE_MAX_LIGHTS];
+    float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
+} technique_host;
+
+/* technique_init of t on gpu, under skips; the next frame is its first. */
+bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips);
+/* The technique's destroy. */
+void technique_host_stop(technique_host *h);
+/* One frame: the view culled (render_cull_view), the lights that reach it,
+ * the receivers it sees, what changed since the last frame, then
+ * technique_render_frame. The caller has set gpu->scene's lights. */
+bool technique_host_frame(technique_host *h, const camera_view *view, const target *target, double time,
+                          int visibility_of);
 
 #endif

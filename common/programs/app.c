@@ -13,6 +13,7 @@
 #include "flags.h"
 #include "hud.h"
 #include "image.h"
+#include "motion.h"
 #include "path.h"
 #include "shader.h"
 #include "target.h"
@@ -24,7 +25,6 @@
 #define APP_MAX_TECHNIQUES 9 /* keys 1-9 */
 #define APP_MAX_GALLERY_SCENES 256
 #define APP_TECHNIQUE_FLAG_WIDTH 26 /* one column for every technique in --help */
-#define APP_ANIMATE_RAD_PER_S 0.5f
 #define APP_LIGHT_STEP_RAD 0.05f
 #define APP_ORBIT_RAD_PER_PIXEL 0.008f
 
@@ -37,7 +37,8 @@ static struct {
     int backend; /* context_backend */
     int width, height;
     int frames; /* 0: not given, so one frame headless or a window */
-    bool verbose, animate;
+    bool verbose, animate; /* animate: --motion light, the space key flips it */
+    int motion;            /* motion_kind */
     render_skips skips;
     const char *scene_path, *screenshot, *dump_dir, *shader_dir;
     int light;
@@ -49,9 +50,10 @@ static struct {
     target target;
     scene scene;
     render_scene gpu;
-    scene_light base_lights[SCENE_MAX_LIGHTS]; /* before animation */
+    scene_light base_lights[SCENE_MAX_LIGHTS]; /* before motion */
+    scene_camera base_camera;                  /* before motion: what dragging moves */
+    technique_host host;
     double time;
-    int objects_in_view; /* the last frame's, from render_cull_view */
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
@@ -79,11 +81,19 @@ static const flags_param app_flags[] = {
      .value_name = "DIR"},
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
      .choices = app.technique_names},
-    {"animate", "turn the lights about the camera target over time", 0, FLAGS_SWITCH, .on = &app.animate},
-    {"skip", "no skips at all (view culling...): every pass draws the\nwhole scene; the same picture at the full cost", 0,
+    {"motion", "what moves over time: nothing, the lights (about the\ncamera target) or the camera (about its target)", 0,
+     FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
+    {"animate", "--motion light (space in the window)", 0, FLAGS_SWITCH, .on = &app.animate},
+    {"skip", "no skips at all: every pass draws the whole scene,\nevery light, every caster, every frame anew; the same\npicture at the full cost", 0,
      FLAGS_TOGGLE, .disabled = &app.skips.no_skip},
     {"view-cull", "camera passes draw objects outside the view too", GLFW_KEY_K, FLAGS_TOGGLE,
      .disabled = &app.skips.no_view_cull},
+    {"light-reach", "lights that reach nothing visible render anyway", GLFW_KEY_U, FLAGS_TOGGLE,
+     .disabled = &app.skips.no_light_reach},
+    {"caster-cull", "every caster casts for every light, seen or not", GLFW_KEY_X, FLAGS_TOGGLE,
+     .disabled = &app.skips.no_caster_cull},
+    {"cache", "shadow maps and volumes made again every frame", GLFW_KEY_J, FLAGS_TOGGLE,
+     .disabled = &app.skips.no_cache},
     {"gallery", "every technique on every scene, to DIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
      .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
@@ -103,7 +113,8 @@ static void app_usage(void) {
         flags_print_help(stdout, t->params, t->param_count, 6, APP_TECHNIQUE_FLAG_WIDTH);
     }
     printf("window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
-           "        K view culling, H help, F12 screenshot, Esc quits\n");
+           "        K view culling, U light reach, X caster culling, J caching, H help,\n"
+           "        F12 screenshot, Esc quits\n");
 }
 
 /* The app's flags and every technique's in one table, so that a flag
@@ -140,6 +151,7 @@ static bool app_load_scene(const char *path) {
         return false;
     }
     memcpy(app.base_lights, app.scene.lights, sizeof app.base_lights);
+    app.base_camera = app.scene.camera;
     if (!render_scene_create(&app.gpu, &app.scene)) {
         scene_free(&app.scene);
         return false;
@@ -152,29 +164,22 @@ static void app_unload_scene(void) {
     scene_free(&app.scene);
 }
 
+static motion_kind app_motion(void) { return app.animate ? MOTION_LIGHT : (motion_kind)app.motion; }
+
+/* This frame's lights and camera (app.time), and the view. */
 static void app_view(camera_view *view) {
-    camera_view_compute(&app.scene.camera, (float)app.target.width / (float)app.target.height, view);
+    scene *s = &app.scene;
+    motion_lights(app_motion(), app.time, app.base_camera.target, app.base_lights, s->light_count, s->lights);
+    motion_camera(app_motion(), app.time, &app.base_camera, &s->camera);
+    camera_view_compute(&s->camera, (float)app.target.width / (float)app.target.height, view);
 }
 
 /* visibility_of: -1 for the picture, K for light K's visibility (see
  * capture.h). */
 static bool app_render_frame(int visibility_of) {
-    scene *s = &app.scene;
-    for (int i = 0; i < s->light_count; i++) {
-        s->lights[i] = app.base_lights[i];
-        if (app.animate)
-            camera_orbit_light(&s->lights[i], s->camera.target, (float)app.time * APP_ANIMATE_RAD_PER_S, 0);
-    }
     camera_view view;
     app_view(&view);
-    app.objects_in_view = render_cull_view(&app.gpu, &view, &app.skips);
-    const technique_frame frame = {.gpu = &app.gpu,
-                                   .view = &view,
-                                   .in_view = app.gpu.in_view,
-                                   .width = app.target.width,
-                                   .height = app.target.height,
-                                   .time = app.time};
-    return technique_render_frame(app_technique(), &frame, &app.target, visibility_of);
+    return technique_host_frame(&app.host, &view, &app.target, app.time, visibility_of);
 }
 
 static bool app_save_screenshot(const char *path) {
@@ -190,7 +195,7 @@ static bool app_save_screenshot(const char *path) {
 
 static bool app_start_technique(int index) {
     app.current = index;
-    return technique_init(app_technique(), &app.gpu);
+    return technique_host_start(&app.host, app_technique(), &app.gpu, &app.skips);
 }
 
 static bool app_dump(const char *dir) {
@@ -227,7 +232,7 @@ static bool app_run_gallery(void) {
             path_stem(scene_path, name, sizeof name);
             snprintf(path, sizeof path, "%s/%s_%s.png", dir, app.techniques[t]->name, name);
             ok = app_start_technique(t) && app_run_headless(1, path);
-            app_technique()->destroy();
+            technique_host_stop(&app.host);
             if (ok)
                 printf("%s\n", path);
             const technique *lecture = app.techniques[t];
@@ -235,7 +240,7 @@ static bool app_run_gallery(void) {
                 snprintf(path, sizeof path, "%s/%s-lecture_%s.png", dir, lecture->name, name);
                 ok = technique_apply_config(lecture, lecture->gallery_config) && app_start_technique(t) &&
                      app_run_headless(1, path);
-                app_technique()->destroy();
+                technique_host_stop(&app.host);
                 ok = technique_apply_config(lecture, "") && ok;
                 if (ok)
                     printf("%s\n", path);
@@ -248,14 +253,35 @@ static bool app_run_gallery(void) {
     return true;
 }
 
-/* View culling's state for the HUD and --verbose: what the last frame's
- * mask drew and left out, or OFF. */
-static void app_culling_text(char *out, size_t size) {
-    if (render_view_culling(&app.skips))
-        snprintf(out, size, "objects drawn %d / culled %d", app.objects_in_view,
-                 app.scene.object_count - app.objects_in_view);
+/* The skips' state for the HUD and --verbose: each one's key, whether it
+ * is on, and what it saved in the last frame. */
+static int app_skips_text(char *out, size_t size) {
+    const render_skips *k = &app.skips;
+    const technique_counts *c = &app.host.counts;
+    bool all = !k->no_skip;
+    const char *off = "OFF";
+    int n = snprintf(out, size, "skips%s   [K] view culling: ", all ? "" : " (--no-skip: all OFF)");
+#define APP_TEXT(...) (n += n < (int)size ? snprintf(out + n, size - (size_t)n, __VA_ARGS__) : 0)
+    if (all && !k->no_view_cull)
+        APP_TEXT("objects drawn %d / culled %d", app.host.objects_in_view,
+                 app.scene.object_count - app.host.objects_in_view);
     else
-        snprintf(out, size, "OFF");
+        APP_TEXT("%s", off);
+    APP_TEXT("   [U] light reach: ");
+    if (all && !k->no_light_reach)
+        APP_TEXT("lights skipped %d of %d", c->lights_skipped, app.scene.light_count);
+    else
+        APP_TEXT("%s", off);
+    APP_TEXT("\n[X] caster culling: %s", all && !k->no_caster_cull ? "casters drawn / culled per light:" : off);
+    for (int l = 0; all && !k->no_caster_cull && l < app.scene.light_count; l++)
+        APP_TEXT(" %d: %d/%d", l, c->casters_drawn[l], c->casters_culled[l]);
+    APP_TEXT("   [J] caching: ");
+    if (all && !k->no_cache)
+        APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);
+    else
+        APP_TEXT("%s", off);
+#undef APP_TEXT
+    return n < (int)size ? n : (int)size - 1;
 }
 
 /* ---- the window ---- */
@@ -263,13 +289,13 @@ static void app_culling_text(char *out, size_t size) {
 static void app_hud(int width, int height) {
     const technique *t = app_technique();
     char text[2048];
-    int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s\n",
+    int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s%s\n",
                      app.current + 1, app.technique_count, t->name, t->title, app.scene_path, app.target.width,
-                     app.target.height, app.frame_ms, app.animate ? "   animating" : "");
+                     app.target.height, app.frame_ms, app_motion() ? "   moving: " : "",
+                     app_motion() ? motion_names[app_motion()] : "");
     if (n < (int)sizeof text) {
-        char culling[96];
-        app_culling_text(culling, sizeof culling);
-        n += snprintf(text + n, sizeof text - (size_t)n, "[K] view culling: %s\n", culling);
+        n += app_skips_text(text + n, sizeof text - (size_t)n);
+        n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
     if (t->describe && n < (int)sizeof text) {
         t->describe(text + n, sizeof text - (size_t)n);
@@ -290,7 +316,7 @@ static void app_hud(int width, int height) {
     if (n < (int)sizeof text)
         snprintf(text + n, sizeof text - (size_t)n, "%s",
                  app.show_help ? "\ndrag: orbit   scroll: zoom   arrows: move light   space: animate light\n"
-                                 "1-9: technique   K: view culling   F12: screenshot   H: hide help   Esc: quit"
+                                 "1-9: technique   K U X J: skips   F12: screenshot   H: hide help   Esc: quit"
                                : "\nH: help");
     hud_draw(text, width, height);
 }
@@ -298,7 +324,7 @@ static void app_hud(int width, int height) {
 static void app_switch_technique(int index) {
     if (index == app.current || index >= app.technique_count)
         return;
-    app_technique()->destroy();
+    technique_host_stop(&app.host);
     if (!app_start_technique(index))
         glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
 }
@@ -333,7 +359,7 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
         return;
     }
     for (int i = 0; i < app.scene.light_count; i++)
-        camera_orbit_light(&app.base_lights[i], app.scene.camera.target, yaw, pitch);
+        camera_orbit_light(&app.base_lights[i], app.base_camera.target, yaw, pitch);
 }
 
 static void app_on_mouse_button(GLFWwindow *w, int button, int action, int mods) {
@@ -348,7 +374,7 @@ static void app_on_cursor(GLFWwindow *w, double x, double y) {
     (void)w;
     if (!app.dragging)
         return;
-    camera_orbit(&app.scene.camera, -(float)(x - app.drag_x) * APP_ORBIT_RAD_PER_PIXEL,
+    camera_orbit(&app.base_camera, -(float)(x - app.drag_x) * APP_ORBIT_RAD_PER_PIXEL,
                  (float)(y - app.drag_y) * APP_ORBIT_RAD_PER_PIXEL, 1);
     app.drag_x = x;
     app.drag_y = y;
@@ -356,7 +382,7 @@ static void app_on_cursor(GLFWwindow *w, double x, double y) {
 
 static void app_on_scroll(GLFWwindow *w, double dx, double dy) {
     (void)w, (void)dx;
-    camera_orbit(&app.scene.camera, 0, 0, powf(0.9f, (float)dy));
+    camera_orbit(&app.base_camera, 0, 0, powf(0.9f, (float)dy));
 }
 
 static void app_on_resize(GLFWwindow *w, int width, int height) {
@@ -397,7 +423,7 @@ static bool app_run_window(int frames) {
         double now = glfwGetTime();
         /* The clock lives here, not in techniques: it only advances the
          * animation and smooths the HUD's frame time. */
-        if (frames <= 0 && app.animate)
+        if (frames <= 0 && app_motion())
             app.time += now - last;
         app.frame_ms += ((now - last) * 1000.0 - app.frame_ms) * 0.1;
         last = now;
@@ -438,11 +464,11 @@ static bool app_run(void) {
             fprintf(stderr, "%s: %s\n", app_technique()->name, line);
         }
         if (ok && app.verbose) {
-            char culling[96];
-            app_culling_text(culling, sizeof culling);
-            fprintf(stderr, "view culling: %s\n", culling);
+            char skips[512];
+            app_skips_text(skips, sizeof skips);
+            fprintf(stderr, "%s\n", skips);
         }
-        app_technique()->destroy();
+        technique_host_stop(&app.host);
         app_unload_scene();
     }
     target_destroy(&app.target);

@@ -68,6 +68,7 @@ static struct {
     render_scene gpu;
     camera_view view;
     const technique *current;
+    technique_host host;
     unsigned query;
     bool software; /* a CPU rasterizer: timer queries miss its work */
     bench_row rows[BENCH_MAX_ROWS];
@@ -128,14 +129,7 @@ static double bench_now_ms(void) {
 }
 
 static bool bench_render_frame(int visibility_of) {
-    render_cull_view(&bench.gpu, &bench.view, &bench.skips);
-    const technique_frame frame = {.gpu = &bench.gpu,
-                                   .view = &bench.view,
-                                   .in_view = bench.gpu.in_view,
-                                   .width = bench.width,
-                                   .height = bench.height,
-                                   .time = 0};
-    return technique_render_frame(bench.current, &frame, &bench.target, visibility_of);
+    return technique_host_frame(&bench.host, &bench.view, &bench.target, 0, visibility_of);
 }
 
 static int bench_compare_doubles(const void *a, const void *b) {
@@ -209,10 +203,10 @@ static bool bench_configuration(const char *scene_name, const char *config, cons
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config,
                       .cost_floor = bench.current->cost_floor};
     dump_frame dump;
-    bool ok = technique_apply_config(bench.current, config) && technique_init(bench.current, &bench.gpu) &&
+    bool ok = technique_apply_config(bench.current, config) && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips) &&
               bench_time_frames(row) &&
               capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, &dump);
-    bench.current->destroy();
+    technique_host_stop(&bench.host);
     if (!ok)
         return false;
     ok = shadowdiff_compare(reference, &dump, NULL, &row->error, NULL);

@@ -265,29 +265,32 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     GLint target_framebuffer, viewport[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
     glGetIntegerv(GL_VIEWPORT, viewport);
-    int receiver_count = shadow_map_receiver_points(s, f->view, r->receivers, SHADOW_MAP_MAX_RECEIVER_POINTS);
     bool fitted[SCENE_MAX_LIGHTS] = {false};
-    for (int l = 0; l < s->light_count && receiver_count > 0; l++) {
+    for (int l = 0; l < s->light_count && f->receiver_count > 0; l++) {
+        if (!technique_light_on(f, l))
+            continue;
         shadow_map *m = &r->maps[l];
         m->size = shadow_map_settings_size(settings);
-        fitted[l] = fit(f, l, m, (const float(*)[3])r->receivers, receiver_count);
+        fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
         if (fitted[l])
             shadow_map_render_depth(r, settings, f->gpu, m);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     /* Ambient, then each light added where its map lets it through. */
-    render_use_lit(f->gpu, f->view, 0, 0, true);
+    render_use_lit(f->gpu, f->view, 0, true);
     render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     for (int l = 0; l < s->light_count; l++) {
+        if (!technique_light_on(f, l))
+            continue;
         if (fitted[l]) {
             shadow_map_add_light(r, settings, f, l, &r->maps[l]);
         } else { /* nothing visible receives: no map needed, nothing shadowed */
-            render_use_lit(f->gpu, f->view, l, l + 1, false);
+            render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
             render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
         }
     }

@@ -10,8 +10,8 @@
  * where techniques differ is how a light's map is placed.
  *
  *   shadow_map_render(renderer, settings, frame, fit)
- *     1. the receiver points: the corners of the part of every receiver's
- *        box inside the camera's frustum (shadow_map_receiver_points);
+ *     1. the receiver points: the frame's (technique.h), the corners of the
+ *        part of every receiver's box inside the camera's frustum;
  *     2. per light: fit(frame, light, map, receivers) places the map, and
  *        the depth pass renders it; a fit that returns false means nothing
  *        can be shadowed, and the light is added unshadowed;
@@ -243,14 +243,10 @@ typedef struct shadow_map_inset_program {
     int map, cube_map, cube, orthographic, near_plane, far_plane;
 } shadow_map_inset_program;
 
-/* The points shadows are decided for; enough for 50 receivers' parts. */
-#define SHADOW_MAP_MAX_RECEIVER_POINTS 8192
-
 /* Room in the overlay buffer: the 24 line ends of a frustum's 12 edges. */
 #define SHADOW_MAP_OVERLAY_VERTICES 24
 
-/* A technique's maps: their GL objects, and the receiver points of the
- * frame (scratch space, kept here rather than in a static buffer). */
+/* A technique's maps and their GL objects. */
 typedef struct shadow_map_renderer {
     render_program depth;
     shadow_map_camera_program camera_2d, camera_cube;
@@ -258,7 +254,6 @@ typedef struct shadow_map_renderer {
     shadow_map_inset_program inset;
     unsigned framebuffer, overlay_vao, overlay_buffer;
     shadow_map maps[SCENE_MAX_LIGHTS];
-    float receivers[SHADOW_MAP_MAX_RECEIVER_POINTS][3];
 } shadow_map_renderer;
 
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
@@ -283,9 +278,6 @@ const char *shadow_map_kind_name(shadow_map_kind kind);
 
 /* ---- fitting (shadow_map_fit.c) ---- */
 
-/* The corners of the part of every receiver's box of `s` inside the
- * frustum of `view`; returns how many (at most max_points). */
-int shadow_map_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points);
 /* The uniform placement of light `light` of `s` (see the top). */
 bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
                             int receiver_count);

@@ -21,20 +21,6 @@
 #define SHADOW_MAP_SPOT_MAX_HALF_ANGLE_DEG 85.0f
 #define SHADOW_MAP_CUBE_FACE_FOV_DEG 90.0f
 
-int shadow_map_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points) {
-    vec3 frustum[8];
-    frustum_corners(view->view_projection, frustum);
-    int n = 0;
-    for (int i = 0; i < s->object_count; i++) {
-        vec3 lo, hi;
-        if (!s->objects[i].receives)
-            continue;
-        scene_object_world_bounds(&s->objects[i], lo, hi);
-        n += frustum_box_part(view->view_projection, (const vec3 *)frustum, lo, hi, points + n, max_points - n);
-    }
-    return n;
-}
-
 /* Directional: an orthographic box around the visible receivers, deepened
  * towards the light to every caster whose box overlaps them seen from the
  * light. Spot: the cone, from the nearest such caster to the farthest
