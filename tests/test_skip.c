@@ -1,12 +1,16 @@
 /* Skips never change a decision (README, "Skips"): view culling leaves out
- * only objects with no pixel on screen, so with skips on and with
- * --no-skip every technique's dump (visibility, depth, object ids, the
- * picture) is the same byte for byte, on the standard scenes, long_view
- * and the 1000-object city. And the culling does cull: most of the city
- * lies outside its street-level view, nothing of simple does.
+ * only objects with no pixel on screen, a skipped light adds 0 to every
+ * visible pixel, a culled caster shadows no visible receiver and a cache
+ * holds what would be made again. So with skips on and with --no-skip
+ * every technique's dump (visibility, depth, object ids, the picture) is
+ * the same byte for byte, on the standard scenes, long_view, the
+ * 1000-object city and the dense scene, static and over frames in which
+ * the light or the camera moves. And the skips do skip: most of the city
+ * lies outside its street-level view and most of its lights out of reach
+ * of it; nothing of simple is culled. Each switch turns its skip off.
  *
- * The box test itself (frustum_box_outside) is checked in process first:
- * in front, behind the eye, beyond the far plane, across the frustum. */
+ * The geometry is checked in process first: the box and sphere against a
+ * frustum, the hull of a light and a box, a light's reach. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -17,6 +21,7 @@
 #include <string.h>
 
 #include "frustum.h"
+#include "scene.h"
 #include "path.h"
 #include "registry.h"
 #include "support.h"
@@ -25,16 +30,37 @@
 #define SCENES "assets/scenes"
 #define CITY "city_1000"
 #define CITY_OBJECTS 1001 /* the ground and 1000 buildings */
+#define CITY_LIGHTS 7
+#define CITY_SKIPPED_LIGHT "4" /* a point light far to the left of the street */
 #define MAX_DUMP_BYTES (64 << 20)
 /* A test frustum: 90 degrees, square, near 1, far 100, looking down -z. */
 #define TEST_FOV_DEG 90.0f
 #define TEST_NEAR 1.0f
 #define TEST_FAR 100.0f
 
-static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view", CITY};
+/* Every technique dumps each case with skips on and with --no-skip. The
+ * caches work across frames, so the moving cases render several frames
+ * (the dump is the last one's); the city's are small to keep the run short. */
+static const struct {
+    const char *scene, *flags;
+} cases[] = {
+    {"simple", ""},
+    {"bunny", ""},
+    {"teapot", ""},
+    {"long_view", ""},
+    {CITY, ""},
+    {"simple", "--frames 3 --motion light"},
+    {"simple", "--frames 3 --motion camera"},
+    {CITY, "--size 320x180 --frames 3"},
+    {CITY, "--size 320x180 --frames 3 --motion light"},
+    {CITY, "--size 320x180 --frames 3 --motion camera"},
+    /* A light the view's objects are out of reach of: skipped, and its
+     * dump is still the same (it adds 0 everywhere on screen). */
+    {CITY, "--size 320x180 --light " CITY_SKIPPED_LIGHT},
+    {"dense", "--size 320x180 --frames 2 --motion light"},
+};
 /* What a dump holds that a technique or the capture decides. */
 static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "ids.pfm", "color.png"};
-
 
 static void test_box_outside(void **state) {
     (void)state;
@@ -59,8 +85,73 @@ static void test_box_outside(void **state) {
     }
 }
 
-static void dump_dir(const char *technique, const char *scene, const char *skips, char *out, size_t size) {
-    snprintf(out, size, OUT "/%s_%s_%s", technique, scene, skips);
+/* The hull of a light and a receiver box: what may shadow the box is
+ * inside, what cannot is outside (frustum_light_hull). */
+static void test_light_hull(void **state) {
+    (void)state;
+    static const vec3 receiver_lo = {-1, 0, -1}, receiver_hi = {1, 0.1f, 1};
+    static const struct {
+        const char *what;
+        float light[4];
+        vec3 lo, hi;
+        bool outside;
+    } cases[] = {
+        {"between the light and the box", {0, 10, 0, 1}, {-0.2f, 4, -0.2f}, {0.2f, 5, 0.2f}, false},
+        {"beside the cone to the box", {0, 10, 0, 1}, {3, 4, -0.2f}, {3.4f, 5, 0.2f}, true},
+        {"beyond the light", {0, 10, 0, 1}, {-0.2f, 12, -0.2f}, {0.2f, 13, 0.2f}, true},
+        {"below the box", {0, 10, 0, 1}, {-0.2f, -2, -0.2f}, {0.2f, -1, 0.2f}, true},
+        {"straddling the cone's edge", {0, 10, 0, 1}, {0.5f, 4, -0.2f}, {1.5f, 5, 0.2f}, false},
+        {"in the sun's way, far up", {0, 1, 0, 0}, {-0.2f, 500, -0.2f}, {0.2f, 501, 0.2f}, false},
+        {"beside the sun's column", {0, 1, 0, 0}, {2, 5, -0.2f}, {3, 6, 0.2f}, true},
+        {"slanted sun: up its slope", {1, 1, 0, 0}, {4.5f, 5, -0.2f}, {5.5f, 6, 0.2f}, false},
+        {"slanted sun: the other way", {1, 1, 0, 0}, {-5.5f, 5, -0.2f}, {-4.5f, 6, 0.2f}, true},
+        {"light inside the box: the box itself", {0, 0.05f, 0, 1}, {2, -1, -1}, {3, 1, 1}, true},
+        {"light inside the box, a caster in it", {0, 0.05f, 0, 1}, {0.5f, 0, 0}, {0.6f, 0.05f, 0.1f}, false},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        vec4 planes[FRUSTUM_HULL_MAX_PLANES];
+        int n = frustum_light_hull(cases[i].light, receiver_lo, receiver_hi, planes);
+        assert_true(n > 0 && n <= FRUSTUM_HULL_MAX_PLANES);
+        if (frustum_planes_box_outside((const vec4 *)planes, n, cases[i].lo, cases[i].hi, 1e-5f) != cases[i].outside)
+            fail_msg("%s: expected %s the hull", cases[i].what, cases[i].outside ? "outside" : "inside");
+    }
+}
+
+/* A light reaches a box within its range and a spot's cone; never
+ * nothing for a directional light (scene_light_reaches_box), and a range
+ * sphere beside the view is outside it (frustum_sphere_outside). */
+static void test_light_reach(void **state) {
+    (void)state;
+    static const vec3 lo = {-1, 0, -1}, hi = {1, 1, 1};
+    static const struct {
+        const char *what;
+        scene_light light;
+        bool reaches;
+    } cases[] = {
+        {"point within range", {.type = SCENE_LIGHT_POINT, .position = {0, 5, 0}, .range = 4.5f}, true},
+        {"point out of range", {.type = SCENE_LIGHT_POINT, .position = {0, 5, 0}, .range = 3.5f}, false},
+        {"point without a range", {.type = SCENE_LIGHT_POINT, .position = {0, 500, 0}}, true},
+        {"spot aimed at it",
+         {.type = SCENE_LIGHT_SPOT, .position = {0, 5, 0}, .direction = {0, -1, 0}, .outer_angle_deg = 10}, true},
+        {"spot aimed away",
+         {.type = SCENE_LIGHT_SPOT, .position = {0, 5, 0}, .direction = {0, 1, 0}, .outer_angle_deg = 60}, false},
+        {"spot aimed beside",
+         {.type = SCENE_LIGHT_SPOT, .position = {10, 5, 0}, .direction = {0, -1, 0}, .outer_angle_deg = 30}, false},
+        {"directional", {.type = SCENE_LIGHT_DIRECTIONAL, .direction = {0, 1, 0}}, true},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++)
+        if (scene_light_reaches_box(&cases[i].light, lo, hi) != cases[i].reaches)
+            fail_msg("%s: expected %s", cases[i].what, cases[i].reaches ? "reaches" : "does not reach");
+    mat4 projection;
+    glm_perspective(glm_rad(TEST_FOV_DEG), 1, TEST_NEAR, TEST_FAR, projection);
+    assert_false(frustum_sphere_outside(projection, (vec3){0, 0, -10}, 1));
+    assert_false(frustum_sphere_outside(projection, (vec3){12, 0, -10}, 3)); /* across the right plane */
+    assert_true(frustum_sphere_outside(projection, (vec3){20, 0, -10}, 3));
+    assert_true(frustum_sphere_outside(projection, (vec3){0, 0, 10}, 3)); /* behind the eye */
+}
+
+static void dump_dir(const char *technique, size_t c, const char *skips, char *out, size_t size) {
+    snprintf(out, size, OUT "/%s_%zu_%s_%s", technique, c, cases[c].scene, skips);
 }
 
 static bool same_file(const char *a_dir, const char *b_dir, const char *name) {
@@ -75,25 +166,27 @@ static bool same_file(const char *a_dir, const char *b_dir, const char *name) {
     return same;
 }
 
-/* Every technique on every scene: skips on and --no-skip dump the same. */
+/* Every technique on every case: skips on and --no-skip dump the same. */
 static void test_dumps_identical_with_and_without_skips(void **state) {
     (void)state;
     for (int t = 0; t < registry_technique_count; t++) {
         const char *technique = registry_techniques[t]->name;
-        for (size_t s = 0; s < sizeof scenes / sizeof *scenes; s++) {
-            char scene[256], on[256], off[256];
-            snprintf(scene, sizeof scene, SCENES "/%s.json", scenes[s]);
-            dump_dir(technique, scenes[s], "on", on, sizeof on);
-            dump_dir(technique, scenes[s], "off", off, sizeof off);
-            assert_int_equal(support_dump(technique, scene, "", on), 0);
-            assert_int_equal(support_dump(technique, scene, "--no-skip", off), 0);
+        for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+            char scene[256], on[256], off[256], off_flags[256];
+            snprintf(scene, sizeof scene, SCENES "/%s.json", cases[c].scene);
+            snprintf(off_flags, sizeof off_flags, "%s --no-skip", cases[c].flags);
+            dump_dir(technique, c, "on", on, sizeof on);
+            dump_dir(technique, c, "off", off, sizeof off);
+            assert_int_equal(support_dump(technique, scene, cases[c].flags, on), 0);
+            assert_int_equal(support_dump(technique, scene, off_flags, off), 0);
             for (size_t f = 0; f < sizeof dump_files / sizeof *dump_files; f++) {
                 if (!same_file(on, off, dump_files[f]))
-                    fail_msg("%s on %s: %s differs between %s and %s", technique, scenes[s], dump_files[f], on, off);
+                    fail_msg("%s on %s %s: %s differs between %s and %s", technique, cases[c].scene,
+                             cases[c].flags, dump_files[f], on, off);
             }
         }
-        printf("    %s: %zu scenes, dumps identical with and without skips\n", technique,
-               sizeof scenes / sizeof *scenes);
+        printf("    %s: %zu cases, dumps identical with and without skips\n", technique,
+               sizeof cases / sizeof *cases);
     }
 }
 
@@ -130,15 +223,46 @@ static void test_simple_nothing_culled(void **state) {
     assert_int_equal(culled, 0);
 }
 
-/* Each switch turns culling off: its own and the program-wide one. */
-static void test_switches_turn_culling_off(void **state) {
+/* Most of the city's lights are out of the street's reach. */
+static void test_city_lights_skipped(void **state) {
     (void)state;
-    static const char *const flags[] = {"--no-view-cull", "--no-skip"};
-    for (size_t i = 0; i < sizeof flags / sizeof *flags; i++) {
-        const char *line = culling_line(CITY, flags[i]);
+    const char *line = culling_line(CITY, "");
+    const char *reach = line ? strstr(line, "light reach: ") : NULL;
+    int skipped, count;
+    assert_non_null(reach);
+    assert_int_equal(sscanf(reach, "light reach: lights skipped %d of %d", &skipped, &count), 2);
+    printf("    %s: lights skipped %d of %d\n", CITY, skipped, count);
+    assert_int_equal(count, CITY_LIGHTS);
+    assert_true(skipped >= 3 && skipped < count);
+    reach = strstr(culling_line("simple", ""), "light reach: ");
+    assert_non_null(reach);
+    assert_int_equal(sscanf(reach, "light reach: lights skipped %d of %d", &skipped, &count), 2);
+    assert_int_equal(skipped, 0);
+}
+
+/* Each switch turns its skip off: its own and the program-wide one. */
+static void test_switches_turn_skips_off(void **state) {
+    (void)state;
+    static const struct {
+        const char *flag, *off;
+    } switches[] = {
+        {"--no-view-cull", "view culling: OFF"},
+        {"--no-light-reach", "light reach: OFF"},
+        {"--no-caster-cull", "caster culling: OFF"},
+        {"--no-cache", "caching: OFF"},
+    };
+    for (size_t i = 0; i < sizeof switches / sizeof *switches; i++) {
+        const char *line = culling_line(CITY, switches[i].flag);
         assert_non_null(line);
-        assert_true(strncmp(line, "view culling: OFF", strlen("view culling: OFF")) == 0);
+        for (size_t k = 0; k < sizeof switches / sizeof *switches; k++)
+            if ((strstr(line, switches[k].off) != NULL) != (k == i))
+                fail_msg("%s: \"%s\" expected %s", switches[i].flag, switches[k].off, k == i ? "" : "absent");
     }
+    const char *line = culling_line(CITY, "--no-skip");
+    assert_non_null(line);
+    for (size_t k = 0; k < sizeof switches / sizeof *switches; k++)
+        if (!strstr(line, switches[k].off))
+            fail_msg("--no-skip: \"%s\" expected", switches[k].off);
 }
 
 int main(void) {
@@ -146,7 +270,10 @@ int main(void) {
         cmocka_unit_test(test_box_outside),
         cmocka_unit_test(test_city_mostly_culled),
         cmocka_unit_test(test_simple_nothing_culled),
-        cmocka_unit_test(test_switches_turn_culling_off),
+        cmocka_unit_test(test_light_hull),
+        cmocka_unit_test(test_light_reach),
+        cmocka_unit_test(test_city_lights_skipped),
+        cmocka_unit_test(test_switches_turn_skips_off),
         cmocka_unit_test(test_dumps_identical_with_and_without_skips),
     };
     return cmocka_run_group_tests_name("skips", tests, NULL, NULL);

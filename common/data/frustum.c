@@ -45,6 +45,22 @@ bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 h
     return false;
 }
 
+/* Each clip plane w + x >= 0, w - x >= 0, ... is a world plane, the sum or
+ * difference of two rows of the matrix: normalized, its value at the
+ * centre is the centre's distance inside it. */
+bool frustum_sphere_outside(const mat4 view_projection, const float center[3], float radius) {
+    for (int k = 0; k < 6; k++) {
+        float sign = k & 1 ? -1.0f : 1.0f;
+        vec4 plane;
+        for (int c = 0; c < 4; c++)
+            plane[c] = view_projection[c][3] + sign * view_projection[c][k / 2];
+        float length = glm_vec3_norm(plane);
+        if (length > 0 && (glm_vec3_dot(plane, (float *)center) + plane[3]) / length < -radius)
+            return true;
+    }
+    return false;
+}
+
 /* The vertices of the meeting of two convex bodies are the corners of each
  * inside the other and the crossings of each one's edges with the other's
  * faces. */
@@ -138,7 +154,8 @@ int frustum_light_hull(const float light[4], const vec3 lo, const vec3 hi, vec4 
     for (int face = 0; face < FACES; face++) {
         vec4 plane;
         frustum_box_face(lo, hi, face, plane);
-        towards[face] = glm_vec4_dot(plane, (float *)light) > 0;
+        /* Not glm_vec4_dot: the light need not be 16-byte aligned. */
+        towards[face] = plane[0] * light[0] + plane[1] * light[1] + plane[2] * light[2] + plane[3] * light[3] > 0;
         if (!towards[face])
             glm_vec4_copy(plane, planes[n++]);
     }

@@ -55,6 +55,9 @@ int frustum_light_hull(const float light[4], const vec3 lo, const vec3 hi, vec4 
  * its corners beyond one plane by more than `margin` (world units).
  * Conservative like frustum_box_outside. */
 bool frustum_planes_box_outside(const vec4 *planes, int count, const vec3 lo, const vec3 hi, float margin);
+/* The sphere lies wholly outside the frustum: beyond one of its planes by
+ * more than its radius. Conservative, as frustum_box_outside. */
+bool frustum_sphere_outside(const mat4 view_projection, const float center[3], float radius);
 /* Bounds of points in the space of `view`. */
 void frustum_view_bounds(const mat4 view, const float (*points)[3], int n, float lo[3], float hi[3]);
 /* A view from `eye` looking along `direction` (any up that is not along it). */

@@ -149,24 +149,87 @@ static technique_changes technique_host_changes(technique_host *h, const camera_
     return c;
 }
 
+/* The part of o's box inside the view's frustum (frustum corners
+ * `frustum`): its corners at out, at most TECHNIQUE_MAX_PART_POINTS; none
+ * when the box is outside the frustum (the test view culling uses, applied
+ * whatever the skips, so that what follows never depends on them). */
+static int technique_visible_part(const scene_object *o, const camera_view *view, const vec3 frustum[8],
+                                  float (*out)[3]) {
+    vec3 lo, hi;
+    scene_object_world_bounds(o, lo, hi);
+    if (frustum_box_outside(view->view_projection, lo, hi))
+        return 0;
+    return frustum_box_part(view->view_projection, frustum, lo, hi, out, TECHNIQUE_MAX_PART_POINTS);
+}
+
+/* Appends a part's points to points[*n], as far as max_points allows. */
+static void technique_append_points(float (*points)[3], int *n, int max_points, const float (*part)[3], int count) {
+    if (count > max_points - *n) {
+        fprintf(stderr, "technique: more than %d receiver points: the frame's receivers are cut short\n", max_points);
+        count = max_points - *n;
+    }
+    memcpy(points + *n, part, (size_t)count * sizeof *part);
+    *n += count;
+}
+
 int technique_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points) {
     vec3 frustum[8];
+    float part[TECHNIQUE_MAX_PART_POINTS][3];
     frustum_corners(view->view_projection, frustum);
     int n = 0;
-    for (int i = 0; i < s->object_count; i++) {
-        vec3 lo, hi;
-        if (!s->objects[i].receives)
-            continue;
-        scene_object_world_bounds(&s->objects[i], lo, hi);
-        n += frustum_box_part(view->view_projection, (const vec3 *)frustum, lo, hi, points + n, max_points - n);
-    }
+    for (int i = 0; i < s->object_count; i++)
+        if (s->objects[i].receives)
+            technique_append_points(points, &n, max_points, (const float(*)[3])part,
+                                    technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part));
     return n;
 }
 
-/* The receivers the camera sees, over every receiver (not the view mask:
- * the points must not depend on a skip), and their bounds. */
-static void technique_host_receivers(technique_host *h, const camera_view *view, technique_frame *f) {
-    int n = technique_receiver_points(h->gpu->scene, view, h->receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
+/* The lights worth testing against the visible objects: all but those
+ * whose range sphere lies outside the view's frustum. */
+static unsigned technique_lights_near_view(const scene *s, const camera_view *view) {
+    unsigned lights = 0;
+    for (int l = 0; l < s->light_count; l++) {
+        const scene_light *light = &s->lights[l];
+        bool bounded = light->type != SCENE_LIGHT_DIRECTIONAL && light->range > 0;
+        if (!bounded || !frustum_sphere_outside(view->view_projection, light->position,
+                                                light->range * (1 + SCENE_REACH_RANGE_MARGIN)))
+            lights |= RENDER_LIGHT_BIT(l);
+    }
+    return lights;
+}
+
+/* One pass over what the view sees: each object's part inside the frustum
+ * gives the receivers' points (for fitting maps and culling casters) and
+ * the lights that reach something visible (scene_light_reaches_box on the
+ * part's bounds: a light reaching the ground's box somewhere out of view
+ * reaches nothing on screen). */
+static void technique_host_visible(technique_host *h, const camera_view *view, technique_frame *f) {
+    const scene *s = h->gpu->scene;
+    unsigned all = RENDER_ALL_LIGHTS(s->light_count);
+    bool reach_skip = !h->skips->no_skip && !h->skips->no_light_reach;
+    unsigned candidates = reach_skip ? technique_lights_near_view(s, view) : 0, reached = 0;
+    vec3 frustum[8];
+    float part[TECHNIQUE_MAX_PART_POINTS][3];
+    frustum_corners(view->view_projection, frustum);
+    int n = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        int count = technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part);
+        if (count == 0)
+            continue;
+        if (candidates & ~reached) {
+            vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+            for (int k = 0; k < count; k++) {
+                glm_vec3_minv(lo, part[k], lo);
+                glm_vec3_maxv(hi, part[k], hi);
+            }
+            for (int l = 0; l < s->light_count; l++)
+                if ((candidates & ~reached & RENDER_LIGHT_BIT(l)) && scene_light_reaches_box(&s->lights[l], lo, hi))
+                    reached |= RENDER_LIGHT_BIT(l);
+        }
+        if (s->objects[i].receives)
+            technique_append_points(h->receivers, &n, TECHNIQUE_MAX_RECEIVER_POINTS, (const float(*)[3])part, count);
+    }
+    f->lights = reach_skip ? reached : all;
     f->receivers = (const float(*)[3])h->receivers;
     f->receiver_count = n;
     glm_vec3_fill(f->receivers_lo, INFINITY);
@@ -177,25 +240,6 @@ static void technique_host_receivers(technique_host *h, const camera_view *view,
     }
 }
 
-/* The lights that reach an object the camera sees. */
-static unsigned technique_host_lights(const technique_host *h) {
-    const scene *s = h->gpu->scene;
-    unsigned all = RENDER_ALL_LIGHTS(s->light_count);
-    if (h->skips->no_skip || h->skips->no_light_reach)
-        return all;
-    unsigned lights = 0;
-    for (int i = 0; i < s->object_count && lights != all; i++) {
-        if (!h->gpu->in_view[i])
-            continue;
-        vec3 lo, hi;
-        scene_object_world_bounds(&s->objects[i], lo, hi);
-        for (int l = 0; l < s->light_count; l++)
-            if (!(lights & RENDER_LIGHT_BIT(l)) && scene_light_reaches_box(&s->lights[l], lo, hi))
-                lights |= RENDER_LIGHT_BIT(l);
-    }
-    return lights;
-}
-
 bool technique_host_frame(technique_host *h, const camera_view *view, const target *target, double time,
                           int visibility_of) {
     const scene *s = h->gpu->scene;
@@ -204,14 +248,13 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const targ
     technique_frame f = {.gpu = h->gpu,
                          .view = view,
                          .in_view = h->gpu->in_view,
-                         .lights = technique_host_lights(h),
                          .cull_casters = !h->skips->no_skip && !h->skips->no_caster_cull,
                          .changed = technique_host_changes(h, view),
                          .counts = &h->counts,
                          .width = target->width,
                          .height = target->height,
                          .time = time};
-    technique_host_receivers(h, view, &f);
+    technique_host_visible(h, view, &f);
     for (int l = 0; l < s->light_count; l++)
         h->counts.lights_skipped += !technique_light_on(&f, l);
     return technique_render_frame(h->technique, &f, target, visibility_of);

@@ -66,6 +66,9 @@ typedef struct technique_counts {
 /* The receivers the camera sees: the corners of the part of each visible
  * receiver's box inside the view frustum. Enough for a few hundred boxes. */
 #define TECHNIQUE_MAX_RECEIVER_POINTS 16384
+/* The most corners of one box's part inside a frustum: its 8 and the
+ * frustum's 8, and where each one's 12 edges cross the other's 6 faces. */
+#define TECHNIQUE_MAX_PART_POINTS (8 + 8 + 2 * 12 * 6)
 
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
