@@ -551,10 +551,10 @@ static int bench_compare_rows_by_time(const void *a, const void *b) {
 }
 
 /* The techniques the run times, in registry order, into out (room for
- * registry_technique_count); returns how many. */
+ * BENCH_MAX_TECHNIQUES); returns how many. */
 static int bench_selected_techniques(const technique **out) {
     int n = 0;
-    for (int t = 0; t < registry_technique_count; t++)
+    for (int t = 0; t < registry_technique_count && n < BENCH_MAX_TECHNIQUES; t++)
         if (bench_selected(registry_techniques[t]))
             out[n++] = registry_techniques[t];
     return n;
