@@ -113,8 +113,19 @@ else
 	@tests/run.sh $(BUILD) build-san
 endif
 
+# The standard scenes' whole sweeps, nothing moving and the lights moving;
+# then each technique's defaults on the cities and the dense scene, skips on
+# against --no-skip, with time per frame against object count
+# (out/bench/scaling.png, and cities-light/scaling.png with the lights moving).
+BENCH_SCALING_SCENES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000) assets/scenes/dense.json
+BENCH_QUICK := $(if $(filter 1,$(QUICK)),--quick)
 bench: $(PROGRAMS)
-	$(BUILD)/bench $(if $(filter 1,$(QUICK)),--quick)
+	$(BUILD)/bench $(BENCH_QUICK) --motion static --out out/bench/static
+	$(BUILD)/bench $(BENCH_QUICK) --motion light --out out/bench/light
+	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --scaling --motion static --out out/bench \
+		$(BENCH_SCALING_SCENES)
+	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --scaling --motion light \
+		--out out/bench/cities-light $(BENCH_SCALING_SCENES)
 
 # The generated scenes are committed; test_scenegen checks they are what
 # the generator writes.

@@ -1,11 +1,14 @@
 /* Smoke test of the benchmark (make bench QUICK=1): it runs end to end and
- * its outputs exist and are well formed. Nothing about speed is asserted:
- * speed is for `make bench` to show, not for a test to guess. */
+ * its outputs exist and are well formed; the selections (--technique,
+ * --configs), --motion, --skips-compare and --scaling give the rows and
+ * files they say. Nothing about speed is asserted: speed is for `make
+ * bench` to show, not for a test to guess. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,16 +18,35 @@
 #include "support.h"
 
 #define OUT "out/test/bench"
-#define CSV_COLUMNS 15
+/* The selection runs: small and short, on one scene. */
+#define SELECT_OUT OUT "-select"
+#define LIGHT_OUT OUT "-light"
+#define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
+#define CSV_COLUMNS 16
+#define CSV_MAX_ROWS 256
 
 static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view"};
 static char err[65536];
 
+/* The whole --quick run; a static selection of one technique; the lights
+ * moving with skips compared and the scaling plot. */
 static int run_bench(void **state) {
     (void)state;
-    char command[1024];
-    snprintf(command, sizeof command, "rm -rf " OUT " && %s --quick --out " OUT, support_program("bench"));
-    return support_run(command, err, sizeof err);
+    static const char *const runs[][2] = {
+        {OUT, "--quick"},
+        {SELECT_OUT, SMALL_RUN " --technique planar"},
+        {LIGHT_OUT, SMALL_RUN " --motion light --skips-compare --scaling --technique volumes"},
+    };
+    for (size_t i = 0; i < sizeof runs / sizeof *runs; i++) {
+        char command[1024];
+        snprintf(command, sizeof command, "rm -rf %s && %s --out %s %s", runs[i][0], support_program("bench"),
+                 runs[i][0], runs[i][1]);
+        if (support_run(command, err, sizeof err) != 0) {
+            fprintf(stderr, "%s failed:\n%s", command, err);
+            return -1;
+        }
+    }
+    return 0;
 }
 
 static char *read_file(const char *path) {
@@ -51,14 +73,22 @@ static int csv_fields(char *line, char **fields, int max) {
     return n;
 }
 
-static void test_csv_has_every_configuration(void **state) {
-    (void)state;
-    char *text = read_file(OUT "/results.csv");
+/* What the tests look at in a row of results.csv. */
+typedef struct csv_row {
+    char technique[32], parameters[256], motion[16], skips[8];
+} csv_row;
+
+/* Reads results.csv under `dir` into rows (room for CSV_MAX_ROWS), checking
+ * the header and that every row is well formed; returns the row count. */
+static int read_csv(const char *dir, csv_row *rows) {
+    char path[256];
+    snprintf(path, sizeof path, "%s/results.csv", dir);
+    char *text = read_file(path);
     char *rest = text, *line = strtok_r(rest, "\n", &rest);
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
-                              "mae,compared_pixels,renderer,skips");
-    int rows = 0, planar_rows = 0, floor_rows = 0;
+                              "mae,compared_pixels,renderer,motion,skips");
+    int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
         assert_int_equal(csv_fields(line, fields, CSV_COLUMNS + 1), CSV_COLUMNS);
@@ -67,17 +97,111 @@ static void test_csv_has_every_configuration(void **state) {
             double v = strtod(fields[c], &end);
             assert_true(end != fields[c] && *end == '\0' && isfinite(v) && v >= 0);
         }
-        assert_true(atof(fields[3]) > 0);    /* a frame takes time */
+        assert_true(atof(fields[3]) > 0);     /* a frame takes time */
         assert_true(atol(fields[12]) > 1000); /* pixels were compared */
-        assert_string_equal(fields[14], "on"); /* skips are on by default */
-        planar_rows += strcmp(fields[1], "planar") == 0;
-        floor_rows += strcmp(fields[1], "unshadowed") == 0;
-        rows++;
+        assert_true(n < CSV_MAX_ROWS);
+        csv_row *r = &rows[n++];
+        snprintf(r->technique, sizeof r->technique, "%s", fields[1]);
+        snprintf(r->parameters, sizeof r->parameters, "%s", fields[2]);
+        snprintf(r->motion, sizeof r->motion, "%s", fields[14]);
+        snprintf(r->skips, sizeof r->skips, "%s", fields[15]);
+    }
+    return n;
+}
+
+static int count_rows(const csv_row *rows, int n, const char *technique, const char *skips) {
+    int count = 0;
+    for (int i = 0; i < n; i++)
+        count += strcmp(rows[i].technique, technique) == 0 && (!skips || strcmp(rows[i].skips, skips) == 0);
+    return count;
+}
+
+/* The one entry of DIR/reference/ (one scene, one run). */
+static void reference_name(const char *dir, char *name, size_t size) {
+    char path[256];
+    snprintf(path, sizeof path, "%s/reference", dir);
+    DIR *d = opendir(path);
+    assert_non_null(d);
+    int entries = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (e->d_name[0] != '.')
+            snprintf(name, size, "%s", e->d_name), entries++;
+    closedir(d);
+    assert_int_equal(entries, 1);
+}
+
+static void test_csv_has_every_configuration(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(OUT, rows);
+    for (int i = 0; i < n; i++) {
+        assert_string_equal(rows[i].skips, "on"); /* skips are on by default */
+        assert_string_equal(rows[i].motion, "static");
     }
     int scene_count = (int)(sizeof scenes / sizeof *scenes);
+    int planar_rows = count_rows(rows, n, "planar", NULL), floor_rows = count_rows(rows, n, "unshadowed", NULL);
     assert_int_equal(floor_rows, scene_count);
     assert_true(planar_rows >= scene_count * 2);
-    assert_true(rows >= floor_rows + planar_rows);
+    assert_true(n >= floor_rows + planar_rows);
+}
+
+/* --technique planar --configs defaults: planar's defaults and the cost
+ * floor's, nothing else. */
+static void test_selection_keeps_the_floor(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(SELECT_OUT, rows);
+    assert_int_equal(n, 2);
+    assert_int_equal(count_rows(rows, n, "planar", "on"), 1);
+    assert_int_equal(count_rows(rows, n, "unshadowed", "on"), 1);
+    for (int i = 0; i < n; i++) {
+        assert_string_equal(rows[i].parameters, "\"\"");
+        assert_string_equal(rows[i].motion, "static");
+    }
+}
+
+/* --motion light --skips-compare: each configuration skips on then off,
+ * the rows say light, and the reference is of the moved scene: cached
+ * apart from the static one. */
+static void test_light_motion_and_skips_compare(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(LIGHT_OUT, rows);
+    assert_int_equal(n, 4);
+    static const char *const techniques[] = {"volumes", "unshadowed"};
+    for (int t = 0; t < 2; t++) {
+        assert_int_equal(count_rows(rows, n, techniques[t], "on"), 1);
+        assert_int_equal(count_rows(rows, n, techniques[t], "off"), 1);
+    }
+    for (int i = 0; i < n; i++)
+        assert_string_equal(rows[i].motion, "light");
+    char moving[256], still[256];
+    reference_name(LIGHT_OUT, moving, sizeof moving);
+    reference_name(SELECT_OUT, still, sizeof still);
+    assert_string_not_equal(moving, still);
+    assert_non_null(strstr(moving, "light"));
+    char *report = read_file(LIGHT_OUT "/report.md");
+    assert_non_null(strstr(report, "| technique | ms skips on | ms skips off | speed-up |"));
+    assert_non_null(strstr(report, "\n| volumes | "));
+}
+
+static void test_scaling_plot_is_an_image(void **state) {
+    (void)state;
+    int w, h;
+    unsigned char *pixels = image_read_png(LIGHT_OUT "/scaling.png", &w, &h);
+    assert_non_null(pixels);
+    assert_true(w >= 640 && h >= 400);
+    free(pixels);
+}
+
+/* An unknown --technique is a usage error: exit 2, one line naming it. */
+static void test_unknown_technique(void **state) {
+    (void)state;
+    char command[512];
+    snprintf(command, sizeof command, "%s --technique planar nosuch", support_program("bench"));
+    assert_int_equal(support_run(command, err, sizeof err), 2);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "'nosuch'"));
 }
 
 static void test_report_has_a_table_front_and_comparison_per_scene(void **state) {
@@ -118,6 +242,10 @@ int main(void) {
         cmocka_unit_test(test_csv_has_every_configuration),
         cmocka_unit_test(test_report_has_a_table_front_and_comparison_per_scene),
         cmocka_unit_test(test_plots_are_images),
+        cmocka_unit_test(test_selection_keeps_the_floor),
+        cmocka_unit_test(test_light_motion_and_skips_compare),
+        cmocka_unit_test(test_scaling_plot_is_an_image),
+        cmocka_unit_test(test_unknown_technique),
     };
     return cmocka_run_group_tests_name("benchmark smoke test", tests, run_bench, NULL);
 }

@@ -3,20 +3,34 @@
  *
  * For each scene: the ray-traced reference (computed once and cached under
  * OUT/reference/, recomputed when the scene file is newer), then for every
- * registered technique and each of its bench_configs: warm-up frames, then
- * timed frames (GPU time from GL_TIME_ELAPSED queries, CPU time from the
- * clock around the frame and glFinish), then the technique's own dump
+ * selected technique (--technique; the cost floor always, since every
+ * ratio is to it) and each of its bench_configs (--configs defaults: only
+ * its first, ""): warm-up frames, then timed frames (GPU time from
+ * GL_TIME_ELAPSED queries, CPU time from the clock around the frame and
+ * glFinish), then the technique's own dump of the last timed frame
  * compared with the reference (shadowdiff rules). Writes
- *   OUT/results.csv         one row per scene and configuration
+ *   OUT/results.csv         one row per scene, configuration and skips setting
  *   OUT/report.md           a table per scene, its Pareto front, and each
  *                           technique's defaults against its named
  *                           (textbook) configurations
  *   OUT/pareto_SCENE.png    ms per frame against misclassified %, by gnuplot
+ *   OUT/scaling.png         (--scaling) each technique's defaults, ms per
+ *                           frame against the scene's object count
  * Timings are medians and 90th percentiles of the timed frames: single
  * frames on a shared machine are noise.
  *
- * Skips (render.h: view culling) are on, as in the app; --no-skip turns
- * them off, and results.csv's `skips` column says which it was.
+ * Motion (--motion, motion.h, the app's paths): frame k of a configuration,
+ * warm-up frames first, is rendered at time k / BENCH_FRAME_RATE with the
+ * lights or the camera moved from the scene's own, so that caches are
+ * measured as the app exercises them; every configuration starts again at
+ * frame 0. The reference is ray traced for the last timed frame's time, the
+ * frame that is dumped, and cached under a name that says the motion and
+ * that time.
+ *
+ * Skips (render.h) are on, as in the app; --no-skip turns them off, and
+ * --skips-compare runs every configuration twice, skips on then off, each
+ * row's ratio to the floor of its own skips setting; results.csv's `skips`
+ * column says which a row ran under.
  */
 #include <glad/gl.h>
 #include <errno.h>
@@ -30,22 +44,33 @@
 #include "capture.h"
 #include "context.h"
 #include "flags.h"
+#include "motion.h"
 #include "path.h"
 #include "raytrace.h"
 #include "registry.h"
 #include "shader.h"
 #include "shadowdiff.h"
 
-#define BENCH_MAX_ROWS 256
+#define BENCH_MAX_ROWS 512
 #define BENCH_MAX_FRAMES 1000
 #define BENCH_MAX_SCENES 16
+#define BENCH_MAX_TECHNIQUES 16
+/* Frame k is at k / BENCH_FRAME_RATE seconds, as the app's headless frames
+ * are (app.c), so a bench frame is the frame `--frames` renders there. */
+#define BENCH_FRAME_RATE 60.0
+#define BENCH_SCALING_MARGIN 1.5
+
+/* --configs: the default first (a FLAGS_CHOICE list). */
+typedef enum bench_configs { BENCH_CONFIGS_ALL, BENCH_CONFIGS_DEFAULTS } bench_configs;
+static const char *const bench_config_choices[] = {"all", "defaults", NULL};
 
 typedef struct bench_row {
     const char *scene, *technique, *config;
     bool cost_floor; /* the technique is the registry's cost floor */
+    bool no_skip;    /* ran under --no-skip */
     double gpu_median, gpu_p90, cpu_median, cpu_p90;
     double frame_ms; /* what the ratio, the front and the plot use */
-    double ratio;
+    double ratio;    /* to the floor of the same scene and skips setting */
     shadowdiff_result error;
 } bench_row;
 
@@ -53,22 +78,34 @@ static struct {
     /* flags (zero: the default, which --quick makes small) */
     const char *out_dir;
     int width, height, frames, warmup, light_samples;
-    bool quick, verbose;
-    render_skips skips;
+    int motion;  /* motion_kind */
+    int configs; /* bench_configs */
+    bool quick, verbose, no_skip, skips_compare, scaling;
     const char *scenes[BENCH_MAX_SCENES];
     char scene_names[BENCH_MAX_SCENES][128];
+    int scene_objects[BENCH_MAX_SCENES]; /* the scaling plot's x */
     int scene_count;
+    const char *techniques[BENCH_MAX_TECHNIQUES]; /* --technique: none means all */
+    int technique_count;
     char default_scenes[4][PATH_MAX]; /* the standard scenes */
     const char *shader_dir;
     char default_shader_dir[PATH_MAX];
+    /* the skips settings each configuration runs under: no_skip false
+     * (skips on) then true with --skips-compare, else --no-skip's */
+    bool no_skip_settings[2];
+    int setting_count;
     /* run */
     context ctx;
     target target;
     scene scene;
+    scene_light base_lights[SCENE_MAX_LIGHTS]; /* the scene's own, before motion */
+    scene_camera base_camera;
     render_scene gpu;
     camera_view view;
+    double time; /* of the frame being rendered, seconds */
     const technique *current;
     technique_host host;
+    render_skips skips;
     unsigned query;
     bool software; /* a CPU rasterizer: timer queries miss its work */
     bench_row rows[BENCH_MAX_ROWS];
@@ -87,25 +124,65 @@ static const flags_param bench_flags[] = {
      .max = BENCH_MAX_FRAMES, .what = "a count"},
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
+    {"motion", "what moves: nothing, the lights (as --animate turns them)\nor the camera; frame k is at k/60 s", 0,
+     FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
+    {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
+     .choices = bench_config_choices},
     {"quick", "small and short: a smoke test of the whole pipeline", 0, FLAGS_SWITCH, .on = &bench.quick},
     {"skip", "no skips at all (view culling...): every pass draws the\nwhole scene; results.csv's skips column says off", 0, FLAGS_TOGGLE,
-     .disabled = &bench.skips.no_skip},
+     .disabled = &bench.no_skip},
+    {"skips-compare", "every configuration twice, skips on then --no-skip;\nthe report compares them", 0,
+     FLAGS_SWITCH, .on = &bench.skips_compare},
+    {"scaling", "also OUT/scaling.png: ms per frame against the scenes'\nobject counts", 0, FLAGS_SWITCH,
+     .on = &bench.scaling},
     {"shader-dir", "where the GLSL files are", 0, FLAGS_STRING, .text = &bench.shader_dir, .value_name = "DIR"},
     {"verbose", "print the backend and GL renderer", 0, FLAGS_SWITCH, .on = &bench.verbose},
+    {"technique", "only these (and the cost floor): the rest of the\ncommand line, so put it last", 0, FLAGS_LIST,
+     .items = bench.techniques, .count = &bench.technique_count, .min = 1, .max = BENCH_MAX_TECHNIQUES,
+     .what = "technique names", .value_name = "NAME..."},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
+
+static const technique *bench_find_technique(const char *name) {
+    for (int t = 0; t < registry_technique_count; t++)
+        if (strcmp(registry_techniques[t]->name, name) == 0)
+            return registry_techniques[t];
+    return NULL;
+}
+
+/* Whether the run times t: every technique without --technique; the cost
+ * floor always. */
+static bool bench_selected(const technique *t) {
+    bool named = bench.technique_count == 0 || t->cost_floor;
+    for (int i = 0; i < bench.technique_count && !named; i++)
+        named = strcmp(bench.techniques[i], t->name) == 0;
+    return named;
+}
+
+static int bench_config_count(const technique *t) {
+    return bench.configs == BENCH_CONFIGS_DEFAULTS ? 1 : t->bench_config_count;
+}
 
 static int bench_parse_flags(int argc, char **argv) {
     int count = (int)(sizeof bench_flags / sizeof *bench_flags);
     int status = flags_parse("bench", bench_flags, count, argc - 1, argv + 1);
     if (status == FLAGS_HELP_ASKED) {
-        printf("usage: bench [flags] [SCENE.json...]\n"
+        printf("usage: bench [flags] [SCENE.json...] [--technique NAME...]\n"
                "Times every technique over its parameter sweep and measures its error against the\n"
-               "ray-traced reference, on each scene (default: the standard scenes and long_view).\n");
+               "ray-traced reference, on each scene (default: the standard scenes and long_view).\n"
+               "Techniques:");
+        for (int t = 0; t < registry_technique_count; t++)
+            printf(" %s%s", registry_techniques[t]->name, registry_techniques[t]->cost_floor ? " (cost floor)" : "");
+        printf(".\n");
         flags_print_help(stdout, bench_flags, count, 2, 0);
     }
     if (status)
         return status;
+    for (int i = 0; i < bench.technique_count; i++)
+        if (!bench_find_technique(bench.techniques[i]))
+            return flags_usage_error("bench", "--technique: unknown technique", bench.techniques[i]);
+    if (bench.skips_compare && bench.no_skip)
+        return flags_usage_error("bench", "--skips-compare runs with and without skips: drop", "--no-skip");
     if (!bench.out_dir)
         bench.out_dir = "out/bench";
     /* Zero means the default, which --quick makes small. */
@@ -119,6 +196,9 @@ static int bench_parse_flags(int argc, char **argv) {
         bench.warmup = bench.quick ? 2 : 5;
     if (!bench.light_samples)
         bench.light_samples = bench.quick ? 16 : 256;
+    bench.no_skip_settings[bench.setting_count++] = bench.no_skip;
+    if (bench.skips_compare)
+        bench.no_skip_settings[bench.setting_count++] = true;
     return 0;
 }
 
@@ -128,8 +208,22 @@ static double bench_now_ms(void) {
     return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
 }
 
+/* The scene's lights and camera as the motion has them at `time`, from
+ * the scene's own, and the view; the frames that follow are at `time`. */
+static void bench_move(double time) {
+    scene *s = &bench.scene;
+    bench.time = time;
+    motion_lights((motion_kind)bench.motion, time, bench.base_camera.target, bench.base_lights, s->light_count,
+                  s->lights);
+    motion_camera((motion_kind)bench.motion, time, &bench.base_camera, &s->camera);
+    camera_view_compute(&s->camera, (float)bench.width / (float)bench.height, &bench.view);
+}
+
+/* The time of the last timed frame: the one dumped and ray traced. */
+static double bench_last_time(void) { return (bench.warmup + bench.frames - 1) / BENCH_FRAME_RATE; }
+
 static bool bench_render_frame(int visibility_of) {
-    return technique_host_frame(&bench.host, &bench.view, &bench.target, 0, visibility_of);
+    return technique_host_frame(&bench.host, &bench.view, &bench.target, bench.time, visibility_of);
 }
 
 static int bench_compare_doubles(const void *a, const void *b) {
@@ -145,11 +239,15 @@ static double bench_percentile(const double *sorted, int n, double p) {
 
 static bool bench_time_frames(bench_row *row) {
     static double gpu[BENCH_MAX_FRAMES], cpu[BENCH_MAX_FRAMES];
-    for (int i = 0; i < bench.warmup; i++)
+    int frame = 0;
+    for (; frame < bench.warmup; frame++) {
+        bench_move(frame / BENCH_FRAME_RATE);
         if (!bench_render_frame(-1))
             return false;
+    }
     glFinish();
-    for (int i = 0; i < bench.frames; i++) {
+    for (int i = 0; i < bench.frames; i++, frame++) {
+        bench_move(frame / BENCH_FRAME_RATE);
         double start = bench_now_ms();
         glBeginQuery(GL_TIME_ELAPSED, bench.query);
         bool ok = bench_render_frame(-1);
@@ -177,12 +275,17 @@ static bool bench_newer(const char *path, const char *than) {
     return stat(path, &a) == 0 && stat(than, &b) == 0 && a.st_mtime >= b.st_mtime;
 }
 
-/* The reference of light 0, from the cache when it is newer than the scene. */
+/* The reference of light 0 for the last timed frame, from the cache when
+ * it is newer than the scene. A moving run's cache name adds the motion
+ * and the time: the reference is of that moved scene. */
 static bool bench_reference(const char *scene_path, const char *name, dump_frame *reference) {
     char dir[PATH_MAX], meta[PATH_MAX + 16];
-    snprintf(dir, sizeof dir, "%s/reference/%s_%dx%d_%d", bench.out_dir, name, bench.width, bench.height,
-             bench.light_samples);
+    int n = snprintf(dir, sizeof dir, "%s/reference/%s_%dx%d_%d", bench.out_dir, name, bench.width, bench.height,
+                     bench.light_samples);
+    if (bench.motion != MOTION_STATIC && n > 0 && (size_t)n < sizeof dir)
+        snprintf(dir + n, sizeof dir - (size_t)n, "_%s_%.3fs", motion_names[bench.motion], bench_last_time());
     snprintf(meta, sizeof meta, "%s/meta.json", dir);
+    bench_move(bench_last_time());
     if (bench_newer(meta, scene_path) && dump_read(reference, dir)) {
         fprintf(stderr, "  reference: cached in %s\n", dir);
         return true;
@@ -193,18 +296,21 @@ static bool bench_reference(const char *scene_path, const char *name, dump_frame
            dump_write(reference, dir);
 }
 
-/* Times and measures one configuration of the current technique. */
-static bool bench_configuration(const char *scene_name, const char *config, const dump_frame *reference) {
+/* Times and measures one configuration of the current technique under the
+ * skips setting no_skip. */
+static bool bench_configuration(const char *scene_name, const char *config, bool no_skip,
+                                const dump_frame *reference) {
     if (bench.row_count == BENCH_MAX_ROWS) {
         fprintf(stderr, "bench: more than %d configurations\n", BENCH_MAX_ROWS);
         return false;
     }
     bench_row *row = &bench.rows[bench.row_count];
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config,
-                      .cost_floor = bench.current->cost_floor};
+                      .cost_floor = bench.current->cost_floor, .no_skip = no_skip};
+    bench.skips = (render_skips){.no_skip = no_skip};
     dump_frame dump;
-    bool ok = technique_apply_config(bench.current, config) && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips) &&
-              bench_time_frames(row) &&
+    bool ok = technique_apply_config(bench.current, config) &&
+              technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips) && bench_time_frames(row) &&
               capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, &dump);
     technique_host_stop(&bench.host);
     if (!ok)
@@ -215,37 +321,57 @@ static bool bench_configuration(const char *scene_name, const char *config, cons
     return ok;
 }
 
+/* results.csv's `skips` of a row: every skip on, or --no-skip. */
+static const char *bench_skips_text(bool no_skip) { return no_skip ? "off" : "on"; }
+
+/* The ratios of the scene's rows (from first_row): how much each adds to
+ * the cost floor's plain frame under the same skips setting. */
+static void bench_ratios(int first_row) {
+    for (int r = first_row; r < bench.row_count; r++) {
+        double floor_ms = 0;
+        for (int f = first_row; f < bench.row_count; f++)
+            if (bench.rows[f].cost_floor && bench.rows[f].no_skip == bench.rows[r].no_skip)
+                floor_ms = bench.rows[f].frame_ms;
+        bench.rows[r].ratio = floor_ms > 0 ? bench.rows[r].frame_ms / floor_ms : 0;
+    }
+}
+
 static bool bench_scene(const char *scene_path, int scene_index, int *done, int total) {
     char *name = bench.scene_names[scene_index];
     path_stem(scene_path, name, sizeof bench.scene_names[scene_index]);
     fprintf(stderr, "[scene %d/%d] %s\n", scene_index + 1, bench.scene_count, name);
     if (!scene_load(&bench.scene, scene_path))
         return false;
+    bench.scene_objects[scene_index] = bench.scene.object_count;
+    memcpy(bench.base_lights, bench.scene.lights, sizeof bench.base_lights);
+    bench.base_camera = bench.scene.camera;
     bool ok = render_scene_create(&bench.gpu, &bench.scene);
     dump_frame reference = {0};
-    camera_view_compute(&bench.scene.camera, (float)bench.width / (float)bench.height, &bench.view);
     ok = ok && bench_reference(scene_path, name, &reference);
     int first_row = bench.row_count;
     for (int t = 0; ok && t < registry_technique_count; t++) {
         bench.current = registry_techniques[t];
-        for (int c = 0; ok && c < bench.current->bench_config_count; c++) {
+        for (int c = 0; ok && bench_selected(bench.current) && c < bench_config_count(bench.current); c++) {
             const char *config = bench.current->bench_configs[c];
-            fprintf(stderr, "  [%d/%d] %s %s\n", ++*done, total, bench.current->name, config);
-            ok = bench_configuration(name, config, &reference);
+            for (int s = 0; ok && s < bench.setting_count; s++) {
+                bool no_skip = bench.no_skip_settings[s];
+                fprintf(stderr, "  [%d/%d] %s %s%s\n", ++*done, total, bench.current->name, config,
+                        bench.skips_compare ? (no_skip ? " (skips off)" : " (skips on)") : "");
+                ok = bench_configuration(name, config, no_skip, &reference);
+            }
         }
     }
-    /* The cost floor: how much each technique adds to a plain frame. */
-    double floor_ms = 0;
-    for (int r = first_row; r < bench.row_count; r++)
-        if (bench.rows[r].cost_floor)
-            floor_ms = bench.rows[r].frame_ms;
-    for (int r = first_row; r < bench.row_count; r++)
-        bench.rows[r].ratio = floor_ms > 0 ? bench.rows[r].frame_ms / floor_ms : 0;
+    bench_ratios(first_row);
     dump_frame_free(&reference);
     render_scene_destroy(&bench.gpu);
     scene_free(&bench.scene);
     return ok;
 }
+
+/* The Pareto fronts and plots and the named comparisons are among the rows
+ * of the run's first skips setting (skips on when comparing): a row
+ * without skips is the same decision at more time. */
+static bool bench_in_front_set(const bench_row *r) { return r->no_skip == bench.no_skip_settings[0]; }
 
 /* o is at least as fast and as accurate as row, and better in one of the two. */
 static bool bench_dominates(const bench_row *o, const bench_row *row) {
@@ -254,18 +380,33 @@ static bool bench_dominates(const bench_row *o, const bench_row *row) {
     return ot <= rt && oe <= re && (ot < rt || oe < re);
 }
 
-/* No other configuration of the scene (of the same technique when
- * own_technique) dominates row. */
+/* Whether row is in the scene's front set and no other configuration of
+ * the scene (of the same technique when own_technique) in it dominates
+ * row. */
 static bool bench_on_front(const bench_row *row, bool own_technique) {
+    if (!bench_in_front_set(row))
+        return false;
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *o = &bench.rows[i];
-        if (o == row || strcmp(o->scene, row->scene) != 0 ||
+        if (o == row || strcmp(o->scene, row->scene) != 0 || !bench_in_front_set(o) ||
             (own_technique && strcmp(o->technique, row->technique) != 0))
             continue;
         if (bench_dominates(o, row))
             return false;
     }
     return true;
+}
+
+/* The row of scene, technique and config under the skips setting no_skip,
+ * or NULL. */
+static const bench_row *bench_find_row(const char *scene, const char *technique, const char *config, bool no_skip) {
+    for (int i = 0; i < bench.row_count; i++) {
+        const bench_row *r = &bench.rows[i];
+        if (strcmp(r->scene, scene) == 0 && strcmp(r->technique, technique) == 0 && strcmp(r->config, config) == 0 &&
+            r->no_skip == no_skip)
+            return r;
+    }
+    return NULL;
 }
 
 static FILE *bench_open(const char *name, char *path, size_t size) {
@@ -284,9 +425,6 @@ static bool bench_close(FILE *f, const char *path) {
     return true;
 }
 
-/* results.csv's `skips`: every skip on, or --no-skip. */
-static const char *bench_skips_text(void) { return bench.skips.no_skip ? "off" : "on"; }
-
 static bool bench_write_csv(void) {
     char path[PATH_MAX];
     FILE *f = bench_open("results.csv", path, sizeof path);
@@ -294,13 +432,14 @@ static bool bench_write_csv(void) {
         return false;
     fprintf(f, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,mae,"
-               "compared_pixels,renderer,skips\n");
+               "compared_pixels,renderer,motion,skips\n");
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s\n", r->scene,
+        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s\n", r->scene,
                 r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
                 r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
-                r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, bench_skips_text());
+                r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, motion_names[bench.motion],
+                bench_skips_text(r->no_skip));
     }
     return bench_close(f, path);
 }
@@ -322,7 +461,7 @@ static void bench_write_named_comparisons(FILE *f, const char *scene) {
     const bench_row *defaults = NULL;
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        if (strcmp(r->scene, scene) != 0)
+        if (strcmp(r->scene, scene) != 0 || !bench_in_front_set(r))
             continue;
         if (r->config[0] == 0)
             defaults = r;
@@ -338,6 +477,26 @@ static void bench_write_named_comparisons(FILE *f, const char *scene) {
     }
 }
 
+/* --skips-compare: each technique's defaults with every skip on against
+ * --no-skip, on the scene. */
+static void bench_write_skips_comparison(FILE *f, const char *scene) {
+    fprintf(f, "\nSkips on against off (defaults, %s ms per frame):\n\n"
+               "| technique | ms skips on | ms skips off | speed-up |\n|---|---|---|---|\n",
+            bench_time_basis());
+    for (int t = 0; t < registry_technique_count; t++) {
+        const char *name = registry_techniques[t]->name;
+        const bench_row *on = bench_find_row(scene, name, "", false), *off = bench_find_row(scene, name, "", true);
+        if (on && off)
+            fprintf(f, "| %s | %.3f | %.3f | %.2fx |\n", name, on->frame_ms, off->frame_ms,
+                    on->frame_ms > 0 ? off->frame_ms / on->frame_ms : 0);
+    }
+}
+
+/* What the run's skips were, for the report and the plots' titles. */
+static const char *bench_skips_summary(void) {
+    return bench.skips_compare ? "on and off (every configuration twice)" : bench_skips_text(bench.no_skip);
+}
+
 static bool bench_write_report(void) {
     char path[PATH_MAX];
     FILE *f = bench_open("report.md", path, sizeof path);
@@ -350,31 +509,38 @@ static bool bench_write_report(void) {
                "(shadowdiff rules; misclassified at visibility threshold 0.5). Pareto front: no other "
                "configuration of the scene is both faster and more accurate (own front: no other "
                "configuration of the same technique).\n\n"
-               "The ratio, the front and the plots use **%s time**. %s Skips (view culling): %s.\n",
+               "The ratio, the front and the plots use **%s time**. %s Skips: %s. Motion: %s (frame k "
+               "at k/%g s; the error is of the last timed frame, at %.3f s).\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
                              "and glFinish is its real cost."
                            : "GPU time is what the frame costs the GPU; CPU time adds submission and the wait "
                              "in glFinish.",
-            bench_skips_text());
+            bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench_last_time());
+    if (bench.skips_compare)
+        fprintf(f, "\nEach ratio is to the floor under the same skips setting; the fronts, the plots and the "
+                   "named comparisons are of the rows with skips on.\n");
     for (int s = 0; s < bench.scene_count; s++) {
         const char *scene = bench.scene_names[s];
         fprintf(f, "\n## %s\n\n![time against error](pareto_%s.png)\n\n"
-                   "| technique | parameters | GPU ms | CPU ms | x unshadowed | false-shadow %% | "
+                   "| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | false-shadow %% | "
                    "false-lit %% | misclassified %% | MAE | front | own front |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|\n",
+                   "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                 scene, scene);
         for (int i = 0; i < bench.row_count; i++) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) == 0)
-                fprintf(f, "| %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.4f | %.4f | %.4f | %.5f | %s | %s |\n",
-                        r->technique, bench_config_label(r->config), r->gpu_median, r->gpu_p90, r->cpu_median,
-                        r->cpu_p90, r->ratio, r->error.false_shadow_percent, r->error.false_lit_percent,
-                        r->error.misclassified_percent, r->error.mean_abs_error, bench_on_front(r, false) ? "yes" : "",
-                        bench_on_front(r, true) ? "yes" : "");
+                fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.4f | %.4f | %.4f | %.5f | %s "
+                           "| %s |\n",
+                        r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
+                        r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->error.false_shadow_percent,
+                        r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
+                        bench_on_front(r, false) ? "yes" : "", bench_on_front(r, true) ? "yes" : "");
         }
         bench_write_named_comparisons(f, scene);
+        if (bench.skips_compare)
+            bench_write_skips_comparison(f, scene);
     }
     return bench_close(f, path);
 }
@@ -384,20 +550,59 @@ static int bench_compare_rows_by_time(const void *a, const void *b) {
     return bench_compare_doubles(&x->frame_ms, &y->frame_ms);
 }
 
+/* The techniques the run times, in registry order, into out (room for
+ * BENCH_MAX_TECHNIQUES); returns how many. */
+static int bench_selected_techniques(const technique **out) {
+    int n = 0;
+    for (int t = 0; t < registry_technique_count && n < BENCH_MAX_TECHNIQUES; t++)
+        if (bench_selected(registry_techniques[t]))
+            out[n++] = registry_techniques[t];
+    return n;
+}
+
+/* Writes OUT/NAME.gp's head (terminal, output OUT/NAME.png, title, axis
+ * labels) and leaves it open for the plot command; NULL on failure. */
+static FILE *bench_open_script(const char *name, char *path, size_t size, const char *title, const char *xlabel,
+                               const char *ylabel) {
+    char file[160];
+    snprintf(file, sizeof file, "%s.gp", name);
+    FILE *g = bench_open(file, path, size);
+    if (g)
+        fprintf(g, "set terminal pngcairo size 960,640 font ',11'\nset output '%s/%s.png'\n"
+                   "set title '%s'\nset xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right\n",
+                bench.out_dir, name, title, xlabel, ylabel);
+    return g;
+}
+
+/* Closes the script and runs gnuplot on it. */
+static bool bench_run_script(FILE *g, const char *script) {
+    bool ok = bench_close(g, script);
+    char command[PATH_MAX + 64];
+    snprintf(command, sizeof command, "gnuplot '%s'", script);
+    if (ok && system(command) != 0) {
+        fprintf(stderr, "%s: gnuplot failed (is gnuplot installed? make deps)\n", script);
+        ok = false;
+    }
+    return ok;
+}
+
 /* One gnuplot data block per technique (its configurations), then the
  * front, as a line from the fastest to the most accurate. */
 static bool bench_plot(const char *scene) {
-    char data_name[160], script_name[160], data[PATH_MAX], script[PATH_MAX];
-    snprintf(data_name, sizeof data_name, "pareto_%s.dat", scene);
-    snprintf(script_name, sizeof script_name, "pareto_%s.gp", scene);
+    /* "pareto_" and a scene name (scene_names: 128) */
+    char name[144], data_name[160], data[PATH_MAX], script[PATH_MAX];
+    snprintf(name, sizeof name, "pareto_%s", scene);
+    snprintf(data_name, sizeof data_name, "%s.dat", name);
     FILE *d = bench_open(data_name, data, sizeof data);
     if (!d)
         return false;
-    int blocks = 0;
-    for (int t = 0; t < registry_technique_count; t++, blocks++) {
+    const technique *techniques[BENCH_MAX_TECHNIQUES];
+    int blocks = bench_selected_techniques(techniques);
+    for (int t = 0; t < blocks; t++) {
         for (int i = 0; i < bench.row_count; i++) {
             const bench_row *r = &bench.rows[i];
-            if (strcmp(r->scene, scene) == 0 && strcmp(r->technique, registry_techniques[t]->name) == 0)
+            if (strcmp(r->scene, scene) == 0 && strcmp(r->technique, techniques[t]->name) == 0 &&
+                bench_in_front_set(r))
                 fprintf(d, "%g %g \"%s\"\n", r->frame_ms, r->error.misclassified_percent,
                         bench_config_label(r->config));
         }
@@ -411,29 +616,78 @@ static bool bench_plot(const char *scene) {
     qsort(front, (size_t)front_count, sizeof *front, bench_compare_rows_by_time);
     for (int i = 0; i < front_count; i++)
         fprintf(d, "%g %g\n", front[i]->frame_ms, front[i]->error.misclassified_percent);
-    bool ok = bench_close(d, data);
-    FILE *g = ok ? bench_open(script_name, script, sizeof script) : NULL;
+    char title[512], xlabel[64];
+    snprintf(title, sizeof title, "%s: run time against error (%s, motion %s, skips %s)", scene, bench.ctx.renderer,
+             motion_names[bench.motion], bench_skips_text(bench.no_skip_settings[0]));
+    snprintf(xlabel, sizeof xlabel, "%s ms per frame (median)", bench_time_basis());
+    FILE *g = bench_close(d, data) ? bench_open_script(name, script, sizeof script, title, xlabel,
+                                                       "misclassified % of compared pixels")
+                                   : NULL;
     if (!g)
         return false;
-    fprintf(g, "set terminal pngcairo size 960,640 font ',11'\nset output '%s/pareto_%s.png'\n"
-               "set title '%s: run time against error (%s)'\nset xlabel '%s ms per frame (median)'\n"
-               "set ylabel 'misclassified %% of compared pixels'\nset grid\nset key outside right\n"
-               "set offsets graph 0.05, graph 0.25, graph 0.1, 0\nset yrange [0:*]\nplot ",
-            bench.out_dir, scene, scene, bench.ctx.renderer, bench_time_basis());
+    fprintf(g, "set offsets graph 0.05, graph 0.25, graph 0.1, 0\nset yrange [0:*]\nplot ");
     for (int t = 0; t < blocks; t++)
         fprintf(g, "'%s' index %d using 1:2 with points pointsize 2 pointtype %d title '%s', "
                    "'' index %d using 1:2:3 with labels offset 1,0.7 font ',8' left notitle, ",
-                data, t, 5 + 2 * t, registry_techniques[t]->name, t);
+                data, t, 5 + 2 * t, techniques[t]->name, t);
     fprintf(g, "'%s' index %d using 1:2 with lines dashtype 2 linecolor 'grey40' title 'Pareto front'\n", data,
             blocks);
-    ok = bench_close(g, script);
-    char command[PATH_MAX + 64];
-    snprintf(command, sizeof command, "gnuplot '%s'", script);
-    if (ok && system(command) != 0) {
-        fprintf(stderr, "%s: gnuplot failed (is gnuplot installed? make deps)\n", script);
-        ok = false;
-    }
-    return ok;
+    return bench_run_script(g, script);
+}
+
+static int bench_compare_scenes_by_objects(const void *a, const void *b) {
+    int x = bench.scene_objects[*(const int *)a], y = bench.scene_objects[*(const int *)b];
+    return (x > y) - (x < y);
+}
+
+/* --scaling: one data block per technique and skips setting, its
+ * defaults' ms per frame on each scene in order of object count; a line
+ * each, solid with skips on, dashed off. */
+static bool bench_plot_scaling(void) {
+    char data[PATH_MAX], script[PATH_MAX];
+    FILE *d = bench_open("scaling.dat", data, sizeof data);
+    if (!d)
+        return false;
+    int order[BENCH_MAX_SCENES];
+    for (int s = 0; s < bench.scene_count; s++)
+        order[s] = s;
+    qsort(order, (size_t)bench.scene_count, sizeof *order, bench_compare_scenes_by_objects);
+    const technique *techniques[BENCH_MAX_TECHNIQUES];
+    int technique_count = bench_selected_techniques(techniques);
+    for (int t = 0; t < technique_count; t++)
+        for (int k = 0; k < bench.setting_count; k++) {
+            for (int s = 0; s < bench.scene_count; s++) {
+                const bench_row *r = bench_find_row(bench.scene_names[order[s]], techniques[t]->name, "",
+                                                    bench.no_skip_settings[k]);
+                if (r)
+                    fprintf(d, "%d %g\n", bench.scene_objects[order[s]], r->frame_ms);
+            }
+            fprintf(d, "\n\n");
+        }
+    char title[512], ylabel[64];
+    snprintf(title, sizeof title, "time per frame against object count (%s, motion %s, %s time)", bench.ctx.renderer,
+             motion_names[bench.motion], bench_time_basis());
+    snprintf(ylabel, sizeof ylabel, "%s ms per frame (median), defaults", bench_time_basis());
+    FILE *g = bench_close(d, data) ? bench_open_script("scaling", script, sizeof script, title,
+                                                       "objects in the scene (log scale)", ylabel)
+                                   : NULL;
+    if (!g)
+        return false;
+    /* A factor of BENCH_SCALING_MARGIN of room either side on the log
+     * axis, which also gives a run of one scene a range. */
+    fprintf(g, "set logscale x\nset xrange [%g:%g]\nset yrange [0:*]\nplot ",
+            bench.scene_objects[order[0]] / BENCH_SCALING_MARGIN,
+            bench.scene_objects[order[bench.scene_count - 1]] * BENCH_SCALING_MARGIN);
+    for (int t = 0, block = 0; t < technique_count; t++)
+        for (int k = 0; k < bench.setting_count; k++, block++) {
+            bool no_skip = bench.no_skip_settings[k];
+            fprintf(g, "%s'%s' index %d using 1:2 with linespoints linecolor %d dashtype %d pointtype %d "
+                       "title '%s, skips %s'",
+                    block ? ", " : "", data, block, t + 1, no_skip ? 2 : 1, 5 + 2 * t, techniques[t]->name,
+                    bench_skips_text(no_skip));
+        }
+    fprintf(g, "\n");
+    return bench_run_script(g, script);
 }
 
 int main(int argc, char **argv) {
@@ -460,7 +714,8 @@ int main(int argc, char **argv) {
     bench.software = strstr(bench.ctx.renderer, "llvmpipe") || strstr(bench.ctx.renderer, "softpipe");
     int total = 0, done = 0;
     for (int t = 0; t < registry_technique_count; t++)
-        total += registry_techniques[t]->bench_config_count * bench.scene_count;
+        if (bench_selected(registry_techniques[t]))
+            total += bench_config_count(registry_techniques[t]) * bench.setting_count * bench.scene_count;
     bool ok = path_make_directories(bench.out_dir) && target_create(&bench.target, bench.width, bench.height);
     glGenQueries(1, &bench.query);
     for (int s = 0; ok && s < bench.scene_count; s++)
@@ -468,10 +723,13 @@ int main(int argc, char **argv) {
     ok = ok && bench_write_csv() && bench_write_report();
     for (int s = 0; ok && s < bench.scene_count; s++)
         ok = bench_plot(bench.scene_names[s]);
+    ok = ok && (!bench.scaling || bench_plot_scaling());
     glDeleteQueries(1, &bench.query);
     target_destroy(&bench.target);
     context_destroy(&bench.ctx);
     if (ok)
         printf("%s/results.csv\n%s/report.md\n", bench.out_dir, bench.out_dir);
+    if (ok && bench.scaling)
+        printf("%s/scaling.png\n", bench.out_dir);
     return ok ? 0 : 1;
 }
