@@ -15,10 +15,10 @@
 
 static struct {
     bool no_stencil, other_no_stencil, verbose;
-    int filter, frames, width, height, item_count, rest_count;
+    int filter, frames, width, height, item_count, rest_count, pick_count;
     float bias;
     const char *scene;
-    const char *items[TEST_MAX_ITEMS], *rest[TEST_MAX_ITEMS];
+    const char *items[TEST_MAX_ITEMS], *rest[TEST_MAX_ITEMS], *picks[TEST_MAX_ITEMS];
 } v;
 
 static const char *const filters[] = {"poisson", "none", "pcf3", NULL};
@@ -34,6 +34,8 @@ static const flags_param params[] = {
     {"size", "size", 0, FLAGS_SIZE, .width = &v.width, .height = &v.height},
     {"scene", "scene file", 0, FLAGS_STRING, .text = &v.scene, .value_name = "PATH"},
     {"verbose", "say more\nover two lines", 0, FLAGS_SWITCH, .on = &v.verbose},
+    {"pick", "one each time", 0, FLAGS_LIST, .repeat = true, .items = v.picks, .count = &v.pick_count, .min = 1,
+     .max = TEST_MAX_ITEMS, .what = "names"},
     {"gallery", "the rest", 0, FLAGS_LIST, .items = v.rest, .count = &v.rest_count, .min = 2,
      .max = TEST_MAX_ITEMS, .what = "DIR then a scene"},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
@@ -87,6 +89,19 @@ static void test_list_takes_the_rest(void **state) {
     assert_int_equal(parse("a --gallery=out x y z"), FLAGS_EXIT_USAGE);
 }
 
+/* A repeated list takes one argument each time, and flags go on after it. */
+static void test_list_repeats(void **state) {
+    (void)state;
+    assert_int_equal(parse("a --pick x --verbose --pick=y b"), 0);
+    assert_true(v.verbose);
+    assert_int_equal(v.pick_count, 2);
+    assert_string_equal(v.picks[0], "x");
+    assert_string_equal(v.picks[1], "y");
+    assert_int_equal(v.item_count, 2);
+    assert_int_equal(parse("a --pick"), FLAGS_EXIT_USAGE);
+    assert_int_equal(parse("a --pick 1 --pick 2 --pick 3 --pick 4"), FLAGS_EXIT_USAGE); /* over max */
+}
+
 static void test_bad_command_lines(void **state) {
     (void)state;
     static const char *const bad[] = {
@@ -114,6 +129,7 @@ static void test_help_lists_every_flag(void **state) {
         "  --bias X                    constant bias\n",
         "  --scene PATH                scene file\n",
         "  --verbose                   say more\n                              over two lines\n",
+        "  --pick ARG                  one each time\n",
         "  --gallery ARG...            the rest\n",
         "  --help                      this text\n",
     };
@@ -127,6 +143,7 @@ int main(void) {
         cmocka_unit_test(test_every_kind),
         cmocka_unit_test(test_reset_gives_defaults),
         cmocka_unit_test(test_list_takes_the_rest),
+        cmocka_unit_test(test_list_repeats),
         cmocka_unit_test(test_bad_command_lines),
         cmocka_unit_test(test_help_lists_every_flag),
     };

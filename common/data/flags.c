@@ -167,7 +167,11 @@ int flags_parse(const char *program, const flags_param *params, int count, int a
         if (first->kind == FLAGS_LIST) {
             if (eq)
                 status = flags_add(program, first, eq + 1);
-            while (i < argc && !status)
+            else if (first->repeat && i == argc)
+                return flags_usage_error(program, "missing value after", flag);
+            else if (first->repeat)
+                status = flags_add(program, first, argv[i++]);
+            while (!first->repeat && i < argc && !status)
                 status = flags_add(program, first, argv[i++]);
             status = status ? status : flags_check_list(program, first);
             continue;
@@ -218,7 +222,8 @@ static int flags_usage_text(const flags_param *p, char *out, size_t size) {
         out[n++] = ' ';
         flags_join(p->choices, "|", out + n, size - (size_t)n);
     } else if (p->value_name || value_names[p->kind]) {
-        snprintf(out + n, size - (size_t)n, " %s", p->value_name ? p->value_name : value_names[p->kind]);
+        const char *value = p->value_name ? p->value_name : p->repeat ? "ARG" : value_names[p->kind];
+        snprintf(out + n, size - (size_t)n, " %s", value);
     }
     return (int)strlen(out);
 }

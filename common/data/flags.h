@@ -16,8 +16,10 @@
  *   FLAGS_STRING  --NAME TEXT: *text (a path, a directory, a name);
  *   FLAGS_LIST    arguments into items, *count of them, at least min and at
  *                 most max, which errors call `what`: with a name, --NAME
- *                 takes every argument after it (--gallery DIR SCENE...);
- *                 without one (name NULL), the positional arguments;
+ *                 takes every argument after it (--gallery DIR SCENE...),
+ *                 or with `repeat` one argument each time it is given
+ *                 (--technique A --technique B); without a name (name
+ *                 NULL), the positional arguments;
  *   FLAGS_HELP    --NAME or -h: flags_parse returns FLAGS_HELP_ASKED and the
  *                 program prints its usage.
  * A flag takes its value as "--name=value" or as the next argument. Several
@@ -70,6 +72,7 @@ typedef struct flags_param {
     const char **text;          /* STRING */
     const char **items;         /* LIST: room for max */
     int *count;                 /* LIST */
+    bool repeat;                /* LIST: one argument per --NAME, which repeats */
     const char *what;           /* INT, LIST: what errors call the value */
     const char *value_name;     /* --help: "PATH", "K" (default by kind) */
 } flags_param;

@@ -137,9 +137,9 @@ static const flags_param bench_flags[] = {
      .on = &bench.scaling},
     {"shader-dir", "where the GLSL files are", 0, FLAGS_STRING, .text = &bench.shader_dir, .value_name = "DIR"},
     {"verbose", "print the backend and GL renderer", 0, FLAGS_SWITCH, .on = &bench.verbose},
-    {"technique", "only these (and the cost floor): the rest of the\ncommand line, so put it last", 0, FLAGS_LIST,
+    {"technique", "only this one (and the cost floor); repeat it for more", 0, FLAGS_LIST, .repeat = true,
      .items = bench.techniques, .count = &bench.technique_count, .min = 1, .max = BENCH_MAX_TECHNIQUES,
-     .what = "technique names", .value_name = "NAME..."},
+     .what = "technique names", .value_name = "NAME"},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 
@@ -167,7 +167,7 @@ static int bench_parse_flags(int argc, char **argv) {
     int count = (int)(sizeof bench_flags / sizeof *bench_flags);
     int status = flags_parse("bench", bench_flags, count, argc - 1, argv + 1);
     if (status == FLAGS_HELP_ASKED) {
-        printf("usage: bench [flags] [SCENE.json...] [--technique NAME...]\n"
+        printf("usage: bench [flags] [SCENE.json...]\n"
                "Times every technique over its parameter sweep and measures its error against the\n"
                "ray-traced reference, on each scene (default: the standard scenes and long_view).\n"
                "Techniques:");
