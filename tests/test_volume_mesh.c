@@ -172,14 +172,19 @@ static void test_near_rectangle_goes_round(void **state) {
     }
 }
 
+/* The box of side 2 round `centre`. */
+static void box_of_side_2(const float centre[3], float lo[3], float hi[3]) {
+    for (int k = 0; k < 3; k++)
+        lo[k] = centre[k] - 1, hi[k] = centre[k] + 1;
+}
+
 static bool zpass_safe(const float centre[3], const float light[4]) {
     mat4 view_projection;
     camera(view_projection);
     vec3 rectangle[4];
     volume_mesh_near_rectangle(view_projection, rectangle);
     float lo[3], hi[3];
-    for (int k = 0; k < 3; k++) /* a box of side 2 */
-        lo[k] = centre[k] - 1, hi[k] = centre[k] + 1;
+    box_of_side_2(centre, lo, hi);
     return volume_mesh_zpass_safe(lo, hi, light, rectangle);
 }
 
@@ -204,8 +209,7 @@ static bool misses_view(const float centre[3], const float light[4]) {
     mat4 view_projection;
     camera(view_projection);
     float lo[3], hi[3];
-    for (int k = 0; k < 3; k++) /* a box of side 2 */
-        lo[k] = centre[k] - 1, hi[k] = centre[k] + 1;
+    box_of_side_2(centre, lo, hi);
     return volume_mesh_misses_view(lo, hi, light, view_projection);
 }
 
