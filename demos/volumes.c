@@ -34,6 +34,19 @@
  * (measured: 0.2 to 0.4 % false shadow on simple and bunny with its caps).
  * --overlay (key V), for lectures: the volumes of light 0 translucent with
  * their edges, its silhouette edges, or its stencil count as colour.
+ *
+ * Skips (README, "Skips"), none of which changes a count on a visible
+ * receiver, the only pixels the stencil decides:
+ * - casters whose shadow cannot reach a visible receiver draw no volume
+ *   (technique_caster_needed: outside the hull of the light and the
+ *   visible receivers' bounds; see volumes_caster_needed for why exact);
+ * - volumes that miss the view draw none (volume_mesh_misses_view: no
+ *   fragment of them would be drawn), counted as culled;
+ * - the CPU volumes are kept, one GPU buffer per light, each caster's
+ *   sides and caps apart (the camera picks z-pass or z-fail each frame),
+ *   built when a caster is first needed after the light moved and drawn
+ *   from there until it moves again (objects never move); past
+ *   VOLUMES_CACHE_MAX_BYTES in all, the rest is built every frame.
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -42,6 +55,7 @@
 #include <stdlib.h>
 
 #include "technique.h"
+#include "volume_cache.h"
 #include "volume_mesh.h"
 
 typedef struct volumes_settings {
@@ -74,6 +88,12 @@ static const float volumes_overlay_silhouette[4] = {1.0f, 0.3f, 0.2f, 1.0f};
 static const float volumes_screen[6][4] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1},
                                            {-1, -1, 0, 1}, {1, 1, 0, 1},  {-1, 1, 0, 1}};
 
+/* The most the kept volumes take on the GPU, all lights together
+ * (measured: dense's 158k triangles under its directional light, z-fail
+ * caps and all, 4.7 MiB; the city's 7 lights 0.1 MiB). */
+#define VOLUMES_MIB ((size_t)1 << 20)
+#define VOLUMES_CACHE_MAX_BYTES (256 * VOLUMES_MIB)
+
 /* One caster's topology, built once per scene. */
 typedef struct volumes_caster {
     mesh_edges edges;
@@ -90,7 +110,12 @@ static struct {
     unsigned stream_vao, stream_buffer;
     size_t stream_capacity;
     volume_mesh geometry; /* the caster at hand's volume */
-    int zpass_count, zfail_count, gpu_fallback_count; /* light 0, last frame */
+    volume_cache caches[SCENE_MAX_LIGHTS];
+    size_t cache_bytes; /* all caches' buffers */
+    bool *needed;       /* per object: it casts a volume for the light at hand */
+    int built, reused;  /* parts, for the light at hand */
+    /* Light 0, last frame: */
+    int zpass_count, zfail_count, gpu_fallback_count, built_count, reused_count;
 } volumes;
 
 static const flags_param volumes_params[] = {
@@ -138,23 +163,24 @@ static bool volumes_init(const render_scene *gpu) {
     volumes.gpu_light = glGetUniformLocation(volumes.gpu.id, "u_light");
     volumes.cpu_color = glGetUniformLocation(volumes.cpu.id, "u_color");
     const scene *s = gpu->scene;
-    volumes.casters = calloc((size_t)s->object_count, sizeof *volumes.casters);
-    if (!volumes.casters) {
+    size_t objects = (size_t)s->object_count;
+    volumes.casters = calloc(objects, sizeof *volumes.casters);
+    volumes.needed = calloc(objects, sizeof *volumes.needed);
+    if (!volumes.casters || !volumes.needed) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
+    for (int l = 0; l < s->light_count; l++)
+        if (!volume_cache_init(&volumes.caches[l], s->object_count))
+            return false;
     volumes.caster_count = s->object_count;
     for (int i = 0; i < s->object_count; i++) {
         if (s->objects[i].casts && !volumes_init_caster(gpu, i))
             return false;
     }
     glGenVertexArrays(1, &volumes.stream_vao);
-    glBindVertexArray(volumes.stream_vao);
     glGenBuffers(1, &volumes.stream_buffer);
-    glBindBuffer(GL_ARRAY_BUFFER, volumes.stream_buffer);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), NULL);
-    glBindVertexArray(0);
+    volume_cache_vertex_array(volumes.stream_vao, volumes.stream_buffer);
     return true;
 }
 
@@ -166,13 +192,17 @@ static void volumes_destroy(void) {
         glDeleteVertexArrays(1, &volumes.casters[i].adjacency_vao);
         glDeleteBuffers(1, &volumes.casters[i].adjacency_buffer);
     }
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        volume_cache_free(&volumes.caches[l]);
     free(volumes.casters);
+    free(volumes.needed);
     volume_mesh_free(&volumes.geometry);
     glDeleteVertexArrays(1, &volumes.stream_vao);
     glDeleteBuffers(1, &volumes.stream_buffer);
     volumes.casters = NULL;
+    volumes.needed = NULL;
     volumes.caster_count = 0;
-    volumes.stream_capacity = 0;
+    volumes.stream_capacity = volumes.cache_bytes = 0;
     volumes.stream_vao = volumes.stream_buffer = 0;
 }
 
@@ -203,21 +233,55 @@ static void volumes_draw_stream(const float (*vertices)[4], size_t count, GLenum
     glDrawArrays(primitive, 0, (GLsizei)count);
 }
 
-static bool volumes_on_gpu(const volumes_caster *c, volume_mesh_parts parts) {
-    return volumes.settings.silhouette == VOLUMES_GPU && c->adjacency_vao && parts == VOLUME_MESH_SIDES;
+static bool volumes_on_gpu(const volumes_caster *c, bool zfail) {
+    return volumes.settings.silhouette == VOLUMES_GPU && c->adjacency_vao && !zfail;
 }
 
-/* Caster i's volume for the light (homogeneous, world): counted into the
- * stencil, or (not `counting`) drawn in the colour the overlay set. */
-static void volumes_draw_caster(const technique_frame *f, int i, const float light[4], volume_mesh_parts parts,
-                                bool counting) {
+/* Caster i's volume part for the light (homogeneous, world) into
+ * volumes.geometry, with the CPU program bound for it; false after
+ * printing why. */
+static bool volumes_build(const technique_frame *f, int i, const float light[4], volume_mesh_parts part) {
+    const scene_object *o = &f->gpu->scene->objects[i];
+    float object_light[4];
+    volume_mesh_object_light(o->model, light, object_light);
+    render_program_use(&volumes.cpu, f->view);
+    glUniformMatrix4fv(volumes.cpu.model, 1, GL_FALSE, (const float *)o->model);
+    if (volume_mesh_build(&volumes.geometry, &o->mesh, &volumes.casters[i].edges, object_light, part))
+        return true;
+    fprintf(stderr, "volumes: %s: out of memory building its volume\n", o->name);
+    return false;
+}
+
+/* Caster i's part for light l, from the light's cache, kept there first
+ * if it is not yet (streamed when it does not fit). */
+static void volumes_draw_kept(const technique_frame *f, int l, int i, const float light[4], volume_mesh_parts part) {
+    volume_cache *c = &volumes.caches[l];
+    if (volume_cache_has(c, i, part)) {
+        volumes.reused++;
+        render_program_use(&volumes.cpu, f->view);
+        glUniformMatrix4fv(volumes.cpu.model, 1, GL_FALSE, (const float *)f->gpu->scene->objects[i].model);
+    } else {
+        volumes.built++;
+        if (!volumes_build(f, i, light, part))
+            return;
+        const volume_mesh *v = &volumes.geometry;
+        if (!volume_cache_keep(c, i, part, v, &volumes.cache_bytes, VOLUMES_CACHE_MAX_BYTES)) {
+            volumes_draw_stream(v->vertices, v->count, GL_TRIANGLES);
+            return;
+        }
+    }
+    volume_cache_draw(c, i, part);
+}
+
+/* Caster i's volume for light l counted into the stencil: sides, and caps
+ * after them for z-fail. */
+static void volumes_count_caster(const technique_frame *f, int l, int i, const float light[4], bool zfail) {
     const scene_object *o = &f->gpu->scene->objects[i];
     const volumes_caster *c = &volumes.casters[i];
-    vec4 object_light;
-    mat4 inverse;
-    glm_mat4_inv((vec4 *)o->model, inverse);
-    glm_mat4_mulv(inverse, (float *)light, object_light);
-    if (volumes_on_gpu(c, parts) && counting) {
+    volumes_stencil_ops(zfail);
+    if (volumes_on_gpu(c, zfail)) {
+        float object_light[4];
+        volume_mesh_object_light(o->model, light, object_light);
         render_program_use(&volumes.gpu, f->view);
         glUniformMatrix4fv(volumes.gpu.model, 1, GL_FALSE, (const float *)o->model);
         glUniform4fv(volumes.gpu_light, 1, object_light);
@@ -225,79 +289,92 @@ static void volumes_draw_caster(const technique_frame *f, int i, const float lig
         glDrawElements(GL_TRIANGLES_ADJACENCY, c->adjacency_count, GL_UNSIGNED_INT, NULL);
         return;
     }
-    render_program_use(&volumes.cpu, f->view);
-    glUniformMatrix4fv(volumes.cpu.model, 1, GL_FALSE, (const float *)o->model);
-    if (!volume_mesh_build(&volumes.geometry, &o->mesh, &c->edges, object_light, parts)) {
-        fprintf(stderr, "volumes: %s: out of memory building its volume\n", o->name);
-        return;
-    }
-    volumes_draw_stream(volumes.geometry.vertices, volumes.geometry.count,
-                        parts == VOLUME_MESH_SILHOUETTE_LINES ? GL_LINES : GL_TRIANGLES);
+    volumes_draw_kept(f, l, i, light, VOLUME_MESH_SIDES);
+    if (zfail)
+        volumes_draw_kept(f, l, i, light, VOLUME_MESH_CAPS);
 }
 
-/* Whether caster o takes z-fail, with caps, for the light (see top). */
-static bool volumes_use_zfail(const scene_object *o, const float light[4], const vec3 near_rectangle[4]) {
+/* Whether the caster with world box [lo, hi] takes z-fail, with caps, for
+ * the light (see top). */
+static bool volumes_use_zfail(const float lo[3], const float hi[3], const float light[4],
+                              const vec3 near_rectangle[4]) {
     if (volumes.settings.mode != VOLUMES_AUTO)
         return volumes.settings.mode == VOLUMES_ZFAIL;
-    float lo[3], hi[3];
-    scene_object_world_bounds(o, lo, hi);
     return !volume_mesh_zpass_safe(lo, hi, light, near_rectangle);
 }
 
-/* Stencil = number of volumes of light l around each visible pixel. */
-static void volumes_count(const technique_frame *f, int l, const float light[4]) {
+/* Whether caster i draws a volume for the hull's light; counted once,
+ * drawn or culled. Leaving one out is exact when its count is 0 on every
+ * visible receiver. A volume that misses the view has no fragment. A
+ * point inside a caster's volume lies beyond the caster on a segment from
+ * the light, so outside the hull of the light and the visible receivers'
+ * bounds (convex) it contains no visible receiver point: z-fail counts
+ * there exactly that, 0, and so does z-pass where it starts from 0, which
+ * auto takes z-pass only where volume_mesh_zpass_safe says; forced z-pass
+ * keeps casters that may shadow the eye (they count there). */
+static bool volumes_caster_needed(const technique_frame *f, const technique_hull *hull, int i, const float light[4],
+                                  const vec3 near_rectangle[4]) {
+    const scene_object *o = &f->gpu->scene->objects[i];
+    if (!o->casts)
+        return false;
+    float lo[3], hi[3];
+    scene_object_world_bounds(o, lo, hi);
+    if (f->cull_casters && volume_mesh_misses_view(lo, hi, light, f->view->view_projection)) {
+        f->counts->casters_culled[hull->light]++;
+        return false;
+    }
+    if (volumes.settings.mode == VOLUMES_ZPASS && !volume_mesh_zpass_safe(lo, hi, light, near_rectangle)) {
+        f->counts->casters_drawn[hull->light]++;
+        return true;
+    }
+    return technique_caster_needed(f, hull, i);
+}
+
+/* Stencil = number of volumes of light l around each visible pixel, of
+ * the casters `needed` (NULL: every caster). */
+static void volumes_count(const technique_frame *f, int l, const float light[4], const bool *needed) {
     const scene *s = f->gpu->scene;
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     int zpass = 0, zfail = 0, fallback = 0;
+    volumes.built = volumes.reused = 0;
     glEnable(GL_DEPTH_CLAMP); /* far caps at infinity stay in */
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_LESS); /* a surface's own cap, at its depth, counts as behind it */
     glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
-    /* Every caster, not only those in view: a caster outside the view may
-     * cast a volume across it. */
+    /* Not only casters in view: one outside may cast a volume across it. */
     for (int i = 0; i < s->object_count; i++) {
-        if (!s->objects[i].casts)
+        if (!s->objects[i].casts || (needed && !needed[i]))
             continue;
-        bool use_zfail = volumes_use_zfail(&s->objects[i], light, near_rectangle);
+        float lo[3], hi[3];
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        bool use_zfail = volumes_use_zfail(lo, hi, light, near_rectangle);
         zfail += use_zfail;
         zpass += !use_zfail;
-        volume_mesh_parts parts = use_zfail ? VOLUME_MESH_SIDES_AND_CAPS : VOLUME_MESH_SIDES;
-        fallback += volumes.settings.silhouette == VOLUMES_GPU && !volumes_on_gpu(&volumes.casters[i], parts);
-        volumes_stencil_ops(use_zfail);
-        volumes_draw_caster(f, i, light, parts, true);
+        fallback += volumes.settings.silhouette == VOLUMES_GPU && !volumes_on_gpu(&volumes.casters[i], use_zfail);
+        volumes_count_caster(f, l, i, light, use_zfail);
     }
     glDisable(GL_DEPTH_CLAMP);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    if (l == 0) {
+    if (l == 0 && needed) {
         volumes.zpass_count = zpass;
         volumes.zfail_count = zfail;
         volumes.gpu_fallback_count = fallback;
+        volumes.built_count = volumes.built;
+        volumes.reused_count = volumes.reused;
     }
 }
 
 /* ---- lighting ---- */
 
-/* NDC coordinate -> pixels on an axis of `size`, within the viewport. */
-static float volumes_to_pixels(float ndc, int size) {
-    return (glm_clamp(ndc, -1, 1) * 0.5f + 0.5f) * (float)size;
-}
-
 /* The screen rectangle of every receiver's box: no light reaches pixels
- * outside it. The whole viewport when a box reaches behind the eye. */
+ * outside it. */
 static void volumes_scissor(const technique_frame *f) {
-    float lo[2], hi[2];
-    if (!volume_mesh_receivers_ndc(f->gpu->scene, f->view->view_projection, lo, hi)) {
-        glScissor(0, 0, f->width, f->height);
-        return;
-    }
-    int x0 = (int)floorf(volumes_to_pixels(lo[0], f->width));
-    int y0 = (int)floorf(volumes_to_pixels(lo[1], f->height));
-    int x1 = (int)ceilf(volumes_to_pixels(hi[0], f->width));
-    int y1 = (int)ceilf(volumes_to_pixels(hi[1], f->height));
-    glScissor(x0, y0, x1 > x0 ? x1 - x0 : 0, y1 > y0 ? y1 - y0 : 0);
+    int rect[4];
+    volume_mesh_receivers_scissor(f->gpu->scene, f->view->view_projection, f->width, f->height, rect);
+    glScissor(rect[0], rect[1], rect[2], rect[3]);
 }
 
 /* Light l's share: on receivers where no volume counts, on the rest
@@ -325,7 +402,7 @@ static void volumes_add_light(const technique_frame *f, int l) {
 static void volumes_draw_counts(const technique_frame *f, const float light[4]) {
     glEnable(GL_STENCIL_TEST);
     glClear(GL_STENCIL_BUFFER_BIT);
-    volumes_count(f, 0, light);
+    volumes_count(f, 0, light, NULL); /* every volume: the overlay colours every pixel */
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -354,21 +431,23 @@ static void volumes_draw_shapes(const technique_frame *f, const float light[4]) 
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_LEQUAL);
     glEnable(GL_DEPTH_CLAMP);
-    render_program_use(&volumes.cpu, f->view);
+    bool faces = volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES;
     for (int i = 0; i < s->object_count; i++) {
-        if (!s->objects[i].casts)
+        if (!s->objects[i].casts ||
+            !volumes_build(f, i, light, faces ? VOLUME_MESH_SIDES : VOLUME_MESH_SILHOUETTE_LINES))
             continue;
-        if (volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES) {
+        const volume_mesh *v = &volumes.geometry;
+        if (faces) {
             glUniform4fv(volumes.cpu_color, 1, volumes_overlay_faces);
-            volumes_draw_caster(f, i, light, VOLUME_MESH_SIDES, false);
+            volumes_draw_stream(v->vertices, v->count, GL_TRIANGLES);
             glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
             glUniform4fv(volumes.cpu_color, 1, volumes_overlay_edges);
-            volumes_draw_stream(volumes.geometry.vertices, volumes.geometry.count, GL_TRIANGLES);
+            volumes_draw_stream(v->vertices, v->count, GL_TRIANGLES);
             glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         } else {
             glUniform4fv(volumes.cpu_color, 1, volumes_overlay_silhouette);
             glDepthFunc(GL_ALWAYS);
-            volumes_draw_caster(f, i, light, VOLUME_MESH_SILHOUETTE_LINES, false);
+            volumes_draw_stream(v->vertices, v->count, GL_LINES);
             glDepthFunc(GL_LEQUAL);
         }
     }
@@ -382,16 +461,25 @@ static void volumes_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     render_use_lit(f->gpu, f->view, 0, true); /* ambient, and the depth every pass tests against */
     render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+    for (int l = 0; l < s->light_count; l++)
+        if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
+            volume_cache_forget(&volumes.caches[l]);
+    vec3 near_rectangle[4];
+    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
         float light[4];
         scene_light_homogeneous(&s->lights[l], light);
+        technique_hull hull;
+        technique_light_hull(f, l, &hull);
+        for (int i = 0; i < s->object_count; i++)
+            volumes.needed[i] = volumes_caster_needed(f, &hull, i, light, (const vec3 *)near_rectangle);
         glEnable(GL_SCISSOR_TEST);
         volumes_scissor(f);
         glClear(GL_STENCIL_BUFFER_BIT);
         glEnable(GL_STENCIL_TEST);
-        volumes_count(f, l, light);
+        volumes_count(f, l, light, volumes.needed);
         glDisable(GL_SCISSOR_TEST); /* objects that take no shadows may lie outside */
         volumes_add_light(f, l);
         glDisable(GL_STENCIL_TEST);
@@ -409,7 +497,10 @@ static void volumes_render(const technique_frame *f) {
 static void volumes_describe(char *out, size_t size) {
     int n = snprintf(out, size, "light 0: %d casters z-pass, %d z-fail", volumes.zpass_count, volumes.zfail_count);
     if (volumes.gpu_fallback_count > 0 && n > 0 && (size_t)n < size)
-        snprintf(out + n, size - (size_t)n, "; %d open or z-fail: CPU silhouettes", volumes.gpu_fallback_count);
+        n += snprintf(out + n, size - (size_t)n, "; %d open or z-fail: CPU silhouettes", volumes.gpu_fallback_count);
+    if (n > 0 && (size_t)n < size)
+        snprintf(out + n, size - (size_t)n, "; volumes built %d, kept %d; all lights' kept %.1f MiB",
+                 volumes.built_count, volumes.reused_count, (double)volumes.cache_bytes / VOLUMES_MIB);
 }
 
 /* The sweep: mode x silhouette path. */

@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -25,6 +26,9 @@
 #define CAMERA_ASPECT (16.0f / 9.0f)
 #define CAMERA_NEAR 0.1f
 #define CAMERA_FAR 100.0f
+/* The scissor tests' viewport. */
+#define TEST_WIDTH 640
+#define TEST_HEIGHT 360
 /* NDC of a near corner mapped back and forth, in float. */
 #define NDC_TOLERANCE 1e-4f
 
@@ -100,10 +104,11 @@ static void test_closed_box_sides_on_silhouette_once(void **state) {
         }
     }
     assert_faces_out(&v, inside);
-    /* z-fail adds the lit faces' triangles and their images at infinity. */
+    /* z-fail adds the caps: the lit faces' triangles and their images at
+     * infinity, on their own (sides and caps are kept apart). */
     enum { LIT_TRIANGLES = 6 };
-    build(&v, &m, light, VOLUME_MESH_SIDES_AND_CAPS);
-    assert_int_equal(v.count, SILHOUETTE_EDGES * SIDE_VERTICES + LIT_TRIANGLES * 2 * 3);
+    build(&v, &m, light, VOLUME_MESH_CAPS);
+    assert_int_equal(v.count, LIT_TRIANGLES * 2 * 3);
     assert_faces_out(&v, inside);
     build(&v, &m, light, VOLUME_MESH_SILHOUETTE_LINES);
     assert_int_equal(v.count, SILHOUETTE_EDGES * 2);
@@ -132,10 +137,10 @@ static void test_plane_lit_from_behind_reverses_sides(void **state) {
     }
     assert_faces_out(&front, under);
     assert_faces_out(&back, over);
-    /* With caps, wound the other way round for the triangles lit from
-     * behind, the prisms stay closed and facing out. */
-    build(&front, &m, above, VOLUME_MESH_SIDES_AND_CAPS);
-    build(&back, &m, below, VOLUME_MESH_SIDES_AND_CAPS);
+    /* The caps, wound the other way round for the triangles lit from
+     * behind, face out of the prisms too. */
+    build(&front, &m, above, VOLUME_MESH_CAPS);
+    build(&back, &m, below, VOLUME_MESH_CAPS);
     assert_faces_out(&front, under);
     assert_faces_out(&back, over);
     volume_mesh_free(&front);
@@ -167,14 +172,19 @@ static void test_near_rectangle_goes_round(void **state) {
     }
 }
 
+/* The box of side 2 round `centre`. */
+static void box_of_side_2(const float centre[3], float lo[3], float hi[3]) {
+    for (int k = 0; k < 3; k++)
+        lo[k] = centre[k] - 1, hi[k] = centre[k] + 1;
+}
+
 static bool zpass_safe(const float centre[3], const float light[4]) {
     mat4 view_projection;
     camera(view_projection);
     vec3 rectangle[4];
     volume_mesh_near_rectangle(view_projection, rectangle);
     float lo[3], hi[3];
-    for (int k = 0; k < 3; k++) /* a box of side 2 */
-        lo[k] = centre[k] - 1, hi[k] = centre[k] + 1;
+    box_of_side_2(centre, lo, hi);
     return volume_mesh_zpass_safe(lo, hi, light, rectangle);
 }
 
@@ -195,8 +205,94 @@ static void test_zpass_safe_only_beyond_the_light(void **state) {
     assert_false(zpass_safe((const float[3]){0, 0, -5}, towards_camera));
 }
 
+static bool misses_view(const float centre[3], const float light[4]) {
+    mat4 view_projection;
+    camera(view_projection);
+    float lo[3], hi[3];
+    box_of_side_2(centre, lo, hi);
+    return volume_mesh_misses_view(lo, hi, light, view_projection);
+}
+
+/* A volume misses the view when the box and its sweep away from the light
+ * both stay beyond one side: not when the box is in view, nor when it is
+ * out of view but its shadow sweeps into it. */
+static void test_misses_view_only_when_the_sweep_does(void **state) {
+    (void)state;
+    const float in_front[3] = {0, 0, -10}, behind[3] = {0, 0, 10}, right[3] = {50, 0, -10};
+    assert_false(misses_view(in_front, (const float[4]){0, 10, -10, 1}));
+    /* Behind the eye: lit from further behind, the shadow reaches forward
+     * into the view; lit from in front, it stays behind the eye. */
+    assert_false(misses_view(behind, (const float[4]){0, 0, 20, 1}));
+    assert_true(misses_view(behind, (const float[4]){0, 0, -10, 1}));
+    /* Off to the right: lit from the view's side the shadow goes further
+     * right; lit from further right it crosses the view. */
+    assert_true(misses_view(right, (const float[4]){0, 0, -10, 1}));
+    assert_false(misses_view(right, (const float[4]){100, 0, -10, 1}));
+    /* The same with a directional light, (towards it, 0). */
+    assert_true(misses_view(right, (const float[4]){-1, 0, 0, 0}));
+    assert_false(misses_view(right, (const float[4]){1, 0, 0, 0}));
+    /* Above the view, lit from below: the shadow goes up. */
+    assert_true(misses_view((const float[3]){0, 50, -10}, (const float[4]){0, 0, -10, 1}));
+}
+
+/* Deterministic pseudo-random numbers in [lo, hi) (a 32-bit LCG). */
+static float random_in(uint32_t *seed, float lo, float hi) {
+    *seed = *seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (float)(*seed >> 8) / (float)(1u << 24);
+}
+
+/* Homogeneous world point p (w 1 or 0) inside the view's clip region
+ * with depth clamp: |x|, |y| <= w, w > 0. */
+static bool clip_inside(const mat4 view_projection, const float p[4]) {
+    vec4 clip;
+    glm_mat4_mulv((vec4 *)view_projection, (float *)p, clip);
+    return clip[3] > 0 && fabsf(clip[0]) <= clip[3] && fabsf(clip[1]) <= clip[3];
+}
+
+/* Random boxes and lights: whenever the test says a volume misses the
+ * view, no point of it (in the box, swept away from the light, at
+ * infinity) is inside; and the test does say so for some, not all. */
+enum { RANDOM_VOLUMES = 2000, POINTS_PER_VOLUME = 200 };
+static void test_missed_volumes_have_no_point_in_view(void **state) {
+    (void)state;
+    static const float sweeps[] = {0, 0.5f, 3, 1000}; /* how far beyond the box, in box-light distances */
+    mat4 view_projection;
+    camera(view_projection);
+    uint32_t seed = 1;
+    int missed = 0;
+    for (int n = 0; n < RANDOM_VOLUMES; n++) {
+        float lo[3], hi[3], light[4];
+        for (int k = 0; k < 3; k++) {
+            lo[k] = random_in(&seed, -60, 60);
+            hi[k] = lo[k] + random_in(&seed, 0.1f, 10);
+            light[k] = random_in(&seed, -60, 60);
+        }
+        light[3] = n % 4 == 0 ? 0 : 1; /* a quarter directional */
+        if (!volume_mesh_misses_view(lo, hi, light, view_projection))
+            continue;
+        missed++;
+        for (int i = 0; i < POINTS_PER_VOLUME; i++) {
+            float p[3], away[3];
+            for (int k = 0; k < 3; k++) {
+                p[k] = random_in(&seed, lo[k], hi[k]);
+                away[k] = p[k] * light[3] - light[k];
+            }
+            for (size_t t = 0; t < sizeof sweeps / sizeof *sweeps; t++) {
+                float q[4] = {p[0] + sweeps[t] * away[0], p[1] + sweeps[t] * away[1], p[2] + sweeps[t] * away[2], 1};
+                if (clip_inside(view_projection, q))
+                    fail_msg("volume %d: a point swept %g is in view", n, (double)sweeps[t]);
+            }
+            if (clip_inside(view_projection, (const float[4]){away[0], away[1], away[2], 0}))
+                fail_msg("volume %d: its point at infinity is in view", n);
+        }
+    }
+    printf("    %d of %d random volumes miss the view\n", missed, RANDOM_VOLUMES);
+    assert_true(missed > 0 && missed < RANDOM_VOLUMES);
+}
+
 /* The receivers' rectangle covers a box in front of the camera, is empty
- * without receivers, and gives up on a box reaching behind the eye. */
+ * without receivers, and gives up on a box reaching behind the eye (the
+ * scissor is then the whole viewport). */
 static void test_receivers_ndc(void **state) {
     (void)state;
     mat4 view_projection;
@@ -215,9 +311,16 @@ static void test_receivers_ndc(void **state) {
     o.receives = false;
     assert_true(volume_mesh_receivers_ndc(&s, view_projection, lo, hi));
     assert_true(lo[0] > hi[0] && lo[1] > hi[1]);
+    int rect[4];
+    volume_mesh_receivers_scissor(&s, view_projection, TEST_WIDTH, TEST_HEIGHT, rect);
+    assert_true(rect[2] == 0 && rect[3] == 0); /* nothing to clear */
     o.receives = true;
+    volume_mesh_receivers_scissor(&s, view_projection, TEST_WIDTH, TEST_HEIGHT, rect);
+    assert_true(rect[0] > TEST_WIDTH / 2 && rect[2] > 0 && rect[0] + rect[2] <= TEST_WIDTH);
     glm_translate_make((vec4 *)o.model, (vec3){0, 0, 0});
     assert_false(volume_mesh_receivers_ndc(&s, view_projection, lo, hi));
+    volume_mesh_receivers_scissor(&s, view_projection, TEST_WIDTH, TEST_HEIGHT, rect); /* behind the eye: all */
+    assert_true(rect[0] == 0 && rect[1] == 0 && rect[2] == TEST_WIDTH && rect[3] == TEST_HEIGHT);
     mesh_free(&o.mesh);
 }
 
@@ -227,6 +330,8 @@ int main(void) {
         cmocka_unit_test(test_plane_lit_from_behind_reverses_sides),
         cmocka_unit_test(test_near_rectangle_goes_round),
         cmocka_unit_test(test_zpass_safe_only_beyond_the_light),
+        cmocka_unit_test(test_misses_view_only_when_the_sweep_does),
+        cmocka_unit_test(test_missed_volumes_have_no_point_in_view),
         cmocka_unit_test(test_receivers_ndc),
     };
     return cmocka_run_group_tests_name("shadow volumes' CPU geometry", tests, NULL, NULL);

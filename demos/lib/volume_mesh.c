@@ -127,7 +127,7 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
     v->out_of_memory = false;
     if (!volume_mesh_weigh(v, m, light, e->closed))
         return false;
-    for (uint32_t i = 0; i < e->edge_count; i++) {
+    for (uint32_t i = 0; parts != VOLUME_MESH_CAPS && i < e->edge_count; i++) {
         int multiplicity = 0;
         for (uint32_t k = 0; k < e->edges[i].use_count; k++) {
             const mesh_edge_use *u = &e->uses[e->edges[i].first_use + k];
@@ -142,7 +142,7 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
         for (int k = 0; k < abs(multiplicity); k++)
             volume_mesh_emit_side(v, a, b, light, multiplicity);
     }
-    if (parts == VOLUME_MESH_SIDES_AND_CAPS)
+    if (parts == VOLUME_MESH_CAPS)
         volume_mesh_emit_caps(v, m, light);
     return !v->out_of_memory;
 }
@@ -151,6 +151,12 @@ void volume_mesh_free(volume_mesh *v) {
     free(v->vertices);
     free(v->weights);
     *v = (volume_mesh){0};
+}
+
+void volume_mesh_object_light(const mat4 model, const float light[4], float out[4]) {
+    mat4 inverse;
+    glm_mat4_inv((vec4 *)model, inverse);
+    glm_mat4_mulv(inverse, (float *)light, out);
 }
 
 /* ---- when z-pass is safe ---- */
@@ -215,6 +221,58 @@ bool volume_mesh_zpass_safe(const float lo[3], const float hi[3], const float li
            volume_mesh_box_outside(n, d, lo, hi);
 }
 
+/* ---- when a volume misses the view ---- */
+
+/* The planes that clip with depth clamp on (see the header): weights of
+ * the clip coordinates x, y, z, w (rows of the view-projection matrix). */
+#define VOLUME_MESH_CLIP_PLANES 5
+static const float volume_mesh_clip_planes[VOLUME_MESH_CLIP_PLANES][4] = {
+    {1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 1, 0, 1}, {0, -1, 0, 1}, {0, 0, 0, 1}};
+
+/* Whether every point is beyond the plane (a combination of clip
+ * coordinates) by more than the float rounding of either side's
+ * arithmetic could make up: FRUSTUM_CLIP_TOLERANCE of the magnitudes
+ * summed into each clip coordinate. */
+static bool volume_mesh_all_beyond(const float plane[4], const float (*clip)[4], const float (*magnitude)[4],
+                                   int count) {
+    for (int i = 0; i < count; i++) {
+        float sum = 0, size = 0;
+        for (int row = 0; row < 4; row++) {
+            sum += plane[row] * clip[i][row];
+            size += fabsf(plane[row]) * magnitude[i][row];
+        }
+        if (sum >= -FRUSTUM_CLIP_TOLERANCE * size)
+            return false;
+    }
+    return true;
+}
+
+bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4],
+                             const mat4 view_projection) {
+    enum { CORNERS = 8, POINTS = 2 * CORNERS };
+    float corners[CORNERS][3], clip[POINTS][4], magnitude[POINTS][4];
+    frustum_box_corners(lo, hi, corners);
+    for (int i = 0; i < POINTS; i++) {
+        float p[4] = {0, 0, 0, i < CORNERS};
+        if (i < CORNERS)
+            memcpy(p, corners[i], sizeof corners[i]);
+        else
+            volume_mesh_extrude(corners[i - CORNERS], light, p);
+        for (int row = 0; row < 4; row++) {
+            clip[i][row] = magnitude[i][row] = 0;
+            for (int k = 0; k < 4; k++) {
+                clip[i][row] += view_projection[k][row] * p[k];
+                magnitude[i][row] += fabsf(view_projection[k][row] * p[k]);
+            }
+        }
+    }
+    for (int p = 0; p < VOLUME_MESH_CLIP_PLANES; p++)
+        if (volume_mesh_all_beyond(volume_mesh_clip_planes[p], (const float(*)[4])clip,
+                                   (const float(*)[4])magnitude, POINTS))
+            return true;
+    return false;
+}
+
 /* ---- where the light can reach ---- */
 
 bool volume_mesh_receivers_ndc(const scene *s, const mat4 view_projection, float lo[2], float hi[2]) {
@@ -238,4 +296,22 @@ bool volume_mesh_receivers_ndc(const scene *s, const mat4 view_projection, float
         }
     }
     return true;
+}
+
+/* NDC coordinate -> pixels on an axis of `size`, within the viewport. */
+static float volume_mesh_to_pixels(float ndc, int size) {
+    return (glm_clamp(ndc, -1, 1) * 0.5f + 0.5f) * (float)size;
+}
+
+void volume_mesh_receivers_scissor(const scene *s, const mat4 view_projection, int width, int height, int out[4]) {
+    float lo[2], hi[2];
+    if (!volume_mesh_receivers_ndc(s, view_projection, lo, hi)) {
+        out[0] = out[1] = 0, out[2] = width, out[3] = height;
+        return;
+    }
+    int x0 = (int)floorf(volume_mesh_to_pixels(lo[0], width));
+    int y0 = (int)floorf(volume_mesh_to_pixels(lo[1], height));
+    int x1 = (int)ceilf(volume_mesh_to_pixels(hi[0], width));
+    int y1 = (int)ceilf(volume_mesh_to_pixels(hi[1], height));
+    out[0] = x0, out[1] = y0, out[2] = x1 > x0 ? x1 - x0 : 0, out[3] = y1 > y0 ? y1 - y0 : 0;
 }

@@ -44,6 +44,22 @@
  * test is conservative and has no tolerance: a box touching the hull, or
  * straddling every one of its face planes, is not safe.
  *
+ * When a volume misses the view: every point of a caster's volume is a
+ * combination with non-negative weights of the homogeneous corners of its
+ * world box (c, 1) and of those corners swept away from the light, (c -
+ * light.xyz, 0) for a point light, (-light.xyz, 0), the direction of
+ * travel, for a directional one: a vertex on the mesh is a convex
+ * combination of the corners, its image at infinity the same combination
+ * of their images, and a triangle's points combine its vertices with
+ * non-negative weights, which is also how the GL clips it. A clip plane
+ * is a linear function of those homogeneous points (a row combination of
+ * the view-projection matrix), so when it is negative at each of the 16
+ * it is negative on the whole volume, and no fragment of it is drawn. The
+ * planes: x and y against w (w + x, w - x, w + y, w - y), and w itself
+ * (the eye's plane: a point with w < 0 fails one of the four). Not the
+ * near and far planes: with depth clamp (which the volumes are drawn
+ * with) they clip nothing, and faces beyond them still count.
+ *
  * Also here, the rest of the technique's CPU geometry: the edge table a
  * volume needs, and the screen rectangle of the receivers, outside which
  * the stencil need not be cleared.
@@ -58,11 +74,13 @@
 #include "mesh.h"
 #include "scene.h"
 
-/* What volume_mesh_build emits: sides (z-pass, triangles), sides and caps
- * (z-fail, triangles), or the silhouette edges (lines). */
+/* What volume_mesh_build emits: the sides (triangles; all z-pass needs),
+ * the caps (triangles; z-fail draws them after the sides), or the
+ * silhouette edges (lines). Sides and caps apart, so that a volume kept
+ * for a light serves either mode, which the camera picks each frame. */
 typedef enum volume_mesh_parts {
     VOLUME_MESH_SIDES,
-    VOLUME_MESH_SIDES_AND_CAPS,
+    VOLUME_MESH_CAPS,
     VOLUME_MESH_SILHOUETTE_LINES,
 } volume_mesh_parts;
 
@@ -86,6 +104,10 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
                        volume_mesh_parts parts);
 void volume_mesh_free(volume_mesh *v);
 
+/* The light (homogeneous, world) in the space of an object whose model
+ * matrix is `model`: the space its volume is built in. */
+void volume_mesh_object_light(const mat4 model, const float light[4], float out[4]);
+
 /* The corners of the near-plane rectangle of `view_projection`, in world
  * space, in order round the rectangle (NDC x, y: -1 -1, 1 -1, 1 1, -1 1). */
 void volume_mesh_near_rectangle(const mat4 view_projection, vec3 out[4]);
@@ -94,10 +116,22 @@ void volume_mesh_near_rectangle(const mat4 view_projection, vec3 out[4]);
  * light (homogeneous, world space). */
 bool volume_mesh_zpass_safe(const float lo[3], const float hi[3], const float light[4], const vec3 rectangle[4]);
 
+/* True when the volume of a caster whose world box is [lo, hi], from the
+ * light (homogeneous, world), has no point that survives clipping to
+ * `view_projection` with depth clamp on, so that it covers no pixel (see
+ * "When a volume misses the view" above). Conservative: false for a
+ * volume that touches the view, or nearly (FRUSTUM_CLIP_TOLERANCE). */
+bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4],
+                             const mat4 view_projection);
+
 /* The NDC rectangle (x, y) of the world boxes of the scene's receivers: no
  * light reaches pixels outside it, so the stencil need not be cleared
  * there. Not clamped to [-1, 1]; empty (lo > hi) when nothing receives.
  * False when a box reaches behind the eye (no rectangle bounds it). */
 bool volume_mesh_receivers_ndc(const scene *s, const mat4 view_projection, float lo[2], float hi[2]);
+/* That rectangle in pixels of a width x height viewport, rounded out and
+ * clipped to it: x, y, width, height for glScissor. The whole viewport
+ * when a box reaches behind the eye. */
+void volume_mesh_receivers_scissor(const scene *s, const mat4 view_projection, int width, int height, int out[4]);
 
 #endif
