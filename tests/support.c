@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "image.h"
+#include "path.h"
 
 const char *support_program(const char *name) {
     static char command[4][2048];
@@ -86,6 +87,26 @@ int support_dump(const char *program, const char *scene, const char *flags, cons
     snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --dump %s", support_program(program), scene,
              flags, dir);
     return support_run(command, err, sizeof err);
+}
+
+/* Dumps are a few MB: room for the largest with margin. */
+#define SUPPORT_MAX_COMPARED_BYTES (64 << 20)
+
+const char *support_first_difference(const char *a, const char *b, const char *const *names, size_t count) {
+    for (size_t i = 0; i < count; i++) {
+        char a_path[1024], b_path[1024];
+        snprintf(a_path, sizeof a_path, "%s/%s", a, names[i]);
+        snprintf(b_path, sizeof b_path, "%s/%s", b, names[i]);
+        size_t a_length, b_length;
+        char *a_bytes = path_read_text(a_path, SUPPORT_MAX_COMPARED_BYTES, &a_length);
+        char *b_bytes = path_read_text(b_path, SUPPORT_MAX_COMPARED_BYTES, &b_length);
+        bool same = a_bytes && b_bytes && a_length == b_length && memcmp(a_bytes, b_bytes, a_length) == 0;
+        free(a_bytes);
+        free(b_bytes);
+        if (!same)
+            return names[i];
+    }
+    return NULL;
 }
 
 bool support_have_command(const char *name) {

@@ -30,6 +30,9 @@ int support_count_lines(const char *text);
  * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
 double support_compare_images(const char *golden, const char *actual);
 bool support_have_command(const char *name);
+/* The first of the count files `names` that differs between directories
+ * a and b (or is missing from one), or NULL when all are byte-identical. */
+const char *support_first_difference(const char *a, const char *b, const char *const *names, size_t count);
 /* Runs `PROGRAM --size 640x360 --scene SCENE FLAGS --frames 1 --verbose`,
  * fails the running cmocka test unless it exits 0, and returns the first
  * line of its stderr that starts with `marker` (the line goes on to the

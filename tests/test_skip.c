@@ -22,7 +22,6 @@
 
 #include "frustum.h"
 #include "scene.h"
-#include "path.h"
 #include "registry.h"
 #include "support.h"
 
@@ -32,7 +31,6 @@
 #define CITY_OBJECTS 1001 /* the ground and 1000 buildings */
 #define CITY_LIGHTS 7
 #define CITY_SKIPPED_LIGHT "4" /* a point light far to the left of the street */
-#define MAX_DUMP_BYTES (64 << 20)
 /* A test frustum: 90 degrees, square, near 1, far 100, looking down -z. */
 #define TEST_FOV_DEG 90.0f
 #define TEST_NEAR 1.0f
@@ -154,18 +152,6 @@ static void dump_dir(const char *technique, size_t c, const char *skips, char *o
     snprintf(out, size, OUT "/%s_%zu_%s_%s", technique, c, cases[c].scene, skips);
 }
 
-static bool same_file(const char *a_dir, const char *b_dir, const char *name) {
-    char a_path[512], b_path[512];
-    snprintf(a_path, sizeof a_path, "%s/%s", a_dir, name);
-    snprintf(b_path, sizeof b_path, "%s/%s", b_dir, name);
-    size_t a_length, b_length;
-    char *a = path_read_text(a_path, MAX_DUMP_BYTES, &a_length), *b = path_read_text(b_path, MAX_DUMP_BYTES, &b_length);
-    bool same = a && b && a_length == b_length && memcmp(a, b, a_length) == 0;
-    free(a);
-    free(b);
-    return same;
-}
-
 /* Every technique on every case: skips on and --no-skip dump the same. */
 static void test_dumps_identical_with_and_without_skips(void **state) {
     (void)state;
@@ -179,11 +165,10 @@ static void test_dumps_identical_with_and_without_skips(void **state) {
             dump_dir(technique, c, "off", off, sizeof off);
             assert_int_equal(support_dump(technique, scene, cases[c].flags, on), 0);
             assert_int_equal(support_dump(technique, scene, off_flags, off), 0);
-            for (size_t f = 0; f < sizeof dump_files / sizeof *dump_files; f++) {
-                if (!same_file(on, off, dump_files[f]))
-                    fail_msg("%s on %s %s: %s differs between %s and %s", technique, cases[c].scene,
-                             cases[c].flags, dump_files[f], on, off);
-            }
+            const char *differs = support_first_difference(on, off, dump_files, sizeof dump_files / sizeof *dump_files);
+            if (differs)
+                fail_msg("%s on %s %s: %s differs between %s and %s", technique, cases[c].scene, cases[c].flags,
+                         differs, on, off);
         }
         printf("    %s: %zu cases, dumps identical with and without skips\n", technique,
                sizeof cases / sizeof *cases);
