@@ -357,8 +357,8 @@ typedef struct shadow_map_reads {
     float lo[2], hi[2], max_depth;
 } shadow_map_reads;
 float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind);
-/* The reads of the layer of matrix `layer` by the receiver points and by
- * the surfaces of the receiver boxes (lo, hi). */
+/* The reads of the layer of matrix `layer` by the receiver points (NULL:
+ * no bound from them) and by the surfaces of the receiver boxes (lo, hi). */
 void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *setup, const float (*points)[3],
                             int point_count, const float (*boxes)[2][3], int box_count, shadow_map_reads *out);
 /* The caster box lo..hi may change a read of the layer. */

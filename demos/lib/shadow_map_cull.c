@@ -159,7 +159,9 @@ void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *s, co
      * in both. */
     shadow_map_reads by_points, by_boxes;
     shadow_map_reads_start(&by_points);
-    for (int i = 0; i < point_count; i++)
+    if (!points)
+        shadow_map_reads_whole(&by_points);
+    for (int i = 0; points && i < point_count; i++)
         if (!shadow_map_reads_add(&by_points, layer, s, points[i])) {
             shadow_map_reads_whole(&by_points);
             break;
@@ -252,8 +254,10 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
     glm_vec3_copy((float *)s->lights[l].position, setup.center);
     shadow_map_reads reads[SHADOW_MAP_MAX_LAYERS];
     int box_count = cull ? shadow_map_light_receivers(f, l, r->receiver_boxes) : 0;
+    /* A full list may have left receivers out: then only the boxes bound the reads. */
+    const float(*points)[3] = f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS ? f->receivers : NULL;
     for (int layer = 0; cull && layer < m->layer_count; layer++)
-        shadow_map_layer_reads(m->layer_view_projection[layer], &setup, f->receivers, f->receiver_count,
+        shadow_map_layer_reads(m->layer_view_projection[layer], &setup, points, f->receiver_count,
                                (const float(*)[2][3])r->receiver_boxes, box_count, &reads[layer]);
     for (int i = 0; i < s->object_count; i++) {
         bool candidate = s->objects[i].casts && (!m->casters || m->casters[i]), drawn = false;
