@@ -1,6 +1,7 @@
 /* shadow_map: storage, the depth pass, the camera pass and the frame (see
  * shadow_map.h). */
 #include <glad/gl.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,13 +72,14 @@ static void shadow_map_attach_layer(const shadow_map *m, int layer) {
 
 /* (Re)creates a map's depth texture when its kind, size, layer count,
  * format or filter changed: compare mode on, so that every read is a depth
- * test; outside the map reads are clamped (the shader calls them lit). */
-static void shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
+ * test; outside the map reads are clamped (the shader calls them lit).
+ * Returns whether it made one (what the layers held is gone). */
+static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
     shadow_map_texture *t = &m->texture;
     int depth = settings->depth, filter = settings->filter;
     if (t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count && t->depth == depth &&
         t->filter == filter)
-        return;
+        return false;
     glDeleteTextures(1, &t->id);
     GLenum target = shadow_map_target(m->kind);
     GLenum format = depth == SHADOW_MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
@@ -103,14 +105,14 @@ static void shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
     t->layer_count = m->layer_count;
     t->depth = depth;
     t->filter = filter;
+    return true;
 }
 
 /* ---- the depth pass ---- */
 
-void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
-                             shadow_map *m) {
-    const scene *s = gpu->scene;
-    shadow_map_prepare_texture(m, settings);
+/* The depth pass's state: its framebuffer, viewport, slope bias, program. */
+static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_settings *settings,
+                                   const shadow_map *m) {
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     glViewport(0, 0, m->size, m->size);
     if (settings->no_slope_bias) {
@@ -121,14 +123,79 @@ void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *
                         shadow_map_setting(settings->slope_units, SHADOW_MAP_SLOPE_UNITS));
     }
     glUseProgram(r->depth.id);
+}
+
+/* One layer from its matrix, with the casters of `casters` (NULL: every
+ * caster). Not the frame's in_view: the light sees casters the camera
+ * does not. */
+static void shadow_map_depth_layer(shadow_map_renderer *r, const render_scene *gpu, const shadow_map *m, int layer,
+                                   const bool *casters) {
+    const scene *s = gpu->scene;
+    shadow_map_attach_layer(m, layer);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
+    for (int i = 0; i < s->object_count; i++)
+        if (s->objects[i].casts && (!casters || casters[i]))
+            render_draw_object(gpu, &r->depth, i);
+}
+
+void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
+                             shadow_map *m) {
+    shadow_map_prepare_texture(m, settings);
+    shadow_map_depth_begin(r, settings, m);
+    for (int layer = 0; layer < m->layer_count; layer++)
+        shadow_map_depth_layer(r, gpu, m, layer, m->casters);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+/* ---- caster culling and the cache ---- */
+
+static void shadow_map_forget(shadow_map_cache *c) { memset(c->valid, 0, sizeof c->valid); }
+
+/* The layer holds what it would be rendered with now. */
+static bool shadow_map_layer_cached(const shadow_map_renderer *r, const shadow_map_cache *c, const shadow_map *m,
+                                    int layer) {
+    if (!c->valid[layer] ||
+        memcmp(c->layer_view_projection[layer], m->layer_view_projection[layer], sizeof(mat4)) != 0)
+        return false;
+    for (int i = 0; i < r->object_count; i++)
+        if (r->needed[layer][i] && !c->drawn[layer][i])
+            return false;
+    return true;
+}
+
+/* Light l's fitted map: each layer from the cache, or rendered with the
+ * casters it needs. */
+static void shadow_map_render_layers(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                                     int l) {
+    shadow_map *m = &r->maps[l];
+    shadow_map_cache *c = &r->caches[l];
+    bool remade = shadow_map_prepare_texture(m, st);
+    shadow_map_depth_key key = {.texture = m->texture.id,
+                                .size = m->size,
+                                .depth = st->depth,
+                                .filter = st->filter,
+                                .no_slope_bias = st->no_slope_bias,
+                                .slope_factor = st->slope_factor,
+                                .slope_units = st->slope_units};
+    if (remade || memcmp(&key, &c->key, sizeof key) != 0)
+        shadow_map_forget(c);
+    c->key = key;
+    shadow_map_plan_casters(r, st, f, l);
+    bool begun = false;
     for (int layer = 0; layer < m->layer_count; layer++) {
-        shadow_map_attach_layer(m, layer);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
-        /* Not the frame's in_view: the light sees casters the camera does not. */
-        for (int i = 0; i < s->object_count; i++)
-            if (s->objects[i].casts && (!m->casters || m->casters[i]))
-                render_draw_object(gpu, &r->depth, i);
+        if (shadow_map_layer_cached(r, c, m, layer)) {
+            f->counts->layers_reused++;
+            continue;
+        }
+        if (!begun)
+            shadow_map_depth_begin(r, st, m);
+        begun = true;
+        shadow_map_depth_layer(r, f->gpu, m, layer, r->needed[layer]);
+        f->counts->layers_rendered++;
+        c->valid[layer] = true;
+        glm_mat4_copy(m->layer_view_projection[layer], c->layer_view_projection[layer]);
+        memcpy(c->drawn[layer], r->needed[layer], (size_t)r->object_count * sizeof(bool));
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -183,9 +250,29 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     return true;
 }
 
-bool shadow_map_init(shadow_map_renderer *r) {
+/* The caster sets: each light's drawn per layer, then one light's needed
+ * per layer; and the receivers' boxes. */
+static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
+    size_t n = (size_t)object_count, layers = SHADOW_MAP_MAX_LAYERS;
+    bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
+    r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
+    r->object_count = object_count;
+    r->needed[0] = sets; /* what destroy frees */
+    if (!sets || !r->receiver_boxes) {
+        fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
+        return false;
+    }
+    for (size_t layer = 0; layer < layers; layer++) {
+        r->needed[layer] = sets + layer * n;
+        for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+            r->caches[l].drawn[layer] = sets + ((size_t)(l + 1) * layers + layer) * n;
+    }
+    return true;
+}
+
+bool shadow_map_init(shadow_map_renderer *r, const render_scene *gpu) {
     static const char *const depth_files[] = {"shadow_depth.vert", "shadow_depth.frag"};
-    if (!render_program_load(&r->depth, depth_files, 2, NULL) ||
+    if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !render_program_load(&r->depth, depth_files, 2, NULL) ||
         !shadow_map_camera_program_load(&r->camera_2d, "shadowmap_2d.frag") ||
         !shadow_map_camera_program_load(&r->camera_cube, "shadowmap_cube.frag") ||
         !shadow_map_overlay_programs_load(r))
@@ -218,6 +305,8 @@ void shadow_map_destroy(shadow_map_renderer *r) {
     glDeleteFramebuffers(1, &r->framebuffer);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         glDeleteTextures(1, &r->maps[l].texture.id);
+    free(r->needed[0]);
+    free(r->receiver_boxes);
     memset(r, 0, sizeof *r);
 }
 
@@ -272,9 +361,15 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         shadow_map *m = &r->maps[l];
         m->size = shadow_map_settings_size(settings);
         fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
+        if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
+            shadow_map_forget(&r->caches[l]);
         if (fitted[l])
-            shadow_map_render_depth(r, settings, f->gpu, m);
+            shadow_map_render_layers(r, settings, f, l);
     }
+    /* A light without a map this frame may change unseen before the next. */
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        if (!fitted[l])
+            shadow_map_forget(&r->caches[l]);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     /* Ambient, then each light added where its map lets it through. */

@@ -13,8 +13,10 @@
  *     1. the receiver points: the frame's (technique.h), the corners of the
  *        part of every receiver's box inside the camera's frustum;
  *     2. per light: fit(frame, light, map, receivers) places the map, and
- *        the depth pass renders it; a fit that returns false means nothing
- *        can be shadowed, and the light is added unshadowed;
+ *        the depth pass renders each layer that its cache cannot give,
+ *        with the casters that layer needs (below); a fit that returns
+ *        false means nothing can be shadowed, and the light is added
+ *        unshadowed;
  *     3. the camera pass: ambient, then each light added where its map
  *        lets it through (GL_EQUAL depth, additive blending);
  *     4. the overlays of settings->overlay.
@@ -69,6 +71,38 @@
  *            least of 2 to 6 on the standard scenes).
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
+ *
+ * Caster culling (shadow_map_cull.c, no GL; with f->cull_casters). Each
+ * layer (a cube's faces each on its own) draws only the casters that can
+ * shadow a visible receiver through it. Where receivers read a layer, in
+ * its clip space: the NDC rectangle and deepest depth of both the frame's
+ * receiver points and the surfaces of the visible receivers' boxes within
+ * the light's range inside the layer's sides (a cube's widened by the
+ * kernel, whose taps cross its edges), the tighter of the two, grown by
+ * the kernel's reach (shadow_map_read_reach: its farthest tap, the
+ * bilinear footprint, a texel of safety; a cube's taps stretched) and
+ * clamped to the layer. A caster's box is needed unless it lies beyond one
+ * of the layer's clip planes, or, wholly in front of the centre of
+ * projection, its rectangle misses that one or its nearest depth lies
+ * beyond the deepest read (any depth with receiver-plane taps; a cube tap
+ * compares its own direction's depth, bounded by the point pushed away
+ * from the light by the tap's offset). Exact: the constant bias moves a
+ * point along its ray to the light, which keeps its place in every map,
+ * and the depth a culled caster would have stored is never one a read
+ * compares with. Not culled: with a normal offset (the point leaves its
+ * surface), and light 0's map while the inset shows it. The fit never
+ * depends on culling.
+ *
+ * Caching. Per light and layer the renderer keeps what the layer holds:
+ * its matrix (bit for bit), the casters drawn, and per light the texture,
+ * size, depth format, filter and slope bias. A layer is reused, with no
+ * depth pass, while the scene and the light have not changed
+ * (f->changed), those are the same and the casters it needs are among
+ * those drawn: a layer with more casters than needed decides every read
+ * as one with exactly those. A remade texture, a frame with the light
+ * skipped or unfitted, or any change empties the light's cache. Counted in
+ * f->counts (casters per light: drawn into any layer, or culled; layers
+ * rendered and reused).
  *
  * Overlays, for lectures (shadow_map_overlay.c), drawn into the picture:
  *   texels      the map's texel boundaries on the receivers (camera pass);
@@ -246,6 +280,22 @@ typedef struct shadow_map_inset_program {
 /* Room in the overlay buffer: the 24 line ends of a frustum's 12 edges. */
 #define SHADOW_MAP_OVERLAY_VERTICES 24
 
+/* What a light's map was rendered with (the cache's key): all ints, so
+ * that it compares with memcmp. */
+typedef struct shadow_map_depth_key {
+    unsigned texture;
+    int size, depth, filter, no_slope_bias;
+    float slope_factor, slope_units;
+} shadow_map_depth_key;
+
+/* What each layer of a light's map holds. */
+typedef struct shadow_map_cache {
+    shadow_map_depth_key key;
+    bool valid[SHADOW_MAP_MAX_LAYERS];
+    mat4 layer_view_projection[SHADOW_MAP_MAX_LAYERS];
+    bool *drawn[SHADOW_MAP_MAX_LAYERS]; /* per object: drawn into the layer */
+} shadow_map_cache;
+
 /* A technique's maps and their GL objects. */
 typedef struct shadow_map_renderer {
     render_program depth;
@@ -254,12 +304,17 @@ typedef struct shadow_map_renderer {
     shadow_map_inset_program inset;
     unsigned framebuffer, overlay_vao, overlay_buffer;
     shadow_map maps[SCENE_MAX_LIGHTS];
+    shadow_map_cache caches[SCENE_MAX_LIGHTS];
+    int object_count;                      /* the scene's, at init: the sets' size */
+    bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
+    float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
 } shadow_map_renderer;
 
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
                                         const float (*receivers)[3], int receiver_count);
 
-bool shadow_map_init(shadow_map_renderer *r);
+/* gpu: the scene whose object count sizes the caster sets. */
+bool shadow_map_init(shadow_map_renderer *r, const render_scene *gpu);
 void shadow_map_destroy(shadow_map_renderer *r);
 /* The whole frame (see the top of this file); fit returns 2D and cube
  * maps only. */
@@ -281,6 +336,40 @@ const char *shadow_map_kind_name(shadow_map_kind kind);
 /* The uniform placement of light `light` of `s` (see the top). */
 bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
                             int receiver_count);
+
+/* ---- caster culling (shadow_map_cull.c) ---- */
+
+/* How a layer is read: the kernel's reach in texels from a point's
+ * projection (shadow_map_read_reach), the map's size, whether it is a cube
+ * face (taps cross its edges and compare their own direction's depth,
+ * about `center`, the light) and whether taps compare any depth
+ * (receiver-plane). */
+typedef struct shadow_map_read_setup {
+    float reach;
+    int size;
+    bool cube, any_depth;
+    float center[3];
+} shadow_map_read_setup;
+/* Where receivers read a layer: an NDC rectangle (grown by the reach,
+ * within [-1, 1]) and the deepest NDC depth they compare; empty: none. */
+typedef struct shadow_map_reads {
+    bool empty;
+    float lo[2], hi[2], max_depth;
+} shadow_map_reads;
+float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind);
+/* The reads of the layer of matrix `layer` by the receiver points (NULL:
+ * no bound from them) and by the surfaces of the receiver boxes (lo, hi). */
+void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *setup, const float (*points)[3],
+                            int point_count, const float (*boxes)[2][3], int box_count, shadow_map_reads *out);
+/* The caster box lo..hi may change a read of the layer. */
+bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi);
+/* The boxes of f's receivers that meet the view, clipped to light's range
+ * (at most the scene's object count); returns how many. */
+int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]);
+/* r->needed[layer]: the casters each layer of light l's fitted map needs
+ * (every candidate where it does not cull); counts them in f->counts. */
+void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                             int l);
 
 /* ---- overlays (shadow_map_overlay.c) ---- */
 

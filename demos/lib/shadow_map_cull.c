@@ -1,0 +1,277 @@
+/* shadow_map: which casters a layer needs (see shadow_map.h, "Caster
+ * culling"). Pure math on the scene: no GL. */
+#include <math.h>
+
+#include "shadow_map.h"
+
+/* The farthest Poisson tap, in units of the disc's scale (shadowmap.glsl). */
+#define SHADOW_MAP_POISSON_RADIUS 1.234f
+/* Bilinear taps read the 2x2 texels whose centres lie within a texel of
+ * the tap; a nearest tap reads the one within half a texel. */
+#define SHADOW_MAP_BILINEAR_TEXELS 1.0f
+#define SHADOW_MAP_NEAREST_TEXELS 0.5f
+/* Rounding between C's projection and the GPU's, in texels. */
+#define SHADOW_MAP_SAFETY_TEXELS 1.0f
+/* A cube map's tap offsets lie across the point's direction, not in its
+ * face: on a face they stretch by up to sqrt(2) (and a tap across an edge
+ * is measured on the next face), so they count twice. */
+#define SHADOW_MAP_CUBE_TAP_STRETCH 2.0f
+/* A caster this far in NDC depth beyond the deepest receiver still counts
+ * (24-bit storage and rasterization round the stored depth). */
+#define SHADOW_MAP_DEPTH_TOLERANCE 1e-4f
+/* Clip w at or below this fraction of a point's clip coordinates: the
+ * point is at the map's centre of projection, where it sees everything. */
+#define SHADOW_MAP_MIN_W FRUSTUM_FLOAT_TOLERANCE
+/* A box face clipped by the layer's five planes has at most 4 + 5 corners. */
+#define SHADOW_MAP_CLIP_PLANES 5
+#define SHADOW_MAP_POLYGON_MAX (4 + SHADOW_MAP_CLIP_PLANES)
+
+float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind) {
+    float offset = 0, footprint = SHADOW_MAP_BILINEAR_TEXELS; /* how far taps lie from the point; what each reads */
+    switch ((shadow_map_filter)settings->filter) {
+    case SHADOW_MAP_FILTER_NONE:
+        footprint = SHADOW_MAP_NEAREST_TEXELS;
+        break;
+    case SHADOW_MAP_FILTER_HW:
+        break;
+    case SHADOW_MAP_FILTER_PCF3:
+    case SHADOW_MAP_FILTER_PCF5:
+    case SHADOW_MAP_FILTER_PCF7:
+        offset = (float)((settings->filter - SHADOW_MAP_FILTER_PCF3) + 1); /* N / 2 for N = 3, 5, 7 */
+        break;
+    case SHADOW_MAP_FILTER_POISSON:
+        offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2;
+        break;
+    }
+    if (kind == SHADOW_MAP_CUBE)
+        offset *= SHADOW_MAP_CUBE_TAP_STRETCH;
+    return offset + footprint + SHADOW_MAP_SAFETY_TEXELS;
+}
+
+/* The reach in NDC. */
+static float shadow_map_read_margin(const shadow_map_read_setup *s) { return s->reach * 2 / (float)s->size; }
+
+static void shadow_map_clip_point(const mat4 layer, const float p[3], vec4 out) {
+    glm_mat4_mulv((vec4 *)layer, (vec4){p[0], p[1], p[2], 1}, out);
+}
+
+/* Adds one point a receiver may read the layer from; false where it sees
+ * the whole layer (at the centre of projection or behind it). */
+static bool shadow_map_reads_add(shadow_map_reads *r, const mat4 layer, const shadow_map_read_setup *s,
+                                 const float p[3]) {
+    vec4 c;
+    shadow_map_clip_point(layer, p, c);
+    if (c[3] <= SHADOW_MAP_MIN_W * (fabsf(c[0]) + fabsf(c[1]) + fabsf(c[2])))
+        return false;
+    for (int k = 0; k < 2; k++) {
+        r->lo[k] = fminf(r->lo[k], c[k] / c[3]);
+        r->hi[k] = fmaxf(r->hi[k], c[k] / c[3]);
+    }
+    r->max_depth = fmaxf(r->max_depth, c[2] / c[3]);
+    if (s->cube) {
+        /* A cube tap compares the depth of its own direction, which runs
+         * past the point's by up to the tap's offset: the point pushed
+         * away from the light by that much bounds it. */
+        float far_point[3], stretch = 1 + shadow_map_read_margin(s);
+        for (int k = 0; k < 3; k++)
+            far_point[k] = s->center[k] + stretch * (p[k] - s->center[k]);
+        shadow_map_clip_point(layer, far_point, c);
+        r->max_depth = fmaxf(r->max_depth, c[2] / c[3]);
+    }
+    return true;
+}
+
+/* The layer's planes a reading point lies inside (clip coordinates,
+ * world-homogeneous: plane . (p, 1) >= 0): its sides, widened by `widen`
+ * in NDC, and w >= 0. Near and far are no limit: a receiver beyond the far
+ * plane compares depth 1 and is shadowed by any caster. */
+static void shadow_map_layer_planes(const mat4 layer, float widen, vec4 planes[SHADOW_MAP_CLIP_PLANES]) {
+    float side = 1 + widen + FRUSTUM_CLIP_TOLERANCE;
+    for (int j = 0; j < 4; j++) {
+        float w = layer[j][3], x = layer[j][0], y = layer[j][1];
+        planes[0][j] = side * w - x;
+        planes[1][j] = side * w + x;
+        planes[2][j] = side * w - y;
+        planes[3][j] = side * w + y;
+        planes[4][j] = w;
+    }
+}
+
+/* Sutherland-Hodgman: the polygon's part inside one plane. */
+static int shadow_map_clip_polygon(const float (*in)[3], int n, const vec4 plane, float (*out)[3]) {
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const float *a = in[i], *b = in[(i + 1) % n];
+        float da = glm_vec3_dot((float *)plane, (float *)a) + plane[3];
+        float db = glm_vec3_dot((float *)plane, (float *)b) + plane[3];
+        if (da >= 0)
+            glm_vec3_copy((float *)a, out[m++]);
+        if ((da >= 0) != (db >= 0))
+            glm_vec3_lerp((float *)a, (float *)b, da / (da - db), out[m++]);
+    }
+    return m;
+}
+
+/* Adds the part of the box's surface inside the layer's planes. Every line
+ * through the centre of projection inside a convex body leaves it through
+ * its surface, at its least and greatest depth, and the side planes and
+ * w = 0 all pass through that centre: so the surface's part has the same
+ * rectangle and depths as the body's. */
+static bool shadow_map_reads_add_box(shadow_map_reads *r, const mat4 layer, const shadow_map_read_setup *s,
+                                     const vec4 planes[SHADOW_MAP_CLIP_PLANES], const float lo[3],
+                                     const float hi[3]) {
+    /* The six faces by their corners' numbers (bit k: hi in axis k), in order around each. */
+    static const int faces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                    {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+    vec3 corners[8];
+    frustum_box_corners(lo, hi, corners);
+    for (int f = 0; f < 6; f++) {
+        float a[SHADOW_MAP_POLYGON_MAX][3], b[SHADOW_MAP_POLYGON_MAX][3];
+        int n = 4;
+        for (int i = 0; i < 4; i++)
+            glm_vec3_copy(corners[faces[f][i]], a[i]);
+        for (int p = 0; p < SHADOW_MAP_CLIP_PLANES && n > 0; p++) {
+            n = shadow_map_clip_polygon((const float(*)[3])a, n, planes[p], b);
+            for (int i = 0; i < n; i++)
+                glm_vec3_copy(b[i], a[i]);
+        }
+        for (int i = 0; i < n; i++)
+            if (!shadow_map_reads_add(r, layer, s, a[i]))
+                return false;
+    }
+    return true;
+}
+
+static void shadow_map_reads_start(shadow_map_reads *r) {
+    *r = (shadow_map_reads){.lo = {INFINITY, INFINITY}, .hi = {-INFINITY, -INFINITY}, .max_depth = -INFINITY};
+}
+
+static void shadow_map_reads_whole(shadow_map_reads *r) {
+    *r = (shadow_map_reads){.lo = {-1, -1}, .hi = {1, 1}, .max_depth = INFINITY};
+}
+
+void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *s, const float (*points)[3],
+                            int point_count, const float (*boxes)[2][3], int box_count, shadow_map_reads *out) {
+    float margin = shadow_map_read_margin(s);
+    /* Two bounds of where receivers read, each whole: the visible
+     * receivers' points (the view's part of their boxes) and the surfaces
+     * of their boxes within the light's reach and the layer. The reads lie
+     * in both. */
+    shadow_map_reads by_points, by_boxes;
+    shadow_map_reads_start(&by_points);
+    if (!points)
+        shadow_map_reads_whole(&by_points);
+    for (int i = 0; points && i < point_count; i++)
+        if (!shadow_map_reads_add(&by_points, layer, s, points[i])) {
+            shadow_map_reads_whole(&by_points);
+            break;
+        }
+    vec4 planes[SHADOW_MAP_CLIP_PLANES];
+    /* A cube's taps read on across its edges: a point beside the face reads it. */
+    shadow_map_layer_planes(layer, s->cube ? margin : 0, planes);
+    shadow_map_reads_start(&by_boxes);
+    for (int i = 0; i < box_count; i++)
+        if (!shadow_map_reads_add_box(&by_boxes, layer, s, planes, boxes[i][0], boxes[i][1])) {
+            shadow_map_reads_whole(&by_boxes);
+            break;
+        }
+    shadow_map_reads_start(out);
+    for (int k = 0; k < 2; k++) {
+        out->lo[k] = fmaxf(fmaxf(by_points.lo[k], by_boxes.lo[k]) - margin, -1);
+        out->hi[k] = fminf(fminf(by_points.hi[k], by_boxes.hi[k]) + margin, 1);
+    }
+    out->max_depth = s->any_depth ? INFINITY : fminf(by_points.max_depth, by_boxes.max_depth);
+    out->empty = !(out->lo[0] <= out->hi[0] && out->lo[1] <= out->hi[1]);
+}
+
+bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi) {
+    if (reads->empty || frustum_box_outside(layer, lo, hi))
+        return false;
+    vec3 corners[8];
+    frustum_box_corners(lo, hi, corners);
+    float clo[2] = {INFINITY, INFINITY}, chi[2] = {-INFINITY, -INFINITY}, nearest = INFINITY;
+    for (int c = 0; c < 8; c++) {
+        vec4 p;
+        shadow_map_clip_point(layer, corners[c], p);
+        if (p[3] <= SHADOW_MAP_MIN_W * (fabsf(p[0]) + fabsf(p[1]) + fabsf(p[2])))
+            return true; /* around or behind the centre of projection, and not wholly outside */
+        for (int k = 0; k < 2; k++) {
+            clo[k] = fminf(clo[k], p[k] / p[3]);
+            chi[k] = fmaxf(chi[k], p[k] / p[3]);
+        }
+        nearest = fminf(nearest, p[2] / p[3]);
+    }
+    return clo[0] <= reads->hi[0] && chi[0] >= reads->lo[0] && clo[1] <= reads->hi[1] && chi[1] >= reads->lo[1] &&
+           nearest <= reads->max_depth + SHADOW_MAP_DEPTH_TOLERANCE;
+}
+
+int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]) {
+    const scene *s = f->gpu->scene;
+    const scene_light *l = &s->lights[light];
+    bool ranged = l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0;
+    /* Beyond its range a light adds exactly 0 (lighting.glsl): what is there reads no map. */
+    float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
+    int n = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        if (frustum_box_outside(f->view->view_projection, lo, hi))
+            continue;
+        bool empty = false;
+        for (int k = 0; ranged && k < 3; k++) {
+            lo[k] = fmaxf(lo[k], l->position[k] - range);
+            hi[k] = fminf(hi[k], l->position[k] + range);
+            empty = empty || lo[k] > hi[k];
+        }
+        if (empty)
+            continue;
+        glm_vec3_copy(lo, boxes[n][0]);
+        glm_vec3_copy(hi, boxes[n][1]);
+        n++;
+    }
+    return n;
+}
+
+/* ---- the plan of a light's depth pass ---- */
+
+/* Light l's map culls its casters (see the top of shadow_map.h). */
+static bool shadow_map_culls(const shadow_map_settings *st, const technique_frame *f, int l) {
+    bool inset = l == 0 && (st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_MAP);
+    return f->cull_casters && !inset && st->normal_texels == 0;
+}
+
+void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                             int l) {
+    const scene *s = f->gpu->scene;
+    const shadow_map *m = &r->maps[l];
+    bool cull = shadow_map_culls(st, f, l);
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind),
+                                   .size = m->size,
+                                   .cube = m->kind == SHADOW_MAP_CUBE,
+                                   .any_depth = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+    glm_vec3_copy((float *)s->lights[l].position, setup.center);
+    shadow_map_reads reads[SHADOW_MAP_MAX_LAYERS];
+    int box_count = cull ? shadow_map_light_receivers(f, l, r->receiver_boxes) : 0;
+    /* A full list may have left receivers out: then only the boxes bound the reads. */
+    const float(*points)[3] = f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS ? f->receivers : NULL;
+    for (int layer = 0; cull && layer < m->layer_count; layer++)
+        shadow_map_layer_reads(m->layer_view_projection[layer], &setup, points, f->receiver_count,
+                               (const float(*)[2][3])r->receiver_boxes, box_count, &reads[layer]);
+    for (int i = 0; i < s->object_count; i++) {
+        bool candidate = s->objects[i].casts && (!m->casters || m->casters[i]), drawn = false;
+        vec3 lo = GLM_VEC3_ZERO_INIT, hi = GLM_VEC3_ZERO_INIT;
+        if (cull && candidate)
+            scene_object_world_bounds(&s->objects[i], lo, hi);
+        for (int layer = 0; layer < m->layer_count; layer++) {
+            r->needed[layer][i] =
+                candidate && (!cull || shadow_map_caster_read(&reads[layer], m->layer_view_projection[layer], lo, hi));
+            drawn = drawn || r->needed[layer][i];
+        }
+        if (candidate && drawn)
+            f->counts->casters_drawn[l]++;
+        else if (candidate)
+            f->counts->casters_culled[l]++;
+    }
+}

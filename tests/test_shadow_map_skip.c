@@ -1,0 +1,260 @@
+/* The shadow maps' skips (demos/lib/shadow_map.h, "Caster culling" and
+ * "Caching"): the culling test in process on hand-made layers, then the
+ * programs. A caster between the light and the receivers is needed; one
+ * beside the map, behind the light or behind the receivers is not; the
+ * kernel's reach keeps casters a few texels beside the receivers. And
+ * skipping never changes a decision: build/shadowmap and build/psm dump the
+ * same visibility, depth and picture with skips on and with --no-skip on
+ * the 1000-object city, static and with the lights or the camera moving,
+ * while the skips cull casters and a static run reuses every layer from
+ * its second frame on. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shadow_map.h"
+#include "support.h"
+
+#define OUT "out/test/shadow_map_skip"
+#define CITY "assets/scenes/city_1000.json"
+#define CITY_LIGHTS 7
+#define CITY_CASTERS 1000
+/* The hand-made spot: at height LIGHT_Y looking straight down, 90 degrees,
+ * near 1, far 20, a MAP_SIZE map; the receiver a square ground patch. */
+#define LIGHT_Y 10.0f
+#define FOV_DEG 90.0f
+#define NEAR 1.0f
+#define FAR 20.0f
+#define MAP_SIZE 256
+#define PATCH 1.0f /* the patch's half side: its NDC x spans +-PATCH / LIGHT_Y */
+
+static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "color.png"};
+static const char *const motions[] = {"static", "light", "camera"};
+static const char *const programs[] = {"shadowmap", "psm"};
+
+/* The spot's layer: world -> its clip space. */
+static void spot_layer(mat4 out) {
+    mat4 view, projection;
+    glm_lookat((vec3){0, LIGHT_Y, 0}, (vec3){0, 0, 0}, (vec3){0, 0, -1}, view);
+    glm_perspective(glm_rad(FOV_DEG), 1, NEAR, FAR, projection);
+    glm_mat4_mul(projection, view, out);
+}
+
+/* Where the patch's receivers read the spot's layer under `settings`. */
+static void patch_reads(const mat4 layer, const shadow_map_settings *settings, shadow_map_reads *reads) {
+    const float box[1][2][3] = {{{-PATCH, 0, -PATCH}, {PATCH, 0, PATCH}}};
+    float points[8][3];
+    frustum_box_corners(box[0][0], box[0][1], (vec3 *)points);
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(settings, SHADOW_MAP_2D),
+                                   .size = MAP_SIZE,
+                                   .any_depth = settings->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+    shadow_map_layer_reads(layer, &setup, (const float(*)[3])points, 8, box, 1, reads);
+}
+
+static bool caster_needed(const mat4 layer, const shadow_map_reads *reads, vec3 lo, vec3 hi) {
+    return shadow_map_caster_read(reads, layer, lo, hi);
+}
+
+static void test_caster_cases(void **state) {
+    (void)state;
+    mat4 layer;
+    spot_layer(layer);
+    const shadow_map_settings settings = {0}; /* poisson */
+    shadow_map_reads reads;
+    patch_reads(layer, &settings, &reads);
+    assert_false(reads.empty);
+    static const struct {
+        const char *what;
+        vec3 lo, hi;
+        bool needed;
+    } cases[] = {
+        {"between the light and the receivers", {-0.5f, 4, -0.5f}, {0.5f, 5, 0.5f}, true},
+        {"on the receivers", {-0.2f, 0, -0.2f}, {0.2f, 0.3f, 0.2f}, true},
+        {"across the light's plane, over the receivers", {-0.1f, 8, -0.1f}, {0.1f, 11, 0.1f}, true},
+        {"beside the map", {30, 4, 0}, {32, 5, 2}, false},
+        {"in the map, beside the receivers", {4, 4, -0.5f}, {5, 5, 0.5f}, false},
+        {"behind the light", {-1, 12, -1}, {1, 13, 1}, false},
+        {"behind the receivers", {-0.5f, -3, -0.5f}, {0.5f, -2, 0.5f}, false},
+    };
+    /* The same from the boxes alone (a receiver list too long to trust). */
+    const float box[1][2][3] = {{{-PATCH, 0, -PATCH}, {PATCH, 0, PATCH}}};
+    shadow_map_reads by_boxes;
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_2D), .size = MAP_SIZE};
+    shadow_map_layer_reads(layer, &setup, NULL, 0, box, 1, &by_boxes);
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        if (caster_needed(layer, &reads, (float *)cases[i].lo, (float *)cases[i].hi) != cases[i].needed)
+            fail_msg("caster %s: expected %s", cases[i].what, cases[i].needed ? "needed" : "culled");
+        if (caster_needed(layer, &by_boxes, (float *)cases[i].lo, (float *)cases[i].hi) != cases[i].needed)
+            fail_msg("caster %s, by the boxes: expected %s", cases[i].what, cases[i].needed ? "needed" : "culled");
+    }
+}
+
+/* A caster just above the ground, 2.5 texels beside the patch seen from the
+ * light: inside the Poisson disc's reach, outside one nearest tap's. */
+static void test_kernel_margin(void **state) {
+    (void)state;
+    mat4 layer;
+    spot_layer(layer);
+    const float low = 0.4f, high = 0.5f, gap_texels = 2.5f;
+    float patch_edge = PATCH / LIGHT_Y, texel = 2.0f / MAP_SIZE;
+    vec3 lo = {(patch_edge + gap_texels * texel) * (LIGHT_Y - low), low, -PATCH}, hi = {lo[0] + 0.5f, high, PATCH};
+    shadow_map_reads reads;
+    const shadow_map_settings poisson = {.filter = SHADOW_MAP_FILTER_POISSON}, nearest = {.filter = SHADOW_MAP_FILTER_NONE};
+    patch_reads(layer, &poisson, &reads);
+    assert_true(caster_needed(layer, &reads, lo, hi));
+    patch_reads(layer, &nearest, &reads);
+    assert_false(caster_needed(layer, &reads, lo, hi));
+    /* Wider kernels reach farther. */
+    static const shadow_map_filter order[] = {SHADOW_MAP_FILTER_NONE, SHADOW_MAP_FILTER_HW, SHADOW_MAP_FILTER_PCF3,
+                                              SHADOW_MAP_FILTER_POISSON, SHADOW_MAP_FILTER_PCF5,
+                                              SHADOW_MAP_FILTER_PCF7};
+    for (size_t i = 1; i < sizeof order / sizeof *order; i++) {
+        shadow_map_settings a = {.filter = order[i - 1]}, b = {.filter = order[i]};
+        assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D) < shadow_map_read_reach(&b, SHADOW_MAP_2D));
+    }
+    /* Receiver-plane taps compare depths beyond the receivers': a caster
+     * behind them is needed then, and culled with centre depths. */
+    const shadow_map_settings plane = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+    vec3 below_lo = {-0.5f, -3, -0.5f}, below_hi = {0.5f, -2, 0.5f};
+    patch_reads(layer, &plane, &reads);
+    assert_true(caster_needed(layer, &reads, below_lo, below_hi));
+    patch_reads(layer, &poisson, &reads);
+    assert_false(caster_needed(layer, &reads, below_lo, below_hi));
+}
+
+/* A cube face reads only what its side of the light sees, and a receiver
+ * near its edge reads it through the kernel. */
+static void test_cube_face(void **state) {
+    (void)state;
+    mat4 view, projection, face;
+    glm_lookat((vec3){0, 0, 0}, (vec3){1, 0, 0}, (vec3){0, -1, 0}, view); /* +X */
+    glm_perspective(glm_rad(FOV_DEG), 1, NEAR, FAR, projection);
+    glm_mat4_mul(projection, view, face);
+    const shadow_map_settings settings = {0};
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_CUBE), .size = MAP_SIZE,
+                                   .cube = true};
+    /* A ground patch below the light, on the +X side, beyond 45 degrees. */
+    const float box[1][2][3] = {{{2, -3, -1}, {8, -3, 1}}};
+    shadow_map_reads reads;
+    float points[8][3];
+    frustum_box_corners(box[0][0], box[0][1], (vec3 *)points);
+    shadow_map_layer_reads(face, &setup, (const float(*)[3])points, 8, box, 1, &reads);
+    assert_false(reads.empty);
+    assert_true(caster_needed(face, &reads, (vec3){4, -2, -0.5f}, (vec3){5, -1, 0.5f}));  /* between */
+    assert_false(caster_needed(face, &reads, (vec3){-5, -2, -0.5f}, (vec3){-4, -1, 0.5f})); /* the -X side */
+    assert_false(caster_needed(face, &reads, (vec3){4, 2, -0.5f}, (vec3){5, 3, 0.5f}));   /* above the light */
+}
+
+/* ---- the programs ---- */
+
+static bool same_file(const char *a_dir, const char *b_dir, const char *name) {
+    char command[1024];
+    snprintf(command, sizeof command, "cmp -s %s/%s %s/%s", a_dir, name, b_dir, name);
+    return system(command) == 0;
+}
+
+/* Runs `program` on the city for `frames` frames with `flags` (and a dump
+ * into `dir` unless NULL); returns its --verbose caster line. */
+static const char *run_city(const char *program, int frames, const char *flags, const char *dir) {
+    static char text[16384];
+    char command[2048];
+    int n = snprintf(command, sizeof command, "%s --scene " CITY " --size 640x360 --frames %d --verbose %s",
+                     support_program(program), frames, flags);
+    if (dir)
+        snprintf(command + n, sizeof command - (size_t)n, " --dump %s", dir);
+    assert_int_equal(support_run(command, text, sizeof text), 0);
+    const char *line = strstr(text, "[X] caster culling: ");
+    assert_non_null(line);
+    return line;
+}
+
+/* The culled and reused counts of a caster line. */
+static void line_counts(const char *line, int *culled, int *reused, int *layers) {
+    const char *per_light = strstr(line, "per light:");
+    assert_non_null(per_light);
+    per_light += strlen("per light:");
+    *culled = 0;
+    for (int l = 0; l < CITY_LIGHTS; l++) {
+        int index, drawn, light_culled, used;
+        assert_int_equal(sscanf(per_light, " %d: %d/%d%n", &index, &drawn, &light_culled, &used), 3);
+        assert_int_equal(index, l);
+        /* psm's warped maps start from the casters its warp found relevant. */
+        assert_true(drawn + light_culled <= CITY_CASTERS);
+        *culled += light_culled;
+        per_light += used;
+    }
+    const char *cache = strstr(line, "map layers reused ");
+    assert_non_null(cache);
+    assert_int_equal(sscanf(cache, "map layers reused %d of %d", reused, layers), 2);
+}
+
+static void test_dumps_identical(void **state) {
+    (void)state;
+    for (size_t p = 0; p < sizeof programs / sizeof *programs; p++)
+        for (size_t m = 0; m < sizeof motions / sizeof *motions; m++) {
+            char on[256], off[256], flags[256];
+            snprintf(on, sizeof on, OUT "/%s_%s_on", programs[p], motions[m]);
+            snprintf(off, sizeof off, OUT "/%s_%s_off", programs[p], motions[m]);
+            snprintf(flags, sizeof flags, "--motion %s", motions[m]);
+            int culled, reused, layers;
+            line_counts(run_city(programs[p], 3, flags, on), &culled, &reused, &layers);
+            snprintf(flags, sizeof flags, "--motion %s --no-skip", motions[m]);
+            run_city(programs[p], 3, flags, off);
+            for (size_t f = 0; f < sizeof dump_files / sizeof *dump_files; f++)
+                if (!same_file(on, off, dump_files[f]))
+                    fail_msg("%s, %s: %s differs between %s and %s", programs[p], motions[m], dump_files[f], on, off);
+            /* Most of the city casts into no light's layers that matter. */
+            assert_true(culled > CITY_LIGHTS * CITY_CASTERS / 2);
+            printf("    %s, %s: dumps identical with and without skips; casters culled %d of %d\n", programs[p],
+                   motions[m], culled, CITY_LIGHTS * CITY_CASTERS);
+        }
+}
+
+/* Settings that change the kernel's reach and depth: still identical. */
+static void test_dumps_identical_other_kernels(void **state) {
+    (void)state;
+    static const char *const configs[] = {"--filter pcf7 --kernel-depth receiver-plane", "--filter none --map-size 512"};
+    for (size_t c = 0; c < sizeof configs / sizeof *configs; c++) {
+        char on[256], off[256], flags[256];
+        snprintf(on, sizeof on, OUT "/shadowmap_config%zu_on", c);
+        snprintf(off, sizeof off, OUT "/shadowmap_config%zu_off", c);
+        run_city("shadowmap", 1, configs[c], on);
+        snprintf(flags, sizeof flags, "%s --no-skip", configs[c]);
+        run_city("shadowmap", 1, flags, off);
+        for (size_t f = 0; f < sizeof dump_files / sizeof *dump_files; f++)
+            if (!same_file(on, off, dump_files[f]))
+                fail_msg("shadowmap %s: %s differs", configs[c], dump_files[f]);
+        printf("    shadowmap %s: dumps identical with and without skips\n", configs[c]);
+    }
+}
+
+/* Static: the first frame renders every layer, each later one reuses them
+ * all; with --no-skip nothing is cached. */
+static void test_static_reuses_every_layer(void **state) {
+    (void)state;
+    for (int frames = 1; frames <= 3; frames++) {
+        int culled, reused, layers;
+        line_counts(run_city("shadowmap", frames, "", NULL), &culled, &reused, &layers);
+        assert_true(layers > 0);
+        assert_int_equal(reused, frames == 1 ? 0 : layers);
+        printf("    static, frame %d: map layers reused %d of %d\n", frames, reused, layers);
+    }
+    assert_non_null(strstr(run_city("shadowmap", 2, "--no-skip", NULL), "caching: OFF"));
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_caster_cases),
+        cmocka_unit_test(test_kernel_margin),
+        cmocka_unit_test(test_cube_face),
+        cmocka_unit_test(test_static_reuses_every_layer),
+        cmocka_unit_test(test_dumps_identical),
+        cmocka_unit_test(test_dumps_identical_other_kernels),
+    };
+    return cmocka_run_group_tests_name("shadow map skips", tests, NULL, NULL);
+}
