@@ -576,6 +576,20 @@ bool scene_light_reaches_box(const scene_light *l, const float lo[3], const floa
     return axis_angle <= glm_rad(l->outer_angle_deg) + subtended + SCENE_REACH_ANGLE_MARGIN_RAD;
 }
 
+bool scene_light_clip_to_range(const scene_light *l, float lo[3], float hi[3]) {
+    bool ranged = l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0;
+    float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
+    bool empty = false;
+    for (int k = 0; k < 3; k++) {
+        if (ranged) {
+            lo[k] = fmaxf(lo[k], l->position[k] - range);
+            hi[k] = fminf(hi[k], l->position[k] + range);
+        }
+        empty = empty || !(lo[k] <= hi[k]);
+    }
+    return !empty;
+}
+
 void scene_light_homogeneous(const scene_light *l, float out[4]) {
     bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
     for (int i = 0; i < 3; i++)

@@ -133,6 +133,10 @@ float scene_light_range_window(const scene_light *l, float distance);
  * 0 from the light, in lighting.glsl as here, so skipping the light there
  * changes no pixel. */
 bool scene_light_reaches_box(const scene_light *l, const float lo[3], const float hi[3]);
+/* Clips the box lo..hi to the cube around light l's range (grown by
+ * SCENE_REACH_RANGE_MARGIN; unchanged for a light without one): what lies
+ * beyond gets exactly 0 from it. False when nothing is left. */
+bool scene_light_clip_to_range(const scene_light *l, float lo[3], float hi[3]);
 /* The reach test's margins: the range grows by this fraction, the cone by
  * this angle, far more than float rounding in the shader's test. */
 #define SCENE_REACH_RANGE_MARGIN 1e-3f

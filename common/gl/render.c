@@ -76,6 +76,12 @@ void render_draw_objects(const render_scene *r, const render_program *p, const b
             render_draw_object(r, p, i);
 }
 
+void render_draw_objects_receiving(const render_scene *r, const render_program *p, const bool *mask, bool receives) {
+    for (int i = 0; i < r->scene->object_count; i++)
+        if (render_in_mask(mask, i) && r->scene->objects[i].receives == receives)
+            render_draw_object(r, p, i);
+}
+
 bool render_view_culling(const render_skips *skips) { return !skips->no_skip && !skips->no_view_cull; }
 
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips) {

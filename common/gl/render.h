@@ -93,6 +93,10 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
 bool render_in_mask(const bool *mask, int object);
 /* Every object in `mask` (NULL: all), in scene order. */
 void render_draw_objects(const render_scene *r, const render_program *p, const bool *mask);
+/* Those of them whose `receives` is as given: a shadow technique draws the
+ * receivers with its shadow test and the others ("receives": false) lit,
+ * as the reference sees them. */
+void render_draw_objects_receiving(const render_scene *r, const render_program *p, const bool *mask, bool receives);
 
 /* View culling is on under these skips. */
 bool render_view_culling(const render_skips *skips);

@@ -73,15 +73,8 @@ void technique_light_hull(const technique_frame *f, int light, technique_hull *o
     vec3 lo, hi;
     glm_vec3_copy((float *)f->receivers_lo, lo);
     glm_vec3_copy((float *)f->receivers_hi, hi);
-    if (l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0) {
-        /* Receivers beyond the range take nothing from this light. */
-        float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fmaxf(lo[k], l->position[k] - range);
-            hi[k] = fminf(hi[k], l->position[k] + range);
-        }
-    }
-    out->empty = !(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]);
+    /* Receivers beyond the range take nothing from this light. */
+    out->empty = !scene_light_clip_to_range(l, lo, hi);
     if (out->empty)
         return;
     float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]), reach = 0;

@@ -343,7 +343,11 @@ static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settin
         glUniform1f(p->map_2d.texel_scale, m->texel_scale);
         glUniform3fv(p->map_2d.light_axis, 1, light->direction);
     }
-    render_draw_objects(f->gpu, &p->program, f->in_view);
+    /* Only receivers read the map (the caster culling is for them too);
+     * the others take the light unshadowed, as in the reference. */
+    render_draw_objects_receiving(f->gpu, &p->program, f->in_view, true);
+    render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
+    render_draw_objects_receiving(f->gpu, &f->gpu->lit, f->in_view, false);
 }
 
 /* ---- the frame ---- */

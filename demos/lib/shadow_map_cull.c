@@ -208,9 +208,6 @@ bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, con
 int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]) {
     const scene *s = f->gpu->scene;
     const scene_light *l = &s->lights[light];
-    bool ranged = l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0;
-    /* Beyond its range a light adds exactly 0 (lighting.glsl): what is there reads no map. */
-    float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
@@ -219,13 +216,8 @@ int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxe
         scene_object_world_bounds(&s->objects[i], lo, hi);
         if (frustum_box_outside(f->view->view_projection, lo, hi))
             continue;
-        bool empty = false;
-        for (int k = 0; ranged && k < 3; k++) {
-            lo[k] = fmaxf(lo[k], l->position[k] - range);
-            hi[k] = fminf(hi[k], l->position[k] + range);
-            empty = empty || lo[k] > hi[k];
-        }
-        if (empty)
+        /* Beyond its range a light adds exactly 0 (lighting.glsl): what is there reads no map. */
+        if (!scene_light_clip_to_range(l, lo, hi))
             continue;
         glm_vec3_copy(lo, boxes[n][0]);
         glm_vec3_copy(hi, boxes[n][1]);
