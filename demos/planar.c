@@ -178,6 +178,8 @@ static void planar_render_stencil(const technique_frame *f) {
             continue;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
+        /* Marks and light alike only where the light reaches. */
+        const bool *objects = technique_light_pass(f, l);
         planar_mark_shadows(f, l, light_h);
         glStencilFunc(GL_NOTEQUAL, 2, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
@@ -185,7 +187,8 @@ static void planar_render_stencil(const technique_frame *f) {
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
         render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
-        render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+        render_draw_objects(f->gpu, &f->gpu->lit, objects);
+        glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
         glDisable(GL_STENCIL_TEST);
     }

@@ -378,21 +378,23 @@ static void volumes_scissor(const technique_frame *f) {
 }
 
 /* Light l's share: on receivers where no volume counts, on the rest
- * everywhere (they take no shadows). */
+ * everywhere (they take no shadows); only where the light reaches. */
 static void volumes_add_light(const technique_frame *f, int l) {
     const scene *s = f->gpu->scene;
+    const bool *objects = technique_light_pass(f, l);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glDepthFunc(GL_EQUAL);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
     for (int i = 0; i < s->object_count; i++) {
-        if (!render_in_mask(f->in_view, i))
+        if (!render_in_mask(objects, i))
             continue;
         glStencilFunc(s->objects[i].receives ? GL_EQUAL : GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
         render_draw_object(f->gpu, &f->gpu->lit, i);
     }
     glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 /* ---- overlays ---- */
@@ -480,8 +482,7 @@ static void volumes_render(const technique_frame *f) {
         glClear(GL_STENCIL_BUFFER_BIT);
         glEnable(GL_STENCIL_TEST);
         volumes_count(f, l, light, volumes.needed);
-        glDisable(GL_SCISSOR_TEST); /* objects that take no shadows may lie outside */
-        volumes_add_light(f, l);
+        volumes_add_light(f, l); /* its own scissor: objects that take no shadows may lie outside the receivers' */
         glDisable(GL_STENCIL_TEST);
     }
     if (volumes.settings.overlay == VOLUMES_OVERLAY_NONE || s->light_count == 0)

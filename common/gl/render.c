@@ -120,7 +120,9 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
 bool render_scene_create(render_scene *r, const scene *s) {
     *r = (render_scene){.scene = s, .inject_gl_error = getenv(RENDER_INJECT_GL_ERROR_ENV) != NULL};
     r->meshes = calloc((size_t)s->object_count, sizeof *r->meshes);
-    r->in_view = malloc((size_t)s->object_count * sizeof *r->in_view);
+    r->in_view = malloc((size_t)s->object_count * (1 + SCENE_MAX_LIGHTS) * sizeof *r->in_view);
+    for (int l = 0; r->in_view && l < SCENE_MAX_LIGHTS; l++)
+        r->lit_by[l] = r->in_view + (size_t)s->object_count * (size_t)(1 + l);
     if (!r->meshes || !r->in_view) {
         free(r->meshes);
         free(r->in_view);

@@ -67,6 +67,12 @@ bool technique_render_frame(const technique *t, const technique_frame *f, const 
 
 bool technique_light_on(const technique_frame *f, int l) { return (f->lights & RENDER_LIGHT_BIT(l)) != 0; }
 
+const bool *technique_light_pass(const technique_frame *f, int l) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(f->light_rect[l][0], f->light_rect[l][1], f->light_rect[l][2], f->light_rect[l][3]);
+    return f->lit_by[l];
+}
+
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
     const scene_light *l = &f->gpu->scene->lights[light];
     *out = (technique_hull){.light = light};
@@ -233,6 +239,73 @@ static void technique_host_visible(technique_host *h, const camera_view *view, t
     }
 }
 
+/* NDC -> the pixel at or beyond it, on an axis of `size` pixels. */
+static int technique_pixel(float ndc, int size, bool up) {
+    float x = (glm_clamp(ndc, -1, 1) * 0.5f + 0.5f) * (float)size;
+    return up ? (int)ceilf(x) + TECHNIQUE_RECT_MARGIN_PIXELS : (int)floorf(x) - TECHNIQUE_RECT_MARGIN_PIXELS;
+}
+
+/* The pixels light l may reach: the screen bounds of the cube around its
+ * range (the range window is 0 beyond it); the whole frame without a
+ * range, or when the cube reaches behind the eye. */
+static void technique_light_rect(const scene_light *l, const camera_view *view, int width, int height, int rect[4]) {
+    rect[0] = rect[1] = 0;
+    rect[2] = width;
+    rect[3] = height;
+    if (l->type == SCENE_LIGHT_DIRECTIONAL || !(l->range > 0))
+        return;
+    float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
+    vec3 lo, hi, corners[8];
+    for (int k = 0; k < 3; k++) {
+        lo[k] = l->position[k] - range;
+        hi[k] = l->position[k] + range;
+    }
+    frustum_box_corners(lo, hi, corners);
+    vec2 ndc_lo = {INFINITY, INFINITY}, ndc_hi = {-INFINITY, -INFINITY};
+    for (int c = 0; c < 8; c++) {
+        vec4 clip;
+        glm_mat4_mulv((vec4 *)view->view_projection, (vec4){corners[c][0], corners[c][1], corners[c][2], 1}, clip);
+        if (clip[3] <= FRUSTUM_FLOAT_TOLERANCE)
+            return;
+        for (int k = 0; k < 2; k++) {
+            ndc_lo[k] = fminf(ndc_lo[k], clip[k] / clip[3]);
+            ndc_hi[k] = fmaxf(ndc_hi[k], clip[k] / clip[3]);
+        }
+    }
+    int x0 = glm_max(technique_pixel(ndc_lo[0], width, false), 0);
+    int y0 = glm_max(technique_pixel(ndc_lo[1], height, false), 0);
+    int x1 = glm_min(technique_pixel(ndc_hi[0], width, true), width);
+    int y1 = glm_min(technique_pixel(ndc_hi[1], height, true), height);
+    rect[0] = x0;
+    rect[1] = y0;
+    rect[2] = glm_max(x1 - x0, 0);
+    rect[3] = glm_max(y1 - y0, 0);
+}
+
+/* Each light's objects and pixels (technique_frame.lit_by, light_rect). */
+static void technique_host_light_passes(technique_host *h, const camera_view *view, technique_frame *f) {
+    const scene *s = h->gpu->scene;
+    bool reach_skip = !h->skips->no_skip && !h->skips->no_light_reach;
+    for (int l = 0; l < s->light_count; l++) {
+        bool *lit = h->gpu->lit_by[l];
+        f->lit_by[l] = lit;
+        technique_light_rect(&s->lights[l], view, f->width, f->height, f->light_rect[l]);
+        if (!reach_skip) {
+            f->light_rect[l][0] = f->light_rect[l][1] = 0;
+            f->light_rect[l][2] = f->width;
+            f->light_rect[l][3] = f->height;
+        }
+        for (int i = 0; i < s->object_count; i++) {
+            lit[i] = h->gpu->in_view[i];
+            if (lit[i] && reach_skip && technique_light_on(f, l)) {
+                vec3 lo, hi;
+                scene_object_world_bounds(&s->objects[i], lo, hi);
+                lit[i] = scene_light_reaches_box(&s->lights[l], lo, hi);
+            }
+        }
+    }
+}
+
 bool technique_host_frame(technique_host *h, const camera_view *view, const target *target, double time,
                           int visibility_of) {
     const scene *s = h->gpu->scene;
@@ -248,6 +321,7 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const targ
                          .height = target->height,
                          .time = time};
     technique_host_visible(h, view, &f);
+    technique_host_light_passes(h, view, &f);
     for (int l = 0; l < s->light_count; l++)
         h->counts.lights_skipped += !technique_light_on(&f, l);
     return technique_render_frame(h->technique, &f, target, visibility_of);

@@ -69,6 +69,9 @@ typedef struct technique_counts {
 /* The most corners of one box's part inside a frustum: its 8 and the
  * frustum's 8, and where each one's 12 edges cross the other's 6 faces. */
 #define TECHNIQUE_MAX_PART_POINTS (8 + 8 + 2 * 12 * 6)
+/* A light's pixel rectangle is grown by this many pixels each side: the
+ * rasterizer's pixel centres and float rounding at its edge. */
+#define TECHNIQUE_RECT_MARGIN_PIXELS 1
 
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
@@ -82,6 +85,13 @@ typedef struct technique_frame {
      * shadow pass nor a lighting pass for the others: they add exactly 0
      * to every visible pixel (technique_light_on). */
     unsigned lights;
+    /* Per light on: the objects in view that it reaches (in_view without
+     * the skip), and the pixel rectangle (x, y, width, height) outside of
+     * which it adds 0 (its range's screen bounds; the whole frame without
+     * a range or the skip). Its lighting pass needs no more
+     * (technique_light_pass). */
+    const bool *lit_by[SCENE_MAX_LIGHTS];
+    int light_rect[SCENE_MAX_LIGHTS][4];
     const float (*receivers)[3];
     int receiver_count;
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
@@ -99,6 +109,9 @@ int technique_receiver_points(const scene *s, const camera_view *view, float (*p
 
 /* Light l reaches the view this frame. */
 bool technique_light_on(const technique_frame *f, int l);
+/* Scissors to light l's rectangle (scissor test on) and returns the
+ * objects its lighting pass draws: what it reaches. */
+const bool *technique_light_pass(const technique_frame *f, int l);
 
 /* Caster culling for one light: the hull of the light and the visible
  * receivers it can reach (their bounds, clipped to its range), outside

@@ -314,7 +314,7 @@ void shadow_map_destroy(shadow_map_renderer *r) {
 
 /* Light l's share, added where its map lets it through. */
 static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                                 int l, const shadow_map *m) {
+                                 int l, const shadow_map *m, const bool *objects) {
     const scene_light *light = &f->gpu->scene->lights[l];
     bool cube = m->kind == SHADOW_MAP_CUBE;
     const shadow_map_camera_program *p = cube ? &r->camera_cube : &r->camera_2d;
@@ -345,9 +345,9 @@ static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settin
     }
     /* Only receivers read the map (the caster culling is for them too);
      * the others take the light unshadowed, as in the reference. */
-    render_draw_objects_receiving(f->gpu, &p->program, f->in_view, true);
+    render_draw_objects_receiving(f->gpu, &p->program, objects, true);
     render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
-    render_draw_objects_receiving(f->gpu, &f->gpu->lit, f->in_view, false);
+    render_draw_objects_receiving(f->gpu, &f->gpu->lit, objects, false);
 }
 
 /* ---- the frame ---- */
@@ -386,12 +386,15 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
+        /* What the light reaches; the overlays draw on everything in view. */
+        const bool *objects = settings->overlay == SHADOW_MAP_OVERLAY_NONE ? technique_light_pass(f, l) : f->in_view;
         if (fitted[l]) {
-            shadow_map_add_light(r, settings, f, l, &r->maps[l]);
+            shadow_map_add_light(r, settings, f, l, &r->maps[l], objects);
         } else { /* nothing visible receives: no map needed, nothing shadowed */
             render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
-            render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+            render_draw_objects(f->gpu, &f->gpu->lit, objects);
         }
+        glDisable(GL_SCISSOR_TEST);
     }
     shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
 }
