@@ -198,7 +198,7 @@ static void test_scaling_plot_is_an_image(void **state) {
 static void test_unknown_technique(void **state) {
     (void)state;
     char command[512];
-    snprintf(command, sizeof command, "%s --technique planar nosuch", support_program("bench"));
+    snprintf(command, sizeof command, "%s --technique planar --technique nosuch", support_program("bench"));
     assert_int_equal(support_run(command, err, sizeof err), 2);
     assert_int_equal(support_count_lines(err), 1);
     assert_non_null(strstr(err, "'nosuch'"));

@@ -16,13 +16,11 @@
 #include "camera.h"
 #include "frustum.h"
 #include "mesh.h"
-#include "path.h"
 #include "scene.h"
 #include "support.h"
 
 #define OUT "out/test/scenes"
 #define COMMITTED "assets/scenes"
-#define MAX_SCENE_BYTES (16 << 20)
 /* The views are judged at the benchmark's and the screenshots' 16:9. */
 #define VIEW_ASPECT (16.0f / 9.0f)
 /* city_1000's camera sees a small part of the city: fewer than this
@@ -54,19 +52,9 @@ static void load(scene *s, const char *name) {
 /* The committed scenes are exactly what the generator writes now. */
 static void test_generated_match_committed(void **state) {
     (void)state;
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        char generated[256], committed[256];
-        snprintf(generated, sizeof generated, OUT "/%s", files[i]);
-        snprintf(committed, sizeof committed, COMMITTED "/%s", files[i]);
-        size_t generated_length, committed_length;
-        char *a = path_read_text(generated, MAX_SCENE_BYTES, &generated_length);
-        char *b = path_read_text(committed, MAX_SCENE_BYTES, &committed_length);
-        bool same = a && b && generated_length == committed_length && memcmp(a, b, generated_length) == 0;
-        free(a);
-        free(b);
-        if (!same)
-            fail_msg("%s differs from %s: run `make scenes` and commit", generated, committed);
-    }
+    const char *differs = support_first_difference(OUT, COMMITTED, files, sizeof files / sizeof *files);
+    if (differs)
+        fail_msg("%s/%s differs from %s/%s: run `make scenes` and commit", OUT, differs, COMMITTED, differs);
 }
 
 /* city_counts[i]'s scene; returns its file name. */
