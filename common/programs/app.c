@@ -97,7 +97,7 @@ static const flags_param app_flags[] = {
     {"gallery", "every technique on every scene, to DIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
      .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
-    {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the culling line (the\nHUD's)", 0,
+    {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)", 0,
      FLAGS_SWITCH, .on = &app.verbose},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
