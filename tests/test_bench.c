@@ -1,7 +1,8 @@
 /* Smoke test of the benchmark (make bench QUICK=1): it runs end to end and
  * its outputs exist and are well formed; the selections (--technique,
  * --configs), --motion, --skips-compare and --scaling give the rows and
- * files they say. Nothing about speed is asserted: speed is for `make
+ * files they say; the report's fronts, one per error figure, agree with
+ * its own table. Nothing about speed is asserted: speed is for `make
  * bench` to show, not for a test to guess. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -24,8 +25,21 @@
 #define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
 #define CSV_COLUMNS 16
 #define CSV_MAX_ROWS 256
+/* A scene's table in report.md: technique, parameters, skips, GPU ms, CPU
+ * ms, ratio, false shadow, false lit, misclassified, MAE, then a front
+ * column per own-technique setting and error figure. */
+#define REPORT_ERRORS 2
+#define REPORT_FRONTS (2 * REPORT_ERRORS)
+#define REPORT_COLUMNS (10 + REPORT_FRONTS)
+#define REPORT_GPU_COLUMN 3
+#define REPORT_CPU_COLUMN 4
+#define REPORT_ERROR_COLUMN 8
+#define REPORT_FRONT_COLUMN 10
+#define REPORT_MAX_ROWS 128
 
 static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view"};
+/* The plots, one per error figure: PREFIX_SCENE.png. */
+static const char *const plot_prefixes[] = {"pareto", "pareto_mae"};
 static char err[65536];
 
 /* The whole --quick run; a static selection of one technique; the lights
@@ -204,9 +218,89 @@ static void test_unknown_technique(void **state) {
     assert_non_null(strstr(err, "'nosuch'"));
 }
 
+/* A row of a scene's table in report.md, as printed. */
+typedef struct report_row {
+    char technique[32];
+    double ms, error[REPORT_ERRORS];
+    bool front[REPORT_FRONTS]; /* misclassified, MAE; then the own fronts */
+} report_row;
+
+/* Splits a table line "| a | b |" into its trimmed cells; returns how many. */
+static int report_cells(char *line, char **cells, int max) {
+    int n = 0;
+    for (char *p = strchr(line, '|'); p && p[1] && n < max; n++) {
+        char *cell = p + 1, *end = strchr(cell, '|');
+        if (!end)
+            break;
+        *end = '\0';
+        while (*cell == ' ')
+            cell++;
+        for (char *t = end; t > cell && t[-1] == ' ';)
+            *--t = '\0';
+        cells[n] = cell;
+        p = end;
+    }
+    return n;
+}
+
+/* The rows of the first table in a scene's section (a copy: it is changed
+ * in place), times from ms_column; returns the row count. */
+static int report_rows(char *section, int ms_column, report_row *rows) {
+    char *table = strstr(section, "\n|---|");
+    assert_non_null(table);
+    int n = 0;
+    for (char *line = strchr(table + 1, '\n') + 1; line[0] == '|';) {
+        char *end = strchr(line, '\n');
+        assert_non_null(end);
+        *end = '\0';
+        char *cells[REPORT_COLUMNS + 1];
+        assert_int_equal(report_cells(line, cells, REPORT_COLUMNS + 1), REPORT_COLUMNS);
+        assert_true(n < REPORT_MAX_ROWS);
+        report_row *r = &rows[n++];
+        snprintf(r->technique, sizeof r->technique, "%s", cells[0]);
+        r->ms = atof(cells[ms_column]);
+        for (int e = 0; e < REPORT_ERRORS; e++)
+            r->error[e] = atof(cells[REPORT_ERROR_COLUMN + e]);
+        for (int f = 0; f < REPORT_FRONTS; f++) {
+            assert_true(cells[REPORT_FRONT_COLUMN + f][0] == 0 || strcmp(cells[REPORT_FRONT_COLUMN + f], "yes") == 0);
+            r->front[f] = cells[REPORT_FRONT_COLUMN + f][0] != 0;
+        }
+        line = end + 1;
+    }
+    return n;
+}
+
+/* Each front column agrees with the table's figures, as far as their
+ * rounding tells: rounding keeps order, so a row on the front has no row
+ * both faster and more accurate even when rounded, and a row off it has
+ * one no slower and no less accurate when rounded. Every front has a row. */
+static void check_fronts(const report_row *rows, int n) {
+    for (int f = 0; f < REPORT_FRONTS; f++) {
+        int e = f % REPORT_ERRORS, on_front = 0;
+        bool own = f >= REPORT_ERRORS;
+        for (int i = 0; i < n; i++) {
+            bool beaten = false, matched = false;
+            for (int j = 0; j < n; j++) {
+                if (j == i || (own && strcmp(rows[j].technique, rows[i].technique) != 0))
+                    continue;
+                beaten = beaten || (rows[j].ms < rows[i].ms && rows[j].error[e] < rows[i].error[e]);
+                matched = matched || (rows[j].ms <= rows[i].ms && rows[j].error[e] <= rows[i].error[e]);
+            }
+            if (rows[i].front[f])
+                assert_false(beaten);
+            else
+                assert_true(matched);
+            on_front += rows[i].front[f];
+        }
+        assert_true(on_front > 0);
+    }
+}
+
 static void test_report_has_a_table_front_and_comparison_per_scene(void **state) {
     (void)state;
     char *text = read_file(OUT "/report.md");
+    /* The time the report says the fronts use. */
+    int ms_column = strstr(text, "use **CPU time**") ? REPORT_CPU_COLUMN : REPORT_GPU_COLUMN;
     for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
         char heading[64];
         snprintf(heading, sizeof heading, "\n## %s\n", scenes[i]);
@@ -216,9 +310,20 @@ static void test_report_has_a_table_front_and_comparison_per_scene(void **state)
         if (next) /* look at this scene's section only */
             *next = '\0';
         assert_non_null(strstr(section, "| technique | parameters |"));
-        assert_non_null(strstr(section, "| yes |"));
+        assert_non_null(strstr(section, " | misclassified % | MAE | front (misclassified) | front (MAE) | "
+                                        "own front (misclassified) | own front (MAE) |\n"));
+        for (size_t p = 0; p < sizeof plot_prefixes / sizeof *plot_prefixes; p++) {
+            char image[128];
+            snprintf(image, sizeof image, "(%s_%s.png)\n", plot_prefixes[p], scenes[i]);
+            assert_non_null(strstr(section, image));
+        }
         assert_non_null(strstr(section, "\nshadowmap defaults against textbook depth bias: misclassified "));
         assert_non_null(strstr(section, "\nshadowmap defaults against textbook polygon offset: misclassified "));
+        assert_non_null(strstr(section, " %, MAE "));
+        static char table[1 << 16];
+        static report_row rows[REPORT_MAX_ROWS];
+        snprintf(table, sizeof table, "%s", section);
+        check_fronts(rows, report_rows(table, ms_column, rows));
         if (next)
             *next = saved;
     }
@@ -226,15 +331,16 @@ static void test_report_has_a_table_front_and_comparison_per_scene(void **state)
 
 static void test_plots_are_images(void **state) {
     (void)state;
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char path[256];
-        int w, h;
-        snprintf(path, sizeof path, OUT "/pareto_%s.png", scenes[i]);
-        unsigned char *pixels = image_read_png(path, &w, &h);
-        assert_non_null(pixels);
-        assert_true(w >= 640 && h >= 400);
-        free(pixels);
-    }
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++)
+        for (size_t p = 0; p < sizeof plot_prefixes / sizeof *plot_prefixes; p++) {
+            char path[256];
+            int w, h;
+            snprintf(path, sizeof path, OUT "/%s_%s.png", plot_prefixes[p], scenes[i]);
+            unsigned char *pixels = image_read_png(path, &w, &h);
+            assert_non_null(pixels);
+            assert_true(w >= 640 && h >= 400);
+            free(pixels);
+        }
 }
 
 int main(void) {

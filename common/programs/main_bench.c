@@ -10,10 +10,11 @@
  * glFinish), then the technique's own dump of the last timed frame
  * compared with the reference (shadowdiff rules). Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
- *   OUT/report.md           a table per scene, its Pareto front, and each
- *                           technique's defaults against its named
- *                           (textbook) configurations
+ *   OUT/report.md           a table per scene, its Pareto fronts (one per
+ *                           error figure), and each technique's defaults
+ *                           against its named (textbook) configurations
  *   OUT/pareto_SCENE.png    ms per frame against misclassified %, by gnuplot
+ *   OUT/pareto_mae_SCENE.png  ms per frame against the mean absolute error
  *   OUT/scaling.png         (--scaling) each technique's defaults, ms per
  *                           frame against the scene's object count
  * Timings are medians and 90th percentiles of the timed frames: single
@@ -63,6 +64,20 @@
 /* --configs: the default first (a FLAGS_CHOICE list). */
 typedef enum bench_configs { BENCH_CONFIGS_ALL, BENCH_CONFIGS_DEFAULTS } bench_configs;
 static const char *const bench_config_choices[] = {"all", "defaults", NULL};
+
+/* The error figures, each a cost as time is, with a front and a plot of
+ * its own: misclassified % counts the pixels on the wrong side of the
+ * visibility threshold; the mean absolute error also counts how far off
+ * each is, so that a blurred shadow pays for its blur. */
+typedef enum bench_error { BENCH_ERROR_MISCLASSIFIED, BENCH_ERROR_MAE, BENCH_ERROR_COUNT } bench_error;
+static const struct {
+    const char *name;  /* the report's columns, "front (NAME)" */
+    const char *plot;  /* OUT/PLOT_SCENE.png */
+    const char *label; /* the plot's y axis */
+} bench_errors[BENCH_ERROR_COUNT] = {
+    [BENCH_ERROR_MISCLASSIFIED] = {"misclassified", "pareto", "misclassified % of compared pixels"},
+    [BENCH_ERROR_MAE] = {"MAE", "pareto_mae", "mean absolute visibility error"},
+};
 
 typedef struct bench_row {
     const char *scene, *technique, *config;
@@ -373,17 +388,22 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
  * without skips is the same decision at more time. */
 static bool bench_in_front_set(const bench_row *r) { return r->no_skip == bench.no_skip_settings[0]; }
 
-/* o is at least as fast and as accurate as row, and better in one of the two. */
-static bool bench_dominates(const bench_row *o, const bench_row *row) {
+static double bench_error_of(const bench_row *r, bench_error error) {
+    return error == BENCH_ERROR_MAE ? r->error.mean_abs_error : r->error.misclassified_percent;
+}
+
+/* o is at least as fast and as accurate by `error` as row, and better in
+ * one of the two. */
+static bool bench_dominates(const bench_row *o, const bench_row *row, bench_error error) {
     double ot = o->frame_ms, rt = row->frame_ms;
-    double oe = o->error.misclassified_percent, re = row->error.misclassified_percent;
+    double oe = bench_error_of(o, error), re = bench_error_of(row, error);
     return ot <= rt && oe <= re && (ot < rt || oe < re);
 }
 
 /* Whether row is in the scene's front set and no other configuration of
  * the scene (of the same technique when own_technique) in it dominates
- * row. */
-static bool bench_on_front(const bench_row *row, bool own_technique) {
+ * row by `error`. */
+static bool bench_on_front(const bench_row *row, bool own_technique, bench_error error) {
     if (!bench_in_front_set(row))
         return false;
     for (int i = 0; i < bench.row_count; i++) {
@@ -391,7 +411,7 @@ static bool bench_on_front(const bench_row *row, bool own_technique) {
         if (o == row || strcmp(o->scene, row->scene) != 0 || !bench_in_front_set(o) ||
             (own_technique && strcmp(o->technique, row->technique) != 0))
             continue;
-        if (bench_dominates(o, row))
+        if (bench_dominates(o, row, error))
             return false;
     }
     return true;
@@ -454,9 +474,21 @@ static const char *bench_config_label(const char *config) {
     return out;
 }
 
+/* a is more accurate than b: no worse by either error figure, better by
+ * one. */
+static bool bench_more_accurate(const bench_row *a, const bench_row *b) {
+    bool better = false, worse = false;
+    for (int e = 0; e < BENCH_ERROR_COUNT; e++) {
+        double x = bench_error_of(a, (bench_error)e), y = bench_error_of(b, (bench_error)e);
+        better = better || x < y;
+        worse = worse || x > y;
+    }
+    return better && !worse;
+}
+
 /* Each technique's defaults against its named configurations (the
  * textbook settings a sweep labels "NAME: flags"): the defaults should be
- * more accurate at no more time. */
+ * more accurate (bench_more_accurate) at no more time. */
 static void bench_write_named_comparisons(FILE *f, const char *scene) {
     const bench_row *defaults = NULL;
     for (int i = 0; i < bench.row_count; i++) {
@@ -466,12 +498,12 @@ static void bench_write_named_comparisons(FILE *f, const char *scene) {
         if (r->config[0] == 0)
             defaults = r;
         else if (defaults && strcmp(defaults->technique, r->technique) == 0 && strstr(r->config, ": "))
-            fprintf(f, "\n%s defaults against %s: misclassified %.4f %% against %.4f %%, %.3f ms against %.3f "
-                       "ms: %s.\n",
+            fprintf(f, "\n%s defaults against %s: misclassified %.4f %% against %.4f %%, MAE %.5f against %.5f, "
+                       "%.3f ms against %.3f ms: %s.\n",
                     r->technique, bench_config_label(r->config), defaults->error.misclassified_percent,
-                    r->error.misclassified_percent, defaults->frame_ms, r->frame_ms,
-                    defaults->error.misclassified_percent < r->error.misclassified_percent &&
-                            defaults->frame_ms <= r->frame_ms
+                    r->error.misclassified_percent, defaults->error.mean_abs_error, r->error.mean_abs_error,
+                    defaults->frame_ms, r->frame_ms,
+                    bench_more_accurate(defaults, r) && defaults->frame_ms <= r->frame_ms
                         ? "more accurate at no more time"
                         : "**not** more accurate at no more time");
     }
@@ -506,10 +538,14 @@ static bool bench_write_report(void) {
                "Renderer: %s. Frames %dx%d; %d timed frames per configuration after %d warm-up "
                "frames; times are medians (p90 in brackets) of GPU time (timer queries) and of CPU "
                "time around each frame and glFinish. Error against the ray-traced reference of light 0 "
-               "(shadowdiff rules; misclassified at visibility threshold 0.5). Pareto front: no other "
-               "configuration of the scene is both faster and more accurate (own front: no other "
-               "configuration of the same technique).\n\n"
-               "The ratio, the front and the plots use **%s time**. %s Skips: %s. Motion: %s (frame k "
+               "(shadowdiff rules; misclassified at visibility threshold 0.5; MAE, the mean absolute "
+               "visibility error, also counts how far off each pixel is, so that blur is a cost too). Two "
+               "Pareto fronts, one per error figure: a configuration is on the misclassified front when no "
+               "other configuration of the scene is both faster and more accurate by misclassified %%, on the "
+               "MAE front likewise by MAE (own fronts: no other configuration of the same technique). In the "
+               "comparisons of the defaults with the named configurations, more accurate means no worse by "
+               "either figure and better by one.\n\n"
+               "The ratio, the fronts and the plots use **%s time**. %s Skips: %s. Motion: %s (frame k "
                "at k/%g s; the error is of the last timed frame, at %.3f s).\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
@@ -523,20 +559,30 @@ static bool bench_write_report(void) {
                    "named comparisons are of the rows with skips on.\n");
     for (int s = 0; s < bench.scene_count; s++) {
         const char *scene = bench.scene_names[s];
-        fprintf(f, "\n## %s\n\n![time against error](pareto_%s.png)\n\n"
-                   "| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | false-shadow %% | "
-                   "false-lit %% | misclassified %% | MAE | front | own front |\n"
-                   "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-                scene, scene);
+        fprintf(f, "\n## %s\n\n", scene);
+        for (int e = 0; e < BENCH_ERROR_COUNT; e++)
+            fprintf(f, "![time against %s](%s_%s.png)\n", bench_errors[e].name, bench_errors[e].plot, scene);
+        fprintf(f, "\n| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | false-shadow %% | "
+                   "false-lit %% | misclassified %% | MAE |");
+        for (int own = 0; own < 2; own++)
+            for (int e = 0; e < BENCH_ERROR_COUNT; e++)
+                fprintf(f, " %sfront (%s) |", own ? "own " : "", bench_errors[e].name);
+        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|");
+        for (int column = 0; column < 2 * BENCH_ERROR_COUNT; column++)
+            fprintf(f, "---|");
+        fprintf(f, "\n");
         for (int i = 0; i < bench.row_count; i++) {
             const bench_row *r = &bench.rows[i];
-            if (strcmp(r->scene, scene) == 0)
-                fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.4f | %.4f | %.4f | %.5f | %s "
-                           "| %s |\n",
-                        r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
-                        r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->error.false_shadow_percent,
-                        r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
-                        bench_on_front(r, false) ? "yes" : "", bench_on_front(r, true) ? "yes" : "");
+            if (strcmp(r->scene, scene) != 0)
+                continue;
+            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.4f | %.4f | %.4f | %.5f |",
+                    r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
+                    r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->error.false_shadow_percent,
+                    r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error);
+            for (int own = 0; own < 2; own++)
+                for (int e = 0; e < BENCH_ERROR_COUNT; e++)
+                    fprintf(f, " %s |", bench_on_front(r, own, (bench_error)e) ? "yes" : "");
+            fprintf(f, "\n");
         }
         bench_write_named_comparisons(f, scene);
         if (bench.skips_compare)
@@ -586,12 +632,13 @@ static bool bench_run_script(FILE *g, const char *script) {
     return ok;
 }
 
-/* One gnuplot data block per technique (its configurations), then the
- * front, as a line from the fastest to the most accurate. */
-static bool bench_plot(const char *scene) {
-    /* "pareto_" and a scene name (scene_names: 128) */
+/* Time against `error` on the scene: one gnuplot data block per
+ * technique (its configurations), then that figure's front, as a line from
+ * the fastest to the most accurate. */
+static bool bench_plot(const char *scene, bench_error error) {
+    /* "pareto_mae_" and a scene name (scene_names: 128) */
     char name[144], data_name[160], data[PATH_MAX], script[PATH_MAX];
-    snprintf(name, sizeof name, "pareto_%s", scene);
+    snprintf(name, sizeof name, "%s_%s", bench_errors[error].plot, scene);
     snprintf(data_name, sizeof data_name, "%s.dat", name);
     FILE *d = bench_open(data_name, data, sizeof data);
     if (!d)
@@ -603,25 +650,25 @@ static bool bench_plot(const char *scene) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) == 0 && strcmp(r->technique, techniques[t]->name) == 0 &&
                 bench_in_front_set(r))
-                fprintf(d, "%g %g \"%s\"\n", r->frame_ms, r->error.misclassified_percent,
-                        bench_config_label(r->config));
+                fprintf(d, "%g %g \"%s\"\n", r->frame_ms, bench_error_of(r, error), bench_config_label(r->config));
         }
         fprintf(d, "\n\n");
     }
     const bench_row *front[BENCH_MAX_ROWS];
     int front_count = 0;
     for (int i = 0; i < bench.row_count; i++)
-        if (strcmp(bench.rows[i].scene, scene) == 0 && bench_on_front(&bench.rows[i], false))
+        if (strcmp(bench.rows[i].scene, scene) == 0 && bench_on_front(&bench.rows[i], false, error))
             front[front_count++] = &bench.rows[i];
     qsort(front, (size_t)front_count, sizeof *front, bench_compare_rows_by_time);
     for (int i = 0; i < front_count; i++)
-        fprintf(d, "%g %g\n", front[i]->frame_ms, front[i]->error.misclassified_percent);
+        fprintf(d, "%g %g\n", front[i]->frame_ms, bench_error_of(front[i], error));
     char title[512], xlabel[64];
-    snprintf(title, sizeof title, "%s: run time against error (%s, motion %s, skips %s)", scene, bench.ctx.renderer,
-             motion_names[bench.motion], bench_skips_text(bench.no_skip_settings[0]));
+    snprintf(title, sizeof title, "%s: run time against %s (%s, motion %s, skips %s)", scene,
+             bench_errors[error].name, bench.ctx.renderer, motion_names[bench.motion],
+             bench_skips_text(bench.no_skip_settings[0]));
     snprintf(xlabel, sizeof xlabel, "%s ms per frame (median)", bench_time_basis());
     FILE *g = bench_close(d, data) ? bench_open_script(name, script, sizeof script, title, xlabel,
-                                                       "misclassified % of compared pixels")
+                                                       bench_errors[error].label)
                                    : NULL;
     if (!g)
         return false;
@@ -722,7 +769,8 @@ int main(int argc, char **argv) {
         ok = bench_scene(bench.scenes[s], s, &done, total);
     ok = ok && bench_write_csv() && bench_write_report();
     for (int s = 0; ok && s < bench.scene_count; s++)
-        ok = bench_plot(bench.scene_names[s]);
+        for (int e = 0; ok && e < BENCH_ERROR_COUNT; e++)
+            ok = bench_plot(bench.scene_names[s], (bench_error)e);
     ok = ok && (!bench.scaling || bench_plot_scaling());
     glDeleteQueries(1, &bench.query);
     target_destroy(&bench.target);
