@@ -615,7 +615,7 @@ static FILE *bench_open_script(const char *name, char *path, size_t size, const 
     FILE *g = bench_open(file, path, size);
     if (g)
         fprintf(g, "set terminal pngcairo size 960,640 font ',11'\nset output '%s/%s.png'\n"
-                   "set title '%s'\nset xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right\n",
+                   "set title '%s' noenhanced\nset xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right\n",
                 bench.out_dir, name, title, xlabel, ylabel);
     return g;
 }
