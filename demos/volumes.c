@@ -369,14 +369,6 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
 
 /* ---- lighting ---- */
 
-/* The screen rectangle of every receiver's box: no light reaches pixels
- * outside it. */
-static void volumes_scissor(const technique_frame *f) {
-    int rect[4];
-    volume_mesh_receivers_scissor(f->gpu->scene, f->view->view_projection, f->width, f->height, rect);
-    glScissor(rect[0], rect[1], rect[2], rect[3]);
-}
-
 /* Light l's share: on receivers where no volume counts, on the rest
  * everywhere (they take no shadows); only where the light reaches. */
 static void volumes_add_light(const technique_frame *f, int l) {
@@ -468,6 +460,10 @@ static void volumes_render(const technique_frame *f) {
             volume_cache_forget(&volumes.caches[l]);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
+    /* The screen rectangle of every receiver's box, the same for every
+     * light: no shadow is counted outside it. */
+    int receivers_rect[4];
+    volume_mesh_receivers_scissor(s, f->view->view_projection, f->width, f->height, receivers_rect);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
@@ -478,7 +474,7 @@ static void volumes_render(const technique_frame *f) {
         for (int i = 0; i < s->object_count; i++)
             volumes.needed[i] = volumes_caster_needed(f, &hull, i, light, (const vec3 *)near_rectangle);
         glEnable(GL_SCISSOR_TEST);
-        volumes_scissor(f);
+        glScissor(receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]);
         glClear(GL_STENCIL_BUFFER_BIT);
         glEnable(GL_STENCIL_TEST);
         volumes_count(f, l, light, volumes.needed);

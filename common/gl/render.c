@@ -82,15 +82,16 @@ void render_draw_objects_receiving(const render_scene *r, const render_program *
             render_draw_object(r, p, i);
 }
 
-bool render_view_culling(const render_skips *skips) { return !skips->no_skip && !skips->no_view_cull; }
+bool render_skip_on(const render_skips *skips, bool own_off) { return !skips->no_skip && !own_off; }
 
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips) {
-    bool cull = render_view_culling(skips);
+    bool cull = render_skip_on(skips, skips->no_view_cull);
     int count = 0;
     for (int i = 0; i < r->scene->object_count; i++) {
         float lo[3], hi[3];
         scene_object_world_bounds(&r->scene->objects[i], lo, hi);
-        r->in_view[i] = !cull || !frustum_box_outside(v->view_projection, lo, hi);
+        r->in_frustum[i] = !frustum_box_outside(v->view_projection, lo, hi);
+        r->in_view[i] = !cull || r->in_frustum[i];
         count += r->in_view[i];
     }
     return count;
@@ -120,9 +121,11 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
 bool render_scene_create(render_scene *r, const scene *s) {
     *r = (render_scene){.scene = s, .inject_gl_error = getenv(RENDER_INJECT_GL_ERROR_ENV) != NULL};
     r->meshes = calloc((size_t)s->object_count, sizeof *r->meshes);
-    r->in_view = malloc((size_t)s->object_count * (1 + SCENE_MAX_LIGHTS) * sizeof *r->in_view);
+    /* One block: in_view, in_frustum, then each light's lit_by. */
+    r->in_view = malloc((size_t)s->object_count * (2 + SCENE_MAX_LIGHTS) * sizeof *r->in_view);
+    r->in_frustum = r->in_view ? r->in_view + s->object_count : NULL;
     for (int l = 0; r->in_view && l < SCENE_MAX_LIGHTS; l++)
-        r->lit_by[l] = r->in_view + (size_t)s->object_count * (size_t)(1 + l);
+        r->lit_by[l] = r->in_view + (size_t)s->object_count * (size_t)(2 + l);
     if (!r->meshes || !r->in_view) {
         free(r->meshes);
         free(r->in_view);

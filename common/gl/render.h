@@ -51,6 +51,7 @@ typedef struct render_scene {
     const scene *scene;
     render_mesh *meshes; /* one per scene object */
     bool *in_view;       /* one per scene object: render_cull_view's mask */
+    bool *in_frustum;    /* one per scene object: its box meets the view, whatever the skips */
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
     unsigned lights_buffer;
     render_program lit;
@@ -99,11 +100,13 @@ void render_draw_objects(const render_scene *r, const render_program *p, const b
  * as the reference sees them. */
 void render_draw_objects_receiving(const render_scene *r, const render_program *p, const bool *mask, bool receives);
 
-/* View culling is on under these skips. */
-bool render_view_culling(const render_skips *skips);
-/* Fills r->in_view for the camera view v: true where the object's world
- * box meets v's frustum, or everywhere when culling is off. Returns how
- * many objects are in the mask. */
+/* A skip is on unless its own flag (own_off: skips->no_NAME) or
+ * --no-skip turned it off. */
+bool render_skip_on(const render_skips *skips, bool own_off);
+/* Fills r->in_frustum for the camera view v: true where the object's
+ * world box meets v's frustum (frustum_box_outside, done once a frame for
+ * every pass that asks); and r->in_view: the same, or everywhere when
+ * culling is off. Returns how many objects are in the view mask. */
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips);
 
 /* Binds the lit program for the set `lights` (RENDER_LIGHT_BIT), with or

@@ -133,7 +133,7 @@ static bool technique_light_moved(const scene_light *a, const scene_light *b) {
 
 static technique_changes technique_host_changes(technique_host *h, const camera_view *view) {
     const scene *s = h->gpu->scene;
-    bool everything = !h->started || h->skips->no_skip || h->skips->no_cache;
+    bool everything = !h->started || !render_skip_on(h->skips, h->skips->no_cache);
     technique_changes c = {.scene = everything, .camera = everything};
     if (everything)
         c.lights = RENDER_ALL_LIGHTS(s->light_count);
@@ -149,15 +149,14 @@ static technique_changes technique_host_changes(technique_host *h, const camera_
 }
 
 /* The part of o's box inside the view's frustum (frustum corners
- * `frustum`): its corners at out, at most TECHNIQUE_MAX_PART_POINTS; none
- * when the box is outside the frustum (the test view culling uses, applied
- * whatever the skips, so that what follows never depends on them). */
+ * `frustum`): its corners at out, at most TECHNIQUE_MAX_PART_POINTS. The
+ * caller skips boxes outside the frustum first, by the test view culling
+ * uses, applied whatever the skips, so that what follows never depends on
+ * them. */
 static int technique_visible_part(const scene_object *o, const camera_view *view, const vec3 frustum[8],
                                   float (*out)[3]) {
     vec3 lo, hi;
     scene_object_world_bounds(o, lo, hi);
-    if (frustum_box_outside(view->view_projection, lo, hi))
-        return 0;
     return frustum_box_part(view->view_projection, frustum, lo, hi, out, TECHNIQUE_MAX_PART_POINTS);
 }
 
@@ -176,10 +175,13 @@ int technique_receiver_points(const scene *s, const camera_view *view, float (*p
     float part[TECHNIQUE_MAX_PART_POINTS][3];
     frustum_corners(view->view_projection, frustum);
     int n = 0;
-    for (int i = 0; i < s->object_count; i++)
-        if (s->objects[i].receives)
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        if (s->objects[i].receives && !frustum_box_outside(view->view_projection, lo, hi))
             technique_append_points(points, &n, max_points, (const float(*)[3])part,
                                     technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part));
+    }
     return n;
 }
 
@@ -205,14 +207,14 @@ static unsigned technique_lights_near_view(const scene *s, const camera_view *vi
 static void technique_host_visible(technique_host *h, const camera_view *view, technique_frame *f) {
     const scene *s = h->gpu->scene;
     unsigned all = RENDER_ALL_LIGHTS(s->light_count);
-    bool reach_skip = !h->skips->no_skip && !h->skips->no_light_reach;
+    bool reach_skip = render_skip_on(h->skips, h->skips->no_light_reach);
     unsigned candidates = reach_skip ? technique_lights_near_view(s, view) : 0, reached = 0;
     vec3 frustum[8];
     float part[TECHNIQUE_MAX_PART_POINTS][3];
     frustum_corners(view->view_projection, frustum);
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
-        int count = technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part);
+        int count = h->gpu->in_frustum[i] ? technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part) : 0;
         if (count == 0)
             continue;
         if (candidates & ~reached) {
@@ -247,12 +249,14 @@ static int technique_pixel(float ndc, int size, bool up) {
 
 /* The pixels light l may reach: the screen bounds of the cube around its
  * range (the range window is 0 beyond it); the whole frame without a
- * range, or when the cube reaches behind the eye. */
-static void technique_light_rect(const scene_light *l, const camera_view *view, int width, int height, int rect[4]) {
+ * range, when the cube reaches behind the eye, or without the skip
+ * (`bounded` false). */
+static void technique_light_rect(const scene_light *l, const camera_view *view, int width, int height, bool bounded,
+                                 int rect[4]) {
     rect[0] = rect[1] = 0;
     rect[2] = width;
     rect[3] = height;
-    if (l->type == SCENE_LIGHT_DIRECTIONAL || !(l->range > 0))
+    if (!bounded || l->type == SCENE_LIGHT_DIRECTIONAL || !(l->range > 0))
         return;
     float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
     vec3 lo, hi, corners[8];
@@ -285,16 +289,11 @@ static void technique_light_rect(const scene_light *l, const camera_view *view, 
 /* Each light's objects and pixels (technique_frame.lit_by, light_rect). */
 static void technique_host_light_passes(technique_host *h, const camera_view *view, technique_frame *f) {
     const scene *s = h->gpu->scene;
-    bool reach_skip = !h->skips->no_skip && !h->skips->no_light_reach;
+    bool reach_skip = render_skip_on(h->skips, h->skips->no_light_reach);
     for (int l = 0; l < s->light_count; l++) {
         bool *lit = h->gpu->lit_by[l];
         f->lit_by[l] = lit;
-        technique_light_rect(&s->lights[l], view, f->width, f->height, f->light_rect[l]);
-        if (!reach_skip) {
-            f->light_rect[l][0] = f->light_rect[l][1] = 0;
-            f->light_rect[l][2] = f->width;
-            f->light_rect[l][3] = f->height;
-        }
+        technique_light_rect(&s->lights[l], view, f->width, f->height, reach_skip, f->light_rect[l]);
         for (int i = 0; i < s->object_count; i++) {
             lit[i] = h->gpu->in_view[i];
             if (lit[i] && reach_skip && technique_light_on(f, l)) {
@@ -314,7 +313,7 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const targ
     technique_frame f = {.gpu = h->gpu,
                          .view = view,
                          .in_view = h->gpu->in_view,
-                         .cull_casters = !h->skips->no_skip && !h->skips->no_caster_cull,
+                         .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
                          .changed = technique_host_changes(h, view),
                          .counts = &h->counts,
                          .width = target->width,

@@ -258,25 +258,25 @@ static bool app_run_gallery(void) {
 static int app_skips_text(char *out, size_t size) {
     const render_skips *k = &app.skips;
     const technique_counts *c = &app.host.counts;
-    bool all = !k->no_skip;
     const char *off = "OFF";
-    int n = snprintf(out, size, "skips%s   [K] view culling: ", all ? "" : " (--no-skip: all OFF)");
+    int n = snprintf(out, size, "skips%s   [K] view culling: ", k->no_skip ? " (--no-skip: all OFF)" : "");
 #define APP_TEXT(...) (n += n < (int)size ? snprintf(out + n, size - (size_t)n, __VA_ARGS__) : 0)
-    if (all && !k->no_view_cull)
+    if (render_skip_on(k, k->no_view_cull))
         APP_TEXT("objects drawn %d / culled %d", app.host.objects_in_view,
                  app.scene.object_count - app.host.objects_in_view);
     else
         APP_TEXT("%s", off);
     APP_TEXT("   [U] light reach: ");
-    if (all && !k->no_light_reach)
+    if (render_skip_on(k, k->no_light_reach))
         APP_TEXT("lights skipped %d of %d", c->lights_skipped, app.scene.light_count);
     else
         APP_TEXT("%s", off);
-    APP_TEXT("\n[X] caster culling: %s", all && !k->no_caster_cull ? "casters drawn / culled per light:" : off);
-    for (int l = 0; all && !k->no_caster_cull && l < app.scene.light_count; l++)
+    bool casters = render_skip_on(k, k->no_caster_cull);
+    APP_TEXT("\n[X] caster culling: %s", casters ? "casters drawn / culled per light:" : off);
+    for (int l = 0; casters && l < app.scene.light_count; l++)
         APP_TEXT(" %d: %d/%d", l, c->casters_drawn[l], c->casters_culled[l]);
     APP_TEXT("   [J] caching: ");
-    if (all && !k->no_cache)
+    if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);
     else
         APP_TEXT("%s", off);

@@ -211,11 +211,9 @@ int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxe
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
-        if (!s->objects[i].receives)
+        if (!s->objects[i].receives || !f->gpu->in_frustum[i]) /* the view's test, whatever the skips */
             continue;
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        if (frustum_box_outside(f->view->view_projection, lo, hi))
-            continue;
         /* Beyond its range a light adds exactly 0 (lighting.glsl): what is there reads no map. */
         if (!scene_light_clip_to_range(l, lo, hi))
             continue;
