@@ -11,9 +11,10 @@
  * lecture can show the artifact it prevents:
  *   stencil  the visible receiver pixels are marked 1; the projected
  *            casters turn marked pixels into 2, each pixel once however many
- *            projected triangles cover it; the light's share is then added
- *            (after an ambient pass) only where the stencil is not 2, so a
- *            shadowed pixel is exactly the picture without that light.
+ *            projected triangles cover it; the light is then shaded
+ *            (after a depth pre-pass, the first light with the ambient
+ *            term) only where the stencil is not 2, so a shadowed pixel
+ *            is exactly the picture without that light.
  *            Off: casters are blended dark straight into the picture, and
  *            overlapping triangles darken twice and spill past the
  *            receiver's edges.
@@ -155,8 +156,8 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
         glStencilFunc(GL_ALWAYS, 1, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         glDepthFunc(GL_EQUAL);
-        render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(light), false);
-        render_draw_object(f->gpu, &f->gpu->lit, r);
+        render_program_use(&f->gpu->depth, f->view);
+        render_draw_object(f->gpu, &f->gpu->depth, r);
         glStencilFunc(GL_EQUAL, 1, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
         glDepthFunc(GL_LESS);
@@ -165,33 +166,34 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-/* Ambient first, then each light added where the stencil does not mark it
- * blocked. Adding non-negative terms clamps to the same 8-bit value in any
- * order, so a shadowed pixel is exactly the picture without that light,
- * however bright the other lights make it. */
+/* Light l is blocked where its stencil is 2, on any object (only
+ * receivers are ever marked). */
+static const technique_stencil_lit planar_lit = {
+    .lit = GL_NOTEQUAL, .blocked = GL_EQUAL, .ref = 2, .mask = 0xff, .receivers_only = false};
+
+/* After a depth pre-pass, each light shaded where the stencil does not
+ * mark it blocked, the first with the ambient term (technique_shade_light).
+ * Adding non-negative terms clamps to the same 8-bit value in any order,
+ * so a shadowed pixel is exactly the picture without that light, however
+ * bright the other lights make it. */
 static void planar_render_stencil(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_use_lit(f->gpu, f->view, 0, true);
-    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->in_view);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
-        /* Marks and light alike only where the light reaches. */
-        const bool *objects = technique_light_pass(f, l);
+        /* Marks only where the light reaches: outside its rectangle the
+         * stencil stays as cleared, since the ambient light, the only
+         * one shaded outside its rectangle, marks first. */
+        technique_light_pass(f, l);
         planar_mark_shadows(f, l, light_h);
-        glStencilFunc(GL_NOTEQUAL, 2, 0xff);
-        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-        glDepthFunc(GL_EQUAL);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-        render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
-        render_draw_objects(f->gpu, &f->gpu->lit, objects);
-        glDisable(GL_SCISSOR_TEST);
-        glDisable(GL_BLEND);
+        technique_shade_light(f, l, &planar_lit);
         glDisable(GL_STENCIL_TEST);
     }
+    if (technique_ambient_light(f) < 0)
+        technique_shade_ambient(f);
 }
 
 /* The textbook path the stencil fixes: the lit picture darkened by

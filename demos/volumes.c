@@ -16,11 +16,12 @@
  * Counts wrap at 256: wrong only behind an exact multiple of 256 triangles
  * (closed meshes: casters).
  *
- * Per light (up to 8, added over an ambient pass): clear the stencil in the
+ * After a depth pre-pass, per light (up to 8): clear the stencil in the
  * screen rectangle of the receivers; draw every caster's volume with colour
  * and depth writes off, both faces counted in one pass (glStencilOpSeparate,
- * wrapping); add the light where the stencil is 0 (everywhere on objects
- * that receive no shadows). --mode auto (default) takes z-pass, without
+ * wrapping); shade the light where the stencil is 0 (everywhere on objects
+ * that receive no shadows), the first light's pass with the ambient term
+ * (technique_shade_light), so that one light costs one shading pass. --mode auto (default) takes z-pass, without
  * caps, where volume_mesh_zpass_safe says the volume cannot reach the
  * near-plane rectangle, z-fail with caps elsewhere; --mode zpass with the
  * camera inside a shadow visibly fails (shadows inverted).
@@ -369,25 +370,10 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
 
 /* ---- lighting ---- */
 
-/* Light l's share: on receivers where no volume counts, on the rest
- * everywhere (they take no shadows); only where the light reaches. */
-static void volumes_add_light(const technique_frame *f, int l) {
-    const scene *s = f->gpu->scene;
-    const bool *objects = technique_light_pass(f, l);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    glDepthFunc(GL_EQUAL);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
-    for (int i = 0; i < s->object_count; i++) {
-        if (!render_in_mask(objects, i))
-            continue;
-        glStencilFunc(s->objects[i].receives ? GL_EQUAL : GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
-        render_draw_object(f->gpu, &f->gpu->lit, i);
-    }
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-}
+/* Light l is blocked on receivers where a volume counts; the rest take no
+ * shadows and are lit everywhere. */
+static const technique_stencil_lit volumes_lit = {
+    .lit = GL_EQUAL, .blocked = GL_NOTEQUAL, .ref = 0, .mask = VOLUMES_STENCIL_MASK, .receivers_only = true};
 
 /* ---- overlays ---- */
 
@@ -453,8 +439,7 @@ static void volumes_draw_shapes(const technique_frame *f, const float light[4]) 
 
 static void volumes_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_use_lit(f->gpu, f->view, 0, true); /* ambient, and the depth every pass tests against */
-    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->in_view); /* the depth every pass tests against */
     for (int l = 0; l < s->light_count; l++)
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             volume_cache_forget(&volumes.caches[l]);
@@ -478,9 +463,12 @@ static void volumes_render(const technique_frame *f) {
         glClear(GL_STENCIL_BUFFER_BIT);
         glEnable(GL_STENCIL_TEST);
         volumes_count(f, l, light, volumes.needed);
-        volumes_add_light(f, l); /* its own scissor: objects that take no shadows may lie outside the receivers' */
+        /* Its own scissor: objects that take no shadows may lie outside the receivers'. */
+        technique_shade_light(f, l, &volumes_lit);
         glDisable(GL_STENCIL_TEST);
     }
+    if (technique_ambient_light(f) < 0)
+        technique_shade_ambient(f);
     if (volumes.settings.overlay == VOLUMES_OVERLAY_NONE || s->light_count == 0)
         return;
     float light[4]; /* for lectures, over the finished picture: light 0's */

@@ -9,7 +9,8 @@
 //                             lowered by b first
 //   shadowmap_texel_coord(p)  p's position in the map, in texels (for the
 //                             lecture's overlay of texel boundaries)
-// This adds light u_light's share where the map says it reaches.
+// This shades light u_light's share where the map says it reaches, and
+// the ambient term where u_ambient is 1 (the first light's pass).
 
 float shadowmap_texel_world(vec3 p);
 float shadowmap_visibility(vec3 p, float depth_bias);
@@ -20,6 +21,7 @@ in vec3 v_normal;
 
 uniform vec3 u_albedo;
 uniform int u_light;
+uniform float u_ambient;         // 1: this pass also draws the ambient term
 uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
 uniform bool u_show_texels;      // darken the map's texel boundaries
@@ -119,5 +121,5 @@ void main() {
         float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
         c = heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
     }
-    out_color = vec4(c, 1.0);
+    out_color = vec4(u_ambient * lighting_ambient(u_albedo) + c, 1.0);
 }

@@ -140,7 +140,8 @@ bool render_scene_create(render_scene *r, const scene *s) {
     glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffer);
     render_scene_update_lights(r, -1);
     static const char *const lit_files[] = {"lit.vert", "lit.frag"};
-    if (!render_program_load(&r->lit, lit_files, 2, NULL)) {
+    static const char *const depth_files[] = {"lit.vert", "depth.frag"};
+    if (!render_program_load(&r->lit, lit_files, 2, NULL) || !render_program_load(&r->depth, depth_files, 2, NULL)) {
         render_scene_destroy(r);
         return false;
     }
@@ -178,6 +179,7 @@ void render_scene_destroy(render_scene *r) {
     free(r->in_view);
     glDeleteBuffers(1, &r->lights_buffer);
     render_program_destroy(&r->lit);
+    render_program_destroy(&r->depth);
     *r = (render_scene){0};
 }
 
@@ -185,6 +187,15 @@ void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights
     render_program_use(&r->lit, v);
     glUniform1f(r->lit_ambient, ambient ? 1.0f : 0.0f);
     glUniform1ui(r->lit_lights, lights);
+}
+
+void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask) {
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    render_program_use(&r->depth, v);
+    render_draw_objects(r, &r->depth, mask);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
 }
 
 void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights) {

@@ -56,6 +56,7 @@ typedef struct render_scene {
     unsigned lights_buffer;
     render_program lit;
     int lit_ambient, lit_lights;
+    render_program depth; /* lit.vert with depth.frag: render_depth_prepass */
     bool inject_gl_error; /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
 
@@ -112,6 +113,14 @@ int render_cull_view(render_scene *r, const camera_view *v, const render_skips *
 /* Binds the lit program for the set `lights` (RENDER_LIGHT_BIT), with or
  * without the ambient term. */
 void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
+/* The depth of the objects in `mask` (NULL: all), nothing else written:
+ * the pre-pass after which every shading pass meets each visible pixel
+ * once (GL_EQUAL), so a costly fragment stage (a shadow map's filter) runs
+ * once per pixel, not once per overdrawn layer. The same vertex stage as
+ * the lit program (lit.vert, invariant gl_Position), so the depths are
+ * bit for bit those of any program on lit.vert. Leaves the depth test
+ * GL_EQUAL with depth writes off. */
+void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask);
 /* The scene lit by the set `lights`, nothing shadowed: the cost floor,
  * which skips as the techniques' camera passes do (mask: the frame's
  * in_view, NULL: all; lights: those that reach the view), so that ratios

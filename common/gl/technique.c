@@ -73,6 +73,62 @@ const bool *technique_light_pass(const technique_frame *f, int l) {
     return f->lit_by[l];
 }
 
+int technique_ambient_light(const technique_frame *f) {
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        if (technique_light_on(f, l))
+            return l;
+    return -1;
+}
+
+/* The shading pass's depth state: each visible pixel once, nothing
+ * written but colour. */
+static void technique_shade_begin(void) {
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+}
+
+void technique_shade_ambient(const technique_frame *f) {
+    technique_shade_begin();
+    render_use_lit(f->gpu, f->view, 0, true);
+    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+}
+
+/* Light l's share on the objects of `objects` the stencil tests (or on
+ * the others, `tested` false), through stencil test `func`; with the
+ * ambient term when `ambient`. */
+static void technique_shade_objects(const technique_frame *f, const bool *objects, unsigned lights, bool ambient,
+                                    const technique_stencil_lit *stencil, unsigned func, bool tested) {
+    const scene *s = f->gpu->scene;
+    render_use_lit(f->gpu, f->view, lights, ambient);
+    glStencilFunc(tested ? func : GL_ALWAYS, stencil->ref, stencil->mask);
+    for (int i = 0; i < s->object_count; i++)
+        if (render_in_mask(objects, i) && (!stencil->receivers_only || s->objects[i].receives) == tested)
+            render_draw_object(f->gpu, &f->gpu->lit, i);
+}
+
+void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil) {
+    bool ambient = l == technique_ambient_light(f);
+    technique_shade_begin();
+    glEnable(GL_STENCIL_TEST);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    const bool *objects = f->in_view;
+    if (ambient) {
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+    } else {
+        objects = technique_light_pass(f, l);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+    }
+    technique_shade_objects(f, objects, RENDER_LIGHT_BIT(l), ambient, stencil, stencil->lit, true);
+    if (stencil->receivers_only)
+        technique_shade_objects(f, objects, RENDER_LIGHT_BIT(l), ambient, stencil, stencil->lit, false);
+    if (ambient)
+        technique_shade_objects(f, objects, 0, true, stencil, stencil->blocked, true);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+}
+
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
     const scene_light *l = &f->gpu->scene->lights[light];
     *out = (technique_hull){.light = light};

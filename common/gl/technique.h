@@ -125,6 +125,37 @@ bool technique_light_on(const technique_frame *f, int l);
  * objects its lighting pass draws: what it reaches. */
 const bool *technique_light_pass(const technique_frame *f, int l);
 
+/* The shading passes, after render_depth_prepass of f->in_view: every
+ * visible pixel is shaded once per light that reaches it, and the ambient
+ * term rides on the first light's pass (technique_ambient_light) rather
+ * than a pass of its own, so a one-light scene is shaded once. That pass
+ * draws every object in view, unscissored (a light adds exactly 0 beyond
+ * its range, outside a spot's cone and outside its rectangle), without
+ * blending; the others add their light (GL_ONE, GL_ONE) on what they
+ * reach, in their rectangle. Sums are quantized to the target's 8 bits
+ * once per pass, so a pixel's colour may differ by one step from a
+ * single-pass picture of the same lights; decisions do not. */
+/* The light whose shading pass also draws the ambient term: the first that
+ * is on; -1 when none is (technique_shade_ambient). */
+int technique_ambient_light(const technique_frame *f);
+/* The frame's only shading pass when no light is on: the ambient term on
+ * every object in view. */
+void technique_shade_ambient(const technique_frame *f);
+/* Where a stencil says a light is blocked: a pixel is lit where the test
+ * `lit` (GL_EQUAL, GL_NOTEQUAL) of (stencil & mask) against ref passes,
+ * blocked where `blocked` (its complement) does. receivers_only: objects
+ * that take no shadows ("receives": false) are lit whatever the stencil. */
+typedef struct technique_stencil_lit {
+    unsigned lit, blocked;
+    int ref;
+    unsigned mask;
+    bool receivers_only;
+} technique_stencil_lit;
+/* Light l's shading pass through such a stencil (see above); where the
+ * ambient light is blocked, the ambient term alone. Leaves the stencil
+ * test on, blending and the scissor test off. */
+void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
+
 /* Caster culling for one light: the hull of the light and the visible
  * receivers it can reach (their bounds, clipped to its range), outside
  * which a caster shadows nothing the camera sees (frustum_light_hull). */

@@ -218,7 +218,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const c
     if (!render_program_load(&p->program, files, 2, shadow_map_defines))
         return false;
     const shadow_map_uniform uniforms[] = {
-        {&p->map, "u_map"}, {&p->light, "u_light"}, {&p->filter, "u_filter"}, {&p->kernel, "u_kernel"},
+        {&p->map, "u_map"}, {&p->light, "u_light"}, {&p->ambient, "u_ambient"}, {&p->filter, "u_filter"}, {&p->kernel, "u_kernel"},
         {&p->map_size, "u_map_size"}, {&p->receiver_plane, "u_receiver_plane"}, {&p->show_texels, "u_show_texels"},
         {&p->show_texel_size, "u_show_texel_size"}, {&p->constant_bias, "u_constant_bias"},
         {&p->normal_offset, "u_normal_offset"}, {&p->depth_bias, "u_depth_bias"},
@@ -271,7 +271,7 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
 }
 
 bool shadow_map_init(shadow_map_renderer *r, const render_scene *gpu) {
-    static const char *const depth_files[] = {"shadow_depth.vert", "shadow_depth.frag"};
+    static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
     if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !render_program_load(&r->depth, depth_files, 2, NULL) ||
         !shadow_map_camera_program_load(&r->camera_2d, "shadowmap_2d.frag") ||
         !shadow_map_camera_program_load(&r->camera_cube, "shadowmap_cube.frag") ||
@@ -312,9 +312,10 @@ void shadow_map_destroy(shadow_map_renderer *r) {
 
 /* ---- the camera pass ---- */
 
-/* Light l's share, added where its map lets it through. */
-static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                                 int l, const shadow_map *m, const bool *objects) {
+/* Light l's share where its map lets it through, with the ambient term
+ * when `ambient` (technique_shade_light's order of passes). */
+static void shadow_map_shade_light(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                                   int l, const shadow_map *m, const bool *objects, bool ambient) {
     const scene_light *light = &f->gpu->scene->lights[l];
     bool cube = m->kind == SHADOW_MAP_CUBE;
     const shadow_map_camera_program *p = cube ? &r->camera_cube : &r->camera_2d;
@@ -323,6 +324,7 @@ static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settin
     glBindTexture(shadow_map_target(m->kind), m->texture.id);
     glUniform1i(p->map, 0);
     glUniform1i(p->light, l);
+    glUniform1f(p->ambient, ambient ? 1.0f : 0.0f);
     glUniform1i(p->filter, (int)shadow_map_kernels[st->filter].shape);
     glUniform1i(p->kernel, shadow_map_kernels[st->filter].size);
     glUniform1f(p->map_size, (float)m->size);
@@ -346,7 +348,7 @@ static void shadow_map_add_light(shadow_map_renderer *r, const shadow_map_settin
     /* Only receivers read the map (the caster culling is for them too);
      * the others take the light unshadowed, as in the reference. */
     render_draw_objects_receiving(f->gpu, &p->program, objects, true);
-    render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
+    render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
     render_draw_objects_receiving(f->gpu, &f->gpu->lit, objects, false);
 }
 
@@ -376,25 +378,35 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
             shadow_map_forget(&r->caches[l]);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    /* Ambient, then each light added where its map lets it through. */
-    render_use_lit(f->gpu, f->view, 0, true);
-    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
-    glDepthFunc(GL_EQUAL);
-    glDepthMask(GL_FALSE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    /* After a depth pre-pass, each light shaded where its map lets it
+     * through, the first with the ambient term: the filter runs once per
+     * visible pixel and light (technique_shade_light's order of passes). */
+    render_depth_prepass(f->gpu, f->view, f->in_view);
+    int ambient_light = technique_ambient_light(f);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
-        /* What the light reaches; the overlays draw on everything in view. */
-        const bool *objects = settings->overlay == SHADOW_MAP_OVERLAY_NONE ? technique_light_pass(f, l) : f->in_view;
+        bool ambient = l == ambient_light;
+        /* What the light reaches, but the ambient light's pass draws
+         * everything in view, as do the overlays. */
+        const bool *objects = ambient || settings->overlay != SHADOW_MAP_OVERLAY_NONE ? f->in_view
+                                                                                      : technique_light_pass(f, l);
+        if (ambient) {
+            glDisable(GL_BLEND);
+        } else {
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+        }
         if (fitted[l]) {
-            shadow_map_add_light(r, settings, f, l, &r->maps[l], objects);
+            shadow_map_shade_light(r, settings, f, l, &r->maps[l], objects, ambient);
         } else { /* nothing visible receives: no map needed, nothing shadowed */
-            render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), false);
+            render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
             render_draw_objects(f->gpu, &f->gpu->lit, objects);
         }
+        glDisable(GL_BLEND);
         glDisable(GL_SCISSOR_TEST);
     }
+    if (ambient_light < 0)
+        technique_shade_ambient(f);
     shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
 }

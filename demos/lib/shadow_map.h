@@ -17,8 +17,11 @@
  *        with the casters that layer needs (below); a fit that returns
  *        false means nothing can be shadowed, and the light is added
  *        unshadowed;
- *     3. the camera pass: ambient, then each light added where its map
- *        lets it through (GL_EQUAL depth, additive blending);
+ *     3. the camera pass: a depth pre-pass, then each light shaded where
+ *        its map lets it through (GL_EQUAL depth), the first with the
+ *        ambient term, the others added (technique_shade_light's order):
+ *        the filter runs once per visible pixel and light, and a one-light
+ *        scene is shaded once;
  *     4. the overlays of settings->overlay.
  *
  * Storage (shadow_map). A map has a kind and layers: SHADOW_MAP_2D has
@@ -255,7 +258,7 @@ typedef struct shadow_map {
  * each kind's own (the other kind's are never set). */
 typedef struct shadow_map_camera_program {
     render_program program;
-    int map, light, filter, kernel, map_size, receiver_plane, show_texels, show_texel_size, constant_bias,
+    int map, light, ambient, filter, kernel, map_size, receiver_plane, show_texels, show_texel_size, constant_bias,
         normal_offset, depth_bias, light_origin;
     struct {
         int light_matrix, texel_kind, texel_scale, light_axis;
