@@ -1,9 +1,10 @@
 /* Smoke test of the benchmark (make bench QUICK=1): it runs end to end and
  * its outputs exist and are well formed; the selections (--technique,
  * --configs), --motion, --skips-compare and --scaling give the rows and
- * files they say; the report's fronts, one per error figure, agree with
- * its own table. Nothing about speed is asserted: speed is for `make
- * bench` to show, not for a test to guess. */
+ * files they say; each row's ratio is to its own interleaved floor frames
+ * (floor_ms_median), the floor's own row 1; the report's fronts, one per
+ * error figure, agree with its own table. Nothing about speed is asserted:
+ * speed is for `make bench` to show, not for a test to guess. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -23,18 +24,30 @@
 #define SELECT_OUT OUT "-select"
 #define LIGHT_OUT OUT "-light"
 #define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
-#define CSV_COLUMNS 16
+#define CSV_COLUMNS 17
 #define CSV_MAX_ROWS 256
+/* results.csv's columns the tests read by position. */
+#define CSV_GPU_MEDIAN 3
+#define CSV_CPU_MEDIAN 5
+#define CSV_RATIO 7
+#define CSV_COMPARED 12
+#define CSV_RENDERER 13
+#define CSV_MOTION 14
+#define CSV_SKIPS 15
+#define CSV_FLOOR_MS 16
+/* The CSV's rounding: the ratio is printed to 3 decimals, the times to 4. */
+#define CSV_RATIO_ROUNDING 0.0005
+#define CSV_MS_ROUNDING 0.00005
 /* A scene's table in report.md: technique, parameters, skips, GPU ms, CPU
- * ms, ratio, false shadow, false lit, misclassified, MAE, then a front
- * column per own-technique setting and error figure. */
+ * ms, ratio, floor ms, false shadow, false lit, misclassified, MAE, then a
+ * front column per own-technique setting and error figure. */
 #define REPORT_ERRORS 2
 #define REPORT_FRONTS (2 * REPORT_ERRORS)
-#define REPORT_COLUMNS (10 + REPORT_FRONTS)
+#define REPORT_COLUMNS (11 + REPORT_FRONTS)
 #define REPORT_GPU_COLUMN 3
 #define REPORT_CPU_COLUMN 4
-#define REPORT_ERROR_COLUMN 8
-#define REPORT_FRONT_COLUMN 10
+#define REPORT_ERROR_COLUMN 9
+#define REPORT_FRONT_COLUMN 11
 #define REPORT_MAX_ROWS 128
 
 static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view"};
@@ -92,6 +105,24 @@ typedef struct csv_row {
     char technique[32], parameters[256], motion[16], skips[8];
 } csv_row;
 
+/* A row's ratio is its median (CPU time on a software rasterizer, as the
+ * bench's basis, else GPU time) over the median of its own interleaved
+ * floor frames, within the CSV's rounding (how far rounding both times by
+ * up to CSV_MS_ROUNDING moves their quotient, and the ratio's own); the
+ * floor's own row is 1. */
+static void check_ratio(char **fields) {
+    const char *renderer = fields[CSV_RENDERER];
+    bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe");
+    double ms = atof(fields[software ? CSV_CPU_MEDIAN : CSV_GPU_MEDIAN]), floor_ms = atof(fields[CSV_FLOOR_MS]);
+    double ratio = atof(fields[CSV_RATIO]);
+    assert_true(floor_ms > CSV_MS_ROUNDING);
+    double bound =
+        CSV_RATIO_ROUNDING + (1 + ratio + CSV_RATIO_ROUNDING) * CSV_MS_ROUNDING / (floor_ms - CSV_MS_ROUNDING);
+    assert_true(fabs(ratio - ms / floor_ms) <= bound);
+    if (strcmp(fields[1], "unshadowed") == 0)
+        assert_string_equal(fields[CSV_RATIO], "1.000");
+}
+
 /* Reads results.csv under `dir` into rows (room for CSV_MAX_ROWS), checking
  * the header and that every row is well formed; returns the row count. */
 static int read_csv(const char *dir, csv_row *rows) {
@@ -101,24 +132,27 @@ static int read_csv(const char *dir, csv_row *rows) {
     char *rest = text, *line = strtok_r(rest, "\n", &rest);
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
-                              "mae,compared_pixels,renderer,motion,skips");
+                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median");
     int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
         assert_int_equal(csv_fields(line, fields, CSV_COLUMNS + 1), CSV_COLUMNS);
-        for (int c = 3; c < 13; c++) {
+        for (int c = CSV_GPU_MEDIAN; c < CSV_COLUMNS; c++) {
+            if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS)
+                continue;
             char *end;
             double v = strtod(fields[c], &end);
             assert_true(end != fields[c] && *end == '\0' && isfinite(v) && v >= 0);
         }
-        assert_true(atof(fields[3]) > 0);     /* a frame takes time */
-        assert_true(atol(fields[12]) > 1000); /* pixels were compared */
+        assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);  /* a frame takes time */
+        assert_true(atol(fields[CSV_COMPARED]) > 1000); /* pixels were compared */
+        check_ratio(fields);
         assert_true(n < CSV_MAX_ROWS);
         csv_row *r = &rows[n++];
         snprintf(r->technique, sizeof r->technique, "%s", fields[1]);
         snprintf(r->parameters, sizeof r->parameters, "%s", fields[2]);
-        snprintf(r->motion, sizeof r->motion, "%s", fields[14]);
-        snprintf(r->skips, sizeof r->skips, "%s", fields[15]);
+        snprintf(r->motion, sizeof r->motion, "%s", fields[CSV_MOTION]);
+        snprintf(r->skips, sizeof r->skips, "%s", fields[CSV_SKIPS]);
     }
     return n;
 }

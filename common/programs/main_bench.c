@@ -8,8 +8,21 @@
  * its first, ""): warm-up frames, then timed frames (GPU time from
  * GL_TIME_ELAPSED queries, CPU time from the clock around the frame and
  * glFinish), then the technique's own dump of the last timed frame
- * compared with the reference (shadowdiff rules). Writes
+ * compared with the reference (shadowdiff rules).
+ *
+ * The ratio to the cost floor is measured in the same moments as the
+ * configuration: the machine is shared, and a floor timed once per scene,
+ * minutes away, moved the ratios by a third between runs. So every frame k
+ * of a configuration, warm-up included, is a floor frame then the
+ * configuration's frame, both at time k and under the row's skips, each
+ * timed on its own (two technique hosts at once: the floor's and the
+ * configuration's); the row's ratio is its median over the median of its
+ * own floor frames (results.csv's floor_ms_median). The floor's own row is
+ * timed alone, ratio 1. The configuration's frames and its dump are those
+ * it renders alone: the floor frames between them share no state with it
+ * that a frame does not set afresh. Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
+ *                           (its last column, floor_ms_median, the row's floor)
  *   OUT/report.md           a table per scene, its Pareto fronts (one per
  *                           error figure), and each technique's defaults
  *                           against its named (textbook) configurations
@@ -30,7 +43,7 @@
  *
  * Skips (render.h) are on, as in the app; --no-skip turns them off, and
  * --skips-compare runs every configuration twice, skips on then off, each
- * row's ratio to the floor of its own skips setting; results.csv's `skips`
+ * row's floor frames under its own skips setting; results.csv's `skips`
  * column says which a row ran under.
  */
 #include <glad/gl.h>
@@ -81,11 +94,11 @@ static const struct {
 
 typedef struct bench_row {
     const char *scene, *technique, *config;
-    bool cost_floor; /* the technique is the registry's cost floor */
-    bool no_skip;    /* ran under --no-skip */
+    bool no_skip; /* ran under --no-skip */
     double gpu_median, gpu_p90, cpu_median, cpu_p90;
     double frame_ms; /* what the ratio, the front and the plot use */
-    double ratio;    /* to the floor of the same scene and skips setting */
+    double floor_ms; /* the median of the floor frames interleaved with the row's (the floor's row: frame_ms) */
+    double ratio;    /* frame_ms / floor_ms */
     shadowdiff_result error;
 } bench_row;
 
@@ -120,6 +133,8 @@ static struct {
     double time; /* of the frame being rendered, seconds */
     const technique *current;
     technique_host host;
+    const technique *floor;    /* the registry's cost floor */
+    technique_host floor_host; /* its frames between the current technique's */
     render_skips skips;
     unsigned query;
     bool software; /* a CPU rasterizer: timer queries miss its work */
@@ -237,9 +252,12 @@ static void bench_move(double time) {
 /* The time of the last timed frame: the one dumped and ray traced. */
 static double bench_last_time(void) { return (bench.warmup + bench.frames - 1) / BENCH_FRAME_RATE; }
 
-static bool bench_render_frame(int visibility_of) {
-    return technique_host_frame(&bench.host, &bench.view, &bench.target, bench.time, visibility_of);
+static bool bench_host_frame(technique_host *h, int visibility_of) {
+    return technique_host_frame(h, &bench.view, &bench.target, bench.time, visibility_of);
 }
+
+/* The current technique's frame (capture_dump's callback). */
+static bool bench_render_frame(int visibility_of) { return bench_host_frame(&bench.host, visibility_of); }
 
 static int bench_compare_doubles(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -252,36 +270,59 @@ static double bench_percentile(const double *sorted, int n, double p) {
     return sorted[rank < 1 ? 0 : rank > n ? n - 1 : rank - 1];
 }
 
-static bool bench_time_frames(bench_row *row) {
-    static double gpu[BENCH_MAX_FRAMES], cpu[BENCH_MAX_FRAMES];
+/* The timed frames of one host, in ms. */
+typedef struct bench_series {
+    double gpu[BENCH_MAX_FRAMES], cpu[BENCH_MAX_FRAMES];
+} bench_series;
+
+/* One frame of host h, timed into sample i of s: CPU time from the clock
+ * around the frame and glFinish, GPU time from a timer query. */
+static bool bench_timed_frame(technique_host *h, bench_series *s, int i) {
+    double start = bench_now_ms();
+    glBeginQuery(GL_TIME_ELAPSED, bench.query);
+    bool ok = bench_host_frame(h, -1);
+    glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    s->cpu[i] = bench_now_ms() - start;
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(bench.query, GL_QUERY_RESULT, &ns);
+    s->gpu[i] = ns / 1e6;
+    return ok;
+}
+
+/* Sorts the series' samples; returns its median in the time the ratio
+ * uses (bench_time_basis). */
+static double bench_sort_series(bench_series *s) {
+    qsort(s->gpu, (size_t)bench.frames, sizeof *s->gpu, bench_compare_doubles);
+    qsort(s->cpu, (size_t)bench.frames, sizeof *s->cpu, bench_compare_doubles);
+    return bench_percentile(bench.software ? s->cpu : s->gpu, bench.frames, 0.5);
+}
+
+/* Warms up and times the current technique (bench.host); with a floor
+ * host, each frame k is the floor's then the technique's, so that the
+ * row's floor_ms is of the same moments as its frames. */
+static bool bench_time_frames(bench_row *row, technique_host *floor_host) {
+    static bench_series own, floor_series;
     int frame = 0;
     for (; frame < bench.warmup; frame++) {
         bench_move(frame / BENCH_FRAME_RATE);
-        if (!bench_render_frame(-1))
+        if ((floor_host && !bench_host_frame(floor_host, -1)) || !bench_render_frame(-1))
             return false;
     }
     glFinish();
     for (int i = 0; i < bench.frames; i++, frame++) {
         bench_move(frame / BENCH_FRAME_RATE);
-        double start = bench_now_ms();
-        glBeginQuery(GL_TIME_ELAPSED, bench.query);
-        bool ok = bench_render_frame(-1);
-        glEndQuery(GL_TIME_ELAPSED);
-        glFinish();
-        cpu[i] = bench_now_ms() - start;
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(bench.query, GL_QUERY_RESULT, &ns);
-        gpu[i] = ns / 1e6;
-        if (!ok)
+        bool ok = !floor_host || bench_timed_frame(floor_host, &floor_series, i);
+        if (!ok || !bench_timed_frame(&bench.host, &own, i))
             return false;
     }
-    qsort(gpu, (size_t)bench.frames, sizeof *gpu, bench_compare_doubles);
-    qsort(cpu, (size_t)bench.frames, sizeof *cpu, bench_compare_doubles);
-    row->gpu_median = bench_percentile(gpu, bench.frames, 0.5);
-    row->gpu_p90 = bench_percentile(gpu, bench.frames, 0.9);
-    row->cpu_median = bench_percentile(cpu, bench.frames, 0.5);
-    row->cpu_p90 = bench_percentile(cpu, bench.frames, 0.9);
-    row->frame_ms = bench.software ? row->cpu_median : row->gpu_median;
+    row->frame_ms = bench_sort_series(&own);
+    row->gpu_median = bench_percentile(own.gpu, bench.frames, 0.5);
+    row->gpu_p90 = bench_percentile(own.gpu, bench.frames, 0.9);
+    row->cpu_median = bench_percentile(own.cpu, bench.frames, 0.5);
+    row->cpu_p90 = bench_percentile(own.cpu, bench.frames, 0.9);
+    row->floor_ms = floor_host ? bench_sort_series(&floor_series) : row->frame_ms;
+    row->ratio = row->floor_ms > 0 ? row->frame_ms / row->floor_ms : 0;
     return true;
 }
 
@@ -312,7 +353,8 @@ static bool bench_reference(const char *scene_path, const char *name, dump_frame
 }
 
 /* Times and measures one configuration of the current technique under the
- * skips setting no_skip. */
+ * skips setting no_skip, interleaved with the floor's frames unless it is
+ * the floor. */
 static bool bench_configuration(const char *scene_name, const char *config, bool no_skip,
                                 const dump_frame *reference) {
     if (bench.row_count == BENCH_MAX_ROWS) {
@@ -320,14 +362,23 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
         return false;
     }
     bench_row *row = &bench.rows[bench.row_count];
-    *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config,
-                      .cost_floor = bench.current->cost_floor, .no_skip = no_skip};
+    *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config, .no_skip = no_skip};
     bench.skips = (render_skips){.no_skip = no_skip};
+    technique_host *floor_host = bench.current->cost_floor ? NULL : &bench.floor_host;
     dump_frame dump;
-    bool ok = technique_apply_config(bench.current, config) &&
-              technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips) && bench_time_frames(row) &&
-              capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, &dump);
-    technique_host_stop(&bench.host);
+    /* A host whose start was tried is stopped: destroy follows even a
+     * failed init. The floor runs at its defaults. */
+    bool configured =
+        technique_apply_config(bench.current, config) && (!floor_host || technique_apply_config(bench.floor, ""));
+    bool ok = configured && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips);
+    bool floor_tried = ok && floor_host;
+    ok = ok && (!floor_host || technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips)) &&
+         bench_time_frames(row, floor_host) &&
+         capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, &dump);
+    if (floor_tried)
+        technique_host_stop(floor_host);
+    if (configured)
+        technique_host_stop(&bench.host);
     if (!ok)
         return false;
     ok = shadowdiff_compare(reference, &dump, NULL, &row->error, NULL);
@@ -338,18 +389,6 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
 
 /* results.csv's `skips` of a row: every skip on, or --no-skip. */
 static const char *bench_skips_text(bool no_skip) { return no_skip ? "off" : "on"; }
-
-/* The ratios of the scene's rows (from first_row): how much each adds to
- * the cost floor's plain frame under the same skips setting. */
-static void bench_ratios(int first_row) {
-    for (int r = first_row; r < bench.row_count; r++) {
-        double floor_ms = 0;
-        for (int f = first_row; f < bench.row_count; f++)
-            if (bench.rows[f].cost_floor && bench.rows[f].no_skip == bench.rows[r].no_skip)
-                floor_ms = bench.rows[f].frame_ms;
-        bench.rows[r].ratio = floor_ms > 0 ? bench.rows[r].frame_ms / floor_ms : 0;
-    }
-}
 
 static bool bench_scene(const char *scene_path, int scene_index, int *done, int total) {
     char *name = bench.scene_names[scene_index];
@@ -363,7 +402,6 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     bool ok = render_scene_create(&bench.gpu, &bench.scene);
     dump_frame reference = {0};
     ok = ok && bench_reference(scene_path, name, &reference);
-    int first_row = bench.row_count;
     for (int t = 0; ok && t < registry_technique_count; t++) {
         bench.current = registry_techniques[t];
         for (int c = 0; ok && bench_selected(bench.current) && c < bench_config_count(bench.current); c++) {
@@ -376,7 +414,6 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
             }
         }
     }
-    bench_ratios(first_row);
     dump_frame_free(&reference);
     render_scene_destroy(&bench.gpu);
     scene_free(&bench.scene);
@@ -452,14 +489,14 @@ static bool bench_write_csv(void) {
         return false;
     fprintf(f, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,mae,"
-               "compared_pixels,renderer,motion,skips\n");
+               "compared_pixels,renderer,motion,skips,floor_ms_median\n");
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s\n", r->scene,
+        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f\n", r->scene,
                 r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
                 r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
                 r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, motion_names[bench.motion],
-                bench_skips_text(r->no_skip));
+                bench_skips_text(r->no_skip), r->floor_ms);
     }
     return bench_close(f, path);
 }
@@ -545,8 +582,12 @@ static bool bench_write_report(void) {
                "MAE front likewise by MAE (own fronts: no other configuration of the same technique). In the "
                "comparisons of the defaults with the named configurations, more accurate means no worse by "
                "either figure and better by one.\n\n"
-               "The ratio, the fronts and the plots use **%s time**. %s Skips: %s. Motion: %s (frame k "
-               "at k/%g s; the error is of the last timed frame, at %.3f s).\n",
+               "The ratio, the fronts and the plots use **%s time**. %s A row's ratio (x unshadowed) is "
+               "its median over the median of the unshadowed frames interleaved with its own (frame k of "
+               "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
+               "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
+               "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error is of the last timed frame, at "
+               "%.3f s).\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
@@ -555,19 +596,19 @@ static bool bench_write_report(void) {
                              "in glFinish.",
             bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench_last_time());
     if (bench.skips_compare)
-        fprintf(f, "\nEach ratio is to the floor under the same skips setting; the fronts, the plots and the "
-                   "named comparisons are of the rows with skips on.\n");
+        fprintf(f, "\nEach row's floor frames ran under the row's own skips setting; the fronts, the plots and "
+                   "the named comparisons are of the rows with skips on.\n");
     for (int s = 0; s < bench.scene_count; s++) {
         const char *scene = bench.scene_names[s];
         fprintf(f, "\n## %s\n\n", scene);
         for (int e = 0; e < BENCH_ERROR_COUNT; e++)
             fprintf(f, "![time against %s](%s_%s.png)\n", bench_errors[e].name, bench_errors[e].plot, scene);
-        fprintf(f, "\n| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | false-shadow %% | "
-                   "false-lit %% | misclassified %% | MAE |");
+        fprintf(f, "\n| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | floor ms | "
+                   "false-shadow %% | false-lit %% | misclassified %% | MAE |");
         for (int own = 0; own < 2; own++)
             for (int e = 0; e < BENCH_ERROR_COUNT; e++)
                 fprintf(f, " %sfront (%s) |", own ? "own " : "", bench_errors[e].name);
-        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|");
+        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|---|");
         for (int column = 0; column < 2 * BENCH_ERROR_COUNT; column++)
             fprintf(f, "---|");
         fprintf(f, "\n");
@@ -575,9 +616,9 @@ static bool bench_write_report(void) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) != 0)
                 continue;
-            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.4f | %.4f | %.4f | %.5f |",
+            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f |",
                     r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
-                    r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->error.false_shadow_percent,
+                    r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->floor_ms, r->error.false_shadow_percent,
                     r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error);
             for (int own = 0; own < 2; own++)
                 for (int e = 0; e < BENCH_ERROR_COUNT; e++)
@@ -759,6 +800,10 @@ int main(int argc, char **argv) {
         return 1;
     /* Mesa's software rasterizers name themselves in GL_RENDERER. */
     bench.software = strstr(bench.ctx.renderer, "llvmpipe") || strstr(bench.ctx.renderer, "softpipe");
+    /* The registry marks one technique the cost floor (registry.c). */
+    for (int t = 0; t < registry_technique_count; t++)
+        if (registry_techniques[t]->cost_floor)
+            bench.floor = registry_techniques[t];
     int total = 0, done = 0;
     for (int t = 0; t < registry_technique_count; t++)
         if (bench_selected(registry_techniques[t]))
