@@ -72,7 +72,8 @@ enum { PSM_OVERLAY_POST_PERSPECTIVE = SHADOW_MAP_OVERLAY_COUNT };
  * post-perspective view. */
 typedef struct psm_choice {
     const char *warp;      /* the map in use: "psm", "lispsm" or "uniform" */
-    float texel_pixels[2]; /* mean texel size on screen: the warp's, uniform's */
+    float texel_pixels[2]; /* mean texel size on screen: the warp's, uniform's, at measured_size */
+    int measured_size;     /* the size the fit had (--map-size auto sizes the map after it) */
     warp_result result;    /* why, and the warp's space */
 } psm_choice;
 
@@ -86,7 +87,6 @@ static struct {
     /* Scratch space of a fit: */
     float points[PSM_MAX_POINTS][3];  /* the receivers, then the relevant casters' corners */
     float warped[PSM_MAX_POINTS][3];  /* the same points in the warp's space */
-    warp_sample samples[WARP_SAMPLE_COUNT];
 } psm;
 
 static const flags_param psm_params[] = {
@@ -146,11 +146,13 @@ static bool psm_fit(const technique_frame *f, int light, shadow_map *m, const fl
     warped.near_plane = w->near_plane;
     warped.far_plane = w->far_plane;
     warped.orthographic = w->orthographic;
-    int sample_count = warp_samples(f->gpu->scene, f->view, f->width, f->height, l, psm.samples);
+    const warp_sample *samples = psm.maps.samples; /* where the camera sees the light's receivers */
+    int sample_count = psm.maps.sample_count;
+    choice->measured_size = m->size;
     choice->texel_pixels[0] =
-        warp_texel_pixels(warped.layer_view_projection, 1, warped.size, l->position, psm.samples, sample_count);
+        warp_texel_pixels(warped.layer_view_projection, 1, warped.size, l->position, samples, sample_count);
     choice->texel_pixels[1] =
-        warp_texel_pixels(m->layer_view_projection, m->layer_count, m->size, l->position, psm.samples, sample_count);
+        warp_texel_pixels(m->layer_view_projection, m->layer_count, m->size, l->position, samples, sample_count);
     if (!(choice->texel_pixels[0] < PSM_WARP_GAIN * choice->texel_pixels[1])) {
         snprintf(w->why + strlen(w->why), sizeof w->why - strlen(w->why), "; the warp does not pay here");
         return true;
@@ -195,15 +197,18 @@ static void psm_describe(char *out, size_t size) {
     const shadow_map *m = &psm.maps.maps[0];
     int n = snprintf(out, size, "light 0: %s %s map %dx%d (%s)", c->warp, shadow_map_kind_name(m->kind), m->size,
                      m->size, c->result.why);
+    /* A texel's size on screen scales as 1 / size. */
+    float scale = (float)c->measured_size / (float)m->size;
     if (n > 0 && (size_t)n < size && isfinite(c->texel_pixels[1]))
-        snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px", c->texel_pixels[0],
-                 c->texel_pixels[1]);
+        snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px", c->texel_pixels[0] * scale,
+                 c->texel_pixels[1] * scale);
 }
 
-/* The sweep: warp x map size. */
+/* The sweep: warp x map size (auto, the default, against fixed sizes). */
 static const char *const psm_bench_configs[] = {
     "",
     "--map-size 1024",
+    "--map-size 2048",
     "--warp lispsm",
     "--warp lispsm --map-size 1024",
     "--warp uniform",

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "dump.h"
 #include "shadowdiff.h"
@@ -238,6 +239,36 @@ static void test_no_cube_seams(void **state) {
     dump_frame_free(&test);
 }
 
+/* --map-size auto, the default, sizes each map so that a texel covers
+ * about a pixel where the camera sees its receivers (at most 1 on average,
+ * rounded up to a power of two): the same scene needs half the map in a
+ * picture half as wide, a long view the most (capped at 4096), and a size
+ * given stays as given. */
+static void test_map_size_from_need(void **state) {
+    (void)state;
+    static const struct {
+        const char *program, *scene, *flags, *expected;
+    } cases[] = {
+        {"shadowmap", "simple", BENCH_SIZE, "map 2048x2048"},
+        {"shadowmap", "simple", "", "map 1024x1024"},
+        {"shadowmap", "bunny", BENCH_SIZE, "cube map 2048x2048"},
+        {"shadowmap", "long_view", BENCH_SIZE, "map 4096x4096"},
+        {"shadowmap", "simple", BENCH_SIZE " --map-size 512", "map 512x512"},
+        {"psm", "teapot", BENCH_SIZE, "psm 2D map 2048x2048"},
+        {"psm", "teapot", "", "psm 2D map 1024x1024"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char scene[256], marker[64];
+        snprintf(scene, sizeof scene, "assets/scenes/%s.json", cases[i].scene);
+        snprintf(marker, sizeof marker, "%s: light 0:", cases[i].program);
+        const char *line = support_verbose_line(cases[i].program, scene, cases[i].flags, marker);
+        assert_non_null(line);
+        fprintf(stderr, "    %s %s %s: %.*s", cases[i].program, cases[i].scene, cases[i].flags,
+                (int)strcspn(line, "\n") + 1, line);
+        assert_non_null(strstr(line, cases[i].expected));
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_standard_scenes_within_bound),
@@ -247,6 +278,7 @@ int main(void) {
         cmocka_unit_test(test_receiver_plane_reduces_partial_acne),
         cmocka_unit_test(test_no_peter_panning_at_contact),
         cmocka_unit_test(test_no_cube_seams),
+        cmocka_unit_test(test_map_size_from_need),
     };
     return cmocka_run_group_tests_name("shadow maps against the reference", tests, NULL, NULL);
 }

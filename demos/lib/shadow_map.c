@@ -1,13 +1,14 @@
 /* shadow_map: storage, the depth pass, the camera pass and the frame (see
  * shadow_map.h). */
 #include <glad/gl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "shadow_map.h"
 
-const char *const shadow_map_sizes[] = {"2048", "256", "512", "1024", "4096", NULL};
+const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
 const char *const shadow_map_filters[] = {
     [SHADOW_MAP_FILTER_POISSON] = "poisson", [SHADOW_MAP_FILTER_NONE] = "none", [SHADOW_MAP_FILTER_HW] = "hw",
     [SHADOW_MAP_FILTER_PCF3] = "pcf3",       [SHADOW_MAP_FILTER_PCF5] = "pcf5", [SHADOW_MAP_FILTER_PCF7] = "pcf7",
@@ -40,6 +41,36 @@ static const shader_define shadow_map_defines[] = {
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
 int shadow_map_settings_size(const shadow_map_settings *settings) { return atoi(shadow_map_sizes[settings->map_size]); }
+
+int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n) {
+    double sum = 0;
+    int measured = 0;
+    for (int i = 0; i < n; i++) {
+        if (light->type != SCENE_LIGHT_DIRECTIONAL && light->range > 0 &&
+            glm_vec3_distance((float *)light->position, (float *)samples[i].position) >= light->range)
+            continue;
+        float texel = warp_sample_texel_pixels(m->layer_view_projection, m->layer_count, m->size, light->position,
+                                               &samples[i]);
+        if (isfinite(texel)) {
+            sum += texel;
+            measured++;
+        }
+    }
+    if (measured == 0)
+        return SHADOW_MAP_AUTO_FALLBACK_SIZE;
+    double needed = m->size * (sum / measured) / SHADOW_MAP_AUTO_TEXEL_PIXELS;
+    int size = SHADOW_MAP_AUTO_MIN_SIZE;
+    while (size < SHADOW_MAP_AUTO_MAX_SIZE && size < needed)
+        size *= 2;
+    return size;
+}
+
+/* The fitted map m at another size: only the texel's world size follows
+ * (as 1 / size); the matrices and the depth range do not depend on it. */
+static void shadow_map_resize(shadow_map *m, int size) {
+    m->texel_scale *= (float)m->size / (float)size;
+    m->size = size;
+}
 
 const char *shadow_map_kind_name(shadow_map_kind kind) {
     static const char *const names[] = {[SHADOW_MAP_2D] = "2D", [SHADOW_MAP_CUBE] = "cube",
@@ -361,12 +392,17 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
     glGetIntegerv(GL_VIEWPORT, viewport);
     bool fitted[SCENE_MAX_LIGHTS] = {false};
+    int size = shadow_map_settings_size(settings);
+    r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
     for (int l = 0; l < s->light_count && f->receiver_count > 0; l++) {
         if (!technique_light_on(f, l))
             continue;
         shadow_map *m = &r->maps[l];
-        m->size = shadow_map_settings_size(settings);
+        m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
+        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples);
         fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
+        if (fitted[l] && !size)
+            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, r->sample_count));
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             shadow_map_forget(&r->caches[l]);
         if (fitted[l])

@@ -12,7 +12,10 @@
  *   shadow_map_render(renderer, settings, frame, fit)
  *     1. the receiver points: the frame's (technique.h), the corners of the
  *        part of every receiver's box inside the camera's frustum;
- *     2. per light: fit(frame, light, map, receivers) places the map, and
+ *     2. per light: fit(frame, light, map, receivers) places the map
+ *        (r->samples: where the camera sees the receivers the light
+ *        reaches, for a fit that measures its texels, as psm does), the
+ *        automatic size sizes it (below), and
  *        the depth pass renders each layer that its cache cannot give,
  *        with the casters that layer needs (below); a fit that returns
  *        false means nothing can be shadowed, and the light is added
@@ -75,6 +78,21 @@
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
  *
+ * Map size (--map-size; auto, the default). Fixed sizes are as given.
+ * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
+ * on screen of its texels at r->samples (the dp/ds of the perspective
+ * shadow map papers, warp_sample_texel_pixels: a 32 x 18 grid of pixels
+ * cast onto the receivers' boxes, the same measure psm judges its warps
+ * by; samples beyond the light's range or outside the map left out) and
+ * takes the smallest power of two from 256 to 4096 at which a texel
+ * covers at most about one pixel on average (shadow_map_auto_size):
+ * shadows no sharper than the pixels that show them, and no depth pass
+ * larger than that needs. At 1280x720 that is 2048 on simple, bunny and
+ * teapot, 4096 (the cap) on long_view and the city, half as much in a
+ * picture half as wide. A cube map has one size for its six faces (one
+ * cube texture, so that kernels filter across face edges): the mean is
+ * over the samples on all faces.
+ *
  * Caster culling (shadow_map_cull.c, no GL; with f->cull_casters). Each
  * layer (a cube's faces each on its own) draws only the casters that can
  * shadow a visible receiver through it. Where receivers read a layer, in
@@ -129,6 +147,17 @@
 #include <stdbool.h>
 
 #include "technique.h"
+#include "warp.h"
+
+/* --map-size auto: per light, the smallest power of two from MIN to MAX
+ * at which a texel covers at most TEXEL_PIXELS pixels on average where
+ * the camera sees the map's receivers (shadow_map_auto_size); FALLBACK
+ * where nothing can be measured (no sample of the pixel grid lands on a
+ * receiver the light reaches). */
+#define SHADOW_MAP_AUTO_MIN_SIZE 256
+#define SHADOW_MAP_AUTO_MAX_SIZE 4096
+#define SHADOW_MAP_AUTO_TEXEL_PIXELS 1.0f
+#define SHADOW_MAP_AUTO_FALLBACK_SIZE 2048
 
 /* The defaults of the numbers, from `make bench` (see demos/shadowmap.c). */
 #define SHADOW_MAP_CONSTANT_TEXELS 1.0f
@@ -173,7 +202,8 @@ enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXEL
 
 /* The parameters every shadow-map technique shares, for its params array. */
 #define SHADOW_MAP_PARAMS(s)                                                                                         \
-    {"map-size", "texels on a side", GLFW_KEY_M, FLAGS_CHOICE, .index = &(s).map_size,                             \
+    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen", GLFW_KEY_M,              \
+     FLAGS_CHOICE, .index = &(s).map_size,                                                                         \
      .choices = shadow_map_sizes},                                                                                 \
     {"filter", "what reads the map", GLFW_KEY_F, FLAGS_CHOICE, .index = &(s).filter,                               \
      .choices = shadow_map_filters},                                                                               \
@@ -311,6 +341,11 @@ typedef struct shadow_map_renderer {
     int object_count;                      /* the scene's, at init: the sets' size */
     bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
     float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
+    /* Where the camera sees receivers (warp_samples, once a frame), and
+     * those the light being fitted is measured at (warp_samples_lit):
+     * the automatic size's measure, and psm's. */
+    warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
+    int hit_count, sample_count;
 } shadow_map_renderer;
 
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
@@ -329,8 +364,15 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
  * again. */
 void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
                              shadow_map *m);
-/* The map's size in the settings. */
+/* The map's size in the settings; 0: auto. */
 int shadow_map_settings_size(const shadow_map_settings *settings);
+/* --map-size auto's size for the fitted map m of the light at
+ * light_position, from the samples the light is measured at (see
+ * SHADOW_MAP_AUTO_*): a texel's size on screen scales as 1 / size, so the
+ * mean at m->size gives the size at which it is TEXEL_PIXELS, rounded up
+ * to a power of two. Samples beyond the light's range (it lights nothing
+ * there) and outside the map are not measured. */
+int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
 

@@ -19,7 +19,9 @@
  *                          perspective along the view as seen from the
  *                          light, of strength warp_lispsm_n_opt
  *   warp_samples           rays through a WARP_SAMPLES_X x WARP_SAMPLES_Y
- *                          grid of pixels to the receivers' boxes
+ *                          grid of pixels to the receivers' boxes, once a
+ *                          frame; warp_samples_lit: those a light's map
+ *                          is measured at
  *   warp_texel_pixels      at those samples, the mean size in pixels of a
  *                          map texel (the dp/ds of the papers): how the
  *                          warp is judged against the uniform map
@@ -85,6 +87,7 @@ typedef struct warp_result {
 /* A point on a receiver where the camera looks, to measure maps at. */
 typedef struct warp_sample {
     vec3 position, tangent[2]; /* on a face of a receiver's box */
+    vec3 normal;               /* that face's, towards the eye */
     float pixels;              /* pixels per unit area of that face there */
 } warp_sample;
 
@@ -125,17 +128,25 @@ bool warp_lispsm(const scene_light *l, const warp_view *v, const float (*points)
 
 /* Rays through the pixel grid of a width x height picture of `view` to the
  * boxes of the receivers of `s`; each hit is a sample, with the pixel area
- * on the face it hit. Faces nearly edge-on to light l (WARP_GRAZING_SINE)
- * are left out, faces turned away count (boxes stand for surfaces that may
- * well face the light), and outside a spot's cone the cone decides, not
- * the map. `out` holds WARP_SAMPLE_COUNT; returns how many. */
-int warp_samples(const scene *s, const camera_view *view, int width, int height, const scene_light *l,
-                 warp_sample *out);
-/* Mean size in pixels of a texel of a size x size map at the samples (on
- * each sample's face, the square root of a pixel's area over a texel's);
- * INFINITY if one lies outside the map or none can be measured. The map
- * is one matrix (layer_count 1) or a cube's six faces in GL's order, each
- * point read from the face of its major axis from `light_position`. */
+ * on the face it hit. `out` holds WARP_SAMPLE_COUNT; returns how many. The
+ * same for every light: a frame takes them once. */
+int warp_samples(const scene *s, const camera_view *view, int width, int height, warp_sample *out);
+/* Those of the n samples that light l's map is measured at, into `out`
+ * (room for n); returns how many. Faces nearly edge-on to l
+ * (WARP_GRAZING_SINE) are left out, faces turned away count (boxes stand
+ * for surfaces that may well face the light), and outside a spot's cone
+ * the cone decides, not the map. */
+int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out);
+/* The size in pixels of a texel of a size x size map at one sample (on the
+ * sample's face, the square root of a pixel's area over a texel's):
+ * INFINITY outside the map, NAN where it cannot be measured (the face
+ * seen edge-on by the map). The map is one matrix (layer_count 1) or a
+ * cube's six faces in GL's order, the point read from the face of its
+ * major axis from `light_position`. */
+float warp_sample_texel_pixels(const mat4 *layer_view_projection, int layer_count, int size,
+                               const float light_position[3], const warp_sample *sample);
+/* Their mean over the samples: INFINITY if one lies outside the map or
+ * none can be measured. */
 float warp_texel_pixels(const mat4 *layer_view_projection, int layer_count, int size, const float light_position[3],
                         const warp_sample *samples, int n);
 

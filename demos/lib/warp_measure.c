@@ -58,8 +58,7 @@ static float warp_hit_receivers(const scene *s, const float eye[3], const vec3 d
     return best;
 }
 
-int warp_samples(const scene *s, const camera_view *view, int width, int height, const scene_light *l,
-                 warp_sample *out) {
+int warp_samples(const scene *s, const camera_view *view, int width, int height, warp_sample *out) {
     mat4 inverse;
     glm_mat4_inv((vec4 *)view->view_projection, inverse);
     float screen_half[2] = {0.5f * (float)width, 0.5f * (float)height};
@@ -77,23 +76,14 @@ int warp_samples(const scene *s, const camera_view *view, int width, int height,
             if (!isfinite(best) || best > 1)
                 continue;
             warp_sample *sample = &out[n];
-            vec3 normal = {0, 0, 0}, to_light;
             glm_vec3_scale(direction, best, sample->position);
             glm_vec3_add(sample->position, (float *)view->eye, sample->position);
             glm_vec3_zero(sample->tangent[0]);
             glm_vec3_zero(sample->tangent[1]);
+            glm_vec3_zero(sample->normal);
             sample->tangent[0][(best_axis + 1) % 3] = 1;
             sample->tangent[1][(best_axis + 2) % 3] = 1;
-            normal[best_axis] = direction[best_axis] > 0 ? -1.0f : 1.0f;
-            if (l->type == SCENE_LIGHT_DIRECTIONAL)
-                glm_vec3_negate_to((float *)l->direction, to_light);
-            else
-                glm_vec3_sub((float *)l->position, sample->position, to_light);
-            if (!(fabsf(glm_vec3_dot(normal, to_light)) > WARP_GRAZING_SINE * glm_vec3_norm(to_light)))
-                continue;
-            if (l->type == SCENE_LIGHT_SPOT && -glm_vec3_dot(to_light, (float *)l->direction) <
-                                                   cosf(glm_rad(l->outer_angle_deg)) * glm_vec3_norm(to_light))
-                continue;
+            sample->normal[best_axis] = direction[best_axis] > 0 ? -1.0f : 1.0f;
             vec4 screen_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
             glm_mat4_mulv((vec4 *)view->view_projection, h, screen_clip);
             float b[2][2];
@@ -106,25 +96,52 @@ int warp_samples(const scene *s, const camera_view *view, int width, int height,
     return n;
 }
 
+int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out) {
+    int kept = 0;
+    for (int i = 0; i < n; i++) {
+        const warp_sample *sample = &samples[i];
+        vec3 to_light;
+        if (l->type == SCENE_LIGHT_DIRECTIONAL)
+            glm_vec3_negate_to((float *)l->direction, to_light);
+        else
+            glm_vec3_sub((float *)l->position, (float *)sample->position, to_light);
+        if (!(fabsf(glm_vec3_dot((float *)sample->normal, to_light)) > WARP_GRAZING_SINE * glm_vec3_norm(to_light)))
+            continue;
+        if (l->type == SCENE_LIGHT_SPOT && -glm_vec3_dot(to_light, (float *)l->direction) <
+                                               cosf(glm_rad(l->outer_angle_deg)) * glm_vec3_norm(to_light))
+            continue;
+        out[kept++] = *sample;
+    }
+    return kept;
+}
+
+float warp_sample_texel_pixels(const mat4 *layer_view_projection, int layer_count, int size,
+                               const float light_position[3], const warp_sample *sample) {
+    float map_half[2] = {0.5f * (float)size, 0.5f * (float)size};
+    const vec4 *map = warp_map_matrix(layer_view_projection, layer_count, light_position, sample->position);
+    vec4 map_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
+    glm_mat4_mulv((vec4 *)map, h, map_clip);
+    float edge = map_clip[3] * (1 + WARP_MAP_EDGE_TOLERANCE);
+    if (!(map_clip[3] > 0) || fabsf(map_clip[0]) > edge || fabsf(map_clip[1]) > edge)
+        return INFINITY;
+    float a[2][2];
+    for (int k = 0; k < 2; k++)
+        warp_derivative(map, map_clip, sample->tangent[k], map_half, a[k]);
+    float texels = fabsf(a[0][0] * a[1][1] - a[0][1] * a[1][0]);
+    float ratio = sample->pixels / texels;
+    return texels > 0 && isfinite(ratio) ? sqrtf(ratio) : NAN;
+}
+
 float warp_texel_pixels(const mat4 *layer_view_projection, int layer_count, int size, const float light_position[3],
                         const warp_sample *samples, int n) {
-    float map_half[2] = {0.5f * (float)size, 0.5f * (float)size};
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
-        const warp_sample *sample = &samples[i];
-        const vec4 *map = warp_map_matrix(layer_view_projection, layer_count, light_position, sample->position);
-        vec4 map_clip, h = {sample->position[0], sample->position[1], sample->position[2], 1};
-        glm_mat4_mulv((vec4 *)map, h, map_clip);
-        float edge = map_clip[3] * (1 + WARP_MAP_EDGE_TOLERANCE);
-        if (!(map_clip[3] > 0) || fabsf(map_clip[0]) > edge || fabsf(map_clip[1]) > edge)
+        float texel = warp_sample_texel_pixels(layer_view_projection, layer_count, size, light_position, &samples[i]);
+        if (isinf(texel))
             return INFINITY;
-        float a[2][2];
-        for (int k = 0; k < 2; k++)
-            warp_derivative(map, map_clip, sample->tangent[k], map_half, a[k]);
-        float texels = fabsf(a[0][0] * a[1][1] - a[0][1] * a[1][0]);
-        if (texels > 0 && isfinite(sample->pixels / texels)) {
-            sum += sqrt((double)sample->pixels / texels);
+        if (!isnan(texel)) {
+            sum += texel;
             measured++;
         }
     }
