@@ -204,7 +204,9 @@ static void psm_describe(char *out, size_t size) {
                  c->texel_pixels[1] * scale);
 }
 
-/* The sweep: warp x map size (auto, the default, against fixed sizes). */
+/* The sweep: warp x map size (auto, the default, against fixed sizes); the
+ * filters' early-out off and the tents at the defaults (shadow_map.h,
+ * "filters"). */
 static const char *const psm_bench_configs[] = {
     "",
     "--map-size 1024",
@@ -213,6 +215,9 @@ static const char *const psm_bench_configs[] = {
     "--warp lispsm --map-size 1024",
     "--warp uniform",
     "--warp uniform --map-size 1024",
+    "--no-early-out",
+    "--filter tent3",
+    "--filter tent5",
 };
 
 const technique psm_technique = {

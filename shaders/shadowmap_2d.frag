@@ -10,9 +10,6 @@ uniform int u_texel_kind;        // SHADOW_MAP_TEXEL_*: orthographic, perspectiv
 uniform float u_texel_scale;     // world texel: this (orthographic) or this x depth along the axis (perspective)
 uniform vec3 u_light_axis;       // where a perspective map looks
 uniform vec3 u_light_origin;
-uniform int u_filter;            // SHADOW_MAP_KERNEL_*: one tap, N x N grid, Poisson disc
-uniform int u_kernel;            // N, or the disc's scale in texels
-uniform float u_map_size;
 uniform bool u_receiver_plane;
 
 // A matrix whose map coordinates hardly change with p (degenerate there)
@@ -57,17 +54,14 @@ vec2 shadowmap_depth_gradient(vec3 uvz) {
     return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
 }
 
-float shadowmap_tap(vec3 uvz, vec2 gradient, vec2 offset) {
-    return texture(u_map, vec3(uvz.xy + offset, uvz.z + dot(gradient, offset)));
-}
+// The point the kernel reads about (map coordinates and depth) and its
+// depth gradient: set by shadowmap_visibility for shadowmap_kernel_read.
+vec3 shadowmap_point;
+vec2 shadowmap_gradient;
 
-float shadowmap_poisson_disc(vec3 uvz, vec2 gradient) {
-    float a = shadowmap_pixel_angle();
-    mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
-    float sum = 0.0;
-    for (int i = 0; i < SHADOWMAP_POISSON_TAPS; i++)
-        sum += shadowmap_tap(uvz, gradient, rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel) / u_map_size));
-    return sum / float(SHADOWMAP_POISSON_TAPS);
+// offset: in map coordinates.
+float shadowmap_kernel_read(vec2 offset) {
+    return texture(u_map, vec3(shadowmap_point.xy + offset, shadowmap_point.z + dot(shadowmap_gradient, offset)));
 }
 
 float shadowmap_visibility(vec3 p, float depth_bias) {
@@ -80,16 +74,11 @@ float shadowmap_visibility(vec3 p, float depth_bias) {
     uvz.z = min(uvz.z - depth_bias, 1.0);
     if (u_filter == SHADOW_MAP_KERNEL_SINGLE)
         return texture(u_map, uvz);
-    if (u_filter == SHADOW_MAP_KERNEL_POISSON)
-        return shadowmap_poisson_disc(uvz, gradient);
-    float sum = 0.0;
-    int half_kernel = u_kernel / 2;
-    for (int y = -half_kernel; y <= half_kernel; y++)
-        for (int x = -half_kernel; x <= half_kernel; x++)
-            sum += shadowmap_tap(uvz, gradient, vec2(x, y) / u_map_size);
-    return sum / float(u_kernel * u_kernel);
+    shadowmap_point = uvz;
+    shadowmap_gradient = gradient;
+    vec2 texel = uvz.xy * u_map_size;
+    return shadowmap_kernel_filter(texel - floor(texel + 0.5), u_map_size);
 }
-
 
 vec2 shadowmap_texel_coord(vec3 p) {
     vec4 clip = u_light_matrix * vec4(p, 1.0);

@@ -7,9 +7,6 @@ uniform samplerCubeShadow u_map;
 uniform vec3 u_light_origin;
 uniform float u_near;
 uniform float u_far;
-uniform int u_filter; // SHADOW_MAP_KERNEL_*
-uniform int u_kernel; // N, or the Poisson disc's scale in texels
-uniform float u_map_size;
 uniform bool u_receiver_plane;
 
 // A tap ray this close to parallel with the receiver's plane would slide
@@ -35,43 +32,45 @@ float shadowmap_face_depth(vec3 d) {
     return min(ndc * 0.5 + 0.5, 1.0);
 }
 
-// One tap, offset by w across the direction. With the receiver-plane bias
-// the tap point slides along its light ray onto the receiver's plane, and
-// compares that point's own depth (as Isidoro's receiver-plane bias does
-// for 2D maps), so a slanted receiver does not shadow its own kernel.
-float shadowmap_tap(vec3 d, vec3 w, vec3 receiver_normal, float depth_bias) {
+// The point's direction from the light, the receiver's normal, the depth
+// bias, the plane across the direction (two unit axes) and a texel's size
+// there: set by shadowmap_visibility for shadowmap_kernel_read.
+vec3 shadowmap_direction, shadowmap_receiver_normal, shadowmap_across_u, shadowmap_across_v;
+float shadowmap_depth_bias, shadowmap_step;
+
+// One tap, offset (in texels) across the direction. With the
+// receiver-plane bias the tap point slides along its light ray onto the
+// receiver's plane, and compares that point's own depth (as Isidoro's
+// receiver-plane bias does for 2D maps), so a slanted receiver does not
+// shadow its own kernel.
+float shadowmap_kernel_read(vec2 offset) {
+    vec3 d = shadowmap_direction, w = (shadowmap_across_u * offset.x + shadowmap_across_v * offset.y) * shadowmap_step;
     vec3 t = d + w;
-    float facing = dot(normalize(t), receiver_normal);
+    float facing = dot(normalize(t), shadowmap_receiver_normal);
     if (u_receiver_plane && abs(facing) > SHADOWMAP_MIN_PLANE_FACING)
-        t -= normalize(t) * (dot(w, receiver_normal) / facing);
-    return texture(u_map, vec4(d + w, shadowmap_face_depth(t) - depth_bias));
+        t -= normalize(t) * (dot(w, shadowmap_receiver_normal) / facing);
+    return texture(u_map, vec4(d + w, shadowmap_face_depth(t) - shadowmap_depth_bias));
 }
 
+// The kernels' offsets lie in the plane across the direction, a texel
+// apart there: a face's texel grid is not at hand in direction space. The
+// tents take the taps and weights of a point on a texel corner (fraction
+// 0): symmetric about the point, the same tap count and footprint as on a
+// 2D map, but not following where the point lies in its texel.
 float shadowmap_visibility(vec3 p, float depth_bias) {
     vec3 d = p - u_light_origin;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (u_filter == SHADOW_MAP_KERNEL_SINGLE)
         return texture(u_map, vec4(d, shadowmap_face_depth(d) - depth_bias));
-    // Offsets in the plane across the direction, one texel apart there.
     vec3 axis = normalize(d);
     vec3 u = normalize(cross(abs(axis.y) < SHADOWMAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
-    vec3 v = cross(axis, u);
-    float step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size;
-    float sum = 0.0;
-    if (u_filter == SHADOW_MAP_KERNEL_POISSON) {
-        float a = shadowmap_pixel_angle();
-        mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
-        for (int i = 0; i < SHADOWMAP_POISSON_TAPS; i++) {
-            vec2 o = rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel));
-            sum += shadowmap_tap(d, (u * o.x + v * o.y) * step, receiver_normal, depth_bias);
-        }
-        return sum / float(SHADOWMAP_POISSON_TAPS);
-    }
-    int half_kernel = u_kernel / 2;
-    for (int y = -half_kernel; y <= half_kernel; y++)
-        for (int x = -half_kernel; x <= half_kernel; x++)
-            sum += shadowmap_tap(d, (u * float(x) + v * float(y)) * step, receiver_normal, depth_bias);
-    return sum / float(u_kernel * u_kernel);
+    shadowmap_direction = d;
+    shadowmap_receiver_normal = receiver_normal;
+    shadowmap_depth_bias = depth_bias;
+    shadowmap_across_u = u;
+    shadowmap_across_v = cross(axis, u);
+    shadowmap_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size;
+    return shadowmap_kernel_filter(vec2(0.0), 1.0);
 }
 
 // On the face the direction falls on: the two other components over the

@@ -117,6 +117,15 @@ static void test_kernel_margin(void **state) {
         shadow_map_settings a = {.filter = order[i - 1]}, b = {.filter = order[i]};
         assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D) < shadow_map_read_reach(&b, SHADOW_MAP_2D));
     }
+    /* A tent N reads the texels pcfN does (centres within (N + 1) / 2
+     * texels), from nearer taps: the same reach, not less. */
+    static const shadow_map_filter tents[][2] = {{SHADOW_MAP_FILTER_TENT3, SHADOW_MAP_FILTER_PCF3},
+                                                 {SHADOW_MAP_FILTER_TENT5, SHADOW_MAP_FILTER_PCF5}};
+    for (size_t i = 0; i < sizeof tents / sizeof *tents; i++)
+        for (shadow_map_kind kind = SHADOW_MAP_2D; kind <= SHADOW_MAP_CUBE; kind++) {
+            shadow_map_settings tent = {.filter = tents[i][0]}, grid = {.filter = tents[i][1]};
+            assert_true(shadow_map_read_reach(&tent, kind) >= shadow_map_read_reach(&grid, kind));
+        }
     /* Receiver-plane taps compare depths beyond the receivers': a caster
      * behind them is needed then, and culled with centre depths. */
     const shadow_map_settings plane = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
@@ -214,7 +223,8 @@ static void test_dumps_identical(void **state) {
 /* Settings that change the kernel's reach and depth: still identical. */
 static void test_dumps_identical_other_kernels(void **state) {
     (void)state;
-    static const char *const configs[] = {"--filter pcf7 --kernel-depth receiver-plane", "--filter none --map-size 512"};
+    static const char *const configs[] = {"--filter pcf7 --kernel-depth receiver-plane", "--filter none --map-size 512",
+                                          "--filter tent3", "--filter tent5 --kernel-depth receiver-plane"};
     for (size_t c = 0; c < sizeof configs / sizeof *configs; c++) {
         char on[256], off[256], flags[256];
         snprintf(on, sizeof on, OUT "/shadowmap_config%zu_on", c);

@@ -12,7 +12,7 @@ const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4
 const char *const shadow_map_filters[] = {
     [SHADOW_MAP_FILTER_POISSON] = "poisson", [SHADOW_MAP_FILTER_NONE] = "none", [SHADOW_MAP_FILTER_HW] = "hw",
     [SHADOW_MAP_FILTER_PCF3] = "pcf3",       [SHADOW_MAP_FILTER_PCF5] = "pcf5", [SHADOW_MAP_FILTER_PCF7] = "pcf7",
-    NULL};
+    [SHADOW_MAP_FILTER_TENT3] = "tent3",     [SHADOW_MAP_FILTER_TENT5] = "tent5", NULL};
 const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
 const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre",
                                                 [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", NULL};
@@ -29,6 +29,8 @@ static const struct {
     [SHADOW_MAP_FILTER_PCF3] = {SHADOW_MAP_KERNEL_GRID, 3},
     [SHADOW_MAP_FILTER_PCF5] = {SHADOW_MAP_KERNEL_GRID, 5},
     [SHADOW_MAP_FILTER_PCF7] = {SHADOW_MAP_KERNEL_GRID, 7},
+    [SHADOW_MAP_FILTER_TENT3] = {SHADOW_MAP_KERNEL_TENT, 3},
+    [SHADOW_MAP_FILTER_TENT5] = {SHADOW_MAP_KERNEL_TENT, 5},
 };
 
 /* The C constants the camera pass compares with. */
@@ -36,7 +38,7 @@ static const shader_define shadow_map_defines[] = {
     SHADER_DEFINE(SHADOW_MAP_KERNEL_SINGLE),     SHADER_DEFINE(SHADOW_MAP_KERNEL_GRID),
     SHADER_DEFINE(SHADOW_MAP_KERNEL_POISSON),    SHADER_DEFINE(SHADOW_MAP_TEXEL_ORTHOGRAPHIC),
     SHADER_DEFINE(SHADOW_MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(SHADOW_MAP_TEXEL_PROJECTIVE),
-    {NULL, 0}};
+    SHADER_DEFINE(SHADOW_MAP_KERNEL_TENT),       {NULL, 0}};
 
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
@@ -249,7 +251,8 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const c
     if (!render_program_load(&p->program, files, 2, shadow_map_defines))
         return false;
     const shadow_map_uniform uniforms[] = {
-        {&p->map, "u_map"}, {&p->light, "u_light"}, {&p->ambient, "u_ambient"}, {&p->filter, "u_filter"}, {&p->kernel, "u_kernel"},
+        {&p->map, "u_map"}, {&p->light, "u_light"}, {&p->ambient, "u_ambient"}, {&p->filter, "u_filter"},
+        {&p->kernel, "u_kernel"}, {&p->early_out, "u_early_out"},
         {&p->map_size, "u_map_size"}, {&p->receiver_plane, "u_receiver_plane"}, {&p->show_texels, "u_show_texels"},
         {&p->show_texel_size, "u_show_texel_size"}, {&p->constant_bias, "u_constant_bias"},
         {&p->normal_offset, "u_normal_offset"}, {&p->depth_bias, "u_depth_bias"},
@@ -358,6 +361,7 @@ static void shadow_map_shade_light(shadow_map_renderer *r, const shadow_map_sett
     glUniform1f(p->ambient, ambient ? 1.0f : 0.0f);
     glUniform1i(p->filter, (int)shadow_map_kernels[st->filter].shape);
     glUniform1i(p->kernel, shadow_map_kernels[st->filter].size);
+    glUniform1i(p->early_out, !st->no_early_out);
     glUniform1f(p->map_size, (float)m->size);
     glUniform1i(p->receiver_plane, st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE);
     glUniform1i(p->show_texels, st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS);

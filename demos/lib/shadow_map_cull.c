@@ -39,6 +39,17 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
     case SHADOW_MAP_FILTER_PCF7:
         offset = (float)((settings->filter - SHADOW_MAP_FILTER_PCF3) + 1); /* N / 2 for N = 3, 5, 7 */
         break;
+    /* A tent N reads the texels whose squares its radius N / 2 overlaps:
+     * their centres lie within (N + 1) / 2 texels of the point, as pcfN's
+     * (N / 2 to its farthest tap, a texel more to the centres it reads). Its
+     * taps lie nearer than pcfN's, each between a pair of those centres. On
+     * a cube they are a point's on a texel corner, nearer still. */
+    case SHADOW_MAP_FILTER_TENT3:
+        offset = 1;
+        break;
+    case SHADOW_MAP_FILTER_TENT5:
+        offset = 2;
+        break;
     case SHADOW_MAP_FILTER_POISSON:
         offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2;
         break;
