@@ -27,12 +27,16 @@
  * camera inside a shadow visibly fails (shadows inverted).
  *
  * --silhouette gpu finds silhouettes in a geometry shader over
- * GL_TRIANGLES_ADJACENCY (shaders/volume_silhouette.geom), for z-pass
- * volumes of closed meshes: only they have the adjacency. Open meshes and
- * z-fail volumes stay on the CPU (the HUD counts them): caps must lie at
- * exactly the depth of their surface, and llvmpipe rasterizes a geometry
- * shader's triangles at slightly other depths than a vertex shader's
- * (measured: 0.2 to 0.4 % false shadow on simple and bunny with its caps).
+ * GL_TRIANGLES_ADJACENCY (shaders/volume_silhouette.geom), for closed
+ * meshes: only they have the adjacency; open meshes stay on the CPU (the
+ * HUD counts them). It emits the sides alone: z-fail's caps come from the
+ * CPU (kept like its sides) through volume.vert, the vertex path of the
+ * depth pre-pass (lit.vert's invariant expression, the same uniforms),
+ * since caps must lie at exactly the depth of their surface and llvmpipe
+ * rasterizes a geometry shader's triangles at slightly other depths than
+ * a vertex shader's (measured with the shader's caps: 0.2 to 0.4 % false
+ * shadow on simple and bunny; with the vertex path's, as exact as the
+ * CPU's).
  * --extrude reach (key T) trims the CPU volumes past the light's reach
  * (every receiver, clipped to its range; volume_mesh_trim_for), closed
  * there by far caps, so that they fill less; off by default: a shadow
@@ -270,8 +274,8 @@ static void volumes_draw_stream(const float (*vertices)[4], size_t count, GLenum
     glDrawArrays(primitive, 0, (GLsizei)count);
 }
 
-static bool volumes_on_gpu(const volumes_caster *c, bool zfail) {
-    return volumes.settings.silhouette == VOLUMES_GPU && c->adjacency_vao && !zfail;
+static bool volumes_on_gpu(const volumes_caster *c) {
+    return volumes.settings.silhouette == VOLUMES_GPU && c->adjacency_vao;
 }
 
 /* Whether volumes end past their light's reach (volume_mesh_trim_for):
@@ -329,13 +333,14 @@ static void volumes_draw_kept(const technique_frame *f, int l, int i, const floa
     volume_cache_draw(c, i, part);
 }
 
-/* Caster i's volume for light l counted into the stencil: sides, and caps
- * after them for z-fail. */
+/* Caster i's volume for light l counted into the stencil: sides (from the
+ * geometry shader or the CPU), and caps after them for z-fail, always
+ * from the CPU through volume.vert (see top). */
 static void volumes_count_caster(const technique_frame *f, int l, int i, const float light[4], bool zfail) {
     const scene_object *o = &f->gpu->scene->objects[i];
     const volumes_caster *c = &volumes.casters[i];
     volumes_stencil_ops(zfail);
-    if (volumes_on_gpu(c, zfail)) {
+    if (volumes_on_gpu(c)) {
         float object_light[4];
         volume_mesh_object_light(o->model, light, object_light);
         render_program_use(&volumes.gpu, f->view);
@@ -343,9 +348,9 @@ static void volumes_count_caster(const technique_frame *f, int l, int i, const f
         glUniform4fv(volumes.gpu_light, 1, object_light);
         glBindVertexArray(c->adjacency_vao);
         glDrawElements(GL_TRIANGLES_ADJACENCY, c->adjacency_count, GL_UNSIGNED_INT, NULL);
-        return;
+    } else {
+        volumes_draw_kept(f, l, i, light, VOLUME_MESH_SIDES);
     }
-    volumes_draw_kept(f, l, i, light, VOLUME_MESH_SIDES);
     if (zfail)
         volumes_draw_kept(f, l, i, light, VOLUME_MESH_CAPS);
 }
@@ -409,7 +414,7 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
         bool use_zfail = volumes_use_zfail(lo, hi, light, near_rectangle);
         zfail += use_zfail;
         zpass += !use_zfail;
-        fallback += volumes.settings.silhouette == VOLUMES_GPU && !volumes_on_gpu(&volumes.casters[i], use_zfail);
+        fallback += volumes.settings.silhouette == VOLUMES_GPU && !volumes_on_gpu(&volumes.casters[i]);
         volumes_count_caster(f, l, i, light, use_zfail);
     }
     glDisable(GL_DEPTH_CLAMP);
@@ -562,7 +567,7 @@ static void volumes_render(const technique_frame *f) {
 static void volumes_describe(char *out, size_t size) {
     int n = snprintf(out, size, "light 0: %d casters z-pass, %d z-fail", volumes.zpass_count, volumes.zfail_count);
     if (volumes.gpu_fallback_count > 0 && n > 0 && (size_t)n < size)
-        n += snprintf(out + n, size - (size_t)n, "; %d open or z-fail: CPU silhouettes", volumes.gpu_fallback_count);
+        n += snprintf(out + n, size - (size_t)n, "; %d open: CPU silhouettes", volumes.gpu_fallback_count);
     if (n > 0 && (size_t)n < size)
         n += snprintf(out + n, size - (size_t)n, "; volumes built %d, kept %d; all lights' kept %.1f MiB",
                       volumes.built_count, volumes.reused_count, (double)volumes.cache_bytes / VOLUMES_MIB);
