@@ -28,7 +28,7 @@ LDLIBS = $(PKG_LIBS) -lembree3 -ldl -lm
 LDFLAGS += $(SAN_FLAGS) -fopenmp
 
 # GL 3.3 core plus the extensions used behind a check.
-GL_EXTENSIONS := GL_KHR_debug
+GL_EXTENSIONS := GL_KHR_debug,GL_EXT_depth_bounds_test
 GLAD_C := $(BUILD)/glad/src/gl.c
 GLAD_H := $(BUILD)/glad/include/glad/gl.h
 

@@ -3,8 +3,8 @@
 // Silhouettes on the GPU for a closed mesh (GL_TRIANGLES_ADJACENCY: corners
 // 0, 2, 4; across each edge i -> i+2, vertex i+1 of the neighbour): a
 // light-facing triangle whose neighbour faces away sweeps that edge to
-// infinity, the sides of a z-pass volume (caps come from the CPU path, see
-// demos/volumes.c for why). Back-facing triangles emit nothing:
+// infinity, the sides of the volume (z-fail's caps come from the CPU path,
+// see demos/volumes.c for why). Back-facing triangles emit nothing:
 // the light-facing prisms of a closed mesh already cover its shadow (see
 // demos/lib/volume_mesh.h). Same facing test and same orientation as the
 // CPU path; vertices on the mesh come placed from the vertex shader (see

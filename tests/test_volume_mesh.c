@@ -70,7 +70,7 @@ static void assert_faces_out(const volume_mesh *v, const float q[3]) {
 static void build(volume_mesh *v, const mesh *m, const float light[4], volume_mesh_parts parts) {
     mesh_edges e;
     assert_true(volume_mesh_edges_build(m, &e));
-    assert_true(volume_mesh_build(v, m, &e, light, parts));
+    assert_true(volume_mesh_build(v, m, &e, light, NULL, parts));
     mesh_edges_free(&e);
 }
 
@@ -113,6 +113,101 @@ static void test_closed_box_sides_on_silhouette_once(void **state) {
     build(&v, &m, light, VOLUME_MESH_SILHOUETTE_LINES);
     assert_int_equal(v.count, SILHOUETTE_EDGES * 2);
     volume_mesh_free(&v);
+    mesh_free(&m);
+}
+
+/* Trimmed volumes (see "Trimmed to the light's reach" in volume_mesh.h):
+ * a unit box's sides and caps together are closed (every directed edge
+ * met by its reverse), face out, and every swept vertex, every far edge's
+ * midpoint and every far cap's centre lies beyond the reach: farther from
+ * a point light than the reach's farthest corner, past the reach's last
+ * plane across a directional light's travel. */
+#define REACH_HALF 6.0f
+static void assert_trimmed_closed_beyond_reach(const float light[4], const float inside[3]) {
+    mesh m;
+    assert_true(mesh_make_box(&m, 1, 1, 1));
+    mesh_edges e;
+    assert_true(volume_mesh_edges_build(&m, &e));
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    const float reach_lo[3] = {-REACH_HALF, -REACH_HALF, -REACH_HALF};
+    const float reach_hi[3] = {REACH_HALF, REACH_HALF, REACH_HALF};
+    volume_mesh_trim trim;
+    volume_mesh_trim_for(identity, light, &m, reach_lo, reach_hi, &trim);
+    assert_true(trim.on);
+    volume_mesh sides = {0}, caps = {0};
+    assert_true(volume_mesh_build(&sides, &m, &e, light, &trim, VOLUME_MESH_SIDES));
+    assert_true(volume_mesh_build(&caps, &m, &e, light, &trim, VOLUME_MESH_CAPS));
+    assert_faces_out(&sides, inside);
+    assert_faces_out(&caps, inside);
+    /* The reach's farthest corner from the light, or its last plane. */
+    float beyond = -INFINITY, travel[3] = {-light[0], -light[1], -light[2]};
+    for (int c = 0; c < 8; c++) {
+        float corner[3] = {c & 1 ? REACH_HALF : -REACH_HALF, c & 2 ? REACH_HALF : -REACH_HALF,
+                           c & 4 ? REACH_HALF : -REACH_HALF};
+        beyond = fmaxf(beyond, light[3] != 0 ? glm_vec3_distance(corner, (float *)light)
+                                             : glm_vec3_dot(corner, travel));
+    }
+    const volume_mesh *parts[2] = {&sides, &caps};
+    int unmatched = 0;
+    for (int p = 0; p < 2; p++) {
+        for (size_t t = 0; t < parts[p]->count; t += 3) {
+            const float(*tri)[4] = (const float(*)[4])parts[p]->vertices[t];
+            int swept = 0;
+            vec3 centre = {0, 0, 0};
+            for (int k = 0; k < 3; k++) {
+                assert_true(tri[k][3] == 1);
+                bool on_mesh = fabsf(tri[k][0]) <= 0.5f && fabsf(tri[k][1]) <= 0.5f && fabsf(tri[k][2]) <= 0.5f;
+                swept += !on_mesh;
+                glm_vec3_muladds((float *)tri[k], 1.0f / 3, centre);
+                /* Each directed edge against its reverse, in both parts. */
+                const float *a = tri[k], *b = tri[(k + 1) % 3];
+                int balance = 0;
+                for (int q = 0; q < 2; q++)
+                    for (size_t u = 0; u < parts[q]->count; u += 3)
+                        for (int j = 0; j < 3; j++) {
+                            const float *c = parts[q]->vertices[u + j], *d = parts[q]->vertices[u + (j + 1) % 3];
+                            balance += same_point(c, a) && same_point(d, b);
+                            balance -= same_point(c, b) && same_point(d, a);
+                        }
+                unmatched += balance != 0;
+            }
+            for (int k = 0; k < 3 && swept == 3; k++) {
+                vec3 midpoint;
+                glm_vec3_center((float *)tri[k], (float *)tri[(k + 1) % 3], midpoint);
+                float *points[2] = {midpoint, centre};
+                for (int n = 0; n < 2; n++) {
+                    float at = light[3] != 0 ? glm_vec3_distance(points[n], (float *)light)
+                                             : glm_vec3_dot(points[n], travel);
+                    if (!(at > beyond))
+                        fail_msg("a far cap comes to %g, within the reach (%g)", (double)at, (double)beyond);
+                }
+            }
+        }
+    }
+    assert_int_equal(unmatched, 0);
+    volume_mesh_free(&sides);
+    volume_mesh_free(&caps);
+    mesh_edges_free(&e);
+    mesh_free(&m);
+}
+
+static void test_trimmed_volume_closed_beyond_reach(void **state) {
+    (void)state;
+    const float point[4] = {3, 4, 5, 1}, directional[4] = {1, 2, 3, 0}, inside[3] = {-1, -1.5f, -2};
+    assert_trimmed_closed_beyond_reach(point, inside);
+    assert_trimmed_closed_beyond_reach(directional, inside);
+}
+
+/* A caster that spans too much of a point light's view is not trimmed. */
+static void test_trim_off_near_the_light(void **state) {
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_box(&m, 1, 1, 1));
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    const float near_light[4] = {0.9f, 0, 0, 1}, lo[3] = {-5, -5, -5}, hi[3] = {5, 5, 5};
+    volume_mesh_trim trim;
+    volume_mesh_trim_for(identity, near_light, &m, lo, hi, &trim);
+    assert_false(trim.on);
     mesh_free(&m);
 }
 
@@ -324,15 +419,64 @@ static void test_receivers_ndc(void **state) {
     mesh_free(&o.mesh);
 }
 
+/* Depth bounds (volume_mesh_depth_bounds): every point of the hull of
+ * the receivers' points that lies in the reach box has its window depth
+ * within them; the box narrows them; a box reaching behind the eye bounds
+ * nothing; no points, no bounds. */
+#define BOUNDS_SAMPLES 2000
+static float window_depth(const mat4 view_projection, const float p[3]) {
+    vec4 clip = {p[0], p[1], p[2], 1};
+    glm_mat4_mulv((vec4 *)view_projection, clip, clip);
+    return clip[2] / clip[3] * 0.5f + 0.5f;
+}
+
+static void test_depth_bounds(void **state) {
+    (void)state;
+    mat4 view_projection;
+    camera(view_projection);
+    const float box_lo[3] = {-1, -1, -30}, box_hi[3] = {1, 1, -4};
+    float points[8][3], bounds[2], whole[2];
+    for (int c = 0; c < 8; c++)
+        for (int k = 0; k < 3; k++)
+            points[c][k] = c & (1 << k) ? box_hi[k] : box_lo[k];
+    const float reach_lo[3] = {-5, -5, -12}, reach_hi[3] = {5, 5, -8};
+    assert_true(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 8, reach_lo, reach_hi, bounds));
+    assert_true(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 8, NULL, NULL, whole));
+    assert_true(bounds[0] > whole[0] && bounds[1] < whole[1]);
+    printf("    depth bounds %.6f..%.6f, cut by the reach to %.6f..%.6f\n", (double)whole[0], (double)whole[1],
+           (double)bounds[0], (double)bounds[1]);
+    uint32_t seed = 7;
+    int inside = 0;
+    for (int i = 0; i < BOUNDS_SAMPLES; i++) {
+        float p[3];
+        for (int k = 0; k < 3; k++)
+            p[k] = random_in(&seed, box_lo[k], box_hi[k]);
+        float depth = window_depth(view_projection, p);
+        assert_true(depth >= whole[0] && depth <= whole[1]);
+        if (p[2] < reach_lo[2] || p[2] > reach_hi[2])
+            continue;
+        inside++;
+        assert_true(depth >= bounds[0] && depth <= bounds[1]);
+    }
+    assert_true(inside > 0);
+    const float behind_lo[3] = {-5, -5, -12}, behind_hi[3] = {5, 5, 3};
+    assert_true(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 8, behind_lo, behind_hi, bounds));
+    assert_true(bounds[0] == whole[0] && bounds[1] == whole[1]);
+    assert_false(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 0, NULL, NULL, bounds));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_box_sides_on_silhouette_once),
         cmocka_unit_test(test_plane_lit_from_behind_reverses_sides),
+        cmocka_unit_test(test_trimmed_volume_closed_beyond_reach),
+        cmocka_unit_test(test_trim_off_near_the_light),
         cmocka_unit_test(test_near_rectangle_goes_round),
         cmocka_unit_test(test_zpass_safe_only_beyond_the_light),
         cmocka_unit_test(test_misses_view_only_when_the_sweep_does),
         cmocka_unit_test(test_missed_volumes_have_no_point_in_view),
         cmocka_unit_test(test_receivers_ndc),
+        cmocka_unit_test(test_depth_bounds),
     };
     return cmocka_run_group_tests_name("shadow volumes' CPU geometry", tests, NULL, NULL);
 }

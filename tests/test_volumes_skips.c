@@ -22,15 +22,15 @@
 #define CITY_CASTERS 1000
 #define CITY_LIGHTS 7
 
-static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "color.png"};
+static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "ids.pfm", "color.png"};
 
-/* Three frames of `scene` with `flags` and `--motion motion`, skips on and
- * off: the same dump. */
-static void assert_same_with_and_without_skips(const char *scene, const char *motion, const char *flags,
-                                               const char *name) {
+/* Three frames of `scene` with `flags` and `--motion motion`, and with
+ * `off` (flags turning skips off) too: the same dump. */
+static void assert_same_with_and_without(const char *scene, const char *motion, const char *flags,
+                                         const char *off_flag, const char *name) {
     char on_flags[256], off_flags[512], on[256], off[256];
     snprintf(on_flags, sizeof on_flags, "--frames 3 --motion %s %s", motion, flags);
-    snprintf(off_flags, sizeof off_flags, "%s --no-skip", on_flags);
+    snprintf(off_flags, sizeof off_flags, "%s %s", on_flags, off_flag);
     snprintf(on, sizeof on, OUT "/%s_on", name);
     snprintf(off, sizeof off, OUT "/%s_off", name);
     assert_int_equal(support_dump("volumes", scene, on_flags, on), 0);
@@ -38,16 +38,34 @@ static void assert_same_with_and_without_skips(const char *scene, const char *mo
     const char *differs = support_first_difference(on, off, dump_files, sizeof dump_files / sizeof *dump_files);
     if (differs)
         fail_msg("%s: %s differs between %s and %s", name, differs, on, off);
-    printf("    %-12s: identical with and without skips\n", name);
+    printf("    %-17s: identical with and without %s\n", name, off_flag);
+}
+
+/* The depth bounds (GL_EXT_depth_bounds_test, where present) change no
+ * decision either: on and off, the same dumps on the city (ranged lights)
+ * and on dense; and llvmpipe has no such extension, which the HUD says. */
+static void test_depth_bounds(void **state) {
+    (void)state;
+    const char *renderer = support_verbose_line("volumes", CITY, "", "GL renderer: ");
+    assert_non_null(renderer);
+    const char *line = support_verbose_line("volumes", CITY, "", "depth bounds ");
+    assert_non_null(line);
+    bool off = strncmp(line, "depth bounds off (no GL_EXT_depth_bounds_test)", 46) == 0;
+    assert_true(off || strncmp(line, "depth bounds on", 15) == 0);
+    if (strncmp(renderer, "GL renderer: llvmpipe", 21) == 0)
+        assert_true(off);
+    printf("    %.*s\n", (int)strcspn(line, "\n"), line);
+    assert_same_with_and_without(CITY, "light", "", "--no-depth-bounds", "city_bounds");
+    assert_same_with_and_without("assets/scenes/dense.json", "static", "", "--no-depth-bounds", "dense_bounds");
 }
 
 /* Forced z-fail (caps kept and reused), forced z-pass and the geometry
  * shader's silhouettes, the light moving. */
 static void test_city_every_mode(void **state) {
     (void)state;
-    assert_same_with_and_without_skips(CITY, "light", "--mode zfail", "city_zfail");
-    assert_same_with_and_without_skips(CITY, "light", "--mode zpass", "city_zpass");
-    assert_same_with_and_without_skips(CITY, "light", "--silhouette gpu", "city_gpu");
+    assert_same_with_and_without(CITY, "light", "--mode zfail", "--no-skip", "city_zfail");
+    assert_same_with_and_without(CITY, "light", "--mode zpass", "--no-skip", "city_zpass");
+    assert_same_with_and_without(CITY, "light", "--silhouette gpu", "--no-skip", "city_gpu");
 }
 
 static void test_bunny_and_teapot(void **state) {
@@ -56,7 +74,7 @@ static void test_bunny_and_teapot(void **state) {
     for (size_t s = 0; s < sizeof scenes / sizeof *scenes; s++) {
         char path[256];
         snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[s]);
-        assert_same_with_and_without_skips(path, "light", "", scenes[s]);
+        assert_same_with_and_without(path, "light", "", "--no-skip", scenes[s]);
     }
 }
 
@@ -86,6 +104,7 @@ static void test_city_casters_culled(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_city_casters_culled),
+        cmocka_unit_test(test_depth_bounds),
         cmocka_unit_test(test_city_every_mode),
         cmocka_unit_test(test_bunny_and_teapot),
     };

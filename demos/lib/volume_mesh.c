@@ -48,29 +48,46 @@ static void volume_mesh_emit_triangle(volume_mesh *v, const float *a, float wa, 
     volume_mesh_emit(v, c, wc);
 }
 
-/* p swept away from the light to infinity: a direction. */
-static void volume_mesh_extrude(const float p[3], const float light[4], float out[3]) {
+/* p swept away from the light: to infinity (a direction, w = 0), or with
+ * a trim to where it stops (see the header). */
+static void volume_mesh_extrude(const float p[3], const float light[4], const volume_mesh_trim *trim, float out[4]) {
     for (int k = 0; k < 3; k++)
         out[k] = p[k] * light[3] - light[k];
+    out[3] = 0;
+    if (!trim || !trim->on)
+        return;
+    /* out is the way p travels: p + out * s, s from the distance. */
+    float along = glm_vec3_dot(out, out), s;
+    if (light[3] != 0)
+        s = trim->distance / sqrtf(along) - 1; /* a point light's w is 1: out = p - light */
+    else
+        s = (trim->distance - glm_vec3_dot((float *)p, out)) / along;
+    for (int k = 0; k < 3; k++)
+        out[k] = p[k] + out[k] * s;
+    out[3] = 1;
 }
 
-/* The side of edge a -> b swept to infinity, facing out of the prism of a
- * light-facing triangle that runs a -> b (reversed when sign < 0). A
- * directional light sends a and b to one point: one triangle. */
-static void volume_mesh_emit_side(volume_mesh *v, const float *a, const float *b, const float light[4], int sign) {
-    float a_far[3], b_far[3];
-    volume_mesh_extrude(a, light, a_far);
-    volume_mesh_extrude(b, light, b_far);
+/* Whether an edge's two swept ends are one point: a directional light's,
+ * at infinity. */
+static bool volume_mesh_ends_meet(const float light[4], const volume_mesh_trim *trim) {
+    return light[3] == 0 && !(trim && trim->on);
+}
+
+/* The side of edge a -> b swept away, facing out of the prism of a
+ * light-facing triangle that runs a -> b (reversed when sign < 0). Ends
+ * that meet (volume_mesh_ends_meet) make it one triangle. */
+static void volume_mesh_emit_side(volume_mesh *v, const float *a, const float *b, const float light[4],
+                                  const volume_mesh_trim *trim, int sign) {
     if (sign < 0) {
         const float *t = a;
         a = b, b = t;
-        float swap[3] = {a_far[0], a_far[1], a_far[2]};
-        memcpy(a_far, b_far, sizeof a_far);
-        memcpy(b_far, swap, sizeof b_far);
     }
-    volume_mesh_emit_triangle(v, b, 1, a, 1, a_far, 0);
-    if (light[3] != 0)
-        volume_mesh_emit_triangle(v, b, 1, a_far, 0, b_far, 0);
+    float a_far[4], b_far[4];
+    volume_mesh_extrude(a, light, trim, a_far);
+    volume_mesh_extrude(b, light, trim, b_far);
+    volume_mesh_emit_triangle(v, b, 1, a, 1, a_far, a_far[3]);
+    if (!volume_mesh_ends_meet(light, trim))
+        volume_mesh_emit_triangle(v, b, 1, a_far, a_far[3], b_far, b_far[3]);
 }
 
 /* +1: faces the light; otherwise -1, or 0 for a closed mesh (see the
@@ -102,27 +119,31 @@ static bool volume_mesh_weigh(volume_mesh *v, const mesh *m, const float light[4
     return true;
 }
 
-/* Every triangle of non-zero weight and its image at infinity. */
-static void volume_mesh_emit_caps(volume_mesh *v, const mesh *m, const float light[4]) {
+/* Every triangle of non-zero weight, near (its own place), far (its image
+ * swept away: none where the ends meet, a point) or both. */
+static void volume_mesh_emit_caps(volume_mesh *v, const mesh *m, const float light[4], const volume_mesh_trim *trim,
+                                  bool near, bool far) {
+    far = far && !volume_mesh_ends_meet(light, trim);
     for (uint32_t t = 0; t < m->index_count / 3; t++) {
         if (v->weights[t] == 0)
             continue;
         const float *p[3];
-        float far[3][3];
+        float swept[3][4];
         for (int k = 0; k < 3; k++) {
             /* Prisms of back-facing triangles run the other way round. */
             int corner = v->weights[t] > 0 ? k : 2 - k;
             p[k] = m->vertices[m->indices[t * 3 + corner]].position;
-            volume_mesh_extrude(p[k], light, far[k]);
+            volume_mesh_extrude(p[k], light, trim, swept[k]);
         }
-        volume_mesh_emit_triangle(v, p[0], 1, p[1], 1, p[2], 1);
-        if (light[3] != 0) /* a directional light's far cap is a point */
-            volume_mesh_emit_triangle(v, far[0], 0, far[2], 0, far[1], 0);
+        if (near)
+            volume_mesh_emit_triangle(v, p[0], 1, p[1], 1, p[2], 1);
+        if (far)
+            volume_mesh_emit_triangle(v, swept[0], swept[0][3], swept[2], swept[2][3], swept[1], swept[1][3]);
     }
 }
 
 bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const float light[4],
-                       volume_mesh_parts parts) {
+                       const volume_mesh_trim *trim, volume_mesh_parts parts) {
     v->count = 0;
     v->out_of_memory = false;
     if (!volume_mesh_weigh(v, m, light, e->closed))
@@ -140,10 +161,14 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
             continue;
         }
         for (int k = 0; k < abs(multiplicity); k++)
-            volume_mesh_emit_side(v, a, b, light, multiplicity);
+            volume_mesh_emit_side(v, a, b, light, trim, multiplicity);
     }
+    /* A trimmed volume's far caps close its sides, for z-pass too. */
+    bool trimmed = trim && trim->on;
     if (parts == VOLUME_MESH_CAPS)
-        volume_mesh_emit_caps(v, m, light);
+        volume_mesh_emit_caps(v, m, light, trim, true, !trimmed);
+    else if (parts == VOLUME_MESH_SIDES && trimmed)
+        volume_mesh_emit_caps(v, m, light, trim, false, true);
     return !v->out_of_memory;
 }
 
@@ -157,6 +182,83 @@ void volume_mesh_object_light(const mat4 model, const float light[4], float out[
     mat4 inverse;
     glm_mat4_inv((vec4 *)model, inverse);
     glm_mat4_mulv(inverse, (float *)light, out);
+}
+
+/* ---- trimmed to the light's reach ---- */
+
+void volume_mesh_trim_for(const mat4 model, const float light[4], const mesh *m, const float reach_lo[3],
+                          const float reach_hi[3], volume_mesh_trim *out) {
+    *out = (volume_mesh_trim){0};
+    float world[8][3], reach[8][3], caster[8][3];
+    mat4 inverse;
+    glm_mat4_inv((vec4 *)model, inverse);
+    frustum_box_corners(reach_lo, reach_hi, world);
+    frustum_box_corners(m->bounds_min, m->bounds_max, caster);
+    for (int c = 0; c < 8; c++)
+        glm_mat4_mulv3(inverse, world[c], 1, reach[c]);
+    if (light[3] != 0) {
+        /* A sphere round the light holding the reach and the caster, grown
+         * for the chords of a caster that spans at most 2 asin(spread). */
+        vec3 centre;
+        glm_vec3_center((float *)m->bounds_min, (float *)m->bounds_max, centre);
+        float spread = glm_vec3_distance((float *)m->bounds_min, centre);
+        float distance = glm_vec3_distance(centre, (float *)light), reach_distance = 0;
+        if (!(spread < VOLUME_MESH_TRIM_MAX_SPREAD * distance))
+            return;
+        for (int c = 0; c < 8; c++)
+            reach_distance = fmaxf(reach_distance, glm_vec3_distance(reach[c], (float *)light));
+        float ratio = spread / distance, cos_span = 1 - 2 * ratio * ratio;
+        out->distance = fmaxf(reach_distance / sqrtf(cos_span), distance + spread) * (1 + VOLUME_MESH_TRIM_MARGIN);
+    } else {
+        /* A plane across the travel beyond the reach and the caster. */
+        vec3 travel = {-light[0], -light[1], -light[2]};
+        float lo = INFINITY, hi = -INFINITY;
+        for (int c = 0; c < 16; c++) {
+            float along = glm_vec3_dot(travel, c < 8 ? reach[c] : caster[c - 8]);
+            lo = fminf(lo, along);
+            hi = fmaxf(hi, along);
+        }
+        if (!(hi > lo))
+            return;
+        out->distance = hi + (hi - lo) * VOLUME_MESH_TRIM_MARGIN;
+    }
+    out->on = isfinite(out->distance);
+}
+
+/* ---- depth bounds ---- */
+
+/* The window depths of the points into [lo, hi]; false when one is not in
+ * front of the eye (its depth bounds nothing). */
+static bool volume_mesh_depth_range(const mat4 view_projection, const float (*points)[3], int count, float *lo,
+                                    float *hi) {
+    *lo = INFINITY, *hi = -INFINITY;
+    for (int i = 0; i < count; i++) {
+        vec4 p = {points[i][0], points[i][1], points[i][2], 1};
+        glm_mat4_mulv((vec4 *)view_projection, p, p);
+        if (!(p[3] > 0))
+            return false;
+        float depth = p[2] / p[3] * 0.5f + 0.5f;
+        *lo = fminf(*lo, depth);
+        *hi = fmaxf(*hi, depth);
+    }
+    return true;
+}
+
+bool volume_mesh_depth_bounds(const mat4 view_projection, const float (*points)[3], int count,
+                              const float reach_lo[3], const float reach_hi[3], float out[2]) {
+    if (count <= 0 || !volume_mesh_depth_range(view_projection, points, count, &out[0], &out[1]))
+        return false;
+    float corners[8][3], lo, hi;
+    if (reach_lo) {
+        frustum_box_corners(reach_lo, reach_hi, corners);
+        if (volume_mesh_depth_range(view_projection, (const float(*)[3])corners, 8, &lo, &hi)) {
+            out[0] = fmaxf(out[0], lo);
+            out[1] = fminf(out[1], hi);
+        }
+    }
+    out[0] = glm_clamp(out[0] - VOLUME_MESH_DEPTH_BOUNDS_MARGIN, 0, 1);
+    out[1] = glm_clamp(out[1] + VOLUME_MESH_DEPTH_BOUNDS_MARGIN, 0, 1);
+    return out[0] <= out[1];
 }
 
 /* ---- when z-pass is safe ---- */
@@ -257,7 +359,7 @@ bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float l
         if (i < CORNERS)
             memcpy(p, corners[i], sizeof corners[i]);
         else
-            volume_mesh_extrude(corners[i - CORNERS], light, p);
+            volume_mesh_extrude(corners[i - CORNERS], light, NULL, p);
         for (int row = 0; row < 4; row++) {
             clip[i][row] = magnitude[i][row] = 0;
             for (int k = 0; k < 4; k++) {

@@ -60,6 +60,39 @@
  * near and far planes: with depth clamp (which the volumes are drawn
  * with) they clip nothing, and faces beyond them still count.
  *
+ * Trimmed to the light's reach: a volume need only be right where the
+ * light can light a receiver; beyond, the light adds 0 whatever the count.
+ * Given a convex region (the reach: a box) holding every such point, the
+ * extrusion stops at a surface beyond it, and far caps there close the
+ * volume, z-pass too (sides and far caps together, near caps apart). A
+ * point inside the reach then lies in as many prisms as before: each
+ * trimmed prism is the part of its infinite one before its far cap, and
+ * that cap and the parts cut off lie outside the reach. Point light: every
+ * swept vertex at one distance R from it, so that sides and caps still
+ * meet (no cracks). A chord between two points at R, their directions at
+ * most t apart, comes no nearer than R cos(t / 2), a far cap's triangle no
+ * nearer than R sqrt(cos t) (|sum w_i v_i|^2 = sum w_i w_j R^2 cos t_ij);
+ * a caster whose bounding sphere (radius s, centre at D) spans t <= 2
+ * asin(s / D) from the light, cos t >= 1 - 2 (s / D)^2, so R = r /
+ * sqrt(cos t), r the reach's farthest corner, keeps every cap and cut
+ * beyond r; and R at least the caster's far side (D + s), so that every
+ * vertex travels away. A caster that spans too much (s / D above
+ * VOLUME_MESH_TRIM_MAX_SPREAD) is not trimmed. Directional light: every
+ * swept vertex on one plane across the travel, beyond the reach and the
+ * caster. Both grown by VOLUME_MESH_TRIM_MARGIN for rounding.
+ *
+ * Depth bounds (GL_EXT_depth_bounds_test): a fragment is dropped where
+ * the depth already stored at its pixel lies outside [lo, hi], whatever
+ * its own depth, so each pixel takes all of its stencil updates or none.
+ * Every pixel a light can light shows a visible receiver's point within
+ * its reach: in the hull of the receivers' points (technique_frame's
+ * receivers) and in the box round its range. Window depth is monotone in
+ * the eye's distance along the view axis, which is linear, so over a
+ * convex set it lies between its corners' depths: [lo, hi] is the
+ * intersection of the two sets' ranges, grown by
+ * VOLUME_MESH_DEPTH_BOUNDS_MARGIN for rounding; a pixel outside it keeps
+ * the cleared count and is lit, where the light adds 0.
+ *
  * Also here, the rest of the technique's CPU geometry: the edge table a
  * volume needs, and the screen rectangle of the receivers, outside which
  * the stencil need not be cleared.
@@ -94,14 +127,33 @@ typedef struct volume_mesh {
     size_t weight_capacity;
 } volume_mesh;
 
+/* Where a volume's extrusion stops (see "Trimmed to the light's reach"):
+ * zero (or NULL) is at infinity. */
+typedef struct volume_mesh_trim {
+    bool on;
+    /* Point light: from the light; directional: along the travel (minus
+     * the light's vector), dot(p, travel) for every swept point. */
+    float distance;
+} volume_mesh_trim;
+/* The largest caster radius over its distance from a point light that is
+ * trimmed: its chords then span at most 60 degrees, R <= 1.42 r. */
+#define VOLUME_MESH_TRIM_MAX_SPREAD 0.5f
+/* How far beyond what it must clear a trimmed extrusion stops, relative. */
+#define VOLUME_MESH_TRIM_MARGIN 0.01f
+
 /* The welded edge table of m (mesh_weld, mesh_edges_build) that volumes
  * are built from; false after printing why. */
 bool volume_mesh_edges_build(const mesh *m, mesh_edges *e);
 /* Replaces v's contents with the volume of mesh m (edge table e) for the
- * light (homogeneous, m's space); false when out of memory (v then holds
- * part of it). */
+ * light (homogeneous, m's space), trimmed by `trim` (NULL: to infinity);
+ * false when out of memory (v then holds part of it). */
 bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const float light[4],
-                       volume_mesh_parts parts);
+                       const volume_mesh_trim *trim, volume_mesh_parts parts);
+/* The trim of mesh m's volume, the object's model matrix `model`, for the
+ * light (homogeneous, m's space) whose receivers in reach lie in the world
+ * box [reach_lo, reach_hi]; off where it cannot be trimmed. */
+void volume_mesh_trim_for(const mat4 model, const float light[4], const mesh *m, const float reach_lo[3],
+                          const float reach_hi[3], volume_mesh_trim *out);
 void volume_mesh_free(volume_mesh *v);
 
 /* The light (homogeneous, world) in the space of an object whose model
@@ -123,6 +175,16 @@ bool volume_mesh_zpass_safe(const float lo[3], const float hi[3], const float li
  * volume that touches the view, or nearly (FRUSTUM_CLIP_TOLERANCE). */
 bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4],
                              const mat4 view_projection);
+
+/* Window depth (glDepthRange 0..1) the depth bounds grow by each side:
+ * far more than a 24-bit depth buffer's step or float rounding. */
+#define VOLUME_MESH_DEPTH_BOUNDS_MARGIN (1.0f / 65536)
+/* The window-depth bounds (see "Depth bounds") of the points (world, in
+ * front of the eye) within the box [reach_lo, reach_hi] (world; NULL: no
+ * box), into out[0] <= out[1]; false when there is no point, nothing to
+ * count for. */
+bool volume_mesh_depth_bounds(const mat4 view_projection, const float (*points)[3], int count,
+                              const float reach_lo[3], const float reach_hi[3], float out[2]);
 
 /* The NDC rectangle (x, y) of the world boxes of the scene's receivers: no
  * light reaches pixels outside it, so the stencil need not be cleared
