@@ -146,8 +146,8 @@ static bool psm_fit(const technique_frame *f, int light, shadow_map *m, const fl
     warped.near_plane = w->near_plane;
     warped.far_plane = w->far_plane;
     warped.orthographic = w->orthographic;
-    const warp_sample *samples = psm.maps.samples; /* where the camera sees the light's receivers */
-    int sample_count = psm.maps.sample_count;
+    int sample_count = shadow_map_light_samples(&psm.maps, f, light);
+    const warp_sample *samples = psm.maps.samples;
     choice->measured_size = m->size;
     choice->texel_pixels[0] =
         warp_texel_pixels(warped.layer_view_projection, 1, warped.size, l->position, samples, sample_count);

@@ -21,10 +21,11 @@
  * and depth writes off, both faces counted in one pass (glStencilOpSeparate,
  * wrapping); shade the light where the stencil is 0 (everywhere on objects
  * that receive no shadows), the first light's pass with the ambient term
- * (technique_shade_light), so that one light costs one shading pass. --mode auto (default) takes z-pass, without
- * caps, where volume_mesh_zpass_safe says the volume cannot reach the
- * near-plane rectangle, z-fail with caps elsewhere; --mode zpass with the
- * camera inside a shadow visibly fails (shadows inverted).
+ * (technique_shade_light), so that one light costs one shading pass.
+ * --mode auto (default) takes z-pass, without caps, where
+ * volume_mesh_zpass_safe says the volume cannot reach the near-plane
+ * rectangle, z-fail with caps elsewhere; --mode zpass with the camera
+ * inside a shadow visibly fails (shadows inverted).
  *
  * --silhouette gpu finds silhouettes in a geometry shader over
  * GL_TRIANGLES_ADJACENCY (shaders/volume_silhouette.geom), for closed
@@ -428,18 +429,17 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
     }
 }
 
-/* Turns on light l's depth bounds (volume_mesh_depth_bounds: the visible
- * receivers within its range) where the extension is and the frame's
- * receivers are all there (not cut short); false: left off. */
-static bool volumes_depth_bounds(const technique_frame *f, int l) {
+/* Turns on the depth bounds of the hull's light (volume_mesh_depth_bounds:
+ * the visible receivers within its range, hull->lo..hi) where the
+ * extension is and the frame's receivers are all there (not cut short);
+ * false: left off. */
+static bool volumes_depth_bounds(const technique_frame *f, const technique_hull *hull) {
     if (!volumes.has_depth_bounds || volumes.settings.no_depth_bounds ||
-        f->receiver_count >= TECHNIQUE_MAX_RECEIVER_POINTS)
+        f->receiver_count >= TECHNIQUE_MAX_RECEIVER_POINTS || hull->empty)
         return false;
-    float lo[3], hi[3], bounds[2];
-    glm_vec3_copy((float *)f->receivers_lo, lo);
-    glm_vec3_copy((float *)f->receivers_hi, hi);
-    if (!scene_light_clip_to_range(&f->gpu->scene->lights[l], lo, hi) ||
-        !volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, lo, hi, bounds))
+    float bounds[2];
+    if (!volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, hull->lo, hull->hi,
+                                  bounds))
         return false;
     glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
     glDepthBoundsEXT(bounds[0], bounds[1]);
@@ -543,7 +543,7 @@ static void volumes_render(const technique_frame *f) {
         glScissor(receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]);
         glClear(GL_STENCIL_BUFFER_BIT);
         glEnable(GL_STENCIL_TEST);
-        bool bounded = volumes_depth_bounds(f, l);
+        bool bounded = volumes_depth_bounds(f, &hull);
         volumes_count(f, l, light, volumes.needed);
         if (bounded)
             glDisable(GL_DEPTH_BOUNDS_TEST_EXT);

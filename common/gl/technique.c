@@ -80,15 +80,28 @@ int technique_ambient_light(const technique_frame *f) {
     return -1;
 }
 
-/* The shading pass's depth state: each visible pixel once, nothing
+/* The shading passes' depth state: each visible pixel once, nothing
  * written but colour. */
-static void technique_shade_begin(void) {
+static void technique_shade_depth(void) {
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
 }
 
+const bool *technique_shade_begin(const technique_frame *f, int l, bool *ambient) {
+    technique_shade_depth();
+    *ambient = l == technique_ambient_light(f);
+    if (*ambient) {
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_BLEND);
+        return f->in_view;
+    }
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    return technique_light_pass(f, l);
+}
+
 void technique_shade_ambient(const technique_frame *f) {
-    technique_shade_begin();
+    technique_shade_depth();
     render_use_lit(f->gpu, f->view, 0, true);
     render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
 }
@@ -107,19 +120,10 @@ static void technique_shade_objects(const technique_frame *f, const bool *object
 }
 
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil) {
-    bool ambient = l == technique_ambient_light(f);
-    technique_shade_begin();
+    bool ambient;
+    const bool *objects = technique_shade_begin(f, l, &ambient);
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    const bool *objects = f->in_view;
-    if (ambient) {
-        glDisable(GL_SCISSOR_TEST);
-        glDisable(GL_BLEND);
-    } else {
-        objects = technique_light_pass(f, l);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-    }
     technique_shade_objects(f, objects, RENDER_LIGHT_BIT(l), ambient, stencil, stencil->lit, true);
     if (stencil->receivers_only)
         technique_shade_objects(f, objects, RENDER_LIGHT_BIT(l), ambient, stencil, stencil->lit, false);
@@ -132,7 +136,7 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
     const scene_light *l = &f->gpu->scene->lights[light];
     *out = (technique_hull){.light = light};
-    vec3 lo, hi;
+    float *lo = out->lo, *hi = out->hi;
     glm_vec3_copy((float *)f->receivers_lo, lo);
     glm_vec3_copy((float *)f->receivers_hi, hi);
     /* Receivers beyond the range take nothing from this light. */

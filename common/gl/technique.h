@@ -138,6 +138,12 @@ const bool *technique_light_pass(const technique_frame *f, int l);
 /* The light whose shading pass also draws the ambient term: the first that
  * is on; -1 when none is (technique_shade_ambient). */
 int technique_ambient_light(const technique_frame *f);
+/* Light l's shading pass state: the depth test GL_EQUAL, depth writes
+ * off; for the ambient light no blending and no scissor, for the others
+ * additive blending in the light's rectangle. Returns the objects the
+ * pass draws (every one in view, or what the light reaches); *ambient:
+ * whether it also draws the ambient term. */
+const bool *technique_shade_begin(const technique_frame *f, int l, bool *ambient);
 /* The frame's only shading pass when no light is on: the ambient term on
  * every object in view. */
 void technique_shade_ambient(const technique_frame *f);
@@ -162,6 +168,7 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
 typedef struct technique_hull {
     int light;
     bool empty; /* no visible receiver in reach: no caster is needed */
+    vec3 lo, hi; /* the visible receivers' bounds clipped to the light's range (unless empty) */
     vec4 planes[FRUSTUM_HULL_MAX_PLANES];
     int plane_count;
     float margin; /* world units: FRUSTUM_BOX_TOLERANCE of the hull's size */

@@ -67,6 +67,17 @@ int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const wa
     return size;
 }
 
+int shadow_map_light_samples(shadow_map_renderer *r, const technique_frame *f, int l) {
+    const scene *s = f->gpu->scene;
+    if (r->hit_count < 0)
+        r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
+    if (r->sample_light != l) {
+        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples);
+        r->sample_light = l;
+    }
+    return r->sample_count;
+}
+
 /* The fitted map m at another size: only the texel's world size follows
  * (as 1 / size); the matrices and the depth range do not depend on it. */
 static void shadow_map_resize(shadow_map *m, int size) {
@@ -397,16 +408,17 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     glGetIntegerv(GL_VIEWPORT, viewport);
     bool fitted[SCENE_MAX_LIGHTS] = {false};
     int size = shadow_map_settings_size(settings);
-    r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
+    r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     for (int l = 0; l < s->light_count && f->receiver_count > 0; l++) {
         if (!technique_light_on(f, l))
             continue;
         shadow_map *m = &r->maps[l];
         m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
-        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples);
         fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
-        if (fitted[l] && !size)
-            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, r->sample_count));
+        if (fitted[l] && !size) {
+            int sample_count = shadow_map_light_samples(r, f, l);
+            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count));
+        }
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             shadow_map_forget(&r->caches[l]);
         if (fitted[l])
@@ -422,20 +434,15 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
      * through, the first with the ambient term: the filter runs once per
      * visible pixel and light (technique_shade_light's order of passes). */
     render_depth_prepass(f->gpu, f->view, f->in_view);
-    int ambient_light = technique_ambient_light(f);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
-        bool ambient = l == ambient_light;
-        /* What the light reaches, but the ambient light's pass draws
-         * everything in view, as do the overlays. */
-        const bool *objects = ambient || settings->overlay != SHADOW_MAP_OVERLAY_NONE ? f->in_view
-                                                                                      : technique_light_pass(f, l);
-        if (ambient) {
-            glDisable(GL_BLEND);
-        } else {
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
+        bool ambient;
+        const bool *objects = technique_shade_begin(f, l, &ambient);
+        /* The overlays draw on everything in view, whatever a light reaches. */
+        if (settings->overlay != SHADOW_MAP_OVERLAY_NONE) {
+            objects = f->in_view;
+            glDisable(GL_SCISSOR_TEST);
         }
         if (fitted[l]) {
             shadow_map_shade_light(r, settings, f, l, &r->maps[l], objects, ambient);
@@ -446,7 +453,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         glDisable(GL_BLEND);
         glDisable(GL_SCISSOR_TEST);
     }
-    if (ambient_light < 0)
+    if (technique_ambient_light(f) < 0)
         technique_shade_ambient(f);
     shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
 }

@@ -13,9 +13,9 @@
  *     1. the receiver points: the frame's (technique.h), the corners of the
  *        part of every receiver's box inside the camera's frustum;
  *     2. per light: fit(frame, light, map, receivers) places the map
- *        (r->samples: where the camera sees the receivers the light
- *        reaches, for a fit that measures its texels, as psm does), the
- *        automatic size sizes it (below), and
+ *        (a fit that measures its texels, as psm does, takes the samples
+ *        of shadow_map_light_samples), the automatic size sizes it
+ *        (below), and
  *        the depth pass renders each layer that its cache cannot give,
  *        with the casters that layer needs (below); a fit that returns
  *        false means nothing can be shadowed, and the light is added
@@ -94,10 +94,10 @@
  *
  * Map size (--map-size; auto, the default). Fixed sizes are as given.
  * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
- * on screen of its texels at r->samples (the dp/ds of the perspective
- * shadow map papers, warp_sample_texel_pixels: a 32 x 18 grid of pixels
- * cast onto the receivers' boxes, the same measure psm judges its warps
- * by; samples beyond the light's range or outside the map left out) and
+ * on screen of its texels at shadow_map_light_samples (the dp/ds of the
+ * perspective shadow map papers, warp_sample_texel_pixels: a 32 x 18 grid
+ * of pixels cast onto the receivers' boxes, the same measure psm judges
+ * its warps by; samples beyond the light's range or outside the map left out) and
  * takes the smallest power of two from 256 to 4096 at which a texel
  * covers at most about one pixel on average (shadow_map_auto_size):
  * shadows no sharper than the pixels that show them, and no depth pass
@@ -360,11 +360,11 @@ typedef struct shadow_map_renderer {
     int object_count;                      /* the scene's, at init: the sets' size */
     bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
     float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
-    /* Where the camera sees receivers (warp_samples, once a frame), and
-     * those the light being fitted is measured at (warp_samples_lit):
-     * the automatic size's measure, and psm's. */
+    /* Where the camera sees receivers (warp_samples; -1: not cast yet this
+     * frame), and those light sample_light is measured at
+     * (warp_samples_lit): shadow_map_light_samples. */
     warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
-    int hit_count, sample_count;
+    int hit_count, sample_count, sample_light;
 } shadow_map_renderer;
 
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
@@ -383,6 +383,12 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
  * again. */
 void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
                              shadow_map *m);
+/* The samples light l's map is measured at this frame, in r->samples
+ * (returns how many): where the camera sees receivers, those the light
+ * can light (warp_samples_lit). The rays are cast once a frame, on the
+ * first call, and only by a frame that measures: the automatic size or a
+ * fit like psm's. */
+int shadow_map_light_samples(shadow_map_renderer *r, const technique_frame *f, int l);
 /* The map's size in the settings; 0: auto. */
 int shadow_map_settings_size(const shadow_map_settings *settings);
 /* --map-size auto's size for the fitted map m of the light at
