@@ -172,7 +172,7 @@ static bool psm_init(const render_scene *gpu) {
             return false;
         }
     }
-    return shadow_map_init(&psm.maps, gpu) && shadow_map_warp_view_init(&psm.warp_view);
+    return shadow_map_init(&psm.maps, &psm.settings, gpu) && shadow_map_warp_view_init(&psm.warp_view);
 }
 
 static void psm_destroy(void) {

@@ -101,7 +101,7 @@ static bool shadowmap_fit(const technique_frame *f, int light, shadow_map *m, co
 }
 
 static bool shadowmap_init(const render_scene *gpu) {
-    return shadow_map_init(&shadowmap.maps, gpu);
+    return shadow_map_init(&shadowmap.maps, &shadowmap.settings, gpu);
 }
 
 static void shadowmap_destroy(void) { shadow_map_destroy(&shadowmap.maps); }

@@ -1,34 +1,10 @@
-// The camera pass of a shadow map (demos/lib/shadow_map.c, for
-// demos/shadowmap.c and demos/psm.c), shared by the 2D map (spot,
-// directional, warped) and the cube map (point). u_filter is a
-// shadow_map_kernel (SHADOW_MAP_KERNEL_*), u_texel_kind a
-// shadow_map_texel_kind (SHADOW_MAP_TEXEL_*): C enums, defined by C before
-// this file. The including file defines the functions declared here:
-//   shadowmap_texel_world(p)  world size of one map texel at p
-//   shadowmap_visibility(p, b) the filtered comparison at p, its map depth
-//                             lowered by b first
-//   shadowmap_texel_coord(p)  p's position in the map, in texels (for the
-//                             lecture's overlay of texel boundaries)
-// This shades light u_light's share where the map says it reaches, and
-// the ambient term where u_ambient is 1 (the first light's pass).
-
-float shadowmap_texel_world(vec3 p);
-float shadowmap_visibility(vec3 p, float depth_bias);
-vec2 shadowmap_texel_coord(vec3 p);
-
-in vec3 v_position;
-in vec3 v_normal;
-
-uniform vec3 u_albedo;
-uniform int u_light;
-uniform float u_ambient;         // 1: this pass also draws the ambient term
-uniform float u_constant_bias;   // texels of world distance, towards the light
-uniform float u_normal_offset;   // texels, along the normal, times the slope
-uniform bool u_show_texels;      // darken the map's texel boundaries
-uniform bool u_show_texel_size;  // colour by a texel's size on screen
-uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
-
-out vec4 out_color;
+// The camera pass's kernels (shaders/shadowmap.frag), for both kinds of
+// map: which taps a filter reads, where and with what weights. The kernel
+// is fixed per program (C defines SHADOW_MAP_PASS_*, below, and the
+// SHADOW_MAP_KERNEL_* of its enum shadow_map_kernel before this file): a
+// uniform would cost every pixel every kernel's code on llvmpipe, which
+// runs both sides of a branch. How a tap reads a map is the map kind's (shadowmap_2d.glsl,
+// shadowmap_cube.glsl); the filter over the taps is shadowmap_light.glsl's.
 
 // The pixel hash: two primes, so that neighbouring pixels start far apart,
 // then MurmurHash2's multiplier between two xor-shifts to mix the bits.
@@ -50,8 +26,8 @@ float shadowmap_pixel_angle() {
 }
 
 // 16 points of a Poisson disc (minimum distance 0.35), scaled by half of
-// u_kernel texels (SHADOW_MAP_POISSON_SCALE_TEXELS: 3). They are not all in
-// the unit circle: eight lie outside it, the farthest at radius 1.234, so
+// shadowmap_kernel_size texels (SHADOW_MAP_POISSON_SCALE_TEXELS: 3). They
+// are not all in the unit circle: eight lie outside it, the farthest at radius 1.234, so
 // the taps span 3.7 texels across, not 3. The points are kept as they are:
 // the defaults were measured with them.
 const int SHADOWMAP_POISSON_TAPS = 16;
@@ -66,11 +42,14 @@ const vec2 shadowmap_poisson[SHADOWMAP_POISSON_TAPS] = vec2[](
 // apart (at 203, 321, 38 and 132 degrees before the rotation).
 const int SHADOWMAP_POISSON_RIM[4] = int[](0, 1, 7, 13);
 
-// The kernel, the same uniforms for both kinds of map.
-uniform int u_filter;     // SHADOW_MAP_KERNEL_*: one tap, N x N grid, Poisson disc, N x N tent
-uniform int u_kernel;     // N, or the disc's scale in texels
-uniform float u_map_size;
-uniform bool u_early_out; // wide kernels: four rim taps first, the rest only where they disagree
+// The kernel, the same for both kinds of map.
+const int shadowmap_shape = SHADOW_MAP_PASS_SHAPE;   // SHADOW_MAP_KERNEL_*: one tap, N x N grid, Poisson disc, N x N tent
+const int shadowmap_kernel_size = SHADOW_MAP_PASS_KERNEL; // N, or the disc's scale in texels
+// Wide kernels: four rim taps first, the rest only where they disagree.
+const bool shadowmap_early_out = SHADOW_MAP_PASS_EARLY_OUT != 0;
+// Each tap compares the receiver plane's depth there, not the centre's.
+const bool shadowmap_receiver_plane = SHADOW_MAP_PASS_RECEIVER_PLANE != 0;
+uniform float u_map_size[SCENE_MAX_LIGHTS]; // light i's map: texels on a side
 
 // The kernels as lists of taps, for both kinds of map: tap i's offset from
 // the point, in texels (a 2D map's grid; the plane across the direction of
@@ -80,8 +59,8 @@ uniform bool u_early_out; // wide kernels: four rim taps first, the rest only wh
 // the point's place from its nearest texel corner, -0.5..0.5 texels on
 // each axis, which the tent places its taps by.
 //
-// The tent (SHADOW_MAP_KERNEL_TENT, u_kernel N = 3 or 5) is percentage-
-// closer filtering weighted by a tent of radius N / 2 texels centred on
+// The tent (SHADOW_MAP_KERNEL_TENT, shadowmap_kernel_size N = 3 or 5) is
+// percentage-closer filtering weighted by a tent of radius N / 2 texels centred on
 // the point, each texel's comparison counted as the square it covers:
 // a texel weighs the tent's area over its square. Such weights sum to 1
 // wherever the point is, are never negative, and are separable: a 1D tent
@@ -108,14 +87,14 @@ vec2 shadowmap_tent_below(vec2 x, float radius) {
 const int SHADOWMAP_TENT_MAX_PAIRS = 3; /* tent5's */
 vec2 shadowmap_tent_offset[SHADOWMAP_TENT_MAX_PAIRS], shadowmap_tent_weight[SHADOWMAP_TENT_MAX_PAIRS];
 
-int shadowmap_tent_pairs() { return (u_kernel + 1) / 2; }
+int shadowmap_tent_pairs() { return (shadowmap_kernel_size + 1) / 2; }
 
 // Pair p's squares run from corner to corner + 2 (texels from the point):
 // the first pair's corner lies (N + 1)/2 texels before the point's
 // nearest corner, each next one 2 on; a pair's upper area is the next
 // one's lower.
 void shadowmap_tent_place(vec2 fraction) {
-    float radius = 0.5 * float(u_kernel);
+    float radius = 0.5 * float(shadowmap_kernel_size);
     vec2 corner = -fraction - float(shadowmap_tent_pairs());
     vec2 below = shadowmap_tent_below(corner, radius);
     for (int p = 0; p < shadowmap_tent_pairs(); p++) {
@@ -131,23 +110,23 @@ void shadowmap_tent_place(vec2 fraction) {
 }
 
 int shadowmap_kernel_taps() {
-    if (u_filter == SHADOW_MAP_KERNEL_POISSON)
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_POISSON)
         return SHADOWMAP_POISSON_TAPS;
-    if (u_filter == SHADOW_MAP_KERNEL_TENT)
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_TENT)
         return shadowmap_tent_pairs() * shadowmap_tent_pairs();
-    return u_kernel * u_kernel;
+    return shadowmap_kernel_size * shadowmap_kernel_size;
 }
 
 // The grid and the disc weigh every tap 1 and divide by the count (their
 // sums are the ones before the tents, bit for bit); the tent's weights
 // already sum to 1.
 float shadowmap_kernel_norm() {
-    return u_filter == SHADOW_MAP_KERNEL_TENT ? 1.0 : float(shadowmap_kernel_taps());
+    return shadowmap_shape == SHADOW_MAP_KERNEL_TENT ? 1.0 : float(shadowmap_kernel_taps());
 }
 
 // The disc's rotation for this pixel; the identity for the other kernels.
 mat2 shadowmap_kernel_rotation() {
-    if (u_filter != SHADOW_MAP_KERNEL_POISSON)
+    if (shadowmap_shape != SHADOW_MAP_KERNEL_POISSON)
         return mat2(1.0);
     float a = shadowmap_pixel_angle();
     return mat2(cos(a), sin(a), -sin(a), cos(a));
@@ -155,18 +134,18 @@ mat2 shadowmap_kernel_rotation() {
 
 // Tap i of the kernel (the tent's placed by shadowmap_tent_place).
 vec3 shadowmap_kernel_tap(int i, mat2 rotation, float unit) {
-    if (u_filter == SHADOW_MAP_KERNEL_POISSON)
-        return vec3(rotation * shadowmap_poisson[i] * (0.5 * float(u_kernel) / unit), 1.0);
-    if (u_filter == SHADOW_MAP_KERNEL_TENT) {
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_POISSON)
+        return vec3(rotation * shadowmap_poisson[i] * (0.5 * float(shadowmap_kernel_size) / unit), 1.0);
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_TENT) {
         int x = i % shadowmap_tent_pairs(), y = i / shadowmap_tent_pairs();
         return vec3(vec2(shadowmap_tent_offset[x].x, shadowmap_tent_offset[y].y) / unit,
                     shadowmap_tent_weight[x].x * shadowmap_tent_weight[y].y);
     }
-    int half_kernel = u_kernel / 2;
-    return vec3(vec2(i % u_kernel - half_kernel, i / u_kernel - half_kernel) / unit, 1.0);
+    int half_kernel = shadowmap_kernel_size / 2;
+    return vec3(vec2(i % shadowmap_kernel_size - half_kernel, i / shadowmap_kernel_size - half_kernel) / unit, 1.0);
 }
 
-// The early-out (u_early_out, for kernels of more than four taps): four
+// The early-out (shadowmap_early_out, for kernels of more than four taps): four
 // taps on the kernel's rim first, the middles of the sides of the grid of
 // taps (pcfN's, the tent's pairs) or the disc's SHADOWMAP_POISSON_RIM.
 // Where all four are wholly lit or wholly shadowed the point is taken to
@@ -179,14 +158,14 @@ vec3 shadowmap_kernel_tap(int i, mat2 rotation, float unit) {
 // change no decision on any standard scene or long_view, with any kernel).
 const int SHADOWMAP_RIM_TAPS = 4;
 
-bool shadowmap_kernel_early_out() { return u_early_out && shadowmap_kernel_taps() > SHADOWMAP_RIM_TAPS; }
+bool shadowmap_kernel_early_out() { return shadowmap_early_out && shadowmap_kernel_taps() > SHADOWMAP_RIM_TAPS; }
 
 // Rim tap k's index, k = 0..3: the middles of the sides of the side x side
 // grid of taps (side odd), in the order the taps are listed.
 int shadowmap_kernel_rim(int k) {
-    if (u_filter == SHADOW_MAP_KERNEL_POISSON)
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_POISSON)
         return SHADOWMAP_POISSON_RIM[k];
-    int side = u_filter == SHADOW_MAP_KERNEL_TENT ? shadowmap_tent_pairs() : u_kernel;
+    int side = shadowmap_shape == SHADOW_MAP_KERNEL_TENT ? shadowmap_tent_pairs() : shadowmap_kernel_size;
     int middle = side / 2;
     return k == 0 ? middle : k == 1 ? middle * side : k == 2 ? middle * side + side - 1 : (side - 1) * side + middle;
 }
@@ -194,33 +173,6 @@ int shadowmap_kernel_rim(int k) {
 // What four rim taps agree on: 0 or 1 where they are all that, else -1.
 float shadowmap_rim_agreement(vec4 rim) {
     return rim == vec4(0.0) || rim == vec4(1.0) ? rim.x : -1.0;
-}
-
-// One tap at `offset` (a kernel tap's, in the unit the including file
-// filters in) about the point its shadowmap_visibility set up: the
-// including file defines it.
-float shadowmap_kernel_read(vec2 offset);
-
-// The kernel's visibility: the early-out's rim, then where it disagrees
-// (or without the early-out) the weighted sum of every tap.
-float shadowmap_kernel_filter(vec2 fraction, float unit) {
-    mat2 rotation = shadowmap_kernel_rotation();
-    if (u_filter == SHADOW_MAP_KERNEL_TENT)
-        shadowmap_tent_place(fraction);
-    if (shadowmap_kernel_early_out()) {
-        vec4 rim;
-        for (int k = 0; k < SHADOWMAP_RIM_TAPS; k++)
-            rim[k] = shadowmap_kernel_read(shadowmap_kernel_tap(shadowmap_kernel_rim(k), rotation, unit).xy);
-        float agreed = shadowmap_rim_agreement(rim);
-        if (agreed >= 0.0)
-            return agreed;
-    }
-    float sum = 0.0;
-    for (int i = 0; i < shadowmap_kernel_taps(); i++) {
-        vec3 tap = shadowmap_kernel_tap(i, rotation, unit);
-        sum += tap.z * shadowmap_kernel_read(tap.xy);
-    }
-    return sum / shadowmap_kernel_norm();
 }
 
 // The texel overlay: a floor on the screen derivative of the map position
@@ -245,41 +197,3 @@ const vec3 SHADOWMAP_HEAT_LUMINANCE = vec3(0.3, 0.6, 0.1);
 const float SHADOWMAP_HEAT_GAIN = 2.0;
 const float SHADOWMAP_HEAT_DARKEST = 0.4;
 const float SHADOWMAP_HEAT_SHADE = 0.6;
-
-void main() {
-    vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
-    vec3 to_light = lighting_to_light(u_light, v_position);
-    // Both biases move the point where the map is read, in world units
-    // scaled by the map's texel there, so they hold at any map size,
-    // distance and scene scale. The normal offset grows with the slope
-    // (sin of the angle to the light), where a texel spans most depth.
-    float texel = shadowmap_texel_world(v_position);
-    float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
-    float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
-    vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
-    float visibility = shadowmap_visibility(p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y));
-    vec3 c = visibility * lighting_unshadowed(u_light, v_position, n, u_albedo);
-    // Lines one pixel wide where texels meet: how big a texel is on screen
-    // is what aliasing is made of.
-    vec2 map_texel = shadowmap_texel_coord(v_position);
-    vec2 distance_to_edge =
-        abs(fract(map_texel - 0.5) - 0.5) / max(fwidth(map_texel), vec2(SHADOWMAP_MIN_TEXEL_FWIDTH));
-    float edge = 1.0 - min(min(distance_to_edge.x, distance_to_edge.y), 1.0);
-    if (u_show_texels)
-        c *= 1.0 - SHADOWMAP_TEXEL_LINE_DARKENING * edge;
-    // The aliasing measure of the perspective shadow map papers (dp/ds):
-    // a texel's size in pixels, the square root of the pixel area it
-    // covers. Blue: a quarter pixel or less, green: one, red: 32 or more.
-    if (u_show_texel_size) {
-        vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
-        float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), SHADOWMAP_HEAT_MIN_AREA));
-        float t = clamp((log2(texel_pixels) + SHADOWMAP_HEAT_LOG2_OFFSET) / SHADOWMAP_HEAT_LOG2_RANGE, 0.0, 1.0);
-        float one_pixel = SHADOWMAP_HEAT_LOG2_OFFSET / SHADOWMAP_HEAT_LOG2_RANGE;
-        vec3 heat = t < one_pixel ? mix(SHADOWMAP_HEAT_SMALL, SHADOWMAP_HEAT_ONE_PIXEL, t / one_pixel)
-                                  : mix(SHADOWMAP_HEAT_ONE_PIXEL, SHADOWMAP_HEAT_LARGE,
-                                        (t - one_pixel) / (1.0 - one_pixel));
-        float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
-        c = heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
-    }
-    out_color = vec4(u_ambient * lighting_ambient(u_albedo) + c, 1.0);
-}

@@ -50,7 +50,7 @@ static int gl_setup(void **state) {
     shader_set_directory("shaders");
     const context_settings settings = {.backend = CONTEXT_EGL};
     if (!context_create(&gl.ctx, &settings) || !scene_load(&gl.scene, SCENE_PATH) ||
-        !render_scene_create(&gl.gpu, &gl.scene) || !shadow_map_init(&gl.maps, &gl.gpu))
+        !render_scene_create(&gl.gpu, &gl.scene) || !shadow_map_init(&gl.maps, &(shadow_map_settings){0}, &gl.gpu))
         return -1;
     camera_view view;
     camera_view_compute(&gl.scene.camera, VIEW_ASPECT, &view);

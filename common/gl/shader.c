@@ -90,7 +90,11 @@ static bool shader_expand(shader_source *s, const char *name, int depth, const s
         char *end = strchr(p, '\n');
         size_t n = end ? (size_t)(end - p + 1) : strlen(p);
         char included[256];
-        if (sscanf(p, " #include \"%255[^\"]\"", included) == 1) {
+        /* Blanks before the directive, within its line: sscanf's own
+         * whitespace skip would run on over empty lines onto the next
+         * directive and include it twice. */
+        const char *directive = p + strspn(p, " \t");
+        if (sscanf(directive, "#include \"%255[^\"]\"", included) == 1) {
             ok = shader_expand(s, included, depth + 1, NULL) && shader_append_line_directive(s, line + 1, file);
             if (!ok)
                 fprintf(stderr, "%s/%s:%d: included from here\n", shader_dir, s->files[file], line);

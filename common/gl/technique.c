@@ -87,7 +87,11 @@ static void technique_shade_depth(void) {
     glDepthMask(GL_FALSE);
 }
 
-const bool *technique_shade_begin(const technique_frame *f, int l, bool *ambient) {
+/* Light l's shading pass state: for the ambient light no blending and no
+ * scissor, for the others additive blending in the light's rectangle.
+ * Returns the objects the pass draws (every one in view, or what the light
+ * reaches); *ambient: whether it also draws the ambient term. */
+static const bool *technique_shade_begin(const technique_frame *f, int l, bool *ambient) {
     technique_shade_depth();
     *ambient = l == technique_ambient_light(f);
     if (*ambient) {
@@ -98,6 +102,13 @@ const bool *technique_shade_begin(const technique_frame *f, int l, bool *ambient
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     return technique_light_pass(f, l);
+}
+
+const bool *technique_shade_all_begin(const technique_frame *f) {
+    technique_shade_depth();
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    return f->in_view;
 }
 
 void technique_shade_ambient(const technique_frame *f) {

@@ -125,25 +125,26 @@ bool technique_light_on(const technique_frame *f, int l);
  * objects its lighting pass draws: what it reaches. */
 const bool *technique_light_pass(const technique_frame *f, int l);
 
-/* The shading passes, after render_depth_prepass of f->in_view: every
- * visible pixel is shaded once per light that reaches it, and the ambient
- * term rides on the first light's pass (technique_ambient_light) rather
- * than a pass of its own, so a one-light scene is shaded once. That pass
- * draws every object in view, unscissored (a light adds exactly 0 beyond
- * its range, outside a spot's cone and outside its rectangle), without
- * blending; the others add their light (GL_ONE, GL_ONE) on what they
- * reach, in their rectangle. Sums are quantized to the target's 8 bits
- * once per pass, so a pixel's colour may differ by one step from a
+/* The shading passes, after render_depth_prepass of f->in_view (depth
+ * test GL_EQUAL, depth writes off), two ways. A technique that can shade
+ * every light at once (the shadow maps) draws one pass of every object in
+ * view, unscissored and unblended (technique_shade_all_begin). The
+ * stencil techniques shade one light per pass (technique_shade_light):
+ * every visible pixel is shaded once per light that reaches it, and the
+ * ambient term rides on the first light's pass (technique_ambient_light)
+ * rather than a pass of its own, so a one-light scene is shaded once. That
+ * pass draws every object in view, unscissored (a light adds exactly 0
+ * beyond its range, outside a spot's cone and outside its rectangle),
+ * without blending; the others add their light (GL_ONE, GL_ONE) on what
+ * they reach, in their rectangle. Sums are quantized to the target's 8
+ * bits once per pass, so a pixel's colour may differ by one step from a
  * single-pass picture of the same lights; decisions do not. */
 /* The light whose shading pass also draws the ambient term: the first that
  * is on; -1 when none is (technique_shade_ambient). */
 int technique_ambient_light(const technique_frame *f);
-/* Light l's shading pass state: the depth test GL_EQUAL, depth writes
- * off; for the ambient light no blending and no scissor, for the others
- * additive blending in the light's rectangle. Returns the objects the
- * pass draws (every one in view, or what the light reaches); *ambient:
- * whether it also draws the ambient term. */
-const bool *technique_shade_begin(const technique_frame *f, int l, bool *ambient);
+/* The one shading pass's state; returns the objects it draws: every one
+ * in view. */
+const bool *technique_shade_all_begin(const technique_frame *f);
 /* The frame's only shading pass when no light is on: the ambient term on
  * every object in view. */
 void technique_shade_ambient(const technique_frame *f);

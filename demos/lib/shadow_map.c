@@ -257,22 +257,127 @@ static void shadow_map_find_uniforms(unsigned program, const shadow_map_uniform 
         *uniforms[i].location = glGetUniformLocation(program, uniforms[i].name);
 }
 
-static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const char *fragment) {
-    const char *const files[] = {"lit.vert", fragment};
-    if (!render_program_load(&p->program, files, 2, shadow_map_defines))
-        return false;
-    const shadow_map_uniform uniforms[] = {
-        {&p->map, "u_map"}, {&p->light, "u_light"}, {&p->ambient, "u_ambient"}, {&p->filter, "u_filter"},
-        {&p->kernel, "u_kernel"}, {&p->early_out, "u_early_out"},
-        {&p->map_size, "u_map_size"}, {&p->receiver_plane, "u_receiver_plane"}, {&p->show_texels, "u_show_texels"},
-        {&p->show_texel_size, "u_show_texel_size"}, {&p->constant_bias, "u_constant_bias"},
-        {&p->normal_offset, "u_normal_offset"}, {&p->depth_bias, "u_depth_bias"},
-        {&p->light_origin, "u_light_origin"}, {&p->map_2d.light_matrix, "u_light_matrix"},
-        {&p->map_2d.texel_kind, "u_texel_kind"}, {&p->map_2d.texel_scale, "u_texel_scale"},
-        {&p->map_2d.light_axis, "u_light_axis"}, {&p->cube.near_plane, "u_near"}, {&p->cube.far_plane, "u_far"},
+/* The names of the per-light defines: light i's kind, its map's texel
+ * kind. */
+static char shadow_map_kind_names[SCENE_MAX_LIGHTS][sizeof "SHADOW_MAP_LIGHT_KIND_" + 3];
+static char shadow_map_texel_kind_names[SCENE_MAX_LIGHTS][sizeof "SHADOW_MAP_TEXEL_KIND_" + 3];
+
+/* Light `light`'s field of a key's kinds or texel_kinds. */
+static unsigned shadow_map_light_bits(int light, unsigned value) {
+    return value << (SHADOW_MAP_LIGHT_KIND_BITS * light);
+}
+
+static unsigned shadow_map_light_field(unsigned bits, int light) {
+    return (bits >> (SHADOW_MAP_LIGHT_KIND_BITS * light)) & ((1u << SHADOW_MAP_LIGHT_KIND_BITS) - 1);
+}
+
+/* Light i's uniform `name`[i], or -1 where its kind has none. */
+static int shadow_map_light_uniform(unsigned program, const char *name, int light) {
+    char element[64];
+    snprintf(element, sizeof element, "%s[%d]", name, light);
+    return glGetUniformLocation(program, element);
+}
+
+/* The camera program of key k. */
+static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const shadow_map_camera_key *k) {
+    enum { COMMON = sizeof shadow_map_defines / sizeof *shadow_map_defines - 1, PASS = 10 };
+    shader_define defines[PASS + COMMON + 2 * SCENE_MAX_LIGHTS + 1] = {
+        SHADER_DEFINE(SHADOW_MAP_LIGHT_OFF),
+        SHADER_DEFINE(SHADOW_MAP_LIGHT_UNSHADOWED),
+        SHADER_DEFINE(SHADOW_MAP_LIGHT_2D),
+        SHADER_DEFINE(SHADOW_MAP_LIGHT_CUBE),
+        {"SHADOW_MAP_PASS_SHAPE", (int)k->shape},
+        {"SHADOW_MAP_PASS_KERNEL", (int)k->kernel},
+        {"SHADOW_MAP_PASS_EARLY_OUT", (int)k->early_out},
+        {"SHADOW_MAP_PASS_RECEIVER_PLANE", (int)k->receiver_plane},
+        {"SHADOW_MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
+        {"SHADOW_MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
     };
-    shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
+    memcpy(defines + PASS, shadow_map_defines, COMMON * sizeof *defines);
+    shader_define *light_defines = defines + PASS + COMMON;
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        snprintf(shadow_map_kind_names[l], sizeof shadow_map_kind_names[l], "SHADOW_MAP_LIGHT_KIND_%d", l);
+        snprintf(shadow_map_texel_kind_names[l], sizeof shadow_map_texel_kind_names[l], "SHADOW_MAP_TEXEL_KIND_%d",
+                 l);
+        light_defines[2 * l] = (shader_define){shadow_map_kind_names[l], (int)shadow_map_light_field(k->kinds, l)};
+        light_defines[2 * l + 1] =
+            (shader_define){shadow_map_texel_kind_names[l], (int)shadow_map_light_field(k->texel_kinds, l)};
+    }
+    static const char *const files[] = {"lit.vert", "shadowmap.frag"};
+    if (!render_program_load(&p->program, files, 2, defines))
+        return false;
+    unsigned id = p->program.id;
+    const shadow_map_uniform uniforms[] = {
+        {&p->constant_bias, "u_constant_bias"},
+        {&p->normal_offset, "u_normal_offset"},
+        {&p->depth_bias, "u_depth_bias"},
+    };
+    shadow_map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
+    /* Each sampler on its own unit, those of lights without a map too: an
+     * array's elements below the last one used stay active, and two types
+     * on one unit (unit 0, the default) would fail every draw. */
+    glUseProgram(id);
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        glUniform1i(shadow_map_light_uniform(id, "u_maps_2d", l), l);
+        glUniform1i(shadow_map_light_uniform(id, "u_maps_cube", l), SHADOW_MAP_CUBE_UNITS + l);
+        p->lights[l].map_size = shadow_map_light_uniform(id, "u_map_size", l);
+        p->lights[l].light_matrix = shadow_map_light_uniform(id, "u_light_matrix", l);
+        p->lights[l].texel_scale = shadow_map_light_uniform(id, "u_texel_scale", l);
+        p->lights[l].near_plane = shadow_map_light_uniform(id, "u_near", l);
+        p->lights[l].far_plane = shadow_map_light_uniform(id, "u_far", l);
+    }
     return true;
+}
+
+/* The camera program of key k: one compiled before, or compiled now in
+ * place of the oldest. NULL where it does not compile (said on stderr,
+ * once: the failure is kept). */
+static const shadow_map_camera_program *shadow_map_camera_program_for(shadow_map_renderer *r,
+                                                                      const shadow_map_camera_key *k) {
+    for (int i = 0; i < r->camera_count; i++)
+        if (memcmp(&r->camera[i].key, k, sizeof *k) == 0)
+            return r->camera[i].program.id ? &r->camera[i] : NULL;
+    int slot = r->camera_oldest;
+    if (r->camera_count < SHADOW_MAP_CAMERA_PROGRAMS)
+        slot = r->camera_count++;
+    else
+        r->camera_oldest = (slot + 1) % SHADOW_MAP_CAMERA_PROGRAMS;
+    shadow_map_camera_program *p = &r->camera[slot];
+    render_program_destroy(&p->program);
+    *p = (shadow_map_camera_program){.key = *k};
+    return shadow_map_camera_program_load(p, k) ? p : NULL;
+}
+
+/* The key of the settings' kernel and overlays; no light set yet. */
+static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *st) {
+    return (shadow_map_camera_key){
+        .shape = (unsigned)shadow_map_kernels[st->filter].shape,
+        .kernel = (unsigned)shadow_map_kernels[st->filter].size,
+        .early_out = !st->no_early_out,
+        .receiver_plane = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
+        .show_texels = st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS,
+        .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
+    };
+}
+
+/* Light l in key k, with a map of that kind and texel kind. */
+static void shadow_map_key_light(shadow_map_camera_key *k, int l, shadow_map_kind kind, shadow_map_texel_kind texel) {
+    k->kinds |= shadow_map_light_bits(l, kind == SHADOW_MAP_CUBE ? SHADOW_MAP_LIGHT_CUBE : SHADOW_MAP_LIGHT_2D);
+    k->texel_kinds |= shadow_map_light_bits(l, texel);
+}
+
+/* Every light of the scene with its uniform map (a cube for a point light,
+ * a perspective map for a spot, an orthographic one for the sun), with
+ * the settings' kernel: the first frame's program, most often. */
+static shadow_map_camera_key shadow_map_scene_key(const scene *s, const shadow_map_settings *st) {
+    shadow_map_camera_key k = shadow_map_settings_key(st);
+    for (int l = 0; l < s->light_count; l++) {
+        scene_light_type type = s->lights[l].type;
+        shadow_map_key_light(&k, l, type == SCENE_LIGHT_POINT ? SHADOW_MAP_CUBE : SHADOW_MAP_2D,
+                             type == SCENE_LIGHT_DIRECTIONAL ? SHADOW_MAP_TEXEL_ORTHOGRAPHIC
+                                                             : SHADOW_MAP_TEXEL_PERSPECTIVE);
+    }
+    return k;
 }
 
 static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
@@ -315,11 +420,13 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
     return true;
 }
 
-bool shadow_map_init(shadow_map_renderer *r, const render_scene *gpu) {
+bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu) {
+    shadow_map_camera_key scene_key = shadow_map_scene_key(gpu->scene, settings);
     static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
     if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !render_program_load(&r->depth, depth_files, 2, NULL) ||
-        !shadow_map_camera_program_load(&r->camera_2d, "shadowmap_2d.frag") ||
-        !shadow_map_camera_program_load(&r->camera_cube, "shadowmap_cube.frag") ||
+        /* The scene's own combination now, so that a shader that does not
+         * compile fails init; the others as frames need them. */
+        !shadow_map_camera_program_for(r, &scene_key) ||
         !shadow_map_overlay_programs_load(r))
         return false;
     glGenVertexArrays(1, &r->overlay_vao);
@@ -341,8 +448,8 @@ bool shadow_map_init(shadow_map_renderer *r, const render_scene *gpu) {
 
 void shadow_map_destroy(shadow_map_renderer *r) {
     render_program_destroy(&r->depth);
-    render_program_destroy(&r->camera_2d.program);
-    render_program_destroy(&r->camera_cube.program);
+    for (int i = 0; i < r->camera_count; i++)
+        render_program_destroy(&r->camera[i].program);
     render_program_destroy(&r->lines.program);
     render_program_destroy(&r->inset.program);
     glDeleteVertexArrays(1, &r->overlay_vao);
@@ -357,45 +464,42 @@ void shadow_map_destroy(shadow_map_renderer *r) {
 
 /* ---- the camera pass ---- */
 
-/* Light l's share where its map lets it through, with the ambient term
- * when `ambient` (technique_shade_light's order of passes). */
-static void shadow_map_shade_light(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                                   int l, const shadow_map *m, const bool *objects, bool ambient) {
-    const scene_light *light = &f->gpu->scene->lights[l];
-    bool cube = m->kind == SHADOW_MAP_CUBE;
-    const shadow_map_camera_program *p = cube ? &r->camera_cube : &r->camera_2d;
-    render_program_use(&p->program, f->view);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(shadow_map_target(m->kind), m->texture.id);
-    glUniform1i(p->map, 0);
-    glUniform1i(p->light, l);
-    glUniform1f(p->ambient, ambient ? 1.0f : 0.0f);
-    glUniform1i(p->filter, (int)shadow_map_kernels[st->filter].shape);
-    glUniform1i(p->kernel, shadow_map_kernels[st->filter].size);
-    glUniform1i(p->early_out, !st->no_early_out);
-    glUniform1f(p->map_size, (float)m->size);
-    glUniform1i(p->receiver_plane, st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE);
-    glUniform1i(p->show_texels, st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS);
-    glUniform1i(p->show_texel_size, st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE);
-    glUniform1f(p->constant_bias,
-                st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
-    glUniform1f(p->normal_offset, st->normal_texels);
-    glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
-    glUniform3fv(p->light_origin, 1, light->position);
-    if (cube) {
-        glUniform1f(p->cube.near_plane, m->near_plane);
-        glUniform1f(p->cube.far_plane, m->far_plane);
-    } else {
-        glUniformMatrix4fv(p->map_2d.light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
-        glUniform1i(p->map_2d.texel_kind, (int)m->texel_kind);
-        glUniform1f(p->map_2d.texel_scale, m->texel_scale);
-        glUniform3fv(p->map_2d.light_axis, 1, light->direction);
+/* Every light on, by its kind in key k (shadowed where its map lets it
+ * through, or unshadowed), and the ambient term: the one shading pass.
+ * Only receivers read maps (the caster culling is for them too); the
+ * others take every light unshadowed, as in the reference. */
+static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                             const shadow_map_camera_key *k) {
+    const bool *objects = technique_shade_all_begin(f);
+    const shadow_map_camera_program *p = shadow_map_camera_program_for(r, k);
+    if (p) {
+        render_program_use(&p->program, f->view);
+        glUniform1f(p->constant_bias,
+                    st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
+        glUniform1f(p->normal_offset, st->normal_texels);
+        glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
+        for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+            unsigned kind = shadow_map_light_field(k->kinds, l);
+            if (kind != SHADOW_MAP_LIGHT_2D && kind != SHADOW_MAP_LIGHT_CUBE)
+                continue;
+            const shadow_map *m = &r->maps[l];
+            bool cube = kind == SHADOW_MAP_LIGHT_CUBE;
+            glActiveTexture(GL_TEXTURE0 + (GLenum)(cube ? SHADOW_MAP_CUBE_UNITS + l : l));
+            glBindTexture(shadow_map_target(m->kind), m->texture.id);
+            glUniform1f(p->lights[l].map_size, (float)m->size);
+            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
+            glUniform1f(p->lights[l].texel_scale, m->texel_scale);
+            glUniform1f(p->lights[l].near_plane, m->near_plane);
+            glUniform1f(p->lights[l].far_plane, m->far_plane);
+        }
+        glActiveTexture(GL_TEXTURE0);
+        render_draw_objects_receiving(f->gpu, &p->program, objects, true);
     }
-    /* Only receivers read the map (the caster culling is for them too);
-     * the others take the light unshadowed, as in the reference. */
-    render_draw_objects_receiving(f->gpu, &p->program, objects, true);
-    render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
-    render_draw_objects_receiving(f->gpu, &f->gpu->lit, objects, false);
+    render_use_lit(f->gpu, f->view, f->lights, true);
+    /* Without a program (said once on stderr) receivers are lit too. */
+    for (int i = 0; i < f->gpu->scene->object_count; i++)
+        if (render_in_mask(objects, i) && (!p || !f->gpu->scene->objects[i].receives))
+            render_draw_object(f->gpu, &f->gpu->lit, i);
 }
 
 /* ---- the frame ---- */
@@ -430,30 +534,19 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
             shadow_map_forget(&r->caches[l]);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    /* After a depth pre-pass, each light shaded where its map lets it
-     * through, the first with the ambient term: the filter runs once per
-     * visible pixel and light (technique_shade_light's order of passes). */
+    /* After a depth pre-pass, one shading pass: the filter runs once per
+     * visible pixel and light that adds to it. */
     render_depth_prepass(f->gpu, f->view, f->in_view);
+    shadow_map_camera_key key = shadow_map_settings_key(settings);
     for (int l = 0; l < s->light_count; l++) {
-        if (!technique_light_on(f, l))
-            continue;
-        bool ambient;
-        const bool *objects = technique_shade_begin(f, l, &ambient);
-        /* The overlays draw on everything in view, whatever a light reaches. */
-        if (settings->overlay != SHADOW_MAP_OVERLAY_NONE) {
-            objects = f->in_view;
-            glDisable(GL_SCISSOR_TEST);
-        }
-        if (fitted[l]) {
-            shadow_map_shade_light(r, settings, f, l, &r->maps[l], objects, ambient);
-        } else { /* nothing visible receives: no map needed, nothing shadowed */
-            render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
-            render_draw_objects(f->gpu, &f->gpu->lit, objects);
-        }
-        glDisable(GL_BLEND);
-        glDisable(GL_SCISSOR_TEST);
+        if (fitted[l])
+            shadow_map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
+        else if (technique_light_on(f, l)) /* nothing visible receives: no map needed, nothing shadowed */
+            key.kinds |= shadow_map_light_bits(l, SHADOW_MAP_LIGHT_UNSHADOWED);
     }
-    if (technique_ambient_light(f) < 0)
+    if (f->lights)
+        shadow_map_shade(r, settings, f, &key);
+    else
         technique_shade_ambient(f);
     shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
 }

@@ -20,11 +20,11 @@
  *        with the casters that layer needs (below); a fit that returns
  *        false means nothing can be shadowed, and the light is added
  *        unshadowed;
- *     3. the camera pass: a depth pre-pass, then each light shaded where
- *        its map lets it through (GL_EQUAL depth), the first with the
- *        ambient term, the others added (technique_shade_light's order):
- *        the filter runs once per visible pixel and light, and a one-light
- *        scene is shaded once;
+ *     3. the camera pass: a depth pre-pass, then one pass (GL_EQUAL
+ *        depth) that shades every light on where its map lets it through,
+ *        and the ambient term: each visible pixel is shaded once, and
+ *        filtered once per light that adds to it (beyond a light's range,
+ *        outside its cone or facing away the filter is skipped);
  *     4. the overlays of settings->overlay.
  *
  * Storage (shadow_map). A map has a kind and layers: SHADOW_MAP_2D has
@@ -62,8 +62,9 @@
  * below, shadow_map_render's fits and the map inset are for 2D and cube
  * maps.
  *
- * The camera pass (shaders/shadowmap.glsl with shadowmap_2d.frag or
- * shadowmap_cube.frag) moves each point towards the light by the constant
+ * The camera pass (shaders/shadowmap.frag: shadowmap.glsl's kernels,
+ * shadowmap_2d.glsl's and shadowmap_cube.glsl's maps, one program per
+ * combination of the lights' kinds of map, shadow_map_light_kind) moves each point towards the light by the constant
  * bias and along its normal by the normal offset (both in map texels of
  * world distance, so they hold at any map size and scene scale), then
  * filters the hardware comparisons over the kernel of settings->filter:
@@ -302,19 +303,53 @@ typedef struct shadow_map {
     shadow_map_texture texture;
 } shadow_map;
 
-/* The camera pass's program (lit.vert with shadowmap_2d.frag or
- * shadowmap_cube.frag) and its uniforms: those both kinds have, then
- * each kind's own (the other kind's are never set). */
+/* What light i is in the camera pass (the shaders'
+ * SHADOW_MAP_LIGHT_KIND_<i>): off, on without a map (nothing it reaches
+ * receives: added unshadowed), with a 2D map or with a cube map. */
+typedef enum shadow_map_light_kind {
+    SHADOW_MAP_LIGHT_OFF,
+    SHADOW_MAP_LIGHT_UNSHADOWED,
+    SHADOW_MAP_LIGHT_2D,
+    SHADOW_MAP_LIGHT_CUBE
+} shadow_map_light_kind;
+/* Light i's kind, and its map's shadow_map_texel_kind, in bits
+ * SHADOW_MAP_LIGHT_KIND_BITS i and up of a key's kinds and texel_kinds. */
+#define SHADOW_MAP_LIGHT_KIND_BITS 2
+_Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
+/* The camera programs kept: the keys a run goes through (lights coming
+ * into reach, a point light's warp falling back to a cube, the kernels a
+ * lecturer or the benchmark tries) are compiled once each, the oldest
+ * dropped beyond this many. */
+#define SHADOW_MAP_CAMERA_PROGRAMS 16
+/* Texture units: light i's 2D map on unit i, its cube map on unit
+ * SCENE_MAX_LIGHTS + i (samplers of two types never share a unit); 16
+ * units, GL 3.3's minimum. */
+#define SHADOW_MAP_CUBE_UNITS SCENE_MAX_LIGHTS
+
+/* What a camera program is compiled for (shaders/shadowmap.frag's
+ * SHADOW_MAP_LIGHT_KIND_<i>, SHADOW_MAP_TEXEL_KIND_<i> and
+ * SHADOW_MAP_PASS_*): whatever chooses code rather than a number, so
+ * that a program holds only the code it runs. As uniforms every pixel
+ * would run every choice's code: llvmpipe runs both sides of a branch,
+ * masked (on simple the kinds alone, as uniforms, cost 0.56x more in the
+ * camera pass's fragment shader; callgrind). All unsigned: keys compare
+ * with memcmp. */
+typedef struct shadow_map_camera_key {
+    unsigned kinds, texel_kinds; /* per light (SHADOW_MAP_LIGHT_KIND_BITS) */
+    unsigned shape, kernel;      /* shadow_map_kernel, N or the disc's scale */
+    unsigned early_out, receiver_plane, show_texels, show_texel_size;
+} shadow_map_camera_key;
+
+/* The camera pass's program (lit.vert with shadowmap.frag) for one key,
+ * and its uniforms: the pass's, then each light's (-1 where its kind has
+ * none). */
 typedef struct shadow_map_camera_program {
     render_program program;
-    int map, light, ambient, filter, kernel, early_out, map_size, receiver_plane, show_texels, show_texel_size,
-        constant_bias, normal_offset, depth_bias, light_origin;
+    shadow_map_camera_key key;
+    int constant_bias, normal_offset, depth_bias;
     struct {
-        int light_matrix, texel_kind, texel_scale, light_axis;
-    } map_2d;
-    struct {
-        int near_plane, far_plane;
-    } cube;
+        int map_size, light_matrix, texel_scale, near_plane, far_plane;
+    } lights[SCENE_MAX_LIGHTS];
 } shadow_map_camera_program;
 
 /* overlay.vert with overlay_lines.frag: world-space lines in one colour. */
@@ -351,7 +386,8 @@ typedef struct shadow_map_cache {
 /* A technique's maps and their GL objects. */
 typedef struct shadow_map_renderer {
     render_program depth;
-    shadow_map_camera_program camera_2d, camera_cube;
+    shadow_map_camera_program camera[SHADOW_MAP_CAMERA_PROGRAMS];
+    int camera_count, camera_oldest;
     shadow_map_lines_program lines;
     shadow_map_inset_program inset;
     unsigned framebuffer, overlay_vao, overlay_buffer;
@@ -370,8 +406,9 @@ typedef struct shadow_map_renderer {
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
                                         const float (*receivers)[3], int receiver_count);
 
-/* gpu: the scene whose object count sizes the caster sets. */
-bool shadow_map_init(shadow_map_renderer *r, const render_scene *gpu);
+/* gpu: the scene whose object count sizes the caster sets; its lights and
+ * the settings give the first camera program, compiled now. */
+bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu);
 void shadow_map_destroy(shadow_map_renderer *r);
 /* The whole frame (see the top of this file); fit returns 2D and cube
  * maps only. */

@@ -1,0 +1,56 @@
+#version 330 core
+// The camera pass of the shadow maps (demos/lib/shadow_map.c, for
+// demos/shadowmap.c and demos/psm.c): every light in one pass over the
+// visible receivers, after a depth pre-pass, so that each visible pixel is
+// shaded once and filtered once per light that reaches it.
+//
+// Samplers can be indexed only by constant expressions in GLSL 3.30, so
+// the lights are listed one by one below, and what light i is in this pass
+// is the define SHADOW_MAP_LIGHT_KIND_<i> (a shadow_map_light_kind from C:
+// off, on without a map (nothing it reaches receives: added unshadowed),
+// with a 2D map or with a cube map), and how its 2D map's texel is
+// measured SHADOW_MAP_TEXEL_KIND_<i> (a shadow_map_texel_kind). C compiles
+// a program per combination (and per kernel and overlay), in which each
+// light's code is there only for its kind: read from uniforms, every pixel
+// would run every kind's code (llvmpipe runs both sides of a branch,
+// masked).
+#include "lighting.glsl"
+
+in vec3 v_position;
+in vec3 v_normal;
+
+uniform vec3 u_albedo;
+uniform float u_constant_bias;   // texels of world distance, towards the light
+uniform float u_normal_offset;   // texels, along the normal, times the slope
+uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
+
+out vec4 out_color;
+
+// The lecture's overlays, fixed per program like the kernel.
+const bool shadowmap_show_texels = SHADOW_MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
+const bool shadowmap_show_texel_size = SHADOW_MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
+
+#include "shadowmap.glsl"
+#include "shadowmap_2d.glsl"
+#include "shadowmap_cube.glsl"
+
+#if SCENE_MAX_LIGHTS != 8
+#error "shadowmap.frag lists SCENE_MAX_LIGHTS lights one by one: one SHADOWMAP_LIGHT line each"
+#endif
+// Light i's share by its kind (a constant: the other kinds' code is dropped).
+#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], i, texel_kind, n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], i, texel_kind, n)
+
+void main() {
+    // Two-sided: open meshes (the teapot) show their inside.
+    vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
+    vec3 c = lighting_ambient(u_albedo);
+    SHADOWMAP_LIGHT(0, SHADOW_MAP_LIGHT_KIND_0, SHADOW_MAP_TEXEL_KIND_0);
+    SHADOWMAP_LIGHT(1, SHADOW_MAP_LIGHT_KIND_1, SHADOW_MAP_TEXEL_KIND_1);
+    SHADOWMAP_LIGHT(2, SHADOW_MAP_LIGHT_KIND_2, SHADOW_MAP_TEXEL_KIND_2);
+    SHADOWMAP_LIGHT(3, SHADOW_MAP_LIGHT_KIND_3, SHADOW_MAP_TEXEL_KIND_3);
+    SHADOWMAP_LIGHT(4, SHADOW_MAP_LIGHT_KIND_4, SHADOW_MAP_TEXEL_KIND_4);
+    SHADOWMAP_LIGHT(5, SHADOW_MAP_LIGHT_KIND_5, SHADOW_MAP_TEXEL_KIND_5);
+    SHADOWMAP_LIGHT(6, SHADOW_MAP_LIGHT_KIND_6, SHADOW_MAP_TEXEL_KIND_6);
+    SHADOWMAP_LIGHT(7, SHADOW_MAP_LIGHT_KIND_7, SHADOW_MAP_TEXEL_KIND_7);
+    out_color = vec4(c, 1.0);
+}

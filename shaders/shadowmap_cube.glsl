@@ -1,0 +1,90 @@
+// The camera pass's cube maps (shaders/shadowmap.frag): a point light's
+// six 90-degree faces, read by direction with seamless filtering across
+// face edges. Light i's map is u_maps_cube[i] and the uniforms of index i.
+
+uniform samplerCubeShadow u_maps_cube[SCENE_MAX_LIGHTS];
+uniform float u_near[SCENE_MAX_LIGHTS];
+uniform float u_far[SCENE_MAX_LIGHTS];
+
+// A tap ray this close to parallel with the receiver's plane would slide
+// far along it onto the plane: such taps keep their own point.
+const float SHADOWMAP_MIN_PLANE_FACING = 0.05;
+// The kernel's plane is built across the direction from the up axis, or
+// from the x axis when the direction is this close to up (where the cross
+// product with up vanishes).
+const float SHADOWMAP_NEAR_UP = 0.9;
+
+// The point's direction from the light, the receiver's normal, the depth
+// bias, the plane across the direction (two unit axes), a texel's size
+// there and the light's depth range: set by shadowmap_visibility for
+// shadowmap_kernel_read.
+vec3 shadowmap_direction, shadowmap_receiver_normal, shadowmap_across_u, shadowmap_across_v;
+float shadowmap_depth_bias, shadowmap_step;
+vec2 shadowmap_depth_range;
+
+// The depth a face's projection stores for a point at this direction:
+// the perspective depth of its distance along the face's axis.
+float shadowmap_face_depth(vec3 d, vec2 range) {
+    float near = range.x, far = range.y;
+    vec3 a = abs(d);
+    float z = max(a.x, max(a.y, a.z));
+    float ndc = (far + near) / (far - near) - 2.0 * far * near / ((far - near) * z);
+    return min(ndc * 0.5 + 0.5, 1.0);
+}
+
+// One tap, offset (in texels) across the direction. With the
+// receiver-plane bias the tap point slides along its light ray onto the
+// receiver's plane, and compares that point's own depth (as Isidoro's
+// receiver-plane bias does for 2D maps), so a slanted receiver does not
+// shadow its own kernel.
+float shadowmap_kernel_read(samplerCubeShadow map, vec2 offset) {
+    vec3 d = shadowmap_direction, w = (shadowmap_across_u * offset.x + shadowmap_across_v * offset.y) * shadowmap_step;
+    vec3 t = d + w;
+    float facing = dot(normalize(t), shadowmap_receiver_normal);
+    if (shadowmap_receiver_plane && abs(facing) > SHADOWMAP_MIN_PLANE_FACING)
+        t -= normalize(t) * (dot(w, shadowmap_receiver_normal) / facing);
+    return texture(map, vec4(d + w, shadowmap_face_depth(t, shadowmap_depth_range) - shadowmap_depth_bias));
+}
+
+#define SHADOWMAP_SAMPLER samplerCubeShadow
+#include "shadowmap_light.glsl"
+#undef SHADOWMAP_SAMPLER
+
+// A 90-degree face spans 2 |major axis| over the map's size.
+float shadowmap_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
+    vec3 d = abs(p - lights_position[i].xyz);
+    return 2.0 * max(d.x, max(d.y, d.z)) / u_map_size[i];
+}
+
+// The kernels' offsets lie in the plane across the direction, a texel
+// apart there: a face's texel grid is not at hand in direction space. The
+// tents take the taps and weights of a point on a texel corner (fraction
+// 0): symmetric about the point, the same tap count and footprint as on a
+// 2D map, but not following where the point lies in its texel.
+float shadowmap_visibility(samplerCubeShadow map, int i, vec3 p, float depth_bias, bool needed) {
+    vec3 d = p - lights_position[i].xyz;
+    vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
+    if (!needed)
+        return 1.0;
+    vec2 range = vec2(u_near[i], u_far[i]);
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE)
+        return texture(map, vec4(d, shadowmap_face_depth(d, range) - depth_bias));
+    vec3 axis = normalize(d);
+    vec3 u = normalize(cross(abs(axis.y) < SHADOWMAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
+    shadowmap_direction = d;
+    shadowmap_receiver_normal = receiver_normal;
+    shadowmap_depth_bias = depth_bias;
+    shadowmap_depth_range = range;
+    shadowmap_across_u = u;
+    shadowmap_across_v = cross(axis, u);
+    shadowmap_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    return shadowmap_kernel_filter(map, vec2(0.0), 1.0);
+}
+
+// On the face the direction falls on: the two other components over the
+// major one span -1..1 across the face.
+vec2 shadowmap_texel_coord(samplerCubeShadow map, int i, vec3 p) {
+    vec3 d = p - lights_position[i].xyz, a = abs(d);
+    vec2 face = a.x >= a.y && a.x >= a.z ? d.yz / a.x : a.y >= a.z ? d.xz / a.y : d.xy / a.z;
+    return (face * 0.5 + 0.5) * u_map_size[i];
+}

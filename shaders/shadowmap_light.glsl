@@ -1,0 +1,91 @@
+// One light's share in the camera pass (shaders/shadowmap.frag), for maps
+// of the sampler type SHADOWMAP_SAMPLER: included once by each kind's file
+// (shadowmap_2d.glsl: sampler2DShadow, shadowmap_cube.glsl:
+// samplerCubeShadow), which defines for its type, before this file,
+//   shadowmap_kernel_read(map, offset)  one tap (a kernel tap's offset, in
+//                                       the unit the kind filters in) about
+//                                       the point its visibility set up;
+// and after it
+//   shadowmap_texel_world(map, i, k, p) world size of a texel of light i's
+//                                       map at p (k: the texel's kind, a
+//                                       SHADOW_MAP_TEXEL_*, for 2D maps);
+//   shadowmap_visibility(map, i, p, b, needed)  the filtered comparison at
+//                                       p, its map depth lowered by b first
+//                                       (the screen derivatives it takes
+//                                       come first, in uniform control flow;
+//                                       needed false then reads no map: the
+//                                       share is 0 there whatever it says);
+//   shadowmap_texel_coord(map, i, p)    p's position in the map, in texels
+//                                       (the lecture's texel overlays).
+// GLSL picks each by the sampler's type: the same names for both kinds.
+
+float shadowmap_texel_world(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 p);
+float shadowmap_visibility(SHADOWMAP_SAMPLER map, int i, vec3 p, float depth_bias, bool needed);
+vec2 shadowmap_texel_coord(SHADOWMAP_SAMPLER map, int i, vec3 p);
+
+// The kernel's visibility: the early-out's rim, then where it disagrees
+// (or without the early-out) the weighted sum of every tap.
+float shadowmap_kernel_filter(SHADOWMAP_SAMPLER map, vec2 fraction, float unit) {
+    mat2 rotation = shadowmap_kernel_rotation();
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_TENT)
+        shadowmap_tent_place(fraction);
+    if (shadowmap_kernel_early_out()) {
+        vec4 rim;
+        for (int k = 0; k < SHADOWMAP_RIM_TAPS; k++)
+            rim[k] = shadowmap_kernel_read(map, shadowmap_kernel_tap(shadowmap_kernel_rim(k), rotation, unit).xy);
+        float agreed = shadowmap_rim_agreement(rim);
+        if (agreed >= 0.0)
+            return agreed;
+    }
+    float sum = 0.0;
+    for (int i = 0; i < shadowmap_kernel_taps(); i++) {
+        vec3 tap = shadowmap_kernel_tap(i, rotation, unit);
+        sum += tap.z * shadowmap_kernel_read(map, tap.xy);
+    }
+    return sum / shadowmap_kernel_norm();
+}
+
+// Light i's share at this fragment (normal n) where its map (texels of
+// kind texel_kind) lets it
+// through, with the lecture's overlays. Where the light adds nothing
+// unshadowed (beyond its range, outside a spot's cone, facing away) the
+// filter is skipped: the share is 0 whatever it would say.
+vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
+    vec3 to_light = lighting_to_light(i, v_position);
+    // Both biases move the point where the map is read, in world units
+    // scaled by the map's texel there, so they hold at any map size,
+    // distance and scene scale. The normal offset grows with the slope
+    // (sin of the angle to the light), where a texel spans most depth.
+    float texel = shadowmap_texel_world(map, i, texel_kind, v_position);
+    float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
+    float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+    vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
+    vec3 unshadowed = lighting_unshadowed(i, v_position, n, u_albedo);
+    bool needed = unshadowed != vec3(0.0) || shadowmap_show_texel_size;
+    float visibility =
+        shadowmap_visibility(map, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y), needed);
+    vec3 c = visibility * unshadowed;
+    // Lines one pixel wide where texels meet: how big a texel is on screen
+    // is what aliasing is made of.
+    vec2 map_texel = shadowmap_texel_coord(map, i, v_position);
+    vec2 distance_to_edge =
+        abs(fract(map_texel - 0.5) - 0.5) / max(fwidth(map_texel), vec2(SHADOWMAP_MIN_TEXEL_FWIDTH));
+    float edge = 1.0 - min(min(distance_to_edge.x, distance_to_edge.y), 1.0);
+    if (shadowmap_show_texels)
+        c *= 1.0 - SHADOWMAP_TEXEL_LINE_DARKENING * edge;
+    // The aliasing measure of the perspective shadow map papers (dp/ds):
+    // a texel's size in pixels, the square root of the pixel area it
+    // covers. Blue: a quarter pixel or less, green: one, red: 32 or more.
+    if (shadowmap_show_texel_size) {
+        vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
+        float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), SHADOWMAP_HEAT_MIN_AREA));
+        float t = clamp((log2(texel_pixels) + SHADOWMAP_HEAT_LOG2_OFFSET) / SHADOWMAP_HEAT_LOG2_RANGE, 0.0, 1.0);
+        float one_pixel = SHADOWMAP_HEAT_LOG2_OFFSET / SHADOWMAP_HEAT_LOG2_RANGE;
+        vec3 heat = t < one_pixel ? mix(SHADOWMAP_HEAT_SMALL, SHADOWMAP_HEAT_ONE_PIXEL, t / one_pixel)
+                                  : mix(SHADOWMAP_HEAT_ONE_PIXEL, SHADOWMAP_HEAT_LARGE,
+                                        (t - one_pixel) / (1.0 - one_pixel));
+        float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
+        c = heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
+    }
+    return c;
+}
