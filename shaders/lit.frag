@@ -1,14 +1,18 @@
 #version 330 core
 #include "lighting.glsl"
-// The lights of the set u_lights (bit i: light i, RENDER_LIGHT_BIT in
+// The lights of a set (u_light_count of them, their indices in
+// u_light_list, from render_use_lit's RENDER_LIGHT_BIT set in
 // common/gl/render.h) fully visible, plus ambient when u_ambient is 1: the
-// unshadowed picture, or one light's share of it.
+// unshadowed picture, or one light's share of it. A list rather than a
+// test of each light's bit: llvmpipe would run every light's code, masked,
+// for each pass of one light.
 in vec3 v_position;
 in vec3 v_normal;
 
 uniform vec3 u_albedo;
 uniform float u_ambient;
-uniform uint u_lights;
+uniform int u_light_count;
+uniform int u_light_list[SCENE_MAX_LIGHTS];
 
 out vec4 out_color;
 
@@ -16,8 +20,7 @@ void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
     vec3 c = u_ambient * lighting_ambient(u_albedo);
-    for (int i = 0; i < lights_count.x; i++)
-        if ((u_lights & (1u << uint(i))) != 0u)
-            c += lighting_unshadowed(i, v_position, n, u_albedo);
+    for (int k = 0; k < u_light_count; k++)
+        c += lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
     out_color = vec4(c, 1.0);
 }

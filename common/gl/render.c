@@ -146,7 +146,8 @@ bool render_scene_create(render_scene *r, const scene *s) {
         return false;
     }
     r->lit_ambient = glGetUniformLocation(r->lit.id, "u_ambient");
-    r->lit_lights = glGetUniformLocation(r->lit.id, "u_lights");
+    r->lit_light_count = glGetUniformLocation(r->lit.id, "u_light_count");
+    r->lit_light_list = glGetUniformLocation(r->lit.id, "u_light_list");
     return context_gl_ok("render_scene_create");
 }
 
@@ -186,7 +187,13 @@ void render_scene_destroy(render_scene *r) {
 void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
     render_program_use(&r->lit, v);
     glUniform1f(r->lit_ambient, ambient ? 1.0f : 0.0f);
-    glUniform1ui(r->lit_lights, lights);
+    int list[SCENE_MAX_LIGHTS], count = 0;
+    for (int l = 0; l < r->scene->light_count; l++)
+        if (lights & RENDER_LIGHT_BIT(l))
+            list[count++] = l;
+    glUniform1i(r->lit_light_count, count);
+    if (count > 0)
+        glUniform1iv(r->lit_light_list, count, list);
 }
 
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask) {

@@ -55,7 +55,7 @@ typedef struct render_scene {
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
     unsigned lights_buffer;
     render_program lit;
-    int lit_ambient, lit_lights;
+    int lit_ambient, lit_light_count, lit_light_list;
     render_program depth; /* lit.vert with depth.frag: render_depth_prepass */
     bool inject_gl_error; /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
