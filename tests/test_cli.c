@@ -87,6 +87,27 @@ static void test_broken_model_file(void **state) {
                    "malformed.obj");
 }
 
+/* A model whose header claims 100 M vertices (the file holds 8): each
+ * program refuses it at once, naming the scene, the object and the claim,
+ * where assimp would allocate and zero 1.2 GB and post-process for
+ * seconds (OutOfMemory.off of assimp-testmodels: 16 GB and a kill). */
+static void test_model_claiming_too_much(void **state) {
+    (void)state;
+    static const char *const programs[][2] = {
+        {"planar", "--backend egl --frames 1"}, {"volumes", "--backend egl --frames 1"}, {"raytrace", ""}};
+    for (size_t i = 0; i < sizeof programs / sizeof *programs; i++) {
+        char command[2048];
+        snprintf(command, sizeof command,
+                 "timeout 60 %s %s --size 64x36 --scene tests/data/io_cli_model_claims_too_much.json "
+                 "--screenshot out/test/io_claims_%s.png",
+                 support_program(programs[i][0]), programs[i][1], programs[i][0]);
+        assert_int_equal(support_run(command, err, sizeof err), EXIT_RUNTIME);
+        assert_int_equal(support_count_lines(err), 1);
+        assert_non_null(strstr(err, "io_cli_model_claims_too_much.json: objects[0] \"claims\""));
+        assert_non_null(strstr(err, "io_off_claims_too_many.off: OFF header claims 100000000 vertices"));
+    }
+}
+
 static void test_missing_shader_dir(void **state) {
     (void)state;
     expect_failure("--frames 1 --shader-dir out/test/no_such_dir", EXIT_RUNTIME, "out/test/no_such_dir/lit.vert",
@@ -160,6 +181,7 @@ int main(void) {
         cmocka_unit_test(test_missing_scene),
         cmocka_unit_test(test_malformed_scene),
         cmocka_unit_test(test_broken_model_file),
+        cmocka_unit_test(test_model_claiming_too_much),
         cmocka_unit_test(test_missing_shader_dir),
         cmocka_unit_test(test_broken_shader_names_file_and_line),
         cmocka_unit_test(test_help_lists_flags_and_toggles),

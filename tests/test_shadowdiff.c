@@ -1,13 +1,15 @@
 /* Tests of common/measure/shadowdiff.c and build/shadowdiff on synthetic dumps
  * whose answer is known: which pixels are compared, the counts, the heat
- * map, the consistency checks, and the dump files' round trip. Run from
- * the repository root. */
+ * map, the consistency checks, the comparisons that give no figure
+ * (nothing compared, NaN or infinity), --max-misclassified, and the dump
+ * files' round trip. Run from the repository root. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include <cJSON.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +21,9 @@
 
 #define EXIT_RUNTIME 1
 #define EXIT_USAGE 2
+#define EXIT_OVER_MAX 3
+#define EXIT_NOTHING_COMPARED 4
+#define EXIT_NOT_FINITE 5
 #define SIZE 8
 #define PIXELS (SIZE * SIZE)
 #define GROUND 0
@@ -267,7 +272,25 @@ static void test_receiver_restricts(void **state) {
     free_pair(&reference, &test);
 }
 
-static void test_nothing_compared_gives_zeros(void **state) {
+/* Compares expecting no figure: false, `problem`, and one line on stderr
+ * holding `expect`. */
+static shadowdiff_result expect_no_figure(const dump_frame *reference, const dump_frame *test,
+                                          shadowdiff_problem problem, const char *expect) {
+    shadowdiff_result r;
+    const shadowdiff_settings names = {.reference_name = "REF", .test_name = "TEST"};
+    support_capture_stderr();
+    bool compared = shadowdiff_compare(reference, test, &names, &r, NULL);
+    const char *text = support_release_stderr();
+    assert_false(compared);
+    assert_int_equal(r.problem, problem);
+    assert_int_equal(support_count_lines(text), 1);
+    if (!strstr(text, expect))
+        fail_msg("expected \"%s\" in \"%s\"", expect, text);
+    return r;
+}
+
+/* Every percentage would be 0: a perfect technique, so no figure. */
+static void test_nothing_compared_is_an_error(void **state) {
     (void)state;
     dump_frame reference, test;
     make_pair(&reference, &test, point_light);
@@ -275,11 +298,64 @@ static void test_nothing_compared_gives_zeros(void **state) {
         test.depth[i] = 2 * DEPTH;
         set_visibility(&reference, &test, i, 1, 0);
     }
-    shadowdiff_result r = compare(&reference, &test, NULL);
+    shadowdiff_result r = expect_no_figure(&reference, &test, SHADOWDIFF_PROBLEM_NOTHING_COMPARED,
+                                           "REF and TEST: nothing compared");
     assert_counts(&r, 0, 0, 0);
-    assert_true(r.false_shadow_percent == 0 && r.false_lit_percent == 0 && r.misclassified_percent == 0);
-    assert_true(r.mean_abs_error == 0);
     free_pair(&reference, &test);
+}
+
+#define BAD_PIXEL 11 /* (3, 1) */
+
+typedef struct bad_value {
+    bool in_reference;
+    size_t array; /* offsetof(dump_frame, the array) */
+    int components;
+    float value;
+    bool no_surface;    /* that dump sees no surface at the pixel */
+    const char *expect; /* NULL: the rules do not read it, the pixels are compared */
+} bad_value;
+
+static float *array_of(dump_frame *d, size_t offset) {
+    float *array;
+    memcpy(&array, (char *)d + offset, sizeof array);
+    return array;
+}
+
+/* One bad value in one array of one dump: each the rules read is named
+ * with its file and pixel; one they do not read changes nothing. */
+static void test_non_finite_is_an_error(void **state) {
+    (void)state;
+    const bad_value cases[] = {
+        {false, offsetof(dump_frame, visibility), 1, NAN, false,
+         "TEST/visibility.pfm: nan at pixel (3, 1) where a surface is seen, and 1 non-finite value in all"},
+        {true, offsetof(dump_frame, visibility), 1, INFINITY, false, "REF/visibility.pfm: inf at pixel (3, 1)"},
+        {false, offsetof(dump_frame, depth), 1, NAN, false, "TEST/depth.pfm: nan at pixel (3, 1)"},
+        {true, offsetof(dump_frame, depth), 1, -INFINITY, false, "REF/depth.pfm: -inf at pixel (3, 1)"},
+        {false, offsetof(dump_frame, ids), 1, NAN, false, "TEST/ids.pfm: nan at pixel (3, 1), and 1"},
+        {true, offsetof(dump_frame, normal), 3, NAN, false, "REF/normal.pfm: nan at pixel (3, 1)"},
+        {true, offsetof(dump_frame, position), 3, INFINITY, false, "REF/position.pfm: inf at pixel (3, 1)"},
+        {false, offsetof(dump_frame, normal), 3, NAN, false, NULL},
+        {false, offsetof(dump_frame, position), 3, INFINITY, false, NULL},
+        {false, offsetof(dump_frame, visibility), 1, NAN, true, NULL},
+        {true, offsetof(dump_frame, depth), 1, NAN, true, NULL},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        dump_frame reference, test;
+        make_pair(&reference, &test, point_light);
+        dump_frame *bad = cases[c].in_reference ? &reference : &test;
+        if (cases[c].no_surface)
+            bad->ids[BAD_PIXEL] = -1;
+        array_of(bad, cases[c].array)[cases[c].components * BAD_PIXEL + cases[c].components - 1] = cases[c].value;
+        if (cases[c].expect) {
+            shadowdiff_result r = expect_no_figure(&reference, &test, SHADOWDIFF_PROBLEM_NOT_FINITE, cases[c].expect);
+            assert_counts(&r, 0, 0, 0);
+        } else {
+            shadowdiff_result r = compare(&reference, &test, NULL);
+            assert_int_equal(r.problem, SHADOWDIFF_PROBLEM_NONE);
+            assert_counts(&r, cases[c].no_surface ? PIXELS - 1 : PIXELS, 0, 0);
+        }
+        free_pair(&reference, &test);
+    }
 }
 
 static void assert_rgba(const unsigned char *rgba, size_t i, int r, int g, int b) {
@@ -379,8 +455,10 @@ static void test_dump_round_trip(void **state) {
 
 /* ---- build/shadowdiff ---- */
 
-/* DIR/ref and DIR/test hold the known verdicts; DIR/small is another
- * size, DIR/moved another light, DIR/far sees everything further away. */
+/* DIR/ref and DIR/test hold the known verdicts (12.5 % misclassified);
+ * DIR/small is another size, DIR/moved another light, DIR/far sees
+ * everything further away; DIR/nan is DIR/test with a NaN visibility and
+ * DIR/inf DIR/ref with an infinite depth, both where a surface is seen. */
 static int write_cli_dumps(void **state) {
     (void)state;
     dump_frame reference, test, small, moved;
@@ -393,6 +471,11 @@ static int write_cli_dumps(void **state) {
     for (size_t i = 0; i < PIXELS; i++)
         test.depth[i] = 2 * DEPTH;
     ok = ok && dump_write(&test, DIR "/far");
+    for (size_t i = 0; i < PIXELS; i++)
+        test.depth[i] = DEPTH;
+    test.visibility[BAD_PIXEL] = NAN;
+    reference.depth[BAD_PIXEL] = INFINITY;
+    ok = ok && dump_write(&test, DIR "/nan") && dump_write(&reference, DIR "/inf");
     free_pair(&reference, &test);
     dump_frame_free(&small);
     dump_frame_free(&moved);
@@ -462,20 +545,15 @@ static void test_cli_json(void **state) {
     cJSON_Delete(root);
 }
 
-/* Every pixel is ground: the box has none, which is a warning, not an error. */
+/* Every pixel is ground: the box has none, so nothing is compared on it. */
 static void test_cli_receiver(void **state) {
     (void)state;
     cJSON *ground = run_json(DIR "/ref " DIR "/test --receiver=ground");
     assert_float_equal(json_number(ground, "compared"), PIXELS, 0);
     assert_float_equal(json_number(ground, "false_shadow_percent"), 7.8125, 1e-12);
     cJSON_Delete(ground);
-    cJSON *box = run_json(DIR "/ref " DIR "/test --receiver box");
-    assert_float_equal(json_number(box, "compared"), 0, 0);
-    assert_float_equal(json_number(box, "misclassified_percent"), 0, 0);
-    assert_float_equal(json_number(box, "mean_abs_error"), 0, 0);
-    cJSON_Delete(box);
-    assert_int_equal(support_count_lines(err), 1);
-    assert_non_null(strstr(err, "warning"));
+    expect_failure(DIR "/ref " DIR "/test --receiver box --json", EXIT_NOTHING_COMPARED, "nothing compared",
+                   "on box");
 }
 
 static void test_cli_heatmap(void **state) {
@@ -493,14 +571,58 @@ static void test_cli_heatmap(void **state) {
     free(rgba);
 }
 
-static void test_cli_nothing_compared_warns(void **state) {
+/* No figure on stdout: a script reading it must not find 0 %. */
+static void test_cli_nothing_compared_fails(void **state) {
     (void)state;
     char out[4096];
-    assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/far", out, sizeof out), 0);
-    assert_int_equal(support_count_lines(err), 1);
-    assert_non_null(strstr(err, "warning"));
-    assert_non_null(strstr(out, "0 of 64"));
-    assert_null(strstr(out, "nan"));
+    expect_failure(DIR "/ref " DIR "/far", EXIT_NOTHING_COMPARED, DIR "/ref and " DIR "/far", "nothing compared");
+    assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/far --json", out, sizeof out), EXIT_NOTHING_COMPARED);
+    assert_string_equal(out, "");
+}
+
+static void test_cli_non_finite_fails(void **state) {
+    (void)state;
+    char out[4096];
+    expect_failure(DIR "/ref " DIR "/nan", EXIT_NOT_FINITE, DIR "/nan/visibility.pfm: nan at pixel (3, 1)",
+                   "where a surface is seen");
+    expect_failure(DIR "/inf " DIR "/test --json", EXIT_NOT_FINITE, DIR "/inf/depth.pfm: inf at pixel (3, 1)",
+                   "broken dump");
+    assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/nan", out, sizeof out), EXIT_NOT_FINITE);
+    assert_string_equal(out, "");
+}
+
+/* DIR/test misclassifies 12.5 %: over 12 and 0, not over 12.5 or 100. The
+ * report comes first, whole, as without the flag. */
+static void test_cli_max_misclassified(void **state) {
+    (void)state;
+    char out[4096];
+    const char *within[] = {"12.5", "100", "12.6"};
+    for (size_t i = 0; i < sizeof within / sizeof *within; i++) {
+        char args[256];
+        snprintf(args, sizeof args, DIR "/ref " DIR "/test --max-misclassified %s", within[i]);
+        assert_int_equal(run_shadowdiff(args, out, sizeof out), 0);
+        assert_string_equal(err, "");
+        assert_int_equal(support_count_lines(out), 5);
+    }
+    const char *over[] = {"12", "0", "12.49"};
+    for (size_t i = 0; i < sizeof over / sizeof *over; i++) {
+        char args[256];
+        snprintf(args, sizeof args, DIR "/ref " DIR "/test --max-misclassified=%s", over[i]);
+        assert_int_equal(run_shadowdiff(args, out, sizeof out), EXIT_OVER_MAX);
+        assert_int_equal(support_count_lines(out), 5);
+        assert_non_null(strstr(out, "12.500 %"));
+        assert_int_equal(support_count_lines(err), 1);
+        assert_non_null(strstr(err, DIR "/test: misclassified 12.500 % is over --max-misclassified"));
+    }
+    assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/test --json --max-misclassified 1", out, sizeof out),
+                     EXIT_OVER_MAX);
+    cJSON *root = cJSON_Parse(out);
+    assert_non_null(root);
+    assert_float_equal(json_number(root, "misclassified_percent"), 12.5, 1e-12);
+    cJSON_Delete(root);
+    /* Nothing compared is its own failure, whatever the limit. */
+    expect_failure(DIR "/ref " DIR "/far --max-misclassified 100", EXIT_NOTHING_COMPARED, DIR "/far",
+                   "nothing compared");
 }
 
 static void test_cli_usage_errors(void **state) {
@@ -511,6 +633,9 @@ static void test_cli_usage_errors(void **state) {
     expect_failure(DIR "/ref " DIR "/test " DIR "/far", EXIT_USAGE, "two dump directories", DIR "/far");
     expect_failure(DIR "/ref " DIR "/test --json=yes", EXIT_USAGE, "takes no value", "--json");
     expect_failure(DIR "/ref " DIR "/test --grazing 90", EXIT_USAGE, "--grazing", "'90'");
+    expect_failure(DIR "/ref " DIR "/test --max-misclassified 101", EXIT_USAGE, "--max-misclassified", "'101'");
+    expect_failure(DIR "/ref " DIR "/test --max-misclassified -1", EXIT_USAGE, "--max-misclassified", "'-1'");
+    expect_failure(DIR "/ref " DIR "/test --max-misclassified 5%", EXIT_USAGE, "--max-misclassified", "'5%'");
 }
 
 static void test_cli_runtime_errors(void **state) {
@@ -529,6 +654,10 @@ static void test_cli_help(void **state) {
     assert_int_equal(run_shadowdiff("--help", out, sizeof out), 0);
     assert_non_null(strstr(out, "red false shadow"));
     assert_non_null(strstr(out, "blue false lit"));
+    assert_non_null(strstr(out, "--max-misclassified P"));
+    assert_non_null(strstr(out, "Exit status: 0 compared; 1 a dump unreadable"));
+    assert_non_null(strstr(out, "4 nothing compared"));
+    assert_non_null(strstr(out, "5 a dump\nholds NaN"));
 }
 
 int main(void) {
@@ -541,7 +670,8 @@ int main(void) {
         cmocka_unit_test(test_excludes_back_facing_directional_light),
         cmocka_unit_test(test_grazing_leaves_out_near_edge_on),
         cmocka_unit_test(test_receiver_restricts),
-        cmocka_unit_test(test_nothing_compared_gives_zeros),
+        cmocka_unit_test(test_nothing_compared_is_an_error),
+        cmocka_unit_test(test_non_finite_is_an_error),
         cmocka_unit_test(test_heatmap_colours),
         cmocka_unit_test(test_rejects_inconsistent_dumps),
         cmocka_unit_test(test_dump_round_trip),
@@ -549,7 +679,9 @@ int main(void) {
         cmocka_unit_test(test_cli_json),
         cmocka_unit_test(test_cli_receiver),
         cmocka_unit_test(test_cli_heatmap),
-        cmocka_unit_test(test_cli_nothing_compared_warns),
+        cmocka_unit_test(test_cli_nothing_compared_fails),
+        cmocka_unit_test(test_cli_non_finite_fails),
+        cmocka_unit_test(test_cli_max_misclassified),
         cmocka_unit_test(test_cli_usage_errors),
         cmocka_unit_test(test_cli_runtime_errors),
         cmocka_unit_test(test_cli_help),

@@ -8,6 +8,7 @@
 #include <cglm/cglm.h>
 #include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -17,6 +18,15 @@
 #include <sys/stat.h>
 
 #define MESH_DEFAULT_SEGMENTS 32
+
+/* A header word longer than this is no count or keyword of any header read
+ * here. */
+#define MESH_HEADER_WORD_LENGTH 63
+#define MESH_HEADER_WORD_MAX (MESH_HEADER_WORD_LENGTH + 1)
+#define MESH_TEXT(x) MESH_TEXT_(x)
+#define MESH_TEXT_(x) #x
+/* The least a record of a text format takes: one digit and a separator. */
+#define MESH_MIN_TEXT_RECORD_BYTES 2
 
 /* Welding tolerance, as a fraction of the bounding-box diagonal. Seams (normal
  * or UV splits, per-face vertex copies) carry bit-identical or nearly
@@ -386,6 +396,171 @@ static long mesh_obj_single_vertex_line(const char *path) {
     return found;
 }
 
+/* What a header announces, against what the file can hold. */
+typedef struct mesh_claim {
+    char what[160];               /* "8 vertices and 6 faces" */
+    unsigned long long min_bytes; /* the least the announced records take (saturating) */
+    long long available;          /* bytes after the header */
+} mesh_claim;
+
+/* Adds `count` records of at least `bytes` each, saturating: a count can
+ * be any 20-digit number. */
+static void mesh_claim_add(mesh_claim *c, unsigned long long count, unsigned long long bytes) {
+    if (bytes && count > (ULLONG_MAX - c->min_bytes) / bytes) {
+        c->min_bytes = ULLONG_MAX;
+    } else {
+        c->min_bytes += count * bytes;
+    }
+}
+
+/* The next whitespace-separated word, past '#' comments to the end of
+ * their line (OFF); false at the end of the file. */
+static bool mesh_header_word(FILE *f, char word[MESH_HEADER_WORD_MAX]) {
+    while (fscanf(f, " %" MESH_TEXT(MESH_HEADER_WORD_LENGTH) "s", word) == 1) {
+        if (word[0] != '#') return true;
+        int c;
+        while ((c = fgetc(f)) != EOF && c != '\n') continue;
+    }
+    return false;
+}
+
+static bool mesh_header_count(FILE *f, unsigned long long *count) {
+    char word[MESH_HEADER_WORD_MAX], *end;
+    if (!mesh_header_word(f, word) || !isdigit((unsigned char)word[0])) return false;
+    errno = 0;
+    *count = strtoull(word, &end, 10);
+    return *end == '\0' && errno == 0;
+}
+
+/* [ST][C][N][4][n]OFF, the keyword of an OFF file. */
+static bool mesh_is_off_keyword(const char *word) {
+    size_t length = strlen(word);
+    return length >= 3 && strcmp(word + length - 3, "OFF") == 0 && strspn(word, "STCN4n") == length - 3;
+}
+
+/* An OFF file: the keyword (optional in the format, so a file named .off
+ * may start with the counts), with nOFF the dimension, then the vertex and
+ * face counts; every vertex and face is a line of at least a digit and a
+ * line end. False when the header is not OFF's or not whole (assimp then
+ * says what is wrong). */
+static bool mesh_read_off_claim(FILE *f, bool named_off, mesh_claim *c) {
+    char word[MESH_HEADER_WORD_MAX];
+    unsigned long long dimension, vertices, faces;
+    if (!mesh_header_word(f, word)) return false;
+    bool keyword = mesh_is_off_keyword(word);
+    if (keyword && strchr(word, 'n') && !mesh_header_count(f, &dimension)) return false;
+    if (keyword) {
+        if (!mesh_header_count(f, &vertices)) return false;
+    } else {
+        char *end;
+        errno = 0;
+        vertices = strtoull(word, &end, 10);
+        if (!named_off || !isdigit((unsigned char)word[0]) || *end != '\0' || errno != 0) return false;
+    }
+    if (!mesh_header_count(f, &faces)) return false;
+    snprintf(c->what, sizeof c->what, "%llu vertices and %llu faces", vertices, faces);
+    mesh_claim_add(c, vertices, MESH_MIN_TEXT_RECORD_BYTES);
+    mesh_claim_add(c, faces, MESH_MIN_TEXT_RECORD_BYTES);
+    return true;
+}
+
+/* A PLY header: "element NAME COUNT" lines, each followed by its
+ * "property" lines, up to "end_header". An element of an ASCII file is a
+ * line of at least a digit and a line end; of a binary one, at least a
+ * byte per property. */
+static bool mesh_read_ply_claim(FILE *f, mesh_claim *c) {
+    char word[MESH_HEADER_WORD_MAX], name[MESH_HEADER_WORD_MAX] = "";
+    unsigned long long count = 0, properties = 0;
+    bool ascii = false;
+    size_t used = 0;
+    if (!mesh_header_word(f, word) || strcmp(word, "ply") != 0) return false;
+    for (;;) {
+        if (!mesh_header_word(f, word)) return false;
+        bool last = strcmp(word, "end_header") == 0, element = strcmp(word, "element") == 0;
+        if ((last || element) && count) {
+            /* The element before this line is complete. */
+            mesh_claim_add(c, count, ascii ? (properties ? MESH_MIN_TEXT_RECORD_BYTES : 0) : properties);
+            int n = snprintf(c->what + used, sizeof c->what - used, "%s%llu %s", used ? ", " : "elements (", count,
+                             name);
+            used = n > 0 && (size_t)n < sizeof c->what - used ? used + (size_t)n : used;
+        }
+        if (last) break;
+        if (element) {
+            properties = 0;
+            if (!mesh_header_word(f, name) || !mesh_header_count(f, &count)) return false;
+            continue;
+        }
+        if (strcmp(word, "format") == 0) {
+            if (!mesh_header_word(f, word)) return false;
+            ascii = strcmp(word, "ascii") == 0;
+        }
+        properties += strcmp(word, "property") == 0;
+        int ch; /* the rest of the line: types, names, versions, comments */
+        while ((ch = fgetc(f)) != EOF && ch != '\n') continue;
+    }
+    if (used == 0) {
+        snprintf(c->what, sizeof c->what, "no elements");
+    } else if (used + 1 < sizeof c->what) {
+        strcpy(c->what + used, ")");
+    }
+    int ch;
+    while ((ch = fgetc(f)) != EOF && ch != '\n') continue;
+    return true;
+}
+
+/* assimp 5.2's OFF reader allocates the arrays its header claims (counts
+ * wrapped to 32 bits) with new[], whose constructors touch every byte,
+ * before it reads one vertex, and hands back a scene of that many
+ * vertices, nearly all zero: OutOfMemory.off (309 bytes) claims
+ * 353535235358 vertices, 1347917086 after wrapping, 16 GB that the kernel
+ * grants and then kills the process for (24 GB in all); a claim that fits
+ * in memory is post-processed at length (250 M vertices: 29 s and 5.7 GB
+ * for a 180-byte file, then a picture of a cube). Its PLY reader allocates
+ * for the claimed elements likewise (std::bad_alloc under a 4 GB address
+ * space for 2 G vertices in 200 bytes). No
+ * import property bounds it, and it happens inside aiImportFile, so the
+ * claims are checked against the file's size here first. Returns false
+ * after the error. */
+static bool mesh_check_header_claims(mesh *m, const char *path, long long size) {
+    const char *extension = strrchr(path, '.');
+    bool named_off = extension && strcasecmp(extension, ".off") == 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) return true; /* assimp says why */
+    mesh_claim claim = {.available = 0};
+    const char *format = "OFF";
+    bool claimed = mesh_read_off_claim(f, named_off, &claim);
+    if (!claimed) {
+        format = "PLY";
+        claim = (mesh_claim){.available = 0};
+        rewind(f);
+        claimed = mesh_read_ply_claim(f, &claim);
+    }
+    long position = ftell(f);
+    fclose(f);
+    if (!claimed || position < 0) return true;
+    claim.available = size - position;
+    /* The last record may end without a line end. */
+    if (claim.min_bytes <= (unsigned long long)claim.available + 1) return true;
+    return mesh_fail(m, path, "%s header claims %s: at least %llu bytes, but the file holds %lld after the "
+                     "header (refused before assimp allocates for them)", format, claim.what, claim.min_bytes,
+                     claim.available);
+}
+
+/* The triangles and vertices of the imported scene (triangulated, node
+ * transforms applied: instances are copies by now), within the limits:
+ * checked before the post-processing that welds and smooths and before our
+ * arrays, which take time and memory in proportion. */
+static bool mesh_check_counts(mesh *m, const char *path, const struct aiScene *scene) {
+    unsigned long long vertices = 0, triangles = 0;
+    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
+        vertices += scene->mMeshes[i]->mNumVertices;
+        triangles += mesh_count_assimp_triangles(scene->mMeshes[i]);
+    }
+    if (triangles <= MESH_MAX_TRIANGLES && vertices <= MESH_MAX_VERTICES) return true;
+    return mesh_fail(m, path, "%llu triangles and %llu vertices, over the limit of %d triangles and %d vertices "
+                     "a model may have", triangles, vertices, MESH_MAX_TRIANGLES, MESH_MAX_VERTICES);
+}
+
 bool mesh_load_file(mesh *m, const char *path) {
     *m = (mesh){0};
     /* assimp reports a directory as an unknown format, or as an empty OBJ:
@@ -398,9 +573,18 @@ bool mesh_load_file(mesh *m, const char *path) {
         return mesh_fail(m, path, "line %ld: a line statement needs 2 or more vertices "
                          "(refused: assimp 5.2 overflows a buffer on it)", bad_line);
     }
+    if (!mesh_check_header_claims(m, path, (long long)info.st_size)) return false;
 
+    /* The counts are checked after these steps, not before them from a raw
+     * import: a step that fails inside the import is an error, while one
+     * failing in aiApplyPostProcessing crashes assimp 5.2 in the Importer's
+     * destructor (AC/nosurfaces.ac of assimp-testmodels). */
     const struct aiScene *scene =
         aiImportFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+    if (scene && !mesh_check_counts(m, path, scene)) {
+        aiReleaseImport(scene);
+        return false;
+    }
     if (scene && mesh_scene_positions_finite(scene)) {
         scene = aiApplyPostProcessing(scene, aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals);
     }

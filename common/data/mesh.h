@@ -62,9 +62,21 @@ bool mesh_make_sphere(mesh *m, float radius, int segments);
 bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segments);
 bool mesh_make_cylinder(mesh *m, float radius, float height, int segments);
 
+/* What a model file may hold once its nodes' transforms are applied
+ * (instances counted each time): far above any model this suite renders
+ * in real time (the largest asset has 3674 triangles), far below what
+ * would exhaust memory (the limit takes 600 MB of indices, at most 3.6 GB
+ * of vertices). A triangle soup has three vertices per triangle. */
+#define MESH_MAX_TRIANGLES 50000000
+#define MESH_MAX_VERTICES (3 * MESH_MAX_TRIANGLES)
+
 /* Loads every triangle of a model file (all its meshes, node transforms
  * applied) through assimp; generates smooth normals where the file has none.
- * Files with no triangles, unreadable or malformed files are an error. */
+ * Files with no triangles, unreadable or malformed files are an error, and
+ * so are files over the limits above (checked before they are welded,
+ * smoothed or copied) and OFF or PLY files whose header claims more
+ * vertices, faces or elements than the file's size can hold (checked before
+ * assimp reads them: it allocates what the header claims). */
 bool mesh_load_file(mesh *m, const char *path);
 
 /* Removes degenerate and non-finite triangles (warning "name: removed ..."),

@@ -128,13 +128,73 @@ static void shadowdiff_paint(unsigned char *rgba, shadowdiff_pixel pixel, float 
     rgba[3] = 255;
 }
 
-static double shadowdiff_percent(long count, long of) { return of > 0 ? 100.0 * (double)count / (double)of : 0; }
+/* Only of compared pixels: `of` > 0. */
+static double shadowdiff_percent(long count, long of) { return 100.0 * (double)count / (double)of; }
+
+/* One array of a dump that the rules read, as its file is named in the
+ * dump directory (dump.h), so that the message points at the file. */
+typedef struct shadowdiff_array {
+    const char *file;
+    const float *values;
+    int components;
+    bool everywhere;     /* read at every pixel, not only where a surface is seen */
+    bool reference_only; /* read in the reference only (whether it faces the light) */
+} shadowdiff_array;
+
+/* Counts the non-finite values of `a` that the rules read; the first one's
+ * pixel goes to *first_pixel and its value to *first_value. */
+static long shadowdiff_count_non_finite(const dump_frame *d, const shadowdiff_array *a, size_t *first_pixel,
+                                        float *first_value) {
+    long count = 0;
+    size_t n = (size_t)d->width * (size_t)d->height;
+    for (size_t i = 0; i < n; i++) {
+        if (!a->everywhere && !(d->ids[i] >= 0))
+            continue;
+        for (int k = 0; k < a->components; k++) {
+            float v = a->values[(size_t)a->components * i + (size_t)k];
+            if (!isfinite(v) && count++ == 0) {
+                *first_pixel = i;
+                *first_value = v;
+            }
+        }
+    }
+    return count;
+}
+
+/* Checks every value the rules read in dump `d`; false after one line
+ * naming the first bad value's file and pixel. */
+static bool shadowdiff_check_finite(const dump_frame *d, const char *name, bool is_reference) {
+    const shadowdiff_array arrays[] = {
+        {"ids.pfm", d->ids, 1, true, false},
+        {"depth.pfm", d->depth, 1, false, false},
+        {"visibility.pfm", d->visibility, 1, false, false},
+        {"normal.pfm", d->normal, 3, false, true},
+        {"position.pfm", d->position, 3, false, true},
+    };
+    for (size_t a = 0; a < sizeof arrays / sizeof *arrays; a++) {
+        if (arrays[a].reference_only && !is_reference)
+            continue;
+        size_t pixel = 0;
+        float value = 0;
+        long count = shadowdiff_count_non_finite(d, &arrays[a], &pixel, &value);
+        if (count > 0) {
+            fprintf(stderr,
+                    "shadowdiff: %s/%s: %g at pixel (%zu, %zu)%s, and %ld non-finite value%s in all: a broken "
+                    "dump, no figure is given\n",
+                    name, arrays[a].file, value, pixel % (size_t)d->width, pixel / (size_t)d->width,
+                    arrays[a].everywhere ? "" : " where a surface is seen", count, count == 1 ? "" : "s");
+            return false;
+        }
+    }
+    return true;
+}
 
 bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
                         shadowdiff_result *out, unsigned char *heatmap_rgba) {
     const shadowdiff_settings s = settings ? *settings : (shadowdiff_settings){0};
     const char *r_name = s.reference_name ? s.reference_name : "reference";
     const char *t_name = s.test_name ? s.test_name : "test";
+    *out = (shadowdiff_result){.problem = SHADOWDIFF_PROBLEM_MISMATCH};
     if (!shadowdiff_check_consistent(reference, test, r_name, t_name))
         return false;
     int receiver = -1;
@@ -142,7 +202,10 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         shadowdiff_print_unknown_receiver(reference, r_name, s.receiver);
         return false;
     }
-    *out = (shadowdiff_result){0};
+    out->problem = SHADOWDIFF_PROBLEM_NOT_FINITE;
+    if (!shadowdiff_check_finite(reference, r_name, true) || !shadowdiff_check_finite(test, t_name, false))
+        return false;
+    out->problem = SHADOWDIFF_PROBLEM_NONE;
     double error_sum = 0, min_cosine = sin(s.grazing_degrees * (3.14159265358979 / 180));
     size_t n = (size_t)reference->width * (size_t)reference->height;
     for (size_t i = 0; i < n; i++) {
@@ -156,14 +219,17 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         if (heatmap_rgba)
             shadowdiff_paint(heatmap_rgba + 4 * i, pixel, reference->visibility[i]);
     }
-    if (out->compared == 0)
+    if (out->compared == 0) {
         fprintf(stderr,
-                "shadowdiff: warning: no pixel of %s and %s is compared (none is seen by both at the same "
-                "depth, facing the light%s%s); every percentage is 0\n",
+                "shadowdiff: %s and %s: nothing compared (no pixel is seen by both at the same depth, facing the "
+                "light%s%s): no figure is given\n",
                 r_name, t_name, s.receiver ? ", on " : "", s.receiver ? s.receiver : "");
+        out->problem = SHADOWDIFF_PROBLEM_NOTHING_COMPARED;
+        return false;
+    }
     out->false_shadow_percent = shadowdiff_percent(out->false_shadow, out->compared);
     out->false_lit_percent = shadowdiff_percent(out->false_lit, out->compared);
     out->misclassified_percent = shadowdiff_percent(out->false_shadow + out->false_lit, out->compared);
-    out->mean_abs_error = out->compared > 0 ? error_sum / (double)out->compared : 0;
+    out->mean_abs_error = error_sum / (double)out->compared;
     return true;
 }

@@ -30,8 +30,18 @@
  *   false lit     where the reference is shadowed and the test is lit
  *                 (light leaks, peter-panning);
  * misclassified counts both. The percentages are of the compared pixels;
- * mean_abs_error is the mean of |v_ref - v_test| over them. With no pixel
- * compared, all are 0 and a warning goes to stderr.
+ * mean_abs_error is the mean of |v_ref - v_test| over them.
+ *
+ * No figure is given (shadowdiff_compare prints one line naming the dumps
+ * and returns false, with `problem` saying why) when
+ *   - the dumps disagree as above, or the receiver is unknown (MISMATCH);
+ *   - a value the rules read is NaN or infinite (NOT_FINITE): an id
+ *     anywhere, or, where that dump sees a surface (id >= 0), its depth or
+ *     visibility, or the reference's normal or position. A NaN visibility
+ *     would otherwise count as shadow, a NaN depth or normal would leave the
+ *     pixel out: a broken technique would get plausible figures;
+ *   - no pixel is compared (NOTHING_COMPARED): every percentage would be
+ *     0, which reads as a perfect technique. The counts are then 0.
  *
  * The heat map (RGBA, top row first, opaque) shows
  *   red  (255, 0, 0)    false shadow
@@ -58,7 +68,15 @@ typedef struct shadowdiff_settings {
     double grazing_degrees;     /* also skip surfaces within this of edge-on to the light */
 } shadowdiff_settings;
 
+typedef enum shadowdiff_problem {
+    SHADOWDIFF_PROBLEM_NONE,
+    SHADOWDIFF_PROBLEM_MISMATCH,
+    SHADOWDIFF_PROBLEM_NOT_FINITE,
+    SHADOWDIFF_PROBLEM_NOTHING_COMPARED,
+} shadowdiff_problem;
+
 typedef struct shadowdiff_result {
+    shadowdiff_problem problem; /* NONE exactly when shadowdiff_compare returns true */
     long compared;
     long false_shadow, false_lit;
     double false_shadow_percent, false_lit_percent, misclassified_percent;
@@ -66,7 +84,9 @@ typedef struct shadowdiff_result {
 } shadowdiff_result;
 
 /* `settings` may be NULL (every object, default names). `heatmap_rgba`
- * may be NULL, else width * height * 4 bytes. */
+ * may be NULL, else width * height * 4 bytes (not painted after a MISMATCH
+ * or NOT_FINITE). Returns whether the figures in `out` mean something; `out`
+ * always gets the problem. */
 bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
                         shadowdiff_result *out, unsigned char *heatmap_rgba);
 

@@ -10,9 +10,17 @@
 #include "image.h"
 #include "shadowdiff.h"
 
+/* Exit statuses, besides 0 and FLAGS_EXIT_USAGE (2), for scripts: each
+ * says what went wrong without parsing stderr (main_usage lists them). */
 #define MAIN_EXIT_RUNTIME 1
+#define MAIN_EXIT_OVER_MAX 3
+#define MAIN_EXIT_NOTHING_COMPARED 4
+#define MAIN_EXIT_NOT_FINITE 5
 
 #define MAIN_MAX_GRAZING_DEGREES 45
+/* --max-misclassified's value until it is given: 0 is a real limit (no
+ * misclassified pixel at all), so "not given" needs a value of its own. */
+#define MAIN_NO_MAX_MISCLASSIFIED (-1.0f)
 
 typedef struct main_options {
     const char *program;
@@ -20,6 +28,7 @@ typedef struct main_options {
     int dir_count;
     const char *heatmap_path, *receiver;
     int grazing_degrees;
+    float max_misclassified; /* percent; MAIN_NO_MAX_MISCLASSIFIED: no limit */
     bool json;
 } main_options;
 
@@ -31,7 +40,12 @@ static void main_usage(const char *program, const flags_param *params, int count
     flags_print_help(stdout, params, count, 2, 0);
     printf("A pixel is compared where both see a surface at the same depth (0.1 %%) and the\n"
            "reference surface faces the light; lit means visibility >= 0.5. Percentages\n"
-           "are of the compared pixels; MAE is the mean |visibility difference| over them.\n");
+           "are of the compared pixels; MAE is the mean |visibility difference| over them.\n"
+           "Exit status: 0 compared; 1 a dump unreadable or the two inconsistent (size,\n"
+           "light, objects), an unknown receiver, the heat map unwritable; 2 a bad\n"
+           "command line; 3 misclassified over --max-misclassified (the figures are\n"
+           "printed); 4 nothing compared (no figure: 0 %% would look perfect); 5 a dump\n"
+           "holds NaN or infinity where it is read (no figure).\n");
 }
 
 /* Returns 0 to run, FLAGS_HELP_ASKED after --help, or an exit status. */
@@ -40,16 +54,19 @@ static int main_parse_flags(int argc, char **argv, main_options *o) {
         {NULL, NULL, 0, FLAGS_LIST, .items = o->dirs, .count = &o->dir_count, .min = 2, .max = 2,
          .what = "two dump directories: REF_DIR TEST_DIR"},
         {"heatmap",
-         "picture of the verdicts: red false shadow (lit in the\nreference, shadowed in the test), blue false lit (the\n"
-         "other way round), grey by the reference visibility where\nthey agree, dark grey not compared, black no surface",
+         "picture of the verdicts: red false shadow (lit in\nthe reference, shadowed in the test), blue false lit\n"
+         "(the other way round), grey by the reference\nvisibility where they agree, dark grey not compared,\n"
+         "black no surface",
          0, FLAGS_STRING, .text = &o->heatmap_path, .value_name = "PATH.png"},
         {"json", "one JSON object on stdout instead of text", 0, FLAGS_SWITCH, .on = &o->json},
         {"receiver", "only pixels of that object", 0, FLAGS_STRING, .text = &o->receiver, .value_name = "NAME"},
         {"grazing",
-         "also leave out surfaces within DEG degrees (0.." FLAGS_TEXT(MAIN_MAX_GRAZING_DEGREES) ") of\n"
-         "edge-on to the light (0): for sweeps of light directions",
+         "also leave out surfaces within DEG degrees\n(0.." FLAGS_TEXT(MAIN_MAX_GRAZING_DEGREES) ") of "
+         "edge-on to the light (0): for\nsweeps of light directions",
          0, FLAGS_INT, .integer = &o->grazing_degrees, .min = 0, .max = MAIN_MAX_GRAZING_DEGREES,
          .what = "whole degrees", .value_name = "DEG"},
+        {"max-misclassified", "exit with status 3 when misclassified is over P\npercent (0..100), after the report",
+         0, FLAGS_NUMBER, .number = &o->max_misclassified, .min = 0, .max = 100, .value_name = "P"},
         {.name = "help", .help = "this text", .kind = FLAGS_HELP},
     };
     int count = (int)(sizeof params / sizeof *params);
@@ -90,14 +107,35 @@ static bool main_print_json(const shadowdiff_result *r) {
     return true;
 }
 
-/* Everything after the flags: both dumps are read, compared, reported. */
-static bool main_run(const main_options *o) {
+/* The exit status of a comparison that gave no figure. */
+static int main_problem_status(shadowdiff_problem problem) {
+    switch (problem) {
+    case SHADOWDIFF_PROBLEM_NOTHING_COMPARED: return MAIN_EXIT_NOTHING_COMPARED;
+    case SHADOWDIFF_PROBLEM_NOT_FINITE: return MAIN_EXIT_NOT_FINITE;
+    case SHADOWDIFF_PROBLEM_NONE:
+    case SHADOWDIFF_PROBLEM_MISMATCH: break;
+    }
+    return MAIN_EXIT_RUNTIME;
+}
+
+/* 0 or MAIN_EXIT_OVER_MAX after saying so: the report is out already. */
+static int main_check_max(const main_options *o, const shadowdiff_result *r) {
+    if (o->max_misclassified == MAIN_NO_MAX_MISCLASSIFIED || r->misclassified_percent <= o->max_misclassified)
+        return 0;
+    fprintf(stderr, "shadowdiff: %s: misclassified %.3f %% is over --max-misclassified %g %%\n", o->dirs[1],
+            r->misclassified_percent, o->max_misclassified);
+    return MAIN_EXIT_OVER_MAX;
+}
+
+/* Everything after the flags: both dumps are read, compared, reported.
+ * Returns the exit status. */
+static int main_run(const main_options *o) {
     dump_frame reference, test;
     if (!dump_read(&reference, o->dirs[0]))
-        return false;
+        return MAIN_EXIT_RUNTIME;
     if (!dump_read(&test, o->dirs[1])) {
         dump_frame_free(&reference);
-        return false;
+        return MAIN_EXIT_RUNTIME;
     }
     size_t heatmap_bytes = (size_t)reference.width * (size_t)reference.height * 4;
     unsigned char *heatmap = o->heatmap_path ? malloc(heatmap_bytes) : NULL;
@@ -111,22 +149,27 @@ static bool main_run(const main_options *o) {
     bool ok = !o->heatmap_path || heatmap;
     if (!ok)
         fprintf(stderr, "%s: out of memory for a %dx%d heat map\n", o->heatmap_path, reference.width, reference.height);
-    ok = ok && shadowdiff_compare(&reference, &test, &settings, &result, heatmap);
-    ok = ok && (!heatmap || image_write_png(o->heatmap_path, reference.width, reference.height, heatmap));
-    if (ok && o->json)
-        ok = main_print_json(&result);
-    else if (ok)
+    int status = ok ? 0 : MAIN_EXIT_RUNTIME;
+    if (ok && !shadowdiff_compare(&reference, &test, &settings, &result, heatmap))
+        status = main_problem_status(result.problem);
+    if (!status && heatmap && !image_write_png(o->heatmap_path, reference.width, reference.height, heatmap))
+        status = MAIN_EXIT_RUNTIME;
+    if (!status && o->json && !main_print_json(&result))
+        status = MAIN_EXIT_RUNTIME;
+    else if (!status && !o->json)
         main_print_text(&result, &reference, o->receiver);
+    if (!status)
+        status = main_check_max(o, &result);
     free(heatmap);
     dump_frame_free(&reference);
     dump_frame_free(&test);
-    return ok;
+    return status;
 }
 
 int main(int argc, char **argv) {
-    main_options options = {.program = flags_program_name(argv[0])};
+    main_options options = {.program = flags_program_name(argv[0]), .max_misclassified = MAIN_NO_MAX_MISCLASSIFIED};
     int status = main_parse_flags(argc, argv, &options);
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
-    return main_run(&options) ? 0 : MAIN_EXIT_RUNTIME;
+    return main_run(&options);
 }
