@@ -20,13 +20,30 @@
  * 1 / cos^2 towards its edge and without bound at 90 degrees. */
 #define SHADOW_MAP_SPOT_MAX_HALF_ANGLE_DEG 85.0f
 #define SHADOW_MAP_CUBE_FACE_FOV_DEG 90.0f
+/* A point light (or a spot wider than the limit above) whose visible
+ * receivers lie in a cone of at most this half-angle gets one perspective
+ * map around them instead of a cube: at 45 degrees (a cube face's, tan 45
+ * = 1) its texels are nowhere larger than a face's, for one face's depth
+ * pass instead of six, and far smaller where the receivers are far from
+ * the light (a point light 1e6 away: a cube's texel spans 1000 units). */
+#define SHADOW_MAP_RECEIVER_CONE_MAX_DEG 45.0f
+/* That map is this fraction wider than the receivers' cone: room for the
+ * kernel's taps at its edge (2 % of a 256 map is 5 texels), in proportion,
+ * since the cone may be a few microradians across. */
+#define SHADOW_MAP_RECEIVER_CONE_MARGIN 0.02f
 
 /* Directional: an orthographic box around the visible receivers, deepened
  * towards the light to every caster whose box overlaps them seen from the
- * light. Spot: the cone, from the nearest such caster to the farthest
- * receiver. The depth range in view space runs along -z. */
+ * light. Positional: a perspective map of the given half-angle looking
+ * along `axis` (a spot's cone, or the cone around the receivers), from the
+ * nearest caster in front of the light to the farthest receiver; its
+ * texels measured as `texel_kind` says (the camera pass measures a
+ * perspective texel along the light's own direction: a map looking
+ * elsewhere is measured from its matrix, SHADOW_MAP_TEXEL_PROJECTIVE). The
+ * depth range in view space runs along -z. */
 static bool shadow_map_fit_2d(const scene *s, const scene_light *l, shadow_map *m, const float (*receivers)[3],
-                              int receiver_count) {
+                              int receiver_count, const float axis[3], float half_angle,
+                              shadow_map_texel_kind texel_kind) {
     bool directional = l->type == SCENE_LIGHT_DIRECTIONAL;
     mat4 view, projection;
     vec3 lo, hi, eye;
@@ -39,7 +56,7 @@ static bool shadow_map_fit_2d(const scene *s, const scene_light *l, shadow_map *
     } else {
         glm_vec3_copy((float *)l->position, eye);
     }
-    frustum_look_along(eye, l->direction, view);
+    frustum_look_along(eye, axis, view);
     frustum_view_bounds(view, receivers, receiver_count, lo, hi);
     float nearest = hi[2];
     for (int i = 0; i < s->object_count; i++) {
@@ -65,11 +82,9 @@ static bool shadow_map_fit_2d(const scene *s, const scene_light *l, shadow_map *
         m->texel_kind = SHADOW_MAP_TEXEL_ORTHOGRAPHIC;
         m->texel_scale = fmaxf(hi[0] - lo[0], hi[1] - lo[1]) / (float)m->size;
     } else {
-        float half_angle =
-            glm_rad(fminf(l->outer_angle_deg + SHADOW_MAP_SPOT_MARGIN_DEG, SHADOW_MAP_SPOT_MAX_HALF_ANGLE_DEG));
         m->near_plane = fmaxf(m->near_plane, m->far_plane * SHADOW_MAP_NEAR_RATIO);
         glm_perspective(2 * half_angle, 1, m->near_plane, m->far_plane, projection);
-        m->texel_kind = SHADOW_MAP_TEXEL_PERSPECTIVE;
+        m->texel_kind = texel_kind;
         m->texel_scale = 2 * tanf(half_angle) / (float)m->size;
     }
     glm_mat4_mul(projection, view, m->layer_view_projection[0]);
@@ -116,13 +131,58 @@ static bool shadow_map_fit_cube(const scene *s, const scene_light *l, shadow_map
     return m->far_plane > m->near_plane;
 }
 
+/* The cone from the light at `apex` around the receiver points: its axis
+ * (their mean direction) and half-angle (the widest of them from it).
+ * False where there is none: a receiver at the apex, or directions that
+ * cancel out. */
+static bool shadow_map_receiver_cone(const float apex[3], const float (*receivers)[3], int receiver_count, vec3 axis,
+                                     float *half_angle) {
+    vec3 sum = GLM_VEC3_ZERO_INIT, d;
+    for (int i = 0; i < receiver_count; i++) {
+        glm_vec3_sub((float *)receivers[i], (float *)apex, d);
+        float length = glm_vec3_norm(d);
+        if (!(length > 0))
+            return false;
+        glm_vec3_muladds(d, 1 / length, sum);
+    }
+    if (!(glm_vec3_norm(sum) > 0))
+        return false;
+    glm_vec3_normalize_to(sum, axis);
+    /* atan2 of sine and cosine, not acos of the cosine: a float cosine is
+     * 1 below 3e-4 radians, the cone of receivers 1e5 away. */
+    *half_angle = 0;
+    for (int i = 0; i < receiver_count; i++) {
+        vec3 across;
+        glm_vec3_sub((float *)receivers[i], (float *)apex, d);
+        glm_vec3_cross(d, axis, across);
+        *half_angle = fmaxf(*half_angle, atan2f(glm_vec3_norm(across), glm_vec3_dot(d, axis)));
+    }
+    return true;
+}
+
 bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
                             int receiver_count) {
     const scene_light *l = &s->lights[light];
-    bool cube = l->type == SCENE_LIGHT_POINT;
-    m->kind = cube ? SHADOW_MAP_CUBE : SHADOW_MAP_2D;
-    m->layer_count = cube ? SHADOW_MAP_CUBE_FACES : 1;
+    m->kind = SHADOW_MAP_2D;
+    m->layer_count = 1;
     m->casters = NULL;
-    return cube ? shadow_map_fit_cube(s, l, m, receivers, receiver_count)
-                : shadow_map_fit_2d(s, l, m, receivers, receiver_count);
+    if (l->type == SCENE_LIGHT_DIRECTIONAL)
+        return shadow_map_fit_2d(s, l, m, receivers, receiver_count, l->direction, 0, SHADOW_MAP_TEXEL_ORTHOGRAPHIC);
+    float margin = glm_rad(SHADOW_MAP_SPOT_MARGIN_DEG);
+    if (l->type == SCENE_LIGHT_SPOT &&
+        glm_rad(l->outer_angle_deg) + margin <= glm_rad(SHADOW_MAP_SPOT_MAX_HALF_ANGLE_DEG))
+        return shadow_map_fit_2d(s, l, m, receivers, receiver_count, l->direction,
+                                 glm_rad(l->outer_angle_deg) + margin, SHADOW_MAP_TEXEL_PERSPECTIVE);
+    /* A point light, or a spot too wide for one map: one map around the
+     * receivers where they lie in a narrow enough cone, else a cube (a
+     * spot lights nothing outside its cone: the cone decides there). */
+    vec3 axis;
+    float half_angle;
+    if (shadow_map_receiver_cone(l->position, receivers, receiver_count, axis, &half_angle) &&
+        half_angle * (1 + SHADOW_MAP_RECEIVER_CONE_MARGIN) <= glm_rad(SHADOW_MAP_RECEIVER_CONE_MAX_DEG))
+        return shadow_map_fit_2d(s, l, m, receivers, receiver_count, axis,
+                                 half_angle * (1 + SHADOW_MAP_RECEIVER_CONE_MARGIN), SHADOW_MAP_TEXEL_PROJECTIVE);
+    m->kind = SHADOW_MAP_CUBE;
+    m->layer_count = SHADOW_MAP_CUBE_FACES;
+    return shadow_map_fit_cube(s, l, m, receivers, receiver_count);
 }
