@@ -1,21 +1,50 @@
 /* raytrace: see raytrace.h for what is computed; this file says how.
  *
- * Shadow-ray offset. A hit point is rounded to float twice: Embree finds it
- * on the triangle to within a few ulps of the triangle's coordinates, and
- * interpolating the vertices rounds again. Both errors scale with the
- * magnitude of the coordinates (ulp(x) <= 2^-23 |x| ~ 1.2e-7 |x|), which the
- * diagonal D of the box holding the scene and the world origin bounds. A
- * shadow ray therefore starts eps = RAYTRACE_EPSILON * D (1e-5 D: about 80
- * ulps of the largest coordinate) off the surface along the face normal on
- * the light's side, so it cannot hit its own triangle, and stops eps short
- * of the light, so a light on a surface is not shadowed by it. A fixed
- * epsilon would be too small for a large scene (acne) and too large for a
- * small one (light leaking through thin walls); the offset lies along the
- * normal, not the ray, so it stays eps off the surface at grazing angles.
- * In the standard scenes eps is 2e-4 to 4e-4 world units. */
+ * Precision far from the origin. Embree 3 takes float geometry, whose
+ * spacing grows with the coordinates (ulp(x) <= FLT_EPSILON |x|: 0.06 at
+ * 1e6). The BVH is therefore built about a local origin, the eye: each
+ * world vertex is transformed and has the eye subtracted in double before
+ * it is stored as a float, and every ray is relative to the eye too, so the
+ * geometry the camera sees keeps float's relative precision wherever the
+ * scene stands. Dumps are turned back to world units (position = eye +
+ * local, in double).
+ *
+ * Camera rays are built in double from the camera's own basis (position,
+ * target, up, fov, the image's aspect), not by unprojecting through a float
+ * inverse view-projection: with a near/far ratio of 3e7 or more
+ * -(f+n)/(f-n) rounds to -1 in float, the far plane unprojects to w = 0 and
+ * the directions become NaN. Near and far only bound the ray: its component
+ * along the view axis is 1, so t is the eye-space depth GL clips. The
+ * visible point is where the pixel's double ray meets the plane of the
+ * triangle Embree found, in double (the barycentric point where the ray
+ * runs almost in that plane, which leaves the intersection ill-conditioned).
+ *
+ * Shadow rays. Embree's float test places the crossing of a ray with a
+ * triangle's plane to within a few ulps of the triangle's coordinates
+ * relative to the ray's start: on a large triangle (a 1e5 ground, 7e4 from
+ * the point it holds) that is far more than an offset which keeps contact
+ * shadows. Each hit Embree reports on a shadow ray is therefore confirmed
+ * by an occlusion filter in double: the ray, as the floats handed to Embree,
+ * must cross the plane of the triangle (its float vertices, exact in
+ * double) after its start and before its end. Embree's robust, watertight
+ * test still decides the edges, so no ray slips between two triangles.
+ * Left to the offset is the rounding of the ray's start to float, at most
+ * sqrt(3)/2 ulps of its largest coordinate along the normal, and the double
+ * test's own rounding: a shadow ray starts RAYTRACE_OFFSET_ULPS times
+ * (FLT_EPSILON times the largest coordinate of the hit point from the eye,
+ * plus DBL_EPSILON times the hit triangle's extent about it) off the
+ * surface, along the face normal on the light's side, and ends as many
+ * float ulps of the light's coordinates and of the ray's length short of a
+ * point light, so that a light on a surface is not shadowed by it (the
+ * direction's rounding moves the ray's end by about an ulp of its length).
+ * Nothing depends on the scene's size: a huge ground or a sky sphere
+ * elsewhere changes no offset, and the offset is about 1e-6 of the distance
+ * from the eye (1e-5 in the standard scenes) on any triangle. */
 #include "raytrace.h"
 
+#include <cglm/cglm.h>
 #include <embree3/rtcore.h>
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <stdint.h>
@@ -23,22 +52,29 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "camera.h"
-
 #define RAYTRACE_PI 3.14159265358979323846f
+/* Below this cosine between a camera ray and the hit triangle's normal the
+ * visible point is the barycentric one (see the top): the plane's
+ * intersection then loses up to 1e-16 / cosine of the ray's length. */
+#define RAYTRACE_MIN_PLANE_COSINE 1e-6
+/* Embree's limit on a ray's coordinates (FLT_LARGE in its sources): past it
+ * its ray.valid() check fails, an assertion in some builds. */
+#define RAYTRACE_MAX_COORDINATE 1.844e18f
 
 /* What a light needs per shaded point, computed once. */
 typedef struct raytrace_light {
     const scene_light *light;
-    vec4 position;              /* scene_light_homogeneous: w 0 directional */
+    vec4 position;              /* scene_light_homogeneous, from the eye: w 0 directional */
     float radiance[3];          /* colour times intensity */
     float cos_outer, cos_inner; /* spot */
     float cap;                  /* directional area light: 1 - cos(angular radius) */
 } raytrace_light;
 
 typedef struct raytrace_object {
-    const float *vertices; /* world positions, 3 floats each, in Embree's buffer */
-    mat3 normal_matrix;    /* scene_object_normal_matrix, as the raster side uses */
+    const float *vertices;   /* from the eye (see the top), 3 floats each, in Embree's buffer */
+    const uint32_t *indices; /* the mesh's, 3 a triangle */
+    mat3 normal_matrix;      /* scene_object_normal_matrix, as the raster side uses */
+    bool casts;
 } raytrace_object;
 
 typedef struct raytrace_tracer {
@@ -47,23 +83,33 @@ typedef struct raytrace_tracer {
     RTCScene rtc;
     raytrace_object *objects;
     raytrace_light lights[SCENE_MAX_LIGHTS];
-    float epsilon;
     int light_samples;
     int light_index;
     int width, height;
-    vec3 eye;
-    mat4 inverse_view_projection;
+    double eye[3]; /* world: the local origin */
+    /* The ray of normalized device coordinates (x, y) is forward + x right
+     * + y up, forward the unit view axis. */
+    double forward[3], right[3], up[3];
+    float near_plane, far_plane;
     unsigned char background[4];
 } raytrace_tracer;
 
 /* The visible surface at a pixel. */
 typedef struct raytrace_hit {
     int object;
-    float position[3];
+    double position[3];      /* from the eye */
     float face_normal[3];    /* unit, towards the eye */
     float shading_normal[3]; /* lit.frag's n */
-    float distance;          /* from the eye */
+    double distance;         /* from the eye */
+    double offset;           /* how far shadow rays start off the surface */
 } raytrace_hit;
+
+/* A shadow ray's intersect context, handed to the occlusion filter. */
+typedef struct raytrace_shadow_context {
+    struct RTCIntersectContext embree; /* first: the filter gets its address */
+    const raytrace_tracer *tracer;
+    float end; /* the ray's tfar: the filter sees the hit's distance there */
+} raytrace_shadow_context;
 
 static float raytrace_dot(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -78,6 +124,27 @@ static float raytrace_normalize(float v[3]) {
         v[k] /= length;
     return length;
 }
+
+static double raytrace_dot_d(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void raytrace_cross_d(const double a[3], const double b[3], double out[3]) {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Scales v to unit length and returns its length; 0 (v untouched) when v
+ * has no direction. */
+static double raytrace_normalize_d(double v[3]) {
+    double length = sqrt(raytrace_dot_d(v, v));
+    if (!(length > 0) || !isfinite(length))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        v[k] /= length;
+    return length;
+}
+
+static double raytrace_max_abs(const double v[3]) { return fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))); }
 
 /* GLSL's smoothstep; GLSL leaves edge0 >= edge1 undefined, and a spot with
  * inner == outer angle gets a hard edge. */
@@ -153,22 +220,82 @@ static void raytrace_on_embree_error(void *user, enum RTCError code, const char 
     fprintf(stderr, "raytrace: Embree error %d: %s\n", (int)code, message ? message : "(no message)");
 }
 
-/* Objects with "casts": false stay visible to primary rays but are
- * transparent to shadow rays: their occlusion filter rejects every hit. */
-static void raytrace_pass_shadow_rays(const struct RTCFilterFunctionNArguments *args) {
-    for (unsigned i = 0; i < args->N; i++)
-        args->valid[i] = 0;
+/* The corners of triangle `triangle` of an object, from the eye. */
+static void raytrace_corners(const raytrace_object *o, unsigned triangle, double v[3][3]) {
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 3; k++)
+            v[c][k] = o->vertices[3 * (size_t)o->indices[3 * (size_t)triangle + (size_t)c] + (size_t)k];
+}
+
+/* The plane normal of corners v, counter-clockwise front, not unit. */
+static void raytrace_plane_normal(const double v[3][3], double normal[3]) {
+    double edge1[3], edge2[3];
+    for (int k = 0; k < 3; k++) {
+        edge1[k] = v[1][k] - v[0][k];
+        edge2[k] = v[2][k] - v[0][k];
+    }
+    raytrace_cross_d(edge1, edge2, normal);
+}
+
+/* Whether the ray from `origin` along `direction` crosses the plane of the
+ * triangle after its start and no later than t = end, in double (see the
+ * top); a ray parallel to the plane does not cross it. */
+static bool raytrace_crosses_plane(const raytrace_object *o, unsigned triangle, const double origin[3],
+                                   const double direction[3], double end) {
+    double v[3][3], normal[3], to_plane[3];
+    raytrace_corners(o, triangle, v);
+    raytrace_plane_normal(v, normal);
+    for (int k = 0; k < 3; k++)
+        to_plane[k] = v[0][k] - origin[k];
+    double approach = raytrace_dot_d(direction, normal);
+    double t = raytrace_dot_d(to_plane, normal) / approach;
+    return approach != 0 && t > 0 && t <= end;
+}
+
+/* The occlusion filter of every shadow ray: objects with "casts": false
+ * block nothing, and every other hit is confirmed in double (see the top).
+ * Shadow rays go through rtcOccluded1, so N is 1 and the ray and the hit
+ * are a plain RTCRay and RTCHit. */
+static void raytrace_confirm_occlusion(const struct RTCFilterFunctionNArguments *args) {
+    const raytrace_shadow_context *c = (const raytrace_shadow_context *)args->context;
+    const struct RTCRay *ray = (const struct RTCRay *)args->ray;
+    const struct RTCHit *hit = (const struct RTCHit *)args->hit;
+    const raytrace_object *o = &c->tracer->objects[hit->geomID];
+    const double origin[3] = {ray->org_x, ray->org_y, ray->org_z};
+    const double direction[3] = {ray->dir_x, ray->dir_y, ray->dir_z};
+    if (!o->casts || !raytrace_crosses_plane(o, hit->primID, origin, direction, c->end))
+        args->valid[0] = 0;
+}
+
+/* The object's world vertices less the eye, in double, then stored as
+ * floats (see the top). False, after one line, where one is beyond what
+ * Embree accepts. */
+static bool raytrace_store_vertices(const raytrace_tracer *t, const scene_object *o, float *vertices) {
+    const mesh *m = &o->mesh;
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        const float *p = m->vertices[v].position;
+        for (int k = 0; k < 3; k++) {
+            double world = (double)o->model[3][k] + (double)o->model[0][k] * p[0] + (double)o->model[1][k] * p[1] +
+                           (double)o->model[2][k] * p[2];
+            float local = (float)(world - t->eye[k]);
+            if (!(fabsf(local) <= RAYTRACE_MAX_COORDINATE)) {
+                fprintf(stderr, "raytrace: %s: vertex %u is %g from the eye, beyond Embree's range (%g)\n", o->name,
+                        v, world - t->eye[k], (double)RAYTRACE_MAX_COORDINATE);
+                return false;
+            }
+            vertices[3 * v + (uint32_t)k] = local;
+        }
+    }
+    return true;
 }
 
 static bool raytrace_add_object(raytrace_tracer *t, int index) {
     const scene_object *o = &t->scene->objects[index];
     const mesh *m = &o->mesh;
-    if (!o->casts && !rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
-        fprintf(stderr, "raytrace: %s: \"casts\": false needs Embree's filter functions, not in this build\n",
-                o->name);
-        return false;
-    }
-    scene_object_normal_matrix(o, t->objects[index].normal_matrix);
+    raytrace_object *r = &t->objects[index];
+    scene_object_normal_matrix(o, r->normal_matrix);
+    r->indices = m->indices;
+    r->casts = o->casts;
     RTCGeometry geometry = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry)
         return false;
@@ -178,29 +305,30 @@ static bool raytrace_add_object(raytrace_tracer *t, int index) {
                                               3 * sizeof(float), m->vertex_count);
     uint32_t *indices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                 3 * sizeof(uint32_t), m->index_count / 3);
-    bool ok = vertices && indices;
-    for (uint32_t v = 0; ok && v < m->vertex_count; v++)
-        glm_mat4_mulv3((vec4 *)o->model, (float *)m->vertices[v].position, 1.0f, vertices + 3 * v);
+    bool ok = vertices && indices && raytrace_store_vertices(t, o, vertices);
     for (uint32_t i = 0; ok && i < m->index_count; i++)
         indices[i] = m->indices[i];
-    if (ok && !o->casts)
-        rtcSetGeometryOccludedFilterFunction(geometry, raytrace_pass_shadow_rays);
     if (ok) {
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(t->rtc, geometry, (unsigned)index);
     }
     rtcReleaseGeometry(geometry); /* the scene holds it now */
-    t->objects[index].vertices = vertices;
+    r->vertices = vertices;
     return ok && rtcGetDeviceError(t->device) == RTC_ERROR_NONE;
 }
 
 static bool raytrace_build_scene(raytrace_tracer *t) {
+    if (!rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
+        fprintf(stderr, "raytrace: this Embree build has no filter functions, which confirm shadow-ray hits\n");
+        return false;
+    }
     t->rtc = rtcNewScene(t->device);
     if (!t->rtc)
         return false;
     /* Robust: watertight triangle tests, so primary rays do not slip
-     * between the two triangles of a ground quad. */
-    rtcSetSceneFlags(t->rtc, RTC_SCENE_FLAG_ROBUST);
+     * between the two triangles of a ground quad. The context filter
+     * confirms shadow-ray hits (see the top). */
+    rtcSetSceneFlags(t->rtc, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(t->rtc, RTC_BUILD_QUALITY_HIGH);
     for (int i = 0; i < t->scene->object_count; i++)
         if (!raytrace_add_object(t, i))
@@ -215,6 +343,8 @@ static void raytrace_prepare_lights(raytrace_tracer *t) {
         raytrace_light *r = &t->lights[i];
         r->light = l;
         scene_light_homogeneous(l, r->position);
+        for (int k = 0; k < 3 && r->position[3] != 0; k++)
+            r->position[k] = (float)((double)l->position[k] - t->eye[k]);
         glm_vec3_scale((float *)l->color, l->intensity, r->radiance);
         r->cos_outer = cosf(glm_rad(l->outer_angle_deg));
         r->cos_inner = cosf(glm_rad(l->inner_angle_deg));
@@ -225,74 +355,137 @@ static void raytrace_prepare_lights(raytrace_tracer *t) {
     }
 }
 
-/* The diagonal of the box holding every object and the origin: it bounds
- * both the scene's size and its coordinates' magnitude (see the top). */
-static float raytrace_scene_scale(const scene *s) {
-    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
-    for (int i = 0; i < s->object_count; i++) {
-        vec3 min, max;
-        scene_object_world_bounds(&s->objects[i], min, max);
-        glm_vec3_minv(lo, min, lo);
-        glm_vec3_maxv(hi, max, hi);
+/* What is wrong with the camera, written to `problem`, or false when
+ * nothing is: scene_load refuses all of these in a file, but a scene made
+ * or changed in memory may hold any of them. */
+static bool raytrace_camera_problem(const scene_camera *c, char *problem, size_t capacity) {
+    const float *numbers[] = {c->position, c->target, c->up, &c->fov_deg, &c->near_plane, &c->far_plane};
+    const int counts[] = {3, 3, 3, 1, 1, 1};
+    bool finite = true;
+    for (size_t n = 0; n < sizeof counts / sizeof *counts; n++)
+        for (int k = 0; k < counts[n]; k++)
+            finite = finite && isfinite(numbers[n][k]);
+    double view[3], side[3], up[3] = {c->up[0], c->up[1], c->up[2]};
+    for (int k = 0; k < 3; k++)
+        view[k] = (double)c->target[k] - c->position[k];
+    raytrace_cross_d(view, up, side);
+    if (!finite)
+        snprintf(problem, capacity, "a number is not finite");
+    else if (!(c->fov_deg > 0 && c->fov_deg < 180))
+        snprintf(problem, capacity, "fov %g is not between 0 and 180 degrees", (double)c->fov_deg);
+    else if (!(c->near_plane > 0 && c->near_plane < c->far_plane))
+        snprintf(problem, capacity, "near %g and far %g: need 0 < near < far", (double)c->near_plane,
+                 (double)c->far_plane);
+    else if (raytrace_normalize_d(view) == 0)
+        snprintf(problem, capacity, "target is the position");
+    else if (raytrace_normalize_d(side) == 0)
+        snprintf(problem, capacity, "up is zero or parallel to the view direction");
+    else
+        return false;
+    return true;
+}
+
+/* The camera's basis in double, as glm_lookat and glm_perspective make it
+ * (see raytrace_tracer), or false after one line naming the scene. */
+static bool raytrace_prepare_camera(raytrace_tracer *t, const char *scene_name) {
+    const scene_camera *c = &t->scene->camera;
+    char problem[128];
+    if (raytrace_camera_problem(c, problem, sizeof problem)) {
+        fprintf(stderr, "raytrace: %s: camera: %s\n", scene_name ? scene_name : "the scene", problem);
+        return false;
     }
-    return glm_vec3_distance(lo, hi);
+    double side[3], up[3] = {c->up[0], c->up[1], c->up[2]};
+    for (int k = 0; k < 3; k++) {
+        t->eye[k] = c->position[k];
+        t->forward[k] = (double)c->target[k] - c->position[k];
+    }
+    raytrace_normalize_d(t->forward);
+    raytrace_cross_d(t->forward, up, side);
+    raytrace_normalize_d(side);
+    raytrace_cross_d(side, t->forward, t->up);
+    double half_height = tan((double)c->fov_deg * (M_PI / 360.0));
+    double half_width = half_height * (double)t->width / (double)t->height;
+    for (int k = 0; k < 3; k++) {
+        t->right[k] = side[k] * half_width;
+        t->up[k] *= half_height;
+    }
+    t->near_plane = c->near_plane;
+    t->far_plane = c->far_plane;
+    return true;
 }
 
 /* ---- tracing ---- */
 
-/* Through the centre of pixel (x, y), y = 0 the top row, from the eye
- * between the near and far planes: what the rasterizer samples. */
-static void raytrace_primary_ray(const raytrace_tracer *t, int x, int y, struct RTCRayHit *ray) {
-    float ndc_x = ((float)x + 0.5f) / (float)t->width * 2.0f - 1.0f;
-    float ndc_y = 1.0f - ((float)y + 0.5f) / (float)t->height * 2.0f;
-    vec4 clip_near = {ndc_x, ndc_y, -1.0f, 1.0f}, clip_far = {ndc_x, ndc_y, 1.0f, 1.0f};
-    vec4 near, far;
-    glm_mat4_mulv((vec4 *)t->inverse_view_projection, clip_near, near);
-    glm_mat4_mulv((vec4 *)t->inverse_view_projection, clip_far, far);
-    glm_vec3_scale(near, 1.0f / near[3], near);
-    glm_vec3_scale(far, 1.0f / far[3], far);
-    vec3 direction;
-    glm_vec3_sub(far, near, direction);
-    raytrace_normalize(direction);
-    *ray = (struct RTCRayHit){
-        .ray = {.org_x = t->eye[0], .org_y = t->eye[1], .org_z = t->eye[2],
-                .tnear = glm_vec3_distance((float *)t->eye, near),
-                .dir_x = direction[0], .dir_y = direction[1], .dir_z = direction[2],
-                .tfar = glm_vec3_distance((float *)t->eye, far), .mask = UINT32_MAX},
+/* Whether Embree accepts the ray: finite coordinates within its range, and
+ * 0 <= tnear <= tfar. */
+static bool raytrace_ray_valid(const struct RTCRay *r) {
+    const float coordinates[6] = {r->org_x, r->org_y, r->org_z, r->dir_x, r->dir_y, r->dir_z};
+    for (int k = 0; k < 6; k++)
+        if (!(fabsf(coordinates[k]) <= RAYTRACE_MAX_COORDINATE))
+            return false;
+    return r->tnear >= 0 && r->tnear <= r->tfar;
+}
+
+/* Through the centre of pixel (x, y), y = 0 the top row: what the
+ * rasterizer samples. Its component along the view axis is 1. */
+static void raytrace_pixel_direction(const raytrace_tracer *t, int x, int y, double direction[3]) {
+    double ndc_x = ((double)x + 0.5) / (double)t->width * 2.0 - 1.0;
+    double ndc_y = 1.0 - ((double)y + 0.5) / (double)t->height * 2.0;
+    for (int k = 0; k < 3; k++)
+        direction[k] = t->forward[k] + ndc_x * t->right[k] + ndc_y * t->up[k];
+}
+
+/* From the eye (the local origin) between the near and far planes. */
+static struct RTCRayHit raytrace_primary_ray(const raytrace_tracer *t, const double direction[3]) {
+    return (struct RTCRayHit){
+        .ray = {.tnear = t->near_plane, .dir_x = (float)direction[0], .dir_y = (float)direction[1],
+                .dir_z = (float)direction[2], .tfar = t->far_plane, .mask = UINT32_MAX},
         .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .instID = {RTC_INVALID_GEOMETRY_ID}},
     };
 }
 
-/* The hit as lit.frag sees it. The face normal comes from the world
- * triangle (Embree's Ng has the opposite sign convention) and decides
- * front facing as GL does for counter-clockwise triangles. */
-static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *ray, raytrace_hit *h) {
+/* The hit as lit.frag sees it, at the point of the triangle's plane on the
+ * double ray `direction` (see the top). The face normal comes from the
+ * triangle (Embree's Ng has the opposite sign convention) and decides front
+ * facing as GL does for counter-clockwise triangles. */
+static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *ray, const double direction[3],
+                             raytrace_hit *h) {
     int object = (int)ray->hit.geomID;
+    const raytrace_object *o = &t->objects[object];
     const mesh *m = &t->scene->objects[object].mesh;
     const uint32_t *corner = m->indices + 3 * (size_t)ray->hit.primID;
     const float weight[3] = {1.0f - ray->hit.u - ray->hit.v, ray->hit.u, ray->hit.v};
-    const float *p[3];
+    double v[3][3], normal[3], to_eye[3];
+    raytrace_corners(o, ray->hit.primID, v);
+    raytrace_plane_normal(v, normal);
+    double area = raytrace_normalize_d(normal);
+    double approach = raytrace_dot_d(direction, normal);
+    bool on_plane =
+        area > 0 && fabs(approach) >= RAYTRACE_MIN_PLANE_COSINE * sqrt(raytrace_dot_d(direction, direction));
+    double along = on_plane ? raytrace_dot_d(v[0], normal) / approach : 0;
+    double extent = 0;
+    for (int k = 0; k < 3; k++)
+        h->position[k] = on_plane ? along * direction[k]
+                                  : weight[0] * v[0][k] + weight[1] * v[1][k] + weight[2] * v[2][k];
     for (int c = 0; c < 3; c++)
-        p[c] = t->objects[object].vertices + 3 * (size_t)corner[c];
-    vec3 object_normal = {0, 0, 0}, edge1, edge2, to_eye;
+        for (int k = 0; k < 3; k++)
+            extent = fmax(extent, fabs(v[c][k] - h->position[k]));
+    h->offset = RAYTRACE_OFFSET_ULPS * (FLT_EPSILON * raytrace_max_abs(h->position) + DBL_EPSILON * extent);
     h->object = object;
     for (int k = 0; k < 3; k++)
-        h->position[k] = weight[0] * p[0][k] + weight[1] * p[1][k] + weight[2] * p[2][k];
+        to_eye[k] = -h->position[k];
+    h->distance = raytrace_normalize_d(to_eye);
+    /* A triangle too thin for a normal is seen edge-on: let it face the
+     * eye. */
+    if (area == 0)
+        memcpy(normal, to_eye, sizeof normal);
+    bool front_facing = raytrace_dot_d(normal, to_eye) > 0;
+    for (int k = 0; k < 3; k++)
+        h->face_normal[k] = (float)(front_facing ? normal[k] : -normal[k]);
+    vec3 object_normal = {0, 0, 0};
     for (int c = 0; c < 3; c++)
         glm_vec3_muladds((float *)m->vertices[corner[c]].normal, weight[c], object_normal);
-    glm_vec3_sub((float *)p[1], (float *)p[0], edge1);
-    glm_vec3_sub((float *)p[2], (float *)p[0], edge2);
-    glm_vec3_cross(edge1, edge2, h->face_normal);
-    glm_vec3_sub((float *)t->eye, h->position, to_eye);
-    h->distance = raytrace_normalize(to_eye);
-    /* A triangle too thin for a normal in float is seen edge-on: let it
-     * face the eye. */
-    if (raytrace_normalize(h->face_normal) == 0)
-        glm_vec3_copy(to_eye, h->face_normal);
-    bool front_facing = raytrace_dot(h->face_normal, to_eye) > 0;
-    if (!front_facing)
-        glm_vec3_negate(h->face_normal);
-    glm_mat3_mulv((vec3 *)t->objects[object].normal_matrix, object_normal, h->shading_normal);
+    glm_mat3_mulv((vec3 *)o->normal_matrix, object_normal, h->shading_normal);
     if (raytrace_normalize(h->shading_normal) == 0)
         glm_vec3_copy(h->face_normal, h->shading_normal);
     else if (!front_facing)
@@ -300,41 +493,48 @@ static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *r
 }
 
 /* Whether nothing that casts lies between the hit and `target`, a point
- * (w 1) or a direction to infinity (w 0). */
-static bool raytrace_unoccluded(const raytrace_tracer *t, struct RTCIntersectContext *context, const raytrace_hit *h,
-                                const float target[4]) {
-    vec3 towards, origin, direction;
-    if (target[3] == 0)
-        glm_vec3_copy((float *)target, towards);
-    else
-        glm_vec3_sub((float *)target, (float *)h->position, towards);
-    float side = raytrace_dot(h->face_normal, towards) >= 0 ? t->epsilon : -t->epsilon;
-    glm_vec3_copy((float *)h->position, origin);
-    glm_vec3_muladds((float *)h->face_normal, side, origin);
-    float distance = INFINITY;
-    if (target[3] == 0) {
-        glm_vec3_copy((float *)target, direction);
-    } else {
-        glm_vec3_sub((float *)target, origin, direction);
-        distance = raytrace_normalize(direction) - t->epsilon;
+ * (w 1) or a direction to infinity (w 0), from the eye. A ray Embree would
+ * refuse (the light nearer the surface than the margins, or beyond Embree's
+ * range) is not traced: nothing is taken to block it. */
+static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *h, const float target[4]) {
+    bool directional = target[3] == 0;
+    double towards[3], direction[3];
+    for (int k = 0; k < 3; k++)
+        towards[k] = directional ? target[k] : target[k] - h->position[k];
+    const double face_normal[3] = {h->face_normal[0], h->face_normal[1], h->face_normal[2]};
+    double side = raytrace_dot_d(face_normal, towards) >= 0 ? h->offset : -h->offset;
+    float origin[3];
+    for (int k = 0; k < 3; k++) {
+        origin[k] = (float)(h->position[k] + side * face_normal[k]);
+        direction[k] = directional ? target[k] : target[k] - (double)origin[k];
     }
+    double end = INFINITY;
+    if (!directional) {
+        const double light[3] = {target[0], target[1], target[2]};
+        double length = raytrace_normalize_d(direction);
+        end = length - RAYTRACE_OFFSET_ULPS * FLT_EPSILON * (raytrace_max_abs(light) + length);
+    }
+    c->end = (float)end;
     struct RTCRay ray = {.org_x = origin[0], .org_y = origin[1], .org_z = origin[2], .tnear = 0,
-                         .dir_x = direction[0], .dir_y = direction[1], .dir_z = direction[2],
-                         .tfar = distance, .mask = UINT32_MAX};
-    rtcOccluded1(t->rtc, context, &ray);
+                         .dir_x = (float)direction[0], .dir_y = (float)direction[1], .dir_z = (float)direction[2],
+                         .tfar = c->end, .mask = UINT32_MAX};
+    if (!raytrace_ray_valid(&ray))
+        return true;
+    rtcOccluded1(c->tracer->rtc, &c->embree, &ray);
     return ray.tfar >= 0; /* Embree sets -inf on a hit */
 }
 
 /* Fraction of light `index` reaching the hit: one ray for a hard light,
  * light_samples for an area light (see raytrace_disk_sample) spread about
  * `to_light`, the unit vector to its centre (0 at the centre itself). */
-static float raytrace_visibility(const raytrace_tracer *t, struct RTCIntersectContext *context, const raytrace_hit *h,
-                                 int index, const float to_light[3], uint32_t pixel) {
+static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *h, int index, const float to_light[3],
+                                 uint32_t pixel) {
+    const raytrace_tracer *t = c->tracer;
     const raytrace_light *l = &t->lights[index];
     if (!t->scene->objects[h->object].receives)
         return 1;
     if (l->light->radius == 0)
-        return raytrace_unoccluded(t, context, h, l->position) ? 1.0f : 0.0f;
+        return raytrace_unoccluded(c, h, l->position) ? 1.0f : 0.0f;
     bool directional = l->position[3] == 0;
     vec3 axis, tangent, bitangent;
     glm_vec3_copy((float *)to_light, axis);
@@ -364,40 +564,38 @@ static float raytrace_visibility(const raytrace_tracer *t, struct RTCIntersectCo
             glm_vec3_muladds(tangent, disk[0] * l->light->radius, target);
             glm_vec3_muladds(bitangent, disk[1] * l->light->radius, target);
         }
-        unoccluded += raytrace_unoccluded(t, context, h, target);
+        unoccluded += raytrace_unoccluded(c, h, target);
     }
     return (float)unoccluded / (float)t->light_samples;
 }
 
-static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext *context, int x, int y,
-                           dump_frame *out) {
+static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext *primary,
+                           raytrace_shadow_context *shadow, int x, int y, dump_frame *out) {
     size_t i = (size_t)y * (size_t)t->width + (size_t)x;
-    struct RTCRayHit ray;
-    raytrace_primary_ray(t, x, y, &ray);
-    rtcIntersect1(t->rtc, context, &ray);
+    double direction[3];
+    raytrace_pixel_direction(t, x, y, direction);
+    struct RTCRayHit ray = raytrace_primary_ray(t, direction);
+    if (raytrace_ray_valid(&ray.ray))
+        rtcIntersect1(t->rtc, primary, &ray);
     if (ray.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         memcpy(out->color + 4 * i, t->background, 4);
         return;
     }
     raytrace_hit h;
-    raytrace_surface(t, &ray, &h);
+    raytrace_surface(t, &ray, direction, &h);
     const float *albedo = t->scene->objects[h.object].color;
     vec3 color;
     glm_vec3_mul((float *)albedo, (float *)t->scene->ambient, color);
     for (int l = 0; l < t->scene->light_count; l++) {
         const raytrace_light *light = &t->lights[l];
-        vec3 to_light;
-        glm_vec3_copy((float *)light->position, to_light);
-        if (light->position[3] != 0) {
-            glm_vec3_sub(to_light, h.position, to_light);
-            raytrace_normalize(to_light);
-        }
+        double towards[3];
+        for (int k = 0; k < 3; k++)
+            towards[k] = light->position[3] != 0 ? light->position[k] - h.position[k] : light->position[k];
+        double distance = light->position[3] != 0 ? raytrace_normalize_d(towards) : 0;
+        const float to_light[3] = {(float)towards[0], (float)towards[1], (float)towards[2]};
         bool spot = light->light->type == SCENE_LIGHT_SPOT;
         float cos_axis = -raytrace_dot(to_light, light->light->direction);
-        float window = light->position[3] != 0
-                           ? scene_light_range_window(light->light, glm_vec3_distance((float *)light->position,
-                                                                                     h.position))
-                           : 1.0f;
+        float window = light->position[3] != 0 ? scene_light_range_window(light->light, (float)distance) : 1.0f;
         float unshadowed = fmaxf(raytrace_dot(h.shading_normal, to_light), 0.0f) *
                            (spot ? raytrace_smoothstep(light->cos_outer, light->cos_inner, cos_axis) : 1.0f) *
                            window;
@@ -406,16 +604,17 @@ static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext 
          * are traced only where they would add light. */
         float visibility = 0;
         if (reaches && (l == t->light_index || unshadowed > 0))
-            visibility = raytrace_visibility(t, context, &h, l, to_light, (uint32_t)i);
+            visibility = raytrace_visibility(shadow, &h, l, to_light, (uint32_t)i);
         if (l == t->light_index)
             out->visibility[i] = visibility;
         for (int k = 0; k < 3; k++)
             color[k] += albedo[k] * light->radiance[k] * unshadowed * visibility;
     }
-    out->depth[i] = h.distance;
+    out->depth[i] = (float)h.distance;
     out->ids[i] = (float)h.object;
     memcpy(out->normal + 3 * i, h.face_normal, sizeof h.face_normal);
-    memcpy(out->position + 3 * i, h.position, sizeof h.position);
+    for (int k = 0; k < 3; k++)
+        out->position[3 * i + (size_t)k] = (float)(t->eye[k] + h.position[k]);
     for (int k = 0; k < 3; k++)
         out->color[4 * i + (size_t)k] = raytrace_unorm8(color[k]);
     out->color[4 * i + 3] = 255;
@@ -453,7 +652,6 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
         return false;
     raytrace_tracer t = {
         .scene = s,
-        .epsilon = RAYTRACE_EPSILON * raytrace_scene_scale(s),
         .light_samples = light_samples,
         .light_index = light_index,
         .width = width,
@@ -461,10 +659,8 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
         .background = {raytrace_unorm8(SCENE_BACKGROUND_R), raytrace_unorm8(SCENE_BACKGROUND_G),
                        raytrace_unorm8(SCENE_BACKGROUND_B), 255},
     };
-    camera_view view;
-    camera_view_compute(&s->camera, (float)width / (float)height, &view);
-    glm_mat4_inv(view.view_projection, t.inverse_view_projection);
-    glm_vec3_copy(view.eye, t.eye);
+    if (!raytrace_prepare_camera(&t, settings->scene_name))
+        return false;
     raytrace_prepare_lights(&t);
 
     double start = omp_get_wtime();
@@ -486,21 +682,23 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
 
 #pragma omp parallel for schedule(dynamic)
     for (int y = 0; y < height; y++) {
-        struct RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
+        struct RTCIntersectContext primary;
+        raytrace_shadow_context shadow = {.tracer = &t};
+        rtcInitIntersectContext(&primary);
+        rtcInitIntersectContext(&shadow.embree);
+        shadow.embree.filter = raytrace_confirm_occlusion;
         for (int x = 0; x < width; x++)
-            raytrace_pixel(&t, &context, x, y, out);
+            raytrace_pixel(&t, &primary, &shadow, x, y, out);
     }
 
     bool ok = rtcGetDeviceError(t.device) == RTC_ERROR_NONE;
     if (ok && settings->verbose)
         fprintf(stderr,
-                "raytrace: Embree %zd.%zd.%zd, %d threads, epsilon %g; BVH built in %.1f ms, %dx%d traced in "
-                "%.1f ms\n",
+                "raytrace: Embree %zd.%zd.%zd, %d threads; BVH built in %.1f ms, %dx%d traced in %.1f ms\n",
                 rtcGetDeviceProperty(t.device, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
                 rtcGetDeviceProperty(t.device, RTC_DEVICE_PROPERTY_VERSION_MINOR),
                 rtcGetDeviceProperty(t.device, RTC_DEVICE_PROPERTY_VERSION_PATCH), omp_get_max_threads(),
-                (double)t.epsilon, (built - start) * 1e3, width, height, (omp_get_wtime() - built) * 1e3);
+                (built - start) * 1e3, width, height, (omp_get_wtime() - built) * 1e3);
     raytrace_release(&t);
     if (!ok)
         dump_frame_free(out);

@@ -11,8 +11,13 @@
  *
  * What it computes, pixel by pixel:
  *   camera    one primary ray through the centre of each pixel of the
- *             raster camera (camera_view_compute with aspect W/H), between
- *             its near and far planes, so it sees what the rasterizer sees.
+ *             raster camera (the view and projection camera_view_compute
+ *             makes with aspect W/H), between its near and far planes, so
+ *             it sees what the rasterizer sees; built in double from the
+ *             camera's position, target, up and fov, so any near/far ratio
+ *             works and the framing does not depend on how far the scene
+ *             is from the origin. The scene is traced relative to the eye
+ *             (see raytrace.c); the dump is in world units as everywhere.
  *   surface   the dump's normal is the triangle's own (face) normal turned
  *             towards the eye; the shading normal is lit.frag's: the
  *             vertex normals interpolated, through the inverse transpose of
@@ -39,15 +44,19 @@
  *             "casts": false block no light; those with "receives": false
  *             are never in shadow.
  *
- * Shadow rays start off the surface by RAYTRACE_EPSILON times the diagonal
- * of the box holding the scene and the origin, along the face normal on the
- * light's side, and stop that far short of the light: see raytrace.c.
+ * Shadow rays start off the surface by RAYTRACE_OFFSET_ULPS float ulps of
+ * the hit point's coordinates (from the eye), along the face normal on the
+ * light's side, and stop as many ulps of the light's short of it; every
+ * hit Embree finds on them is confirmed in double. Nothing depends on the
+ * scene's size (a huge ground or sky sphere): see raytrace.c.
  *
  * Rows are traced in parallel with OpenMP. raytrace_render creates the
- * dump (dump_frame_create) and returns true; on failure (Embree, memory) it
- * prints one line "raytrace: problem" and returns false with nothing to
- * free. With `verbose`, it prints the Embree version, the thread count and
- * where the time went on stderr.
+ * dump (dump_frame_create) and returns true; on failure (an invalid camera,
+ * Embree, memory) it prints one line "raytrace: problem" (naming
+ * settings->scene_name for the camera) and returns false with nothing to
+ * free. No ray it hands Embree is invalid, whatever the scene. With
+ * `verbose`, it prints the Embree version, the thread count and where the
+ * time went on stderr.
  */
 #ifndef RAYTRACE_H
 #define RAYTRACE_H
@@ -58,12 +67,14 @@
 
 #define RAYTRACE_DEFAULT_LIGHT_SAMPLES 256
 #define RAYTRACE_MAX_LIGHT_SAMPLES 65536
-/* Shadow-ray offset, relative to the scene's size (see raytrace.c). */
-#define RAYTRACE_EPSILON 1e-5f
+/* Shadow-ray offset, in float ulps of the hit point's coordinates from the
+ * eye (see raytrace.c). */
+#define RAYTRACE_OFFSET_ULPS 8.0
 
 typedef struct raytrace_settings {
-    int light_samples; /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
+    int light_samples;      /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
     bool verbose;
+    const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
 } raytrace_settings;
 
 bool raytrace_render(const scene *s, int width, int height, int light_index, const raytrace_settings *settings,

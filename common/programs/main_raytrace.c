@@ -54,11 +54,13 @@ static void main_usage(void) {
            "Ray-traces the reference picture and per-pixel dump of a scene (Embree, on the CPU).\n",
            main_flags.program);
     flags_print_help(stdout, main_flag_table, main_flag_count, 2, 0);
-    printf("Shadow rays start %g x the diagonal of the box holding the scene and the origin\n"
-           "off the surface, along its normal on the light's side, and stop as far short of\n"
-           "the light: float rounding of hit points grows with the scene's coordinates.\n"
+    printf("Camera rays are built in double and the scene is traced relative to the eye, so\n"
+           "any near/far ratio works and a scene far from the origin keeps its precision.\n"
+           "Shadow rays start %g float ulps of the hit point's coordinates (from the eye) off\n"
+           "the surface, along its normal on the light's side, and every hit they meet is\n"
+           "confirmed in double: nothing depends on the scene's size.\n"
            "Threads: OMP_NUM_THREADS (default: every core).\n",
-           (double)RAYTRACE_EPSILON);
+           RAYTRACE_OFFSET_ULPS);
 }
 
 static int main_usage_error(const char *message, const char *value) {
@@ -77,6 +79,7 @@ static int main_run(void) {
         scene_free(&s);
         return main_usage_error(message, index);
     }
+    main_flags.settings.scene_name = main_flags.scene_path;
     double start = omp_get_wtime();
     dump_frame frame;
     bool ok = raytrace_render(&s, main_flags.width, main_flags.height, main_flags.light_index, &main_flags.settings,
