@@ -1,4 +1,5 @@
-/* Tests of demos/lib/volume_mesh.c, the shadow volumes' CPU geometry, on
+/* Tests of demos/lib/volume_mesh.c, the shadow volumes' CPU geometry (and
+ * of volume_silhouette.c's adjacency for the geometry shader), on
  * procedural meshes and a camera of our own: no GL context.
  *
  * A volume's faces must all face out of it (front faces count +1 on the
@@ -11,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -18,6 +20,7 @@
 #include "support.h"
 
 #include "volume_mesh.h"
+#include "volume_silhouette.h"
 
 /* A side of an edge swept to infinity from a point light: two triangles. */
 #define SIDE_VERTICES 6
@@ -465,6 +468,48 @@ static void test_depth_bounds(void **state) {
     assert_false(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 0, NULL, NULL, bounds));
 }
 
+/* The geometry shader's adjacency (volume_silhouette.h): on a closed box,
+ * mesh_adjacency_indices' indices. On an open, non-manifold mesh, a book
+ * of three pages on one spine (0-1) and a fourth triangle across the
+ * first page's edge 1-2, each corner first and then across its edge the
+ * one other triangle's third vertex (only 1-2 has one: 5 from the first
+ * page, 0 from the fourth), everywhere else the mark, the triangle's own
+ * third vertex: on the spine (three uses) and the open borders (one). */
+static void test_adjacency_marks_borders(void **state) {
+    (void)state;
+    mesh box;
+    mesh_edges e;
+    assert_true(mesh_make_box(&box, 1, 2, 3));
+    assert_true(volume_mesh_edges_build(&box, &e));
+    size_t count = (size_t)box.index_count / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE;
+    uint32_t *ours = malloc(count * sizeof *ours), *closed = malloc(count * sizeof *closed);
+    assert_true(ours && closed);
+    volume_silhouette_adjacency(&box, &e, ours);
+    assert_true(mesh_adjacency_indices(&box, &e, closed));
+    assert_memory_equal(ours, closed, count * sizeof *ours);
+    free(ours);
+    free(closed);
+    mesh_edges_free(&e);
+    mesh_free(&box);
+
+    mesh_vertex vertices[] = {
+        {{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}},  {{1, 0, 0}, {0, 0, 1}},
+        {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}}, {{1, 1, 0}, {0, 0, -1}},
+    };
+    uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4, 2, 1, 5};
+    mesh book = {vertices, indices, 6, 12, {-1, 0, 0}, {1, 1, 1}};
+    static const uint32_t expected[] = {0, 2, 1, 5, 2, 1, /* page: spine, across 1-2, border */
+                                        0, 1, 3, 0, 1, 3, /* page: border, border, spine */
+                                        0, 4, 1, 0, 4, 1, /* page: spine, border, border */
+                                        2, 0, 1, 2, 5, 1 /* across 1-2, border, border */};
+    uint32_t adjacency[sizeof expected / sizeof *expected];
+    assert_true(volume_mesh_edges_build(&book, &e));
+    assert_false(e.closed);
+    volume_silhouette_adjacency(&book, &e, adjacency);
+    assert_memory_equal(adjacency, expected, sizeof expected);
+    mesh_edges_free(&e);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_box_sides_on_silhouette_once),
@@ -477,6 +522,7 @@ int main(void) {
         cmocka_unit_test(test_missed_volumes_have_no_point_in_view),
         cmocka_unit_test(test_receivers_ndc),
         cmocka_unit_test(test_depth_bounds),
+        cmocka_unit_test(test_adjacency_marks_borders),
     };
     return cmocka_run_group_tests_name("shadow volumes' CPU geometry", tests, NULL, NULL);
 }

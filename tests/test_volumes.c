@@ -27,8 +27,8 @@ static void assert_within_bound(const char *scene, const char *flags, const char
 
 /* Closed (simple, bunny), open (teapot, spider) and open non-manifold
  * (wuson) casters, under spot, point and directional lights, with every
- * counting mode and silhouette path (the geometry shader's sides with the
- * CPU's caps for z-fail). */
+ * counting mode and silhouette path (the geometry shader's sides, for
+ * open meshes too, with the CPU's caps for z-fail). */
 static void test_every_mesh_every_mode_within_bound(void **state) {
     (void)state;
     static const char *const scenes[] = {"simple", "bunny", "teapot", "spider", "wuson"};
@@ -43,6 +43,49 @@ static void test_every_mesh_every_mode_within_bound(void **state) {
             snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
             snprintf(name, sizeof name, "%s_%zu", scenes[i], k);
             assert_within_bound(path, configs[k], name);
+        }
+    }
+}
+
+/* GPU silhouettes serve open and non-manifold meshes too, with the CPU
+ * path's decisions (demos/lib/volume_silhouette.h): on teapot, spider and
+ * wuson no CPU volume is built for the sides (the HUD's count), and in
+ * z-pass and z-fail the visibility differs from the CPU path's on at most
+ * VOLUMES_MAX_MISCLASSIFIED_PERCENT of the surface pixels (measured:
+ * teapot and wuson none; spider 3 of 165143 (0.0018 %), on the spider
+ * itself, where the shader's sides, other triangles over the same quads,
+ * round the depth otherwise (see volume_silhouette.h), as they do on
+ * closed meshes too: bunny 19, dense 23). */
+static void test_gpu_silhouettes_of_open_meshes_match_cpu(void **state) {
+    (void)state;
+    static const char *const scenes[] = {"teapot", "spider", "wuson"};
+    static const char *const modes[] = {"", "--mode zfail"};
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[256];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
+        const char *line = support_verbose_line("volumes", path, "--silhouette gpu", "volumes built ");
+        assert_non_null(line);
+        assert_true(strncmp(line, "volumes built 0, kept 0;", 24) == 0);
+        for (size_t k = 0; k < sizeof modes / sizeof *modes; k++) {
+            char flags[2][128], dirs[2][256];
+            dump_frame frames[2];
+            for (int gpu = 0; gpu < 2; gpu++) {
+                snprintf(flags[gpu], sizeof flags[gpu], "%s --silhouette %s", modes[k], gpu ? "gpu" : "cpu");
+                snprintf(dirs[gpu], sizeof dirs[gpu], "out/test/volumes/%s_%zu_%s", scenes[i], k, gpu ? "gpu" : "cpu");
+                assert_int_equal(support_dump("volumes", path, flags[gpu], dirs[gpu]), 0);
+                assert_true(dump_read(&frames[gpu], dirs[gpu]));
+            }
+            long surface = 0, differ = 0;
+            for (long p = 0; p < (long)frames[0].width * frames[0].height; p++) {
+                surface += frames[0].visibility[p] >= 0;
+                differ += frames[0].visibility[p] != frames[1].visibility[p];
+            }
+            double percent = 100.0 * (double)differ / (double)surface;
+            printf("    %-8s %-13s: GPU silhouettes' visibility differs from the CPU's on %ld of %ld (%.4f %%)\n",
+                   scenes[i], modes[k][0] ? modes[k] : "auto", differ, surface, percent);
+            assert_true(surface > 0 && percent <= VOLUMES_MAX_MISCLASSIFIED_PERCENT);
+            dump_frame_free(&frames[0]);
+            dump_frame_free(&frames[1]);
         }
     }
 }
@@ -97,6 +140,7 @@ static void test_bad_triangles_skipped(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_mesh_every_mode_within_bound),
+        cmocka_unit_test(test_gpu_silhouettes_of_open_meshes_match_cpu),
         cmocka_unit_test(test_camera_in_shadow),
         cmocka_unit_test(test_trimmed_within_bound),
         cmocka_unit_test(test_300_overlapping_casters),

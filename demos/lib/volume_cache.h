@@ -1,5 +1,5 @@
 /* volume_cache: one light's shadow volumes kept on the GPU, so that they
- * are drawn again without being built again (demos/volumes.c).
+ * are drawn again without being built again (demos/lib/volume_draw.c).
  *
  * One vertex buffer holds, for each object, the parts of its volume that
  * were kept (VOLUME_MESH_SIDES and VOLUME_MESH_CAPS apart: the camera

@@ -1,0 +1,144 @@
+#include "volume_draw.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+/* ---- set-up ---- */
+
+/* Object i's edge table and adjacency on the GPU. */
+static bool volume_draw_init_caster(volume_draw *d, const render_scene *gpu, int i) {
+    const mesh *m = &gpu->scene->objects[i].mesh;
+    return volume_mesh_edges_build(m, &d->edges[i]) &&
+           volume_silhouette_mesh_init(&d->adjacency[i], m, &d->edges[i], gpu->meshes[i].vertex_buffer);
+}
+
+bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
+    static const char *const cpu_files[] = {"volume.vert", "volume.frag"};
+    if (!render_program_load(&d->cpu, cpu_files, (int)(sizeof cpu_files / sizeof *cpu_files), NULL) ||
+        !volume_silhouette_load(&d->gpu))
+        return false;
+    d->cpu_color = glGetUniformLocation(d->cpu.id, "u_color");
+    const scene *s = gpu->scene;
+    size_t objects = (size_t)s->object_count;
+    d->edges = calloc(objects, sizeof *d->edges);
+    d->adjacency = calloc(objects, sizeof *d->adjacency);
+    if (!d->edges || !d->adjacency) {
+        fprintf(stderr, "volumes: out of memory\n");
+        return false;
+    }
+    d->object_count = s->object_count;
+    for (int l = 0; l < s->light_count; l++)
+        if (!volume_cache_init(&d->caches[l], s->object_count))
+            return false;
+    glm_vec3_fill(d->receivers_lo, INFINITY);
+    glm_vec3_fill(d->receivers_hi, -INFINITY);
+    for (int i = 0; i < s->object_count; i++) {
+        if (s->objects[i].casts && !volume_draw_init_caster(d, gpu, i))
+            return false;
+        float lo[3], hi[3];
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        if (s->objects[i].receives) {
+            glm_vec3_minv(d->receivers_lo, lo, d->receivers_lo);
+            glm_vec3_maxv(d->receivers_hi, hi, d->receivers_hi);
+        }
+    }
+    glGenVertexArrays(1, &d->stream_vao);
+    glGenBuffers(1, &d->stream_buffer);
+    volume_cache_vertex_array(d->stream_vao, d->stream_buffer);
+    return true;
+}
+
+void volume_draw_destroy(volume_draw *d) {
+    render_program_destroy(&d->cpu);
+    volume_silhouette_destroy(&d->gpu);
+    for (int i = 0; i < d->object_count; i++) {
+        mesh_edges_free(&d->edges[i]);
+        volume_silhouette_mesh_free(&d->adjacency[i]);
+    }
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        volume_cache_free(&d->caches[l]);
+    free(d->edges);
+    free(d->adjacency);
+    volume_mesh_free(&d->geometry);
+    glDeleteVertexArrays(1, &d->stream_vao);
+    glDeleteBuffers(1, &d->stream_buffer);
+    *d = (volume_draw){0};
+}
+
+void volume_draw_forget(volume_draw *d, int l) {
+    volume_cache_forget(&d->caches[l]);
+}
+
+void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim) {
+    glm_vec3_copy(d->receivers_lo, d->reach_lo);
+    glm_vec3_copy(d->receivers_hi, d->reach_hi);
+    d->reach_on = trim && scene_light_clip_to_range(light, d->reach_lo, d->reach_hi);
+}
+
+/* ---- drawing ---- */
+
+void volume_draw_stream(volume_draw *d, const float (*vertices)[4], size_t count, unsigned primitive) {
+    glBindVertexArray(d->stream_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, d->stream_buffer);
+    size_t bytes = count * sizeof *vertices;
+    if (bytes > d->stream_capacity) {
+        d->stream_capacity = bytes * 2;
+        glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)d->stream_capacity, NULL, GL_STREAM_DRAW);
+    }
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, vertices);
+    glDrawArrays(primitive, 0, (GLsizei)count);
+}
+
+bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const float light[4],
+                       volume_mesh_parts part) {
+    const scene_object *o = &f->gpu->scene->objects[i];
+    float object_light[4];
+    volume_mesh_object_light(o->model, light, object_light);
+    volume_mesh_trim trim = {0};
+    if (d->reach_on)
+        volume_mesh_trim_for(o->model, object_light, &o->mesh, d->reach_lo, d->reach_hi, &trim);
+    render_program_use(&d->cpu, f->view);
+    glUniformMatrix4fv(d->cpu.model, 1, GL_FALSE, (const float *)o->model);
+    if (volume_mesh_build(&d->geometry, &o->mesh, &d->edges[i], object_light, &trim, part))
+        return true;
+    fprintf(stderr, "volumes: %s: out of memory building its volume\n", o->name);
+    return false;
+}
+
+/* Caster i's CPU part for light l, from the light's cache, kept there
+ * first if it is not yet (streamed when it does not fit). */
+static void volume_draw_kept(volume_draw *d, const technique_frame *f, int l, int i, const float light[4],
+                             volume_mesh_parts part) {
+    volume_cache *c = &d->caches[l];
+    if (volume_cache_has(c, i, part)) {
+        d->reused++;
+        render_program_use(&d->cpu, f->view);
+        glUniformMatrix4fv(d->cpu.model, 1, GL_FALSE, (const float *)f->gpu->scene->objects[i].model);
+    } else {
+        d->built++;
+        if (!volume_draw_build(d, f, i, light, part))
+            return;
+        const volume_mesh *v = &d->geometry;
+        if (!volume_cache_keep(c, i, part, v, &d->cache_bytes, VOLUME_DRAW_CACHE_MAX_BYTES)) {
+            volume_draw_stream(d, v->vertices, v->count, GL_TRIANGLES);
+            return;
+        }
+    }
+    volume_cache_draw(c, i, part);
+}
+
+void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, const float light[4], bool gpu,
+                        bool zfail) {
+    if (gpu) {
+        const scene_object *o = &f->gpu->scene->objects[i];
+        float object_light[4];
+        volume_mesh_object_light(o->model, light, object_light);
+        volume_silhouette_draw(&d->gpu, &d->adjacency[i], f->view, (const float *)o->model, object_light);
+    } else {
+        volume_draw_kept(d, f, l, i, light, VOLUME_MESH_SIDES);
+    }
+    if (zfail)
+        volume_draw_kept(d, f, l, i, light, VOLUME_MESH_CAPS);
+}

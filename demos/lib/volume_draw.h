@@ -1,0 +1,83 @@
+/* volume_draw: a scene's shadow volumes drawn, one caster for one light at
+ * a time, for demos/volumes.c, which sets the stencil and depth state that
+ * counts them.
+ *
+ * Per caster, built once per scene: its welded edge table (the CPU
+ * volumes', demos/lib/volume_mesh.h) and its adjacency on the GPU
+ * (demos/lib/volume_silhouette.h). A caster's sides come from the
+ * geometry shader (--silhouette gpu) or from the CPU; its caps, which
+ * z-fail needs, always from the CPU (see volume_silhouette.h for why).
+ *
+ * The CPU volumes are kept, one GPU buffer per light (volume_cache), each
+ * caster's sides and caps apart (the camera picks z-pass or z-fail each
+ * frame), built when a caster is first drawn after volume_draw_forget (the
+ * light moved) and drawn from there until the next; past
+ * VOLUME_DRAW_CACHE_MAX_BYTES in all, the rest is built every time and
+ * streamed. They are swept to infinity, or trimmed past a reach
+ * (volume_draw_reach; volume_mesh_trim_for): the scene's receivers, not
+ * only the visible ones, as the kept volumes outlive the camera.
+ *
+ * Every CPU volume is drawn by one program (volume.vert, volume.frag: the
+ * depth pre-pass's vertex path; colour u_color for the overlays), whose
+ * vertices are homogeneous, in the object's space.
+ */
+#ifndef VOLUME_DRAW_H
+#define VOLUME_DRAW_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "technique.h"
+#include "volume_cache.h"
+#include "volume_mesh.h"
+#include "volume_silhouette.h"
+
+/* The most the kept volumes take on the GPU, all lights together
+ * (measured: dense's 158k triangles under its directional light, z-fail
+ * caps and all, 4.7 MiB; the city's 7 lights 0.1 MiB). */
+#define VOLUME_DRAW_MIB ((size_t)1 << 20)
+#define VOLUME_DRAW_CACHE_MAX_BYTES (256 * VOLUME_DRAW_MIB)
+
+/* Zero is an unmade one. */
+typedef struct volume_draw {
+    render_program cpu; /* the CPU volumes, and the overlays */
+    int cpu_color;      /* its u_color */
+    volume_silhouette gpu;
+    mesh_edges *edges;                 /* per object; casters only */
+    volume_silhouette_mesh *adjacency; /* per object; casters only */
+    int object_count;
+    unsigned stream_vao, stream_buffer; /* what is not kept */
+    size_t stream_capacity;
+    volume_mesh geometry; /* the caster at hand's CPU volume */
+    volume_cache caches[SCENE_MAX_LIGHTS];
+    size_t cache_bytes;                     /* all caches' buffers */
+    float receivers_lo[3], receivers_hi[3]; /* every receiver's box together; empty when none */
+    /* The reach of the volumes built next, when they are trimmed. */
+    bool reach_on;
+    float reach_lo[3], reach_hi[3];
+    int built, reused; /* CPU parts built, and drawn as kept: the HUD's (the caller zeroes them) */
+} volume_draw;
+
+/* False after printing why. */
+bool volume_draw_init(volume_draw *d, const render_scene *gpu);
+void volume_draw_destroy(volume_draw *d);
+/* Drops light l's kept volumes. */
+void volume_draw_forget(volume_draw *d, int l);
+/* The volumes built from now on end past the light's reach (every
+ * receiver, clipped to its range) when `trim`, else at infinity. */
+void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim);
+
+/* Caster i's volume for light l (homogeneous, world): its sides, from the
+ * geometry shader when `gpu`, and for z-fail its caps after them. */
+void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, const float light[4], bool gpu,
+                        bool zfail);
+/* Caster i's part for the light into d->geometry, with the CPU program
+ * bound for it and the object's model matrix set; false after printing
+ * why. */
+bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const float light[4],
+                       volume_mesh_parts part);
+/* Homogeneous vertices, with the CPU program's uniforms as they are, as
+ * `primitive` (a GLenum), through the stream buffer. */
+void volume_draw_stream(volume_draw *d, const float (*vertices)[4], size_t count, unsigned primitive);
+
+#endif

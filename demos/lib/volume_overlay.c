@@ -1,0 +1,68 @@
+#include "volume_overlay.h"
+
+#include <glad/gl.h>
+
+/* The counts' ramp: counts 1 .. VOLUME_OVERLAY_COUNT_STEPS - 1 each their
+ * colour, the last step for that many and more. */
+#define VOLUME_OVERLAY_COUNT_STEPS 4
+#define VOLUME_OVERLAY_COUNT_ALPHA 0.45f
+static const float volume_overlay_count_ramp[VOLUME_OVERLAY_COUNT_STEPS][3] = {
+    {0.2f, 0.4f, 1}, {0.2f, 1, 0.3f}, {1, 0.9f, 0.1f}, {1, 0.2f, 0.1f}};
+static const float volume_overlay_faces[4] = {1.0f, 0.85f, 0.2f, 0.12f};
+static const float volume_overlay_edges[4] = {1.0f, 0.85f, 0.2f, 0.6f};
+static const float volume_overlay_silhouette[4] = {1.0f, 0.3f, 0.2f, 1.0f};
+/* The whole screen in clip space (two triangles), for the counts. */
+static const float volume_overlay_screen[6][4] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1},
+                                                  {-1, -1, 0, 1}, {1, 1, 0, 1},  {-1, 1, 0, 1}};
+
+void volume_overlay_counts(volume_draw *d, unsigned stencil_mask) {
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    camera_view identity = {0};
+    glm_mat4_identity(identity.view_projection);
+    render_program_use(&d->cpu, &identity);
+    glUniformMatrix4fv(d->cpu.model, 1, GL_FALSE, (const float *)identity.view_projection);
+    for (int k = 1; k <= VOLUME_OVERLAY_COUNT_STEPS; k++) {
+        glStencilFunc(k < VOLUME_OVERLAY_COUNT_STEPS ? GL_EQUAL : GL_LEQUAL, k, stencil_mask);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        const float *c = volume_overlay_count_ramp[k - 1];
+        glUniform4f(d->cpu_color, c[0], c[1], c[2], VOLUME_OVERLAY_COUNT_ALPHA);
+        volume_draw_stream(d, volume_overlay_screen, sizeof volume_overlay_screen / sizeof *volume_overlay_screen,
+                           GL_TRIANGLES);
+    }
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+    glEnable(GL_DEPTH_TEST);
+}
+
+void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float light[4], bool faces) {
+    const scene *s = f->gpu->scene;
+    glDisable(GL_STENCIL_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_LEQUAL);
+    glEnable(GL_DEPTH_CLAMP);
+    for (int i = 0; i < s->object_count; i++) {
+        if (!s->objects[i].casts ||
+            !volume_draw_build(d, f, i, light, faces ? VOLUME_MESH_SIDES : VOLUME_MESH_SILHOUETTE_LINES))
+            continue;
+        const volume_mesh *v = &d->geometry;
+        if (faces) {
+            glUniform4fv(d->cpu_color, 1, volume_overlay_faces);
+            volume_draw_stream(d, v->vertices, v->count, GL_TRIANGLES);
+            glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+            glUniform4fv(d->cpu_color, 1, volume_overlay_edges);
+            volume_draw_stream(d, v->vertices, v->count, GL_TRIANGLES);
+            glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        } else {
+            glUniform4fv(d->cpu_color, 1, volume_overlay_silhouette);
+            glDepthFunc(GL_ALWAYS);
+            volume_draw_stream(d, v->vertices, v->count, GL_LINES);
+            glDepthFunc(GL_LEQUAL);
+        }
+    }
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_BLEND);
+}

@@ -1,0 +1,27 @@
+/* volume_overlay: the shadow volumes' lecture overlays (--overlay), drawn
+ * over the finished picture for one light (demos/volumes.c gives light 0):
+ * - volumes: every caster's CPU volume sides, faint faces (many overlap)
+ *   with clearer edges;
+ * - silhouettes: its silhouette edges (VOLUME_MESH_SILHOUETTE_LINES) in
+ *   opaque red, over everything;
+ * - counts: the stencil count at each pixel as colour, 1, 2, 3 and "this
+ *   many or more" by a ramp from blue to red, translucent so the picture
+ *   shows through; the caller counts the light into the stencil first.
+ * All with volume_draw's CPU program and stream, at the volumes' reach
+ * (volume_draw_reach).
+ */
+#ifndef VOLUME_OVERLAY_H
+#define VOLUME_OVERLAY_H
+
+#include <stdbool.h>
+
+#include "volume_draw.h"
+
+/* Every caster's volume sides (`faces`) or its silhouette lines, for the
+ * light (homogeneous, world). */
+void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float light[4], bool faces);
+/* The stencil's counts as colour over the whole screen, stencil test on;
+ * leaves it off. */
+void volume_overlay_counts(volume_draw *d, unsigned stencil_mask);
+
+#endif

@@ -1,0 +1,107 @@
+/* volume_silhouette: the sides of shadow volumes found on the GPU
+ * (--silhouette gpu), by a geometry shader over GL_TRIANGLES_ADJACENCY
+ * (shaders/volume_silhouette.geom), for any mesh: closed, open or
+ * non-manifold, with the decisions of the CPU path (demos/lib/volume_mesh.h,
+ * whose top comment is the rule both follow).
+ *
+ * Adjacency: six indices per triangle, each corner and then the vertex
+ * across the edge it starts (the third vertex of the triangle on the
+ * other side). An edge of the welded edge table with exactly two uses has
+ * that one triangle across, whichever way it runs. A border has none
+ * across (an open edge: one use) or no single one (a non-manifold edge:
+ * three or more); its index across is then the triangle's own third
+ * vertex, the mark the shader reads (same index, so the same position, bit
+ * for bit). A closed mesh has no border: its indices are those of
+ * mesh_adjacency_indices.
+ *
+ * The shader, per triangle, edge by edge (a -> b, as the triangle runs):
+ * - closed meshes (VOLUME_SILHOUETTE_CLOSED): only light-facing triangles
+ *   emit (the back-facing ones weigh 0), the side of each edge whose
+ *   neighbour faces away: silhouettes once, the textbook volume;
+ * - open meshes (VOLUME_SILHOUETTE_OPEN): every triangle emits, +1 when
+ *   it faces the light, -1 when not (its sides reversed): the side of
+ *   each border edge, and of each other edge where the triangle across
+ *   lies on the same side as this one of the plane through the edge and
+ *   the light (seen from the light the surface folds there: a
+ *   silhouette). The shader tests it as "the facing of (a, across, b)
+ *   differs from mine": (a, across, b) is the neighbour's own winding
+ *   when it runs b -> a, the reverse when it runs a -> b, and the fold is
+ *   the same either way. Summed over an edge's triangles (a reversed side
+ *   counting -1), the sides are the CPU's multiplicity: 2 w on a
+ *   silhouette between two triangles (one side from each), and on a
+ *   border each triangle's own (at a non-manifold edge, pairs of opposite
+ *   sides drawn over the same quad cancel in the stencil).
+ * The facing tests are the CPU's expression in object space; the
+ * neighbour's is taken from this triangle's corners, so a triangle edge-on
+ * to the light could be judged otherwise than by itself (on the tests'
+ * scenes none is: the same expressions in C give every edge the CPU's
+ * multiplicity). What differs is rasterization: a side from the shader
+ * is the CPU's quad in other triangles (split along the other diagonal,
+ * from other leading vertices, emitted by a geometry shader, whose
+ * triangles llvmpipe rasterizes at slightly other depths; split as the
+ * CPU splits, spider still differs on 6 pixels, bunny on 19), so where a
+ * side starts at its surface's depth (a caster's own terminator) a pixel
+ * may round the other way. Measured against --silhouette cpu at 640x360,
+ * pixels whose visibility differs: teapot and wuson 0, spider 3, and on
+ * closed meshes simple 3, bunny 19, dense 23 (0.002 to 0.014 %).
+ *
+ * The shader emits the sides alone: z-fail's caps come from the CPU (kept
+ * like its sides, demos/lib/volume_draw.h) through volume.vert, the vertex
+ * path of the depth pre-pass (lit.vert's invariant expression, the same
+ * uniforms), since caps must lie at exactly the depth of their surface
+ * and llvmpipe rasterizes a geometry shader's triangles at slightly other
+ * depths than a vertex shader's (measured with the shader's caps: 0.2 to
+ * 0.4 % false shadow on simple and bunny; with the vertex path's, as exact
+ * as the CPU's). The mesh's own vertices of a side come placed by the
+ * vertex stage too (volume_adjacency.vert), for the same reason.
+ */
+#ifndef VOLUME_SILHOUETTE_H
+#define VOLUME_SILHOUETTE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "mesh.h"
+#include "render.h"
+
+/* Which rule the shader follows for a mesh (u_topology; see the top). */
+enum { VOLUME_SILHOUETTE_CLOSED, VOLUME_SILHOUETTE_OPEN };
+
+/* GL_TRIANGLES_ADJACENCY indices per triangle: each corner, then the
+ * vertex across. */
+#define VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE 6
+
+/* The adjacency indices of mesh m, whose welded edge table is e, into out
+ * (VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE per triangle), borders marked
+ * (see the top). */
+void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *out);
+
+/* One caster on the GPU: its vertex buffer with its adjacency indices.
+ * Zero is none. */
+typedef struct volume_silhouette_mesh {
+    unsigned vao, index_buffer;
+    int index_count;
+    int topology; /* VOLUME_SILHOUETTE_CLOSED or _OPEN */
+} volume_silhouette_mesh;
+
+/* The program, for every caster. Zero is unloaded. */
+typedef struct volume_silhouette {
+    render_program program;
+    int light, topology; /* uniform locations */
+} volume_silhouette;
+
+/* False after printing why. */
+bool volume_silhouette_load(volume_silhouette *s);
+void volume_silhouette_destroy(volume_silhouette *s);
+/* Mesh m (edge table e) over its vertex buffer `vertex_buffer` (of
+ * mesh_vertex, as render_scene uploads it); false after printing why. */
+bool volume_silhouette_mesh_init(volume_silhouette_mesh *out, const mesh *m, const mesh_edges *e,
+                                 unsigned vertex_buffer);
+void volume_silhouette_mesh_free(volume_silhouette_mesh *m);
+/* The sides of m's volume from the light (homogeneous, in m's space),
+ * the object's model matrix `model` (16 floats, column-major), seen from
+ * `view`. */
+void volume_silhouette_draw(const volume_silhouette *s, const volume_silhouette_mesh *m, const camera_view *view,
+                            const float *model, const float light[4]);
+
+#endif
