@@ -18,18 +18,32 @@
  *            Off: casters are blended dark straight into the picture, and
  *            overlapping triangles darken twice and spill past the
  *            receiver's edges.
- *   offset   the projected casters are coplanar with the receiver; polygon
- *            offset pulls them towards the eye. Off: z-fighting speckles.
+ *   offset   the projected casters are coplanar with the receiver, so a
+ *            depth test between them is a coin toss. With the stencil they
+ *            need none: they are drawn with the depth test off, confined
+ *            by the stencil to the receiver's visible pixels, which the
+ *            receiver's own depth-equal pass marked; so the precision of
+ *            the receiver's interpolated depth cannot matter (a ground of
+ *            1e5 units, two giant triangles, would otherwise lose every
+ *            shadow), and a caster between the receiver and the eye is
+ *            not shadowed by its own flattened copy, which lies on the
+ *            plane and only marks receiver pixels. Without the stencil,
+ *            polygon offset pulls them towards the eye. Off: they are
+ *            depth-tested as they are, and z-fight with the receiver.
  *   reject   the plane is oriented towards the light and clip distances
- *            drop what is below it or beyond the light. Off: a light below
- *            the plane or a caster above the light casts anti-shadows.
+ *            drop what is below it or beyond the light; a caster lying in
+ *            the plane (a mat on the floor) is left out, being its own
+ *            shadow. Off: a light below the plane or a caster above the
+ *            light casts anti-shadows.
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "frustum.h"
 #include "planar.h"
 #include "technique.h"
 
@@ -38,6 +52,12 @@
  * slope term covers receivers seen at grazing angles. */
 #define PLANAR_OFFSET_FACTOR -1.0f
 #define PLANAR_OFFSET_UNITS -2.0f
+/* A caster lies in a receiver's plane when every corner of its box is
+ * within this many float roundings of the plane, relative to the
+ * magnitudes the distance is made of (the corner's coordinates and the
+ * plane's offset): the model matrix and the plane round a few times each,
+ * and anything that close to the plane z-fights with it in the picture. */
+#define PLANAR_COPLANAR_ROUNDINGS 64.0f
 
 static struct {
     planar_settings settings;
@@ -72,6 +92,20 @@ void planar_receiver_plane(const scene_object *o, float plane[4]) {
     glm_vec4(normal, -glm_vec3_dot(normal, origin), plane);
 }
 
+bool planar_in_plane(const scene_object *o, const float plane[4]) {
+    float corners[8][3];
+    frustum_box_corners(o->mesh.bounds_min, o->mesh.bounds_max, corners);
+    for (int c = 0; c < 8; c++) {
+        vec3 world;
+        glm_mat4_mulv3((vec4 *)o->model, corners[c], 1.0f, world);
+        float magnitude = fabsf(world[0]) + fabsf(world[1]) + fabsf(world[2]) + fabsf(plane[3]);
+        float distance = glm_vec3_dot((float *)plane, world) + plane[3];
+        if (fabsf(distance) > PLANAR_COPLANAR_ROUNDINGS * FLT_EPSILON * magnitude)
+            return false;
+    }
+    return true;
+}
+
 static bool planar_init(const render_scene *gpu) {
     static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
     if (!render_program_load(&planar.flatten, files, 2, NULL))
@@ -93,7 +127,11 @@ static void planar_destroy(void) {
     planar.casters = NULL;
 }
 
-static void planar_draw_casters(const technique_frame *f, int receiver, const float plane[4], const float light[4]) {
+/* The casters flattened onto the receiver's plane. `stenciled`: the
+ * stencil confines them to the receiver's visible pixels, so they need
+ * no depth test (see "offset" above). */
+static void planar_draw_casters(const technique_frame *f, int receiver, const float plane[4], const float light[4],
+                                bool stenciled) {
     const scene *s = f->gpu->scene;
     mat4 shadow;
     planar_shadow_matrix(plane, light, shadow);
@@ -104,7 +142,9 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     glEnable(GL_CLIP_DISTANCE0);
     glEnable(GL_CLIP_DISTANCE1);
     if (planar.settings.no_offset) {
-        glDisable(GL_POLYGON_OFFSET_FILL);
+        glDepthFunc(GL_LESS); /* the artifact: a coin toss against the receiver */
+    } else if (stenciled) {
+        glDepthFunc(GL_ALWAYS);
     } else {
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(PLANAR_OFFSET_FACTOR, PLANAR_OFFSET_UNITS);
@@ -113,11 +153,13 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     /* Not only casters in view: one outside the view may shadow a
      * receiver inside it; planar.casters are those that may. */
     for (int i = 0; i < s->object_count; i++)
-        if (i != receiver && planar.casters[i])
+        if (i != receiver && planar.casters[i] &&
+            (planar.settings.no_reject || !planar_in_plane(&s->objects[i], plane)))
             render_draw_object(f->gpu, &planar.flatten, i);
     glDisable(GL_CLIP_DISTANCE0);
     glDisable(GL_CLIP_DISTANCE1);
     glDisable(GL_POLYGON_OFFSET_FILL);
+    glDepthFunc(GL_LESS);
 }
 
 /* The plane of receiver r as the shadow matrix needs it for this light;
@@ -134,9 +176,22 @@ static bool planar_receiver_facing(const scene_object *o, const float light_h[4]
     return facing != 0; /* light in the plane: S is singular, the plane unlit */
 }
 
+/* Receiver r's visible pixels (depth equal to the pre-pass's) through
+ * the stencil function and depth-pass operation given. */
+static void planar_stencil_receiver(const technique_frame *f, int r, GLenum func, GLenum op) {
+    glStencilFunc(func, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, op);
+    glDepthFunc(GL_EQUAL);
+    render_program_use(&f->gpu->depth, f->view);
+    render_draw_object(f->gpu, &f->gpu->depth, r);
+}
+
 /* Stencil 2 where light l is blocked: each visible receiver pixel is
  * marked 1, and projected casters turn a 1 into a 2 once, however many of
- * their triangles cover it. */
+ * their triangles cover it. The receiver's pixels left at 1 are then
+ * cleared, so that only the next receiver's pixels are 1 when casters are
+ * flattened onto its plane: they are not depth-tested, and would shadow
+ * any pixel left at 1 that their projection covers. */
 static void planar_mark_shadows(const technique_frame *f, int light, const float light_h[4]) {
     const scene *s = f->gpu->scene;
     /* Stencil marks only the visible receivers' pixels, so a caster whose
@@ -153,16 +208,13 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
         float plane[4];
         if (!planar_receiver_facing(&s->objects[r], light_h, plane))
             continue;
-        glStencilFunc(GL_ALWAYS, 1, 0xff);
-        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-        glDepthFunc(GL_EQUAL);
-        render_program_use(&f->gpu->depth, f->view);
-        render_draw_object(f->gpu, &f->gpu->depth, r);
+        planar_stencil_receiver(f, r, GL_ALWAYS, GL_REPLACE);
         glStencilFunc(GL_EQUAL, 1, 0xff);
         glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-        glDepthFunc(GL_LESS);
-        planar_draw_casters(f, r, plane, light_h);
+        planar_draw_casters(f, r, plane, light_h, true);
+        planar_stencil_receiver(f, r, GL_EQUAL, GL_ZERO);
     }
+    glDepthFunc(GL_LESS);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -215,7 +267,7 @@ static void planar_render_blended(const technique_frame *f) {
         for (int r = 0; r < s->object_count; r++) {
             float plane[4];
             if (planar_receiver_facing(&s->objects[r], light_h, plane))
-                planar_draw_casters(f, r, plane, light_h);
+                planar_draw_casters(f, r, plane, light_h, false);
         }
     }
     glDisable(GL_BLEND);

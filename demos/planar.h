@@ -1,5 +1,5 @@
 /* planar: planar projected shadows (see planar.c). Exposed for its tests:
- * the shadow matrix and the receiver's plane equation. */
+ * the shadow matrix, the receiver's plane equation and the coplanar test. */
 #ifndef PLANAR_H
 #define PLANAR_H
 
@@ -17,5 +17,8 @@ typedef struct planar_settings {
 void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]);
 /* World plane (unit normal, d) of a "plane" mesh object: its local +Y. */
 void planar_receiver_plane(const scene_object *o, float plane[4]);
+/* Object o lies in the plane, within float rounding: flattened onto it,
+ * it is its own shadow, so it casts none there (a mat on the floor). */
+bool planar_in_plane(const scene_object *o, const float plane[4]);
 
 #endif

@@ -1,12 +1,22 @@
-/* Unit tests: the planar shadow matrix and the camera helpers. */
+/* Unit tests: the planar shadow matrix, the coplanar test and the camera
+ * helpers; then planar at the extremes against the ray-traced reference,
+ * one table of cases. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include <cglm/cglm.h>
 #include "camera.h"
+#include "dump.h"
+#include "image.h"
 #include "planar.h"
+#include "shadowdiff.h"
+#include "support.h"
 
 #define EPS 1e-4f
 
@@ -87,6 +97,54 @@ static void test_receiver_plane_follows_model_matrix(void **state) {
     assert_true(fabsf(plane[3] + 3) < EPS); /* z = 3 */
 }
 
+/* A mat's box: flat, 3 by 2, in its local XZ plane. */
+static scene_object mat_at(const mat4 model) {
+    scene_object o = {.mesh = {.bounds_min = {-1.5f, 0, -1}, .bounds_max = {1.5f, 0, 1}}};
+    glm_mat4_copy((vec4 *)model, o.model);
+    return o;
+}
+
+static void test_caster_in_plane(void **state) {
+    (void)state;
+    const float ground[4] = {0, 1, 0, 0};
+    mat4 m;
+    glm_translate_make(m, (vec3){2.5f, 0, -1});
+    glm_rotate_y(m, glm_rad(15), m);
+    scene_object mat = mat_at(m);
+    assert_true(planar_in_plane(&mat, ground));
+    float flipped[4] = {0, -1, 0, 0}; /* the plane as oriented towards a light below */
+    assert_true(planar_in_plane(&mat, flipped));
+    /* Raised by a millimetre: a caster, however thin. */
+    glm_translate_make(m, (vec3){2.5f, 1e-3f, -1});
+    mat = mat_at(m);
+    assert_false(planar_in_plane(&mat, ground));
+    /* A box standing on the plane touches it and is not in it. */
+    scene_object box = {.mesh = {.bounds_min = {-0.8f, -0.8f, -0.8f}, .bounds_max = {0.8f, 0.8f, 0.8f}}};
+    glm_translate_make(box.model, (vec3){-1.8f, 0.8f, 0.6f});
+    assert_false(planar_in_plane(&box, ground));
+}
+
+/* Far from the origin and tilted, the plane and the mat round at their
+ * magnitude: the tolerance follows it. */
+static void test_caster_in_tilted_plane_far_away(void **state) {
+    (void)state;
+    scene_object floor = {0};
+    glm_translate_make(floor.model, (vec3){1000, 2000, -3000});
+    glm_rotate_x(floor.model, glm_rad(30), floor.model);
+    glm_rotate_z(floor.model, glm_rad(20), floor.model);
+    float plane[4];
+    planar_receiver_plane(&floor, plane);
+    mat4 m;
+    glm_mat4_copy(floor.model, m);
+    glm_translate(m, (vec3){5, 0, -7});
+    glm_rotate_y(m, glm_rad(40), m);
+    scene_object mat = mat_at(m);
+    assert_true(planar_in_plane(&mat, plane));
+    glm_translate(m, (vec3){0, 0.5f, 0});
+    mat = mat_at(m);
+    assert_false(planar_in_plane(&mat, plane));
+}
+
 static void test_camera_view_centres_target(void **state) {
     (void)state;
     const scene_camera c = {.position = {4, 3, 5}, .target = {0, 1, 0}, .up = {0, 1, 0},
@@ -131,15 +189,107 @@ static void test_light_orbit_turns_direction_with_position(void **state) {
     assert_true(glm_vec3_distance(to_centre, l.direction) < EPS);
 }
 
+/* ---- planar at the extremes against the reference ---- */
+
+/* The goal for planar on its receivers, as test_accuracy's. */
+#define PLANAR_MAX_MISCLASSIFIED_PERCENT 0.05
+
+typedef struct planar_case {
+    const char *name;
+    const char *scene;
+    /* The scene the reference traces: the same unless it says otherwise. */
+    const char *reference_scene;
+    const char *flags;
+    const char *receiver;
+    bool exceeds; /* a fix switched off: the bound must bite */
+} planar_case;
+
+/* The huge ground's truth is the simple scene's on the part of the ground
+ * both have (same camera, light, casters and names): the reference's
+ * shadow-ray offset, 1e-5 of the whole scene's box, lifts its rays 1.4
+ * units off a ground of 1e5 and shortens every shadow. */
+static const planar_case planar_cases[] = {
+    /* Two triangles 1e5 across: depth-tested, the flattened casters lose
+     * to the receiver's interpolated depth (all shadows gone). */
+    {"huge_ground", "tests/data/planar_huge_ground.json", "assets/scenes/simple.json", "", "ground", false},
+    {"huge_ground_depth_tested", "tests/data/planar_huge_ground.json", "assets/scenes/simple.json", "--no-offset",
+     "ground", true},
+    /* A mat (casts, receives) on a ground that casts: each is the other's
+     * coplanar caster. */
+    {"coplanar_ground", "tests/data/planar_coplanar.json", NULL, "", "ground", false},
+    {"coplanar_mat", "tests/data/planar_coplanar.json", NULL, "", "mat", false},
+    {"coplanar_mat_unrejected", "tests/data/planar_coplanar.json", NULL, "--no-reject", "mat", true},
+    /* Two receivers: each one's unshadowed pixels must be cleared before
+     * casters are flattened onto the other's plane. */
+    {"wall_ground", "tests/data/planar_wall.json", NULL, "", "ground", false},
+    {"wall_wall", "tests/data/planar_wall.json", NULL, "", "wall", false},
+};
+enum { PLANAR_CASE_COUNT = sizeof planar_cases / sizeof *planar_cases };
+
+static int planar_object_index(const dump_frame *d, const char *name) {
+    for (int i = 0; i < d->object_count; i++)
+        if (strcmp(d->object_names[i], name) == 0)
+            return i;
+    return -1;
+}
+
+static void test_planar_case(void **state) {
+    const planar_case *c = *state;
+    char reference_dir[256], test_dir[256], heatmap_path[300];
+    snprintf(reference_dir, sizeof reference_dir, "out/test/planar/%s_reference", c->name);
+    snprintf(test_dir, sizeof test_dir, "out/test/planar/%s", c->name);
+    assert_int_equal(support_dump("raytrace", c->reference_scene ? c->reference_scene : c->scene, "", reference_dir), 0);
+    assert_int_equal(support_dump("planar", c->scene, c->flags, test_dir), 0);
+    dump_frame reference, test;
+    assert_true(dump_read(&reference, reference_dir));
+    assert_true(dump_read(&test, test_dir));
+    unsigned char *heatmap = malloc((size_t)reference.width * reference.height * 4);
+    assert_non_null(heatmap);
+    const shadowdiff_settings settings = {.receiver = c->receiver};
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(&reference, &test, &settings, &r, heatmap));
+    snprintf(heatmap_path, sizeof heatmap_path, "%s_heatmap.png", test_dir);
+    assert_true(image_write_png(heatmap_path, reference.width, reference.height, heatmap));
+    /* Most of the receiver is compared, so that a picture that lost it
+     * cannot pass; a quarter, since the mat z-fights with the ground under
+     * it and is the mat's in both pictures on about half its pixels. */
+    int receiver = planar_object_index(&reference, c->receiver);
+    long receiver_pixels = 0;
+    for (long i = 0; i < (long)reference.width * reference.height; i++)
+        receiver_pixels += reference.ids[i] == receiver;
+    fprintf(stderr, "    %-24s %-12s on %s: %ld compared of %ld; false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
+                    "misclassified %.4f %%\n",
+            c->name, c->flags, c->receiver, r.compared, receiver_pixels, r.false_shadow_percent, r.false_shadow,
+            r.false_lit_percent, r.false_lit, r.misclassified_percent);
+    assert_true(r.compared * 4 > receiver_pixels);
+    if (c->exceeds)
+        assert_true(r.misclassified_percent > PLANAR_MAX_MISCLASSIFIED_PERCENT);
+    else
+        assert_true(r.misclassified_percent <= PLANAR_MAX_MISCLASSIFIED_PERCENT);
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+}
+
 int main(void) {
-    const struct CMUnitTest tests[] = {
+    static const struct CMUnitTest units[] = {
         cmocka_unit_test(test_point_light_projects_along_rays),
         cmocka_unit_test(test_directional_light_projects_along_direction),
         cmocka_unit_test(test_point_on_plane_is_its_own_shadow),
         cmocka_unit_test(test_receiver_plane_follows_model_matrix),
+        cmocka_unit_test(test_caster_in_plane),
+        cmocka_unit_test(test_caster_in_tilted_plane_far_away),
         cmocka_unit_test(test_camera_view_centres_target),
         cmocka_unit_test(test_camera_orbit_keeps_distance_and_stops_at_pole),
         cmocka_unit_test(test_light_orbit_turns_direction_with_position),
     };
-    return cmocka_run_group_tests_name("planar and camera", tests, NULL, NULL);
+    enum { UNIT_COUNT = sizeof units / sizeof *units };
+    static struct CMUnitTest tests[UNIT_COUNT + PLANAR_CASE_COUNT];
+    size_t count = 0;
+    for (size_t i = 0; i < UNIT_COUNT; i++)
+        tests[count++] = units[i];
+    for (size_t i = 0; i < PLANAR_CASE_COUNT; i++)
+        tests[count++] = (struct CMUnitTest){.name = planar_cases[i].name, .test_func = test_planar_case,
+                                             .initial_state = (void *)&planar_cases[i]};
+    return _cmocka_run_group_tests("planar and camera", tests, count, NULL, NULL);
 }
