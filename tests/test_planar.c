@@ -197,32 +197,25 @@ static void test_light_orbit_turns_direction_with_position(void **state) {
 typedef struct planar_case {
     const char *name;
     const char *scene;
-    /* The scene the reference traces: the same unless it says otherwise. */
-    const char *reference_scene;
     const char *flags;
     const char *receiver;
     bool exceeds; /* a fix switched off: the bound must bite */
 } planar_case;
 
-/* The huge ground's truth is the simple scene's on the part of the ground
- * both have (same camera, light, casters and names): the reference's
- * shadow-ray offset, 1e-5 of the whole scene's box, lifts its rays 1.4
- * units off a ground of 1e5 and shortens every shadow. */
 static const planar_case planar_cases[] = {
     /* Two triangles 1e5 across: depth-tested, the flattened casters lose
      * to the receiver's interpolated depth (all shadows gone). */
-    {"huge_ground", "tests/data/planar_huge_ground.json", "assets/scenes/simple.json", "", "ground", false},
-    {"huge_ground_depth_tested", "tests/data/planar_huge_ground.json", "assets/scenes/simple.json", "--no-offset",
-     "ground", true},
+    {"huge_ground", "tests/data/planar_huge_ground.json", "", "ground", false},
+    {"huge_ground_depth_tested", "tests/data/planar_huge_ground.json", "--no-offset", "ground", true},
     /* A mat (casts, receives) on a ground that casts: each is the other's
      * coplanar caster. */
-    {"coplanar_ground", "tests/data/planar_coplanar.json", NULL, "", "ground", false},
-    {"coplanar_mat", "tests/data/planar_coplanar.json", NULL, "", "mat", false},
-    {"coplanar_mat_unrejected", "tests/data/planar_coplanar.json", NULL, "--no-reject", "mat", true},
+    {"coplanar_ground", "tests/data/planar_coplanar.json", "", "ground", false},
+    {"coplanar_mat", "tests/data/planar_coplanar.json", "", "mat", false},
+    {"coplanar_mat_unrejected", "tests/data/planar_coplanar.json", "--no-reject", "mat", true},
     /* Two receivers: each one's unshadowed pixels must be cleared before
      * casters are flattened onto the other's plane. */
-    {"wall_ground", "tests/data/planar_wall.json", NULL, "", "ground", false},
-    {"wall_wall", "tests/data/planar_wall.json", NULL, "", "wall", false},
+    {"wall_ground", "tests/data/planar_wall.json", "", "ground", false},
+    {"wall_wall", "tests/data/planar_wall.json", "", "wall", false},
 };
 enum { PLANAR_CASE_COUNT = sizeof planar_cases / sizeof *planar_cases };
 
@@ -238,7 +231,7 @@ static void test_planar_case(void **state) {
     char reference_dir[256], test_dir[256], heatmap_path[300];
     snprintf(reference_dir, sizeof reference_dir, "out/test/planar/%s_reference", c->name);
     snprintf(test_dir, sizeof test_dir, "out/test/planar/%s", c->name);
-    assert_int_equal(support_dump("raytrace", c->reference_scene ? c->reference_scene : c->scene, "", reference_dir), 0);
+    assert_int_equal(support_dump("raytrace", c->scene, "", reference_dir), 0);
     assert_int_equal(support_dump("planar", c->scene, c->flags, test_dir), 0);
     dump_frame reference, test;
     assert_true(dump_read(&reference, reference_dir));
