@@ -1257,7 +1257,8 @@ static void stress_stage_run(const stress_options *o, stress_row *rows, int coun
     }
     double start = stress_now();
     stress_run_all(list, n, o->jobs, o->timeout);
-    printf("stress: %d %s in %.1f s\n", n, stress_stage_names[stage], stress_now() - start);
+    if (!stress_interrupted)
+        printf("stress: %d %s in %.1f s\n", n, stress_stage_names[stage], stress_now() - start);
     fflush(stdout);
     for (int i = 0; i < count && !stress_interrupted; i++) {
         bool reference = rows[i].config == &stress_reference;
