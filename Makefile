@@ -68,13 +68,13 @@ LIB := $(BUILD)/libshadows.a
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) $(wildcard demos/lib/*.c) demos/registry.c) \
 	$(BUILD)/glad/gl.o
 # Programs whose main is common/programs/main_NAME.c (the reference, the
-# metrics, the benchmark, the scene generator); the demos' main is
-# common/programs/main_single.c.
-TOOLS := raytrace shadowdiff bench scenegen
+# metrics, the benchmark, the scene generator, the stress suite); the
+# demos' main is common/programs/main_single.c.
+TOOLS := raytrace shadowdiff bench scenegen stress
 PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
 
-.PHONY: all deps demo gallery test bench scenes update-golden clean help
+.PHONY: all deps demo gallery test bench stress scenes update-golden clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -83,6 +83,7 @@ help:
 	@echo "make gallery        render every technique on each standard scene to out/gallery/"
 	@echo "make test           build and run every test, plain and under ASan+UBSan"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
+	@echo "make stress         adversarial scenes through every technique against the reference: out/stress/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
 	@echo "make clean          remove build/, build-san/ and out/"
@@ -132,6 +133,12 @@ bench: $(PROGRAMS)
 		assets/scenes/dense.json
 	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion light --out out/bench/dense-light \
 		assets/scenes/dense.json
+
+# Every case of build/stress's table, every technique configuration
+# against the reference: out/stress/table.md; fails unless every row
+# passes, is refused or unmeasured (`make test` runs cases that pass today).
+stress: $(PROGRAMS)
+	$(BUILD)/stress --out out/stress
 
 # The generated scenes are committed; test_scenegen checks they are what
 # the generator writes.
