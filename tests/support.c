@@ -165,6 +165,18 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
     return r;
 }
 
+void support_write_json(const cJSON *root, const char *dir, const char *name, char *path, size_t size) {
+    char *text = cJSON_Print(root);
+    assert_non_null(text);
+    assert_true(path_make_directories(dir));
+    snprintf(path, size, "%s/%s.json", dir, name);
+    FILE *file = fopen(path, "w");
+    assert_non_null(file);
+    assert_true(fputs(text, file) >= 0);
+    assert_int_equal(fclose(file), 0);
+    free(text);
+}
+
 shadowdiff_result support_measure(const char *program, const char *scene, const char *size, const char *flags,
                                   const char *name) {
     dump_frame reference, test;

@@ -10,6 +10,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include <cjson/cJSON.h>
+
 #include "dump.h"
 #include "shadowdiff.h"
 
@@ -53,6 +55,9 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
                                         unsigned char **heatmap);
 shadowdiff_result support_measure(const char *program, const char *scene, const char *size, const char *flags,
                                   const char *name);
+/* Writes the JSON `root` to DIR/NAME.json (making DIR), its path into
+ * `path`; fails the running cmocka test when it cannot. */
+void support_write_json(const cJSON *root, const char *dir, const char *name, char *path, size_t size);
 /* Sends stderr to a temporary file until support_release_stderr, which
  * returns what was written. cmocka reports failures on stderr too, so no
  * assertion may run in between. */

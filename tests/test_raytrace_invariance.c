@@ -151,16 +151,8 @@ static void write_moved_scene(const char *source, const invariance_case *c, cons
         move_point((cJSON *)item, "translate", origin, c);
         scale_numbers((cJSON *)item, "scale", 1, case_scale(c));
     }
-    char *moved = cJSON_Print(root);
+    support_write_json(root, OUT_DIR, name, path, size);
     cJSON_Delete(root);
-    assert_non_null(moved);
-    assert_true(path_make_directories(OUT_DIR));
-    snprintf(path, size, "%s/%s.json", OUT_DIR, name);
-    FILE *file = fopen(path, "w");
-    assert_non_null(file);
-    assert_true(fputs(moved, file) >= 0);
-    assert_int_equal(fclose(file), 0);
-    free(moved);
 }
 
 /* ---- rendering and comparing ---- */

@@ -1,10 +1,120 @@
 #include "camera.h"
 
+#include <math.h>
+#include <stdio.h>
+
+#include "frustum.h"
+
+/* The far corners stop here: beyond every point a loaded scene can hold
+ * (CAMERA_MAX_COORDINATE), so the frustum cut there meets the scene as
+ * the whole one does, while corners stay finite in float at any field of
+ * view and aspect (tan(fov / 2) at most 1e7 for a float below 180
+ * degrees, aspect at most 1e5). */
+#define CAMERA_CORNER_MAX_DISTANCE 1e24
+/* A coordinate whose square, summed over three axes and across the scene,
+ * stays below FLT_MAX: the shaders' distances and dot products. */
+#define CAMERA_MAX_COORDINATE 1e18
+
+/* The view's unit basis in double, as glm_lookat builds it in float:
+ * forward towards the target, side = forward x up, up = side x forward. */
+static void camera_basis(const scene_camera *c, double forward[3], double side[3], double up[3]) {
+    double length = 0;
+    for (int k = 0; k < 3; k++) {
+        forward[k] = (double)c->target[k] - c->position[k];
+        length += forward[k] * forward[k];
+    }
+    for (int k = 0; k < 3; k++)
+        forward[k] /= sqrt(length);
+    double s[3] = {forward[1] * c->up[2] - forward[2] * c->up[1], forward[2] * c->up[0] - forward[0] * c->up[2],
+                   forward[0] * c->up[1] - forward[1] * c->up[0]};
+    double side_length = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    for (int k = 0; k < 3; k++)
+        side[k] = s[k] / side_length;
+    up[0] = side[1] * forward[2] - side[2] * forward[1];
+    up[1] = side[2] * forward[0] - side[0] * forward[2];
+    up[2] = side[0] * forward[1] - side[1] * forward[0];
+}
+
+static void camera_corners(const scene_camera *c, float aspect, vec3 out[8]) {
+    double forward[3], side[3], up[3];
+    camera_basis(c, forward, side, up);
+    double half_height = tan(glm_rad(c->fov_deg) * 0.5), half_width = half_height * aspect;
+    double distance[2] = {c->near_plane, fmin(c->far_plane, CAMERA_CORNER_MAX_DISTANCE)};
+    for (int corner = 0; corner < 8; corner++) {
+        double d = distance[corner >> 2], x = corner & 1 ? half_width : -half_width;
+        double y = corner & 2 ? half_height : -half_height;
+        for (int k = 0; k < 3; k++)
+            out[corner][k] = (float)(c->position[k] + d * (forward[k] + x * side[k] + y * up[k]));
+    }
+}
+
+/* glm_perspective with its far plane at infinity: the same x, y and w
+ * rows, and the limit of its depth row (any finite far fills the rest). */
+static void camera_perspective_infinite(float fov_rad, float aspect, float near_plane, mat4 out) {
+    glm_perspective(fov_rad, aspect, near_plane, 2 * near_plane, out);
+    out[2][2] = -1;
+    out[3][2] = -2 * near_plane;
+}
+
 void camera_view_compute(const scene_camera *c, float aspect, camera_view *out) {
     glm_lookat((float *)c->position, (float *)c->target, (float *)c->up, out->view);
-    glm_perspective(glm_rad(c->fov_deg), aspect, c->near_plane, c->far_plane, out->projection);
+    if ((double)c->far_plane / c->near_plane > CAMERA_INFINITE_FAR_RATIO)
+        camera_perspective_infinite(glm_rad(c->fov_deg), aspect, c->near_plane, out->projection);
+    else
+        glm_perspective(glm_rad(c->fov_deg), aspect, c->near_plane, c->far_plane, out->projection);
     glm_mat4_mul(out->projection, out->view, out->view_projection);
     glm_vec3_copy((float *)c->position, out->eye);
+    if ((double)c->far_plane / c->near_plane <= CAMERA_INVERSE_MAX_RATIO)
+        frustum_corners(out->view_projection, out->corners);
+    else
+        camera_corners(c, aspect, out->corners);
+}
+
+/* The world-space distance between two neighbouring depth values of the
+ * target at `distance` from the eye along the view (camera.h, top): the
+ * inverse of d(window depth) / dz = 1 / (z^2 (1/near - 1/far)). */
+static double camera_depth_step(const scene_camera *c, double distance) {
+    return distance * distance * (1.0 / c->near_plane - 1.0 / c->far_plane) / ldexp(1, CAMERA_DEPTH_BITS);
+}
+
+bool camera_check_depth(const scene *s, const char *file) {
+    const scene_camera *c = &s->camera;
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 object_lo, object_hi;
+        scene_object_world_bounds(&s->objects[i], object_lo, object_hi);
+        glm_vec3_minv(lo, object_lo, lo);
+        glm_vec3_maxv(hi, object_hi, hi);
+    }
+    double largest = 0, size = 0;
+    for (int k = 0; k < 3; k++) {
+        largest = fmax(largest, fmax(fmax(fabs(lo[k]), fabs(hi[k])), fabs(c->position[k])));
+        size += ((double)hi[k] - lo[k]) * ((double)hi[k] - lo[k]);
+    }
+    size = sqrt(size);
+    if (!(largest <= CAMERA_MAX_COORDINATE)) {
+        fprintf(stderr, "%s: camera: the scene reaches %g from the origin: beyond %g, squared distances overflow a "
+                "float\n", file, largest, CAMERA_MAX_COORDINATE);
+        return false;
+    }
+    /* The farthest corner of the scene's box along the view, within far. */
+    double forward[3], side[3], up[3], farthest = 0;
+    camera_basis(c, forward, side, up);
+    for (int corner = 0; corner < 8; corner++) {
+        double depth = 0;
+        for (int k = 0; k < 3; k++)
+            depth += ((corner >> k & 1 ? hi[k] : lo[k]) - (double)c->position[k]) * forward[k];
+        farthest = fmax(farthest, depth);
+    }
+    farthest = fmin(farthest, c->far_plane);
+    double step = camera_depth_step(c, farthest);
+    if (!(step <= CAMERA_MAX_DEPTH_STEP * size)) {
+        fprintf(stderr, "%s: camera: near %g and far %g: the %d-bit depth step %.3g at the scene's farthest point "
+                "(%.3g away) is above %g of its size %.3g; raise near\n", file, (double)c->near_plane,
+                (double)c->far_plane, CAMERA_DEPTH_BITS, step, farthest, CAMERA_MAX_DEPTH_STEP, size);
+        return false;
+    }
+    return true;
 }
 
 /* The rotation that turns `offset` (from a centre) by yaw about `up` and

@@ -3,6 +3,17 @@
  *
  * The projection is OpenGL's standard perspective (depth -1..1), vertical
  * field of view, as every technique and the ray-traced reference use.
+ * Where far / near passes CAMERA_INFINITE_FAR_RATIO it is the same
+ * perspective with its far plane at infinity: in float the finite one's
+ * depth row already rounds to it there, and 2 near far may overflow.
+ *
+ * Depth precision: the target stores window depth in CAMERA_DEPTH_BITS
+ * fixed-point bits (common/gl/target.c), so at distance z along the view
+ * a depth step is z^2 (1/near - 1/far) / 2^bits in world units: it grows
+ * with z^2 / near, hardly with far. Every raster program runs
+ * camera_check_depth after scene_load and refuses a camera whose step at
+ * the scene's farthest point is more than CAMERA_MAX_DEPTH_STEP of the
+ * scene's size; the reference, exact at any range, does not.
  */
 #ifndef CAMERA_H
 #define CAMERA_H
@@ -10,12 +21,44 @@
 #include <cglm/cglm.h>
 #include "scene.h"
 
+/* Beyond this far / near, 2 near / far is below half a float ulp of 1: the
+ * finite projection's depth row rounds to the infinite one's. */
+#define CAMERA_INFINITE_FAR_RATIO 33554432.0 /* 2^25 */
+/* Inverting the float view_projection puts the far corners within about
+ * far / near float ulps (6e-4 of their distance here) of the camera's;
+ * it loses the far plane once far / near passes about 1e7 (the depth row
+ * is then the infinite projection's, its far corners at infinity: NaN,
+ * and every receiver point with them). Up to this ratio the corners are
+ * still the inverse's, as every picture and figure measured so far had
+ * them (the standard scenes go up to 6000), beyond it the camera's. */
+#define CAMERA_INVERSE_MAX_RATIO 1e4
+/* Bits of window depth in the target's depth buffer (GL_DEPTH24_STENCIL8). */
+#define CAMERA_DEPTH_BITS 24
+/* The largest depth step the raster accepts at the scene's farthest point,
+ * as a fraction of the scene's size: about 1/8000, just above what the
+ * standard scenes need (long_view: 1.08e-4), and where the techniques
+ * stayed within their accuracy bounds (tests/test_range.c). */
+#define CAMERA_MAX_DEPTH_STEP 1.25e-4
+
 typedef struct camera_view {
     mat4 view, projection, view_projection;
     vec3 eye;
+    /* The frustum's corners in world space, numbered as frustum_corners
+     * numbers them (bit 0 x, bit 1 y, bit 2 the far plane). Up to
+     * CAMERA_INVERSE_MAX_RATIO, frustum_corners of view_projection;
+     * beyond, computed in double from the camera itself. */
+    vec3 corners[8];
 } camera_view;
 
 void camera_view_compute(const scene_camera *c, float aspect, camera_view *out);
+/* Whether the target's depth resolves scene s (loaded from `file`) seen
+ * by its camera; if not, says why in one line "FILE: camera: problem" on
+ * stderr and returns false. Refused: coordinates whose squares overflow a
+ * float (the shaders' distances and dot products), and a depth step at
+ * the scene's farthest point along the view (at most far) above
+ * CAMERA_MAX_DEPTH_STEP of the scene's size (the diagonal of the box
+ * around every object). */
+bool camera_check_depth(const scene *s, const char *file);
 /* Turns the eye about the target: yaw about the up axis, pitch towards it
  * (kept short of the poles), distance scaled by zoom. */
 void camera_orbit(scene_camera *c, float yaw_rad, float pitch_rad, float zoom);

@@ -25,7 +25,9 @@
 
 /* Corners of the box lo..hi. */
 void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]);
-/* Corners of the frustum of `view_projection`. */
+/* Corners of the frustum of `view_projection`. A camera's are in its
+ * camera_view (camera.h): inverting a float projection loses a far plane
+ * more than about 1e7 nears away. */
 void frustum_corners(const mat4 view_projection, float out[8][3]);
 bool frustum_contains(const mat4 view_projection, const float p[3]);
 bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]);

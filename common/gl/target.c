@@ -5,7 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "camera.h"
 #include "context.h"
+
+/* The camera's depth bound (camera_check_depth) counts on this format's
+ * 24 bits of depth. */
+_Static_assert(CAMERA_DEPTH_BITS == 24, "the target's depth is GL_DEPTH24_STENCIL8");
 
 bool target_create(target *t, int width, int height) {
     *t = (target){.width = width, .height = height};

@@ -219,16 +219,16 @@ static technique_changes technique_host_changes(technique_host *h, const camera_
     return c;
 }
 
-/* The part of o's box inside the view's frustum (frustum corners
- * `frustum`): its corners at out, at most TECHNIQUE_MAX_PART_POINTS. The
+/* The part of o's box inside the view's frustum (by the view's corners,
+ * camera.h): its corners at out, at most TECHNIQUE_MAX_PART_POINTS. The
  * caller skips boxes outside the frustum first, by the test view culling
  * uses, applied whatever the skips, so that what follows never depends on
  * them. */
-static int technique_visible_part(const scene_object *o, const camera_view *view, const vec3 frustum[8],
-                                  float (*out)[3]) {
+static int technique_visible_part(const scene_object *o, const camera_view *view, float (*out)[3]) {
     vec3 lo, hi;
     scene_object_world_bounds(o, lo, hi);
-    return frustum_box_part(view->view_projection, frustum, lo, hi, out, TECHNIQUE_MAX_PART_POINTS);
+    return frustum_box_part(view->view_projection, (const vec3 *)view->corners, lo, hi, out,
+                            TECHNIQUE_MAX_PART_POINTS);
 }
 
 /* Appends a part's points to points[*n], as far as max_points allows. */
@@ -242,16 +242,14 @@ static void technique_append_points(float (*points)[3], int *n, int max_points, 
 }
 
 int technique_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points) {
-    vec3 frustum[8];
     float part[TECHNIQUE_MAX_PART_POINTS][3];
-    frustum_corners(view->view_projection, frustum);
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
         scene_object_world_bounds(&s->objects[i], lo, hi);
         if (s->objects[i].receives && !frustum_box_outside(view->view_projection, lo, hi))
             technique_append_points(points, &n, max_points, (const float(*)[3])part,
-                                    technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part));
+                                    technique_visible_part(&s->objects[i], view, part));
     }
     return n;
 }
@@ -280,12 +278,10 @@ static void technique_host_visible(technique_host *h, const camera_view *view, t
     unsigned all = RENDER_ALL_LIGHTS(s->light_count);
     bool reach_skip = render_skip_on(h->skips, h->skips->no_light_reach);
     unsigned candidates = reach_skip ? technique_lights_near_view(s, view) : 0, reached = 0;
-    vec3 frustum[8];
     float part[TECHNIQUE_MAX_PART_POINTS][3];
-    frustum_corners(view->view_projection, frustum);
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
-        int count = h->gpu->in_frustum[i] ? technique_visible_part(&s->objects[i], view, (const vec3 *)frustum, part) : 0;
+        int count = h->gpu->in_frustum[i] ? technique_visible_part(&s->objects[i], view, part) : 0;
         if (count == 0)
             continue;
         if (candidates & ~reached) {

@@ -145,6 +145,10 @@ static const technique *app_technique(void) { return app.techniques[app.current]
 static bool app_load_scene(const char *path) {
     if (!scene_load(&app.scene, path))
         return false;
+    if (!camera_check_depth(&app.scene, path)) {
+        scene_free(&app.scene);
+        return false;
+    }
     if (app.light >= app.scene.light_count) {
         fprintf(stderr, "%s: --light %d: the scene has %d light(s)\n", path, app.light, app.scene.light_count);
         scene_free(&app.scene);

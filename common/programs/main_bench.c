@@ -396,6 +396,10 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     fprintf(stderr, "[scene %d/%d] %s\n", scene_index + 1, bench.scene_count, name);
     if (!scene_load(&bench.scene, scene_path))
         return false;
+    if (!camera_check_depth(&bench.scene, scene_path)) {
+        scene_free(&bench.scene);
+        return false;
+    }
     bench.scene_objects[scene_index] = bench.scene.object_count;
     memcpy(bench.base_lights, bench.scene.lights, sizeof bench.base_lights);
     bench.base_camera = bench.scene.camera;
