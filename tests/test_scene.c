@@ -245,6 +245,71 @@ static void test_light_range(void **state) {
     scene_free(&s);
 }
 
+/* The world position of vertex v of o, in float as the GL's vertex shader
+ * computes it. */
+static void world_vertex(const scene_object *o, uint32_t v, float out[3]) {
+    const float *p = o->mesh.vertices[v].position;
+    for (int row = 0; row < 3; row++)
+        out[row] = o->model[0][row] * p[0] + o->model[1][row] * p[1] + o->model[2][row] * p[2] + o->model[3][row];
+}
+
+/* The volume a mesh's world triangles enclose (divergence theorem):
+ * positive when they run counter-clockwise seen from outside. */
+static double world_signed_volume(const scene_object *o) {
+    double volume = 0;
+    for (uint32_t i = 0; i < o->mesh.index_count; i += 3) {
+        float p[3][3];
+        for (int c = 0; c < 3; c++) world_vertex(o, o->mesh.indices[i + (uint32_t)c], p[c]);
+        volume += ((double)p[0][0] * ((double)p[1][1] * p[2][2] - (double)p[1][2] * p[2][1]) +
+                   (double)p[0][1] * ((double)p[1][2] * p[2][0] - (double)p[1][0] * p[2][2]) +
+                   (double)p[0][2] * ((double)p[1][0] * p[2][1] - (double)p[1][1] * p[2][0])) /
+                  6;
+    }
+    return volume;
+}
+
+static double determinant3(const float m[4][4]) {
+    return (double)m[0][0] * ((double)m[1][1] * m[2][2] - (double)m[2][1] * m[1][2]) -
+           (double)m[1][0] * ((double)m[0][1] * m[2][2] - (double)m[2][1] * m[0][2]) +
+           (double)m[2][0] * ((double)m[0][1] * m[1][2] - (double)m[1][1] * m[0][2]);
+}
+
+/* tests/data/mirror_mirrored.json and mirror_unmirrored.json are each
+ * other's mirror image in x = 0 (see tests/test_mirror.c), mirrored
+ * objects in both. Every object gets a positive determinant, its world
+ * vertices are bit for bit the mirror images of the other scene's (the
+ * mirror went into the mesh: only signs changed), and its world
+ * triangles still enclose a positive volume, the same in both: none is
+ * inside out. */
+static void test_mirrored_objects(void **state) {
+    (void)state;
+    scene mirrored, unmirrored;
+    load_quietly(&mirrored, "tests/data/mirror_mirrored.json");
+    load_quietly(&unmirrored, "tests/data/mirror_unmirrored.json");
+    assert_int_equal(mirrored.object_count, unmirrored.object_count);
+    for (int i = 0; i < mirrored.object_count; i++) {
+        const scene_object *a = &mirrored.objects[i], *b = &unmirrored.objects[i];
+        assert_true(determinant3(a->model) > 0 && determinant3(b->model) > 0);
+        assert_int_equal(a->mesh.vertex_count, b->mesh.vertex_count);
+        assert_int_equal(a->mesh.index_count, b->mesh.index_count);
+        for (uint32_t v = 0; v < a->mesh.vertex_count; v++) {
+            float pa[3], pb[3];
+            world_vertex(a, v, pa);
+            world_vertex(b, v, pb);
+            if (!(pa[0] == -pb[0] && pa[1] == pb[1] && pa[2] == pb[2]))
+                fail_msg("%s: vertex %u: (%.9g %.9g %.9g) is not the mirror of (%.9g %.9g %.9g)", a->name, v, pa[0],
+                         pa[1], pa[2], pb[0], pb[1], pb[2]);
+        }
+        /* The ground is open and flat: no volume to measure. */
+        if (a->mesh_kind == SCENE_MESH_PLANE) continue;
+        double va = world_signed_volume(a), vb = world_signed_volume(b);
+        assert_true(va > 0);
+        assert_float_equal(va, vb, 1e-9 * vb);
+    }
+    scene_free(&mirrored);
+    scene_free(&unmirrored);
+}
+
 typedef struct bad_scene {
     const char *path;
     const char *problem; /* expected in the message, after the path */
@@ -283,6 +348,9 @@ static const bad_scene bad_scenes[] = {
     {"tests/data/scene_zero_direction.json", ": lights[0].direction: must not be zero"},
     {"tests/data/scene_camera_up_parallel.json",
      ": camera.up: must be non-zero and not parallel to the view direction"},
+    {"tests/data/mirror_zero_scale.json", ": objects[0].scale: must not be zero: it flattens the object (got 0)"},
+    {"tests/data/mirror_tiny_scale_axis.json",
+     ": objects[0].scale[1]: must not be zero: it flattens the object (got 1e-50)"},
     {"tests/data/scene_name_too_long.json", ": objects[0].name: must be 1 to 63 bytes long (got 64)"},
     {"tests/data/no_such_scene.json", ": cannot open: No such file or directory"},
     {"tests/data", ": cannot read: Is a directory"},
@@ -317,6 +385,7 @@ int main(void) {
         cmocka_unit_test(test_world_bounds),
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_light_range),
+        cmocka_unit_test(test_mirrored_objects),
         cmocka_unit_test(test_bad_scenes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -597,6 +597,21 @@ bool mesh_load_file(mesh *m, const char *path) {
     return copied && mesh_sanitize(m, path);
 }
 
+void mesh_reflect_x(mesh *m) {
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        m->vertices[v].position[0] = -m->vertices[v].position[0];
+        m->vertices[v].normal[0] = -m->vertices[v].normal[0];
+    }
+    for (uint32_t i = 0; i + 2 < m->index_count; i += 3) {
+        uint32_t second = m->indices[i + 1];
+        m->indices[i + 1] = m->indices[i + 2];
+        m->indices[i + 2] = second;
+    }
+    float min_x = m->bounds_min[0];
+    m->bounds_min[0] = -m->bounds_max[0];
+    m->bounds_max[0] = -min_x;
+}
+
 /* Bounds over the finite positions only (zero when there is none). */
 static void mesh_measure_bounds(const mesh *m, float min[3], float max[3]) {
     bool any = false;

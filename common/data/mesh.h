@@ -83,6 +83,14 @@ bool mesh_load_file(mesh *m, const char *path);
  * recomputes bounds; an error if no triangle is left. */
 bool mesh_sanitize(mesh *m, const char *name);
 
+/* The mesh's mirror image in its x = 0 plane: every position's and
+ * normal's x negated and every triangle's winding reversed, so the faces
+ * that were counter-clockwise seen from outside still are (a reflection
+ * alone would turn them clockwise, inside out), and the bounds follow.
+ * Exact: negation rounds nothing. scene_load takes a mirroring scale into
+ * the mesh with it (see scene.h). */
+void mesh_reflect_x(mesh *m);
+
 void mesh_free(mesh *m);
 
 /* A caller that puts errors in its own context installs a handler; it gets

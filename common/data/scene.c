@@ -25,6 +25,7 @@ typedef enum scene_range {
     SCENE_ANY,
     SCENE_NON_NEGATIVE,
     SCENE_POSITIVE,
+    SCENE_NON_ZERO,
 } scene_range;
 
 /* The most keys one kind of light or mesh takes (a spot light). */
@@ -131,6 +132,11 @@ static bool scene_number(const char *file, const char *where, const char *key, c
     }
     if (range == SCENE_NON_NEGATIVE && value < 0) {
         return scene_fail(file, where, key, "must not be negative (got %g)", item->valuedouble);
+    }
+    /* The float, not the double: 1e-50 is 0 once stored. */
+    if (range == SCENE_NON_ZERO && value == 0) {
+        return scene_fail(file, where, key, "must not be zero: it flattens the object (got %g)",
+                          item->valuedouble);
     }
     *out = value;
     return true;
@@ -397,13 +403,14 @@ static bool scene_check_name(const char *file, const char *where, const char *na
     return true;
 }
 
-/* "scale" is a vector or one number for all three axes. */
+/* "scale" is a vector or one number for all three axes; negative factors
+ * mirror, zero ones would flatten the object. */
 static bool scene_read_scale(const char *file, const cJSON *json, const char *where, float scale[3]) {
     const cJSON *item = cJSON_GetObjectItemCaseSensitive(json, "scale");
     if (!cJSON_IsNumber(item)) {
-        return scene_read_floats(file, json, where, "scale", false, SCENE_POSITIVE, scale, 3);
+        return scene_read_floats(file, json, where, "scale", false, SCENE_NON_ZERO, scale, 3);
     }
-    if (!scene_number(file, where, "scale", item, SCENE_POSITIVE, &scale[0])) return false;
+    if (!scene_number(file, where, "scale", item, SCENE_NON_ZERO, &scale[0])) return false;
     scale[1] = scale[2] = scale[0];
     return true;
 }
@@ -446,9 +453,21 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     }
     snprintf(o->name, sizeof o->name, "%s", name);
     o->mesh_kind = (scene_mesh_kind)kind->value;
+    /* An odd number of negative factors mirrors (a negative determinant),
+     * which would turn the triangles clockwise seen from outside: the GL's
+     * and the reference's front faces, and the volumes' facing, computed
+     * from the object-space triangles and the light taken into object
+     * space, would all see the object inside out. The mirror goes into
+     * the mesh instead (mesh_reflect_x, winding reversed), and the matrix
+     * keeps a positive determinant: its x column only changes sign, so
+     * every world position is bit for bit the mirrored matrix's. */
+    bool mirrored = ((scale[0] < 0) ^ (scale[1] < 0) ^ (scale[2] < 0)) != 0;
+    if (mirrored) scale[0] = -scale[0];
     scene_model_matrix(translate, rotate_deg, scale, o->model);
     /* Last: loading a model is the slow part, and every cheap check passed. */
-    return scene_build_mesh(file, mesh_json, mesh_where, where, o);
+    if (!scene_build_mesh(file, mesh_json, mesh_where, where, o)) return false;
+    if (mirrored) mesh_reflect_x(&o->mesh);
+    return true;
 }
 
 static bool scene_read_root(const char *file, const cJSON *root, scene *s) {

@@ -32,7 +32,8 @@
  *                          | { "kind": "model", "path": "file.obj" }
  *                            (path relative to the scene file, or absolute)
  *                  "translate": [0,0,0], "rotate": [0,0,0] (degrees about
- *                  X, then Y, then Z), "scale": [1,1,1] or a number,
+ *                  X, then Y, then Z), "scale": [1,1,1] or a number
+ *                  (negative factors mirror; zero is an error),
  *                  "color": [0.8,0.8,0.8],
  *                  "casts": true, "receives": true } ]
  * Unknown keys are errors (they are usually typos), as are wrong types,
@@ -97,7 +98,11 @@ typedef struct scene_object {
     scene_mesh_kind mesh_kind;
     mesh mesh;          /* in object space */
     /* object -> world, column-major (cglm mat4). Aligned like a mat4, so
-     * cglm's SIMD code can use it in place. */
+     * cglm's SIMD code can use it in place. Its determinant is positive:
+     * where the scale mirrors (an odd number of negative factors), the
+     * mesh is the mirror image (mesh_reflect_x, winding reversed) and the
+     * matrix scales x by -scale[0], so every consumer, in world or object
+     * space, sees counter-clockwise faces from outside. */
     _Alignas(16) float model[4][4];
     float color[3];
     bool casts;
