@@ -192,9 +192,9 @@ static const range_case range_cases[] = {
     {"scaled 1e30", 0, 0, true},
 };
 
-/* OUT_DIR/range_N.json: SCENE with the case's near and far. */
-static void write_case_scene(const range_case *c, int index, char *path, size_t size) {
-    char *text = path_read_text(SCENE, MAX_SCENE_BYTES, NULL);
+/* OUT_DIR/range_N.json: `source` with the case's near and far. */
+static void write_case_scene(const char *source, const range_case *c, int index, char *path, size_t size) {
+    char *text = path_read_text(source, MAX_SCENE_BYTES, NULL);
     assert_non_null(text);
     cJSON *root = cJSON_Parse(text);
     free(text);
@@ -243,7 +243,7 @@ static void test_ranges(void **state) {
         const range_case *c = &range_cases[i];
         char scene[256], reference_dir[256];
         if (c->near_plane > 0)
-            write_case_scene(c, (int)i, scene, sizeof scene);
+            write_case_scene(SCENE, c, (int)i, scene, sizeof scene);
         else
             snprintf(scene, sizeof scene, "%s", SCALED_SCENE);
         printf("    %s (%s): %s\n", c->name, scene, c->refused ? "refused" : "within bounds");
@@ -260,6 +260,32 @@ static void test_ranges(void **state) {
     }
 }
 
+/* A far plane far beyond the scene changes no map: long_view (whose
+ * uniform map exceeds the bound at this size on its own, perspective
+ * aliasing) misclassifies as much with far 1e7 as with its own 600. Past
+ * far / near 1e7 the inverse view-projection loses the far plane; the map
+ * measure (warp_samples) once took its rays from it, and the automatic
+ * size and psm's choice fell back (1.56 % then). */
+#define RANGE_LONG_VIEW "assets/scenes/long_view.json"
+#define RANGE_SAME_PERCENT 0.01
+static void test_far_plane_changes_no_map(void **state) {
+    (void)state;
+    static const char *const programs[] = {"shadowmap", "psm"};
+    const range_case far = {"long_view far 1e7", 0.1f, 1e7f, false};
+    char scene[256];
+    write_case_scene(RANGE_LONG_VIEW, &far, (int)(sizeof range_cases / sizeof *range_cases), scene, sizeof scene);
+    for (size_t p = 0; p < sizeof programs / sizeof *programs; p++) {
+        char name[64];
+        snprintf(name, sizeof name, "range_long_view_%s", programs[p]);
+        shadowdiff_result own = support_measure(programs[p], RANGE_LONG_VIEW, SIZE, "", name);
+        snprintf(name, sizeof name, "range_long_view_far_%s", programs[p]);
+        shadowdiff_result farther = support_measure(programs[p], scene, SIZE, "", name);
+        printf("    %s: misclassified %.4f %% with far 600, %.4f %% with far 1e7\n", programs[p],
+               own.misclassified_percent, farther.misclassified_percent);
+        assert_true(fabs(own.misclassified_percent - farther.misclassified_percent) <= RANGE_SAME_PERCENT);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_corners_match_the_inverse),
@@ -267,6 +293,7 @@ int main(void) {
         cmocka_unit_test(test_projection_infinite_beyond_the_ratio),
         cmocka_unit_test(test_scenes_pass_the_depth_check),
         cmocka_unit_test(test_ranges),
+        cmocka_unit_test(test_far_plane_changes_no_map),
     };
     return cmocka_run_group_tests_name("camera ranges", tests, NULL, NULL);
 }

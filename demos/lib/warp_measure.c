@@ -58,18 +58,25 @@ static float warp_hit_receivers(const scene *s, const float eye[3], const vec3 d
     return best;
 }
 
+/* The point of the far plane at NDC (x, y): the far corners mixed (the far
+ * plane is flat, so the mix is exact), not the inverse view-projection's,
+ * which loses the far plane past far / near 1e7 (camera.h). */
+static void warp_far_point(const camera_view *view, float x, float y, vec3 out) {
+    vec3 bottom, top;
+    float u = 0.5f * (x + 1), v = 0.5f * (y + 1);
+    glm_vec3_lerp((float *)view->corners[4], (float *)view->corners[5], u, bottom);
+    glm_vec3_lerp((float *)view->corners[6], (float *)view->corners[7], u, top);
+    glm_vec3_lerp(bottom, top, v, out);
+}
+
 int warp_samples(const scene *s, const camera_view *view, int width, int height, warp_sample *out) {
-    mat4 inverse;
-    glm_mat4_inv((vec4 *)view->view_projection, inverse);
     float screen_half[2] = {0.5f * (float)width, 0.5f * (float)height};
     int n = 0;
     for (int sy = 0; sy < WARP_SAMPLES_Y; sy++) {
         for (int sx = 0; sx < WARP_SAMPLES_X; sx++) {
-            vec4 ndc = {(2.0f * (float)sx + 1) / WARP_SAMPLES_X - 1, (2.0f * (float)sy + 1) / WARP_SAMPLES_Y - 1, 1,
-                        1};
             vec3 direction, far_point;
-            glm_mat4_mulv(inverse, ndc, ndc);
-            glm_vec3_scale(ndc, 1.0f / ndc[3], far_point);
+            warp_far_point(view, (2.0f * (float)sx + 1) / WARP_SAMPLES_X - 1, (2.0f * (float)sy + 1) / WARP_SAMPLES_Y - 1,
+                           far_point);
             glm_vec3_sub(far_point, (float *)view->eye, direction);
             int best_axis;
             float best = warp_hit_receivers(s, view->eye, direction, &best_axis);
