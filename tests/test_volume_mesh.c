@@ -70,6 +70,25 @@ static void assert_faces_out(const volume_mesh *v, const float q[3]) {
     }
 }
 
+/* Caps built (VOLUME_MESH_CAPS) from a point light: each triangle's
+ * near and far caps, one after the other, face out of its own prism,
+ * which holds the point twice as far from the light as the near cap's
+ * centre. */
+static void assert_caps_face_out_of_prisms(const volume_mesh *v, const float light[4]) {
+    enum { CAP_VERTICES = 3, PAIR = 2 * CAP_VERTICES };
+    assert_int_equal(v->count % PAIR, 0);
+    for (size_t t = 0; t < v->count; t += PAIR) {
+        float inside[3] = {0, 0, 0};
+        for (int k = 0; k < CAP_VERTICES; k++)
+            for (int j = 0; j < 3; j++)
+                inside[j] += v->vertices[t + k][j] * (2.0f / CAP_VERTICES);
+        for (int j = 0; j < 3; j++)
+            inside[j] -= light[j];
+        volume_mesh pair = {.vertices = (float(*)[4])v->vertices[t], .count = PAIR};
+        assert_faces_out(&pair, inside);
+    }
+}
+
 static void build(volume_mesh *v, const mesh *m, const float light[4], volume_mesh_parts parts) {
     mesh_edges e;
     assert_true(volume_mesh_edges_build(m, &e));
@@ -117,6 +136,63 @@ static void test_closed_box_sides_on_silhouette_once(void **state) {
     assert_int_equal(v.count, SILHOUETTE_EDGES * 2);
     volume_mesh_free(&v);
     mesh_free(&m);
+}
+
+/* A point light inside a closed box, or in its top face (volume_mesh.h:
+ * the closed rule would cast nothing, every triangle facing away or
+ * edge-on): the box is weighed as an open mesh. Inside, all 12 triangles
+ * are caps (near, reversed, and far) and no edge has a side; in the top
+ * face, its 2 triangles are edge-on and weigh 0, the other 10 are caps,
+ * and the top face's 4 border edges have sides, in the face's plane.
+ * Each triangle's caps face out of its own prism (the prisms together
+ * are the volume). Just above the face, or beside the box, the light is
+ * outside and the closed rule holds. */
+static void test_light_inside_closed_box(void **state) {
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_box(&m, 2, 2, 2));
+    mesh_edges e;
+    assert_true(volume_mesh_edges_build(&m, &e));
+    assert_true(e.closed);
+    const float centre[4] = {0.1f, 0.2f, -0.3f, 1}, on_top[4] = {0.3f, 1, -0.2f, 1};
+    const float above[4] = {0.3f, 1.001f, -0.2f, 1}, beside[4] = {3, 1, 0, 1}, sun[4] = {0.1f, 1, 0.2f, 0};
+    assert_true(volume_mesh_light_inside(&m, centre) && volume_mesh_light_inside(&m, on_top));
+    assert_false(volume_mesh_light_inside(&m, above) || volume_mesh_light_inside(&m, beside) ||
+                 volume_mesh_light_inside(&m, sun));
+    assert_false(volume_mesh_closed_rule(&m, &e, centre) || volume_mesh_closed_rule(&m, &e, on_top));
+    assert_true(volume_mesh_closed_rule(&m, &e, above) && volume_mesh_closed_rule(&m, &e, beside));
+    enum { TRIANGLES = 12, TOP_TRIANGLES = 2, TOP_EDGES = 4 };
+    volume_mesh v = {0};
+    assert_true(volume_mesh_build(&v, &m, &e, centre, NULL, VOLUME_MESH_SIDES));
+    assert_int_equal(v.count, 0);
+    assert_true(volume_mesh_build(&v, &m, &e, centre, NULL, VOLUME_MESH_CAPS));
+    assert_int_equal(v.count, TRIANGLES * 2 * 3);
+    assert_caps_face_out_of_prisms(&v, centre);
+    assert_true(volume_mesh_build(&v, &m, &e, on_top, NULL, VOLUME_MESH_SIDES));
+    assert_int_equal(v.count, TOP_EDGES * SIDE_VERTICES);
+    assert_true(volume_mesh_build(&v, &m, &e, on_top, NULL, VOLUME_MESH_CAPS));
+    assert_int_equal(v.count, (TRIANGLES - TOP_TRIANGLES) * 2 * 3);
+    assert_caps_face_out_of_prisms(&v, on_top);
+    volume_mesh_free(&v);
+    mesh_edges_free(&e);
+    mesh_free(&m);
+}
+
+/* volume_mesh_facing: +1 and -1 either side of a triangle's plane, 0
+ * within the edge-on tolerance of it, for point and directional lights,
+ * whichever corner the triangle starts from. */
+static void test_facing_edge_on(void **state) {
+    (void)state;
+    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 0, -1}; /* faces +y */
+    const float over = 1e-3f, within = 1e-6f;
+    const float lights[][4] = {{0.2f, over, -0.2f, 1}, {0.2f, -over, -0.2f, 1}, {0.2f, within, -0.2f, 1},
+                               {5, 0, 3, 1},           {0, 1, 0, 0},            {1, within, 0, 0}};
+    const int expected[] = {1, -1, 0, 0, 1, 0};
+    for (size_t i = 0; i < sizeof expected / sizeof *expected; i++) {
+        assert_int_equal(volume_mesh_facing(a, b, c, lights[i]), expected[i]);
+        assert_int_equal(volume_mesh_facing(b, c, a, lights[i]), expected[i]);
+        assert_int_equal(volume_mesh_facing(a, c, b, lights[i]), -expected[i]);
+    }
 }
 
 /* Trimmed volumes (see "Trimmed to the light's reach" in volume_mesh.h):
@@ -513,6 +589,8 @@ static void test_adjacency_marks_borders(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_box_sides_on_silhouette_once),
+        cmocka_unit_test(test_light_inside_closed_box),
+        cmocka_unit_test(test_facing_edge_on),
         cmocka_unit_test(test_plane_lit_from_behind_reverses_sides),
         cmocka_unit_test(test_trimmed_volume_closed_beyond_reach),
         cmocka_unit_test(test_trim_off_near_the_light),

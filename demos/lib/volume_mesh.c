@@ -90,19 +90,87 @@ static void volume_mesh_emit_side(volume_mesh *v, const float *a, const float *b
         volume_mesh_emit_triangle(v, b, 1, a_far, a_far[3], b_far, b_far[3]);
 }
 
-/* +1: faces the light; otherwise -1, or 0 for a closed mesh (see the
- * header). */
-static int volume_mesh_weight(const mesh *m, uint32_t triangle, const float light[4], bool closed) {
-    const float *p0 = m->vertices[m->indices[triangle * 3]].position;
-    const float *p1 = m->vertices[m->indices[triangle * 3 + 1]].position;
-    const float *p2 = m->vertices[m->indices[triangle * 3 + 2]].position;
-    vec3 e1, e2, n, to_light;
-    glm_vec3_sub((float *)p1, (float *)p0, e1);
-    glm_vec3_sub((float *)p2, (float *)p0, e2);
-    glm_vec3_cross(e1, e2, n);
+/* The way towards the light from p (a point light's w is 1). */
+static void volume_mesh_to_light(const float *p, const float light[4], float out[3]) {
     for (int k = 0; k < 3; k++)
-        to_light[k] = light[k] - light[3] * p0[k];
-    return glm_vec3_dot(n, to_light) > 0 ? 1 : closed ? 0 : -1;
+        out[k] = light[k] - light[3] * p[k];
+}
+
+int volume_mesh_facing(const float *a, const float *b, const float *c, const float light[4]) {
+    vec3 e1, e2, n, to_light[3];
+    glm_vec3_sub((float *)b, (float *)a, e1);
+    glm_vec3_sub((float *)c, (float *)a, e2);
+    glm_vec3_cross(e1, e2, n);
+    const float *corners[3] = {a, b, c};
+    float reach = 0;
+    for (int i = 0; i < 3; i++) {
+        volume_mesh_to_light(corners[i], light, to_light[i]);
+        reach += glm_vec3_norm(to_light[i]);
+    }
+    float along = glm_vec3_dot(n, to_light[0]);
+    if (fabsf(along) <= glm_vec3_norm(n) * reach / VOLUME_MESH_EDGE_ON_RECIPROCAL)
+        return 0;
+    return along > 0 ? 1 : -1;
+}
+
+/* The solid angle of triangle (a, b, c) seen from the point light,
+ * signed by its winding (Van Oosterom & Strackee 1983), in double; 0 for
+ * a triangle edge-on to it (volume_mesh_facing): exact, unless the light
+ * lies in the triangle, which is then on the surface (see the header). */
+static double volume_mesh_solid_angle(const float *a, const float *b, const float *c, const float light[4]) {
+    if (volume_mesh_facing(a, b, c, light) == 0)
+        return 0;
+    double u[3][3], length[3];
+    const float *p[3] = {a, b, c};
+    for (int i = 0; i < 3; i++) {
+        for (int k = 0; k < 3; k++)
+            u[i][k] = (double)p[i][k] - light[k];
+        length[i] = sqrt(u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2]);
+    }
+    double det = u[0][0] * (u[1][1] * u[2][2] - u[1][2] * u[2][1]) -
+                 u[0][1] * (u[1][0] * u[2][2] - u[1][2] * u[2][0]) +
+                 u[0][2] * (u[1][0] * u[2][1] - u[1][1] * u[2][0]);
+    double dot01 = u[0][0] * u[1][0] + u[0][1] * u[1][1] + u[0][2] * u[1][2];
+    double dot02 = u[0][0] * u[2][0] + u[0][1] * u[2][1] + u[0][2] * u[2][2];
+    double dot12 = u[1][0] * u[2][0] + u[1][1] * u[2][1] + u[1][2] * u[2][2];
+    double denominator =
+        length[0] * length[1] * length[2] + dot01 * length[2] + dot02 * length[1] + dot12 * length[0];
+    return 2 * atan2(det, denominator);
+}
+
+bool volume_mesh_light_inside(const mesh *m, const float light[4]) {
+    if (light[3] == 0)
+        return false; /* a direction: at infinity, outside every mesh */
+    /* A light on a triangle edge-on to it lies within this of the
+     * triangle: its distances to the corners sum to at most 3 diagonals
+     * (and a little: 4). */
+    float margin = 4 * glm_vec3_distance((float *)m->bounds_min, (float *)m->bounds_max) /
+                   VOLUME_MESH_EDGE_ON_RECIPROCAL;
+    for (int k = 0; k < 3; k++)
+        if (!(light[k] >= m->bounds_min[k] - margin && light[k] <= m->bounds_max[k] + margin))
+            return false;
+    double total = 0;
+    for (uint32_t t = 0; t < m->index_count / 3; t++) {
+        const uint32_t *corner = &m->indices[t * 3];
+        total += volume_mesh_solid_angle(m->vertices[corner[0]].position, m->vertices[corner[1]].position,
+                                         m->vertices[corner[2]].position, light);
+    }
+    /* The winding number: 1 inside, 0 outside, 1/2 on the surface (-1
+     * inside a mesh wound inwards, where the closed rule holds). */
+    return total / (4 * GLM_PI) > VOLUME_MESH_INSIDE_WINDING;
+}
+
+bool volume_mesh_closed_rule(const mesh *m, const mesh_edges *e, const float light[4]) {
+    return e->closed && !volume_mesh_light_inside(m, light);
+}
+
+/* +1: faces the light; -1 faces away, or 0 for a closed mesh; 0 edge-on
+ * (see the header). */
+static int volume_mesh_weight(const mesh *m, uint32_t triangle, const float light[4], bool closed) {
+    const uint32_t *corner = &m->indices[triangle * 3];
+    int facing = volume_mesh_facing(m->vertices[corner[0]].position, m->vertices[corner[1]].position,
+                                    m->vertices[corner[2]].position, light);
+    return facing < 0 && closed ? 0 : facing;
 }
 
 static bool volume_mesh_weigh(volume_mesh *v, const mesh *m, const float light[4], bool closed) {
@@ -146,7 +214,7 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
                        const volume_mesh_trim *trim, volume_mesh_parts parts) {
     v->count = 0;
     v->out_of_memory = false;
-    if (!volume_mesh_weigh(v, m, light, e->closed))
+    if (!volume_mesh_weigh(v, m, light, volume_mesh_closed_rule(m, e, light)))
         return false;
     for (uint32_t i = 0; parts != VOLUME_MESH_CAPS && i < e->edge_count; i++) {
         int multiplicity = 0;

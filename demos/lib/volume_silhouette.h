@@ -31,6 +31,12 @@
  *   silhouette between two triangles (one side from each), and on a
  *   border each triangle's own (at a non-manifold edge, pairs of opposite
  *   sides drawn over the same quad cancel in the stencil).
+ * A triangle edge-on to the light weighs 0 in both (no prism; its
+ * neighbours' sides close the volume), and a closed mesh takes the open
+ * rule for a light inside it or on it (volume_mesh_closed_rule, decided
+ * on the CPU per caster and light: u_topology), as on the CPU; the
+ * shader's test is then "the weight of (a, across, b) differs from mine",
+ * weights -1, 0 and 1 as volume_mesh_facing and the rule give them.
  * The facing tests are the CPU's expression in object space; the
  * neighbour's is taken from this triangle's corners, so a triangle edge-on
  * to the light could be judged otherwise than by itself (on the tests'
@@ -100,8 +106,9 @@ bool volume_silhouette_mesh_init(volume_silhouette_mesh *out, const mesh *m, con
 void volume_silhouette_mesh_free(volume_silhouette_mesh *m);
 /* The sides of m's volume from the light (homogeneous, in m's space),
  * the object's model matrix `model` (16 floats, column-major), seen from
- * `view`. */
+ * `view`; a closed mesh by the open rule unless `closed_rule` (false for
+ * a light inside it or on it: volume_mesh_closed_rule). */
 void volume_silhouette_draw(const volume_silhouette *s, const volume_silhouette_mesh *m, const camera_view *view,
-                            const float *model, const float light[4]);
+                            const float *model, const float light[4], bool closed_rule);
 
 #endif
