@@ -19,10 +19,15 @@ static shadowdiff_result measure(const char *scene, const char *flags, const cha
     return support_measure("volumes", scene, "", flags, name);
 }
 
-static void assert_within_bound(const char *scene, const char *flags, const char *name) {
-    shadowdiff_result r = measure(scene, flags, name);
+/* At `size` ("--size WxH", or "" for 640x360). */
+static void assert_within_bound_at(const char *scene, const char *size, const char *flags, const char *name) {
+    shadowdiff_result r = support_measure("volumes", scene, size, flags, name);
     assert_true(r.compared > 50000);
     assert_true(r.misclassified_percent <= VOLUMES_MAX_MISCLASSIFIED_PERCENT);
+}
+
+static void assert_within_bound(const char *scene, const char *flags, const char *name) {
+    assert_within_bound_at(scene, "", flags, name);
 }
 
 /* Closed (simple, bunny), open (teapot, spider) and open non-manifold
@@ -140,6 +145,24 @@ static void test_light_inside_caster(void **state) {
     }
 }
 
+/* A 1000-object city from one street, under its sun (the lamps in view
+ * misclassify nothing), at the issue's 1280x720 and at 640x360. Measured:
+ * 0.0055 % at 1280x720 (20 false shadow, 18 false lit), 0.0046 % at
+ * 640x360; the 0.013 to 0.022 % once reported were the reference's, before
+ * it was exact (against that reference, this same picture: 0.022 %). */
+static void test_city_within_bound(void **state) {
+    (void)state;
+    static const struct {
+        const char *size, *flags, *name;
+    } cases[] = {
+        {"--size 1280x720", "", "city_1000_1280"},
+        {"--size 1280x720", "--silhouette gpu", "city_1000_1280_gpu"},
+        {"", "", "city_1000_640"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++)
+        assert_within_bound_at("assets/scenes/city_1000.json", cases[i].size, cases[i].flags, cases[i].name);
+}
+
 /* 300 casters stacked along one line to the light: counts beyond 255 wrap
  * in the 8-bit stencil and still come out right. */
 static void test_300_overlapping_casters(void **state) {
@@ -169,6 +192,7 @@ int main(void) {
         cmocka_unit_test(test_camera_in_shadow),
         cmocka_unit_test(test_trimmed_within_bound),
         cmocka_unit_test(test_light_inside_caster),
+        cmocka_unit_test(test_city_within_bound),
         cmocka_unit_test(test_300_overlapping_casters),
         cmocka_unit_test(test_bad_triangles_skipped),
     };
