@@ -544,6 +544,47 @@ static void test_depth_bounds(void **state) {
     assert_false(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 0, NULL, NULL, bounds));
 }
 
+/* Uses in adjacency `indices` (of mesh m) marked as borders: the index
+ * across is the triangle's own third vertex. */
+static int border_marks(const mesh *m, const uint32_t *indices) {
+    int marks = 0;
+    for (uint32_t t = 0; t < m->index_count / 3; t++)
+        for (int k = 0; k < 3; k++)
+            marks += indices[t * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + k * 2 + 1] == m->indices[t * 3 + (k + 2) % 3];
+    return marks;
+}
+
+/* Welded but not at one position (volume_mesh_edges_build): a box (one
+ * vertex per face corner) with one face's copy of a corner one ulp off
+ * still welds into the closed edge table, but counts as open, and the
+ * adjacency pairs nothing across the two box edges from that copy to
+ * the neighbouring faces: their 4 uses are marked as borders, no other. */
+static void test_welded_apart_is_open(void **state) {
+    (void)state;
+    mesh box;
+    mesh_edges e;
+    assert_true(mesh_make_box(&box, 2, 2, 2));
+    size_t count = (size_t)box.index_count / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE;
+    uint32_t *indices = malloc(count * sizeof *indices);
+    assert_non_null(indices);
+    enum { NUDGED_EDGE_USES = 4 };
+    for (int nudged = 0; nudged < 2; nudged++) {
+        if (nudged)
+            box.vertices[0].position[0] = nextafterf(box.vertices[0].position[0], 0);
+        assert_true(volume_mesh_edges_build(&box, &e));
+        mesh_topology t;
+        assert_true(mesh_weld(&box, &t));
+        assert_int_equal(mesh_topology_count_edges(&box, &t).manifold, box.index_count / 2);
+        mesh_topology_free(&t);
+        assert_int_equal(e.closed, !nudged);
+        volume_silhouette_adjacency(&box, &e, indices);
+        assert_int_equal(border_marks(&box, indices), nudged ? NUDGED_EDGE_USES : 0);
+        mesh_edges_free(&e);
+    }
+    free(indices);
+    mesh_free(&box);
+}
+
 /* The geometry shader's adjacency (volume_silhouette.h): on a closed box,
  * mesh_adjacency_indices' indices. On an open, non-manifold mesh, a book
  * of three pages on one spine (0-1) and a fourth triangle across the
@@ -601,6 +642,7 @@ int main(void) {
         cmocka_unit_test(test_receivers_ndc),
         cmocka_unit_test(test_depth_bounds),
         cmocka_unit_test(test_adjacency_marks_borders),
+        cmocka_unit_test(test_welded_apart_is_open),
     };
     return cmocka_run_group_tests_name("shadow volumes' CPU geometry", tests, NULL, NULL);
 }

@@ -17,12 +17,35 @@ static const int volume_mesh_rectangle_corners[4] = {0, 1, 3, 2};
 
 /* ---- building a volume ---- */
 
+/* The corner after `corner` in its triangle: where its edge ends. */
+static uint32_t volume_mesh_next_corner(uint32_t corner) {
+    return corner / 3 * 3 + (corner + 1) % 3;
+}
+
+static bool volume_mesh_same_position(const mesh *m, uint32_t corner_a, uint32_t corner_b) {
+    return memcmp(m->vertices[m->indices[corner_a]].position, m->vertices[m->indices[corner_b]].position,
+                  sizeof m->vertices[0].position) == 0;
+}
+
+bool volume_mesh_uses_meet(const mesh *m, const mesh_edge_use *u, const mesh_edge_use *v) {
+    uint32_t u_end = volume_mesh_next_corner(u->corner), v_end = volume_mesh_next_corner(v->corner);
+    if (u->direction == v->direction)
+        return volume_mesh_same_position(m, u->corner, v->corner) && volume_mesh_same_position(m, u_end, v_end);
+    return volume_mesh_same_position(m, u->corner, v_end) && volume_mesh_same_position(m, u_end, v->corner);
+}
+
 bool volume_mesh_edges_build(const mesh *m, mesh_edges *e) {
     mesh_topology t;
     if (!mesh_weld(m, &t))
         return false;
     bool ok = mesh_edges_build(m, &t, e);
     mesh_topology_free(&t);
+    /* Closed only where every edge's two triangles meet at one position
+     * (see the header). */
+    for (uint32_t i = 0; ok && e->closed && i < e->edge_count; i++) {
+        const mesh_edge_use *u = &e->uses[e->edges[i].first_use];
+        e->closed = volume_mesh_uses_meet(m, &u[0], &u[1]);
+    }
     return ok;
 }
 

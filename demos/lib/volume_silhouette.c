@@ -17,8 +17,10 @@ void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *o
         const mesh_edge_use *u = &e->uses[e->edges[i].first_use];
         uint32_t uses = e->edges[i].use_count;
         for (uint32_t k = 0; k < uses; k++) {
-            /* Across: the one other triangle, or on a border this one. */
-            uint32_t corner = u[k].corner, across = uses == 2 ? u[1 - k].corner : corner;
+            /* Across: the one other triangle, where it holds the edge's
+             * ends at the same positions, or on a border this one. */
+            uint32_t corner = u[k].corner;
+            uint32_t across = uses == 2 && volume_mesh_uses_meet(m, &u[0], &u[1]) ? u[1 - k].corner : corner;
             uint32_t *slot = &out[corner / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + corner % 3 * 2];
             slot[0] = m->indices[corner];
             slot[1] = m->indices[volume_silhouette_third(across)];

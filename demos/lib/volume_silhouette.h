@@ -7,9 +7,13 @@
  * Adjacency: six indices per triangle, each corner and then the vertex
  * across the edge it starts (the third vertex of the triangle on the
  * other side). An edge of the welded edge table with exactly two uses has
- * that one triangle across, whichever way it runs. A border has none
- * across (an open edge: one use) or no single one (a non-manifold edge:
- * three or more); its index across is then the triangle's own third
+ * that one triangle across, whichever way it runs, where the two hold the
+ * edge's ends at the same positions (volume_mesh_uses_meet: the weld's
+ * tolerance may pair positions a few ulps apart, and the neighbour is
+ * judged from this triangle's ends). A border has none across (an open
+ * edge: one use; two uses at other positions, which makes the mesh open,
+ * volume_mesh_edges_build) or no single one (a non-manifold edge: three
+ * or more); its index across is then the triangle's own third
  * vertex, the mark the shader reads (same index, so the same position, bit
  * for bit). A closed mesh has no border: its indices are those of
  * mesh_adjacency_indices.
