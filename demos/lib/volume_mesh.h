@@ -2,6 +2,8 @@
  * welded edge table, and the test of whether z-pass is safe for it. Pure
  * geometry (no GL), so it is unit tested without a context
  * (tests/test_volume_mesh.c); demos/volumes.c draws what it builds.
+ * volume_rule.c holds the rules that weigh the triangles (the edge table,
+ * the facing test, a light inside a mesh), volume_mesh.c the rest.
  *
  * A volume is a list of homogeneous triangles (or lines) in the space of
  * the mesh, the light given in that space as a point (w = 1) or as the
