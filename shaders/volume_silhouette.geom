@@ -15,8 +15,20 @@ uniform vec4 u_light; // object space, homogeneous
 uniform int u_topology; // VOLUME_SILHOUETTE_CLOSED or VOLUME_SILHOUETTE_OPEN
 invariant gl_Position;
 
-bool volume_faces_light(vec3 a, vec3 b, vec3 c) {
-    return dot(cross(b - a, c - a), u_light.xyz - u_light.w * a) > 0.0;
+vec3 volume_to_light(vec3 p) {
+    return u_light.xyz - u_light.w * p;
+}
+
+// The CPU's weight (volume_mesh_facing, and the rule's weight of a
+// back-facing triangle): 1 facing the light, -1 facing away (0 on a closed
+// mesh), 0 edge-on.
+int volume_weight(vec3 a, vec3 b, vec3 c) {
+    vec3 n = cross(b - a, c - a);
+    float along = dot(n, volume_to_light(a));
+    float reach = length(volume_to_light(a)) + length(volume_to_light(b)) + length(volume_to_light(c));
+    if (abs(along) <= length(n) * reach / float(VOLUME_MESH_EDGE_ON_RECIPROCAL))
+        return 0;
+    return along > 0.0 ? 1 : u_topology == VOLUME_SILHOUETTE_CLOSED ? 0 : -1;
 }
 
 vec4 volume_far(vec3 p) {
@@ -38,15 +50,16 @@ void main() {
     vec3 p[6];
     for (int i = 0; i < 6; i++)
         p[i] = v_object[i];
-    bool faces = volume_faces_light(p[0], p[2], p[4]);
-    // A closed mesh's back-facing triangles weigh 0: its light-facing
-    // prisms already cover its shadow.
-    if (!faces && u_topology == VOLUME_SILHOUETTE_CLOSED)
+    // Weight 0 (edge-on, or a closed mesh's back-facing triangle, whose
+    // light-facing prisms already cover its shadow): no prism.
+    int weight = volume_weight(p[0], p[2], p[4]);
+    if (weight == 0)
         return;
+    bool faces = weight > 0;
     for (int i = 0; i < 6; i += 2) {
         int next = (i + 2) % 6;
         bool border = u_topology == VOLUME_SILHOUETTE_OPEN && p[i + 1] == p[(i + 4) % 6];
-        if (!border && volume_faces_light(p[i], p[i + 1], p[next]) == faces)
+        if (!border && volume_weight(p[i], p[i + 1], p[next]) == weight)
             continue;
         // The side of a -> b, facing out of the prism: b, a, a far, b far;
         // a back-facing triangle's prism runs the other way round.

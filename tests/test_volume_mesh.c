@@ -70,6 +70,25 @@ static void assert_faces_out(const volume_mesh *v, const float q[3]) {
     }
 }
 
+/* Caps built (VOLUME_MESH_CAPS) from a point light: each triangle's
+ * near and far caps, one after the other, face out of its own prism,
+ * which holds the point twice as far from the light as the near cap's
+ * centre. */
+static void assert_caps_face_out_of_prisms(const volume_mesh *v, const float light[4]) {
+    enum { CAP_VERTICES = 3, PAIR = 2 * CAP_VERTICES };
+    assert_int_equal(v->count % PAIR, 0);
+    for (size_t t = 0; t < v->count; t += PAIR) {
+        float inside[3] = {0, 0, 0};
+        for (int k = 0; k < CAP_VERTICES; k++)
+            for (int j = 0; j < 3; j++)
+                inside[j] += v->vertices[t + k][j] * (2.0f / CAP_VERTICES);
+        for (int j = 0; j < 3; j++)
+            inside[j] -= light[j];
+        volume_mesh pair = {.vertices = (float(*)[4])v->vertices[t], .count = PAIR};
+        assert_faces_out(&pair, inside);
+    }
+}
+
 static void build(volume_mesh *v, const mesh *m, const float light[4], volume_mesh_parts parts) {
     mesh_edges e;
     assert_true(volume_mesh_edges_build(m, &e));
@@ -117,6 +136,63 @@ static void test_closed_box_sides_on_silhouette_once(void **state) {
     assert_int_equal(v.count, SILHOUETTE_EDGES * 2);
     volume_mesh_free(&v);
     mesh_free(&m);
+}
+
+/* A point light inside a closed box, or in its top face (volume_mesh.h:
+ * the closed rule would cast nothing, every triangle facing away or
+ * edge-on): the box is weighed as an open mesh. Inside, all 12 triangles
+ * are caps (near, reversed, and far) and no edge has a side; in the top
+ * face, its 2 triangles are edge-on and weigh 0, the other 10 are caps,
+ * and the top face's 4 border edges have sides, in the face's plane.
+ * Each triangle's caps face out of its own prism (the prisms together
+ * are the volume). Just above the face, or beside the box, the light is
+ * outside and the closed rule holds. */
+static void test_light_inside_closed_box(void **state) {
+    (void)state;
+    mesh m;
+    assert_true(mesh_make_box(&m, 2, 2, 2));
+    mesh_edges e;
+    assert_true(volume_mesh_edges_build(&m, &e));
+    assert_true(e.closed);
+    const float centre[4] = {0.1f, 0.2f, -0.3f, 1}, on_top[4] = {0.3f, 1, -0.2f, 1};
+    const float above[4] = {0.3f, 1.001f, -0.2f, 1}, beside[4] = {3, 1, 0, 1}, sun[4] = {0.1f, 1, 0.2f, 0};
+    assert_true(volume_mesh_light_inside(&m, centre) && volume_mesh_light_inside(&m, on_top));
+    assert_false(volume_mesh_light_inside(&m, above) || volume_mesh_light_inside(&m, beside) ||
+                 volume_mesh_light_inside(&m, sun));
+    assert_false(volume_mesh_closed_rule(&m, &e, centre) || volume_mesh_closed_rule(&m, &e, on_top));
+    assert_true(volume_mesh_closed_rule(&m, &e, above) && volume_mesh_closed_rule(&m, &e, beside));
+    enum { TRIANGLES = 12, TOP_TRIANGLES = 2, TOP_EDGES = 4 };
+    volume_mesh v = {0};
+    assert_true(volume_mesh_build(&v, &m, &e, centre, NULL, VOLUME_MESH_SIDES));
+    assert_int_equal(v.count, 0);
+    assert_true(volume_mesh_build(&v, &m, &e, centre, NULL, VOLUME_MESH_CAPS));
+    assert_int_equal(v.count, TRIANGLES * 2 * 3);
+    assert_caps_face_out_of_prisms(&v, centre);
+    assert_true(volume_mesh_build(&v, &m, &e, on_top, NULL, VOLUME_MESH_SIDES));
+    assert_int_equal(v.count, TOP_EDGES * SIDE_VERTICES);
+    assert_true(volume_mesh_build(&v, &m, &e, on_top, NULL, VOLUME_MESH_CAPS));
+    assert_int_equal(v.count, (TRIANGLES - TOP_TRIANGLES) * 2 * 3);
+    assert_caps_face_out_of_prisms(&v, on_top);
+    volume_mesh_free(&v);
+    mesh_edges_free(&e);
+    mesh_free(&m);
+}
+
+/* volume_mesh_facing: +1 and -1 either side of a triangle's plane, 0
+ * within the edge-on tolerance of it, for point and directional lights,
+ * whichever corner the triangle starts from. */
+static void test_facing_edge_on(void **state) {
+    (void)state;
+    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 0, -1}; /* faces +y */
+    const float over = 1e-3f, within = 1e-6f;
+    const float lights[][4] = {{0.2f, over, -0.2f, 1}, {0.2f, -over, -0.2f, 1}, {0.2f, within, -0.2f, 1},
+                               {5, 0, 3, 1},           {0, 1, 0, 0},            {1, within, 0, 0}};
+    const int expected[] = {1, -1, 0, 0, 1, 0};
+    for (size_t i = 0; i < sizeof expected / sizeof *expected; i++) {
+        assert_int_equal(volume_mesh_facing(a, b, c, lights[i]), expected[i]);
+        assert_int_equal(volume_mesh_facing(b, c, a, lights[i]), expected[i]);
+        assert_int_equal(volume_mesh_facing(a, c, b, lights[i]), -expected[i]);
+    }
 }
 
 /* Trimmed volumes (see "Trimmed to the light's reach" in volume_mesh.h):
@@ -468,6 +544,47 @@ static void test_depth_bounds(void **state) {
     assert_false(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 0, NULL, NULL, bounds));
 }
 
+/* Uses in adjacency `indices` (of mesh m) marked as borders: the index
+ * across is the triangle's own third vertex. */
+static int border_marks(const mesh *m, const uint32_t *indices) {
+    int marks = 0;
+    for (uint32_t t = 0; t < m->index_count / 3; t++)
+        for (int k = 0; k < 3; k++)
+            marks += indices[t * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + k * 2 + 1] == m->indices[t * 3 + (k + 2) % 3];
+    return marks;
+}
+
+/* Welded but not at one position (volume_mesh_edges_build): a box (one
+ * vertex per face corner) with one face's copy of a corner one ulp off
+ * still welds into the closed edge table, but counts as open, and the
+ * adjacency pairs nothing across the two box edges from that copy to
+ * the neighbouring faces: their 4 uses are marked as borders, no other. */
+static void test_welded_apart_is_open(void **state) {
+    (void)state;
+    mesh box;
+    mesh_edges e;
+    assert_true(mesh_make_box(&box, 2, 2, 2));
+    size_t count = (size_t)box.index_count / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE;
+    uint32_t *indices = malloc(count * sizeof *indices);
+    assert_non_null(indices);
+    enum { NUDGED_EDGE_USES = 4 };
+    for (int nudged = 0; nudged < 2; nudged++) {
+        if (nudged)
+            box.vertices[0].position[0] = nextafterf(box.vertices[0].position[0], 0);
+        assert_true(volume_mesh_edges_build(&box, &e));
+        mesh_topology t;
+        assert_true(mesh_weld(&box, &t));
+        assert_int_equal(mesh_topology_count_edges(&box, &t).manifold, box.index_count / 2);
+        mesh_topology_free(&t);
+        assert_int_equal(e.closed, !nudged);
+        volume_silhouette_adjacency(&box, &e, indices);
+        assert_int_equal(border_marks(&box, indices), nudged ? NUDGED_EDGE_USES : 0);
+        mesh_edges_free(&e);
+    }
+    free(indices);
+    mesh_free(&box);
+}
+
 /* The geometry shader's adjacency (volume_silhouette.h): on a closed box,
  * mesh_adjacency_indices' indices. On an open, non-manifold mesh, a book
  * of three pages on one spine (0-1) and a fourth triangle across the
@@ -513,6 +630,8 @@ static void test_adjacency_marks_borders(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_box_sides_on_silhouette_once),
+        cmocka_unit_test(test_light_inside_closed_box),
+        cmocka_unit_test(test_facing_edge_on),
         cmocka_unit_test(test_plane_lit_from_behind_reverses_sides),
         cmocka_unit_test(test_trimmed_volume_closed_beyond_reach),
         cmocka_unit_test(test_trim_off_near_the_light),
@@ -523,6 +642,7 @@ int main(void) {
         cmocka_unit_test(test_receivers_ndc),
         cmocka_unit_test(test_depth_bounds),
         cmocka_unit_test(test_adjacency_marks_borders),
+        cmocka_unit_test(test_welded_apart_is_open),
     };
     return cmocka_run_group_tests_name("shadow volumes' CPU geometry", tests, NULL, NULL);
 }

@@ -74,9 +74,13 @@ bool volume_cache_keep(volume_cache *c, int object, volume_mesh_parts part, cons
                        size_t max_bytes) {
     if (!volume_cache_reserve(c, v->count, bytes, max_bytes))
         return false;
-    glBindBuffer(GL_ARRAY_BUFFER, c->buffer);
-    glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(c->used * VOLUME_CACHE_VERTEX_BYTES),
-                    (GLsizeiptr)(v->count * VOLUME_CACHE_VERTEX_BYTES), v->vertices);
+    /* An empty part (a caster whose volume has no sides, say) uploads
+     * nothing: the buffer may not exist yet. */
+    if (v->count > 0) {
+        glBindBuffer(GL_ARRAY_BUFFER, c->buffer);
+        glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(c->used * VOLUME_CACHE_VERTEX_BYTES),
+                        (GLsizeiptr)(v->count * VOLUME_CACHE_VERTEX_BYTES), v->vertices);
+    }
     c->ranges[object][part] = (volume_cache_range){(int)c->used, (int)v->count};
     c->used += v->count;
     return true;

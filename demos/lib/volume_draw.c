@@ -135,7 +135,8 @@ void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, 
         const scene_object *o = &f->gpu->scene->objects[i];
         float object_light[4];
         volume_mesh_object_light(o->model, light, object_light);
-        volume_silhouette_draw(&d->gpu, &d->adjacency[i], f->view, (const float *)o->model, object_light);
+        volume_silhouette_draw(&d->gpu, &d->adjacency[i], f->view, (const float *)o->model, object_light,
+                               volume_mesh_closed_rule(&o->mesh, &d->edges[i], object_light));
     } else {
         volume_draw_kept(d, f, l, i, light, VOLUME_MESH_SIDES);
     }

@@ -17,15 +17,6 @@ static const int volume_mesh_rectangle_corners[4] = {0, 1, 3, 2};
 
 /* ---- building a volume ---- */
 
-bool volume_mesh_edges_build(const mesh *m, mesh_edges *e) {
-    mesh_topology t;
-    if (!mesh_weld(m, &t))
-        return false;
-    bool ok = mesh_edges_build(m, &t, e);
-    mesh_topology_free(&t);
-    return ok;
-}
-
 static void volume_mesh_emit(volume_mesh *v, const float p[3], float w) {
     if (v->count == v->capacity) {
         size_t capacity = v->capacity ? v->capacity * 2 : VOLUME_MESH_FIRST_CAPACITY;
@@ -90,19 +81,13 @@ static void volume_mesh_emit_side(volume_mesh *v, const float *a, const float *b
         volume_mesh_emit_triangle(v, b, 1, a_far, a_far[3], b_far, b_far[3]);
 }
 
-/* +1: faces the light; otherwise -1, or 0 for a closed mesh (see the
- * header). */
+/* +1: faces the light; -1 faces away, or 0 for a closed mesh; 0 edge-on
+ * (see the header). */
 static int volume_mesh_weight(const mesh *m, uint32_t triangle, const float light[4], bool closed) {
-    const float *p0 = m->vertices[m->indices[triangle * 3]].position;
-    const float *p1 = m->vertices[m->indices[triangle * 3 + 1]].position;
-    const float *p2 = m->vertices[m->indices[triangle * 3 + 2]].position;
-    vec3 e1, e2, n, to_light;
-    glm_vec3_sub((float *)p1, (float *)p0, e1);
-    glm_vec3_sub((float *)p2, (float *)p0, e2);
-    glm_vec3_cross(e1, e2, n);
-    for (int k = 0; k < 3; k++)
-        to_light[k] = light[k] - light[3] * p0[k];
-    return glm_vec3_dot(n, to_light) > 0 ? 1 : closed ? 0 : -1;
+    const uint32_t *corner = &m->indices[triangle * 3];
+    int facing = volume_mesh_facing(m->vertices[corner[0]].position, m->vertices[corner[1]].position,
+                                    m->vertices[corner[2]].position, light);
+    return facing < 0 && closed ? 0 : facing;
 }
 
 static bool volume_mesh_weigh(volume_mesh *v, const mesh *m, const float light[4], bool closed) {
@@ -146,7 +131,7 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
                        const volume_mesh_trim *trim, volume_mesh_parts parts) {
     v->count = 0;
     v->out_of_memory = false;
-    if (!volume_mesh_weigh(v, m, light, e->closed))
+    if (!volume_mesh_weigh(v, m, light, volume_mesh_closed_rule(m, e, light)))
         return false;
     for (uint32_t i = 0; parts != VOLUME_MESH_CAPS && i < e->edge_count; i++) {
         int multiplicity = 0;

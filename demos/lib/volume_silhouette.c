@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "volume_mesh.h"
+
 /* The corner before `corner` in its triangle: the vertex off the edge
  * that `corner` starts. */
 static uint32_t volume_silhouette_third(uint32_t corner) {
@@ -15,8 +17,10 @@ void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *o
         const mesh_edge_use *u = &e->uses[e->edges[i].first_use];
         uint32_t uses = e->edges[i].use_count;
         for (uint32_t k = 0; k < uses; k++) {
-            /* Across: the one other triangle, or on a border this one. */
-            uint32_t corner = u[k].corner, across = uses == 2 ? u[1 - k].corner : corner;
+            /* Across: the one other triangle, where it holds the edge's
+             * ends at the same positions, or on a border this one. */
+            uint32_t corner = u[k].corner;
+            uint32_t across = uses == 2 && volume_mesh_uses_meet(m, &u[0], &u[1]) ? u[1 - k].corner : corner;
             uint32_t *slot = &out[corner / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + corner % 3 * 2];
             slot[0] = m->indices[corner];
             slot[1] = m->indices[volume_silhouette_third(across)];
@@ -27,7 +31,8 @@ void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *o
 bool volume_silhouette_load(volume_silhouette *s) {
     static const char *const files[] = {"volume_adjacency.vert", "volume_silhouette.geom", "volume.frag"};
     static const shader_define defines[] = {
-        SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED), SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN), {NULL, 0}};
+        SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED), SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN),
+        SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL), {NULL, 0}};
     if (!render_program_load(&s->program, files, (int)(sizeof files / sizeof *files), defines))
         return false;
     s->light = glGetUniformLocation(s->program.id, "u_light");
@@ -71,11 +76,11 @@ void volume_silhouette_mesh_free(volume_silhouette_mesh *m) {
 }
 
 void volume_silhouette_draw(const volume_silhouette *s, const volume_silhouette_mesh *m, const camera_view *view,
-                            const float *model, const float light[4]) {
+                            const float *model, const float light[4], bool closed_rule) {
     render_program_use(&s->program, view);
     glUniformMatrix4fv(s->program.model, 1, GL_FALSE, model);
     glUniform4fv(s->light, 1, light);
-    glUniform1i(s->topology, m->topology);
+    glUniform1i(s->topology, closed_rule ? m->topology : VOLUME_SILHOUETTE_OPEN);
     glBindVertexArray(m->vao);
     glDrawElements(GL_TRIANGLES_ADJACENCY, m->index_count, GL_UNSIGNED_INT, NULL);
 }

@@ -7,9 +7,13 @@
  * Adjacency: six indices per triangle, each corner and then the vertex
  * across the edge it starts (the third vertex of the triangle on the
  * other side). An edge of the welded edge table with exactly two uses has
- * that one triangle across, whichever way it runs. A border has none
- * across (an open edge: one use) or no single one (a non-manifold edge:
- * three or more); its index across is then the triangle's own third
+ * that one triangle across, whichever way it runs, where the two hold the
+ * edge's ends at the same positions (volume_mesh_uses_meet: the weld's
+ * tolerance may pair positions a few ulps apart, and the neighbour is
+ * judged from this triangle's ends). A border has none across (an open
+ * edge: one use; two uses at other positions, which makes the mesh open,
+ * volume_mesh_edges_build) or no single one (a non-manifold edge: three
+ * or more); its index across is then the triangle's own third
  * vertex, the mark the shader reads (same index, so the same position, bit
  * for bit). A closed mesh has no border: its indices are those of
  * mesh_adjacency_indices.
@@ -31,6 +35,12 @@
  *   silhouette between two triangles (one side from each), and on a
  *   border each triangle's own (at a non-manifold edge, pairs of opposite
  *   sides drawn over the same quad cancel in the stencil).
+ * A triangle edge-on to the light weighs 0 in both (no prism; its
+ * neighbours' sides close the volume), and a closed mesh takes the open
+ * rule for a light inside it or on it (volume_mesh_closed_rule, decided
+ * on the CPU per caster and light: u_topology), as on the CPU; the
+ * shader's test is then "the weight of (a, across, b) differs from mine",
+ * weights -1, 0 and 1 as volume_mesh_facing and the rule give them.
  * The facing tests are the CPU's expression in object space; the
  * neighbour's is taken from this triangle's corners, so a triangle edge-on
  * to the light could be judged otherwise than by itself (on the tests'
@@ -100,8 +110,9 @@ bool volume_silhouette_mesh_init(volume_silhouette_mesh *out, const mesh *m, con
 void volume_silhouette_mesh_free(volume_silhouette_mesh *m);
 /* The sides of m's volume from the light (homogeneous, in m's space),
  * the object's model matrix `model` (16 floats, column-major), seen from
- * `view`. */
+ * `view`; a closed mesh by the open rule unless `closed_rule` (false for
+ * a light inside it or on it: volume_mesh_closed_rule). */
 void volume_silhouette_draw(const volume_silhouette *s, const volume_silhouette_mesh *m, const camera_view *view,
-                            const float *model, const float light[4]);
+                            const float *model, const float light[4], bool closed_rule);
 
 #endif
