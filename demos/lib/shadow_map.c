@@ -280,8 +280,7 @@ static int shadow_map_light_uniform(unsigned program, const char *name, int ligh
 
 /* The camera program of key k. */
 static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const shadow_map_camera_key *k) {
-    enum { COMMON = sizeof shadow_map_defines / sizeof *shadow_map_defines - 1, PASS = 10 };
-    shader_define defines[PASS + COMMON + 2 * SCENE_MAX_LIGHTS + 1] = {
+    const shader_define pass[] = {
         SHADER_DEFINE(SHADOW_MAP_LIGHT_OFF),
         SHADER_DEFINE(SHADOW_MAP_LIGHT_UNSHADOWED),
         SHADER_DEFINE(SHADOW_MAP_LIGHT_2D),
@@ -293,6 +292,11 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {"SHADOW_MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
         {"SHADOW_MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
     };
+    /* This key's defines, then the enums every camera program compares
+     * with, then each light's two, then the list's end ({NULL}, zeroed). */
+    enum { PASS = sizeof pass / sizeof *pass, COMMON = sizeof shadow_map_defines / sizeof *shadow_map_defines - 1 };
+    shader_define defines[PASS + COMMON + 2 * SCENE_MAX_LIGHTS + 1] = {{NULL, 0}};
+    memcpy(defines, pass, sizeof pass);
     memcpy(defines + PASS, shadow_map_defines, COMMON * sizeof *defines);
     shader_define *light_defines = defines + PASS + COMMON;
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
