@@ -162,10 +162,13 @@ static void render(const scene *s, const char *name, dump_frame *frame) {
     assert_true(raytrace_render(s, WIDTH, HEIGHT, 0, &settings, frame));
 }
 
-static void render_file(const char *path, dump_frame *frame) {
+/* origin: the scene's (scene.h, "Large worlds"), which the dump's light
+ * is relative to. */
+static void render_file(const char *path, dump_frame *frame, double origin[3]) {
     scene s;
     assert_true(scene_load(&s, path));
     render(&s, path, frame);
+    memcpy(origin, s.origin, sizeof s.origin);
     scene_free(&s);
 }
 
@@ -191,13 +194,13 @@ static void expect_same_shadows(const char *what, const dump_frame *reference, c
     assert_true(r.misclassified_percent <= MAX_MISCLASSIFIED_PERCENT);
 }
 
-/* The moved dump in the unmoved scene's units: its light moved back, its
- * depths divided by the scale (positions and normals are the reference's
- * to give). */
-static void move_back(dump_frame *f, const invariance_case *c) {
+/* The moved dump in the unmoved scene's units: its light moved back (in
+ * world coordinates: the moved scene's origin added), its depths divided
+ * by the scale (positions and normals are the reference's to give). */
+static void move_back(dump_frame *f, const invariance_case *c, const double origin[3]) {
     if (f->light[3] != 0)
         for (int k = 0; k < 3; k++)
-            f->light[k] = (float)((f->light[k] - c->translate[k]) / case_scale(c));
+            f->light[k] = (float)((f->light[k] + origin[k] - c->translate[k]) / case_scale(c));
     for (size_t i = 0; i < (size_t)f->width * (size_t)f->height; i++)
         if (f->ids[i] >= 0)
             f->depth[i] = (float)(f->depth[i] / case_scale(c));
@@ -206,15 +209,16 @@ static void move_back(dump_frame *f, const invariance_case *c) {
 static void test_moved_and_scaled_scenes_give_the_same_reference(void **state) {
     (void)state;
     dump_frame unmoved;
-    render_file(INVARIANCE_SCENE, &unmoved);
+    double origin[3];
+    render_file(INVARIANCE_SCENE, &unmoved, origin);
     for (size_t k = 0; k < sizeof invariance_cases / sizeof *invariance_cases; k++) {
         const invariance_case *c = &invariance_cases[k];
         char name[32], path[256];
         snprintf(name, sizeof name, "case_%zu", k);
         write_moved_scene(INVARIANCE_SCENE, c, name, path, sizeof path);
         dump_frame moved;
-        render_file(path, &moved);
-        move_back(&moved, c);
+        render_file(path, &moved, origin);
+        move_back(&moved, c, origin);
         expect_same_shadows(c->name, &unmoved, &moved);
         dump_frame_free(&moved);
     }

@@ -310,6 +310,36 @@ static void test_mirrored_objects(void **state) {
     scene_free(&unmirrored);
 }
 
+/* A scene 1e6 from the world's origin (scene.h, "Large worlds"): every
+ * position relative to the eye keeps a scene-at-the-origin's precision.
+ * In world floats, 1e6 away, each would be off by up to 0.03. */
+static void test_far_from_origin(void **state) {
+    (void)state;
+    scene s;
+    load_quietly(&s, "tests/data/scene_far_from_origin.json");
+    const double eye[3] = {1000000.3, 250004.1, -999987.3};
+    for (int k = 0; k < 3; k++) assert_true(s.origin[k] == (double)(float)eye[k]);
+    const float *camera = s.camera.position;
+    float light[3], box[3], target[3];
+    const scene_object *b = find_object(&s, "box");
+    for (int k = 0; k < 3; k++) {
+        target[k] = s.camera.target[k] - camera[k];
+        light[k] = s.lights[0].position[k] - camera[k];
+        box[k] = b->model[3][k] - camera[k];
+    }
+    assert_vec3(target, -0.3, -3.1, -12.7);
+    assert_vec3(light, 2.2, 1.9, -11.2);
+    assert_vec3(box, -1.5, -3.3, -12.4);
+    /* An object without "translate" sits at the world's origin. */
+    const float *ground = find_object(&s, "ground")->model[3];
+    assert_vec3(ground, -s.origin[0], -s.origin[1], -s.origin[2]);
+    scene_free(&s);
+    /* Near the origin a scene keeps its own numbers. */
+    load_quietly(&s, "tests/data/scene_good.json");
+    for (int k = 0; k < 3; k++) assert_true(s.origin[k] == 0);
+    scene_free(&s);
+}
+
 typedef struct bad_scene {
     const char *path;
     const char *problem; /* expected in the message, after the path */
@@ -386,6 +416,7 @@ int main(void) {
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_light_range),
         cmocka_unit_test(test_mirrored_objects),
+        cmocka_unit_test(test_far_from_origin),
         cmocka_unit_test(test_bad_scenes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

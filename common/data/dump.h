@@ -8,11 +8,14 @@
  *   DIR/depth.pfm       distance from the eye to the visible surface; -1
  *   DIR/normal.pfm      world geometric (face) normal, unit, turned
  *                       towards the eye (the side that is seen); 0 if none
- *   DIR/position.pfm    world position of the visible surface; 0 if none
+ *   DIR/position.pfm    position of the visible surface, as the scene's
+ *                       positions, relative to its origin (scene.h,
+ *                       "Large worlds"); 0 if none
  *   DIR/ids.pfm         index of the scene object seen; -1 if none
  *   DIR/color.png       the picture
  *   DIR/meta.json       {"width", "height", "light_index", "light":
- *                        [x,y,z,w] (w 0: direction towards the light),
+ *                        [x,y,z,w] (w 0: direction towards the light;
+ *                        a position is relative to the scene's origin),
  *                        "objects": [names by index]}
  *
  * Arrays are top row first (PFM files store the bottom row first, as the

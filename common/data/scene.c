@@ -116,17 +116,19 @@ static bool scene_check_keys(const char *file, const cJSON *object, const char *
     return true;
 }
 
-/* One JSON number, as a float in the range. */
+/* One JSON number less `offset` (subtracted in double, before the
+ * rounding to float: see scene.h, "Large worlds"), as a float in the
+ * range. */
 static bool scene_number(const char *file, const char *where, const char *key, const cJSON *item,
-                         scene_range range, float *out) {
+                         scene_range range, double offset, float *out) {
     if (!cJSON_IsNumber(item)) {
         return scene_fail(file, where, key, "expected a number, got %s", scene_json_kind(item));
     }
     /* cJSON turns 1e999 into infinity; converting past FLT_MAX is undefined. */
-    if (!(fabs(item->valuedouble) <= FLT_MAX)) {
+    if (!(fabs(item->valuedouble) <= FLT_MAX && fabs(item->valuedouble - offset) <= FLT_MAX)) {
         return scene_fail(file, where, key, "must be a finite number (got %g)", item->valuedouble);
     }
-    float value = (float)item->valuedouble;
+    float value = (float)(item->valuedouble - offset);
     if (range == SCENE_POSITIVE && !(value > 0)) {
         return scene_fail(file, where, key, "must be positive (got %g)", item->valuedouble);
     }
@@ -146,12 +148,14 @@ static bool scene_read_float(const char *file, const cJSON *object, const char *
                              bool required, scene_range range, float *out) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, required, &item)) return false;
-    return !item || scene_number(file, where, key, item, range, out);
+    return !item || scene_number(file, where, key, item, range, 0, out);
 }
 
-/* An array of exactly count numbers: every vector field. */
+/* An array of exactly count numbers: every vector field. A point's
+ * coordinates come less the scene's origin (offset, count of them; NULL
+ * for none). */
 static bool scene_read_floats(const char *file, const cJSON *object, const char *where, const char *key,
-                              bool required, scene_range range, float *out, int count) {
+                              bool required, scene_range range, const double *offset, float *out, int count) {
     const cJSON *item;
     if (!scene_lookup(file, object, where, key, required, &item)) return false;
     if (!item) return true;
@@ -161,7 +165,8 @@ static bool scene_read_floats(const char *file, const cJSON *object, const char 
     for (int i = 0; i < count; i++) {
         char element[80];
         snprintf(element, sizeof element, "%s[%d]", key, i);
-        if (!scene_number(file, where, element, cJSON_GetArrayItem(item, i), range, &out[i])) return false;
+        if (!scene_number(file, where, element, cJSON_GetArrayItem(item, i), range, offset ? offset[i] : 0, &out[i]))
+            return false;
     }
     return true;
 }
@@ -255,18 +260,38 @@ static bool scene_normalize(float v[3]) {
     return true;
 }
 
-static bool scene_read_camera(const char *file, const cJSON *root, scene_camera *c) {
+/* The origin, from the camera as read (world coordinates): its eye where
+ * the eye lies farther from the world's origin than SCENE_REBASE_RATIO
+ * times its distance to the target, else the world's origin. */
+static void scene_choose_origin(const scene_camera *c, double origin[3]) {
+    double eye = 0, view = 0;
+    for (int k = 0; k < 3; k++) {
+        eye = fmax(eye, fabs((double)c->position[k]));
+        view += ((double)c->target[k] - c->position[k]) * ((double)c->target[k] - c->position[k]);
+    }
+    bool rebase = eye > SCENE_REBASE_RATIO * sqrt(view);
+    for (int k = 0; k < 3; k++) origin[k] = rebase ? c->position[k] : 0;
+}
+
+static bool scene_read_camera(const char *file, const cJSON *root, scene_camera *c, double origin[3]) {
     static const char *const keys[] = {"position", "target", "up", "fov", "near", "far", NULL};
     *c = (scene_camera){.up = {0, 1, 0}, .fov_deg = 45, .near_plane = 0.1f, .far_plane = 100};
     const cJSON *json;
     if (!scene_read_json_object(file, root, "", "camera", &json) ||
         !scene_check_keys(file, json, "camera", keys) ||
-        !scene_read_floats(file, json, "camera", "position", true, SCENE_ANY, c->position, 3) ||
-        !scene_read_floats(file, json, "camera", "target", true, SCENE_ANY, c->target, 3) ||
-        !scene_read_floats(file, json, "camera", "up", false, SCENE_ANY, c->up, 3) ||
+        !scene_read_floats(file, json, "camera", "position", true, SCENE_ANY, NULL, c->position, 3) ||
+        !scene_read_floats(file, json, "camera", "target", true, SCENE_ANY, NULL, c->target, 3) ||
+        !scene_read_floats(file, json, "camera", "up", false, SCENE_ANY, NULL, c->up, 3) ||
         !scene_read_float(file, json, "camera", "fov", false, SCENE_POSITIVE, &c->fov_deg) ||
         !scene_read_float(file, json, "camera", "near", false, SCENE_POSITIVE, &c->near_plane) ||
         !scene_read_float(file, json, "camera", "far", false, SCENE_POSITIVE, &c->far_plane)) {
+        return false;
+    }
+    /* Read again relative to the origin, now known (the first reading
+     * was in world coordinates, and was valid). */
+    scene_choose_origin(c, origin);
+    if (!scene_read_floats(file, json, "camera", "position", true, SCENE_ANY, origin, c->position, 3) ||
+        !scene_read_floats(file, json, "camera", "target", true, SCENE_ANY, origin, c->target, 3)) {
         return false;
     }
     if (c->fov_deg >= 180) {
@@ -287,7 +312,8 @@ static bool scene_read_camera(const char *file, const cJSON *root, scene_camera 
     return true;
 }
 
-static bool scene_read_light(const char *file, const cJSON *json, const char *where, scene_light *l) {
+static bool scene_read_light(const char *file, const cJSON *json, const char *where, const double origin[3],
+                             scene_light *l) {
     *l = (scene_light){.color = {1, 1, 1}, .intensity = 1, .inner_angle_deg = 20, .outer_angle_deg = 30};
     if (!cJSON_IsObject(json)) {
         return scene_fail(file, where, NULL, "expected an object, got %s", scene_json_kind(json));
@@ -297,9 +323,9 @@ static bool scene_read_light(const char *file, const cJSON *json, const char *wh
     l->type = (scene_light_type)type->value;
     bool positioned = l->type != SCENE_LIGHT_DIRECTIONAL;
     bool aimed = l->type != SCENE_LIGHT_POINT;
-    if (!scene_read_floats(file, json, where, "position", positioned, SCENE_ANY, l->position, 3) ||
-        !scene_read_floats(file, json, where, "direction", aimed, SCENE_ANY, l->direction, 3) ||
-        !scene_read_floats(file, json, where, "color", false, SCENE_NON_NEGATIVE, l->color, 3) ||
+    if (!scene_read_floats(file, json, where, "position", positioned, SCENE_ANY, origin, l->position, 3) ||
+        !scene_read_floats(file, json, where, "direction", aimed, SCENE_ANY, NULL, l->direction, 3) ||
+        !scene_read_floats(file, json, where, "color", false, SCENE_NON_NEGATIVE, NULL, l->color, 3) ||
         !scene_read_float(file, json, where, "intensity", false, SCENE_NON_NEGATIVE, &l->intensity) ||
         !scene_read_float(file, json, where, "inner_angle", false, SCENE_NON_NEGATIVE, &l->inner_angle_deg) ||
         !scene_read_float(file, json, where, "outer_angle", false, SCENE_NON_NEGATIVE, &l->outer_angle_deg) ||
@@ -356,11 +382,11 @@ static bool scene_build_mesh(const char *file, const cJSON *json, const char *wh
     mesh_set_error_handler(scene_report_mesh_error, &context);
     switch (o->mesh_kind) {
     case SCENE_MESH_PLANE:
-        built = scene_read_floats(file, json, where, "size", true, SCENE_POSITIVE, size, 2) &&
+        built = scene_read_floats(file, json, where, "size", true, SCENE_POSITIVE, NULL, size, 2) &&
                 mesh_make_plane(&o->mesh, size[0], size[1]);
         break;
     case SCENE_MESH_BOX:
-        built = scene_read_floats(file, json, where, "size", true, SCENE_POSITIVE, size, 3) &&
+        built = scene_read_floats(file, json, where, "size", true, SCENE_POSITIVE, NULL, size, 3) &&
                 mesh_make_box(&o->mesh, size[0], size[1], size[2]);
         break;
     case SCENE_MESH_SPHERE:
@@ -408,9 +434,9 @@ static bool scene_check_name(const char *file, const char *where, const char *na
 static bool scene_read_scale(const char *file, const cJSON *json, const char *where, float scale[3]) {
     const cJSON *item = cJSON_GetObjectItemCaseSensitive(json, "scale");
     if (!cJSON_IsNumber(item)) {
-        return scene_read_floats(file, json, where, "scale", false, SCENE_NON_ZERO, scale, 3);
+        return scene_read_floats(file, json, where, "scale", false, SCENE_NON_ZERO, NULL, scale, 3);
     }
-    if (!scene_number(file, where, "scale", item, SCENE_NON_ZERO, &scale[0])) return false;
+    if (!scene_number(file, where, "scale", item, SCENE_NON_ZERO, 0, &scale[0])) return false;
     scale[1] = scale[2] = scale[0];
     return true;
 }
@@ -427,10 +453,11 @@ static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 s
     memcpy(out, model, sizeof model);
 }
 
-static bool scene_read_object(const char *file, const cJSON *json, const char *where, scene_object *o) {
+static bool scene_read_object(const char *file, const cJSON *json, const char *where, const double origin[3],
+                              scene_object *o) {
     static const char *const keys[] = {"name", "mesh", "translate", "rotate", "scale",
                                        "color", "casts", "receives", NULL};
-    vec3 translate = {0, 0, 0}, rotate_deg = {0, 0, 0}, scale = {1, 1, 1};
+    vec3 translate = {(float)-origin[0], (float)-origin[1], (float)-origin[2]}, rotate_deg = {0, 0, 0}, scale = {1, 1, 1};
     *o = (scene_object){.color = {0.8f, 0.8f, 0.8f}, .casts = true, .receives = true};
     if (!cJSON_IsObject(json)) {
         return scene_fail(file, where, NULL, "expected an object, got %s", scene_json_kind(json));
@@ -443,10 +470,10 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     if (!scene_check_keys(file, json, where, keys) || !scene_read_string(file, json, where, "name", &name) ||
         !scene_check_name(file, where, name) || !scene_read_json_object(file, json, where, "mesh", &mesh_json) ||
         !scene_read_variant(file, mesh_json, mesh_where, "kind", "mesh kind", scene_mesh_kinds, &kind) ||
-        !scene_read_floats(file, json, where, "translate", false, SCENE_ANY, translate, 3) ||
-        !scene_read_floats(file, json, where, "rotate", false, SCENE_ANY, rotate_deg, 3) ||
+        !scene_read_floats(file, json, where, "translate", false, SCENE_ANY, origin, translate, 3) ||
+        !scene_read_floats(file, json, where, "rotate", false, SCENE_ANY, NULL, rotate_deg, 3) ||
         !scene_read_scale(file, json, where, scale) ||
-        !scene_read_floats(file, json, where, "color", false, SCENE_NON_NEGATIVE, o->color, 3) ||
+        !scene_read_floats(file, json, where, "color", false, SCENE_NON_NEGATIVE, NULL, o->color, 3) ||
         !scene_read_bool(file, json, where, "casts", &o->casts) ||
         !scene_read_bool(file, json, where, "receives", &o->receives)) {
         return false;
@@ -477,8 +504,8 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     }
     glm_vec3_fill(s->ambient, 0.1f);
     const cJSON *lights, *objects, *entry;
-    if (!scene_check_keys(file, root, "", keys) || !scene_read_camera(file, root, &s->camera) ||
-        !scene_read_floats(file, root, "", "ambient", false, SCENE_NON_NEGATIVE, s->ambient, 3) ||
+    if (!scene_check_keys(file, root, "", keys) || !scene_read_camera(file, root, &s->camera, s->origin) ||
+        !scene_read_floats(file, root, "", "ambient", false, SCENE_NON_NEGATIVE, NULL, s->ambient, 3) ||
         !scene_read_list(file, root, "lights", SCENE_MAX_LIGHTS, &lights) ||
         !scene_read_list(file, root, "objects", INT_MAX, &objects)) {
         return false;
@@ -486,7 +513,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     char where[32];
     cJSON_ArrayForEach(entry, lights) {
         snprintf(where, sizeof where, "lights[%d]", s->light_count);
-        if (!scene_read_light(file, entry, where, &s->lights[s->light_count])) return false;
+        if (!scene_read_light(file, entry, where, s->origin, &s->lights[s->light_count])) return false;
         s->light_count++;
     }
     s->objects = calloc((size_t)cJSON_GetArraySize(objects), sizeof *s->objects);
@@ -494,7 +521,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     cJSON_ArrayForEach(entry, objects) {
         snprintf(where, sizeof where, "objects[%d]", s->object_count);
         /* A failed object owns nothing: mesh constructors leave it empty. */
-        if (!scene_read_object(file, entry, where, &s->objects[s->object_count])) return false;
+        if (!scene_read_object(file, entry, where, s->origin, &s->objects[s->object_count])) return false;
         s->object_count++;
     }
     return true;
