@@ -155,6 +155,34 @@ static void test_help_lists_flags_and_toggles(void **state) {
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
+/* A headless run that writes nothing says so, and names the flags that
+ * would write something. */
+static void test_headless_run_says_nothing_written(void **state) {
+    (void)state;
+    char command[2048];
+    snprintf(command, sizeof command, "{ %s --backend egl --size 64x36 --frames 2 1>&2; }", support_program("planar"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "2 frames of"));
+    assert_non_null(strstr(err, "nothing written"));
+    assert_non_null(strstr(err, "--screenshot"));
+}
+
+/* The gallery's list of scenes ends at the next flag: --technique there
+ * picks the one technique to show; a flag before any scene is exit 2. */
+static void test_gallery_takes_flags_after_its_scenes(void **state) {
+    (void)state;
+    char command[2048];
+    snprintf(command, sizeof command,
+             "rm -rf out/test/gallery_one && %s --backend egl --size 64x36 --gallery out/test/gallery_one "
+             "assets/scenes/simple.json --technique volumes && test -f out/test/gallery_one/volumes_simple.png && "
+             "test \"$(ls out/test/gallery_one)\" = volumes_simple.png",
+             support_program("shadows"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    expect_failure("--gallery out/test/gallery_one --frames 1 assets/scenes/simple.json", EXIT_USAGE, "--gallery",
+                   "at least one scene");
+}
+
 /* A GL error raised inside any technique's frame (the test hook of
  * render.h: every object drawn also calls glEnable(0)) fails the run with
  * exit 1 and a line naming the technique: no technique can swallow it. */
@@ -185,6 +213,8 @@ int main(void) {
         cmocka_unit_test(test_missing_shader_dir),
         cmocka_unit_test(test_broken_shader_names_file_and_line),
         cmocka_unit_test(test_help_lists_flags_and_toggles),
+        cmocka_unit_test(test_headless_run_says_nothing_written),
+        cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
         cmocka_unit_test(test_gl_error_in_any_technique_fails),
     };
     return cmocka_run_group_tests_name("command line", tests, NULL, NULL);

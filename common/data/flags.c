@@ -171,7 +171,7 @@ int flags_parse(const char *program, const flags_param *params, int count, int a
                 return flags_usage_error(program, "missing value after", flag);
             else if (first->repeat)
                 status = flags_add(program, first, argv[i++]);
-            while (!first->repeat && i < argc && !status)
+            while (!first->repeat && i < argc && argv[i][0] != '-' && !status)
                 status = flags_add(program, first, argv[i++]);
             status = status ? status : flags_check_list(program, first);
             continue;

@@ -16,7 +16,8 @@
  *   FLAGS_STRING  --NAME TEXT: *text (a path, a directory, a name);
  *   FLAGS_LIST    arguments into items, *count of them, at least min and at
  *                 most max, which errors call `what`: with a name, --NAME
- *                 takes every argument after it (--gallery DIR SCENE...),
+ *                 takes the arguments after it up to the next flag
+ *                 (--gallery DIR SCENE...; a scene named "-x" is "./-x"),
  *                 or with `repeat` one argument each time it is given
  *                 (--technique A --technique B); without a name (name
  *                 NULL), the positional arguments;

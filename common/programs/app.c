@@ -32,6 +32,7 @@ static struct {
     const char *program;
     const technique *const *techniques;
     int technique_count, current;
+    bool technique_given; /* --technique: the gallery shows that one only */
     const char *technique_names[APP_MAX_TECHNIQUES + 1]; /* --technique's choices */
     /* flags (zero: the default) */
     int backend; /* context_backend */
@@ -94,7 +95,7 @@ static const flags_param app_flags[] = {
      .disabled = &app.skips.no_caster_cull},
     {"cache", "shadow maps and volumes made again every frame", GLFW_KEY_J, FLAGS_TOGGLE,
      .disabled = &app.skips.no_cache},
-    {"gallery", "every technique on every scene, to DIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
+    {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
      .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
     {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)", 0,
@@ -226,12 +227,14 @@ static bool app_run_gallery(void) {
     const char *dir = app.gallery[0];
     if (!path_make_directories(dir))
         return false;
+    int first = app.technique_given ? app.current : 0;
+    int end = app.technique_given ? app.current + 1 : app.technique_count;
     for (int s = 1; s < app.gallery_count; s++) {
         const char *scene_path = app.gallery[s];
         if (!app_load_scene(scene_path))
             return false;
         bool ok = true;
-        for (int t = 0; t < app.technique_count && ok; t++) {
+        for (int t = first; t < end && ok; t++) {
             char name[256], path[PATH_MAX];
             path_stem(scene_path, name, sizeof name);
             snprintf(path, sizeof path, "%s/%s_%s.png", dir, app.techniques[t]->name, name);
@@ -436,6 +439,16 @@ static bool app_run_window(int frames) {
     return ok;
 }
 
+/* A headless run that writes nothing says so, and how to get output:
+ * without a display, a bare run would otherwise end silently. */
+static void app_say_nothing_written(bool wanted_window) {
+    int frames = app.frames ? app.frames : APP_HEADLESS_FRAMES;
+    printf("%s: %s%d frame%s of %s rendered headless (%s), nothing written: --screenshot PATH.png saves the "
+           "last, --dump DIR its decisions, --gallery DIR SCENE... every technique's picture\n",
+           app.program, wanted_window ? "no display for a window, so " : "", frames, frames == 1 ? "" : "s",
+           app.scene_path, context_backend_name(app.ctx.backend));
+}
+
 static bool app_run(void) {
     bool interactive = !app.frames && !app.screenshot && !app.dump_dir && !app.gallery_count;
     const context_settings settings = {
@@ -461,6 +474,8 @@ static bool app_run(void) {
                  (!app.screenshot || app_save_screenshot(app.screenshot));
         else if (ok)
             ok = app_run_headless(app.frames ? app.frames : APP_HEADLESS_FRAMES, app.screenshot);
+        if (ok && !app.ctx.window && !app.screenshot && !app.dump_dir)
+            app_say_nothing_written(interactive);
         ok = ok && (!app.dump_dir || app_dump(app.dump_dir));
         if (ok && app.verbose && app_technique()->describe) {
             char line[512];
@@ -493,9 +508,13 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
         app.technique_names[i] = techniques[i]->name;
     app.width = 1280;
     app.height = 720;
+    app.current = -1; /* until --technique says */
     int status = app_parse_flags(argc, argv);
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
+    app.technique_given = app.current >= 0;
+    if (!app.technique_given)
+        app.current = 0;
     path_in_project("shaders", app.default_shader_dir, sizeof app.default_shader_dir);
     path_in_project("assets/scenes/simple.json", app.default_scene, sizeof app.default_scene);
     shader_set_directory(app.shader_dir ? app.shader_dir : app.default_shader_dir);
