@@ -167,13 +167,36 @@ static void test_camera_view_centres_target(void **state) {
 static void test_camera_orbit_keeps_distance_and_stops_at_pole(void **state) {
     (void)state;
     scene_camera c = {.position = {0, 0, 10}, .target = {0, 0, 0}, .up = {0, 1, 0}};
-    camera_orbit(&c, glm_rad(90), 0, 1);
+    camera_orbit(&c, glm_rad(90), 0, 1, CAMERA_ORBIT_ANY);
     assert_true(fabsf(glm_vec3_norm(c.position) - 10) < EPS);
     assert_true(fabsf(c.position[0] - 10) < 1e-3f); /* turned about +Y */
-    camera_orbit(&c, 0, glm_rad(200), 0.5f);    /* far past the pole */
+    camera_orbit(&c, 0, glm_rad(200), 0.5f, CAMERA_ORBIT_ANY);    /* far past the pole */
     assert_true(fabsf(glm_vec3_norm(c.position) - 5) < EPS);
     float elevation = glm_deg(asinf(c.position[1] / 5));
     assert_true(elevation > 88.9f && elevation < 89.1f);
+}
+
+static float elevation_deg(const scene_camera *c) {
+    vec3 offset;
+    glm_vec3_sub((float *)c->position, (float *)c->target, offset);
+    return glm_deg(asinf(offset[1] / glm_vec3_norm(offset)));
+}
+
+/* The window's drag keeps the eye above the target's plane; an eye that
+ * starts below it may rise, never sink. */
+static void test_camera_orbit_stays_above(void **state) {
+    (void)state;
+    scene_camera c = {.position = {0, 2, 10}, .target = {0, 1, 0}, .up = {0, 1, 0}};
+    camera_orbit(&c, 0, glm_rad(-100), 1, CAMERA_ORBIT_ABOVE);
+    assert_float_equal(elevation_deg(&c), CAMERA_ORBIT_ABOVE, 1e-3);
+    camera_orbit(&c, 0, glm_rad(-100), 1, CAMERA_ORBIT_ANY);
+    assert_float_equal(elevation_deg(&c), -CAMERA_ORBIT_POLE_DEG, 1e-3);
+    c = (scene_camera){.position = {0, -5, 10}, .target = {0, 0, 0}, .up = {0, 1, 0}};
+    float below = elevation_deg(&c);
+    camera_orbit(&c, 0, glm_rad(-10), 1, CAMERA_ORBIT_ABOVE);
+    assert_float_equal(elevation_deg(&c), below, 1e-3);
+    camera_orbit(&c, 0, glm_rad(10), 1, CAMERA_ORBIT_ABOVE);
+    assert_float_equal(elevation_deg(&c), below + 10, 1e-3);
 }
 
 static void test_light_orbit_turns_direction_with_position(void **state) {
@@ -274,6 +297,7 @@ int main(void) {
         cmocka_unit_test(test_caster_in_tilted_plane_far_away),
         cmocka_unit_test(test_camera_view_centres_target),
         cmocka_unit_test(test_camera_orbit_keeps_distance_and_stops_at_pole),
+        cmocka_unit_test(test_camera_orbit_stays_above),
         cmocka_unit_test(test_light_orbit_turns_direction_with_position),
     };
     enum { UNIT_COUNT = sizeof units / sizeof *units };

@@ -120,12 +120,15 @@ bool camera_check_depth(const scene *s, const char *file) {
 /* The rotation that turns `offset` (from a centre) by yaw about `up` and
  * by pitch towards `up`, stopping 1 degree short of the pole so the basis
  * never degenerates. */
-static void camera_orbit_rotation(const float offset[3], const float up_in[3], float yaw, float pitch, mat4 r) {
+static void camera_orbit_rotation(const float offset[3], const float up_in[3], float yaw, float pitch,
+                                  float lowest_deg, mat4 r) {
     vec3 up, side;
     glm_vec3_normalize_to((float *)up_in, up);
     float elevation = asinf(glm_clamp(glm_vec3_dot((float *)offset, up) / glm_vec3_norm((float *)offset), -1, 1));
-    float limit = glm_rad(89.0f);
-    pitch = glm_clamp(elevation + pitch, -limit, limit) - elevation;
+    float limit = glm_rad(CAMERA_ORBIT_POLE_DEG);
+    /* An eye already below the floor may rise to it, never sink. */
+    float lowest = fminf(glm_rad(lowest_deg), elevation);
+    pitch = glm_clamp(elevation + pitch, fmaxf(lowest, -limit), limit) - elevation;
     glm_vec3_cross(up, (float *)offset, side);
     glm_rotate_make(r, yaw, up);
     if (glm_vec3_norm(side) > 0) {
@@ -135,11 +138,11 @@ static void camera_orbit_rotation(const float offset[3], const float up_in[3], f
     }
 }
 
-void camera_orbit(scene_camera *c, float yaw_rad, float pitch_rad, float zoom) {
+void camera_orbit(scene_camera *c, float yaw_rad, float pitch_rad, float zoom, float lowest_deg) {
     vec3 offset;
     mat4 r;
     glm_vec3_sub(c->position, c->target, offset);
-    camera_orbit_rotation(offset, c->up, yaw_rad, pitch_rad, r);
+    camera_orbit_rotation(offset, c->up, yaw_rad, pitch_rad, lowest_deg, r);
     glm_mat4_mulv3(r, offset, 0, offset);
     glm_vec3_scale(offset, zoom, offset);
     glm_vec3_add(c->target, offset, c->position);
@@ -153,7 +156,7 @@ void camera_orbit_light(scene_light *l, const float center[3], float yaw_rad, fl
         glm_vec3_negate_to(l->direction, offset);
     else
         glm_vec3_sub(l->position, (float *)center, offset);
-    camera_orbit_rotation(offset, up, yaw_rad, pitch_rad, r);
+    camera_orbit_rotation(offset, up, yaw_rad, pitch_rad, CAMERA_ORBIT_ANY, r);
     glm_mat4_mulv3(r, l->direction, 0, l->direction);
     glm_mat4_mulv3(r, offset, 0, offset);
     if (l->type != SCENE_LIGHT_DIRECTIONAL)

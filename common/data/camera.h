@@ -59,9 +59,17 @@ void camera_view_compute(const scene_camera *c, float aspect, camera_view *out);
  * CAMERA_MAX_DEPTH_STEP of the scene's size (the diagonal of the box
  * around every object). */
 bool camera_check_depth(const scene *s, const char *file);
+/* How high above the target's plane across the up axis an orbit keeps
+ * the eye, as an elevation angle: CAMERA_ORBIT_ANY lets it pass under (to
+ * short of the pole), CAMERA_ORBIT_ABOVE keeps it above, so that a drag
+ * never takes the camera under the ground it looks at. */
+#define CAMERA_ORBIT_POLE_DEG 89.0f
+#define CAMERA_ORBIT_ANY (-CAMERA_ORBIT_POLE_DEG)
+#define CAMERA_ORBIT_ABOVE 1.0f
 /* Turns the eye about the target: yaw about the up axis, pitch towards it
- * (kept short of the poles), distance scaled by zoom. */
-void camera_orbit(scene_camera *c, float yaw_rad, float pitch_rad, float zoom);
+ * (kept short of the poles and, where it starts from at least that
+ * high, at or above lowest_deg of elevation), distance scaled by zoom. */
+void camera_orbit(scene_camera *c, float yaw_rad, float pitch_rad, float zoom, float lowest_deg);
 /* Turns a light about `center` the same way (direction turns with it). */
 void camera_orbit_light(scene_light *l, const float center[3], float yaw_rad, float pitch_rad);
 

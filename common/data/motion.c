@@ -16,5 +16,5 @@ void motion_lights(motion_kind kind, double time, const float center[3], const s
 void motion_camera(motion_kind kind, double time, const scene_camera *base, scene_camera *out) {
     *out = *base;
     if (kind == MOTION_CAMERA)
-        camera_orbit(out, (float)time * MOTION_CAMERA_RAD_PER_S, 0, 1);
+        camera_orbit(out, (float)time * MOTION_CAMERA_RAD_PER_S, 0, 1, CAMERA_ORBIT_ANY);
 }

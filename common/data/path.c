@@ -78,3 +78,14 @@ bool path_stem(const char *path, char *out, size_t size) {
     const char *dot = strrchr(base, '.');
     return snprintf(out, size, "%.*s", dot ? (int)(dot - base) : (int)strlen(base), base) < (int)size;
 }
+
+bool path_numbered_unused(const char *prefix, const char *extension, char *out, size_t size) {
+    for (int n = 1; n <= PATH_NUMBERED_MAX; n++) {
+        if (snprintf(out, size, "%s-%d.%s", prefix, n, extension) >= (int)size)
+            return false;
+        struct stat st;
+        if (stat(out, &st) != 0 && errno == ENOENT)
+            return true;
+    }
+    return false;
+}

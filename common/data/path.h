@@ -18,6 +18,12 @@ char *path_read_text(const char *path, size_t max_size, size_t *length);
  * name a scene by. False if it did not fit in `size`. */
 bool path_stem(const char *path, char *out, size_t size);
 
+/* The first "PREFIX-N.EXTENSION", N = 1, 2, ..., that names no file yet
+ * (a screenshot never overwrites an earlier one, from this run or
+ * another). False if none fits in `size` or after PATH_NUMBERED_MAX. */
+#define PATH_NUMBERED_MAX 100000
+bool path_numbered_unused(const char *prefix, const char *extension, char *out, size_t size);
+
 /* "<directory of the executable>/../<relative>", resolved when it exists:
  * the programs live in build/, their shaders and assets beside it, so they
  * run from any working directory. */

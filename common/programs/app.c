@@ -27,6 +27,8 @@
 #define APP_TECHNIQUE_FLAG_WIDTH 26 /* one column for every technique in --help */
 #define APP_LIGHT_STEP_RAD 0.05f
 #define APP_ORBIT_RAD_PER_PIXEL 0.008f
+#define APP_NOTE_SECONDS 4.0 /* how long the HUD shows "saved PATH" */
+#define APP_RESET_KEY GLFW_KEY_0
 
 static struct {
     const char *program;
@@ -53,12 +55,15 @@ static struct {
     render_scene gpu;
     scene_light base_lights[SCENE_MAX_LIGHTS]; /* before motion */
     scene_camera base_camera;                  /* before motion: what dragging moves */
+    scene_light loaded_lights[SCENE_MAX_LIGHTS]; /* as the scene file has them: the reset key's */
+    scene_camera loaded_camera;
     technique_host host;
     double time;
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
-    int screenshot_count;
+    char note[PATH_MAX + 64]; /* the HUD's last line until note_until (glfwGetTime) */
+    double note_until;
 } app;
 
 /* The flags every program takes; each technique's parameters follow. */
@@ -107,15 +112,16 @@ enum { app_flag_count = sizeof app_flags / sizeof *app_flags };
 static void app_usage(void) {
     printf("usage: %s [flags]\n", app.program);
     flags_print_help(stdout, app_flags, app_flag_count, 2, 0);
-    printf("techniques (keys 1-9 in the window):\n");
+    printf("techniques (keys 1-%d in the window):\n", app.technique_count);
     for (int i = 0; i < app.technique_count; i++) {
         const technique *t = app.techniques[i];
         printf("  %d %-12s %s\n", i + 1, t->name, t->title);
         flags_print_help(stdout, t->params, t->param_count, 6, APP_TECHNIQUE_FLAG_WIDTH);
     }
-    printf("window: drag to orbit, scroll to zoom, arrows move the light, space animates it,\n"
+    printf("window: drag to orbit (above the target; with Shift also below), scroll to zoom,\n"
+           "        arrows move the light, space animates it, 0 resets camera and lights,\n"
            "        K view culling, U light reach, X caster culling, J caching, H help,\n"
-           "        F12 screenshot, Esc quits\n");
+           "        F12 screenshot (screenshot-TECHNIQUE-N.png, never overwritten), Esc quits\n");
 }
 
 /* The app's flags and every technique's in one table, so that a flag
@@ -156,7 +162,8 @@ static bool app_load_scene(const char *path) {
         return false;
     }
     memcpy(app.base_lights, app.scene.lights, sizeof app.base_lights);
-    app.base_camera = app.scene.camera;
+    memcpy(app.loaded_lights, app.scene.lights, sizeof app.loaded_lights);
+    app.base_camera = app.loaded_camera = app.scene.camera;
     if (!render_scene_create(&app.gpu, &app.scene)) {
         scene_free(&app.scene);
         return false;
@@ -320,11 +327,15 @@ static void app_hud(int width, int height) {
         if (k % 4 == 3 && k + 1 < t->param_count && n < (int)sizeof text)
             n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
-    if (n < (int)sizeof text)
-        snprintf(text + n, sizeof text - (size_t)n, "%s",
-                 app.show_help ? "\ndrag: orbit   scroll: zoom   arrows: move light   space: animate light\n"
-                                 "1-9: technique   K U X J: skips   F12: screenshot   H: hide help   Esc: quit"
-                               : "\nH: help");
+    if (n < (int)sizeof text && app.show_help)
+        n += snprintf(text + n, sizeof text - (size_t)n,
+                      "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
+                      "1-%d: technique   0: reset view   K U X J: skips   F12: screenshot   H: hide help   Esc: quit",
+                      app.technique_count);
+    else if (n < (int)sizeof text)
+        n += snprintf(text + n, sizeof text - (size_t)n, "\nH: help");
+    if (n < (int)sizeof text && glfwGetTime() < app.note_until)
+        snprintf(text + n, sizeof text - (size_t)n, "\n%s", app.note);
     hud_draw(text, width, height);
 }
 
@@ -350,12 +361,21 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     case GLFW_KEY_UP: pitch = APP_LIGHT_STEP_RAD; break;
     case GLFW_KEY_DOWN: pitch = -APP_LIGHT_STEP_RAD; break;
     case GLFW_KEY_F12: {
-        char path[64];
-        snprintf(path, sizeof path, "screenshot-%s-%d.png", app_technique()->name, ++app.screenshot_count);
-        if (app_save_screenshot(path))
+        char prefix[64], path[PATH_MAX];
+        snprintf(prefix, sizeof prefix, "screenshot-%s", app_technique()->name);
+        bool saved = path_numbered_unused(prefix, "png", path, sizeof path) && app_save_screenshot(path);
+        snprintf(app.note, sizeof app.note, saved ? "saved %s" : "screenshot NOT saved (%s: see stderr)",
+                 saved ? path : prefix);
+        app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
+        if (saved)
             printf("%s\n", path);
         return;
     }
+    case APP_RESET_KEY:
+        memcpy(app.base_lights, app.loaded_lights, sizeof app.base_lights);
+        app.base_camera = app.loaded_camera;
+        app.time = 0;
+        return;
     default:
         if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && action == GLFW_PRESS) {
             app_switch_technique(key - GLFW_KEY_1);
@@ -378,18 +398,18 @@ static void app_on_mouse_button(GLFWwindow *w, int button, int action, int mods)
 }
 
 static void app_on_cursor(GLFWwindow *w, double x, double y) {
-    (void)w;
     if (!app.dragging)
         return;
+    bool below = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     camera_orbit(&app.base_camera, -(float)(x - app.drag_x) * APP_ORBIT_RAD_PER_PIXEL,
-                 (float)(y - app.drag_y) * APP_ORBIT_RAD_PER_PIXEL, 1);
+                 (float)(y - app.drag_y) * APP_ORBIT_RAD_PER_PIXEL, 1, below ? CAMERA_ORBIT_ANY : CAMERA_ORBIT_ABOVE);
     app.drag_x = x;
     app.drag_y = y;
 }
 
 static void app_on_scroll(GLFWwindow *w, double dx, double dy) {
     (void)w, (void)dx;
-    camera_orbit(&app.base_camera, 0, 0, powf(0.9f, (float)dy));
+    camera_orbit(&app.base_camera, 0, 0, powf(0.9f, (float)dy), CAMERA_ORBIT_ANY);
 }
 
 static void app_on_resize(GLFWwindow *w, int width, int height) {
