@@ -43,7 +43,12 @@ typedef struct golden_case {
     /* Checked on EGL alone: the lecture pictures, whose overlays add
      * nothing about the backends to what the standard cases show. */
     bool egl_only;
+    const char *size; /* NULL: SIZE */
 } golden_case;
+
+/* A HUD picture (--hud) at a projector's size: TECHNIQUE-hud-WxH_SCENE. */
+#define GOLDEN_HUD "-hud-"
+#define GOLDEN_HUD_FLAGS "--hud"
 
 /* A spot, a point and a directional light: every technique in the registry
  * has a golden on each. */
@@ -55,11 +60,15 @@ static const char *const golden_standard_scenes[] = {"simple", "bunny", "teapot"
  * light in front of the viewer and behind (the inverted case), and the
  * lecture's post-perspective view. */
 static const golden_case golden_extra_cases[] = {
-    {"shadowmap", "simple", "--overlay all", "shadowmap-lecture_simple", true},
-    {"shadowmap", "bunny", "--overlay all", "shadowmap-lecture_bunny", true},
-    {"psm", "long_view", "", "psm_long_view", false},
-    {"psm", "long_view_behind", "", "psm_long_view_behind", false},
-    {"psm", "long_view", "--overlay post-perspective", "psm-lecture_long_view", true},
+    {"shadowmap", "simple", "--overlay all", "shadowmap-lecture_simple", true, NULL},
+    {"shadowmap", "bunny", "--overlay all", "shadowmap-lecture_bunny", true, NULL},
+    {"psm", "long_view", "", "psm_long_view", false, NULL},
+    {"psm", "long_view_behind", "", "psm_long_view_behind", false, NULL},
+    {"psm", "long_view", "--overlay post-perspective", "psm-lecture_long_view", true, NULL},
+    /* The HUD as a slide shows it: psm's state line is the longest, and
+     * wraps at both sizes (tests/test_hud.c checks the layout). */
+    {"psm", "long_view", GOLDEN_HUD_FLAGS, "psm-hud-1280x720_long_view", true, "1280x720"},
+    {"psm", "long_view", GOLDEN_HUD_FLAGS, "psm-hud-1920x1080_long_view", true, "1920x1080"},
 };
 
 static const char *const golden_backends[] = {"egl", "osmesa"};
@@ -100,7 +109,8 @@ static const golden_case *golden_find(const char *name) {
 static const golden_case *golden_plain_of(const golden_case *c) {
     for (int i = 0; i < golden_case_count; i++) {
         const golden_case *p = &golden_cases[i];
-        if (!p->flags[0] && strcmp(p->technique, c->technique) == 0 && strcmp(p->scene, c->scene) == 0)
+        if (!p->flags[0] && strcmp(p->technique, c->technique) == 0 && strcmp(p->scene, c->scene) == 0 &&
+            !p->size && !c->size)
             return p;
     }
     return NULL;
@@ -116,16 +126,17 @@ static const technique *golden_technique(const char *name) {
 /* The command line that renders `scene_file` with $BUILD/TECHNIQUE and its
  * flags into `screenshot`: what the check runs, prints and re-records. */
 static void golden_command(char *out, size_t size, const char *technique, const char *backend,
-                           const char *scene_file, const char *flags, const char *screenshot) {
-    snprintf(out, size, "%s --backend %s --size " SIZE " --scene %s%s%s --screenshot %s", support_program(technique),
-             backend, scene_file, flags[0] ? " " : "", flags, screenshot);
+                           const char *picture_size, const char *scene_file, const char *flags,
+                           const char *screenshot) {
+    snprintf(out, size, "%s --backend %s --size %s --scene %s%s%s --screenshot %s", support_program(technique),
+             backend, picture_size ? picture_size : SIZE, scene_file, flags[0] ? " " : "", flags, screenshot);
 }
 
 static void golden_case_command(char *out, size_t size, const golden_case *c, const char *backend,
                                 const char *screenshot) {
     char scene_file[256];
     snprintf(scene_file, sizeof scene_file, "assets/scenes/%s.json", c->scene);
-    golden_command(out, size, c->technique, backend, scene_file, c->flags, screenshot);
+    golden_command(out, size, c->technique, backend, c->size, scene_file, c->flags, screenshot);
 }
 
 /* Renders `scene_file` with TECHNIQUE and extra flags to out/test/NAME.png. */
@@ -133,7 +144,7 @@ static void render_with(const char *technique, const char *backend, const char *
                         const char *name) {
     char command[2048], screenshot[256];
     snprintf(screenshot, sizeof screenshot, "out/test/%s.png", name);
-    golden_command(command, sizeof command, technique, backend, scene_file, flags, screenshot);
+    golden_command(command, sizeof command, technique, backend, NULL, scene_file, flags, screenshot);
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
@@ -222,6 +233,12 @@ static void test_golden_table_is_consistent(void **state) {
             fail_msg("%s: %s is not in the registry", c->name, c->technique);
         bool lecture = strstr(c->name, GOLDEN_LECTURE) != NULL;
         char expected[GOLDEN_NAME_SIZE];
+        if (c->size) {
+            snprintf(expected, sizeof expected, "%s" GOLDEN_HUD "%s_%s", c->technique, c->size, c->scene);
+            if (strcmp(c->name, expected) != 0 || strcmp(c->flags, GOLDEN_HUD_FLAGS) != 0)
+                fail_msg("%s: a HUD picture is %s, with flags " GOLDEN_HUD_FLAGS, c->name, expected);
+            continue;
+        }
         snprintf(expected, sizeof expected, "%s%s%s", c->technique, lecture ? GOLDEN_LECTURE : "_", c->scene);
         if (strcmp(c->name, expected) != 0)
             fail_msg("%s: the gallery would call this picture %s", c->name, expected);

@@ -12,8 +12,9 @@
 
 #include "shader.h"
 
-#define HUD_SCALE 2.0f
-#define HUD_MAX_QUADS 4000 /* about 16 lines of 80 characters */
+#define HUD_MAX_QUADS 8000 /* about 32 lines of 80 characters */
+#define HUD_MAX_TEXT 8192
+#define HUD_LINE_UNITS 12 /* stb_easy_font's line height */
 #define HUD_VERTEX_BYTES 16 /* stb_easy_font: x, y, z floats and RGBA bytes */
 
 static struct {
@@ -52,6 +53,80 @@ bool hud_init(void) {
     return true;
 }
 
+int hud_scale_for(int height) {
+    int scale = (height + HUD_LINES_PER_SCALE / 2) / HUD_LINES_PER_SCALE;
+    return scale < 1 ? 1 : scale > HUD_MAX_SCALE ? HUD_MAX_SCALE : scale;
+}
+
+int hud_text_width(const char *text) {
+    char copy[HUD_MAX_TEXT];
+    snprintf(copy, sizeof copy, "%s", text);
+    return stb_easy_font_width(copy);
+}
+
+/* Whether `length` characters of `line` and then `count` of `piece` fit
+ * in `room` font units. */
+static bool hud_fits(const char *line, size_t length, const char *piece, size_t count, int room) {
+    char joined[HUD_MAX_TEXT];
+    snprintf(joined, sizeof joined, "%.*s%.*s", (int)length, line, (int)count, piece);
+    return hud_text_width(joined) <= room;
+}
+
+/* Appends `count` characters of `text` to out at *n, truncating. */
+static void hud_append(char *out, size_t size, size_t *n, const char *text, size_t count) {
+    size_t room = size - 1 - *n;
+    count = count < room ? count : room;
+    memcpy(out + *n, text, count);
+    *n += count;
+    out[*n] = '\0';
+}
+
+int hud_wrap(const char *text, int width, int scale, char *out, size_t size) {
+    int room = width / (scale > 0 ? scale : 1) - 2 * HUD_MARGIN; /* font units a line may take */
+    char line[HUD_MAX_TEXT];                                      /* the output line being filled */
+    size_t length = 0, n = 0;
+    bool empty = true; /* nothing on the line yet but a continuation's indent */
+    int lines = 1;
+    out[0] = '\0';
+    for (const char *p = text;;) {
+        if (*p == '\n' || !*p) {
+            hud_append(out, size, &n, line, length);
+            if (!*p)
+                return lines;
+            hud_append(out, size, &n, "\n", 1);
+            lines++;
+            length = 0;
+            empty = true;
+            p++;
+            continue;
+        }
+        size_t piece = strspn(p, " ");
+        piece += strcspn(p + piece, " \n");
+        if (piece >= sizeof line - length)
+            piece = sizeof line - length - 1;
+        bool fits = hud_fits(line, length, p, piece, room);
+        if (!fits && !empty) {
+            /* A break: the spaces before the word go with it. */
+            hud_append(out, size, &n, line, length);
+            hud_append(out, size, &n, "\n", 1);
+            lines++;
+            length = strlen(HUD_INDENT);
+            memcpy(line, HUD_INDENT, length);
+            empty = true;
+            p += strspn(p, " ");
+            continue;
+        }
+        /* Alone, and wider than a whole line: as much of it as fits (at
+         * least one character), the rest on the next. */
+        while (!fits && piece > 1 && !hud_fits(line, length, p, piece, room))
+            piece--;
+        memcpy(line + length, p, piece);
+        length += piece;
+        p += piece;
+        empty = false;
+    }
+}
+
 /* Appends one quad of solid colour in stb_easy_font's vertex layout. */
 static int hud_add_panel(int quads, float x0, float y0, float x1, float y1) {
     const float corners[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
@@ -65,13 +140,18 @@ static int hud_add_panel(int quads, float x0, float y0, float x1, float y1) {
     return quads + 1;
 }
 
-void hud_draw(const char *text, int width, int height) {
-    char copy[4096];
-    snprintf(copy, sizeof copy, "%s", text);
-    float text_width = (float)stb_easy_font_width(copy), text_height = (float)stb_easy_font_height(copy);
-    int quads = hud_add_panel(0, 0, 0, text_width + 8, text_height + 6);
+void hud_draw(const char *text, int width, int height, int scale) {
+    char wrapped[HUD_MAX_TEXT];
+    bool fitted = scale <= 0;
+    scale = fitted ? hud_scale_for(height) : scale;
+    int lines = hud_wrap(text, width, scale, wrapped, sizeof wrapped);
+    while (fitted && scale > 1 && (lines * HUD_LINE_UNITS + 2 * HUD_MARGIN) * scale > height)
+        lines = hud_wrap(text, width, --scale, wrapped, sizeof wrapped);
+    float text_width = (float)hud_text_width(wrapped), text_height = (float)stb_easy_font_height(wrapped);
+    int quads = hud_add_panel(0, 0, 0, text_width + 2 * HUD_MARGIN, text_height + HUD_MARGIN + 2);
     unsigned char white[4] = {255, 255, 255, 255};
-    quads += stb_easy_font_print(4, 4, copy, white, hud.vertices + (size_t)quads * 4 * HUD_VERTEX_BYTES,
+    quads += stb_easy_font_print(HUD_MARGIN, HUD_MARGIN, wrapped, white,
+                                 hud.vertices + (size_t)quads * 4 * HUD_VERTEX_BYTES,
                                  (int)sizeof hud.vertices - quads * 4 * HUD_VERTEX_BYTES);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
@@ -79,7 +159,7 @@ void hud_draw(const char *text, int width, int height) {
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(hud.program);
     glUniform2f(hud.viewport, (float)width, (float)height);
-    glUniform1f(hud.scale, HUD_SCALE);
+    glUniform1f(hud.scale, (float)scale);
     glBindVertexArray(hud.vao);
     glBindBuffer(GL_ARRAY_BUFFER, hud.vertex_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)quads * 4 * HUD_VERTEX_BYTES, hud.vertices);

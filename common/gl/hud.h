@@ -1,16 +1,43 @@
 /* hud: lines of text over the picture (stb_easy_font), on a dark panel so
- * they stay legible over any scene. Shown in the window only: headless
- * screenshots carry no text, since frame times would make them differ.
+ * they stay legible over any scene, sized for a projector.
+ *
+ * hud_draw wraps each line at the framebuffer's width (at spaces; a word
+ * wider than the whole line is broken), continuation lines indented, so
+ * nothing is cut at any size; the panel grows to fit. `scale` is how many
+ * pixels one font unit takes (stb_easy_font's letters are about 6 by 8
+ * units on 12-unit lines); hud_scale_for picks one from the framebuffer's
+ * height, so the text is as legible from the back row at 1080 lines as at
+ * 720. hud_wrap is the layout alone (no GL), for tests.
  */
 #ifndef HUD_H
 #define HUD_H
 
 #include <stdbool.h>
+#include <stddef.h>
+
+/* Framebuffer lines per unit of scale: 720 lines get 2 (14-pixel
+ * letters), 1080 get 3. */
+#define HUD_LINES_PER_SCALE 360
+#define HUD_MAX_SCALE 8
+#define HUD_MARGIN 4 /* font units between the panel's edge and the text */
+#define HUD_INDENT "  " /* what a wrapped line's continuation starts with */
+
+/* max(1, round(height / HUD_LINES_PER_SCALE)), at most HUD_MAX_SCALE. */
+int hud_scale_for(int height);
+/* `text` with its lines broken so that none is wider than `width` pixels
+ * at `scale` (margins included), into out (NUL-terminated, truncated to
+ * size). Returns the number of lines. */
+int hud_wrap(const char *text, int width, int scale, char *out, size_t size);
+
+/* The widest line of `text`, in font units. */
+int hud_text_width(const char *text);
 
 bool hud_init(void);
-/* Draws `text` (lines separated by '\n') at the top-left of the bound
- * framebuffer of the given size. */
-void hud_draw(const char *text, int width, int height);
+/* Draws `text` (lines separated by '\n'), wrapped, at the top-left of the
+ * bound framebuffer of the given size, `scale` pixels per font unit; 0:
+ * hud_scale_for(height), less where the wrapped text would be taller than
+ * the framebuffer (down to 1). */
+void hud_draw(const char *text, int width, int height, int scale);
 void hud_destroy(void);
 
 #endif

@@ -41,6 +41,9 @@ static struct {
     int width, height;
     int frames; /* 0: not given, so one frame headless or a window */
     bool verbose, animate; /* animate: --motion light, the space key flips it */
+    bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
+    bool hud_compact;      /* --hud-compact, Tab: the first lines only */
+    int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     render_skips skips;
     const char *scene_path, *screenshot, *dump_dir, *shader_dir;
@@ -103,6 +106,12 @@ static const flags_param app_flags[] = {
     {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
      .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
+    {"hud", "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time", 0,
+     FLAGS_SWITCH, .on = &app.hud_in_pictures},
+    {"hud-scale", "pixels per font unit of the HUD's text (default: one per\n360 lines of the framebuffer, 2 at 720, 3 at 1080, less\nwhere the text would not fit)", 0,
+     FLAGS_INT, .integer = &app.hud_scale, .min = 1, .max = HUD_MAX_SCALE, .what = "a scale"},
+    {"hud-compact", "the HUD's first lines only: technique, scene, skips (Tab)", 0, FLAGS_SWITCH,
+     .on = &app.hud_compact},
     {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)", 0,
      FLAGS_SWITCH, .on = &app.verbose},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
@@ -220,11 +229,20 @@ static bool app_dump(const char *dir) {
     return ok;
 }
 
-/* Renders `frames` frames at the fixed headless rate, then the screenshot. */
+static void app_hud(int width, int height, int frame);
+
+/* Renders `frames` frames at the fixed headless rate, then the screenshot
+ * (with --hud, the last frame's HUD drawn over it). */
 static bool app_run_headless(int frames, const char *screenshot) {
     for (int i = 0; i < frames; i++) {
         app.time = i / APP_HEADLESS_FPS;
         if (!app_render_frame(-1))
+            return false;
+    }
+    if (screenshot && app.hud_in_pictures) {
+        target_bind(&app.target);
+        app_hud(app.target.width, app.target.height, frames - 1);
+        if (!context_gl_ok("hud"))
             return false;
     }
     return !screenshot || app_save_screenshot(screenshot);
@@ -300,23 +318,31 @@ static int app_skips_text(char *out, size_t size) {
 
 /* ---- the window ---- */
 
-static void app_hud(int width, int height) {
+/* The HUD over a frame of `width` x `height`: in the window (frame < 0)
+ * with the frame time and the help; in a headless picture with the
+ * frame's number and time instead, so that the same command gives the
+ * same picture. */
+static void app_hud(int width, int height, int frame) {
     const technique *t = app_technique();
-    char text[2048];
-    int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %.2f ms/frame (CPU)%s%s\n",
-                     app.current + 1, app.technique_count, t->name, t->title, app.scene_path, app.target.width,
-                     app.target.height, app.frame_ms, app_motion() ? "   moving: " : "",
-                     app_motion() ? motion_names[app_motion()] : "");
-    if (n < (int)sizeof text) {
+    char text[4096], timing[64];
+    if (frame < 0)
+        snprintf(timing, sizeof timing, "%.2f ms/frame (CPU)", app.frame_ms);
+    else
+        snprintf(timing, sizeof timing, "frame %d at %.3f s", frame, app.time);
+    int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1,
+                     app.technique_count, t->name, t->title, app.scene_path, app.target.width, app.target.height,
+                     timing, app_motion() ? "   moving: " : "", app_motion() ? motion_names[app_motion()] : "");
+    if (n < (int)sizeof text)
         n += app_skips_text(text + n, sizeof text - (size_t)n);
+    /* The compact HUD ends at the skips. */
+    if (!app.hud_compact && n < (int)sizeof text)
         n += snprintf(text + n, sizeof text - (size_t)n, "\n");
-    }
-    if (t->describe && n < (int)sizeof text) {
+    if (!app.hud_compact && t->describe && n < (int)sizeof text) {
         t->describe(text + n, sizeof text - (size_t)n);
         n += (int)strlen(text + n);
         n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
-    for (int k = 0; k < t->param_count && n < (int)sizeof text; k++) {
+    for (int k = 0; !app.hud_compact && k < t->param_count && n < (int)sizeof text; k++) {
         const flags_param *p = &t->params[k];
         char value[32];
         technique_param_text(p, value, sizeof value);
@@ -327,16 +353,17 @@ static void app_hud(int width, int height) {
         if (k % 4 == 3 && k + 1 < t->param_count && n < (int)sizeof text)
             n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
-    if (n < (int)sizeof text && app.show_help)
+    if (frame < 0 && n < (int)sizeof text && app.show_help)
         n += snprintf(text + n, sizeof text - (size_t)n,
                       "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
-                      "1-%d: technique   0: reset view   K U X J: skips   F12: screenshot   H: hide help   Esc: quit",
+                      "1-%d: technique   0: reset view   K U X J: skips   Tab: compact HUD   F12: screenshot   "
+                      "H: hide help   Esc: quit",
                       app.technique_count);
-    else if (n < (int)sizeof text)
+    else if (frame < 0 && n < (int)sizeof text)
         n += snprintf(text + n, sizeof text - (size_t)n, "\nH: help");
-    if (n < (int)sizeof text && glfwGetTime() < app.note_until)
+    if (frame < 0 && n < (int)sizeof text && glfwGetTime() < app.note_until)
         snprintf(text + n, sizeof text - (size_t)n, "\n%s", app.note);
-    hud_draw(text, width, height);
+    hud_draw(text, width, height, app.hud_scale);
 }
 
 static void app_switch_technique(int index) {
@@ -355,6 +382,7 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     switch (key) {
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
+    case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
     case GLFW_KEY_SPACE: app.animate = !app.animate; return;
     case GLFW_KEY_LEFT: yaw = -APP_LIGHT_STEP_RAD; break;
     case GLFW_KEY_RIGHT: yaw = APP_LIGHT_STEP_RAD; break;
@@ -426,8 +454,6 @@ static bool app_run_window(int frames) {
     glfwSetCursorPosCallback(w, app_on_cursor);
     glfwSetScrollCallback(w, app_on_scroll);
     glfwSetFramebufferSizeCallback(w, app_on_resize);
-    if (!hud_init())
-        return false;
     bool ok = true;
     double last = glfwGetTime();
     for (int frame = 0; ok && !glfwWindowShouldClose(w) && (frames <= 0 || frame < frames); frame++) {
@@ -443,7 +469,7 @@ static bool app_run_window(int frames) {
         ok = ok && app_render_frame(-1);
         target_blit_to_window(&app.target, width, height);
         if (frames <= 0)
-            app_hud(width, height);
+            app_hud(width, height, -1);
         ok = ok && context_gl_ok("window");
         glfwSwapBuffers(w);
         glfwPollEvents();
@@ -455,7 +481,6 @@ static bool app_run_window(int frames) {
         app.frame_ms += ((now - last) * 1000.0 - app.frame_ms) * 0.1;
         last = now;
     }
-    hud_destroy();
     return ok;
 }
 
@@ -484,7 +509,8 @@ static bool app_run(void) {
     int width = app.width, height = app.height;
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);
-    bool ok = target_create(&app.target, width, height);
+    bool hud = app.ctx.window || app.hud_in_pictures;
+    bool ok = target_create(&app.target, width, height) && (!hud || hud_init());
     if (ok && app.gallery_count) {
         ok = app_run_gallery();
     } else if (ok && (ok = app_load_scene(app.scene_path))) {
@@ -510,6 +536,8 @@ static bool app_run(void) {
         technique_host_stop(&app.host);
         app_unload_scene();
     }
+    if (hud)
+        hud_destroy();
     target_destroy(&app.target);
     context_destroy(&app.ctx);
     return ok;

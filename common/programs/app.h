@@ -6,7 +6,8 @@
  * --scene PATH (assets/scenes/simple.json), --frames N, --screenshot PATH,
  * --shader-dir DIR, --technique NAME, --motion static|light|camera,
  * --animate, the skips (--no-skip, --no-view-cull, --no-light-reach,
- * --no-caster-cull, --no-cache: technique.h), --verbose, --help, and
+ * --no-caster-cull, --no-cache: technique.h), the HUD (--hud: in headless
+ * pictures too; --hud-scale N, --hud-compact: hud.h), --verbose, --help, and
  * --gallery DIR SCENE... (every technique on every scene, to
  * DIR/TECHNIQUE_SCENE.png). Each technique parameter adds its flag
  * (--no-NAME for a toggle); all are one flags_param table (flags.h).

@@ -1,0 +1,76 @@
+/* Tests of common/gl/hud.c's layout (no GL): the HUD's lines are wrapped
+ * at the framebuffer's width, so nothing is cut at any size, and its
+ * scale follows the framebuffer's height. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <ctype.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "hud.h"
+
+/* A HUD as psm shows it: a state line far wider than 640 pixels. */
+static const char hud_text[] =
+    "3/5 psm: perspective shadow maps (Stamminger & Drettakis 2002), LiSPSM (Wimmer et al. 2004), uniform\n"
+    "scene assets/scenes/long_view.json   640x360   frame 0 at 0.000 s\n"
+    "light 0: psm 2D map 4096x4096 (light in front of the viewer, virtual camera slid back 43.2); texel on "
+    "screen 0.632 px, uniform's 5.63 px\n"
+    "a_word_far_too_long_for_any_line_of_a_small_window_so_it_is_broken_where_it_stops_fitting_and_goes_on\n"
+    "[W] warp: psm   [M] map-size: auto";
+
+/* The text without its whitespace: what the reader must still get. */
+static void ink(const char *text, char *out) {
+    for (; *text; text++)
+        if (!isspace((unsigned char)*text))
+            *out++ = *text;
+    *out = '\0';
+}
+
+static void test_wrapped_lines_fit_and_lose_nothing(void **state) {
+    (void)state;
+    static const int sizes[][2] = {{640, 1}, {640, 2}, {1280, 2}, {1920, 3}, {200, 2}};
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+        int width = sizes[i][0], scale = sizes[i][1];
+        char wrapped[8192], expected[8192], actual[8192];
+        int lines = hud_wrap(hud_text, width, scale, wrapped, sizeof wrapped);
+        int newlines = 0;
+        for (const char *c = wrapped; *c; c++)
+            newlines += *c == '\n';
+        assert_int_equal(lines, newlines + 1);
+        assert_true(lines > 5); /* every size here breaks a line */
+        for (char *line = strtok(wrapped, "\n"); line; line = strtok(NULL, "\n")) {
+            int pixels = (hud_text_width(line) + 2 * HUD_MARGIN) * scale;
+            if (pixels > width)
+                fail_msg("%dx at %d px: \"%s\" takes %d px", scale, width, line, pixels);
+        }
+        hud_wrap(hud_text, width, scale, wrapped, sizeof wrapped);
+        ink(hud_text, expected);
+        ink(wrapped, actual);
+        assert_string_equal(actual, expected);
+    }
+    /* Wide enough, nothing changes. */
+    char wrapped[8192];
+    assert_int_equal(hud_wrap("one line", 1920, 1, wrapped, sizeof wrapped), 1);
+    assert_string_equal(wrapped, "one line");
+}
+
+static void test_scale_follows_height(void **state) {
+    (void)state;
+    assert_int_equal(hud_scale_for(180), 1);
+    assert_int_equal(hud_scale_for(360), 1);
+    assert_int_equal(hud_scale_for(720), 2);
+    assert_int_equal(hud_scale_for(1080), 3);
+    assert_int_equal(hud_scale_for(2160), 6);
+    assert_int_equal(hud_scale_for(100000), HUD_MAX_SCALE);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_wrapped_lines_fit_and_lose_nothing),
+        cmocka_unit_test(test_scale_follows_height),
+    };
+    return cmocka_run_group_tests_name("hud", tests, NULL, NULL);
+}
