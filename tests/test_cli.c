@@ -183,6 +183,31 @@ static void test_gallery_takes_flags_after_its_scenes(void **state) {
                    "at least one scene");
 }
 
+/* --record: the video ffmpeg wrote has every frame at the picture's size,
+ * and the same command writes the same bytes; a path that cannot be
+ * written is one line and exit 1. */
+static void test_record_writes_a_video(void **state) {
+    (void)state;
+    expect_failure("--frames 2 --record out/test/no_such_dir/video.mp4", EXIT_RUNTIME, "no_such_dir/video.mp4",
+                   "cannot write");
+    if (!support_have_command("ffmpeg") || !support_have_command("ffprobe")) {
+        fprintf(stderr, "    ffmpeg is not installed here: skipped\n");
+        return;
+    }
+    char command[2048];
+    for (int run = 0; run < 2; run++) {
+        snprintf(command, sizeof command,
+                 "%s --backend egl --size 160x90 --frames 12 --motion light --record out/test/video_%d.mp4",
+                 support_program("planar"), run);
+        assert_int_equal(support_run(command, err, sizeof err), 0);
+    }
+    snprintf(command, sizeof command,
+             "test \"$(ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+             "stream=nb_read_frames,width,height -of csv=p=0 out/test/video_0.mp4)\" = 160,90,12 && "
+             "cmp -s out/test/video_0.mp4 out/test/video_1.mp4");
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+}
+
 /* A GL error raised inside any technique's frame (the test hook of
  * render.h: every object drawn also calls glEnable(0)) fails the run with
  * exit 1 and a line naming the technique: no technique can swallow it. */
@@ -215,6 +240,7 @@ int main(void) {
         cmocka_unit_test(test_help_lists_flags_and_toggles),
         cmocka_unit_test(test_headless_run_says_nothing_written),
         cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
+        cmocka_unit_test(test_record_writes_a_video),
         cmocka_unit_test(test_gl_error_in_any_technique_fails),
     };
     return cmocka_run_group_tests_name("command line", tests, NULL, NULL);

@@ -17,6 +17,7 @@
 #include "path.h"
 #include "shader.h"
 #include "target.h"
+#include "video.h"
 
 #define APP_EXIT_RUNTIME 1
 #define APP_HEADLESS_FPS 60.0
@@ -46,7 +47,7 @@ static struct {
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     render_skips skips;
-    const char *scene_path, *screenshot, *dump_dir, *shader_dir;
+    const char *scene_path, *screenshot, *dump_dir, *shader_dir, *record_path;
     int light;
     const char *gallery[1 + APP_MAX_GALLERY_SCENES]; /* DIR SCENE... */
     int gallery_count;
@@ -62,6 +63,8 @@ static struct {
     scene_camera loaded_camera;
     technique_host host;
     double time;
+    video video;           /* --record: open while recording */
+    unsigned char *frame_rgba; /* the picture read back for the video */
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
@@ -80,6 +83,9 @@ static const flags_param app_flags[] = {
      .max = APP_MAX_FRAMES, .what = "a count"},
     {"screenshot", "save the last frame (implies headless)", 0, FLAGS_STRING, .text = &app.screenshot,
      .value_name = "PATH.png"},
+    {"record",
+     "every frame to a video through ffmpeg, 60 frames a second\n(frame i at i/60 s, in the window too: the same frames\ngive the same video)",
+     0, FLAGS_STRING, .text = &app.record_path, .value_name = "PATH.mp4"},
     {"dump",
      "write what the last frame decided per pixel for one\nlight: visibility, depth, normal, position, ids, colour\n"
      "(see common/data/dump.h; implies headless)",
@@ -231,18 +237,48 @@ static bool app_dump(const char *dir) {
 
 static void app_hud(int width, int height, int frame);
 
-/* Renders `frames` frames at the fixed headless rate, then the screenshot
- * (with --hud, the last frame's HUD drawn over it). */
+/* With --hud, the HUD drawn into the picture (frame: as app_hud). */
+static bool app_hud_in_picture(int frame) {
+    if (!app.hud_in_pictures)
+        return true;
+    target_bind(&app.target);
+    app_hud(app.target.width, app.target.height, frame);
+    return context_gl_ok("hud");
+}
+
+/* The picture as the video's next frame. */
+static bool app_record_frame(void) {
+    return target_read_rgba(&app.target, app.frame_rgba) && video_write_frame(&app.video, app.frame_rgba);
+}
+
+static bool app_start_recording(void) {
+    size_t bytes = (size_t)app.target.width * (size_t)app.target.height * 4;
+    app.frame_rgba = malloc(bytes);
+    if (!app.frame_rgba) {
+        fprintf(stderr, "%s: out of memory for %dx%d frames\n", app.record_path, app.target.width, app.target.height);
+        return false;
+    }
+    return video_open(&app.video, app.record_path, app.target.width, app.target.height);
+}
+
+static bool app_stop_recording(void) {
+    bool was_open = app.video.pipe != NULL;
+    bool ok = video_close(&app.video);
+    free(app.frame_rgba);
+    app.frame_rgba = NULL;
+    if (ok && was_open)
+        printf("%s: %ld frames\n", app.record_path, app.video.frames);
+    return ok;
+}
+
+/* Renders `frames` frames at the fixed headless rate, each into the video
+ * when recording, then the screenshot (with --hud, the HUD drawn over
+ * what is kept). */
 static bool app_run_headless(int frames, const char *screenshot) {
     for (int i = 0; i < frames; i++) {
         app.time = i / APP_HEADLESS_FPS;
-        if (!app_render_frame(-1))
-            return false;
-    }
-    if (screenshot && app.hud_in_pictures) {
-        target_bind(&app.target);
-        app_hud(app.target.width, app.target.height, frames - 1);
-        if (!context_gl_ok("hud"))
+        bool kept = app.video.pipe || (screenshot && i == frames - 1);
+        if (!app_render_frame(-1) || (kept && !app_hud_in_picture(i)) || (app.video.pipe && !app_record_frame()))
             return false;
     }
     return !screenshot || app_save_screenshot(screenshot);
@@ -459,7 +495,7 @@ static bool app_run_window(int frames) {
     for (int frame = 0; ok && !glfwWindowShouldClose(w) && (frames <= 0 || frame < frames); frame++) {
         int width, height;
         glfwGetFramebufferSize(w, &width, &height);
-        if (app.resized && width > 0 && height > 0) {
+        if (app.resized && width > 0 && height > 0 && !app.video.pipe) { /* a video keeps its size */
             target_destroy(&app.target);
             ok = target_create(&app.target, width, height);
             app.resized = false;
@@ -467,8 +503,13 @@ static bool app_run_window(int frames) {
         if (frames > 0)
             app.time = frame / APP_HEADLESS_FPS;
         ok = ok && app_render_frame(-1);
+        /* --hud: into the picture, so that screenshots and the video
+         * carry it; else over the window only. */
+        if (frames <= 0 && app.hud_in_pictures)
+            ok = ok && app_hud_in_picture(-1);
+        ok = ok && (!app.video.pipe || app_record_frame());
         target_blit_to_window(&app.target, width, height);
-        if (frames <= 0)
+        if (frames <= 0 && !app.hud_in_pictures)
             app_hud(width, height, -1);
         ok = ok && context_gl_ok("window");
         glfwSwapBuffers(w);
@@ -477,7 +518,7 @@ static bool app_run_window(int frames) {
         /* The clock lives here, not in techniques: it only advances the
          * animation and smooths the HUD's frame time. */
         if (frames <= 0 && app_motion())
-            app.time += now - last;
+            app.time += app.video.pipe ? 1.0 / VIDEO_FPS : now - last; /* a video keeps its own clock */
         app.frame_ms += ((now - last) * 1000.0 - app.frame_ms) * 0.1;
         last = now;
     }
@@ -514,13 +555,14 @@ static bool app_run(void) {
     if (ok && app.gallery_count) {
         ok = app_run_gallery();
     } else if (ok && (ok = app_load_scene(app.scene_path))) {
-        ok = app_start_technique(app.current);
+        ok = app_start_technique(app.current) && (!app.record_path || app_start_recording());
         if (ok && app.ctx.window)
             ok = app_run_window(app.frames) &&
                  (!app.screenshot || app_save_screenshot(app.screenshot));
         else if (ok)
             ok = app_run_headless(app.frames ? app.frames : APP_HEADLESS_FRAMES, app.screenshot);
-        if (ok && !app.ctx.window && !app.screenshot && !app.dump_dir)
+        ok = app_stop_recording() && ok;
+        if (ok && !app.ctx.window && !app.screenshot && !app.dump_dir && !app.record_path)
             app_say_nothing_written(interactive);
         ok = ok && (!app.dump_dir || app_dump(app.dump_dir));
         if (ok && app.verbose && app_technique()->describe) {
