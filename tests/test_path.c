@@ -1,4 +1,5 @@
-/* Tests of common/data/path.c: the names the window's screenshots get. */
+/* Tests of common/data/path.c: the names the window's screenshots get,
+ * the order it pages through scenes in. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -40,6 +41,35 @@ static void test_numbered_names_never_overwrite(void **state) {
     assert_false(path_numbered_unused(DIR "/shot", "png", small, sizeof small));
 }
 
+/* Page Up/Down's order: the directory's .json files by name, wrapping. */
+static void test_next_in_directory(void **state) {
+    (void)state;
+    assert_true(path_make_directories(DIR "/pages") && path_make_directories(DIR "/empty"));
+    static const char *const files[] = {"b.json", "a.json", "c.txt", "d.json"};
+    char path[256];
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        snprintf(path, sizeof path, DIR "/pages/%s", files[i]);
+        touch(path);
+    }
+    static const struct {
+        const char *from;
+        int step;
+        const char *to;
+    } cases[] = {
+        {"b.json", 1, "d.json"}, {"d.json", 1, "a.json"},  {"a.json", -1, "d.json"}, {"a.json", 2, "d.json"},
+        {"c.txt", 1, "a.json"},  {"x.json", -1, "d.json"}, {"d.json", -4, "b.json"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char from[256], expected[256];
+        snprintf(from, sizeof from, DIR "/pages/%s", cases[i].from);
+        snprintf(expected, sizeof expected, DIR "/pages/%s", cases[i].to);
+        assert_true(path_next_in_directory(from, ".json", cases[i].step, path, sizeof path));
+        assert_string_equal(path, expected);
+    }
+    assert_false(path_next_in_directory(DIR "/empty/a.json", ".json", 1, path, sizeof path));
+    assert_false(path_next_in_directory(DIR "/missing/a.json", ".json", 1, path, sizeof path));
+}
+
 static void test_stem(void **state) {
     (void)state;
     char stem[16];
@@ -51,6 +81,7 @@ static void test_stem(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_numbered_names_never_overwrite),
+        cmocka_unit_test(test_next_in_directory),
         cmocka_unit_test(test_stem),
     };
     return cmocka_run_group_tests_name("path", tests, NULL, NULL);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -88,4 +89,58 @@ bool path_numbered_unused(const char *prefix, const char *extension, char *out, 
             return true;
     }
     return false;
+}
+
+static int path_compare_names(const void *a, const void *b) {
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+bool path_next_in_directory(const char *path, const char *extension, int step, char *out, size_t size) {
+    char copy[PATH_MAX], dir[PATH_MAX];
+    snprintf(copy, sizeof copy, "%s", path);
+    snprintf(dir, sizeof dir, "%s", dirname(copy));
+    snprintf(copy, sizeof copy, "%s", path);
+    const char *name = basename(copy);
+    DIR *d = opendir(dir);
+    if (!d) {
+        fprintf(stderr, "%s: cannot open directory: %s\n", dir, strerror(errno));
+        return false;
+    }
+    char **names = NULL;
+    size_t count = 0, capacity = 0, extension_length = strlen(extension);
+    bool ok = true;
+    for (struct dirent *e; ok && (e = readdir(d));) {
+        size_t length = strlen(e->d_name);
+        if (length <= extension_length || strcmp(e->d_name + length - extension_length, extension) != 0)
+            continue;
+        if (count == capacity) {
+            capacity = capacity ? 2 * capacity : 16;
+            char **grown = realloc(names, capacity * sizeof *names);
+            ok = grown != NULL;
+            names = grown ? grown : names;
+        }
+        if (ok && !(names[count] = strdup(e->d_name)))
+            ok = false;
+        count += ok;
+    }
+    closedir(d);
+    if (!ok)
+        fprintf(stderr, "%s: out of memory listing the directory\n", dir);
+    else if (count == 0)
+        fprintf(stderr, "%s: no *%s file\n", dir, extension);
+    if (ok && count > 0) {
+        qsort(names, count, sizeof *names, path_compare_names);
+        long here = -1; /* before the first */
+        for (size_t i = 0; i < count; i++)
+            if (strcmp(names[i], name) == 0)
+                here = (long)i;
+        long n = (long)count;
+        long next = here < 0 ? (step > 0 ? step - 1 : n + step) : here + step;
+        next = ((next % n) + n) % n;
+        ok = snprintf(out, size, "%s/%s", dir, names[next]) < (int)size;
+    }
+    for (size_t i = 0; i < count; i++)
+        free(names[i]);
+    free(names);
+    return ok && count > 0;
 }

@@ -52,6 +52,7 @@ static struct {
     const char *gallery[1 + APP_MAX_GALLERY_SCENES]; /* DIR SCENE... */
     int gallery_count;
     char default_shader_dir[PATH_MAX], default_scene[PATH_MAX];
+    char paged_scene[PATH_MAX]; /* Page Up/Down's: the scene_path then */
     /* run */
     context ctx;
     target target;
@@ -135,6 +136,7 @@ static void app_usage(void) {
     }
     printf("window: drag to orbit (above the target; with Shift also below), scroll to zoom,\n"
            "        arrows move the light, space animates it, 0 resets camera and lights,\n"
+           "        Page Down / Up the next / previous scene of the scene's directory,\n"
            "        K view culling, U light reach, X caster culling, J caching, H help,\n"
            "        F12 screenshot (screenshot-TECHNIQUE-N.png, never overwritten), Esc quits\n");
 }
@@ -392,14 +394,35 @@ static void app_hud(int width, int height, int frame) {
     if (frame < 0 && n < (int)sizeof text && app.show_help)
         n += snprintf(text + n, sizeof text - (size_t)n,
                       "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
-                      "1-%d: technique   0: reset view   K U X J: skips   Tab: compact HUD   F12: screenshot   "
-                      "H: hide help   Esc: quit",
+                      "1-%d: technique   PgUp/PgDn: scene   0: reset view   K U X J: skips   Tab: compact HUD   "
+                      "F12: screenshot   H: hide help   Esc: quit",
                       app.technique_count);
     else if (frame < 0 && n < (int)sizeof text)
         n += snprintf(text + n, sizeof text - (size_t)n, "\nH: help");
     if (frame < 0 && n < (int)sizeof text && glfwGetTime() < app.note_until)
         snprintf(text + n, sizeof text - (size_t)n, "\n%s", app.note);
     hud_draw(text, width, height, app.hud_scale);
+}
+
+/* Page Down / Up: the next or previous scene of the current one's
+ * directory, the technique restarted on it. A scene that does not load
+ * says why and the current one stays. */
+static void app_switch_scene(int step) {
+    char path[PATH_MAX];
+    if (!path_next_in_directory(app.scene_path, ".json", step, path, sizeof path))
+        return;
+    technique_host_stop(&app.host);
+    app_unload_scene();
+    bool loaded = app_load_scene(path);
+    if (loaded) {
+        snprintf(app.paged_scene, sizeof app.paged_scene, "%s", path);
+        app.scene_path = app.paged_scene;
+    }
+    snprintf(app.note, sizeof app.note, loaded ? "scene %s" : "scene %s did NOT load (see stderr)", path);
+    app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
+    app.time = 0;
+    if ((!loaded && !app_load_scene(app.scene_path)) || !app_start_technique(app.current))
+        glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
 }
 
 static void app_switch_technique(int index) {
@@ -419,6 +442,8 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
     case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
+    case GLFW_KEY_PAGE_DOWN: app_switch_scene(1); return;
+    case GLFW_KEY_PAGE_UP: app_switch_scene(-1); return;
     case GLFW_KEY_SPACE: app.animate = !app.animate; return;
     case GLFW_KEY_LEFT: yaw = -APP_LIGHT_STEP_RAD; break;
     case GLFW_KEY_RIGHT: yaw = APP_LIGHT_STEP_RAD; break;
