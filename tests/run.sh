@@ -2,8 +2,43 @@
 # Runs every test program of each build directory given (build/ and, for
 # the sanitizer run, build-san/) and ends with one line "N passed, N failed".
 # A program that dies before cmocka's summary counts as one failure.
+#
+# Given several builds (make test: plain and sanitizer), it runs them at
+# once, each in its own directory out/run/BUILD that links to everything
+# here but has its own out/ (the tests write under out/test/): CI has two
+# cores, and much of a test's time is one thread's (starting programs,
+# compiling shaders, building the reference's BVH, writing dumps). Each
+# build's log is printed whole when both are done.
 set -u
 cd "$(dirname "$0")/.."
+if [ $# -gt 1 ]; then
+    mkdir -p out/run
+    for build in "$@"; do
+        root=out/run/$build
+        rm -rf "$root" && mkdir -p "$root"
+        for entry in *; do
+            [ "$entry" = out ] || ln -s "$PWD/$entry" "$root/$entry"
+        done
+        (cd "$root" && bash tests/run.sh "$build") >"out/run/$build.log" 2>&1 &
+    done
+    wait
+    passed=0 failed=0 skipped=0
+    for build in "$@"; do
+        cat "out/run/$build.log"
+        summary=$(sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed\(, \([0-9]*\) skipped\)\{0,1\}$/\1 \2 \4/p' \
+            "out/run/$build.log" | tail -n 1)
+        read -r p f s <<<"$summary"
+        [ -n "${p:-}" ] || { echo "$build: the run ended without its summary line"; f=1; }
+        passed=$((passed + ${p:-0})) failed=$((failed + ${f:-0})) skipped=$((skipped + ${s:-0}))
+    done
+    if [ "$skipped" -gt 0 ]; then
+        echo "$passed passed, $failed failed, $skipped skipped"
+    else
+        echo "$passed passed, $failed failed"
+    fi
+    [ "$failed" -eq 0 ]
+    exit
+fi
 passed=0 failed=0 skipped=0
 for build in "$@"; do
     export BUILD=$build
