@@ -28,7 +28,7 @@ LDLIBS = $(PKG_LIBS) -lembree3 -ldl -lm
 LDFLAGS += $(SAN_FLAGS) -fopenmp
 
 # GL 3.3 core plus the extensions used behind a check.
-GL_EXTENSIONS := GL_KHR_debug,GL_EXT_depth_bounds_test
+GL_EXTENSIONS := GL_KHR_debug,GL_EXT_depth_bounds_test,GL_ARB_clip_control
 GLAD_C := $(BUILD)/glad/src/gl.c
 GLAD_H := $(BUILD)/glad/include/glad/gl.h
 
@@ -153,9 +153,15 @@ update-golden: $(PROGRAMS) $(BUILD)/tests/test_render
 clean:
 	rm -rf build build-san out
 
+# The extension list, rewritten only when it changes, so that a build
+# made before an extension was added regenerates the loader.
+GLAD_EXTENSIONS_FILE := $(BUILD)/glad/extensions
+$(shell mkdir -p $(BUILD)/glad && (echo '$(GL_EXTENSIONS)' | cmp -s - $(GLAD_EXTENSIONS_FILE) || \
+	echo '$(GL_EXTENSIONS)' > $(GLAD_EXTENSIONS_FILE)))
+
 # One run of glad makes both (a grouped target: with -j, two rules racing
 # to create the same directories made glad fail now and then).
-$(GLAD_C) $(GLAD_H) &:
+$(GLAD_C) $(GLAD_H) &: $(GLAD_EXTENSIONS_FILE)
 	@mkdir -p $(BUILD)/glad
 	glad --quiet --reproducible --api gl:core=3.3 --extensions $(GL_EXTENSIONS) \
 		--out-path $(BUILD)/glad c

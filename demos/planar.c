@@ -43,6 +43,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "depth.h"
 #include "frustum.h"
 #include "planar.h"
 #include "technique.h"
@@ -142,12 +143,12 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     glEnable(GL_CLIP_DISTANCE0);
     glEnable(GL_CLIP_DISTANCE1);
     if (planar.settings.no_offset) {
-        glDepthFunc(GL_LESS); /* the artifact: a coin toss against the receiver */
+        glDepthFunc(depth_func(f->view, GL_LESS)); /* the artifact: a coin toss against the receiver */
     } else if (stenciled) {
         glDepthFunc(GL_ALWAYS);
     } else {
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(PLANAR_OFFSET_FACTOR, PLANAR_OFFSET_UNITS);
+        depth_polygon_offset(f->view, PLANAR_OFFSET_FACTOR, PLANAR_OFFSET_UNITS);
     }
     glDepthMask(GL_FALSE);
     /* Not only casters in view: one outside the view may shadow a
@@ -159,7 +160,7 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     glDisable(GL_CLIP_DISTANCE0);
     glDisable(GL_CLIP_DISTANCE1);
     glDisable(GL_POLYGON_OFFSET_FILL);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(depth_func(f->view, GL_LESS));
 }
 
 /* The plane of receiver r as the shadow matrix needs it for this light;
@@ -214,7 +215,7 @@ static void planar_mark_shadows(const technique_frame *f, int light, const float
         planar_draw_casters(f, r, plane, light_h, true);
         planar_stencil_receiver(f, r, GL_EQUAL, GL_ZERO);
     }
-    glDepthFunc(GL_LESS);
+    glDepthFunc(depth_func(f->view, GL_LESS));
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 

@@ -62,6 +62,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "depth.h"
 #include "technique.h"
 #include "volume_draw.h"
 #include "volume_overlay.h"
@@ -200,7 +201,7 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);
-    glDepthFunc(GL_LESS); /* a surface's own cap, at its depth, counts as behind it */
+    glDepthFunc(depth_func(f->view, GL_LESS)); /* a surface's own cap, at its depth, counts as behind it */
     glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
     /* Not only casters in view: one outside may cast a volume across it. */
     for (int i = 0; i < s->object_count; i++) {
@@ -229,7 +230,9 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
  * extension is and the frame's receivers are all there (not cut short);
  * false: left off. */
 static bool volumes_depth_bounds(const technique_frame *f, const technique_hull *hull) {
-    if (!volumes.has_depth_bounds || volumes.settings.no_depth_bounds ||
+    /* The bounds are window depths of GL's standard convention; with
+     * reversed depth they are left off (they only save fill). */
+    if (!volumes.has_depth_bounds || volumes.settings.no_depth_bounds || f->view->reversed_depth ||
         f->receiver_count >= TECHNIQUE_MAX_RECEIVER_POINTS || hull->empty)
         return false;
     float bounds[2];

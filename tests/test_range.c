@@ -9,12 +9,17 @@
  *               NaN.
  *   projection  beyond CAMERA_INFINITE_FAR_RATIO the projection is the
  *               infinite one; below it, glm_perspective's bit for bit.
- *   scenes      every scene file that loads passes the depth check.
+ *   scenes      every scene file that loads passes the depth check with
+ *               the standard 24-bit depth alone.
+ *   mode        the depth a range takes: standard, reversed, or refused
+ *               in one line where the context has no clip control.
  *   range       one table of cases: simple.json with the camera's near
  *               and far replaced (written under OUT_DIR), or the scene
  *               scaled by 1e30, through every shadow technique against
  *               the reference: within its bound, or refused with exit 1
- *               and one line naming the scene file.
+ *               and one line naming the scene file. near/far 1e9 (and
+ *               near 1e-30) take reversed depth in float (depth.h) and
+ *               measure as near 0.1 does.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -149,7 +154,7 @@ static void test_scenes_pass_the_depth_check(void **state) {
             support_release_stderr();
             if (!loaded)
                 continue; /* the files that test refusals */
-            if (!camera_check_depth(&s, path))
+            if (!camera_check_depth(&s, path, false)) /* the standard depth: every file keeps it */
                 fail_msg("%s: refused", path);
             scene_free(&s);
             checked++;
@@ -157,6 +162,31 @@ static void test_scenes_pass_the_depth_check(void **state) {
         closedir(dir);
     }
     printf("    %d scene files pass\n", checked);
+}
+
+/* The depth each range takes: the standard one where its 24 bits do,
+ * reversed depth beyond, and without ARB_clip_control the same range
+ * refused in one line that names the file and the missing extension. */
+static void test_depth_mode_by_range(void **state) {
+    (void)state;
+    scene s;
+    assert_true(scene_load(&s, SCENE));
+    s.camera.near_plane = 0.1f;
+    assert_true(camera_check_depth(&s, SCENE, true));
+    assert_false(s.camera.reversed_depth);
+    s.camera.near_plane = 1e-4f;
+    s.camera.far_plane = 1e5f;
+    assert_true(camera_check_depth(&s, SCENE, true));
+    assert_true(s.camera.reversed_depth);
+    support_capture_stderr();
+    bool accepted = camera_check_depth(&s, SCENE, false);
+    const char *err = support_release_stderr();
+    printf("    without clip control: %s", err);
+    assert_false(accepted);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, SCENE ": camera: "));
+    assert_non_null(strstr(err, "ARB_clip_control"));
+    scene_free(&s);
 }
 
 /* ---- the techniques at each range ---- */
@@ -186,9 +216,9 @@ static const range_case range_cases[] = {
     {"near 0.1 far 1e7", 0.1f, 1e7f, false},
     {"near 0.1 far 1e30", 0.1f, 1e30f, false},
     {"near 1 far 3e38", 1, 3e38f, false},
-    {"near 1e-4 far 1e5", 1e-4f, 1e5f, true},
-    {"near 1e-6 far 1e3", 1e-6f, 1e3f, true},
-    {"near 1e-30 far 100", 1e-30f, 100, true},
+    {"near 1e-4 far 1e5", 1e-4f, 1e5f, false},
+    {"near 1e-6 far 1e3", 1e-6f, 1e3f, false},
+    {"near 1e-30 far 100", 1e-30f, 100, false},
     {"scaled 1e30", 0, 0, true},
 };
 
@@ -292,6 +322,7 @@ int main(void) {
         cmocka_unit_test(test_corners_finite_at_any_range),
         cmocka_unit_test(test_projection_infinite_beyond_the_ratio),
         cmocka_unit_test(test_scenes_pass_the_depth_check),
+        cmocka_unit_test(test_depth_mode_by_range),
         cmocka_unit_test(test_ranges),
         cmocka_unit_test(test_far_plane_changes_no_map),
     };

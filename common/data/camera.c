@@ -56,6 +56,18 @@ static void camera_perspective_infinite(float fov_rad, float aspect, float near_
     out[3][2] = -2 * near_plane;
 }
 
+/* `standard` with the reversed depth row (camera.h, top): clip z =
+ * near (z_eye + far) / (far - near) against w = -z_eye, so window depth
+ * is 1 at near and 0 at far; near alone with the far plane at infinity
+ * (beyond CAMERA_INFINITE_FAR_RATIO, as the standard one). */
+static void camera_reversed_projection(const scene_camera *c, const mat4 standard, mat4 out) {
+    glm_mat4_copy((vec4 *)standard, out);
+    double near_plane = c->near_plane, far_plane = c->far_plane;
+    bool infinite = far_plane / near_plane > CAMERA_INFINITE_FAR_RATIO;
+    out[2][2] = infinite ? 0.0f : (float)(near_plane / (far_plane - near_plane));
+    out[3][2] = infinite ? (float)near_plane : (float)(near_plane * far_plane / (far_plane - near_plane));
+}
+
 void camera_view_compute(const scene_camera *c, float aspect, camera_view *out) {
     glm_lookat((float *)c->position, (float *)c->target, (float *)c->up, out->view);
     if ((double)c->far_plane / c->near_plane > CAMERA_INFINITE_FAR_RATIO)
@@ -63,6 +75,14 @@ void camera_view_compute(const scene_camera *c, float aspect, camera_view *out) 
     else
         glm_perspective(glm_rad(c->fov_deg), aspect, c->near_plane, c->far_plane, out->projection);
     glm_mat4_mul(out->projection, out->view, out->view_projection);
+    out->reversed_depth = c->reversed_depth;
+    if (c->reversed_depth) {
+        mat4 reversed;
+        camera_reversed_projection(c, out->projection, reversed);
+        glm_mat4_mul(reversed, out->view, out->raster_view_projection);
+    } else {
+        glm_mat4_copy(out->view_projection, out->raster_view_projection);
+    }
     glm_vec3_copy((float *)c->position, out->eye);
     if ((double)c->far_plane / c->near_plane <= CAMERA_INVERSE_MAX_RATIO)
         frustum_corners(out->view_projection, out->corners);
@@ -77,8 +97,12 @@ static double camera_depth_step(const scene_camera *c, double distance) {
     return distance * distance * (1.0 / c->near_plane - 1.0 / c->far_plane) / ldexp(1, CAMERA_DEPTH_BITS);
 }
 
-bool camera_check_depth(const scene *s, const char *file) {
-    const scene_camera *c = &s->camera;
+/* The same with reversed depth in float (camera.h, top): at most the
+ * distance's share of one ulp. */
+static double camera_reversed_depth_step(double distance) { return distance * ldexp(1, -CAMERA_FLOAT_DEPTH_BITS); }
+
+bool camera_check_depth(scene *s, const char *file, bool reversed_available) {
+    scene_camera *c = &s->camera;
     vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
     for (int i = 0; i < s->object_count; i++) {
         vec3 object_lo, object_hi;
@@ -107,14 +131,25 @@ bool camera_check_depth(const scene *s, const char *file) {
         farthest = fmax(farthest, depth);
     }
     farthest = fmin(farthest, c->far_plane);
-    double step = camera_depth_step(c, farthest);
-    if (!(step <= CAMERA_MAX_DEPTH_STEP * size)) {
-        fprintf(stderr, "%s: camera: near %g and far %g: the %d-bit depth step %.3g at the scene's farthest point "
-                "(%.3g away) is above %g of its size %.3g; raise near\n", file, (double)c->near_plane,
-                (double)c->far_plane, CAMERA_DEPTH_BITS, step, farthest, CAMERA_MAX_DEPTH_STEP, size);
-        return false;
+    double step = camera_depth_step(c, farthest), reversed_step = camera_reversed_depth_step(farthest);
+    c->reversed_depth = false;
+    if (step <= CAMERA_MAX_DEPTH_STEP * size)
+        return true;
+    if (reversed_available && reversed_step <= CAMERA_MAX_DEPTH_STEP * size) {
+        c->reversed_depth = true;
+        return true;
     }
-    return true;
+    if (reversed_step <= CAMERA_MAX_DEPTH_STEP * size)
+        fprintf(stderr, "%s: camera: near %g and far %g: the %d-bit depth step %.3g at the scene's farthest point "
+                "(%.3g away) is above %g of its size %.3g, and the GL context has no ARB_clip_control for reversed "
+                "depth; raise near\n", file, (double)c->near_plane, (double)c->far_plane, CAMERA_DEPTH_BITS, step,
+                farthest, CAMERA_MAX_DEPTH_STEP, size);
+    else
+        fprintf(stderr, "%s: camera: near %g and far %g: the depth step at the scene's farthest point (%.3g away), "
+                "%.3g with %d bits and %.3g reversed in float, is above %g of its size %.3g; raise near\n", file,
+                (double)c->near_plane, (double)c->far_plane, farthest, step, CAMERA_DEPTH_BITS, reversed_step,
+                CAMERA_MAX_DEPTH_STEP, size);
+    return false;
 }
 
 /* The rotation that turns `offset` (from a centre) by yaw about `up` and

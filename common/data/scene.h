@@ -85,6 +85,8 @@ typedef struct scene_camera {
     float fov_deg;
     float near_plane;
     float far_plane;
+    /* Not in the file: set by camera_check_depth (camera.h), false until. */
+    bool reversed_depth;
 } scene_camera;
 
 typedef struct scene_light {

@@ -5,13 +5,15 @@
 #include <stdlib.h>
 
 #include "context.h"
+#include "depth.h"
 
 /* The float buffers of the geometry pass: normal + distance, position + id. */
 typedef struct capture_buffers {
     unsigned framebuffer, color[2], depth;
 } capture_buffers;
 
-static bool capture_buffers_create(capture_buffers *b, int width, int height) {
+/* reversed_depth: the float depth, as the target's (target.h). */
+static bool capture_buffers_create(capture_buffers *b, int width, int height, bool reversed_depth) {
     glGenFramebuffers(1, &b->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, b->framebuffer);
     glGenRenderbuffers(2, b->color);
@@ -22,7 +24,8 @@ static bool capture_buffers_create(capture_buffers *b, int width, int height) {
     }
     glGenRenderbuffers(1, &b->depth);
     glBindRenderbuffer(GL_RENDERBUFFER, b->depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glRenderbufferStorage(GL_RENDERBUFFER, reversed_depth ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24, width,
+                          height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, b->depth);
     static const GLenum draw[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, draw);
@@ -52,13 +55,15 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
     size_t n = (size_t)out->width * (size_t)out->height;
     float *normal_distance = malloc(n * 4 * sizeof(float)), *position_id = malloc(n * 4 * sizeof(float));
     bool ok = normal_distance && position_id && render_program_load(&program, files, 3, NULL);
-    if (ok && (ok = capture_buffers_create(&b, out->width, out->height))) {
+    if (ok && (ok = capture_buffers_create(&b, out->width, out->height, view->reversed_depth))) {
         static const float none[4] = {0, 0, 0, -1};
         glViewport(0, 0, out->width, out->height);
         glClearBufferfv(GL_COLOR, 0, none);
         glClearBufferfv(GL_COLOR, 1, none);
+        glClearDepth(depth_far(view));
         glClear(GL_DEPTH_BUFFER_BIT);
         render_reset_state();
+        depth_use_camera(view); /* the nearest surface, as the frame's depth test finds it */
         render_program_use(&program, view);
         glUniform3fv(glGetUniformLocation(program.id, "u_eye"), 1, view->eye);
         int object = glGetUniformLocation(program.id, "u_object");
@@ -81,6 +86,7 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
                 out->ids[i] = position_id[gl + 3];
             }
         }
+        depth_use_standard(view);
         ok = context_gl_ok("capture_geometry");
     }
     if (!normal_distance || !position_id)

@@ -53,7 +53,7 @@ void render_program_destroy(render_program *p) {
 
 void render_program_use(const render_program *p, const camera_view *v) {
     glUseProgram(p->id);
-    glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)v->view_projection);
+    glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)v->raster_view_projection);
 }
 
 void render_draw_object(const render_scene *r, const render_program *p, int object) {

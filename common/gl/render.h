@@ -25,8 +25,11 @@
  * pixel.
  *
  * State contract: the app binds the target, clears it to SCENE_BACKGROUND
- * (depth 1, stencil 0) and calls render_reset_state before each technique
- * frame; a technique may leave any state behind.
+ * (depth: the far end, stencil 0) and calls render_reset_state, then
+ * depth_use_camera (depth.h), before each technique frame; a technique may
+ * leave any state behind. Camera passes draw through the view's
+ * raster_view_projection (render_program_use) and take their depth tests
+ * and offsets from depth.h.
  */
 #ifndef RENDER_H
 #define RENDER_H

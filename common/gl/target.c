@@ -12,6 +12,20 @@
  * 24 bits of depth. */
 _Static_assert(CAMERA_DEPTH_BITS == 24, "the target's depth is GL_DEPTH24_STENCIL8");
 
+static unsigned target_depth_format(bool reversed_depth) {
+    return reversed_depth ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8;
+}
+
+static bool target_complete(target *t) {
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        fprintf(stderr, "target: %dx%d framebuffer incomplete (0x%04x)\n", t->width, t->height, status);
+        target_destroy(t);
+        return false;
+    }
+    return true;
+}
+
 bool target_create(target *t, int width, int height) {
     *t = (target){.width = width, .height = height};
     GLint max_size = 0;
@@ -25,18 +39,22 @@ bool target_create(target *t, int width, int height) {
     glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
     glGenRenderbuffers(1, &t->depth_stencil);
     glBindRenderbuffer(GL_RENDERBUFFER, t->depth_stencil);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+    glRenderbufferStorage(GL_RENDERBUFFER, target_depth_format(false), width, height);
     glGenFramebuffers(1, &t->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->color);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t->depth_stencil);
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-        fprintf(stderr, "target: %dx%d framebuffer incomplete (0x%04x)\n", width, height, status);
-        target_destroy(t);
-        return false;
-    }
-    return context_gl_ok("target_create");
+    return target_complete(t) && context_gl_ok("target_create");
+}
+
+bool target_match_depth(target *t, bool reversed_depth) {
+    if (t->reversed_depth == reversed_depth)
+        return true;
+    t->reversed_depth = reversed_depth;
+    glBindRenderbuffer(GL_RENDERBUFFER, t->depth_stencil);
+    glRenderbufferStorage(GL_RENDERBUFFER, target_depth_format(reversed_depth), t->width, t->height);
+    glBindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
+    return target_complete(t) && context_gl_ok("target_match_depth");
 }
 
 void target_bind(const target *t) {

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "context.h"
+#include "depth.h"
 
 /* A configuration is at most this long: the few flags of one sweep entry. */
 #define TECHNIQUE_CONFIG_MAX 512
@@ -49,17 +50,20 @@ bool technique_init(const technique *t, const render_scene *gpu) {
     return context_gl_ok(t->name) && ok;
 }
 
-bool technique_render_frame(const technique *t, const technique_frame *f, const target *target,
-                            int visibility_of) {
+bool technique_render_frame(const technique *t, const technique_frame *f, target *target, int visibility_of) {
     render_scene_update_lights(f->gpu, visibility_of);
+    if (!target_match_depth(target, f->view->reversed_depth))
+        return false;
     target_bind(target);
     glClearColor(SCENE_BACKGROUND_R, SCENE_BACKGROUND_G, SCENE_BACKGROUND_B, 1);
-    glClearDepth(1);
+    glClearDepth(depth_far(f->view));
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     render_reset_state();
+    depth_use_camera(f->view);
     t->render(f);
     render_reset_state();
+    depth_use_standard(f->view); /* what comes between frames expects GL's */
     return context_gl_ok(t->name);
 }
 
@@ -372,7 +376,7 @@ static void technique_host_light_passes(technique_host *h, const camera_view *vi
     }
 }
 
-bool technique_host_frame(technique_host *h, const camera_view *view, const target *target, double time,
+bool technique_host_frame(technique_host *h, const camera_view *view, target *target, double time,
                           int visibility_of) {
     const scene *s = h->gpu->scene;
     h->counts = (technique_counts){0};

@@ -220,11 +220,12 @@ bool technique_init(const technique *t, const render_scene *gpu);
 
 /* One frame of `t` into `target`, as the app, the gallery and the benchmark
  * all render it: the lights (visibility mode for light visibility_of, or
- * -1) into the uniform block, the target bound and cleared to the
- * background, default state, the technique, then any GL error reported.
+ * -1) into the uniform block, the target's depth matched to the view's
+ * (depth.h), bound and cleared to the background, default state in the
+ * view's depth convention, the technique, GL's standard depth again, then
+ * any GL error reported.
  * The caller has set f->gpu->scene's lights for this frame. */
-bool technique_render_frame(const technique *t, const technique_frame *f, const target *target,
-                            int visibility_of);
+bool technique_render_frame(const technique *t, const technique_frame *f, target *target, int visibility_of);
 
 /* The frame's owner (the app, the benchmark): one technique on one scene,
  * the skips it runs under, and what the last frame saw, so that each frame
@@ -248,7 +249,7 @@ void technique_host_stop(technique_host *h);
 /* One frame: the view culled (render_cull_view), the lights that reach it,
  * the receivers it sees, what changed since the last frame, then
  * technique_render_frame. The caller has set gpu->scene's lights. */
-bool technique_host_frame(technique_host *h, const camera_view *view, const target *target, double time,
+bool technique_host_frame(technique_host *h, const camera_view *view, target *target, double time,
                           int visibility_of);
 
 #endif

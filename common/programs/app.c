@@ -10,6 +10,7 @@
 
 #include "capture.h"
 #include "context.h"
+#include "depth.h"
 #include "flags.h"
 #include "hud.h"
 #include "image.h"
@@ -169,7 +170,7 @@ static const technique *app_technique(void) { return app.techniques[app.current]
 static bool app_load_scene(const char *path) {
     if (!scene_load(&app.scene, path))
         return false;
-    if (!camera_check_depth(&app.scene, path)) {
+    if (!camera_check_depth(&app.scene, path, depth_reversed_available())) {
         scene_free(&app.scene);
         return false;
     }

@@ -57,6 +57,7 @@
 
 #include "capture.h"
 #include "context.h"
+#include "depth.h"
 #include "flags.h"
 #include "motion.h"
 #include "path.h"
@@ -396,7 +397,7 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     fprintf(stderr, "[scene %d/%d] %s\n", scene_index + 1, bench.scene_count, name);
     if (!scene_load(&bench.scene, scene_path))
         return false;
-    if (!camera_check_depth(&bench.scene, scene_path)) {
+    if (!camera_check_depth(&bench.scene, scene_path, depth_reversed_available())) {
         scene_free(&bench.scene);
         return false;
     }

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "depth.h"
 #include "shadow_map.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
@@ -517,6 +518,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     bool fitted[SCENE_MAX_LIGHTS] = {false};
     int size = shadow_map_settings_size(settings);
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
+    depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
     for (int l = 0; l < s->light_count && f->receiver_count > 0; l++) {
         if (!technique_light_on(f, l))
             continue;
@@ -538,6 +540,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
             shadow_map_forget(&r->caches[l]);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    depth_use_camera(f->view);
     /* After a depth pre-pass, one shading pass: the filter runs once per
      * visible pixel and light that adds to it. */
     render_depth_prepass(f->gpu, f->view, f->in_view);

@@ -3,6 +3,7 @@
  * own (shaders/shadowmap.glsl). */
 #include <glad/gl.h>
 
+#include "depth.h"
 #include "frustum.h"
 #include "shadow_map.h"
 
@@ -89,11 +90,11 @@ static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, c
 void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
                               const int viewport[4]) {
     glDisable(GL_BLEND);
-    glDepthFunc(GL_LEQUAL);
+    glDepthFunc(depth_func(f->view, GL_LEQUAL));
     bool frustum = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_FRUSTUM;
     for (int l = 0; frustum && l < f->gpu->scene->light_count; l++)
         for (int layer = 0; fitted[l] && layer < r->maps[l].layer_count; layer++)
-            shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->view_projection);
+            shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
     if (fitted[0] && (overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP))
         shadow_map_draw_inset(r, &r->maps[0], viewport);
 }
@@ -121,6 +122,7 @@ void shadow_map_warp_view_draw(const shadow_map_warp_view *w, shadow_map_rendere
     glScissor(x, y, width, height);
     const float *bg = shadow_map_warp_view_background;
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
+    depth_use_standard(f->view); /* its own observer's depth, not the camera's */
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
     glDepthMask(GL_TRUE);
@@ -146,5 +148,6 @@ void shadow_map_warp_view_draw(const shadow_map_warp_view *w, shadow_map_rendere
     glm_mat4_inv((vec4 *)space, space_inverse);
     glm_mat4_mul((vec4 *)map_view_projection, space_inverse, map_in_space);
     shadow_map_draw_frustum(r, map_in_space, observer);
+    depth_use_camera(f->view);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }

@@ -2,6 +2,8 @@
 
 #include <glad/gl.h>
 
+#include "depth.h"
+
 /* The counts' ramp: counts 1 .. VOLUME_OVERLAY_COUNT_STEPS - 1 each their
  * colour, the last step for that many and more. */
 #define VOLUME_OVERLAY_COUNT_STEPS 4
@@ -21,6 +23,7 @@ void volume_overlay_counts(volume_draw *d, unsigned stencil_mask) {
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     camera_view identity = {0};
     glm_mat4_identity(identity.view_projection);
+    glm_mat4_identity(identity.raster_view_projection);
     render_program_use(&d->cpu, &identity);
     glUniformMatrix4fv(d->cpu.model, 1, GL_FALSE, (const float *)identity.view_projection);
     for (int k = 1; k <= VOLUME_OVERLAY_COUNT_STEPS; k++) {
@@ -42,7 +45,7 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
-    glDepthFunc(GL_LEQUAL);
+    glDepthFunc(depth_func(f->view, GL_LEQUAL));
     glEnable(GL_DEPTH_CLAMP);
     for (int i = 0; i < s->object_count; i++) {
         if (!s->objects[i].casts ||
@@ -60,7 +63,7 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
             glUniform4fv(d->cpu_color, 1, volume_overlay_silhouette);
             glDepthFunc(GL_ALWAYS);
             volume_draw_stream(d, v->vertices, v->count, GL_LINES);
-            glDepthFunc(GL_LEQUAL);
+            glDepthFunc(depth_func(f->view, GL_LEQUAL));
         }
     }
     glDisable(GL_DEPTH_CLAMP);
