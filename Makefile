@@ -197,3 +197,7 @@ $(BUILD)/tests/%: $(BUILD)/tests/%.o $(TEST_SUPPORT) $(LIB)
 .SECONDARY:
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+# The .d files are the compiler's (-MMD), never remade: without this empty
+# rule make would try its built-in "%: %.o" on each included one and
+# compile build/main_psm.d.o from main_single.c, printing errors.
+$(BUILD)/%.d: ;
