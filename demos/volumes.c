@@ -42,6 +42,10 @@
  * within the visible receivers in its reach take stencil updates
  * (volume_mesh_depth_bounds); no decision changes, as the others keep the
  * cleared count where the light adds 0.
+ * Receivers huge seen from the eye (a ground 1e5 across) are counted
+ * against their exact depth, not the rasterizer's interpolation across
+ * them, which moves shadow edges (demos/lib/volume_receivers.h); their
+ * shading passes against the pre-pass's depth, drawn again.
  * --overlay (key V), for lectures: the volumes of light 0 translucent with
  * their edges, its silhouette edges, or its stencil count as colour.
  *
@@ -66,6 +70,7 @@
 #include "technique.h"
 #include "volume_draw.h"
 #include "volume_overlay.h"
+#include "volume_receivers.h"
 
 typedef struct volumes_settings {
     int mode;       /* choice */
@@ -73,6 +78,7 @@ typedef struct volumes_settings {
     int overlay;    /* choice */
     int extrude;    /* choice */
     bool no_depth_bounds; /* toggle */
+    bool no_exact_depth;  /* toggle */
 } volumes_settings;
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL};
@@ -90,11 +96,13 @@ enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTE
 static struct {
     volumes_settings settings;
     volume_draw draw;
+    volume_receivers receivers;
     bool *needed;  /* per object: it casts a volume for the light at hand */
     int trim_kept; /* whether the kept volumes are trimmed; -1: none kept yet */
     bool has_depth_bounds; /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
+    int huge_count; /* objects counted against their exact depth (volume_receivers.h) */
 } volumes;
 
 static const flags_param volumes_params[] = {
@@ -109,12 +117,15 @@ static const flags_param volumes_params[] = {
      GLFW_KEY_T, FLAGS_CHOICE, .index = &volumes.settings.extrude, .choices = volumes_extrusions},
     {"depth-bounds", "volumes also count where no receiver in the light's reach is (no decision changes)", GLFW_KEY_B,
      FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_bounds},
+    {"exact-depth", "volumes counted against the exact depth of receivers huge seen from the eye (else their "
+                    "shadow edges move)",
+     GLFW_KEY_E, FLAGS_TOGGLE, .disabled = &volumes.settings.no_exact_depth},
 };
 
 /* ---- set-up ---- */
 
 static bool volumes_init(const render_scene *gpu) {
-    if (!volume_draw_init(&volumes.draw, gpu))
+    if (!volume_draw_init(&volumes.draw, gpu) || !volume_receivers_init(&volumes.receivers, gpu))
         return false;
     volumes.needed = calloc((size_t)gpu->scene->object_count, sizeof *volumes.needed);
     if (!volumes.needed) {
@@ -128,6 +139,7 @@ static bool volumes_init(const render_scene *gpu) {
 
 static void volumes_destroy(void) {
     volume_draw_destroy(&volumes.draw);
+    volume_receivers_destroy(&volumes.receivers);
     free(volumes.needed);
     volumes.needed = NULL;
 }
@@ -278,6 +290,8 @@ static void volumes_render(const technique_frame *f) {
      * light: no shadow is counted outside it. */
     int receivers_rect[4];
     volume_mesh_receivers_scissor(s, f->view->view_projection, f->width, f->height, receivers_rect);
+    volumes.huge_count = volumes.settings.no_exact_depth ? 0 : volume_receivers_update(&volumes.receivers, f);
+    bool exact = volumes.huge_count > 0;
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
@@ -288,6 +302,8 @@ static void volumes_render(const technique_frame *f) {
         volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
         for (int i = 0; i < s->object_count; i++)
             volumes.needed[i] = volumes_caster_needed(f, &hull, i, light, (const vec3 *)near_rectangle);
+        if (exact)
+            volume_receivers_depth(&volumes.receivers, f, true);
         glEnable(GL_SCISSOR_TEST);
         glScissor(receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]);
         glClear(GL_STENCIL_BUFFER_BIT);
@@ -296,6 +312,10 @@ static void volumes_render(const technique_frame *f) {
         volumes_count(f, l, light, volumes.needed);
         if (bounded)
             glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
+        if (exact) { /* the depth the shading passes are equal to */
+            glDisable(GL_STENCIL_TEST);
+            volume_receivers_depth(&volumes.receivers, f, false);
+        }
         /* Its own scissor: objects that take no shadows may lie outside the receivers'. */
         technique_shade_light(f, l, &volumes_lit);
         glDisable(GL_STENCIL_TEST);
@@ -319,10 +339,16 @@ static void volumes_describe(char *out, size_t size) {
         n += snprintf(out + n, size - (size_t)n, "; volumes built %d, kept %d; all lights' kept %.1f MiB",
                       volumes.built_count, volumes.reused_count, (double)volumes.draw.cache_bytes / VOLUME_DRAW_MIB);
     if (n > 0 && (size_t)n < size)
-        snprintf(out + n, size - (size_t)n, "; depth bounds %s",
-                 !volumes.has_depth_bounds           ? "off (no GL_EXT_depth_bounds_test)"
-                 : volumes.settings.no_depth_bounds ? "OFF"
-                                                    : "on");
+        n += snprintf(out + n, size - (size_t)n, "; depth bounds %s",
+                      !volumes.has_depth_bounds           ? "off (no GL_EXT_depth_bounds_test)"
+                      : volumes.settings.no_depth_bounds ? "OFF"
+                                                         : "on");
+    if (n > 0 && (size_t)n < size) {
+        if (volumes.settings.no_exact_depth)
+            snprintf(out + n, size - (size_t)n, "; exact depth OFF");
+        else
+            snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
+    }
 }
 
 /* The sweep: mode x silhouette path, and the trim. */

@@ -245,6 +245,29 @@ static void test_grazing_leaves_out_near_edge_on(void **state) {
     free_pair(&reference, &test);
 }
 
+/* A point light in the ground's plane (stress light_on_ground_point): the
+ * reference's hit points come out a rounding off the plane, N . L a few
+ * ulps either way, and the edge-on ground is left out, which it was not
+ * by sign alone; a millimetre below the plane (a cosine of 2e-4) it is
+ * compared. */
+static void test_edge_on_within_rounding_left_out(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, (scene_light){.type = SCENE_LIGHT_POINT, .position = {0, 0, 0}});
+    const surface surfaces[] = {
+        {{5, -8.881784e-16f, 0}, {0, 1, 0}}, /* as the reference had it: left out */
+        {{5, 8.881784e-16f, 0}, {0, 1, 0}},  /* above: faces away */
+        {{5, -1e-3f, 0}, {0, 1, 0}},         /* compared */
+    };
+    set_reference_surfaces(&reference, &test, surfaces, sizeof surfaces / sizeof *surfaces);
+    set_visibility(&reference, &test, 2, 0, 1);
+    for (size_t i = sizeof surfaces / sizeof *surfaces; i < PIXELS; i++)
+        set_no_surface(&reference, i);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_counts(&r, 1, 0, 1);
+    free_pair(&reference, &test);
+}
+
 /* Rows 4..7 are the box, except one pixel the test sees as ground. */
 static void test_receiver_restricts(void **state) {
     (void)state;
@@ -669,6 +692,7 @@ int main(void) {
         cmocka_unit_test(test_excludes_back_facing_point_light),
         cmocka_unit_test(test_excludes_back_facing_directional_light),
         cmocka_unit_test(test_grazing_leaves_out_near_edge_on),
+        cmocka_unit_test(test_edge_on_within_rounding_left_out),
         cmocka_unit_test(test_receiver_restricts),
         cmocka_unit_test(test_nothing_compared_is_an_error),
         cmocka_unit_test(test_non_finite_is_an_error),

@@ -16,8 +16,12 @@
  *     reference normal, L towards the light from the reference position
  *     (light.xyz - position for a point or spot light, w = 1; light.xyz
  *     for a directional one, w = 0), both unit; grazing is 0 unless the
- *     settings say otherwise. A surface turned away is dark by shading
- *     alone, whatever a technique decides there. A surface within a few
+ *     settings say otherwise, and at least FLT_EPSILON (the float
+ *     normal's own precision). A surface turned away is dark by shading
+ *     alone, whatever a technique decides there, and so is one exactly
+ *     edge-on (a ground in the plane of a point light on it), whose
+ *     N . L the rounding of the reference's hit points makes a few ulps
+ *     either way, pixel by pixel. A surface within a few
  *     degrees of edge-on takes almost no light and is a silhouette seen from
  *     the light, where a shadow decision is ill-conditioned for every
  *     technique; sweeps of light directions, which meet such surfaces by

@@ -290,7 +290,9 @@ static void stress_light_at_camera(stress_scene *s, double value) {
     stress_aim(s, s->target);
 }
 
-/* A point light on the receiver's plane: planar's shadow matrix is singular. */
+/* A point light `value` above the receiver's plane; 0: on it, where
+ * planar's shadow matrix is singular and the ground is edge-on to the
+ * light (lit by nothing: shadowdiff leaves it out). */
 static void stress_light_on_ground(stress_scene *s, double value) {
     stress_light_at(s, 0.5, value, 3.5);
     stress_aim(s, stress_box_centre(s));
@@ -487,6 +489,7 @@ static const stress_case stress_cases[] = {
     {"light_at_camera_point", false, STRESS_POINT, stress_light_at_camera, 0, false},
     {"light_at_camera_spot", false, STRESS_SPOT, stress_light_at_camera, 0, false},
     {"light_on_ground_point", false, STRESS_POINT, stress_light_on_ground, 0, .no_ground = true},
+    {"light_above_ground_1e-3_point", false, STRESS_POINT, stress_light_on_ground, 1e-3, false},
     {"spot_cone_60", false, STRESS_SPOT, stress_spot_cone, 60, false},
     {"spot_cone_80", false, STRESS_SPOT, stress_spot_cone, 80, false},
     {"spot_cone_89", false, STRESS_SPOT, stress_spot_cone, 89, false},

@@ -1,0 +1,209 @@
+#include "volume_receivers.h"
+
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Floats per triangle in the planes' texture buffer (GL_RGBA32F): the
+ * unit normal, then the eye's distance along it. */
+#define VOLUME_RECEIVERS_PLANE_FLOATS 4
+/* The texture unit the planes are read from, during this pass only. */
+#define VOLUME_RECEIVERS_UNIT 0
+
+/* Corner k of triangle t of object o, in world space, in double. */
+static void volume_receivers_corner(const scene_object *o, uint32_t t, int k, double out[3]) {
+    const float *p = o->mesh.vertices[o->mesh.indices[3 * t + (uint32_t)k]].position;
+    for (int row = 0; row < 3; row++)
+        out[row] = (double)o->model[0][row] * p[0] + (double)o->model[1][row] * p[1] +
+                   (double)o->model[2][row] * p[2] + (double)o->model[3][row];
+}
+
+static double volume_receivers_distance(const double a[3], const double b[3]) {
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static float volume_receivers_longest_edge(const scene_object *o) {
+    double longest = 0;
+    for (uint32_t t = 0; t < o->mesh.index_count / 3; t++) {
+        double v[3][3];
+        for (int k = 0; k < 3; k++)
+            volume_receivers_corner(o, t, k, v[k]);
+        for (int k = 0; k < 3; k++)
+            longest = fmax(longest, volume_receivers_distance(v[k], v[(k + 1) % 3]));
+    }
+    return (float)longest;
+}
+
+bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
+    static const char *const files[] = {"lit.vert", "volume_receiver_depth.frag"};
+    if (!render_program_load(&r->program, files, (int)(sizeof files / sizeof *files), NULL))
+        return false;
+    r->rotation = glGetUniformLocation(r->program.id, "u_view_rotation");
+    r->ray = glGetUniformLocation(r->program.id, "u_ray");
+    r->projection = glGetUniformLocation(r->program.id, "u_projection");
+    r->viewport = glGetUniformLocation(r->program.id, "u_viewport");
+    r->planes = glGetUniformLocation(r->program.id, "u_planes");
+    const scene *s = gpu->scene;
+    size_t objects = (size_t)s->object_count;
+    r->object_count = s->object_count;
+    r->longest_edge = calloc(objects, sizeof *r->longest_edge);
+    r->buffers = calloc(objects, sizeof *r->buffers);
+    r->textures = calloc(objects, sizeof *r->textures);
+    r->huge = calloc(objects, sizeof *r->huge);
+    if (!r->longest_edge || !r->buffers || !r->textures || !r->huge) {
+        fprintf(stderr, "volumes: out of memory\n");
+        return false;
+    }
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    uint32_t most = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        const scene_object *o = &s->objects[i];
+        uint32_t triangles = o->mesh.index_count / 3;
+        r->longest_edge[i] = volume_receivers_longest_edge(o);
+        /* Never huge: even at the near plane no edge is long enough. */
+        if (r->longest_edge[i] <= VOLUME_RECEIVERS_RATIO * s->camera.near_plane || triangles > (uint32_t)max_texels)
+            continue;
+        glGenBuffers(1, &r->buffers[i]);
+        glBindBuffer(GL_TEXTURE_BUFFER, r->buffers[i]);
+        glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(triangles * VOLUME_RECEIVERS_PLANE_FLOATS * sizeof(float)), NULL,
+                     GL_DYNAMIC_DRAW);
+        glGenTextures(1, &r->textures[i]);
+        glBindTexture(GL_TEXTURE_BUFFER, r->textures[i]);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r->buffers[i]);
+        most = triangles > most ? triangles : most;
+    }
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    r->scratch = most ? malloc((size_t)most * VOLUME_RECEIVERS_PLANE_FLOATS * sizeof *r->scratch) : NULL;
+    if (most && !r->scratch) {
+        fprintf(stderr, "volumes: out of memory\n");
+        return false;
+    }
+    return true;
+}
+
+void volume_receivers_destroy(volume_receivers *r) {
+    for (int i = 0; r->buffers && r->textures && i < r->object_count; i++) {
+        glDeleteBuffers(1, &r->buffers[i]);
+        glDeleteTextures(1, &r->textures[i]);
+    }
+    render_program_destroy(&r->program);
+    free(r->longest_edge);
+    free(r->buffers);
+    free(r->textures);
+    free(r->huge);
+    free(r->scratch);
+    *r = (volume_receivers){0};
+}
+
+/* Object i's triangles' planes relative to `eye`, into its buffer; a
+ * triangle too thin for a normal gets none (0: the shader keeps the
+ * rasterized depth there). */
+static void volume_receivers_planes(const volume_receivers *r, const scene_object *o, int i, const double eye[3]) {
+    uint32_t triangles = o->mesh.index_count / 3;
+    for (uint32_t t = 0; t < triangles; t++) {
+        double v[3][3], e1[3], e2[3], n[3];
+        for (int k = 0; k < 3; k++)
+            volume_receivers_corner(o, t, k, v[k]);
+        for (int c = 0; c < 3; c++) {
+            e1[c] = v[1][c] - v[0][c];
+            e2[c] = v[2][c] - v[0][c];
+        }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        float *plane = r->scratch + (size_t)t * VOLUME_RECEIVERS_PLANE_FLOATS;
+        double offset = 0;
+        for (int c = 0; c < 3; c++) {
+            n[c] = length > 0 ? n[c] / length : 0;
+            offset += n[c] * (v[0][c] - eye[c]);
+            plane[c] = (float)n[c];
+        }
+        plane[3] = (float)offset;
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, r->buffers[i]);
+    glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)(triangles * VOLUME_RECEIVERS_PLANE_FLOATS * sizeof(float)),
+                    r->scratch);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+}
+
+/* The distance from `eye` to the world box of o. */
+static double volume_receivers_box_distance(const scene_object *o, const double eye[3]) {
+    float lo[3], hi[3];
+    scene_object_world_bounds(o, lo, hi);
+    double squared = 0;
+    for (int c = 0; c < 3; c++) {
+        double outside = fmax(fmax(lo[c] - eye[c], eye[c] - hi[c]), 0);
+        squared += outside * outside;
+    }
+    return sqrt(squared);
+}
+
+int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
+    const scene *s = f->gpu->scene;
+    const double eye[3] = {f->view->eye[0], f->view->eye[1], f->view->eye[2]};
+    bool moved = !r->planes_made || memcmp(r->planes_eye, f->view->eye, sizeof r->planes_eye) != 0;
+    int count = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        const scene_object *o = &s->objects[i];
+        double reach = VOLUME_RECEIVERS_RATIO * fmax(volume_receivers_box_distance(o, eye), s->camera.near_plane);
+        r->huge[i] = r->buffers[i] && render_in_mask(f->in_view, i) && r->longest_edge[i] > reach;
+        count += r->huge[i];
+        /* Every candidate's, so that one huge only later has its planes. */
+        if (r->buffers[i] && moved)
+            volume_receivers_planes(r, o, i, eye);
+    }
+    memcpy(r->planes_eye, f->view->eye, sizeof r->planes_eye);
+    r->planes_made = true;
+    return count;
+}
+
+/* The exact program's uniforms for f's view: the eye ray of a pixel from
+ * the projection's x and y rows, the view's rotation alone (the planes
+ * are relative to the eye). */
+static void volume_receivers_use(const volume_receivers *r, const technique_frame *f) {
+    const camera_view *v = f->view;
+    render_program_use(&r->program, v);
+    float rotation[3][3];
+    for (int c = 0; c < 3; c++)
+        for (int row = 0; row < 3; row++)
+            rotation[c][row] = v->view[c][row];
+    glUniformMatrix3fv(r->rotation, 1, GL_FALSE, (const float *)rotation);
+    glUniform4f(r->ray, 1 / v->projection[0][0], 1 / v->projection[1][1], v->projection[2][0], v->projection[2][1]);
+    glUniformMatrix4fv(r->projection, 1, GL_FALSE, (const float *)v->projection);
+    glUniform4f(r->viewport, 0, 0, (float)f->width, (float)f->height);
+    glUniform1i(r->planes, VOLUME_RECEIVERS_UNIT);
+}
+
+void volume_receivers_depth(const volume_receivers *r, const technique_frame *f, bool exact) {
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    if (!exact) {
+        render_depth_prepass(f->gpu, f->view, f->in_view);
+        return;
+    }
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const render_program *depth = &f->gpu->depth;
+    render_program_use(depth, f->view);
+    for (int i = 0; i < r->object_count; i++)
+        if (render_in_mask(f->in_view, i) && !r->huge[i])
+            render_draw_object(f->gpu, depth, i);
+    volume_receivers_use(r, f);
+    glActiveTexture(GL_TEXTURE0 + VOLUME_RECEIVERS_UNIT);
+    for (int i = 0; i < r->object_count; i++) {
+        if (!r->huge[i])
+            continue;
+        glBindTexture(GL_TEXTURE_BUFFER, r->textures[i]);
+        render_draw_object(f->gpu, &r->program, i);
+    }
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+}

@@ -1,0 +1,74 @@
+/* volume_receivers: the depth the shadow volumes are counted against,
+ * exact on triangles that are huge seen from the eye (demos/volumes.c).
+ *
+ * The rasterizer finds a fragment's depth by interpolating across its
+ * triangle from the corners, in float: far from the corners the rounding
+ * grows with the triangle's size over the fragment's distance from the
+ * eye. A shadow edge on a receiver lies where a volume's side crosses the
+ * receiver's depth, so that error moves it. Measured, stress scene
+ * huge_ground_*: a ground of two triangles seen from 10 units away, 1e5
+ * across, lies 9e-5 of its distance too far (20 depth-buffer steps; a
+ * 20-unit ground 3e-7), and the volumes' shadow edges on it move by a
+ * pixel or two: 0.056 % misclassified at 320x180, the same ground
+ * tessellated near the eye 0. By the ground's size: 3e3, 0.007 %; 1e4,
+ * 0.014 %; 3e4, 0.19 %.
+ *
+ * An object in view is huge this frame when its longest triangle edge
+ * exceeds VOLUME_RECEIVERS_RATIO times the distance from the eye to its
+ * world box (at least the near plane's). For the counting,
+ * volume_receivers_depth draws the depth of every object in view, the
+ * huge ones through volume_receiver_depth.frag: lit.vert as the depth
+ * pre-pass has it (the same pixels), each fragment's depth where the eye
+ * ray through the pixel's centre meets its triangle's plane. The planes
+ * come from the CPU in double, relative to the eye (unit normal, the
+ * eye's distance), so nothing the shader computes is larger than what it
+ * looks at. The shading passes test GL_EQUAL against their own rasterized
+ * depth: after the counting the caller draws the pre-pass's depth again
+ * (volume_receivers_depth, exact false). Neither touches the stencil.
+ *
+ * Where no object is huge (every standard and test scene: the largest
+ * ratio is long_view's 786) the caller takes neither pass: nothing
+ * changes there. A mesh with more triangles than the GL's texture buffer
+ * holds (GL_MAX_TEXTURE_BUFFER_SIZE, at least 65536) is never huge: it
+ * keeps the rasterized depth.
+ */
+#ifndef VOLUME_RECEIVERS_H
+#define VOLUME_RECEIVERS_H
+
+#include <stdbool.h>
+
+#include "technique.h"
+
+/* Longest edge over distance from the eye past which an object's depth is
+ * computed exactly: measured above, grounds up to a ratio of 700 (3e3
+ * across) stay within the volumes' bound (0.01 %), from 2400 (1e4) they
+ * do not; the standard scenes' largest, long_view's, is 786. */
+#define VOLUME_RECEIVERS_RATIO 1024.0
+
+/* Zero is an unmade one. */
+typedef struct volume_receivers {
+    render_program program; /* lit.vert, volume_receiver_depth.frag */
+    int rotation, ray, projection, viewport, planes; /* its uniforms */
+    int object_count;
+    float *longest_edge; /* per object, in world units */
+    unsigned *buffers, *textures; /* per object: its planes; 0 where it can never be huge */
+    bool *huge;          /* per object, this frame */
+    float *scratch;      /* the planes of the largest candidate, 4 floats a triangle */
+    float planes_eye[3]; /* the eye the planes are relative to */
+    bool planes_made;
+} volume_receivers;
+
+bool volume_receivers_init(volume_receivers *r, const render_scene *gpu);
+void volume_receivers_destroy(volume_receivers *r);
+
+/* Marks the objects in view that are huge seen from f's eye, and makes
+ * their planes for it; returns how many are. */
+int volume_receivers_update(volume_receivers *r, const technique_frame *f);
+
+/* Clears the depth and draws every object in view's, the huge ones exact
+ * (`exact`) or all as render_depth_prepass does; leaves the depth state
+ * the pre-pass leaves (GL_EQUAL, no writes). The stencil test must be off
+ * and the scissor is turned off: the shading passes read the whole frame. */
+void volume_receivers_depth(const volume_receivers *r, const technique_frame *f, bool exact);
+
+#endif
