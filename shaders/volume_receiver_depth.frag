@@ -7,7 +7,8 @@
 uniform samplerBuffer u_planes; // per triangle: unit normal, the eye's distance along it
 uniform mat3 u_view_rotation;   // world axes -> view axes
 uniform vec4 u_ray;             // 1 / projection[0][0], 1 / projection[1][1], projection[2][0], projection[2][1]
-uniform mat4 u_projection;
+uniform mat4 u_projection;      // the raster's: standard or reversed depth (common/gl/depth.h)
+uniform bool u_zero_to_one;     // reversed depth's clip control: window depth is clip z / w
 uniform vec4 u_viewport;        // x, y, width, height
 
 void main() {
@@ -20,5 +21,7 @@ void main() {
         return;
     }
     vec4 clip = u_projection * vec4(t * ray, 1.0);
-    gl_FragDepth = 0.5 * (gl_DepthRange.diff * (clip.z / clip.w) + gl_DepthRange.near + gl_DepthRange.far);
+    float depth_ndc = clip.z / clip.w;
+    gl_FragDepth = u_zero_to_one ? gl_DepthRange.near + gl_DepthRange.diff * depth_ndc
+                                 : 0.5 * (gl_DepthRange.diff * depth_ndc + gl_DepthRange.near + gl_DepthRange.far);
 }

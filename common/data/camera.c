@@ -77,10 +77,10 @@ void camera_view_compute(const scene_camera *c, float aspect, camera_view *out) 
     glm_mat4_mul(out->projection, out->view, out->view_projection);
     out->reversed_depth = c->reversed_depth;
     if (c->reversed_depth) {
-        mat4 reversed;
-        camera_reversed_projection(c, out->projection, reversed);
-        glm_mat4_mul(reversed, out->view, out->raster_view_projection);
+        camera_reversed_projection(c, out->projection, out->raster_projection);
+        glm_mat4_mul(out->raster_projection, out->view, out->raster_view_projection);
     } else {
+        glm_mat4_copy(out->projection, out->raster_projection);
         glm_mat4_copy(out->view_projection, out->raster_view_projection);
     }
     glm_vec3_copy((float *)c->position, out->eye);

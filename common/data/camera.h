@@ -68,7 +68,7 @@ typedef struct camera_view {
      * row (computed from near and far in double, never from the standard
      * one, whose depth row has lost near by then). */
     bool reversed_depth;
-    mat4 raster_view_projection;
+    mat4 raster_projection, raster_view_projection;
 } camera_view;
 
 void camera_view_compute(const scene_camera *c, float aspect, camera_view *out);

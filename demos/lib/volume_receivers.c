@@ -43,6 +43,7 @@ bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
     r->rotation = glGetUniformLocation(r->program.id, "u_view_rotation");
     r->ray = glGetUniformLocation(r->program.id, "u_ray");
     r->projection = glGetUniformLocation(r->program.id, "u_projection");
+    r->zero_to_one = glGetUniformLocation(r->program.id, "u_zero_to_one");
     r->viewport = glGetUniformLocation(r->program.id, "u_viewport");
     r->planes = glGetUniformLocation(r->program.id, "u_planes");
     const scene *s = gpu->scene;
@@ -174,7 +175,8 @@ static void volume_receivers_use(const volume_receivers *r, const technique_fram
             rotation[c][row] = v->view[c][row];
     glUniformMatrix3fv(r->rotation, 1, GL_FALSE, (const float *)rotation);
     glUniform4f(r->ray, 1 / v->projection[0][0], 1 / v->projection[1][1], v->projection[2][0], v->projection[2][1]);
-    glUniformMatrix4fv(r->projection, 1, GL_FALSE, (const float *)v->projection);
+    glUniformMatrix4fv(r->projection, 1, GL_FALSE, (const float *)v->raster_projection);
+    glUniform1i(r->zero_to_one, v->reversed_depth);
     glUniform4f(r->viewport, 0, 0, (float)f->width, (float)f->height);
     glUniform1i(r->planes, VOLUME_RECEIVERS_UNIT);
 }

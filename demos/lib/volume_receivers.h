@@ -48,7 +48,7 @@
 /* Zero is an unmade one. */
 typedef struct volume_receivers {
     render_program program; /* lit.vert, volume_receiver_depth.frag */
-    int rotation, ray, projection, viewport, planes; /* its uniforms */
+    int rotation, ray, projection, zero_to_one, viewport, planes; /* its uniforms */
     int object_count;
     float *longest_edge; /* per object, in world units */
     unsigned *buffers, *textures; /* per object: its planes; 0 where it can never be huge */
