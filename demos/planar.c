@@ -31,10 +31,14 @@
  *            polygon offset pulls them towards the eye. Off: they are
  *            depth-tested as they are, and z-fight with the receiver.
  *   reject   the plane is oriented towards the light and clip distances
- *            drop what is below it or beyond the light; a caster lying in
- *            the plane (a mat on the floor) is left out, being its own
- *            shadow. Off: a light below the plane or a caster above the
- *            light casts anti-shadows.
+ *            drop what is below it or beyond the light; a caster with no
+ *            part on the light's side of the plane is left out: one lying
+ *            in it (a mat on the floor) is its own shadow, and one beyond
+ *            it that touches it (a box on the ground, lit from below)
+ *            would keep its faces in the plane, which clipping cannot
+ *            drop, and darken the receiver's pixels under them, which the
+ *            light reaches. Off: a light below the plane or a caster above
+ *            the light casts anti-shadows.
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -53,11 +57,11 @@
  * slope term covers receivers seen at grazing angles. */
 #define PLANAR_OFFSET_FACTOR -1.0f
 #define PLANAR_OFFSET_UNITS -2.0f
-/* A caster lies in a receiver's plane when every corner of its box is
- * within this many float roundings of the plane, relative to the
- * magnitudes the distance is made of (the corner's coordinates and the
- * plane's offset): the model matrix and the plane round a few times each,
- * and anything that close to the plane z-fights with it in the picture. */
+/* A caster's corner lies in a receiver's plane when it is within this
+ * many float roundings of the plane, relative to the magnitudes the
+ * distance is made of (the corner's coordinates and the plane's offset):
+ * the model matrix and the plane round a few times each, and anything that
+ * close to the plane z-fights with it in the picture. */
 #define PLANAR_COPLANAR_ROUNDINGS 64.0f
 
 static struct {
@@ -93,7 +97,7 @@ void planar_receiver_plane(const scene_object *o, float plane[4]) {
     glm_vec4(normal, -glm_vec3_dot(normal, origin), plane);
 }
 
-bool planar_in_plane(const scene_object *o, const float plane[4]) {
+bool planar_casts_nothing(const scene_object *o, const float plane[4]) {
     float corners[8][3];
     frustum_box_corners(o->mesh.bounds_min, o->mesh.bounds_max, corners);
     for (int c = 0; c < 8; c++) {
@@ -101,7 +105,7 @@ bool planar_in_plane(const scene_object *o, const float plane[4]) {
         glm_mat4_mulv3((vec4 *)o->model, corners[c], 1.0f, world);
         float magnitude = fabsf(world[0]) + fabsf(world[1]) + fabsf(world[2]) + fabsf(plane[3]);
         float distance = glm_vec3_dot((float *)plane, world) + plane[3];
-        if (fabsf(distance) > PLANAR_COPLANAR_ROUNDINGS * FLT_EPSILON * magnitude)
+        if (distance > PLANAR_COPLANAR_ROUNDINGS * FLT_EPSILON * magnitude)
             return false;
     }
     return true;
@@ -155,7 +159,7 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
      * receiver inside it; planar.casters are those that may. */
     for (int i = 0; i < s->object_count; i++)
         if (i != receiver && planar.casters[i] &&
-            (planar.settings.no_reject || !planar_in_plane(&s->objects[i], plane)))
+            (planar.settings.no_reject || !planar_casts_nothing(&s->objects[i], plane)))
             render_draw_object(f->gpu, &planar.flatten, i);
     glDisable(GL_CLIP_DISTANCE0);
     glDisable(GL_CLIP_DISTANCE1);

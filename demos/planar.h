@@ -1,5 +1,6 @@
 /* planar: planar projected shadows (see planar.c). Exposed for its tests:
- * the shadow matrix, the receiver's plane equation and the coplanar test. */
+ * the shadow matrix, the receiver's plane equation and which casters cast
+ * nothing on it. */
 #ifndef PLANAR_H
 #define PLANAR_H
 
@@ -17,8 +18,11 @@ typedef struct planar_settings {
 void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]);
 /* World plane (unit normal, d) of a "plane" mesh object: its local +Y. */
 void planar_receiver_plane(const scene_object *o, float plane[4]);
-/* Object o lies in the plane, within float rounding: flattened onto it,
- * it is its own shadow, so it casts none there (a mat on the floor). */
-bool planar_in_plane(const scene_object *o, const float plane[4]);
+/* No part of object o lies on the light's side of the plane (oriented
+ * towards the light), within float rounding: in the plane, flattened onto
+ * it, o is its own shadow (a mat on the floor); beyond it, only its faces
+ * in the plane would pass the clip distances, and the light reaches the
+ * receiver there (a box on the ground, lit from below). It casts none. */
+bool planar_casts_nothing(const scene_object *o, const float plane[4]);
 
 #endif

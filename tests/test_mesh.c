@@ -518,6 +518,25 @@ static void test_load_teapot(void **state) {
     mesh_free(&m);
 }
 
+/* mirror_node.gltf: the wedge of mirror_wedge.obj under two nodes, one
+ * of them scaled by -1 in x, both using the one mesh. Baked as they were,
+ * the mirrored copy turned inside out: its volume cancelled the other's.
+ * Reversed, each copy faces outwards and the file holds twice the wedge. */
+static void test_load_mirrored_node(void **state) {
+    (void)state;
+    mesh wedge, pair;
+    assert_true(mesh_load_file(&wedge, "tests/data/mirror_wedge.obj"));
+    assert_true(mesh_load_file(&pair, "tests/data/mirror_node.gltf"));
+    assert_closed(&wedge);
+    assert_sane_mesh(&pair);
+    assert_int_equal(pair.index_count, 2 * wedge.index_count);
+    print_message("wedge: volume %g; the wedge and its mirror image: %g\n", signed_volume(&wedge),
+                  signed_volume(&pair));
+    assert_float_equal(signed_volume(&pair), 2 * signed_volume(&wedge), 1e-6);
+    mesh_free(&wedge);
+    mesh_free(&pair);
+}
+
 static void test_load_testmodels(void **state) {
     (void)state;
     const char *paths[] = {TESTMODELS_DIR "/OBJ/spider.obj", TESTMODELS_DIR "/OBJ/WusonOBJ.obj"};
@@ -772,6 +791,7 @@ int main(void) {
         cmocka_unit_test(test_sanitize_of_nothing_is_an_error),
         cmocka_unit_test(test_load_bunny),
         cmocka_unit_test(test_load_teapot),
+        cmocka_unit_test(test_load_mirrored_node),
         cmocka_unit_test(test_load_testmodels),
         cmocka_unit_test(test_load_invalid_models),
         cmocka_unit_test(test_load_checks_header_claims),

@@ -111,17 +111,22 @@ static void test_caster_in_plane(void **state) {
     glm_translate_make(m, (vec3){2.5f, 0, -1});
     glm_rotate_y(m, glm_rad(15), m);
     scene_object mat = mat_at(m);
-    assert_true(planar_in_plane(&mat, ground));
+    assert_true(planar_casts_nothing(&mat, ground));
     float flipped[4] = {0, -1, 0, 0}; /* the plane as oriented towards a light below */
-    assert_true(planar_in_plane(&mat, flipped));
+    assert_true(planar_casts_nothing(&mat, flipped));
     /* Raised by a millimetre: a caster, however thin. */
     glm_translate_make(m, (vec3){2.5f, 1e-3f, -1});
     mat = mat_at(m);
-    assert_false(planar_in_plane(&mat, ground));
-    /* A box standing on the plane touches it and is not in it. */
+    assert_false(planar_casts_nothing(&mat, ground));
+    /* A box standing on the plane touches it and casts on it; lit from
+     * below, it lies beyond the plane but for its bottom face, in it. */
     scene_object box = {.mesh = {.bounds_min = {-0.8f, -0.8f, -0.8f}, .bounds_max = {0.8f, 0.8f, 0.8f}}};
     glm_translate_make(box.model, (vec3){-1.8f, 0.8f, 0.6f});
-    assert_false(planar_in_plane(&box, ground));
+    assert_false(planar_casts_nothing(&box, ground));
+    assert_true(planar_casts_nothing(&box, flipped));
+    /* Sunk a millimetre into the plane: a part lies on the light's side. */
+    glm_translate_make(box.model, (vec3){-1.8f, 0.8f - 1e-3f, 0.6f});
+    assert_false(planar_casts_nothing(&box, flipped));
 }
 
 /* Far from the origin and tilted, the plane and the mat round at their
@@ -139,10 +144,10 @@ static void test_caster_in_tilted_plane_far_away(void **state) {
     glm_translate(m, (vec3){5, 0, -7});
     glm_rotate_y(m, glm_rad(40), m);
     scene_object mat = mat_at(m);
-    assert_true(planar_in_plane(&mat, plane));
+    assert_true(planar_casts_nothing(&mat, plane));
     glm_translate(m, (vec3){0, 0.5f, 0});
     mat = mat_at(m);
-    assert_false(planar_in_plane(&mat, plane));
+    assert_false(planar_casts_nothing(&mat, plane));
 }
 
 static void test_camera_view_centres_target(void **state) {
@@ -222,23 +227,28 @@ typedef struct planar_case {
     const char *scene;
     const char *flags;
     const char *receiver;
+    int light;    /* the light the dumps are of */
     bool exceeds; /* a fix switched off: the bound must bite */
 } planar_case;
 
 static const planar_case planar_cases[] = {
     /* Two triangles 1e5 across: depth-tested, the flattened casters lose
      * to the receiver's interpolated depth (all shadows gone). */
-    {"huge_ground", "tests/data/planar_huge_ground.json", "", "ground", false},
-    {"huge_ground_depth_tested", "tests/data/planar_huge_ground.json", "--no-offset", "ground", true},
+    {"huge_ground", "tests/data/planar_huge_ground.json", "", "ground", 0, false},
+    {"huge_ground_depth_tested", "tests/data/planar_huge_ground.json", "--no-offset", "ground", 0, true},
     /* A mat (casts, receives) on a ground that casts: each is the other's
      * coplanar caster. */
-    {"coplanar_ground", "tests/data/planar_coplanar.json", "", "ground", false},
-    {"coplanar_mat", "tests/data/planar_coplanar.json", "", "mat", false},
-    {"coplanar_mat_unrejected", "tests/data/planar_coplanar.json", "--no-reject", "mat", true},
+    {"coplanar_ground", "tests/data/planar_coplanar.json", "", "ground", 0, false},
+    {"coplanar_mat", "tests/data/planar_coplanar.json", "", "mat", 0, false},
+    {"coplanar_mat_unrejected", "tests/data/planar_coplanar.json", "--no-reject", "mat", 0, true},
     /* Two receivers: each one's unshadowed pixels must be cleared before
      * casters are flattened onto the other's plane. */
-    {"wall_ground", "tests/data/planar_wall.json", "", "ground", false},
-    {"wall_wall", "tests/data/planar_wall.json", "", "wall", false},
+    {"wall_ground", "tests/data/planar_wall.json", "", "ground", 0, false},
+    {"wall_wall", "tests/data/planar_wall.json", "", "wall", 0, false},
+    /* Seen and lit from below (a point light, a sun shining upwards): the
+     * box's bottom face, in the plane, is no shadow of the underside. */
+    {"below_point", "tests/data/planar_below.json", "", "ground", 0, false},
+    {"below_directional", "tests/data/planar_below.json", "", "ground", 1, false},
 };
 enum { PLANAR_CASE_COUNT = sizeof planar_cases / sizeof *planar_cases };
 
@@ -251,11 +261,13 @@ static int planar_object_index(const dump_frame *d, const char *name) {
 
 static void test_planar_case(void **state) {
     const planar_case *c = *state;
-    char reference_dir[256], test_dir[256], heatmap_path[300];
+    char reference_dir[256], test_dir[256], heatmap_path[300], light[32], flags[128];
     snprintf(reference_dir, sizeof reference_dir, "out/test/planar/%s_reference", c->name);
     snprintf(test_dir, sizeof test_dir, "out/test/planar/%s", c->name);
-    assert_int_equal(support_dump("raytrace", c->scene, "", reference_dir), 0);
-    assert_int_equal(support_dump("planar", c->scene, c->flags, test_dir), 0);
+    snprintf(light, sizeof light, "--light %d", c->light);
+    snprintf(flags, sizeof flags, "%s %s", c->flags, light);
+    assert_int_equal(support_dump("raytrace", c->scene, light, reference_dir), 0);
+    assert_int_equal(support_dump("planar", c->scene, flags, test_dir), 0);
     dump_frame reference, test;
     assert_true(dump_read(&reference, reference_dir));
     assert_true(dump_read(&test, test_dir));

@@ -3,6 +3,7 @@
 #include "mesh.h"
 
 #include <assimp/cimport.h>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <cglm/cglm.h>
@@ -561,6 +562,46 @@ static bool mesh_check_counts(mesh *m, const char *path, const struct aiScene *s
                      "a model may have", triangles, vertices, MESH_MAX_TRIANGLES, MESH_MAX_VERTICES);
 }
 
+/* The determinant of a node's own transform (its 3x3 part), in double. */
+static double mesh_node_determinant(const struct aiMatrix4x4 *t) {
+    return (double)t->a1 * ((double)t->b2 * t->c3 - (double)t->b3 * t->c2) -
+           (double)t->a2 * ((double)t->b1 * t->c3 - (double)t->b3 * t->c1) +
+           (double)t->a3 * ((double)t->b1 * t->c2 - (double)t->b2 * t->c1);
+}
+
+/* Some mesh lies under a mirroring transform: an odd number of the nodes
+ * from the root to its own have a negative determinant (the determinant of
+ * the composed transform is their product, so the signs are all it takes). */
+static bool mesh_node_mirrors(const struct aiNode *node, bool mirrored_above) {
+    bool mirrored = mirrored_above != (mesh_node_determinant(&node->mTransformation) < 0);
+    if (mirrored && node->mNumMeshes) return true;
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        if (mesh_node_mirrors(node->mChildren[i], mirrored)) return true;
+    return false;
+}
+
+/* aiProcess_PreTransformVertices bakes each node's transform into its
+ * meshes but, merging them by material, keeps the winding of a mirrored
+ * one: its triangles turn clockwise seen from outside (inside out). With
+ * AI_CONFIG_PP_PTV_KEEP_HIERARCHY the step instead transforms each
+ * instance on its own (copies for a mesh used by nodes of differing
+ * transforms) and reverses the winding where the determinant is negative;
+ * it merges nothing, so meshes are welded and smoothed each on its own.
+ * So that every other file loads exactly as it always has, that mode is
+ * for files with a mirrored instance only, found by reading the file as it
+ * stands first (its read errors are the import's own). */
+static const struct aiScene *mesh_import(const char *path, unsigned flags) {
+    const struct aiScene *read = aiImportFile(path, 0);
+    if (!read) return NULL;
+    bool mirrored = mesh_node_mirrors(read->mRootNode, false);
+    aiReleaseImport(read);
+    struct aiPropertyStore *properties = aiCreatePropertyStore();
+    aiSetImportPropertyInteger(properties, AI_CONFIG_PP_PTV_KEEP_HIERARCHY, mirrored);
+    const struct aiScene *scene = aiImportFileExWithProperties(path, flags, NULL, properties);
+    aiReleasePropertyStore(properties);
+    return scene;
+}
+
 bool mesh_load_file(mesh *m, const char *path) {
     *m = (mesh){0};
     /* assimp reports a directory as an unknown format, or as an empty OBJ:
@@ -580,7 +621,7 @@ bool mesh_load_file(mesh *m, const char *path) {
      * failing in aiApplyPostProcessing crashes assimp 5.2 in the Importer's
      * destructor (AC/nosurfaces.ac of assimp-testmodels). */
     const struct aiScene *scene =
-        aiImportFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+        mesh_import(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
     if (scene && !mesh_check_counts(m, path, scene)) {
         aiReleaseImport(scene);
         return false;

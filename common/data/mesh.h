@@ -71,7 +71,9 @@ bool mesh_make_cylinder(mesh *m, float radius, float height, int segments);
 #define MESH_MAX_VERTICES (3 * MESH_MAX_TRIANGLES)
 
 /* Loads every triangle of a model file (all its meshes, node transforms
- * applied) through assimp; generates smooth normals where the file has none.
+ * applied, the winding reversed under a mirroring one: counter-clockwise
+ * from outside) through assimp; generates smooth normals where the file has
+ * none.
  * Files with no triangles, unreadable or malformed files are an error, and
  * so are files over the limits above (checked before they are welded,
  * smoothed or copied) and OFF or PLY files whose header claims more
