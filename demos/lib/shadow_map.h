@@ -40,14 +40,18 @@
  *
  * Fitting (shadow_map_fit.c, no GL). shadow_map_fit_uniform is
  * demos/shadowmap.c's placement and the fallback of every warp:
- *   spot         a perspective map around the cone, from the nearest
- *                caster in front of the light to the farthest receiver;
+ *   spot         a perspective map around the cone, or around the
+ *                receivers where they lie in a narrower one (the light
+ *                far from them), from the nearest caster in front of the
+ *                light to the farthest receiver; a spot wider than 85
+ *                degrees as a point light;
  *   directional  an orthographic box around the receivers seen along the
  *                light, deepened towards it to every caster whose box
  *                overlaps them seen from the light (caster selection: so
  *                casters outside the view still cast);
- *   point        a cube map, from the nearest caster to the farthest
- *                receiver.
+ *   point        one perspective map around the receivers where they lie
+ *                in a cone of at most 45 degrees, else a cube map, from
+ *                the nearest caster to the farthest receiver.
  * A fit fills the map's kind, layer matrices, depth range (for the inset
  * and the HUD), texel_kind / texel_scale (how the camera pass finds a
  * texel's world size, which the constant and normal-offset biases are
