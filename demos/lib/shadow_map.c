@@ -44,7 +44,10 @@ static float shadow_map_setting(float value, float fallback) { return value != 0
 
 int shadow_map_settings_size(const shadow_map_settings *settings) { return atoi(shadow_map_sizes[settings->map_size]); }
 
-int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n) {
+int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
+                         int grazing) {
+    if (grazing > n)
+        return SHADOW_MAP_AUTO_MAX_SIZE;
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
@@ -72,7 +75,7 @@ int shadow_map_light_samples(shadow_map_renderer *r, const technique_frame *f, i
     if (r->hit_count < 0)
         r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
     if (r->sample_light != l) {
-        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples);
+        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples, &r->grazing_count);
         r->sample_light = l;
     }
     return r->sample_count;
@@ -525,7 +528,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
         if (fitted[l] && !size) {
             int sample_count = shadow_map_light_samples(r, f, l);
-            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count));
+            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
         }
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             shadow_map_forget(&r->caches[l]);

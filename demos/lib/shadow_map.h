@@ -104,7 +104,8 @@
  * of pixels cast onto the receivers' boxes, the same measure psm judges
  * its warps by; samples beyond the light's range or outside the map left out) and
  * takes the smallest power of two from 256 to 4096 at which a texel
- * covers at most about one pixel on average (shadow_map_auto_size):
+ * covers at most about one pixel on average (shadow_map_auto_size; the
+ * largest where most receivers seen are edge-on to the light):
  * shadows no sharper than the pixels that show them, and no depth pass
  * larger than that needs. At 1280x720 that is 2048 on simple, bunny and
  * teapot, 4096 (the cap) on long_view and the city, half as much in a
@@ -405,6 +406,7 @@ typedef struct shadow_map_renderer {
      * (warp_samples_lit): shadow_map_light_samples. */
     warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
     int hit_count, sample_count, sample_light;
+    int grazing_count; /* of sample_light's: the hits left out as edge-on to it */
 } shadow_map_renderer;
 
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
@@ -437,8 +439,17 @@ int shadow_map_settings_size(const shadow_map_settings *settings);
  * SHADOW_MAP_AUTO_*): a texel's size on screen scales as 1 / size, so the
  * mean at m->size gives the size at which it is TEXEL_PIXELS, rounded up
  * to a power of two. Samples beyond the light's range (it lights nothing
- * there) and outside the map are not measured. */
-int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n);
+ * there) and outside the map are not measured. Where more of the samples
+ * were left out as edge-on to the light (`grazing`, warp_samples_lit)
+ * than measured, the faces measured are not where its shadows are seen:
+ * on those faces every texel is unboundedly long and only its width
+ * across the light can shrink, so the map takes the most texels, MAX (a
+ * sun 0.1 degrees above the ground, measured on the casters' sides alone,
+ * got 256, texels a tenth of a unit across, and every long shadow edge
+ * on the ground followed one texel's rounding: 0.57 % misclassified;
+ * tests/data/shadowmap_grazing_sun.json). */
+int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
+                         int grazing);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
 
