@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "shadow_map.h"
+#include "volume_mesh.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
 const char *const shadow_map_filters[] = {
@@ -318,6 +319,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {&p->constant_bias, "u_constant_bias"},
         {&p->normal_offset, "u_normal_offset"},
         {&p->depth_bias, "u_depth_bias"},
+        {&p->closed_outside, "u_closed_outside"},
     };
     shadow_map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on its own unit, those of lights without a map too: an
@@ -413,9 +415,10 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
     size_t n = (size_t)object_count, layers = SHADOW_MAP_MAX_LAYERS;
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
+    r->closed = calloc(n + 1, sizeof *r->closed);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes) {
+    if (!sets || !r->receiver_boxes || !r->closed) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
     }
@@ -427,10 +430,26 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
     return true;
 }
 
+/* r->closed: which casters are closed meshes (their welded edge table,
+ * as the volumes weigh them). */
+static bool shadow_map_find_closed(shadow_map_renderer *r, const scene *s) {
+    for (int i = 0; i < s->object_count; i++) {
+        mesh_edges e;
+        if (!s->objects[i].casts)
+            continue;
+        if (!volume_mesh_edges_build(&s->objects[i].mesh, &e))
+            return false;
+        r->closed[i] = e.closed;
+        mesh_edges_free(&e);
+    }
+    return true;
+}
+
 bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu) {
     shadow_map_camera_key scene_key = shadow_map_scene_key(gpu->scene, settings);
     static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
-    if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !render_program_load(&r->depth, depth_files, 2, NULL) ||
+    if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !shadow_map_find_closed(r, gpu->scene) ||
+        !render_program_load(&r->depth, depth_files, 2, NULL) ||
         /* The scene's own combination now, so that a shader that does not
          * compile fails init; the others as frames need them. */
         !shadow_map_camera_program_for(r, &scene_key) ||
@@ -466,10 +485,31 @@ void shadow_map_destroy(shadow_map_renderer *r) {
         glDeleteTextures(1, &r->maps[l].texture.id);
     free(r->needed[0]);
     free(r->receiver_boxes);
+    free(r->closed);
     memset(r, 0, sizeof *r);
 }
 
 /* ---- the camera pass ---- */
+
+/* The lights with a map in key k that object i, a closed caster, has
+ * outside it (bit l: light l), for shaders/shadowmap.frag's
+ * u_closed_outside: seen from inside the mesh, a face that such a light
+ * reaches on that side is in the mesh's shadow. */
+static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const scene *s,
+                                          const shadow_map_camera_key *k, int i) {
+    unsigned lights = 0;
+    for (int l = 0; r->closed[i] && l < s->light_count; l++) {
+        unsigned kind = shadow_map_light_field(k->kinds, l);
+        float light[4], object_light[4];
+        if (kind != SHADOW_MAP_LIGHT_2D && kind != SHADOW_MAP_LIGHT_CUBE)
+            continue;
+        scene_light_homogeneous(&s->lights[l], light);
+        volume_mesh_object_light(s->objects[i].model, light, object_light);
+        if (!volume_mesh_light_inside(&s->objects[i].mesh, object_light))
+            lights |= 1u << l;
+    }
+    return lights;
+}
 
 /* Every light on, by its kind in key k (shadowed where its map lets it
  * through, or unshadowed), and the ambient term: the one shading pass.
@@ -500,7 +540,13 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
             glUniform1f(p->lights[l].far_plane, m->far_plane);
         }
         glActiveTexture(GL_TEXTURE0);
-        render_draw_objects_receiving(f->gpu, &p->program, objects, true);
+        const scene *s = f->gpu->scene;
+        for (int i = 0; i < s->object_count; i++) {
+            if (!render_in_mask(objects, i) || !s->objects[i].receives)
+                continue;
+            glUniform1i(p->closed_outside, (GLint)shadow_map_closed_outside(r, s, k, i));
+            render_draw_object(f->gpu, &p->program, i);
+        }
     }
     render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */

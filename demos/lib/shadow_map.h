@@ -96,6 +96,10 @@
  * snap to it); see demos/shadowmap.c for the figures.
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
+ * Seen from inside a closed caster (r->closed: its welded edge table, as
+ * the volumes weigh it), a face that a light outside the mesh reaches on
+ * the eye's side is in the mesh's shadow without a read: the light came
+ * through the mesh (shaders/shadowmap.frag, shadowmap_through_closed).
  *
  * Map size (--map-size; auto, the default). Fixed sizes are as given.
  * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
@@ -351,7 +355,7 @@ typedef struct shadow_map_camera_key {
 typedef struct shadow_map_camera_program {
     render_program program;
     shadow_map_camera_key key;
-    int constant_bias, normal_offset, depth_bias;
+    int constant_bias, normal_offset, depth_bias, closed_outside;
     struct {
         int map_size, light_matrix, texel_scale, near_plane, far_plane;
     } lights[SCENE_MAX_LIGHTS];
@@ -401,6 +405,7 @@ typedef struct shadow_map_renderer {
     int object_count;                      /* the scene's, at init: the sets' size */
     bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
     float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
+    bool *closed;                          /* per object: a caster whose mesh is closed */
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
      * frame), and those light sample_light is measured at
      * (warp_samples_lit): shadow_map_light_samples. */
