@@ -96,10 +96,11 @@
  * snap to it); see demos/shadowmap.c for the figures.
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
- * Seen from inside a closed caster (r->closed: its welded edge table, as
- * the volumes weigh it), a face that a light outside the mesh reaches on
- * the eye's side is in the mesh's shadow without a read: the light came
- * through the mesh (shaders/shadowmap.frag, shadowmap_through_closed).
+ * With the eye inside a closed caster (r->closed: its welded edge table,
+ * as the volumes weigh it; the eye inside by its winding number), a face
+ * that a light outside the mesh reaches on the eye's side is in the
+ * mesh's shadow without a read: the light came through the mesh
+ * (shaders/shadowmap.frag, shadowmap_through_closed).
  *
  * Map size (--map-size; auto, the default). Fixed sizes are as given.
  * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
