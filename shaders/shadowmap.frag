@@ -23,6 +23,24 @@ uniform vec3 u_albedo;
 uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
 uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
+uniform int u_closed_outside;    // bit i: a closed caster with the eye inside it and light i outside
+
+// The triangle's own (flat) normal, on the side the eye sees: set first in
+// main, where derivatives are defined, for shadowmap_share.
+vec3 shadowmap_face_normal;
+
+// Light i reaches this fragment's face from the inside of a closed caster
+// (the eye is inside the mesh and sees the triangle's back, the light is
+// outside the mesh and on the eye's side of the face): it can only have
+// come through the mesh, which shadows it, as the reference's ray says.
+// The map cannot tell where such a face meets one that faces the light:
+// the depth between the two goes to zero at their edge and the
+// slope-scaled bias of the steeper is thicker than the mesh there (seen
+// from inside a box, a column of false light along the corner, issue 14's
+// failure 7). With the eye outside, every fragment is as it was.
+bool shadowmap_through_closed(int i, vec3 to_light) {
+    return !gl_FrontFacing && (u_closed_outside & (1 << i)) != 0 && dot(shadowmap_face_normal, to_light) > 0.0;
+}
 
 out vec4 out_color;
 
@@ -43,6 +61,9 @@ const bool shadowmap_show_texel_size = SHADOW_MAP_PASS_SHOW_TEXEL_SIZE != 0; // 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
+    shadowmap_face_normal = cross(dFdx(v_position), dFdy(v_position));
+    if (dot(shadowmap_face_normal, n) < 0.0)
+        shadowmap_face_normal = -shadowmap_face_normal;
     vec3 c = lighting_ambient(u_albedo);
     SHADOWMAP_LIGHT(0, SHADOW_MAP_LIGHT_KIND_0, SHADOW_MAP_TEXEL_KIND_0);
     SHADOWMAP_LIGHT(1, SHADOW_MAP_LIGHT_KIND_1, SHADOW_MAP_TEXEL_KIND_1);

@@ -48,7 +48,8 @@ float shadowmap_kernel_filter(SHADOWMAP_SAMPLER map, vec2 fraction, float unit) 
 // Light i's share at this fragment (normal n) where its map (texels of
 // kind texel_kind) lets it
 // through, with the lecture's overlays. Where the light adds nothing
-// unshadowed (beyond its range, outside a spot's cone, facing away) the
+// unshadowed (beyond its range, outside a spot's cone, facing away) or
+// reaches only through a closed caster (shadowmap_through_closed) the
 // filter is skipped: the share is 0 whatever it would say.
 vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
@@ -60,7 +61,8 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
     float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
     float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
     vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
-    vec3 unshadowed = lighting_unshadowed(i, v_position, n, u_albedo);
+    vec3 unshadowed =
+        shadowmap_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
     bool needed = unshadowed != vec3(0.0) || shadowmap_show_texel_size;
     float visibility =
         shadowmap_visibility(map, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y), needed);

@@ -267,7 +267,7 @@ static void test_texel_size_of_orthographic_map_on_plane(void **state) {
     camera_view_compute(&camera, (float)WIDTH / HEIGHT, &view);
     scene_light light = directional(0, -1, 0);
     warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
-    int n = warp_samples_lit(hits, warp_samples(&s, &view, WIDTH, HEIGHT, hits), &light, samples);
+    int n = warp_samples_lit(hits, warp_samples(&s, &view, WIDTH, HEIGHT, hits), &light, samples, NULL);
     assert_int_equal(n, WARP_SAMPLE_COUNT);
     mat4 map_view, projection, map;
     frustum_look_along((vec3){0, 2 * height, 0}, light.direction, map_view);

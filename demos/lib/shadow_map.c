@@ -8,6 +8,7 @@
 
 #include "depth.h"
 #include "shadow_map.h"
+#include "volume_mesh.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
 const char *const shadow_map_filters[] = {
@@ -45,7 +46,10 @@ static float shadow_map_setting(float value, float fallback) { return value != 0
 
 int shadow_map_settings_size(const shadow_map_settings *settings) { return atoi(shadow_map_sizes[settings->map_size]); }
 
-int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n) {
+int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
+                         int grazing) {
+    if (grazing > n)
+        return SHADOW_MAP_AUTO_MAX_SIZE;
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
@@ -73,7 +77,7 @@ int shadow_map_light_samples(shadow_map_renderer *r, const technique_frame *f, i
     if (r->hit_count < 0)
         r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
     if (r->sample_light != l) {
-        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples);
+        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples, &r->grazing_count);
         r->sample_light = l;
     }
     return r->sample_count;
@@ -316,6 +320,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {&p->constant_bias, "u_constant_bias"},
         {&p->normal_offset, "u_normal_offset"},
         {&p->depth_bias, "u_depth_bias"},
+        {&p->closed_outside, "u_closed_outside"},
     };
     shadow_map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on its own unit, those of lights without a map too: an
@@ -411,9 +416,10 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
     size_t n = (size_t)object_count, layers = SHADOW_MAP_MAX_LAYERS;
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
+    r->closed = calloc(n + 1, sizeof *r->closed);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes) {
+    if (!sets || !r->receiver_boxes || !r->closed) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
     }
@@ -425,10 +431,26 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
     return true;
 }
 
+/* r->closed: which casters are closed meshes (their welded edge table,
+ * as the volumes weigh them). */
+static bool shadow_map_find_closed(shadow_map_renderer *r, const scene *s) {
+    for (int i = 0; i < s->object_count; i++) {
+        mesh_edges e;
+        if (!s->objects[i].casts)
+            continue;
+        if (!volume_mesh_edges_build(&s->objects[i].mesh, &e))
+            return false;
+        r->closed[i] = e.closed;
+        mesh_edges_free(&e);
+    }
+    return true;
+}
+
 bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu) {
     shadow_map_camera_key scene_key = shadow_map_scene_key(gpu->scene, settings);
     static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
-    if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !render_program_load(&r->depth, depth_files, 2, NULL) ||
+    if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !shadow_map_find_closed(r, gpu->scene) ||
+        !render_program_load(&r->depth, depth_files, 2, NULL) ||
         /* The scene's own combination now, so that a shader that does not
          * compile fails init; the others as frames need them. */
         !shadow_map_camera_program_for(r, &scene_key) ||
@@ -464,10 +486,43 @@ void shadow_map_destroy(shadow_map_renderer *r) {
         glDeleteTextures(1, &r->maps[l].texture.id);
     free(r->needed[0]);
     free(r->receiver_boxes);
+    free(r->closed);
     memset(r, 0, sizeof *r);
 }
 
 /* ---- the camera pass ---- */
+
+/* Where the eye is inside object i, a closed caster, the lights with a
+ * map in key k that are outside it (bit l: light l), for
+ * shaders/shadowmap.frag's u_closed_outside: a face that such a light
+ * reaches on the eye's side is in the mesh's shadow. Only with the eye
+ * inside: from outside, a triangle whose back the eye sees wins the
+ * depth test at a few silhouette pixels, and the reference may see the
+ * lit front there (4 pixels of long_view_behind and of a low point light
+ * in tests/test_psm.c read shadowed). */
+static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const technique_frame *f,
+                                          const shadow_map_camera_key *k, int i) {
+    const scene *s = f->gpu->scene;
+    const float eye[4] = {f->view->eye[0], f->view->eye[1], f->view->eye[2], 1};
+    float object_eye[4];
+    if (!r->closed[i])
+        return 0;
+    volume_mesh_object_light(s->objects[i].model, eye, object_eye);
+    if (!volume_mesh_light_inside(&s->objects[i].mesh, object_eye))
+        return 0;
+    unsigned lights = 0;
+    for (int l = 0; l < s->light_count; l++) {
+        unsigned kind = shadow_map_light_field(k->kinds, l);
+        float light[4], object_light[4];
+        if (kind != SHADOW_MAP_LIGHT_2D && kind != SHADOW_MAP_LIGHT_CUBE)
+            continue;
+        scene_light_homogeneous(&s->lights[l], light);
+        volume_mesh_object_light(s->objects[i].model, light, object_light);
+        if (!volume_mesh_light_inside(&s->objects[i].mesh, object_light))
+            lights |= 1u << l;
+    }
+    return lights;
+}
 
 /* Every light on, by its kind in key k (shadowed where its map lets it
  * through, or unshadowed), and the ambient term: the one shading pass.
@@ -498,7 +553,13 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
             glUniform1f(p->lights[l].far_plane, m->far_plane);
         }
         glActiveTexture(GL_TEXTURE0);
-        render_draw_objects_receiving(f->gpu, &p->program, objects, true);
+        const scene *s = f->gpu->scene;
+        for (int i = 0; i < s->object_count; i++) {
+            if (!render_in_mask(objects, i) || !s->objects[i].receives)
+                continue;
+            glUniform1i(p->closed_outside, (GLint)shadow_map_closed_outside(r, f, k, i));
+            render_draw_object(f->gpu, &p->program, i);
+        }
     }
     render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
@@ -527,7 +588,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
         if (fitted[l] && !size) {
             int sample_count = shadow_map_light_samples(r, f, l);
-            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count));
+            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
         }
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             shadow_map_forget(&r->caches[l]);

@@ -40,14 +40,18 @@
  *
  * Fitting (shadow_map_fit.c, no GL). shadow_map_fit_uniform is
  * demos/shadowmap.c's placement and the fallback of every warp:
- *   spot         a perspective map around the cone, from the nearest
- *                caster in front of the light to the farthest receiver;
+ *   spot         a perspective map around the cone, or around the
+ *                receivers where they lie in a narrower one (the light
+ *                far from them), from the nearest caster in front of the
+ *                light to the farthest receiver; a spot wider than 85
+ *                degrees as a point light;
  *   directional  an orthographic box around the receivers seen along the
  *                light, deepened towards it to every caster whose box
  *                overlaps them seen from the light (caster selection: so
  *                casters outside the view still cast);
- *   point        a cube map, from the nearest caster to the farthest
- *                receiver.
+ *   point        one perspective map around the receivers where they lie
+ *                in a cone of at most 45 degrees, else a cube map, from
+ *                the nearest caster to the farthest receiver.
  * A fit fills the map's kind, layer matrices, depth range (for the inset
  * and the HUD), texel_kind / texel_scale (how the camera pass finds a
  * texel's world size, which the constant and normal-offset biases are
@@ -92,6 +96,11 @@
  * snap to it); see demos/shadowmap.c for the figures.
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
+ * With the eye inside a closed caster (r->closed: its welded edge table,
+ * as the volumes weigh it; the eye inside by its winding number), a face
+ * that a light outside the mesh reaches on the eye's side is in the
+ * mesh's shadow without a read: the light came through the mesh
+ * (shaders/shadowmap.frag, shadowmap_through_closed).
  *
  * Map size (--map-size; auto, the default). Fixed sizes are as given.
  * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
@@ -100,7 +109,8 @@
  * of pixels cast onto the receivers' boxes, the same measure psm judges
  * its warps by; samples beyond the light's range or outside the map left out) and
  * takes the smallest power of two from 256 to 4096 at which a texel
- * covers at most about one pixel on average (shadow_map_auto_size):
+ * covers at most about one pixel on average (shadow_map_auto_size; the
+ * largest where most receivers seen are edge-on to the light):
  * shadows no sharper than the pixels that show them, and no depth pass
  * larger than that needs. At 1280x720 that is 2048 on simple, bunny and
  * teapot, 4096 (the cap) on long_view and the city, half as much in a
@@ -346,7 +356,7 @@ typedef struct shadow_map_camera_key {
 typedef struct shadow_map_camera_program {
     render_program program;
     shadow_map_camera_key key;
-    int constant_bias, normal_offset, depth_bias;
+    int constant_bias, normal_offset, depth_bias, closed_outside;
     struct {
         int map_size, light_matrix, texel_scale, near_plane, far_plane;
     } lights[SCENE_MAX_LIGHTS];
@@ -396,11 +406,13 @@ typedef struct shadow_map_renderer {
     int object_count;                      /* the scene's, at init: the sets' size */
     bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
     float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
+    bool *closed;                          /* per object: a caster whose mesh is closed */
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
      * frame), and those light sample_light is measured at
      * (warp_samples_lit): shadow_map_light_samples. */
     warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
     int hit_count, sample_count, sample_light;
+    int grazing_count; /* of sample_light's: the hits left out as edge-on to it */
 } shadow_map_renderer;
 
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
@@ -433,8 +445,17 @@ int shadow_map_settings_size(const shadow_map_settings *settings);
  * SHADOW_MAP_AUTO_*): a texel's size on screen scales as 1 / size, so the
  * mean at m->size gives the size at which it is TEXEL_PIXELS, rounded up
  * to a power of two. Samples beyond the light's range (it lights nothing
- * there) and outside the map are not measured. */
-int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n);
+ * there) and outside the map are not measured. Where more of the samples
+ * were left out as edge-on to the light (`grazing`, warp_samples_lit)
+ * than measured, the faces measured are not where its shadows are seen:
+ * on those faces every texel is unboundedly long and only its width
+ * across the light can shrink, so the map takes the most texels, MAX (a
+ * sun 0.1 degrees above the ground, measured on the casters' sides alone,
+ * got 256, texels a tenth of a unit across, and every long shadow edge
+ * on the ground followed one texel's rounding: 0.57 % misclassified;
+ * tests/data/shadowmap_grazing_sun.json). */
+int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
+                         int grazing);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
 

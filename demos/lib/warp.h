@@ -133,10 +133,10 @@ bool warp_lispsm(const scene_light *l, const warp_view *v, const float (*points)
 int warp_samples(const scene *s, const camera_view *view, int width, int height, warp_sample *out);
 /* Those of the n samples that light l's map is measured at, into `out`
  * (room for n); returns how many. Faces nearly edge-on to l
- * (WARP_GRAZING_SINE) are left out, faces turned away count (boxes stand
- * for surfaces that may well face the light), and outside a spot's cone
- * the cone decides, not the map. */
-int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out);
+ * (WARP_GRAZING_SINE) are left out (how many, in *grazing unless NULL),
+ * faces turned away count (boxes stand for surfaces that may well face
+ * the light), and outside a spot's cone the cone decides, not the map. */
+int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out, int *grazing);
 /* The size in pixels of a texel of a size x size map at one sample (on the
  * sample's face, the square root of a pixel's area over a texel's):
  * INFINITY outside the map, NAN where it cannot be measured (the face

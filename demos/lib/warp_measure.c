@@ -103,8 +103,8 @@ int warp_samples(const scene *s, const camera_view *view, int width, int height,
     return n;
 }
 
-int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out) {
-    int kept = 0;
+int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out, int *grazing) {
+    int kept = 0, edge_on = 0;
     for (int i = 0; i < n; i++) {
         const warp_sample *sample = &samples[i];
         vec3 to_light;
@@ -112,13 +112,16 @@ int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, wa
             glm_vec3_negate_to((float *)l->direction, to_light);
         else
             glm_vec3_sub((float *)l->position, (float *)sample->position, to_light);
-        if (!(fabsf(glm_vec3_dot((float *)sample->normal, to_light)) > WARP_GRAZING_SINE * glm_vec3_norm(to_light)))
-            continue;
         if (l->type == SCENE_LIGHT_SPOT && -glm_vec3_dot(to_light, (float *)l->direction) <
                                                cosf(glm_rad(l->outer_angle_deg)) * glm_vec3_norm(to_light))
             continue;
-        out[kept++] = *sample;
+        if (!(fabsf(glm_vec3_dot((float *)sample->normal, to_light)) > WARP_GRAZING_SINE * glm_vec3_norm(to_light)))
+            edge_on++;
+        else
+            out[kept++] = *sample;
     }
+    if (grazing)
+        *grazing = edge_on;
     return kept;
 }
 
