@@ -4,17 +4,14 @@
 // through this pixel's centre meets the triangle's plane, instead of the
 // rasterizer's interpolation from corners far away. Everything is
 // relative to the eye, in the world's axes or the view's.
+#include "eye_ray.glsl"
 uniform samplerBuffer u_planes; // per triangle: unit normal, the eye's distance along it
-uniform mat3 u_view_rotation;   // world axes -> view axes
-uniform vec4 u_ray;             // 1 / projection[0][0], 1 / projection[1][1], projection[2][0], projection[2][1]
 uniform mat4 u_projection;      // the raster's: standard or reversed depth (common/gl/depth.h)
 uniform bool u_zero_to_one;     // reversed depth's clip control: window depth is clip z / w
-uniform vec4 u_viewport;        // x, y, width, height
 
 void main() {
     vec4 plane = texelFetch(u_planes, gl_PrimitiveID);
-    vec2 ndc = 2.0 * (gl_FragCoord.xy - u_viewport.xy) / u_viewport.zw - 1.0;
-    vec3 ray = vec3((ndc + u_ray.zw) * u_ray.xy, -1.0); // view space, to the near plane's z = -1
+    vec3 ray = eye_ray_view();
     float t = plane.w / dot(plane.xyz, transpose(u_view_rotation) * ray);
     if (!(t > 0.0) || isinf(t)) { // edge-on, or a triangle with no normal: what the rasterizer has
         gl_FragDepth = gl_FragCoord.z;

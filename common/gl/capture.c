@@ -66,11 +66,13 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
         depth_use_camera(view); /* the nearest surface, as the frame's depth test finds it */
         render_program_use(&program, view);
         glUniform3fv(glGetUniformLocation(program.id, "u_eye"), 1, view->eye);
-        int object = glGetUniformLocation(program.id, "u_object");
+        render_eye_ray_uniforms(program.id, view, out->width, out->height);
+        int object = glGetUniformLocation(program.id, "u_object"), exact = glGetUniformLocation(program.id, "u_exact");
         /* Every object, never the frame's culling: the dump's geometry is
          * the scene's, the ground truth that culling is checked against. */
         for (int i = 0; i < gpu->scene->object_count; i++) {
             glUniform1f(object, (float)i);
+            glUniform1i(exact, render_object_huge(gpu, i, view->eye));
             render_draw_object(gpu, &program, i);
         }
         capture_read_floats(GL_COLOR_ATTACHMENT0, out->width, out->height, normal_distance);

@@ -1,6 +1,7 @@
 #include "render.h"
 
 #include <glad/gl.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -97,6 +98,52 @@ int render_cull_view(render_scene *r, const camera_view *v, const render_skips *
     return count;
 }
 
+/* Corner k of triangle t of object o, in world space, in double. */
+static void render_corner(const scene_object *o, uint32_t t, int k, double out[3]) {
+    const float *p = o->mesh.vertices[o->mesh.indices[3 * t + (uint32_t)k]].position;
+    for (int row = 0; row < 3; row++)
+        out[row] = (double)o->model[0][row] * p[0] + (double)o->model[1][row] * p[1] +
+                   (double)o->model[2][row] * p[2] + (double)o->model[3][row];
+}
+
+static float render_longest_edge(const scene_object *o) {
+    double longest = 0;
+    for (uint32_t t = 0; t < o->mesh.index_count / 3; t++) {
+        double v[3][3];
+        for (int k = 0; k < 3; k++)
+            render_corner(o, t, k, v[k]);
+        for (int k = 0; k < 3; k++) {
+            const double *a = v[k], *b = v[(k + 1) % 3];
+            longest = fmax(longest, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                         (a[2] - b[2]) * (a[2] - b[2])));
+        }
+    }
+    return (float)longest;
+}
+
+bool render_object_huge(const render_scene *r, int object, const float eye[3]) {
+    float lo[3], hi[3];
+    scene_object_world_bounds(&r->scene->objects[object], lo, hi);
+    double squared = 0;
+    for (int c = 0; c < 3; c++) {
+        double outside = fmax(fmax((double)lo[c] - eye[c], (double)eye[c] - hi[c]), 0);
+        squared += outside * outside;
+    }
+    double reach = RENDER_HUGE_RATIO * fmax(sqrt(squared), r->scene->camera.near_plane);
+    return r->meshes[object].longest_edge > reach;
+}
+
+void render_eye_ray_uniforms(unsigned program, const camera_view *v, int width, int height) {
+    float rotation[3][3];
+    for (int c = 0; c < 3; c++)
+        for (int row = 0; row < 3; row++)
+            rotation[c][row] = v->view[c][row];
+    glUniformMatrix3fv(glGetUniformLocation(program, "u_view_rotation"), 1, GL_FALSE, (const float *)rotation);
+    glUniform4f(glGetUniformLocation(program, "u_ray"), 1 / v->projection[0][0], 1 / v->projection[1][1],
+                v->projection[2][0], v->projection[2][1]);
+    glUniform4f(glGetUniformLocation(program, "u_viewport"), 0, 0, (float)width, (float)height);
+}
+
 static void render_mesh_upload(render_mesh *g, const scene_object *o) {
     const mesh *m = &o->mesh;
     glGenVertexArrays(1, &g->vao);
@@ -116,6 +163,7 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
     glBindVertexArray(0);
     g->index_count = (int)m->index_count;
     scene_object_normal_matrix(o, g->normal_matrix);
+    g->longest_edge = render_longest_edge(o);
 }
 
 bool render_scene_create(render_scene *r, const scene *s) {

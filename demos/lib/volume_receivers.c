@@ -20,40 +20,20 @@ static void volume_receivers_corner(const scene_object *o, uint32_t t, int k, do
                    (double)o->model[2][row] * p[2] + (double)o->model[3][row];
 }
 
-static double volume_receivers_distance(const double a[3], const double b[3]) {
-    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
-
-static float volume_receivers_longest_edge(const scene_object *o) {
-    double longest = 0;
-    for (uint32_t t = 0; t < o->mesh.index_count / 3; t++) {
-        double v[3][3];
-        for (int k = 0; k < 3; k++)
-            volume_receivers_corner(o, t, k, v[k]);
-        for (int k = 0; k < 3; k++)
-            longest = fmax(longest, volume_receivers_distance(v[k], v[(k + 1) % 3]));
-    }
-    return (float)longest;
-}
-
 bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
     static const char *const files[] = {"lit.vert", "volume_receiver_depth.frag"};
     if (!render_program_load(&r->program, files, (int)(sizeof files / sizeof *files), NULL))
         return false;
-    r->rotation = glGetUniformLocation(r->program.id, "u_view_rotation");
-    r->ray = glGetUniformLocation(r->program.id, "u_ray");
     r->projection = glGetUniformLocation(r->program.id, "u_projection");
     r->zero_to_one = glGetUniformLocation(r->program.id, "u_zero_to_one");
-    r->viewport = glGetUniformLocation(r->program.id, "u_viewport");
     r->planes = glGetUniformLocation(r->program.id, "u_planes");
     const scene *s = gpu->scene;
     size_t objects = (size_t)s->object_count;
     r->object_count = s->object_count;
-    r->longest_edge = calloc(objects, sizeof *r->longest_edge);
     r->buffers = calloc(objects, sizeof *r->buffers);
     r->textures = calloc(objects, sizeof *r->textures);
     r->huge = calloc(objects, sizeof *r->huge);
-    if (!r->longest_edge || !r->buffers || !r->textures || !r->huge) {
+    if (!r->buffers || !r->textures || !r->huge) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
@@ -63,9 +43,9 @@ bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
         uint32_t triangles = o->mesh.index_count / 3;
-        r->longest_edge[i] = volume_receivers_longest_edge(o);
         /* Never huge: even at the near plane no edge is long enough. */
-        if (r->longest_edge[i] <= VOLUME_RECEIVERS_RATIO * s->camera.near_plane || triangles > (uint32_t)max_texels)
+        if (gpu->meshes[i].longest_edge <= RENDER_HUGE_RATIO * s->camera.near_plane ||
+            triangles > (uint32_t)max_texels)
             continue;
         glGenBuffers(1, &r->buffers[i]);
         glBindBuffer(GL_TEXTURE_BUFFER, r->buffers[i]);
@@ -92,7 +72,6 @@ void volume_receivers_destroy(volume_receivers *r) {
         glDeleteTextures(1, &r->textures[i]);
     }
     render_program_destroy(&r->program);
-    free(r->longest_edge);
     free(r->buffers);
     free(r->textures);
     free(r->huge);
@@ -132,18 +111,6 @@ static void volume_receivers_planes(const volume_receivers *r, const scene_objec
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
 }
 
-/* The distance from `eye` to the world box of o. */
-static double volume_receivers_box_distance(const scene_object *o, const double eye[3]) {
-    float lo[3], hi[3];
-    scene_object_world_bounds(o, lo, hi);
-    double squared = 0;
-    for (int c = 0; c < 3; c++) {
-        double outside = fmax(fmax(lo[c] - eye[c], eye[c] - hi[c]), 0);
-        squared += outside * outside;
-    }
-    return sqrt(squared);
-}
-
 int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
     const scene *s = f->gpu->scene;
     const double eye[3] = {f->view->eye[0], f->view->eye[1], f->view->eye[2]};
@@ -151,8 +118,7 @@ int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
     int count = 0;
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
-        double reach = VOLUME_RECEIVERS_RATIO * fmax(volume_receivers_box_distance(o, eye), s->camera.near_plane);
-        r->huge[i] = r->buffers[i] && render_in_mask(f->in_view, i) && r->longest_edge[i] > reach;
+        r->huge[i] = r->buffers[i] && render_in_mask(f->in_view, i) && render_object_huge(f->gpu, i, f->view->eye);
         count += r->huge[i];
         /* Every candidate's, so that one huge only later has its planes. */
         if (r->buffers[i] && moved)
@@ -169,15 +135,9 @@ int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
 static void volume_receivers_use(const volume_receivers *r, const technique_frame *f) {
     const camera_view *v = f->view;
     render_program_use(&r->program, v);
-    float rotation[3][3];
-    for (int c = 0; c < 3; c++)
-        for (int row = 0; row < 3; row++)
-            rotation[c][row] = v->view[c][row];
-    glUniformMatrix3fv(r->rotation, 1, GL_FALSE, (const float *)rotation);
-    glUniform4f(r->ray, 1 / v->projection[0][0], 1 / v->projection[1][1], v->projection[2][0], v->projection[2][1]);
+    render_eye_ray_uniforms(r->program.id, v, f->width, f->height);
     glUniformMatrix4fv(r->projection, 1, GL_FALSE, (const float *)v->raster_projection);
     glUniform1i(r->zero_to_one, v->reversed_depth);
-    glUniform4f(r->viewport, 0, 0, (float)f->width, (float)f->height);
     glUniform1i(r->planes, VOLUME_RECEIVERS_UNIT);
 }
 

@@ -13,9 +13,8 @@
  * tessellated near the eye 0. By the ground's size: 3e3, 0.007 %; 1e4,
  * 0.014 %; 3e4, 0.19 %.
  *
- * An object in view is huge this frame when its longest triangle edge
- * exceeds VOLUME_RECEIVERS_RATIO times the distance from the eye to its
- * world box (at least the near plane's). For the counting,
+ * An object in view is huge this frame as render_object_huge says
+ * (render.h: its longest edge against its box's distance from the eye). For the counting,
  * volume_receivers_depth draws the depth of every object in view, the
  * huge ones through volume_receiver_depth.frag: lit.vert as the depth
  * pre-pass has it (the same pixels), each fragment's depth where the eye
@@ -39,18 +38,11 @@
 
 #include "technique.h"
 
-/* Longest edge over distance from the eye past which an object's depth is
- * computed exactly: measured above, grounds up to a ratio of 700 (3e3
- * across) stay within the volumes' bound (0.01 %), from 2400 (1e4) they
- * do not; the standard scenes' largest, long_view's, is 786. */
-#define VOLUME_RECEIVERS_RATIO 1024.0
-
 /* Zero is an unmade one. */
 typedef struct volume_receivers {
     render_program program; /* lit.vert, volume_receiver_depth.frag */
-    int rotation, ray, projection, zero_to_one, viewport, planes; /* its uniforms */
+    int projection, zero_to_one, planes; /* its own uniforms (and eye_ray.glsl's) */
     int object_count;
-    float *longest_edge; /* per object, in world units */
     unsigned *buffers, *textures; /* per object: its planes; 0 where it can never be huge */
     bool *huge;          /* per object, this frame */
     float *scratch;      /* the planes of the largest candidate, 4 floats a triangle */
