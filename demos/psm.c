@@ -186,10 +186,19 @@ static void psm_destroy(void) {
 
 static void psm_render(const technique_frame *f) {
     shadow_map_render(&psm.maps, &psm.settings, f, psm_fit);
-    /* Light 0's warp space, with the map in use placed in it. */
+    /* Light 0's warp space, with the map in use placed in it; where the
+     * uniform map is in use (asked for, or the warp did not pay), its own
+     * clip space, the map's frustum the unit cube there: how the scene
+     * fills a map nothing warps, to set beside the warps'. A cube map has
+     * no one space: nothing is drawn. */
     const warp_result *w = &psm.choice[0].result;
-    if (psm.settings.overlay == PSM_OVERLAY_POST_PERSPECTIVE && w->has_space)
-        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, w->space, psm.maps.maps[0].layer_view_projection[0]);
+    const shadow_map *m = &psm.maps.maps[0];
+    if (psm.settings.overlay != PSM_OVERLAY_POST_PERSPECTIVE)
+        return;
+    if (w->has_space)
+        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, w->space, m->layer_view_projection[0]);
+    else if (m->kind == SHADOW_MAP_2D)
+        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, m->layer_view_projection[0], m->layer_view_projection[0]);
 }
 
 static void psm_describe(char *out, size_t size) {

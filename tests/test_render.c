@@ -306,6 +306,17 @@ static void test_psm_texel_size_shows(void **state) {
     assert_true(compare_with_golden("psm_long_view", "psm_texel_size_long_view") > SUPPORT_MAX_DIFFERING);
 }
 
+/* The post-perspective view draws for the uniform map too (its own clip
+ * space), not only for the warps. */
+static void test_post_perspective_shows_for_uniform(void **state) {
+    (void)state;
+    render_with("psm", "egl", "assets/scenes/long_view.json", "--warp uniform", "psm_uniform_long_view");
+    render_with("psm", "egl", "assets/scenes/long_view.json", "--warp uniform --overlay post-perspective",
+                "psm_uniform_post_perspective_long_view");
+    assert_true(support_compare_images("out/test/psm_uniform_long_view.png",
+                                       "out/test/psm_uniform_post_perspective_long_view.png") > SUPPORT_MAX_DIFFERING);
+}
+
 /* Each shadow-volume overlay draws into the picture. */
 static void test_volumes_overlays_show(void **state) {
     (void)state;
@@ -417,6 +428,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_each_fix_shows_when_off),
         cmocka_unit_test(test_shadowmap_without_bias_shows_acne),
         cmocka_unit_test(test_psm_texel_size_shows),
+        cmocka_unit_test(test_post_perspective_shows_for_uniform),
         cmocka_unit_test(test_volumes_overlays_show),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
