@@ -24,6 +24,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image.h"
+#include "path.h"
 #include "registry.h"
 #include "support.h"
 
@@ -349,6 +351,59 @@ static void test_window_matches_golden(void **state) {
 /* The gallery writes every technique's picture of each scene, under the
  * name of its golden case where it has one, and that case's golden is
  * what it shows; a technique's lecture picture shows its overlay. */
+/* The share of a page's screenshot that is not the page's background
+ * (#15171c): its pictures, where they loaded. */
+#define GALLERY_PAGE_BACKGROUND 0x15, 0x17, 0x1c
+#define GALLERY_PAGE_MIN_PICTURE_SHARE 0.3
+
+/* out/test/gallery/index.html shows every picture of the gallery beside
+ * its scene's reference and, measured, its heat map and figures; in
+ * Chromium (headless) the pictures load and fill the page. */
+static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
+    char *html = path_read_text("out/test/gallery/index.html", 1 << 20, NULL);
+    assert_non_null(html);
+    int measured = 0, expected_measured = 0;
+    for (const char *c = html; (c = strstr(c, "misclassified ")); c++)
+        measured++;
+    for (int t = 0; t < registry_technique_count; t++) {
+        const technique *tech = registry_techniques[t];
+        for (size_t s = 0; s < scene_count; s++) {
+            char needle[256];
+            const char *const kinds[][2] = {{"_", ".png"}, {"_", "_heatmap.png"}, {GOLDEN_LECTURE, ".png"}};
+            for (int k = 0; k < (tech->gallery_config ? 3 : 2); k++) {
+                snprintf(needle, sizeof needle, "src=\"%s%s%s%s\"", tech->name, kinds[k][0], scenes[s], kinds[k][1]);
+                if (!strstr(html, needle))
+                    fail_msg("index.html has no %s", needle);
+            }
+            snprintf(needle, sizeof needle, "src=\"reference_%s.png\"", scenes[s]);
+            assert_non_null(strstr(html, needle));
+            expected_measured++;
+        }
+    }
+    free(html);
+    assert_int_equal(measured, expected_measured);
+    if (!support_have_command("chromium")) {
+        fprintf(stderr, "    chromium is not installed here: the page is not opened\n");
+        return;
+    }
+    char command[1024];
+    snprintf(command, sizeof command,
+             "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,1800 "
+             "--screenshot=out/test/gallery_page.png \"file://$PWD/out/test/gallery/index.html\" >/dev/null 2>&1");
+    assert_int_equal(system(command), 0);
+    int width, height;
+    unsigned char *rgba = image_read_png("out/test/gallery_page.png", &width, &height);
+    assert_non_null(rgba);
+    static const unsigned char background[3] = {GALLERY_PAGE_BACKGROUND};
+    long other = 0;
+    for (long i = 0; i < (long)width * height; i++)
+        other += memcmp(rgba + i * 4, background, 3) != 0;
+    free(rgba);
+    fprintf(stderr, "    the gallery's page in Chromium: %.0f %% of it pictures and text\n",
+            100.0 * (double)other / ((double)width * height));
+    assert_true((double)other > GALLERY_PAGE_MIN_PICTURE_SHARE * width * height);
+}
+
 static void test_gallery_writes_every_technique(void **state) {
     (void)state;
     static const char *const scenes[] = {"simple", "teapot"};
@@ -384,6 +439,7 @@ static void test_gallery_writes_every_technique(void **state) {
             }
         }
     }
+    expect_gallery_page(scenes, sizeof scenes / sizeof *scenes);
 }
 
 /* --record [NAME...]: each case, or the named ones, on EGL into its golden. */

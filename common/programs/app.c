@@ -12,11 +12,14 @@
 #include "context.h"
 #include "depth.h"
 #include "flags.h"
+#include "gallery_page.h"
 #include "hud.h"
 #include "image.h"
 #include "motion.h"
 #include "path.h"
+#include "raytrace.h"
 #include "shader.h"
+#include "shadowdiff.h"
 #include "target.h"
 #include "video.h"
 
@@ -287,41 +290,112 @@ static bool app_run_headless(int frames, const char *screenshot) {
     return !screenshot || app_save_screenshot(screenshot);
 }
 
+/* The gallery's page rows: one a picture, at most every technique's two
+ * (its own and its lecture picture) on every scene. */
+#define APP_GALLERY_MAX_ROWS (2 * APP_MAX_TECHNIQUES * APP_MAX_GALLERY_SCENES)
+
+/* Light 0's decisions of the running technique against `reference`: the
+ * row's figures, and the heat map into DIR/STEM_heatmap.png. A frame
+ * shadowdiff can say nothing of stays unmeasured on the page. */
+static bool app_gallery_measure(const dump_frame *reference, const char *dir, const char *stem,
+                                gallery_page_row *row) {
+    camera_view view;
+    dump_frame dump;
+    app_view(&view);
+    if (!capture_dump(&app.gpu, &view, &app.target, 0, app_render_frame, &dump))
+        return false;
+    unsigned char *heatmap = malloc((size_t)dump.width * (size_t)dump.height * 4);
+    shadowdiff_result r;
+    bool ok = heatmap != NULL;
+    row->measured = ok && shadowdiff_compare(reference, &dump, NULL, &r, heatmap);
+    if (row->measured) {
+        char path[PATH_MAX];
+        snprintf(row->heatmap, sizeof row->heatmap, "%s_heatmap.png", stem);
+        snprintf(path, sizeof path, "%s/%s", dir, row->heatmap);
+        ok = image_write_png(path, dump.width, dump.height, heatmap);
+        row->misclassified_percent = r.misclassified_percent;
+        row->mean_abs_error = r.mean_abs_error;
+        row->compared = r.compared;
+    }
+    if (!heatmap)
+        fprintf(stderr, "%s: out of memory for a heat map\n", dir);
+    free(heatmap);
+    dump_frame_free(&dump);
+    return ok;
+}
+
+/* One picture of technique t on the loaded scene (its lecture picture
+ * with `config`), to DIR/STEM.png, and its row. */
+static bool app_gallery_picture(int t, const char *config, const char *stem, const char *scene_name,
+                                const dump_frame *reference, const char *reference_file, gallery_page_row *row) {
+    const char *dir = app.gallery[0];
+    const technique *tech = app.techniques[t];
+    char path[PATH_MAX];
+    *row = (gallery_page_row){0};
+    snprintf(row->technique, sizeof row->technique, "%s", tech->name);
+    snprintf(row->flags, sizeof row->flags, "%s", config ? config : "");
+    snprintf(row->scene, sizeof row->scene, "%s", scene_name);
+    snprintf(row->picture, sizeof row->picture, "%s.png", stem);
+    snprintf(row->reference, sizeof row->reference, "%s", reference_file);
+    snprintf(path, sizeof path, "%s/%s", dir, row->picture);
+    bool ok = (!config || technique_apply_config(tech, config)) && app_start_technique(t) &&
+              app_run_headless(1, path);
+    /* A lecture picture's overlays are drawn over its decisions. */
+    ok = ok && (config || app_gallery_measure(reference, dir, stem, row));
+    technique_host_stop(&app.host);
+    ok = (!config || technique_apply_config(tech, "")) && ok;
+    if (ok)
+        printf("%s\n", path);
+    return ok;
+}
+
+/* Every technique (or --technique's) on every scene, each picture beside
+ * the reference's and its heat map on DIR/index.html. */
 static bool app_run_gallery(void) {
     const char *dir = app.gallery[0];
     if (!path_make_directories(dir))
         return false;
     int first = app.technique_given ? app.current : 0;
     int end = app.technique_given ? app.current + 1 : app.technique_count;
-    for (int s = 1; s < app.gallery_count; s++) {
+    gallery_page_row *rows = malloc(APP_GALLERY_MAX_ROWS * sizeof *rows);
+    if (!rows) {
+        fprintf(stderr, "%s: out of memory for the gallery's page\n", dir);
+        return false;
+    }
+    int row_count = 0;
+    bool ok = true;
+    for (int s = 1; s < app.gallery_count && ok; s++) {
         const char *scene_path = app.gallery[s];
-        if (!app_load_scene(scene_path))
-            return false;
-        bool ok = true;
+        if (!app_load_scene(scene_path)) {
+            ok = false;
+            break;
+        }
+        char name[GALLERY_PAGE_NAME_MAX / 2], reference_file[GALLERY_PAGE_NAME_MAX], path[PATH_MAX];
+        path_stem(scene_path, name, sizeof name);
+        snprintf(reference_file, sizeof reference_file, "reference_%s.png", name);
+        snprintf(path, sizeof path, "%s/%s", dir, reference_file);
+        const raytrace_settings settings = {.scene_name = scene_path};
+        dump_frame reference = {0};
+        ok = raytrace_render(&app.scene, app.target.width, app.target.height, 0, &settings, &reference);
+        ok = ok && image_write_png(path, reference.width, reference.height, reference.color);
         for (int t = first; t < end && ok; t++) {
-            char name[256], path[PATH_MAX];
-            path_stem(scene_path, name, sizeof name);
-            snprintf(path, sizeof path, "%s/%s_%s.png", dir, app.techniques[t]->name, name);
-            ok = app_start_technique(t) && app_run_headless(1, path);
-            technique_host_stop(&app.host);
-            if (ok)
-                printf("%s\n", path);
-            const technique *lecture = app.techniques[t];
-            if (ok && lecture->gallery_config) {
-                snprintf(path, sizeof path, "%s/%s-lecture_%s.png", dir, lecture->name, name);
-                ok = technique_apply_config(lecture, lecture->gallery_config) && app_start_technique(t) &&
-                     app_run_headless(1, path);
-                technique_host_stop(&app.host);
-                ok = technique_apply_config(lecture, "") && ok;
-                if (ok)
-                    printf("%s\n", path);
+            const technique *tech = app.techniques[t];
+            char stem[GALLERY_PAGE_NAME_MAX];
+            snprintf(stem, sizeof stem, "%s_%s", tech->name, name);
+            ok = app_gallery_picture(t, NULL, stem, name, &reference, reference_file, &rows[row_count++]);
+            if (ok && tech->gallery_config) {
+                snprintf(stem, sizeof stem, "%s-lecture_%s", tech->name, name);
+                ok = app_gallery_picture(t, tech->gallery_config, stem, name, &reference, reference_file,
+                                         &rows[row_count++]);
             }
         }
+        if (reference.width)
+            dump_frame_free(&reference);
         app_unload_scene();
-        if (!ok)
-            return false;
     }
-    return true;
+    ok = ok && gallery_page_write(dir, rows, row_count);
+    free(rows);
+    return ok;
 }
 
 /* The skips' state for the HUD and --verbose: each one's key, whether it

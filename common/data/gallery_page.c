@@ -1,0 +1,82 @@
+#include "gallery_page.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <string.h>
+
+/* text with &, <, > and " escaped, as HTML wants in content and attributes. */
+static void gallery_page_text(FILE *f, const char *text) {
+    for (const char *c = text; *c; c++) {
+        switch (*c) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        default: fputc(*c, f);
+        }
+    }
+}
+
+static void gallery_page_image(FILE *f, const char *file, const char *caption) {
+    fputs("<figure><img src=\"", f);
+    gallery_page_text(f, file);
+    fputs("\" alt=\"", f);
+    gallery_page_text(f, caption);
+    fputs("\"><figcaption>", f);
+    gallery_page_text(f, caption);
+    fputs("</figcaption></figure>", f);
+}
+
+bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count) {
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/index.html", dir);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "%s: cannot write: %s\n", path, strerror(errno));
+        return false;
+    }
+    fputs("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Shadows: the gallery</title>\n"
+          "<style>body{font-family:sans-serif;background:#15171c;color:#e8e8e8;margin:1em}"
+          "section{margin:0 0 2em}h2{font-size:1.1em;margin:.4em 0}"
+          "figure{display:inline-block;margin:0 .5em .5em 0;vertical-align:top}"
+          "img{width:32em;max-width:30vw;display:block}figcaption{font-size:.85em;color:#aaa}"
+          "table.figures{border-collapse:collapse;margin:.2em 0}"
+          "table.figures td{padding:0 1em 0 0}</style></head>\n<body>\n<h1>Shadows: the gallery</h1>\n"
+          "<p>Each technique's picture beside the ray-traced reference of the same view and shadowdiff's heat "
+          "map (red: shadowed where the truth is lit; blue: lit where it is shadowed), with its figures for "
+          "light 0.</p>\n",
+          f);
+    for (int i = 0; i < count; i++) {
+        const gallery_page_row *r = &rows[i];
+        fputs("<section><h2>", f);
+        gallery_page_text(f, r->technique);
+        fputs(" on ", f);
+        gallery_page_text(f, r->scene);
+        if (r->flags[0]) {
+            fputs(" <code>", f);
+            gallery_page_text(f, r->flags);
+            fputs("</code>", f);
+        }
+        fputs("</h2>\n", f);
+        if (r->measured)
+            fprintf(f,
+                    "<table class=\"figures\"><tr><td>misclassified %.4f %%</td><td>mean absolute error %.5f</td>"
+                    "<td>%ld pixels compared</td></tr></table>\n",
+                    r->misclassified_percent, r->mean_abs_error, r->compared);
+        else
+            fputs("<p>a lecture picture: its overlays are drawn over the decisions, so it is not measured</p>\n", f);
+        gallery_page_image(f, r->picture, r->technique);
+        gallery_page_image(f, r->reference, "reference (ray traced)");
+        if (r->measured)
+            gallery_page_image(f, r->heatmap, "heat map");
+        fputs("\n</section>\n", f);
+    }
+    fputs("</body></html>\n", f);
+    if (ferror(f) | (fclose(f) != 0)) {
+        fprintf(stderr, "%s: cannot write: %s\n", path, strerror(errno));
+        return false;
+    }
+    printf("%s\n", path);
+    return true;
+}

@@ -1,0 +1,27 @@
+/* gallery_page: the gallery's index.html, one row per picture: what made
+ * it (technique, flags, scene), its figures against the ray-traced
+ * reference (shadowdiff's: misclassified %, mean absolute error, pixels
+ * compared), and the picture beside the reference's and the heat map
+ * (false shadow red, false lit blue). Pictures are named relative to the
+ * page, which lives in the same directory. Plain HTML and CSS: it opens
+ * from the file system in any browser, nothing loaded from elsewhere.
+ */
+#ifndef GALLERY_PAGE_H
+#define GALLERY_PAGE_H
+
+#include <stdbool.h>
+
+#define GALLERY_PAGE_NAME_MAX 256
+
+typedef struct gallery_page_row {
+    char technique[GALLERY_PAGE_NAME_MAX], flags[GALLERY_PAGE_NAME_MAX], scene[GALLERY_PAGE_NAME_MAX];
+    char picture[GALLERY_PAGE_NAME_MAX], reference[GALLERY_PAGE_NAME_MAX], heatmap[GALLERY_PAGE_NAME_MAX];
+    bool measured; /* else the figures and the heat map are left out (a lecture picture's overlays) */
+    double misclassified_percent, mean_abs_error;
+    long compared;
+} gallery_page_row;
+
+/* Writes DIR/index.html; false after printing why. */
+bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count);
+
+#endif
