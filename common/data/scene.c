@@ -256,15 +256,9 @@ static void scene_report_mesh_error(const char *name, const char *problem, void 
 
 /* Model paths are relative to the scene file's folder, unless absolute. */
 static bool scene_load_model(const char *file, const char *path, mesh *m) {
-    const char *slash = strrchr(file, '/');
-    int folder_length = path[0] == '/' || !slash ? 0 : (int)(slash - file + 1);
-    size_t size = (size_t)folder_length + strlen(path) + 1;
-    char *resolved = malloc(size);
-    if (!resolved) return json_fail(file, "", NULL, "out of memory");
-    snprintf(resolved, size, "%.*s%s", folder_length, file, path);
-    bool loaded = mesh_load_file(m, resolved);
-    free(resolved);
-    return loaded;
+    char resolved[PATH_MAX];
+    if (!path_beside(file, path, resolved, sizeof resolved)) return json_fail(file, "", NULL, "model path too long");
+    return mesh_load_file(m, resolved);
 }
 
 static bool scene_build_mesh(const char *file, const cJSON *json, const char *where, const char *object_where,
