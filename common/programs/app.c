@@ -328,10 +328,10 @@ static bool app_load_tour(void) {
                     s->technique, expected);
             return false;
         }
-        if (!technique_apply_config(app.techniques[t], s->flags)) {
-            fprintf(stderr, "%s: steps[%d].flags: see above\n", app.tour_path, k);
+        char who[PATH_MAX + 64];
+        snprintf(who, sizeof who, "%s: steps[%d].flags: %s", app.tour_path, k, s->technique);
+        if (!technique_apply_config_as(app.techniques[t], s->flags, who))
             return false;
-        }
         if (!technique_apply_config(app.techniques[t], ""))
             return false;
     }
