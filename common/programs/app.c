@@ -715,7 +715,8 @@ static bool app_run(void) {
     } else if (ok && app.tour_path) {
         ok = !app.record_path || app_start_recording();
         if (ok && app.ctx.window)
-            ok = app_enter_step(0) && app_run_window(app.frames) && !app.tour_failed;
+            ok = app_enter_step(0) && app_run_window(app.frames) && !app.tour_failed &&
+                 (!app.screenshot || app_step_screenshot(app.tour_step));
         else if (ok)
             ok = app_run_tour_headless();
         ok = app_stop_recording() && ok;
