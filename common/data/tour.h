@@ -26,12 +26,13 @@
 #include <stdbool.h>
 
 #include "motion.h"
+#include "video.h"
 
 #define TOUR_MAX_STEPS 32
 #define TOUR_TEXT_MAX 256   /* title, caption, technique, flags */
 #define TOUR_DEFAULT_SECONDS 2.0
 #define TOUR_MAX_SECONDS 600.0 /* ten minutes: longer is a typo */
-#define TOUR_FPS 60.0
+#define TOUR_FPS VIDEO_FPS /* the headless rate and the video's */
 
 typedef struct tour_step {
     char scene[PATH_MAX]; /* resolved against the tour file's folder */

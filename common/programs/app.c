@@ -285,9 +285,6 @@ static bool app_stop_recording(void) {
     return ok;
 }
 
-/* Renders `frames` frames at the fixed headless rate, each into the video
- * when recording, then the screenshot (with --hud, the HUD drawn over
- * what is kept). */
 /* Headless frame i at time i/60 s; `kept` (a screenshot's) or a video's
  * carries the HUD with --hud. */
 static bool app_headless_frame(int i, bool kept) {
@@ -296,6 +293,9 @@ static bool app_headless_frame(int i, bool kept) {
     return app_render_frame(-1) && (!kept || app_hud_in_picture(i)) && (!app.video.pipe || app_record_frame());
 }
 
+/* Renders `frames` frames at the fixed headless rate, each into the video
+ * when recording, then the screenshot (with --hud, the HUD drawn over
+ * what is kept). */
 static bool app_run_headless(int frames, const char *screenshot) {
     for (int i = 0; i < frames; i++)
         if (!app_headless_frame(i, screenshot && i == frames - 1))
@@ -721,6 +721,10 @@ static bool app_run(void) {
             ok = app_run_tour_headless();
         ok = app_stop_recording() && ok;
         app_leave_step();
+        if (ok && !app.ctx.window && !app.screenshot && !app.record_path)
+            printf("%s: %d steps of %s rendered headless (%s), nothing written: --screenshot PATH.png saves step "
+                   "K's picture to PATH-K.png, --record PATH.mp4 every frame of every step\n",
+                   app.program, app.tour.step_count, app.tour_path, context_backend_name(app.ctx.backend));
     } else if (ok && (ok = app_load_scene(app.scene_path))) {
         ok = app_start_technique(app.current) && (!app.record_path || app_start_recording());
         if (ok && app.ctx.window)
