@@ -178,7 +178,8 @@ static void test_gallery_takes_flags_after_its_scenes(void **state) {
     snprintf(command, sizeof command,
              "rm -rf out/test/gallery_one && %s --backend egl --size 64x36 --gallery out/test/gallery_one "
              "assets/scenes/simple.json --technique volumes && test -f out/test/gallery_one/volumes_simple.png && "
-             "test \"$(ls out/test/gallery_one)\" = volumes_simple.png",
+             "test \"$(ls out/test/gallery_one | tr '\\n' ' ')\" = "
+             "'index.html reference_simple.png volumes_simple.png volumes_simple_heatmap.png '",
              support_program("shadows"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
     expect_failure("--gallery out/test/gallery_one --frames 1 assets/scenes/simple.json", EXIT_USAGE, "--gallery",

@@ -28,6 +28,7 @@
 #include "path.h"
 #include "registry.h"
 #include "support.h"
+#include "tour.h"
 
 #define SIZE "640x360"
 #define GOLDEN_DIR "tests/golden"
@@ -73,6 +74,21 @@ static const golden_case golden_extra_cases[] = {
     {"psm", "long_view", GOLDEN_HUD_FLAGS, "psm-hud-1920x1080_long_view", true, "1920x1080"},
 };
 
+/* Every tour in assets/tours/ is a golden per step, tour-NAME-K.png (K
+ * from 1, as --tour --screenshot names them), at a thumbnail's size: the
+ * steps' pictures are the technique cases', here to show that each step
+ * renders what its file says. EGL only. */
+#define TOUR_DIR "assets/tours"
+#define TOUR_GOLDEN_PREFIX "tour-"
+#define TOUR_SIZE "320x180"
+#define TOUR_MAX_TOURS 16
+
+static struct {
+    char name[GOLDEN_NAME_SIZE]; /* assets/tours/NAME.json */
+    int step_count;
+} golden_tours[TOUR_MAX_TOURS];
+static int golden_tour_count;
+
 static const char *const golden_backends[] = {"egl", "osmesa"};
 #define GOLDEN_BACKEND_COUNT (sizeof golden_backends / sizeof *golden_backends)
 
@@ -98,6 +114,65 @@ static bool golden_make_cases(void) {
     for (int i = 0; i < extra; i++)
         golden_cases[golden_case_count++] = golden_extra_cases[i];
     return true;
+}
+
+static int golden_compare_names(const void *a, const void *b) { return strcmp(a, b); }
+
+/* The tours of assets/tours/, by name, with their step counts. */
+static bool golden_make_tours(void) {
+    DIR *dir = opendir(TOUR_DIR);
+    if (!dir) {
+        fprintf(stderr, "test_render: cannot open " TOUR_DIR "\n");
+        return false;
+    }
+    bool ok = true;
+    for (struct dirent *e; ok && (e = readdir(dir));) {
+        size_t n = strlen(e->d_name);
+        if (n <= 5 || strcmp(e->d_name + n - 5, ".json") != 0)
+            continue;
+        ok = golden_tour_count < TOUR_MAX_TOURS;
+        if (ok)
+            snprintf(golden_tours[golden_tour_count++].name, GOLDEN_NAME_SIZE, "%.*s", (int)(n - 5), e->d_name);
+    }
+    closedir(dir);
+    qsort(golden_tours, (size_t)golden_tour_count, sizeof *golden_tours, golden_compare_names);
+    for (int i = 0; ok && i < golden_tour_count; i++) {
+        static tour t;
+        char path[256];
+        ok = snprintf(path, sizeof path, TOUR_DIR "/%s.json", golden_tours[i].name) < (int)sizeof path &&
+             tour_load(&t, path);
+        golden_tours[i].step_count = t.step_count;
+    }
+    if (!ok)
+        fprintf(stderr, "test_render: the tours in " TOUR_DIR " could not be listed (at most %d)\n", TOUR_MAX_TOURS);
+    return ok;
+}
+
+/* DIR/tour-NAME-K.png of tour i's step k (from 1); false if too long. */
+static bool golden_tour_step_path(char *out, size_t size, const char *dir, int i, int k) {
+    return snprintf(out, size, "%s/" TOUR_GOLDEN_PREFIX "%s-%d.png", dir, golden_tours[i].name, k) < (int)size;
+}
+
+/* Whether NAME is a tour step's golden, tour-TOUR-K. */
+static bool golden_is_tour_step(const char *name) {
+    for (int i = 0; i < golden_tour_count; i++)
+        for (int k = 1; k <= golden_tours[i].step_count; k++) {
+            char step[2 * GOLDEN_NAME_SIZE];
+            if (snprintf(step, sizeof step, TOUR_GOLDEN_PREFIX "%s-%d", golden_tours[i].name, k) < (int)sizeof step &&
+                strcmp(step, name) == 0)
+                return true;
+        }
+    return false;
+}
+
+/* Every step of tour i, headless on EGL, to DIR/tour-NAME-K.png. */
+static bool golden_render_tour(int i, const char *dir) {
+    char command[4096];
+    return snprintf(command, sizeof command,
+             "%s --backend egl --size " TOUR_SIZE " --tour " TOUR_DIR "/%s.json --screenshot %s/" TOUR_GOLDEN_PREFIX
+             "%s.png",
+             support_program("shadows"), golden_tours[i].name, dir, golden_tours[i].name) < (int)sizeof command &&
+           support_run(command, err, sizeof err) == 0;
 }
 
 static const golden_case *golden_find(const char *name) {
@@ -257,7 +332,7 @@ static void test_golden_table_is_consistent(void **state) {
             continue;
         char name[256];
         snprintf(name, sizeof name, "%.*s", n > 4 ? (int)(n - 4) : (int)n, e->d_name);
-        if (n <= 4 || strcmp(e->d_name + n - 4, ".png") != 0 || !golden_find(name)) {
+        if (n <= 4 || strcmp(e->d_name + n - 4, ".png") != 0 || (!golden_find(name) && !golden_is_tour_step(name))) {
             closedir(dir);
             fail_msg(GOLDEN_DIR "/%s is no golden case's", e->d_name);
         }
@@ -442,10 +517,57 @@ static void test_gallery_writes_every_technique(void **state) {
     expect_gallery_page(scenes, sizeof scenes / sizeof *scenes);
 }
 
+/* Every step of every tour matches its golden; the same tour rendered
+ * again gives the same files, byte for byte. */
+static void test_tours_match_goldens(void **state) {
+    (void)state;
+    assert_true(path_make_directories("out/test/tours") && path_make_directories("out/test/tours_again"));
+    for (int i = 0; i < golden_tour_count; i++) {
+        if (!golden_render_tour(i, "out/test/tours"))
+            fail_msg("tour %s: the program failed", golden_tours[i].name);
+        for (int k = 1; k <= golden_tours[i].step_count; k++) {
+            char golden[256], actual[256];
+            assert_true(golden_tour_step_path(golden, sizeof golden, GOLDEN_DIR, i, k) &&
+                        golden_tour_step_path(actual, sizeof actual, "out/test/tours", i, k));
+            if (!within_tolerance(support_compare_images(golden, actual)))
+                fail_msg("%s does not match its golden %s (re-record on purpose only: make update-golden "
+                         "ONLY=" TOUR_GOLDEN_PREFIX "%s)",
+                         actual, golden, golden_tours[i].name);
+        }
+    }
+    assert_true(golden_tour_count > 0);
+    assert_true(golden_render_tour(0, "out/test/tours_again"));
+    char names[TOUR_MAX_STEPS][GOLDEN_NAME_SIZE * 2];
+    const char *list[TOUR_MAX_STEPS];
+    for (int k = 0; k < golden_tours[0].step_count; k++) {
+        assert_true(snprintf(names[k], sizeof names[k], TOUR_GOLDEN_PREFIX "%s-%d.png", golden_tours[0].name, k + 1) <
+                    (int)sizeof names[k]);
+        list[k] = names[k];
+    }
+    const char *different = support_first_difference("out/test/tours", "out/test/tours_again", list,
+                                                     (size_t)golden_tours[0].step_count);
+    if (different)
+        fail_msg("tour %s rendered twice: %s differs", golden_tours[0].name, different);
+}
+
 /* --record [NAME...]: each case, or the named ones, on EGL into its golden. */
 static int golden_record(int name_count, char **names) {
+    int tours_named = 0;
+    for (int i = 0; i < golden_tour_count; i++) {
+        char name[2 * GOLDEN_NAME_SIZE];
+        bool named = name_count == 0;
+        if (snprintf(name, sizeof name, TOUR_GOLDEN_PREFIX "%s", golden_tours[i].name) >= (int)sizeof name)
+            return 1;
+        for (int n = 0; n < name_count; n++)
+            named = named || strcmp(names[n], name) == 0;
+        tours_named += named && name_count > 0;
+        if (named && !golden_render_tour(i, GOLDEN_DIR)) {
+            fprintf(stderr, "test_render --record: tour %s failed: %s", golden_tours[i].name, err);
+            return 1;
+        }
+    }
     for (int i = 0; i < name_count; i++) {
-        if (!golden_find(names[i])) {
+        if (!golden_find(names[i]) && strncmp(names[i], TOUR_GOLDEN_PREFIX, strlen(TOUR_GOLDEN_PREFIX)) != 0) {
             fprintf(stderr, "test_render --record: no golden case %s\n", names[i]);
             return 1;
         }
@@ -470,7 +592,7 @@ static int golden_record(int name_count, char **names) {
 }
 
 int main(int argc, char **argv) {
-    if (!golden_make_cases())
+    if (!golden_make_cases() || !golden_make_tours())
         return 1;
     if (argc > 1 && strcmp(argv[1], "--record") == 0)
         return golden_record(argc - 2, argv + 2);
@@ -488,6 +610,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_volumes_overlays_show),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
+        cmocka_unit_test(test_tours_match_goldens),
     };
     enum { OTHER_COUNT = sizeof others / sizeof *others };
     static struct CMUnitTest tests[1 + GOLDEN_MAX_CASES + OTHER_COUNT];

@@ -80,6 +80,12 @@ bool path_stem(const char *path, char *out, size_t size) {
     return snprintf(out, size, "%.*s", dot ? (int)(dot - base) : (int)strlen(base), base) < (int)size;
 }
 
+bool path_beside(const char *file, const char *relative, char *out, size_t size) {
+    const char *slash = strrchr(file, '/');
+    int folder_length = relative[0] == '/' || !slash ? 0 : (int)(slash - file + 1);
+    return snprintf(out, size, "%.*s%s", folder_length, file, relative) < (int)size;
+}
+
 bool path_numbered_unused(const char *prefix, const char *extension, char *out, size_t size) {
     for (int n = 1; n <= PATH_NUMBERED_MAX; n++) {
         if (snprintf(out, size, "%s-%d.%s", prefix, n, extension) >= (int)size)

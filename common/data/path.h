@@ -18,6 +18,10 @@ char *path_read_text(const char *path, size_t max_size, size_t *length);
  * name a scene by. False if it did not fit in `size`. */
 bool path_stem(const char *path, char *out, size_t size);
 
+/* `relative` as seen from the folder of `file` (a scene's model, a tour's
+ * scene), or itself when absolute. False if it did not fit in `size`. */
+bool path_beside(const char *file, const char *relative, char *out, size_t size);
+
 /* The first "PREFIX-N.EXTENSION", N = 1, 2, ..., that names no file yet
  * (a screenshot never overwrites an earlier one, from this run or
  * another). False if none fits in `size` or after PATH_NUMBERED_MAX. */

@@ -10,11 +10,11 @@
 #include <float.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "json.h"
 #include "path.h"
 
 /* Far beyond any hand-written scene: a wrong path (a device, a huge file)
@@ -57,87 +57,28 @@ static const scene_variant scene_mesh_kinds[] = {
     {NULL, 0, {NULL}},
 };
 
-/* Reports "FILE: WHERE.KEY: problem"; where may be "" and key NULL. */
-static bool scene_fail(const char *file, const char *where, const char *key, const char *format, ...) {
-    char problem[512];
-    va_list args;
-    va_start(args, format);
-    vsnprintf(problem, sizeof problem, format, args);
-    va_end(args);
-    char location[256];
-    snprintf(location, sizeof location, "%s%s%s", where, where[0] && key ? "." : "", key ? key : "");
-    fprintf(stderr, "%s: %s%s%s\n", file, location, location[0] ? ": " : "", problem);
-    return false;
-}
-
-static const char *scene_json_kind(const cJSON *item) {
-    if (cJSON_IsNumber(item)) return "a number";
-    if (cJSON_IsString(item)) return "a string";
-    if (cJSON_IsArray(item)) return "an array";
-    if (cJSON_IsObject(item)) return "an object";
-    if (cJSON_IsBool(item)) return "a boolean";
-    return "null";
-}
-
-/* "a, b, c or d" */
-static void scene_join_names(const char *const names[], char *out, size_t size) {
-    size_t count = 0, used = 0;
-    while (names[count]) count++;
-    out[0] = '\0';
-    for (size_t i = 0; i < count && used < size; i++) {
-        const char *separator = i == 0 ? "" : i + 1 == count ? " or " : ", ";
-        used += (size_t)snprintf(out + used, size - used, "%s%s", separator, names[i]);
-    }
-}
-
-static bool scene_lookup(const char *file, const cJSON *object, const char *where, const char *key,
-                         bool required, const cJSON **item) {
-    *item = cJSON_GetObjectItemCaseSensitive(object, key);
-    if (!*item && required) return scene_fail(file, where, key, "missing required field");
-    return true;
-}
-
-/* Unknown keys are usually typos, and a repeated key hides one value. */
-static bool scene_check_keys(const char *file, const cJSON *object, const char *where,
-                             const char *const allowed[]) {
-    const cJSON *item;
-    cJSON_ArrayForEach(item, object) {
-        bool known = false;
-        for (int i = 0; allowed[i] && !known; i++) known = strcmp(allowed[i], item->string) == 0;
-        if (!known) {
-            char expected[256];
-            scene_join_names(allowed, expected, sizeof expected);
-            return scene_fail(file, where, NULL, "unknown key \"%s\" (expected %s)", item->string, expected);
-        }
-        if (cJSON_GetObjectItemCaseSensitive(object, item->string) != item) {
-            return scene_fail(file, where, item->string, "duplicate key");
-        }
-    }
-    return true;
-}
-
 /* One JSON number less `offset` (subtracted in double, before the
  * rounding to float: see scene.h, "Large worlds"), as a float in the
  * range. */
 static bool scene_number(const char *file, const char *where, const char *key, const cJSON *item,
                          scene_range range, double offset, float *out) {
     if (!cJSON_IsNumber(item)) {
-        return scene_fail(file, where, key, "expected a number, got %s", scene_json_kind(item));
+        return json_fail(file, where, key, "expected a number, got %s", json_kind(item));
     }
     /* cJSON turns 1e999 into infinity; converting past FLT_MAX is undefined. */
     if (!(fabs(item->valuedouble) <= FLT_MAX && fabs(item->valuedouble - offset) <= FLT_MAX)) {
-        return scene_fail(file, where, key, "must be a finite number (got %g)", item->valuedouble);
+        return json_fail(file, where, key, "must be a finite number (got %g)", item->valuedouble);
     }
     float value = (float)(item->valuedouble - offset);
     if (range == SCENE_POSITIVE && !(value > 0)) {
-        return scene_fail(file, where, key, "must be positive (got %g)", item->valuedouble);
+        return json_fail(file, where, key, "must be positive (got %g)", item->valuedouble);
     }
     if (range == SCENE_NON_NEGATIVE && value < 0) {
-        return scene_fail(file, where, key, "must not be negative (got %g)", item->valuedouble);
+        return json_fail(file, where, key, "must not be negative (got %g)", item->valuedouble);
     }
     /* The float, not the double: 1e-50 is 0 once stored. */
     if (range == SCENE_NON_ZERO && value == 0) {
-        return scene_fail(file, where, key, "must not be zero: it flattens the object (got %g)",
+        return json_fail(file, where, key, "must not be zero: it flattens the object (got %g)",
                           item->valuedouble);
     }
     *out = value;
@@ -147,7 +88,7 @@ static bool scene_number(const char *file, const char *where, const char *key, c
 static bool scene_read_float(const char *file, const cJSON *object, const char *where, const char *key,
                              bool required, scene_range range, float *out) {
     const cJSON *item;
-    if (!scene_lookup(file, object, where, key, required, &item)) return false;
+    if (!json_lookup(file, object, where, key, required, &item)) return false;
     return !item || scene_number(file, where, key, item, range, 0, out);
 }
 
@@ -157,10 +98,10 @@ static bool scene_read_float(const char *file, const cJSON *object, const char *
 static bool scene_read_floats(const char *file, const cJSON *object, const char *where, const char *key,
                               bool required, scene_range range, const double *offset, float *out, int count) {
     const cJSON *item;
-    if (!scene_lookup(file, object, where, key, required, &item)) return false;
+    if (!json_lookup(file, object, where, key, required, &item)) return false;
     if (!item) return true;
     if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != count) {
-        return scene_fail(file, where, key, "expected an array of %d numbers", count);
+        return json_fail(file, where, key, "expected an array of %d numbers", count);
     }
     for (int i = 0; i < count; i++) {
         char element[80];
@@ -171,82 +112,38 @@ static bool scene_read_floats(const char *file, const cJSON *object, const char 
     return true;
 }
 
-static bool scene_read_int(const char *file, const cJSON *object, const char *where, const char *key, int *out) {
-    const cJSON *item;
-    if (!scene_lookup(file, object, where, key, false, &item)) return false;
-    if (!item) return true;
-    if (!cJSON_IsNumber(item) || item->valuedouble != floor(item->valuedouble) ||
-        fabs(item->valuedouble) > INT_MAX) {
-        return scene_fail(file, where, key, "expected a whole number");
-    }
-    *out = (int)item->valuedouble;
-    return true;
-}
-
-static bool scene_read_bool(const char *file, const cJSON *object, const char *where, const char *key, bool *out) {
-    const cJSON *item;
-    if (!scene_lookup(file, object, where, key, false, &item)) return false;
-    if (!item) return true;
-    if (!cJSON_IsBool(item)) {
-        return scene_fail(file, where, key, "expected true or false, got %s", scene_json_kind(item));
-    }
-    *out = cJSON_IsTrue(item);
-    return true;
-}
-
-/* The string stays owned by the JSON tree. */
-static bool scene_read_string(const char *file, const cJSON *object, const char *where, const char *key,
-                              const char **out) {
-    const cJSON *item;
-    if (!scene_lookup(file, object, where, key, true, &item)) return false;
-    if (!cJSON_IsString(item) || !item->valuestring) {
-        return scene_fail(file, where, key, "expected a string, got %s", scene_json_kind(item));
-    }
-    *out = item->valuestring;
-    return true;
-}
-
-static bool scene_read_json_object(const char *file, const cJSON *object, const char *where, const char *key,
-                                   const cJSON **out) {
-    if (!scene_lookup(file, object, where, key, true, out)) return false;
-    if (!cJSON_IsObject(*out)) {
-        return scene_fail(file, where, key, "expected an object, got %s", scene_json_kind(*out));
-    }
-    return true;
-}
-
 /* Reads a "type" or "kind" field, then checks the object's keys against
  * those of that variant. */
 static bool scene_read_variant(const char *file, const cJSON *object, const char *where, const char *key,
                                const char *what, const scene_variant table[], const scene_variant **out) {
     const char *name;
-    if (!scene_read_string(file, object, where, key, &name)) return false;
+    if (!json_read_string(file, object, where, key, true, &name)) return false;
     const char *names[16];
     int count = 0;
     for (const scene_variant *v = table; v->name; v++) {
         if (strcmp(v->name, name) == 0) {
             *out = v;
-            return scene_check_keys(file, object, where, v->keys);
+            return json_check_keys(file, object, where, v->keys);
         }
         names[count++] = v->name;
     }
     names[count] = NULL;
     char expected[256];
-    scene_join_names(names, expected, sizeof expected);
-    return scene_fail(file, where, key, "unknown %s \"%s\" (expected %s)", what, name, expected);
+    json_join_names(names, expected, sizeof expected);
+    return json_fail(file, where, key, "unknown %s \"%s\" (expected %s)", what, name, expected);
 }
 
 /* A list at the top level, with 1..max_count entries. */
 static bool scene_read_list(const char *file, const cJSON *root, const char *key, int max_count,
                             const cJSON **out) {
-    if (!scene_lookup(file, root, "", key, true, out)) return false;
+    if (!json_lookup(file, root, "", key, true, out)) return false;
     if (!cJSON_IsArray(*out)) {
-        return scene_fail(file, "", key, "expected an array, got %s", scene_json_kind(*out));
+        return json_fail(file, "", key, "expected an array, got %s", json_kind(*out));
     }
     int count = cJSON_GetArraySize(*out);
-    if (count == 0) return scene_fail(file, "", key, "must not be empty");
+    if (count == 0) return json_fail(file, "", key, "must not be empty");
     if (count > max_count) {
-        return scene_fail(file, "", key, "too many entries: %d (at most %d)", count, max_count);
+        return json_fail(file, "", key, "too many entries: %d (at most %d)", count, max_count);
     }
     return true;
 }
@@ -277,8 +174,8 @@ static bool scene_read_camera(const char *file, const cJSON *root, scene_camera 
     static const char *const keys[] = {"position", "target", "up", "fov", "near", "far", NULL};
     *c = (scene_camera){.up = {0, 1, 0}, .fov_deg = 45, .near_plane = 0.1f, .far_plane = 100};
     const cJSON *json;
-    if (!scene_read_json_object(file, root, "", "camera", &json) ||
-        !scene_check_keys(file, json, "camera", keys) ||
+    if (!json_read_object(file, root, "", "camera", &json) ||
+        !json_check_keys(file, json, "camera", keys) ||
         !scene_read_floats(file, json, "camera", "position", true, SCENE_ANY, NULL, c->position, 3) ||
         !scene_read_floats(file, json, "camera", "target", true, SCENE_ANY, NULL, c->target, 3) ||
         !scene_read_floats(file, json, "camera", "up", false, SCENE_ANY, NULL, c->up, 3) ||
@@ -295,19 +192,19 @@ static bool scene_read_camera(const char *file, const cJSON *root, scene_camera 
         return false;
     }
     if (c->fov_deg >= 180) {
-        return scene_fail(file, "camera", "fov", "must be less than 180 degrees (got %g)", c->fov_deg);
+        return json_fail(file, "camera", "fov", "must be less than 180 degrees (got %g)", c->fov_deg);
     }
     if (c->far_plane <= c->near_plane) {
-        return scene_fail(file, "camera", "far", "must be greater than near (%g <= %g)", c->far_plane,
+        return json_fail(file, "camera", "far", "must be greater than near (%g <= %g)", c->far_plane,
                           c->near_plane);
     }
     /* Either would leave the view matrix undefined (NaN). */
     vec3 view, side;
     glm_vec3_sub(c->target, c->position, view);
-    if (!(glm_vec3_norm2(view) > 0)) return scene_fail(file, "camera", "target", "must differ from position");
+    if (!(glm_vec3_norm2(view) > 0)) return json_fail(file, "camera", "target", "must differ from position");
     glm_vec3_cross(view, c->up, side);
     if (!(glm_vec3_norm2(side) > 0)) {
-        return scene_fail(file, "camera", "up", "must be non-zero and not parallel to the view direction");
+        return json_fail(file, "camera", "up", "must be non-zero and not parallel to the view direction");
     }
     return true;
 }
@@ -316,7 +213,7 @@ static bool scene_read_light(const char *file, const cJSON *json, const char *wh
                              scene_light *l) {
     *l = (scene_light){.color = {1, 1, 1}, .intensity = 1, .inner_angle_deg = 20, .outer_angle_deg = 30};
     if (!cJSON_IsObject(json)) {
-        return scene_fail(file, where, NULL, "expected an object, got %s", scene_json_kind(json));
+        return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
     }
     const scene_variant *type;
     if (!scene_read_variant(file, json, where, "type", "light type", scene_light_types, &type)) return false;
@@ -333,13 +230,13 @@ static bool scene_read_light(const char *file, const cJSON *json, const char *wh
         !scene_read_float(file, json, where, "range", false, SCENE_POSITIVE, &l->range)) {
         return false;
     }
-    if (aimed && !scene_normalize(l->direction)) return scene_fail(file, where, "direction", "must not be zero");
+    if (aimed && !scene_normalize(l->direction)) return json_fail(file, where, "direction", "must not be zero");
     /* The cone must open: at 90 degrees and beyond it is no cone at all. */
     if (l->outer_angle_deg >= 90) {
-        return scene_fail(file, where, "outer_angle", "must be less than 90 degrees (got %g)", l->outer_angle_deg);
+        return json_fail(file, where, "outer_angle", "must be less than 90 degrees (got %g)", l->outer_angle_deg);
     }
     if (l->outer_angle_deg < l->inner_angle_deg) {
-        return scene_fail(file, where, "outer_angle", "must not be less than inner_angle (%g < %g)",
+        return json_fail(file, where, "outer_angle", "must not be less than inner_angle (%g < %g)",
                           l->outer_angle_deg, l->inner_angle_deg);
     }
     return true;
@@ -359,15 +256,9 @@ static void scene_report_mesh_error(const char *name, const char *problem, void 
 
 /* Model paths are relative to the scene file's folder, unless absolute. */
 static bool scene_load_model(const char *file, const char *path, mesh *m) {
-    const char *slash = strrchr(file, '/');
-    int folder_length = path[0] == '/' || !slash ? 0 : (int)(slash - file + 1);
-    size_t size = (size_t)folder_length + strlen(path) + 1;
-    char *resolved = malloc(size);
-    if (!resolved) return scene_fail(file, "", NULL, "out of memory");
-    snprintf(resolved, size, "%.*s%s", folder_length, file, path);
-    bool loaded = mesh_load_file(m, resolved);
-    free(resolved);
-    return loaded;
+    char resolved[PATH_MAX];
+    if (!path_beside(file, path, resolved, sizeof resolved)) return json_fail(file, "", NULL, "model path too long");
+    return mesh_load_file(m, resolved);
 }
 
 static bool scene_build_mesh(const char *file, const cJSON *json, const char *where, const char *object_where,
@@ -391,23 +282,23 @@ static bool scene_build_mesh(const char *file, const cJSON *json, const char *wh
         break;
     case SCENE_MESH_SPHERE:
         built = scene_read_float(file, json, where, "radius", true, SCENE_POSITIVE, &radius) &&
-                scene_read_int(file, json, where, "segments", &segments) &&
+                json_read_int(file, json, where, "segments", &segments) &&
                 mesh_make_sphere(&o->mesh, radius, segments);
         break;
     case SCENE_MESH_TORUS:
         built = scene_read_float(file, json, where, "major_radius", true, SCENE_POSITIVE, &radius) &&
                 scene_read_float(file, json, where, "minor_radius", true, SCENE_POSITIVE, &minor_radius) &&
-                scene_read_int(file, json, where, "segments", &segments) &&
+                json_read_int(file, json, where, "segments", &segments) &&
                 mesh_make_torus(&o->mesh, radius, minor_radius, segments);
         break;
     case SCENE_MESH_CYLINDER:
         built = scene_read_float(file, json, where, "radius", true, SCENE_POSITIVE, &radius) &&
                 scene_read_float(file, json, where, "height", true, SCENE_POSITIVE, &height) &&
-                scene_read_int(file, json, where, "segments", &segments) &&
+                json_read_int(file, json, where, "segments", &segments) &&
                 mesh_make_cylinder(&o->mesh, radius, height, segments);
         break;
     case SCENE_MESH_MODEL:
-        built = scene_read_string(file, json, where, "path", &path) && scene_load_model(file, path, &o->mesh);
+        built = json_read_string(file, json, where, "path", true, &path) && scene_load_model(file, path, &o->mesh);
         break;
     }
     mesh_set_error_handler(NULL, NULL);
@@ -417,13 +308,13 @@ static bool scene_build_mesh(const char *file, const cJSON *json, const char *wh
 static bool scene_check_name(const char *file, const char *where, const char *name) {
     size_t length = strlen(name);
     if (length == 0 || length >= SCENE_NAME_MAX) {
-        return scene_fail(file, where, "name", "must be 1 to %d bytes long (got %zu)", SCENE_NAME_MAX - 1,
+        return json_fail(file, where, "name", "must be 1 to %d bytes long (got %zu)", SCENE_NAME_MAX - 1,
                           length);
     }
     /* It is quoted in messages, which must stay one line. */
     for (const char *c = name; *c; c++) {
         if (iscntrl((unsigned char)*c)) {
-            return scene_fail(file, where, "name", "must not contain control characters");
+            return json_fail(file, where, "name", "must not contain control characters");
         }
     }
     return true;
@@ -460,22 +351,22 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     vec3 translate = {(float)-origin[0], (float)-origin[1], (float)-origin[2]}, rotate_deg = {0, 0, 0}, scale = {1, 1, 1};
     *o = (scene_object){.color = {0.8f, 0.8f, 0.8f}, .casts = true, .receives = true};
     if (!cJSON_IsObject(json)) {
-        return scene_fail(file, where, NULL, "expected an object, got %s", scene_json_kind(json));
+        return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
     }
     char mesh_where[64];
     snprintf(mesh_where, sizeof mesh_where, "%s.mesh", where);
     const char *name;
     const cJSON *mesh_json;
     const scene_variant *kind;
-    if (!scene_check_keys(file, json, where, keys) || !scene_read_string(file, json, where, "name", &name) ||
-        !scene_check_name(file, where, name) || !scene_read_json_object(file, json, where, "mesh", &mesh_json) ||
+    if (!json_check_keys(file, json, where, keys) || !json_read_string(file, json, where, "name", true, &name) ||
+        !scene_check_name(file, where, name) || !json_read_object(file, json, where, "mesh", &mesh_json) ||
         !scene_read_variant(file, mesh_json, mesh_where, "kind", "mesh kind", scene_mesh_kinds, &kind) ||
         !scene_read_floats(file, json, where, "translate", false, SCENE_ANY, origin, translate, 3) ||
         !scene_read_floats(file, json, where, "rotate", false, SCENE_ANY, NULL, rotate_deg, 3) ||
         !scene_read_scale(file, json, where, scale) ||
         !scene_read_floats(file, json, where, "color", false, SCENE_NON_NEGATIVE, NULL, o->color, 3) ||
-        !scene_read_bool(file, json, where, "casts", &o->casts) ||
-        !scene_read_bool(file, json, where, "receives", &o->receives)) {
+        !json_read_bool(file, json, where, "casts", &o->casts) ||
+        !json_read_bool(file, json, where, "receives", &o->receives)) {
         return false;
     }
     snprintf(o->name, sizeof o->name, "%s", name);
@@ -500,11 +391,11 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
 static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     static const char *const keys[] = {"camera", "ambient", "lights", "objects", NULL};
     if (!cJSON_IsObject(root)) {
-        return scene_fail(file, "", NULL, "expected an object at the top level, got %s", scene_json_kind(root));
+        return json_fail(file, "", NULL, "expected an object at the top level, got %s", json_kind(root));
     }
     glm_vec3_fill(s->ambient, 0.1f);
     const cJSON *lights, *objects, *entry;
-    if (!scene_check_keys(file, root, "", keys) || !scene_read_camera(file, root, &s->camera, s->origin) ||
+    if (!json_check_keys(file, root, "", keys) || !scene_read_camera(file, root, &s->camera, s->origin) ||
         !scene_read_floats(file, root, "", "ambient", false, SCENE_NON_NEGATIVE, NULL, s->ambient, 3) ||
         !scene_read_list(file, root, "lights", SCENE_MAX_LIGHTS, &lights) ||
         !scene_read_list(file, root, "objects", INT_MAX, &objects)) {
@@ -517,7 +408,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
         s->light_count++;
     }
     s->objects = calloc((size_t)cJSON_GetArraySize(objects), sizeof *s->objects);
-    if (!s->objects) return scene_fail(file, "", "objects", "out of memory");
+    if (!s->objects) return json_fail(file, "", "objects", "out of memory");
     cJSON_ArrayForEach(entry, objects) {
         snprintf(where, sizeof where, "objects[%d]", s->object_count);
         /* A failed object owns nothing: mesh constructors leave it empty. */
@@ -527,32 +418,9 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     return true;
 }
 
-static cJSON *scene_parse(const char *file, const char *text, size_t length) {
-    const char *error = NULL;
-    /* The length counts the terminating NUL: cJSON wants it to tell the end
-     * of the document from trailing garbage. */
-    cJSON *root = cJSON_ParseWithLengthOpts(text, length + 1, &error, true);
-    if (root) return root;
-    if (!error) error = text;
-    int line = 1;
-    for (const char *c = text; c < error; c++) line += *c == '\n';
-    if (error >= text + length) {
-        fprintf(stderr, "%s:%d: JSON syntax error at the end of the file\n", file, line);
-    } else if (isgraph((unsigned char)*error)) {
-        fprintf(stderr, "%s:%d: JSON syntax error near '%c'\n", file, line, *error);
-    } else {
-        fprintf(stderr, "%s:%d: JSON syntax error near byte 0x%02x\n", file, line, (unsigned char)*error);
-    }
-    return NULL;
-}
-
 bool scene_load(scene *s, const char *path) {
     *s = (scene){0};
-    size_t length;
-    char *text = path_read_text(path, SCENE_MAX_FILE_SIZE, &length);
-    if (!text) return false;
-    cJSON *root = scene_parse(path, text, length);
-    free(text);
+    cJSON *root = json_load(path, SCENE_MAX_FILE_SIZE);
     if (!root) return false;
     bool loaded = scene_read_root(path, root, s);
     cJSON_Delete(root);

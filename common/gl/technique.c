@@ -13,6 +13,10 @@
 #define TECHNIQUE_CONFIG_MAX 512
 
 bool technique_apply_config(const technique *t, const char *config) {
+    return technique_apply_config_as(t, config, NULL);
+}
+
+bool technique_apply_config_as(const technique *t, const char *config, const char *who) {
     flags_reset(t->params, t->param_count);
     const char *label_end = strstr(config, ": ");
     char copy[TECHNIQUE_CONFIG_MAX], program[TECHNIQUE_CONFIG_MAX + 64];
@@ -22,7 +26,10 @@ bool technique_apply_config(const technique *t, const char *config) {
     for (char *rest = copy, *word; (word = strtok_r(rest, " ", &rest));)
         words[count++] = word;
     /* Errors name the configuration, as the command line's name the program. */
-    snprintf(program, sizeof program, "%s (configuration \"%s\")", t->name, config);
+    if (who)
+        snprintf(program, sizeof program, "%s", who);
+    else
+        snprintf(program, sizeof program, "%s (configuration \"%s\")", t->name, config);
     return flags_parse(program, t->params, t->param_count, count, words) == 0;
 }
 

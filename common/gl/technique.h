@@ -205,6 +205,9 @@ typedef struct technique {
  * --no-offset"), through the command line's parser; prints and returns
  * false on a flag that is not the technique's or a bad value. */
 bool technique_apply_config(const technique *t, const char *config);
+/* The same, its errors beginning with `who` ("FILE: steps[2].flags")
+ * instead of the technique's name and the configuration. */
+bool technique_apply_config_as(const technique *t, const char *config, const char *who);
 /* What a configuration is called in reports: its label, its flags, or
  * "defaults". */
 void technique_config_label(const char *config, char *out, size_t size);

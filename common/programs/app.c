@@ -15,12 +15,14 @@
 #include "gallery_page.h"
 #include "hud.h"
 #include "image.h"
+#include "json.h"
 #include "motion.h"
 #include "path.h"
 #include "raytrace.h"
 #include "shader.h"
 #include "shadowdiff.h"
 #include "target.h"
+#include "tour.h"
 #include "video.h"
 
 #define APP_EXIT_RUNTIME 1
@@ -57,6 +59,11 @@ static struct {
     int gallery_count;
     char default_shader_dir[PATH_MAX], default_scene[PATH_MAX];
     char paged_scene[PATH_MAX]; /* Page Up/Down's: the scene_path then */
+    const char *tour_path; /* --tour */
+    tour tour;
+    int tour_step;                    /* the step shown */
+    bool step_scene, step_technique;  /* what the step has loaded and started, for leaving it */
+    bool tour_failed;                 /* a step did not start in the window */
     /* run */
     context ctx;
     target target;
@@ -117,6 +124,10 @@ static const flags_param app_flags[] = {
     {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
      .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
+    {"tour",
+     "play a tour file (assets/tours/): in the window Space, Right\nor Page Down the next step, Left or Page Up the previous;\n"
+     "headless every step (with --screenshot P.png, step K's\nshown frame to P-K.png)",
+     0, FLAGS_STRING, .text = &app.tour_path, .value_name = "FILE"},
     {"hud", "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time", 0,
      FLAGS_SWITCH, .on = &app.hud_in_pictures},
     {"hud-scale", "pixels per font unit of the HUD's text (default: one per\n360 lines of the framebuffer, 2 at 720, 3 at 1080, less\nwhere the text would not fit)", 0,
@@ -277,17 +288,109 @@ static bool app_stop_recording(void) {
     return ok;
 }
 
+/* Headless frame i at time i/60 s; `kept` (a screenshot's) or a video's
+ * carries the HUD with --hud. */
+static bool app_headless_frame(int i, bool kept) {
+    app.time = i / APP_HEADLESS_FPS;
+    kept = kept || app.video.pipe;
+    return app_render_frame(-1) && (!kept || app_hud_in_picture(i)) && (!app.video.pipe || app_record_frame());
+}
+
 /* Renders `frames` frames at the fixed headless rate, each into the video
  * when recording, then the screenshot (with --hud, the HUD drawn over
  * what is kept). */
 static bool app_run_headless(int frames, const char *screenshot) {
-    for (int i = 0; i < frames; i++) {
-        app.time = i / APP_HEADLESS_FPS;
-        bool kept = app.video.pipe || (screenshot && i == frames - 1);
-        if (!app_render_frame(-1) || (kept && !app_hud_in_picture(i)) || (app.video.pipe && !app_record_frame()))
+    for (int i = 0; i < frames; i++)
+        if (!app_headless_frame(i, screenshot && i == frames - 1))
+            return false;
+    return !screenshot || app_save_screenshot(screenshot);
+}
+
+/* ---- tours ---- */
+
+static int app_technique_index(const char *name) {
+    for (int i = 0; i < app.technique_count; i++)
+        if (strcmp(app.techniques[i]->name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* The tour file loaded and every step's technique and flags checked
+ * before anything renders, each problem one line "FILE: steps[i].KEY:
+ * ..." (flags: the technique's own error). */
+static bool app_load_tour(void) {
+    if (!tour_load(&app.tour, app.tour_path))
+        return false;
+    for (int k = 0; k < app.tour.step_count; k++) {
+        const tour_step *s = &app.tour.steps[k];
+        int t = app_technique_index(s->technique);
+        if (t < 0) {
+            char expected[256];
+            json_join_names(app.technique_names, expected, sizeof expected);
+            fprintf(stderr, "%s: steps[%d].technique: unknown technique \"%s\" (expected %s)\n", app.tour_path, k,
+                    s->technique, expected);
+            return false;
+        }
+        char who[PATH_MAX + 64];
+        snprintf(who, sizeof who, "%s: steps[%d].flags: %s", app.tour_path, k, s->technique);
+        if (!technique_apply_config_as(app.techniques[t], s->flags, who))
+            return false;
+        if (!technique_apply_config(app.techniques[t], ""))
             return false;
     }
-    return !screenshot || app_save_screenshot(screenshot);
+    return true;
+}
+
+/* Step k's scene loaded, its technique configured and started, its motion
+ * from time 0. */
+static bool app_enter_step(int k) {
+    const tour_step *s = &app.tour.steps[k];
+    app.tour_step = k;
+    app.current = app_technique_index(s->technique);
+    app.motion = (int)s->motion;
+    app.animate = false;
+    app.time = 0;
+    app.scene_path = s->scene;
+    if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene)))
+        return false;
+    app.step_technique = true; /* destroy() follows a failed init too */
+    return app_start_technique(app.current);
+}
+
+static void app_leave_step(void) {
+    if (app.step_technique)
+        technique_host_stop(&app.host);
+    if (app.step_scene)
+        app_unload_scene();
+    app.step_technique = app.step_scene = false;
+}
+
+/* "P.png" -> "P-K.png": step k's (from 1) picture. */
+static bool app_step_screenshot(int k) {
+    char path[PATH_MAX];
+    size_t n = strlen(app.screenshot);
+    int stem = n > 4 && strcmp(app.screenshot + n - 4, ".png") == 0 ? (int)(n - 4) : (int)n;
+    snprintf(path, sizeof path, "%.*s-%d.png", stem, app.screenshot, k + 1);
+    if (!app_save_screenshot(path))
+        return false;
+    printf("%s\n", path);
+    return true;
+}
+
+/* Every step headless: with a video, each of its frames; else only the
+ * one it shows (the same picture: frames are a function of their time). */
+static bool app_run_tour_headless(void) {
+    bool ok = true;
+    for (int k = 0; k < app.tour.step_count && ok; k++) {
+        const tour_step *s = &app.tour.steps[k];
+        ok = app_enter_step(k);
+        int first = app.video.pipe ? 0 : s->shown_frame, end = app.video.pipe ? s->frame_count : s->shown_frame + 1;
+        for (int i = first; i < end && ok; i++)
+            ok = app_headless_frame(i, app.screenshot && i == s->shown_frame) &&
+                 (!app.screenshot || i != s->shown_frame || app_step_screenshot(k));
+        app_leave_step();
+    }
+    return ok;
 }
 
 /* The gallery's page rows: one a picture, at most every technique's two
@@ -442,7 +545,10 @@ static void app_hud(int width, int height, int frame) {
         snprintf(timing, sizeof timing, "%.2f ms/frame (CPU)", app.frame_ms);
     else
         snprintf(timing, sizeof timing, "frame %d at %.3f s", frame, app.time);
-    int n = snprintf(text, sizeof text, "%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1,
+    int n = app.tour_path ? snprintf(text, sizeof text, "step %d/%d   %s\n", app.tour_step + 1, app.tour.step_count,
+                                     app.tour.steps[app.tour_step].caption)
+                          : 0;
+    n += snprintf(text + n, sizeof text - (size_t)n, "%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1,
                      app.technique_count, t->name, t->title, app.scene_path, app.target.width, app.target.height,
                      timing, app_motion() ? "   moving: " : "", app_motion() ? motion_names[app_motion()] : "");
     if (n < (int)sizeof text)
@@ -508,9 +614,35 @@ static void app_switch_technique(int index) {
         glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
 }
 
+/* The tour's next or previous step in the window, staying at either end.
+ * A step that does not start closes the window (the run fails). */
+static void app_tour_go(int step) {
+    int k = app.tour_step + step;
+    if (k < 0 || k >= app.tour.step_count)
+        return;
+    app_leave_step();
+    if (!app_enter_step(k)) {
+        app.tour_failed = true;
+        glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
+    }
+}
+
+/* In a tour, the stepping keys step (their usual meanings wait). */
+static bool app_tour_key(int key) {
+    if (!app.tour_path)
+        return false;
+    if (key == GLFW_KEY_SPACE || key == GLFW_KEY_RIGHT || key == GLFW_KEY_PAGE_DOWN)
+        app_tour_go(1);
+    else if (key == GLFW_KEY_LEFT || key == GLFW_KEY_PAGE_UP)
+        app_tour_go(-1);
+    else
+        return false;
+    return true;
+}
+
 static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     (void)scancode, (void)mods;
-    if (action == GLFW_RELEASE)
+    if (action == GLFW_RELEASE || app_tour_key(key))
         return;
     float yaw = 0, pitch = 0;
     switch (key) {
@@ -654,6 +786,19 @@ static bool app_run(void) {
     bool ok = target_create(&app.target, width, height) && (!hud || hud_init());
     if (ok && app.gallery_count) {
         ok = app_run_gallery();
+    } else if (ok && app.tour_path) {
+        ok = !app.record_path || app_start_recording();
+        if (ok && app.ctx.window)
+            ok = app_enter_step(0) && app_run_window(app.frames) && !app.tour_failed &&
+                 (!app.screenshot || app_step_screenshot(app.tour_step));
+        else if (ok)
+            ok = app_run_tour_headless();
+        ok = app_stop_recording() && ok;
+        app_leave_step();
+        if (ok && !app.ctx.window && !app.screenshot && !app.record_path)
+            printf("%s: %d steps of %s rendered headless (%s), nothing written: --screenshot PATH.png saves step "
+                   "K's picture to PATH-K.png, --record PATH.mp4 every frame of every step\n",
+                   app.program, app.tour.step_count, app.tour_path, context_backend_name(app.ctx.backend));
     } else if (ok && (ok = app_load_scene(app.scene_path))) {
         ok = app_start_technique(app.current) && (!app.record_path || app_start_recording());
         if (ok && app.ctx.window)
@@ -710,5 +855,9 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     shader_set_directory(app.shader_dir ? app.shader_dir : app.default_shader_dir);
     if (!app.scene_path)
         app.scene_path = app.default_scene;
+    if (app.tour_path && app.gallery_count)
+        return flags_usage_error(app.program, "--tour and --gallery: one at a time", NULL);
+    if (app.tour_path && !app_load_tour())
+        return APP_EXIT_RUNTIME;
     return app_run() ? 0 : APP_EXIT_RUNTIME;
 }

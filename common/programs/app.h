@@ -9,7 +9,8 @@
  * --no-caster-cull, --no-cache: technique.h), the HUD (--hud: in headless
  * pictures too; --hud-scale N, --hud-compact: hud.h), --verbose, --help, and
  * --gallery DIR SCENE... (every technique on every scene, to
- * DIR/TECHNIQUE_SCENE.png). Each technique parameter adds its flag
+ * DIR/TECHNIQUE_SCENE.png), --tour FILE (a tour file, tour.h: its steps
+ * one by one, stepped by keys in the window, every one headless). Each technique parameter adds its flag
  * (--no-NAME for a toggle); all are one flags_param table (flags.h).
  *
  * A run with --frames, --screenshot or --gallery is headless (auto picks
