@@ -180,6 +180,9 @@ float shadowmap_rim_agreement(vec4 rim) {
 // no division by zero), and how much a texel boundary darkens the picture.
 const float SHADOWMAP_MIN_TEXEL_FWIDTH = 1e-6;
 const float SHADOWMAP_TEXEL_LINE_DARKENING = 0.6;
+// The least spacing of the texel overlay's lines, in pixels: well above
+// the two pixels a line of Nyquist's limit, so the grid reads as squares.
+const float SHADOWMAP_TEXEL_LINE_MIN_PIXELS = 4.0;
 // The texel-size overlay's heat map runs over log2 of a texel's size in
 // pixels from -2 (a quarter pixel) to 5 (32 pixels): shifted by OFFSET and
 // divided by RANGE it is 0..1, one pixel at OFFSET / RANGE. The area floor

@@ -291,6 +291,22 @@ static void test_each_fix_shows_when_off(void **state) {
                 SUPPORT_MAX_DIFFERING);
 }
 
+/* The texel overlay at a 2048 map, a third of a pixel a texel on simple:
+ * a line at every texel would darken nearly every lit pixel (moire); the
+ * lines every 2^k texels, at least SHADOWMAP_TEXEL_LINE_MIN_PIXELS (4)
+ * apart, darken a share of them (measured at 640x360: 22.1 % of the
+ * picture's pixels; a line at every texel: 48.1 %, every lit pixel). */
+#define TEXEL_GRID_MAX_DARKENED 0.35
+#define TEXEL_GRID_MIN_DARKENED 0.05
+static void test_texel_grid_is_not_moire(void **state) {
+    (void)state;
+    render_with("shadowmap", "egl", "assets/scenes/simple.json", "--map-size 2048", "texel_grid_off");
+    render_with("shadowmap", "egl", "assets/scenes/simple.json", "--map-size 2048 --overlay texels", "texel_grid_on");
+    double darkened = support_compare_images("out/test/texel_grid_off.png", "out/test/texel_grid_on.png");
+    fprintf(stderr, "    texel grid at 2048: %.4f of the pixels darkened\n", darkened);
+    assert_true(darkened > TEXEL_GRID_MIN_DARKENED && darkened < TEXEL_GRID_MAX_DARKENED);
+}
+
 /* Without any bias the shadow map shadows the lit ground with acne. */
 static void test_shadowmap_without_bias_shows_acne(void **state) {
     (void)state;
@@ -427,6 +443,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_moved_light_fails_comparison),
         cmocka_unit_test(test_each_fix_shows_when_off),
         cmocka_unit_test(test_shadowmap_without_bias_shows_acne),
+        cmocka_unit_test(test_texel_grid_is_not_moire),
         cmocka_unit_test(test_psm_texel_size_shows),
         cmocka_unit_test(test_post_perspective_shows_for_uniform),
         cmocka_unit_test(test_volumes_overlays_show),
