@@ -88,11 +88,7 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
     if (shadowmap_show_texel_size) {
         vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
         float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), SHADOWMAP_HEAT_MIN_AREA));
-        float t = clamp((log2(texel_pixels) + SHADOWMAP_HEAT_LOG2_OFFSET) / SHADOWMAP_HEAT_LOG2_RANGE, 0.0, 1.0);
-        float one_pixel = SHADOWMAP_HEAT_LOG2_OFFSET / SHADOWMAP_HEAT_LOG2_RANGE;
-        vec3 heat = t < one_pixel ? mix(SHADOWMAP_HEAT_SMALL, SHADOWMAP_HEAT_ONE_PIXEL, t / one_pixel)
-                                  : mix(SHADOWMAP_HEAT_ONE_PIXEL, SHADOWMAP_HEAT_LARGE,
-                                        (t - one_pixel) / (1.0 - one_pixel));
+        vec3 heat = texel_heat_color(log2(texel_pixels));
         float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
         c = heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
     }

@@ -357,6 +357,30 @@ static void test_psm_texel_size_shows(void **state) {
     assert_true(compare_with_golden("psm_long_view", "psm_texel_size_long_view") > SUPPORT_MAX_DIFFERING);
 }
 
+/* The texel-size heat map has its legend: at 640x360 (font unit 1) its
+ * bar runs from x 468 to 628 on rows 325 to 333 (shadow_map_overlay.c's
+ * sizes), blue at a quarter pixel, red at 32, on a dark panel. */
+enum { LEGEND_ROW = 329, LEGEND_BLUE_X = 470, LEGEND_RED_X = 625, LEGEND_PANEL_X = 550, LEGEND_PANEL_ROW = 323 };
+#define LEGEND_DARK 40 /* the panel's channels at most */
+static const unsigned char *legend_pixel(const unsigned char *image, int width, int x, int y) {
+    return image + ((size_t)y * (size_t)width + (size_t)x) * ACNE_CHANNELS;
+}
+
+static void test_texel_size_has_legend(void **state) {
+    (void)state;
+    render_with("shadowmap", "egl", "assets/scenes/simple.json", "--overlay texel-size", "texel_size_legend");
+    int w, h;
+    unsigned char *image = image_read_png("out/test/texel_size_legend.png", &w, &h);
+    assert_non_null(image);
+    const unsigned char *blue = legend_pixel(image, w, LEGEND_BLUE_X, LEGEND_ROW);
+    const unsigned char *red = legend_pixel(image, w, LEGEND_RED_X, LEGEND_ROW);
+    const unsigned char *panel = legend_pixel(image, w, LEGEND_PANEL_X, LEGEND_PANEL_ROW);
+    assert_true(blue[2] > blue[0] && blue[2] > blue[1]);
+    assert_true(red[0] > red[1] && red[0] > red[2]);
+    assert_true(panel[0] <= LEGEND_DARK && panel[1] <= LEGEND_DARK && panel[2] <= LEGEND_DARK);
+    free(image);
+}
+
 /* The post-perspective view draws for the uniform map too (its own clip
  * space), not only for the warps. */
 static void test_post_perspective_shows_for_uniform(void **state) {
@@ -479,6 +503,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_each_fix_shows_when_off),
         cmocka_unit_test(test_shadowmap_without_bias_shows_acne),
         cmocka_unit_test(test_texel_grid_is_not_moire),
+        cmocka_unit_test(test_texel_size_has_legend),
         cmocka_unit_test(test_psm_texel_size_shows),
         cmocka_unit_test(test_post_perspective_shows_for_uniform),
         cmocka_unit_test(test_volumes_overlays_show),
