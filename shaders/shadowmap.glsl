@@ -180,20 +180,7 @@ float shadowmap_rim_agreement(vec4 rim) {
 // no division by zero), and how much a texel boundary darkens the picture.
 const float SHADOWMAP_MIN_TEXEL_FWIDTH = 1e-6;
 const float SHADOWMAP_TEXEL_LINE_DARKENING = 0.6;
-// The texel-size overlay's heat map runs over log2 of a texel's size in
-// pixels from -2 (a quarter pixel) to 5 (32 pixels): shifted by OFFSET and
-// divided by RANGE it is 0..1, one pixel at OFFSET / RANGE. The area floor
-// keeps a map seen edge-on (no area) finite. Colours: blue below a pixel,
-// green at one, red above; shaded by the picture's luminance (Rec. 601's
-// weights, rounded) times GAIN, from DARKEST up to DARKEST + SHADE, so the
-// scene stays readable under it.
-const float SHADOWMAP_HEAT_MIN_AREA = 1e-12;
-const float SHADOWMAP_HEAT_LOG2_OFFSET = 2.0;
-const float SHADOWMAP_HEAT_LOG2_RANGE = 7.0;
-const vec3 SHADOWMAP_HEAT_SMALL = vec3(0.1, 0.2, 1.0);
-const vec3 SHADOWMAP_HEAT_ONE_PIXEL = vec3(0.1, 0.9, 0.2);
-const vec3 SHADOWMAP_HEAT_LARGE = vec3(1.0, 0.1, 0.05);
-const vec3 SHADOWMAP_HEAT_LUMINANCE = vec3(0.3, 0.6, 0.1);
-const float SHADOWMAP_HEAT_GAIN = 2.0;
-const float SHADOWMAP_HEAT_DARKEST = 0.4;
-const float SHADOWMAP_HEAT_SHADE = 0.6;
+// The least spacing of the texel overlay's lines, in pixels: well above
+// the two pixels a line of Nyquist's limit, so the grid reads as squares.
+const float SHADOWMAP_TEXEL_LINE_MIN_PIXELS = 4.0;
+#include "texel_heat.glsl"

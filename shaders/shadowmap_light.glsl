@@ -68,10 +68,17 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
         shadowmap_visibility(map, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y), needed);
     vec3 c = visibility * unshadowed;
     // Lines one pixel wide where texels meet: how big a texel is on screen
-    // is what aliasing is made of.
+    // is what aliasing is made of. A grid finer than two pixels a line is
+    // above the picture's Nyquist limit: it shows moire, not texels (a
+    // 2048 map on simple: a third of a pixel a texel). So the lines run
+    // every 2^k texels, k the least (per pixel, from the screen derivative)
+    // that puts them SHADOWMAP_TEXEL_LINE_MIN_PIXELS apart or more: every
+    // texel where texels are that big, else blocks of 2, 4, 8... texels.
     vec2 map_texel = shadowmap_texel_coord(map, i, v_position);
-    vec2 distance_to_edge =
-        abs(fract(map_texel - 0.5) - 0.5) / max(fwidth(map_texel), vec2(SHADOWMAP_MIN_TEXEL_FWIDTH));
+    vec2 texels_per_pixel = max(fwidth(map_texel), vec2(SHADOWMAP_MIN_TEXEL_FWIDTH));
+    float block = exp2(max(ceil(log2(max(texels_per_pixel.x, texels_per_pixel.y) *
+                                     SHADOWMAP_TEXEL_LINE_MIN_PIXELS)), 0.0));
+    vec2 distance_to_edge = abs(fract(map_texel / block - 0.5) - 0.5) * block / texels_per_pixel;
     float edge = 1.0 - min(min(distance_to_edge.x, distance_to_edge.y), 1.0);
     if (shadowmap_show_texels)
         c *= 1.0 - SHADOWMAP_TEXEL_LINE_DARKENING * edge;
@@ -81,11 +88,7 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
     if (shadowmap_show_texel_size) {
         vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
         float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), SHADOWMAP_HEAT_MIN_AREA));
-        float t = clamp((log2(texel_pixels) + SHADOWMAP_HEAT_LOG2_OFFSET) / SHADOWMAP_HEAT_LOG2_RANGE, 0.0, 1.0);
-        float one_pixel = SHADOWMAP_HEAT_LOG2_OFFSET / SHADOWMAP_HEAT_LOG2_RANGE;
-        vec3 heat = t < one_pixel ? mix(SHADOWMAP_HEAT_SMALL, SHADOWMAP_HEAT_ONE_PIXEL, t / one_pixel)
-                                  : mix(SHADOWMAP_HEAT_ONE_PIXEL, SHADOWMAP_HEAT_LARGE,
-                                        (t - one_pixel) / (1.0 - one_pixel));
+        vec3 heat = texel_heat_color(log2(texel_pixels));
         float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
         c = heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
     }

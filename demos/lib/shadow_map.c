@@ -35,12 +35,14 @@ static const struct {
     [SHADOW_MAP_FILTER_TENT5] = {SHADOW_MAP_KERNEL_TENT, 5},
 };
 
-/* The C constants the camera pass compares with. */
+/* The C constants the camera pass compares with (and the legend's
+ * colours, the heat map's ends). */
 static const shader_define shadow_map_defines[] = {
     SHADER_DEFINE(SHADOW_MAP_KERNEL_SINGLE),     SHADER_DEFINE(SHADOW_MAP_KERNEL_GRID),
     SHADER_DEFINE(SHADOW_MAP_KERNEL_POISSON),    SHADER_DEFINE(SHADOW_MAP_TEXEL_ORTHOGRAPHIC),
     SHADER_DEFINE(SHADOW_MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(SHADOW_MAP_TEXEL_PROJECTIVE),
-    SHADER_DEFINE(SHADOW_MAP_KERNEL_TENT),       {NULL, 0}};
+    SHADER_DEFINE(SHADOW_MAP_KERNEL_TENT),       SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MIN),
+    SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     {NULL, 0}};
 
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
@@ -393,14 +395,17 @@ static shadow_map_camera_key shadow_map_scene_key(const scene *s, const shadow_m
 static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
+    static const char *const legend_files[] = {"overlay.vert", "overlay_heat_legend.frag"};
     static const shader_define inset_defines[] = {
         SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
         SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
         SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z), {NULL, 0}};
     if (!render_program_load(&r->lines.program, lines_files, 2, NULL) ||
-        !render_program_load(&r->inset.program, inset_files, 2, inset_defines))
+        !render_program_load(&r->inset.program, inset_files, 2, inset_defines) ||
+        !render_program_load(&r->legend.program, legend_files, 2, shadow_map_defines))
         return false;
     r->lines.color = glGetUniformLocation(r->lines.program.id, "u_color");
+    r->legend.log2_range = glGetUniformLocation(r->legend.program.id, "u_log2_range");
     shadow_map_inset_program *p = &r->inset;
     const shadow_map_uniform uniforms[] = {
         {&p->map, "u_map"}, {&p->cube_map, "u_cube_map"}, {&p->cube, "u_cube"},
@@ -460,7 +465,7 @@ bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings
     glBindVertexArray(r->overlay_vao);
     glGenBuffers(1, &r->overlay_buffer);
     glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
-    glBufferData(GL_ARRAY_BUFFER, SHADOW_MAP_OVERLAY_VERTICES * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, SHADOW_MAP_LEGEND_VERTICES * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
     glBindVertexArray(0);
@@ -479,6 +484,7 @@ void shadow_map_destroy(shadow_map_renderer *r) {
         render_program_destroy(&r->camera[i].program);
     render_program_destroy(&r->lines.program);
     render_program_destroy(&r->inset.program);
+    render_program_destroy(&r->legend.program);
     glDeleteVertexArrays(1, &r->overlay_vao);
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);

@@ -223,6 +223,11 @@ typedef struct shadow_map_settings {
     float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
 } shadow_map_settings;
 
+/* The texel-size heat map's ends, log2 of a texel's size in pixels: blue
+ * at a quarter pixel and below, green at one, red at 32 and more. The
+ * shaders (texel_heat.glsl) and the legend take them from here. */
+#define SHADOW_MAP_HEAT_LOG2_MIN (-2)
+#define SHADOW_MAP_HEAT_LOG2_MAX 5
 #define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size"
 enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
        SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_COUNT };
@@ -374,8 +379,18 @@ typedef struct shadow_map_inset_program {
     int map, cube_map, cube, orthographic, near_plane, far_plane;
 } shadow_map_inset_program;
 
-/* Room in the overlay buffer: the 24 line ends of a frustum's 12 edges. */
+/* overlay.vert with overlay_heat_legend.frag: the texel-size legend's bar. */
+typedef struct shadow_map_legend_program {
+    render_program program;
+    int log2_range;
+} shadow_map_legend_program;
+
+/* Vertices in the overlay buffer: a frustum's 12 edges take 24 line
+ * ends; the legend's panel, ticks and labels, two triangles a rectangle
+ * (its three labels: about 70 of stb_easy_font's quads); the buffer holds
+ * the larger. */
 #define SHADOW_MAP_OVERLAY_VERTICES 24
+#define SHADOW_MAP_LEGEND_VERTICES 1200
 
 /* What a light's map was rendered with (the cache's key): all ints, so
  * that it compares with memcmp. */
@@ -400,6 +415,7 @@ typedef struct shadow_map_renderer {
     int camera_count, camera_oldest;
     shadow_map_lines_program lines;
     shadow_map_inset_program inset;
+    shadow_map_legend_program legend;
     unsigned framebuffer, overlay_vao, overlay_buffer;
     shadow_map maps[SCENE_MAX_LIGHTS];
     shadow_map_cache caches[SCENE_MAX_LIGHTS];
@@ -504,7 +520,8 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
 /* The 12 edges of the frustum of `frustum` (its clip cube mapped back to
  * world space), drawn through `view_projection`. */
 void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const mat4 view_projection);
-/* Those of settings->overlay drawn after the camera pass: frusta, inset.
+/* Those of settings->overlay drawn after the camera pass: frusta, inset,
+ * the texel-size heat map's legend (a colour bar with labelled ticks).
  * fitted[l]: light l has a map this frame. */
 void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
                               const int viewport[4]);

@@ -1,10 +1,17 @@
 /* shadow_map: the overlays drawn after the camera pass, for lectures (see
  * shadow_map.h). The texel and texel-size overlays are the camera pass's
- * own (shaders/shadowmap.glsl). */
+ * own (shaders/shadowmap.glsl); the texel-size legend is drawn here. */
 #include <glad/gl.h>
+/* stb_easy_font is all static functions; not every one is used. */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-braces"
+#include <stb_easy_font.h>
+#pragma GCC diagnostic pop
 
 #include "depth.h"
 #include "frustum.h"
+#include "hud.h"
 #include "shadow_map.h"
 
 /* Frustum edges: a warm yellow that reads on the lit scene and the dark
@@ -26,9 +33,9 @@ static const float shadow_map_warp_view_eye[3] = {3.2f, 2.4f, -4.2f};
 /* post_perspective.vert clips to the six planes of the clip cube. */
 #define SHADOW_MAP_CLIP_PLANES 6
 
-/* `count` (<= SHADOW_MAP_OVERLAY_VERTICES) line ends in world space, in one
- * colour. */
-static void shadow_map_draw_lines(shadow_map_renderer *r, const float (*points)[3], int count,
+/* `count` (<= SHADOW_MAP_LEGEND_VERTICES) vertices of lines or triangles
+ * (mode) in world space, in one colour. */
+static void shadow_map_draw_solid(shadow_map_renderer *r, GLenum mode, const float (*points)[3], int count,
                                   const mat4 view_projection, const float color[3]) {
     glUseProgram(r->lines.program.id);
     glUniformMatrix4fv(r->lines.program.view_projection, 1, GL_FALSE, (const float *)view_projection);
@@ -36,7 +43,7 @@ static void shadow_map_draw_lines(shadow_map_renderer *r, const float (*points)[
     glBindVertexArray(r->overlay_vao);
     glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *points * (size_t)count), points);
-    glDrawArrays(GL_LINES, 0, count);
+    glDrawArrays(mode, 0, count);
 }
 
 void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const mat4 view_projection) {
@@ -51,7 +58,7 @@ void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const m
             glm_vec3_copy(corners[a | bit], lines[n++]);
         }
     }
-    shadow_map_draw_lines(r, (const float(*)[3])lines, n, view_projection, shadow_map_frustum_color);
+    shadow_map_draw_solid(r, GL_LINES, (const float(*)[3])lines, n, view_projection, shadow_map_frustum_color);
 }
 
 /* Light 0's map in the bottom-right third of the picture: a 2D map as it
@@ -87,6 +94,102 @@ static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, c
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
+/* ---- the texel-size legend ---- */
+
+/* The ticks labelled under the bar: its ends (shadow_map.h) and one pixel. */
+#define SHADOW_MAP_LEGEND_LOG2_MIN ((float)SHADOW_MAP_HEAT_LOG2_MIN)
+#define SHADOW_MAP_LEGEND_LOG2_MAX ((float)SHADOW_MAP_HEAT_LOG2_MAX)
+static const struct {
+    float log2_pixels;
+    const char *label;
+} shadow_map_legend_ticks[] = {{SHADOW_MAP_LEGEND_LOG2_MIN, "1/4"}, {0, "1 px"}, {SHADOW_MAP_LEGEND_LOG2_MAX, "32+ px"}};
+/* Sizes in font units, so the legend grows with the HUD's text (hud.h):
+ * the bar, a tick's length, the panel's margin, stb_easy_font's line. */
+#define SHADOW_MAP_LEGEND_BAR_UNITS 160
+#define SHADOW_MAP_LEGEND_BAR_HEIGHT_UNITS 8
+#define SHADOW_MAP_LEGEND_TICK_UNITS 3
+#define SHADOW_MAP_LEGEND_MARGIN_UNITS 4
+#define SHADOW_MAP_LEGEND_LINE_UNITS 12
+#define SHADOW_MAP_LEGEND_PANEL_UNITS                                                                                 \
+    (SHADOW_MAP_LEGEND_BAR_HEIGHT_UNITS + SHADOW_MAP_LEGEND_TICK_UNITS + SHADOW_MAP_LEGEND_LINE_UNITS)
+/* stb_easy_font's quads: four vertices of x, y, z floats and RGBA bytes. */
+#define SHADOW_MAP_LEGEND_FONT_VERTEX_BYTES 16
+#define SHADOW_MAP_LEGEND_FONT_QUADS (SHADOW_MAP_LEGEND_VERTICES / 6)
+/* A dark panel, so the labels read over any scene, and white text. */
+static const float shadow_map_legend_panel_color[3] = {0.05f, 0.05f, 0.06f};
+static const float shadow_map_legend_text_color[3] = {1, 1, 1};
+
+/* Triangles in the viewport's clip space from rectangles in pixels from
+ * its top-left corner (stb_easy_font's way up: y down). */
+typedef struct shadow_map_legend_mesh {
+    float vertices[SHADOW_MAP_LEGEND_VERTICES][3];
+    int count;
+    float width, height;
+} shadow_map_legend_mesh;
+
+static void shadow_map_legend_rect(shadow_map_legend_mesh *m, float x0, float y0, float x1, float y1) {
+    static const int corner[6][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+    for (int k = 0; k < 6 && m->count < SHADOW_MAP_LEGEND_VERTICES; k++, m->count++) {
+        m->vertices[m->count][0] = 2 * (corner[k][0] ? x1 : x0) / m->width - 1;
+        m->vertices[m->count][1] = 1 - 2 * (corner[k][1] ? y1 : y0) / m->height;
+        m->vertices[m->count][2] = 0;
+    }
+}
+
+/* The texel-size heat map's legend in the bottom-right corner (free of
+ * the map inset, which this overlay does not show): its colour bar in
+ * the picture's colours, a tick and a label at a quarter pixel, one
+ * pixel and 32 (the ramp's ends and its green), on a dark panel. */
+static void shadow_map_draw_legend(shadow_map_renderer *r, const int viewport[4]) {
+    static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    /* Scratch, static for their size (not state: filled anew each frame). */
+    static shadow_map_legend_mesh panel, text;
+    static char font[SHADOW_MAP_LEGEND_FONT_QUADS * 4 * SHADOW_MAP_LEGEND_FONT_VERTEX_BYTES];
+    float unit = (float)hud_scale_for(viewport[3]), margin = SHADOW_MAP_LEGEND_MARGIN_UNITS * unit;
+    float bar_width = SHADOW_MAP_LEGEND_BAR_UNITS * unit, bar_height = SHADOW_MAP_LEGEND_BAR_HEIGHT_UNITS * unit;
+    float x = (float)viewport[2] - SHADOW_MAP_INSET_MARGIN_PX - margin - bar_width;
+    float y = (float)viewport[3] - SHADOW_MAP_INSET_MARGIN_PX - margin - SHADOW_MAP_LEGEND_PANEL_UNITS * unit;
+    panel = (shadow_map_legend_mesh){.width = (float)viewport[2], .height = (float)viewport[3]};
+    text = panel;
+    shadow_map_legend_rect(&panel, x - margin, y - margin, x + bar_width + margin,
+                           y + SHADOW_MAP_LEGEND_PANEL_UNITS * unit + margin);
+    for (size_t t = 0; t < sizeof shadow_map_legend_ticks / sizeof *shadow_map_legend_ticks; t++) {
+        float along = (shadow_map_legend_ticks[t].log2_pixels - SHADOW_MAP_LEGEND_LOG2_MIN) /
+                      (SHADOW_MAP_LEGEND_LOG2_MAX - SHADOW_MAP_LEGEND_LOG2_MIN);
+        float tick = x + along * (bar_width - unit);
+        shadow_map_legend_rect(&text, tick, y + bar_height, tick + unit,
+                               y + bar_height + SHADOW_MAP_LEGEND_TICK_UNITS * unit);
+        /* Each label under its tick, shifted left by its share of the bar,
+         * so the end labels stay over the panel. */
+        char *label = (char *)shadow_map_legend_ticks[t].label;
+        float label_x = tick - along * (float)stb_easy_font_width(label) * unit;
+        float label_y = y + bar_height + SHADOW_MAP_LEGEND_TICK_UNITS * unit;
+        int quads = stb_easy_font_print(0, 0, label, NULL, font, (int)sizeof font);
+        for (int q = 0; q < quads; q++) {
+            const float *a = (const float *)(font + (size_t)q * 4 * SHADOW_MAP_LEGEND_FONT_VERTEX_BYTES);
+            const float *b = (const float *)(font + ((size_t)q * 4 + 2) * SHADOW_MAP_LEGEND_FONT_VERTEX_BYTES);
+            shadow_map_legend_rect(&text, label_x + a[0] * unit, label_y + a[1] * unit, label_x + b[0] * unit,
+                                   label_y + b[1] * unit);
+        }
+    }
+    glDisable(GL_DEPTH_TEST);
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    shadow_map_draw_solid(r, GL_TRIANGLES, (const float(*)[3])panel.vertices, panel.count, identity,
+                          shadow_map_legend_panel_color);
+    shadow_map_draw_solid(r, GL_TRIANGLES, (const float(*)[3])text.vertices, text.count, identity,
+                          shadow_map_legend_text_color);
+    glViewport(viewport[0] + (int)x, viewport[1] + viewport[3] - (int)(y + bar_height), (int)bar_width,
+               (int)bar_height);
+    glUseProgram(r->legend.program.id);
+    glUniformMatrix4fv(r->legend.program.view_projection, 1, GL_FALSE, (const float *)identity);
+    glUniform2f(r->legend.log2_range, SHADOW_MAP_LEGEND_LOG2_MIN, SHADOW_MAP_LEGEND_LOG2_MAX);
+    glBindVertexArray(r->overlay_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+}
+
 void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
                               const int viewport[4]) {
     glDisable(GL_BLEND);
@@ -97,6 +200,8 @@ void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const techniq
             shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
     if (fitted[0] && (overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP))
         shadow_map_draw_inset(r, &r->maps[0], viewport);
+    if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)
+        shadow_map_draw_legend(r, viewport);
 }
 
 /* ---- a warp's space ---- */
