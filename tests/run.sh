@@ -11,6 +11,17 @@
 # build's log is printed whole when both are done.
 set -u
 cd "$(dirname "$0")/.."
+
+# The last line, "N passed, N failed[, N skipped]", and the exit status.
+summarize() {
+    if [ "$skipped" -gt 0 ]; then
+        echo "$passed passed, $failed failed, $skipped skipped"
+    else
+        echo "$passed passed, $failed failed"
+    fi
+    [ "$failed" -eq 0 ]
+    exit
+}
 if [ $# -gt 1 ]; then
     mkdir -p out/run
     for build in "$@"; do
@@ -31,13 +42,7 @@ if [ $# -gt 1 ]; then
         [ -n "${p:-}" ] || { echo "$build: the run ended without its summary line"; f=1; }
         passed=$((passed + ${p:-0})) failed=$((failed + ${f:-0})) skipped=$((skipped + ${s:-0}))
     done
-    if [ "$skipped" -gt 0 ]; then
-        echo "$passed passed, $failed failed, $skipped skipped"
-    else
-        echo "$passed passed, $failed failed"
-    fi
-    [ "$failed" -eq 0 ]
-    exit
+    summarize
 fi
 passed=0 failed=0 skipped=0
 for build in "$@"; do
@@ -85,9 +90,4 @@ for build in "$@"; do
         passed=$((passed + ${p:-0})) failed=$((failed + ${f:-0})) skipped=$((skipped + ${s:-0}))
     done
 done
-if [ "$skipped" -gt 0 ]; then
-    echo "$passed passed, $failed failed, $skipped skipped"
-else
-    echo "$passed passed, $failed failed"
-fi
-[ "$failed" -eq 0 ]
+summarize
