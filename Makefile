@@ -104,7 +104,8 @@ demo: $(PROGRAMS)
 gallery: $(PROGRAMS)
 	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json
 
-# The suite runs twice: plain, then built with ASan+UBSan (build-san/).
+# The suite runs twice, plain and built with ASan+UBSan (build-san/), both at
+# once (tests/run.sh).
 # `make test SANITIZE=1` runs only the sanitizer pass.
 test: $(PROGRAMS) $(TESTS)
 ifeq ($(SANITIZE),1)
