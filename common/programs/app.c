@@ -242,12 +242,19 @@ static bool app_start_technique(int index) {
     return technique_host_start(&app.host, app_technique(), &app.gpu, &app.skips);
 }
 
-static bool app_dump(const char *dir) {
+/* What this frame decided for light `light` (capture.h); on failure the
+ * dump owns nothing. */
+static bool app_capture(int light, dump_frame *dump) {
     camera_view view;
-    dump_frame dump;
     app_view(&view);
-    bool ok = capture_dump(&app.gpu, &view, &app.target, app.light, app_render_frame, &dump);
-    ok = ok && dump_write(&dump, dir);
+    return capture_dump(&app.gpu, &view, &app.target, light, app_render_frame, dump);
+}
+
+static bool app_dump(const char *dir) {
+    dump_frame dump;
+    if (!app_capture(app.light, &dump))
+        return false;
+    bool ok = dump_write(&dump, dir);
     dump_frame_free(&dump);
     return ok;
 }
@@ -402,10 +409,8 @@ static bool app_run_tour_headless(void) {
  * shadowdiff can say nothing of stays unmeasured on the page. */
 static bool app_gallery_measure(const dump_frame *reference, const char *dir, const char *stem,
                                 gallery_page_row *row) {
-    camera_view view;
     dump_frame dump;
-    app_view(&view);
-    if (!capture_dump(&app.gpu, &view, &app.target, 0, app_render_frame, &dump))
+    if (!app_capture(0, &dump))
         return false;
     unsigned char *heatmap = malloc((size_t)dump.width * (size_t)dump.height * 4);
     shadowdiff_result r;

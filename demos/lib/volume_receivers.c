@@ -12,14 +12,6 @@
 /* The texture unit the planes are read from, during this pass only. */
 #define VOLUME_RECEIVERS_UNIT 0
 
-/* Corner k of triangle t of object o, in world space, in double. */
-static void volume_receivers_corner(const scene_object *o, uint32_t t, int k, double out[3]) {
-    const float *p = o->mesh.vertices[o->mesh.indices[3 * t + (uint32_t)k]].position;
-    for (int row = 0; row < 3; row++)
-        out[row] = (double)o->model[0][row] * p[0] + (double)o->model[1][row] * p[1] +
-                   (double)o->model[2][row] * p[2] + (double)o->model[3][row];
-}
-
 bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
     static const char *const files[] = {"lit.vert", "volume_receiver_depth.frag"};
     if (!render_program_load(&r->program, files, (int)(sizeof files / sizeof *files), NULL))
@@ -87,7 +79,7 @@ static void volume_receivers_planes(const volume_receivers *r, const scene_objec
     for (uint32_t t = 0; t < triangles; t++) {
         double v[3][3], e1[3], e2[3], n[3];
         for (int k = 0; k < 3; k++)
-            volume_receivers_corner(o, t, k, v[k]);
+            render_world_corner(o, t, k, v[k]);
         for (int c = 0; c < 3; c++) {
             e1[c] = v[1][c] - v[0][c];
             e2[c] = v[2][c] - v[0][c];
