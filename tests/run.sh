@@ -3,6 +3,8 @@
 # the sanitizer run, build-san/) and ends with one line "N passed, N failed".
 # A program that dies before cmocka's summary counts as one failure.
 #
+# ONLY="test_NAME ..." runs those programs alone.
+#
 # Given several builds (make test: plain and sanitizer), it runs them at
 # once, each in its own directory out/run/BUILD that links to everything
 # here but has its own out/ (the tests write under out/test/): CI has two
@@ -67,6 +69,8 @@ for build in "$@"; do
     esac
     for t in "$build"/tests/test_*; do
         [ -x "$t" ] || continue
+        # ONLY="test_a test_b": those programs alone (a quick check).
+        [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $(basename "$t") "* ]] || continue
         echo "== $t"
         # A test that makes a GL context in its own process (not only in
         # the programs it runs) needs the same preload itself.
