@@ -5,14 +5,20 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Compared pixels are AGREES and after. */
-typedef enum shadowdiff_pixel {
-    SHADOWDIFF_PIXEL_NO_SURFACE,
-    SHADOWDIFF_PIXEL_NOT_COMPARED,
-    SHADOWDIFF_PIXEL_AGREES,
-    SHADOWDIFF_PIXEL_FALSE_SHADOW,
-    SHADOWDIFF_PIXEL_FALSE_LIT,
-} shadowdiff_pixel;
+const unsigned char shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_KIND_COUNT][3] = {
+    [SHADOWDIFF_PIXEL_NO_SURFACE] = {0, 0, 0},
+    [SHADOWDIFF_PIXEL_NOT_COMPARED] = {40, 40, 40},
+    [SHADOWDIFF_PIXEL_AGREES] = {SHADOWDIFF_AGREES_GREY_LIT, SHADOWDIFF_AGREES_GREY_LIT, SHADOWDIFF_AGREES_GREY_LIT},
+    [SHADOWDIFF_PIXEL_FALSE_SHADOW] = {255, 0, 0},
+    [SHADOWDIFF_PIXEL_FALSE_LIT] = {0, 0, 255},
+};
+const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT] = {
+    [SHADOWDIFF_PIXEL_NO_SURFACE] = "no surface",
+    [SHADOWDIFF_PIXEL_NOT_COMPARED] = "not compared",
+    [SHADOWDIFF_PIXEL_AGREES] = "agrees (lighter where lit)",
+    [SHADOWDIFF_PIXEL_FALSE_SHADOW] = "false shadow",
+    [SHADOWDIFF_PIXEL_FALSE_LIT] = "false lit",
+};
 
 static double shadowdiff_length3(const float v[3]) {
     return sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
@@ -117,19 +123,13 @@ static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_fram
 }
 
 static void shadowdiff_paint(unsigned char *rgba, shadowdiff_pixel pixel, float reference_visibility) {
-    static const unsigned char colors[][3] = {
-        [SHADOWDIFF_PIXEL_NO_SURFACE] = {0, 0, 0},
-        [SHADOWDIFF_PIXEL_NOT_COMPARED] = {40, 40, 40},
-        [SHADOWDIFF_PIXEL_FALSE_SHADOW] = {255, 0, 0},
-        [SHADOWDIFF_PIXEL_FALSE_LIT] = {0, 0, 255},
-    };
     if (pixel == SHADOWDIFF_PIXEL_AGREES) {
-        /* From 96, so that agreeing shadow stays apart from "not compared". */
         float v = fminf(fmaxf(reference_visibility, 0), 1);
-        unsigned char grey = (unsigned char)lroundf(96 + 159 * v);
+        unsigned char grey = (unsigned char)lroundf(SHADOWDIFF_AGREES_GREY_SHADOWED +
+                                                    (SHADOWDIFF_AGREES_GREY_LIT - SHADOWDIFF_AGREES_GREY_SHADOWED) * v);
         memset(rgba, grey, 3);
     } else {
-        memcpy(rgba, colors[pixel], 3);
+        memcpy(rgba, shadowdiff_pixel_colors[pixel], 3);
     }
     rgba[3] = 255;
 }

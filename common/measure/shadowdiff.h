@@ -62,6 +62,11 @@
 #include "dump.h"
 
 #define SHADOWDIFF_LIT_THRESHOLD 0.5f
+/* The heat map's grey for agreeing pixels, from the reference's shadow to
+ * its light: from 96, so that agreeing shadow stays apart from "not
+ * compared". */
+#define SHADOWDIFF_AGREES_GREY_SHADOWED 96
+#define SHADOWDIFF_AGREES_GREY_LIT 255
 #define SHADOWDIFF_DEPTH_TOLERANCE 0.001
 #define SHADOWDIFF_LIGHT_TOLERANCE 1e-4
 
@@ -78,6 +83,23 @@ typedef enum shadowdiff_problem {
     SHADOWDIFF_PROBLEM_NOT_FINITE,
     SHADOWDIFF_PROBLEM_NOTHING_COMPARED,
 } shadowdiff_problem;
+
+/* What a heat-map pixel says; compared pixels are AGREES and after. */
+typedef enum shadowdiff_pixel {
+    SHADOWDIFF_PIXEL_NO_SURFACE,
+    SHADOWDIFF_PIXEL_NOT_COMPARED,
+    SHADOWDIFF_PIXEL_AGREES,
+    SHADOWDIFF_PIXEL_FALSE_SHADOW,
+    SHADOWDIFF_PIXEL_FALSE_LIT,
+    SHADOWDIFF_PIXEL_KIND_COUNT
+} shadowdiff_pixel;
+
+/* The heat map's colour of each kind (AGREES: its lit end; shadowed
+ * agreeing pixels are darker, down to SHADOWDIFF_AGREES_GREY_SHADOWED)
+ * and its name, for legends: the one definition the map and every
+ * legend of it use. */
+extern const unsigned char shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_KIND_COUNT][3];
+extern const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT];
 
 typedef struct shadowdiff_result {
     shadowdiff_problem problem; /* NONE exactly when shadowdiff_compare returns true */
