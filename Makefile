@@ -57,7 +57,7 @@ $(BUILD)/common/programs/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs) -Idemos
 $(BUILD)/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs)
 $(BUILD)/tests/%.o: LAYER_INCLUDES = -Itests -Idemos -Idemos/lib $(INCLUDES_programs)
 
-COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) common/programs/app.c
+COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) common/programs/app.c common/programs/compare.c
 DEMO_SRC := $(filter-out demos/registry.c,$(wildcard demos/*.c))
 DEMOS := $(patsubst demos/%.c,%,$(DEMO_SRC))
 TEST_SRC := $(wildcard tests/test_*.c)

@@ -115,6 +115,14 @@ bool support_have_command(const char *name) {
     return system(command) == 0;
 }
 
+const char *support_xvfb_run(void) {
+    if (!support_have_command("xvfb-run")) {
+        fprintf(stderr, "    xvfb-run is not installed here: skipped\n");
+        skip();
+    }
+    return "env -u LD_PRELOAD xvfb-run -a -s '-screen 0 1024x768x24'";
+}
+
 static FILE *support_capture_file;
 static int support_saved_stderr = -1;
 

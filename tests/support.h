@@ -32,6 +32,11 @@ int support_count_lines(const char *text);
  * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
 double support_compare_images(const char *golden, const char *actual);
 bool support_have_command(const char *name);
+/* The command prefix that runs a program in a window under a virtual X
+ * server (the server without this process's LD_PRELOAD: support_program
+ * gives the program its own); skips the running cmocka test, saying so,
+ * where xvfb-run is not installed. */
+const char *support_xvfb_run(void);
 /* The first of the count files `names` that differs between directories
  * a and b (or is missing from one), or NULL when all are byte-identical. */
 const char *support_first_difference(const char *a, const char *b, const char *const *names, size_t count);

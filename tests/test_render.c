@@ -49,8 +49,8 @@ typedef struct golden_case {
     const char *size; /* NULL: SIZE */
 } golden_case;
 
-/* A HUD picture (--hud) at a projector's size: TECHNIQUE-hud-WxH_SCENE. */
-#define GOLDEN_HUD "-hud-"
+/* A picture at a projector's size is of one of the app's switches:
+ * TECHNIQUE-SWITCH-WxH_SCENE (--hud, --compare). */
 #define GOLDEN_HUD_FLAGS "--hud"
 
 /* A spot, a point and a directional light: every technique in the registry
@@ -72,6 +72,10 @@ static const golden_case golden_extra_cases[] = {
      * wraps at both sizes (tests/test_hud.c checks the layout). */
     {"psm", "long_view", GOLDEN_HUD_FLAGS, "psm-hud-1280x720_long_view", true, "1280x720"},
     {"psm", "long_view", GOLDEN_HUD_FLAGS, "psm-hud-1920x1080_long_view", true, "1920x1080"},
+    /* Compare mode as a slide: the technique, the truth (test_compare
+     * shows each cell is its program's picture), the heat map and its
+     * legend with the figures. */
+    {"psm", "long_view", "--compare", "psm-compare-1280x720_long_view", true, "1280x720"},
 };
 
 /* Every tour in assets/tours/ is a golden per step, tour-NAME-K.png (K
@@ -311,9 +315,12 @@ static void test_golden_table_is_consistent(void **state) {
         bool lecture = strstr(c->name, GOLDEN_LECTURE) != NULL;
         char expected[GOLDEN_NAME_SIZE];
         if (c->size) {
-            snprintf(expected, sizeof expected, "%s" GOLDEN_HUD "%s_%s", c->technique, c->size, c->scene);
-            if (strcmp(c->name, expected) != 0 || strcmp(c->flags, GOLDEN_HUD_FLAGS) != 0)
-                fail_msg("%s: a HUD picture is %s, with flags " GOLDEN_HUD_FLAGS, c->name, expected);
+            /* One of the app's switches at a projector's size:
+             * TECHNIQUE-SWITCH-WxH_SCENE. */
+            bool one_switch = strncmp(c->flags, "--", 2) == 0 && !strchr(c->flags, ' ');
+            snprintf(expected, sizeof expected, "%s-%s-%s_%s", c->technique, c->flags + 2, c->size, c->scene);
+            if (!one_switch || strcmp(c->name, expected) != 0)
+                fail_msg("%s: a picture at a projector's size is %s, with one switch", c->name, expected);
             continue;
         }
         snprintf(expected, sizeof expected, "%s%s%s", c->technique, lecture ? GOLDEN_LECTURE : "_", c->scene);
@@ -484,15 +491,12 @@ static void test_volumes_overlays_show(void **state) {
 /* The GLFW window, under a virtual X server, shows the same picture. */
 static void test_window_matches_golden(void **state) {
     (void)state;
-    if (!support_have_command("xvfb-run")) {
-        fprintf(stderr, "    xvfb-run is not installed here: skipped\n");
-        skip();
-    }
+    const char *xvfb = support_xvfb_run();
     char command[1024];
     snprintf(command, sizeof command,
-             "xvfb-run -a -s '-screen 0 1024x768x24' %s --backend glfw --size " SIZE
+             "%s %s --backend glfw --size " SIZE
              " --frames 2 --screenshot out/test/planar_simple_glfw.png",
-             support_program("planar"));
+             xvfb, support_program("planar"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
     assert_true(within_tolerance(compare_with_golden("planar_simple", "planar_simple_glfw")));
 }

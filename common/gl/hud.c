@@ -14,7 +14,6 @@
 
 #define HUD_MAX_QUADS 8000 /* about 32 lines of 80 characters */
 #define HUD_MAX_TEXT 8192
-#define HUD_LINE_UNITS 12 /* stb_easy_font's line height */
 #define HUD_VERTEX_BYTES 16 /* stb_easy_font: x, y, z floats and RGBA bytes */
 
 static struct {

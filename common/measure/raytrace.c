@@ -77,7 +77,7 @@ typedef struct raytrace_object {
     bool casts;
 } raytrace_object;
 
-typedef struct raytrace_tracer {
+struct raytrace_tracer {
     const scene *scene;
     RTCDevice device;
     RTCScene rtc;
@@ -92,7 +92,9 @@ typedef struct raytrace_tracer {
     double forward[3], right[3], up[3];
     float near_plane, far_plane;
     unsigned char background[4];
-} raytrace_tracer;
+    bool verbose;
+    double build_ms, trace_ms; /* for verbose */
+};
 
 /* The visible surface at a pixel. */
 typedef struct raytrace_hit {
@@ -643,63 +645,100 @@ static void raytrace_release(raytrace_tracer *t) {
     if (t->device)
         rtcReleaseDevice(t->device);
     free(t->objects);
+    free(t);
 }
 
-bool raytrace_render(const scene *s, int width, int height, int light_index, const raytrace_settings *settings,
-                     dump_frame *out) {
+raytrace_tracer *raytrace_begin(const scene *s, int width, int height, int light_index,
+                                const raytrace_settings *settings, dump_frame *out) {
     int light_samples = settings->light_samples ? settings->light_samples : RAYTRACE_DEFAULT_LIGHT_SAMPLES;
     if (!raytrace_check_arguments(s, width, height, light_index, settings->light_samples))
-        return false;
-    raytrace_tracer t = {
+        return NULL;
+    raytrace_tracer *t = calloc(1, sizeof *t);
+    if (!t) {
+        fprintf(stderr, "raytrace: out of memory for a tracer\n");
+        return NULL;
+    }
+    *t = (raytrace_tracer){
         .scene = s,
         .light_samples = light_samples,
         .light_index = light_index,
         .width = width,
         .height = height,
+        .verbose = settings->verbose,
         .background = {raytrace_unorm8(SCENE_BACKGROUND_R), raytrace_unorm8(SCENE_BACKGROUND_G),
                        raytrace_unorm8(SCENE_BACKGROUND_B), 255},
     };
-    if (!raytrace_prepare_camera(&t, settings->scene_name))
-        return false;
-    raytrace_prepare_lights(&t);
+    if (!raytrace_prepare_camera(t, settings->scene_name)) {
+        free(t);
+        return NULL;
+    }
+    raytrace_prepare_lights(t);
 
     double start = omp_get_wtime();
-    t.device = rtcNewDevice(NULL);
-    if (!t.device) {
+    t->device = rtcNewDevice(NULL);
+    if (!t->device) {
         fprintf(stderr, "raytrace: cannot create an Embree device (error %d)\n", (int)rtcGetDeviceError(NULL));
-        return false;
+        free(t);
+        return NULL;
     }
     /* From here on Embree reports its own errors, one line each. */
-    rtcSetDeviceErrorFunction(t.device, raytrace_on_embree_error, NULL);
-    t.objects = calloc((size_t)s->object_count, sizeof *t.objects);
-    if (!t.objects)
+    rtcSetDeviceErrorFunction(t->device, raytrace_on_embree_error, NULL);
+    t->objects = calloc((size_t)s->object_count, sizeof *t->objects);
+    if (!t->objects)
         fprintf(stderr, "raytrace: out of memory for %d objects\n", s->object_count);
-    if (!t.objects || !raytrace_build_scene(&t) || !dump_frame_create(out, width, height, s, light_index)) {
-        raytrace_release(&t);
-        return false;
+    if (!t->objects || !raytrace_build_scene(t) || !dump_frame_create(out, width, height, s, light_index)) {
+        raytrace_release(t);
+        return NULL;
     }
-    double built = omp_get_wtime();
+    t->build_ms = (omp_get_wtime() - start) * 1e3;
+    return t;
+}
 
+void raytrace_rows(raytrace_tracer *t, const int *rows, int count, dump_frame *out) {
+    double start = omp_get_wtime();
 #pragma omp parallel for schedule(dynamic)
-    for (int y = 0; y < height; y++) {
+    for (int r = 0; r < count; r++) {
         struct RTCIntersectContext primary;
-        raytrace_shadow_context shadow = {.tracer = &t};
+        raytrace_shadow_context shadow = {.tracer = t};
         rtcInitIntersectContext(&primary);
         rtcInitIntersectContext(&shadow.embree);
         shadow.embree.filter = raytrace_confirm_occlusion;
-        for (int x = 0; x < width; x++)
-            raytrace_pixel(&t, &primary, &shadow, x, y, out);
+        for (int x = 0; x < t->width; x++)
+            raytrace_pixel(t, &primary, &shadow, x, rows[r], out);
     }
+    t->trace_ms += (omp_get_wtime() - start) * 1e3;
+}
 
-    bool ok = rtcGetDeviceError(t.device) == RTC_ERROR_NONE;
-    if (ok && settings->verbose)
+bool raytrace_end(raytrace_tracer *t) {
+    bool ok = rtcGetDeviceError(t->device) == RTC_ERROR_NONE;
+    if (ok && t->verbose)
         fprintf(stderr,
                 "raytrace: Embree %zd.%zd.%zd, %d threads; BVH built in %.1f ms, %dx%d traced in %.1f ms\n",
-                rtcGetDeviceProperty(t.device, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
-                rtcGetDeviceProperty(t.device, RTC_DEVICE_PROPERTY_VERSION_MINOR),
-                rtcGetDeviceProperty(t.device, RTC_DEVICE_PROPERTY_VERSION_PATCH), omp_get_max_threads(),
-                (built - start) * 1e3, width, height, (omp_get_wtime() - built) * 1e3);
-    raytrace_release(&t);
+                rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
+                rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_VERSION_MINOR),
+                rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_VERSION_PATCH), omp_get_max_threads(),
+                t->build_ms, t->width, t->height, t->trace_ms);
+    raytrace_release(t);
+    return ok;
+}
+
+bool raytrace_render(const scene *s, int width, int height, int light_index, const raytrace_settings *settings,
+                     dump_frame *out) {
+    raytrace_tracer *t = raytrace_begin(s, width, height, light_index, settings, out);
+    if (!t)
+        return false;
+    int *rows = malloc((size_t)height * sizeof *rows);
+    if (!rows) {
+        fprintf(stderr, "raytrace: out of memory for %d rows\n", height);
+        raytrace_release(t);
+        dump_frame_free(out);
+        return false;
+    }
+    for (int y = 0; y < height; y++)
+        rows[y] = y;
+    raytrace_rows(t, rows, height, out);
+    free(rows);
+    bool ok = raytrace_end(t);
     if (!ok)
         dump_frame_free(out);
     return ok;

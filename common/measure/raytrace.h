@@ -80,4 +80,20 @@ typedef struct raytrace_settings {
 bool raytrace_render(const scene *s, int width, int height, int light_index, const raytrace_settings *settings,
                      dump_frame *out);
 
+/* The same frame in parts, for a caller that shows it as it comes
+ * (compare mode's truth, truth.h). raytrace_begin checks the arguments,
+ * prepares the camera and lights, builds the BVH and creates the dump
+ * (every pixel "no surface"), or prints one line and returns NULL with
+ * nothing to free; `s` must stay as it is until raytrace_end.
+ * raytrace_rows traces the rows listed (in parallel), in any order and
+ * over any number of calls: a pixel's values depend on that pixel alone,
+ * so the finished dump is raytrace_render's, byte for byte. raytrace_end
+ * releases the tracer (not the dump) and returns false after printing
+ * Embree's error, if it reported one. */
+typedef struct raytrace_tracer raytrace_tracer;
+raytrace_tracer *raytrace_begin(const scene *s, int width, int height, int light_index,
+                                const raytrace_settings *settings, dump_frame *out);
+void raytrace_rows(raytrace_tracer *t, const int *rows, int count, dump_frame *out);
+bool raytrace_end(raytrace_tracer *t);
+
 #endif

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "capture.h"
+#include "compare.h"
 #include "context.h"
 #include "depth.h"
 #include "flags.h"
@@ -36,6 +37,7 @@
 #define APP_ORBIT_RAD_PER_PIXEL 0.008f
 #define APP_NOTE_SECONDS 4.0 /* how long the HUD shows "saved PATH" */
 #define APP_RESET_KEY GLFW_KEY_0
+#define APP_COMPARE_KEY GLFW_KEY_A /* "against the truth": C is the constant bias */
 
 static struct {
     const char *program;
@@ -50,6 +52,7 @@ static struct {
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
     bool hud_compact;      /* --hud-compact, Tab: the first lines only */
+    bool compare_on;       /* --compare, C: the technique beside the truth (compare.h) */
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     render_skips skips;
@@ -66,7 +69,8 @@ static struct {
     bool tour_failed;                 /* a step did not start in the window */
     /* run */
     context ctx;
-    target target;
+    target target; /* the technique's frame: the picture, or compare mode's cell */
+    compare comparing; /* while compare_on */
     scene scene;
     render_scene gpu;
     scene_light base_lights[SCENE_MAX_LIGHTS]; /* before motion */
@@ -128,6 +132,10 @@ static const flags_param app_flags[] = {
      "play a tour file (assets/tours/): in the window Space, Right\nor Page Down the next step, Left or Page Up the previous;\n"
      "headless every step (with --screenshot P.png, step K's\nshown frame to P-K.png)",
      0, FLAGS_STRING, .text = &app.tour_path, .value_name = "FILE"},
+    {"compare",
+     "the technique beside the ray-traced truth of the same view\n(traced in the background, progressively) and the heat\n"
+     "map of its errors, with legend and figures: four cells (A);\nheadless, the finished picture",
+     0, FLAGS_SWITCH, .on = &app.compare_on},
     {"hud", "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time", 0,
      FLAGS_SWITCH, .on = &app.hud_in_pictures},
     {"hud-scale", "pixels per font unit of the HUD's text (default: one per\n360 lines of the framebuffer, 2 at 720, 3 at 1080, less\nwhere the text would not fit)", 0,
@@ -152,6 +160,7 @@ static void app_usage(void) {
     printf("window: drag to orbit (above the target; with Shift also below), scroll to zoom,\n"
            "        arrows move the light, space animates it, 0 resets camera and lights,\n"
            "        Page Down / Up the next / previous scene of the scene's directory,\n"
+           "        A compare against the ray-traced truth (--compare),\n"
            "        K view culling, U light reach, X caster culling, J caching, H help,\n"
            "        F12 screenshot (screenshot-TECHNIQUE-N.png, never overwritten), Esc quits\n");
 }
@@ -204,6 +213,8 @@ static bool app_load_scene(const char *path) {
 }
 
 static void app_unload_scene(void) {
+    if (app.compare_on) /* the truth's thread lets go of the scene first */
+        compare_forget(&app.comparing);
     render_scene_destroy(&app.gpu);
     scene_free(&app.scene);
 }
@@ -226,19 +237,25 @@ static bool app_render_frame(int visibility_of) {
     return technique_host_frame(&app.host, &view, &app.target, app.time, visibility_of);
 }
 
+/* What is saved, recorded and shown: compare mode's four cells, else the
+ * technique's frame. */
+static const target *app_picture(void) { return app.compare_on ? &app.comparing.picture : &app.target; }
+
 static bool app_save_screenshot(const char *path) {
-    size_t bytes = (size_t)app.target.width * (size_t)app.target.height * 4;
+    const target *picture = app_picture();
+    size_t bytes = (size_t)picture->width * (size_t)picture->height * 4;
     unsigned char *rgba = malloc(bytes);
-    bool ok = rgba && target_read_rgba(&app.target, rgba) &&
-              image_write_png(path, app.target.width, app.target.height, rgba);
+    bool ok = rgba && target_read_rgba(picture, rgba) && image_write_png(path, picture->width, picture->height, rgba);
     if (!rgba)
-        fprintf(stderr, "%s: out of memory for a %dx%d screenshot\n", path, app.target.width, app.target.height);
+        fprintf(stderr, "%s: out of memory for a %dx%d screenshot\n", path, picture->width, picture->height);
     free(rgba);
     return ok;
 }
 
 static bool app_start_technique(int index) {
     app.current = index;
+    if (app.compare_on)
+        compare_decisions_changed(&app.comparing);
     return technique_host_start(&app.host, app_technique(), &app.gpu, &app.skips);
 }
 
@@ -259,30 +276,77 @@ static bool app_dump(const char *dir) {
     return ok;
 }
 
+/* ---- compare mode ---- */
+
+/* The frame's targets for a picture of width x height: in compare mode the
+ * technique's is one of the four cells. */
+static bool app_create_targets(int width, int height) {
+    if (!app.compare_on)
+        return target_create(&app.target, width, height);
+    const raytrace_settings settings = {.scene_name = app.scene_path};
+    if (!compare_create(&app.comparing, width, height, &settings))
+        return false;
+    /* Only the interactive window shows how long the truth took: pictures
+     * (headless, or the window's scripted --frames) stay the same bytes. */
+    app.comparing.show_seconds = app.ctx.window && app.frames <= 0;
+    if (!target_create(&app.target, app.comparing.cell_width, app.comparing.cell_height)) {
+        compare_destroy(&app.comparing);
+        return false;
+    }
+    return true;
+}
+
+static void app_destroy_targets(void) {
+    if (app.compare_on)
+        compare_destroy(&app.comparing);
+    target_destroy(&app.target);
+}
+
+/* The picture of this frame: the technique's frame; in compare mode first
+ * the truth and heat map of its view (with `wait`, the finished ones), and
+ * the four cells after. */
+static bool app_render_picture(bool wait) {
+    if (!app.compare_on)
+        return app_render_frame(-1);
+    camera_view view;
+    app_view(&view); /* the frame's camera and lights, which the truth is asked for */
+    return compare_update(&app.comparing, &app.scene, app.light, app_capture, wait) && app_render_frame(-1) &&
+           compare_draw(&app.comparing, &app.target);
+}
+
+/* Headless, what a compare picture measured. */
+static void app_print_compared(void) {
+    char figures[512];
+    compare_figures_text(&app.comparing, figures, sizeof figures);
+    printf("compare: %s on %s: %s\n", app_technique()->name, app.scene_path, figures);
+}
+
 static void app_hud(int width, int height, int frame);
 
 /* With --hud, the HUD drawn into the picture (frame: as app_hud). */
 static bool app_hud_in_picture(int frame) {
     if (!app.hud_in_pictures)
         return true;
-    target_bind(&app.target);
-    app_hud(app.target.width, app.target.height, frame);
+    const target *picture = app_picture();
+    target_bind(picture);
+    app_hud(picture->width, picture->height, frame);
     return context_gl_ok("hud");
 }
 
 /* The picture as the video's next frame. */
 static bool app_record_frame(void) {
-    return target_read_rgba(&app.target, app.frame_rgba) && video_write_frame(&app.video, app.frame_rgba);
+    return target_read_rgba(app_picture(), app.frame_rgba) && video_write_frame(&app.video, app.frame_rgba);
 }
 
 static bool app_start_recording(void) {
-    size_t bytes = (size_t)app.target.width * (size_t)app.target.height * 4;
+    const target *picture = app_picture();
+    size_t bytes = (size_t)picture->width * (size_t)picture->height * 4;
     app.frame_rgba = malloc(bytes);
     if (!app.frame_rgba) {
-        fprintf(stderr, "%s: out of memory for %dx%d frames\n", app.record_path, app.target.width, app.target.height);
+        fprintf(stderr, "%s: out of memory for %dx%d frames\n", app.record_path, picture->width, picture->height);
         return false;
     }
-    return video_open(&app.video, app.record_path, app.target.width, app.target.height);
+    return video_open(&app.video, app.record_path, picture->width, picture->height);
 }
 
 static bool app_stop_recording(void) {
@@ -300,7 +364,9 @@ static bool app_stop_recording(void) {
 static bool app_headless_frame(int i, bool kept) {
     app.time = i / APP_HEADLESS_FPS;
     kept = kept || app.video.pipe;
-    return app_render_frame(-1) && (!kept || app_hud_in_picture(i)) && (!app.video.pipe || app_record_frame());
+    /* Only a kept frame needs the truth. */
+    return (kept ? app_render_picture(true) : app_render_frame(-1)) && (!kept || app_hud_in_picture(i)) &&
+           (!app.video.pipe || app_record_frame());
 }
 
 /* Renders `frames` frames at the fixed headless rate, each into the video
@@ -580,14 +646,17 @@ static void app_hud(int width, int height, int frame) {
     if (frame < 0 && n < (int)sizeof text && app.show_help)
         n += snprintf(text + n, sizeof text - (size_t)n,
                       "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
-                      "1-%d: technique   PgUp/PgDn: scene   0: reset view   K U X J: skips   Tab: compact HUD   "
+                      "1-%d: technique   PgUp/PgDn: scene   0: reset view   A: compare   K U X J: skips   Tab: compact HUD   "
                       "F12: screenshot   H: hide help   Esc: quit",
                       app.technique_count);
     else if (frame < 0 && n < (int)sizeof text)
         n += snprintf(text + n, sizeof text - (size_t)n, "\nH: help");
     if (frame < 0 && n < (int)sizeof text && glfwGetTime() < app.note_until)
         snprintf(text + n, sizeof text - (size_t)n, "\n%s", app.note);
-    hud_draw(text, width, height, app.hud_scale);
+    /* In compare mode over the technique's cells, the left half. */
+    int hud_width = app.compare_on ? width / 2 : width;
+    glViewport(0, 0, hud_width, height);
+    hud_draw(text, hud_width, height, app.hud_scale);
 }
 
 /* Page Down / Up: the next or previous scene of the current one's
@@ -645,15 +714,29 @@ static bool app_tour_key(int key) {
     return true;
 }
 
+/* C: compare mode on or off, the picture's size kept. */
+static void app_toggle_compare(void) {
+    int width = app_picture()->width, height = app_picture()->height;
+    app_destroy_targets();
+    app.compare_on = !app.compare_on;
+    if (!app_create_targets(width, height))
+        glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
+}
+
 static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     (void)scancode, (void)mods;
-    if (action == GLFW_RELEASE || app_tour_key(key))
+    if (action == GLFW_RELEASE)
+        return;
+    if (app.compare_on) /* a key may change the technique's decisions */
+        compare_decisions_changed(&app.comparing);
+    if (app_tour_key(key))
         return;
     float yaw = 0, pitch = 0;
     switch (key) {
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
     case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
+    case APP_COMPARE_KEY: app_toggle_compare(); return;
     case GLFW_KEY_PAGE_DOWN: app_switch_scene(1); return;
     case GLFW_KEY_PAGE_UP: app_switch_scene(-1); return;
     case GLFW_KEY_SPACE: app.animate = !app.animate; return;
@@ -733,19 +816,19 @@ static bool app_run_window(int frames) {
         int width, height;
         glfwGetFramebufferSize(w, &width, &height);
         if (app.resized && width > 0 && height > 0 && !app.video.pipe) { /* a video keeps its size */
-            target_destroy(&app.target);
-            ok = target_create(&app.target, width, height);
+            app_destroy_targets();
+            ok = app_create_targets(width, height);
             app.resized = false;
         }
         if (frames > 0)
             app.time = frame / APP_HEADLESS_FPS;
-        ok = ok && app_render_frame(-1);
+        ok = ok && app_render_picture(frames > 0); /* --frames: a script, which waits for the truth */
         /* --hud: into the picture, so that screenshots and the video
          * carry it; else over the window only. */
         if (frames <= 0 && app.hud_in_pictures)
             ok = ok && app_hud_in_picture(-1);
         ok = ok && (!app.video.pipe || app_record_frame());
-        target_blit_to_window(&app.target, width, height);
+        target_blit_to_window(app_picture(), width, height);
         if (frames <= 0 && !app.hud_in_pictures)
             app_hud(width, height, -1);
         ok = ok && context_gl_ok("window");
@@ -788,7 +871,8 @@ static bool app_run(void) {
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);
     bool hud = app.ctx.window || app.hud_in_pictures;
-    bool ok = target_create(&app.target, width, height) && (!hud || hud_init());
+    bool hud_needed = hud || app.compare_on; /* compare mode's legend is HUD text */
+    bool ok = app_create_targets(width, height) && (!hud_needed || hud_init());
     if (ok && app.gallery_count) {
         ok = app_run_gallery();
     } else if (ok && app.tour_path) {
@@ -811,6 +895,8 @@ static bool app_run(void) {
                  (!app.screenshot || app_save_screenshot(app.screenshot));
         else if (ok)
             ok = app_run_headless(app.frames ? app.frames : APP_HEADLESS_FRAMES, app.screenshot);
+        if (ok && !app.ctx.window && app.compare_on)
+            app_print_compared();
         ok = app_stop_recording() && ok;
         if (ok && !app.ctx.window && !app.screenshot && !app.dump_dir && !app.record_path)
             app_say_nothing_written(interactive);
@@ -828,9 +914,9 @@ static bool app_run(void) {
         technique_host_stop(&app.host);
         app_unload_scene();
     }
-    if (hud)
+    if (hud_needed)
         hud_destroy();
-    target_destroy(&app.target);
+    app_destroy_targets();
     context_destroy(&app.ctx);
     return ok;
 }
@@ -862,6 +948,8 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
         app.scene_path = app.default_scene;
     if (app.tour_path && app.gallery_count)
         return flags_usage_error(app.program, "--tour and --gallery: one at a time", NULL);
+    if (app.compare_on && app.gallery_count) /* the gallery has its own references and heat maps */
+        return flags_usage_error(app.program, "--compare and --gallery: one at a time", NULL);
     if (app.tour_path && !app_load_tour())
         return APP_EXIT_RUNTIME;
     return app_run() ? 0 : APP_EXIT_RUNTIME;

@@ -1,0 +1,297 @@
+/* Compare mode (common/programs/compare.h) as a lecturer's slide uses it:
+ * `--compare --screenshot` writes four cells, and each must be exactly
+ * what the separate programs give for that view at the cell's size:
+ *   top left     the technique's own screenshot,
+ *   top right    build/raytrace's picture (the truth panel is the
+ *                reference, byte for byte),
+ *   bottom left  build/shadowdiff's heat map of the two dumps,
+ * and the figures it prints are shadowdiff's. Over a spot (simple), a
+ * point light (bunny) and a directional one (long_view), for a uniform map
+ * and a warped one; the same command gives the same bytes, the window
+ * (under Xvfb, scripted with --frames) gives the same picture, and
+ * --compare with --gallery is refused. In-process: the frame loop never
+ * waits for the truth, which is shown row by row as it comes (rows not
+ * traced repeat the nearest traced one above) and ends as the reference. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <threads.h>
+#include <time.h>
+
+#include <cjson/cJSON.h>
+
+#include "compare.h"
+#include "context.h"
+#include "hud.h"
+#include "image.h"
+#include "path.h"
+#include "shader.h"
+#include "support.h"
+
+#define DIR "out/test/compare"
+#define WIDTH 640
+#define HEIGHT 360
+#define CELL_WIDTH (WIDTH / 2)
+#define CELL_HEIGHT (HEIGHT / 2)
+#define EXIT_USAGE 2
+/* The figures are printed with 4 decimals (%) and 5 (error). */
+#define PERCENT_PRINTED 5e-5
+#define ERROR_PRINTED 5e-6
+
+typedef struct compare_case {
+    const char *technique, *scene;
+} compare_case;
+
+static const compare_case compare_cases[] = {
+    {"shadowmap", "simple"},
+    {"shadowmap", "bunny"},
+    {"psm", "long_view"},
+};
+
+static char err[16384];
+
+/* Runs `command` (its own redirections inside a subshell: support_run
+ * sends the outer stdout away). */
+static void run(const char *command) {
+    char full[2100];
+    snprintf(full, sizeof full, "( %s )", command);
+    int status = support_run(full, err, sizeof err);
+    if (status != 0)
+        fail_msg("%s failed (exit status %d): %s", command, status, err);
+}
+
+/* The cell at (x0, y0) of a WIDTH x HEIGHT picture against an image of the
+ * cell's size: whether every byte agrees. */
+static bool cell_is(const unsigned char *picture, int x0, int y0, const char *path) {
+    int w, h;
+    unsigned char *cell = image_read_png(path, &w, &h);
+    assert_non_null(cell);
+    assert_int_equal(w, CELL_WIDTH);
+    assert_int_equal(h, CELL_HEIGHT);
+    bool same = true;
+    for (int y = 0; y < CELL_HEIGHT && same; y++)
+        same = memcmp(picture + ((size_t)(y0 + y) * WIDTH + (size_t)x0) * 4, cell + (size_t)y * CELL_WIDTH * 4,
+                      (size_t)CELL_WIDTH * 4) == 0;
+    free(cell);
+    return same;
+}
+
+/* "NAME VALUE" after `key` in the compare line. */
+static double figure_after(const char *line, const char *key) {
+    const char *at = strstr(line, key);
+    if (!at)
+        fail_msg("no \"%s\" in: %s", key, line);
+    return strtod(at + strlen(key), NULL);
+}
+
+static void test_cells_are_the_programs_pictures(void **state) {
+    (void)state;
+    assert_true(path_make_directories(DIR));
+    for (size_t i = 0; i < sizeof compare_cases / sizeof *compare_cases; i++) {
+        const compare_case *c = &compare_cases[i];
+        char command[2048], prefix[256], scene[256];
+        snprintf(prefix, sizeof prefix, DIR "/%s_%s", c->technique, c->scene);
+        snprintf(scene, sizeof scene, "assets/scenes/%s.json", c->scene);
+        snprintf(command, sizeof command,
+                 "%s --backend egl --technique %s --scene %s --size %dx%d --compare --screenshot %s.png > %s.txt",
+                 support_program("shadows"), c->technique, scene, WIDTH, HEIGHT, prefix, prefix);
+        run(command);
+        snprintf(command, sizeof command,
+                 "%s --backend egl --technique %s --scene %s --size %dx%d --screenshot %s_technique.png "
+                 "--dump %s_dump",
+                 support_program("shadows"), c->technique, scene, CELL_WIDTH, CELL_HEIGHT, prefix, prefix);
+        run(command);
+        snprintf(command, sizeof command, "%s --scene %s --size %dx%d --screenshot %s_truth.png --dump %s_reference",
+                 support_program("raytrace"), scene, CELL_WIDTH, CELL_HEIGHT, prefix, prefix);
+        run(command);
+        snprintf(command, sizeof command, "%s %s_reference %s_dump --json --heatmap %s_heatmap.png > %s_figures.json",
+                 support_program("shadowdiff"), prefix, prefix, prefix, prefix);
+        run(command);
+
+        char path[300];
+        int w, h;
+        snprintf(path, sizeof path, "%s.png", prefix);
+        unsigned char *picture = image_read_png(path, &w, &h);
+        assert_non_null(picture);
+        assert_int_equal(w, WIDTH);
+        assert_int_equal(h, HEIGHT);
+        snprintf(path, sizeof path, "%s_technique.png", prefix);
+        if (!cell_is(picture, 0, 0, path))
+            fail_msg("%s: the technique's cell is not %s", prefix, path);
+        snprintf(path, sizeof path, "%s_truth.png", prefix);
+        if (!cell_is(picture, CELL_WIDTH, 0, path))
+            fail_msg("%s: the truth's cell is not build/raytrace's %s", prefix, path);
+        snprintf(path, sizeof path, "%s_heatmap.png", prefix);
+        if (!cell_is(picture, 0, CELL_HEIGHT, path))
+            fail_msg("%s: the heat map's cell is not build/shadowdiff's %s", prefix, path);
+        free(picture);
+
+        snprintf(path, sizeof path, "%s.txt", prefix);
+        char *line = path_read_text(path, 1 << 16, NULL);
+        snprintf(path, sizeof path, "%s_figures.json", prefix);
+        char *json = path_read_text(path, 1 << 16, NULL);
+        assert_non_null(line);
+        assert_non_null(json);
+        cJSON *figures = cJSON_Parse(json);
+        assert_non_null(figures);
+        double misclassified = cJSON_GetObjectItem(figures, "misclassified_percent")->valuedouble;
+        double error = cJSON_GetObjectItem(figures, "mean_abs_error")->valuedouble;
+        double compared = cJSON_GetObjectItem(figures, "compared")->valuedouble;
+        printf("    %s on %s: %s", c->technique, c->scene, line);
+        assert_true(strstr(line, "truth 180/180 rows") != NULL);
+        assert_true(fabs(figure_after(line, "misclassified ") - misclassified) <= PERCENT_PRINTED);
+        assert_true(fabs(figure_after(line, "mean absolute error ") - error) <= ERROR_PRINTED);
+        assert_true(fabs(figure_after(strstr(line, "error "), ", ") - compared) < 0.5);
+        cJSON_Delete(figures);
+        free(json);
+        free(line);
+    }
+}
+
+static void test_same_command_same_bytes(void **state) {
+    (void)state;
+    assert_true(path_make_directories(DIR));
+    const char *names[] = {"again.png"};
+    for (int k = 0; k < 2; k++) {
+        char command[1024];
+        snprintf(command, sizeof command,
+                 "%s --backend egl --technique psm --scene assets/scenes/long_view.json --size %dx%d --compare "
+                 "--motion light --frames 3 --screenshot " DIR "/run%d/again.png > /dev/null",
+                 support_program("shadows"), WIDTH, HEIGHT, k);
+        char dir[64];
+        snprintf(dir, sizeof dir, DIR "/run%d", k);
+        assert_true(path_make_directories(dir));
+        run(command);
+    }
+    assert_null(support_first_difference(DIR "/run0", DIR "/run1", names, 1));
+}
+
+/* The window, scripted with --frames, waits for the truth as a headless
+ * run does, and shows the same picture. */
+static void test_window_shows_the_same(void **state) {
+    (void)state;
+    const char *xvfb = support_xvfb_run();
+    char command[1024];
+    snprintf(command, sizeof command,
+             "%s %s --backend glfw --technique shadowmap --size %dx%d --compare "
+             "--frames 2 --screenshot " DIR "/window.png > /dev/null",
+             xvfb, support_program("shadows"), WIDTH, HEIGHT);
+    run(command);
+    snprintf(command, sizeof command,
+             "%s --backend egl --technique shadowmap --size %dx%d --compare --screenshot " DIR "/headless.png "
+             "> /dev/null",
+             support_program("shadows"), WIDTH, HEIGHT);
+    run(command);
+    double differing = support_compare_images(DIR "/headless.png", DIR "/window.png");
+    assert_true(differing >= 0 && differing <= SUPPORT_MAX_DIFFERING);
+}
+
+static void test_refused_with_gallery(void **state) {
+    (void)state;
+    char command[1024];
+    snprintf(command, sizeof command, "%s --backend egl --compare --gallery " DIR "/gallery assets/scenes/simple.json",
+             support_program("shadows"));
+    assert_int_equal(support_run(command, err, sizeof err), EXIT_USAGE);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "--compare and --gallery"));
+}
+
+/* In-process: the truth of an area light (many shadow rays a pixel, so
+ * it takes a while) seen as it comes. The "technique" is the reference
+ * itself, so the figures must say it agrees everywhere. */
+#define PROGRESS_SCENE "assets/scenes/simple.json"
+#define PROGRESS_LIGHT_RADIUS 0.3f
+#define PROGRESS_LIGHT_SAMPLES 64
+#define PROGRESS_TIMEOUT_SECONDS 120
+#define PROGRESS_POLL_NS 1000000L /* a millisecond: many polls a band */
+
+static scene progress_scene;
+static const raytrace_settings progress_settings = {.light_samples = PROGRESS_LIGHT_SAMPLES};
+
+static bool capture_reference(int light, dump_frame *out) {
+    return raytrace_render(&progress_scene, CELL_WIDTH, CELL_HEIGHT, light, &progress_settings, out);
+}
+
+/* The truth's cell of the picture read back: every row is the truth's row,
+ * or for a row not traced yet, the nearest traced row above. */
+static void expect_truth_cell(const compare *c) {
+    unsigned char *picture = malloc((size_t)WIDTH * HEIGHT * 4);
+    assert_non_null(picture);
+    assert_true(target_read_rgba(&c->picture, picture));
+    int source = 0;
+    for (int y = 0; y < CELL_HEIGHT; y++) {
+        source = c->traced[y] ? y : source;
+        const unsigned char *shown = picture + ((size_t)y * WIDTH + CELL_WIDTH) * 4;
+        assert_memory_equal(shown, c->shown.dump.color + (size_t)source * CELL_WIDTH * 4, (size_t)CELL_WIDTH * 4);
+    }
+    free(picture);
+}
+
+static void test_frame_loop_never_waits(void **state) {
+    (void)state;
+    context ctx;
+    target cell;
+    compare c;
+    shader_set_directory("shaders");
+    const context_settings settings = {.backend = CONTEXT_EGL};
+    assert_true(context_create(&ctx, &settings));
+    assert_true(hud_init());
+    assert_true(scene_load(&progress_scene, PROGRESS_SCENE));
+    progress_scene.lights[0].radius = PROGRESS_LIGHT_RADIUS;
+    assert_true(compare_create(&c, WIDTH, HEIGHT, &progress_settings));
+    assert_true(target_create(&cell, c.cell_width, c.cell_height));
+
+    /* The first frame comes back before the truth is there. */
+    assert_true(compare_update(&c, &progress_scene, 0, capture_reference, false));
+    assert_false(c.shown.complete);
+    bool partial_seen = false;
+    time_t start = time(NULL);
+    while (!c.shown.complete && time(NULL) - start < PROGRESS_TIMEOUT_SECONDS) {
+        thrd_sleep(&(struct timespec){.tv_nsec = PROGRESS_POLL_NS}, NULL);
+        assert_true(compare_update(&c, &progress_scene, 0, capture_reference, false));
+        if (c.shown.rows > 0 && c.shown.rows < CELL_HEIGHT && !partial_seen) {
+            partial_seen = true;
+            assert_true(compare_draw(&c, &cell));
+            expect_truth_cell(&c);
+        }
+    }
+    assert_true(c.shown.complete);
+    assert_true(partial_seen);
+    assert_true(compare_draw(&c, &cell));
+    expect_truth_cell(&c);
+    dump_frame reference;
+    assert_true(raytrace_render(&progress_scene, CELL_WIDTH, CELL_HEIGHT, 0, &progress_settings, &reference));
+    assert_memory_equal(reference.color, c.shown.dump.color, (size_t)CELL_WIDTH * CELL_HEIGHT * 4);
+    dump_frame_free(&reference);
+    assert_true(c.measured);
+    assert_true(c.result.compared > 0);
+    assert_int_equal(c.result.false_shadow + c.result.false_lit, 0);
+
+    /* A moved light restarts it; going away mid-trace does not hang. */
+    progress_scene.lights[0].direction[0] += 0.2f;
+    assert_true(compare_update(&c, &progress_scene, 0, capture_reference, false));
+    assert_false(c.shown.complete);
+    compare_forget(&c);
+    target_destroy(&cell);
+    compare_destroy(&c);
+    scene_free(&progress_scene);
+    hud_destroy();
+    context_destroy(&ctx);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cells_are_the_programs_pictures),
+        cmocka_unit_test(test_same_command_same_bytes),
+        cmocka_unit_test(test_window_shows_the_same),
+        cmocka_unit_test(test_refused_with_gallery),
+        cmocka_unit_test(test_frame_loop_never_waits),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
