@@ -83,6 +83,29 @@ bool json_read_int(const char *file, const cJSON *object, const char *where, con
     return true;
 }
 
+bool json_read_numbers(const char *file, const cJSON *object, const char *where, const char *key, double *out,
+                       int count) {
+    const cJSON *item;
+    if (!json_lookup(file, object, where, key, true, &item)) return false;
+    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != count) {
+        return json_fail(file, where, key, "expected an array of %d numbers", count);
+    }
+    for (int i = 0; i < count; i++) {
+        const cJSON *number = cJSON_GetArrayItem(item, i);
+        char element[80];
+        snprintf(element, sizeof element, "%s[%d]", key, i);
+        if (!cJSON_IsNumber(number)) {
+            return json_fail(file, where, element, "expected a number, got %s", json_kind(number));
+        }
+        /* cJSON turns 1e999 into infinity. */
+        if (!isfinite(number->valuedouble)) {
+            return json_fail(file, where, element, "must be a finite number (got %g)", number->valuedouble);
+        }
+        out[i] = number->valuedouble;
+    }
+    return true;
+}
+
 bool json_read_bool(const char *file, const cJSON *object, const char *where, const char *key, bool *out) {
     const cJSON *item;
     if (!json_lookup(file, object, where, key, false, &item)) return false;

@@ -34,6 +34,9 @@ bool json_read_bool(const char *file, const cJSON *object, const char *where, co
 /* The string stays owned by the JSON tree. */
 bool json_read_string(const char *file, const cJSON *object, const char *where, const char *key, bool required,
                       const char **out);
+/* A required array of exactly count finite numbers, in double. */
+bool json_read_numbers(const char *file, const cJSON *object, const char *where, const char *key, double *out,
+                       int count);
 /* A required object. */
 bool json_read_object(const char *file, const cJSON *object, const char *where, const char *key,
                       const cJSON **out);

@@ -1,19 +1,25 @@
 /* tour: loads the tour files described in tour.h. */
 #include "tour.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+#include <cglm/cglm.h>
 
 #include "json.h"
 #include "path.h"
 
 /* A tour is a page of text: anything larger is the wrong file. */
 #define TOUR_MAX_FILE_SIZE (1u << 20)
+/* Within this many frames of a whole frame the time is that frame's. */
+#define TOUR_FRAME_SNAP 1e-6
 
 static const char *const tour_keys[] = {"title", "steps", NULL};
 static const char *const tour_step_keys[] = {"scene", "technique", "flags", "caption", "seconds",
-                                             "motion", "frame", NULL};
+                                             "motion", "frame", "camera", "path", NULL};
+static const char *const tour_view_keys[] = {"position", "target", NULL};
 
 /* An optional or required string into a fixed buffer, which it must fit. */
 static bool tour_read_text(const char *file, const cJSON *object, const char *where, const char *key, bool required,
@@ -69,6 +75,53 @@ static bool tour_read_seconds(const char *file, const cJSON *json, const char *w
     return true;
 }
 
+/* One {"position", "target"} at where (steps[i].camera, steps[i].path[k]). */
+static bool tour_read_view(const char *file, const cJSON *json, const char *where, tour_view *v) {
+    if (!cJSON_IsObject(json))
+        return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
+    if (!json_check_keys(file, json, where, tour_view_keys) ||
+        !json_read_numbers(file, json, where, "position", v->position, 3) ||
+        !json_read_numbers(file, json, where, "target", v->target, 3))
+        return false;
+    if (v->position[0] == v->target[0] && v->position[1] == v->target[1] && v->position[2] == v->target[2])
+        return json_fail(file, where, "target", "must differ from position");
+    return true;
+}
+
+/* "camera" or "path" (after "motion", which a path excludes). */
+static bool tour_read_views(const char *file, const cJSON *json, const char *where, tour_step *s) {
+    const cJSON *camera, *path;
+    char inner[64];
+    if (!json_lookup(file, json, where, "camera", false, &camera) ||
+        !json_lookup(file, json, where, "path", false, &path))
+        return false;
+    if (path && camera)
+        return json_fail(file, where, "path", "not with \"camera\": the path places the camera");
+    if (path && s->motion == MOTION_CAMERA)
+        return json_fail(file, where, "path", "not with \"motion\": \"camera\": the path moves the camera");
+    if (camera) {
+        snprintf(inner, sizeof inner, "%s.camera", where);
+        s->view_count = 1;
+        return tour_read_view(file, camera, inner, &s->views[0]);
+    }
+    if (!path)
+        return true;
+    if (!cJSON_IsArray(path))
+        return json_fail(file, where, "path", "expected an array, got %s", json_kind(path));
+    int count = cJSON_GetArraySize(path);
+    if (count < TOUR_MIN_PATH_VIEWS || count > TOUR_MAX_PATH_VIEWS)
+        return json_fail(file, where, "path", "expected %d to %d views, got %d", TOUR_MIN_PATH_VIEWS,
+                         TOUR_MAX_PATH_VIEWS, count);
+    const cJSON *entry;
+    cJSON_ArrayForEach(entry, path) {
+        snprintf(inner, sizeof inner, "%s.path[%d]", where, s->view_count);
+        if (!tour_read_view(file, entry, inner, &s->views[s->view_count]))
+            return false;
+        s->view_count++;
+    }
+    return true;
+}
+
 static bool tour_read_step(const char *file, const cJSON *json, const char *where, tour_step *s) {
     if (!cJSON_IsObject(json))
         return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
@@ -78,7 +131,7 @@ static bool tour_read_step(const char *file, const cJSON *json, const char *wher
         !tour_read_text(file, json, where, "flags", false, s->flags, sizeof s->flags) ||
         !tour_read_text(file, json, where, "caption", false, s->caption, sizeof s->caption) ||
         !tour_read_seconds(file, json, where, s) || !tour_read_motion(file, json, where, s) ||
-        !json_read_int(file, json, where, "frame", &frame))
+        !json_read_int(file, json, where, "frame", &frame) || !tour_read_views(file, json, where, s))
         return false;
     if (cJSON_GetObjectItemCaseSensitive(json, "frame") && (frame < 0 || frame >= s->frame_count))
         return json_fail(file, where, "frame", "must be a frame of the step, 0 to %d (got %d)", s->frame_count - 1,
@@ -117,4 +170,79 @@ bool tour_load(tour *t, const char *path) {
     bool loaded = root && tour_read_root(path, root, t);
     cJSON_Delete(root);
     return loaded;
+}
+
+tour_view tour_path_view(const tour_view *views, int count, double u) {
+    double along = fmin(fmax(u, 0), 1) * (count - 1); /* fmax: a NaN u is the start */
+    int segment = (int)fmin(floor(along), count - 2);
+    double w = along - segment;
+    w = w * w * (3 - 2 * w);
+    const tour_view *a = &views[segment], *b = &views[segment + 1];
+    tour_view out;
+    /* (1 - w) a + w b rather than a + w (b - a): exact at both ends. */
+    for (int k = 0; k < 3; k++) {
+        out.position[k] = (1 - w) * a->position[k] + w * b->position[k];
+        out.target[k] = (1 - w) * a->target[k] + w * b->target[k];
+    }
+    return out;
+}
+
+tour_view tour_step_view(const tour_step *s, double time) {
+    if (!tour_step_has_path(s))
+        return s->views[0];
+    /* Frame i's time, i / TOUR_FPS, times TOUR_FPS lands an ulp off i for
+     * some i (31, 62, ...): snapped back, frame i is exactly where the
+     * path puts it, its last frame exactly the last view. */
+    double frame = time * TOUR_FPS;
+    if (fabs(frame - round(frame)) < TOUR_FRAME_SNAP)
+        frame = round(frame);
+    double u = s->frame_count > 1 ? frame / (s->frame_count - 1) : 1;
+    return tour_path_view(s->views, s->view_count, u);
+}
+
+/* The view less the origin, as floats; false where a coordinate would
+ * not fit one (a view far beyond a far-away origin). */
+static bool tour_view_relative(const tour_view *v, const double origin[3], float position[3], float target[3]) {
+    for (int k = 0; k < 3; k++) {
+        double p = v->position[k] - origin[k], t = v->target[k] - origin[k];
+        if (!(fabs(p) <= FLT_MAX && fabs(t) <= FLT_MAX))
+            return false;
+        position[k] = (float)p;
+        target[k] = (float)t;
+    }
+    return true;
+}
+
+void tour_step_camera(const tour_step *s, double time, const double origin[3], scene_camera *camera) {
+    if (s->view_count == 0)
+        return;
+    tour_view v = tour_step_view(s, time);
+    /* It fits: tour_step_check_views passed every frame at the start. */
+    tour_view_relative(&v, origin, camera->position, camera->target);
+}
+
+bool tour_step_check_views(const char *file, int k, const tour_step *s, const double origin[3],
+                           const scene_camera *camera) {
+    if (s->view_count == 0)
+        return true;
+    char where[32];
+    snprintf(where, sizeof where, "steps[%d]", k);
+    const char *key = tour_step_has_path(s) ? "path" : "camera";
+    /* Every frame a headless run can render; the same arithmetic as
+     * tour_step_camera, in float as the view matrix sees it. */
+    int frames = tour_step_has_path(s) ? s->frame_count : 1;
+    for (int i = 0; i < frames; i++) {
+        tour_view v = tour_step_view(s, (double)i / TOUR_FPS);
+        float position[3], target[3];
+        if (!tour_view_relative(&v, origin, position, target))
+            return json_fail(file, where, key, "frame %d lies too far from the scene's origin", i);
+        vec3 view, side;
+        glm_vec3_sub(target, position, view);
+        if (!(glm_vec3_norm2(view) > 0))
+            return json_fail(file, where, key, "at frame %d the position meets the target", i);
+        glm_vec3_cross(view, (float *)camera->up, side);
+        if (!(glm_vec3_norm2(side) > 0))
+            return json_fail(file, where, key, "at frame %d the view looks along the scene's up", i);
+    }
+    return true;
 }

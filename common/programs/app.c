@@ -221,11 +221,20 @@ static void app_unload_scene(void) {
 
 static motion_kind app_motion(void) { return app.animate ? MOTION_LIGHT : (motion_kind)app.motion; }
 
+/* The tour's step with a path, or NULL: its camera moves with the time. */
+static const tour_step *app_step_path(void) {
+    const tour_step *s = app.tour_path ? &app.tour.steps[app.tour_step] : NULL;
+    return s && tour_step_has_path(s) ? s : NULL;
+}
+
 /* This frame's lights and camera (app.time), and the view. */
 static void app_view(camera_view *view) {
     scene *s = &app.scene;
     motion_lights(app_motion(), app.time, app.base_camera.target, app.base_lights, s->light_count, s->lights);
     motion_camera(app_motion(), app.time, &app.base_camera, &s->camera);
+    const tour_step *path = app_step_path();
+    if (path)
+        tour_step_camera(path, app.time, s->origin, &s->camera);
     camera_view_compute(&s->camera, (float)app.target.width / (float)app.target.height, view);
 }
 
@@ -414,8 +423,9 @@ static bool app_load_tour(void) {
     return true;
 }
 
-/* Step k's scene loaded, its technique configured and started, its motion
- * from time 0. */
+/* Step k's scene loaded, its camera (or its path's start) the one motion
+ * and the window's keys start from, its technique configured and started,
+ * its motion from time 0. */
 static bool app_enter_step(int k) {
     const tour_step *s = &app.tour.steps[k];
     app.tour_step = k;
@@ -424,8 +434,11 @@ static bool app_enter_step(int k) {
     app.animate = false;
     app.time = 0;
     app.scene_path = s->scene;
-    if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene)))
+    if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene)) ||
+        !tour_step_check_views(app.tour_path, k, s, app.scene.origin, &app.scene.camera))
         return false;
+    tour_step_camera(s, 0, app.scene.origin, &app.base_camera);
+    app.loaded_camera = app.base_camera;
     app.step_technique = true; /* destroy() follows a failed init too */
     return app_start_technique(app.current);
 }
@@ -837,7 +850,7 @@ static bool app_run_window(int frames) {
         double now = glfwGetTime();
         /* The clock lives here, not in techniques: it only advances the
          * animation and smooths the HUD's frame time. */
-        if (frames <= 0 && app_motion())
+        if (frames <= 0 && (app_motion() || app_step_path()))
             app.time += app.video.pipe ? 1.0 / VIDEO_FPS : now - last; /* a video keeps its own clock */
         app.frame_ms += ((now - last) * 1000.0 - app.frame_ms) * 0.1;
         last = now;
