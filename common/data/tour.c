@@ -18,7 +18,7 @@
 
 static const char *const tour_keys[] = {"title", "steps", NULL};
 static const char *const tour_step_keys[] = {"scene", "technique", "flags", "caption", "seconds",
-                                             "motion", "frame", "camera", "path", NULL};
+                                             "motion", "frame", "camera", "path", "compare", NULL};
 static const char *const tour_view_keys[] = {"position", "target", NULL};
 
 /* An optional or required string into a fixed buffer, which it must fit. */
@@ -131,7 +131,8 @@ static bool tour_read_step(const char *file, const cJSON *json, const char *wher
         !tour_read_text(file, json, where, "flags", false, s->flags, sizeof s->flags) ||
         !tour_read_text(file, json, where, "caption", false, s->caption, sizeof s->caption) ||
         !tour_read_seconds(file, json, where, s) || !tour_read_motion(file, json, where, s) ||
-        !json_read_int(file, json, where, "frame", &frame) || !tour_read_views(file, json, where, s))
+        !json_read_int(file, json, where, "frame", &frame) || !tour_read_views(file, json, where, s) ||
+        !json_read_bool(file, json, where, "compare", &s->compare))
         return false;
     if (cJSON_GetObjectItemCaseSensitive(json, "frame") && (frame < 0 || frame >= s->frame_count))
         return json_fail(file, where, "frame", "must be a frame of the step, 0 to %d (got %d)", s->frame_count - 1,

@@ -20,7 +20,9 @@
  *                          {"position": [x,y,z], "target": [x,y,z]} ]
  *                             (a fly-through, spread evenly over the step:
  *                              tour_path_view; not with "camera" nor with
- *                              "motion": "camera") } ]
+ *                              "motion": "camera")
+ *                "compare": true  (compare mode, as --compare: the step
+ *                                  beside the ray-traced truth) } ]
  * Unknown keys and wrong types are errors, reported as one line
  * "FILE: steps[i].key: problem" (json.h). The technique's name and flags
  * are the caller's to check: this layer does not know the techniques.
@@ -62,6 +64,7 @@ typedef struct tour_step {
     char technique[TOUR_TEXT_MAX], flags[TOUR_TEXT_MAX], caption[TOUR_TEXT_MAX];
     double seconds;
     motion_kind motion;
+    bool compare;    /* "compare" */
     int frame_count; /* seconds at TOUR_FPS, at least 1 */
     int shown_frame; /* what a headless run shows: "frame", or the last */
     /* 0: the scene's camera; 1: "camera"; TOUR_MIN_PATH_VIEWS or more:

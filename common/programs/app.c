@@ -52,7 +52,8 @@ static struct {
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
     bool hud_compact;      /* --hud-compact, Tab: the first lines only */
-    bool compare_on;       /* --compare, C: the technique beside the truth (compare.h) */
+    bool compare_on;       /* --compare, A, a tour's step: the technique beside the truth (compare.h) */
+    bool compare_given;    /* --compare: every step of a tour too */
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     render_skips skips;
@@ -311,6 +312,17 @@ static void app_destroy_targets(void) {
     target_destroy(&app.target);
 }
 
+/* Compare mode on or off (the A key, a tour's step), the picture's size
+ * kept. */
+static bool app_set_compare(bool on) {
+    if (on == app.compare_on)
+        return true;
+    int width = app_picture()->width, height = app_picture()->height;
+    app_destroy_targets();
+    app.compare_on = on;
+    return app_create_targets(width, height);
+}
+
 /* The picture of this frame: the technique's frame; in compare mode first
  * the truth and heat map of its view (with `wait`, the finished ones), and
  * the four cells after. */
@@ -434,6 +446,8 @@ static bool app_enter_step(int k) {
     app.animate = false;
     app.time = 0;
     app.scene_path = s->scene;
+    if (!app_set_compare(app.compare_given || s->compare))
+        return false;
     if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene)) ||
         !tour_step_check_views(app.tour_path, k, s, app.scene.origin, &app.scene.camera))
         return false;
@@ -449,6 +463,14 @@ static void app_leave_step(void) {
     if (app.step_scene)
         app_unload_scene();
     app.step_technique = app.step_scene = false;
+}
+
+/* Whether a step of the tour is in compare mode. */
+static bool app_tour_compares(void) {
+    for (int k = 0; app.tour_path && k < app.tour.step_count; k++)
+        if (app.tour.steps[k].compare)
+            return true;
+    return false;
 }
 
 /* "P.png" -> "P-K.png": step k's (from 1) picture. */
@@ -474,6 +496,8 @@ static bool app_run_tour_headless(void) {
         for (int i = first; i < end && ok; i++)
             ok = app_headless_frame(i, app.screenshot && i == s->shown_frame) &&
                  (!app.screenshot || i != s->shown_frame || app_step_screenshot(k));
+        if (ok && app.compare_on && (app.screenshot || app.video.pipe)) /* a kept frame was compared */
+            app_print_compared();
         app_leave_step();
     }
     return ok;
@@ -727,14 +751,6 @@ static bool app_tour_key(int key) {
     return true;
 }
 
-/* C: compare mode on or off, the picture's size kept. */
-static void app_toggle_compare(void) {
-    int width = app_picture()->width, height = app_picture()->height;
-    app_destroy_targets();
-    app.compare_on = !app.compare_on;
-    if (!app_create_targets(width, height))
-        glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
-}
 
 static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     (void)scancode, (void)mods;
@@ -749,7 +765,10 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
     case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
-    case APP_COMPARE_KEY: app_toggle_compare(); return;
+    case APP_COMPARE_KEY:
+        if (!app_set_compare(!app.compare_on))
+            glfwSetWindowShouldClose(w, GLFW_TRUE);
+        return;
     case GLFW_KEY_PAGE_DOWN: app_switch_scene(1); return;
     case GLFW_KEY_PAGE_UP: app_switch_scene(-1); return;
     case GLFW_KEY_SPACE: app.animate = !app.animate; return;
@@ -884,7 +903,7 @@ static bool app_run(void) {
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);
     bool hud = app.ctx.window || app.hud_in_pictures;
-    bool hud_needed = hud || app.compare_on; /* compare mode's legend is HUD text */
+    bool hud_needed = hud || app.compare_on || app_tour_compares(); /* compare mode's legend is HUD text */
     bool ok = app_create_targets(width, height) && (!hud_needed || hud_init());
     if (ok && app.gallery_count) {
         ok = app_run_gallery();
@@ -952,6 +971,7 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
     app.technique_given = app.current >= 0;
+    app.compare_given = app.compare_on;
     if (!app.technique_given)
         app.current = 0;
     path_in_project("shaders", app.default_shader_dir, sizeof app.default_shader_dir);

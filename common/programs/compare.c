@@ -34,7 +34,7 @@ static const shadowdiff_pixel compare_legend_kinds[] = {
 };
 enum { compare_legend_count = sizeof compare_legend_kinds / sizeof *compare_legend_kinds };
 /* The legend's lines before the kinds': what the cells are. */
-#define COMPARE_LEGEND_FIRST_KIND_LINE 2
+#define COMPARE_LEGEND_INTRO_LINES 2
 
 bool compare_create(compare *c, int width, int height, const raytrace_settings *settings) {
     *c = (compare){.cell_width = width / 2, .cell_height = height / 2};
@@ -186,41 +186,61 @@ static void compare_swatch(const compare *c, int x, int y, int size, const unsig
     compare_rect(c, x, y, size, size, color);
 }
 
-/* The bottom-right cell: one line per kind of heat-map pixel, each with
- * its swatch at the left, then the figures and the truth's state. */
-static void compare_draw_legend(const compare *c) {
-    int x0 = c->cell_width, y0 = c->cell_height; /* the cell's top-left, from the picture's top */
-    char text[2048], figures[256], truth[96];
+/* The legend's text: with `brief`, for a small cell (a thumbnail), the
+ * kinds and the misclassified share only. Returns its first kind's line. */
+static int compare_legend_text(const compare *c, bool brief, char *text, size_t size) {
     const shadowdiff_result *r = &c->result;
-    int n = snprintf(text, sizeof text, "above: the technique | the ray-traced truth\nleft: the heat map of its errors\n");
+    int n = brief ? 0 : snprintf(text, size, "above: the technique | the ray-traced truth\nleft: the heat map of its errors\n");
+    int first_kind_line = brief ? 0 : COMPARE_LEGEND_INTRO_LINES;
     for (int k = 0; k < compare_legend_count; k++) {
         shadowdiff_pixel kind = compare_legend_kinds[k];
-        n += snprintf(text + n, sizeof text - (size_t)n, "%s", shadowdiff_pixel_names[kind]);
+        n += snprintf(text + n, size - (size_t)n, "%s", shadowdiff_pixel_names[kind]);
         if (c->measured && kind == SHADOWDIFF_PIXEL_FALSE_SHADOW)
-            n += snprintf(text + n, sizeof text - (size_t)n, "   %.4f %%", r->false_shadow_percent);
+            n += snprintf(text + n, size - (size_t)n, "   %.4f %%", r->false_shadow_percent);
         if (c->measured && kind == SHADOWDIFF_PIXEL_FALSE_LIT)
-            n += snprintf(text + n, sizeof text - (size_t)n, "   %.4f %%", r->false_lit_percent);
-        n += snprintf(text + n, sizeof text - (size_t)n, "\n");
+            n += snprintf(text + n, size - (size_t)n, "   %.4f %%", r->false_lit_percent);
+        n += snprintf(text + n, size - (size_t)n, "\n");
     }
-    if (c->measured)
-        snprintf(figures, sizeof figures, "misclassified %.4f %% of %ld pixels\nmean absolute error %.5f",
-                 r->misclassified_percent, r->compared, r->mean_abs_error);
-    else
-        snprintf(figures, sizeof figures, "no figures yet\n");
+    char truth[96];
     compare_truth_text(c, truth, sizeof truth);
-    snprintf(text + n, sizeof text - (size_t)n, "%s\n%s", figures, truth);
+    if (brief && c->measured)
+        snprintf(text + n, size - (size_t)n, "misclassified %.4f %%", r->misclassified_percent);
+    else if (c->measured)
+        snprintf(text + n, size - (size_t)n, "misclassified %.4f %% of %ld pixels\nmean absolute error %.5f\n%s",
+                 r->misclassified_percent, r->compared, r->mean_abs_error, truth);
+    else
+        snprintf(text + n, size - (size_t)n, "no figures yet%s%s", brief ? "" : "\n", brief ? "" : truth);
+    return first_kind_line;
+}
 
-    /* The scale the window's HUD would take, less where the lines would
-     * not fit beside the swatches (hud_draw would wrap them, and the
-     * swatches would no longer face their lines). */
+/* The largest scale, at most the window HUD's, at which `text` fits the
+ * cell beside the swatches without wrapping (hud_draw would wrap it, and
+ * the swatches would no longer face their lines); 0 if none does. */
+static int compare_legend_scale(const compare *c, const char *text) {
     int lines = 1;
     for (const char *p = text; *p; p++)
         lines += *p == '\n';
-    int scale = hud_scale_for(c->picture.height);
     int room_units = COMPARE_SWATCH_UNITS + COMPARE_SWATCH_GAP_UNITS + hud_text_width(text) + 2 * HUD_MARGIN;
-    while (scale > 1 && (room_units * scale > c->cell_width ||
-                         (lines * HUD_LINE_UNITS + 2 * HUD_MARGIN) * scale > c->cell_height))
-        scale--;
+    int height_units = lines * HUD_LINE_UNITS + 2 * HUD_MARGIN;
+    for (int scale = hud_scale_for(c->picture.height); scale >= 1; scale--)
+        if (room_units * scale <= c->cell_width && height_units * scale <= c->cell_height)
+            return scale;
+    return 0;
+}
+
+/* The bottom-right cell: one line per kind of heat-map pixel, each with
+ * its swatch at the left, then the figures and the truth's state; briefer
+ * where the cell is too small for all of it. */
+static void compare_draw_legend(const compare *c) {
+    int x0 = c->cell_width, y0 = c->cell_height; /* the cell's top-left, from the picture's top */
+    char text[2048];
+    int first_kind_line = compare_legend_text(c, false, text, sizeof text);
+    int scale = compare_legend_scale(c, text);
+    if (!scale) {
+        first_kind_line = compare_legend_text(c, true, text, sizeof text);
+        scale = compare_legend_scale(c, text);
+    }
+    scale = scale ? scale : 1; /* smaller still: cut at the cell's edge */
 
     glEnable(GL_SCISSOR_TEST);
     compare_rect(c, x0, y0, c->cell_width, c->cell_height, compare_legend_background);
@@ -233,7 +253,7 @@ static void compare_draw_legend(const compare *c) {
     int size = HUD_LETTER_UNITS * scale, half = size / 2;
     for (int k = 0; k < compare_legend_count; k++) {
         shadowdiff_pixel kind = compare_legend_kinds[k];
-        int x = x0 + HUD_MARGIN * scale, y = y0 + (HUD_MARGIN + (k + COMPARE_LEGEND_FIRST_KIND_LINE) * HUD_LINE_UNITS) * scale;
+        int x = x0 + HUD_MARGIN * scale, y = y0 + (HUD_MARGIN + (k + first_kind_line) * HUD_LINE_UNITS) * scale;
         compare_swatch(c, x, y, size, shadowdiff_pixel_colors[kind]);
         if (kind == SHADOWDIFF_PIXEL_AGREES) /* its shadowed end beside the lit one */
             compare_rect(c, x + half, y, size - half, size, compare_agrees_shadowed);
