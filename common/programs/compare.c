@@ -100,15 +100,13 @@ static void compare_fill_truth(compare *c) {
 
 /* The heat map and figures of the decisions against the truth so far. */
 static void compare_measure(compare *c) {
-    size_t bytes = (size_t)c->cell_width * (size_t)c->cell_height * 4;
+    /* Grey until measured, and after a mismatch, which shadowdiff does
+     * not paint. */
+    memset(c->heat_rgba, compare_empty_grey, (size_t)c->cell_width * (size_t)c->cell_height * 4);
     c->measured = false;
-    if (c->decisions_of != c->shown.request || !c->shown.dump.width || !c->decisions.width) {
-        memset(c->heat_rgba, compare_empty_grey, bytes);
+    if (c->decisions_of != c->shown.request || !c->shown.dump.width || !c->decisions.width)
         return;
-    }
     const shadowdiff_settings settings = {.reference_name = "the truth", .test_name = "the technique"};
-    /* Not painted after a mismatch: the grey stays. */
-    memset(c->heat_rgba, compare_empty_grey, bytes);
     c->measured = shadowdiff_compare(&c->shown.dump, &c->decisions, &settings, &c->result, c->heat_rgba);
 }
 
