@@ -90,7 +90,7 @@ help:
 
 DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \
 	libegl-mesa0 libgl1-mesa-dri libosmesa6 libcglm-dev libstb-dev libassimp-dev \
-	assimp-testmodels libcjson-dev libembree-dev libcmocka-dev gnuplot-nox xvfb xauth ffmpeg chromium
+	assimp-testmodels libcjson-dev libembree-dev libcmocka-dev gnuplot-nox xvfb xauth xdotool ffmpeg chromium
 deps:
 	@if [ "$$(id -u)" = 0 ]; then SUDO=; elif command -v sudo >/dev/null; then SUDO=sudo; \
 	else echo "make deps: not root and no sudo; run as root:"; \

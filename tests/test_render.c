@@ -24,11 +24,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hud.h"
 #include "image.h"
+#include "legend.h"
 #include "path.h"
 #include "registry.h"
+#include "shadowdiff.h"
 #include "support.h"
 #include "tour.h"
+#include "volume_overlay.h"
 
 #define SIZE "640x360"
 #define GOLDEN_DIR "tests/golden"
@@ -445,6 +449,7 @@ static void test_psm_texel_size_shows(void **state) {
  * sizes), blue at a quarter pixel, red at 32, on a dark panel. */
 enum { LEGEND_ROW = 329, LEGEND_BLUE_X = 470, LEGEND_RED_X = 625, LEGEND_PANEL_X = 550, LEGEND_PANEL_ROW = 323 };
 #define LEGEND_DARK 40 /* the panel's channels at most */
+#define LEGEND_SWATCH_TOLERANCE 3 /* summed over the channels: rounding to bytes */
 static const unsigned char *legend_pixel(const unsigned char *image, int width, int x, int y) {
     return image + ((size_t)y * (size_t)width + (size_t)x) * ACNE_CHANNELS;
 }
@@ -486,6 +491,33 @@ static void test_volumes_overlays_show(void **state) {
         render_with("volumes", "egl", "assets/scenes/teapot.json", flags, name);
         assert_true(compare_with_golden("volumes_teapot", name) > SUPPORT_MAX_DIFFERING);
     }
+}
+
+/* The counts overlay has its legend in the bottom-right corner: under a
+ * title line, a line per step of the ramp with its swatch, opaque (the
+ * overlay itself is translucent, so nowhere else in the picture shows the
+ * ramp's own colour). At 640x360 the font unit is 1 pixel: line k's
+ * swatch spans rows HEIGHT - margin - legend height + margin + 12 k, 8
+ * tall (legend.h, hud.h). */
+static void test_volumes_counts_have_legend(void **state) {
+    (void)state;
+    render_with("volumes", "egl", "assets/scenes/teapot.json", "--overlay counts", "volumes_counts_legend");
+    int w, h;
+    unsigned char *image = image_read_png("out/test/volumes_counts_legend.png", &w, &h);
+    assert_non_null(image);
+    int top = h - HUD_MARGIN - legend_height_units(NULL, 1 + VOLUME_OVERLAY_COUNT_STEPS);
+    for (int k = 0; k < VOLUME_OVERLAY_COUNT_STEPS; k++) {
+        int y = top + HUD_MARGIN + (1 + k) * HUD_LINE_UNITS + HUD_LETTER_UNITS / 2, found = 0;
+        for (int x = w / 2; x < w; x++) {
+            const unsigned char *p = legend_pixel(image, w, x, y);
+            int off = 0;
+            for (int c = 0; c < 3; c++)
+                off += abs(p[c] - (int)(volume_overlay_count_ramp[k][c] * 255 + 0.5f));
+            found += off <= LEGEND_SWATCH_TOLERANCE;
+        }
+        assert_int_equal(found, HUD_LETTER_UNITS); /* the swatch's width, on its row alone */
+    }
+    free(image);
 }
 
 /* The GLFW window, under a virtual X server, shows the same picture. */
@@ -532,6 +564,14 @@ static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
             assert_non_null(strstr(html, needle));
             expected_measured++;
         }
+    }
+    for (int k = 0; k < SHADOWDIFF_PIXEL_KIND_COUNT; k++) { /* the heat map's key: each colour, named */
+        char needle[256];
+        const unsigned char *rgb = shadowdiff_pixel_colors[k];
+        snprintf(needle, sizeof needle, "background:#%02x%02x%02x\"></span>%s", rgb[0], rgb[1], rgb[2],
+                 shadowdiff_pixel_names[k]);
+        if (!strstr(html, needle))
+            fail_msg("index.html's key has no %s", needle);
     }
     free(html);
     assert_int_equal(measured, expected_measured);
@@ -688,6 +728,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_psm_texel_size_shows),
         cmocka_unit_test(test_post_perspective_shows_for_uniform),
         cmocka_unit_test(test_volumes_overlays_show),
+        cmocka_unit_test(test_volumes_counts_have_legend),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
         cmocka_unit_test(test_tours_match_goldens),

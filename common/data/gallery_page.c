@@ -28,7 +28,8 @@ static void gallery_page_image(FILE *f, const char *file, const char *caption) {
     fputs("</figcaption></figure>", f);
 }
 
-bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count) {
+bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count, const gallery_page_key *key,
+                        int key_count) {
     char path[PATH_MAX];
     snprintf(path, sizeof path, "%s/index.html", dir);
     FILE *f = fopen(path, "w");
@@ -42,11 +43,17 @@ bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count
           "figure{display:inline-block;margin:0 .5em .5em 0;vertical-align:top}"
           "img{width:32em;max-width:30vw;display:block}figcaption{font-size:.85em;color:#aaa}"
           "table.figures{border-collapse:collapse;margin:.2em 0}"
-          "table.figures td{padding:0 1em 0 0}</style></head>\n<body>\n<h1>Shadows: the gallery</h1>\n"
+          "table.figures td{padding:0 1em 0 0}"
+          ".key span{display:inline-block;width:1em;height:1em;border:1px solid #999;vertical-align:middle;"
+          "margin:0 .3em 0 1em}</style></head>\n<body>\n<h1>Shadows: the gallery</h1>\n"
           "<p>Each technique's picture beside the ray-traced reference of the same view and shadowdiff's heat "
-          "map (red: shadowed where the truth is lit; blue: lit where it is shadowed), with its figures for "
-          "light 0.</p>\n",
+          "map of its errors, with its figures for light 0.</p>\n<p class=\"key\">The heat map:",
           f);
+    for (int k = 0; k < key_count; k++) {
+        fprintf(f, "<span style=\"background:#%02x%02x%02x\"></span>", key[k].rgb[0], key[k].rgb[1], key[k].rgb[2]);
+        gallery_page_text(f, key[k].name);
+    }
+    fputs("</p>\n", f);
     for (int i = 0; i < count; i++) {
         const gallery_page_row *r = &rows[i];
         fputs("<section><h2>", f);

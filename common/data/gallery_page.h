@@ -1,8 +1,9 @@
 /* gallery_page: the gallery's index.html, one row per picture: what made
  * it (technique, flags, scene), its figures against the ray-traced
  * reference (shadowdiff's: misclassified %, mean absolute error, pixels
- * compared), and the picture beside the reference's and the heat map
- * (false shadow red, false lit blue). Pictures are named relative to the
+ * compared), and the picture beside the reference's and the heat map,
+ * under a key to the heat map's colours (the caller's: shadowdiff's one
+ * definition, which this data layer does not see). Pictures are named relative to the
  * page, which lives in the same directory. Plain HTML and CSS: it opens
  * from the file system in any browser, nothing loaded from elsewhere.
  */
@@ -21,7 +22,14 @@ typedef struct gallery_page_row {
     long compared;
 } gallery_page_row;
 
+/* A line of the heat map's key: what a colour means. */
+typedef struct gallery_page_key {
+    const char *name;
+    unsigned char rgb[3];
+} gallery_page_key;
+
 /* Writes DIR/index.html; false after printing why. */
-bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count);
+bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count, const gallery_page_key *key,
+                        int key_count);
 
 #endif

@@ -19,6 +19,10 @@ const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT] = {
     [SHADOWDIFF_PIXEL_FALSE_SHADOW] = "false shadow",
     [SHADOWDIFF_PIXEL_FALSE_LIT] = "false lit",
 };
+const shadowdiff_pixel shadowdiff_legend_kinds[SHADOWDIFF_PIXEL_KIND_COUNT] = {
+    SHADOWDIFF_PIXEL_FALSE_SHADOW, SHADOWDIFF_PIXEL_FALSE_LIT, SHADOWDIFF_PIXEL_AGREES,
+    SHADOWDIFF_PIXEL_NOT_COMPARED, SHADOWDIFF_PIXEL_NO_SURFACE,
+};
 
 static double shadowdiff_length3(const float v[3]) {
     return sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);

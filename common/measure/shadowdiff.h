@@ -100,6 +100,8 @@ typedef enum shadowdiff_pixel {
  * legend of it use. */
 extern const unsigned char shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_KIND_COUNT][3];
 extern const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT];
+/* The kinds in the order a legend lists them: the errors first. */
+extern const shadowdiff_pixel shadowdiff_legend_kinds[SHADOWDIFF_PIXEL_KIND_COUNT];
 
 typedef struct shadowdiff_result {
     shadowdiff_problem problem; /* NONE exactly when shadowdiff_compare returns true */

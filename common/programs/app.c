@@ -465,14 +465,6 @@ static void app_leave_step(void) {
     app.step_technique = app.step_scene = false;
 }
 
-/* Whether a step of the tour is in compare mode. */
-static bool app_tour_compares(void) {
-    for (int k = 0; app.tour_path && k < app.tour.step_count; k++)
-        if (app.tour.steps[k].compare)
-            return true;
-    return false;
-}
-
 /* "P.png" -> "P-K.png": step k's (from 1) picture. */
 static bool app_step_screenshot(int k) {
     char path[PATH_MAX];
@@ -604,7 +596,13 @@ static bool app_run_gallery(void) {
             dump_frame_free(&reference);
         app_unload_scene();
     }
-    ok = ok && gallery_page_write(dir, rows, row_count);
+    gallery_page_key key[SHADOWDIFF_PIXEL_KIND_COUNT];
+    for (int k = 0; k < SHADOWDIFF_PIXEL_KIND_COUNT; k++) {
+        shadowdiff_pixel kind = shadowdiff_legend_kinds[k];
+        key[k] = (gallery_page_key){.name = shadowdiff_pixel_names[kind]};
+        memcpy(key[k].rgb, shadowdiff_pixel_colors[kind], sizeof key[k].rgb);
+    }
+    ok = ok && gallery_page_write(dir, rows, row_count, key, SHADOWDIFF_PIXEL_KIND_COUNT);
     free(rows);
     return ok;
 }
@@ -902,9 +900,9 @@ static bool app_run(void) {
     int width = app.width, height = app.height;
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);
-    bool hud = app.ctx.window || app.hud_in_pictures;
-    bool hud_needed = hud || app.compare_on || app_tour_compares(); /* compare mode's legend is HUD text */
-    bool ok = app_create_targets(width, height) && (!hud_needed || hud_init());
+    /* The HUD's text is also every legend's (compare mode's, the
+     * techniques' overlays'), so it is there in every run. */
+    bool ok = app_create_targets(width, height) && hud_init();
     if (ok && app.gallery_count) {
         ok = app_run_gallery();
     } else if (ok && app.tour_path) {
@@ -946,8 +944,7 @@ static bool app_run(void) {
         technique_host_stop(&app.host);
         app_unload_scene();
     }
-    if (hud_needed)
-        hud_destroy();
+    hud_destroy();
     app_destroy_targets();
     context_destroy(&app.ctx);
     return ok;

@@ -1,7 +1,7 @@
 /* compare: see compare.h. The cells are drawn with framebuffer blits (the
  * truth and the heat map uploaded into textures when they change) and the
- * legend with the HUD's text and scissored clears as swatches, so nothing
- * here needs a program of its own. */
+ * legend with legend.h (the HUD's text, scissored clears as swatches), so
+ * nothing here needs a program of its own. */
 #include "compare.h"
 
 #include <glad/gl.h>
@@ -10,31 +10,16 @@
 #include <string.h>
 
 #include "context.h"
-#include "hud.h"
+#include "legend.h"
 #include "scene.h"
 
 enum { COMPARE_TRUTH, COMPARE_HEAT };
 /* Before the truth has a row, and the heat map before it has figures. */
 static const unsigned char compare_empty_grey = 24;
-/* The legend's cell (the HUD's panel draws over it). */
-static const float compare_legend_background[3] = {0.08f, 0.08f, 0.09f};
-static const float compare_agrees_shadowed[3] = {
-    SHADOWDIFF_AGREES_GREY_SHADOWED / 255.0f, SHADOWDIFF_AGREES_GREY_SHADOWED / 255.0f,
-    SHADOWDIFF_AGREES_GREY_SHADOWED / 255.0f};
-static const float compare_swatch_frame[3] = {0.6f, 0.6f, 0.6f};
-/* Font units of the swatch column left of the legend's text. */
-#define COMPARE_SWATCH_UNITS 10
-#define COMPARE_SWATCH_GAP_UNITS 2
 
-/* The legend's lines: the heat map's kinds in the order drawn, each with
- * a swatch (two for AGREES: its lit and its shadowed end). */
-static const shadowdiff_pixel compare_legend_kinds[] = {
-    SHADOWDIFF_PIXEL_FALSE_SHADOW, SHADOWDIFF_PIXEL_FALSE_LIT, SHADOWDIFF_PIXEL_AGREES,
-    SHADOWDIFF_PIXEL_NOT_COMPARED, SHADOWDIFF_PIXEL_NO_SURFACE,
-};
-enum { compare_legend_count = sizeof compare_legend_kinds / sizeof *compare_legend_kinds };
-/* The legend's lines before the kinds': what the cells are. */
-#define COMPARE_LEGEND_INTRO_LINES 2
+/* The legend's lines at most: two on the cells, the kinds, three of
+ * figures. */
+#define COMPARE_LEGEND_MAX_LINES (2 + SHADOWDIFF_PIXEL_KIND_COUNT + 3)
 
 bool compare_create(compare *c, int width, int height, const raytrace_settings *settings) {
     *c = (compare){.cell_width = width / 2, .cell_height = height / 2};
@@ -170,93 +155,79 @@ static void compare_truth_text(const compare *c, char *text, size_t size) {
         snprintf(text, size, "truth: %d %% of rows traced", (int)(100.0 * f->rows / c->cell_height));
 }
 
-/* A solid rectangle, picture pixels from the top-left. */
-static void compare_rect(const compare *c, int x, int y, int width, int height, const float rgb[3]) {
-    glScissor(x, c->picture.height - y - height, width, height);
-    glClearColor(rgb[0], rgb[1], rgb[2], 1);
-    glClear(GL_COLOR_BUFFER_BIT);
+/* Appends a line of the legend, with `swatches` of the colours (0..255). */
+static void compare_legend_add(legend_line *lines, int *count, int swatches, const unsigned char rgb[2][3],
+                               const char *text) {
+    legend_line *line = &lines[(*count)++];
+    snprintf(line->text, sizeof line->text, "%s", text);
+    line->swatches = swatches;
+    for (int s = 0; s < swatches; s++)
+        for (int k = 0; k < 3; k++)
+            line->rgb[s][k] = rgb[s][k] / 255.0f;
 }
 
-/* A swatch framed, so that the dark kinds show on the dark cell too. */
-static void compare_swatch(const compare *c, int x, int y, int size, const unsigned char rgb[3]) {
-    const float color[3] = {rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f};
-    compare_rect(c, x - 1, y - 1, size + 2, size + 2, compare_swatch_frame);
-    compare_rect(c, x, y, size, size, color);
-}
-
-/* The legend's text: with `brief`, for a small cell (a thumbnail), the
- * kinds and the misclassified share only. Returns its first kind's line. */
-static int compare_legend_text(const compare *c, bool brief, char *text, size_t size) {
+/* The legend's lines: with `brief`, for a small cell (a thumbnail), the
+ * kinds and the misclassified share only. Returns their count. */
+static int compare_legend_lines(const compare *c, bool brief, legend_line lines[COMPARE_LEGEND_MAX_LINES]) {
     const shadowdiff_result *r = &c->result;
-    int n = brief ? 0 : snprintf(text, size, "above: the technique | the ray-traced truth\nleft: the heat map of its errors\n");
-    int first_kind_line = brief ? 0 : COMPARE_LEGEND_INTRO_LINES;
-    for (int k = 0; k < compare_legend_count; k++) {
-        shadowdiff_pixel kind = compare_legend_kinds[k];
-        n += snprintf(text + n, size - (size_t)n, "%s", shadowdiff_pixel_names[kind]);
+    int count = 0;
+    char text[LEGEND_TEXT_MAX];
+    if (!brief) {
+        compare_legend_add(lines, &count, 0, NULL, "above: the technique | the ray-traced truth");
+        compare_legend_add(lines, &count, 0, NULL, "left: the heat map of its errors");
+    }
+    for (int k = 0; k < SHADOWDIFF_PIXEL_KIND_COUNT; k++) { /* each with its swatch */
+        shadowdiff_pixel kind = shadowdiff_legend_kinds[k];
+        int n = snprintf(text, sizeof text, "%s", shadowdiff_pixel_names[kind]);
         if (c->measured && kind == SHADOWDIFF_PIXEL_FALSE_SHADOW)
-            n += snprintf(text + n, size - (size_t)n, "   %.4f %%", r->false_shadow_percent);
+            snprintf(text + n, sizeof text - (size_t)n, "   %.4f %%", r->false_shadow_percent);
         if (c->measured && kind == SHADOWDIFF_PIXEL_FALSE_LIT)
-            n += snprintf(text + n, size - (size_t)n, "   %.4f %%", r->false_lit_percent);
-        n += snprintf(text + n, size - (size_t)n, "\n");
+            snprintf(text + n, sizeof text - (size_t)n, "   %.4f %%", r->false_lit_percent);
+        /* AGREES: its lit end, and its shadowed end beside it. */
+        const unsigned char swatch[2][3] = {
+            {shadowdiff_pixel_colors[kind][0], shadowdiff_pixel_colors[kind][1], shadowdiff_pixel_colors[kind][2]},
+            {SHADOWDIFF_AGREES_GREY_SHADOWED, SHADOWDIFF_AGREES_GREY_SHADOWED, SHADOWDIFF_AGREES_GREY_SHADOWED}};
+        compare_legend_add(lines, &count, kind == SHADOWDIFF_PIXEL_AGREES ? 2 : 1, swatch, text);
     }
     char truth[96];
     compare_truth_text(c, truth, sizeof truth);
-    if (brief && c->measured)
-        snprintf(text + n, size - (size_t)n, "misclassified %.4f %%", r->misclassified_percent);
-    else if (c->measured)
-        snprintf(text + n, size - (size_t)n, "misclassified %.4f %% of %ld pixels\nmean absolute error %.5f\n%s",
-                 r->misclassified_percent, r->compared, r->mean_abs_error, truth);
-    else
-        snprintf(text + n, size - (size_t)n, "no figures yet%s%s", brief ? "" : "\n", brief ? "" : truth);
-    return first_kind_line;
-}
-
-/* The largest scale, at most the window HUD's, at which `text` fits the
- * cell beside the swatches without wrapping (hud_draw would wrap it, and
- * the swatches would no longer face their lines); 0 if none does. */
-static int compare_legend_scale(const compare *c, const char *text) {
-    int lines = 1;
-    for (const char *p = text; *p; p++)
-        lines += *p == '\n';
-    int room_units = COMPARE_SWATCH_UNITS + COMPARE_SWATCH_GAP_UNITS + hud_text_width(text) + 2 * HUD_MARGIN;
-    int height_units = lines * HUD_LINE_UNITS + 2 * HUD_MARGIN;
-    for (int scale = hud_scale_for(c->picture.height); scale >= 1; scale--)
-        if (room_units * scale <= c->cell_width && height_units * scale <= c->cell_height)
-            return scale;
-    return 0;
+    if (brief && c->measured) {
+        snprintf(text, sizeof text, "misclassified %.4f %%", r->misclassified_percent);
+        compare_legend_add(lines, &count, 0, NULL, text);
+    } else if (c->measured) {
+        snprintf(text, sizeof text, "misclassified %.4f %% of %ld pixels", r->misclassified_percent, r->compared);
+        compare_legend_add(lines, &count, 0, NULL, text);
+        snprintf(text, sizeof text, "mean absolute error %.5f", r->mean_abs_error);
+        compare_legend_add(lines, &count, 0, NULL, text);
+        compare_legend_add(lines, &count, 0, NULL, truth);
+    } else {
+        compare_legend_add(lines, &count, 0, NULL, "no figures yet");
+        if (!brief)
+            compare_legend_add(lines, &count, 0, NULL, truth);
+    }
+    return count;
 }
 
 /* The bottom-right cell: one line per kind of heat-map pixel, each with
  * its swatch at the left, then the figures and the truth's state; briefer
- * where the cell is too small for all of it. */
+ * where the cell is too small for all of it (smaller still: cut at the
+ * cell's edge). */
 static void compare_draw_legend(const compare *c) {
     int x0 = c->cell_width, y0 = c->cell_height; /* the cell's top-left, from the picture's top */
-    char text[2048];
-    int first_kind_line = compare_legend_text(c, false, text, sizeof text);
-    int scale = compare_legend_scale(c, text);
+    legend_line lines[COMPARE_LEGEND_MAX_LINES];
+    int count = compare_legend_lines(c, false, lines);
+    int scale = legend_scale_to_fit(lines, count, c->cell_width, c->cell_height, c->picture.height);
     if (!scale) {
-        first_kind_line = compare_legend_text(c, true, text, sizeof text);
-        scale = compare_legend_scale(c, text);
+        count = compare_legend_lines(c, true, lines);
+        scale = legend_scale_to_fit(lines, count, c->cell_width, c->cell_height, c->picture.height);
     }
-    scale = scale ? scale : 1; /* smaller still: cut at the cell's edge */
-
-    glEnable(GL_SCISSOR_TEST);
-    compare_rect(c, x0, y0, c->cell_width, c->cell_height, compare_legend_background);
-    glDisable(GL_SCISSOR_TEST);
-    int column = (COMPARE_SWATCH_UNITS + COMPARE_SWATCH_GAP_UNITS) * scale;
-    glViewport(x0 + column, c->picture.height - 2 * c->cell_height, c->cell_width - column, c->cell_height);
-    hud_draw(text, c->cell_width - column, c->cell_height, scale);
     glViewport(0, 0, c->picture.width, c->picture.height);
     glEnable(GL_SCISSOR_TEST);
-    int size = HUD_LETTER_UNITS * scale, half = size / 2;
-    for (int k = 0; k < compare_legend_count; k++) {
-        shadowdiff_pixel kind = compare_legend_kinds[k];
-        int x = x0 + HUD_MARGIN * scale, y = y0 + (HUD_MARGIN + (k + first_kind_line) * HUD_LINE_UNITS) * scale;
-        compare_swatch(c, x, y, size, shadowdiff_pixel_colors[kind]);
-        if (kind == SHADOWDIFF_PIXEL_AGREES) /* its shadowed end beside the lit one */
-            compare_rect(c, x + half, y, size - half, size, compare_agrees_shadowed);
-    }
+    glScissor(x0, c->picture.height - 2 * c->cell_height, c->cell_width, c->cell_height);
+    glClearColor(legend_panel_color[0], legend_panel_color[1], legend_panel_color[2], 1);
+    glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
+    legend_draw(lines, count, x0, y0, scale ? scale : 1);
 }
 
 /* Cell `k` of the uploaded ones to the picture at (x, y) from the

@@ -59,6 +59,7 @@
 #include "context.h"
 #include "depth.h"
 #include "flags.h"
+#include "hud.h"
 #include "motion.h"
 #include "path.h"
 #include "raytrace.h"
@@ -813,7 +814,9 @@ int main(int argc, char **argv) {
     for (int t = 0; t < registry_technique_count; t++)
         if (bench_selected(registry_techniques[t]))
             total += bench_config_count(registry_techniques[t]) * bench.setting_count * bench.scene_count;
-    bool ok = path_make_directories(bench.out_dir) && target_create(&bench.target, bench.width, bench.height);
+    /* The HUD's text is the techniques' legends' (legend.h). */
+    bool ok = path_make_directories(bench.out_dir) && target_create(&bench.target, bench.width, bench.height) &&
+              hud_init();
     glGenQueries(1, &bench.query);
     for (int s = 0; ok && s < bench.scene_count; s++)
         ok = bench_scene(bench.scenes[s], s, &done, total);
@@ -823,6 +826,7 @@ int main(int argc, char **argv) {
             ok = bench_plot(bench.scene_names[s], (bench_error)e);
     ok = ok && (!bench.scaling || bench_plot_scaling());
     glDeleteQueries(1, &bench.query);
+    hud_destroy();
     target_destroy(&bench.target);
     context_destroy(&bench.ctx);
     if (ok)

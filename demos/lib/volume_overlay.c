@@ -1,18 +1,21 @@
 #include "volume_overlay.h"
 
 #include <glad/gl.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "depth.h"
+#include "legend.h"
 
-/* The counts' ramp: counts 1 .. VOLUME_OVERLAY_COUNT_STEPS - 1 each their
- * colour, the last step for that many and more. */
-#define VOLUME_OVERLAY_COUNT_STEPS 4
 #define VOLUME_OVERLAY_COUNT_ALPHA 0.45f
-static const float volume_overlay_count_ramp[VOLUME_OVERLAY_COUNT_STEPS][3] = {
+const float volume_overlay_count_ramp[VOLUME_OVERLAY_COUNT_STEPS][3] = {
     {0.2f, 0.4f, 1}, {0.2f, 1, 0.3f}, {1, 0.9f, 0.1f}, {1, 0.2f, 0.1f}};
 static const float volume_overlay_faces[4] = {1.0f, 0.85f, 0.2f, 0.12f};
 static const float volume_overlay_edges[4] = {1.0f, 0.85f, 0.2f, 0.6f};
 static const float volume_overlay_silhouette[4] = {1.0f, 0.3f, 0.2f, 1.0f};
+/* The counts' legend: a title line, then a line per step. */
+static const char *const volume_overlay_count_names[VOLUME_OVERLAY_COUNT_STEPS] = {"1", "2", "3", "4+"};
+#define VOLUME_OVERLAY_LEGEND_LINES (1 + VOLUME_OVERLAY_COUNT_STEPS)
 /* The whole screen in clip space (two triangles), for the counts. */
 static const float volume_overlay_screen[6][4] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1},
                                                   {-1, -1, 0, 1}, {1, 1, 0, 1},  {-1, 1, 0, 1}};
@@ -36,6 +39,14 @@ void volume_overlay_counts(volume_draw *d, unsigned stencil_mask) {
     }
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
+    legend_line legend[VOLUME_OVERLAY_LEGEND_LINES] = {{.text = "stencil count"}};
+    for (int k = 0; k < VOLUME_OVERLAY_COUNT_STEPS; k++) {
+        legend_line *line = &legend[1 + k];
+        snprintf(line->text, sizeof line->text, "%s", volume_overlay_count_names[k]);
+        line->swatches = 1;
+        memcpy(line->rgb[0], volume_overlay_count_ramp[k], sizeof line->rgb[0]);
+    }
+    legend_draw_corner(legend, VOLUME_OVERLAY_LEGEND_LINES);
     glEnable(GL_DEPTH_TEST);
 }
 

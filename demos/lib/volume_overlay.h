@@ -6,7 +6,8 @@
  *   opaque red, over everything;
  * - counts: the stencil count at each pixel as colour, 1, 2, 3 and "this
  *   many or more" by a ramp from blue to red, translucent so the picture
- *   shows through; the caller counts the light into the stencil first.
+ *   shows through, with a legend of the ramp; the caller counts the
+ *   light into the stencil first.
  * All with volume_draw's CPU program and stream, at the volumes' reach
  * (volume_draw_reach).
  */
@@ -16,6 +17,12 @@
 #include <stdbool.h>
 
 #include "volume_draw.h"
+
+/* The counts' ramp: counts 1 .. VOLUME_OVERLAY_COUNT_STEPS - 1 each their
+ * colour, the last step for that many and more; the overlay draws it
+ * translucent, its legend (legend.h, the bottom-right corner) opaque. */
+#define VOLUME_OVERLAY_COUNT_STEPS 4
+extern const float volume_overlay_count_ramp[VOLUME_OVERLAY_COUNT_STEPS][3];
 
 /* Every caster's volume sides (`faces`) or its silhouette lines, for the
  * light (homogeneous, world). */

@@ -1,0 +1,78 @@
+/* The window under real input: X key and mouse events (xdotool) into
+ * build/shadows under Xvfb, as a lecturer's hands would send them
+ * (tests/window_input.sh is the script; its top comment lists the steps).
+ * What they must do: F12 writes a numbered picture that never overwrites
+ * and prints its path; a drag orbits the camera; 0 puts camera and light
+ * back exactly as loaded; 2 switches to the second technique; Escape
+ * closes the window with exit 0. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "path.h"
+#include "support.h"
+
+#define WINDOW_DIR "out/test/window"
+#define WINDOW_SCENE "assets/scenes/simple.json"
+
+static char err[16384];
+
+static void test_keys_and_mouse_in_a_real_window(void **state) {
+    (void)state;
+    const char *xvfb = support_xvfb_run();
+    if (!support_have_command("xdotool")) {
+        fprintf(stderr, "    xdotool is not installed here: skipped\n");
+        skip();
+    }
+    /* A picture from an earlier run, which F12 must not overwrite. */
+    assert_int_equal(system("rm -rf " WINDOW_DIR " && mkdir -p " WINDOW_DIR " && echo earlier > " WINDOW_DIR
+                            "/screenshot-planar-1.png"),
+                     0);
+    char command[2048];
+    snprintf(command, sizeof command, "timeout 180 %s bash tests/window_input.sh \"%s\" " WINDOW_SCENE " " WINDOW_DIR,
+             xvfb, support_program("shadows"));
+    int status = support_run(command, err, sizeof err);
+    if (status != 0) {
+        char *app_err = path_read_text(WINDOW_DIR "/stderr.txt", 1 << 16, NULL);
+        fprintf(stderr, "    the app's stderr:\n%s\n", app_err ? app_err : "(none)");
+        free(app_err);
+    }
+    assert_int_equal(status, 0);
+
+    char *earlier = path_read_text(WINDOW_DIR "/screenshot-planar-1.png", 1 << 10, NULL);
+    assert_non_null(earlier);
+    assert_string_equal(earlier, "earlier\n");
+    free(earlier);
+    /* Every picture's path on stdout, in order. */
+    char *out = path_read_text(WINDOW_DIR "/stdout.txt", 1 << 16, NULL);
+    assert_non_null(out);
+    static const char *const saved[] = {"screenshot-planar-2.png", "screenshot-planar-3.png",
+                                        "screenshot-planar-4.png", "screenshot-shadowmap-1.png"};
+    const char *at = out;
+    for (size_t k = 0; k < sizeof saved / sizeof *saved; k++) {
+        at = strstr(at, saved[k]);
+        if (!at)
+            fail_msg("stdout does not name %s next: %s", saved[k], out);
+    }
+    free(out);
+
+    /* The drag moved the view; reset brought it back, byte for byte. */
+    const char *loaded = WINDOW_DIR "/screenshot-planar-2.png", *dragged = WINDOW_DIR "/screenshot-planar-3.png",
+               *reset = WINDOW_DIR "/screenshot-planar-4.png", *other = WINDOW_DIR "/screenshot-shadowmap-1.png";
+    assert_true(support_compare_images(loaded, dragged) > SUPPORT_MAX_DIFFERING);
+    assert_true(support_compare_images(loaded, reset) == 0);
+    /* The other technique: its own shadows (PCF edges), not planar's. */
+    assert_true(support_compare_images(loaded, other) > 0);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_keys_and_mouse_in_a_real_window),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

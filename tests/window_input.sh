@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Drives build/shadows in a real window with X input events (xdotool), as
+# a lecturer's hands would, under the X server xvfb-run started; run by
+# tests/test_window.c, which checks what it leaves in DIR:
+#   F12                 screenshot-planar-2.png (DIR holds a -1 already: never overwritten)
+#   drag 150 px down    the camera orbits (above the ground)
+#   F12                 screenshot-planar-3.png
+#   0                   camera and light reset
+#   F12                 screenshot-planar-4.png (the same picture as -2)
+#   2                   the second technique, shadowmap
+#   F12                 screenshot-shadowmap-1.png
+#   Escape              the window closes, exit 0
+# Each step waits SETTLE seconds, so that frames are drawn between events
+# (F12 saves the last drawn picture).
+# Usage: tests/window_input.sh PROGRAM SCENE DIR, from the project's root
+# (SCENE relative to it);
+# PROGRAM is a command (tests/support.h's support_program: it may start
+# with env LD_PRELOAD=...) whose build directory DIR links to, since the
+# app runs in DIR (where F12 writes).
+set -eu
+program=$1 scene=$PWD/$2 dir=$3
+SETTLE=2
+for build in build build-san; do
+    [ ! -e "$build" ] || ln -sfn "$PWD/$build" "$dir/$build"
+done
+cd "$dir"
+eval "$program --scene '$scene' --size 640x360 >stdout.txt 2>stderr.txt &"
+app=$!
+window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
+sleep "$SETTLE"
+press() {
+    xdotool key --window "$window" "$1"
+    sleep "$SETTLE"
+}
+press F12
+xdotool mousemove --window "$window" 320 100 mousedown 1 mousemove --window "$window" 320 180 \
+    mousemove --window "$window" 320 250 mouseup 1
+sleep "$SETTLE"
+press F12
+press 0
+press F12
+press 2
+press F12
+xdotool key --window "$window" Escape
+wait "$app"
