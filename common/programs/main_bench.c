@@ -155,7 +155,7 @@ static const flags_param bench_flags[] = {
      .max = BENCH_MAX_FRAMES, .what = "a count"},
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
-    {"motion", "what moves: nothing, the lights (as --animate turns them)\nor the camera; frame k is at k/60 s", 0,
+    {"motion", "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, or along its view (dolly);\nframe k is at k/60 s", 0,
      FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
     {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
      .choices = bench_config_choices},
