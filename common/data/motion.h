@@ -30,6 +30,9 @@ typedef enum motion_kind { MOTION_STATIC, MOTION_LIGHT, MOTION_CAMERA, MOTION_DO
 /* The kinds' names in order, NULL-terminated (a FLAGS_CHOICE list). */
 extern const char *const motion_names[];
 
+/* Frame i of a headless run is at i / MOTION_FRAME_RATE seconds: the
+ * app's --frames, the benchmark's frames and raytrace's --frames agree. */
+#define MOTION_FRAME_RATE 60.0
 #define MOTION_LIGHT_RAD_PER_S 0.5f
 #define MOTION_CAMERA_RAD_PER_S 0.5f
 #define MOTION_DOLLY_SPEED 0.5f

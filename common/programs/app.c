@@ -27,7 +27,7 @@
 #include "video.h"
 
 #define APP_EXIT_RUNTIME 1
-#define APP_HEADLESS_FPS 60.0
+#define APP_HEADLESS_FPS MOTION_FRAME_RATE
 #define APP_HEADLESS_FRAMES 1 /* without --frames */
 #define APP_MAX_FRAMES 1000000
 #define APP_MAX_TECHNIQUES 9 /* keys 1-9 */

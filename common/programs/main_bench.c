@@ -72,7 +72,7 @@
 #define BENCH_MAX_TECHNIQUES 16
 /* Frame k is at k / BENCH_FRAME_RATE seconds, as the app's headless frames
  * are (app.c), so a bench frame is the frame `--frames` renders there. */
-#define BENCH_FRAME_RATE 60.0
+#define BENCH_FRAME_RATE MOTION_FRAME_RATE
 #define BENCH_SCALING_MARGIN 1.5
 
 /* --configs: the default first (a FLAGS_CHOICE list). */
