@@ -115,8 +115,9 @@ else
 	@tests/run.sh $(BUILD) build-san
 endif
 
-# The standard scenes' whole sweeps, nothing moving and the lights moving;
-# then each technique's defaults on the cities and the dense scene, skips on
+# The standard scenes' whole sweeps, nothing moving, the lights moving, and
+# the camera moving (its yaw, and dolly's walk: where each row's shimmer is
+# measured); then each technique's defaults on the cities and the dense scene, skips on
 # against --no-skip, with time per frame against object count
 # (out/bench/scaling.png, and cities-light/scaling.png with the lights moving).
 # The cities see the same street, so their plot is cost against object
@@ -126,6 +127,8 @@ BENCH_QUICK := $(if $(filter 1,$(QUICK)),--quick)
 bench: $(PROGRAMS)
 	$(BUILD)/bench $(BENCH_QUICK) --motion static --out out/bench/static
 	$(BUILD)/bench $(BENCH_QUICK) --motion light --out out/bench/light
+	$(BUILD)/bench $(BENCH_QUICK) --motion camera --out out/bench/camera
+	$(BUILD)/bench $(BENCH_QUICK) --motion dolly --out out/bench/dolly
 	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --scaling --motion static --out out/bench \
 		$(BENCH_CITIES)
 	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --scaling --motion light \

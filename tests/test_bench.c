@@ -23,8 +23,9 @@
 /* The selection runs: small and short, on one scene. */
 #define SELECT_OUT OUT "-select"
 #define LIGHT_OUT OUT "-light"
+#define DOLLY_OUT OUT "-dolly"
 #define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
-#define CSV_COLUMNS 17
+#define CSV_COLUMNS 18
 #define CSV_MAX_ROWS 256
 /* results.csv's columns the tests read by position. */
 #define CSV_GPU_MEDIAN 3
@@ -35,19 +36,21 @@
 #define CSV_MOTION 14
 #define CSV_SKIPS 15
 #define CSV_FLOOR_MS 16
+#define CSV_SHIMMER 17
 /* The CSV's rounding: the ratio is printed to 3 decimals, the times to 4. */
 #define CSV_RATIO_ROUNDING 0.0005
 #define CSV_MS_ROUNDING 0.00005
 /* A scene's table in report.md: technique, parameters, skips, GPU ms, CPU
- * ms, ratio, floor ms, false shadow, false lit, misclassified, MAE, then a
- * front column per own-technique setting and error figure. */
+ * ms, ratio, floor ms, false shadow, false lit, misclassified, MAE,
+ * shimmer, then a front column per own-technique setting and error
+ * figure. */
 #define REPORT_ERRORS 2
 #define REPORT_FRONTS (2 * REPORT_ERRORS)
-#define REPORT_COLUMNS (11 + REPORT_FRONTS)
+#define REPORT_COLUMNS (12 + REPORT_FRONTS)
 #define REPORT_GPU_COLUMN 3
 #define REPORT_CPU_COLUMN 4
 #define REPORT_ERROR_COLUMN 9
-#define REPORT_FRONT_COLUMN 11
+#define REPORT_FRONT_COLUMN 12
 #define REPORT_MAX_ROWS 128
 
 static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view"};
@@ -56,13 +59,15 @@ static const char *const plot_prefixes[] = {"pareto", "pareto_mae"};
 static char err[65536];
 
 /* The whole --quick run; a static selection of one technique; the lights
- * moving with skips compared and the scaling plot. */
+ * moving with skips compared and the scaling plot; the camera walking
+ * (dolly), where shimmer is measured. */
 static int run_bench(void **state) {
     (void)state;
     static const char *const runs[][2] = {
         {OUT, "--quick"},
         {SELECT_OUT, SMALL_RUN " --technique planar"},
         {LIGHT_OUT, SMALL_RUN " --motion light --skips-compare --scaling --technique volumes"},
+        {DOLLY_OUT, SMALL_RUN " --motion dolly --technique shadowmap"},
     };
     for (size_t i = 0; i < sizeof runs / sizeof *runs; i++) {
         char command[1024];
@@ -102,7 +107,7 @@ static int csv_fields(char *line, char **fields, int max) {
 
 /* What the tests look at in a row of results.csv. */
 typedef struct csv_row {
-    char technique[32], parameters[256], motion[16], skips[8];
+    char technique[32], parameters[256], motion[16], skips[8], shimmer[16];
 } csv_row;
 
 /* A row's ratio is its median (CPU time on a software rasterizer, as the
@@ -132,13 +137,17 @@ static int read_csv(const char *dir, csv_row *rows) {
     char *rest = text, *line = strtok_r(rest, "\n", &rest);
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
-                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median");
+                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent");
     int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
         assert_int_equal(csv_fields(line, fields, CSV_COLUMNS + 1), CSV_COLUMNS);
+        bool moving = strcmp(fields[CSV_MOTION], "camera") == 0 || strcmp(fields[CSV_MOTION], "dolly") == 0;
+        if (!moving)
+            assert_string_equal(fields[CSV_SHIMMER], "-");
         for (int c = CSV_GPU_MEDIAN; c < CSV_COLUMNS; c++) {
-            if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS)
+            /* shimmer: "-" where the camera stands still (checked below) */
+            if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS || (c == CSV_SHIMMER && !moving))
                 continue;
             char *end;
             double v = strtod(fields[c], &end);
@@ -153,6 +162,7 @@ static int read_csv(const char *dir, csv_row *rows) {
         snprintf(r->parameters, sizeof r->parameters, "%s", fields[2]);
         snprintf(r->motion, sizeof r->motion, "%s", fields[CSV_MOTION]);
         snprintf(r->skips, sizeof r->skips, "%s", fields[CSV_SKIPS]);
+        snprintf(r->shimmer, sizeof r->shimmer, "%s", fields[CSV_SHIMMER]);
     }
     return n;
 }
@@ -164,8 +174,10 @@ static int count_rows(const csv_row *rows, int n, const char *technique, const c
     return count;
 }
 
-/* The one entry of DIR/reference/ (one scene, one run). */
-static void reference_name(const char *dir, char *name, size_t size) {
+/* The entries of DIR/reference/ (one scene, one run: one reference,
+ * two where shimmer is measured), the last read into name; returns how
+ * many. */
+static int reference_names(const char *dir, char *name, size_t size) {
     char path[256];
     snprintf(path, sizeof path, "%s/reference", dir);
     DIR *d = opendir(path);
@@ -175,7 +187,11 @@ static void reference_name(const char *dir, char *name, size_t size) {
         if (e->d_name[0] != '.')
             snprintf(name, size, "%s", e->d_name), entries++;
     closedir(d);
-    assert_int_equal(entries, 1);
+    return entries;
+}
+
+static void reference_name(const char *dir, char *name, size_t size) {
+    assert_int_equal(reference_names(dir, name, size), 1);
 }
 
 static void test_csv_has_every_configuration(void **state) {
@@ -231,6 +247,29 @@ static void test_light_motion_and_skips_compare(void **state) {
     char *report = read_file(LIGHT_OUT "/report.md");
     assert_non_null(strstr(report, "| technique | ms skips on | ms skips off | speed-up |"));
     assert_non_null(strstr(report, "\n| volumes | "));
+}
+
+/* --motion dolly: every row has a shimmer figure, a percentage; the
+ * reference is traced for the last two frames; the report says what the
+ * column is. */
+static void test_dolly_measures_shimmer(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(DOLLY_OUT, rows);
+    assert_int_equal(n, 2);
+    for (int i = 0; i < n; i++) {
+        assert_string_equal(rows[i].motion, "dolly");
+        double shimmer = atof(rows[i].shimmer);
+        assert_true(shimmer >= 0 && shimmer <= 100);
+    }
+    char name[256];
+    assert_int_equal(reference_names(DOLLY_OUT, name, sizeof name), 2);
+    assert_non_null(strstr(name, "dolly"));
+    char *report = read_file(DOLLY_OUT "/report.md");
+    assert_non_null(strstr(report, "| MAE | shimmer % |"));
+    assert_non_null(strstr(report, "Shimmer %: of the compared pixels followed from the frame before"));
+    report = read_file(SELECT_OUT "/report.md");
+    assert_non_null(strstr(report, "Shimmer %: \"-\": the camera does not move"));
 }
 
 static void test_scaling_plot_is_an_image(void **state) {
@@ -344,7 +383,7 @@ static void test_report_has_a_table_front_and_comparison_per_scene(void **state)
         if (next) /* look at this scene's section only */
             *next = '\0';
         assert_non_null(strstr(section, "| technique | parameters |"));
-        assert_non_null(strstr(section, " | misclassified % | MAE | front (misclassified) | front (MAE) | "
+        assert_non_null(strstr(section, " | misclassified % | MAE | shimmer % | front (misclassified) | front (MAE) | "
                                         "own front (misclassified) | own front (MAE) |\n"));
         for (size_t p = 0; p < sizeof plot_prefixes / sizeof *plot_prefixes; p++) {
             char image[128];
@@ -384,6 +423,7 @@ int main(void) {
         cmocka_unit_test(test_plots_are_images),
         cmocka_unit_test(test_selection_keeps_the_floor),
         cmocka_unit_test(test_light_motion_and_skips_compare),
+        cmocka_unit_test(test_dolly_measures_shimmer),
         cmocka_unit_test(test_scaling_plot_is_an_image),
         cmocka_unit_test(test_unknown_technique),
     };

@@ -451,6 +451,8 @@ static void test_dump_round_trip(void **state) {
     const size_t n = (size_t)width * (size_t)height;
     dump_frame written, loaded;
     make_frame(&written, width, height, sun);
+    written.camera = (scene_camera){.position = {1.5f, -2, 3e6f}, .target = {0.1f, 0, 7}, .up = {0, 0, 1},
+                                    .fov_deg = 47.5f, .near_plane = 0.01f, .far_plane = 1e5f};
     for (size_t i = 0; i < n; i++) {
         written.visibility[i] = (float)i / (float)n;
         written.depth[i] = 1 + 0.25f * (float)i;
@@ -464,6 +466,7 @@ static void test_dump_round_trip(void **state) {
     assert_int_equal(loaded.height, height);
     assert_int_equal(loaded.light_index, written.light_index);
     assert_floats_equal(loaded.light, written.light, 4);
+    assert_memory_equal(&loaded.camera, &written.camera, sizeof loaded.camera);
     assert_int_equal(loaded.object_count, written.object_count);
     for (int i = 0; i < written.object_count; i++)
         assert_string_equal(loaded.object_names[i], written.object_names[i]);
@@ -476,9 +479,193 @@ static void test_dump_round_trip(void **state) {
     dump_frame_free(&loaded);
 }
 
+/* ---- shimmer ---- */
+
+/* The shimmer frames: a camera SHIMMER_HEIGHT straight above the ground,
+ * its picture exactly the ground's SIZE x SIZE unit squares, so pixel
+ * (x, y) sees (x + 0.5 + shift, 0, y + 0.5); frame 1 is frame 0 with eye
+ * and target moved by 1 along x, so its pixel (x, y) is frame 0's
+ * (x + 1, y), and its last column is outside frame 0. */
+#define SHIMMER_HEIGHT 10.0f
+#define SHIMMER_FOLLOWED (PIXELS - SIZE)
+
+static void make_view_frame(dump_frame *d, float shift) {
+    make_frame(d, SIZE, SIZE, sun);
+    const float centre = 0.5f * SIZE + shift;
+    d->camera = (scene_camera){.position = {centre, SHIMMER_HEIGHT, 0.5f * SIZE},
+                               .target = {centre, 0, 0.5f * SIZE},
+                               .up = {0, 0, -1},
+                               .fov_deg = (float)(2 * atan(0.5 * SIZE / SHIMMER_HEIGHT) * 180 / M_PI),
+                               .near_plane = 1,
+                               .far_plane = 100};
+    for (int y = 0; y < SIZE; y++)
+        for (int x = 0; x < SIZE; x++)
+            set_vec3(d->position, (size_t)(y * SIZE + x), (float)x + 0.5f + shift, 0, (float)y + 0.5f);
+}
+
+typedef struct shimmer_frames {
+    dump_frame r0, t0, r1, t1;
+} shimmer_frames;
+
+static void make_shimmer_frames(shimmer_frames *f, float shift) {
+    make_view_frame(&f->r0, 0);
+    make_view_frame(&f->t0, 0);
+    make_view_frame(&f->r1, shift);
+    make_view_frame(&f->t1, shift);
+}
+
+static void free_shimmer_frames(shimmer_frames *f) {
+    free_pair(&f->r0, &f->t0);
+    free_pair(&f->r1, &f->t1);
+}
+
+static size_t pixel(int x, int y) { return (size_t)(y * SIZE + x); }
+
+static shadowdiff_shimmer_result shimmer(const shimmer_frames *f, double grazing_degrees) {
+    shadowdiff_shimmer_result r;
+    const shadowdiff_settings settings = {.grazing_degrees = grazing_degrees};
+    assert_true(shadowdiff_shimmer(&f->r0, &f->t0, &f->r1, &f->t1, &settings, &r));
+    assert_int_equal(r.problem, SHADOWDIFF_PROBLEM_NONE);
+    return r;
+}
+
+static void assert_shimmer(const shadowdiff_shimmer_result *r, long followed, long shimmered, long truth_changed) {
+    assert_int_equal(r->followed, followed);
+    assert_int_equal(r->shimmered, shimmered);
+    assert_int_equal(r->truth_changed, truth_changed);
+    assert_float_equal(r->shimmer_percent, 100.0 * (double)shimmered / (double)followed, 1e-12);
+}
+
+/* A still camera follows every pixel to itself (pixel centres land in
+ * their own squares); a decision that flips counts. */
+static void test_shimmer_still_camera_follows_every_pixel(void **state) {
+    (void)state;
+    shimmer_frames f;
+    make_shimmer_frames(&f, 0);
+    shadowdiff_shimmer_result r = shimmer(&f, 0);
+    assert_shimmer(&r, PIXELS, 0, 0);
+    f.t1.visibility[pixel(3, 4)] = 0;
+    r = shimmer(&f, 0);
+    assert_shimmer(&r, PIXELS, 1, 0);
+    assert_int_equal(r.current.false_shadow, 1);
+    assert_int_equal(r.previous.false_shadow, 0);
+    free_shimmer_frames(&f);
+}
+
+/* Frame 1's pixel (x, y) is frame 0's (x + 1, y): a flip of the test
+ * where the truth is still counts; where the truth flips too, or only the
+ * truth flips, it does not (truth_changed). The same pixel index in both
+ * frames, a different world point, is not what is compared. */
+static void test_shimmer_counts_flips_where_the_truth_is_still(void **state) {
+    (void)state;
+    shimmer_frames f;
+    make_shimmer_frames(&f, 1);
+    f.t1.visibility[pixel(2, 0)] = 0; /* t0 (3, 0) lit: counted */
+    f.r1.visibility[pixel(4, 0)] = f.t1.visibility[pixel(4, 0)] = 0; /* both flip */
+    f.r1.visibility[pixel(0, 1)] = 0;                                  /* the truth alone */
+    /* Shadowed in frame 0 at (6, 2), in frame 1 at the same world point
+     * (5, 2): still; frame 1's (6, 2) is lit, another point. */
+    f.r0.visibility[pixel(6, 2)] = f.t0.visibility[pixel(6, 2)] = 0;
+    f.r1.visibility[pixel(5, 2)] = f.t1.visibility[pixel(5, 2)] = 0;
+    shadowdiff_shimmer_result r = shimmer(&f, 0);
+    assert_shimmer(&r, SHIMMER_FOLLOWED, 1, 2);
+    assert_float_equal(r.truth_changed_percent, 200.0 / SHIMMER_FOLLOWED, 1e-12);
+    free_shimmer_frames(&f);
+}
+
+/* A point hidden in frame 0 (another object there, or the same object
+ * further than the tolerance: the point was not on the surface seen) is
+ * not followed, whatever the test decides. */
+static void test_shimmer_leaves_out_disocclusions(void **state) {
+    (void)state;
+    shimmer_frames f;
+    make_shimmer_frames(&f, 1);
+    f.r0.ids[pixel(2, 1)] = f.t0.ids[pixel(2, 1)] = BOX; /* frame 1's (1, 1) */
+    f.t1.visibility[pixel(1, 1)] = 0;
+    /* Frame 0's (4, 3) is 0.2 above frame 1's (3, 3): 2 % of its distance
+     * of 10, over the 1 % tolerance. */
+    f.r0.position[3 * pixel(4, 3) + 1] = 0.2f;
+    f.t1.visibility[pixel(3, 3)] = 0;
+    /* 0.05 above: 0.5 %, within; a flip there counts. */
+    f.r0.position[3 * pixel(4, 5) + 1] = 0.05f;
+    f.t1.visibility[pixel(3, 5)] = 0;
+    shadowdiff_shimmer_result r = shimmer(&f, 0);
+    assert_shimmer(&r, SHIMMER_FOLLOWED - 2, 1, 0);
+    /* The test seeing another object in frame 0 is left out too. */
+    f.t0.ids[pixel(4, 5)] = BOX;
+    r = shimmer(&f, 0);
+    assert_shimmer(&r, SHIMMER_FOLLOWED - 3, 0, 0);
+    free_shimmer_frames(&f);
+}
+
+/* shadowdiff's rules decide what is compared in each frame: a reference
+ * surface edge-on to the light in frame 1, or in frame 0 where a pixel
+ * lands, is not followed; --grazing leaves out the near edge-on ones. */
+static void test_shimmer_honours_the_edge_on_rule(void **state) {
+    (void)state;
+    shimmer_frames f;
+    make_shimmer_frames(&f, 1);
+    set_vec3(f.r1.normal, pixel(2, 2), 1, 0, 0); /* edge-on to the sun straight above */
+    f.t1.visibility[pixel(2, 2)] = 0;
+    set_vec3(f.r0.normal, pixel(5, 5), 0, 0, 1); /* frame 1's (4, 5) */
+    f.t1.visibility[pixel(4, 5)] = 0;
+    /* 10 degrees off edge-on: compared, unless --grazing leaves it out. */
+    set_vec3(f.r1.normal, pixel(6, 6), cosf(10 * (float)M_PI / 180), sinf(10 * (float)M_PI / 180), 0);
+    f.t1.visibility[pixel(6, 6)] = 0;
+    shadowdiff_shimmer_result r = shimmer(&f, 0);
+    assert_shimmer(&r, SHIMMER_FOLLOWED - 2, 1, 0);
+    r = shimmer(&f, 30);
+    assert_shimmer(&r, SHIMMER_FOLLOWED - 3, 0, 0);
+    free_shimmer_frames(&f);
+}
+
+/* No figure: a broken frame 0, cameras that differ within a frame, frames
+ * of different scenes, or nothing followed. */
+static void test_shimmer_problems(void **state) {
+    (void)state;
+    shimmer_frames f;
+    shadowdiff_shimmer_result r;
+    make_shimmer_frames(&f, 1);
+    support_capture_stderr();
+    f.t0.visibility[pixel(1, 1)] = NAN;
+    bool nan_ok = shadowdiff_shimmer(&f.r0, &f.t0, &f.r1, &f.t1, NULL, &r);
+    shadowdiff_problem nan_problem = r.problem;
+    f.t0.visibility[pixel(1, 1)] = 1;
+    f.t0.camera.position[0] += 1;
+    bool camera_ok = shadowdiff_shimmer(&f.r0, &f.t0, &f.r1, &f.t1, NULL, &r);
+    shadowdiff_problem camera_problem = r.problem;
+    f.t0.camera = f.r0.camera;
+    memcpy(f.r0.object_names[BOX], "crate", sizeof "crate");
+    memcpy(f.t0.object_names[BOX], "crate", sizeof "crate");
+    bool objects_ok = shadowdiff_shimmer(&f.r0, &f.t0, &f.r1, &f.t1, NULL, &r);
+    shadowdiff_problem objects_problem = r.problem;
+    free_shimmer_frames(&f);
+    make_shimmer_frames(&f, SIZE); /* frame 1 wholly beside frame 0 */
+    bool beside_ok = shadowdiff_shimmer(&f.r0, &f.t0, &f.r1, &f.t1, NULL, &r);
+    shadowdiff_problem beside_problem = r.problem;
+    const char *text = support_release_stderr();
+    assert_false(nan_ok);
+    assert_int_equal(nan_problem, SHADOWDIFF_PROBLEM_NOT_FINITE);
+    assert_non_null(strstr(text, "previous test/visibility.pfm: nan at pixel (1, 1)"));
+    assert_false(camera_ok);
+    assert_int_equal(camera_problem, SHADOWDIFF_PROBLEM_MISMATCH);
+    assert_non_null(strstr(text, "previous reference and previous test are seen from different cameras"));
+    assert_false(objects_ok);
+    assert_int_equal(objects_problem, SHADOWDIFF_PROBLEM_MISMATCH);
+    assert_non_null(strstr(text, "previous reference and reference have different objects: 1 is 'crate' and 'box'"));
+    assert_false(beside_ok);
+    assert_int_equal(beside_problem, SHADOWDIFF_PROBLEM_NOTHING_COMPARED);
+    assert_int_equal(r.followed, 0);
+    assert_non_null(strstr(text, "no compared pixel followed"));
+    assert_int_equal(support_count_lines(text), 4);
+    free_shimmer_frames(&f);
+}
+
 /* ---- build/shadowdiff ---- */
 
 /* DIR/ref and DIR/test hold the known verdicts (12.5 % misclassified);
+ * DIR/shimmer_ref0, _test0, _ref1, _test1 two frames with one pixel of
+ * shimmer among SHIMMER_FOLLOWED;
  * DIR/small is another size, DIR/moved another light, DIR/far sees
  * everything further away; DIR/nan is DIR/test with a NaN visibility and
  * DIR/inf DIR/ref with an infinite depth, both where a surface is seen. */
@@ -502,6 +689,13 @@ static int write_cli_dumps(void **state) {
     free_pair(&reference, &test);
     dump_frame_free(&small);
     dump_frame_free(&moved);
+    /* DIR/shimmer_*: one flip of the test where the truth is still. */
+    shimmer_frames f;
+    make_shimmer_frames(&f, 1);
+    f.t1.visibility[pixel(2, 0)] = 0;
+    ok = ok && dump_write(&f.r0, DIR "/shimmer_ref0") && dump_write(&f.t0, DIR "/shimmer_test0") &&
+         dump_write(&f.r1, DIR "/shimmer_ref1") && dump_write(&f.t1, DIR "/shimmer_test1");
+    free_shimmer_frames(&f);
     return ok ? 0 : -1;
 }
 
@@ -671,6 +865,43 @@ static void test_cli_runtime_errors(void **state) {
                    "cannot write");
 }
 
+#define SHIMMER_ARGS DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/shimmer_ref0 " DIR "/shimmer_test0"
+
+/* --previous adds the shimmer to the current frame's report, in text and
+ * JSON; the previous dumps' problems are the comparison's. */
+static void test_cli_shimmer(void **state) {
+    (void)state;
+    char out[4096];
+    assert_int_equal(run_shadowdiff(SHIMMER_ARGS, out, sizeof out), 0);
+    assert_string_equal(err, "");
+    assert_int_equal(support_count_lines(out), 7);
+    assert_non_null(strstr(out, "shimmer          1.786 % (1 of 56 followed pixels"));
+    assert_non_null(strstr(out, "truth changed    0.000 % (0:"));
+    assert_non_null(strstr(out, "false shadow     1.562 % (1:"));
+    cJSON *root = run_json(SHIMMER_ARGS);
+    assert_float_equal(json_number(root, "shimmer_percent"), 100.0 / SHIMMER_FOLLOWED, 1e-12);
+    assert_float_equal(json_number(root, "followed"), SHIMMER_FOLLOWED, 0);
+    assert_float_equal(json_number(root, "shimmered"), 1, 0);
+    assert_float_equal(json_number(root, "truth_changed"), 0, 0);
+    assert_float_equal(json_number(root, "compared"), PIXELS, 0);
+    cJSON_Delete(root);
+    /* Without --previous, no shimmer in the JSON. */
+    root = run_json(DIR "/shimmer_ref1 " DIR "/shimmer_test1");
+    assert_null(cJSON_GetObjectItemCaseSensitive(root, "shimmer_percent"));
+    cJSON_Delete(root);
+    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/shimmer_ref0", EXIT_USAGE,
+                   "--previous", "PREV_REF_DIR PREV_TEST_DIR");
+    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/shimmer_ref0 " DIR "/none",
+                   EXIT_RUNTIME, DIR "/none/meta.json", "No such file");
+    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/shimmer_ref0 " DIR "/shimmer_test1",
+                   EXIT_RUNTIME, DIR "/shimmer_ref0 and " DIR "/shimmer_test1", "different cameras");
+    /* DIR/ref's camera is no camera at all: nothing lands in its picture. */
+    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/ref " DIR "/test --json",
+                   EXIT_NOTHING_COMPARED, "no compared pixel followed", "no shimmer figure");
+    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/ref " DIR "/nan",
+                   EXIT_NOT_FINITE, DIR "/nan/visibility.pfm: nan", "broken dump");
+}
+
 static void test_cli_help(void **state) {
     (void)state;
     char out[4096];
@@ -680,6 +911,8 @@ static void test_cli_help(void **state) {
     assert_non_null(strstr(out, "--max-misclassified P"));
     assert_non_null(strstr(out, "Exit status: 0 compared; 1 a dump unreadable"));
     assert_non_null(strstr(out, "4 nothing compared"));
+    assert_non_null(strstr(out, "--previous PREV_REF_DIR PREV_TEST_DIR"));
+    assert_non_null(strstr(out, "shimmer % is the share of followed pixels"));
     assert_non_null(strstr(out, "5 a dump\nholds NaN"));
 }
 
@@ -699,6 +932,11 @@ int main(void) {
         cmocka_unit_test(test_heatmap_colours),
         cmocka_unit_test(test_rejects_inconsistent_dumps),
         cmocka_unit_test(test_dump_round_trip),
+        cmocka_unit_test(test_shimmer_still_camera_follows_every_pixel),
+        cmocka_unit_test(test_shimmer_counts_flips_where_the_truth_is_still),
+        cmocka_unit_test(test_shimmer_leaves_out_disocclusions),
+        cmocka_unit_test(test_shimmer_honours_the_edge_on_rule),
+        cmocka_unit_test(test_shimmer_problems),
         cmocka_unit_test(test_cli_text_report),
         cmocka_unit_test(test_cli_json),
         cmocka_unit_test(test_cli_receiver),
@@ -708,6 +946,7 @@ int main(void) {
         cmocka_unit_test(test_cli_max_misclassified),
         cmocka_unit_test(test_cli_usage_errors),
         cmocka_unit_test(test_cli_runtime_errors),
+        cmocka_unit_test(test_cli_shimmer),
         cmocka_unit_test(test_cli_help),
     };
     return cmocka_run_group_tests(tests, write_cli_dumps, NULL);

@@ -60,7 +60,7 @@ static void test_bad_tours(void **state) {
     } cases[] = {
         {"tour_unknown_key.json", "steps[1]: unknown key \"captoin\" (expected scene, technique, flags, caption, "
                                   "seconds, motion, frame, camera, path or compare)"},
-        {"tour_bad_motion.json", "steps[0].motion: unknown motion \"orbit\" (expected static, light or camera)"},
+        {"tour_bad_motion.json", "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)"},
         {"tour_bad_frame.json", "steps[0].frame: must be a frame of the step, 0 to 59 (got 60)"},
         {"tour_bad_seconds.json", "steps[0].seconds: expected a number, got a string"},
         {"tour_no_scene.json", "steps[0].scene: missing required field"},

@@ -15,7 +15,7 @@
 
 bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int light_index) {
     size_t n = (size_t)width * (size_t)height;
-    *d = (dump_frame){.width = width, .height = height, .light_index = light_index,
+    *d = (dump_frame){.width = width, .height = height, .light_index = light_index, .camera = s->camera,
                       .object_count = s->object_count};
     scene_light_homogeneous(&s->lights[light_index], d->light);
     d->object_names = calloc((size_t)s->object_count, sizeof *d->object_names);
@@ -109,6 +109,14 @@ static bool dump_write_meta(const dump_frame *d, const char *path) {
     cJSON *names = cJSON_AddArrayToObject(root, "objects");
     for (int i = 0; i < d->object_count; i++)
         cJSON_AddItemToArray(names, cJSON_CreateString(d->object_names[i]));
+    const scene_camera *c = &d->camera;
+    cJSON *camera = cJSON_AddObjectToObject(root, "camera");
+    cJSON_AddItemToObject(camera, "position", cJSON_CreateFloatArray(c->position, 3));
+    cJSON_AddItemToObject(camera, "target", cJSON_CreateFloatArray(c->target, 3));
+    cJSON_AddItemToObject(camera, "up", cJSON_CreateFloatArray(c->up, 3));
+    cJSON_AddNumberToObject(camera, "fov", c->fov_deg);
+    cJSON_AddNumberToObject(camera, "near", c->near_plane);
+    cJSON_AddNumberToObject(camera, "far", c->far_plane);
     char *text = cJSON_Print(root);
     cJSON_Delete(root);
     FILE *f = text ? fopen(path, "w") : NULL;
@@ -144,6 +152,34 @@ bool dump_write(const dump_frame *d, const char *dir) {
     return dump_write_meta(d, path);
 }
 
+/* `count` numbers of array `key` of `object` into out; false if it is not
+ * that. */
+static bool dump_read_numbers(const cJSON *object, const char *key, float *out, int count) {
+    const cJSON *array = cJSON_GetObjectItemCaseSensitive(object, key);
+    bool ok = cJSON_IsArray(array) && cJSON_GetArraySize(array) == count;
+    for (int i = 0; ok && i < count; i++) {
+        const cJSON *v = cJSON_GetArrayItem(array, i);
+        ok = cJSON_IsNumber(v);
+        out[i] = ok ? (float)v->valuedouble : 0;
+    }
+    return ok;
+}
+
+static bool dump_read_number(const cJSON *object, const char *key, float *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(object, key);
+    *out = cJSON_IsNumber(v) ? (float)v->valuedouble : 0;
+    return cJSON_IsNumber(v);
+}
+
+/* meta.json's "camera" (dump.h), every key required. */
+static bool dump_read_camera(const cJSON *root, scene_camera *c) {
+    const cJSON *camera = cJSON_GetObjectItemCaseSensitive(root, "camera");
+    return cJSON_IsObject(camera) && dump_read_numbers(camera, "position", c->position, 3) &&
+           dump_read_numbers(camera, "target", c->target, 3) && dump_read_numbers(camera, "up", c->up, 3) &&
+           dump_read_number(camera, "fov", &c->fov_deg) && dump_read_number(camera, "near", &c->near_plane) &&
+           dump_read_number(camera, "far", &c->far_plane);
+}
+
 /* meta.json, checked as strictly as scene files: a dump from another
  * program or version must not be compared silently. */
 static bool dump_read_meta(dump_frame *d, const char *path) {
@@ -156,21 +192,15 @@ static bool dump_read_meta(dump_frame *d, const char *path) {
         fprintf(stderr, "%s: not valid JSON\n", path);
         return false;
     }
-    const cJSON *light = cJSON_GetObjectItemCaseSensitive(root, "light");
     const cJSON *names = cJSON_GetObjectItemCaseSensitive(root, "objects");
     const cJSON *index = cJSON_GetObjectItemCaseSensitive(root, "light_index");
-    bool ok = cJSON_IsArray(light) && cJSON_GetArraySize(light) == 4 && cJSON_IsArray(names) &&
-              cJSON_IsNumber(index);
+    bool ok = dump_read_numbers(root, "light", d->light, 4) && cJSON_IsArray(names) && cJSON_IsNumber(index) &&
+              dump_read_camera(root, &d->camera);
     if (ok) {
         d->light_index = index->valueint;
         d->object_count = cJSON_GetArraySize(names);
         d->object_names = calloc((size_t)d->object_count + 1, sizeof *d->object_names);
         ok = d->object_names != NULL;
-        for (int i = 0; ok && i < 4; i++) {
-            const cJSON *v = cJSON_GetArrayItem(light, i);
-            ok = cJSON_IsNumber(v);
-            d->light[i] = ok ? (float)v->valuedouble : 0;
-        }
         for (int i = 0; ok && i < d->object_count; i++) {
             const cJSON *name = cJSON_GetArrayItem(names, i);
             ok = cJSON_IsString(name);
@@ -179,7 +209,10 @@ static bool dump_read_meta(dump_frame *d, const char *path) {
         }
     }
     if (!ok)
-        fprintf(stderr, "%s: expected \"light\" (4 numbers), \"light_index\" and \"objects\" (names)\n", path);
+        fprintf(stderr,
+                "%s: expected \"light\" (4 numbers), \"light_index\", \"objects\" (names) and \"camera\" "
+                "(\"position\", \"target\", \"up\": 3 numbers each; \"fov\", \"near\", \"far\")\n",
+                path);
     cJSON_Delete(root);
     return ok;
 }

@@ -16,7 +16,13 @@
  *   DIR/meta.json       {"width", "height", "light_index", "light":
  *                        [x,y,z,w] (w 0: direction towards the light;
  *                        a position is relative to the scene's origin),
- *                        "objects": [names by index]}
+ *                        "objects": [names by index], "camera":
+ *                        {"position": [x,y,z], "target": [x,y,z], "up":
+ *                        [x,y,z], "fov", "near", "far"} (the camera the
+ *                        frame was rendered with, relative to the scene's
+ *                        origin as position.pfm is; the projection's
+ *                        aspect is width / height: what shimmer needs to
+ *                        carry another frame's pixels into this one)}
  *
  * Arrays are top row first (PFM files store the bottom row first, as the
  * format says; dump_write and dump_read turn them). PFM: "Pf" one channel,
@@ -32,6 +38,7 @@ typedef struct dump_frame {
     int width, height;
     int light_index;
     float light[4];
+    scene_camera camera; /* reversed_depth is not stored: false when read */
     int object_count;
     char (*object_names)[SCENE_NAME_MAX];
     float *visibility; /* width * height */
@@ -42,8 +49,9 @@ typedef struct dump_frame {
     unsigned char *color; /* 4 * width * height, RGBA */
 } dump_frame;
 
-/* Allocates every array for a frame of scene `s` and light `light_index`,
- * filled as "no surface": visibility, depth and ids -1, the rest 0. */
+/* Allocates every array for a frame of scene `s` (its camera as it is
+ * now) and light `light_index`, filled as "no surface": visibility, depth
+ * and ids -1, the rest 0. */
 bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int light_index);
 void dump_frame_free(dump_frame *d);
 

@@ -1,8 +1,10 @@
 #include "motion.h"
 
+#include <math.h>
+
 #include "camera.h"
 
-const char *const motion_names[] = {"static", "light", "camera", NULL};
+const char *const motion_names[] = {"static", "light", "camera", "dolly", NULL};
 
 void motion_lights(motion_kind kind, double time, const float center[3], const scene_light *base, int count,
                    scene_light *out) {
@@ -17,4 +19,18 @@ void motion_camera(motion_kind kind, double time, const scene_camera *base, scen
     *out = *base;
     if (kind == MOTION_CAMERA)
         camera_orbit(out, (float)time * MOTION_CAMERA_RAD_PER_S, 0, 1, CAMERA_ORBIT_ANY);
+    if (kind == MOTION_DOLLY) {
+        /* A triangle wave: seconds walked forward so far, less those
+         * walked back, at one speed throughout. */
+        double leg = fmod(time, 2 * MOTION_DOLLY_LEG_S);
+        double forward_s = leg <= MOTION_DOLLY_LEG_S ? leg : 2 * MOTION_DOLLY_LEG_S - leg;
+        float along = (float)forward_s * MOTION_DOLLY_SPEED;
+        for (int k = 0; k < 3; k++) {
+            float step = along * (base->target[k] - base->position[k]);
+            out->position[k] = base->position[k] + step;
+            out->target[k] = base->target[k] + step;
+        }
+    }
 }
+
+bool motion_moves_camera(motion_kind kind) { return kind == MOTION_CAMERA || kind == MOTION_DOLLY; }

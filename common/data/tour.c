@@ -97,8 +97,9 @@ static bool tour_read_views(const char *file, const cJSON *json, const char *whe
         return false;
     if (path && camera)
         return json_fail(file, where, "path", "not with \"camera\": the path places the camera");
-    if (path && s->motion == MOTION_CAMERA)
-        return json_fail(file, where, "path", "not with \"motion\": \"camera\": the path moves the camera");
+    if (path && motion_moves_camera(s->motion))
+        return json_fail(file, where, "path", "not with \"motion\": \"%s\": the path moves the camera",
+                         motion_names[s->motion]);
     if (camera) {
         snprintf(inner, sizeof inner, "%s.camera", where);
         s->view_count = 1;

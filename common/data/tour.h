@@ -9,7 +9,8 @@
  *                                            its --gallery and bench configs)
  *                "caption": "..."           (the HUD's first line)
  *                "seconds": 2               (> 0: how long the step plays)
- *                "motion": "static" | "light" | "camera"      (as --motion)
+ *                "motion": "static" | "light" | "camera" | "dolly"
+ *                                                             (as --motion)
  *                "frame": N   (the frame a headless run shows, 0 up to the
  *                              step's last; default its last)
  *                "camera": {"position": [x,y,z], "target": [x,y,z]}
@@ -20,7 +21,7 @@
  *                          {"position": [x,y,z], "target": [x,y,z]} ]
  *                             (a fly-through, spread evenly over the step:
  *                              tour_path_view; not with "camera" nor with
- *                              "motion": "camera")
+ *                              a motion that moves the camera)
  *                "compare": true  (compare mode, as --compare: the step
  *                                  beside the ray-traced truth) } ]
  * Unknown keys and wrong types are errors, reported as one line

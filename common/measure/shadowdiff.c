@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "camera.h"
+
 const unsigned char shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_KIND_COUNT][3] = {
     [SHADOWDIFF_PIXEL_NO_SURFACE] = {0, 0, 0},
     [SHADOWDIFF_PIXEL_NOT_COMPARED] = {40, 40, 40},
@@ -28,36 +30,46 @@ static double shadowdiff_length3(const float v[3]) {
     return sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
 }
 
-/* Relative to the light's length, not per component: a component near 0
- * (a light straight above) would otherwise have to match exactly. */
-static bool shadowdiff_same_light(const float a[4], const float b[4]) {
-    if (a[3] != b[3])
-        return false;
-    double tolerance = SHADOWDIFF_LIGHT_TOLERANCE * fmax(shadowdiff_length3(a), shadowdiff_length3(b));
-    for (int i = 0; i < 3; i++)
+/* Whether a and b differ by at most `tolerance` in each of n components. */
+static bool shadowdiff_close(const float *a, const float *b, int n, double tolerance) {
+    for (int i = 0; i < n; i++)
         if (fabs((double)a[i] - b[i]) > tolerance)
             return false;
     return true;
 }
 
-/* Ids, depths and visibilities only mean the same when the dumps come from
- * the same frame of the same scene; anything else would be compared
- * silently and give plausible, meaningless numbers. */
-static bool shadowdiff_check_consistent(const dump_frame *r, const dump_frame *t, const char *r_name,
-                                        const char *t_name) {
-    if (r->width != t->width || r->height != t->height) {
-        fprintf(stderr, "shadowdiff: %s and %s differ in size: %dx%d and %dx%d\n", r_name, t_name, r->width, r->height,
-                t->width, t->height);
-        return false;
-    }
-    if (r->light_index != t->light_index || !shadowdiff_same_light(r->light, t->light)) {
-        fprintf(stderr,
-                "shadowdiff: %s and %s are lit differently: light %d at (%g, %g, %g, %g) and light %d at "
-                "(%g, %g, %g, %g)\n",
-                r_name, t_name, r->light_index, r->light[0], r->light[1], r->light[2], r->light[3], t->light_index,
-                t->light[0], t->light[1], t->light[2], t->light[3]);
-        return false;
-    }
+/* Relative to the light's length, not per component: a component near 0
+ * (a light straight above) would otherwise have to match exactly. */
+static bool shadowdiff_same_light(const float a[4], const float b[4]) {
+    return a[3] == b[3] &&
+           shadowdiff_close(a, b, 3, SHADOWDIFF_LIGHT_TOLERANCE * fmax(shadowdiff_length3(a), shadowdiff_length3(b)));
+}
+
+/* Eye and target relative to their distance, as the light is to its
+ * length; reversed_depth is a raster program's choice, not the view. */
+static bool shadowdiff_same_camera(const scene_camera *a, const scene_camera *b) {
+    const float view[3] = {a->target[0] - a->position[0], a->target[1] - a->position[1],
+                           a->target[2] - a->position[2]};
+    const double t = SHADOWDIFF_CAMERA_TOLERANCE;
+    double place = t * shadowdiff_length3(view);
+    return shadowdiff_close(a->position, b->position, 3, place) && shadowdiff_close(a->target, b->target, 3, place) &&
+           shadowdiff_close(a->up, b->up, 3, t * shadowdiff_length3(a->up)) &&
+           shadowdiff_close(&a->fov_deg, &b->fov_deg, 1, t * a->fov_deg) &&
+           shadowdiff_close(&a->near_plane, &b->near_plane, 1, t * a->near_plane) &&
+           shadowdiff_close(&a->far_plane, &b->far_plane, 1, t * a->far_plane);
+}
+
+static bool shadowdiff_check_size(const dump_frame *r, const dump_frame *t, const char *r_name, const char *t_name) {
+    if (r->width == t->width && r->height == t->height)
+        return true;
+    fprintf(stderr, "shadowdiff: %s and %s differ in size: %dx%d and %dx%d\n", r_name, t_name, r->width, r->height,
+            t->width, t->height);
+    return false;
+}
+
+/* Ids only name the same objects where the names agree, index by index. */
+static bool shadowdiff_check_objects(const dump_frame *r, const dump_frame *t, const char *r_name,
+                                     const char *t_name) {
     if (r->object_count != t->object_count) {
         fprintf(stderr, "shadowdiff: %s and %s have different objects: %d and %d\n", r_name, t_name, r->object_count,
                 t->object_count);
@@ -71,6 +83,24 @@ static bool shadowdiff_check_consistent(const dump_frame *r, const dump_frame *t
         }
     }
     return true;
+}
+
+/* Ids, depths and visibilities only mean the same when the dumps come from
+ * the same frame of the same scene; anything else would be compared
+ * silently and give plausible, meaningless numbers. */
+static bool shadowdiff_check_consistent(const dump_frame *r, const dump_frame *t, const char *r_name,
+                                        const char *t_name) {
+    if (!shadowdiff_check_size(r, t, r_name, t_name))
+        return false;
+    if (r->light_index != t->light_index || !shadowdiff_same_light(r->light, t->light)) {
+        fprintf(stderr,
+                "shadowdiff: %s and %s are lit differently: light %d at (%g, %g, %g, %g) and light %d at "
+                "(%g, %g, %g, %g)\n",
+                r_name, t_name, r->light_index, r->light[0], r->light[1], r->light[2], r->light[3], t->light_index,
+                t->light[0], t->light[1], t->light[2], t->light[3]);
+        return false;
+    }
+    return shadowdiff_check_objects(r, t, r_name, t_name);
 }
 
 static int shadowdiff_find_object(const dump_frame *d, const char *name) {
@@ -114,11 +144,13 @@ static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, siz
            shadowdiff_faces_light(r, i, min_cosine) && (receiver < 0 || (r->ids[i] == receiver && t->ids[i] == receiver));
 }
 
+static bool shadowdiff_lit(const dump_frame *d, size_t i) { return d->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD; }
+
 static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_frame *t, size_t i, int receiver,
                                             double min_cosine) {
     if (!shadowdiff_is_compared(r, t, i, receiver, min_cosine))
         return r->ids[i] < 0 ? SHADOWDIFF_PIXEL_NO_SURFACE : SHADOWDIFF_PIXEL_NOT_COMPARED;
-    bool r_lit = r->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD, t_lit = t->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD;
+    bool r_lit = shadowdiff_lit(r, i), t_lit = shadowdiff_lit(t, i);
     if (r_lit && !t_lit)
         return SHADOWDIFF_PIXEL_FALSE_SHADOW;
     if (!r_lit && t_lit)
@@ -199,6 +231,10 @@ static bool shadowdiff_check_finite(const dump_frame *d, const char *name, bool 
     return true;
 }
 
+static double shadowdiff_min_cosine(const shadowdiff_settings *s) {
+    return sin(s->grazing_degrees * (3.14159265358979 / 180));
+}
+
 bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
                         shadowdiff_result *out, unsigned char *heatmap_rgba) {
     const shadowdiff_settings s = settings ? *settings : (shadowdiff_settings){0};
@@ -216,7 +252,7 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
     if (!shadowdiff_check_finite(reference, r_name, true) || !shadowdiff_check_finite(test, t_name, false))
         return false;
     out->problem = SHADOWDIFF_PROBLEM_NONE;
-    double error_sum = 0, min_cosine = sin(s.grazing_degrees * (3.14159265358979 / 180));
+    double error_sum = 0, min_cosine = shadowdiff_min_cosine(&s);
     size_t n = (size_t)reference->width * (size_t)reference->height;
     for (size_t i = 0; i < n; i++) {
         shadowdiff_pixel pixel = shadowdiff_classify(reference, test, i, receiver, min_cosine);
@@ -241,5 +277,105 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
     out->false_lit_percent = shadowdiff_percent(out->false_lit, out->compared);
     out->misclassified_percent = shadowdiff_percent(out->false_shadow + out->false_lit, out->compared);
     out->mean_abs_error = error_sum / (double)out->compared;
+    return true;
+}
+
+/* Whether the camera of dump `r` and of its test `t` agree; says so if
+ * not. */
+static bool shadowdiff_check_camera(const dump_frame *r, const dump_frame *t, const char *r_name, const char *t_name) {
+    if (shadowdiff_same_camera(&r->camera, &t->camera))
+        return true;
+    fprintf(stderr, "shadowdiff: %s and %s are seen from different cameras: eyes (%g, %g, %g) and (%g, %g, %g)\n",
+            r_name, t_name, r->camera.position[0], r->camera.position[1], r->camera.position[2],
+            t->camera.position[0], t->camera.position[1], t->camera.position[2]);
+    return false;
+}
+
+/* The pixel of `previous` (its camera, dump.h) that world point p falls
+ * in, as the rasterizer samples pixel centres, top row 0; -1 where p is
+ * behind its eye or outside its picture. */
+static long shadowdiff_reproject(const camera_view *previous, int width, int height, const float p[3]) {
+    double clip[4];
+    for (int row = 0; row < 4; row++) {
+        clip[row] = previous->view_projection[3][row];
+        for (int k = 0; k < 3; k++)
+            clip[row] += (double)previous->view_projection[k][row] * p[k];
+    }
+    if (!(clip[3] > 0))
+        return -1;
+    double x = (clip[0] / clip[3] + 1) * 0.5 * width, y = (1 - clip[1] / clip[3]) * 0.5 * height;
+    if (!(x >= 0 && x < width && y >= 0 && y < height))
+        return -1;
+    return (long)floor(y) * width + (long)floor(x);
+}
+
+/* Follows every compared pixel of the current frame to the previous one
+ * and counts (see shadowdiff.h). */
+static void shadowdiff_count_shimmer(const dump_frame *r0, const dump_frame *t0, const dump_frame *r1,
+                                     const dump_frame *t1, int receiver, double min_cosine,
+                                     shadowdiff_shimmer_result *out) {
+    camera_view previous;
+    camera_view_compute(&r0->camera, (float)r0->width / (float)r0->height, &previous);
+    size_t n = (size_t)r1->width * (size_t)r1->height;
+    for (size_t i1 = 0; i1 < n; i1++) {
+        if (shadowdiff_classify(r1, t1, i1, receiver, min_cosine) < SHADOWDIFF_PIXEL_AGREES)
+            continue;
+        const float *p1 = r1->position + 3 * i1;
+        long found = shadowdiff_reproject(&previous, r0->width, r0->height, p1);
+        if (found < 0)
+            continue;
+        size_t i0 = (size_t)found;
+        const float *p0 = r0->position + 3 * i0;
+        const float moved[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+        if (r0->ids[i0] != r1->ids[i1] || t0->ids[i0] != t1->ids[i1] ||
+            shadowdiff_length3(moved) > SHADOWDIFF_SHIMMER_POSITION_TOLERANCE * r1->depth[i1] ||
+            shadowdiff_classify(r0, t0, i0, receiver, min_cosine) < SHADOWDIFF_PIXEL_AGREES)
+            continue;
+        bool truth_changed = shadowdiff_lit(r0, i0) != shadowdiff_lit(r1, i1);
+        bool test_changed = shadowdiff_lit(t0, i0) != shadowdiff_lit(t1, i1);
+        out->followed++;
+        out->truth_changed += truth_changed;
+        out->shimmered += test_changed && !truth_changed;
+    }
+}
+
+bool shadowdiff_shimmer(const dump_frame *previous_reference, const dump_frame *previous_test,
+                        const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
+                        shadowdiff_shimmer_result *out) {
+    const shadowdiff_settings s = settings ? *settings : (shadowdiff_settings){0};
+    const char *r_name = s.reference_name ? s.reference_name : "reference";
+    const char *t_name = s.test_name ? s.test_name : "test";
+    shadowdiff_settings previous_settings = s;
+    previous_settings.reference_name = s.previous_reference_name ? s.previous_reference_name : "previous reference";
+    previous_settings.test_name = s.previous_test_name ? s.previous_test_name : "previous test";
+    *out = (shadowdiff_shimmer_result){.problem = SHADOWDIFF_PROBLEM_MISMATCH};
+    if (!shadowdiff_compare(previous_reference, previous_test, &previous_settings, &out->previous, NULL)) {
+        out->problem = out->previous.problem;
+        return false;
+    }
+    if (!shadowdiff_compare(reference, test, &s, &out->current, NULL)) {
+        out->problem = out->current.problem;
+        return false;
+    }
+    if (!shadowdiff_check_camera(previous_reference, previous_test, previous_settings.reference_name,
+                                 previous_settings.test_name) ||
+        !shadowdiff_check_camera(reference, test, r_name, t_name) ||
+        !shadowdiff_check_size(previous_reference, reference, previous_settings.reference_name, r_name) ||
+        !shadowdiff_check_objects(previous_reference, reference, previous_settings.reference_name, r_name))
+        return false;
+    int receiver = s.receiver ? shadowdiff_find_object(reference, s.receiver) : -1;
+    shadowdiff_count_shimmer(previous_reference, previous_test, reference, test, receiver,
+                             shadowdiff_min_cosine(&s), out);
+    if (out->followed == 0) {
+        fprintf(stderr,
+                "shadowdiff: %s and %s: no compared pixel followed to a compared pixel of %s on the same surface: "
+                "no shimmer figure is given\n",
+                r_name, t_name, previous_settings.reference_name);
+        out->problem = SHADOWDIFF_PROBLEM_NOTHING_COMPARED;
+        return false;
+    }
+    out->problem = SHADOWDIFF_PROBLEM_NONE;
+    out->shimmer_percent = shadowdiff_percent(out->shimmered, out->followed);
+    out->truth_changed_percent = shadowdiff_percent(out->truth_changed, out->followed);
     return true;
 }

@@ -47,6 +47,43 @@
  *   - no pixel is compared (NOTHING_COMPARED): every percentage would be
  *     0, which reads as a perfect technique. The counts are then 0.
  *
+ * Shimmer (shadowdiff_shimmer): how much a technique's shadows crawl or
+ * flicker from one frame to the next where the truth does not, from four
+ * dumps: the technique's and the reference's of a previous frame (frame 0)
+ * and of the current one (frame 1), the camera (or anything) having moved
+ * between them. Each pair is first compared as above (every rule and
+ * problem of shadowdiff_compare, each frame's figures kept); the cameras
+ * of a pair must agree (eye and target within 1e-4 of their distance, up,
+ * fov, near and far within 1e-4 of their size), and the frames must have
+ * the same size and objects (MISMATCH otherwise). Then every pixel i1 of
+ * frame 1 that the rules compare is followed to frame 0:
+ *   - its reference's world position p (position.pfm) is projected by
+ *     frame 0's camera (meta.json's "camera", dump.h, with aspect width /
+ *     height) to the frame-0 pixel i0 whose square it falls in (pixel
+ *     centres as the rasterizer samples them: none rounds by more than
+ *     half a pixel); it is not followed where p is behind frame 0's eye or
+ *     outside its picture;
+ *   - i0 must be compared by the rules too (frame 0's pair, the same
+ *     receiver and grazing setting), see the same object as i1 in the
+ *     reference and in the test, and its reference position must lie
+ *     within SHADOWDIFF_SHIMMER_POSITION_TOLERANCE (1 %) of i1's distance
+ *     from the eye of p: otherwise the point was hidden (or off the
+ *     surface seen) in frame 0, a disocclusion, and is not followed. A
+ *     surface seen nearly edge-on from the eye, where half a pixel spans
+ *     more than that, is left out the same way.
+ * Of the followed pixels, `truth_changed` counts those whose reference
+ * decision (lit: visibility >= 0.5) differs between i0 and i1, and
+ * `shimmered` those whose test decision differs while the reference's
+ * does not:
+ *   shimmer % = 100 * shimmered / followed.
+ * A pixel whose truth changes counts as not shimmering whatever the test
+ * does (a moving light, a shadow edge passing through it). A technique
+ * whose decisions are stable in the world, exact or not, scores 0; one
+ * whose shadow-map texels slide over the receivers as its fit follows the
+ * camera scores the edge pixels that flip. No figure (problem set,
+ * false returned) when a pair gives none, as above, or nothing is
+ * followed (NOTHING_COMPARED).
+ *
  * The heat map (RGBA, top row first, opaque) shows
  *   red  (255, 0, 0)    false shadow
  *   blue (0, 0, 255)    false lit
@@ -69,11 +106,21 @@
 #define SHADOWDIFF_AGREES_GREY_LIT 255
 #define SHADOWDIFF_DEPTH_TOLERANCE 0.001
 #define SHADOWDIFF_LIGHT_TOLERANCE 1e-4
+#define SHADOWDIFF_CAMERA_TOLERANCE 1e-4
+/* How far a followed point's frame-0 position may lie from its frame-1
+ * one, as a fraction of its distance from the eye: half a pixel's
+ * footprint on a surface seen within about 80 degrees of head-on at
+ * 640x360 (a pixel is about 1/400 of the distance there), far less than
+ * the jump to another surface that a disocclusion makes. */
+#define SHADOWDIFF_SHIMMER_POSITION_TOLERANCE 0.01
 
 typedef struct shadowdiff_settings {
     const char *receiver;       /* object name; NULL: every object */
     const char *reference_name; /* for messages (the dump directory); NULL: "reference" */
     const char *test_name;      /* NULL: "test" */
+    /* shadowdiff_shimmer's previous frame, for messages; NULL: "previous
+     * reference", "previous test" */
+    const char *previous_reference_name, *previous_test_name;
     double grazing_degrees;     /* also skip surfaces within this of edge-on to the light */
 } shadowdiff_settings;
 
@@ -117,5 +164,20 @@ typedef struct shadowdiff_result {
  * always gets the problem. */
 bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
                         shadowdiff_result *out, unsigned char *heatmap_rgba);
+
+typedef struct shadowdiff_shimmer_result {
+    shadowdiff_problem problem;             /* NONE exactly when shadowdiff_shimmer returns true */
+    shadowdiff_result previous, current;    /* each frame's own comparison */
+    long followed;                          /* compared pixels of frame 1 followed to frame 0 */
+    long shimmered;                         /* of those: the test's decision changed, the truth's did not */
+    long truth_changed;                     /* of those: the truth's decision changed */
+    double shimmer_percent, truth_changed_percent; /* of followed */
+} shadowdiff_shimmer_result;
+
+/* Shimmer from frame 0 (previous_*) to frame 1 (see the top). Returns
+ * whether the figures mean something; `out` always gets the problem. */
+bool shadowdiff_shimmer(const dump_frame *previous_reference, const dump_frame *previous_test,
+                        const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
+                        shadowdiff_shimmer_result *out);
 
 #endif

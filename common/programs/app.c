@@ -27,7 +27,7 @@
 #include "video.h"
 
 #define APP_EXIT_RUNTIME 1
-#define APP_HEADLESS_FPS 60.0
+#define APP_HEADLESS_FPS MOTION_FRAME_RATE
 #define APP_HEADLESS_FRAMES 1 /* without --frames */
 #define APP_MAX_FRAMES 1000000
 #define APP_MAX_TECHNIQUES 9 /* keys 1-9 */
@@ -113,7 +113,7 @@ static const flags_param app_flags[] = {
      .value_name = "DIR"},
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
      .choices = app.technique_names},
-    {"motion", "what moves over time: nothing, the lights (about the\ncamera target) or the camera (about its target)", 0,
+    {"motion", "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), or the\ncamera forward and back along its view (dolly)", 0,
      FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
     {"animate", "--motion light (space in the window)", 0, FLAGS_SWITCH, .on = &app.animate},
     {"skip", "no skips at all: every pass draws the whole scene,\nevery light, every caster, every frame anew; the same\npicture at the full cost", 0,

@@ -41,6 +41,16 @@
  * frame that is dumped, and cached under a name that says the motion and
  * that time.
  *
+ * Shimmer (shadowdiff.h): under the motions that move the camera (camera,
+ * dolly), each configuration also dumps the frame before the last timed
+ * one, and the reference is traced for it too (once per scene, cached as
+ * the other), and results.csv's shimmer_percent is the share of followed
+ * pixels whose decision changed between the two where the truth's did not
+ * (report.md's "shimmer %"). Under static and light it is "-": with the
+ * camera still every pixel follows itself, and a moving light moves the
+ * true shadows, so the figure would say little about the technique's
+ * stability under the viewer's motion, which is what it is for.
+ *
  * Skips (render.h) are on, as in the app; --no-skip turns them off, and
  * --skips-compare runs every configuration twice, skips on then off, each
  * row's floor frames under its own skips setting; results.csv's `skips`
@@ -73,7 +83,7 @@
 #define BENCH_MAX_TECHNIQUES 16
 /* Frame k is at k / BENCH_FRAME_RATE seconds, as the app's headless frames
  * are (app.c), so a bench frame is the frame `--frames` renders there. */
-#define BENCH_FRAME_RATE 60.0
+#define BENCH_FRAME_RATE MOTION_FRAME_RATE
 #define BENCH_SCALING_MARGIN 1.5
 
 /* --configs: the default first (a FLAGS_CHOICE list). */
@@ -102,6 +112,8 @@ typedef struct bench_row {
     double floor_ms; /* the median of the floor frames interleaved with the row's (the floor's row: frame_ms) */
     double ratio;    /* frame_ms / floor_ms */
     shadowdiff_result error;
+    bool shimmer_measured; /* under a motion that moves the camera */
+    double shimmer_percent;
 } bench_row;
 
 static struct {
@@ -156,7 +168,7 @@ static const flags_param bench_flags[] = {
      .max = BENCH_MAX_FRAMES, .what = "a count"},
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
-    {"motion", "what moves: nothing, the lights (as --animate turns them)\nor the camera; frame k is at k/60 s", 0,
+    {"motion", "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, or along its view (dolly);\nframe k is at k/60 s", 0,
      FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
     {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
      .choices = bench_config_choices},
@@ -333,17 +345,23 @@ static bool bench_newer(const char *path, const char *than) {
     return stat(path, &a) == 0 && stat(than, &b) == 0 && a.st_mtime >= b.st_mtime;
 }
 
-/* The reference of light 0 for the last timed frame, from the cache when
+/* The time of the frame before the last timed one: shimmer's frame 0. */
+static double bench_previous_time(void) { return bench_last_time() - 1 / BENCH_FRAME_RATE; }
+
+/* Whether the run measures shimmer (see the top). */
+static bool bench_shimmers(void) { return motion_moves_camera((motion_kind)bench.motion); }
+
+/* The reference of light 0 for the frame at `time`, from the cache when
  * it is newer than the scene. A moving run's cache name adds the motion
  * and the time: the reference is of that moved scene. */
-static bool bench_reference(const char *scene_path, const char *name, dump_frame *reference) {
+static bool bench_reference(const char *scene_path, const char *name, double time, dump_frame *reference) {
     char dir[PATH_MAX], meta[PATH_MAX + 16];
     int n = snprintf(dir, sizeof dir, "%s/reference/%s_%dx%d_%d", bench.out_dir, name, bench.width, bench.height,
                      bench.light_samples);
     if (bench.motion != MOTION_STATIC && n > 0 && (size_t)n < sizeof dir)
-        snprintf(dir + n, sizeof dir - (size_t)n, "_%s_%.3fs", motion_names[bench.motion], bench_last_time());
+        snprintf(dir + n, sizeof dir - (size_t)n, "_%s_%.3fs", motion_names[bench.motion], time);
     snprintf(meta, sizeof meta, "%s/meta.json", dir);
-    bench_move(bench_last_time());
+    bench_move(time);
     if (bench_newer(meta, scene_path) && dump_read(reference, dir)) {
         fprintf(stderr, "  reference: cached in %s\n", dir);
         return true;
@@ -357,8 +375,39 @@ static bool bench_reference(const char *scene_path, const char *name, dump_frame
 /* Times and measures one configuration of the current technique under the
  * skips setting no_skip, interleaved with the floor's frames unless it is
  * the floor. */
+/* The current technique's dumps after its timed frames: of the last timed
+ * frame, and, where shimmer is measured, first of the frame before it
+ * (rendered in their order); previous is then left empty. */
+static bool bench_dumps(dump_frame *previous, dump_frame *last) {
+    *previous = (dump_frame){0};
+    if (bench_shimmers()) {
+        bench_move(bench_previous_time());
+        if (!capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, previous))
+            return false;
+        bench_move(bench_last_time());
+    }
+    if (capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, last))
+        return true;
+    dump_frame_free(previous);
+    return false;
+}
+
+/* The row's error figures against the references (`references[0]` the
+ * previous frame's, used where shimmer is measured). A shimmer that gives
+ * no figure (its line says why) leaves the row's "-". */
+static bool bench_measure(bench_row *row, const dump_frame references[2], const dump_frame *previous,
+                          const dump_frame *last) {
+    if (!shadowdiff_compare(&references[1], last, NULL, &row->error, NULL))
+        return false;
+    shadowdiff_shimmer_result shimmer;
+    row->shimmer_measured =
+        bench_shimmers() && shadowdiff_shimmer(&references[0], previous, &references[1], last, NULL, &shimmer);
+    row->shimmer_percent = row->shimmer_measured ? shimmer.shimmer_percent : 0;
+    return true;
+}
+
 static bool bench_configuration(const char *scene_name, const char *config, bool no_skip,
-                                const dump_frame *reference) {
+                                const dump_frame references[2]) {
     if (bench.row_count == BENCH_MAX_ROWS) {
         fprintf(stderr, "bench: more than %d configurations\n", BENCH_MAX_ROWS);
         return false;
@@ -367,7 +416,7 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config, .no_skip = no_skip};
     bench.skips = (render_skips){.no_skip = no_skip};
     technique_host *floor_host = bench.current->cost_floor ? NULL : &bench.floor_host;
-    dump_frame dump;
+    dump_frame previous, dump;
     /* A host whose start was tried is stopped: destroy follows even a
      * failed init. The floor runs at its defaults. */
     bool configured =
@@ -375,15 +424,15 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     bool ok = configured && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips);
     bool floor_tried = ok && floor_host;
     ok = ok && (!floor_host || technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips)) &&
-         bench_time_frames(row, floor_host) &&
-         capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, &dump);
+         bench_time_frames(row, floor_host) && bench_dumps(&previous, &dump);
     if (floor_tried)
         technique_host_stop(floor_host);
     if (configured)
         technique_host_stop(&bench.host);
     if (!ok)
         return false;
-    ok = shadowdiff_compare(reference, &dump, NULL, &row->error, NULL);
+    ok = bench_measure(row, references, &previous, &dump);
+    dump_frame_free(&previous);
     dump_frame_free(&dump);
     bench.row_count += ok;
     return ok;
@@ -406,8 +455,10 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     memcpy(bench.base_lights, bench.scene.lights, sizeof bench.base_lights);
     bench.base_camera = bench.scene.camera;
     bool ok = render_scene_create(&bench.gpu, &bench.scene);
-    dump_frame reference = {0};
-    ok = ok && bench_reference(scene_path, name, &reference);
+    /* The previous frame's reference (shimmer's), then the last's. */
+    dump_frame references[2] = {{0}};
+    ok = ok && (!bench_shimmers() || bench_reference(scene_path, name, bench_previous_time(), &references[0])) &&
+         bench_reference(scene_path, name, bench_last_time(), &references[1]);
     for (int t = 0; ok && t < registry_technique_count; t++) {
         bench.current = registry_techniques[t];
         for (int c = 0; ok && bench_selected(bench.current) && c < bench_config_count(bench.current); c++) {
@@ -416,11 +467,12 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
                 bool no_skip = bench.no_skip_settings[s];
                 fprintf(stderr, "  [%d/%d] %s %s%s\n", ++*done, total, bench.current->name, config,
                         bench.skips_compare ? (no_skip ? " (skips off)" : " (skips on)") : "");
-                ok = bench_configuration(name, config, no_skip, &reference);
+                ok = bench_configuration(name, config, no_skip, references);
             }
         }
     }
-    dump_frame_free(&reference);
+    dump_frame_free(&references[0]);
+    dump_frame_free(&references[1]);
     render_scene_destroy(&bench.gpu);
     scene_free(&bench.scene);
     return ok;
@@ -488,6 +540,15 @@ static bool bench_close(FILE *f, const char *path) {
     return true;
 }
 
+/* A row's shimmer_percent, "-" where the motion does not measure it. */
+static const char *bench_shimmer_text(const bench_row *r) {
+    static char text[32];
+    if (!r->shimmer_measured)
+        return "-";
+    snprintf(text, sizeof text, "%.4f", r->shimmer_percent);
+    return text;
+}
+
 static bool bench_write_csv(void) {
     char path[PATH_MAX];
     FILE *f = bench_open("results.csv", path, sizeof path);
@@ -495,14 +556,14 @@ static bool bench_write_csv(void) {
         return false;
     fprintf(f, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,mae,"
-               "compared_pixels,renderer,motion,skips,floor_ms_median\n");
+               "compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent\n");
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f\n", r->scene,
+        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s\n", r->scene,
                 r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
                 r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
                 r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, motion_names[bench.motion],
-                bench_skips_text(r->no_skip), r->floor_ms);
+                bench_skips_text(r->no_skip), r->floor_ms, bench_shimmer_text(r));
     }
     return bench_close(f, path);
 }
@@ -593,14 +654,19 @@ static bool bench_write_report(void) {
                "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
                "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
                "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error is of the last timed frame, at "
-               "%.3f s).\n",
+               "%.3f s). Shimmer %%: %s\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
                              "and glFinish is its real cost."
                            : "GPU time is what the frame costs the GPU; CPU time adds submission and the wait "
                              "in glFinish.",
-            bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench_last_time());
+            bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench_last_time(),
+            bench_shimmers() ? "of the compared pixels followed from the frame before the last timed one (by the "
+                               "reference's world positions; a point hidden there is not followed), those whose "
+                               "decision changed where the truth's did not (shadowdiff's shimmer): how much the "
+                               "shadows crawl or flicker as the camera moves."
+                             : "\"-\": the camera does not move (it is measured under --motion camera and dolly).");
     if (bench.skips_compare)
         fprintf(f, "\nEach row's floor frames ran under the row's own skips setting; the fronts, the plots and "
                    "the named comparisons are of the rows with skips on.\n");
@@ -610,11 +676,11 @@ static bool bench_write_report(void) {
         for (int e = 0; e < BENCH_ERROR_COUNT; e++)
             fprintf(f, "![time against %s](%s_%s.png)\n", bench_errors[e].name, bench_errors[e].plot, scene);
         fprintf(f, "\n| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | floor ms | "
-                   "false-shadow %% | false-lit %% | misclassified %% | MAE |");
+                   "false-shadow %% | false-lit %% | misclassified %% | MAE | shimmer %% |");
         for (int own = 0; own < 2; own++)
             for (int e = 0; e < BENCH_ERROR_COUNT; e++)
                 fprintf(f, " %sfront (%s) |", own ? "own " : "", bench_errors[e].name);
-        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|---|");
+        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|---|---|");
         for (int column = 0; column < 2 * BENCH_ERROR_COUNT; column++)
             fprintf(f, "---|");
         fprintf(f, "\n");
@@ -622,10 +688,11 @@ static bool bench_write_report(void) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) != 0)
                 continue;
-            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f |",
+            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f | %s |",
                     r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
                     r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->floor_ms, r->error.false_shadow_percent,
-                    r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error);
+                    r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
+                    bench_shimmer_text(r));
             for (int own = 0; own < 2; own++)
                 for (int e = 0; e < BENCH_ERROR_COUNT; e++)
                     fprintf(f, " %s |", bench_on_front(r, own, (bench_error)e) ? "yes" : "");

@@ -15,6 +15,7 @@
 
 #include "flags.h"
 #include "image.h"
+#include "motion.h"
 #include "path.h"
 #include "raytrace.h"
 
@@ -24,6 +25,8 @@ static struct {
     const char *program;
     /* flags */
     int width, height, light_index;
+    int motion; /* motion_kind */
+    int frames; /* 0: not given, the scene as it is (frame 0) */
     raytrace_settings settings;
     const char *scene_path, *screenshot, *dump_dir;
     char default_scene[PATH_MAX];
@@ -43,6 +46,11 @@ static const flags_param main_flag_table[] = {
      "stratified, 1.." FLAGS_TEXT(RAYTRACE_MAX_LIGHT_SAMPLES) " (" FLAGS_TEXT(RAYTRACE_DEFAULT_LIGHT_SAMPLES) ")",
      0, FLAGS_INT, .integer = &main_flags.settings.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES,
      .what = "a count"},
+    {"motion", "what moves, as the raster programs' --motion", 0, FLAGS_CHOICE, .index = &main_flags.motion,
+     .choices = motion_names},
+    {"frames",
+     "trace frame N-1 of the motion (at (N-1)/60 s): the frame\na raster program's --frames N dumps last",
+     0, FLAGS_INT, .integer = &main_flags.frames, .min = 1, .max = INT_MAX, .what = "a count"},
     {"verbose", "print the Embree version, thread count and timings", 0, FLAGS_SWITCH,
      .on = &main_flags.settings.verbose},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
@@ -79,6 +87,13 @@ static int main_run(void) {
         scene_free(&s);
         return main_usage_error(message, index);
     }
+    /* The last of --frames N frames, moved as the app moves it. */
+    double time = main_flags.frames > 0 ? (main_flags.frames - 1) / MOTION_FRAME_RATE : 0;
+    const scene_camera base_camera = s.camera;
+    scene_light base_lights[SCENE_MAX_LIGHTS];
+    memcpy(base_lights, s.lights, sizeof base_lights);
+    motion_lights((motion_kind)main_flags.motion, time, base_camera.target, base_lights, s.light_count, s.lights);
+    motion_camera((motion_kind)main_flags.motion, time, &base_camera, &s.camera);
     main_flags.settings.scene_name = main_flags.scene_path;
     double start = omp_get_wtime();
     dump_frame frame;

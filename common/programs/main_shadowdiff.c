@@ -26,6 +26,8 @@ typedef struct main_options {
     const char *program;
     const char *dirs[2]; /* REF_DIR TEST_DIR */
     int dir_count;
+    const char *previous[2]; /* --previous PREV_REF_DIR PREV_TEST_DIR */
+    int previous_count;
     const char *heatmap_path, *receiver;
     int grazing_degrees;
     float max_misclassified; /* percent; MAIN_NO_MAX_MISCLASSIFIED: no limit */
@@ -33,7 +35,7 @@ typedef struct main_options {
 } main_options;
 
 static void main_usage(const char *program, const flags_param *params, int count) {
-    printf("usage: %s REF_DIR TEST_DIR [flags]\n"
+    printf("usage: %s REF_DIR TEST_DIR [flags] [--previous PREV_REF_DIR PREV_TEST_DIR]\n"
            "Compares the shadows of the dump TEST_DIR with the reference dump REF_DIR (both\n"
            "written by --dump: same scene, camera, size and light).\n",
            program);
@@ -41,10 +43,17 @@ static void main_usage(const char *program, const flags_param *params, int count
     printf("A pixel is compared where both see a surface at the same depth (0.1 %%) and the\n"
            "reference surface faces the light; lit means visibility >= 0.5. Percentages\n"
            "are of the compared pixels; MAE is the mean |visibility difference| over them.\n"
+           "Shimmer (--previous): each compared pixel is followed, by the reference's world\n"
+           "position and the previous frame's camera, to a compared pixel of the previous\n"
+           "frame on the same object within 1 %% of its distance (else it is not followed:\n"
+           "disoccluded); shimmer %% is the share of followed pixels whose test decision\n"
+           "changed where the reference's did not.\n"
            "Exit status: 0 compared; 1 a dump unreadable or the two inconsistent (size,\n"
-           "light, objects), an unknown receiver, the heat map unwritable; 2 a bad\n"
+           "light, objects; with --previous also camera, and the frames' size and objects),\n"
+           "an unknown receiver, the heat map unwritable; 2 a bad\n"
            "command line; 3 misclassified over --max-misclassified (the figures are\n"
-           "printed); 4 nothing compared (no figure: 0 %% would look perfect); 5 a dump\n"
+           "printed); 4 nothing compared (no figure: 0 %% would look perfect; with\n"
+           "--previous also nothing followed); 5 a dump\n"
            "holds NaN or infinity where it is read (no figure).\n");
 }
 
@@ -67,6 +76,11 @@ static int main_parse_flags(int argc, char **argv, main_options *o) {
          .what = "whole degrees", .value_name = "DEG"},
         {"max-misclassified", "exit with status 3 when misclassified is over P\npercent (0..100), after the report",
          0, FLAGS_NUMBER, .number = &o->max_misclassified, .min = 0, .max = 100, .value_name = "P"},
+        {"previous",
+         "also the shimmer: the dumps of the frame before\n(reference, then test), whose shadow decisions\n"
+         "REF_DIR and TEST_DIR's are followed from",
+         0, FLAGS_LIST, .items = o->previous, .count = &o->previous_count, .min = 2, .max = 2,
+         .what = "two dump directories: PREV_REF_DIR PREV_TEST_DIR", .value_name = "PREV_REF_DIR PREV_TEST_DIR"},
         {.name = "help", .help = "this text", .kind = FLAGS_HELP},
     };
     int count = (int)(sizeof params / sizeof *params);
@@ -87,9 +101,24 @@ static void main_print_text(const shadowdiff_result *r, const dump_frame *refere
     printf("mean abs error   %.4f\n", r->mean_abs_error);
 }
 
-static bool main_print_json(const shadowdiff_result *r) {
+static void main_print_shimmer_text(const shadowdiff_shimmer_result *r) {
+    printf("shimmer          %.3f %% (%ld of %ld followed pixels: the test's decision changed, the "
+           "reference's did not)\n",
+           r->shimmer_percent, r->shimmered, r->followed);
+    printf("truth changed    %.3f %% (%ld: the reference's decision changed)\n", r->truth_changed_percent,
+           r->truth_changed);
+}
+
+/* shimmer may be NULL (no --previous). */
+static bool main_print_json(const shadowdiff_result *r, const shadowdiff_shimmer_result *shimmer) {
     cJSON *root = cJSON_CreateObject();
-    bool ok = root && cJSON_AddNumberToObject(root, "compared", (double)r->compared) &&
+    bool ok = root && (!shimmer || (cJSON_AddNumberToObject(root, "followed", (double)shimmer->followed) &&
+                                    cJSON_AddNumberToObject(root, "shimmered", (double)shimmer->shimmered) &&
+                                    cJSON_AddNumberToObject(root, "truth_changed", (double)shimmer->truth_changed) &&
+                                    cJSON_AddNumberToObject(root, "shimmer_percent", shimmer->shimmer_percent) &&
+                                    cJSON_AddNumberToObject(root, "truth_changed_percent",
+                                                            shimmer->truth_changed_percent)));
+    ok = ok && cJSON_AddNumberToObject(root, "compared", (double)r->compared) &&
               cJSON_AddNumberToObject(root, "false_shadow", (double)r->false_shadow) &&
               cJSON_AddNumberToObject(root, "false_lit", (double)r->false_lit) &&
               cJSON_AddNumberToObject(root, "false_shadow_percent", r->false_shadow_percent) &&
@@ -127,16 +156,44 @@ static int main_check_max(const main_options *o, const shadowdiff_result *r) {
     return MAIN_EXIT_OVER_MAX;
 }
 
-/* Everything after the flags: both dumps are read, compared, reported.
+/* Reads the count dumps of `dirs` into `frames`; false (none kept) if one
+ * is unreadable. */
+static bool main_read_dumps(const char *const *dirs, int count, dump_frame *frames) {
+    for (int i = 0; i < count; i++) {
+        if (!dump_read(&frames[i], dirs[i])) {
+            while (i-- > 0)
+                dump_frame_free(&frames[i]);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* --previous: the shimmer from the previous dumps to the current ones;
+ * 0 or the exit status of a shimmer that gave no figure. */
+static int main_shimmer(const main_options *o, const dump_frame *reference, const dump_frame *test,
+                        const shadowdiff_settings *settings, shadowdiff_shimmer_result *out) {
+    dump_frame previous[2];
+    if (!main_read_dumps(o->previous, 2, previous))
+        return MAIN_EXIT_RUNTIME;
+    shadowdiff_settings s = *settings;
+    s.previous_reference_name = o->previous[0];
+    s.previous_test_name = o->previous[1];
+    int status = shadowdiff_shimmer(&previous[0], &previous[1], reference, test, &s, out)
+                     ? 0
+                     : main_problem_status(out->problem);
+    dump_frame_free(&previous[0]);
+    dump_frame_free(&previous[1]);
+    return status;
+}
+
+/* Everything after the flags: the dumps are read, compared, reported.
  * Returns the exit status. */
 static int main_run(const main_options *o) {
-    dump_frame reference, test;
-    if (!dump_read(&reference, o->dirs[0]))
+    dump_frame frames[2];
+    if (!main_read_dumps(o->dirs, 2, frames))
         return MAIN_EXIT_RUNTIME;
-    if (!dump_read(&test, o->dirs[1])) {
-        dump_frame_free(&reference);
-        return MAIN_EXIT_RUNTIME;
-    }
+    dump_frame reference = frames[0], test = frames[1];
     size_t heatmap_bytes = (size_t)reference.width * (size_t)reference.height * 4;
     unsigned char *heatmap = o->heatmap_path ? malloc(heatmap_bytes) : NULL;
     const shadowdiff_settings settings = {
@@ -152,12 +209,18 @@ static int main_run(const main_options *o) {
     int status = ok ? 0 : MAIN_EXIT_RUNTIME;
     if (ok && !shadowdiff_compare(&reference, &test, &settings, &result, heatmap))
         status = main_problem_status(result.problem);
+    shadowdiff_shimmer_result shimmer;
+    bool shimmering = o->previous_count > 0;
+    if (!status && shimmering)
+        status = main_shimmer(o, &reference, &test, &settings, &shimmer);
     if (!status && heatmap && !image_write_png(o->heatmap_path, reference.width, reference.height, heatmap))
         status = MAIN_EXIT_RUNTIME;
-    if (!status && o->json && !main_print_json(&result))
+    if (!status && o->json && !main_print_json(&result, shimmering ? &shimmer : NULL))
         status = MAIN_EXIT_RUNTIME;
     else if (!status && !o->json)
         main_print_text(&result, &reference, o->receiver);
+    if (!status && !o->json && shimmering)
+        main_print_shimmer_text(&shimmer);
     if (!status)
         status = main_check_max(o, &result);
     free(heatmap);
