@@ -51,6 +51,29 @@ const bool shadowmap_early_out = SHADOW_MAP_PASS_EARLY_OUT != 0;
 const bool shadowmap_receiver_plane = SHADOW_MAP_PASS_RECEIVER_PLANE != 0;
 uniform float u_map_size[SCENE_MAX_LIGHTS]; // light i's map: texels on a side
 
+// A flat map's (2D, or an array's layer) point the kernel reads about (map
+// coordinates and depth) and its depth gradient: set by
+// shadowmap_flat_filter (shadowmap_flat.glsl) for shadowmap_kernel_read.
+vec3 shadowmap_point;
+vec2 shadowmap_gradient;
+
+// Below this the screen -> map Jacobian is singular (the receiver seen
+// edge-on, or no change across the pixel): no plane to follow, so every
+// tap compares the centre's depth.
+const float SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
+
+// Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and
+// techniques", GDC 2006): how the receiver's map depth changes per unit of
+// map (u, v), from the screen derivatives dx, dy of its (u, v, depth), so
+// that each tap of a wide kernel compares the receiver's own depth there,
+// not the centre's, which would shadow a slanted receiver with partial acne.
+vec2 shadowmap_depth_gradient(vec3 dx, vec3 dy) {
+    mat2 screen_to_map = mat2(dx.xy, dy.xy);
+    if (!shadowmap_receiver_plane || abs(determinant(screen_to_map)) < SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT)
+        return vec2(0.0);
+    return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
+}
+
 // The kernels as lists of taps, for both kinds of map: tap i's offset from
 // the point, in texels (a 2D map's grid; the plane across the direction of
 // a cube map) divided by `unit` (the map's size, for offsets in map
