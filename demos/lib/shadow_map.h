@@ -256,7 +256,7 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
 
 /* The parameters every shadow-map technique shares, for its params array. */
 #define SHADOW_MAP_PARAMS(s)                                                                                         \
-    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen", GLFW_KEY_M,              \
+    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen (cascades: 1024 a cascade)", GLFW_KEY_M,              \
      FLAGS_CHOICE, .index = &(s).map_size,                                                                         \
      .choices = shadow_map_sizes},                                                                                 \
     {"filter", "what reads the map", GLFW_KEY_F, FLAGS_CHOICE, .index = &(s).filter,                               \
