@@ -65,8 +65,8 @@
  *
  * For lectures (--overlay): shadowmap's overlays, and "cascades": each
  * cascade's receivers tinted in its colour (the blend band mixing two)
- * with every layer as an inset along the bottom; the HUD line gives the
- * split distances.
+ * with every layer as an inset along the bottom (a spot's or point
+ * light's map as its inset); the HUD line gives the split distances.
  */
 #include <math.h>
 #include <stdio.h>
@@ -100,7 +100,7 @@ static struct {
     float lambda, blend;      /* 0: the defaults */
     bool no_stabilize, no_blend;
     shadow_map_renderer maps;
-} cascades;
+} cascades = {.settings.array_overlays = true};
 
 static const flags_param cascades_params[] = {
     {"cascades", "how many slices of the view, each with its own map", GLFW_KEY_N, FLAGS_CHOICE,

@@ -390,7 +390,7 @@ static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *
         .receiver_plane = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
         .show_texels = st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS,
         .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
-        .show_cascades = st->overlay == SHADOW_MAP_OVERLAY_CASCADES,
+        .show_cascades = SHADOW_MAP_SHOWS_CASCADES(st),
     };
 }
 
@@ -677,5 +677,5 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         shadow_map_shade(r, settings, f, &key);
     else
         technique_shade_ambient(f);
-    shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
+    shadow_map_draw_overlays(r, settings, f, fitted, viewport);
 }

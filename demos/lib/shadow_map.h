@@ -238,6 +238,10 @@ typedef struct shadow_map_settings {
     bool no_constant_bias, no_slope_bias, no_early_out;
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
     float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
+    /* Not a flag: the technique's overlay list goes on with
+     * SHADOW_MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on
+     * with its own). */
+    bool array_overlays;
 } shadow_map_settings;
 
 /* The texel-size heat map's ends, log2 of a texel's size in pixels: blue
@@ -248,11 +252,14 @@ typedef struct shadow_map_settings {
 #define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size"
 enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
        SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_COUNT };
-/* An array map's technique lists this one next: each layer's receivers
- * tinted in its colour (the blend band mixing two), and every layer as
- * an inset, in a row. */
+/* An array map's technique lists this one next (and sets the settings'
+ * array_overlays): light 0's layers' receivers tinted each in its colour
+ * (the blend band mixing two), and its map as an inset (an array's layers
+ * in a row; a spot's or point light's map as "map" shows it). */
 #define SHADOW_MAP_ARRAY_OVERLAY_NAMES "cascades"
 enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
+/* The settings' overlay is that one. */
+#define SHADOW_MAP_SHOWS_CASCADES(st) ((st)->array_overlays && (st)->overlay == SHADOW_MAP_OVERLAY_CASCADES)
 
 /* The parameters every shadow-map technique shares, for its params array. */
 #define SHADOW_MAP_PARAMS(s)                                                                                         \
@@ -568,8 +575,8 @@ void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const m
 /* Those of settings->overlay drawn after the camera pass: frusta, inset,
  * the texel-size heat map's legend (a colour bar with labelled ticks).
  * fitted[l]: light l has a map this frame. */
-void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
-                              const int viewport[4]);
+void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                              const bool *fitted, const int viewport[4]);
 
 /* A warp's space in a second viewport (psm's post-perspective view): the
  * scene carried into `space` and clipped to its clip cube, the cube's

@@ -203,8 +203,9 @@ static void shadow_map_draw_legend(shadow_map_renderer *r, const int viewport[4]
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
-void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
-                              const int viewport[4]) {
+void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                              const bool *fitted, const int viewport[4]) {
+    int overlay = settings->overlay;
     glDisable(GL_BLEND);
     glDepthFunc(depth_func(f->view, GL_LEQUAL));
     bool frustum = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_FRUSTUM;
@@ -212,7 +213,7 @@ void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const techniq
         for (int layer = 0; fitted[l] && layer < r->maps[l].layer_count; layer++)
             shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
     bool inset = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP ||
-                 (overlay == SHADOW_MAP_OVERLAY_CASCADES && r->maps[0].kind == SHADOW_MAP_ARRAY);
+                 SHADOW_MAP_SHOWS_CASCADES(settings);
     if (fitted[0] && inset)
         shadow_map_draw_inset(r, &r->maps[0], viewport);
     if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)
