@@ -34,8 +34,10 @@
  *
  * Each cascade's box (cascades_slice_box): in the light's view, around its
  * slice of the view frustum (grown at its near end by the band where the
- * slice before blends into it), clipped to the visible receivers where
- * they are tighter, and deepened towards the light to every caster that
+ * slice before blends into it), clipped to the parts of the receivers'
+ * boxes inside the slice where they are tighter (a slice is mostly air
+ * above the ground: long_view, sdsm unstabilised, 0.033 -> 0.021 %
+ * misclassified), and deepened towards the light to every caster that
  * overlaps it (shadow_map_nearest_caster: casters outside the view still
  * cast); the library's caster culling then draws into each layer only the
  * casters a read of that layer can meet. Biases are the library's, in
@@ -181,10 +183,10 @@ static float cascades_slice_sphere(const camera_view *view, const mat4 light_vie
     return sqrtf((b - c) * (b - c) + b * b * spread);
 }
 
-/* The light-space bounds of the slice's eight corners. */
-static void cascades_slice_bounds(const camera_view *view, const mat4 light_view, float a, float b, vec3 lo,
-                                  vec3 hi) {
-    vec3 right, up, forward, corners[8];
+/* The slice's frustum: its eight corners, numbered as frustum_corners
+ * numbers them, and its view-projection (near a, far b). */
+static void cascades_slice_frustum(const camera_view *view, float a, float b, vec3 corners[8], mat4 view_projection) {
+    vec3 right, up, forward;
     float tan_x, tan_y;
     cascades_camera_axes(view, right, up, forward, &tan_x, &tan_y);
     for (int c = 0; c < 8; c++) {
@@ -194,7 +196,45 @@ static void cascades_slice_bounds(const camera_view *view, const mat4 light_view
         glm_vec3_muladds(right, (c & 1 ? 1 : -1) * tan_x * depth, corners[c]);
         glm_vec3_muladds(up, (c & 2 ? 1 : -1) * tan_y * depth, corners[c]);
     }
+    mat4 projection;
+    glm_perspective(2 * atanf(tan_y), tan_x / tan_y, a, b, projection);
+    glm_mat4_mul(projection, (vec4 *)view->view, view_projection);
+}
+
+/* The light-space bounds of the slice's eight corners. */
+static void cascades_slice_bounds(const camera_view *view, const mat4 light_view, float a, float b, vec3 lo,
+                                  vec3 hi) {
+    vec3 corners[8];
+    mat4 view_projection;
+    cascades_slice_frustum(view, a, b, corners, view_projection);
     frustum_view_bounds(light_view, (const float(*)[3])corners, 8, lo, hi);
+}
+
+/* The light-space bounds of the parts of s's receivers' boxes inside the
+ * slice (frustum_box_part): where the slice's receivers are, tighter than
+ * the slice (a slice is mostly air above the ground). Empty (lo > hi)
+ * where none is in it. */
+static void cascades_slice_receivers(const scene *s, const camera_view *view, const mat4 light_view, float a,
+                                     float b, vec3 lo, vec3 hi) {
+    vec3 corners[8];
+    mat4 view_projection;
+    float part[TECHNIQUE_MAX_PART_POINTS][3];
+    cascades_slice_frustum(view, a, b, corners, view_projection);
+    glm_vec3_fill(lo, INFINITY);
+    glm_vec3_fill(hi, -INFINITY);
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 box_lo, box_hi, part_lo, part_hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], box_lo, box_hi);
+        int n = frustum_box_part(view_projection, (const vec3 *)corners, box_lo, box_hi, part,
+                                 TECHNIQUE_MAX_PART_POINTS);
+        if (n == 0)
+            continue;
+        frustum_view_bounds(light_view, (const float(*)[3])part, n, part_lo, part_hi);
+        glm_vec3_minv(lo, part_lo, lo);
+        glm_vec3_maxv(hi, part_hi, hi);
+    }
 }
 
 void cascades_slice_box(const camera_view *view, const mat4 light_view, float a, float b, int size, float margin,
@@ -270,16 +310,16 @@ static bool cascades_fit_array(const technique_frame *f, const scene_light *l, s
     glm_vec3_cross(forward, (float *)l->direction, across);
     if (cascades.no_stabilize && glm_vec3_norm(across) > CASCADES_MIN_VIEW_ACROSS_LIGHT)
         glm_look((float *)origin, (float *)l->direction, forward, m->cascade_view);
-    vec3 receivers_lo, receivers_hi;
-    frustum_view_bounds(m->cascade_view, f->receivers, f->receiver_count, receivers_lo, receivers_hi);
     float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY) + cascades.settings.normal_texels +
                    CASCADES_SNAP_TEXELS;
     for (int k = 0; k < count; k++) {
         const float *split = m->cascade_split;
         /* From where the slice before starts blending into this one. */
         float start = k > 0 ? split[k] - m->cascade_blend * (split[k] - split[k - 1]) : split[k];
-        vec3 lo, hi;
+        vec3 lo, hi, receivers_lo, receivers_hi;
         mat4 projection;
+        cascades_slice_receivers(f->gpu->scene, f->view, m->cascade_view, start, split[k + 1], receivers_lo,
+                                 receivers_hi);
         cascades_slice_box(f->view, m->cascade_view, start, split[k + 1], m->size, margin, !cascades.no_stabilize,
                            receivers_lo, receivers_hi, lo, hi);
         float near_depth, far_depth;
@@ -318,7 +358,8 @@ static void cascades_render(const technique_frame *f) {
     shadow_map_render(&cascades.maps, &cascades.settings, f, cascades_fit);
 }
 
-/* Light 0's map, and for cascades the split distances. */
+/* Light 0's map, and for cascades the split distances and the world size
+ * of the nearest cascade's texel. */
 static void cascades_describe(char *out, size_t size) {
     const shadow_map *m = &cascades.maps.maps[0];
     int n = snprintf(out, size, "light 0: %s map %dx%d", shadow_map_kind_name(m->kind), m->size, m->size);
@@ -328,6 +369,8 @@ static void cascades_describe(char *out, size_t size) {
                   cascades_schemes[cascades.scheme], cascades.no_stabilize ? "" : ", stabilized");
     for (int k = 0; k <= m->layer_count && (size_t)n < size; k++)
         n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
+    if ((size_t)n < size)
+        snprintf(out + n, size - (size_t)n, "; nearest texel %.3g", m->texel_scale);
 }
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count

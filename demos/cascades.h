@@ -27,8 +27,8 @@ bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int
  * stabilize: the slice's bounding sphere (its size depends on a, b and the
  * projection alone, never on where the camera looks), the box's corner on
  * a whole number of texels of light space; else the slice's bounds,
- * clipped across the light to the receivers' (receivers_lo..hi, light
- * space) where those are tighter, and along it to theirs. */
+ * clipped to the bounds of the receivers in the slice (receivers_lo..hi,
+ * light space) where those are tighter. */
 void cascades_slice_box(const camera_view *view, const mat4 light_view, float a, float b, int size, float margin,
                         bool stabilize, const float receivers_lo[3], const float receivers_hi[3], float lo[3],
                         float hi[3]);

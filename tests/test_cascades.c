@@ -153,14 +153,7 @@ static void test_stabilized_box(void **state) {
  * (teapot): cascades. Within the shadow maps' bound. */
 static void test_standard_scenes_within_bound(void **state) {
     (void)state;
-    static const char *const scenes[] = {"simple", "bunny", "teapot"};
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char path[256];
-        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
-        shadowdiff_result r = support_measure("cascades", path, "", "", scenes[i]);
-        assert_true(r.compared > 50000);
-        assert_true(r.misclassified_percent <= STANDARD_MAX_MISCLASSIFIED_PERCENT);
-    }
+    support_standard_scenes_within("cascades", STANDARD_MAX_MISCLASSIFIED_PERCENT);
 }
 
 /* long_view, where one map's perspective aliasing is worst: every scheme
