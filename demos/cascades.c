@@ -8,8 +8,9 @@
  * texels (Engel, "Cascaded shadow maps", ShaderX5 2006; Dimitrov,
  * "Cascaded shadow maps", NVIDIA 2007). The camera pass reads the layer
  * whose slice holds the fragment's view depth and, over the last --blend
- * of a slice, mixes in the next one, so the change of texel size shows no
- * seam.
+ * of a slice, the next one at a share of the pixels rising to all of them
+ * (dithered, one layer filtered a pixel), so the change of texel size
+ * shows no seam.
  *
  * Where the slices end (--splits):
  *   practical  Zhang, Sun, Xu & Lun, "Parallel-split shadow maps for
@@ -42,7 +43,7 @@
  * cast); the library's caster culling then draws into each layer only the
  * casters a read of that layer can meet. Biases are the library's, in
  * texels of world size: each layer's texel is known to the shader (its
- * box's scale), and in the blend band the coarser layer's sizes them.
+ * box's scale), and the layer read sizes them.
  *
  * Stabilisation (on; --no-stabilize shows the shimmer): a box that
  * follows the slice changes size as the camera turns and slides by

@@ -13,17 +13,21 @@ const uint SHADOWMAP_HASH_PRIME_Y = 9277u;
 const uint SHADOWMAP_HASH_MULTIPLIER = 0x5bd1e995u;
 const int SHADOWMAP_HASH_SHIFT_BEFORE = 13;
 const int SHADOWMAP_HASH_SHIFT_AFTER = 15;
-// The hash's 2^32 values onto one turn (2 pi radians).
+// The hash's 2^32 values onto one turn (2 pi radians), and onto 0..1.
 const float SHADOWMAP_HASH_TO_ANGLE = 6.2831853 / 4294967296.0;
+const float SHADOWMAP_HASH_TO_FRACTION = 1.0 / 4294967296.0;
 
-// Per-pixel rotation of the Poisson disc: a hash of the pixel, so the same
-// frame gives the same picture (no noise texture, no clock).
-float shadowmap_pixel_angle() {
+// A hash of the pixel, so the same frame gives the same picture (no noise
+// texture, no clock).
+uint shadowmap_pixel_hash() {
     uvec2 q = uvec2(gl_FragCoord.xy);
     uint h = q.x * SHADOWMAP_HASH_PRIME_X + q.y * SHADOWMAP_HASH_PRIME_Y;
     h = (h ^ (h >> SHADOWMAP_HASH_SHIFT_BEFORE)) * SHADOWMAP_HASH_MULTIPLIER;
-    return float(h ^ (h >> SHADOWMAP_HASH_SHIFT_AFTER)) * SHADOWMAP_HASH_TO_ANGLE;
+    return h ^ (h >> SHADOWMAP_HASH_SHIFT_AFTER);
 }
+
+// Per-pixel rotation of the Poisson disc.
+float shadowmap_pixel_angle() { return float(shadowmap_pixel_hash()) * SHADOWMAP_HASH_TO_ANGLE; }
 
 // 16 points of a Poisson disc (minimum distance 0.35), scaled by half of
 // shadowmap_kernel_size texels (SHADOW_MAP_POISSON_SCALE_TEXELS: 3). They

@@ -71,14 +71,16 @@
  * layer_view_projection). The camera pass reads layer k where the
  * camera's view depth lies between cascade_split[k] and [k + 1] (beyond
  * the ends, the nearest layer), and over the last cascade_blend of a
- * slice mixes in layer k + 1 linearly, so the switch of texel size shows
- * no seam; the box of layer k + 1 covers that band. Per layer the shader
+ * slice reads layer k + 1 at a share of the pixels rising linearly to 1
+ * (dithered by a hash of the pixel: each pixel filters one layer), so the
+ * switch of texel size shows no seam; the box of layer k + 1 covers that
+ * band. Per layer the shader
  * has 2 vec4 (scale, offset; their w the slice's ends), not a mat4: a
  * program with array lights holds 2 x SCENE_MAX_LIGHTS x
  * SHADOW_MAP_MAX_ARRAY_LAYERS vec4 of them, where mat4s would take twice
  * that. A layer's world texel is 2 / (size x its smaller xy scale): the
- * constant and normal-offset biases are measured in it, and in the
- * blend band in the coarser layer's. An array light's sampler is on its
+ * constant and normal-offset biases are measured in the texel of the
+ * layer read. An array light's sampler is on its
  * 2D unit (a light has one kind of map). --map-size auto does not size
  * an array map: the fit sets its size (a cascade's texels are sized by
  * their count, not measured).
