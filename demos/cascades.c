@@ -211,18 +211,16 @@ static void cascades_slice_bounds(const camera_view *view, const mat4 light_view
     frustum_view_bounds(light_view, (const float(*)[3])corners, 8, lo, hi);
 }
 
-/* The light-space bounds of the parts of s's receivers' boxes inside the
- * slice (frustum_box_part): where the slice's receivers are, tighter than
- * the slice (a slice is mostly air above the ground). Empty (lo > hi)
- * where none is in it. */
+/* lo..hi (empty, lo > hi, when called) grown to the light-space bounds of
+ * the parts of s's receivers' boxes inside the slice (frustum_box_part):
+ * where the slice's receivers are, tighter than the slice (a slice is
+ * mostly air above the ground); still empty where none is in it. */
 static void cascades_slice_receivers(const scene *s, const camera_view *view, const mat4 light_view, float a,
                                      float b, vec3 lo, vec3 hi) {
     vec3 corners[8];
     mat4 view_projection;
     float part[TECHNIQUE_MAX_PART_POINTS][3];
     cascades_slice_frustum(view, a, b, corners, view_projection);
-    glm_vec3_fill(lo, INFINITY);
-    glm_vec3_fill(hi, -INFINITY);
     for (int i = 0; i < s->object_count; i++) {
         vec3 box_lo, box_hi, part_lo, part_hi;
         if (!s->objects[i].receives)
@@ -317,10 +315,12 @@ static bool cascades_fit_array(const technique_frame *f, const scene_light *l, s
         const float *split = m->cascade_split;
         /* From where the slice before starts blending into this one. */
         float start = k > 0 ? split[k] - m->cascade_blend * (split[k] - split[k - 1]) : split[k];
-        vec3 lo, hi, receivers_lo, receivers_hi;
+        vec3 lo, hi;
+        vec3 receivers_lo = {INFINITY, INFINITY, INFINITY}, receivers_hi = {-INFINITY, -INFINITY, -INFINITY};
         mat4 projection;
-        cascades_slice_receivers(f->gpu->scene, f->view, m->cascade_view, start, split[k + 1], receivers_lo,
-                                 receivers_hi);
+        if (cascades.no_stabilize) /* a stabilised box is its slice's sphere, whatever the receivers */
+            cascades_slice_receivers(f->gpu->scene, f->view, m->cascade_view, start, split[k + 1], receivers_lo,
+                                     receivers_hi);
         cascades_slice_box(f->view, m->cascade_view, start, split[k + 1], m->size, margin, !cascades.no_stabilize,
                            receivers_lo, receivers_hi, lo, hi);
         float near_depth, far_depth;

@@ -7,8 +7,9 @@
 // (a diagonal and a translation, not a mat4 each: half the uniforms).
 
 uniform sampler2DArrayShadow u_maps_array[SCENE_MAX_LIGHTS];
-uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];  // xyz; w: the view depth where its slice ends
-uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS]; // xyz; w: where its slice starts
+// xyz: scale and offset; w: the view depths where the layer's slice ends and starts.
+uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];
+uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];
 uniform int u_cascade_count[SCENE_MAX_LIGHTS];
 uniform float u_cascade_blend; // the far fraction of a slice mixed into the next layer (0: a hard switch)
 uniform vec4 u_view_depth;     // the camera's view depth of a world point p: dot(this, vec4(p, 1))
@@ -47,7 +48,8 @@ vec3 shadowmap_cascade_scale(int i, int k) {
 }
 
 vec3 shadowmap_cascade_uvz(int i, int k, vec3 light_p) {
-    return light_p * shadowmap_cascade_scale(i, k) + 0.5 * u_cascade_offset[i * SHADOW_MAP_MAX_ARRAY_LAYERS + k].xyz + 0.5;
+    vec3 offset = u_cascade_offset[i * SHADOW_MAP_MAX_ARRAY_LAYERS + k].xyz;
+    return light_p * shadowmap_cascade_scale(i, k) + 0.5 * offset + 0.5;
 }
 
 // A layer's texel in world units: its box over the map's size (the wider

@@ -50,7 +50,10 @@ static const struct {
     const char *name;
     shadow_map_light_kind kind;
 } shadow_map_samplers[] = {
-    {"u_maps_2d", SHADOW_MAP_LIGHT_2D}, {"u_maps_cube", SHADOW_MAP_LIGHT_CUBE}, {"u_maps_array", SHADOW_MAP_LIGHT_ARRAY}};
+    {"u_maps_2d", SHADOW_MAP_LIGHT_2D},
+    {"u_maps_cube", SHADOW_MAP_LIGHT_CUBE},
+    {"u_maps_array", SHADOW_MAP_LIGHT_ARRAY},
+};
 
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 

@@ -86,7 +86,8 @@
  * their count, not measured).
  *
  * The camera pass (shaders/shadowmap.frag: shadowmap.glsl's kernels,
- * shadowmap_2d.glsl's and shadowmap_cube.glsl's maps, one program per
+ * shadowmap_2d.glsl's, shadowmap_cube.glsl's and shadowmap_array.glsl's
+ * maps, the flat ones' filter shadowmap_flat.glsl's, one program per
  * combination of the lights' kinds of map, shadow_map_light_kind) moves each point towards the light by the constant
  * bias and along its normal by the normal offset (both in map texels of
  * world distance, so they hold at any map size and scene scale), then
@@ -174,8 +175,11 @@
  *   texel-size  a heat map of a texel's size in pixels (camera pass);
  *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
  *   map         light 0's map as an inset of linear depth (a cube's faces
- *               in two rows: +X -X +Y, then -Y +Z -Z);
- *   all         texels, frustum and map.
+ *               in two rows: +X -X +Y, then -Y +Z -Z; an array's layers
+ *               in a row);
+ *   all         texels, frustum and map;
+ *   cascades    (an array map's technique: SHADOW_MAP_ARRAY_OVERLAY_NAMES)
+ *               each layer's receivers tinted, and the inset.
  * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
  * go on with its own (psm's post-perspective view: shadow_map_warp_view).
  *
@@ -265,7 +269,8 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
 
 /* The parameters every shadow-map technique shares, for its params array. */
 #define SHADOW_MAP_PARAMS(s)                                                                                         \
-    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen (cascades: 1024 a cascade)", GLFW_KEY_M,              \
+    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen (cascades: 1024 a cascade)", \
+     GLFW_KEY_M,                                                                                                   \
      FLAGS_CHOICE, .index = &(s).map_size,                                                                         \
      .choices = shadow_map_sizes},                                                                                 \
     {"filter", "what reads the map", GLFW_KEY_F, FLAGS_CHOICE, .index = &(s).filter,                               \
