@@ -54,6 +54,11 @@
  * a still receiver's shadow stays put while the camera moves or turns.
  * (sdsm's slices follow what is seen, so their spheres change size: with
  * sdsm stabilisation snaps the grid but cannot hold the texel's size.)
+ * Its price: the sphere holds air the receivers never fill, and under a
+ * sun a fraction of a degree above the ground, which that light sees as a
+ * sliver, the ground gets a row of texels (build/stress grazing_0.1 and
+ * 0.5_directional: 1.00 and 0.87 % misclassified; 0.016 and 0.106 %
+ * unstabilised, whose boxes are clipped to the receivers).
  *
  * Map size: --map-size gives each cascade's; auto, the default, is 1024
  * a cascade (CASCADES_DEFAULT_SIZE): four cascades of 1024 hold the
