@@ -287,7 +287,7 @@ static void turned_decisions(const dump_frame *before, const dump_frame *after, 
 static void test_stabilization_holds_edges_under_a_turn(void **state) {
     (void)state;
     char before_scene[512], after_scene[512];
-    scene_camera before_camera, after_camera;
+    scene_camera before_camera = {0}, after_camera = {0}; /* reversed_depth: standard, as the dumps see it */
     write_turned_scene(0, "turn_before", before_scene, sizeof before_scene, &before_camera);
     write_turned_scene(TURN_DEG, "turn_after", after_scene, sizeof after_scene, &after_camera);
     camera_view before_view;
