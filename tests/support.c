@@ -173,6 +173,15 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
     return r;
 }
 
+cJSON *support_read_json(const char *path) {
+    char *text = path_read_text(path, SUPPORT_MAX_SCENE_BYTES, NULL);
+    assert_non_null(text);
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    assert_non_null(root);
+    return root;
+}
+
 void support_write_json(const cJSON *root, const char *dir, const char *name, char *path, size_t size) {
     char *text = cJSON_Print(root);
     assert_non_null(text);

@@ -9,14 +9,12 @@
 
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include <cjson/cJSON.h>
 
 #include "cascades.h"
 #include "frustum.h"
-#include "path.h"
 #include "support.h"
 
 #define LONG_VIEW "assets/scenes/long_view.json"
@@ -206,7 +204,6 @@ static void test_long_view_splits(void **state) {
 #define TURN_DEG 4.0
 #define DUMP_ASPECT (640.0f / 360.0f)
 #define DUMP_FLAGS "--backend egl --filter none --no-blend --map-size 256"
-#define MAX_SCENE_BYTES (1 << 20)
 #define MATCH_PIXELS 0.3f
 #define OUT_DIR "out/test/cascades"
 #define STABILIZED_GAIN 3
@@ -215,11 +212,7 @@ static void test_long_view_splits(void **state) {
 /* OUT_DIR/NAME.json: long_view with its camera turned by `degrees`; the
  * camera as camera_view_compute sees it in *camera. */
 static void write_turned_scene(double degrees, const char *name, char *path, size_t size, scene_camera *camera) {
-    char *text = path_read_text(LONG_VIEW, MAX_SCENE_BYTES, NULL);
-    assert_non_null(text);
-    cJSON *root = cJSON_Parse(text);
-    free(text);
-    assert_non_null(root);
+    cJSON *root = support_read_json(LONG_VIEW);
     cJSON *json_camera = cJSON_GetObjectItemCaseSensitive(root, "camera");
     cJSON *position = cJSON_GetObjectItemCaseSensitive(json_camera, "position");
     cJSON *target = cJSON_GetObjectItemCaseSensitive(json_camera, "target");
