@@ -173,6 +173,15 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
     return r;
 }
 
+cJSON *support_read_json(const char *path) {
+    char *text = path_read_text(path, SUPPORT_MAX_SCENE_BYTES, NULL);
+    assert_non_null(text);
+    cJSON *root = cJSON_Parse(text);
+    free(text);
+    assert_non_null(root);
+    return root;
+}
+
 void support_write_json(const cJSON *root, const char *dir, const char *name, char *path, size_t size) {
     char *text = cJSON_Print(root);
     assert_non_null(text);
@@ -194,4 +203,15 @@ shadowdiff_result support_measure(const char *program, const char *scene, const 
     dump_frame_free(&reference);
     dump_frame_free(&test);
     return r;
+}
+
+void support_standard_scenes_within(const char *program, double max_percent) {
+    static const char *const scenes[] = {"simple", "bunny", "teapot"};
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[256];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
+        shadowdiff_result r = support_measure(program, path, "", "", scenes[i]);
+        assert_true(r.compared > SUPPORT_STANDARD_MIN_COMPARED);
+        assert_true(r.misclassified_percent <= max_percent);
+    }
 }

@@ -37,7 +37,6 @@
 
 #include "camera.h"
 #include "frustum.h"
-#include "path.h"
 #include "support.h"
 
 #define SCENE "assets/scenes/simple.json"
@@ -45,7 +44,6 @@
 #define OUT_DIR "out/test/range"
 #define SIZE "--size 320x180"
 #define ASPECT (16.0f / 9.0f)
-#define MAX_SCENE_BYTES (1 << 20)
 #define EXIT_RUNTIME 1
 /* Corners from the inverse and from the camera agree within this share
  * of their distance from the eye: the inverse's rounding, up to
@@ -224,11 +222,7 @@ static const range_case range_cases[] = {
 
 /* OUT_DIR/range_N.json: `source` with the case's near and far. */
 static void write_case_scene(const char *source, const range_case *c, int index, char *path, size_t size) {
-    char *text = path_read_text(source, MAX_SCENE_BYTES, NULL);
-    assert_non_null(text);
-    cJSON *root = cJSON_Parse(text);
-    free(text);
-    assert_non_null(root);
+    cJSON *root = support_read_json(source);
     cJSON *camera = cJSON_GetObjectItemCaseSensitive(root, "camera");
     cJSON_SetNumberValue(cJSON_GetObjectItemCaseSensitive(camera, "near"), c->near_plane);
     cJSON_SetNumberValue(cJSON_GetObjectItemCaseSensitive(camera, "far"), c->far_plane);

@@ -105,7 +105,7 @@ static void test_gl_error_is_classified(void **state) {
              support_program("stress"), "out/test/stress-gl-error");
     assert_int_equal(support_run(command, err, sizeof err), EXIT_FAILED);
     int count = read_table("out/test/stress-gl-error");
-    assert_int_equal(count, 10);
+    assert_int_equal(count, 11);
     for (int i = 0; i < count; i++)
         assert_string_equal(rows[i].verdict, strcmp(rows[i].technique, "raytrace") ? "gl-error" : "pass");
 }
@@ -138,6 +138,7 @@ static void link_program(const char *name) {
  *              --depth: the same with a NaN id               nan
  *   psm        default: one line naming the scene, exit 1    refused
  *              --warp: two lines, exit 1                     error
+ *   cascades   exits 0 having dumped nothing                 error
  *   volumes    --mode: exit status 200                       crash
  *              otherwise: exits 0 having dumped nothing      error
  * The run itself (stress, not the preloaded sanitizer runtime: the fakes
@@ -163,6 +164,7 @@ static void test_fake_programs_are_classified(void **state) {
                         "echo \"$scene: refused by a fake\" >&2\n"
                         "[ -n \"$two\" ] && echo \"and a second line\" >&2\n"
                         "exit 1\n");
+    write_script("cascades", "exit 0\n");
     write_script("volumes", "case \"$*\" in *--mode*) exit 200;; esac\nexit 0\n");
     char command[2048], build[1024];
     const char *dir = getenv("BUILD");
@@ -175,7 +177,8 @@ static void test_fake_programs_are_classified(void **state) {
         {"raytrace", "reference", "pass"},     {"planar", "default", "crash"},
         {"shadowmap", "default", "timeout"},   {"shadowmap", "filter-none", "pass"},
         {"shadowmap", "depth-32f", "nan"},     {"psm", "default", "refused"},
-        {"psm", "lispsm", "error"},            {"volumes", "default", "error"},
+        {"psm", "lispsm", "error"},            {"cascades", "default", "error"},
+        {"volumes", "default", "error"},
         {"volumes", "zfail", "crash"},         {"volumes", "gpu-silhouette", "error"},
     };
     assert_int_equal(count, sizeof expect / sizeof *expect);
