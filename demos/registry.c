@@ -4,6 +4,7 @@ extern const technique unshadowed_technique;
 extern const technique planar_technique;
 extern const technique shadowmap_technique;
 extern const technique psm_technique;
+extern const technique cascades_technique;
 extern const technique volumes_technique;
 
 /* Keys 1-9 in the window follow this order; the benchmark's cost floor is
@@ -12,6 +13,7 @@ const technique *const registry_techniques[] = {
     &planar_technique,
     &shadowmap_technique,
     &psm_technique,
+    &cascades_technique,
     &volumes_technique,
     &unshadowed_technique,
 };

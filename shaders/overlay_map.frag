@@ -1,13 +1,16 @@
 #version 330 core
 // Light 0's shadow map shown as linear depth: near black, far white. A 2D
 // map fills the quad; a cube map's six faces lie in two rows of three
-// (+X -X +Y, then -Y +Z -Z). The map is read with a plain sampler, so its
-// compare mode is off while this draws.
+// (+X -X +Y, then -Y +Z -Z); an array map's layer u_layer fills it (one
+// quad per layer). The map is read with a plain sampler, so its compare
+// mode is off while this draws.
 in vec2 v_uv;
 
 uniform sampler2D u_map;
 uniform samplerCube u_cube_map;
-uniform bool u_cube;
+uniform sampler2DArray u_array_map;
+uniform int u_kind; // a shadow_map_kind: SHADOW_MAP_2D (0), SHADOW_MAP_CUBE or SHADOW_MAP_ARRAY
+uniform int u_layer;
 uniform bool u_orthographic;
 uniform float u_near;
 uniform float u_far;
@@ -28,11 +31,13 @@ vec3 overlay_cube_direction(int face, vec2 st) {
 
 void main() {
     float d;
-    if (u_cube) {
+    if (u_kind == SHADOW_MAP_CUBE) {
         vec2 cell = floor(v_uv * vec2(3.0, 2.0));
         int face = int(cell.x) + 3 * (1 - int(cell.y));
         vec2 st = fract(v_uv * vec2(3.0, 2.0)) * 2.0 - 1.0;
         d = texture(u_cube_map, overlay_cube_direction(face, vec2(st.x, -st.y))).r;
+    } else if (u_kind == SHADOW_MAP_ARRAY) {
+        d = texture(u_array_map, vec3(v_uv, float(u_layer))).r;
     } else {
         d = texture(u_map, v_uv).r;
     }

@@ -8,7 +8,7 @@
 // the lights are listed one by one below, and what light i is in this pass
 // is the define SHADOW_MAP_LIGHT_KIND_<i> (a shadow_map_light_kind from C:
 // off, on without a map (nothing it reaches receives: added unshadowed),
-// with a 2D map or with a cube map), and how its 2D map's texel is
+// with a 2D map, a cube map or an array map), and how its 2D map's texel is
 // measured SHADOW_MAP_TEXEL_KIND_<i> (a shadow_map_texel_kind). C compiles
 // a program per combination (and per kernel and overlay), in which each
 // light's code is there only for its kind: read from uniforms, every pixel
@@ -47,16 +47,18 @@ out vec4 out_color;
 // The lecture's overlays, fixed per program like the kernel.
 const bool shadowmap_show_texels = SHADOW_MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
 const bool shadowmap_show_texel_size = SHADOW_MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
+const bool shadowmap_show_cascades = SHADOW_MAP_PASS_SHOW_CASCADES != 0;     // tint by light 0's cascade
 
 #include "shadowmap.glsl"
 #include "shadowmap_2d.glsl"
 #include "shadowmap_cube.glsl"
+#include "shadowmap_array.glsl"
 
 #if SCENE_MAX_LIGHTS != 8
 #error "shadowmap.frag lists SCENE_MAX_LIGHTS lights one by one: one SHADOWMAP_LIGHT line each"
 #endif
 // Light i's share by its kind (a constant: the other kinds' code is dropped).
-#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], i, texel_kind, n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], i, texel_kind, n)
+#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], i, texel_kind, n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], i, texel_kind, n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], i, texel_kind, n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
@@ -73,5 +75,7 @@ void main() {
     SHADOWMAP_LIGHT(5, SHADOW_MAP_LIGHT_KIND_5, SHADOW_MAP_TEXEL_KIND_5);
     SHADOWMAP_LIGHT(6, SHADOW_MAP_LIGHT_KIND_6, SHADOW_MAP_TEXEL_KIND_6);
     SHADOWMAP_LIGHT(7, SHADOW_MAP_LIGHT_KIND_7, SHADOW_MAP_TEXEL_KIND_7);
+    if (shadowmap_show_cascades && SHADOW_MAP_LIGHT_KIND_0 == SHADOW_MAP_LIGHT_ARRAY)
+        c = shadowmap_cascade_tint(0, c);
     out_color = vec4(c, 1.0);
 }

@@ -13,17 +13,21 @@ const uint SHADOWMAP_HASH_PRIME_Y = 9277u;
 const uint SHADOWMAP_HASH_MULTIPLIER = 0x5bd1e995u;
 const int SHADOWMAP_HASH_SHIFT_BEFORE = 13;
 const int SHADOWMAP_HASH_SHIFT_AFTER = 15;
-// The hash's 2^32 values onto one turn (2 pi radians).
+// The hash's 2^32 values onto one turn (2 pi radians), and onto 0..1.
 const float SHADOWMAP_HASH_TO_ANGLE = 6.2831853 / 4294967296.0;
+const float SHADOWMAP_HASH_TO_FRACTION = 1.0 / 4294967296.0;
 
-// Per-pixel rotation of the Poisson disc: a hash of the pixel, so the same
-// frame gives the same picture (no noise texture, no clock).
-float shadowmap_pixel_angle() {
+// A hash of the pixel, so the same frame gives the same picture (no noise
+// texture, no clock).
+uint shadowmap_pixel_hash() {
     uvec2 q = uvec2(gl_FragCoord.xy);
     uint h = q.x * SHADOWMAP_HASH_PRIME_X + q.y * SHADOWMAP_HASH_PRIME_Y;
     h = (h ^ (h >> SHADOWMAP_HASH_SHIFT_BEFORE)) * SHADOWMAP_HASH_MULTIPLIER;
-    return float(h ^ (h >> SHADOWMAP_HASH_SHIFT_AFTER)) * SHADOWMAP_HASH_TO_ANGLE;
+    return h ^ (h >> SHADOWMAP_HASH_SHIFT_AFTER);
 }
+
+// Per-pixel rotation of the Poisson disc.
+float shadowmap_pixel_angle() { return float(shadowmap_pixel_hash()) * SHADOWMAP_HASH_TO_ANGLE; }
 
 // 16 points of a Poisson disc (minimum distance 0.35), scaled by half of
 // shadowmap_kernel_size texels (SHADOW_MAP_POISSON_SCALE_TEXELS: 3). They
@@ -50,6 +54,29 @@ const bool shadowmap_early_out = SHADOW_MAP_PASS_EARLY_OUT != 0;
 // Each tap compares the receiver plane's depth there, not the centre's.
 const bool shadowmap_receiver_plane = SHADOW_MAP_PASS_RECEIVER_PLANE != 0;
 uniform float u_map_size[SCENE_MAX_LIGHTS]; // light i's map: texels on a side
+
+// A flat map's (2D, or an array's layer) point the kernel reads about (map
+// coordinates and depth) and its depth gradient: set by
+// shadowmap_flat_filter (shadowmap_flat.glsl) for shadowmap_kernel_read.
+vec3 shadowmap_point;
+vec2 shadowmap_gradient;
+
+// Below this the screen -> map Jacobian is singular (the receiver seen
+// edge-on, or no change across the pixel): no plane to follow, so every
+// tap compares the centre's depth.
+const float SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
+
+// Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and
+// techniques", GDC 2006): how the receiver's map depth changes per unit of
+// map (u, v), from the screen derivatives dx, dy of its (u, v, depth), so
+// that each tap of a wide kernel compares the receiver's own depth there,
+// not the centre's, which would shadow a slanted receiver with partial acne.
+vec2 shadowmap_depth_gradient(vec3 dx, vec3 dy) {
+    mat2 screen_to_map = mat2(dx.xy, dy.xy);
+    if (!shadowmap_receiver_plane || abs(determinant(screen_to_map)) < SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT)
+        return vec2(0.0);
+    return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
+}
 
 // The kernels as lists of taps, for both kinds of map: tap i's offset from
 // the point, in texels (a 2D map's grid; the plane across the direction of

@@ -3,21 +3,12 @@
 // (demos/psm.c). Light i's map is u_maps_2d[i] and the uniforms of index i.
 
 uniform sampler2DShadow u_maps_2d[SCENE_MAX_LIGHTS]; // compare mode on: every read is a test
-uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's clip space
+uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's clip space (an array map: its light view)
 uniform float u_texel_scale[SCENE_MAX_LIGHTS];       // world texel: this (orthographic) or this x depth along the axis (perspective)
 
 // A matrix whose map coordinates hardly change with p (degenerate there)
 // gives a huge texel rather than a division by zero.
 const float SHADOWMAP_MIN_MAP_DERIVATIVE = 1e-20;
-// Below this the screen -> map Jacobian is singular (the receiver seen
-// edge-on, or no change across the pixel): no plane to follow, so every
-// tap compares the centre's depth.
-const float SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
-
-// The point the kernel reads about (map coordinates and depth) and its
-// depth gradient: set by shadowmap_visibility for shadowmap_kernel_read.
-vec3 shadowmap_point;
-vec2 shadowmap_gradient;
 
 // offset: in map coordinates.
 float shadowmap_kernel_read(sampler2DShadow map, vec2 offset) {
@@ -26,6 +17,7 @@ float shadowmap_kernel_read(sampler2DShadow map, vec2 offset) {
 
 #define SHADOWMAP_SAMPLER sampler2DShadow
 #include "shadowmap_light.glsl"
+#include "shadowmap_flat.glsl"
 #undef SHADOWMAP_SAMPLER
 
 // A warped map's texel size changes across the map, and its depth is not
@@ -51,33 +43,13 @@ float shadowmap_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) 
     return shadowmap_projective_texel(i, p);
 }
 
-// Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and
-// techniques", GDC 2006): how the receiver's map depth changes per unit of
-// map (u, v), from the screen derivatives of its (u, v, depth), so that each
-// tap of a wide kernel compares the receiver's own depth there, not the
-// centre's, which would shadow a slanted receiver with partial acne.
-vec2 shadowmap_depth_gradient(vec3 uvz) {
-    vec3 dx = dFdx(uvz), dy = dFdy(uvz);
-    mat2 screen_to_map = mat2(dx.xy, dy.xy);
-    if (!shadowmap_receiver_plane || abs(determinant(screen_to_map)) < SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT)
-        return vec2(0.0);
-    return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
-}
-
 float shadowmap_visibility(sampler2DShadow map, int i, vec3 p, float depth_bias, bool needed) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
-    vec2 gradient = shadowmap_depth_gradient(uvz); /* derivatives: before any branch */
-    // Outside the map nothing was rendered: lit, never a wrapped read.
-    if (!needed || clip.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
+    vec2 gradient = shadowmap_depth_gradient(dFdx(uvz), dFdy(uvz)); /* derivatives: before any branch */
+    if (!needed || clip.w <= 0.0)
         return 1.0;
-    uvz.z = min(uvz.z - depth_bias, 1.0);
-    if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE)
-        return texture(map, uvz);
-    shadowmap_point = uvz;
-    shadowmap_gradient = gradient;
-    vec2 texel = uvz.xy * u_map_size[i];
-    return shadowmap_kernel_filter(map, texel - floor(texel + 0.5), u_map_size[i]);
+    return shadowmap_flat_filter(map, uvz, gradient, u_map_size[i], depth_bias);
 }
 
 vec2 shadowmap_texel_coord(sampler2DShadow map, int i, vec3 p) {

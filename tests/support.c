@@ -195,3 +195,14 @@ shadowdiff_result support_measure(const char *program, const char *scene, const 
     dump_frame_free(&test);
     return r;
 }
+
+void support_standard_scenes_within(const char *program, double max_percent) {
+    static const char *const scenes[] = {"simple", "bunny", "teapot"};
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        char path[256];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
+        shadowdiff_result r = support_measure(program, path, "", "", scenes[i]);
+        assert_true(r.compared > SUPPORT_STANDARD_MIN_COMPARED);
+        assert_true(r.misclassified_percent <= max_percent);
+    }
+}

@@ -60,6 +60,12 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
                                         unsigned char **heatmap);
 shadowdiff_result support_measure(const char *program, const char *scene, const char *size, const char *flags,
                                   const char *name);
+/* PROGRAM's defaults on each standard scene (a spot, a point and a
+ * directional light) at 640x360: most receiver pixels compared
+ * (SUPPORT_STANDARD_MIN_COMPARED of 230400), at most max_percent
+ * misclassified; fails the running cmocka test otherwise. */
+#define SUPPORT_STANDARD_MIN_COMPARED 50000
+void support_standard_scenes_within(const char *program, double max_percent);
 /* Writes the JSON `root` to DIR/NAME.json (making DIR), its path into
  * `path`; fails the running cmocka test when it cannot. */
 void support_write_json(const cJSON *root, const char *dir, const char *name, char *path, size_t size);

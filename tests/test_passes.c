@@ -47,7 +47,7 @@ static const struct {
 };
 
 /* The techniques that shade every light in one pass. */
-static const char *const passes_one_pass[] = {"shadowmap", "psm"};
+static const char *const passes_one_pass[] = {"shadowmap", "psm", "cascades"};
 
 static bool passes_is_one_pass(const char *technique) {
     for (size_t i = 0; i < sizeof passes_one_pass / sizeof *passes_one_pass; i++)

@@ -65,7 +65,7 @@ static const char *const golden_standard_scenes[] = {"simple", "bunny", "teapot"
  * picture for a 2D map (simple's spot) and a cube map (bunny's point
  * light); perspective shadow maps where they matter, long_view, with the
  * light in front of the viewer and behind (the inverted case), and the
- * lecture's post-perspective view. */
+ * lecture's post-perspective view; cascades on long_view. */
 static const golden_case golden_extra_cases[] = {
     {"shadowmap", "simple", "--overlay all", "shadowmap-lecture_simple", true, NULL},
     {"shadowmap", "bunny", "--overlay all", "shadowmap-lecture_bunny", true, NULL},
@@ -80,6 +80,10 @@ static const golden_case golden_extra_cases[] = {
      * shows each cell is its program's picture), the heat map and its
      * legend with the figures. */
     {"psm", "long_view", "--compare", "psm-compare-1280x720_long_view", true, "1280x720"},
+    /* Cascades where they matter, long_view: the default picture, and the
+     * lecture's tint of each cascade with the layers' insets. */
+    {"cascades", "long_view", "", "cascades_long_view", false, NULL},
+    {"cascades", "long_view", "--overlay cascades", "cascades-lecture_long_view", true, NULL},
 };
 
 /* Every tour in assets/tours/ is a golden per step, tour-NAME-K.png (K

@@ -35,7 +35,7 @@
 
 static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "color.png"};
 static const char *const motions[] = {"static", "light", "camera"};
-static const char *const programs[] = {"shadowmap", "psm"};
+static const char *const programs[] = {"shadowmap", "psm", "cascades"};
 
 /* The spot's layer: world -> its clip space. */
 static void spot_layer(mat4 out) {

@@ -40,14 +40,7 @@ static bool false_lit(const unsigned char *heatmap, long i) {
 /* Spot (simple), point with a cube map (bunny), directional (teapot). */
 static void test_standard_scenes_within_bound(void **state) {
     (void)state;
-    static const char *const scenes[] = {"simple", "bunny", "teapot"};
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char path[256];
-        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
-        shadowdiff_result r = measure(path, "", scenes[i]);
-        assert_true(r.compared > 50000);
-        assert_true(r.misclassified_percent <= STANDARD_MAX_MISCLASSIFIED_PERCENT);
-    }
+    support_standard_scenes_within("shadowmap", STANDARD_MAX_MISCLASSIFIED_PERCENT);
 }
 
 /* Lights a single map did not serve (issue 14): a spot wider than a 2D

@@ -866,6 +866,7 @@ static const stress_config stress_configs[] = {
     {"shadowmap", "depth-32f", {"--depth", "32f", NULL}, STRESS_BOUND_MAPS, NULL},
     {"psm", "default", {NULL}, STRESS_BOUND_MAPS, NULL},
     {"psm", "lispsm", {"--warp", "lispsm", NULL}, STRESS_BOUND_MAPS, NULL},
+    {"cascades", "default", {NULL}, STRESS_BOUND_MAPS, NULL},
     {"volumes", "default", {NULL}, STRESS_BOUND_VOLUMES, NULL},
     {"volumes", "zfail", {"--mode", "zfail", NULL}, STRESS_BOUND_VOLUMES, NULL},
     {"volumes", "gpu-silhouette", {"--silhouette", "gpu", NULL}, STRESS_BOUND_VOLUMES, NULL},

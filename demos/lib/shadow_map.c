@@ -42,7 +42,18 @@ static const shader_define shadow_map_defines[] = {
     SHADER_DEFINE(SHADOW_MAP_KERNEL_POISSON),    SHADER_DEFINE(SHADOW_MAP_TEXEL_ORTHOGRAPHIC),
     SHADER_DEFINE(SHADOW_MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(SHADOW_MAP_TEXEL_PROJECTIVE),
     SHADER_DEFINE(SHADOW_MAP_KERNEL_TENT),       SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MIN),
-    SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     {NULL, 0}};
+    SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(SHADOW_MAP_MAX_ARRAY_LAYERS),
+    {NULL, 0}};
+
+/* The camera pass's sampler arrays, by the kind of map they read. */
+static const struct {
+    const char *name;
+    shadow_map_light_kind kind;
+} shadow_map_samplers[] = {
+    {"u_maps_2d", SHADOW_MAP_LIGHT_2D},
+    {"u_maps_cube", SHADOW_MAP_LIGHT_CUBE},
+    {"u_maps_array", SHADOW_MAP_LIGHT_ARRAY},
+};
 
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
@@ -292,12 +303,14 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         SHADER_DEFINE(SHADOW_MAP_LIGHT_UNSHADOWED),
         SHADER_DEFINE(SHADOW_MAP_LIGHT_2D),
         SHADER_DEFINE(SHADOW_MAP_LIGHT_CUBE),
+        SHADER_DEFINE(SHADOW_MAP_LIGHT_ARRAY),
         {"SHADOW_MAP_PASS_SHAPE", (int)k->shape},
         {"SHADOW_MAP_PASS_KERNEL", (int)k->kernel},
         {"SHADOW_MAP_PASS_EARLY_OUT", (int)k->early_out},
         {"SHADOW_MAP_PASS_RECEIVER_PLANE", (int)k->receiver_plane},
         {"SHADOW_MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
         {"SHADOW_MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
+        {"SHADOW_MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's two, then the list's end ({NULL}, zeroed). */
@@ -323,15 +336,26 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {&p->normal_offset, "u_normal_offset"},
         {&p->depth_bias, "u_depth_bias"},
         {&p->closed_outside, "u_closed_outside"},
+        {&p->view_depth, "u_view_depth"},
+        {&p->cascade_blend, "u_cascade_blend"},
     };
     shadow_map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
-    /* Each sampler on its own unit, those of lights without a map too: an
+    /* Each sampler on a unit, those of lights without a map too: an
      * array's elements below the last one used stay active, and two types
-     * on one unit (unit 0, the default) would fail every draw. */
+     * on one unit (unit 0, the default) would fail every draw. Light l's
+     * own on unit l, the others idle (SHADOW_MAP_IDLE_UNITS). */
     glUseProgram(id);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        glUniform1i(shadow_map_light_uniform(id, "u_maps_2d", l), l);
-        glUniform1i(shadow_map_light_uniform(id, "u_maps_cube", l), SHADOW_MAP_CUBE_UNITS + l);
+        for (int t = 0; t < (int)(sizeof shadow_map_samplers / sizeof *shadow_map_samplers); t++) {
+            bool own = shadow_map_light_field(k->kinds, l) == (unsigned)shadow_map_samplers[t].kind;
+            glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].name, l),
+                        own ? l : SHADOW_MAP_IDLE_UNITS + t);
+        }
+        p->lights[l].cascade_count = shadow_map_light_uniform(id, "u_cascade_count", l);
+        p->lights[l].cascade_scale =
+            shadow_map_light_uniform(id, "u_cascade_scale", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
+        p->lights[l].cascade_offset =
+            shadow_map_light_uniform(id, "u_cascade_offset", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
         p->lights[l].map_size = shadow_map_light_uniform(id, "u_map_size", l);
         p->lights[l].light_matrix = shadow_map_light_uniform(id, "u_light_matrix", l);
         p->lights[l].texel_scale = shadow_map_light_uniform(id, "u_texel_scale", l);
@@ -369,12 +393,26 @@ static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *
         .receiver_plane = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
         .show_texels = st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS,
         .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
+        .show_cascades = SHADOW_MAP_SHOWS_CASCADES(st),
     };
+}
+
+/* The camera pass's kind of light for a map's kind. */
+static shadow_map_light_kind shadow_map_light_kind_of(shadow_map_kind kind) {
+    static const shadow_map_light_kind kinds[] = {
+        [SHADOW_MAP_2D] = SHADOW_MAP_LIGHT_2D, [SHADOW_MAP_CUBE] = SHADOW_MAP_LIGHT_CUBE,
+        [SHADOW_MAP_ARRAY] = SHADOW_MAP_LIGHT_ARRAY};
+    return kinds[kind];
+}
+
+/* A light with a map, of any kind. */
+static bool shadow_map_light_mapped(unsigned kind) {
+    return kind == SHADOW_MAP_LIGHT_2D || kind == SHADOW_MAP_LIGHT_CUBE || kind == SHADOW_MAP_LIGHT_ARRAY;
 }
 
 /* Light l in key k, with a map of that kind and texel kind. */
 static void shadow_map_key_light(shadow_map_camera_key *k, int l, shadow_map_kind kind, shadow_map_texel_kind texel) {
-    k->kinds |= shadow_map_light_bits(l, kind == SHADOW_MAP_CUBE ? SHADOW_MAP_LIGHT_CUBE : SHADOW_MAP_LIGHT_2D);
+    k->kinds |= shadow_map_light_bits(l, shadow_map_light_kind_of(kind));
     k->texel_kinds |= shadow_map_light_bits(l, texel);
 }
 
@@ -399,7 +437,9 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     static const shader_define inset_defines[] = {
         SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
         SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z), {NULL, 0}};
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z),
+        SHADER_DEFINE(SHADOW_MAP_CUBE),            SHADER_DEFINE(SHADOW_MAP_ARRAY),
+        {NULL, 0}};
     if (!render_program_load(&r->lines.program, lines_files, 2, NULL) ||
         !render_program_load(&r->inset.program, inset_files, 2, inset_defines) ||
         !render_program_load(&r->legend.program, legend_files, 2, shadow_map_defines))
@@ -408,7 +448,8 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     r->legend.log2_range = glGetUniformLocation(r->legend.program.id, "u_log2_range");
     shadow_map_inset_program *p = &r->inset;
     const shadow_map_uniform uniforms[] = {
-        {&p->map, "u_map"}, {&p->cube_map, "u_cube_map"}, {&p->cube, "u_cube"},
+        {&p->map, "u_map"}, {&p->cube_map, "u_cube_map"}, {&p->array_map, "u_array_map"},
+        {&p->kind, "u_kind"}, {&p->layer, "u_layer"},
         {&p->orthographic, "u_orthographic"}, {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"},
     };
     shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
@@ -518,9 +559,8 @@ static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const te
         return 0;
     unsigned lights = 0;
     for (int l = 0; l < s->light_count; l++) {
-        unsigned kind = shadow_map_light_field(k->kinds, l);
         float light[4], object_light[4];
-        if (kind != SHADOW_MAP_LIGHT_2D && kind != SHADOW_MAP_LIGHT_CUBE)
+        if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
             continue;
         scene_light_homogeneous(&s->lights[l], light);
         volume_mesh_object_light(s->objects[i].model, light, object_light);
@@ -544,19 +584,37 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
                     st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
         glUniform1f(p->normal_offset, st->normal_texels);
         glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
+        /* The camera's view depth of a world point: minus its view-space z. */
+        const mat4 *view = &f->view->view;
+        glUniform4f(p->view_depth, -(*view)[0][2], -(*view)[1][2], -(*view)[2][2], -(*view)[3][2]);
         for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-            unsigned kind = shadow_map_light_field(k->kinds, l);
-            if (kind != SHADOW_MAP_LIGHT_2D && kind != SHADOW_MAP_LIGHT_CUBE)
+            if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
                 continue;
             const shadow_map *m = &r->maps[l];
-            bool cube = kind == SHADOW_MAP_LIGHT_CUBE;
-            glActiveTexture(GL_TEXTURE0 + (GLenum)(cube ? SHADOW_MAP_CUBE_UNITS + l : l));
+            glActiveTexture(GL_TEXTURE0 + (GLenum)l);
             glBindTexture(shadow_map_target(m->kind), m->texture.id);
             glUniform1f(p->lights[l].map_size, (float)m->size);
-            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
             glUniform1f(p->lights[l].texel_scale, m->texel_scale);
             glUniform1f(p->lights[l].near_plane, m->near_plane);
             glUniform1f(p->lights[l].far_plane, m->far_plane);
+            if (m->kind != SHADOW_MAP_ARRAY) {
+                glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE,
+                                   (const float *)m->layer_view_projection[0]);
+                continue;
+            }
+            /* Layer k's scale and offset, w its slice's far and near ends. */
+            float scale[SHADOW_MAP_MAX_ARRAY_LAYERS][4], offset[SHADOW_MAP_MAX_ARRAY_LAYERS][4];
+            for (int layer = 0; layer < m->layer_count; layer++) {
+                memcpy(scale[layer], m->cascade_scale[layer], sizeof m->cascade_scale[layer]);
+                memcpy(offset[layer], m->cascade_offset[layer], sizeof m->cascade_offset[layer]);
+                scale[layer][3] = m->cascade_split[layer + 1];
+                offset[layer][3] = m->cascade_split[layer];
+            }
+            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->cascade_view);
+            glUniform4fv(p->lights[l].cascade_scale, m->layer_count, (const float *)scale);
+            glUniform4fv(p->lights[l].cascade_offset, m->layer_count, (const float *)offset);
+            glUniform1i(p->lights[l].cascade_count, m->layer_count);
+            glUniform1f(p->cascade_blend, m->cascade_blend);
         }
         glActiveTexture(GL_TEXTURE0);
         const scene *s = f->gpu->scene;
@@ -592,7 +650,7 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         shadow_map *m = &r->maps[l];
         m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
         fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
-        if (fitted[l] && !size) {
+        if (fitted[l] && !size && m->kind != SHADOW_MAP_ARRAY) {
             int sample_count = shadow_map_light_samples(r, f, l);
             shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
         }
@@ -622,5 +680,5 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
         shadow_map_shade(r, settings, f, &key);
     else
         technique_shade_ambient(f);
-    shadow_map_draw_overlays(r, settings->overlay, f, fitted, viewport);
+    shadow_map_draw_overlays(r, settings, f, fitted, viewport);
 }

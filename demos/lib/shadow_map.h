@@ -61,13 +61,33 @@
  * The depth pass (shadow_map_render_depth) renders each layer's depth from
  * its matrix, with glPolygonOffset as the slope-scaled bias (unless
  * --no-slope-bias); an array map's layers are attached one at a time
- * (glFramebufferTextureLayer). The camera pass of an array map is the
- * cascades technique's (it picks a layer per fragment): the camera pass
- * below, shadow_map_render's fits and the map inset are for 2D and cube
- * maps.
+ * (glFramebufferTextureLayer).
+ *
+ * Array maps (demos/cascades.c's cascades). Every layer is an orthographic
+ * box of one light view, cascade_view (world -> light space, orthonormal),
+ * so a layer is that view, then a scale and an offset per axis
+ * (cascade_scale, cascade_offset: its glm_ortho's diagonal and
+ * translation; shadow_map_cascade_layer sets them with its
+ * layer_view_projection). The camera pass reads layer k where the
+ * camera's view depth lies between cascade_split[k] and [k + 1] (beyond
+ * the ends, the nearest layer), and over the last cascade_blend of a
+ * slice reads layer k + 1 at a share of the pixels rising linearly to 1
+ * (dithered by a hash of the pixel: each pixel filters one layer), so the
+ * switch of texel size shows no seam; the box of layer k + 1 covers that
+ * band. Per layer the shader
+ * has 2 vec4 (scale, offset; their w the slice's ends), not a mat4: a
+ * program with array lights holds 2 x SCENE_MAX_LIGHTS x
+ * SHADOW_MAP_MAX_ARRAY_LAYERS vec4 of them, where mat4s would take twice
+ * that. A layer's world texel is 2 / (size x its smaller xy scale): the
+ * constant and normal-offset biases are measured in the texel of the
+ * layer read. An array light's sampler is on its
+ * 2D unit (a light has one kind of map). --map-size auto does not size
+ * an array map: the fit sets its size (a cascade's texels are sized by
+ * their count, not measured).
  *
  * The camera pass (shaders/shadowmap.frag: shadowmap.glsl's kernels,
- * shadowmap_2d.glsl's and shadowmap_cube.glsl's maps, one program per
+ * shadowmap_2d.glsl's, shadowmap_cube.glsl's and shadowmap_array.glsl's
+ * maps, the flat ones' filter shadowmap_flat.glsl's, one program per
  * combination of the lights' kinds of map, shadow_map_light_kind) moves each point towards the light by the constant
  * bias and along its normal by the normal offset (both in map texels of
  * world distance, so they hold at any map size and scene scale), then
@@ -155,8 +175,11 @@
  *   texel-size  a heat map of a texel's size in pixels (camera pass);
  *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
  *   map         light 0's map as an inset of linear depth (a cube's faces
- *               in two rows: +X -X +Y, then -Y +Z -Z);
- *   all         texels, frustum and map.
+ *               in two rows: +X -X +Y, then -Y +Z -Z; an array's layers
+ *               in a row);
+ *   all         texels, frustum and map;
+ *   cascades    (an array map's technique: SHADOW_MAP_ARRAY_OVERLAY_NAMES)
+ *               each layer's receivers tinted, and the inset.
  * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
  * go on with its own (psm's post-perspective view: shadow_map_warp_view).
  *
@@ -221,6 +244,10 @@ typedef struct shadow_map_settings {
     bool no_constant_bias, no_slope_bias, no_early_out;
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
     float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
+    /* Not a flag: the technique's overlay list goes on with
+     * SHADOW_MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on
+     * with its own). */
+    bool array_overlays;
 } shadow_map_settings;
 
 /* The texel-size heat map's ends, log2 of a texel's size in pixels: blue
@@ -231,10 +258,19 @@ typedef struct shadow_map_settings {
 #define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size"
 enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
        SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_COUNT };
+/* An array map's technique lists this one next (and sets the settings'
+ * array_overlays): light 0's layers' receivers tinted each in its colour
+ * (the blend band mixing two), and its map as an inset (an array's layers
+ * in a row; a spot's or point light's map as "map" shows it). */
+#define SHADOW_MAP_ARRAY_OVERLAY_NAMES "cascades"
+enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
+/* The settings' overlay is that one. */
+#define SHADOW_MAP_SHOWS_CASCADES(st) ((st)->array_overlays && (st)->overlay == SHADOW_MAP_OVERLAY_CASCADES)
 
 /* The parameters every shadow-map technique shares, for its params array. */
 #define SHADOW_MAP_PARAMS(s)                                                                                         \
-    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen", GLFW_KEY_M,              \
+    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen (cascades: 1024 a cascade)", \
+     GLFW_KEY_M,                                                                                                   \
      FLAGS_CHOICE, .index = &(s).map_size,                                                                         \
      .choices = shadow_map_sizes},                                                                                 \
     {"filter", "what reads the map", GLFW_KEY_F, FLAGS_CHOICE, .index = &(s).filter,                               \
@@ -315,31 +351,39 @@ typedef struct shadow_map {
     float texel_scale;
     bool orthographic;   /* the stored depth is linear (the inset shows it as it is) */
     const bool *casters; /* objects to draw into the map; NULL: every caster */
+    /* An array map's layers (see the top): */
+    mat4 cascade_view;
+    float cascade_scale[SHADOW_MAP_MAX_ARRAY_LAYERS][3], cascade_offset[SHADOW_MAP_MAX_ARRAY_LAYERS][3];
+    float cascade_split[SHADOW_MAP_MAX_ARRAY_LAYERS + 1]; /* camera view depths */
+    float cascade_blend;                                  /* fraction of a slice */
     shadow_map_texture texture;
 } shadow_map;
 
 /* What light i is in the camera pass (the shaders'
  * SHADOW_MAP_LIGHT_KIND_<i>): off, on without a map (nothing it reaches
- * receives: added unshadowed), with a 2D map or with a cube map. */
+ * receives: added unshadowed), with a 2D map, a cube map or an array map. */
 typedef enum shadow_map_light_kind {
     SHADOW_MAP_LIGHT_OFF,
     SHADOW_MAP_LIGHT_UNSHADOWED,
     SHADOW_MAP_LIGHT_2D,
-    SHADOW_MAP_LIGHT_CUBE
+    SHADOW_MAP_LIGHT_CUBE,
+    SHADOW_MAP_LIGHT_ARRAY
 } shadow_map_light_kind;
 /* Light i's kind, and its map's shadow_map_texel_kind, in bits
  * SHADOW_MAP_LIGHT_KIND_BITS i and up of a key's kinds and texel_kinds. */
-#define SHADOW_MAP_LIGHT_KIND_BITS 2
+#define SHADOW_MAP_LIGHT_KIND_BITS 3
 _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
 /* The camera programs kept: the keys a run goes through (lights coming
  * into reach, a point light's warp falling back to a cube, the kernels a
  * lecturer or the benchmark tries) are compiled once each, the oldest
  * dropped beyond this many. */
 #define SHADOW_MAP_CAMERA_PROGRAMS 16
-/* Texture units: light i's 2D map on unit i, its cube map on unit
- * SCENE_MAX_LIGHTS + i (samplers of two types never share a unit); 16
- * units, GL 3.3's minimum. */
-#define SHADOW_MAP_CUBE_UNITS SCENE_MAX_LIGHTS
+/* Texture units: light i's map, of any kind, on unit i; the samplers a
+ * program holds but does not read (an array's elements below the last one
+ * used stay active) on one unit per sampler type after those,
+ * SHADOW_MAP_IDLE_UNITS + t: samplers of two types on one unit would fail
+ * every draw. 11 units, within GL 3.3's 16. */
+#define SHADOW_MAP_IDLE_UNITS SCENE_MAX_LIGHTS
 
 /* What a camera program is compiled for (shaders/shadowmap.frag's
  * SHADOW_MAP_LIGHT_KIND_<i>, SHADOW_MAP_TEXEL_KIND_<i> and
@@ -352,7 +396,7 @@ _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combinati
 typedef struct shadow_map_camera_key {
     unsigned kinds, texel_kinds; /* per light (SHADOW_MAP_LIGHT_KIND_BITS) */
     unsigned shape, kernel;      /* shadow_map_kernel, N or the disc's scale */
-    unsigned early_out, receiver_plane, show_texels, show_texel_size;
+    unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades;
 } shadow_map_camera_key;
 
 /* The camera pass's program (lit.vert with shadowmap.frag) for one key,
@@ -361,9 +405,10 @@ typedef struct shadow_map_camera_key {
 typedef struct shadow_map_camera_program {
     render_program program;
     shadow_map_camera_key key;
-    int constant_bias, normal_offset, depth_bias, closed_outside;
+    int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend;
     struct {
-        int map_size, light_matrix, texel_scale, near_plane, far_plane;
+        int map_size, light_matrix, texel_scale, near_plane, far_plane, cascade_count;
+        int cascade_scale, cascade_offset; /* the light's first layer's element */
     } lights[SCENE_MAX_LIGHTS];
 } shadow_map_camera_program;
 
@@ -376,7 +421,7 @@ typedef struct shadow_map_lines_program {
 /* overlay.vert with overlay_map.frag: a map as an inset of linear depth. */
 typedef struct shadow_map_inset_program {
     render_program program;
-    int map, cube_map, cube, orthographic, near_plane, far_plane;
+    int map, cube_map, array_map, kind, layer, orthographic, near_plane, far_plane;
 } shadow_map_inset_program;
 
 /* overlay.vert with overlay_heat_legend.frag: the texel-size legend's bar. */
@@ -438,8 +483,8 @@ typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, sha
  * the settings give the first camera program, compiled now. */
 bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu);
 void shadow_map_destroy(shadow_map_renderer *r);
-/* The whole frame (see the top of this file); fit returns 2D and cube
- * maps only. */
+/* The whole frame (see the top of this file); fit places a map of any
+ * kind (an array map with its size set). */
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit);
 /* The depth pass of a fitted map of any kind: (re)makes its texture when
@@ -480,6 +525,20 @@ const char *shadow_map_kind_name(shadow_map_kind kind);
 /* The uniform placement of light `light` of `s` (see the top). */
 bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
                             int receiver_count);
+/* The depth (view space, along -z) of the nearest caster that can shadow
+ * the receivers in lo..hi seen through `view`: of a directional light
+ * (orthographic) every caster whose box overlaps lo..hi across the view,
+ * of a positional one every caster with a part in front of it; hi[2]
+ * where none is nearer. */
+float shadow_map_nearest_caster(const scene *s, const mat4 view, const vec3 lo, const vec3 hi, bool orthographic);
+/* A depth range in view space, near..far (distances along -z), widened by
+ * the fit's margin so the points it was fitted to are not clipped by
+ * rounding. */
+void shadow_map_depth_range(float near_plane, float far_plane, float *near_out, float *far_out);
+/* Layer `layer` of an array map is the orthographic `projection` of
+ * m->cascade_view (glm_ortho: a diagonal and a translation): sets its
+ * scale, offset and layer_view_projection. */
+void shadow_map_cascade_layer(shadow_map *m, int layer, const mat4 projection);
 
 /* ---- caster culling (shadow_map_cull.c) ---- */
 
@@ -523,8 +582,8 @@ void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const m
 /* Those of settings->overlay drawn after the camera pass: frusta, inset,
  * the texel-size heat map's legend (a colour bar with labelled ticks).
  * fitted[l]: light l has a map this frame. */
-void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
-                              const int viewport[4]);
+void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                              const bool *fitted, const int viewport[4]);
 
 /* A warp's space in a second viewport (psm's post-perspective view): the
  * scene carried into `space` and clipped to its clip cube, the cube's

@@ -239,7 +239,8 @@ int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxe
 
 /* Light l's map culls its casters (see the top of shadow_map.h). */
 static bool shadow_map_culls(const shadow_map_settings *st, const technique_frame *f, int l) {
-    bool inset = l == 0 && (st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_MAP);
+    bool inset = l == 0 && (st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_MAP ||
+                            SHADOW_MAP_SHOWS_CASCADES(st));
     return f->cull_casters && !inset && st->normal_texels == 0;
 }
 

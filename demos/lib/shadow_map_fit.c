@@ -32,6 +32,38 @@
  * since the cone may be a few microradians across. */
 #define SHADOW_MAP_RECEIVER_CONE_MARGIN 0.02f
 
+float shadow_map_nearest_caster(const scene *s, const mat4 view, const vec3 lo, const vec3 hi, bool orthographic) {
+    float nearest = hi[2];
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 corners[8], clo, chi, blo, bhi;
+        if (!s->objects[i].casts)
+            continue;
+        scene_object_world_bounds(&s->objects[i], blo, bhi);
+        frustum_box_corners(blo, bhi, corners);
+        frustum_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
+        /* A spot's caster counts if any of it is in front of the light. */
+        bool overlaps = orthographic ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1]
+                                     : clo[2] < 0;
+        if (overlaps)
+            nearest = fmaxf(nearest, chi[2]);
+    }
+    return nearest;
+}
+
+void shadow_map_depth_range(float near_plane, float far_plane, float *near_out, float *far_out) {
+    float margin = SHADOW_MAP_DEPTH_MARGIN * (far_plane - near_plane) + FRUSTUM_FLOAT_TOLERANCE * fabsf(far_plane);
+    *far_out = far_plane + margin;
+    *near_out = near_plane - margin;
+}
+
+void shadow_map_cascade_layer(shadow_map *m, int layer, const mat4 projection) {
+    for (int k = 0; k < 3; k++) {
+        m->cascade_scale[layer][k] = projection[k][k];
+        m->cascade_offset[layer][k] = projection[3][k];
+    }
+    glm_mat4_mul((vec4 *)projection, m->cascade_view, m->layer_view_projection[layer]);
+}
+
 /* Directional: an orthographic box around the visible receivers, deepened
  * towards the light to every caster whose box overlaps them seen from the
  * light. Positional: a perspective map of the given half-angle looking
@@ -58,24 +90,8 @@ static bool shadow_map_fit_2d(const scene *s, const scene_light *l, shadow_map *
     }
     frustum_look_along(eye, axis, view);
     frustum_view_bounds(view, receivers, receiver_count, lo, hi);
-    float nearest = hi[2];
-    for (int i = 0; i < s->object_count; i++) {
-        vec3 corners[8], clo, chi, blo, bhi;
-        if (!s->objects[i].casts)
-            continue;
-        scene_object_world_bounds(&s->objects[i], blo, bhi);
-        frustum_box_corners(blo, bhi, corners);
-        frustum_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
-        /* A spot's caster counts if any of it is in front of the light. */
-        bool overlaps = directional ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1]
-                                    : clo[2] < 0;
-        if (overlaps)
-            nearest = fmaxf(nearest, chi[2]);
-    }
-    float far_plane = -lo[2], near_plane = -nearest;
-    float margin = SHADOW_MAP_DEPTH_MARGIN * (far_plane - near_plane) + FRUSTUM_FLOAT_TOLERANCE * fabsf(far_plane);
-    m->far_plane = far_plane + margin;
-    m->near_plane = near_plane - margin;
+    shadow_map_depth_range(-shadow_map_nearest_caster(s, view, lo, hi, directional), -lo[2], &m->near_plane,
+                           &m->far_plane);
     m->orthographic = directional;
     if (directional) {
         glm_ortho(lo[0], hi[0], lo[1], hi[1], m->near_plane, m->far_plane, projection);

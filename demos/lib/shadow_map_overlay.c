@@ -19,8 +19,10 @@
 static const float shadow_map_frustum_color[3] = {1.0f, 0.85f, 0.2f};
 /* Insets sit this many pixels in from the picture's corner. */
 #define SHADOW_MAP_INSET_MARGIN_PX 8
-/* The map inset is a third of the picture's height; the warp view half. */
+/* The map inset is a third of the picture's height; the warp view half;
+ * an array map's row of layers at most half the picture's width. */
 #define SHADOW_MAP_INSET_HEIGHT_DIVISOR 3
+#define SHADOW_MAP_ARRAY_INSET_WIDTH_DIVISOR 2
 #define SHADOW_MAP_WARP_VIEW_HEIGHT_DIVISOR 2
 /* The warp view's background, darker than the scene's so the view stands out. */
 static const float shadow_map_warp_view_background[4] = {0.08f, 0.08f, 0.1f, 1};
@@ -62,33 +64,44 @@ void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const m
 }
 
 /* Light 0's map in the bottom-right third of the picture: a 2D map as it
- * is, a cube map as its six faces in two rows of three. */
+ * is, a cube map as its six faces in two rows of three, an array map's
+ * layers in a row along the bottom, nearest cascade first, over at most
+ * half the picture's width. */
 static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, const int viewport[4]) {
     static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-    bool cube = m->kind == SHADOW_MAP_CUBE;
+    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D, [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
+                                     [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
+    bool cube = m->kind == SHADOW_MAP_CUBE, array = m->kind == SHADOW_MAP_ARRAY;
     int height = viewport[3] / SHADOW_MAP_INSET_HEIGHT_DIVISOR, width = cube ? height * 3 / 2 : height;
-    glViewport(viewport[0] + viewport[2] - width - SHADOW_MAP_INSET_MARGIN_PX, viewport[1] + SHADOW_MAP_INSET_MARGIN_PX,
-               width, height);
+    if (array)
+        width = height = glm_min(height, viewport[2] / SHADOW_MAP_ARRAY_INSET_WIDTH_DIVISOR / m->layer_count);
     glDisable(GL_DEPTH_TEST);
     const shadow_map_inset_program *p = &r->inset;
     glUseProgram(p->program.id);
     mat4 identity = GLM_MAT4_IDENTITY_INIT;
     glUniformMatrix4fv(p->program.view_projection, 1, GL_FALSE, (const float *)identity);
-    /* Two units: a 2D and a cube sampler may not share one. */
-    GLenum texture_target = cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
-    glUniform1i(p->map, 0);
-    glUniform1i(p->cube_map, 1);
-    glUniform1i(p->cube, cube);
+    /* A unit per sampler type: two types may not share one. */
+    GLenum texture_target = targets[m->kind];
+    glUniform1i(p->map, SHADOW_MAP_2D);
+    glUniform1i(p->cube_map, SHADOW_MAP_CUBE);
+    glUniform1i(p->array_map, SHADOW_MAP_ARRAY);
+    glUniform1i(p->kind, m->kind);
     glUniform1i(p->orthographic, m->orthographic);
     glUniform1f(p->near_plane, m->near_plane);
     glUniform1f(p->far_plane, m->far_plane);
-    glActiveTexture(cube ? GL_TEXTURE1 : GL_TEXTURE0);
+    glActiveTexture(GL_TEXTURE0 + (GLenum)m->kind);
     glBindTexture(texture_target, m->texture.id);
     glTexParameteri(texture_target, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     glBindVertexArray(r->overlay_vao);
     glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
+    int insets = array ? m->layer_count : 1;
+    for (int layer = 0; layer < insets; layer++) {
+        glViewport(viewport[0] + viewport[2] - (insets - layer) * (width + SHADOW_MAP_INSET_MARGIN_PX),
+                   viewport[1] + SHADOW_MAP_INSET_MARGIN_PX, width, height);
+        glUniform1i(p->layer, layer);
+        glDrawArrays(GL_TRIANGLES, 0, 6);
+    }
     glTexParameteri(texture_target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glActiveTexture(GL_TEXTURE0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -190,15 +203,18 @@ static void shadow_map_draw_legend(shadow_map_renderer *r, const int viewport[4]
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
-void shadow_map_draw_overlays(shadow_map_renderer *r, int overlay, const technique_frame *f, const bool *fitted,
-                              const int viewport[4]) {
+void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                              const bool *fitted, const int viewport[4]) {
+    int overlay = settings->overlay;
     glDisable(GL_BLEND);
     glDepthFunc(depth_func(f->view, GL_LEQUAL));
     bool frustum = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_FRUSTUM;
     for (int l = 0; frustum && l < f->gpu->scene->light_count; l++)
         for (int layer = 0; fitted[l] && layer < r->maps[l].layer_count; layer++)
             shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
-    if (fitted[0] && (overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP))
+    bool inset = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP ||
+                 SHADOW_MAP_SHOWS_CASCADES(settings);
+    if (fitted[0] && inset)
         shadow_map_draw_inset(r, &r->maps[0], viewport);
     if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)
         shadow_map_draw_legend(r, viewport);

@@ -1,0 +1,404 @@
+/* cascades: cascaded shadow maps for directional lights.
+ *
+ * A directional light's one map spans everything the view sees: near the
+ * viewer a texel covers many pixels, far away many texels share a pixel
+ * (perspective aliasing). Cascades cut the view frustum into slices by
+ * depth and give each slice its own orthographic map, layer k of one
+ * SHADOW_MAP_ARRAY (demos/lib/shadow_map.h), so near slices get small
+ * texels (Engel, "Cascaded shadow maps", ShaderX5 2006; Dimitrov,
+ * "Cascaded shadow maps", NVIDIA 2007). The camera pass reads the layer
+ * whose slice holds the fragment's view depth and, over the last --blend
+ * of a slice, the next one at a share of the pixels rising to all of them
+ * (dithered, one layer filtered a pixel), so the change of texel size
+ * shows no seam.
+ *
+ * Where the slices end (--splits):
+ *   practical  Zhang, Sun, Xu & Lun, "Parallel-split shadow maps for
+ *              large-scale virtual environments", VRCIA 2006: lambda of
+ *              the logarithmic split plus 1 - lambda of the uniform one
+ *              (--lambda, 0.75 by default: log alone spends its first
+ *              slice on the metres in front of the near plane);
+ *   uniform    slices of equal depth: far ones get the texels;
+ *   log        equal ratios far / near: the split that keeps a texel's
+ *              size on screen the same in every slice;
+ *   sdsm       Lauritzen, Salvi & Lefohn, "Sample distribution shadow
+ *              maps", I3D 2011: the logarithmic split of the depth range
+ *              the camera actually sees rather than near..far. The paper
+ *              reduces the depth pre-pass on the GPU; here the range
+ *              comes from the frame's receiver points (the corners of
+ *              the visible receivers' boxes clipped to the view, which
+ *              bound every visible receiver fragment, so no fragment falls
+ *              outside it), already on the CPU: a read-back of the depth
+ *              buffer would stall the frame on the pre-pass, which the
+ *              library draws after the maps, and would make the maps
+ *              depend on the frame before.
+ *
+ * Each cascade's box (cascades_slice_box): in the light's view, around its
+ * slice of the view frustum (grown at its near end by the band where the
+ * slice before blends into it), clipped to the parts of the receivers'
+ * boxes inside the slice where they are tighter (a slice is mostly air
+ * above the ground: long_view, sdsm unstabilised, 0.033 -> 0.021 %
+ * misclassified), and deepened towards the light to every caster that
+ * overlaps it (shadow_map_nearest_caster: casters outside the view still
+ * cast); the library's caster culling then draws into each layer only the
+ * casters a read of that layer can meet. Biases are the library's, in
+ * texels of world size: each layer's texel is known to the shader (its
+ * box's scale), and the layer read sizes them.
+ *
+ * Stabilisation (on; --no-stabilize shows the shimmer): a box that
+ * follows the slice changes size as the camera turns and slides by
+ * fractions of a texel as it moves, so every shadow edge crawls. Bounded
+ * by the slice's bounding sphere instead, whose size depends only on the
+ * slice's depths and the projection, and with its corner snapped to whole
+ * texels of a light space fixed in the world, a box keeps its texel grid:
+ * a still receiver's shadow stays put while the camera moves or turns.
+ * (sdsm's slices follow what is seen, so their spheres change size: with
+ * sdsm stabilisation snaps the grid but cannot hold the texel's size.)
+ *
+ * Map size: --map-size gives each cascade's; auto, the default, is 1024
+ * a cascade (CASCADES_DEFAULT_SIZE): four cascades of 1024 hold the
+ * texels of one 2048 map, the size shadowmap's auto gives the standard
+ * scenes, so the comparison is at equal memory and depth-pass fill.
+ *
+ * Spot and point lights get shadowmap's uniform fit (a perspective map or
+ * a cube): cascades answer the perspective aliasing of a map that spans
+ * the whole view, and a spot's or point light's perspective already puts
+ * its texels near the light, where its shadows are sharpest; slicing it
+ * by the camera's depth would not follow where its texels go.
+ *
+ * For lectures (--overlay): shadowmap's overlays, and "cascades": each
+ * cascade's receivers tinted in its colour (the blend band mixing two)
+ * with every layer as an inset along the bottom (a spot's or point
+ * light's map as its inset); the HUD line gives the split distances.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cascades.h"
+#include "shadow_map.h"
+
+/* --map-size auto: each cascade's size (see the top). */
+#define CASCADES_DEFAULT_SIZE 1024
+/* Zhang et al.'s weight of the logarithmic split in the practical scheme. */
+#define CASCADES_DEFAULT_LAMBDA 0.75f
+/* The far fraction of a slice blended into the next layer. */
+#define CASCADES_DEFAULT_BLEND 0.1f
+/* Room at the box's edge beyond the kernel's reach: the snapped corner
+ * moves the slice's sphere by up to a texel inside the box. */
+#define CASCADES_SNAP_TEXELS 1.0f
+/* The sine between the view and the light below which the view, seen from
+ * the light, has no direction to align a box with. */
+#define CASCADES_MIN_VIEW_ACROSS_LIGHT 1e-3f
+
+static const char *const cascades_counts[] = {"4", "5", "6", "7", "8", "1", "2", "3", NULL};
+static const char *const cascades_schemes[] = {"practical", "uniform", "log", "sdsm", NULL};
+enum { CASCADES_PRACTICAL, CASCADES_UNIFORM, CASCADES_LOG, CASCADES_SDSM };
+static const char *const cascades_overlays[] = {SHADOW_MAP_OVERLAY_NAMES, SHADOW_MAP_ARRAY_OVERLAY_NAMES, NULL};
+
+static struct {
+    shadow_map_settings settings;
+    int count, scheme;        /* choices: cascades_counts, cascades_schemes */
+    float lambda, blend;      /* 0: the defaults */
+    bool no_stabilize, no_blend;
+    shadow_map_renderer maps;
+} cascades = {.settings.array_overlays = true};
+
+static const flags_param cascades_params[] = {
+    {"cascades", "how many slices of the view, each with its own map", GLFW_KEY_N, FLAGS_CHOICE,
+     .index = &cascades.count, .choices = cascades_counts},
+    {"splits", "where slices end: practical (Zhang et al. 2006), uniform, log, sdsm (the seen depth range)",
+     GLFW_KEY_S, FLAGS_CHOICE, .index = &cascades.scheme, .choices = cascades_schemes},
+    {"lambda", "practical splits: the logarithmic split's weight (0: 0.75; uniform is --splits uniform)", 0,
+     FLAGS_NUMBER, .number = &cascades.lambda, .fallback = CASCADES_DEFAULT_LAMBDA, .min = 0, .max = 1},
+    {"blend", "the far fraction of a slice blended into the next cascade (0: 0.1)", 0, FLAGS_NUMBER,
+     .number = &cascades.blend, .fallback = CASCADES_DEFAULT_BLEND, .min = 0, .max = 1},
+    {"blend", "a hard switch between cascades: a seam where the texel size changes", GLFW_KEY_B, FLAGS_TOGGLE,
+     .disabled = &cascades.no_blend},
+    {"stabilize", "shimmer: shadow edges crawl as the camera moves or turns", GLFW_KEY_Z, FLAGS_TOGGLE,
+     .disabled = &cascades.no_stabilize},
+    SHADOW_MAP_PARAMS(cascades.settings),
+    {"overlay", "for lectures: shadowmap's overlays, and each cascade tinted with its map as an inset", GLFW_KEY_V,
+     FLAGS_CHOICE, .index = &cascades.settings.overlay, .choices = cascades_overlays},
+};
+
+static float cascades_or(float value, float fallback) { return value != 0 ? value : fallback; }
+
+/* ---- the splits ---- */
+
+void cascades_splits(int count, float lambda, float near_plane, float far_plane, float *splits) {
+    for (int i = 0; i <= count; i++) {
+        float t = (float)i / (float)count;
+        float log_split = near_plane * powf(far_plane / near_plane, t);
+        float uniform_split = near_plane + (far_plane - near_plane) * t;
+        splits[i] = lambda * log_split + (1 - lambda) * uniform_split;
+    }
+    /* The ends exactly, whatever the rounding of powf. */
+    splits[0] = near_plane;
+    splits[count] = far_plane;
+}
+
+bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane,
+                          float far_plane, float *lo, float *hi) {
+    *lo = INFINITY;
+    *hi = -INFINITY;
+    for (int i = 0; i < n; i++) {
+        vec4 p = {points[i][0], points[i][1], points[i][2], 1}, v;
+        glm_mat4_mulv((vec4 *)view->view, p, v);
+        *lo = fminf(*lo, -v[2]);
+        *hi = fmaxf(*hi, -v[2]);
+    }
+    *lo = fmaxf(*lo, near_plane);
+    *hi = fminf(*hi, far_plane);
+    return *lo < *hi;
+}
+
+/* ---- a cascade's box ---- */
+
+/* The camera's axes (right, up, forward) from its view matrix's rows, and
+ * the tangents of its half-angles from its projection. */
+static void cascades_camera_axes(const camera_view *view, vec3 right, vec3 up, vec3 forward, float *tan_x,
+                                 float *tan_y) {
+    for (int k = 0; k < 3; k++) {
+        right[k] = view->view[k][0];
+        up[k] = view->view[k][1];
+        forward[k] = -view->view[k][2];
+    }
+    *tan_x = 1 / view->projection[0][0];
+    *tan_y = 1 / view->projection[1][1];
+}
+
+/* The slice's bounding sphere in light space: its centre on the view
+ * axis where the near and far corners are equally far (clamped to the
+ * far face's centre), from the depths and the half-angles alone. */
+static float cascades_slice_sphere(const camera_view *view, const mat4 light_view, float a, float b, vec3 center) {
+    vec3 right, up, forward, world;
+    float tan_x, tan_y;
+    cascades_camera_axes(view, right, up, forward, &tan_x, &tan_y);
+    float spread = tan_x * tan_x + tan_y * tan_y; /* corner distance from the axis, squared, per unit depth */
+    float c = fminf(0.5f * (a + b) * (1 + spread), b);
+    glm_vec3_copy((float *)view->eye, world);
+    glm_vec3_muladds(forward, c, world);
+    glm_mat4_mulv3((vec4 *)light_view, world, 1, center);
+    return sqrtf((b - c) * (b - c) + b * b * spread);
+}
+
+/* The slice's frustum: its eight corners, numbered as frustum_corners
+ * numbers them, and its view-projection (near a, far b). */
+static void cascades_slice_frustum(const camera_view *view, float a, float b, vec3 corners[8], mat4 view_projection) {
+    vec3 right, up, forward;
+    float tan_x, tan_y;
+    cascades_camera_axes(view, right, up, forward, &tan_x, &tan_y);
+    for (int c = 0; c < 8; c++) {
+        float depth = c & 4 ? b : a;
+        glm_vec3_copy((float *)view->eye, corners[c]);
+        glm_vec3_muladds(forward, depth, corners[c]);
+        glm_vec3_muladds(right, (c & 1 ? 1 : -1) * tan_x * depth, corners[c]);
+        glm_vec3_muladds(up, (c & 2 ? 1 : -1) * tan_y * depth, corners[c]);
+    }
+    mat4 projection;
+    glm_perspective(2 * atanf(tan_y), tan_x / tan_y, a, b, projection);
+    glm_mat4_mul(projection, (vec4 *)view->view, view_projection);
+}
+
+/* The light-space bounds of the slice's eight corners. */
+static void cascades_slice_bounds(const camera_view *view, const mat4 light_view, float a, float b, vec3 lo,
+                                  vec3 hi) {
+    vec3 corners[8];
+    mat4 view_projection;
+    cascades_slice_frustum(view, a, b, corners, view_projection);
+    frustum_view_bounds(light_view, (const float(*)[3])corners, 8, lo, hi);
+}
+
+/* lo..hi (empty, lo > hi, when called) grown to the light-space bounds of
+ * the parts of s's receivers' boxes inside the slice (frustum_box_part):
+ * where the slice's receivers are, tighter than the slice (a slice is
+ * mostly air above the ground); still empty where none is in it. */
+static void cascades_slice_receivers(const scene *s, const camera_view *view, const mat4 light_view, float a,
+                                     float b, vec3 lo, vec3 hi) {
+    vec3 corners[8];
+    mat4 view_projection;
+    float part[TECHNIQUE_MAX_PART_POINTS][3];
+    cascades_slice_frustum(view, a, b, corners, view_projection);
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 box_lo, box_hi, part_lo, part_hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], box_lo, box_hi);
+        int n = frustum_box_part(view_projection, (const vec3 *)corners, box_lo, box_hi, part,
+                                 TECHNIQUE_MAX_PART_POINTS);
+        if (n == 0)
+            continue;
+        frustum_view_bounds(light_view, (const float(*)[3])part, n, part_lo, part_hi);
+        glm_vec3_minv(lo, part_lo, lo);
+        glm_vec3_maxv(hi, part_hi, hi);
+    }
+}
+
+void cascades_slice_box(const camera_view *view, const mat4 light_view, float a, float b, int size, float margin,
+                        bool stabilize, const float receivers_lo[3], const float receivers_hi[3], float lo[3],
+                        float hi[3]) {
+    /* The inner size - 2 margin texels hold the slice. */
+    float grow = (float)size / ((float)size - 2 * margin);
+    if (stabilize) {
+        vec3 center;
+        float radius = cascades_slice_sphere(view, light_view, a, b, center) * grow;
+        float texel = 2 * radius / (float)size;
+        for (int k = 0; k < 3; k++) {
+            /* Across the light, the corner on the texel grid; along it the
+             * sphere's depth (which no texel grid follows). */
+            float corner = k < 2 ? floorf((center[k] - radius) / texel) * texel : center[k] - radius;
+            lo[k] = corner;
+            hi[k] = corner + 2 * radius;
+        }
+        return;
+    }
+    cascades_slice_bounds(view, light_view, a, b, lo, hi);
+    for (int k = 0; k < 3; k++) {
+        /* The receivers' bounds where they are tighter, unless the slice
+         * holds none of them (then the slice's own). */
+        float clipped_lo = fmaxf(lo[k], receivers_lo[k]), clipped_hi = fminf(hi[k], receivers_hi[k]);
+        if (clipped_lo < clipped_hi) {
+            lo[k] = clipped_lo;
+            hi[k] = clipped_hi;
+        }
+        if (k < 2) {
+            float middle = 0.5f * (lo[k] + hi[k]), half = 0.5f * (hi[k] - lo[k]) * grow;
+            lo[k] = middle - half;
+            hi[k] = middle + half;
+        }
+    }
+}
+
+/* ---- the fit ---- */
+
+/* The directional light's cascades: the splits, then each layer's box. */
+static bool cascades_fit_array(const technique_frame *f, const scene_light *l, shadow_map *m) {
+    const scene_camera *camera = &f->gpu->scene->camera;
+    int count = atoi(cascades_counts[cascades.count]);
+    float near_plane = camera->near_plane, far_plane = camera->far_plane;
+    float lambda = cascades.scheme == CASCADES_UNIFORM ? 0
+                   : cascades.scheme == CASCADES_PRACTICAL ? cascades_or(cascades.lambda, CASCADES_DEFAULT_LAMBDA)
+                                                           : 1;
+    if (cascades.scheme == CASCADES_SDSM &&
+        !cascades_seen_depths(f->view, f->receivers, f->receiver_count, near_plane, far_plane, &near_plane,
+                              &far_plane))
+        return false;
+    int size = shadow_map_settings_size(&cascades.settings);
+    m->size = size ? size : CASCADES_DEFAULT_SIZE;
+    m->kind = SHADOW_MAP_ARRAY;
+    m->layer_count = count;
+    m->casters = NULL;
+    m->orthographic = true;
+    m->texel_kind = SHADOW_MAP_TEXEL_ORTHOGRAPHIC;
+    m->cascade_blend = cascades.no_blend ? 0 : cascades_or(cascades.blend, CASCADES_DEFAULT_BLEND);
+    cascades_splits(count, lambda, near_plane, far_plane, m->cascade_split);
+    /* A light space fixed in the world (its origin at the world's), so
+     * that snapped boxes keep one texel grid from frame to frame. */
+    const vec3 origin = GLM_VEC3_ZERO_INIT;
+    frustum_look_along(origin, l->direction, m->cascade_view);
+    /* Unstabilised, the boxes' axes follow the view direction as the light
+     * sees it (where the view is not along the light): a slice is long
+     * along it, and a box aligned with it wastes fewer texels (long_view,
+     * sdsm: 0.048 -> 0.033 % misclassified). */
+    vec3 right, up, forward;
+    float tan_x, tan_y;
+    cascades_camera_axes(f->view, right, up, forward, &tan_x, &tan_y);
+    vec3 across;
+    glm_vec3_cross(forward, (float *)l->direction, across);
+    if (cascades.no_stabilize && glm_vec3_norm(across) > CASCADES_MIN_VIEW_ACROSS_LIGHT)
+        glm_look((float *)origin, (float *)l->direction, forward, m->cascade_view);
+    float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY) + cascades.settings.normal_texels +
+                   CASCADES_SNAP_TEXELS;
+    for (int k = 0; k < count; k++) {
+        const float *split = m->cascade_split;
+        /* From where the slice before starts blending into this one. */
+        float start = k > 0 ? split[k] - m->cascade_blend * (split[k] - split[k - 1]) : split[k];
+        vec3 lo, hi;
+        vec3 receivers_lo = {INFINITY, INFINITY, INFINITY}, receivers_hi = {-INFINITY, -INFINITY, -INFINITY};
+        mat4 projection;
+        if (cascades.no_stabilize) /* a stabilised box is its slice's sphere, whatever the receivers */
+            cascades_slice_receivers(f->gpu->scene, f->view, m->cascade_view, start, split[k + 1], receivers_lo,
+                                     receivers_hi);
+        cascades_slice_box(f->view, m->cascade_view, start, split[k + 1], m->size, margin, !cascades.no_stabilize,
+                           receivers_lo, receivers_hi, lo, hi);
+        float near_depth, far_depth;
+        shadow_map_depth_range(-shadow_map_nearest_caster(f->gpu->scene, m->cascade_view, lo, hi, true), -lo[2],
+                               &near_depth, &far_depth);
+        glm_ortho(lo[0], hi[0], lo[1], hi[1], near_depth, far_depth, projection);
+        shadow_map_cascade_layer(m, k, projection);
+        if (k == 0) {
+            m->near_plane = near_depth;
+            m->texel_scale = fmaxf(hi[0] - lo[0], hi[1] - lo[1]) / (float)m->size;
+        }
+        m->far_plane = far_depth;
+    }
+    return true;
+}
+
+/* Cascades for a directional light; shadowmap's uniform fit for the
+ * others (see the top). */
+static bool cascades_fit(const technique_frame *f, int light, shadow_map *m, const float (*receivers)[3],
+                         int receiver_count) {
+    const scene_light *l = &f->gpu->scene->lights[light];
+    if (l->type != SCENE_LIGHT_DIRECTIONAL)
+        return shadow_map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
+    return cascades_fit_array(f, l, m);
+}
+
+/* ---- the technique ---- */
+
+static bool cascades_init(const render_scene *gpu) {
+    return shadow_map_init(&cascades.maps, &cascades.settings, gpu);
+}
+
+static void cascades_destroy(void) { shadow_map_destroy(&cascades.maps); }
+
+static void cascades_render(const technique_frame *f) {
+    shadow_map_render(&cascades.maps, &cascades.settings, f, cascades_fit);
+}
+
+/* Light 0's map, and for cascades the split distances and the world size
+ * of the nearest cascade's texel. */
+static void cascades_describe(char *out, size_t size) {
+    const shadow_map *m = &cascades.maps.maps[0];
+    int n = snprintf(out, size, "light 0: %s map %dx%d", shadow_map_kind_name(m->kind), m->size, m->size);
+    if (m->kind != SHADOW_MAP_ARRAY)
+        return;
+    n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,
+                  cascades_schemes[cascades.scheme], cascades.no_stabilize ? "" : ", stabilized");
+    for (int k = 0; k <= m->layer_count && (size_t)n < size; k++)
+        n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
+    if ((size_t)n < size)
+        snprintf(out + n, size - (size_t)n, "; nearest texel %.3g", m->texel_scale);
+}
+
+/* The sweep: each split scheme at the default 4 x 1024, then the count
+ * and size at equal texels (2 x 2048 against 4 x 1024) and beyond, and
+ * stabilisation and the blend off. */
+static const char *const cascades_bench_configs[] = {
+    "",
+    "uniform: --splits uniform",
+    "log: --splits log",
+    "sdsm: --splits sdsm",
+    "2x2048: --cascades 2 --map-size 2048",
+    "4x2048: --map-size 2048",
+    "8x1024: --cascades 8",
+    "--no-stabilize",
+    "--no-blend",
+};
+
+const technique cascades_technique = {
+    .name = "cascades",
+    .title = "cascaded shadow maps (Engel 2006; splits: Zhang et al. 2006, SDSM: Lauritzen et al. 2011)",
+    .params = cascades_params,
+    .param_count = (int)(sizeof cascades_params / sizeof *cascades_params),
+    .bench_configs = cascades_bench_configs,
+    .bench_config_count = (int)(sizeof cascades_bench_configs / sizeof *cascades_bench_configs),
+    .init = cascades_init,
+    .render = cascades_render,
+    .destroy = cascades_destroy,
+    .describe = cascades_describe,
+    .gallery_config = "--overlay cascades",
+};

@@ -1,0 +1,36 @@
+/* cascades: cascaded shadow maps (see cascades.c). Exposed for its tests:
+ * the split schemes, the seen depth range sdsm splits, and a cascade's
+ * box (its fit and stabilisation). No GL. */
+#ifndef CASCADES_H
+#define CASCADES_H
+
+#include <stdbool.h>
+#include "camera.h"
+
+/* The split distances of `count` slices of near..far, splits[0..count]
+ * (view depths, splits[0] = near, splits[count] = far): the practical
+ * scheme of Zhang et al. 2006, lambda of the logarithmic split (near
+ * (far / near)^(i / count)) plus 1 - lambda of the uniform one (near +
+ * (far - near) i / count); lambda 0 is the uniform scheme, 1 the
+ * logarithmic. */
+void cascades_splits(int count, float lambda, float near_plane, float far_plane, float *splits);
+
+/* The view depths of `view` that the points (the frame's receiver points)
+ * span, within near..far: sdsm's range. False where no point lies in it. */
+bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane,
+                          float far_plane, float *lo, float *hi);
+
+/* The box in light view space (light_view: world -> light space,
+ * orthonormal, looking along -z) of the slice of view's frustum between
+ * view depths a and b, for a map `size` texels on a side whose outer
+ * `margin` texels on each side are kept for the kernel's taps.
+ * stabilize: the slice's bounding sphere (its size depends on a, b and the
+ * projection alone, never on where the camera looks), the box's corner on
+ * a whole number of texels of light space; else the slice's bounds,
+ * clipped to the bounds of the receivers in the slice (receivers_lo..hi,
+ * light space) where those are tighter. */
+void cascades_slice_box(const camera_view *view, const mat4 light_view, float a, float b, int size, float margin,
+                        bool stabilize, const float receivers_lo[3], const float receivers_hi[3], float lo[3],
+                        float hi[3]);
+
+#endif

@@ -1,0 +1,112 @@
+// The camera pass's array maps (shaders/shadowmap.frag): a directional
+// light's cascades (demos/cascades.c), one orthographic layer per slice of
+// the view. Light i's map is u_maps_array[i] (on light i's unit: a light
+// has one kind of map), u_light_matrix[i] its light view, and layer k's
+// box is element i * SHADOW_MAP_MAX_ARRAY_LAYERS + k of the cascade
+// arrays: a scale and an offset from light view to the layer's clip space
+// (a diagonal and a translation, not a mat4 each: half the uniforms).
+
+uniform sampler2DArrayShadow u_maps_array[SCENE_MAX_LIGHTS];
+// xyz: scale and offset; w: the view depths where the layer's slice ends and starts.
+uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];
+uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];
+uniform int u_cascade_count[SCENE_MAX_LIGHTS];
+uniform float u_cascade_blend; // the far fraction of a slice mixed into the next layer (0: a hard switch)
+uniform vec4 u_view_depth;     // the camera's view depth of a world point p: dot(this, vec4(p, 1))
+
+// The layer the kernel reads: set with the point by shadowmap_visibility.
+float shadowmap_array_layer;
+
+// offset: in map coordinates.
+float shadowmap_kernel_read(sampler2DArrayShadow map, vec2 offset) {
+    return texture(map, vec4(shadowmap_point.xy + offset, shadowmap_array_layer,
+                             shadowmap_point.z + dot(shadowmap_gradient, offset)));
+}
+
+#define SHADOWMAP_SAMPLER sampler2DArrayShadow
+#include "shadowmap_light.glsl"
+#include "shadowmap_flat.glsl"
+#undef SHADOWMAP_SAMPLER
+
+// Which of light i's layers a point at view depth `depth` reads: x the
+// layer whose slice holds it (the first before the first split, the last
+// beyond the last), y the weight of the next layer, rising from 0 to 1
+// over the blend band at the slice's far end (0 on the last layer).
+vec2 shadowmap_cascade_at(int i, vec3 p) {
+    float depth = dot(u_view_depth, vec4(p, 1.0));
+    int base = i * SHADOW_MAP_MAX_ARRAY_LAYERS, last = u_cascade_count[i] - 1, k = 0;
+    while (k < last && depth > u_cascade_scale[base + k].w)
+        k++;
+    float end = u_cascade_scale[base + k].w, band = u_cascade_blend * (end - u_cascade_offset[base + k].w);
+    float next = k < last && band > 0.0 ? clamp((depth - (end - band)) / band, 0.0, 1.0) : 0.0;
+    return vec2(float(k), next);
+}
+
+// Layer k's scale from light view to map coordinates (0..1) and depth.
+vec3 shadowmap_cascade_scale(int i, int k) {
+    return 0.5 * u_cascade_scale[i * SHADOW_MAP_MAX_ARRAY_LAYERS + k].xyz;
+}
+
+vec3 shadowmap_cascade_uvz(int i, int k, vec3 light_p) {
+    vec3 offset = u_cascade_offset[i * SHADOW_MAP_MAX_ARRAY_LAYERS + k].xyz;
+    return light_p * shadowmap_cascade_scale(i, k) + 0.5 * offset + 0.5;
+}
+
+// A layer's texel in world units: its box over the map's size (the wider
+// side's texel, where a box is not square).
+float shadowmap_cascade_texel(int i, int k) {
+    vec3 scale = shadowmap_cascade_scale(i, k);
+    return 1.0 / (u_map_size[i] * min(abs(scale.x), abs(scale.y)));
+}
+
+// The layer this pixel reads: in the blend band the next one where its
+// weight exceeds the pixel's hash (a dithered blend: on average the mix
+// of the two, for one kernel's reads: a second kernel in a branch costs
+// every pixel on llvmpipe, which runs both sides of a branch; long_view at
+// 1280x720 took 85 ms a frame against shadowmap's 53 with it, 32 against
+// 33 without). By the fragment's own view depth (v_position), not the
+// biased point's.
+int shadowmap_cascade_layer(int i) {
+    vec2 cascade = shadowmap_cascade_at(i, v_position);
+    return int(cascade.x) + (cascade.y > float(shadowmap_pixel_hash()) * SHADOWMAP_HASH_TO_FRACTION ? 1 : 0);
+}
+
+// The biases are measured in the texel of the layer read.
+float shadowmap_texel_world(sampler2DArrayShadow map, int i, int texel_kind, vec3 p) {
+    return shadowmap_cascade_texel(i, shadowmap_cascade_layer(i));
+}
+
+// Layer k's filtered comparison at p, with the receiver plane from the
+// screen derivatives of p in light view (per layer: its scale).
+float shadowmap_visibility(sampler2DArrayShadow map, int i, vec3 p, float depth_bias, bool needed) {
+    vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz; /* an orthonormal view: w is 1 */
+    vec3 dx = dFdx(light_p), dy = dFdy(light_p);           /* derivatives: before any branch */
+    if (!needed)
+        return 1.0;
+    int k = shadowmap_cascade_layer(i);
+    vec3 scale = shadowmap_cascade_scale(i, k);
+    shadowmap_array_layer = float(k);
+    return shadowmap_flat_filter(map, shadowmap_cascade_uvz(i, k, light_p),
+                                 shadowmap_depth_gradient(dx * scale, dy * scale), u_map_size[i], depth_bias);
+}
+
+vec2 shadowmap_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {
+    vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz;
+    return shadowmap_cascade_uvz(i, int(shadowmap_cascade_at(i, p).x), light_p).xy * u_map_size[i];
+}
+
+// The lecture's cascade overlay: each layer's colour, the blend band
+// mixing two (SHADOW_MAP_MAX_ARRAY_LAYERS of them), laid over light i's
+// share with SHADOWMAP_CASCADE_TINT of its weight.
+const vec3 shadowmap_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS] = vec3[](
+    vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25), vec3(0.3, 0.45, 1.0), vec3(1.0, 0.9, 0.2),
+    vec3(1.0, 0.3, 1.0), vec3(0.2, 1.0, 1.0), vec3(1.0, 0.6, 0.2), vec3(0.65, 0.4, 1.0));
+const float SHADOWMAP_CASCADE_TINT = 0.6;
+
+vec3 shadowmap_cascade_tint(int i, vec3 c) {
+    vec2 cascade = shadowmap_cascade_at(i, v_position);
+    int k = int(cascade.x);
+    vec3 color = mix(shadowmap_cascade_colors[k], shadowmap_cascade_colors[min(k + 1, SHADOW_MAP_MAX_ARRAY_LAYERS - 1)],
+                     cascade.y);
+    return mix(c, c * color, SHADOWMAP_CASCADE_TINT);
+}
