@@ -279,6 +279,18 @@ static unsigned technique_lights_near_view(const scene *s, const camera_view *vi
     return lights;
 }
 
+/* The frame's receiver points and their bounds. */
+static void technique_frame_set_receivers(technique_frame *f, const float (*points)[3], int count) {
+    f->receivers = points;
+    f->receiver_count = count;
+    glm_vec3_fill(f->receivers_lo, INFINITY);
+    glm_vec3_fill(f->receivers_hi, -INFINITY);
+    for (int i = 0; i < count; i++) {
+        glm_vec3_minv(f->receivers_lo, (float *)points[i], f->receivers_lo);
+        glm_vec3_maxv(f->receivers_hi, (float *)points[i], f->receivers_hi);
+    }
+}
+
 /* One pass over what the view sees: each object's part inside the frustum
  * gives the receivers' points (for fitting maps and culling casters) and
  * the lights that reach something visible (scene_light_reaches_box on the
@@ -309,14 +321,7 @@ static void technique_host_visible(technique_host *h, const camera_view *view, t
             technique_append_points(h->receivers, &n, TECHNIQUE_MAX_RECEIVER_POINTS, (const float(*)[3])part, count);
     }
     f->lights = reach_skip ? reached : all;
-    f->receivers = (const float(*)[3])h->receivers;
-    f->receiver_count = n;
-    glm_vec3_fill(f->receivers_lo, INFINITY);
-    glm_vec3_fill(f->receivers_hi, -INFINITY);
-    for (int i = 0; i < n; i++) {
-        glm_vec3_minv(f->receivers_lo, h->receivers[i], f->receivers_lo);
-        glm_vec3_maxv(f->receivers_hi, h->receivers[i], f->receivers_hi);
-    }
+    technique_frame_set_receivers(f, (const float(*)[3])h->receivers, n);
 }
 
 /* NDC -> the pixel at or beyond it, on an axis of `size` pixels. */
@@ -383,8 +388,8 @@ static void technique_host_light_passes(technique_host *h, const camera_view *vi
     }
 }
 
-bool technique_host_frame(technique_host *h, const camera_view *view, target *target, double time,
-                          int visibility_of) {
+bool technique_host_frame(technique_host *h, const camera_view *view, const camera_view *fit_view, target *target,
+                          double time, int visibility_of) {
     const scene *s = h->gpu->scene;
     h->counts = (technique_counts){0};
     h->objects_in_view = render_cull_view(h->gpu, view, h->skips);
@@ -401,5 +406,13 @@ bool technique_host_frame(technique_host *h, const camera_view *view, target *ta
     technique_host_light_passes(h, view, &f);
     for (int l = 0; l < s->light_count; l++)
         h->counts.lights_skipped += !technique_light_on(&f, l);
+    technique_frame fit = f;
+    if (fit_view) {
+        fit.view = fit_view;
+        technique_frame_set_receivers(
+            &fit, (const float(*)[3])h->fit_receivers,
+            technique_receiver_points(s, fit_view, h->fit_receivers, TECHNIQUE_MAX_RECEIVER_POINTS));
+        f.fit = &fit;
+    }
     return technique_render_frame(h->technique, &f, target, visibility_of);
 }

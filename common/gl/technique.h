@@ -112,6 +112,13 @@ typedef struct technique_frame {
     technique_counts *counts;
     int width, height;
     double time; /* seconds */
+    /* The frame the shadow maps are fitted to: NULL, this one. Else the
+     * same scene and lights seen from another camera, whose view and
+     * receivers (and nothing else) a fit takes, while everything is still
+     * drawn from this frame's (technique_host_frame's fit_view): a map
+     * held as the frame before fitted it, so that two pictures of one
+     * view differ only by how the fit moved (the benchmark's shimmer). */
+    const struct technique_frame *fit;
 } technique_frame;
 
 /* The corners of the part of every receiver's box of `s` inside the
@@ -243,6 +250,7 @@ typedef struct technique_host {
     mat4 last_view_projection;
     scene_light last_lights[SCENE_MAX_LIGHTS];
     float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
+    float fit_receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3]; /* fit_view's */
 } technique_host;
 
 /* technique_init of t on gpu, under skips; the next frame is its first. */
@@ -251,8 +259,10 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
 void technique_host_stop(technique_host *h);
 /* One frame: the view culled (render_cull_view), the lights that reach it,
  * the receivers it sees, what changed since the last frame, then
- * technique_render_frame. The caller has set gpu->scene's lights. */
-bool technique_host_frame(technique_host *h, const camera_view *view, target *target, double time,
-                          int visibility_of);
+ * technique_render_frame. The caller has set gpu->scene's lights.
+ * fit_view: NULL, or the camera the shadow maps are fitted to instead
+ * (technique_frame.fit). */
+bool technique_host_frame(technique_host *h, const camera_view *view, const camera_view *fit_view, target *target,
+                          double time, int visibility_of);
 
 #endif

@@ -56,6 +56,7 @@ static struct {
     bool compare_given;    /* --compare: every step of a tour too */
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
+    bool hold_fit;         /* --hold-fit: the maps fitted to the frame before's camera */
     render_skips skips;
     const char *scene_path, *screenshot, *dump_dir, *shader_dir, *record_path;
     int light;
@@ -116,6 +117,8 @@ static const flags_param app_flags[] = {
     {"motion", "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), or the\ncamera forward and back along its view (dolly)", 0,
      FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
     {"animate", "--motion light (space in the window)", 0, FLAGS_SWITCH, .on = &app.animate},
+    {"hold-fit", "shadow maps fitted to the frame before's camera, drawn\nfrom this frame's: with --dump, what only the fit's\nmotion changes (the benchmark's shimmer)", 0,
+     FLAGS_SWITCH, .on = &app.hold_fit},
     {"skip", "no skips at all: every pass draws the whole scene,\nevery light, every caster, every frame anew; the same\npicture at the full cost", 0,
      FLAGS_TOGGLE, .disabled = &app.skips.no_skip},
     {"view-cull", "camera passes draw objects outside the view too", GLFW_KEY_K, FLAGS_TOGGLE,
@@ -228,23 +231,33 @@ static const tour_step *app_step_path(void) {
     return s && tour_step_has_path(s) ? s : NULL;
 }
 
+/* The camera at `time` (the motion's, or a tour step's path), and its view. */
+static void app_camera_at(double time, scene_camera *camera, camera_view *view) {
+    motion_camera(app_motion(), time, &app.base_camera, camera);
+    const tour_step *path = app_step_path();
+    if (path)
+        tour_step_camera(path, time, app.scene.origin, camera);
+    camera_view_compute(camera, (float)app.target.width / (float)app.target.height, view);
+}
+
 /* This frame's lights and camera (app.time), and the view. */
 static void app_view(camera_view *view) {
     scene *s = &app.scene;
     motion_lights(app_motion(), app.time, app.base_camera.target, app.base_lights, s->light_count, s->lights);
-    motion_camera(app_motion(), app.time, &app.base_camera, &s->camera);
-    const tour_step *path = app_step_path();
-    if (path)
-        tour_step_camera(path, app.time, s->origin, &s->camera);
-    camera_view_compute(&s->camera, (float)app.target.width / (float)app.target.height, view);
+    app_camera_at(app.time, &s->camera, view);
 }
 
 /* visibility_of: -1 for the picture, K for light K's visibility (see
- * capture.h). */
+ * capture.h). With --hold-fit the maps are fitted to the camera of the
+ * frame before (a headless frame's step, 1/60 s). */
 static bool app_render_frame(int visibility_of) {
-    camera_view view;
+    camera_view view, fit_view;
     app_view(&view);
-    return technique_host_frame(&app.host, &view, &app.target, app.time, visibility_of);
+    scene_camera held;
+    if (app.hold_fit)
+        app_camera_at(app.time - 1 / APP_HEADLESS_FPS, &held, &fit_view);
+    return technique_host_frame(&app.host, &view, app.hold_fit ? &fit_view : NULL, &app.target, app.time,
+                                visibility_of);
 }
 
 /* What is saved, recorded and shown: compare mode's four cells, else the

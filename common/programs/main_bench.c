@@ -41,15 +41,17 @@
  * frame that is dumped, and cached under a name that says the motion and
  * that time.
  *
- * Shimmer (shadowdiff.h): under the motions that move the camera (camera,
- * dolly), each configuration also dumps the frame before the last timed
- * one, and the reference is traced for it too (once per scene, cached as
- * the other), and results.csv's shimmer_percent is the share of followed
- * pixels whose decision changed between the two where the truth's did not
- * (report.md's "shimmer %"). Under static and light it is "-": with the
- * camera still every pixel follows itself, and a moving light moves the
- * true shadows, so the figure would say little about the technique's
- * stability under the viewer's motion, which is what it is for.
+ * Shimmer: under the motions that move the camera (camera, dolly), each
+ * configuration also dumps its last timed frame with the maps held as the
+ * frame before fitted them (technique_host_frame's fit_view: the app's
+ * --hold-fit), and results.csv's shimmer_percent is the share of compared
+ * pixels whose decision the fit's motion alone changed (shadowdiff's
+ * shimmer of the two dumps of one view against its one reference:
+ * every pixel follows itself and the truth is the same, so the figure is
+ * free of the sub-pixel resampling that two views' pixels add; README,
+ * "Temporal stability"; report.md's "shimmer %"). Under static and light
+ * it is "-": with the camera still nothing is refitted for the viewer,
+ * and a moving light moves the true shadows.
  *
  * Skips (render.h) are on, as in the app; --no-skip turns them off, and
  * --skips-compare runs every configuration twice, skips on then off, each
@@ -144,6 +146,8 @@ static struct {
     scene_camera base_camera;
     render_scene gpu;
     camera_view view;
+    bool hold_fit;        /* the maps fitted to fit_view (shimmer's held dump) */
+    camera_view fit_view; /* the camera of the frame before the one rendered */
     double time; /* of the frame being rendered, seconds */
     const technique *current;
     technique_host host;
@@ -267,7 +271,8 @@ static void bench_move(double time) {
 static double bench_last_time(void) { return (bench.warmup + bench.frames - 1) / BENCH_FRAME_RATE; }
 
 static bool bench_host_frame(technique_host *h, int visibility_of) {
-    return technique_host_frame(h, &bench.view, &bench.target, bench.time, visibility_of);
+    return technique_host_frame(h, &bench.view, bench.hold_fit ? &bench.fit_view : NULL, &bench.target, bench.time,
+                                visibility_of);
 }
 
 /* The current technique's frame (capture_dump's callback). */
@@ -345,9 +350,6 @@ static bool bench_newer(const char *path, const char *than) {
     return stat(path, &a) == 0 && stat(than, &b) == 0 && a.st_mtime >= b.st_mtime;
 }
 
-/* The time of the frame before the last timed one: shimmer's frame 0. */
-static double bench_previous_time(void) { return bench_last_time() - 1 / BENCH_FRAME_RATE; }
-
 /* Whether the run measures shimmer (see the top). */
 static bool bench_shimmers(void) { return motion_moves_camera((motion_kind)bench.motion); }
 
@@ -376,38 +378,43 @@ static bool bench_reference(const char *scene_path, const char *name, double tim
  * skips setting no_skip, interleaved with the floor's frames unless it is
  * the floor. */
 /* The current technique's dumps after its timed frames: of the last timed
- * frame, and, where shimmer is measured, first of the frame before it
- * (rendered in their order); previous is then left empty. */
-static bool bench_dumps(dump_frame *previous, dump_frame *last) {
-    *previous = (dump_frame){0};
+ * frame, and, where shimmer is measured, first of that frame with the maps
+ * held as the frame before fitted them; held is otherwise left empty. */
+static bool bench_dumps(dump_frame *held, dump_frame *last) {
+    *held = (dump_frame){0};
     if (bench_shimmers()) {
-        bench_move(bench_previous_time());
-        if (!capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, previous))
+        scene_camera camera;
+        motion_camera((motion_kind)bench.motion, bench_last_time() - 1 / BENCH_FRAME_RATE, &bench.base_camera,
+                      &camera);
+        camera_view_compute(&camera, (float)bench.width / (float)bench.height, &bench.fit_view);
+        bench.hold_fit = true;
+        bool held_ok = capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, held);
+        bench.hold_fit = false;
+        if (!held_ok)
             return false;
-        bench_move(bench_last_time());
     }
     if (capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, last))
         return true;
-    dump_frame_free(previous);
+    dump_frame_free(held);
     return false;
 }
 
-/* The row's error figures against the references (`references[0]` the
- * previous frame's, used where shimmer is measured). A shimmer that gives
- * no figure (its line says why) leaves the row's "-". */
-static bool bench_measure(bench_row *row, const dump_frame references[2], const dump_frame *previous,
+/* The row's error figures against the reference, and where shimmer is
+ * measured the held dump's against the last's. A shimmer that gives no
+ * figure (its line says why) leaves the row's "-". */
+static bool bench_measure(bench_row *row, const dump_frame *reference, const dump_frame *held,
                           const dump_frame *last) {
-    if (!shadowdiff_compare(&references[1], last, NULL, &row->error, NULL))
+    if (!shadowdiff_compare(reference, last, NULL, &row->error, NULL))
         return false;
     shadowdiff_shimmer_result shimmer;
     row->shimmer_measured =
-        bench_shimmers() && shadowdiff_shimmer(&references[0], previous, &references[1], last, NULL, &shimmer);
+        bench_shimmers() && shadowdiff_shimmer(reference, held, reference, last, NULL, &shimmer);
     row->shimmer_percent = row->shimmer_measured ? shimmer.shimmer_percent : 0;
     return true;
 }
 
 static bool bench_configuration(const char *scene_name, const char *config, bool no_skip,
-                                const dump_frame references[2]) {
+                                const dump_frame *reference) {
     if (bench.row_count == BENCH_MAX_ROWS) {
         fprintf(stderr, "bench: more than %d configurations\n", BENCH_MAX_ROWS);
         return false;
@@ -416,7 +423,7 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config, .no_skip = no_skip};
     bench.skips = (render_skips){.no_skip = no_skip};
     technique_host *floor_host = bench.current->cost_floor ? NULL : &bench.floor_host;
-    dump_frame previous, dump;
+    dump_frame held, dump;
     /* A host whose start was tried is stopped: destroy follows even a
      * failed init. The floor runs at its defaults. */
     bool configured =
@@ -424,15 +431,15 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     bool ok = configured && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips);
     bool floor_tried = ok && floor_host;
     ok = ok && (!floor_host || technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips)) &&
-         bench_time_frames(row, floor_host) && bench_dumps(&previous, &dump);
+         bench_time_frames(row, floor_host) && bench_dumps(&held, &dump);
     if (floor_tried)
         technique_host_stop(floor_host);
     if (configured)
         technique_host_stop(&bench.host);
     if (!ok)
         return false;
-    ok = bench_measure(row, references, &previous, &dump);
-    dump_frame_free(&previous);
+    ok = bench_measure(row, reference, &held, &dump);
+    dump_frame_free(&held);
     dump_frame_free(&dump);
     bench.row_count += ok;
     return ok;
@@ -455,10 +462,8 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     memcpy(bench.base_lights, bench.scene.lights, sizeof bench.base_lights);
     bench.base_camera = bench.scene.camera;
     bool ok = render_scene_create(&bench.gpu, &bench.scene);
-    /* The previous frame's reference (shimmer's), then the last's. */
-    dump_frame references[2] = {{0}};
-    ok = ok && (!bench_shimmers() || bench_reference(scene_path, name, bench_previous_time(), &references[0])) &&
-         bench_reference(scene_path, name, bench_last_time(), &references[1]);
+    dump_frame reference = {0};
+    ok = ok && bench_reference(scene_path, name, bench_last_time(), &reference);
     for (int t = 0; ok && t < registry_technique_count; t++) {
         bench.current = registry_techniques[t];
         for (int c = 0; ok && bench_selected(bench.current) && c < bench_config_count(bench.current); c++) {
@@ -467,12 +472,11 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
                 bool no_skip = bench.no_skip_settings[s];
                 fprintf(stderr, "  [%d/%d] %s %s%s\n", ++*done, total, bench.current->name, config,
                         bench.skips_compare ? (no_skip ? " (skips off)" : " (skips on)") : "");
-                ok = bench_configuration(name, config, no_skip, references);
+                ok = bench_configuration(name, config, no_skip, &reference);
             }
         }
     }
-    dump_frame_free(&references[0]);
-    dump_frame_free(&references[1]);
+    dump_frame_free(&reference);
     render_scene_destroy(&bench.gpu);
     scene_free(&bench.scene);
     return ok;
@@ -662,10 +666,10 @@ static bool bench_write_report(void) {
                            : "GPU time is what the frame costs the GPU; CPU time adds submission and the wait "
                              "in glFinish.",
             bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench_last_time(),
-            bench_shimmers() ? "of the compared pixels followed from the frame before the last timed one (by the "
-                               "reference's world positions; a point hidden there is not followed), those whose "
-                               "decision changed where the truth's did not (shadowdiff's shimmer): how much the "
-                               "shadows crawl or flicker as the camera moves."
+            bench_shimmers() ? "of the compared pixels of the last timed frame, those whose decision changes when "
+                               "the maps are held as the frame before fitted them (the same view drawn twice, "
+                               "--hold-fit): how much the shadows crawl as the camera moves, free of the "
+                               "resampling two views' pixels add."
                              : "\"-\": the camera does not move (it is measured under --motion camera and dolly).");
     if (bench.skips_compare)
         fprintf(f, "\nEach row's floor frames ran under the row's own skips setting; the fronts, the plots and "

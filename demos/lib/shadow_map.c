@@ -584,8 +584,9 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
                     st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
         glUniform1f(p->normal_offset, st->normal_texels);
         glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
-        /* The camera's view depth of a world point: minus its view-space z. */
-        const mat4 *view = &f->view->view;
+        /* The camera's view depth of a world point: minus its view-space
+         * z, as the fit measured the cascades' splits. */
+        const mat4 *view = &shadow_map_fit_frame(f)->view->view;
         glUniform4f(p->view_depth, -(*view)[0][2], -(*view)[1][2], -(*view)[2][2], -(*view)[3][2]);
         for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
             if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
@@ -634,6 +635,8 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
 
 /* ---- the frame ---- */
 
+const technique_frame *shadow_map_fit_frame(const technique_frame *f) { return f->fit ? f->fit : f; }
+
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit) {
     const scene *s = f->gpu->scene;
@@ -644,14 +647,15 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     int size = shadow_map_settings_size(settings);
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
-    for (int l = 0; l < s->light_count && f->receiver_count > 0; l++) {
+    const technique_frame *fit_frame = shadow_map_fit_frame(f);
+    for (int l = 0; l < s->light_count && fit_frame->receiver_count > 0; l++) {
         if (!technique_light_on(f, l))
             continue;
         shadow_map *m = &r->maps[l];
         m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
-        fitted[l] = fit(f, l, m, f->receivers, f->receiver_count);
+        fitted[l] = fit(fit_frame, l, m, fit_frame->receivers, fit_frame->receiver_count);
         if (fitted[l] && !size && m->kind != SHADOW_MAP_ARRAY) {
-            int sample_count = shadow_map_light_samples(r, f, l);
+            int sample_count = shadow_map_light_samples(r, fit_frame, l);
             shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
         }
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))

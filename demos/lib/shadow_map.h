@@ -476,6 +476,9 @@ typedef struct shadow_map_renderer {
     int grazing_count; /* of sample_light's: the hits left out as edge-on to it */
 } shadow_map_renderer;
 
+/* The frame a fit takes: f->fit, where the host holds the fit to another
+ * camera (technique.h), else f itself. */
+const technique_frame *shadow_map_fit_frame(const technique_frame *f);
 typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, shadow_map *m,
                                         const float (*receivers)[3], int receiver_count);
 
