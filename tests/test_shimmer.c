@@ -12,8 +12,8 @@
  *   a shadow map of a fixed 256 refits to the view every frame, its texels
  *   slide over the receivers: above CRAWLING_MIN_PERCENT (0.131, 0.081 %);
  *   cascades, stabilised (the default): at most the issue's
- *   STABLE_MAX_PERCENT (0.000, 0.003 %), and with --no-stabilize above
- *   UNSTABLE_MIN_PERCENT (0.024, 0.067 %): the test sees the difference;
+ *   STABLE_MAX_PERCENT (0.000, 0.000 %), and with --no-stabilize above
+ *   it (0.017, 0.044 %): the test sees the difference;
  *   shadow volumes fit nothing: exactly 0. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -33,8 +33,9 @@
 #define CRAWLING_MIN_PERCENT 0.03
 /* The goal for stabilised cascades. */
 #define STABLE_MAX_PERCENT 0.01
-/* Half the least measured without stabilisation. */
-#define UNSTABLE_MIN_PERCENT 0.012
+/* Without stabilisation, above the goal that stabilised cascades meet
+ * (measured at least 0.017 %): the test sees the difference. */
+#define UNSTABLE_MIN_PERCENT STABLE_MAX_PERCENT
 
 static const char *const motions[] = {"camera", "dolly"};
 
