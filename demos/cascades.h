@@ -20,17 +20,34 @@ void cascades_splits(int count, float lambda, float near_plane, float far_plane,
 bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane,
                           float far_plane, float *lo, float *hi);
 
-/* The box in light view space (light_view: world -> light space,
- * orthonormal, looking along -z) of the slice of view's frustum between
- * view depths a and b, for a map `size` texels on a side whose outer
- * `margin` texels on each side are kept for the kernel's taps.
- * stabilize: the slice's bounding sphere (its size depends on a, b and the
- * projection alone, never on where the camera looks), the box's corner on
- * a whole number of texels of light space; else the slice's bounds,
- * clipped to the bounds of the receivers in the slice (receivers_lo..hi,
- * light space) where those are tighter. */
+/* How a cascade's box keeps its texel grid while the camera moves
+ * (--stabilize, in this order; cascades.c's top says why each). */
+typedef enum cascades_stabilize {
+    CASCADES_STABILIZE_STEPS,  /* the tight box, its sides and heading in steps, its corner on whole texels */
+    CASCADES_STABILIZE_SPHERE, /* the slice's bounding sphere, its corner on whole texels */
+    CASCADES_STABILIZE_OFF,    /* the tight box as it falls */
+} cascades_stabilize;
+
+/* The cascades' light view (world -> light space, orthonormal, looking
+ * along -z): along `direction`, its origin the world's; but for the
+ * sphere, turned about the light's axis so that view's direction, as the
+ * light sees it, is +y (the heading, which the boxes are aligned with),
+ * by steps a multiple of a sixteenth of a turn. Where the view is along
+ * the light it has no heading: not turned. */
+void cascades_light_view(const float direction[3], const camera_view *view, cascades_stabilize stabilize,
+                         mat4 light_view);
+
+/* The box in light view space (light_view: cascades_light_view's) of the
+ * slice of view's frustum between view depths a and b, for a map `size`
+ * texels on a side whose outer `margin` texels on each side are kept for
+ * the kernel's taps. Steps and off: the slice's bounds, clipped to the
+ * bounds of the receivers in the slice (receivers_lo..hi, light space)
+ * where those are tighter; by steps each side rounded up to a power of
+ * 2^(1/8) and the corner on a whole number of texels. The sphere: the
+ * slice's bounding sphere (its size depends on a, b and the projection
+ * alone, never on where the camera looks), the corner on whole texels. */
 void cascades_slice_box(const camera_view *view, const mat4 light_view, float a, float b, int size, float margin,
-                        bool stabilize, const float receivers_lo[3], const float receivers_hi[3], float lo[3],
-                        float hi[3]);
+                        cascades_stabilize stabilize, const float receivers_lo[3], const float receivers_hi[3],
+                        float lo[3], float hi[3]);
 
 #endif

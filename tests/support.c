@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <cmocka.h>
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -151,14 +152,45 @@ const char *support_release_stderr(void) {
     return captured;
 }
 
+/* A test process traces each reference once: the references it traced,
+ * by what decides them (the scene file's text, which a test may rewrite
+ * under one path, and the size), FNV-1a hashed. */
+#define SUPPORT_MAX_REFERENCES 256
+#define SUPPORT_FNV_OFFSET 14695981039346656037ull
+#define SUPPORT_FNV_PRIME 1099511628211ull
+
+static uint64_t support_hash(uint64_t hash, const char *bytes, size_t length) {
+    for (size_t i = 0; i < length; i++)
+        hash = (hash ^ (unsigned char)bytes[i]) * SUPPORT_FNV_PRIME;
+    return hash;
+}
+
+/* out/test/reference/HASH: the reference of `scene` at `size`, traced
+ * unless this process traced it before. */
+static void support_reference(const char *scene, const char *size, char *dir, size_t capacity) {
+    static uint64_t traced[SUPPORT_MAX_REFERENCES];
+    static int traced_count;
+    size_t length;
+    char *text = path_read_text(scene, SUPPORT_MAX_SCENE_BYTES, &length);
+    assert_non_null(text);
+    uint64_t key = support_hash(support_hash(SUPPORT_FNV_OFFSET, text, length), size, strlen(size) + 1);
+    free(text);
+    snprintf(dir, capacity, "out/test/reference/%016llx", (unsigned long long)key);
+    for (int i = 0; i < traced_count; i++)
+        if (traced[i] == key)
+            return;
+    assert_int_equal(support_dump("raytrace", scene, size, dir), 0);
+    if (traced_count < SUPPORT_MAX_REFERENCES)
+        traced[traced_count++] = key;
+}
+
 shadowdiff_result support_measure_dumps(const char *program, const char *scene, const char *size, const char *flags,
                                         const char *name, dump_frame *reference, dump_frame *test,
                                         unsigned char **heatmap) {
     char reference_dir[256], test_dir[256], test_flags[1024];
-    snprintf(reference_dir, sizeof reference_dir, "out/test/%s/%s_reference", program, name);
+    support_reference(scene, size, reference_dir, sizeof reference_dir);
     snprintf(test_dir, sizeof test_dir, "out/test/%s/%s", program, name);
     snprintf(test_flags, sizeof test_flags, "%s %s", size, flags);
-    assert_int_equal(support_dump("raytrace", scene, size, reference_dir), 0);
     assert_int_equal(support_dump(program, scene, test_flags, test_dir), 0);
     assert_true(dump_read(reference, reference_dir));
     assert_true(dump_read(test, test_dir));

@@ -50,7 +50,8 @@ const char *support_verbose_line(const char *program, const char *scene, const c
 int support_dump(const char *program, const char *scene, const char *flags, const char *dir);
 /* The ray-traced reference and PROGRAM's dump of `scene` at `size`
  * ("--size WxH", or "" for 640x360) with `flags`, in
- * out/test/PROGRAM/NAME_reference and out/test/PROGRAM/NAME, compared with
+ * out/test/reference/HASH (traced once a process for each scene text and
+ * size) and out/test/PROGRAM/NAME, compared with
  * shadowdiff's rules over every object; prints the figures. Fails the
  * running cmocka test when a program fails. support_measure_dumps hands
  * back the dumps and the heat map (red false shadow, blue false lit) for

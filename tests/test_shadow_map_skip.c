@@ -2,12 +2,13 @@
  * "Caching"): the culling test in process on hand-made layers, then the
  * programs. A caster between the light and the receivers is needed; one
  * beside the map, behind the light or behind the receivers is not; the
- * kernel's reach keeps casters a few texels beside the receivers. And
- * skipping never changes a decision: build/shadowmap and build/psm dump the
- * same visibility, depth and picture with skips on and with --no-skip on
- * the 1000-object city, static and with the lights or the camera moving,
- * while the skips cull casters and a static run reuses every layer from
- * its second frame on. */
+ * kernel's reach keeps casters a few texels beside the receivers. Then
+ * the programs on the 1000-object city: the skips cull most casters of
+ * every map technique, static and with the lights or the camera moving
+ * (that they change no decision there is tests/test_skip.c's, for every
+ * technique on the same runs), shadowmap's dumps are the same with skips
+ * on and with --no-skip under kernels of every reach and depth, and a
+ * static run reuses every layer from its second frame on. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -24,6 +25,9 @@
 #define CITY "assets/scenes/city_1000.json"
 #define CITY_LIGHTS 7
 #define CITY_CASTERS 1000
+/* tests/test_skip.c's size for the city's moving runs: what is culled
+ * does not depend on the pixels, and a small frame keeps the run short. */
+#define CITY_SIZE "320x180"
 /* The hand-made spot: at height LIGHT_Y looking straight down, 90 degrees,
  * near 1, far 20, a MAP_SIZE map; the receiver a square ground patch. */
 #define LIGHT_Y 10.0f
@@ -166,7 +170,7 @@ static void test_cube_face(void **state) {
 static const char *run_city(const char *program, int frames, const char *flags, const char *dir) {
     static char text[16384];
     char command[2048];
-    int n = snprintf(command, sizeof command, "%s --scene " CITY " --size 640x360 --frames %d --verbose %s",
+    int n = snprintf(command, sizeof command, "%s --scene " CITY " --size " CITY_SIZE " --frames %d --verbose %s",
                      support_program(program), frames, flags);
     if (dir)
         snprintf(command + n, sizeof command - (size_t)n, " --dump %s", dir);
@@ -198,25 +202,17 @@ static void line_counts(const char *line, int *culled, int *counted, int *reused
     assert_int_equal(sscanf(cache, "map layers reused %d of %d", reused, layers), 2);
 }
 
-static void test_dumps_identical(void **state) {
+/* Most of the city casts into no light's layers that matter. */
+static void test_most_casters_culled(void **state) {
     (void)state;
     for (size_t p = 0; p < sizeof programs / sizeof *programs; p++)
         for (size_t m = 0; m < sizeof motions / sizeof *motions; m++) {
-            char on[256], off[256], flags[256];
-            snprintf(on, sizeof on, OUT "/%s_%s_on", programs[p], motions[m]);
-            snprintf(off, sizeof off, OUT "/%s_%s_off", programs[p], motions[m]);
+            char flags[256];
             snprintf(flags, sizeof flags, "--motion %s", motions[m]);
             int culled, counted, reused, layers;
-            line_counts(run_city(programs[p], 3, flags, on), &culled, &counted, &reused, &layers);
-            snprintf(flags, sizeof flags, "--motion %s --no-skip", motions[m]);
-            run_city(programs[p], 3, flags, off);
-            const char *differs = support_first_difference(on, off, dump_files, sizeof dump_files / sizeof *dump_files);
-            if (differs)
-                fail_msg("%s, %s: %s differs between %s and %s", programs[p], motions[m], differs, on, off);
-            /* Most of the city casts into no light's layers that matter. */
+            line_counts(run_city(programs[p], 3, flags, NULL), &culled, &counted, &reused, &layers);
             assert_true(counted > 0 && 2 * culled > counted);
-            printf("    %s, %s: dumps identical with and without skips; casters culled %d of %d\n", programs[p],
-                   motions[m], culled, counted);
+            printf("    %s, %s: casters culled %d of %d\n", programs[p], motions[m], culled, counted);
         }
 }
 
@@ -259,7 +255,7 @@ int main(void) {
         cmocka_unit_test(test_kernel_margin),
         cmocka_unit_test(test_cube_face),
         cmocka_unit_test(test_static_reuses_every_layer),
-        cmocka_unit_test(test_dumps_identical),
+        cmocka_unit_test(test_most_casters_culled),
         cmocka_unit_test(test_dumps_identical_other_kernels),
     };
     return cmocka_run_group_tests_name("shadow map skips", tests, NULL, NULL);
