@@ -78,9 +78,13 @@ for build in "$@"; do
         if [ -n "${TEST_PRELOAD:-}" ] && grep -q 'context_create(' "tests/$(basename "$t").c"; then
             run=(env LD_PRELOAD="$TEST_PRELOAD" "$t")
         fi
+        started=$SECONDS
         log=$("${run[@]}" 2>&1)
         status=$?
         printf '%s\n' "$log"
+        # Its time, for keeping make test within CI's budget (the README's
+        # "Tests" says how long a run takes).
+        echo "== $t: $((SECONDS - started)) s"
         p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
         f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
         s=$(sed -n 's/^\[  SKIPPED \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)

@@ -111,20 +111,40 @@ static void test_sdsm_within_seen_range(void **state) {
 
 /* long_view's sun, for the boxes. */
 static const float sun_direction[3] = {0.5657f, -0.7071f, 0.4243f};
+/* The slice the box tests fit, between these view depths, among
+ * receivers everywhere (their bounds clip nothing). */
+#define SLICE_NEAR 5.0f
+#define SLICE_FAR 20.0f
+
+/* street_view(yaw), its light view stabilised as `stabilize` says and its
+ * free one. */
+static void street_light_views(float yaw, cascades_stabilize stabilize, camera_view *view, mat4 light_view,
+                               mat4 free_view) {
+    street_view(yaw, view);
+    cascades_light_view(sun_direction, view, stabilize, light_view);
+    cascades_light_view(sun_direction, view, CASCADES_STABILIZE_OFF, free_view);
+}
+
+/* The test slice's box in light_view. */
+static void slice_box(const camera_view *view, const mat4 light_view, cascades_stabilize stabilize, float lo[3],
+                      float hi[3]) {
+    const float receivers_lo[3] = {-1e3f, -1e3f, -1e3f}, receivers_hi[3] = {1e3f, 1e3f, 1e3f};
+    cascades_slice_box(view, light_view, SLICE_NEAR, SLICE_FAR, SIZE, MARGIN_TEXELS, stabilize, receivers_lo,
+                       receivers_hi, lo, hi);
+}
 
 /* A box corner's coordinate k on the texel grid. */
 static void assert_on_grid(float coordinate, float texel) {
     assert_true(fabs(coordinate / texel - round(coordinate / texel)) < GRID_TOLERANCE_TEXELS);
 }
 
-/* The slice's corners (depths a..b of view) lie inside lo..hi, to the
+/* The test slice's corners lie inside lo..hi, to the
  * precision of view->corners (CORNERS_RELATIVE of the box's size: the
  * box's light-space depth is the slice's own, with no margin). */
-static void assert_slice_inside(const camera_view *view, const mat4 light_view, float a, float b, const float lo[3],
-                                const float hi[3]) {
+static void assert_slice_inside(const camera_view *view, const mat4 light_view, const float lo[3], const float hi[3]) {
     float size = CORNERS_RELATIVE / RELATIVE * (hi[0] - lo[0]);
     for (int c = 0; c < 8; c++) {
-        float depth = c & 4 ? b : a, t = (depth - NEAR_PLANE) / (FAR_PLANE - NEAR_PLANE), p[3], q[3];
+        float depth = c & 4 ? SLICE_FAR : SLICE_NEAR, t = (depth - NEAR_PLANE) / (FAR_PLANE - NEAR_PLANE), p[3], q[3];
         for (int k = 0; k < 3; k++)
             p[k] = view->corners[c & 3][k] + t * (view->corners[(c & 3) | 4][k] - view->corners[c & 3][k]);
         glm_mat4_mulv3((vec4 *)light_view, p, 1, q);
@@ -140,21 +160,16 @@ static void assert_slice_inside(const camera_view *view, const mat4 light_view, 
  * slice; unstabilised, its size follows the view (the test bites). */
 static void test_sphere_box(void **state) {
     (void)state;
-    const float receivers_lo[3] = {-1e3f, -1e3f, -1e3f}, receivers_hi[3] = {1e3f, 1e3f, 1e3f};
     static const float yaws[] = {0, 7.3f, 45, 130};
     float first_lo[3], first_size = 0, first_free_size = 0;
     bool free_changed = false;
     for (size_t y = 0; y < sizeof yaws / sizeof *yaws; y++) {
         camera_view view;
-        street_view(yaws[y], &view);
         mat4 light_view, free_view;
-        cascades_light_view(sun_direction, &view, CASCADES_STABILIZE_SPHERE, light_view);
-        cascades_light_view(sun_direction, &view, CASCADES_STABILIZE_OFF, free_view);
+        street_light_views(yaws[y], CASCADES_STABILIZE_SPHERE, &view, light_view, free_view);
         float lo[3], hi[3], free_lo[3], free_hi[3];
-        cascades_slice_box(&view, light_view, 5, 20, SIZE, MARGIN_TEXELS, CASCADES_STABILIZE_SPHERE, receivers_lo,
-                           receivers_hi, lo, hi);
-        cascades_slice_box(&view, free_view, 5, 20, SIZE, MARGIN_TEXELS, CASCADES_STABILIZE_OFF, receivers_lo,
-                           receivers_hi, free_lo, free_hi);
+        slice_box(&view, light_view, CASCADES_STABILIZE_SPHERE, lo, hi);
+        slice_box(&view, free_view, CASCADES_STABILIZE_OFF, free_lo, free_hi);
         float size = hi[0] - lo[0], texel = size / SIZE;
         fprintf(stderr, "    yaw %5.1f: sphere's box %.6g x %.6g at (%.6g, %.6g) texels; free %.6g x %.6g\n",
                 yaws[y], size, hi[1] - lo[1], lo[0] / texel, lo[1] / texel, free_hi[0] - free_lo[0],
@@ -171,7 +186,7 @@ static void test_sphere_box(void **state) {
             assert_on_grid(lo[k] - first_lo[k], texel);
         }
         free_changed = free_changed || fabsf(free_hi[0] - free_lo[0] - first_free_size) > 0.01f * first_free_size;
-        assert_slice_inside(&view, light_view, 5, 20, lo, hi);
+        assert_slice_inside(&view, light_view, lo, hi);
     }
     assert_true(free_changed);
 }
@@ -190,16 +205,13 @@ static double seen_heading_deg(const mat4 light_view, const camera_view *view) {
  * corner on whole texels; the camera walking keeps its size and grid. */
 static void test_stepped_box(void **state) {
     (void)state;
-    const float receivers_lo[3] = {-1e3f, -1e3f, -1e3f}, receivers_hi[3] = {1e3f, 1e3f, 1e3f};
     const double heading_step_deg = 360.0 / 16, side_step = pow(2, 1.0 / 8);
     static const float yaws[] = {0, 3, 7.3f, 45, 130};
     mat4 first_view;
     for (size_t y = 0; y < sizeof yaws / sizeof *yaws; y++) {
         camera_view view;
-        street_view(yaws[y], &view);
         mat4 light_view, free_view;
-        cascades_light_view(sun_direction, &view, CASCADES_STABILIZE_STEPS, light_view);
-        cascades_light_view(sun_direction, &view, CASCADES_STABILIZE_OFF, free_view);
+        street_light_views(yaws[y], CASCADES_STABILIZE_STEPS, &view, light_view, free_view);
         double heading = seen_heading_deg(light_view, &view);
         fprintf(stderr, "    yaw %5.1f: heading %+.3f degrees off the stepped light view's\n", yaws[y], heading);
         assert_true(fabs(seen_heading_deg(free_view, &view)) < 1e-3);
@@ -210,10 +222,8 @@ static void test_stepped_box(void **state) {
             for (int i = 0; i < 16; i++)
                 assert_true(fabsf(light_view[i / 4][i % 4] - first_view[i / 4][i % 4]) < 1e-6f);
         float lo[3], hi[3], free_lo[3], free_hi[3];
-        cascades_slice_box(&view, light_view, 5, 20, SIZE, MARGIN_TEXELS, CASCADES_STABILIZE_STEPS, receivers_lo,
-                           receivers_hi, lo, hi);
-        cascades_slice_box(&view, light_view, 5, 20, SIZE, MARGIN_TEXELS, CASCADES_STABILIZE_OFF, receivers_lo,
-                           receivers_hi, free_lo, free_hi);
+        slice_box(&view, light_view, CASCADES_STABILIZE_STEPS, lo, hi);
+        slice_box(&view, light_view, CASCADES_STABILIZE_OFF, free_lo, free_hi);
         for (int k = 0; k < 2; k++) {
             double side = hi[k] - lo[k], steps = log2(side) * 8;
             assert_true(fabs(steps - round(steps)) < 1e-3);
@@ -221,15 +231,14 @@ static void test_stepped_box(void **state) {
             assert_on_grid(lo[k], (float)side / SIZE);
             assert_true(lo[k] <= free_lo[k] && hi[k] >= free_hi[k]);
         }
-        assert_slice_inside(&view, light_view, 5, 20, lo, hi);
+        assert_slice_inside(&view, light_view, lo, hi);
         /* A step of the walk: the same sides, the corner moved by whole texels. */
         camera_view walked = view;
         vec3 step = {0.37f, 0, -0.61f};
         glm_translate(walked.view, (vec3){-step[0], -step[1], -step[2]});
         glm_vec3_add(walked.eye, step, walked.eye);
         float walked_lo[3], walked_hi[3];
-        cascades_slice_box(&walked, light_view, 5, 20, SIZE, MARGIN_TEXELS, CASCADES_STABILIZE_STEPS, receivers_lo,
-                           receivers_hi, walked_lo, walked_hi);
+        slice_box(&walked, light_view, CASCADES_STABILIZE_STEPS, walked_lo, walked_hi);
         for (int k = 0; k < 2; k++) {
             assert_relative(hi[k] - lo[k], walked_hi[k] - walked_lo[k]);
             assert_on_grid(walked_lo[k] - lo[k], (hi[k] - lo[k]) / SIZE);
