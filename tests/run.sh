@@ -3,51 +3,30 @@
 # the sanitizer run, build-san/) and ends with one line "N passed, N failed".
 # A program that dies before cmocka's summary counts as one failure.
 #
-# ONLY="test_NAME ..." runs those programs alone.
+# ONLY="test_NAME ..." runs those programs alone. TEST_JOBS=N runs N at
+# once (the processors by default).
 #
-# Given several builds (make test: plain and sanitizer), it runs them at
-# once, each in its own directory out/run/BUILD that links to everything
-# here but has its own out/ (the tests write under out/test/): CI has two
-# cores, and much of a test's time is one thread's (starting programs,
-# compiling shaders, building the reference's BVH, writing dumps). Each
-# build's log is printed whole when both are done.
+# Every (build, program) pair is a job, run by a pool of TEST_JOBS workers
+# (CI has two cores; much of a test's time is one thread's: starting
+# programs, compiling shaders, building the reference's BVH, writing
+# dumps), the sanitizer build's first, since they take longest. Each job
+# runs in its own directory out/run/BUILD/PROGRAM that links to everything
+# here but has its own out/ (the tests write under out/test/, and two
+# programs must not share it). Its log, ending with its time, is printed
+# whole when every job is done, in the builds' order.
 set -u
 cd "$(dirname "$0")/.."
 
-# The last line, "N passed, N failed[, N skipped]", and the exit status.
-summarize() {
-    if [ "$skipped" -gt 0 ]; then
-        echo "$passed passed, $failed failed, $skipped skipped"
-    else
-        echo "$passed passed, $failed failed"
-    fi
-    [ "$failed" -eq 0 ]
-    exit
-}
-if [ $# -gt 1 ]; then
-    mkdir -p out/run
-    for build in "$@"; do
-        root=out/run/$build
-        rm -rf "$root" && mkdir -p "$root"
-        for entry in *; do
-            [ "$entry" = out ] || ln -s "$PWD/$entry" "$root/$entry"
-        done
-        (cd "$root" && bash tests/run.sh "$build") >"out/run/$build.log" 2>&1 &
+# One job: `run.sh --job BUILD PROGRAM`, from the repository root; writes
+# out/run/BUILD/PROGRAM.log and, as its last line, "passed failed skipped".
+if [ "${1:-}" = --job ]; then
+    build=$2 name=$3
+    root=out/run/$build/$name
+    rm -rf "$root" && mkdir -p "$root"
+    for entry in *; do
+        [ "$entry" = out ] || ln -s "$PWD/$entry" "$root/$entry"
     done
-    wait
-    passed=0 failed=0 skipped=0
-    for build in "$@"; do
-        cat "out/run/$build.log"
-        summary=$(sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed\(, \([0-9]*\) skipped\)\{0,1\}$/\1 \2 \4/p' \
-            "out/run/$build.log" | tail -n 1)
-        read -r p f s <<<"$summary"
-        [ -n "${p:-}" ] || { echo "$build: the run ended without its summary line"; f=1; }
-        passed=$((passed + ${p:-0})) failed=$((failed + ${f:-0})) skipped=$((skipped + ${s:-0}))
-    done
-    summarize
-fi
-passed=0 failed=0 skipped=0
-for build in "$@"; do
+    cd "$root"
     export BUILD=$build
     case $build in
     *san*)
@@ -64,30 +43,27 @@ for build in "$@"; do
         export TEST_PRELOAD=$preload
         export ASAN_OPTIONS=detect_leaks=1
         export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
-        export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ;;
-    *) unset TEST_PRELOAD ;;
+        export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+        # Sweeps take every Nth case here (support_sweep_stride).
+        export TEST_SANITIZER=1 ;;
+    *) unset TEST_PRELOAD TEST_SANITIZER ;;
     esac
-    for t in "$build"/tests/test_*; do
-        [ -x "$t" ] || continue
-        # ONLY="test_a test_b": those programs alone (a quick check).
-        [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $(basename "$t") "* ]] || continue
+    t=$build/tests/$name
+    # A test that makes a GL context in its own process (not only in the
+    # programs it runs) needs the same preload itself.
+    run=("$t")
+    if [ -n "${TEST_PRELOAD:-}" ] && grep -q 'context_create(' "tests/$name.c"; then
+        run=(env LD_PRELOAD="$TEST_PRELOAD" "$t")
+    fi
+    started=$SECONDS
+    log=$("${run[@]}" 2>&1)
+    status=$?
+    p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
+    f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
+    s=$(sed -n 's/^\[  SKIPPED \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
+    {
         echo "== $t"
-        # A test that makes a GL context in its own process (not only in
-        # the programs it runs) needs the same preload itself.
-        run=("$t")
-        if [ -n "${TEST_PRELOAD:-}" ] && grep -q 'context_create(' "tests/$(basename "$t").c"; then
-            run=(env LD_PRELOAD="$TEST_PRELOAD" "$t")
-        fi
-        started=$SECONDS
-        log=$("${run[@]}" 2>&1)
-        status=$?
         printf '%s\n' "$log"
-        # Its time, for keeping make test within CI's budget (the README's
-        # "Tests" says how long a run takes).
-        echo "== $t: $((SECONDS - started)) s"
-        p=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
-        f=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
-        s=$(sed -n 's/^\[  SKIPPED \] \([0-9]*\) test.*/\1/p' <<<"$log" | tail -n 1)
         if [ -z "$p" ] && [ -z "$f" ]; then
             echo "$t: exited with status $status before reporting its results"
             f=1
@@ -95,7 +71,49 @@ for build in "$@"; do
             echo "$t: exited with status $status after its tests (sanitizer report above?)"
             f=1
         fi
-        passed=$((passed + ${p:-0})) failed=$((failed + ${f:-0})) skipped=$((skipped + ${s:-0}))
+        # Its time, for keeping make test within CI's budget (README, "Tests").
+        echo "== $t: $((SECONDS - started)) s"
+        echo "${p:-0} ${f:-0} ${s:-0}"
+    } >"../$name.log"
+    exit 0
+fi
+
+# The jobs: the sanitizer builds' programs first, then the others'.
+jobs=()
+for build in $(printf '%s\n' "$@" | grep san) $(printf '%s\n' "$@" | grep -v san); do
+    for t in "$build"/tests/test_*; do
+        [ -x "$t" ] || continue
+        name=$(basename "$t")
+        # ONLY="test_a test_b": those programs alone (a quick check).
+        [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $name "* ]] || continue
+        jobs+=("$build $name")
     done
 done
-summarize
+for build in "$@"; do
+    mkdir -p "out/run/$build"
+    rm -f "out/run/$build"/test_*.log
+done
+printf '%s\n' "${jobs[@]}" | xargs -P "${TEST_JOBS:-$(nproc)}" -L 1 bash tests/run.sh --job
+
+passed=0 failed=0 skipped=0
+for build in "$@"; do
+    for job in "${jobs[@]}"; do
+        read -r job_build name <<<"$job"
+        [ "$job_build" = "$build" ] || continue
+        log=out/run/$build/$name.log
+        if [ ! -f "$log" ]; then
+            echo "$build/tests/$name: no log (the job did not run)"
+            failed=$((failed + 1))
+            continue
+        fi
+        sed '$d' "$log"
+        read -r p f s < <(tail -n 1 "$log")
+        passed=$((passed + p)) failed=$((failed + f)) skipped=$((skipped + s))
+    done
+done
+if [ "$skipped" -gt 0 ]; then
+    echo "$passed passed, $failed failed, $skipped skipped"
+else
+    echo "$passed passed, $failed failed"
+fi
+[ "$failed" -eq 0 ]

@@ -24,6 +24,8 @@ const char *support_program(const char *name) {
     return out;
 }
 
+int support_sweep_stride(void) { return getenv("TEST_SANITIZER") ? SUPPORT_SANITIZER_STRIDE : 1; }
+
 int support_run(const char *command, char *stderr_text, size_t capacity) {
     /* One file per test process: two test programs may run at once. */
     char err_path[64], full[4096];

@@ -23,6 +23,15 @@
 /* "$BUILD/NAME", behind `env LD_PRELOAD=...` when run.sh asks for it
  * (the sanitizer run; see run.sh). */
 const char *support_program(const char *name);
+/* The sweeps' stride: 1, or SUPPORT_SANITIZER_STRIDE in the sanitizer
+ * pass (run.sh sets TEST_SANITIZER). A sweep repeats one code path with
+ * other numbers (light directions, cases of a table); the plain pass takes
+ * every case, the sanitizer pass, which runs every program 2 to 3 times
+ * slower, every Nth, starting with the first: the paths are the same, and
+ * make test stays within CI's budget. A power of two: a table of odd
+ * length swept by pairs is then reached everywhere. */
+#define SUPPORT_SANITIZER_STRIDE 8
+int support_sweep_stride(void);
 /* Runs `command` through the shell with stderr captured; returns the exit
  * status (-1 if it did not exit normally). */
 int support_run(const char *command, char *stderr_text, size_t capacity);
