@@ -511,7 +511,7 @@ static void test_volumes_counts_have_legend(void **state) {
     int w, h;
     unsigned char *image = image_read_png("out/test/volumes_counts_legend.png", &w, &h);
     assert_non_null(image);
-    int top = h - HUD_MARGIN - legend_height_units(NULL, 1 + VOLUME_OVERLAY_COUNT_STEPS);
+    int top = h - HUD_MARGIN - legend_height_units(1 + VOLUME_OVERLAY_COUNT_STEPS);
     for (int k = 0; k < VOLUME_OVERLAY_COUNT_STEPS; k++) {
         int y = top + HUD_MARGIN + (1 + k) * HUD_LINE_UNITS + HUD_LETTER_UNITS / 2, found = 0;
         for (int x = w / 2; x < w; x++) {

@@ -23,13 +23,12 @@ int legend_width_units(const legend_line *lines, int count) {
     return LEGEND_SWATCH_UNITS + LEGEND_SWATCH_GAP_UNITS + hud_text_width(text) + 2 * HUD_MARGIN;
 }
 
-int legend_height_units(const legend_line *lines, int count) {
-    (void)lines;
+int legend_height_units(int count) {
     return count * HUD_LINE_UNITS + 2 * HUD_MARGIN;
 }
 
 int legend_scale_to_fit(const legend_line *lines, int count, int width, int height, int framebuffer_height) {
-    int width_units = legend_width_units(lines, count), height_units = legend_height_units(lines, count);
+    int width_units = legend_width_units(lines, count), height_units = legend_height_units(count);
     for (int scale = hud_scale_for(framebuffer_height); scale >= 1; scale--)
         if (width_units * scale <= width && height_units * scale <= height)
             return scale;
@@ -50,7 +49,7 @@ void legend_draw(const legend_line *lines, int count, int x, int y, int scale) {
     legend_join(lines, count, text, sizeof text);
     int column = (LEGEND_SWATCH_UNITS + LEGEND_SWATCH_GAP_UNITS) * scale;
     int text_width = (hud_text_width(text) + 2 * HUD_MARGIN) * scale;
-    int height = legend_height_units(lines, count) * scale;
+    int height = legend_height_units(count) * scale;
 
     glEnable(GL_SCISSOR_TEST);
     legend_rect(viewport, x, y, column + text_width, height, legend_panel_color);
@@ -79,6 +78,6 @@ void legend_draw_corner(const legend_line *lines, int count) {
     int scale = hud_scale_for(viewport[3]), margin = HUD_MARGIN * scale;
     int fitted = legend_scale_to_fit(lines, count, viewport[2] - 2 * margin, viewport[3] - 2 * margin, viewport[3]);
     scale = fitted ? fitted : 1;
-    int width = legend_width_units(lines, count) * scale, height = legend_height_units(lines, count) * scale;
+    int width = legend_width_units(lines, count) * scale, height = legend_height_units(count) * scale;
     legend_draw(lines, count, viewport[2] - margin - width, viewport[3] - margin - height, scale);
 }

@@ -31,9 +31,9 @@ typedef struct legend_line {
 /* The panel's colour, for a caller that fills a larger place with it. */
 extern const float legend_panel_color[3];
 
-/* The legend's size in font units. */
+/* The legend's size in font units (its height: `count` lines). */
 int legend_width_units(const legend_line *lines, int count);
-int legend_height_units(const legend_line *lines, int count);
+int legend_height_units(int count);
 /* The largest scale, at most hud_scale_for(framebuffer_height), at which
  * the legend fits width x height pixels; 0 if it fits at none. */
 int legend_scale_to_fit(const legend_line *lines, int count, int width, int height, int framebuffer_height);
