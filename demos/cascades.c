@@ -121,8 +121,9 @@
 static const char *const cascades_counts[] = {"4", "5", "6", "7", "8", "1", "2", "3", NULL};
 static const char *const cascades_schemes[] = {"practical", "uniform", "log", "sdsm", NULL};
 enum { CASCADES_PRACTICAL, CASCADES_UNIFORM, CASCADES_LOG, CASCADES_SDSM };
-/* In cascades_stabilize's order (cascades.h). */
+/* In cascades_stabilize's order (cascades.h), and what the HUD says of each. */
 static const char *const cascades_stabilizers[] = {"steps", "sphere", "off", NULL};
+static const char *const cascades_stabilized[] = {", stabilized by steps", ", stabilized by the sphere", ""};
 static const char *const cascades_overlays[] = {SHADOW_MAP_OVERLAY_NAMES, SHADOW_MAP_ARRAY_OVERLAY_NAMES, NULL};
 
 static struct {
@@ -365,7 +366,7 @@ void cascades_light_view(const float direction[3], const camera_view *view, casc
  * few hundredths of a unit high, which a box the size of the slice's
  * sphere gives one row of texels (a sun 0.1 and 0.5 degrees up,
  * build/stress grazing_*_directional: 1.00 and 0.87 % misclassified),
- * so its boxes are the receivers' instead, stable or not. */
+ * so it gets the steps' boxes, fitted to the receivers, instead. */
 static bool cascades_grazing(const technique_frame *f, int light) {
     int measured = shadow_map_light_samples(&cascades.maps, f, light);
     return cascades.maps.grazing_count > measured;
@@ -459,10 +460,7 @@ static void cascades_describe(char *out, size_t size) {
     n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,
                   cascades_schemes[cascades.scheme],
                   cascades.grazed[0] ? ", stabilized by steps: the light grazes what is seen"
-                  : cascades.stabilize == CASCADES_STABILIZE_OFF ? ""
-                                                                 : cascades.stabilize == CASCADES_STABILIZE_STEPS
-                                                                       ? ", stabilized by steps"
-                                                                       : ", stabilized by the sphere");
+                                     : cascades_stabilized[cascades.stabilize]);
     for (int k = 0; k <= m->layer_count && (size_t)n < size; k++)
         n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
     if ((size_t)n < size)

@@ -29,11 +29,12 @@ typedef enum cascades_stabilize {
 } cascades_stabilize;
 
 /* The cascades' light view (world -> light space, orthonormal, looking
- * along -z): along `direction`, its origin the world's; but for the
- * sphere, turned about the light's axis so that view's direction, as the
- * light sees it, is +y (the heading, which the boxes are aligned with),
- * by steps a multiple of a sixteenth of a turn. Where the view is along
- * the light it has no heading: not turned. */
+ * along -z): along `direction`, its origin the world's. By steps and off
+ * it is then turned about the light's axis so that view's direction, as
+ * the light sees it, is +y (the heading, which the boxes are aligned
+ * with), by steps to a multiple of a sixteenth of a turn; the sphere's
+ * is not turned, nor is any where the view is along the light (no
+ * heading). */
 void cascades_light_view(const float direction[3], const camera_view *view, cascades_stabilize stabilize,
                          mat4 light_view);
 

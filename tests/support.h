@@ -31,7 +31,12 @@ const char *support_program(const char *name);
  * make test stays within CI's budget. A power of two: a table of odd
  * length swept by pairs is then reached everywhere. */
 #define SUPPORT_SANITIZER_STRIDE 8
+_Static_assert((SUPPORT_SANITIZER_STRIDE & (SUPPORT_SANITIZER_STRIDE - 1)) == 0, "a power of two");
 int support_sweep_stride(void);
+/* A sweep over pairs (i, k), k the faster of `count`: flat index i * count
+ * + k in steps of the stride. An odd count is prime to the stride, which
+ * then reaches every i and every k. */
+#define SUPPORT_SWEEPABLE(count) _Static_assert((count) % 2 == 1, "an odd count, prime to the sanitizer stride")
 /* Runs `command` through the shell with stderr captured; returns the exit
  * status (-1 if it did not exit normally). */
 int support_run(const char *command, char *stderr_text, size_t capacity);

@@ -133,24 +133,23 @@ static void slice_box(const camera_view *view, const mat4 light_view, cascades_s
                        receivers_hi, lo, hi);
 }
 
-/* A box corner's coordinate k on the texel grid. */
+/* A box corner's coordinate on the texel grid. */
 static void assert_on_grid(float coordinate, float texel) {
     assert_true(fabs(coordinate / texel - round(coordinate / texel)) < GRID_TOLERANCE_TEXELS);
 }
 
-/* The test slice's corners lie inside lo..hi, to the
- * precision of view->corners (CORNERS_RELATIVE of the box's size: the
- * box's light-space depth is the slice's own, with no margin). */
+/* The test slice's corners lie inside lo..hi, to the precision of
+ * view->corners (CORNERS_RELATIVE of the box's size: the box's
+ * light-space depth is the slice's own, with no margin). */
 static void assert_slice_inside(const camera_view *view, const mat4 light_view, const float lo[3], const float hi[3]) {
-    float size = CORNERS_RELATIVE / RELATIVE * (hi[0] - lo[0]);
+    float tolerance = CORNERS_RELATIVE * (hi[0] - lo[0]);
     for (int c = 0; c < 8; c++) {
         float depth = c & 4 ? SLICE_FAR : SLICE_NEAR, t = (depth - NEAR_PLANE) / (FAR_PLANE - NEAR_PLANE), p[3], q[3];
         for (int k = 0; k < 3; k++)
             p[k] = view->corners[c & 3][k] + t * (view->corners[(c & 3) | 4][k] - view->corners[c & 3][k]);
         glm_mat4_mulv3((vec4 *)light_view, p, 1, q);
         for (int k = 0; k < 3; k++)
-        for (int k = 0; k < 3; k++)
-            assert_true(q[k] >= lo[k] - RELATIVE * size && q[k] <= hi[k] + RELATIVE * size);
+            assert_true(q[k] >= lo[k] - tolerance && q[k] <= hi[k] + tolerance);
     }
 }
 

@@ -59,10 +59,7 @@ static const struct {
     {CITY, "--light " CITY_SKIPPED_LIGHT},
     {"dense", "--frames 2 --motion light"},
 };
-/* An odd count is prime to the sanitizer pass's stride (a power of two),
- * which then reaches every case (test_dumps_identical_with_and_without_skips). */
-_Static_assert((sizeof cases / sizeof *cases) % 2 == 1 && (SUPPORT_SANITIZER_STRIDE & (SUPPORT_SANITIZER_STRIDE - 1)) == 0,
-               "the case count prime to the sanitizer stride");
+SUPPORT_SWEEPABLE(sizeof cases / sizeof *cases); /* test_dumps_identical_with_and_without_skips */
 /* What a dump holds that a technique or the capture decides. */
 static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "ids.pfm", "color.png"};
 
@@ -159,9 +156,8 @@ static void dump_dir(const char *technique, size_t c, const char *skips, char *o
 }
 
 /* Every technique on every case (under the sanitizers every
- * support_sweep_stride()th pair of the two, which a stride prime to the
- * case count spreads over every case and technique): skips on and
- * --no-skip dump the same. */
+ * support_sweep_stride()th pair of the two, spread over every case and
+ * technique: SUPPORT_SWEEPABLE): skips on and --no-skip dump the same. */
 static void test_dumps_identical_with_and_without_skips(void **state) {
     (void)state;
     const int case_count = (int)(sizeof cases / sizeof *cases);
