@@ -3,7 +3,8 @@
  * --configs), --motion, --skips-compare and --scaling give the rows and
  * files they say; each row's ratio is to its own interleaved floor frames
  * (floor_ms_median), the floor's own row 1; the report's fronts, one per
- * error figure, agree with its own table. Nothing about speed is asserted:
+ * error figure, agree with its own table; the error of several frames
+ * pools theirs (--error-frames). Nothing about speed is asserted:
  * speed is for `make bench` to show, not for a test to guess. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -24,6 +25,11 @@
 #define SELECT_OUT OUT "-select"
 #define LIGHT_OUT OUT "-light"
 #define DOLLY_OUT OUT "-dolly"
+/* The dolly run's two error frames (its default under a motion, at most
+ * its two timed frames), each the last timed frame of a run of its own. */
+#define DOLLY_FIRST_OUT OUT "-dolly-first"
+#define DOLLY_LAST_OUT OUT "-dolly-last"
+#define DOLLY_RUN SMALL_RUN " --motion dolly --technique shadowmap"
 #define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
 #define CSV_COLUMNS 18
 #define CSV_MAX_ROWS 256
@@ -31,15 +37,20 @@
 #define CSV_GPU_MEDIAN 3
 #define CSV_CPU_MEDIAN 5
 #define CSV_RATIO 7
+#define CSV_MISCLASSIFIED 10
+#define CSV_MAE 11
 #define CSV_COMPARED 12
 #define CSV_RENDERER 13
 #define CSV_MOTION 14
 #define CSV_SKIPS 15
 #define CSV_FLOOR_MS 16
 #define CSV_SHIMMER 17
-/* The CSV's rounding: the ratio is printed to 3 decimals, the times to 4. */
+/* The CSV's rounding: the ratio is printed to 3 decimals, the times and
+ * percentages to 4, the MAE to 6. */
 #define CSV_RATIO_ROUNDING 0.0005
 #define CSV_MS_ROUNDING 0.00005
+#define CSV_PERCENT_ROUNDING 0.00005
+#define CSV_MAE_ROUNDING 0.0000005
 /* A scene's table in report.md: technique, parameters, skips, GPU ms, CPU
  * ms, ratio, floor ms, false shadow, false lit, misclassified, MAE,
  * shimmer, then a front column per own-technique setting and error
@@ -71,7 +82,9 @@ static int run_bench(void **state) {
         {OUT, "--quick"},
         {SELECT_OUT, SMALL_RUN " --technique planar"},
         {LIGHT_OUT, SMALL_RUN " --motion light --skips-compare --scaling --technique volumes"},
-        {DOLLY_OUT, SMALL_RUN " --motion dolly --technique shadowmap"},
+        {DOLLY_OUT, DOLLY_RUN},
+        {DOLLY_FIRST_OUT, DOLLY_RUN " --frames 1"},
+        {DOLLY_LAST_OUT, DOLLY_RUN " --error-frames 1"},
     };
     char strided[512] = "";
     for (size_t i = 0; SCENE_STRIDE > 1 && i < SCENE_COUNT; i += SCENE_STRIDE) {
@@ -117,6 +130,8 @@ static int csv_fields(char *line, char **fields, int max) {
 /* What the tests look at in a row of results.csv. */
 typedef struct csv_row {
     char technique[32], parameters[256], motion[16], skips[8], shimmer[16];
+    double misclassified, mae;
+    long compared;
 } csv_row;
 
 /* A row's ratio is its median (CPU time on a software rasterizer, as the
@@ -172,6 +187,9 @@ static int read_csv(const char *dir, csv_row *rows) {
         snprintf(r->motion, sizeof r->motion, "%s", fields[CSV_MOTION]);
         snprintf(r->skips, sizeof r->skips, "%s", fields[CSV_SKIPS]);
         snprintf(r->shimmer, sizeof r->shimmer, "%s", fields[CSV_SHIMMER]);
+        r->misclassified = atof(fields[CSV_MISCLASSIFIED]);
+        r->mae = atof(fields[CSV_MAE]);
+        r->compared = atol(fields[CSV_COMPARED]);
     }
     return n;
 }
@@ -234,8 +252,8 @@ static void test_selection_keeps_the_floor(void **state) {
 }
 
 /* --motion light --skips-compare: each configuration skips on then off,
- * the rows say light, and the reference is of the moved scene: cached
- * apart from the static one. */
+ * the rows say light, and the references (one per error frame: two) are
+ * of the moved scene: cached apart from the static one. */
 static void test_light_motion_and_skips_compare(void **state) {
     (void)state;
     static csv_row rows[CSV_MAX_ROWS];
@@ -249,7 +267,7 @@ static void test_light_motion_and_skips_compare(void **state) {
     for (int i = 0; i < n; i++)
         assert_string_equal(rows[i].motion, "light");
     char moving[256], still[256];
-    reference_name(LIGHT_OUT, moving, sizeof moving);
+    assert_int_equal(reference_names(LIGHT_OUT, moving, sizeof moving), 2);
     reference_name(SELECT_OUT, still, sizeof still);
     assert_string_not_equal(moving, still);
     assert_non_null(strstr(moving, "light"));
@@ -258,9 +276,9 @@ static void test_light_motion_and_skips_compare(void **state) {
     assert_non_null(strstr(report, "\n| volumes | "));
 }
 
-/* --motion dolly: every row has a shimmer figure, a percentage; the
- * reference is traced for the last two frames; the report says what the
- * column is. */
+/* --motion dolly: every row has a shimmer figure, a percentage; a
+ * reference is traced for each of the two error frames (the held dump is
+ * of the same view); the report says what the column is. */
 static void test_dolly_measures_shimmer(void **state) {
     (void)state;
     static csv_row rows[CSV_MAX_ROWS];
@@ -272,14 +290,52 @@ static void test_dolly_measures_shimmer(void **state) {
         assert_true(shimmer >= 0 && shimmer <= 100);
     }
     char name[256];
-    reference_name(DOLLY_OUT, name, sizeof name);
+    assert_int_equal(reference_names(DOLLY_OUT, name, sizeof name), 2);
     assert_non_null(strstr(name, "dolly"));
     char *report = read_file(DOLLY_OUT "/report.md");
     assert_non_null(strstr(report, "| MAE | shimmer % |"));
-    assert_non_null(strstr(report, "Shimmer %: of the compared pixels of the last timed frame, those whose decision "
+    assert_non_null(strstr(report, "Shimmer %: of the compared pixels of those frames, those whose decision "
                                    "changes when the maps are held"));
     report = read_file(SELECT_OUT "/report.md");
     assert_non_null(strstr(report, "Shimmer %: \"-\": the camera does not move"));
+}
+
+/* The dolly run's figures pool its two error frames': the compared pixels
+ * add up, and misclassified %, MAE and shimmer are the pooled ones (each
+ * frame's weighed by its compared pixels; shimmer by its followed ones,
+ * which the CSV does not give: between the two frames'). */
+static void test_error_frames_pool(void **state) {
+    (void)state;
+    static csv_row both[CSV_MAX_ROWS], first[CSV_MAX_ROWS], last[CSV_MAX_ROWS];
+    int n = read_csv(DOLLY_OUT, both);
+    assert_int_equal(read_csv(DOLLY_FIRST_OUT, first), n);
+    assert_int_equal(read_csv(DOLLY_LAST_OUT, last), n);
+    for (int i = 0; i < n; i++) {
+        const csv_row *a = &first[i], *b = &last[i], *pooled = &both[i];
+        assert_string_equal(a->technique, pooled->technique);
+        assert_string_equal(b->technique, pooled->technique);
+        assert_int_equal(pooled->compared, a->compared + b->compared);
+        double weight_a = (double)a->compared / (double)pooled->compared, weight_b = 1 - weight_a;
+        assert_true(fabs(pooled->misclassified - (weight_a * a->misclassified + weight_b * b->misclassified)) <=
+                    2 * CSV_PERCENT_ROUNDING);
+        assert_true(fabs(pooled->mae - (weight_a * a->mae + weight_b * b->mae)) <= 2 * CSV_MAE_ROUNDING);
+        double shimmer = atof(pooled->shimmer), shimmer_a = atof(a->shimmer), shimmer_b = atof(b->shimmer);
+        assert_true(shimmer >= fmin(shimmer_a, shimmer_b) - CSV_PERCENT_ROUNDING &&
+                    shimmer <= fmax(shimmer_a, shimmer_b) + CSV_PERCENT_ROUNDING);
+    }
+    /* The unshadowed row is wrong wherever the truth is shadowed: the
+     * check above compared something. */
+    assert_true(both[n - 1].misclassified > 0);
+}
+
+/* More error frames than timed ones is a usage error: exit 2, one line. */
+static void test_error_frames_beyond_frames(void **state) {
+    (void)state;
+    char command[512];
+    snprintf(command, sizeof command, "%s --frames 2 --error-frames 3", support_program("bench"));
+    assert_int_equal(support_run(command, err, sizeof err), 2);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "--error-frames"));
 }
 
 static void test_scaling_plot_is_an_image(void **state) {
@@ -434,6 +490,8 @@ int main(void) {
         cmocka_unit_test(test_selection_keeps_the_floor),
         cmocka_unit_test(test_light_motion_and_skips_compare),
         cmocka_unit_test(test_dolly_measures_shimmer),
+        cmocka_unit_test(test_error_frames_pool),
+        cmocka_unit_test(test_error_frames_beyond_frames),
         cmocka_unit_test(test_scaling_plot_is_an_image),
         cmocka_unit_test(test_unknown_technique),
     };

@@ -231,6 +231,15 @@ static bool shadowdiff_check_finite(const dump_frame *d, const char *name, bool 
     return true;
 }
 
+/* The percentages and the mean absolute error of r's counts (r->compared
+ * > 0) and of the sum of its compared pixels' errors. */
+static void shadowdiff_result_figures(shadowdiff_result *r, double error_sum) {
+    r->false_shadow_percent = shadowdiff_percent(r->false_shadow, r->compared);
+    r->false_lit_percent = shadowdiff_percent(r->false_lit, r->compared);
+    r->misclassified_percent = shadowdiff_percent(r->false_shadow + r->false_lit, r->compared);
+    r->mean_abs_error = error_sum / (double)r->compared;
+}
+
 static double shadowdiff_min_cosine(const shadowdiff_settings *s) {
     return sin(s->grazing_degrees * (3.14159265358979 / 180));
 }
@@ -273,11 +282,18 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         out->problem = SHADOWDIFF_PROBLEM_NOTHING_COMPARED;
         return false;
     }
-    out->false_shadow_percent = shadowdiff_percent(out->false_shadow, out->compared);
-    out->false_lit_percent = shadowdiff_percent(out->false_lit, out->compared);
-    out->misclassified_percent = shadowdiff_percent(out->false_shadow + out->false_lit, out->compared);
-    out->mean_abs_error = error_sum / (double)out->compared;
+    shadowdiff_result_figures(out, error_sum);
     return true;
+}
+
+void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *frame) {
+    double error_sum = total->mean_abs_error * (double)total->compared +
+                       frame->mean_abs_error * (double)frame->compared;
+    total->compared += frame->compared;
+    total->false_shadow += frame->false_shadow;
+    total->false_lit += frame->false_lit;
+    if (total->compared > 0)
+        shadowdiff_result_figures(total, error_sum);
 }
 
 /* Whether the camera of dump `r` and of its test `t` agree; says so if

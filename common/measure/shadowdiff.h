@@ -165,6 +165,12 @@ typedef struct shadowdiff_result {
 bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
                         shadowdiff_result *out, unsigned char *heatmap_rgba);
 
+/* Adds `frame`'s comparison to `total` as if both were one comparison of
+ * all their compared pixels: the counts summed, the percentages and the
+ * mean absolute error over the sum (the error of several frames, each
+ * pixel weighing the same). A zeroed total is the sum of none. */
+void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *frame);
+
 typedef struct shadowdiff_shimmer_result {
     shadowdiff_problem problem;             /* NONE exactly when shadowdiff_shimmer returns true */
     shadowdiff_result previous, current;    /* each frame's own comparison */

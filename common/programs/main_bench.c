@@ -7,8 +7,8 @@
  * ratio is to it) and each of its bench_configs (--configs defaults: only
  * its first, ""): warm-up frames, then timed frames (GPU time from
  * GL_TIME_ELAPSED queries, CPU time from the clock around the frame and
- * glFinish), then the technique's own dump of the last timed frame
- * compared with the reference (shadowdiff rules).
+ * glFinish), then the technique's own dumps of --error-frames of the timed
+ * frames compared with their references (shadowdiff rules), pooled.
  *
  * The ratio to the cost floor is measured in the same moments as the
  * configuration: the machine is shared, and a floor timed once per scene,
@@ -37,16 +37,22 @@
  * warm-up frames first, is rendered at time k / BENCH_FRAME_RATE with the
  * lights or the camera moved from the scene's own, so that caches are
  * measured as the app exercises them; every configuration starts again at
- * frame 0. The reference is ray traced for the last timed frame's time, the
- * frame that is dumped, and cached under a name that says the motion and
- * that time.
+ * frame 0. One frame's error is noise under a motion (lispsm walking the
+ * city: 0.029 to 0.066 % misclassified from frame to frame), so the error
+ * figures pool the compared pixels of --error-frames frames spread evenly
+ * over the timed ones, the last timed frame the last of them (under a
+ * motion 6 by default, static 1: its frames are one picture); each is
+ * dumped after the timing, in order of time (frames are deterministic in
+ * their time, and a skip or cache never changes a decision), and each
+ * has its reference, ray traced for its time and cached under a name that
+ * says the motion and that time.
  *
  * Shimmer: under the motions that move the camera (camera, dolly), each
- * configuration also dumps its last timed frame with the maps held as the
+ * configuration also dumps each error frame with the maps held as the
  * frame before fitted them (technique_host_frame's fit_view: the app's
  * --hold-fit), and results.csv's shimmer_percent is the share of compared
- * pixels whose decision the fit's motion alone changed (shadowdiff's
- * shimmer of the two dumps of one view against its one reference:
+ * pixels whose decision the fit's motion alone changed, pooled likewise
+ * (shadowdiff's shimmer of the two dumps of one view against its one reference:
  * every pixel follows itself and the truth is the same, so the figure is
  * free of the sub-pixel resampling that two views' pixels add; README,
  * "Temporal stability"; report.md's "shimmer %"). Under static and light
@@ -83,6 +89,9 @@
 #define BENCH_MAX_FRAMES 1000
 #define BENCH_MAX_SCENES 16
 #define BENCH_MAX_TECHNIQUES 16
+/* --error-frames: its default under a motion, and its most. */
+#define BENCH_DEFAULT_ERROR_FRAMES 6
+#define BENCH_MAX_ERROR_FRAMES 16
 /* Frame k is at k / BENCH_FRAME_RATE seconds, as the app's headless frames
  * are (app.c), so a bench frame is the frame `--frames` renders there. */
 #define BENCH_FRAME_RATE MOTION_FRAME_RATE
@@ -113,15 +122,16 @@ typedef struct bench_row {
     double frame_ms; /* what the ratio, the front and the plot use */
     double floor_ms; /* the median of the floor frames interleaved with the row's (the floor's row: frame_ms) */
     double ratio;    /* frame_ms / floor_ms */
-    shadowdiff_result error;
-    bool shimmer_measured; /* under a motion that moves the camera */
+    shadowdiff_result error; /* pooled over the error frames (shadowdiff_result_add) */
+    bool shimmer_measured;   /* under a motion that moves the camera */
+    long followed, shimmered; /* summed over the error frames */
     double shimmer_percent;
 } bench_row;
 
 static struct {
     /* flags (zero: the default, which --quick makes small) */
     const char *out_dir;
-    int width, height, frames, warmup, light_samples;
+    int width, height, frames, warmup, light_samples, error_frames;
     int motion;  /* motion_kind */
     int configs; /* bench_configs */
     bool quick, verbose, no_skip, skips_compare, scaling;
@@ -170,6 +180,10 @@ static const flags_param bench_flags[] = {
      .integer = &bench.frames, .min = 1, .max = BENCH_MAX_FRAMES, .what = "a count"},
     {"warmup", "untimed frames first (5; --quick: 2)", 0, FLAGS_INT, .integer = &bench.warmup, .min = 0,
      .max = BENCH_MAX_FRAMES, .what = "a count"},
+    {"error-frames",
+     "frames whose error the figures pool, spread evenly over the\ntimed ones, the last among them (static: 1; "
+     "else " FLAGS_TEXT(BENCH_DEFAULT_ERROR_FRAMES) ",\nat most --frames)",
+     0, FLAGS_INT, .integer = &bench.error_frames, .min = 1, .max = BENCH_MAX_ERROR_FRAMES, .what = "a count"},
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
     {"motion", "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, or along its view (dolly);\nframe k is at k/60 s", 0,
@@ -244,6 +258,12 @@ static int bench_parse_flags(int argc, char **argv) {
         bench.warmup = bench.quick ? 2 : 5;
     if (!bench.light_samples)
         bench.light_samples = bench.quick ? 16 : 256;
+    if (bench.error_frames > bench.frames)
+        return flags_usage_error("bench", "--error-frames: more than the timed frames (--frames)", NULL);
+    if (!bench.error_frames) {
+        int moving = bench.motion == MOTION_STATIC ? 1 : BENCH_DEFAULT_ERROR_FRAMES;
+        bench.error_frames = moving < bench.frames ? moving : bench.frames;
+    }
     bench.no_skip_settings[bench.setting_count++] = bench.no_skip;
     if (bench.skips_compare)
         bench.no_skip_settings[bench.setting_count++] = true;
@@ -267,8 +287,12 @@ static void bench_move(double time) {
     camera_view_compute(&s->camera, (float)bench.width / (float)bench.height, &bench.view);
 }
 
-/* The time of the last timed frame: the one dumped and ray traced. */
-static double bench_last_time(void) { return (bench.warmup + bench.frames - 1) / BENCH_FRAME_RATE; }
+/* The time of error frame k (0..error_frames - 1, in order of time; the
+ * last is the last timed frame): timed frames spread evenly. */
+static double bench_error_time(int k) {
+    int timed = bench.frames - 1 - (bench.error_frames - 1 - k) * bench.frames / bench.error_frames;
+    return (bench.warmup + timed) / BENCH_FRAME_RATE;
+}
 
 static bool bench_host_frame(technique_host *h, int visibility_of) {
     return technique_host_frame(h, &bench.view, bench.hold_fit ? &bench.fit_view : NULL, &bench.target, bench.time,
@@ -374,18 +398,15 @@ static bool bench_reference(const char *scene_path, const char *name, double tim
            dump_write(reference, dir);
 }
 
-/* Times and measures one configuration of the current technique under the
- * skips setting no_skip, interleaved with the floor's frames unless it is
- * the floor. */
-/* The current technique's dumps after its timed frames: of the last timed
- * frame, and, where shimmer is measured, first of that frame with the maps
- * held as the frame before fitted them; held is otherwise left empty. */
-static bool bench_dumps(dump_frame *held, dump_frame *last) {
+/* The current technique's dumps of the frame at `time`, and, where
+ * shimmer is measured, first of that frame with the maps held as the frame
+ * before fitted them; held is otherwise left empty. */
+static bool bench_dumps(double time, dump_frame *held, dump_frame *last) {
     *held = (dump_frame){0};
+    bench_move(time);
     if (bench_shimmers()) {
         scene_camera camera;
-        motion_camera((motion_kind)bench.motion, bench_last_time() - 1 / BENCH_FRAME_RATE, &bench.base_camera,
-                      &camera);
+        motion_camera((motion_kind)bench.motion, time - 1 / BENCH_FRAME_RATE, &bench.base_camera, &camera);
         camera_view_compute(&camera, (float)bench.width / (float)bench.height, &bench.fit_view);
         bench.hold_fit = true;
         bool held_ok = capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, held);
@@ -399,22 +420,46 @@ static bool bench_dumps(dump_frame *held, dump_frame *last) {
     return false;
 }
 
-/* The row's error figures against the reference, and where shimmer is
- * measured the held dump's against the last's. A shimmer that gives no
- * figure (its line says why) leaves the row's "-". */
+/* Adds one error frame's figures to the row's: the dump against its
+ * reference, and where shimmer is measured the held dump's against it. A
+ * shimmer that gives no figure (its line says why) leaves the row's "-". */
 static bool bench_measure(bench_row *row, const dump_frame *reference, const dump_frame *held,
-                          const dump_frame *last) {
-    if (!shadowdiff_compare(reference, last, NULL, &row->error, NULL))
+                          const dump_frame *dump, bool first) {
+    shadowdiff_result error;
+    if (!shadowdiff_compare(reference, dump, NULL, &error, NULL))
         return false;
+    shadowdiff_result_add(&row->error, &error);
     shadowdiff_shimmer_result shimmer;
-    row->shimmer_measured =
-        bench_shimmers() && shadowdiff_shimmer(reference, held, reference, last, NULL, &shimmer);
-    row->shimmer_percent = row->shimmer_measured ? shimmer.shimmer_percent : 0;
+    bool measured = bench_shimmers() && shadowdiff_shimmer(reference, held, reference, dump, NULL, &shimmer);
+    row->shimmer_measured = measured && (first || row->shimmer_measured);
+    row->followed += measured ? shimmer.followed : 0;
+    row->shimmered += measured ? shimmer.shimmered : 0;
+    row->shimmer_percent = row->followed > 0 ? 100.0 * (double)row->shimmered / (double)row->followed : 0;
     return true;
 }
 
+/* The current technique's error frames: each one's dumps measured against
+ * its reference (references[k]: error frame k's). */
+static bool bench_error_frames(bench_row *row, const dump_frame *references) {
+    bool ok = true;
+    for (int k = 0; ok && k < bench.error_frames; k++) {
+        dump_frame held, dump;
+        ok = bench_dumps(bench_error_time(k), &held, &dump);
+        if (!ok)
+            break;
+        ok = bench_measure(row, &references[k], &held, &dump, k == 0);
+        dump_frame_free(&held);
+        dump_frame_free(&dump);
+    }
+    return ok;
+}
+
+/* Times and measures one configuration of the current technique under the
+ * skips setting no_skip, interleaved with the floor's frames unless it is
+ * the floor. */
+
 static bool bench_configuration(const char *scene_name, const char *config, bool no_skip,
-                                const dump_frame *reference) {
+                                const dump_frame *references) {
     if (bench.row_count == BENCH_MAX_ROWS) {
         fprintf(stderr, "bench: more than %d configurations\n", BENCH_MAX_ROWS);
         return false;
@@ -423,7 +468,6 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config, .no_skip = no_skip};
     bench.skips = (render_skips){.no_skip = no_skip};
     technique_host *floor_host = bench.current->cost_floor ? NULL : &bench.floor_host;
-    dump_frame held, dump;
     /* A host whose start was tried is stopped: destroy follows even a
      * failed init. The floor runs at its defaults. */
     bool configured =
@@ -431,16 +475,11 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     bool ok = configured && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips);
     bool floor_tried = ok && floor_host;
     ok = ok && (!floor_host || technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips)) &&
-         bench_time_frames(row, floor_host) && bench_dumps(&held, &dump);
+         bench_time_frames(row, floor_host) && bench_error_frames(row, references);
     if (floor_tried)
         technique_host_stop(floor_host);
     if (configured)
         technique_host_stop(&bench.host);
-    if (!ok)
-        return false;
-    ok = bench_measure(row, reference, &held, &dump);
-    dump_frame_free(&held);
-    dump_frame_free(&dump);
     bench.row_count += ok;
     return ok;
 }
@@ -462,8 +501,9 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     memcpy(bench.base_lights, bench.scene.lights, sizeof bench.base_lights);
     bench.base_camera = bench.scene.camera;
     bool ok = render_scene_create(&bench.gpu, &bench.scene);
-    dump_frame reference = {0};
-    ok = ok && bench_reference(scene_path, name, bench_last_time(), &reference);
+    dump_frame references[BENCH_MAX_ERROR_FRAMES] = {0};
+    for (int k = 0; ok && k < bench.error_frames; k++)
+        ok = bench_reference(scene_path, name, bench_error_time(k), &references[k]);
     for (int t = 0; ok && t < registry_technique_count; t++) {
         bench.current = registry_techniques[t];
         for (int c = 0; ok && bench_selected(bench.current) && c < bench_config_count(bench.current); c++) {
@@ -472,11 +512,12 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
                 bool no_skip = bench.no_skip_settings[s];
                 fprintf(stderr, "  [%d/%d] %s %s%s\n", ++*done, total, bench.current->name, config,
                         bench.skips_compare ? (no_skip ? " (skips off)" : " (skips on)") : "");
-                ok = bench_configuration(name, config, no_skip, &reference);
+                ok = bench_configuration(name, config, no_skip, references);
             }
         }
     }
-    dump_frame_free(&reference);
+    for (int k = 0; k < bench.error_frames; k++)
+        dump_frame_free(&references[k]);
     render_scene_destroy(&bench.gpu);
     scene_free(&bench.scene);
     return ok;
@@ -657,16 +698,17 @@ static bool bench_write_report(void) {
                "its median over the median of the unshadowed frames interleaved with its own (frame k of "
                "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
                "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
-               "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error is of the last timed frame, at "
-               "%.3f s). Shimmer %%: %s\n",
+               "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error figures pool the compared pixels of "
+               "%d of the timed frames spread evenly over them, the last at %.3f s). Shimmer %%: %s\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
                              "and glFinish is its real cost."
                            : "GPU time is what the frame costs the GPU; CPU time adds submission and the wait "
                              "in glFinish.",
-            bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench_last_time(),
-            bench_shimmers() ? "of the compared pixels of the last timed frame, those whose decision changes when "
+            bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench.error_frames,
+            bench_error_time(bench.error_frames - 1),
+            bench_shimmers() ? "of the compared pixels of those frames, those whose decision changes when "
                                "the maps are held as the frame before fitted them (the same view drawn twice, "
                                "--hold-fit): how much the shadows crawl as the camera moves, free of the "
                                "resampling two views' pixels add."
