@@ -13,25 +13,30 @@
  * shows no seam.
  *
  * Where the slices end (--splits):
+ *   sdsm       (the default) Lauritzen, Salvi & Lefohn, "Sample
+ *              distribution shadow maps", I3D 2011: the logarithmic split
+ *              of the depth range the camera actually sees rather than
+ *              near..far, so no slice is spent on air in front of the
+ *              nearest receiver (the walked city's first practical slice,
+ *              0.1..3.8, held no pixel) or beyond the farthest. Pooled
+ *              over the frames of a walk and a yaw (README, "Cascades
+ *              against one map and the warps") it misclassified the
+ *              fewest of the four. The paper reduces the depth pre-pass
+ *              on the GPU; here the range comes from the frame's receiver
+ *              points (the corners of the visible receivers' boxes
+ *              clipped to the view, which bound every visible receiver
+ *              fragment, so no fragment falls outside it), already on the
+ *              CPU: a read-back of the depth buffer would stall the frame
+ *              on the pre-pass, which the library draws after the maps,
+ *              and would make the maps depend on the frame before;
  *   practical  Zhang, Sun, Xu & Lun, "Parallel-split shadow maps for
  *              large-scale virtual environments", VRCIA 2006: lambda of
- *              the logarithmic split plus 1 - lambda of the uniform one
- *              (--lambda, 0.75 by default: log alone spends its first
- *              slice on the metres in front of the near plane);
+ *              the logarithmic split of near..far plus 1 - lambda of the
+ *              uniform one (--lambda, 0.9 by default: log alone spends
+ *              its first slice on the metres in front of the near plane);
  *   uniform    slices of equal depth: far ones get the texels;
  *   log        equal ratios far / near: the split that keeps a texel's
- *              size on screen the same in every slice;
- *   sdsm       Lauritzen, Salvi & Lefohn, "Sample distribution shadow
- *              maps", I3D 2011: the logarithmic split of the depth range
- *              the camera actually sees rather than near..far. The paper
- *              reduces the depth pre-pass on the GPU; here the range
- *              comes from the frame's receiver points (the corners of
- *              the visible receivers' boxes clipped to the view, which
- *              bound every visible receiver fragment, so no fragment falls
- *              outside it), already on the CPU: a read-back of the depth
- *              buffer would stall the frame on the pre-pass, which the
- *              library draws after the maps, and would make the maps
- *              depend on the frame before.
+ *              size on screen the same in every slice.
  *
  * Each cascade's box (cascades_slice_box): in the light's view, around its
  * slice of the view frustum (grown at its near end by the band where the
@@ -117,10 +122,15 @@
  * tighter and step more often. */
 #define CASCADES_SIDE_STEPS 8.0f
 #define CASCADES_HEADING_STEPS 16.0f
+/* Stabilised sdsm: the seen range's ends are widened to powers of
+ * 2^(1 / RANGE_STEPS) (the near end at most 16 % nearer, the far one 19 %
+ * farther), so that walking moves the splits only where an end crosses a
+ * step (the teapot walked: 0.022 -> 0.000 % shimmer). */
+#define CASCADES_RANGE_STEPS 4.0f
 
 static const char *const cascades_counts[] = {"4", "5", "6", "7", "8", "1", "2", "3", NULL};
-static const char *const cascades_schemes[] = {"practical", "uniform", "log", "sdsm", NULL};
-enum { CASCADES_PRACTICAL, CASCADES_UNIFORM, CASCADES_LOG, CASCADES_SDSM };
+static const char *const cascades_schemes[] = {"sdsm", "practical", "uniform", "log", NULL};
+enum { CASCADES_SDSM, CASCADES_PRACTICAL, CASCADES_UNIFORM, CASCADES_LOG };
 /* In cascades_stabilize's order (cascades.h), and what the HUD says of each. */
 static const char *const cascades_stabilizers[] = {"steps", "sphere", "off", NULL};
 static const char *const cascades_stabilized[] = {", stabilized by steps", ", stabilized by the sphere", ""};
@@ -138,7 +148,8 @@ static struct {
 static const flags_param cascades_params[] = {
     {"cascades", "how many slices of the view, each with its own map", GLFW_KEY_N, FLAGS_CHOICE,
      .index = &cascades.count, .choices = cascades_counts},
-    {"splits", "where slices end: practical (Zhang et al. 2006), uniform, log, sdsm (the seen depth range)",
+    {"splits", "where slices end: sdsm (the seen depth range, Lauritzen et al. 2011), practical (Zhang et al. 2006), "
+               "uniform, log",
      GLFW_KEY_S, FLAGS_CHOICE, .index = &cascades.scheme, .choices = cascades_schemes},
     {"lambda", "practical splits: the logarithmic split's weight (0: 0.9; uniform is --splits uniform)", 0,
      FLAGS_NUMBER, .number = &cascades.lambda, .fallback = CASCADES_DEFAULT_LAMBDA, .min = 0, .max = 1},
@@ -205,6 +216,12 @@ static float cascades_receivers_reach(const scene *s, const float eye[3]) {
             reach = fmaxf(reach, glm_vec3_distance(corners[c], (float *)eye));
     }
     return exp2f(ceilf(log2f(reach)));
+}
+
+/* x rounded (by `round`: floorf or ceilf) to a power of
+ * 2^(1/CASCADES_RANGE_STEPS). */
+static float cascades_power_step(float x, float (*round)(float)) {
+    return exp2f(round(log2f(x) * CASCADES_RANGE_STEPS) / CASCADES_RANGE_STEPS);
 }
 
 /* ---- a cascade's box ---- */
@@ -387,10 +404,19 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
     float lambda = cascades.scheme == CASCADES_UNIFORM ? 0
                    : cascades.scheme == CASCADES_PRACTICAL ? cascades_or(cascades.lambda, CASCADES_DEFAULT_LAMBDA)
                                                            : 1;
-    if (cascades.scheme == CASCADES_SDSM &&
-        !cascades_seen_depths(f->view, f->receivers, f->receiver_count, near_plane, far_plane, &near_plane,
-                              &far_plane))
-        return false;
+    if (cascades.scheme == CASCADES_SDSM) {
+        float seen_near, seen_far;
+        if (!cascades_seen_depths(f->view, f->receivers, f->receiver_count, near_plane, far_plane, &seen_near,
+                                  &seen_far))
+            return false;
+        if (stabilize != CASCADES_STABILIZE_OFF) {
+            /* Stabilised, the seen range too changes only in steps. */
+            seen_near = fmaxf(near_plane, cascades_power_step(seen_near, floorf));
+            seen_far = fminf(far_plane, cascades_power_step(seen_far, ceilf));
+        }
+        near_plane = seen_near;
+        far_plane = seen_far;
+    }
     int size = shadow_map_settings_size(&cascades.settings);
     m->size = size ? size : CASCADES_DEFAULT_SIZE;
     m->kind = SHADOW_MAP_ARRAY;
@@ -472,13 +498,13 @@ static void cascades_describe(char *out, size_t size) {
  * stabilisation and the blend off. */
 static const char *const cascades_bench_configs[] = {
     "",
+    "practical: --splits practical",
     "uniform: --splits uniform",
     "log: --splits log",
-    "sdsm: --splits sdsm",
     "2x2048: --cascades 2 --map-size 2048",
     "4x2048: --map-size 2048",
     "8x1024: --cascades 8",
-    "--stabilize sphere",
+    "--splits practical --stabilize sphere",
     "--stabilize off",
     "--no-blend",
 };

@@ -222,6 +222,7 @@ static const char *const psm_bench_configs[] = {
     "--map-size 2048",
     "--warp lispsm",
     "--warp lispsm --map-size 1024",
+    "--warp lispsm --map-size 2048",
     "--warp uniform",
     "--warp uniform --map-size 1024",
     "--no-early-out",

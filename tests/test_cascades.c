@@ -255,8 +255,8 @@ static void test_standard_scenes_within_bound(void **state) {
 /* long_view, where one map's perspective aliasing is worst: every scheme
  * within its bound, each but uniform misclassifying less than half of
  * uniform's, and every one less than one map of a cascade's size, with at
- * most half its mean error (but uniform's); the default (practical,
- * stabilised by steps) and unstabilised sdsm within the issue's goal, no
+ * most half its mean error (but uniform's); the default (sdsm, stabilised
+ * by steps), practical and unstabilised sdsm within the issue's goal, no
  * more than lispsm at one 2048 map. */
 static void test_long_view_splits(void **state) {
     (void)state;
@@ -270,11 +270,11 @@ static void test_long_view_splits(void **state) {
         const char *flags, *name;
         double bound;
         bool goal; /* no more than lispsm */
-    } schemes[] = {{"", "long_view_practical", LONG_VIEW_MAX_PERCENT, true},
-                   {"--stabilize sphere", "long_view_sphere", LONG_VIEW_SPHERE_MAX_PERCENT, false},
+    } schemes[] = {{"", "long_view_sdsm", LONG_VIEW_MAX_PERCENT, true},
+                   {"--splits practical", "long_view_practical", LONG_VIEW_MAX_PERCENT, true},
+                   {"--splits practical --stabilize sphere", "long_view_sphere", LONG_VIEW_SPHERE_MAX_PERCENT, false},
                    {"--splits log", "long_view_log", LONG_VIEW_LOG_MAX_PERCENT, false},
-                   {"--splits sdsm", "long_view_sdsm", LONG_VIEW_MAX_PERCENT, true},
-                   {"--splits sdsm --stabilize off", "long_view_sdsm_free", LONG_VIEW_SDSM_FREE_MAX_PERCENT, true}};
+                   {"--stabilize off", "long_view_sdsm_free", LONG_VIEW_SDSM_FREE_MAX_PERCENT, true}};
     for (size_t i = 0; i < sizeof schemes / sizeof *schemes; i++) {
         shadowdiff_result r = support_measure("cascades", LONG_VIEW, "", schemes[i].flags, schemes[i].name);
         assert_true(r.misclassified_percent <= schemes[i].bound);
@@ -285,6 +285,30 @@ static void test_long_view_splits(void **state) {
     }
 }
 
+/* long_view walked (--motion dolly), the issue's goal over several
+ * frames (one frame's error is noise: lispsm 0.022 to 0.098 % from frame
+ * to frame): the default's compared pixels of frames WALK_FRAMES, pooled,
+ * misclassify no more than lispsm's at one 2048 map (measured 0.040
+ * against 0.064 %). */
+static void test_long_view_walked(void **state) {
+    (void)state;
+    static const int walk_frames[] = {8, 24, 40};
+    static const char *const techniques[][3] = {{"cascades", "", "walked"},
+                                                {"psm", "--warp lispsm --map-size 2048", "walked_lispsm_2048"}};
+    shadowdiff_result pooled[2] = {{0}};
+    for (int t = 0; t < 2; t++)
+        for (size_t k = 0; k < sizeof walk_frames / sizeof *walk_frames; k++) {
+            char moved[64], name[64];
+            snprintf(moved, sizeof moved, "--motion dolly --frames %d", walk_frames[k]);
+            snprintf(name, sizeof name, "long_view_%s_%d", techniques[t][2], walk_frames[k]);
+            shadowdiff_result r = support_measure(techniques[t][0], LONG_VIEW, moved, techniques[t][1], name);
+            shadowdiff_result_add(&pooled[t], &r);
+        }
+    fprintf(stderr, "    walked, pooled: cascades %.4f %%, lispsm at 2048 %.4f %%\n", pooled[0].misclassified_percent,
+            pooled[1].misclassified_percent);
+    assert_true(pooled[0].misclassified_percent <= pooled[1].misclassified_percent);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_split_schemes),
@@ -293,6 +317,7 @@ int main(void) {
         cmocka_unit_test(test_stepped_box),
         cmocka_unit_test(test_standard_scenes_within_bound),
         cmocka_unit_test(test_long_view_splits),
+        cmocka_unit_test(test_long_view_walked),
     };
     return cmocka_run_group_tests_name("cascaded shadow maps", tests, NULL, NULL);
 }

@@ -34,6 +34,9 @@
 #define CRAWLING_MIN_PERCENT 0.03
 /* The goal for stabilised cascades. */
 #define STABLE_MAX_PERCENT 0.01
+/* Valient's sphere holds its size on the practical splits, which depend on
+ * near and far alone; sdsm's (the default) follow what is seen. */
+#define SPHERE "--splits practical --stabilize sphere"
 /* Without stabilisation, above the goal that stabilised cascades meet
  * (measured at least 0.017 %): the test sees the difference. */
 #define UNSTABLE_MIN_PERCENT STABLE_MAX_PERCENT
@@ -101,7 +104,7 @@ static void test_stabilised_cascades_stand_still(void **state) {
     (void)state;
     for (size_t m = 0; m < sizeof motions / sizeof *motions; m++) {
         assert_true(measure_shimmer("cascades", "", motions[m]) <= STABLE_MAX_PERCENT);
-        assert_true(measure_shimmer("cascades", "--stabilize sphere", motions[m]) <= STABLE_MAX_PERCENT);
+        assert_true(measure_shimmer("cascades", SPHERE, motions[m]) <= STABLE_MAX_PERCENT);
         assert_true(measure_shimmer("cascades", "--stabilize off", motions[m]) > UNSTABLE_MIN_PERCENT);
     }
 }
