@@ -71,7 +71,8 @@
  *           its depths and the projection, snapped likewise in a light
  *           space fixed in the world: no step at all, for texels larger by
  *           the air the sphere holds, unaligned with the view. sdsm's
- *           slices follow what is seen, so their spheres change size. A
+ *           slices follow what is seen, so their spheres change size
+ *           where the seen range steps (use it with practical splits). A
  *           sun a fraction of a degree above the ground sees the ground
  *           as a sliver, which a sphere's box gives a row of texels
  *           (build/stress grazing_0.1 and 0.5_directional: 1.00 and 0.87 %
