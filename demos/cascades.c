@@ -21,14 +21,19 @@
  *              0.1..3.8, held no pixel) or beyond the farthest. Pooled
  *              over the frames of a walk and a yaw (README, "Cascades
  *              against one map and the warps") it misclassified the
- *              fewest of the four. The paper reduces the depth pre-pass
+ *              fewest of the four walking, and within a tenth of
+ *              practical under the yaw. The paper reduces the depth pre-pass
  *              on the GPU; here the range comes from the frame's receiver
  *              points (the corners of the visible receivers' boxes
  *              clipped to the view, which bound every visible receiver
  *              fragment, so no fragment falls outside it), already on the
  *              CPU: a read-back of the depth buffer would stall the frame
  *              on the pre-pass, which the library draws after the maps,
- *              and would make the maps depend on the frame before;
+ *              or make the maps depend on the frame before, for little:
+ *              against the exact range of the pixels' view depths the
+ *              near end agreed within 0.3 % and the far end was up to
+ *              25 % farther (long_view: 505 against 404), which moves
+ *              the first split by its fourth root, at most 6 %;
  *   practical  Zhang, Sun, Xu & Lun, "Parallel-split shadow maps for
  *              large-scale virtual environments", VRCIA 2006: lambda of
  *              the logarithmic split of near..far plus 1 - lambda of the
