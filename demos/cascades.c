@@ -203,6 +203,12 @@ bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int
     return *lo < *hi;
 }
 
+/* x rounded (by `round`: floorf or ceilf) to a power of 2^(1/steps): what
+ * the stabilised fit lets change only in steps. */
+static float cascades_power_step(float x, float steps, float (*round)(float)) {
+    return exp2f(round(log2f(x) * steps) / steps);
+}
+
 /* How far from the eye any receiver of s can be: the farthest corner of
  * their boxes, rounded up to a power of two. The splits end there when the
  * camera's far plane lies beyond (a far plane 1e6 away put the first
@@ -221,13 +227,7 @@ static float cascades_receivers_reach(const scene *s, const float eye[3]) {
         for (int c = 0; c < 8; c++)
             reach = fmaxf(reach, glm_vec3_distance(corners[c], (float *)eye));
     }
-    return exp2f(ceilf(log2f(reach)));
-}
-
-/* x rounded (by `round`: floorf or ceilf) to a power of
- * 2^(1/CASCADES_RANGE_STEPS). */
-static float cascades_power_step(float x, float (*round)(float)) {
-    return exp2f(round(log2f(x) * CASCADES_RANGE_STEPS) / CASCADES_RANGE_STEPS);
+    return cascades_power_step(reach, 1, ceilf);
 }
 
 /* ---- a cascade's box ---- */
@@ -345,7 +345,7 @@ void cascades_slice_box(const camera_view *view, const mat4 light_view, float a,
         if (stabilize == CASCADES_STABILIZE_STEPS) {
             /* Up to the next step, then the corner down to whole texels:
              * it moves by less than one, which the margin holds. */
-            side = exp2f(ceilf(log2f(side) * CASCADES_SIDE_STEPS) / CASCADES_SIDE_STEPS);
+            side = cascades_power_step(side, CASCADES_SIDE_STEPS, ceilf);
             float texel = side / (float)size;
             lo[k] = floorf((middle - 0.5f * side) / texel) * texel;
         } else {
@@ -417,8 +417,8 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
             return false;
         if (stabilize != CASCADES_STABILIZE_OFF) {
             /* Stabilised, the seen range too changes only in steps. */
-            seen_near = fmaxf(near_plane, cascades_power_step(seen_near, floorf));
-            seen_far = fminf(far_plane, cascades_power_step(seen_far, ceilf));
+            seen_near = fmaxf(near_plane, cascades_power_step(seen_near, CASCADES_RANGE_STEPS, floorf));
+            seen_far = fminf(far_plane, cascades_power_step(seen_far, CASCADES_RANGE_STEPS, ceilf));
         }
         near_plane = seen_near;
         far_plane = seen_far;

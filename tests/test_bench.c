@@ -328,16 +328,6 @@ static void test_error_frames_pool(void **state) {
     assert_true(both[n - 1].misclassified > 0);
 }
 
-/* More error frames than timed ones is a usage error: exit 2, one line. */
-static void test_error_frames_beyond_frames(void **state) {
-    (void)state;
-    char command[512];
-    snprintf(command, sizeof command, "%s --frames 2 --error-frames 3", support_program("bench"));
-    assert_int_equal(support_run(command, err, sizeof err), 2);
-    assert_int_equal(support_count_lines(err), 1);
-    assert_non_null(strstr(err, "--error-frames"));
-}
-
 static void test_scaling_plot_is_an_image(void **state) {
     (void)state;
     int w, h;
@@ -347,14 +337,22 @@ static void test_scaling_plot_is_an_image(void **state) {
     free(pixels);
 }
 
-/* An unknown --technique is a usage error: exit 2, one line naming it. */
-static void test_unknown_technique(void **state) {
+/* Usage errors: exit 2, one line naming what is wrong. */
+static void test_usage_errors(void **state) {
     (void)state;
-    char command[512];
-    snprintf(command, sizeof command, "%s --technique planar --technique nosuch", support_program("bench"));
-    assert_int_equal(support_run(command, err, sizeof err), 2);
-    assert_int_equal(support_count_lines(err), 1);
-    assert_non_null(strstr(err, "'nosuch'"));
+    static const struct {
+        const char *flags, *named;
+    } cases[] = {
+        {"--technique planar --technique nosuch", "'nosuch'"}, /* an unknown technique */
+        {"--frames 2 --error-frames 3", "--error-frames"},     /* more error frames than timed ones */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char command[512];
+        snprintf(command, sizeof command, "%s %s", support_program("bench"), cases[i].flags);
+        assert_int_equal(support_run(command, err, sizeof err), 2);
+        assert_int_equal(support_count_lines(err), 1);
+        assert_non_null(strstr(err, cases[i].named));
+    }
 }
 
 /* A row of a scene's table in report.md, as printed. */
@@ -491,9 +489,8 @@ int main(void) {
         cmocka_unit_test(test_light_motion_and_skips_compare),
         cmocka_unit_test(test_dolly_measures_shimmer),
         cmocka_unit_test(test_error_frames_pool),
-        cmocka_unit_test(test_error_frames_beyond_frames),
         cmocka_unit_test(test_scaling_plot_is_an_image),
-        cmocka_unit_test(test_unknown_technique),
+        cmocka_unit_test(test_usage_errors),
     };
     return cmocka_run_group_tests_name("benchmark smoke test", tests, run_bench, NULL);
 }

@@ -124,8 +124,7 @@ typedef struct bench_row {
     double ratio;    /* frame_ms / floor_ms */
     shadowdiff_result error; /* pooled over the error frames (shadowdiff_result_add) */
     bool shimmer_measured;   /* under a motion that moves the camera */
-    long followed, shimmered; /* summed over the error frames */
-    double shimmer_percent;
+    long followed, shimmered; /* summed over the error frames: shimmer % is their ratio */
 } bench_row;
 
 static struct {
@@ -434,7 +433,6 @@ static bool bench_measure(bench_row *row, const dump_frame *reference, const dum
     row->shimmer_measured = measured && (first || row->shimmer_measured);
     row->followed += measured ? shimmer.followed : 0;
     row->shimmered += measured ? shimmer.shimmered : 0;
-    row->shimmer_percent = row->followed > 0 ? 100.0 * (double)row->shimmered / (double)row->followed : 0;
     return true;
 }
 
@@ -590,7 +588,7 @@ static const char *bench_shimmer_text(const bench_row *r) {
     static char text[32];
     if (!r->shimmer_measured)
         return "-";
-    snprintf(text, sizeof text, "%.4f", r->shimmer_percent);
+    snprintf(text, sizeof text, "%.4f", 100.0 * (double)r->shimmered / (double)r->followed);
     return text;
 }
 
