@@ -21,7 +21,7 @@
  *              0.1..3.8, held no pixel) or beyond the farthest. Pooled
  *              over the frames of a walk and a yaw (README, "Cascades
  *              against one map and the warps") it misclassified the
- *              fewest of the four walking, and within a tenth of
+ *              fewest of the four walking, and within an eighth of
  *              practical under the yaw. The paper reduces the depth pre-pass
  *              on the GPU; here the range comes from the frame's receiver
  *              points (the corners of the visible receivers' boxes
