@@ -433,7 +433,8 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
     m->cascade_blend = cascades.no_blend ? 0 : cascades_or(cascades.blend, CASCADES_DEFAULT_BLEND);
     cascades_splits(count, lambda, near_plane, far_plane, m->cascade_split);
     cascades_light_view(l->direction, f->view, stabilize, m->cascade_view);
-    float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY) + cascades.settings.normal_texels +
+    float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY,
+                                         shadow_map_light_soft(&cascades.settings, l)) + cascades.settings.normal_texels +
                    CASCADES_SNAP_TEXELS;
     for (int k = 0; k < count; k++) {
         const float *split = m->cascade_split;
@@ -477,6 +478,10 @@ static bool cascades_init(const render_scene *gpu) {
 }
 
 static void cascades_destroy(void) { shadow_map_destroy(&cascades.maps); }
+
+static const char *cascades_area_light(const scene_light *light) {
+    return shadow_map_area_light_text(&cascades.settings, light);
+}
 
 static void cascades_render(const technique_frame *f) {
     shadow_map_render(&cascades.maps, &cascades.settings, f, cascades_fit);
@@ -525,6 +530,7 @@ const technique cascades_technique = {
     .init = cascades_init,
     .render = cascades_render,
     .destroy = cascades_destroy,
+    .area_light = cascades_area_light,
     .describe = cascades_describe,
     .gallery_config = "--overlay cascades",
 };

@@ -184,6 +184,10 @@ static void psm_destroy(void) {
     }
 }
 
+static const char *psm_area_light(const scene_light *light) {
+    return shadow_map_area_light_text(&psm.settings, light);
+}
+
 static void psm_render(const technique_frame *f) {
     shadow_map_render(&psm.maps, &psm.settings, f, psm_fit);
     /* Light 0's warp space, with the map in use placed in it; where the
@@ -240,6 +244,7 @@ const technique psm_technique = {
     .init = psm_init,
     .render = psm_render,
     .destroy = psm_destroy,
+    .area_light = psm_area_light,
     .describe = psm_describe,
     .gallery_config = "--overlay post-perspective",
 };

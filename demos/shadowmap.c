@@ -106,6 +106,10 @@ static bool shadowmap_init(const render_scene *gpu) {
 
 static void shadowmap_destroy(void) { shadow_map_destroy(&shadowmap.maps); }
 
+static const char *shadowmap_area_light(const scene_light *light) {
+    return shadow_map_area_light_text(&shadowmap.settings, light);
+}
+
 static void shadowmap_render(const technique_frame *f) {
     shadow_map_render(&shadowmap.maps, &shadowmap.settings, f, shadowmap_fit);
 }
@@ -143,6 +147,8 @@ static const char *const shadowmap_bench_configs[] = {
     "--kernel-depth receiver-plane",
     "--filter pcf7 --kernel-depth receiver-plane",
     "--normal-texels 1",
+    "hard: --soft off",
+    "wide pcf (fake soft): --soft off --filter pcf7",
     "--no-slope-bias",
     "--no-constant-bias --no-slope-bias",
     "textbook depth bias: --map-size 1024 --filter pcf3 --no-constant-bias --no-slope-bias --depth-bias-slope 0.05 "
@@ -161,6 +167,7 @@ const technique shadowmap_technique = {
     .init = shadowmap_init,
     .render = shadowmap_render,
     .destroy = shadowmap_destroy,
+    .area_light = shadowmap_area_light,
     .describe = shadowmap_describe,
     /* The lecture picture: the texel boundaries, the frusta and the inset,
      * as the overlay goldens show them. */

@@ -58,7 +58,10 @@ const bool shadowmap_show_cascades = SHADOW_MAP_PASS_SHOW_CASCADES != 0;     // 
 #error "shadowmap.frag lists SCENE_MAX_LIGHTS lights one by one: one SHADOWMAP_LIGHT line each"
 #endif
 // Light i's share by its kind (a constant: the other kinds' code is dropped).
-#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], i, texel_kind, n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], i, texel_kind, n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], i, texel_kind, n)
+// Light i is soft (an area light, filtered by shadowmap_soft.glsl) where
+// its bit of SHADOW_MAP_PASS_SOFT_LIGHTS is set.
+#define SHADOWMAP_SOFT(i) (((SHADOW_MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
+#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOWMAP_SOFT(i), n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOWMAP_SOFT(i), n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOWMAP_SOFT(i), n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.

@@ -71,9 +71,10 @@ const float SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
 // map (u, v), from the screen derivatives dx, dy of its (u, v, depth), so
 // that each tap of a wide kernel compares the receiver's own depth there,
 // not the centre's, which would shadow a slanted receiver with partial acne.
-vec2 shadowmap_depth_gradient(vec3 dx, vec3 dy) {
+// A soft light's taps always follow the plane: its kernels are wide.
+vec2 shadowmap_depth_gradient(vec3 dx, vec3 dy, bool soft) {
     mat2 screen_to_map = mat2(dx.xy, dy.xy);
-    if (!shadowmap_receiver_plane || abs(determinant(screen_to_map)) < SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT)
+    if (!(shadowmap_receiver_plane || soft) || abs(determinant(screen_to_map)) < SHADOWMAP_MIN_SCREEN_TO_MAP_DETERMINANT)
         return vec2(0.0);
     return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
 }
@@ -200,6 +201,50 @@ int shadowmap_kernel_rim(int k) {
 // What four rim taps agree on: 0 or 1 where they are all that, else -1.
 float shadowmap_rim_agreement(vec4 rim) {
     return rim == vec4(0.0) || rim == vec4(1.0) ? rim.x : -1.0;
+}
+
+// Soft shadows' pieces that do not depend on the kind of map (the
+// filter itself, per kind: shadowmap_soft.glsl).
+
+// Light i's disc: its radius (world units) for a point or spot light, the
+// tangent of its angular radius for a directional one.
+uniform float u_light_size[SCENE_MAX_LIGHTS];
+
+// The radius in world units on the receiver of the penumbra that a
+// blocker at distance d_b casts from light i on a receiver at d_r.
+// (A blocker at the light itself would cast an unbounded one.)
+const float SHADOWMAP_MIN_BLOCKER_DISTANCE = 1e-6;
+float shadowmap_penumbra_world(int i, float d_r, float d_b) {
+    float depth = max(d_r - d_b, 0.0);
+    return lights_position[i].w == 0.0 ? u_light_size[i] * depth
+                                       : u_light_size[i] * depth / max(d_b, SHADOWMAP_MIN_BLOCKER_DISTANCE);
+}
+
+float shadowmap_soft_texels(float world, float texel_world) {
+    return clamp(world / texel_world, 0.5 * float(SHADOW_MAP_POISSON_SCALE_TEXELS), float(SHADOW_MAP_SOFT_MAX_TEXELS));
+}
+
+// The share of light i's disc above the receiver's own horizon (its
+// tangent plane, normal n): a disc of angular radius a whose centre stands
+// at elevation e cut by the plane, x = sin(e) / sin(a) clamped to -1..1,
+// keeps 1 - (acos(x) - x sqrt(1 - x^2)) / pi of its area. Near the
+// terminator of a curved receiver the light sets behind the surface
+// itself, as the reference's rays see it; a map has no such depth to
+// compare. 1 wherever the whole disc is above the plane.
+const float SHADOWMAP_PI = 3.14159265;
+float shadowmap_horizon_share(int i, vec3 n, vec3 to_light, vec3 p) {
+    float sin_a = lights_position[i].w == 0.0 ? u_light_size[i] * inversesqrt(1.0 + u_light_size[i] * u_light_size[i])
+                                              : min(u_light_size[i] / distance(lights_position[i].xyz, p), 1.0);
+    float x = clamp(dot(n, to_light) / sin_a, -1.0, 1.0);
+    return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / SHADOWMAP_PI;
+}
+
+// Tap k of n on the unit disc (Vogel 1979): radius sqrt((k + 0.5) / n),
+// each a golden angle on from the one before, turned by `rotation`.
+const float SHADOWMAP_GOLDEN_ANGLE = 2.39996323;
+vec2 shadowmap_vogel_tap(int k, int n, mat2 rotation) {
+    float a = float(k) * SHADOWMAP_GOLDEN_ANGLE;
+    return rotation * (vec2(cos(a), sin(a)) * sqrt((float(k) + 0.5) / float(n)));
 }
 
 // The texel overlay: a floor on the screen derivative of the map position

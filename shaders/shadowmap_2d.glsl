@@ -5,6 +5,8 @@
 uniform sampler2DShadow u_maps_2d[SCENE_MAX_LIGHTS]; // compare mode on: every read is a test
 uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's clip space (an array map: its light view)
 uniform float u_texel_scale[SCENE_MAX_LIGHTS];       // world texel: this (orthographic) or this x depth along the axis (perspective)
+uniform sampler2D u_depths_2d[SCENE_MAX_LIGHTS];     // a soft light's map read as depth (compare mode off)
+uniform mat4 u_light_inverse[SCENE_MAX_LIGHTS];      // a soft light's clip space -> world
 
 // A matrix whose map coordinates hardly change with p (degenerate there)
 // gives a huge texel rather than a division by zero.
@@ -15,9 +17,22 @@ float shadowmap_kernel_read(sampler2DShadow map, vec2 offset) {
     return texture(map, vec3(shadowmap_point.xy + offset, shadowmap_point.z + dot(shadowmap_gradient, offset)));
 }
 
+float shadowmap_blocker_read(sampler2D raw, vec2 offset) { return texture(raw, shadowmap_point.xy + offset).r; }
+
+// Un-projected at the point's place in the map: any projective map's
+// depth (a warp's is not distance) back to the world.
+float shadowmap_soft_distance(sampler2D raw, int i, float depth) {
+    vec4 world = u_light_inverse[i] * vec4(shadowmap_point.xy * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    vec3 b = world.xyz / world.w;
+    return lights_position[i].w == 0.0 ? dot(b, lights_direction[i].xyz) : distance(b, lights_position[i].xyz);
+}
+
 #define SHADOWMAP_SAMPLER sampler2DShadow
+#define SHADOWMAP_RAW_SAMPLER sampler2D
 #include "shadowmap_light.glsl"
 #include "shadowmap_flat.glsl"
+#include "shadowmap_soft.glsl"
+#undef SHADOWMAP_RAW_SAMPLER
 #undef SHADOWMAP_SAMPLER
 
 // A warped map's texel size changes across the map, and its depth is not
@@ -43,13 +58,14 @@ float shadowmap_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) 
     return shadowmap_projective_texel(i, p);
 }
 
-float shadowmap_visibility(sampler2DShadow map, int i, vec3 p, float depth_bias, bool needed) {
+float shadowmap_visibility(sampler2DShadow map, sampler2D raw, int i, vec3 p, float depth_bias, bool soft,
+                           float texel, bool needed) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
-    vec2 gradient = shadowmap_depth_gradient(dFdx(uvz), dFdy(uvz)); /* derivatives: before any branch */
+    vec2 gradient = shadowmap_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
     if (!needed || clip.w <= 0.0)
         return 1.0;
-    return shadowmap_flat_filter(map, uvz, gradient, u_map_size[i], depth_bias);
+    return shadowmap_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, texel);
 }
 
 vec2 shadowmap_texel_coord(sampler2DShadow map, int i, vec3 p) {

@@ -7,6 +7,7 @@
 // (a diagonal and a translation, not a mat4 each: half the uniforms).
 
 uniform sampler2DArrayShadow u_maps_array[SCENE_MAX_LIGHTS];
+uniform sampler2DArray u_depths_array[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
 // xyz: scale and offset; w: the view depths where the layer's slice ends and starts.
 uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];
 uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * SHADOW_MAP_MAX_ARRAY_LAYERS];
@@ -23,9 +24,22 @@ float shadowmap_kernel_read(sampler2DArrayShadow map, vec2 offset) {
                              shadowmap_point.z + dot(shadowmap_gradient, offset)));
 }
 
+float shadowmap_blocker_read(sampler2DArray raw, vec2 offset) {
+    return texture(raw, vec3(shadowmap_point.xy + offset, shadowmap_array_layer)).r;
+}
+
+// A layer's depth is its box's, orthographic: distance along the light up
+// to a constant, 2 / |scale.z| world units to the unit of depth.
+float shadowmap_soft_distance(sampler2DArray raw, int i, float depth) {
+    return 2.0 * depth / abs(u_cascade_scale[i * SHADOW_MAP_MAX_ARRAY_LAYERS + int(shadowmap_array_layer)].z);
+}
+
 #define SHADOWMAP_SAMPLER sampler2DArrayShadow
+#define SHADOWMAP_RAW_SAMPLER sampler2DArray
 #include "shadowmap_light.glsl"
 #include "shadowmap_flat.glsl"
+#include "shadowmap_soft.glsl"
+#undef SHADOWMAP_RAW_SAMPLER
 #undef SHADOWMAP_SAMPLER
 
 // Which of light i's layers a point at view depth `depth` reads: x the
@@ -78,7 +92,8 @@ float shadowmap_texel_world(sampler2DArrayShadow map, int i, int texel_kind, vec
 
 // Layer k's filtered comparison at p, with the receiver plane from the
 // screen derivatives of p in light view (per layer: its scale).
-float shadowmap_visibility(sampler2DArrayShadow map, int i, vec3 p, float depth_bias, bool needed) {
+float shadowmap_visibility(sampler2DArrayShadow map, sampler2DArray raw, int i, vec3 p, float depth_bias,
+                           bool soft, float texel, bool needed) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz; /* an orthonormal view: w is 1 */
     vec3 dx = dFdx(light_p), dy = dFdy(light_p);           /* derivatives: before any branch */
     if (!needed)
@@ -86,8 +101,8 @@ float shadowmap_visibility(sampler2DArrayShadow map, int i, vec3 p, float depth_
     int k = shadowmap_cascade_layer(i);
     vec3 scale = shadowmap_cascade_scale(i, k);
     shadowmap_array_layer = float(k);
-    return shadowmap_flat_filter(map, shadowmap_cascade_uvz(i, k, light_p),
-                                 shadowmap_depth_gradient(dx * scale, dy * scale), u_map_size[i], depth_bias);
+    return shadowmap_flat_filter(map, raw, i, shadowmap_cascade_uvz(i, k, light_p),
+                                 shadowmap_depth_gradient(dx * scale, dy * scale, soft), depth_bias, soft, texel);
 }
 
 vec2 shadowmap_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {

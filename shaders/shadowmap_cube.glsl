@@ -3,6 +3,7 @@
 // face edges. Light i's map is u_maps_cube[i] and the uniforms of index i.
 
 uniform samplerCubeShadow u_maps_cube[SCENE_MAX_LIGHTS];
+uniform samplerCube u_depths_cube[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
 uniform float u_near[SCENE_MAX_LIGHTS];
 uniform float u_far[SCENE_MAX_LIGHTS];
 
@@ -32,22 +33,45 @@ float shadowmap_face_depth(vec3 d, vec2 range) {
     return min(ndc * 0.5 + 0.5, 1.0);
 }
 
-// One tap, offset (in texels) across the direction. With the
-// receiver-plane bias the tap point slides along its light ray onto the
-// receiver's plane, and compares that point's own depth (as Isidoro's
-// receiver-plane bias does for 2D maps), so a slanted receiver does not
-// shadow its own kernel.
-float shadowmap_kernel_read(samplerCubeShadow map, vec2 offset) {
-    vec3 d = shadowmap_direction, w = (shadowmap_across_u * offset.x + shadowmap_across_v * offset.y) * shadowmap_step;
-    vec3 t = d + w;
+// A tap's direction, offset (in texels) across the point's.
+vec3 shadowmap_tap_direction(vec2 offset) {
+    return shadowmap_direction + (shadowmap_across_u * offset.x + shadowmap_across_v * offset.y) * shadowmap_step;
+}
+
+// The depth a tap compares. With the receiver-plane bias (and for soft
+// lights) the tap point slides along its light ray onto the receiver's
+// plane, and compares that point's own depth (as Isidoro's receiver-plane
+// bias does for 2D maps), so a slanted receiver does not shadow its own
+// kernel.
+bool shadowmap_plane_taps;
+float shadowmap_tap_depth(vec2 offset) {
+    vec3 t = shadowmap_tap_direction(offset), w = t - shadowmap_direction;
     float facing = dot(normalize(t), shadowmap_receiver_normal);
-    if (shadowmap_receiver_plane && abs(facing) > SHADOWMAP_MIN_PLANE_FACING)
+    if (shadowmap_plane_taps && abs(facing) > SHADOWMAP_MIN_PLANE_FACING)
         t -= normalize(t) * (dot(w, shadowmap_receiver_normal) / facing);
-    return texture(map, vec4(d + w, shadowmap_face_depth(t, shadowmap_depth_range) - shadowmap_depth_bias));
+    return shadowmap_face_depth(t, shadowmap_depth_range) - shadowmap_depth_bias;
+}
+
+float shadowmap_kernel_read(samplerCubeShadow map, vec2 offset) {
+    return texture(map, vec4(shadowmap_tap_direction(offset), shadowmap_tap_depth(offset)));
+}
+
+// A soft light's reads (shadowmap_soft.glsl).
+float shadowmap_reference_depth(samplerCube raw, vec2 offset) { return shadowmap_tap_depth(offset); }
+
+float shadowmap_blocker_read(samplerCube raw, vec2 offset) { return texture(raw, shadowmap_tap_direction(offset)).r; }
+
+// A stored depth back to its distance along the face's axis.
+float shadowmap_soft_distance(samplerCube raw, int i, float depth) {
+    float near = u_near[i], far = u_far[i], ndc = depth * 2.0 - 1.0;
+    return 2.0 * far * near / ((far + near) - ndc * (far - near));
 }
 
 #define SHADOWMAP_SAMPLER samplerCubeShadow
+#define SHADOWMAP_RAW_SAMPLER samplerCube
 #include "shadowmap_light.glsl"
+#include "shadowmap_soft.glsl"
+#undef SHADOWMAP_RAW_SAMPLER
 #undef SHADOWMAP_SAMPLER
 
 // A 90-degree face spans 2 |major axis| over the map's size.
@@ -61,13 +85,14 @@ float shadowmap_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p
 // tents take the taps and weights of a point on a texel corner (fraction
 // 0): symmetric about the point, the same tap count and footprint as on a
 // 2D map, but not following where the point lies in its texel.
-float shadowmap_visibility(samplerCubeShadow map, int i, vec3 p, float depth_bias, bool needed) {
+float shadowmap_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
+                           float texel, bool needed) {
     vec3 d = p - lights_position[i].xyz;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (!needed)
         return 1.0;
     vec2 range = vec2(u_near[i], u_far[i]);
-    if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE)
+    if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE && !soft)
         return texture(map, vec4(d, shadowmap_face_depth(d, range) - depth_bias));
     vec3 axis = normalize(d);
     vec3 u = normalize(cross(abs(axis.y) < SHADOWMAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
@@ -78,6 +103,9 @@ float shadowmap_visibility(samplerCubeShadow map, int i, vec3 p, float depth_bia
     shadowmap_across_u = u;
     shadowmap_across_v = cross(axis, u);
     shadowmap_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    shadowmap_plane_taps = shadowmap_receiver_plane || soft;
+    if (soft)
+        return shadowmap_soft_filter(map, raw, i, shadowmap_step, 1.0);
     return shadowmap_kernel_filter(map, vec2(0.0), 1.0);
 }
 

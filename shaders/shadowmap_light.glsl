@@ -1,7 +1,9 @@
 // One light's share in the camera pass (shaders/shadowmap.frag), for maps
-// of the sampler type SHADOWMAP_SAMPLER: included once by each kind's file
-// (shadowmap_2d.glsl: sampler2DShadow, shadowmap_cube.glsl:
-// samplerCubeShadow), which defines for its type, before this file,
+// of the sampler type SHADOWMAP_SAMPLER (and SHADOWMAP_RAW_SAMPLER, the
+// same map read as depth, for soft lights): included once by each kind's
+// file (shadowmap_2d.glsl: sampler2DShadow, shadowmap_cube.glsl:
+// samplerCubeShadow, shadowmap_array.glsl: sampler2DArrayShadow), which
+// defines for its type, before this file,
 //   shadowmap_kernel_read(map, offset)  one tap (a kernel tap's offset, in
 //                                       the unit the kind filters in) about
 //                                       the point its visibility set up;
@@ -9,10 +11,14 @@
 //   shadowmap_texel_world(map, i, k, p) world size of a texel of light i's
 //                                       map at p (k: the texel's kind, a
 //                                       SHADOW_MAP_TEXEL_*, for 2D maps);
-//   shadowmap_visibility(map, i, p, b, needed)  the filtered comparison at
-//                                       p, its map depth lowered by b first
-//                                       (the screen derivatives it takes
-//                                       come first, in uniform control flow;
+//   shadowmap_visibility(map, raw, i, p, b, soft, texel, needed)  the
+//                                       filtered comparison at p, its map
+//                                       depth lowered by b first, by the
+//                                       settings' kernel or, soft, by
+//                                       shadowmap_soft.glsl's (texel: a
+//                                       texel's world size there; the
+//                                       screen derivatives it takes come
+//                                       first, in uniform control flow;
 //                                       needed false then reads no map: the
 //                                       share is 0 there whatever it says);
 //   shadowmap_texel_coord(map, i, p)    p's position in the map, in texels
@@ -20,7 +26,8 @@
 // GLSL picks each by the sampler's type: the same names for both kinds.
 
 float shadowmap_texel_world(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 p);
-float shadowmap_visibility(SHADOWMAP_SAMPLER map, int i, vec3 p, float depth_bias, bool needed);
+float shadowmap_visibility(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, vec3 p, float depth_bias,
+                           bool soft, float texel, bool needed);
 vec2 shadowmap_texel_coord(SHADOWMAP_SAMPLER map, int i, vec3 p);
 
 // The kernel's visibility: the early-out's rim, then where it disagrees
@@ -46,12 +53,13 @@ float shadowmap_kernel_filter(SHADOWMAP_SAMPLER map, vec2 fraction, float unit) 
 }
 
 // Light i's share at this fragment (normal n) where its map (texels of
-// kind texel_kind) lets it
-// through, with the lecture's overlays. Where the light adds nothing
+// kind texel_kind) lets it through, filtered as a soft light's where
+// `soft` (an area light: shadowmap_soft.glsl), with the lecture's
+// overlays. Where the light adds nothing
 // unshadowed (beyond its range, outside a spot's cone, facing away) or
 // reaches only through a closed caster (shadowmap_through_closed) the
 // filter is skipped: the share is 0 whatever it would say.
-vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
+vec3 shadowmap_share(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, int texel_kind, bool soft, vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
     // Both biases move the point where the map is read, in world units
     // scaled by the map's texel there, so they hold at any map size,
@@ -64,8 +72,10 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 n) {
     vec3 unshadowed =
         shadowmap_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
     bool needed = unshadowed != vec3(0.0) || shadowmap_show_texel_size;
-    float visibility =
-        shadowmap_visibility(map, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y), needed);
+    float visibility = shadowmap_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
+                                            soft, texel, needed);
+    if (soft)
+        visibility *= shadowmap_horizon_share(i, normalize(shadowmap_face_normal), to_light, v_position);
     vec3 c = visibility * unshadowed;
     // Lines one pixel wide where texels meet: how big a texel is on screen
     // is what aliasing is made of. A grid finer than two pixels a line is

@@ -54,7 +54,7 @@ static void patch_reads(const mat4 layer, const shadow_map_settings *settings, s
     const float box[1][2][3] = {{{-PATCH, 0, -PATCH}, {PATCH, 0, PATCH}}};
     float points[8][3];
     frustum_box_corners(box[0][0], box[0][1], (vec3 *)points);
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(settings, SHADOW_MAP_2D),
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(settings, SHADOW_MAP_2D, false),
                                    .size = MAP_SIZE,
                                    .any_depth = settings->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
     shadow_map_layer_reads(layer, &setup, (const float(*)[3])points, 8, box, 1, reads);
@@ -88,7 +88,7 @@ static void test_caster_cases(void **state) {
     /* The same from the boxes alone (a receiver list too long to trust). */
     const float box[1][2][3] = {{{-PATCH, 0, -PATCH}, {PATCH, 0, PATCH}}};
     shadow_map_reads by_boxes;
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_2D), .size = MAP_SIZE};
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_2D, false), .size = MAP_SIZE};
     shadow_map_layer_reads(layer, &setup, NULL, 0, box, 1, &by_boxes);
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         if (caster_needed(layer, &reads, (float *)cases[i].lo, (float *)cases[i].hi) != cases[i].needed)
@@ -119,7 +119,7 @@ static void test_kernel_margin(void **state) {
                                               SHADOW_MAP_FILTER_PCF7};
     for (size_t i = 1; i < sizeof order / sizeof *order; i++) {
         shadow_map_settings a = {.filter = order[i - 1]}, b = {.filter = order[i]};
-        assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D) < shadow_map_read_reach(&b, SHADOW_MAP_2D));
+        assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D, false) < shadow_map_read_reach(&b, SHADOW_MAP_2D, false));
     }
     /* A tent N reads the texels pcfN does (centres within (N + 1) / 2
      * texels), from nearer taps: the same reach, not less. */
@@ -128,7 +128,7 @@ static void test_kernel_margin(void **state) {
     for (size_t i = 0; i < sizeof tents / sizeof *tents; i++)
         for (shadow_map_kind kind = SHADOW_MAP_2D; kind <= SHADOW_MAP_CUBE; kind++) {
             shadow_map_settings tent = {.filter = tents[i][0]}, grid = {.filter = tents[i][1]};
-            assert_true(shadow_map_read_reach(&tent, kind) >= shadow_map_read_reach(&grid, kind));
+            assert_true(shadow_map_read_reach(&tent, kind, false) >= shadow_map_read_reach(&grid, kind, false));
         }
     /* Receiver-plane taps compare depths beyond the receivers': a caster
      * behind them is needed then, and culled with centre depths. */
@@ -149,7 +149,7 @@ static void test_cube_face(void **state) {
     glm_perspective(glm_rad(FOV_DEG), 1, NEAR, FAR, projection);
     glm_mat4_mul(projection, view, face);
     const shadow_map_settings settings = {0};
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_CUBE), .size = MAP_SIZE,
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_CUBE, false), .size = MAP_SIZE,
                                    .cube = true};
     /* A ground patch below the light, on the +X side, beyond 45 degrees. */
     const float box[1][2][3] = {{{2, -3, -1}, {8, -3, 1}}};

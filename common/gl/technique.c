@@ -196,7 +196,16 @@ bool technique_caster_needed(const technique_frame *f, const technique_hull *hul
 
 /* ---- the host ---- */
 
+const char *technique_area_light_text(const technique *t, const scene_light *light) {
+    return t->area_light ? t->area_light(light) : "hard, from its centre: this technique draws no soft shadows";
+}
+
 bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips) {
+    const scene *s = gpu->scene;
+    for (int l = 0; l < s->light_count && !t->area_light && !t->cost_floor; l++)
+        if (s->lights[l].radius > 0)
+            fprintf(stderr, "%s: light %d is an area light (radius %g): drawn hard, from its centre: %s draws no soft "
+                            "shadows\n", t->name, l, s->lights[l].radius, t->name);
     h->technique = t;
     h->gpu = gpu;
     h->skips = skips;

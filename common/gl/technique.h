@@ -206,7 +206,17 @@ typedef struct technique {
     /* The benchmark's cost floor (demos/unshadowed.c): every ratio is to
      * this technique's frame. One technique in the registry has it. */
     bool cost_floor;
+    /* Optional: how the technique, as set now, draws an area light (a
+     * scene light with radius > 0): a few words for the HUD ("soft: pcss").
+     * NULL: it cannot draw soft shadows and draws every light hard from its
+     * centre, which technique_host_start says once on stderr and the HUD
+     * says for each area light (technique_area_light_text). */
+    const char *(*area_light)(const scene_light *light);
 } technique;
+
+/* What the HUD says of area light `light` under t: t's own words, or that
+ * it is drawn hard. */
+const char *technique_area_light_text(const technique *t, const scene_light *light);
 
 /* Back to defaults, then the flags of `config` ("--filter pcf5
  * --no-offset"), through the command line's parser; prints and returns

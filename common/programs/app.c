@@ -680,6 +680,12 @@ static void app_hud(int width, int height, int frame) {
         n += (int)strlen(text + n);
         n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
+    const scene *s = app.gpu.scene;
+    for (int l = 0; !app.hud_compact && l < s->light_count && n < (int)sizeof text; l++)
+        if (s->lights[l].radius > 0)
+            n += snprintf(text + n, sizeof text - (size_t)n, "light %d: area light, radius %g%s: %s\n", l,
+                          s->lights[l].radius, s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
+                          technique_area_light_text(t, &s->lights[l]));
     for (int k = 0; !app.hud_compact && k < t->param_count && n < (int)sizeof text; k++) {
         const flags_param *p = &t->params[k];
         char value[32];

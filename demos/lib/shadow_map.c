@@ -18,6 +18,7 @@ const char *const shadow_map_filters[] = {
 const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
 const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre",
                                                 [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", NULL};
+const char *const shadow_map_softs[] = {[SHADOW_MAP_SOFT_PCSS] = "pcss", [SHADOW_MAP_SOFT_OFF] = "off", NULL};
 
 /* What each filter reads: the kernel's shape and its size (N, or the
  * Poisson disc's scale in texels). */
@@ -43,16 +44,19 @@ static const shader_define shadow_map_defines[] = {
     SHADER_DEFINE(SHADOW_MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(SHADOW_MAP_TEXEL_PROJECTIVE),
     SHADER_DEFINE(SHADOW_MAP_KERNEL_TENT),       SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MIN),
     SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(SHADOW_MAP_MAX_ARRAY_LAYERS),
+    SHADER_DEFINE(SHADOW_MAP_SOFT_SEARCH_TAPS),  SHADER_DEFINE(SHADOW_MAP_SOFT_FILTER_TAPS),
+    SHADER_DEFINE(SHADOW_MAP_SOFT_MAX_TEXELS),   SHADER_DEFINE(SHADOW_MAP_POISSON_SCALE_TEXELS),
     {NULL, 0}};
 
-/* The camera pass's sampler arrays, by the kind of map they read. */
+/* The camera pass's sampler arrays, by the kind of map they read: its
+ * comparisons', and a soft light's depths'. */
 static const struct {
-    const char *name;
+    const char *name, *depths;
     shadow_map_light_kind kind;
-} shadow_map_samplers[] = {
-    {"u_maps_2d", SHADOW_MAP_LIGHT_2D},
-    {"u_maps_cube", SHADOW_MAP_LIGHT_CUBE},
-    {"u_maps_array", SHADOW_MAP_LIGHT_ARRAY},
+} shadow_map_samplers[SHADOW_MAP_SAMPLER_TYPES] = {
+    {"u_maps_2d", "u_depths_2d", SHADOW_MAP_LIGHT_2D},
+    {"u_maps_cube", "u_depths_cube", SHADOW_MAP_LIGHT_CUBE},
+    {"u_maps_array", "u_depths_array", SHADOW_MAP_LIGHT_ARRAY},
 };
 
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
@@ -311,6 +315,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {"SHADOW_MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
         {"SHADOW_MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
         {"SHADOW_MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
+        {"SHADOW_MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's two, then the list's end ({NULL}, zeroed). */
@@ -343,13 +348,18 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
     /* Each sampler on a unit, those of lights without a map too: an
      * array's elements below the last one used stay active, and two types
      * on one unit (unit 0, the default) would fail every draw. Light l's
-     * own on unit l, the others idle (SHADOW_MAP_IDLE_UNITS). */
+     * own on unit l (a soft light's depths on SHADOW_MAP_DEPTH_UNITS + l),
+     * the others idle (SHADOW_MAP_IDLE_UNITS, the comparisons' types, then
+     * the depths'). */
     glUseProgram(id);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        for (int t = 0; t < (int)(sizeof shadow_map_samplers / sizeof *shadow_map_samplers); t++) {
+        for (int t = 0; t < SHADOW_MAP_SAMPLER_TYPES; t++) {
             bool own = shadow_map_light_field(k->kinds, l) == (unsigned)shadow_map_samplers[t].kind;
+            bool soft = own && (k->soft_lights >> l & 1u);
             glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].name, l),
                         own ? l : SHADOW_MAP_IDLE_UNITS + t);
+            glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].depths, l),
+                        soft ? SHADOW_MAP_DEPTH_UNITS + l : SHADOW_MAP_IDLE_UNITS + SHADOW_MAP_SAMPLER_TYPES + t);
         }
         p->lights[l].cascade_count = shadow_map_light_uniform(id, "u_cascade_count", l);
         p->lights[l].cascade_scale =
@@ -358,6 +368,8 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
             shadow_map_light_uniform(id, "u_cascade_offset", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
         p->lights[l].map_size = shadow_map_light_uniform(id, "u_map_size", l);
         p->lights[l].light_matrix = shadow_map_light_uniform(id, "u_light_matrix", l);
+        p->lights[l].light_inverse = shadow_map_light_uniform(id, "u_light_inverse", l);
+        p->lights[l].light_size = shadow_map_light_uniform(id, "u_light_size", l);
         p->lights[l].texel_scale = shadow_map_light_uniform(id, "u_texel_scale", l);
         p->lights[l].near_plane = shadow_map_light_uniform(id, "u_near", l);
         p->lights[l].far_plane = shadow_map_light_uniform(id, "u_far", l);
@@ -510,6 +522,15 @@ bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
     glBindVertexArray(0);
+    /* A soft light's blocker search reads its map's depths as they are. */
+    glGenSamplers(1, &r->depth_sampler);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(r->depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &r->texture_units);
     glGenFramebuffers(1, &r->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     glDrawBuffer(GL_NONE);
@@ -529,6 +550,7 @@ void shadow_map_destroy(shadow_map_renderer *r) {
     glDeleteVertexArrays(1, &r->overlay_vao);
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);
+    glDeleteSamplers(1, &r->depth_sampler);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         glDeleteTextures(1, &r->maps[l].texture.id);
     free(r->needed[0]);
@@ -570,6 +592,25 @@ static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const te
     return lights;
 }
 
+/* Soft light l's map on its depth unit too, read through the depth
+ * sampler, and its disc: a radius, or a sun's tangent of its angular
+ * radius (degrees in the scene); a 2D map's inverse, for its depths'
+ * distances. */
+static void shadow_map_bind_soft(const shadow_map_renderer *r, const shadow_map_camera_program *p, const scene *s,
+                                 int l) {
+    const shadow_map *m = &r->maps[l];
+    const scene_light *light = &s->lights[l];
+    GLuint unit = SHADOW_MAP_DEPTH_UNITS + (GLuint)l;
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(shadow_map_target(m->kind), m->texture.id);
+    glBindSampler(unit, r->depth_sampler);
+    glUniform1f(p->lights[l].light_size,
+                light->type == SCENE_LIGHT_DIRECTIONAL ? tanf(glm_rad(light->radius)) : light->radius);
+    mat4 inverse;
+    glm_mat4_inv((vec4 *)m->layer_view_projection[0], inverse);
+    glUniformMatrix4fv(p->lights[l].light_inverse, 1, GL_FALSE, (const float *)inverse);
+}
+
 /* Every light on, by its kind in key k (shadowed where its map lets it
  * through, or unshadowed), and the ambient term: the one shading pass.
  * Only receivers read maps (the caster culling is for them too); the
@@ -598,6 +639,8 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
             glUniform1f(p->lights[l].texel_scale, m->texel_scale);
             glUniform1f(p->lights[l].near_plane, m->near_plane);
             glUniform1f(p->lights[l].far_plane, m->far_plane);
+            if (k->soft_lights >> l & 1u)
+                shadow_map_bind_soft(r, p, f->gpu->scene, l);
             if (m->kind != SHADOW_MAP_ARRAY) {
                 glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE,
                                    (const float *)m->layer_view_projection[0]);
@@ -626,6 +669,9 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
             render_draw_object(f->gpu, &p->program, i);
         }
     }
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        if (k->soft_lights >> l & 1u)
+            glBindSampler(SHADOW_MAP_DEPTH_UNITS + (GLuint)l, 0);
     render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
     for (int i = 0; i < f->gpu->scene->object_count; i++)
@@ -636,6 +682,20 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
 /* ---- the frame ---- */
 
 const technique_frame *shadow_map_fit_frame(const technique_frame *f) { return f->fit ? f->fit : f; }
+
+/* Light l is drawn soft: an area light with --soft pcss, whose depth unit
+ * the GL has. An area light drawn hard is said once on stderr. */
+static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settings *settings,
+                                 const scene_light *light, int l) {
+    bool soft = shadow_map_light_soft(settings, light);
+    if (soft && SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
+        return true;
+    if (light->radius > 0 && !(r->soft_warned >> l & 1u))
+        fprintf(stderr, "shadow maps: light %d is an area light (radius %g), drawn hard from its centre: %s\n", l,
+                light->radius, soft ? "this GL has too few texture units for its soft filter" : "--soft off");
+    r->soft_warned |= light->radius > 0 ? 1u << l : 0;
+    return false;
+}
 
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit) {
@@ -675,6 +735,8 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     render_depth_prepass(f->gpu, f->view, f->in_view);
     shadow_map_camera_key key = shadow_map_settings_key(settings);
     for (int l = 0; l < s->light_count; l++) {
+        if (fitted[l] && shadow_map_soft_unit(r, settings, &s->lights[l], l))
+            key.soft_lights |= 1u << l;
         if (fitted[l])
             shadow_map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
         else if (technique_light_on(f, l)) /* nothing visible receives: no map needed, nothing shadowed */

@@ -225,6 +225,7 @@ typedef enum shadow_map_filter {
     SHADOW_MAP_FILTER_TENT5,
 } shadow_map_filter;
 typedef enum shadow_map_depth { SHADOW_MAP_DEPTH_24, SHADOW_MAP_DEPTH_32F } shadow_map_depth;
+typedef enum shadow_map_soft { SHADOW_MAP_SOFT_PCSS, SHADOW_MAP_SOFT_OFF } shadow_map_soft;
 typedef enum shadow_map_kernel_depth {
     SHADOW_MAP_KERNEL_DEPTH_CENTRE,
     SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
@@ -234,12 +235,14 @@ extern const char *const shadow_map_sizes[];
 extern const char *const shadow_map_filters[];
 extern const char *const shadow_map_depths[];
 extern const char *const shadow_map_kernel_depths[];
+extern const char *const shadow_map_softs[];
 
 typedef struct shadow_map_settings {
     int map_size;     /* choice: shadow_map_sizes */
     int filter;       /* choice: shadow_map_filter */
     int depth;        /* choice: shadow_map_depth */
     int kernel_depth; /* choice: shadow_map_kernel_depth */
+    int soft;         /* choice: shadow_map_soft, what an area light (radius > 0) gets */
     int overlay;      /* choice: the technique's own list, SHADOW_MAP_OVERLAY_NAMES first */
     bool no_constant_bias, no_slope_bias, no_early_out;
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
@@ -283,6 +286,8 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
      .disabled = &(s).no_slope_bias},                                                                              \
     {"early-out", "wide kernels: four rim taps first, the whole kernel only where they disagree", GLFW_KEY_E,     \
      FLAGS_TOGGLE, .disabled = &(s).no_early_out},                                                                 \
+    {"soft", "area lights (radius > 0): pcss, soft shadows that harden at contact; off: hard, from the centre",  \
+     GLFW_KEY_Y, FLAGS_CHOICE, .index = &(s).soft, .choices = shadow_map_softs},                                   \
     {"kernel-depth", "what each kernel tap compares: the centre's depth, or the receiver plane's there",           \
      GLFW_KEY_P, FLAGS_CHOICE, .index = &(s).kernel_depth, .choices = shadow_map_kernel_depths},                   \
     {"constant-texels", "constant bias, in map texels of world distance", 0, FLAGS_NUMBER,                         \
@@ -314,6 +319,14 @@ typedef enum shadow_map_kernel {
  * Its points reach radius 1.234 of that circle, so the taps span 3.7
  * texels (see shaders/shadowmap.glsl). */
 #define SHADOW_MAP_POISSON_SCALE_TEXELS 3
+
+/* Soft shadows (shaders/shadowmap_soft.glsl): the blocker search's and
+ * the filter's taps, and the most radius of either disc in texels, which
+ * caster culling allows for (shadow_map_read_reach); the least is the hard
+ * default's disc's, SHADOW_MAP_POISSON_SCALE_TEXELS / 2. */
+#define SHADOW_MAP_SOFT_SEARCH_TAPS 16
+#define SHADOW_MAP_SOFT_FILTER_TAPS 32
+#define SHADOW_MAP_SOFT_MAX_TEXELS 48
 
 /* How the camera pass finds the world size of a texel at a point (the
  * shaders' u_texel_kind). */
@@ -384,6 +397,13 @@ _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combinati
  * SHADOW_MAP_IDLE_UNITS + t: samplers of two types on one unit would fail
  * every draw. 11 units, within GL 3.3's 16. */
 #define SHADOW_MAP_IDLE_UNITS SCENE_MAX_LIGHTS
+/* A soft light's map is also read as depth (compare mode off, by
+ * r->depth_sampler): light i's on unit SHADOW_MAP_DEPTH_UNITS + i, after
+ * the idle units of the comparison and the depth samplers' types. A GL
+ * with fewer units (3.3 promises 16) draws the lights past them hard,
+ * and says so. */
+#define SHADOW_MAP_SAMPLER_TYPES 3
+#define SHADOW_MAP_DEPTH_UNITS (SHADOW_MAP_IDLE_UNITS + 2 * SHADOW_MAP_SAMPLER_TYPES)
 
 /* What a camera program is compiled for (shaders/shadowmap.frag's
  * SHADOW_MAP_LIGHT_KIND_<i>, SHADOW_MAP_TEXEL_KIND_<i> and
@@ -396,6 +416,7 @@ _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combinati
 typedef struct shadow_map_camera_key {
     unsigned kinds, texel_kinds; /* per light (SHADOW_MAP_LIGHT_KIND_BITS) */
     unsigned shape, kernel;      /* shadow_map_kernel, N or the disc's scale */
+    unsigned soft_lights;        /* bit i: light i is soft (shadowmap_soft.glsl) */
     unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades;
 } shadow_map_camera_key;
 
@@ -407,7 +428,7 @@ typedef struct shadow_map_camera_program {
     shadow_map_camera_key key;
     int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend;
     struct {
-        int map_size, light_matrix, texel_scale, near_plane, far_plane, cascade_count;
+        int map_size, light_matrix, light_inverse, light_size, texel_scale, near_plane, far_plane, cascade_count;
         int cascade_scale, cascade_offset; /* the light's first layer's element */
     } lights[SCENE_MAX_LIGHTS];
 } shadow_map_camera_program;
@@ -462,6 +483,9 @@ typedef struct shadow_map_renderer {
     shadow_map_inset_program inset;
     shadow_map_legend_program legend;
     unsigned framebuffer, overlay_vao, overlay_buffer;
+    unsigned depth_sampler; /* a map read as depth: compare mode off, nearest */
+    int texture_units;      /* GL_MAX_TEXTURE_IMAGE_UNITS */
+    unsigned soft_warned;   /* bit i: light i's treatment said on stderr */
     shadow_map maps[SCENE_MAX_LIGHTS];
     shadow_map_cache caches[SCENE_MAX_LIGHTS];
     int object_count;                      /* the scene's, at init: the sets' size */
@@ -562,7 +586,12 @@ typedef struct shadow_map_reads {
     bool empty;
     float lo[2], hi[2], max_depth;
 } shadow_map_reads;
-float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind);
+float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool soft);
+/* Light `light` of the settings' technique gets soft shadows: an area
+ * light, with --soft pcss. */
+bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light);
+/* The technique's area_light words (technique.h) under the settings. */
+const char *shadow_map_area_light_text(const shadow_map_settings *settings, const scene_light *light);
 /* The reads of the layer of matrix `layer` by the receiver points (NULL:
  * no bound from them) and by the surfaces of the receiver boxes (lo, hi). */
 void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *setup, const float (*points)[3],

@@ -26,9 +26,20 @@
 #define SHADOW_MAP_CLIP_PLANES 5
 #define SHADOW_MAP_POLYGON_MAX (4 + SHADOW_MAP_CLIP_PLANES)
 
-float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind) {
+bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light) {
+    return light->radius > 0 && settings->soft == SHADOW_MAP_SOFT_PCSS;
+}
+
+const char *shadow_map_area_light_text(const shadow_map_settings *settings, const scene_light *light) {
+    return shadow_map_light_soft(settings, light) ? "soft: pcss, a blocker search then a filter of the penumbra's width"
+                                                  : "hard, from its centre: --soft off";
+}
+
+float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool soft) {
     float offset = 0, footprint = SHADOW_MAP_BILINEAR_TEXELS; /* how far taps lie from the point; what each reads */
-    switch ((shadow_map_filter)settings->filter) {
+    /* A soft light's discs (the search's and the filter's) reach at most
+     * this far, whatever the filter. */
+    switch (soft ? SHADOW_MAP_FILTER_HW : (shadow_map_filter)settings->filter) {
     case SHADOW_MAP_FILTER_NONE:
         footprint = SHADOW_MAP_NEAREST_TEXELS;
         break;
@@ -54,6 +65,8 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
         offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2;
         break;
     }
+    if (soft)
+        offset = SHADOW_MAP_SOFT_MAX_TEXELS;
     if (kind == SHADOW_MAP_CUBE)
         offset *= SHADOW_MAP_CUBE_TAP_STRETCH;
     return offset + footprint + SHADOW_MAP_SAFETY_TEXELS;
@@ -249,10 +262,12 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
     const scene *s = f->gpu->scene;
     const shadow_map *m = &r->maps[l];
     bool cull = shadow_map_culls(st, f, l);
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind),
+    /* A soft light's taps follow the receiver's plane, as receiver-plane taps do. */
+    bool soft = shadow_map_light_soft(st, &s->lights[l]);
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind, soft),
                                    .size = m->size,
                                    .cube = m->kind == SHADOW_MAP_CUBE,
-                                   .any_depth = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+                                   .any_depth = soft || st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
     glm_vec3_copy((float *)s->lights[l].position, setup.center);
     shadow_map_reads reads[SHADOW_MAP_MAX_LAYERS];
     int box_count = cull ? shadow_map_light_receivers(f, l, r->receiver_boxes) : 0;

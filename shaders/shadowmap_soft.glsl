@@ -1,0 +1,66 @@
+// Percentage-closer soft shadows (Fernando, "Percentage-closer soft
+// shadows", SIGGRAPH 2005 sketch) for an area light (scene "radius" > 0),
+// in the camera pass (shaders/shadowmap.frag): included once by each kind
+// of map's file, after shadowmap_light.glsl, for its SHADOWMAP_SAMPLER
+// (comparisons) and SHADOWMAP_RAW_SAMPLER (the same texture read as depth,
+// on a unit of its own). That file defines, before this one,
+//   shadowmap_blocker_read(raw, offset)    the stored depth a tap's offset
+//                                          (in the kernel's unit) away;
+//   shadowmap_reference_depth(raw, offset) the receiver's own depth there
+//                                          (its plane, as receiver-plane
+//                                          taps follow it), biased as its
+//                                          comparisons are;
+//   shadowmap_soft_distance(raw, i, depth) how far from light i (along its
+//                                          rays; a directional light: along
+//                                          its direction, up to a constant)
+//                                          a stored depth at the point lies.
+// (The raw sampler picks each by its type: the same names for every kind.)
+//
+// The three steps, each in the light's own measure:
+//   1. the blocker search: the depths stored inside the region of the map
+//      through which the light's disc sees the point, its rays' cone cut
+//      at the map's near plane (the nearest caster); their mean where they
+//      are nearer the light than the receiver;
+//   2. the penumbra by similar triangles: a disc of radius R (world) at
+//      the light, a blocker at distance d_b, the receiver at d_r: a
+//      penumbra of radius R (d_r - d_b) / d_b on the receiver; a sun of
+//      angular radius a: tan(a) (d_r - d_b);
+//   3. percentage-closer filtering over a disc of that radius.
+// Both discs are Vogel's golden-angle spirals, rotated per pixel by the
+// pixel's hash (no noise over time: frames stay deterministic), clamped
+// to the hard default's disc (SHADOW_MAP_POISSON_SCALE_TEXELS / 2: a
+// penumbra narrower than that is filtered as a hard shadow is) and
+// SHADOW_MAP_SOFT_MAX_TEXELS (C culls casters with that reach).
+
+// Light i's visibility at the point its kind's visibility set up; the
+// texel's world size there (texel_world) and the unit of the kind's tap
+// offsets per texel (unit: the map's size for map coordinates, 1 for
+// texels).
+float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, float texel_world, float unit) {
+    float a = shadowmap_pixel_angle();
+    mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
+    float d_r = shadowmap_soft_distance(raw, i, shadowmap_reference_depth(raw, vec2(0.0)));
+    // 1. The blocker search, over the light's cone cut at the near plane.
+    float search = shadowmap_soft_texels(shadowmap_penumbra_world(i, d_r, shadowmap_soft_distance(raw, i, 0.0)),
+                                         texel_world) / unit;
+    float blocker_depth = 0.0;
+    int blockers = 0;
+    for (int k = 0; k < SHADOW_MAP_SOFT_SEARCH_TAPS; k++) {
+        vec2 offset = shadowmap_vogel_tap(k, SHADOW_MAP_SOFT_SEARCH_TAPS, rotation) * search;
+        float depth = shadowmap_blocker_read(raw, offset);
+        if (depth < shadowmap_reference_depth(raw, offset)) {
+            blocker_depth += depth;
+            blockers++;
+        }
+    }
+    if (blockers == 0)
+        return 1.0;
+    // 2. The penumbra's radius from the blockers' mean depth.
+    float d_b = shadowmap_soft_distance(raw, i, blocker_depth / float(blockers));
+    float radius = shadowmap_soft_texels(shadowmap_penumbra_world(i, d_r, d_b), texel_world) / unit;
+    // 3. Percentage-closer filtering over it.
+    float sum = 0.0;
+    for (int k = 0; k < SHADOW_MAP_SOFT_FILTER_TAPS; k++)
+        sum += shadowmap_kernel_read(map, shadowmap_vogel_tap(k, SHADOW_MAP_SOFT_FILTER_TAPS, rotation) * radius);
+    return sum / float(SHADOW_MAP_SOFT_FILTER_TAPS);
+}
