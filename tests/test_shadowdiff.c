@@ -1,6 +1,7 @@
 /* Tests of common/measure/shadowdiff.c and build/shadowdiff on synthetic dumps
  * whose answer is known: which pixels are compared, the counts, the heat
- * map, the consistency checks, the comparisons that give no figure
+ * map, the classes (umbra, penumbra, lit) and their errors on wrong
+ * pictures, the consistency checks, the comparisons that give no figure
  * (nothing compared, NaN or infinity), --max-misclassified, and the dump
  * files' round trip. Run from the repository root. */
 #include <setjmp.h>
@@ -30,6 +31,10 @@
 #define BOX 1
 #define DEPTH 10.0f
 #define DIR "out/test/shadowdiff"
+/* build/shadowdiff's text report: compared, false shadow, false lit,
+ * misclassified, MAE, then a line per class; --previous adds two. */
+#define TEXT_LINES (5 + SHADOWDIFF_CLASS_COUNT)
+#define SHIMMER_TEXT_LINES (TEXT_LINES + 2)
 
 static const scene_light point_light = {.type = SCENE_LIGHT_POINT, .position = {0, 10, 0}};
 /* Straight down: the dump's light is (0, 1, 0, 0). */
@@ -292,6 +297,159 @@ static void test_receiver_restricts(void **state) {
     assert_float_equal(box.false_lit_percent, 300.0 / (PIXELS / 2 - 1), 1e-12);
     shadowdiff_result unused;
     assert_false(shadowdiff_compare(&reference, &test, &(shadowdiff_settings){.receiver = "teapot"}, &unused, NULL));
+    free_pair(&reference, &test);
+}
+
+/* ---- the classes: umbra, penumbra, lit by the reference's visibility ---- */
+
+/* A soft truth across the columns (every row the same): two umbra
+ * columns, a penumbra ramp of four, two lit ones. */
+#define SOFT_TRUTH {0, 0, 0.2f, 0.4f, 0.6f, 0.8f, 1, 1}
+/* The same edge, hard: the picture a hard shadow map draws of it. */
+#define HARD_EDGE {0, 0, 0, 0, 1, 1, 1, 1}
+#define CLASS_CASE_TOLERANCE 1e-6
+
+/* One picture against its truth: the visibilities by column, and on the
+ * lit class's pixels with x + y odd (a checkerboard) the test's
+ * visibility `speckle` where it is not 0. Expected: misclassified %, MAE,
+ * each class's pixel count and MAE (a class with no pixel: 0). */
+typedef struct class_case {
+    const char *what;
+    float reference[SIZE], test[SIZE], speckle;
+    double misclassified, mae;
+    long pixels[SHADOWDIFF_CLASS_COUNT];
+    double class_mae[SHADOWDIFF_CLASS_COUNT];
+} class_case;
+
+enum {
+    CASE_EXACT,
+    CASE_HARD_AGAINST_SOFT,
+    CASE_BLURRED,
+    CASE_LEAKING,
+    CASE_SPECKLED,
+    CASE_HARD_TRUTH,
+    CLASS_CASE_COUNT
+};
+
+static const class_case class_cases[CLASS_CASE_COUNT] = {
+    [CASE_EXACT] = {"exact soft shadow", SOFT_TRUTH, SOFT_TRUTH, 0, 0, 0, {16, 32, 16}, {0, 0, 0}},
+    /* Steps on the 0.5 line: nothing misclassified, the ramp off by 0.2,
+     * 0.4, 0.4, 0.2 in the penumbra. */
+    [CASE_HARD_AGAINST_SOFT] = {"hard against soft", SOFT_TRUTH, HARD_EDGE, 0, 0, 0.15, {16, 32, 16}, {0, 0.3, 0}},
+    [CASE_BLURRED] = {"blurred everywhere", SOFT_TRUTH, {0.1f, 0.15f, 0.3f, 0.4f, 0.6f, 0.7f, 0.85f, 0.9f}, 0, 0,
+                      0.0875, {16, 32, 16}, {0.125, 0.05, 0.125}},
+    /* Light in the umbra, one column over 0.5: the umbra's error only. */
+    [CASE_LEAKING] = {"leaking", SOFT_TRUTH, {0.5f, 0.3f, 0.2f, 0.4f, 0.6f, 0.8f, 1, 1}, 0, 12.5, 0.1,
+                      {16, 32, 16}, {0.4, 0, 0}},
+    /* Half the lit pixels at 0.625: still lit, the lit class's error. */
+    [CASE_SPECKLED] = {"speckled lit surface", SOFT_TRUTH, SOFT_TRUTH, 0.625f, 0, 0.046875, {16, 32, 16},
+                       {0, 0, 0.1875}},
+    /* A hard truth: no penumbra; the old figures are as they always were
+     * (column 3 lit, column 7 dark: 16 of 64 misclassified). */
+    [CASE_HARD_TRUTH] = {"hard truth", HARD_EDGE, {0, 0, 0, 1, 1, 1, 1, 0.25f}, 0, 25, 0.21875, {32, 0, 32},
+                         {0.25, 0, 0.1875}},
+};
+
+/* Case c's picture into rows [row0, row0 + SIZE) of the pair. */
+static void set_class_case(dump_frame *reference, dump_frame *test, const class_case *c, int row0) {
+    for (int y = 0; y < SIZE; y++) {
+        for (int x = 0; x < SIZE; x++) {
+            size_t i = (size_t)(row0 + y) * SIZE + (size_t)x;
+            bool speckled = c->speckle != 0 && c->reference[x] >= SHADOWDIFF_LIT_MIN_VISIBILITY && (x + y) % 2;
+            set_visibility(reference, test, i, c->reference[x], speckled ? c->speckle : c->test[x]);
+        }
+    }
+}
+
+static shadowdiff_result compare_class_case(const class_case *c) {
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    set_class_case(&reference, &test, c, 0);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    free_pair(&reference, &test);
+    return r;
+}
+
+/* Each wrong picture moves the figure that names its fault, and only
+ * that one where the fault is one: a hard shadow of a soft truth is 0 %
+ * misclassified and 0.3 off in the penumbra; a leak is the umbra's, a
+ * speckle the lit class's. The classes partition the compared pixels. */
+static void test_classes_name_the_fault(void **state) {
+    (void)state;
+    for (int k = 0; k < CLASS_CASE_COUNT; k++) {
+        const class_case *c = &class_cases[k];
+        shadowdiff_result r = compare_class_case(c);
+        print_message("    %s: misclassified %.4f %%, MAE %.5f, umbra %.5f, penumbra %.5f, lit %.5f\n", c->what,
+                      r.misclassified_percent, r.mean_abs_error, r.class_mae[SHADOWDIFF_CLASS_UMBRA],
+                      r.class_mae[SHADOWDIFF_CLASS_PENUMBRA], r.class_mae[SHADOWDIFF_CLASS_LIT]);
+        assert_int_equal(r.compared, PIXELS);
+        assert_float_equal(r.misclassified_percent, c->misclassified, CLASS_CASE_TOLERANCE);
+        assert_float_equal(r.mean_abs_error, c->mae, CLASS_CASE_TOLERANCE);
+        double weighed = 0;
+        for (int cl = 0; cl < SHADOWDIFF_CLASS_COUNT; cl++) {
+            assert_int_equal(r.class_pixels[cl], c->pixels[cl]);
+            assert_float_equal(r.class_mae[cl], c->class_mae[cl], CLASS_CASE_TOLERANCE);
+            weighed += r.class_mae[cl] * (double)r.class_pixels[cl];
+        }
+        assert_float_equal(weighed / PIXELS, r.mean_abs_error, 1e-12);
+    }
+}
+
+/* The bounds are inclusive: 1/32 is umbra, 31/32 lit, just inside them
+ * penumbra; a spot's outside (0) is umbra. */
+static void test_class_bounds(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_pair(&reference, &test, point_light);
+    const float umbra = SHADOWDIFF_UMBRA_MAX_VISIBILITY, lit = SHADOWDIFF_LIT_MIN_VISIBILITY;
+    const float penumbra[] = {nextafterf(umbra, 1), nextafterf(lit, 0)};
+    for (size_t i = 0; i < PIXELS; i++)
+        set_visibility(&reference, &test, i, i < 16 ? 0 : i < 32 ? umbra : 1, 1);
+    set_visibility(&reference, &test, 40, lit, 1);
+    for (size_t i = 0; i < 2; i++)
+        set_visibility(&reference, &test, 50 + i, penumbra[i], 1);
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_int_equal(r.class_pixels[SHADOWDIFF_CLASS_UMBRA], 32);
+    assert_int_equal(r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA], 2);
+    assert_int_equal(r.class_pixels[SHADOWDIFF_CLASS_LIT], PIXELS - 34);
+    assert_float_equal(r.class_mae[SHADOWDIFF_CLASS_LIT], (1 - (double)lit) / (PIXELS - 34), 1e-9);
+    char text[32];
+    assert_string_equal(shadowdiff_class_mae_text(&r, SHADOWDIFF_CLASS_UMBRA, 3, text, sizeof text), "0.984");
+    free_pair(&reference, &test);
+    /* A class with no pixel has no figure, in text too. */
+    r = compare_class_case(&class_cases[CASE_HARD_TRUTH]);
+    assert_string_equal(shadowdiff_class_mae_text(&r, SHADOWDIFF_CLASS_PENUMBRA, 4, text, sizeof text), "none");
+}
+
+/* Every case pooled frame by frame is one comparison of all of them,
+ * stacked into one tall picture: the counts summed, every MAE over the
+ * sums. */
+static void test_classes_pool(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    make_frame(&reference, SIZE, SIZE * CLASS_CASE_COUNT, point_light);
+    make_frame(&test, SIZE, SIZE * CLASS_CASE_COUNT, point_light);
+    shadowdiff_result pooled = {0};
+    for (int k = 0; k < CLASS_CASE_COUNT; k++) {
+        shadowdiff_result frame = compare_class_case(&class_cases[k]);
+        shadowdiff_result_add(&pooled, &frame);
+        set_class_case(&reference, &test, &class_cases[k], SIZE * k);
+    }
+    shadowdiff_result once = compare(&reference, &test, NULL);
+    assert_counts(&pooled, once.compared, once.false_shadow, once.false_lit);
+    assert_float_equal(pooled.misclassified_percent, once.misclassified_percent, 1e-12);
+    assert_float_equal(pooled.mean_abs_error, once.mean_abs_error, 1e-12);
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
+        assert_int_equal(pooled.class_pixels[c], once.class_pixels[c]);
+        assert_float_equal(pooled.class_mae[c], once.class_mae[c], 1e-12);
+    }
+    /* Pooled with a frame that has no penumbra, the penumbra's MAE is
+     * the other frame's, not diluted by a 0. */
+    shadowdiff_result soft = compare_class_case(&class_cases[CASE_HARD_AGAINST_SOFT]);
+    shadowdiff_result hard = compare_class_case(&class_cases[CASE_HARD_TRUTH]);
+    shadowdiff_result_add(&soft, &hard);
+    assert_int_equal(soft.class_pixels[SHADOWDIFF_CLASS_PENUMBRA], 32);
+    assert_float_equal(soft.class_mae[SHADOWDIFF_CLASS_PENUMBRA], 0.3, CLASS_CASE_TOLERANCE);
     free_pair(&reference, &test);
 }
 
@@ -726,11 +884,19 @@ static void test_cli_text_report(void **state) {
     char out[4096];
     assert_int_equal(run_shadowdiff(DIR "/ref " DIR "/test", out, sizeof out), 0);
     assert_string_equal(err, "");
-    assert_int_equal(support_count_lines(out), 5);
+    assert_int_equal(support_count_lines(out), TEXT_LINES);
     assert_non_null(strstr(out, "64 of 64"));
     assert_non_null(strstr(out, "7.812 %"));
     assert_non_null(strstr(out, "4.688 %"));
     assert_non_null(strstr(out, "12.500 %"));
+    assert_non_null(strstr(out, "\nmean abs error   0.1331\numbra MAE        0.3750 (12 pixels: "));
+    assert_non_null(strstr(out, "\npenumbra MAE     0.0067 (3 pixels: "));
+    assert_non_null(strstr(out, "\nlit MAE          0.0816 (49 pixels: "));
+    /* All lit: no umbra, no penumbra, and no 0 that reads as perfect. */
+    assert_int_equal(run_shadowdiff(DIR "/moved " DIR "/moved", out, sizeof out), 0);
+    assert_non_null(strstr(out, "\numbra MAE        none (0 pixels: "));
+    assert_non_null(strstr(out, "\npenumbra MAE     none (0 pixels: "));
+    assert_non_null(strstr(out, "\nlit MAE          0.0000 (64 pixels: "));
 }
 
 static double json_number(const cJSON *root, const char *key) {
@@ -759,6 +925,22 @@ static void test_cli_json(void **state) {
     assert_float_equal(json_number(root, "misclassified_percent"), 12.5, 1e-12);
     /* 4 x 1 + 0.01 + 2 x 1 + 0.01 + 10 x 0.25 */
     assert_float_equal(json_number(root, "mean_abs_error"), (8.5 + 2 * (0.5 - 0.49f)) / PIXELS, 1e-12);
+    /* Umbra: 2 x 1 + 10 x 0.25; penumbra (0.5, 0.49, 0.5): 2 x 0.01; lit:
+     * 4 x 1 over the other 49. */
+    assert_float_equal(json_number(root, "umbra_pixels"), 12, 0);
+    assert_float_equal(json_number(root, "penumbra_pixels"), 3, 0);
+    assert_float_equal(json_number(root, "lit_pixels"), 49, 0);
+    assert_float_equal(json_number(root, "umbra_mae"), 4.5 / 12, 1e-12);
+    assert_float_equal(json_number(root, "penumbra_mae"), 2 * (0.5 - 0.49f) / 3, 1e-12);
+    assert_float_equal(json_number(root, "lit_mae"), 4.0 / 49, 1e-12);
+    cJSON_Delete(root);
+    /* A class with no pixel: null, not 0. */
+    root = run_json(DIR "/moved " DIR "/moved");
+    assert_true(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(root, "umbra_mae")));
+    assert_true(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(root, "penumbra_mae")));
+    assert_float_equal(json_number(root, "penumbra_pixels"), 0, 0);
+    assert_float_equal(json_number(root, "lit_mae"), 0, 0);
+    assert_float_equal(json_number(root, "lit_pixels"), PIXELS, 0);
     cJSON_Delete(root);
 }
 
@@ -819,14 +1001,14 @@ static void test_cli_max_misclassified(void **state) {
         snprintf(args, sizeof args, DIR "/ref " DIR "/test --max-misclassified %s", within[i]);
         assert_int_equal(run_shadowdiff(args, out, sizeof out), 0);
         assert_string_equal(err, "");
-        assert_int_equal(support_count_lines(out), 5);
+        assert_int_equal(support_count_lines(out), TEXT_LINES);
     }
     const char *over[] = {"12", "0", "12.49"};
     for (size_t i = 0; i < sizeof over / sizeof *over; i++) {
         char args[256];
         snprintf(args, sizeof args, DIR "/ref " DIR "/test --max-misclassified=%s", over[i]);
         assert_int_equal(run_shadowdiff(args, out, sizeof out), EXIT_OVER_MAX);
-        assert_int_equal(support_count_lines(out), 5);
+        assert_int_equal(support_count_lines(out), TEXT_LINES);
         assert_non_null(strstr(out, "12.500 %"));
         assert_int_equal(support_count_lines(err), 1);
         assert_non_null(strstr(err, DIR "/test: misclassified 12.500 % is over --max-misclassified"));
@@ -874,7 +1056,7 @@ static void test_cli_shimmer(void **state) {
     char out[4096];
     assert_int_equal(run_shadowdiff(SHIMMER_ARGS, out, sizeof out), 0);
     assert_string_equal(err, "");
-    assert_int_equal(support_count_lines(out), 7);
+    assert_int_equal(support_count_lines(out), SHIMMER_TEXT_LINES);
     assert_non_null(strstr(out, "shimmer          1.786 % (1 of 56 followed pixels"));
     assert_non_null(strstr(out, "truth changed    0.000 % (0:"));
     assert_non_null(strstr(out, "false shadow     1.562 % (1:"));
@@ -914,6 +1096,8 @@ static void test_cli_help(void **state) {
     assert_non_null(strstr(out, "--previous PREV_REF_DIR PREV_TEST_DIR"));
     assert_non_null(strstr(out, "shimmer % is the share of followed pixels"));
     assert_non_null(strstr(out, "5 a dump\nholds NaN"));
+    assert_non_null(strstr(out, "umbra\n(v <= 1/32), lit (v >= 31/32) and penumbra"));
+    assert_non_null(strstr(out, "\"none\" (JSON null)"));
 }
 
 int main(void) {
@@ -927,6 +1111,9 @@ int main(void) {
         cmocka_unit_test(test_grazing_leaves_out_near_edge_on),
         cmocka_unit_test(test_edge_on_within_rounding_left_out),
         cmocka_unit_test(test_receiver_restricts),
+        cmocka_unit_test(test_classes_name_the_fault),
+        cmocka_unit_test(test_class_bounds),
+        cmocka_unit_test(test_classes_pool),
         cmocka_unit_test(test_nothing_compared_is_an_error),
         cmocka_unit_test(test_non_finite_is_an_error),
         cmocka_unit_test(test_heatmap_colours),

@@ -21,6 +21,11 @@ const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT] = {
     [SHADOWDIFF_PIXEL_FALSE_SHADOW] = "false shadow",
     [SHADOWDIFF_PIXEL_FALSE_LIT] = "false lit",
 };
+const char *const shadowdiff_class_names[SHADOWDIFF_CLASS_COUNT] = {
+    [SHADOWDIFF_CLASS_UMBRA] = "umbra",
+    [SHADOWDIFF_CLASS_PENUMBRA] = "penumbra",
+    [SHADOWDIFF_CLASS_LIT] = "lit",
+};
 const shadowdiff_pixel shadowdiff_legend_kinds[SHADOWDIFF_PIXEL_KIND_COUNT] = {
     SHADOWDIFF_PIXEL_FALSE_SHADOW, SHADOWDIFF_PIXEL_FALSE_LIT, SHADOWDIFF_PIXEL_AGREES,
     SHADOWDIFF_PIXEL_NOT_COMPARED, SHADOWDIFF_PIXEL_NO_SURFACE,
@@ -146,6 +151,12 @@ static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, siz
 
 static bool shadowdiff_lit(const dump_frame *d, size_t i) { return d->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD; }
 
+static shadowdiff_class shadowdiff_class_of(float reference_visibility) {
+    if (reference_visibility <= SHADOWDIFF_UMBRA_MAX_VISIBILITY)
+        return SHADOWDIFF_CLASS_UMBRA;
+    return reference_visibility >= SHADOWDIFF_LIT_MIN_VISIBILITY ? SHADOWDIFF_CLASS_LIT : SHADOWDIFF_CLASS_PENUMBRA;
+}
+
 static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_frame *t, size_t i, int receiver,
                                             double min_cosine) {
     if (!shadowdiff_is_compared(r, t, i, receiver, min_cosine))
@@ -231,13 +242,17 @@ static bool shadowdiff_check_finite(const dump_frame *d, const char *name, bool 
     return true;
 }
 
-/* The percentages and the mean absolute error of r's counts (r->compared
- * > 0) and of the sum of its compared pixels' errors. */
-static void shadowdiff_result_figures(shadowdiff_result *r, double error_sum) {
+/* The percentages and the mean absolute errors of r's counts (r->compared
+ * > 0) and of the sums of its compared pixels' errors, all of them and by
+ * class. */
+static void shadowdiff_result_figures(shadowdiff_result *r, double error_sum,
+                                      const double class_error_sum[SHADOWDIFF_CLASS_COUNT]) {
     r->false_shadow_percent = shadowdiff_percent(r->false_shadow, r->compared);
     r->false_lit_percent = shadowdiff_percent(r->false_lit, r->compared);
     r->misclassified_percent = shadowdiff_percent(r->false_shadow + r->false_lit, r->compared);
     r->mean_abs_error = error_sum / (double)r->compared;
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++)
+        r->class_mae[c] = r->class_pixels[c] > 0 ? class_error_sum[c] / (double)r->class_pixels[c] : 0;
 }
 
 static double shadowdiff_min_cosine(const shadowdiff_settings *s) {
@@ -261,15 +276,19 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
     if (!shadowdiff_check_finite(reference, r_name, true) || !shadowdiff_check_finite(test, t_name, false))
         return false;
     out->problem = SHADOWDIFF_PROBLEM_NONE;
-    double error_sum = 0, min_cosine = shadowdiff_min_cosine(&s);
+    double error_sum = 0, class_error_sum[SHADOWDIFF_CLASS_COUNT] = {0}, min_cosine = shadowdiff_min_cosine(&s);
     size_t n = (size_t)reference->width * (size_t)reference->height;
     for (size_t i = 0; i < n; i++) {
         shadowdiff_pixel pixel = shadowdiff_classify(reference, test, i, receiver, min_cosine);
         if (pixel >= SHADOWDIFF_PIXEL_AGREES) {
+            double error = fabs((double)reference->visibility[i] - (double)test->visibility[i]);
+            shadowdiff_class c = shadowdiff_class_of(reference->visibility[i]);
             out->compared++;
             out->false_shadow += pixel == SHADOWDIFF_PIXEL_FALSE_SHADOW;
             out->false_lit += pixel == SHADOWDIFF_PIXEL_FALSE_LIT;
-            error_sum += fabs((double)reference->visibility[i] - (double)test->visibility[i]);
+            out->class_pixels[c]++;
+            error_sum += error;
+            class_error_sum[c] += error;
         }
         if (heatmap_rgba)
             shadowdiff_paint(heatmap_rgba + 4 * i, pixel, reference->visibility[i]);
@@ -282,18 +301,33 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         out->problem = SHADOWDIFF_PROBLEM_NOTHING_COMPARED;
         return false;
     }
-    shadowdiff_result_figures(out, error_sum);
+    shadowdiff_result_figures(out, error_sum, class_error_sum);
     return true;
 }
 
 void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *frame) {
     double error_sum = total->mean_abs_error * (double)total->compared +
                        frame->mean_abs_error * (double)frame->compared;
+    double class_error_sum[SHADOWDIFF_CLASS_COUNT];
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
+        class_error_sum[c] = total->class_mae[c] * (double)total->class_pixels[c] +
+                             frame->class_mae[c] * (double)frame->class_pixels[c];
+        total->class_pixels[c] += frame->class_pixels[c];
+    }
     total->compared += frame->compared;
     total->false_shadow += frame->false_shadow;
     total->false_lit += frame->false_lit;
     if (total->compared > 0)
-        shadowdiff_result_figures(total, error_sum);
+        shadowdiff_result_figures(total, error_sum, class_error_sum);
+}
+
+const char *shadowdiff_class_mae_text(const shadowdiff_result *r, shadowdiff_class c, int decimals, char *text,
+                                      size_t size) {
+    if (r->class_pixels[c] > 0)
+        snprintf(text, size, "%.*f", decimals, r->class_mae[c]);
+    else
+        snprintf(text, size, "%s", SHADOWDIFF_NO_FIGURE);
+    return text;
 }
 
 /* Whether the camera of dump `r` and of its test `t` agree; says so if

@@ -36,6 +36,33 @@
  * misclassified counts both. The percentages are of the compared pixels;
  * mean_abs_error is the mean of |v_ref - v_test| over them.
  *
+ * Misclassified % cannot see a soft shadow drawn hard or a hard one drawn
+ * soft: only the side of 0.5 counts. So the compared pixels are also
+ * split into classes by the REFERENCE's visibility v alone (whatever the
+ * test says there):
+ *   umbra     v <= SHADOWDIFF_UMBRA_MAX_VISIBILITY (1/32): no light, or
+ *             almost none, reaches the point (outside a spot light's
+ *             cone too);
+ *   lit       v >= SHADOWDIFF_LIT_MIN_VISIBILITY (31/32): all of it, or
+ *             almost all;
+ *   penumbra  in between: part of an area light is hidden.
+ * Each class has its pixel count and its MAE, the mean of |v_ref - v_test|
+ * over that class's pixels (class_pixels, class_mae; the classes
+ * partition the compared pixels, so the counts sum to `compared` and the
+ * three MAEs weighed by their counts to mean_abs_error):
+ *   the umbra's MAE is light leaking or bleeding into full shadow
+ *             (peter-panning, a shadow filtered too wide);
+ *   the lit class's MAE is acne and over-darkening of fully lit surfaces
+ *             (bias too small, a shadow grown or blurred outwards);
+ *   the penumbra's MAE is how well a soft shadow is drawn: a hard edge
+ *             through a penumbra whose visibility ramps evenly from 0 to 1
+ *             is off by 1/4 on average there, even where it sits on the
+ *             0.5 line and misclassifies nothing.
+ * A class with no pixel has no MAE: class_mae is 0 there and the reports
+ * print "none" (JSON null), since a 0 would read as perfect. A hard
+ * reference (point, spot or directional light without a radius) has
+ * visibilities of exactly 0 and 1, so its penumbra is always empty.
+ *
  * No figure is given (shadowdiff_compare prints one line naming the dumps
  * and returns false, with `problem` saying why) when
  *   - the dumps disagree as above, or the receiver is unknown (MISMATCH);
@@ -96,9 +123,20 @@
 #define SHADOWDIFF_H
 
 #include <stdbool.h>
+#include <stddef.h>
+
 #include "dump.h"
 
 #define SHADOWDIFF_LIT_THRESHOLD 0.5f
+/* The classes' bounds on the reference visibility (see the top): at or
+ * below the first the umbra, at or above the second the lit class. The
+ * 1/32 at either end keeps a pixel where a few of the reference's light
+ * samples (256 by default) are hidden, at the rim of a penumbra, in the
+ * class it all but belongs to. */
+#define SHADOWDIFF_UMBRA_MAX_VISIBILITY (1.0f / 32)
+#define SHADOWDIFF_LIT_MIN_VISIBILITY (31.0f / 32)
+/* What the reports print for the MAE of a class with no pixel. */
+#define SHADOWDIFF_NO_FIGURE "none"
 /* The heat map's grey for agreeing pixels, from the reference's shadow to
  * its light: from 96, so that agreeing shadow stays apart from "not
  * compared". */
@@ -150,12 +188,27 @@ extern const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT];
 /* The kinds in the order a legend lists them: the errors first. */
 extern const shadowdiff_pixel shadowdiff_legend_kinds[SHADOWDIFF_PIXEL_KIND_COUNT];
 
+/* The classes of compared pixels, by the reference's visibility (see the
+ * top). */
+typedef enum shadowdiff_class {
+    SHADOWDIFF_CLASS_UMBRA,
+    SHADOWDIFF_CLASS_PENUMBRA,
+    SHADOWDIFF_CLASS_LIT,
+    SHADOWDIFF_CLASS_COUNT
+} shadowdiff_class;
+
+/* Each class's name ("umbra", "penumbra", "lit"): the one definition the
+ * reports' labels and keys use. */
+extern const char *const shadowdiff_class_names[SHADOWDIFF_CLASS_COUNT];
+
 typedef struct shadowdiff_result {
     shadowdiff_problem problem; /* NONE exactly when shadowdiff_compare returns true */
     long compared;
     long false_shadow, false_lit;
     double false_shadow_percent, false_lit_percent, misclassified_percent;
     double mean_abs_error;
+    long class_pixels[SHADOWDIFF_CLASS_COUNT]; /* of compared, by the reference's visibility */
+    double class_mae[SHADOWDIFF_CLASS_COUNT];  /* over the class's pixels; 0 where it has none */
 } shadowdiff_result;
 
 /* `settings` may be NULL (every object, default names). `heatmap_rgba`
@@ -167,9 +220,15 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
 
 /* Adds `frame`'s comparison to `total` as if both were one comparison of
  * all their compared pixels: the counts summed, the percentages and the
- * mean absolute error over the sum (the error of several frames, each
- * pixel weighing the same). A zeroed total is the sum of none. */
+ * mean absolute errors (the whole one and each class's) over the sums (the
+ * error of several frames, each pixel weighing the same). A zeroed total
+ * is the sum of none. */
 void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *frame);
+
+/* Class c's MAE of r as text with `decimals` decimals, or
+ * SHADOWDIFF_NO_FIGURE where the class has no pixel; returns text. */
+const char *shadowdiff_class_mae_text(const shadowdiff_result *r, shadowdiff_class c, int decimals, char *text,
+                                      size_t size);
 
 typedef struct shadowdiff_shimmer_result {
     shadowdiff_problem problem;             /* NONE exactly when shadowdiff_shimmer returns true */

@@ -18,6 +18,8 @@
 #define MAIN_EXIT_NOT_FINITE 5
 
 #define MAIN_MAX_GRAZING_DEGREES 45
+/* The text report's MAEs: mean abs error's and each class's. */
+#define MAIN_MAE_DECIMALS 4
 /* --max-misclassified's value until it is given: 0 is a real limit (no
  * misclassified pixel at all), so "not given" needs a value of its own. */
 #define MAIN_NO_MAX_MISCLASSIFIED (-1.0f)
@@ -43,6 +45,12 @@ static void main_usage(const char *program, const flags_param *params, int count
     printf("A pixel is compared where both see a surface at the same depth (0.1 %%) and the\n"
            "reference surface faces the light; lit means visibility >= 0.5. Percentages\n"
            "are of the compared pixels; MAE is the mean |visibility difference| over them.\n"
+           "The compared pixels are also split by the reference's visibility v: umbra\n"
+           "(v <= 1/32), lit (v >= 31/32) and penumbra (between, only under an area light);\n"
+           "each class's MAE is over its pixels (umbra: leaks; lit: acne, darkening;\n"
+           "penumbra: the soft shadow's drawing), \"none\" (JSON null) where it has none.\n"
+           "JSON keys: umbra_mae, penumbra_mae, lit_mae, umbra_pixels, penumbra_pixels,\n"
+           "lit_pixels, beside the others.\n"
            "Shimmer (--previous): each compared pixel is followed, by the reference's world\n"
            "position and the previous frame's camera, to a compared pixel of the previous\n"
            "frame on the same object within 1 %% of its distance (else it is not followed:\n"
@@ -98,7 +106,35 @@ static void main_print_text(const shadowdiff_result *r, const dump_frame *refere
     printf("false lit        %.3f %% (%ld: shadowed in the reference, lit in the test)\n", r->false_lit_percent,
            r->false_lit);
     printf("misclassified    %.3f %%\n", r->misclassified_percent);
-    printf("mean abs error   %.4f\n", r->mean_abs_error);
+    printf("mean abs error   %.*f\n", MAIN_MAE_DECIMALS, r->mean_abs_error);
+    /* What each class's error is, in the order of shadowdiff_class. */
+    static const char *const meaning[SHADOWDIFF_CLASS_COUNT] = {
+        [SHADOWDIFF_CLASS_UMBRA] = "light leaking into the reference's full shadow",
+        [SHADOWDIFF_CLASS_PENUMBRA] = "how the reference's soft shadow is drawn",
+        [SHADOWDIFF_CLASS_LIT] = "acne and darkening where the reference is fully lit",
+    };
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
+        char label[32], mae[32];
+        snprintf(label, sizeof label, "%s MAE", shadowdiff_class_names[c]);
+        printf("%-16s %s (%ld pixels: %s)\n", label,
+               shadowdiff_class_mae_text(r, (shadowdiff_class)c, MAIN_MAE_DECIMALS, mae, sizeof mae),
+               r->class_pixels[c], meaning[c]);
+    }
+}
+
+/* Each class's "CLASS_mae" (null where it has no pixel) and
+ * "CLASS_pixels"; false when out of memory. */
+static bool main_add_class_json(cJSON *root, const shadowdiff_result *r) {
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
+        char mae[32], pixels[32];
+        snprintf(mae, sizeof mae, "%s_mae", shadowdiff_class_names[c]);
+        snprintf(pixels, sizeof pixels, "%s_pixels", shadowdiff_class_names[c]);
+        bool added = r->class_pixels[c] > 0 ? cJSON_AddNumberToObject(root, mae, r->class_mae[c]) != NULL
+                                            : cJSON_AddNullToObject(root, mae) != NULL;
+        if (!added || !cJSON_AddNumberToObject(root, pixels, (double)r->class_pixels[c]))
+            return false;
+    }
+    return true;
 }
 
 static void main_print_shimmer_text(const shadowdiff_shimmer_result *r) {
@@ -124,7 +160,7 @@ static bool main_print_json(const shadowdiff_result *r, const shadowdiff_shimmer
               cJSON_AddNumberToObject(root, "false_shadow_percent", r->false_shadow_percent) &&
               cJSON_AddNumberToObject(root, "false_lit_percent", r->false_lit_percent) &&
               cJSON_AddNumberToObject(root, "misclassified_percent", r->misclassified_percent) &&
-              cJSON_AddNumberToObject(root, "mean_abs_error", r->mean_abs_error);
+              cJSON_AddNumberToObject(root, "mean_abs_error", r->mean_abs_error) && main_add_class_json(root, r);
     char *text = ok ? cJSON_PrintUnformatted(root) : NULL;
     cJSON_Delete(root);
     if (!text) {
