@@ -116,6 +116,13 @@
  * snap to it); see demos/shadowmap.c for the figures.
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
+ * An area light (radius > 0) with --soft pcss, the default, is filtered
+ * instead by percentage-closer soft shadows (shaders/shadowmap_soft.glsl:
+ * a blocker search, the penumbra by similar triangles, a filter of its
+ * width), its taps on the receiver's plane; the blocker search reads the
+ * map's depths on unit SHADOW_MAP_DEPTH_UNITS + light through
+ * r->depth_sampler (compare mode off). Its bit of the key's soft_lights
+ * compiles that code in: a light of radius 0 runs the code it always did.
  * With the eye inside a closed caster (r->closed: its welded edge table,
  * as the volumes weigh it; the eye inside by its winding number), a face
  * that a light outside the mesh reaches on the eye's side is in the
