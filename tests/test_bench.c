@@ -31,7 +31,12 @@
 #define DOLLY_LAST_OUT OUT "-dolly-last"
 #define DOLLY_RUN SMALL_RUN " --motion dolly --technique shadowmap"
 #define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
-#define CSV_COLUMNS 18
+/* An area light's scene, every shadowmap configuration: the penumbra's
+ * figures, its plot and its front. */
+#define SOFT_OUT OUT "-soft"
+#define SOFT_SCENE "soft_table"
+#define SOFT_RUN "--quick --frames 2 --technique shadowmap assets/scenes/" SOFT_SCENE ".json"
+#define CSV_COLUMNS 24
 #define CSV_MAX_ROWS 256
 /* results.csv's columns the tests read by position. */
 #define CSV_GPU_MEDIAN 3
@@ -45,6 +50,9 @@
 #define CSV_SKIPS 15
 #define CSV_FLOOR_MS 16
 #define CSV_SHIMMER 17
+/* Then per shadowdiff class (umbra, penumbra, lit) its pixels and MAE. */
+#define CSV_CLASS_PIXELS(c) (18 + 2 * (c))
+#define CSV_CLASS_MAE(c) (19 + 2 * (c))
 /* The CSV's rounding: the ratio is printed to 3 decimals, the times and
  * percentages to 4, the MAE to 6. */
 #define CSV_RATIO_ROUNDING 0.0005
@@ -53,15 +61,16 @@
 #define CSV_MAE_ROUNDING 0.0000005
 /* A scene's table in report.md: technique, parameters, skips, GPU ms, CPU
  * ms, ratio, floor ms, false shadow, false lit, misclassified, MAE,
- * shimmer, then a front column per own-technique setting and error
- * figure. */
-#define REPORT_ERRORS 2
+ * penumbra MAE, lit MAE, shimmer, then a front column per own-technique
+ * setting and error figure. */
+#define REPORT_ERRORS 4
+#define REPORT_PENUMBRA_ERROR 2
 #define REPORT_FRONTS (2 * REPORT_ERRORS)
-#define REPORT_COLUMNS (12 + REPORT_FRONTS)
+#define REPORT_COLUMNS (14 + REPORT_FRONTS)
 #define REPORT_GPU_COLUMN 3
 #define REPORT_CPU_COLUMN 4
 #define REPORT_ERROR_COLUMN 9
-#define REPORT_FRONT_COLUMN 12
+#define REPORT_FRONT_COLUMN 14
 #define REPORT_MAX_ROWS 128
 
 /* The bench's default scenes. Under the sanitizers (a sweep stride, see
@@ -69,8 +78,11 @@
 static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view"};
 #define SCENE_COUNT (sizeof scenes / sizeof *scenes)
 #define SCENE_STRIDE ((size_t)support_sweep_stride())
-/* The plots, one per error figure: PREFIX_SCENE.png. */
-static const char *const plot_prefixes[] = {"pareto", "pareto_mae"};
+/* The plots, one per error figure the scene has: PREFIX_SCENE.png (a hard
+ * light's truth has no penumbra). */
+static const char *const plot_prefixes[] = {"pareto", "pareto_mae", "pareto_penumbra", "pareto_lit"};
+#define HARD_PLOTS 3
+static const char *const hard_plot_prefixes[HARD_PLOTS] = {"pareto", "pareto_mae", "pareto_lit"};
 static char err[65536];
 
 /* The whole --quick run; a static selection of one technique; the lights
@@ -85,6 +97,7 @@ static int run_bench(void **state) {
         {DOLLY_OUT, DOLLY_RUN},
         {DOLLY_FIRST_OUT, DOLLY_RUN " --frames 1"},
         {DOLLY_LAST_OUT, DOLLY_RUN " --error-frames 1"},
+        {SOFT_OUT, SOFT_RUN},
     };
     char strided[512] = "";
     for (size_t i = 0; SCENE_STRIDE > 1 && i < SCENE_COUNT; i += SCENE_STRIDE) {
@@ -132,6 +145,8 @@ typedef struct csv_row {
     char technique[32], parameters[256], motion[16], skips[8], shimmer[16];
     double misclassified, mae;
     long compared;
+    long class_pixels[3];
+    double class_mae[3]; /* -1: "none" */
 } csv_row;
 
 /* A row's ratio is its median (CPU time on a software rasterizer, as the
@@ -161,7 +176,8 @@ static int read_csv(const char *dir, csv_row *rows) {
     char *rest = text, *line = strtok_r(rest, "\n", &rest);
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
-                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent");
+                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent,"
+                              "umbra_pixels,umbra_mae,penumbra_pixels,penumbra_mae,lit_pixels,lit_mae");
     int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
@@ -170,8 +186,10 @@ static int read_csv(const char *dir, csv_row *rows) {
         if (!moving)
             assert_string_equal(fields[CSV_SHIMMER], "-");
         for (int c = CSV_GPU_MEDIAN; c < CSV_COLUMNS; c++) {
-            /* shimmer: "-" where the camera stands still (checked below) */
-            if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS || (c == CSV_SHIMMER && !moving))
+            /* shimmer: "-" where the camera stands still (checked below);
+             * a class's MAE "none" where it has no pixel (checked below) */
+            if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS || (c == CSV_SHIMMER && !moving) ||
+                strcmp(fields[c], "none") == 0)
                 continue;
             char *end;
             double v = strtod(fields[c], &end);
@@ -190,6 +208,16 @@ static int read_csv(const char *dir, csv_row *rows) {
         r->misclassified = atof(fields[CSV_MISCLASSIFIED]);
         r->mae = atof(fields[CSV_MAE]);
         r->compared = atol(fields[CSV_COMPARED]);
+        long classified = 0;
+        for (int k = 0; k < 3; k++) {
+            r->class_pixels[k] = atol(fields[CSV_CLASS_PIXELS(k)]);
+            bool none = strcmp(fields[CSV_CLASS_MAE(k)], "none") == 0;
+            assert_true(none == (r->class_pixels[k] == 0));
+            r->class_mae[k] = none ? -1 : atof(fields[CSV_CLASS_MAE(k)]);
+            assert_true(r->class_mae[k] <= 1);
+            classified += r->class_pixels[k];
+        }
+        assert_int_equal(classified, r->compared); /* the classes split the compared pixels */
     }
     return n;
 }
@@ -293,7 +321,7 @@ static void test_dolly_measures_shimmer(void **state) {
     assert_int_equal(reference_names(DOLLY_OUT, name, sizeof name), 2);
     assert_non_null(strstr(name, "dolly"));
     char *report = read_file(DOLLY_OUT "/report.md");
-    assert_non_null(strstr(report, "| MAE | shimmer % |"));
+    assert_non_null(strstr(report, "| MAE | penumbra MAE | lit MAE | shimmer % |"));
     assert_non_null(strstr(report, "Shimmer %: of the compared pixels of those frames, those whose decision "
                                    "changes when the maps are held"));
     report = read_file(SELECT_OUT "/report.md");
@@ -359,7 +387,8 @@ static void test_usage_errors(void **state) {
 typedef struct report_row {
     char technique[32];
     double ms, error[REPORT_ERRORS];
-    bool front[REPORT_FRONTS]; /* misclassified, MAE; then the own fronts */
+    bool has_error[REPORT_ERRORS]; /* a class figure: "none" where the truth has no pixel of it */
+    bool front[REPORT_FRONTS];     /* misclassified, MAE, penumbra MAE, lit MAE; then the own fronts */
 } report_row;
 
 /* Splits a table line "| a | b |" into its trimmed cells; returns how many. */
@@ -396,8 +425,10 @@ static int report_rows(char *section, int ms_column, report_row *rows) {
         report_row *r = &rows[n++];
         snprintf(r->technique, sizeof r->technique, "%s", cells[0]);
         r->ms = atof(cells[ms_column]);
-        for (int e = 0; e < REPORT_ERRORS; e++)
+        for (int e = 0; e < REPORT_ERRORS; e++) {
+            r->has_error[e] = strcmp(cells[REPORT_ERROR_COLUMN + e], "none") != 0;
             r->error[e] = atof(cells[REPORT_ERROR_COLUMN + e]);
+        }
         for (int f = 0; f < REPORT_FRONTS; f++) {
             assert_true(cells[REPORT_FRONT_COLUMN + f][0] == 0 || strcmp(cells[REPORT_FRONT_COLUMN + f], "yes") == 0);
             r->front[f] = cells[REPORT_FRONT_COLUMN + f][0] != 0;
@@ -410,15 +441,22 @@ static int report_rows(char *section, int ms_column, report_row *rows) {
 /* Each front column agrees with the table's figures, as far as their
  * rounding tells: rounding keeps order, so a row on the front has no row
  * both faster and more accurate even when rounded, and a row off it has
- * one no slower and no less accurate when rounded. Every front has a row. */
+ * one no slower and no less accurate when rounded. A row without the
+ * figure is on no front of it; every front of a figure some row has has a
+ * row. */
 static void check_fronts(const report_row *rows, int n) {
     for (int f = 0; f < REPORT_FRONTS; f++) {
-        int e = f % REPORT_ERRORS, on_front = 0;
+        int e = f % REPORT_ERRORS, on_front = 0, with_figure = 0;
         bool own = f >= REPORT_ERRORS;
         for (int i = 0; i < n; i++) {
             bool beaten = false, matched = false;
+            with_figure += rows[i].has_error[e];
+            if (!rows[i].has_error[e]) {
+                assert_false(rows[i].front[f]);
+                continue;
+            }
             for (int j = 0; j < n; j++) {
-                if (j == i || (own && strcmp(rows[j].technique, rows[i].technique) != 0))
+                if (j == i || !rows[j].has_error[e] || (own && strcmp(rows[j].technique, rows[i].technique) != 0))
                     continue;
                 beaten = beaten || (rows[j].ms < rows[i].ms && rows[j].error[e] < rows[i].error[e]);
                 matched = matched || (rows[j].ms <= rows[i].ms && rows[j].error[e] <= rows[i].error[e]);
@@ -429,55 +467,102 @@ static void check_fronts(const report_row *rows, int n) {
                 assert_true(matched);
             on_front += rows[i].front[f];
         }
-        assert_true(on_front > 0);
+        assert_true(on_front > 0 || with_figure == 0);
     }
+}
+
+/* Scene `scene`'s section of the report at `path`: its table's header,
+ * a plot per figure of `prefixes` (n), the fronts agreeing with the table;
+ * with `textbook`, the comparisons with shadowmap's textbook settings. */
+static void check_report_section(const char *path, const char *scene, const char *const *prefixes, size_t n,
+                                 bool textbook) {
+    char *text = read_file(path);
+    /* The time the report says the fronts use. */
+    int ms_column = strstr(text, "use **CPU time**") ? REPORT_CPU_COLUMN : REPORT_GPU_COLUMN;
+    char heading[64];
+    snprintf(heading, sizeof heading, "\n## %s\n", scene);
+    char *section = strstr(text, heading);
+    assert_non_null(section);
+    char *next = strstr(section + 1, "\n## ");
+    if (next) /* look at this scene's section only */
+        *next = '\0';
+    assert_non_null(strstr(section, "| technique | parameters |"));
+    assert_non_null(strstr(section, " | misclassified % | MAE | penumbra MAE | lit MAE | shimmer % | front "
+                                    "(misclassified) | front (MAE) | front (penumbra MAE) | front (lit MAE) | own "
+                                    "front (misclassified) | own front (MAE) | own front (penumbra MAE) | own front "
+                                    "(lit MAE) |\n"));
+    for (size_t p = 0; p < sizeof plot_prefixes / sizeof *plot_prefixes; p++) {
+        bool expected = false;
+        for (size_t k = 0; k < n; k++)
+            expected = expected || strcmp(prefixes[k], plot_prefixes[p]) == 0;
+        char image[128];
+        snprintf(image, sizeof image, "(%s_%s.png)\n", plot_prefixes[p], scene);
+        assert_int_equal(strstr(section, image) != NULL, expected);
+    }
+    if (textbook) {
+        assert_non_null(strstr(section, "\nshadowmap defaults against textbook depth bias: misclassified "));
+        assert_non_null(strstr(section, "\nshadowmap defaults against textbook polygon offset: misclassified "));
+        assert_non_null(strstr(section, " %, MAE "));
+    }
+    static report_row rows[REPORT_MAX_ROWS];
+    check_fronts(rows, report_rows(section, ms_column, rows));
 }
 
 static void test_report_has_a_table_front_and_comparison_per_scene(void **state) {
     (void)state;
-    char *text = read_file(OUT "/report.md");
-    /* The time the report says the fronts use. */
-    int ms_column = strstr(text, "use **CPU time**") ? REPORT_CPU_COLUMN : REPORT_GPU_COLUMN;
-    for (size_t i = 0; i < SCENE_COUNT; i += SCENE_STRIDE) {
-        char heading[64];
-        snprintf(heading, sizeof heading, "\n## %s\n", scenes[i]);
-        char *section = strstr(text, heading);
-        assert_non_null(section);
-        char *next = strstr(section + 1, "\n## "), saved = next ? *next : 0;
-        if (next) /* look at this scene's section only */
-            *next = '\0';
-        assert_non_null(strstr(section, "| technique | parameters |"));
-        assert_non_null(strstr(section, " | misclassified % | MAE | shimmer % | front (misclassified) | front (MAE) | "
-                                        "own front (misclassified) | own front (MAE) |\n"));
-        for (size_t p = 0; p < sizeof plot_prefixes / sizeof *plot_prefixes; p++) {
-            char image[128];
-            snprintf(image, sizeof image, "(%s_%s.png)\n", plot_prefixes[p], scenes[i]);
-            assert_non_null(strstr(section, image));
-        }
-        assert_non_null(strstr(section, "\nshadowmap defaults against textbook depth bias: misclassified "));
-        assert_non_null(strstr(section, "\nshadowmap defaults against textbook polygon offset: misclassified "));
-        assert_non_null(strstr(section, " %, MAE "));
-        static char table[1 << 16];
-        static report_row rows[REPORT_MAX_ROWS];
-        snprintf(table, sizeof table, "%s", section);
-        check_fronts(rows, report_rows(table, ms_column, rows));
-        if (next)
-            *next = saved;
+    for (size_t i = 0; i < SCENE_COUNT; i += SCENE_STRIDE)
+        check_report_section(OUT "/report.md", scenes[i], hard_plot_prefixes, HARD_PLOTS, true);
+}
+
+/* The plots of the figures PREFIXES (n) of `scene` under `dir`. */
+static void check_plots(const char *dir, const char *scene, const char *const *prefixes, size_t n) {
+    for (size_t p = 0; p < n; p++) {
+        char path[256];
+        int w, h;
+        snprintf(path, sizeof path, "%s/%s_%s.png", dir, prefixes[p], scene);
+        unsigned char *pixels = image_read_png(path, &w, &h);
+        assert_non_null(pixels);
+        assert_true(w >= 640 && h >= 400);
+        free(pixels);
     }
 }
 
 static void test_plots_are_images(void **state) {
     (void)state;
     for (size_t i = 0; i < SCENE_COUNT; i += SCENE_STRIDE)
-        for (size_t p = 0; p < sizeof plot_prefixes / sizeof *plot_prefixes; p++) {
-            char path[256];
-            int w, h;
-            snprintf(path, sizeof path, OUT "/%s_%s.png", plot_prefixes[p], scenes[i]);
-            unsigned char *pixels = image_read_png(path, &w, &h);
-            assert_non_null(pixels);
-            assert_true(w >= 640 && h >= 400);
-            free(pixels);
-        }
+        check_plots(OUT, scenes[i], hard_plot_prefixes, HARD_PLOTS);
+}
+
+/* An area light's scene: every row has penumbra pixels (the truth's) and
+ * their MAE; the penumbra's plot and fronts are there; shadowmap's soft
+ * default draws the penumbra closer to the truth than itself drawn hard
+ * and than a wide PCF's blur of the same width everywhere. */
+static void test_soft_scene_measures_the_penumbra(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(SOFT_OUT, rows);
+    const csv_row *defaults = NULL, *hard = NULL, *wide = NULL;
+    for (int i = 0; i < n; i++) {
+        assert_true(rows[i].class_pixels[1] > 0 && rows[i].class_mae[1] >= 0);
+        if (strcmp(rows[i].technique, "shadowmap") != 0)
+            continue;
+        if (strcmp(rows[i].parameters, "\"\"") == 0)
+            defaults = &rows[i];
+        else if (strstr(rows[i].parameters, "--soft off --filter pcf7"))
+            wide = &rows[i];
+        else if (strstr(rows[i].parameters, "--soft off"))
+            hard = &rows[i];
+    }
+    assert_non_null(defaults);
+    assert_non_null(hard);
+    assert_non_null(wide);
+    printf("    penumbra MAE: defaults %.4f, hard %.4f, wide pcf %.4f\n", defaults->class_mae[1], hard->class_mae[1],
+           wide->class_mae[1]);
+    assert_true(defaults->class_mae[1] < hard->class_mae[1]);
+    assert_true(defaults->class_mae[1] < wide->class_mae[1]);
+    check_report_section(SOFT_OUT "/report.md", SOFT_SCENE, plot_prefixes,
+                         sizeof plot_prefixes / sizeof *plot_prefixes, false);
+    check_plots(SOFT_OUT, SOFT_SCENE, plot_prefixes, sizeof plot_prefixes / sizeof *plot_prefixes);
 }
 
 int main(void) {
@@ -485,6 +570,7 @@ int main(void) {
         cmocka_unit_test(test_csv_has_every_configuration),
         cmocka_unit_test(test_report_has_a_table_front_and_comparison_per_scene),
         cmocka_unit_test(test_plots_are_images),
+        cmocka_unit_test(test_soft_scene_measures_the_penumbra),
         cmocka_unit_test(test_selection_keeps_the_floor),
         cmocka_unit_test(test_light_motion_and_skips_compare),
         cmocka_unit_test(test_dolly_measures_shimmer),

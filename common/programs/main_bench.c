@@ -96,6 +96,9 @@
  * are (app.c), so a bench frame is the frame `--frames` renders there. */
 #define BENCH_FRAME_RATE MOTION_FRAME_RATE
 #define BENCH_SCALING_MARGIN 1.5
+/* The MAE's decimals: results.csv's, the report's. */
+#define BENCH_MAE_DECIMALS 6
+#define BENCH_REPORT_MAE_DECIMALS 5
 
 /* --configs: the default first (a FLAGS_CHOICE list). */
 typedef enum bench_configs { BENCH_CONFIGS_ALL, BENCH_CONFIGS_DEFAULTS } bench_configs;
@@ -104,15 +107,34 @@ static const char *const bench_config_choices[] = {"all", "defaults", NULL};
 /* The error figures, each a cost as time is, with a front and a plot of
  * its own: misclassified % counts the pixels on the wrong side of the
  * visibility threshold; the mean absolute error also counts how far off
- * each is, so that a blurred shadow pays for its blur. */
-typedef enum bench_error { BENCH_ERROR_MISCLASSIFIED, BENCH_ERROR_MAE, BENCH_ERROR_COUNT } bench_error;
+ * each is, so that a blurred shadow pays for its blur; the penumbra's and
+ * the lit class's MAE (shadowdiff's classes, by the truth's visibility)
+ * are how well a soft shadow is drawn and what a filter darkens that is
+ * fully lit (acne, light bleeding). A class figure exists where the truth
+ * has pixels of the class: a row without one is on no front of it, and a
+ * scene without any has no plot of it. */
+typedef enum bench_error {
+    BENCH_ERROR_MISCLASSIFIED,
+    BENCH_ERROR_MAE,
+    BENCH_ERROR_PENUMBRA,
+    BENCH_ERROR_LIT,
+    BENCH_ERROR_COUNT
+} bench_error;
+/* A figure's class, or this for a figure of the whole picture. */
+#define BENCH_WHOLE_PICTURE SHADOWDIFF_CLASS_COUNT
 static const struct {
     const char *name;  /* the report's columns, "front (NAME)" */
     const char *plot;  /* OUT/PLOT_SCENE.png */
     const char *label; /* the plot's y axis */
+    int class_index;   /* shadowdiff_class, or BENCH_WHOLE_PICTURE */
 } bench_errors[BENCH_ERROR_COUNT] = {
-    [BENCH_ERROR_MISCLASSIFIED] = {"misclassified", "pareto", "misclassified % of compared pixels"},
-    [BENCH_ERROR_MAE] = {"MAE", "pareto_mae", "mean absolute visibility error"},
+    [BENCH_ERROR_MISCLASSIFIED] = {"misclassified", "pareto", "misclassified % of compared pixels",
+                                   BENCH_WHOLE_PICTURE},
+    [BENCH_ERROR_MAE] = {"MAE", "pareto_mae", "mean absolute visibility error", BENCH_WHOLE_PICTURE},
+    [BENCH_ERROR_PENUMBRA] = {"penumbra MAE", "pareto_penumbra", "mean absolute error where the truth is in penumbra",
+                              SHADOWDIFF_CLASS_PENUMBRA},
+    [BENCH_ERROR_LIT] = {"lit MAE", "pareto_lit", "mean absolute error where the truth is fully lit",
+                         SHADOWDIFF_CLASS_LIT},
 };
 
 typedef struct bench_row {
@@ -526,7 +548,16 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
  * without skips is the same decision at more time. */
 static bool bench_in_front_set(const bench_row *r) { return r->no_skip == bench.no_skip_settings[0]; }
 
+/* The row has the figure: a class figure needs a pixel of its class. */
+static bool bench_has_error(const bench_row *r, bench_error error) {
+    int c = bench_errors[error].class_index;
+    return c == BENCH_WHOLE_PICTURE || r->error.class_pixels[c] > 0;
+}
+
 static double bench_error_of(const bench_row *r, bench_error error) {
+    int c = bench_errors[error].class_index;
+    if (c != BENCH_WHOLE_PICTURE)
+        return r->error.class_mae[c];
     return error == BENCH_ERROR_MAE ? r->error.mean_abs_error : r->error.misclassified_percent;
 }
 
@@ -538,15 +569,24 @@ static bool bench_dominates(const bench_row *o, const bench_row *row, bench_erro
     return ot <= rt && oe <= re && (ot < rt || oe < re);
 }
 
+/* Some row of the scene's front set has the figure: it has a plot. */
+static bool bench_scene_has_error(const char *scene, bench_error error) {
+    for (int i = 0; i < bench.row_count; i++)
+        if (strcmp(bench.rows[i].scene, scene) == 0 && bench_in_front_set(&bench.rows[i]) &&
+            bench_has_error(&bench.rows[i], error))
+            return true;
+    return false;
+}
+
 /* Whether row is in the scene's front set and no other configuration of
  * the scene (of the same technique when own_technique) in it dominates
  * row by `error`. */
 static bool bench_on_front(const bench_row *row, bool own_technique, bench_error error) {
-    if (!bench_in_front_set(row))
+    if (!bench_in_front_set(row) || !bench_has_error(row, error))
         return false;
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *o = &bench.rows[i];
-        if (o == row || strcmp(o->scene, row->scene) != 0 || !bench_in_front_set(o) ||
+        if (o == row || strcmp(o->scene, row->scene) != 0 || !bench_in_front_set(o) || !bench_has_error(o, error) ||
             (own_technique && strcmp(o->technique, row->technique) != 0))
             continue;
         if (bench_dominates(o, row, error))
@@ -599,14 +639,23 @@ static bool bench_write_csv(void) {
         return false;
     fprintf(f, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,mae,"
-               "compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent\n");
+               "compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent");
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++)
+        fprintf(f, ",%s_pixels,%s_mae", shadowdiff_class_names[c], shadowdiff_class_names[c]);
+    fprintf(f, "\n");
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s\n", r->scene,
+        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s", r->scene,
                 r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
                 r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
                 r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, motion_names[bench.motion],
                 bench_skips_text(r->no_skip), r->floor_ms, bench_shimmer_text(r));
+        for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
+            char mae[32];
+            fprintf(f, ",%ld,%s", r->error.class_pixels[c],
+                    shadowdiff_class_mae_text(&r->error, (shadowdiff_class)c, BENCH_MAE_DECIMALS, mae, sizeof mae));
+        }
+        fprintf(f, "\n");
     }
     return bench_close(f, path);
 }
@@ -626,6 +675,8 @@ static const char *bench_config_label(const char *config) {
 static bool bench_more_accurate(const bench_row *a, const bench_row *b) {
     bool better = false, worse = false;
     for (int e = 0; e < BENCH_ERROR_COUNT; e++) {
+        if (!bench_has_error(a, (bench_error)e) || !bench_has_error(b, (bench_error)e))
+            continue;
         double x = bench_error_of(a, (bench_error)e), y = bench_error_of(b, (bench_error)e);
         better = better || x < y;
         worse = worse || x > y;
@@ -686,12 +737,15 @@ static bool bench_write_report(void) {
                "frames; times are medians (p90 in brackets) of GPU time (timer queries) and of CPU "
                "time around each frame and glFinish. Error against the ray-traced reference of light 0 "
                "(shadowdiff rules; misclassified at visibility threshold 0.5; MAE, the mean absolute "
-               "visibility error, also counts how far off each pixel is, so that blur is a cost too). Two "
-               "Pareto fronts, one per error figure: a configuration is on the misclassified front when no "
-               "other configuration of the scene is both faster and more accurate by misclassified %%, on the "
-               "MAE front likewise by MAE (own fronts: no other configuration of the same technique). In the "
-               "comparisons of the defaults with the named configurations, more accurate means no worse by "
-               "either figure and better by one.\n\n"
+               "visibility error, also counts how far off each pixel is, so that blur is a cost too; penumbra "
+               "MAE and lit MAE are the MAE over the pixels the truth has in penumbra (visibility strictly "
+               "between its umbra and lit bounds) and fully lit: how well a soft shadow is drawn, and what a "
+               "filter darkens that should be lit; \"none\" where the truth has no such pixel). A Pareto "
+               "front per error figure: a configuration is on the misclassified front when no other "
+               "configuration of the scene is both faster and more accurate by misclassified %%, on the other "
+               "fronts likewise by their figure (own fronts: no other configuration of the same technique). "
+               "In the comparisons of the defaults with the named configurations, more accurate means no "
+               "worse by any figure both have and better by one.\n\n"
                "The ratio, the fronts and the plots use **%s time**. %s A row's ratio (x unshadowed) is "
                "its median over the median of the unshadowed frames interleaved with its own (frame k of "
                "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
@@ -718,13 +772,14 @@ static bool bench_write_report(void) {
         const char *scene = bench.scene_names[s];
         fprintf(f, "\n## %s\n\n", scene);
         for (int e = 0; e < BENCH_ERROR_COUNT; e++)
-            fprintf(f, "![time against %s](%s_%s.png)\n", bench_errors[e].name, bench_errors[e].plot, scene);
+            if (bench_scene_has_error(scene, (bench_error)e))
+                fprintf(f, "![time against %s](%s_%s.png)\n", bench_errors[e].name, bench_errors[e].plot, scene);
         fprintf(f, "\n| technique | parameters | skips | GPU ms | CPU ms | x unshadowed | floor ms | "
-                   "false-shadow %% | false-lit %% | misclassified %% | MAE | shimmer %% |");
+                   "false-shadow %% | false-lit %% | misclassified %% | MAE | penumbra MAE | lit MAE | shimmer %% |");
         for (int own = 0; own < 2; own++)
             for (int e = 0; e < BENCH_ERROR_COUNT; e++)
                 fprintf(f, " %sfront (%s) |", own ? "own " : "", bench_errors[e].name);
-        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|---|---|");
+        fprintf(f, "\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
         for (int column = 0; column < 2 * BENCH_ERROR_COUNT; column++)
             fprintf(f, "---|");
         fprintf(f, "\n");
@@ -732,10 +787,15 @@ static bool bench_write_report(void) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) != 0)
                 continue;
-            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f | %s |",
+            char penumbra[32], lit[32];
+            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f | %s | %s | %s |",
                     r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
                     r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->floor_ms, r->error.false_shadow_percent,
                     r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
+                    shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_PENUMBRA, BENCH_REPORT_MAE_DECIMALS,
+                                              penumbra, sizeof penumbra),
+                    shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_LIT, BENCH_REPORT_MAE_DECIMALS, lit,
+                                              sizeof lit),
                     bench_shimmer_text(r));
             for (int own = 0; own < 2; own++)
                 for (int e = 0; e < BENCH_ERROR_COUNT; e++)
@@ -807,7 +867,7 @@ static bool bench_plot(const char *scene, bench_error error) {
         for (int i = 0; i < bench.row_count; i++) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) == 0 && strcmp(r->technique, techniques[t]->name) == 0 &&
-                bench_in_front_set(r))
+                bench_in_front_set(r) && bench_has_error(r, error))
                 fprintf(d, "%g %g \"%s\"\n", r->frame_ms, bench_error_of(r, error), bench_config_label(r->config));
         }
         fprintf(d, "\n\n");
@@ -934,7 +994,8 @@ int main(int argc, char **argv) {
     ok = ok && bench_write_csv() && bench_write_report();
     for (int s = 0; ok && s < bench.scene_count; s++)
         for (int e = 0; ok && e < BENCH_ERROR_COUNT; e++)
-            ok = bench_plot(bench.scene_names[s], (bench_error)e);
+            ok = !bench_scene_has_error(bench.scene_names[s], (bench_error)e) ||
+                 bench_plot(bench.scene_names[s], (bench_error)e);
     ok = ok && (!bench.scaling || bench_plot_scaling());
     glDeleteQueries(1, &bench.query);
     hud_destroy();
