@@ -68,7 +68,8 @@ static void test_caster_cases(void **state) {
     (void)state;
     mat4 layer;
     spot_layer(layer);
-    const shadow_map_settings settings = {0}; /* poisson */
+    /* poisson with centre depths: a read's depth bounds what it compares */
+    const shadow_map_settings settings = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE};
     shadow_map_reads reads;
     patch_reads(layer, &settings, &reads);
     assert_false(reads.empty);
@@ -108,7 +109,8 @@ static void test_kernel_margin(void **state) {
     float patch_edge = PATCH / LIGHT_Y, texel = 2.0f / MAP_SIZE;
     vec3 lo = {(patch_edge + gap_texels * texel) * (LIGHT_Y - low), low, -PATCH}, hi = {lo[0] + 0.5f, high, PATCH};
     shadow_map_reads reads;
-    const shadow_map_settings poisson = {.filter = SHADOW_MAP_FILTER_POISSON}, nearest = {.filter = SHADOW_MAP_FILTER_NONE};
+    const shadow_map_settings poisson = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE},
+                              nearest = {.filter = SHADOW_MAP_FILTER_NONE, .kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE};
     patch_reads(layer, &poisson, &reads);
     assert_true(caster_needed(layer, &reads, lo, hi));
     patch_reads(layer, &nearest, &reads);
@@ -219,8 +221,8 @@ static void test_most_casters_culled(void **state) {
 /* Settings that change the kernel's reach and depth: still identical. */
 static void test_dumps_identical_other_kernels(void **state) {
     (void)state;
-    static const char *const configs[] = {"--filter pcf7 --kernel-depth receiver-plane", "--filter none --map-size 512",
-                                          "--filter tent3", "--filter tent5 --kernel-depth receiver-plane"};
+    static const char *const configs[] = {"--filter pcf7", "--filter none --map-size 512 --kernel-depth centre",
+                                          "--filter tent3 --kernel-depth centre", "--filter tent5"};
     for (size_t c = 0; c < sizeof configs / sizeof *configs; c++) {
         char on[256], off[256], flags[256];
         snprintf(on, sizeof on, OUT "/shadowmap_config%zu_on", c);

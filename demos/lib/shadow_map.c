@@ -16,8 +16,8 @@ const char *const shadow_map_filters[] = {
     [SHADOW_MAP_FILTER_PCF3] = "pcf3",       [SHADOW_MAP_FILTER_PCF5] = "pcf5", [SHADOW_MAP_FILTER_PCF7] = "pcf7",
     [SHADOW_MAP_FILTER_TENT3] = "tent3",     [SHADOW_MAP_FILTER_TENT5] = "tent5", NULL};
 const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
-const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre",
-                                                [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", NULL};
+const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane",
+                                                [SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
 const char *const shadow_map_softs[] = {[SHADOW_MAP_SOFT_PCSS] = "pcss", [SHADOW_MAP_SOFT_OFF] = "off", NULL};
 
 /* What each filter reads: the kernel's shape and its size (N, or the

@@ -114,8 +114,10 @@
  * On the standard scenes and long_view it changes no decision with any
  * kernel and lowers the mean error a little (penumbra values near 0 or 1
  * snap to it); see demos/shadowmap.c for the figures.
- * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
- * the receiver's own depth there rather than the centre's.
+ * --kernel-depth receiver-plane (Isidoro, GDC 2006; the default) makes each
+ * tap compare the receiver's own depth there rather than the centre's
+ * (--kernel-depth centre), which speckles flat receivers with partial
+ * acne where a tap reaches texels of the receiver itself.
  * An area light (radius > 0) with --soft pcss, the default, is filtered
  * instead by percentage-closer soft shadows (shaders/shadowmap_soft.glsl:
  * a blocker search, the penumbra by similar triangles, a filter of its
@@ -234,8 +236,8 @@ typedef enum shadow_map_filter {
 typedef enum shadow_map_depth { SHADOW_MAP_DEPTH_24, SHADOW_MAP_DEPTH_32F } shadow_map_depth;
 typedef enum shadow_map_soft { SHADOW_MAP_SOFT_PCSS, SHADOW_MAP_SOFT_OFF } shadow_map_soft;
 typedef enum shadow_map_kernel_depth {
-    SHADOW_MAP_KERNEL_DEPTH_CENTRE,
     SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
+    SHADOW_MAP_KERNEL_DEPTH_CENTRE,
 } shadow_map_kernel_depth;
 
 extern const char *const shadow_map_sizes[];
@@ -295,7 +297,7 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
      FLAGS_TOGGLE, .disabled = &(s).no_early_out},                                                                 \
     {"soft", "area lights (radius > 0): pcss, soft shadows that harden at contact; off: hard, from the centre",  \
      GLFW_KEY_Y, FLAGS_CHOICE, .index = &(s).soft, .choices = shadow_map_softs},                                   \
-    {"kernel-depth", "what each kernel tap compares: the centre's depth, or the receiver plane's there",           \
+    {"kernel-depth", "what each kernel tap compares: the receiver plane's depth there, or the centre's",           \
      GLFW_KEY_P, FLAGS_CHOICE, .index = &(s).kernel_depth, .choices = shadow_map_kernel_depths},                   \
     {"constant-texels", "constant bias, in map texels of world distance", 0, FLAGS_NUMBER,                         \
      .number = &(s).constant_texels, .fallback = SHADOW_MAP_CONSTANT_TEXELS, .min = 0.01f, .max = 64},             \
