@@ -22,8 +22,6 @@ static const unsigned char compare_empty_grey = 24;
 #define COMPARE_LEGEND_MAX_LINES (2 + SHADOWDIFF_PIXEL_KIND_COUNT + 3 + SHADOWDIFF_CLASS_COUNT)
 /* Decimals of the mean absolute errors, the whole one's and each class's. */
 #define COMPARE_MAE_DECIMALS 5
-/* Room for one class's figures, "penumbra MAE 0.12345 (1234567 px)". */
-#define COMPARE_CLASS_TEXT_MAX 48
 
 bool compare_create(compare *c, int width, int height, const raytrace_settings *settings) {
     *c = (compare){.cell_width = width / 2, .cell_height = height / 2};
@@ -129,14 +127,6 @@ bool compare_update(compare *c, const scene *s, int light, compare_capture captu
     return context_gl_ok("compare_update");
 }
 
-/* "CLASS MAE E (N px)", E "none" where the truth has no pixel of the
- * class. */
-static void compare_class_text(const shadowdiff_result *r, shadowdiff_class k, char *text, size_t size) {
-    char mae[32];
-    snprintf(text, size, "%s MAE %s (%ld px)", shadowdiff_class_names[k],
-             shadowdiff_class_mae_text(r, k, COMPARE_MAE_DECIMALS, mae, sizeof mae), r->class_pixels[k]);
-}
-
 void compare_figures_text(const compare *c, char *text, size_t size) {
     char truth[64];
     snprintf(truth, sizeof truth, "truth %d/%d rows", c->shown.rows, c->cell_height);
@@ -145,10 +135,10 @@ void compare_figures_text(const compare *c, char *text, size_t size) {
         return;
     }
     const shadowdiff_result *r = &c->result;
-    char classes[SHADOWDIFF_CLASS_COUNT * COMPARE_CLASS_TEXT_MAX] = "";
+    char classes[SHADOWDIFF_CLASS_COUNT * SHADOWDIFF_CLASS_FIGURES_TEXT_MAX] = "";
     for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
-        char one[COMPARE_CLASS_TEXT_MAX];
-        compare_class_text(r, (shadowdiff_class)k, one, sizeof one);
+        char one[SHADOWDIFF_CLASS_FIGURES_TEXT_MAX];
+        shadowdiff_class_figures_text(r, (shadowdiff_class)k, COMPARE_MAE_DECIMALS, one, sizeof one);
         size_t used = strlen(classes);
         snprintf(classes + used, sizeof classes - used, "%s, ", one);
     }
@@ -225,7 +215,7 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
         snprintf(text, sizeof text, "mean absolute error %.*f", COMPARE_MAE_DECIMALS, r->mean_abs_error);
         compare_legend_add(lines, &count, 0, NULL, text);
         for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
-            compare_class_text(r, (shadowdiff_class)k, text, sizeof text);
+            shadowdiff_class_figures_text(r, (shadowdiff_class)k, COMPARE_MAE_DECIMALS, text, sizeof text);
             compare_legend_add(lines, &count, 0, NULL, text);
         }
         compare_legend_add(lines, &count, 0, NULL, truth);
