@@ -73,6 +73,8 @@ LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) $(wildcard demo
 TOOLS := raytrace shadowdiff bench scenegen stress
 PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
+# Scenes with area lights: their truth has penumbrae.
+SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
 .PHONY: all deps demo gallery test bench stress scenes update-golden clean help
 all: $(PROGRAMS) $(TESTS)
@@ -80,7 +82,7 @@ all: $(PROGRAMS) $(TESTS)
 help:
 	@echo "make deps           install the Debian packages (apt-get; sudo when not root)"
 	@echo "make demo           build, then the interactive window (with a display) or the gallery"
-	@echo "make gallery        render every technique on each standard scene to out/gallery/"
+	@echo "make gallery        render every technique on each standard and soft scene to out/gallery/"
 	@echo "make test           build and run every test, plain and under ASan+UBSan"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
 	@echo "make stress         adversarial scenes through every technique against the reference: out/stress/"
@@ -102,7 +104,7 @@ demo: $(PROGRAMS)
 	@if [ -n "$$DISPLAY$$WAYLAND_DISPLAY" ]; then $(BUILD)/shadows; else $(MAKE) --no-print-directory gallery; fi
 
 gallery: $(PROGRAMS)
-	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json
+	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json $(SOFT_SCENES)
 
 # The suite runs twice, plain and built with ASan+UBSan (build-san/), both at
 # once (tests/run.sh).

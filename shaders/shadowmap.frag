@@ -48,6 +48,12 @@ out vec4 out_color;
 const bool shadowmap_show_texels = SHADOW_MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
 const bool shadowmap_show_texel_size = SHADOW_MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
 const bool shadowmap_show_cascades = SHADOW_MAP_PASS_SHOW_CASCADES != 0;     // tint by light 0's cascade
+const bool shadowmap_show_penumbra = SHADOW_MAP_PASS_SHOW_PENUMBRA != 0;     // colour by PCSS's penumbra estimate
+// With the penumbra overlay: the penumbra radius (world units) that the
+// last soft filter estimated, or SHADOWMAP_NO_PENUMBRA where its blocker
+// search found no blocker (or no filter ran).
+const float SHADOWMAP_NO_PENUMBRA = -1.0;
+float shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
 
 #include "shadowmap.glsl"
 #include "shadowmap_2d.glsl"

@@ -72,6 +72,7 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, in
     vec3 unshadowed =
         shadowmap_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
     bool needed = unshadowed != vec3(0.0) || shadowmap_show_texel_size;
+    shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
     float visibility = shadowmap_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
                                             soft, texel, needed);
     if (soft)
@@ -98,9 +99,14 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, in
     if (shadowmap_show_texel_size) {
         vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
         float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), SHADOWMAP_HEAT_MIN_AREA));
-        vec3 heat = texel_heat_color(log2(texel_pixels));
-        float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
-        c = heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
+        c = texel_heat_shade(texel_heat_color(log2(texel_pixels)), c);
     }
+    // PCSS's estimate of the penumbra's radius in world units, on the
+    // texel-size ramp moved to the penumbra overlay's ends (shadow_map.h);
+    // left as it is where the blocker search found nothing.
+    if (shadowmap_show_penumbra && shadowmap_penumbra_estimate != SHADOWMAP_NO_PENUMBRA)
+        c = texel_heat_shade(texel_heat_color(log2(max(shadowmap_penumbra_estimate, SHADOWMAP_MIN_PENUMBRA)) -
+                                              float(SHADOW_MAP_PENUMBRA_LOG2_MIN - SHADOW_MAP_HEAT_LOG2_MIN)),
+                             c);
     return c;
 }

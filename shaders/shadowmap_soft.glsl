@@ -57,7 +57,10 @@ float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, in
         return 1.0;
     // 2. The penumbra's radius from the blockers' mean depth.
     float d_b = shadowmap_soft_distance(raw, i, blocker_depth / float(blockers));
-    float radius = shadowmap_soft_texels(shadowmap_penumbra_world(i, d_r, d_b), texel_world) / unit;
+    float world = shadowmap_penumbra_world(i, d_r, d_b);
+    if (shadowmap_show_penumbra)
+        shadowmap_penumbra_estimate = world;
+    float radius = shadowmap_soft_texels(world, texel_world) / unit;
     // 3. Percentage-closer filtering over it.
     float sum = 0.0;
     for (int k = 0; k < SHADOW_MAP_SOFT_FILTER_TAPS; k++)

@@ -20,6 +20,13 @@ const float SHADOWMAP_HEAT_GAIN = 2.0;
 const float SHADOWMAP_HEAT_DARKEST = 0.4;
 const float SHADOWMAP_HEAT_SHADE = 0.6;
 
+// The heat colour `heat` over the picture's colour c, shaded by c's
+// luminance, so that the scene's shading still reads under it.
+vec3 texel_heat_shade(vec3 heat, vec3 c) {
+    float shade = min(dot(c, SHADOWMAP_HEAT_LUMINANCE) * SHADOWMAP_HEAT_GAIN, 1.0);
+    return heat * (SHADOWMAP_HEAT_DARKEST + SHADOWMAP_HEAT_SHADE * shade);
+}
+
 // The heat colour of a texel log2_pixels (log2 of its size in pixels) big.
 vec3 texel_heat_color(float log2_pixels) {
     float t = clamp((log2_pixels + SHADOWMAP_HEAT_LOG2_OFFSET) / SHADOWMAP_HEAT_LOG2_RANGE, 0.0, 1.0);

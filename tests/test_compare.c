@@ -7,7 +7,9 @@
  *   bottom left  build/shadowdiff's heat map of the two dumps,
  * and the figures it prints are shadowdiff's. Over a spot (simple), a
  * point light (bunny) and a directional one (long_view), for a uniform map
- * and a warped one; the same command gives the same bytes, the window
+ * and a warped one, and an area light (soft_table: the figures of
+ * shadowdiff's classes, its penumbra's among them; the hard lights'
+ * penumbra "none"); the same command gives the same bytes, the window
  * (under Xvfb, scripted with --frames) gives the same picture, and
  * --compare with --gallery is refused. In-process: the frame loop never
  * waits for the truth, which is shown row by row as it comes (rows not
@@ -52,6 +54,7 @@ static const compare_case compare_cases[] = {
     {"shadowmap", "simple"},
     {"shadowmap", "bunny"},
     {"psm", "long_view"},
+    {"shadowmap", "soft_table"},
 };
 
 static char err[16384];
@@ -88,6 +91,37 @@ static double figure_after(const char *line, const char *key) {
     if (!at)
         fail_msg("no \"%s\" in: %s", key, line);
     return strtod(at + strlen(key), NULL);
+}
+
+/* Each class's "CLASS MAE E (N px)" in the compare line is shadowdiff's
+ * JSON's CLASS_mae and CLASS_pixels, "none" where the JSON's MAE is null.
+ * Returns whether the line gave the penumbra a figure. */
+static bool expect_class_figures(const char *line, const cJSON *figures) {
+    bool penumbra = false;
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
+        char key[64], label[64];
+        snprintf(label, sizeof label, ", %s MAE ", shadowdiff_class_names[k]); /* not "penumbra" for "umbra" */
+        const char *at = strstr(line, label);
+        if (!at)
+            fail_msg("no \"%s\" in: %s", label, line);
+        at += strlen(label);
+        snprintf(key, sizeof key, "%s_pixels", shadowdiff_class_names[k]);
+        double pixels = cJSON_GetObjectItem(figures, key)->valuedouble;
+        snprintf(key, sizeof key, "%s_mae", shadowdiff_class_names[k]);
+        const cJSON *mae = cJSON_GetObjectItem(figures, key);
+        char *end;
+        if (cJSON_IsNull(mae)) {
+            assert_true(strncmp(at, SHADOWDIFF_NO_FIGURE " (0 px)", strlen(SHADOWDIFF_NO_FIGURE " (0 px)")) == 0);
+            assert_true(pixels == 0);
+            continue;
+        }
+        assert_true(fabs(strtod(at, &end) - mae->valuedouble) <= ERROR_PRINTED);
+        assert_true(strncmp(end, " (", 2) == 0);
+        assert_true(fabs(strtod(end + 2, NULL) - pixels) < 0.5);
+        assert_true(pixels > 0);
+        penumbra = penumbra || k == SHADOWDIFF_CLASS_PENUMBRA;
+    }
+    return penumbra;
 }
 
 static void test_cells_are_the_programs_pictures(void **state) {
@@ -148,6 +182,9 @@ static void test_cells_are_the_programs_pictures(void **state) {
         assert_true(fabs(figure_after(line, "misclassified ") - misclassified) <= PERCENT_PRINTED);
         assert_true(fabs(figure_after(line, "mean absolute error ") - error) <= ERROR_PRINTED);
         assert_true(fabs(figure_after(strstr(line, "error "), ", ") - compared) < 0.5);
+        bool soft = strncmp(c->scene, "soft_", strlen("soft_")) == 0;
+        if (expect_class_figures(line, figures) != soft)
+            fail_msg("%s on %s: the penumbra %s a figure: %s", c->technique, c->scene, soft ? "lacks" : "has", line);
         cJSON_Delete(figures);
         free(json);
         free(line);

@@ -18,6 +18,8 @@
 #include <string.h>
 
 #include "raytrace.h"
+#include "shadowdiff.h"
+#include "support.h"
 
 #define SQUARE_SCENE "tests/data/raytrace_square.json"
 #define SPOT_SCENE "tests/data/raytrace_spot.json"
@@ -171,6 +173,55 @@ static void test_area_light_penumbra_width(void **state) {
     scene_free(&s);
 }
 
+/* The area light's stratified rays converge: against many rays
+ * (CONVERGED_SAMPLES), the penumbra's MAE with the default's rays is
+ * below the 1/32 that shadowdiff's classes leave at either end for the
+ * reference's own noise, and less than half that of a few rays. At a
+ * quarter of SIZE across, for time. --light-samples takes 1 to the most,
+ * anything else is one line and exit 2. */
+#define CONVERGED_SAMPLES 4096
+#define FEW_SAMPLES 16
+#define CONVERGENCE_SIZE (SIZE / 4)
+#define CONVERGENCE_GAIN 2.0
+#define EXIT_USAGE 2
+static double penumbra_mae_against(const dump_frame *converged, const scene *s, int samples) {
+    dump_frame f;
+    render(s, CONVERGENCE_SIZE, CONVERGENCE_SIZE, samples, &f);
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(converged, &f, NULL, &r, NULL));
+    assert_true(r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA] > 0);
+    printf("    %d rays against %d: penumbra MAE %.5f over %ld pixels\n", samples, CONVERGED_SAMPLES,
+           r.class_mae[SHADOWDIFF_CLASS_PENUMBRA], r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA]);
+    dump_frame_free(&f);
+    return r.class_mae[SHADOWDIFF_CLASS_PENUMBRA];
+}
+
+static void test_area_light_rays_converge(void **state) {
+    (void)state;
+    scene s;
+    dump_frame converged;
+    load(&s, SQUARE_SCENE);
+    s.lights[0].radius = AREA_LIGHT_RADIUS;
+    render(&s, CONVERGENCE_SIZE, CONVERGENCE_SIZE, CONVERGED_SAMPLES, &converged);
+    double by_default = penumbra_mae_against(&converged, &s, RAYTRACE_DEFAULT_LIGHT_SAMPLES);
+    double few = penumbra_mae_against(&converged, &s, FEW_SAMPLES);
+    assert_true(by_default < SHADOWDIFF_UMBRA_MAX_VISIBILITY);
+    assert_true(few > CONVERGENCE_GAIN * by_default);
+    dump_frame_free(&converged);
+    scene_free(&s);
+    char too_many[32];
+    snprintf(too_many, sizeof too_many, "%d", RAYTRACE_MAX_LIGHT_SAMPLES + 1);
+    const char *const bad[] = {"0", too_many, "-4", "x"};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char command[512], err[4096];
+        snprintf(command, sizeof command, "%s --scene " SQUARE_SCENE " --light-samples %s",
+                 support_program("raytrace"), bad[i]);
+        assert_int_equal(support_run(command, err, sizeof err), EXIT_USAGE);
+        assert_int_equal(support_count_lines(err), 1);
+        assert_non_null(strstr(err, "--light-samples"));
+    }
+}
+
 /* Ground points in tests/data/raytrace_spot.json: the spot hangs at
  * (0, 5, 0) pointing down, inner 20, outer 30 degrees; the sphere "ghost"
  * casts no shadow, though it stands between the light and ghost_shadow. */
@@ -265,6 +316,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hard_shadow_matches_analytic_square),
         cmocka_unit_test(test_area_light_penumbra_width),
+        cmocka_unit_test(test_area_light_rays_converge),
         cmocka_unit_test(test_spot_cone_respected),
         cmocka_unit_test(test_render_is_deterministic),
         cmocka_unit_test(test_standard_scenes_are_sane),

@@ -548,7 +548,8 @@ static void test_window_matches_golden(void **state) {
 #define GALLERY_PAGE_MIN_PICTURE_SHARE 0.3
 
 /* out/test/gallery/index.html shows every picture of the gallery beside
- * its scene's reference and, measured, its heat map and figures; in
+ * its scene's reference and, measured, its heat map and figures (the
+ * penumbra's MAE "none" on these hard scenes); in
  * Chromium (headless) the pictures load and fill the page. */
 static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
     char *html = path_read_text("out/test/gallery/index.html", 1 << 20, NULL);
@@ -579,8 +580,12 @@ static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
         if (!strstr(html, needle))
             fail_msg("index.html's key has no %s", needle);
     }
+    int hard_penumbrae = 0; /* the standard scenes' lights have no radius */
+    for (const char *c = html; (c = strstr(c, "<td>penumbra MAE " SHADOWDIFF_NO_FIGURE " (0 px)</td>")); c++)
+        hard_penumbrae++;
     free(html);
     assert_int_equal(measured, expected_measured);
+    assert_int_equal(hard_penumbrae, expected_measured);
     if (!support_have_command("chromium")) {
         fprintf(stderr, "    chromium is not installed here: the page is not opened\n");
         return;
@@ -639,6 +644,53 @@ static void test_gallery_writes_every_technique(void **state) {
         }
     }
     expect_gallery_page(scenes, sizeof scenes / sizeof *scenes);
+}
+
+/* A soft scene's gallery row gives each class's MAE and pixels, the
+ * penumbra's a figure; the classes' pixels sum to the compared ones, and
+ * their MAEs weighed by them to the whole MAE (printed with 5 decimals). */
+#define GALLERY_PAGE_MAE_PRINTED 2e-5
+static void test_gallery_soft_scene_has_penumbra(void **state) {
+    (void)state;
+    char command[1024];
+    snprintf(command, sizeof command,
+             "rm -rf out/test/gallery_soft && %s --size " SIZE
+             " --gallery out/test/gallery_soft assets/scenes/soft_table.json --technique shadowmap",
+             support_program("shadows"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    char *html = path_read_text("out/test/gallery_soft/index.html", 1 << 20, NULL);
+    assert_non_null(html);
+    const char *at = strstr(html, "<td>misclassified ");
+    assert_non_null(at);
+    double misclassified, mae;
+    long compared, total = 0;
+    int n = 0;
+    assert_int_equal(sscanf(at, "<td>misclassified %lf %%</td><td>mean absolute error %lf</td><td>%ld pixels "
+                                "compared</td>%n",
+                            &misclassified, &mae, &compared, &n),
+                     3);
+    at += n;
+    double weighed = 0;
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
+        char prefix[64];
+        snprintf(prefix, sizeof prefix, "<td>%s MAE ", shadowdiff_class_names[k]);
+        if (strncmp(at, prefix, strlen(prefix)) != 0)
+            fail_msg("index.html: no %s where expected: %.80s", prefix, at);
+        at += strlen(prefix);
+        double class_mae;
+        long pixels;
+        n = 0;
+        if (sscanf(at, "%lf (%ld px)</td>%n", &class_mae, &pixels, &n) != 2 || n == 0)
+            fail_msg("index.html: %s has no figure: %.80s", shadowdiff_class_names[k], at);
+        at += n;
+        total += pixels;
+        weighed += class_mae * (double)pixels;
+        if (k == SHADOWDIFF_CLASS_PENUMBRA)
+            assert_true(pixels > 0 && class_mae > 0);
+    }
+    free(html);
+    assert_int_equal(total, compared);
+    assert_float_equal(weighed / (double)compared, mae, GALLERY_PAGE_MAE_PRINTED);
 }
 
 /* Every step of every tour matches its golden; the same tour rendered
@@ -737,6 +789,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_volumes_counts_have_legend),
         cmocka_unit_test(test_window_matches_golden),
         cmocka_unit_test(test_gallery_writes_every_technique),
+        cmocka_unit_test(test_gallery_soft_scene_has_penumbra),
         cmocka_unit_test(test_tours_match_goldens),
     };
     enum { OTHER_COUNT = sizeof others / sizeof *others };

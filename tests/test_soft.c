@@ -1,15 +1,19 @@
 /* Soft shadows from area lights (scene "radius" > 0) against the
  * ray-traced penumbra, by shadowdiff's classes: each map technique's
  * default (pcss) against itself drawn hard (--soft off), on the soft
- * scenes; and a hard light's pictures untouched by the soft filter. */
+ * scenes; a hard light's pictures untouched by the soft filter; and the
+ * penumbra overlay colouring the truth's penumbra, not the sky, and
+ * nothing under a hard light. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "image.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -86,6 +90,98 @@ static void test_hard_lights_unchanged(void **state) {
     }
 }
 
+/* The penumbra overlay's legend lies in the picture's bottom-right
+ * corner, within these shares of its width and height (from its top
+ * left); the pixels counted below lie outside it. */
+#define OVERLAY_LEGEND_LEFT 0.7
+#define OVERLAY_LEGEND_TOP 0.85
+static bool in_legend_corner(size_t i, int width, int height) {
+    return (double)(i % (size_t)width) >= OVERLAY_LEGEND_LEFT * width &&
+           (double)(i / (size_t)width) >= OVERLAY_LEGEND_TOP * height;
+}
+
+/* The colour picture of a dump (a screenshot of its frame). */
+static unsigned char *dump_color(const char *dir, int width, int height) {
+    char path[256];
+    int w, h;
+    snprintf(path, sizeof path, "%s/color.png", dir);
+    unsigned char *rgba = image_read_png(path, &w, &h);
+    assert_non_null(rgba);
+    assert_int_equal(w, width);
+    assert_int_equal(h, height);
+    return rgba;
+}
+
+/* --overlay penumbra against the same frame without it, pixel by pixel
+ * outside its legend, by the reference's class there: nearly every
+ * penumbra pixel of the truth is coloured (the blocker search found a
+ * blocker there), no pixel without a surface is, and most of the lit ones
+ * keep their colour (the search reaches a little beyond the penumbra). */
+#define OVERLAY_SCENE "assets/scenes/soft_table.json"
+#define OVERLAY_MIN_PENUMBRA_SHARE 0.85
+#define OVERLAY_MAX_LIT_SHARE 0.25
+enum { OVERLAY_NO_SURFACE = SHADOWDIFF_CLASS_COUNT, OVERLAY_KINDS };
+static void test_penumbra_overlay_colours_the_penumbra(void **state) {
+    (void)state;
+    dump_frame reference, plain;
+    unsigned char *heatmap;
+    support_measure_dumps("shadowmap", OVERLAY_SCENE, "", "", "overlay_none", &reference, &plain, &heatmap);
+    free(heatmap);
+    assert_int_equal(support_dump("shadowmap", OVERLAY_SCENE, "--overlay penumbra", "out/test/soft/overlay"), 0);
+    int width = reference.width, height = reference.height;
+    unsigned char *before = dump_color("out/test/shadowmap/overlay_none", width, height);
+    unsigned char *after = dump_color("out/test/soft/overlay", width, height);
+    long pixels[OVERLAY_KINDS] = {0}, coloured[OVERLAY_KINDS] = {0};
+    for (size_t i = 0; i < (size_t)width * (size_t)height; i++) {
+        if (in_legend_corner(i, width, height))
+            continue;
+        float v = reference.visibility[i];
+        int kind = reference.ids[i] < 0                       ? OVERLAY_NO_SURFACE
+                   : v <= SHADOWDIFF_UMBRA_MAX_VISIBILITY     ? SHADOWDIFF_CLASS_UMBRA
+                   : v >= SHADOWDIFF_LIT_MIN_VISIBILITY       ? SHADOWDIFF_CLASS_LIT
+                                                              : SHADOWDIFF_CLASS_PENUMBRA;
+        pixels[kind]++;
+        coloured[kind] += memcmp(before + 4 * i, after + 4 * i, 3) != 0;
+    }
+    for (int k = 0; k < OVERLAY_KINDS; k++)
+        printf("    %s: %ld of %ld pixels coloured\n", k < SHADOWDIFF_CLASS_COUNT ? shadowdiff_class_names[k] : "no surface",
+               coloured[k], pixels[k]);
+    assert_true(pixels[SHADOWDIFF_CLASS_PENUMBRA] >= SOFT_MIN_PENUMBRA_PIXELS && pixels[OVERLAY_NO_SURFACE] > 0);
+    assert_true(coloured[SHADOWDIFF_CLASS_PENUMBRA] >= OVERLAY_MIN_PENUMBRA_SHARE * pixels[SHADOWDIFF_CLASS_PENUMBRA]);
+    assert_true(coloured[SHADOWDIFF_CLASS_LIT] <= OVERLAY_MAX_LIT_SHARE * pixels[SHADOWDIFF_CLASS_LIT]);
+    assert_int_equal(coloured[OVERLAY_NO_SURFACE], 0);
+    free(before);
+    free(after);
+    dump_frame_free(&reference);
+    dump_frame_free(&plain);
+}
+
+/* Under a hard light the penumbra overlay colours nothing: its picture is
+ * the default's but for the legend, which it draws in its corner. */
+static void test_penumbra_overlay_leaves_hard_lights(void **state) {
+    (void)state;
+    assert_int_equal(support_dump("shadowmap", "assets/scenes/bunny.json", "", "out/test/soft/hard_plain"), 0);
+    assert_int_equal(
+        support_dump("shadowmap", "assets/scenes/bunny.json", "--overlay penumbra", "out/test/soft/hard_overlay"), 0);
+    dump_frame plain;
+    assert_true(dump_read(&plain, "out/test/soft/hard_plain"));
+    int width = plain.width, height = plain.height;
+    dump_frame_free(&plain);
+    unsigned char *before = dump_color("out/test/soft/hard_plain", width, height);
+    unsigned char *after = dump_color("out/test/soft/hard_overlay", width, height);
+    long legend = 0, elsewhere = 0;
+    for (size_t i = 0; i < (size_t)width * (size_t)height; i++) {
+        bool differs = memcmp(before + 4 * i, after + 4 * i, 3) != 0;
+        legend += differs && in_legend_corner(i, width, height);
+        elsewhere += differs && !in_legend_corner(i, width, height);
+    }
+    printf("    bunny: %ld pixels differ in the legend's corner, %ld elsewhere\n", legend, elsewhere);
+    assert_true(legend > 0);
+    assert_int_equal(elsewhere, 0);
+    free(before);
+    free(after);
+}
+
 /* A technique that cannot draw soft shadows says so once on stderr. */
 static void test_hard_techniques_say_so(void **state) {
     (void)state;
@@ -106,6 +202,8 @@ int main(void) {
         cmocka_unit_test(test_pcss_draws_the_penumbra),
         cmocka_unit_test(test_hard_lights_unchanged),
         cmocka_unit_test(test_hard_techniques_say_so),
+        cmocka_unit_test(test_penumbra_overlay_colours_the_penumbra),
+        cmocka_unit_test(test_penumbra_overlay_leaves_hard_lights),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,5 +1,7 @@
 /* build/stress: its quick subset (the cases that pass today, near 1e-6 of
- * far among them) passes, and its verdicts say what happened: a GL
+ * far among them) passes, with each class's MAE in its table (a reference
+ * copied as the technique's dump gives 0 in each class it has, "none" in
+ * the penumbra of a hard light), and its verdicts say what happened: a GL
  * error is a gl-error, and fake programs that crash, hang, write a NaN,
  * exit badly or write nothing are each classified as such. */
 #include <setjmp.h>
@@ -16,12 +18,18 @@
 
 #include "path.h"
 #include "render.h"
+#include "shadowdiff.h"
 #include "support.h"
 
 #define EXIT_FAILED 1
 #define EXIT_USAGE 2
 #define MAX_ROWS 256
-#define CSV_FIELDS 10 /* the last, stderr, may hold commas */
+/* The CSV's columns: scene, technique, config, bound, misclassified, MAE,
+ * each class's MAE, compared, verdict, seconds, stderr (the last, which
+ * may hold commas). */
+#define CSV_CLASS_FIELD 6
+#define CSV_VERDICT_FIELD (CSV_CLASS_FIELD + SHADOWDIFF_CLASS_COUNT + 1)
+#define CSV_FIELDS (CSV_VERDICT_FIELD + 3)
 #define FAKE_DIR "out/test/stress-fake"
 #define FAKE_BIN FAKE_DIR "/bin"
 /* The fakes' hang is killed after this; its row must not take much longer. */
@@ -32,6 +40,7 @@ static char err[65536];
 
 typedef struct row {
     char scene[64], technique[32], config[32], verdict[32], seconds[32], line[256];
+    char class_mae[SHADOWDIFF_CLASS_COUNT][32];
 } row;
 
 static row rows[MAX_ROWS];
@@ -43,6 +52,11 @@ static int read_table(const char *dir) {
     char *text = path_read_text(path, 1 << 20, NULL);
     assert_non_null(text);
     int count = 0;
+    char header[256] = "";
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+        snprintf(header + strlen(header), sizeof header - strlen(header), ",%s_mae", shadowdiff_class_names[k]);
+    if (!strstr(text, header))
+        fail_msg("%s: no columns %s", path, header + 1);
     char *line = strchr(text, '\n'); /* past the header */
     while (line && line[1] && count < MAX_ROWS) {
         char *start = line + 1, *field[CSV_FIELDS];
@@ -60,9 +74,11 @@ static int read_table(const char *dir) {
         snprintf(r->scene, sizeof r->scene, "%s", field[0]);
         snprintf(r->technique, sizeof r->technique, "%s", field[1]);
         snprintf(r->config, sizeof r->config, "%s", field[2]);
-        snprintf(r->verdict, sizeof r->verdict, "%s", field[7]);
-        snprintf(r->seconds, sizeof r->seconds, "%s", field[8]);
-        snprintf(r->line, sizeof r->line, "%s", field[9]);
+        for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+            snprintf(r->class_mae[k], sizeof r->class_mae[k], "%s", field[CSV_CLASS_FIELD + k]);
+        snprintf(r->verdict, sizeof r->verdict, "%s", field[CSV_VERDICT_FIELD]);
+        snprintf(r->seconds, sizeof r->seconds, "%s", field[CSV_VERDICT_FIELD + 1]);
+        snprintf(r->line, sizeof r->line, "%s", field[CSV_VERDICT_FIELD + 2]);
     }
     free(text);
     return count;
@@ -96,6 +112,11 @@ static void test_quick_cases_pass(void **state) {
         if (strcmp(r->verdict, "pass") != 0)
             print_message("    %s %s %s: %s %s\n", r->scene, r->technique, r->config, r->verdict, r->line);
         assert_string_equal(r->verdict, "pass");
+        /* Every case's light is hard: no penumbra, and the other classes
+         * measured (the reference's own row has no figures). */
+        bool reference = strcmp(r->technique, "raytrace") == 0;
+        assert_string_equal(r->class_mae[SHADOWDIFF_CLASS_PENUMBRA], reference ? "" : SHADOWDIFF_NO_FIGURE);
+        assert_true(reference || r->class_mae[SHADOWDIFF_CLASS_LIT][0] != '\0');
     }
     assert_int_equal(status, 0);
     assert_true(count >= (base_only ? BASE_MIN_ROWS : QUICK_MIN_ROWS));
@@ -197,6 +218,14 @@ static void test_fake_programs_are_classified(void **state) {
         assert_string_equal(r->verdict, expect[i][2]);
     }
     assert_true(atof(find_row(count, "base_spot", "shadowmap", "default")->seconds) < FAKE_TIMEOUT_SLACK_S);
+    /* The copy of the reference: off by nothing in every class the spot's
+     * hard truth has (outside its cone the umbra), none in the penumbra. */
+    const row *copy = find_row(count, "base_spot", "shadowmap", "filter-none");
+    static const char *const copied[SHADOWDIFF_CLASS_COUNT] = {
+        [SHADOWDIFF_CLASS_UMBRA] = "0.00000", [SHADOWDIFF_CLASS_PENUMBRA] = SHADOWDIFF_NO_FIGURE,
+        [SHADOWDIFF_CLASS_LIT] = "0.00000"};
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+        assert_string_equal(copy->class_mae[k], copied[k]);
     assert_non_null(strstr(find_row(count, "base_spot", "planar", "default")->line, "signal"));
 }
 

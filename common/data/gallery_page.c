@@ -66,12 +66,18 @@ bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count
             fputs("</code>", f);
         }
         fputs("</h2>\n", f);
-        if (r->measured)
+        if (r->measured) {
             fprintf(f,
                     "<table class=\"figures\"><tr><td>misclassified %.4f %%</td><td>mean absolute error %.5f</td>"
-                    "<td>%ld pixels compared</td></tr></table>\n",
+                    "<td>%ld pixels compared</td>",
                     r->misclassified_percent, r->mean_abs_error, r->compared);
-        else
+            for (int k = 0; k < r->figure_count; k++) {
+                fputs("<td>", f);
+                gallery_page_text(f, r->figures[k]);
+                fputs("</td>", f);
+            }
+            fputs("</tr></table>\n", f);
+        } else
             fputs("<p>a lecture picture: its overlays are drawn over the decisions, so it is not measured</p>\n", f);
         gallery_page_image(f, r->picture, r->technique);
         gallery_page_image(f, r->reference, "reference (ray traced)");

@@ -1,7 +1,8 @@
 /* gallery_page: the gallery's index.html, one row per picture: what made
  * it (technique, flags, scene), its figures against the ray-traced
  * reference (shadowdiff's: misclassified %, mean absolute error, pixels
- * compared), and the picture beside the reference's and the heat map,
+ * compared, then the caller's further figures as text: each class's MAE
+ * and pixels), and the picture beside the reference's and the heat map,
  * under a key to the heat map's colours (the caller's: shadowdiff's one
  * definition, which this data layer does not see). Pictures are named relative to the
  * page, which lives in the same directory. Plain HTML and CSS: it opens
@@ -13,6 +14,10 @@
 #include <stdbool.h>
 
 #define GALLERY_PAGE_NAME_MAX 256
+/* Further figures of a row: how many at most, and room for each one's
+ * text. */
+#define GALLERY_PAGE_MAX_FIGURES 4
+#define GALLERY_PAGE_FIGURE_MAX 64
 
 typedef struct gallery_page_row {
     char technique[GALLERY_PAGE_NAME_MAX], flags[GALLERY_PAGE_NAME_MAX], scene[GALLERY_PAGE_NAME_MAX];
@@ -20,6 +25,8 @@ typedef struct gallery_page_row {
     bool measured; /* else the figures and the heat map are left out (a lecture picture's overlays) */
     double misclassified_percent, mean_abs_error;
     long compared;
+    char figures[GALLERY_PAGE_MAX_FIGURES][GALLERY_PAGE_FIGURE_MAX]; /* each a cell after those */
+    int figure_count;
 } gallery_page_row;
 
 /* A line of the heat map's key: what a colour means. */

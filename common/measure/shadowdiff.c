@@ -330,6 +330,14 @@ const char *shadowdiff_class_mae_text(const shadowdiff_result *r, shadowdiff_cla
     return text;
 }
 
+const char *shadowdiff_class_figures_text(const shadowdiff_result *r, shadowdiff_class c, int decimals, char *text,
+                                          size_t size) {
+    char mae[SHADOWDIFF_FIGURE_TEXT_MAX];
+    snprintf(text, size, "%s MAE %s (%ld px)", shadowdiff_class_names[c],
+             shadowdiff_class_mae_text(r, c, decimals, mae, sizeof mae), r->class_pixels[c]);
+    return text;
+}
+
 /* Whether the camera of dump `r` and of its test `t` agree; says so if
  * not. */
 static bool shadowdiff_check_camera(const dump_frame *r, const dump_frame *t, const char *r_name, const char *t_name) {

@@ -230,6 +230,14 @@ void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *fr
 const char *shadowdiff_class_mae_text(const shadowdiff_result *r, shadowdiff_class c, int decimals, char *text,
                                       size_t size);
 
+/* Room for one number's text, and for shadowdiff_class_figures_text's. */
+#define SHADOWDIFF_FIGURE_TEXT_MAX 32
+#define SHADOWDIFF_CLASS_FIGURES_TEXT_MAX 48
+/* "CLASS MAE E (N px)", E as shadowdiff_class_mae_text gives it: what
+ * compare mode and the gallery show of a class; returns text. */
+const char *shadowdiff_class_figures_text(const shadowdiff_result *r, shadowdiff_class c, int decimals, char *text,
+                                          size_t size);
+
 typedef struct shadowdiff_shimmer_result {
     shadowdiff_problem problem;             /* NONE exactly when shadowdiff_shimmer returns true */
     shadowdiff_result previous, current;    /* each frame's own comparison */

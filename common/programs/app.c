@@ -511,9 +511,12 @@ static bool app_run_tour_headless(void) {
 /* The gallery's page rows: one a picture, at most every technique's two
  * (its own and its lecture picture) on every scene. */
 #define APP_GALLERY_MAX_ROWS (2 * APP_MAX_TECHNIQUES * APP_MAX_GALLERY_SCENES)
+/* The classes' MAEs on the page, with the whole picture's decimals. */
+#define APP_GALLERY_MAE_DECIMALS 5
+_Static_assert(SHADOWDIFF_CLASS_COUNT <= GALLERY_PAGE_MAX_FIGURES, "a row holds every class's figures");
 
 /* Light 0's decisions of the running technique against `reference`: the
- * row's figures, and the heat map into DIR/STEM_heatmap.png. A frame
+ * row's figures (each of shadowdiff's classes' too), and the heat map into DIR/STEM_heatmap.png. A frame
  * shadowdiff can say nothing of stays unmeasured on the page. */
 static bool app_gallery_measure(const dump_frame *reference, const char *dir, const char *stem,
                                 gallery_page_row *row) {
@@ -532,6 +535,10 @@ static bool app_gallery_measure(const dump_frame *reference, const char *dir, co
         row->misclassified_percent = r.misclassified_percent;
         row->mean_abs_error = r.mean_abs_error;
         row->compared = r.compared;
+        for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++)
+            shadowdiff_class_figures_text(&r, (shadowdiff_class)c, APP_GALLERY_MAE_DECIMALS, row->figures[c],
+                                          sizeof row->figures[c]);
+        row->figure_count = SHADOWDIFF_CLASS_COUNT;
     }
     if (!heatmap)
         fprintf(stderr, "%s: out of memory for a heat map\n", dir);

@@ -18,8 +18,10 @@ enum { COMPARE_TRUTH, COMPARE_HEAT };
 static const unsigned char compare_empty_grey = 24;
 
 /* The legend's lines at most: two on the cells, the kinds, three of
- * figures. */
-#define COMPARE_LEGEND_MAX_LINES (2 + SHADOWDIFF_PIXEL_KIND_COUNT + 3)
+ * figures and one a class. */
+#define COMPARE_LEGEND_MAX_LINES (2 + SHADOWDIFF_PIXEL_KIND_COUNT + 3 + SHADOWDIFF_CLASS_COUNT)
+/* Decimals of the mean absolute errors, the whole one's and each class's. */
+#define COMPARE_MAE_DECIMALS 5
 
 bool compare_create(compare *c, int width, int height, const raytrace_settings *settings) {
     *c = (compare){.cell_width = width / 2, .cell_height = height / 2};
@@ -133,11 +135,18 @@ void compare_figures_text(const compare *c, char *text, size_t size) {
         return;
     }
     const shadowdiff_result *r = &c->result;
+    char classes[SHADOWDIFF_CLASS_COUNT * SHADOWDIFF_CLASS_FIGURES_TEXT_MAX] = "";
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
+        char one[SHADOWDIFF_CLASS_FIGURES_TEXT_MAX];
+        shadowdiff_class_figures_text(r, (shadowdiff_class)k, COMPARE_MAE_DECIMALS, one, sizeof one);
+        size_t used = strlen(classes);
+        snprintf(classes + used, sizeof classes - used, "%s, ", one);
+    }
     snprintf(text, size,
-             "misclassified %.4f %% (false shadow %.4f %%, false lit %.4f %%), mean absolute error %.5f, %ld pixels "
-             "compared, %s",
-             r->misclassified_percent, r->false_shadow_percent, r->false_lit_percent, r->mean_abs_error, r->compared,
-             truth);
+             "misclassified %.4f %% (false shadow %.4f %%, false lit %.4f %%), mean absolute error %.*f, %ld pixels "
+             "compared, %s%s",
+             r->misclassified_percent, r->false_shadow_percent, r->false_lit_percent, COMPARE_MAE_DECIMALS,
+             r->mean_abs_error, r->compared, classes, truth);
 }
 
 /* The truth's state, the legend's last line. */
@@ -167,7 +176,8 @@ static void compare_legend_add(legend_line *lines, int *count, int swatches, con
 }
 
 /* The legend's lines: with `brief`, for a small cell (a thumbnail), the
- * kinds and the misclassified share only. Returns their count. */
+ * kinds, the misclassified share and, where the truth has a penumbra, its
+ * MAE. Returns their count. */
 static int compare_legend_lines(const compare *c, bool brief, legend_line lines[COMPARE_LEGEND_MAX_LINES]) {
     const shadowdiff_result *r = &c->result;
     int count = 0;
@@ -194,11 +204,20 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
     if (brief && c->measured) {
         snprintf(text, sizeof text, "misclassified %.4f %%", r->misclassified_percent);
         compare_legend_add(lines, &count, 0, NULL, text);
+        if (r->class_pixels[SHADOWDIFF_CLASS_PENUMBRA] > 0) { /* a soft shadow's own figure */
+            snprintf(text, sizeof text, "penumbra MAE %.*f", COMPARE_MAE_DECIMALS,
+                     r->class_mae[SHADOWDIFF_CLASS_PENUMBRA]);
+            compare_legend_add(lines, &count, 0, NULL, text);
+        }
     } else if (c->measured) {
         snprintf(text, sizeof text, "misclassified %.4f %% of %ld pixels", r->misclassified_percent, r->compared);
         compare_legend_add(lines, &count, 0, NULL, text);
-        snprintf(text, sizeof text, "mean absolute error %.5f", r->mean_abs_error);
+        snprintf(text, sizeof text, "mean absolute error %.*f", COMPARE_MAE_DECIMALS, r->mean_abs_error);
         compare_legend_add(lines, &count, 0, NULL, text);
+        for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
+            shadowdiff_class_figures_text(r, (shadowdiff_class)k, COMPARE_MAE_DECIMALS, text, sizeof text);
+            compare_legend_add(lines, &count, 0, NULL, text);
+        }
         compare_legend_add(lines, &count, 0, NULL, truth);
     } else {
         compare_legend_add(lines, &count, 0, NULL, "no figures yet");

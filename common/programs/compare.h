@@ -11,8 +11,9 @@
  *                 traced yet are black, "no surface", and not compared);
  *   bottom right  the heat map's legend (shadowdiff_pixel_colors and
  *                 names), the figures (misclassified %, false shadow and
- *                 false lit, mean absolute error, compared pixels) and
- *                 how far the truth is.
+ *                 false lit, mean absolute error, compared pixels, and
+ *                 each of shadowdiff's classes' MAE and pixels) and how
+ *                 far the truth is.
  *
  *   compare c;
  *   compare_create(&c, width, height, &settings);        the picture's size
@@ -73,8 +74,10 @@ void compare_decisions_changed(compare *c);
 void compare_forget(compare *c);
 void compare_destroy(compare *c);
 /* The figures line, "misclassified X % (false shadow A %, false lit B %),
- * mean absolute error E, N pixels compared, truth R/H rows": what the
- * legend shows and a headless run prints. */
+ * mean absolute error E, N pixels compared, umbra MAE U (N px), penumbra
+ * MAE P (N px), lit MAE L (N px), truth R/H rows" (a class's MAE "none"
+ * where the truth has no pixel of it): what the legend shows and a
+ * headless run prints. */
 void compare_figures_text(const compare *c, char *text, size_t size);
 
 #endif

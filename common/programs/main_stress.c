@@ -32,7 +32,9 @@
  *   unmeasured        nothing compared on the receiver of a case whose
  *                     camera sees none of it lit (stress_case.no_ground)
  * The run writes OUT/table.csv and OUT/table.md (scene, technique, config,
- * bound, figures, verdict, seconds, first stderr line) and prints a summary;
+ * bound, figures: misclassified %, MAE, each of shadowdiff's classes' MAE
+ * ("none" where the truth has no pixel of it) and the pixels compared;
+ * verdict, seconds, first stderr line) and prints a summary;
  * it exits 0 only if every row is pass, refused or unmeasured. What a row
  * leaves in OUT/runs/CASE/ROW/ (command.txt, its stderr, dump, shadowdiff's
  * output and heat map) is removed when the row is one of those three, kept
@@ -61,6 +63,7 @@
 
 #include "flags.h"
 #include "path.h"
+#include "shadowdiff.h"
 
 #define STRESS_EXIT_FAILED 1
 #define STRESS_EXIT_INTERRUPTED 130
@@ -79,6 +82,8 @@
  * or a GL error starts early. */
 #define STRESS_STDERR_READ (1 << 20)
 #define STRESS_JSON_READ (1 << 16)
+#define STRESS_KEY_MAX 64
+#define STRESS_MAE_DECIMALS 5 /* the whole MAE's and each class's */
 #define STRESS_POLL_NS 5000000L /* between looks at the running children */
 #define STRESS_EXEC_FAILED 127  /* the shell's status for "cannot run" */
 #define STRESS_SIGNAL_STATUS 128 /* at or above: a shell's death by signal */
@@ -906,6 +911,7 @@ typedef struct stress_row {
     bool measured;
     double misclassified, mae;
     long compared;
+    shadowdiff_result classes; /* measured: each class's pixels (0: none) and MAE */
     char line[STRESS_LINE_MAX]; /* the first stderr line, or why it ended */
 } stress_row;
 
@@ -980,6 +986,22 @@ static stress_verdict stress_classify(const stress_process *p, const char *files
     return v;
 }
 
+/* Class c's figures from shadowdiff's JSON (its CLASS_pixels, and its
+ * CLASS_mae: null where it has no pixel) into r->classes; false where
+ * either is missing or of the wrong type. */
+static bool stress_read_class(stress_row *r, const cJSON *root, shadowdiff_class c) {
+    char key[STRESS_KEY_MAX];
+    snprintf(key, sizeof key, "%s_pixels", shadowdiff_class_names[c]);
+    const cJSON *pixels = cJSON_GetObjectItemCaseSensitive(root, key);
+    snprintf(key, sizeof key, "%s_mae", shadowdiff_class_names[c]);
+    const cJSON *mae = cJSON_GetObjectItemCaseSensitive(root, key);
+    if (!cJSON_IsNumber(pixels) || !(cJSON_IsNumber(mae) || (cJSON_IsNull(mae) && pixels->valuedouble == 0)))
+        return false;
+    r->classes.class_pixels[c] = (long)pixels->valuedouble;
+    r->classes.class_mae[c] = cJSON_IsNumber(mae) ? mae->valuedouble : 0;
+    return true;
+}
+
 /* shadowdiff's figures from its --json line. */
 static bool stress_read_figures(stress_row *r) {
     char *text = path_read_text(r->diff.out_path, STRESS_JSON_READ, NULL);
@@ -988,6 +1010,8 @@ static bool stress_read_figures(stress_row *r) {
                 *misclassified = cJSON_GetObjectItemCaseSensitive(root, "misclassified_percent"),
                 *mae = cJSON_GetObjectItemCaseSensitive(root, "mean_abs_error");
     r->measured = cJSON_IsNumber(compared) && cJSON_IsNumber(misclassified) && cJSON_IsNumber(mae);
+    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT && r->measured; c++)
+        r->measured = stress_read_class(r, root, (shadowdiff_class)c);
     if (r->measured) {
         r->compared = (long)compared->valuedouble;
         r->misclassified = misclassified->valuedouble;
@@ -1044,6 +1068,7 @@ static void stress_csv_field(FILE *f, const char *text, const char *after) {
 /* The figures as text: empty where there are none. */
 typedef struct stress_cells {
     char bound[32], misclassified[32], mae[32], compared[32], seconds[32];
+    char class_mae[SHADOWDIFF_CLASS_COUNT][SHADOWDIFF_FIGURE_TEXT_MAX];
 } stress_cells;
 
 static void stress_cells_of(const stress_row *r, stress_cells *c) {
@@ -1052,8 +1077,11 @@ static void stress_cells_of(const stress_row *r, stress_cells *c) {
         snprintf(c->bound, sizeof c->bound, "%g", r->config->bound);
     if (r->measured) {
         snprintf(c->misclassified, sizeof c->misclassified, "%.4f", r->misclassified);
-        snprintf(c->mae, sizeof c->mae, "%.5f", r->mae);
+        snprintf(c->mae, sizeof c->mae, "%.*f", STRESS_MAE_DECIMALS, r->mae);
         snprintf(c->compared, sizeof c->compared, "%ld", r->compared);
+        for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+            shadowdiff_class_mae_text(&r->classes, (shadowdiff_class)k, STRESS_MAE_DECIMALS, c->class_mae[k],
+                                      sizeof c->class_mae[k]);
     }
     if (r->run.end != STRESS_NOT_RUN)
         snprintf(c->seconds, sizeof c->seconds, "%.2f", r->run.seconds);
@@ -1065,13 +1093,19 @@ static bool stress_write_csv(const char *path, const stress_row *rows, int count
         fprintf(stderr, "%s: cannot create: %s\n", path, strerror(errno));
         return false;
     }
-    fputs("scene,technique,config,bound_percent,misclassified_percent,mae,compared,verdict,seconds,stderr\n", f);
+    fputs("scene,technique,config,bound_percent,misclassified_percent,mae", f);
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+        fprintf(f, ",%s_mae", shadowdiff_class_names[k]);
+    fputs(",compared,verdict,seconds,stderr\n", f);
     for (int i = 0; i < count; i++) {
         const stress_row *r = &rows[i];
         stress_cells c;
         stress_cells_of(r, &c);
-        fprintf(f, "%s,%s,%s,%s,%s,%s,%s,%s,%s,", r->c->name, r->config->technique, r->config->name, c.bound,
-                c.misclassified, c.mae, c.compared, stress_verdict_names[r->verdict], c.seconds);
+        fprintf(f, "%s,%s,%s,%s,%s,%s,", r->c->name, r->config->technique, r->config->name, c.bound,
+                c.misclassified, c.mae);
+        for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+            fprintf(f, "%s,", c.class_mae[k]);
+        fprintf(f, "%s,%s,%s,", c.compared, stress_verdict_names[r->verdict], c.seconds);
         stress_csv_field(f, r->line, "\n");
     }
     if (ferror(f) | (fclose(f) != 0)) {
@@ -1085,8 +1119,11 @@ static bool stress_write_csv(const char *path, const stress_row *rows, int count
 static void stress_md_row(FILE *f, const stress_row *r) {
     stress_cells c;
     stress_cells_of(r, &c);
-    fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s | ", r->c->name, r->config->technique, r->config->name,
-            c.bound, c.misclassified, c.mae, c.compared, stress_verdict_names[r->verdict], c.seconds);
+    fprintf(f, "| %s | %s | %s | %s | %s | %s | ", r->c->name, r->config->technique, r->config->name, c.bound,
+            c.misclassified, c.mae);
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+        fprintf(f, "%s | ", c.class_mae[k]);
+    fprintf(f, "%s | %s | %s | ", c.compared, stress_verdict_names[r->verdict], c.seconds);
     for (const char *ch = r->line; *ch; ch++) {
         if (*ch == '|')
             fputc('\\', f);
@@ -1096,9 +1133,13 @@ static void stress_md_row(FILE *f, const stress_row *r) {
 }
 
 static void stress_md_header(FILE *f) {
-    fputs("| scene | technique | config | bound % | misclassified % | MAE | compared | verdict | s | stderr |\n"
-          "|---|---|---|---|---|---|---|---|---|---|\n",
-          f);
+    fputs("| scene | technique | config | bound % | misclassified % | MAE |", f);
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+        fprintf(f, " %s MAE |", shadowdiff_class_names[k]);
+    fputs(" compared | verdict | s | stderr |\n|---|---|---|---|---|---|", f);
+    for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
+        fputs("---|", f);
+    fputs("---|---|---|---|\n", f);
 }
 
 /* The techniques in table order: the reference, then each once. */

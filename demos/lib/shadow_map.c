@@ -46,7 +46,7 @@ static const shader_define shadow_map_defines[] = {
     SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(SHADOW_MAP_MAX_ARRAY_LAYERS),
     SHADER_DEFINE(SHADOW_MAP_SOFT_SEARCH_TAPS),  SHADER_DEFINE(SHADOW_MAP_SOFT_FILTER_TAPS),
     SHADER_DEFINE(SHADOW_MAP_SOFT_MAX_TEXELS),   SHADER_DEFINE(SHADOW_MAP_POISSON_SCALE_TEXELS),
-    {NULL, 0}};
+    SHADER_DEFINE(SHADOW_MAP_PENUMBRA_LOG2_MIN), {NULL, 0}};
 
 /* The camera pass's sampler arrays, by the kind of map they read: its
  * comparisons', and a soft light's depths'. */
@@ -315,6 +315,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {"SHADOW_MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
         {"SHADOW_MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
         {"SHADOW_MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
+        {"SHADOW_MAP_PASS_SHOW_PENUMBRA", (int)k->show_penumbra},
         {"SHADOW_MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
     };
     /* This key's defines, then the enums every camera program compares
@@ -406,6 +407,7 @@ static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *
         .show_texels = st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS,
         .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
         .show_cascades = SHADOW_MAP_SHOWS_CASCADES(st),
+        .show_penumbra = st->overlay == SHADOW_MAP_OVERLAY_PENUMBRA,
     };
 }
 

@@ -182,6 +182,9 @@
  * Overlays, for lectures (shadow_map_overlay.c), drawn into the picture:
  *   texels      the map's texel boundaries on the receivers (camera pass);
  *   texel-size  a heat map of a texel's size in pixels (camera pass);
+ *   penumbra    a soft light's receivers coloured by the penumbra radius
+ *               PCSS estimated there (world units; camera pass), where
+ *               its blocker search found a blocker;
  *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
  *   map         light 0's map as an inset of linear depth (a cube's faces
  *               in two rows: +X -X +Y, then -Y +Z -Z; an array's layers
@@ -267,9 +270,14 @@ typedef struct shadow_map_settings {
  * shaders (texel_heat.glsl) and the legend take them from here. */
 #define SHADOW_MAP_HEAT_LOG2_MIN (-2)
 #define SHADOW_MAP_HEAT_LOG2_MAX 5
-#define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size"
+/* The penumbra overlay's ends, log2 of the penumbra radius PCSS estimated
+ * (world units): the texel-size ramp moved to start at 1/64 unit (blue),
+ * green at 1/16, red at 2 and more. */
+#define SHADOW_MAP_PENUMBRA_LOG2_MIN (-6)
+#define SHADOW_MAP_PENUMBRA_LOG2_MAX (SHADOW_MAP_PENUMBRA_LOG2_MIN + SHADOW_MAP_HEAT_LOG2_MAX - SHADOW_MAP_HEAT_LOG2_MIN)
+#define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size", "penumbra"
 enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
-       SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_COUNT };
+       SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_PENUMBRA, SHADOW_MAP_OVERLAY_COUNT };
 /* An array map's technique lists this one next (and sets the settings'
  * array_overlays): light 0's layers' receivers tinted each in its colour
  * (the blend band mixing two), and its map as an inset (an array's layers
@@ -426,7 +434,7 @@ typedef struct shadow_map_camera_key {
     unsigned kinds, texel_kinds; /* per light (SHADOW_MAP_LIGHT_KIND_BITS) */
     unsigned shape, kernel;      /* shadow_map_kernel, N or the disc's scale */
     unsigned soft_lights;        /* bit i: light i is soft (shadowmap_soft.glsl) */
-    unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades;
+    unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
 } shadow_map_camera_key;
 
 /* The camera pass's program (lit.vert with shadowmap.frag) for one key,
@@ -621,7 +629,8 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
  * world space), drawn through `view_projection`. */
 void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const mat4 view_projection);
 /* Those of settings->overlay drawn after the camera pass: frusta, inset,
- * the texel-size heat map's legend (a colour bar with labelled ticks).
+ * the texel-size and penumbra heat maps' legends (a colour bar with
+ * labelled ticks).
  * fitted[l]: light l has a map this frame. */
 void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                               const bool *fitted, const int viewport[4]);

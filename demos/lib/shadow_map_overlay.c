@@ -107,15 +107,30 @@ static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, c
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
-/* ---- the texel-size legend ---- */
+/* ---- the heat maps' legends ---- */
 
-/* The ticks labelled under the bar: its ends (shadow_map.h) and one pixel. */
-#define SHADOW_MAP_LEGEND_LOG2_MIN ((float)SHADOW_MAP_HEAT_LOG2_MIN)
-#define SHADOW_MAP_LEGEND_LOG2_MAX ((float)SHADOW_MAP_HEAT_LOG2_MAX)
-static const struct {
-    float log2_pixels;
-    const char *label;
-} shadow_map_legend_ticks[] = {{SHADOW_MAP_LEGEND_LOG2_MIN, "1/4"}, {0, "1 px"}, {SHADOW_MAP_LEGEND_LOG2_MAX, "32+ px"}};
+/* A heat map's legend: the ramp's ends in log2 of what it measures, and
+ * the ticks labelled under the bar: the ends and the ramp's green. */
+#define SHADOW_MAP_LEGEND_TICKS 3
+typedef struct shadow_map_legend_scale {
+    float log2_min, log2_max;
+    struct {
+        float log2_value;
+        const char *label;
+    } ticks[SHADOW_MAP_LEGEND_TICKS];
+} shadow_map_legend_scale;
+/* A texel's size in pixels, green at one. */
+static const shadow_map_legend_scale shadow_map_texel_size_legend = {
+    SHADOW_MAP_HEAT_LOG2_MIN,
+    SHADOW_MAP_HEAT_LOG2_MAX,
+    {{SHADOW_MAP_HEAT_LOG2_MIN, "1/4"}, {0, "1 px"}, {SHADOW_MAP_HEAT_LOG2_MAX, "32+ px"}}};
+/* The penumbra's estimated radius in world units: the same ramp moved. */
+static const shadow_map_legend_scale shadow_map_penumbra_legend = {
+    SHADOW_MAP_PENUMBRA_LOG2_MIN,
+    SHADOW_MAP_PENUMBRA_LOG2_MAX,
+    {{SHADOW_MAP_PENUMBRA_LOG2_MIN, "1/64"},
+     {SHADOW_MAP_PENUMBRA_LOG2_MIN - SHADOW_MAP_HEAT_LOG2_MIN, "1/16"},
+     {SHADOW_MAP_PENUMBRA_LOG2_MAX, "radius 2+ units"}}};
 /* Sizes in font units, so the legend grows with the HUD's text (hud.h):
  * the bar, a tick's length, the panel's margin, stb_easy_font's line. */
 #define SHADOW_MAP_LEGEND_BAR_UNITS 160
@@ -149,11 +164,12 @@ static void shadow_map_legend_rect(shadow_map_legend_mesh *m, float x0, float y0
     }
 }
 
-/* The texel-size heat map's legend in the bottom-right corner (free of
- * the map inset, which this overlay does not show): its colour bar in
- * the picture's colours, a tick and a label at a quarter pixel, one
- * pixel and 32 (the ramp's ends and its green), on a dark panel. */
-static void shadow_map_draw_legend(shadow_map_renderer *r, const int viewport[4]) {
+/* A heat map's legend in the bottom-right corner (free of the map inset,
+ * which these overlays do not show): its colour bar in the picture's
+ * colours, a tick and a label at each of the scale's ticks, on a dark
+ * panel. */
+static void shadow_map_draw_legend(shadow_map_renderer *r, const shadow_map_legend_scale *scale,
+                                   const int viewport[4]) {
     static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     /* Scratch, static for their size (not state: filled anew each frame). */
     static shadow_map_legend_mesh panel, text;
@@ -166,15 +182,14 @@ static void shadow_map_draw_legend(shadow_map_renderer *r, const int viewport[4]
     text = panel;
     shadow_map_legend_rect(&panel, x - margin, y - margin, x + bar_width + margin,
                            y + SHADOW_MAP_LEGEND_PANEL_UNITS * unit + margin);
-    for (size_t t = 0; t < sizeof shadow_map_legend_ticks / sizeof *shadow_map_legend_ticks; t++) {
-        float along = (shadow_map_legend_ticks[t].log2_pixels - SHADOW_MAP_LEGEND_LOG2_MIN) /
-                      (SHADOW_MAP_LEGEND_LOG2_MAX - SHADOW_MAP_LEGEND_LOG2_MIN);
+    for (int t = 0; t < SHADOW_MAP_LEGEND_TICKS; t++) {
+        float along = (scale->ticks[t].log2_value - scale->log2_min) / (scale->log2_max - scale->log2_min);
         float tick = x + along * (bar_width - unit);
         shadow_map_legend_rect(&text, tick, y + bar_height, tick + unit,
                                y + bar_height + SHADOW_MAP_LEGEND_TICK_UNITS * unit);
         /* Each label under its tick, shifted left by its share of the bar,
          * so the end labels stay over the panel. */
-        char *label = (char *)shadow_map_legend_ticks[t].label;
+        char *label = (char *)scale->ticks[t].label;
         float label_x = tick - along * (float)stb_easy_font_width(label) * unit;
         float label_y = y + bar_height + SHADOW_MAP_LEGEND_TICK_UNITS * unit;
         int quads = stb_easy_font_print(0, 0, label, NULL, font, (int)sizeof font);
@@ -195,7 +210,8 @@ static void shadow_map_draw_legend(shadow_map_renderer *r, const int viewport[4]
                (int)bar_height);
     glUseProgram(r->legend.program.id);
     glUniformMatrix4fv(r->legend.program.view_projection, 1, GL_FALSE, (const float *)identity);
-    glUniform2f(r->legend.log2_range, SHADOW_MAP_LEGEND_LOG2_MIN, SHADOW_MAP_LEGEND_LOG2_MAX);
+    /* The bar is the ramp's, the texel-size scale's. */
+    glUniform2f(r->legend.log2_range, SHADOW_MAP_HEAT_LOG2_MIN, SHADOW_MAP_HEAT_LOG2_MAX);
     glBindVertexArray(r->overlay_vao);
     glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
     glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
@@ -217,7 +233,9 @@ void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings 
     if (fitted[0] && inset)
         shadow_map_draw_inset(r, &r->maps[0], viewport);
     if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)
-        shadow_map_draw_legend(r, viewport);
+        shadow_map_draw_legend(r, &shadow_map_texel_size_legend, viewport);
+    if (overlay == SHADOW_MAP_OVERLAY_PENUMBRA)
+        shadow_map_draw_legend(r, &shadow_map_penumbra_legend, viewport);
 }
 
 /* ---- a warp's space ---- */
