@@ -19,8 +19,13 @@
 // The three steps, each in the light's own measure:
 //   1. the blocker search: the depths stored inside the region of the map
 //      through which the light's disc sees the point, its rays' cone cut
-//      at the map's near plane (the nearest caster); their mean where they
-//      are nearer the light than the receiver;
+//      at the map's near plane (the nearest caster); of those nearer the
+//      light than the receiver, their distance from the light averaged
+//      with weights 1 / (d_r - d_b): a blocker nearer the receiver hides
+//      more of the light from it, so a thin caster standing on the
+//      receiver, whose top and foot both fall in the search, casts the
+//      foot's narrow penumbra where the foot is (at least a texel of gap:
+//      nearer is not resolved);
 //   2. the penumbra by similar triangles: a disc of radius R (world) at
 //      the light, a blocker at distance d_b, the receiver at d_r: a
 //      penumbra of radius R (d_r - d_b) / d_b on the receiver; a sun of
@@ -43,20 +48,21 @@ float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, in
     // 1. The blocker search, over the light's cone cut at the near plane.
     float search = shadowmap_soft_texels(shadowmap_penumbra_world(i, d_r, shadowmap_soft_distance(raw, i, 0.0)),
                                          texel_world) / unit;
-    float blocker_depth = 0.0;
-    int blockers = 0;
+    float blocker_distance = 0.0, blocker_weight = 0.0;
     for (int k = 0; k < SHADOW_MAP_SOFT_SEARCH_TAPS; k++) {
         vec2 offset = shadowmap_vogel_tap(k, SHADOW_MAP_SOFT_SEARCH_TAPS, rotation) * search;
         float depth = shadowmap_blocker_read(raw, offset);
         if (depth < shadowmap_reference_depth(raw, offset)) {
-            blocker_depth += depth;
-            blockers++;
+            float distance = shadowmap_soft_distance(raw, i, depth);
+            float weight = 1.0 / max(d_r - distance, texel_world);
+            blocker_distance += weight * distance;
+            blocker_weight += weight;
         }
     }
-    if (blockers == 0)
+    if (blocker_weight == 0.0)
         return 1.0;
-    // 2. The penumbra's radius from the blockers' mean depth.
-    float d_b = shadowmap_soft_distance(raw, i, blocker_depth / float(blockers));
+    // 2. The penumbra's radius from the blockers' weighted distance.
+    float d_b = blocker_distance / blocker_weight;
     float world = shadowmap_penumbra_world(i, d_r, d_b);
     if (shadowmap_show_penumbra)
         shadowmap_penumbra_estimate = world;
