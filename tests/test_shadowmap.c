@@ -183,47 +183,43 @@ static void test_defaults_and_our_bias_beat_textbook(void **state) {
     }
 }
 
-/* Receiver-plane depth bias removes the partial acne of wide kernels on
- * slanted receivers: the mean error drops, on a spot and a point light. */
-static void test_receiver_plane_reduces_partial_acne(void **state) {
+/* Receiver-plane taps (the default; Isidoro, GDC 2006) against taps at
+ * the centre's depth, which reach texels of a flat or slanted receiver
+ * itself and speckle it with partial acne. By the lit class (the truth
+ * fully lit): at most half the centre depth's error, with a wide kernel
+ * on a spot and a point light, and with the default's on flat box tops
+ * under a spot and a point light, where it must also misclassify no more
+ * than a tenth above the centre depth's: the defaults were chosen by both
+ * figures. The flat boxes at the bench's size, where the automatic map
+ * size is the one the bench measures. */
+#define PLANE_LIT_SHARE_OF_CENTRE 0.5
+#define PLANE_MISCLASSIFIED_SHARE_OF_CENTRE 1.1
+static void test_receiver_plane_removes_partial_acne(void **state) {
     (void)state;
-    static const char *const scenes[] = {"simple", "bunny"};
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char path[256], name[64];
-        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
-        snprintf(name, sizeof name, "%s_pcf7_centre", scenes[i]);
-        shadowdiff_result centre = measure(path, "--filter pcf7 --kernel-depth centre", name);
-        snprintf(name, sizeof name, "%s_pcf7_receiver_plane", scenes[i]);
-        shadowdiff_result plane = measure(path, "--filter pcf7", name);
-        fprintf(stderr, "    %s, pcf7: mean error %.5f at the centre's depth, %.5f on the receiver plane\n",
-                scenes[i], centre.mean_abs_error, plane.mean_abs_error);
-        assert_true(plane.mean_abs_error < 0.5 * centre.mean_abs_error);
-    }
-}
-
-/* The default's taps follow the receiver's plane: flat box tops under a
- * spot and a point light, where taps at the centre's depth reach texels of
- * the top itself and speckle it with partial acne, are drawn lit. By the
- * lit class (the truth fully lit): at most half the centre depth's error,
- * while misclassifying no more than a tenth above it. At the bench's size,
- * where the automatic map size is the one the bench measures. */
-#define FLAT_LIT_SHARE_OF_CENTRE 0.5
-#define FLAT_MISCLASSIFIED_SHARE_OF_CENTRE 1.1
-static void test_default_keeps_flat_tops_lit(void **state) {
-    (void)state;
-    static const char *const scenes[] = {"flat_boxes", "flat_boxes_point"};
-    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
-        char path[256], name[64];
-        snprintf(path, sizeof path, "assets/scenes/%s.json", scenes[i]);
-        snprintf(name, sizeof name, "%s_default", scenes[i]);
-        shadowdiff_result plane = measure_sized(path, BENCH_SIZE, "", name);
-        snprintf(name, sizeof name, "%s_centre", scenes[i]);
-        shadowdiff_result centre = measure_sized(path, BENCH_SIZE, "--kernel-depth centre", name);
+    static const struct {
+        const char *scene, *size, *filter;
+        bool default_filter; /* also the misclassified bound */
+    } cases[] = {
+        {"simple", "", "--filter pcf7", false},
+        {"bunny", "", "--filter pcf7", false},
+        {"flat_boxes", BENCH_SIZE, "", true},
+        {"flat_boxes_point", BENCH_SIZE, "", true},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char path[256], name[64], flags[64];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", cases[i].scene);
+        snprintf(name, sizeof name, "%s_plane_%zu", cases[i].scene, i);
+        shadowdiff_result plane = measure_sized(path, cases[i].size, cases[i].filter, name);
+        snprintf(name, sizeof name, "%s_centre_%zu", cases[i].scene, i);
+        snprintf(flags, sizeof flags, "%s --kernel-depth centre", cases[i].filter);
+        shadowdiff_result centre = measure_sized(path, cases[i].size, flags, name);
         const double p = plane.class_mae[SHADOWDIFF_CLASS_LIT], c = centre.class_mae[SHADOWDIFF_CLASS_LIT];
-        fprintf(stderr, "    %s: lit MAE %.5f (centre %.5f), misclassified %.4f %% (centre %.4f %%)\n", scenes[i], p,
-                c, plane.misclassified_percent, centre.misclassified_percent);
-        assert_true(p <= FLAT_LIT_SHARE_OF_CENTRE * c);
-        assert_true(plane.misclassified_percent <= FLAT_MISCLASSIFIED_SHARE_OF_CENTRE * centre.misclassified_percent);
+        fprintf(stderr, "    %s %s: lit MAE %.5f (centre %.5f), misclassified %.4f %% (centre %.4f %%)\n",
+                cases[i].scene, cases[i].filter, p, c, plane.misclassified_percent, centre.misclassified_percent);
+        assert_true(p <= PLANE_LIT_SHARE_OF_CENTRE * c);
+        if (cases[i].default_filter)
+            assert_true(plane.misclassified_percent <=
+                        PLANE_MISCLASSIFIED_SHARE_OF_CENTRE * centre.misclassified_percent);
     }
 }
 
@@ -428,8 +424,7 @@ int main(void) {
         cmocka_unit_test(test_no_acne_at_any_elevation),
         cmocka_unit_test(test_acne_without_bias),
         cmocka_unit_test(test_defaults_and_our_bias_beat_textbook),
-        cmocka_unit_test(test_receiver_plane_reduces_partial_acne),
-        cmocka_unit_test(test_default_keeps_flat_tops_lit),
+        cmocka_unit_test(test_receiver_plane_removes_partial_acne),
         cmocka_unit_test(test_tents_within_bound_and_sharper_than_grids),
         cmocka_unit_test(test_early_out_changes_no_decision),
         cmocka_unit_test(test_no_peter_panning_at_contact),
