@@ -13,7 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -103,13 +102,8 @@ static bool in_legend_corner(size_t i, int width, int height) {
 /* The colour picture of a dump (a screenshot of its frame). */
 static unsigned char *dump_color(const char *dir, int width, int height) {
     char path[256];
-    int w, h;
     snprintf(path, sizeof path, "%s/color.png", dir);
-    unsigned char *rgba = image_read_png(path, &w, &h);
-    assert_non_null(rgba);
-    assert_int_equal(w, width);
-    assert_int_equal(h, height);
-    return rgba;
+    return support_read_png(path, width, height);
 }
 
 /* --overlay penumbra against the same frame without it, pixel by pixel
