@@ -251,11 +251,11 @@ vec2 shadowmap_vogel_tap(int k, int n, mat2 rotation) {
 // (where it does not change across a pixel there are no edges to find, and
 // no division by zero), and how much a texel boundary darkens the picture.
 const float SHADOWMAP_MIN_TEXEL_FWIDTH = 1e-6;
-// The penumbra overlay's floor on the radius (a blocker at the receiver's
-// own depth casts none), so that its log2 is finite.
-const float SHADOWMAP_MIN_PENUMBRA = 1e-6;
 const float SHADOWMAP_TEXEL_LINE_DARKENING = 0.6;
 // The least spacing of the texel overlay's lines, in pixels: well above
 // the two pixels a line of Nyquist's limit, so the grid reads as squares.
 const float SHADOWMAP_TEXEL_LINE_MIN_PIXELS = 4.0;
+// The penumbra overlay's floor on the radius (a blocker at the receiver's
+// own depth casts none), so that its log2 is finite.
+const float SHADOWMAP_MIN_PENUMBRA = 1e-6;
 #include "texel_heat.glsl"

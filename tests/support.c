@@ -112,6 +112,16 @@ const char *support_first_difference(const char *a, const char *b, const char *c
     return NULL;
 }
 
+unsigned char *support_read_png(const char *path, int width, int height) {
+    int w, h;
+    unsigned char *rgba = image_read_png(path, &w, &h);
+    if (!rgba)
+        fail_msg("%s: cannot read the picture", path);
+    assert_int_equal(w, width);
+    assert_int_equal(h, height);
+    return rgba;
+}
+
 bool support_have_command(const char *name) {
     char command[256];
     snprintf(command, sizeof command, "command -v %s >/dev/null 2>&1", name);

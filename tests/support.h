@@ -45,6 +45,9 @@ int support_count_lines(const char *text);
  * image is unreadable or the sizes differ. When the fraction is over
  * SUPPORT_MAX_DIFFERING, writes `actual` with "_diff.png" beside it. */
 double support_compare_images(const char *golden, const char *actual);
+/* The RGBA pixels of the PNG at `path`, which must be width x height;
+ * fails the running cmocka test otherwise. The caller frees them. */
+unsigned char *support_read_png(const char *path, int width, int height);
 bool support_have_command(const char *name);
 /* The command prefix that runs a program in a window under a virtual X
  * server (the server without this process's LD_PRELOAD: support_program

@@ -31,7 +31,6 @@
 #include "compare.h"
 #include "context.h"
 #include "hud.h"
-#include "image.h"
 #include "path.h"
 #include "shader.h"
 #include "support.h"
@@ -72,11 +71,7 @@ static void run(const char *command) {
 /* The cell at (x0, y0) of a WIDTH x HEIGHT picture against an image of the
  * cell's size: whether every byte agrees. */
 static bool cell_is(const unsigned char *picture, int x0, int y0, const char *path) {
-    int w, h;
-    unsigned char *cell = image_read_png(path, &w, &h);
-    assert_non_null(cell);
-    assert_int_equal(w, CELL_WIDTH);
-    assert_int_equal(h, CELL_HEIGHT);
+    unsigned char *cell = support_read_png(path, CELL_WIDTH, CELL_HEIGHT);
     bool same = true;
     for (int y = 0; y < CELL_HEIGHT && same; y++)
         same = memcmp(picture + ((size_t)(y0 + y) * WIDTH + (size_t)x0) * 4, cell + (size_t)y * CELL_WIDTH * 4,
@@ -149,12 +144,8 @@ static void test_cells_are_the_programs_pictures(void **state) {
         run(command);
 
         char path[300];
-        int w, h;
         snprintf(path, sizeof path, "%s.png", prefix);
-        unsigned char *picture = image_read_png(path, &w, &h);
-        assert_non_null(picture);
-        assert_int_equal(w, WIDTH);
-        assert_int_equal(h, HEIGHT);
+        unsigned char *picture = support_read_png(path, WIDTH, HEIGHT);
         snprintf(path, sizeof path, "%s_technique.png", prefix);
         if (!cell_is(picture, 0, 0, path))
             fail_msg("%s: the technique's cell is not %s", prefix, path);

@@ -142,12 +142,17 @@ static void test_hard_shadow_matches_analytic_square(void **state) {
     scene_free(&s);
 }
 
+/* The square scene under an area light of AREA_LIGHT_RADIUS. */
+static void load_area_square(scene *s) {
+    load(s, SQUARE_SCENE);
+    s->lights[0].radius = AREA_LIGHT_RADIUS;
+}
+
 static void test_area_light_penumbra_width(void **state) {
     (void)state;
     scene s;
     dump_frame f;
-    load(&s, SQUARE_SCENE);
-    s.lights[0].radius = AREA_LIGHT_RADIUS;
+    load_area_square(&s);
     square_shadow q = square_shadow_of(&s);
     render(&s, SIZE, SIZE, AREA_LIGHT_SAMPLES, &f);
     /* The middle row crosses the shadow's straight edge x = s H / (H - h)
@@ -200,8 +205,7 @@ static void test_area_light_rays_converge(void **state) {
     (void)state;
     scene s;
     dump_frame converged;
-    load(&s, SQUARE_SCENE);
-    s.lights[0].radius = AREA_LIGHT_RADIUS;
+    load_area_square(&s);
     render(&s, CONVERGENCE_SIZE, CONVERGENCE_SIZE, CONVERGED_SAMPLES, &converged);
     double by_default = penumbra_mae_against(&converged, &s, RAYTRACE_DEFAULT_LIGHT_SAMPLES);
     double few = penumbra_mae_against(&converged, &s, FEW_SAMPLES);

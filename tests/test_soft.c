@@ -9,11 +9,11 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "image.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -114,24 +114,63 @@ static bool in_legend_corner(size_t i, int width, int height) {
 /* The colour picture of a dump (a screenshot of its frame). */
 static unsigned char *dump_color(const char *dir, int width, int height) {
     char path[256];
-    int w, h;
     snprintf(path, sizeof path, "%s/color.png", dir);
-    unsigned char *rgba = image_read_png(path, &w, &h);
-    assert_non_null(rgba);
-    assert_int_equal(w, width);
-    assert_int_equal(h, height);
-    return rgba;
+    return support_read_png(path, width, height);
 }
 
 /* --overlay penumbra against the same frame without it, pixel by pixel
  * outside its legend, by the reference's class there: nearly every
  * penumbra pixel of the truth is coloured (the blocker search found a
  * blocker there), no pixel without a surface is, and most of the lit ones
- * keep their colour (the search reaches a little beyond the penumbra). */
+ * keep their colour (the search reaches a little beyond the penumbra);
+ * and the colour follows the estimate, small at a contact, large far
+ * from it. */
 #define OVERLAY_SCENE "assets/scenes/soft_table.json"
 #define OVERLAY_MIN_PENUMBRA_SHARE 0.85
+/* Ground points in the tall pole's shadow (its foot at x 0.6, z 2.4; the
+ * light above x -1.5, z 1; the shadow's far end near x 2.44, z 3.63): a
+ * little past the foot, and near the far end. There the overlay's colour
+ * must be the ramp's low end's (more green than red), here its high end's
+ * (more red than green): the estimate grows with the blocker's distance
+ * from the receiver. Read over the coloured pixels of a small window. */
+static const float overlay_near_foot[3] = {0.77f, 0, 2.51f}, overlay_far_end[3] = {2.19f, 0, 3.46f};
+#define OVERLAY_WINDOW 3 /* pixels either side */
+#define OVERLAY_RECEIVER "ground"
 #define OVERLAY_MAX_LIT_SHARE 0.25
 enum { OVERLAY_NO_SURFACE = SHADOWDIFF_CLASS_COUNT, OVERLAY_KINDS };
+/* The mean red less green (in 0..255) of the coloured pixels about the
+ * receiver's pixel nearest p. */
+static double overlay_redness(const dump_frame *reference, const unsigned char *before, const unsigned char *after,
+                              const float p[3]) {
+    int receiver = -1;
+    for (int k = 0; k < reference->object_count; k++)
+        receiver = strcmp(reference->object_names[k], OVERLAY_RECEIVER) == 0 ? k : receiver;
+    assert_true(receiver >= 0);
+    int width = reference->width, height = reference->height, nearest = -1;
+    float best = INFINITY;
+    for (int i = 0; i < width * height; i++) {
+        const float *q = reference->position + 3 * (size_t)i;
+        float d = (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]);
+        if (reference->ids[i] == receiver && d < best) {
+            best = d;
+            nearest = i;
+        }
+    }
+    assert_true(nearest >= 0);
+    double sum = 0;
+    int count = 0;
+    for (int y = nearest / width - OVERLAY_WINDOW; y <= nearest / width + OVERLAY_WINDOW; y++)
+        for (int x = nearest % width - OVERLAY_WINDOW; x <= nearest % width + OVERLAY_WINDOW; x++) {
+            size_t i = (size_t)y * (size_t)width + (size_t)x;
+            if (x < 0 || y < 0 || x >= width || y >= height || memcmp(before + 4 * i, after + 4 * i, 3) == 0)
+                continue;
+            sum += (double)after[4 * i] - (double)after[4 * i + 1];
+            count++;
+        }
+    assert_true(count > 0);
+    return sum / count;
+}
+
 static void test_penumbra_overlay_colours_the_penumbra(void **state) {
     (void)state;
     dump_frame reference, plain;
@@ -161,6 +200,10 @@ static void test_penumbra_overlay_colours_the_penumbra(void **state) {
     assert_true(coloured[SHADOWDIFF_CLASS_PENUMBRA] >= OVERLAY_MIN_PENUMBRA_SHARE * pixels[SHADOWDIFF_CLASS_PENUMBRA]);
     assert_true(coloured[SHADOWDIFF_CLASS_LIT] <= OVERLAY_MAX_LIT_SHARE * pixels[SHADOWDIFF_CLASS_LIT]);
     assert_int_equal(coloured[OVERLAY_NO_SURFACE], 0);
+    double near_foot = overlay_redness(&reference, before, after, overlay_near_foot),
+           far_end = overlay_redness(&reference, before, after, overlay_far_end);
+    printf("    red less green: %.1f near the tall pole's foot, %.1f near its shadow's far end\n", near_foot, far_end);
+    assert_true(near_foot < 0 && far_end > 0);
     free(before);
     free(after);
     dump_frame_free(&reference);

@@ -43,7 +43,7 @@ bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count
           "figure{display:inline-block;margin:0 .5em .5em 0;vertical-align:top}"
           "img{width:32em;max-width:30vw;display:block}figcaption{font-size:.85em;color:#aaa}"
           "table.figures{border-collapse:collapse;margin:.2em 0}"
-          "table.figures td{padding:0 1em 0 0}"
+          "table.figures td{padding:0 1em 0 0;white-space:nowrap}"
           ".key span{display:inline-block;width:1em;height:1em;border:1px solid #999;vertical-align:middle;"
           "margin:0 .3em 0 1em}</style></head>\n<body>\n<h1>Shadows: the gallery</h1>\n"
           "<p>Each technique's picture beside the ray-traced reference of the same view and shadowdiff's heat "
@@ -71,6 +71,8 @@ bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count
                     "<table class=\"figures\"><tr><td>misclassified %.4f %%</td><td>mean absolute error %.5f</td>"
                     "<td>%ld pixels compared</td>",
                     r->misclassified_percent, r->mean_abs_error, r->compared);
+            if (r->figure_count > 0) /* the further figures on a row of their own */
+                fputs("</tr><tr>", f);
             for (int k = 0; k < r->figure_count; k++) {
                 fputs("<td>", f);
                 gallery_page_text(f, r->figures[k]);

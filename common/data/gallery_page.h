@@ -25,7 +25,7 @@ typedef struct gallery_page_row {
     bool measured; /* else the figures and the heat map are left out (a lecture picture's overlays) */
     double misclassified_percent, mean_abs_error;
     long compared;
-    char figures[GALLERY_PAGE_MAX_FIGURES][GALLERY_PAGE_FIGURE_MAX]; /* each a cell after those */
+    char figures[GALLERY_PAGE_MAX_FIGURES][GALLERY_PAGE_FIGURE_MAX]; /* each a cell, on a row below those */
     int figure_count;
 } gallery_page_row;
 

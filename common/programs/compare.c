@@ -205,8 +205,8 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
         snprintf(text, sizeof text, "misclassified %.4f %%", r->misclassified_percent);
         compare_legend_add(lines, &count, 0, NULL, text);
         if (r->class_pixels[SHADOWDIFF_CLASS_PENUMBRA] > 0) { /* a soft shadow's own figure */
-            snprintf(text, sizeof text, "penumbra MAE %.*f", COMPARE_MAE_DECIMALS,
-                     r->class_mae[SHADOWDIFF_CLASS_PENUMBRA]);
+            snprintf(text, sizeof text, "%s MAE %.*f", shadowdiff_class_names[SHADOWDIFF_CLASS_PENUMBRA],
+                     COMPARE_MAE_DECIMALS, r->class_mae[SHADOWDIFF_CLASS_PENUMBRA]);
             compare_legend_add(lines, &count, 0, NULL, text);
         }
     } else if (c->measured) {
