@@ -121,7 +121,8 @@ static void shadowmap_describe(char *out, size_t size) {
 }
 
 /* The sweep: map size x filter x bias (the tents, and the early-out off:
- * the defaults' figures before it), and two configurations popular
+ * the defaults' figures before it; the moment filters), and two
+ * configurations popular
  * tutorials use ("label: flags"), so the report shows where our biases
  * stand at the same cost: LearnOpenGL's bias max(0.05 (1 - N.L), 0.005)
  * with 3x3 PCF at 1024 (against --map-size 1024 --filter pcf3), and
@@ -146,6 +147,10 @@ static const char *const shadowmap_bench_configs[] = {
     "--no-early-out",
     "--kernel-depth receiver-plane",
     "--filter pcf7 --kernel-depth receiver-plane",
+    "--filter vsm",
+    "--filter evsm2",
+    "--filter evsm4",
+    "--filter msm",
     "--normal-texels 1",
     "hard: --soft off",
     "wide pcf (fake soft): --soft off --filter pcf7",

@@ -131,6 +131,20 @@ static void test_kernel_margin(void **state) {
             shadow_map_settings tent = {.filter = tents[i][0]}, grid = {.filter = tents[i][1]};
             assert_true(shadow_map_read_reach(&tent, kind, false) >= shadow_map_read_reach(&grid, kind, false));
         }
+    /* A moment map's texel holds its blur's box: a read reaches its
+     * radius past the bilinear footprint, an area light's the widest. */
+    static const shadow_map_filter moment_filters[] = {SHADOW_MAP_FILTER_VSM, SHADOW_MAP_FILTER_EVSM2,
+                                                       SHADOW_MAP_FILTER_EVSM4, SHADOW_MAP_FILTER_MSM};
+    const shadow_map_settings hw = {.filter = SHADOW_MAP_FILTER_HW};
+    for (size_t i = 0; i < sizeof moment_filters / sizeof *moment_filters; i++) {
+        shadow_map_settings moments = {.filter = moment_filters[i]};
+        assert_true(shadow_map_read_reach(&moments, SHADOW_MAP_2D, false) >=
+                    shadow_map_read_reach(&hw, SHADOW_MAP_2D, false) + SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS);
+        assert_true(shadow_map_read_reach(&moments, SHADOW_MAP_2D, true) >=
+                    shadow_map_read_reach(&hw, SHADOW_MAP_2D, false) + SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);
+        patch_reads(layer, &moments, &reads);
+        assert_true(caster_needed(layer, &reads, lo, hi));
+    }
     /* Receiver-plane taps compare depths beyond the receivers': a caster
      * behind them is needed then, and culled with centre depths. */
     const shadow_map_settings plane = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};

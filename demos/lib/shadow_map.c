@@ -133,6 +133,14 @@ unsigned shadow_map_layer_image(shadow_map_kind kind, int layer) {
     return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)layer : GL_TEXTURE_2D;
 }
 
+void shadow_map_texture_filter(unsigned target, int filter) {
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+}
+
 /* Makes a layer of a map the depth pass's depth attachment: an array's
  * layer by its index, a 2D map's or a cube face's by its image. */
 static void shadow_map_attach_layer(const shadow_map *m, int layer) {
@@ -169,11 +177,7 @@ static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
         for (int layer = 0; layer < m->layer_count; layer++)
             glTexImage2D(shadow_map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0,
                          GL_DEPTH_COMPONENT, type, NULL);
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, texel_filter);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, texel_filter);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    shadow_map_texture_filter(target, texel_filter);
     glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     t->kind = m->kind;

@@ -116,6 +116,14 @@
  * snap to it); see demos/shadowmap.c for the figures.
  * --kernel-depth receiver-plane (Isidoro, GDC 2006) makes each tap compare
  * the receiver's own depth there rather than the centre's.
+ * The moment filters (vsm, evsm2, evsm4, msm; shadow_map_moments.c,
+ * shaders/moments.glsl) filter the map before the camera pass instead:
+ * the depth pass draws the receivers that cast nothing too, then each
+ * layer it rendered becomes moments blurred by a separable box into a
+ * float texture beside the depth texture (texture.moments), which the
+ * camera pass reads once, bilinear, on the light's depth unit. They
+ * replace the kernel and PCSS alike: an area light's box is its casters'
+ * mean penumbra wide (one width, no contact hardening).
  * An area light (radius > 0) with --soft pcss, the default, is filtered
  * instead by percentage-closer soft shadows (shaders/shadowmap_soft.glsl:
  * a blocker search, the penumbra by similar triangles, a filter of its
@@ -159,7 +167,8 @@
  * projection, its rectangle misses that one or its nearest depth lies
  * beyond the deepest read (any depth with receiver-plane taps; a cube tap
  * compares its own direction's depth, bounded by the point pushed away
- * from the light by the tap's offset). Exact: the constant bias moves a
+ * from the light by the tap's offset; a moment filter's box holds every
+ * depth, and reaches its blur's width). Exact: the constant bias moves a
  * point along its ray to the light, which keeps its place in every map,
  * and the depth a culled caster would have stored is never one a read
  * compares with. Not culled: with a normal offset (the point leaves its
@@ -167,8 +176,9 @@
  * depends on culling.
  *
  * Caching. Per light and layer the renderer keeps what the layer holds:
- * its matrix (bit for bit), the casters drawn, and per light the texture,
- * size, depth format, filter and slope bias. A layer is reused, with no
+ * its matrix (bit for bit), the casters drawn, a moment filter's blur
+ * width, and per light the texture, size, depth format, filter and slope
+ * bias. A layer is reused, with no
  * depth pass, while the scene and the light have not changed
  * (f->changed), those are the same and the casters it needs are among
  * those drawn: a layer with more casters than needed decides every read
@@ -565,9 +575,9 @@ void shadow_map_destroy(shadow_map_renderer *r);
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit);
 /* The depth pass of a fitted map of any kind: (re)makes its texture when
- * needed, then renders every layer from its matrix. Leaves r->framebuffer
- * bound and the viewport at the map's size: the caller binds its target
- * again. */
+ * needed, then renders every layer from its matrix (and a moment
+ * filter's blurs each). Leaves r->framebuffer (or the blur's) bound and
+ * the viewport at the map's size: the caller binds its target again. */
 void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
                              shadow_map *m);
 /* The samples light l's map is measured at this frame, in r->samples
@@ -598,6 +608,9 @@ int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const wa
  * face's layer (GLenums). */
 unsigned shadow_map_target(shadow_map_kind kind);
 unsigned shadow_map_layer_image(shadow_map_kind kind, int layer);
+/* The bound texture of `target` filtered by `filter` (GL_NEAREST or
+ * GL_LINEAR), its reads clamped to its edges. */
+void shadow_map_texture_filter(unsigned target, int filter);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
 

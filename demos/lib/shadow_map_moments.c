@@ -160,11 +160,7 @@ static void shadow_map_moments_image(GLenum target, shadow_map_kind kind, int si
         for (int layer = 0; layer < layers; layer++)
             glTexImage2D(shadow_map_layer_image(kind, layer), 0, (GLint)format, size, size, 0, GL_RGBA, GL_FLOAT,
                          NULL);
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    shadow_map_texture_filter(target, filter);
 }
 
 void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments) {
