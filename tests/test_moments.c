@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "shadow_map.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -111,10 +112,33 @@ static void test_skips_change_nothing(void **state) {
     }
 }
 
+/* Precedence: a moment filter draws an area light by its blur whatever
+ * --soft says, so nothing says it is drawn hard (stderr stays empty), and
+ * the HUD's words say how it is drawn; a hard light has no such words. */
+static void test_area_lights_take_the_blur(void **state) {
+    (void)state;
+    for (int k = 0; k < FILTER_COUNT; k++) {
+        char command[512], text[4096];
+        snprintf(command, sizeof command,
+                 "%s --size 160x90 --scene assets/scenes/soft_table.json --filter %s --soft off --frames 2",
+                 support_program("shadowmap"), filters[k]);
+        assert_int_equal(support_run(command, text, sizeof text), 0);
+        printf("    --filter %s --soft off: %d lines on stderr\n", filters[k], support_count_lines(text));
+        assert_int_equal(support_count_lines(text), 0);
+    }
+    const scene_light area = {.type = SCENE_LIGHT_POINT, .radius = 1};
+    const shadow_map_settings moments = {.filter = SHADOW_MAP_FILTER_MSM, .soft = SHADOW_MAP_SOFT_OFF};
+    const shadow_map_settings kernel = {.filter = SHADOW_MAP_FILTER_PCF3, .soft = SHADOW_MAP_SOFT_OFF};
+    assert_non_null(strstr(shadow_map_area_light_text(&moments, &area), "moment map"));
+    assert_null(strstr(shadow_map_area_light_text(&kernel, &area), "moment map"));
+    assert_false(shadow_map_light_soft(&moments, &area));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_filters_against_reference),
         cmocka_unit_test(test_skips_change_nothing),
+        cmocka_unit_test(test_area_lights_take_the_blur),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

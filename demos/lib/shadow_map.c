@@ -737,11 +737,12 @@ static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settin
     return false;
 }
 
-/* Light l reads its moment map: a moment filter, and its depth unit (the
- * moments' unit) the GL has; else it takes one bilinear test of its
- * depths, said once on stderr. */
+/* Light l reads its moment map: a moment filter whose blur runs (else
+ * said once by the blur), and its depth unit (the moments' unit) the GL
+ * has; else it takes one bilinear test of its depths, said once on
+ * stderr. */
 static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_settings *settings, int l) {
-    if (shadow_map_filter_moments(settings->filter) == SHADOW_MAP_MOMENTS_NONE)
+    if (shadow_map_filter_moments(settings->filter) == SHADOW_MAP_MOMENTS_NONE || r->blur_failed)
         return false;
     if (SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
         return true;

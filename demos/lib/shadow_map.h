@@ -541,7 +541,7 @@ typedef struct shadow_map_renderer {
      * vertex array of their full-screen triangle (loaded as needed). */
     shadow_map_blur_program blur_depth[SHADOW_MAP_MOMENTS_MSM + 1][SHADOW_MAP_ARRAY + 1], blur_moments;
     unsigned blur_framebuffer, blur_vao;
-    bool blur_failed; /* said once: the maps stay unblurred */
+    bool blur_failed; /* said once: moment filters read one bilinear depth test */
     unsigned depth_sampler; /* a map read as depth: compare mode off, nearest */
     int texture_units;      /* GL_MAX_TEXTURE_IMAGE_UNITS */
     unsigned soft_warned;   /* bit i: light i's treatment said on stderr */
@@ -686,7 +686,8 @@ float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m,
  * deletes them for the kernels). */
 void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments);
 /* The depths of layer `layer` as blurred moments (two passes); false (said
- * once) where a pass cannot run. Leaves its framebuffer bound. */
+ * once, r->blur_failed) where a pass cannot run. Leaves its framebuffer
+ * bound. */
 bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow_map_moments moments, int layer);
 void shadow_map_moments_destroy(shadow_map_renderer *r);
 

@@ -237,8 +237,8 @@ static bool shadow_map_moments_target(shadow_map_renderer *r, const shadow_map *
     if (status == GL_FRAMEBUFFER_COMPLETE)
         return true;
     fprintf(stderr,
-            "shadow maps: this GL cannot draw into a float colour texture (framebuffer status 0x%x): the moment "
-            "filters' maps stay unfiltered; use a kernel (--filter poisson)\n",
+            "shadow maps: this GL cannot draw into a float colour texture (framebuffer status 0x%x): a moment "
+            "filter reads one bilinear depth test instead; use a kernel (--filter poisson)\n",
             status);
     return false;
 }
