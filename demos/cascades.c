@@ -433,9 +433,8 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
     m->cascade_blend = cascades.no_blend ? 0 : cascades_or(cascades.blend, CASCADES_DEFAULT_BLEND);
     cascades_splits(count, lambda, near_plane, far_plane, m->cascade_split);
     cascades_light_view(l->direction, f->view, stabilize, m->cascade_view);
-    float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY,
-                                         shadow_map_light_soft(&cascades.settings, l)) + cascades.settings.normal_texels +
-                   CASCADES_SNAP_TEXELS;
+    float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY, l->radius > 0) +
+                   cascades.settings.normal_texels + CASCADES_SNAP_TEXELS;
     for (int k = 0; k < count; k++) {
         const float *split = m->cascade_split;
         /* From where the slice before starts blending into this one. */
@@ -506,7 +505,7 @@ static void cascades_describe(char *out, size_t size) {
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count
  * and size at equal texels (2 x 2048 against 4 x 1024) and beyond, and
- * stabilisation and the blend off. */
+ * stabilisation and the blend off, and two moment filters. */
 static const char *const cascades_bench_configs[] = {
     "",
     "practical: --splits practical",
@@ -518,6 +517,8 @@ static const char *const cascades_bench_configs[] = {
     "--splits practical --stabilize sphere",
     "--stabilize off",
     "--no-blend",
+    "--filter evsm4",
+    "--filter msm",
 };
 
 const technique cascades_technique = {

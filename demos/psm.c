@@ -218,8 +218,8 @@ static void psm_describe(char *out, size_t size) {
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the
- * filters' early-out off and the tents at the defaults (shadow_map.h,
- * "filters"). */
+ * filters' early-out off, the tents and two moment filters at the
+ * defaults (shadow_map.h, "filters", "Moment shadow maps"). */
 static const char *const psm_bench_configs[] = {
     "",
     "--map-size 1024",
@@ -232,6 +232,8 @@ static const char *const psm_bench_configs[] = {
     "--no-early-out",
     "--filter tent3",
     "--filter tent5",
+    "--filter evsm4",
+    "--filter msm",
 };
 
 const technique psm_technique = {

@@ -5,7 +5,9 @@
  * render depth from the light, then test each camera fragment's depth in
  * the light against the map. Reeves, Salesin & Cook, "Rendering antialiased
  * shadows with depth maps", SIGGRAPH 1987: filter the results of the tests
- * (never the depths) over a kernel: percentage-closer filtering.
+ * (never the depths) over a kernel: percentage-closer filtering. The
+ * moment filters (--filter vsm|evsm2|evsm4|msm) filter the depths'
+ * moments instead (shadow_map.h, "Moment shadow maps").
  *
  *   spot         a perspective map around the cone (outside it the spot
  *                lights nothing: the cone decides there, not the map)
@@ -97,12 +99,15 @@ static void shadowmap_render(const technique_frame *f) {
 
 static void shadowmap_describe(char *out, size_t size) {
     const shadow_map *m = &shadowmap.maps.maps[0];
-    snprintf(out, size, "light 0: %s map %dx%d, depth range %.3g .. %.3g", shadow_map_kind_name(m->kind), m->size,
-             m->size, m->near_plane, m->far_plane);
+    int n = snprintf(out, size, "light 0: %s map %dx%d, depth range %.3g .. %.3g", shadow_map_kind_name(m->kind),
+                     m->size, m->size, m->near_plane, m->far_plane);
+    if (shadow_map_filter_moments(shadowmap.settings.filter) != SHADOW_MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
+        snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
 }
 
 /* The sweep: map size x filter x bias (the tents, and the early-out off:
- * the defaults' figures before it), and two configurations popular
+ * the defaults' figures before it; the moment filters), and two
+ * configurations popular
  * tutorials use ("label: flags"), so the report shows where our biases
  * stand at the same cost: LearnOpenGL's bias max(0.05 (1 - N.L), 0.005)
  * with 3x3 PCF at 1024 (against --map-size 1024 --filter pcf3), and
@@ -127,6 +132,10 @@ static const char *const shadowmap_bench_configs[] = {
     "--no-early-out",
     "--kernel-depth centre",
     "--filter pcf7",
+    "--filter vsm",
+    "--filter evsm2",
+    "--filter evsm4",
+    "--filter msm",
     "--normal-texels 1",
     "hard: --soft off",
     "wide pcf (fake soft): --soft off --filter pcf7",

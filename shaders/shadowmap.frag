@@ -55,6 +55,7 @@ const bool shadowmap_show_penumbra = SHADOW_MAP_PASS_SHOW_PENUMBRA != 0;     // 
 const float SHADOWMAP_NO_PENUMBRA = -1.0;
 float shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
 
+#include "moments.glsl"
 #include "shadowmap.glsl"
 #include "shadowmap_2d.glsl"
 #include "shadowmap_cube.glsl"
@@ -66,8 +67,11 @@ float shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
 // Light i's share by its kind (a constant: the other kinds' code is dropped).
 // Light i is soft (an area light, filtered by shadowmap_soft.glsl) where
 // its bit of SHADOW_MAP_PASS_SOFT_LIGHTS is set.
+// Light i reads its moment map (moments.glsl; in its depths' sampler)
+// where its bit of SHADOW_MAP_PASS_MOMENT_LIGHTS is set.
 #define SHADOWMAP_SOFT(i) (((SHADOW_MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
-#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOWMAP_SOFT(i), n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOWMAP_SOFT(i), n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOWMAP_SOFT(i), n)
+#define SHADOWMAP_MOMENTS(i) (((SHADOW_MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
+#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.

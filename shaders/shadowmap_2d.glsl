@@ -17,7 +17,8 @@ float shadowmap_kernel_read(sampler2DShadow map, vec2 offset) {
     return texture(map, vec3(shadowmap_point.xy + offset, shadowmap_point.z + dot(shadowmap_gradient, offset)));
 }
 
-float shadowmap_blocker_read(sampler2D raw, vec2 offset) { return texture(raw, shadowmap_point.xy + offset).r; }
+// The raw map's texel an offset away: a depth (.r), or moments.
+vec4 shadowmap_raw_read(sampler2D raw, vec2 offset) { return texture(raw, shadowmap_point.xy + offset); }
 
 // Un-projected at the point's place in the map: any projective map's
 // depth (a warp's is not distance) back to the world.
@@ -59,13 +60,13 @@ float shadowmap_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) 
 }
 
 float shadowmap_visibility(sampler2DShadow map, sampler2D raw, int i, vec3 p, float depth_bias, bool soft,
-                           float texel, bool needed) {
+                           bool moments, float texel, bool needed) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
     vec2 gradient = shadowmap_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
     if (!needed || clip.w <= 0.0)
         return 1.0;
-    return shadowmap_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, texel);
+    return shadowmap_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, moments, texel);
 }
 
 vec2 shadowmap_texel_coord(sampler2DShadow map, int i, vec3 p) {

@@ -24,8 +24,9 @@ float shadowmap_kernel_read(sampler2DArrayShadow map, vec2 offset) {
                              shadowmap_point.z + dot(shadowmap_gradient, offset)));
 }
 
-float shadowmap_blocker_read(sampler2DArray raw, vec2 offset) {
-    return texture(raw, vec3(shadowmap_point.xy + offset, shadowmap_array_layer)).r;
+// The raw map's texel an offset away: a depth (.r), or moments.
+vec4 shadowmap_raw_read(sampler2DArray raw, vec2 offset) {
+    return texture(raw, vec3(shadowmap_point.xy + offset, shadowmap_array_layer));
 }
 
 // A layer's depth is its box's, orthographic: distance along the light up
@@ -93,7 +94,7 @@ float shadowmap_texel_world(sampler2DArrayShadow map, int i, int texel_kind, vec
 // Layer k's filtered comparison at p, with the receiver plane from the
 // screen derivatives of p in light view (per layer: its scale).
 float shadowmap_visibility(sampler2DArrayShadow map, sampler2DArray raw, int i, vec3 p, float depth_bias,
-                           bool soft, float texel, bool needed) {
+                           bool soft, bool moments, float texel, bool needed) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz; /* an orthonormal view: w is 1 */
     vec3 dx = dFdx(light_p), dy = dFdy(light_p);           /* derivatives: before any branch */
     if (!needed)
@@ -102,7 +103,8 @@ float shadowmap_visibility(sampler2DArrayShadow map, sampler2DArray raw, int i, 
     vec3 scale = shadowmap_cascade_scale(i, k);
     shadowmap_array_layer = float(k);
     return shadowmap_flat_filter(map, raw, i, shadowmap_cascade_uvz(i, k, light_p),
-                                 shadowmap_depth_gradient(dx * scale, dy * scale, soft), depth_bias, soft, texel);
+                                 shadowmap_depth_gradient(dx * scale, dy * scale, soft), depth_bias, soft, moments,
+                                 texel);
 }
 
 vec2 shadowmap_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {

@@ -59,7 +59,8 @@ float shadowmap_kernel_read(samplerCubeShadow map, vec2 offset) {
 // A soft light's reads (shadowmap_soft.glsl).
 float shadowmap_reference_depth(samplerCube raw, vec2 offset) { return shadowmap_tap_depth(offset); }
 
-float shadowmap_blocker_read(samplerCube raw, vec2 offset) { return texture(raw, shadowmap_tap_direction(offset)).r; }
+// The raw map's texel an offset away: a depth (.r), or moments.
+vec4 shadowmap_raw_read(samplerCube raw, vec2 offset) { return texture(raw, shadowmap_tap_direction(offset)); }
 
 // A stored depth back to its distance along the face's axis.
 float shadowmap_soft_distance(samplerCube raw, int i, float depth) {
@@ -86,12 +87,14 @@ float shadowmap_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p
 // 0): symmetric about the point, the same tap count and footprint as on a
 // 2D map, but not following where the point lies in its texel.
 float shadowmap_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
-                           float texel, bool needed) {
+                           bool moments, float texel, bool needed) {
     vec3 d = p - lights_position[i].xyz;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (!needed)
         return 1.0;
     vec2 range = vec2(u_near[i], u_far[i]);
+    if (moments)
+        return moments_visibility(texture(raw, d), shadowmap_face_depth(d, range) - depth_bias);
     if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE && !soft)
         return texture(map, vec4(d, shadowmap_face_depth(d, range) - depth_bias));
     vec3 axis = normalize(d);

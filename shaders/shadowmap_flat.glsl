@@ -17,13 +17,16 @@ float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, in
 // i's map, its depth lowered by depth_bias first, with the receiver's
 // depth gradient for receiver-plane taps: the settings' kernel, or a soft
 // light's (shadowmap_soft.glsl; texel: a texel's world size at the
-// point). Outside the map nothing was rendered: lit, never a wrapped read.
+// point), or from raw's moments (`moments`, moments.glsl). Outside the
+// map nothing was rendered: lit, never a wrapped read.
 float shadowmap_flat_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, vec3 uvz, vec2 gradient,
-                           float depth_bias, bool soft, float texel) {
+                           float depth_bias, bool soft, bool moments, float texel) {
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
     shadowmap_point = vec3(uvz.xy, min(uvz.z - depth_bias, 1.0));
     shadowmap_gradient = gradient;
+    if (moments)
+        return moments_visibility(shadowmap_raw_read(raw, vec2(0.0)), shadowmap_point.z);
     if (soft)
         return shadowmap_soft_filter(map, raw, i, texel, u_map_size[i]);
     if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE)

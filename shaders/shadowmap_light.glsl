@@ -1,6 +1,7 @@
 // One light's share in the camera pass (shaders/shadowmap.frag), for maps
 // of the sampler type SHADOWMAP_SAMPLER (and SHADOWMAP_RAW_SAMPLER, the
-// same map read as depth, for soft lights): included once by each kind's
+// same map read as depth, for soft lights, or its moment map, for moment
+// filters): included once by each kind's
 // file (shadowmap_2d.glsl: sampler2DShadow, shadowmap_cube.glsl:
 // samplerCubeShadow, shadowmap_array.glsl: sampler2DArrayShadow), which
 // defines for its type, before this file,
@@ -11,11 +12,13 @@
 //   shadowmap_texel_world(map, i, k, p) world size of a texel of light i's
 //                                       map at p (k: the texel's kind, a
 //                                       SHADOW_MAP_TEXEL_*, for 2D maps);
-//   shadowmap_visibility(map, raw, i, p, b, soft, texel, needed)  the
-//                                       filtered comparison at p, its map
-//                                       depth lowered by b first, by the
-//                                       settings' kernel or, soft, by
-//                                       shadowmap_soft.glsl's (texel: a
+//   shadowmap_visibility(map, raw, i, p, b, soft, moments, texel, needed)
+//                                       the filtered comparison at p, its
+//                                       map depth lowered by b first, by
+//                                       the settings' kernel or, soft, by
+//                                       shadowmap_soft.glsl's, or with
+//                                       `moments` from raw's moments
+//                                       (moments.glsl) (texel: a
 //                                       texel's world size there; the
 //                                       screen derivatives it takes come
 //                                       first, in uniform control flow;
@@ -27,7 +30,7 @@
 
 float shadowmap_texel_world(SHADOWMAP_SAMPLER map, int i, int texel_kind, vec3 p);
 float shadowmap_visibility(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, vec3 p, float depth_bias,
-                           bool soft, float texel, bool needed);
+                           bool soft, bool moments, float texel, bool needed);
 vec2 shadowmap_texel_coord(SHADOWMAP_SAMPLER map, int i, vec3 p);
 
 // The kernel's visibility: the early-out's rim, then where it disagrees
@@ -54,12 +57,13 @@ float shadowmap_kernel_filter(SHADOWMAP_SAMPLER map, vec2 fraction, float unit) 
 
 // Light i's share at this fragment (normal n) where its map (texels of
 // kind texel_kind) lets it through, filtered as a soft light's where
-// `soft` (an area light: shadowmap_soft.glsl), with the lecture's
-// overlays. Where the light adds nothing
+// `soft` (an area light: shadowmap_soft.glsl), from its moment map where
+// `moments`, with the lecture's overlays. Where the light adds nothing
 // unshadowed (beyond its range, outside a spot's cone, facing away) or
 // reaches only through a closed caster (shadowmap_through_closed) the
 // filter is skipped: the share is 0 whatever it would say.
-vec3 shadowmap_share(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, int texel_kind, bool soft, vec3 n) {
+vec3 shadowmap_share(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, int texel_kind, bool soft, bool moments,
+                     vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
     // Both biases move the point where the map is read, in world units
     // scaled by the map's texel there, so they hold at any map size,
@@ -74,7 +78,7 @@ vec3 shadowmap_share(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, in
     bool needed = unshadowed != vec3(0.0) || shadowmap_show_texel_size;
     shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
     float visibility = shadowmap_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
-                                            soft, texel, needed);
+                                            soft, moments, texel, needed);
     if (soft)
         visibility *= shadowmap_horizon_share(i, normalize(shadowmap_face_normal), to_light, v_position);
     vec3 c = visibility * unshadowed;

@@ -4,8 +4,9 @@
 // of map's file, after shadowmap_light.glsl, for its SHADOWMAP_SAMPLER
 // (comparisons) and SHADOWMAP_RAW_SAMPLER (the same texture read as depth,
 // on a unit of its own). That file defines, before this one,
-//   shadowmap_blocker_read(raw, offset)    the stored depth a tap's offset
-//                                          (in the kernel's unit) away;
+//   shadowmap_raw_read(raw, offset)        the stored texel a tap's offset
+//                                          (in the kernel's unit) away (its
+//                                          depth: .r);
 //   shadowmap_reference_depth(raw, offset) the receiver's own depth there
 //                                          (its plane, as receiver-plane
 //                                          taps follow it), biased as its
@@ -51,7 +52,7 @@ float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, in
     float blocker_distance = 0.0, blocker_weight = 0.0;
     for (int k = 0; k < SHADOW_MAP_SOFT_SEARCH_TAPS; k++) {
         vec2 offset = shadowmap_vogel_tap(k, SHADOW_MAP_SOFT_SEARCH_TAPS, rotation) * search;
-        float depth = shadowmap_blocker_read(raw, offset);
+        float depth = shadowmap_raw_read(raw, offset).r;
         if (depth < shadowmap_reference_depth(raw, offset)) {
             float distance = shadowmap_soft_distance(raw, i, depth);
             float weight = 1.0 / max(d_r - distance, texel_world);

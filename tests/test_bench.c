@@ -37,7 +37,7 @@
 #define SOFT_SCENE "soft_table"
 #define SOFT_RUN "--quick --frames 2 --technique shadowmap assets/scenes/" SOFT_SCENE ".json"
 #define CSV_COLUMNS 24
-#define CSV_MAX_ROWS 256
+#define CSV_MAX_ROWS 512
 /* results.csv's columns the tests read by position. */
 #define CSV_GPU_MEDIAN 3
 #define CSV_CPU_MEDIAN 5

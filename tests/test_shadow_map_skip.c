@@ -7,7 +7,8 @@
  * every map technique, static and with the lights or the camera moving
  * (that they change no decision there is tests/test_skip.c's, for every
  * technique on the same runs), shadowmap's dumps are the same with skips
- * on and with --no-skip under kernels of every reach and depth, and a
+ * on and with --no-skip under kernels of every reach and depth (a moment
+ * filter's too), and a
  * static run reuses every layer from its second frame on. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -132,6 +133,20 @@ static void test_kernel_margin(void **state) {
             shadow_map_settings tent = {.filter = tents[i][0]}, grid = {.filter = tents[i][1]};
             assert_true(shadow_map_read_reach(&tent, kind, false) >= shadow_map_read_reach(&grid, kind, false));
         }
+    /* A moment map's texel holds its blur's box: a read reaches its
+     * radius past the bilinear footprint, an area light's the widest. */
+    static const shadow_map_filter moment_filters[] = {SHADOW_MAP_FILTER_VSM, SHADOW_MAP_FILTER_EVSM2,
+                                                       SHADOW_MAP_FILTER_EVSM4, SHADOW_MAP_FILTER_MSM};
+    const shadow_map_settings hw = {.filter = SHADOW_MAP_FILTER_HW};
+    for (size_t i = 0; i < sizeof moment_filters / sizeof *moment_filters; i++) {
+        shadow_map_settings moments = {.filter = moment_filters[i]};
+        assert_true(shadow_map_read_reach(&moments, SHADOW_MAP_2D, false) >=
+                    shadow_map_read_reach(&hw, SHADOW_MAP_2D, false) + SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS);
+        assert_true(shadow_map_read_reach(&moments, SHADOW_MAP_2D, true) >=
+                    shadow_map_read_reach(&hw, SHADOW_MAP_2D, false) + SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);
+        patch_reads(layer, &moments, &reads);
+        assert_true(caster_needed(layer, &reads, lo, hi));
+    }
     /* Receiver-plane taps compare depths beyond the receivers': a caster
      * behind them is needed then, and culled with centre depths. */
     const shadow_map_settings plane = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
@@ -222,7 +237,9 @@ static void test_most_casters_culled(void **state) {
 static void test_dumps_identical_other_kernels(void **state) {
     (void)state;
     static const char *const configs[] = {"--filter pcf7", "--filter none --map-size 512 --kernel-depth centre",
-                                          "--filter tent3 --kernel-depth centre", "--filter tent5"};
+                                          "--filter tent3 --kernel-depth centre", "--filter tent5",
+                                          /* a moment map's blur reaches farther, and reads every depth */
+                                          "--filter msm"};
     for (size_t c = 0; c < sizeof configs / sizeof *configs; c++) {
         char on[256], off[256], flags[256];
         snprintf(on, sizeof on, OUT "/shadowmap_config%zu_on", c);

@@ -14,14 +14,17 @@ const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4
 const char *const shadow_map_filters[] = {
     [SHADOW_MAP_FILTER_POISSON] = "poisson", [SHADOW_MAP_FILTER_NONE] = "none", [SHADOW_MAP_FILTER_HW] = "hw",
     [SHADOW_MAP_FILTER_PCF3] = "pcf3",       [SHADOW_MAP_FILTER_PCF5] = "pcf5", [SHADOW_MAP_FILTER_PCF7] = "pcf7",
-    [SHADOW_MAP_FILTER_TENT3] = "tent3",     [SHADOW_MAP_FILTER_TENT5] = "tent5", NULL};
+    [SHADOW_MAP_FILTER_TENT3] = "tent3",     [SHADOW_MAP_FILTER_TENT5] = "tent5", [SHADOW_MAP_FILTER_VSM] = "vsm",
+    [SHADOW_MAP_FILTER_EVSM2] = "evsm2",     [SHADOW_MAP_FILTER_EVSM4] = "evsm4", [SHADOW_MAP_FILTER_MSM] = "msm",
+    NULL};
 const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
 const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane",
                                                 [SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
 const char *const shadow_map_softs[] = {[SHADOW_MAP_SOFT_PCSS] = "pcss", [SHADOW_MAP_SOFT_OFF] = "off", NULL};
 
 /* What each filter reads: the kernel's shape and its size (N, or the
- * Poisson disc's scale in texels). */
+ * Poisson disc's scale in texels); a moment filter reads its moments once
+ * (the single tap's code is the least the program holds). */
 static const struct {
     shadow_map_kernel shape;
     int size;
@@ -34,6 +37,10 @@ static const struct {
     [SHADOW_MAP_FILTER_PCF7] = {SHADOW_MAP_KERNEL_GRID, 7},
     [SHADOW_MAP_FILTER_TENT3] = {SHADOW_MAP_KERNEL_TENT, 3},
     [SHADOW_MAP_FILTER_TENT5] = {SHADOW_MAP_KERNEL_TENT, 5},
+    [SHADOW_MAP_FILTER_VSM] = {SHADOW_MAP_KERNEL_SINGLE, 0},
+    [SHADOW_MAP_FILTER_EVSM2] = {SHADOW_MAP_KERNEL_SINGLE, 0},
+    [SHADOW_MAP_FILTER_EVSM4] = {SHADOW_MAP_KERNEL_SINGLE, 0},
+    [SHADOW_MAP_FILTER_MSM] = {SHADOW_MAP_KERNEL_SINGLE, 0},
 };
 
 /* The C constants the camera pass compares with (and the legend's
@@ -46,7 +53,9 @@ static const shader_define shadow_map_defines[] = {
     SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(SHADOW_MAP_MAX_ARRAY_LAYERS),
     SHADER_DEFINE(SHADOW_MAP_SOFT_SEARCH_TAPS),  SHADER_DEFINE(SHADOW_MAP_SOFT_FILTER_TAPS),
     SHADER_DEFINE(SHADOW_MAP_SOFT_MAX_TEXELS),   SHADER_DEFINE(SHADOW_MAP_POISSON_SCALE_TEXELS),
-    SHADER_DEFINE(SHADOW_MAP_PENUMBRA_LOG2_MIN), {NULL, 0}};
+    SHADER_DEFINE(SHADOW_MAP_PENUMBRA_LOG2_MIN), SHADER_DEFINE(SHADOW_MAP_MOMENTS_VSM),
+    SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM2),     SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM4),
+    SHADER_DEFINE(SHADOW_MAP_MOMENTS_MSM),       {NULL, 0}};
 
 /* The camera pass's sampler arrays, by the kind of map they read: its
  * comparisons', and a soft light's depths'. */
@@ -113,15 +122,23 @@ const char *shadow_map_kind_name(shadow_map_kind kind) {
     return names[kind];
 }
 
-static GLenum shadow_map_target(shadow_map_kind kind) {
+unsigned shadow_map_target(shadow_map_kind kind) {
     static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D, [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
                                      [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
     return targets[kind];
 }
 
 /* The texture image a 2D or cube map's layer is stored in. */
-static GLenum shadow_map_layer_image(shadow_map_kind kind, int layer) {
+unsigned shadow_map_layer_image(shadow_map_kind kind, int layer) {
     return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)layer : GL_TEXTURE_2D;
+}
+
+void shadow_map_texture_filter(unsigned target, int filter) {
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
 }
 
 /* Makes a layer of a map the depth pass's depth attachment: an array's
@@ -139,6 +156,7 @@ static void shadow_map_attach_layer(const shadow_map *m, int layer) {
 /* (Re)creates a map's depth texture when its kind, size, layer count,
  * format or filter changed: compare mode on, so that every read is a depth
  * test; outside the map reads are clamped (the shader calls them lit).
+ * A moment filter's textures are made with it.
  * Returns whether it made one (what the layers held is gone). */
 static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
     shadow_map_texture *t = &m->texture;
@@ -159,11 +177,7 @@ static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
         for (int layer = 0; layer < m->layer_count; layer++)
             glTexImage2D(shadow_map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0,
                          GL_DEPTH_COMPONENT, type, NULL);
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, texel_filter);
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, texel_filter);
-    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    shadow_map_texture_filter(target, texel_filter);
     glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     t->kind = m->kind;
@@ -171,6 +185,7 @@ static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
     t->layer_count = m->layer_count;
     t->depth = depth;
     t->filter = filter;
+    shadow_map_moments_prepare(m, shadow_map_filter_moments(filter));
     return true;
 }
 
@@ -192,16 +207,19 @@ static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_sett
 }
 
 /* One layer from its matrix, with the casters of `casters` (NULL: every
- * caster). Not the frame's in_view: the light sees casters the camera
- * does not. */
+ * caster), and with `receivers` the receivers that cast nothing too: a
+ * moment map's texel must hold the receiver's own depth among those of
+ * its box (where it holds the empty far plane instead, the bounds read
+ * the receiver as nearer than most of it: lit). Not the frame's in_view:
+ * the light sees casters the camera does not. */
 static void shadow_map_depth_layer(shadow_map_renderer *r, const render_scene *gpu, const shadow_map *m, int layer,
-                                   const bool *casters) {
+                                   const bool *casters, bool receivers) {
     const scene *s = gpu->scene;
     shadow_map_attach_layer(m, layer);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
     for (int i = 0; i < s->object_count; i++)
-        if (s->objects[i].casts && (!casters || casters[i]))
+        if (s->objects[i].casts ? !casters || casters[i] : receivers && s->objects[i].receives)
             render_draw_object(gpu, &r->depth, i);
 }
 
@@ -209,9 +227,12 @@ void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *
                              shadow_map *m) {
     shadow_map_prepare_texture(m, settings);
     shadow_map_depth_begin(r, settings, m);
+    shadow_map_moments moments = shadow_map_filter_moments(settings->filter);
     for (int layer = 0; layer < m->layer_count; layer++)
-        shadow_map_depth_layer(r, gpu, m, layer, m->casters);
+        shadow_map_depth_layer(r, gpu, m, layer, m->casters, moments != SHADOW_MAP_MOMENTS_NONE);
     glDisable(GL_POLYGON_OFFSET_FILL);
+    for (int layer = 0; moments != SHADOW_MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
+        shadow_map_moments_blur(r, m, moments, layer);
 }
 
 /* ---- caster culling and the cache ---- */
@@ -221,7 +242,7 @@ static void shadow_map_forget(shadow_map_cache *c) { memset(c->valid, 0, sizeof 
 /* The layer holds what it would be rendered with now. */
 static bool shadow_map_layer_cached(const shadow_map_renderer *r, const shadow_map_cache *c, const shadow_map *m,
                                     int layer) {
-    if (!c->valid[layer] ||
+    if (!c->valid[layer] || c->blur_texels[layer] != m->blur_texels[layer] ||
         memcmp(c->layer_view_projection[layer], m->layer_view_projection[layer], sizeof(mat4)) != 0)
         return false;
     for (int i = 0; i < r->object_count; i++)
@@ -231,7 +252,7 @@ static bool shadow_map_layer_cached(const shadow_map_renderer *r, const shadow_m
 }
 
 /* Light l's fitted map: each layer from the cache, or rendered with the
- * casters it needs. */
+ * casters it needs (and, for a moment filter, then blurred). */
 static void shadow_map_render_layers(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
                                      int l) {
     shadow_map *m = &r->maps[l];
@@ -248,7 +269,8 @@ static void shadow_map_render_layers(shadow_map_renderer *r, const shadow_map_se
         shadow_map_forget(c);
     c->key = key;
     shadow_map_plan_casters(r, st, f, l);
-    bool begun = false;
+    shadow_map_moments moments = shadow_map_filter_moments(st->filter);
+    bool begun = false, rendered[SHADOW_MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
         if (shadow_map_layer_cached(r, c, m, layer)) {
             f->counts->layers_reused++;
@@ -257,13 +279,17 @@ static void shadow_map_render_layers(shadow_map_renderer *r, const shadow_map_se
         if (!begun)
             shadow_map_depth_begin(r, st, m);
         begun = true;
-        shadow_map_depth_layer(r, f->gpu, m, layer, r->needed[layer]);
+        shadow_map_depth_layer(r, f->gpu, m, layer, r->needed[layer], moments != SHADOW_MAP_MOMENTS_NONE);
         f->counts->layers_rendered++;
-        c->valid[layer] = true;
+        rendered[layer] = c->valid[layer] = true;
+        c->blur_texels[layer] = m->blur_texels[layer];
         glm_mat4_copy(m->layer_view_projection[layer], c->layer_view_projection[layer]);
         memcpy(c->drawn[layer], r->needed[layer], (size_t)r->object_count * sizeof(bool));
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
+    for (int layer = 0; moments != SHADOW_MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
+        if (rendered[layer])
+            shadow_map_moments_blur(r, m, moments, layer);
 }
 
 /* ---- programs ---- */
@@ -317,6 +343,8 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         {"SHADOW_MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
         {"SHADOW_MAP_PASS_SHOW_PENUMBRA", (int)k->show_penumbra},
         {"SHADOW_MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
+        {"SHADOW_MAP_PASS_MOMENTS", (int)k->moments},
+        {"SHADOW_MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's two, then the list's end ({NULL}, zeroed). */
@@ -349,14 +377,15 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
     /* Each sampler on a unit, those of lights without a map too: an
      * array's elements below the last one used stay active, and two types
      * on one unit (unit 0, the default) would fail every draw. Light l's
-     * own on unit l (a soft light's depths on SHADOW_MAP_DEPTH_UNITS + l),
+     * own on unit l (a soft light's depths, a moment light's moments, on
+     * SHADOW_MAP_DEPTH_UNITS + l),
      * the others idle (SHADOW_MAP_IDLE_UNITS, the comparisons' types, then
      * the depths'). */
     glUseProgram(id);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         for (int t = 0; t < SHADOW_MAP_SAMPLER_TYPES; t++) {
             bool own = shadow_map_light_field(k->kinds, l) == (unsigned)shadow_map_samplers[t].kind;
-            bool soft = own && (k->soft_lights >> l & 1u);
+            bool soft = own && ((k->soft_lights | k->moment_lights) >> l & 1u);
             glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].name, l),
                         own ? l : SHADOW_MAP_IDLE_UNITS + t);
             glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].depths, l),
@@ -408,6 +437,7 @@ static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *
         .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
         .show_cascades = SHADOW_MAP_SHOWS_CASCADES(st),
         .show_penumbra = st->overlay == SHADOW_MAP_OVERLAY_PENUMBRA,
+        .moments = shadow_map_filter_moments(st->filter),
     };
 }
 
@@ -440,6 +470,7 @@ static shadow_map_camera_key shadow_map_scene_key(const scene *s, const shadow_m
         shadow_map_key_light(&k, l, type == SCENE_LIGHT_POINT ? SHADOW_MAP_CUBE : SHADOW_MAP_2D,
                              type == SCENE_LIGHT_DIRECTIONAL ? SHADOW_MAP_TEXEL_ORTHOGRAPHIC
                                                              : SHADOW_MAP_TEXEL_PERSPECTIVE);
+        k.moment_lights |= k.moments != SHADOW_MAP_MOMENTS_NONE ? 1u << l : 0;
     }
     return k;
 }
@@ -553,8 +584,11 @@ void shadow_map_destroy(shadow_map_renderer *r) {
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);
     glDeleteSamplers(1, &r->depth_sampler);
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+    shadow_map_moments_destroy(r);
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteTextures(1, &r->maps[l].texture.id);
+        shadow_map_moments_prepare(&r->maps[l], SHADOW_MAP_MOMENTS_NONE);
+    }
     free(r->needed[0]);
     free(r->receiver_boxes);
     free(r->closed);
@@ -643,6 +677,11 @@ static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *
             glUniform1f(p->lights[l].far_plane, m->far_plane);
             if (k->soft_lights >> l & 1u)
                 shadow_map_bind_soft(r, p, f->gpu->scene, l);
+            if (k->moment_lights >> l & 1u) {
+                /* Its moments, bilinear (the texture's own filter). */
+                glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_DEPTH_UNITS + (GLenum)l);
+                glBindTexture(shadow_map_target(m->kind), m->texture.moments);
+            }
             if (m->kind != SHADOW_MAP_ARRAY) {
                 glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE,
                                    (const float *)m->layer_view_projection[0]);
@@ -692,11 +731,56 @@ static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settin
     bool soft = shadow_map_light_soft(settings, light);
     if (soft && SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
         return true;
-    if (light->radius > 0 && !(r->soft_warned >> l & 1u))
+    bool moments = shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE;
+    if (light->radius > 0 && !moments && !(r->soft_warned >> l & 1u))
         fprintf(stderr, "shadow maps: light %d is an area light (radius %g), drawn hard from its centre: %s\n", l,
                 light->radius, soft ? "this GL has too few texture units for its soft filter" : "--soft off");
-    r->soft_warned |= light->radius > 0 ? 1u << l : 0;
+    r->soft_warned |= light->radius > 0 && !moments ? 1u << l : 0;
     return false;
+}
+
+/* Light l reads its moment map: a moment filter whose blur runs (else
+ * said once by the blur), and its depth unit (the moments' unit) the GL
+ * has; else it takes one bilinear test of its depths, said once on
+ * stderr. */
+static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_settings *settings, int l) {
+    if (shadow_map_filter_moments(settings->filter) == SHADOW_MAP_MOMENTS_NONE || r->blur_failed)
+        return false;
+    if (SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
+        return true;
+    if (!(r->moments_warned >> l & 1u))
+        fprintf(stderr, "shadow maps: light %d: this GL has too few texture units for its moment map (--filter %s): "
+                        "one bilinear depth test instead\n", l, shadow_map_filters[settings->filter]);
+    r->moments_warned |= 1u << l;
+    return false;
+}
+
+/* Light l's moment blur per layer (shadow_map_moments_blur_texels), a
+ * moment filter's: an auto-sized map (not an array's) halves while an
+ * area light's would be wider than SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS (a
+ * texel's width is its share of the penumbra: the blur's cost grows with
+ * its width, and a blurred map needs no more texels than its blur shows),
+ * then any wider one is clamped to it. */
+static void shadow_map_moments_fit(const scene *s, int l, shadow_map *m, bool auto_size) {
+    float widest = 0, blur[SHADOW_MAP_MAX_LAYERS];
+    for (int layer = 0; layer < m->layer_count; layer++) {
+        blur[layer] = shadow_map_moments_blur_texels(s, l, m, layer);
+        widest = fmaxf(widest, blur[layer]);
+    }
+    int size = m->size;
+    /* A texel's world size goes as 1 / size: so does the blur in texels. */
+    while (auto_size && m->kind != SHADOW_MAP_ARRAY && s->lights[l].radius > 0 &&
+           widest > SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS && size > SHADOW_MAP_AUTO_MIN_SIZE) {
+        size /= 2;
+        widest /= 2;
+    }
+    if (size != m->size) {
+        shadow_map_resize(m, size);
+        for (int layer = 0; layer < m->layer_count; layer++)
+            blur[layer] = shadow_map_moments_blur_texels(s, l, m, layer);
+    }
+    for (int layer = 0; layer < m->layer_count; layer++)
+        m->blur_texels[layer] = fminf(blur[layer], SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);
 }
 
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
@@ -720,6 +804,8 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
             int sample_count = shadow_map_light_samples(r, fit_frame, l);
             shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
         }
+        if (fitted[l] && shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
+            shadow_map_moments_fit(s, l, m, !size);
         if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             shadow_map_forget(&r->caches[l]);
         if (fitted[l])
@@ -739,6 +825,8 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     for (int l = 0; l < s->light_count; l++) {
         if (fitted[l] && shadow_map_soft_unit(r, settings, &s->lights[l], l))
             key.soft_lights |= 1u << l;
+        if (fitted[l] && shadow_map_moment_unit(r, settings, l))
+            key.moment_lights |= 1u << l;
         if (fitted[l])
             shadow_map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
         else if (technique_light_on(f, l)) /* nothing visible receives: no map needed, nothing shadowed */

@@ -118,6 +118,14 @@
  * tap compare the receiver's own depth there rather than the centre's
  * (--kernel-depth centre), which speckles flat receivers with partial
  * acne where a tap reaches texels of the receiver itself.
+ * The moment filters (vsm, evsm2, evsm4, msm; shadow_map_moments.c,
+ * shaders/moments.glsl) filter the map before the camera pass instead:
+ * the depth pass draws the receivers that cast nothing too, then each
+ * layer it rendered becomes moments blurred by a separable box into a
+ * float texture beside the depth texture (texture.moments), which the
+ * camera pass reads once, bilinear, on the light's depth unit. They
+ * replace the kernel and PCSS alike: an area light's box is its casters'
+ * mean penumbra wide (one width, no contact hardening).
  * An area light (radius > 0) with --soft pcss, the default, is filtered
  * instead by percentage-closer soft shadows (shaders/shadowmap_soft.glsl:
  * a blocker search, the penumbra by similar triangles, a filter of its
@@ -161,7 +169,8 @@
  * projection, its rectangle misses that one or its nearest depth lies
  * beyond the deepest read (any depth with receiver-plane taps; a cube tap
  * compares its own direction's depth, bounded by the point pushed away
- * from the light by the tap's offset). Exact: the constant bias moves a
+ * from the light by the tap's offset; a moment filter's box holds every
+ * depth, and reaches its blur's width). Exact: the constant bias moves a
  * point along its ray to the light, which keeps its place in every map,
  * and the depth a culled caster would have stored is never one a read
  * compares with. Not culled: with a normal offset (the point leaves its
@@ -169,8 +178,9 @@
  * depends on culling.
  *
  * Caching. Per light and layer the renderer keeps what the layer holds:
- * its matrix (bit for bit), the casters drawn, and per light the texture,
- * size, depth format, filter and slope bias. A layer is reused, with no
+ * its matrix (bit for bit), the casters drawn, a moment filter's blur
+ * width, and per light the texture, size, depth format, filter and slope
+ * bias. A layer is reused, with no
  * depth pass, while the scene and the light have not changed
  * (f->changed), those are the same and the casters it needs are among
  * those drawn: a layer with more casters than needed decides every read
@@ -235,6 +245,10 @@ typedef enum shadow_map_filter {
     SHADOW_MAP_FILTER_PCF7,
     SHADOW_MAP_FILTER_TENT3,
     SHADOW_MAP_FILTER_TENT5,
+    SHADOW_MAP_FILTER_VSM,
+    SHADOW_MAP_FILTER_EVSM2,
+    SHADOW_MAP_FILTER_EVSM4,
+    SHADOW_MAP_FILTER_MSM,
 } shadow_map_filter;
 typedef enum shadow_map_depth { SHADOW_MAP_DEPTH_24, SHADOW_MAP_DEPTH_32F } shadow_map_depth;
 typedef enum shadow_map_soft { SHADOW_MAP_SOFT_PCSS, SHADOW_MAP_SOFT_OFF } shadow_map_soft;
@@ -345,6 +359,27 @@ typedef enum shadow_map_kernel {
 #define SHADOW_MAP_SOFT_FILTER_TAPS 32
 #define SHADOW_MAP_SOFT_MAX_TEXELS 48
 
+/* Moment shadow maps (shadow_map_moments.c, shaders/moments.glsl): the
+ * filters vsm, evsm2, evsm4 and msm store moments of the depth in a float
+ * colour texture beside the depth texture, blurred per layer by a
+ * separable box, and the camera pass reads them once, bilinear. Which
+ * moments a filter stores (the shaders' SHADOW_MAP_PASS_MOMENTS): */
+typedef enum shadow_map_moments {
+    SHADOW_MAP_MOMENTS_NONE,
+    SHADOW_MAP_MOMENTS_VSM,   /* d, d^2: Chebyshev's bound */
+    SHADOW_MAP_MOMENTS_EVSM2, /* e^(c d), its square */
+    SHADOW_MAP_MOMENTS_EVSM4, /* and -e^(-c d), its square */
+    SHADOW_MAP_MOMENTS_MSM,   /* d, d^2, d^3, d^4: Hamburger 4MSM */
+} shadow_map_moments;
+/* The box's radius in texels (the box is 2 radius + 1 texels across, its
+ * two end texels weighted by the fraction): a hard light's, and the most an
+ * area light's may take (a wider one shrinks an auto-sized map, else is
+ * clamped): the blur's cost grows with its width. */
+#define SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS 1
+#define SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS 12
+/* The moments a filter stores; SHADOW_MAP_MOMENTS_NONE for the kernels. */
+shadow_map_moments shadow_map_filter_moments(int filter);
+
 /* How the camera pass finds the world size of a texel at a point (the
  * shaders' u_texel_kind). */
 typedef enum shadow_map_texel_kind {
@@ -366,6 +401,7 @@ _Static_assert(SHADOW_MAP_MAX_LAYERS >= SHADOW_MAP_CUBE_FACES, "a map holds a cu
 /* The GL texture behind a map, and what it was made with. */
 typedef struct shadow_map_texture {
     unsigned id;
+    unsigned moments, blur; /* a moment filter's: its blurred moments (the map's kind), one layer's half-blurred */
     shadow_map_kind kind;
     int size, layer_count, depth, filter;
 } shadow_map_texture;
@@ -386,6 +422,7 @@ typedef struct shadow_map {
     float cascade_scale[SHADOW_MAP_MAX_ARRAY_LAYERS][3], cascade_offset[SHADOW_MAP_MAX_ARRAY_LAYERS][3];
     float cascade_split[SHADOW_MAP_MAX_ARRAY_LAYERS + 1]; /* camera view depths */
     float cascade_blend;                                  /* fraction of a slice */
+    float blur_texels[SHADOW_MAP_MAX_LAYERS];             /* a moment filter's box radius per layer */
     shadow_map_texture texture;
 } shadow_map;
 
@@ -434,6 +471,8 @@ typedef struct shadow_map_camera_key {
     unsigned kinds, texel_kinds; /* per light (SHADOW_MAP_LIGHT_KIND_BITS) */
     unsigned shape, kernel;      /* shadow_map_kernel, N or the disc's scale */
     unsigned soft_lights;        /* bit i: light i is soft (shadowmap_soft.glsl) */
+    unsigned moments;            /* shadow_map_moments of the filter */
+    unsigned moment_lights;      /* bit i: light i reads its moment map */
     unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
 } shadow_map_camera_key;
 
@@ -475,6 +514,12 @@ typedef struct shadow_map_legend_program {
 #define SHADOW_MAP_OVERLAY_VERTICES 24
 #define SHADOW_MAP_LEGEND_VERTICES 1200
 
+/* A moment blur pass (shaders/shadow_moments.frag) and its uniforms. */
+typedef struct shadow_map_blur_program {
+    unsigned id;
+    int radius, layer;
+} shadow_map_blur_program;
+
 /* What a light's map was rendered with (the cache's key): all ints, so
  * that it compares with memcmp. */
 typedef struct shadow_map_depth_key {
@@ -488,6 +533,7 @@ typedef struct shadow_map_cache {
     shadow_map_depth_key key;
     bool valid[SHADOW_MAP_MAX_LAYERS];
     mat4 layer_view_projection[SHADOW_MAP_MAX_LAYERS];
+    float blur_texels[SHADOW_MAP_MAX_LAYERS];
     bool *drawn[SHADOW_MAP_MAX_LAYERS]; /* per object: drawn into the layer */
 } shadow_map_cache;
 
@@ -500,9 +546,16 @@ typedef struct shadow_map_renderer {
     shadow_map_inset_program inset;
     shadow_map_legend_program legend;
     unsigned framebuffer, overlay_vao, overlay_buffer;
+    /* The moment maps' blur: per moment kind its first pass from each
+     * kind of depth map, its second pass; their framebuffer and the empty
+     * vertex array of their full-screen triangle (loaded as needed). */
+    shadow_map_blur_program blur_depth[SHADOW_MAP_MOMENTS_MSM + 1][SHADOW_MAP_ARRAY + 1], blur_moments;
+    unsigned blur_framebuffer, blur_vao;
+    bool blur_failed; /* said once: moment filters read one bilinear depth test */
     unsigned depth_sampler; /* a map read as depth: compare mode off, nearest */
     int texture_units;      /* GL_MAX_TEXTURE_IMAGE_UNITS */
     unsigned soft_warned;   /* bit i: light i's treatment said on stderr */
+    unsigned moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
     shadow_map maps[SCENE_MAX_LIGHTS];
     shadow_map_cache caches[SCENE_MAX_LIGHTS];
     int object_count;                      /* the scene's, at init: the sets' size */
@@ -532,9 +585,9 @@ void shadow_map_destroy(shadow_map_renderer *r);
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit);
 /* The depth pass of a fitted map of any kind: (re)makes its texture when
- * needed, then renders every layer from its matrix. Leaves r->framebuffer
- * bound and the viewport at the map's size: the caller binds its target
- * again. */
+ * needed, then renders every layer from its matrix (and a moment
+ * filter's blurs each). Leaves r->framebuffer (or the blur's) bound and
+ * the viewport at the map's size: the caller binds its target again. */
 void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
                              shadow_map *m);
 /* The samples light l's map is measured at this frame, in r->samples
@@ -561,6 +614,13 @@ int shadow_map_settings_size(const shadow_map_settings *settings);
  * tests/data/shadowmap_grazing_sun.json). */
 int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
                          int grazing);
+/* A kind's GL texture target, and the image of a 2D map's or a cube
+ * face's layer (GLenums). */
+unsigned shadow_map_target(shadow_map_kind kind);
+unsigned shadow_map_layer_image(shadow_map_kind kind, int layer);
+/* The bound texture of `target` filtered by `filter` (GL_NEAREST or
+ * GL_LINEAR), its reads clamped to its edges. */
+void shadow_map_texture_filter(unsigned target, int filter);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
 
@@ -603,7 +663,9 @@ typedef struct shadow_map_reads {
     bool empty;
     float lo[2], hi[2], max_depth;
 } shadow_map_reads;
-float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool soft);
+/* area: the light has a radius (soft under pcss, or a moment filter's
+ * wide blur). */
+float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool area);
 /* Light `light` of the settings' technique gets soft shadows: an area
  * light, with --soft pcss. */
 bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light);
@@ -622,6 +684,22 @@ int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxe
  * (every candidate where it does not cull); counts them in f->counts. */
 void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                              int l);
+
+/* ---- moment maps (shadow_map_moments.c) ---- */
+
+/* The box radius, in texels of layer `layer` of light l's fitted map m,
+ * of a moment filter's blur (see shadow_map_moments.c): a hard light's
+ * SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS, an area light's the mean penumbra
+ * its casters cast at their feet, unclamped. */
+float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, int layer);
+/* (Re)makes a moment filter's textures beside m's depth texture (or
+ * deletes them for the kernels). */
+void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments);
+/* The depths of layer `layer` as blurred moments (two passes); false (said
+ * once, r->blur_failed) where a pass cannot run. Leaves its framebuffer
+ * bound. */
+bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow_map_moments moments, int layer);
+void shadow_map_moments_destroy(shadow_map_renderer *r);
 
 /* ---- overlays (shadow_map_overlay.c) ---- */
 

@@ -27,16 +27,21 @@
 #define SHADOW_MAP_POLYGON_MAX (4 + SHADOW_MAP_CLIP_PLANES)
 
 bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light) {
-    return light->radius > 0 && settings->soft == SHADOW_MAP_SOFT_PCSS;
+    return light->radius > 0 && settings->soft == SHADOW_MAP_SOFT_PCSS &&
+           shadow_map_filter_moments(settings->filter) == SHADOW_MAP_MOMENTS_NONE;
 }
 
 const char *shadow_map_area_light_text(const shadow_map_settings *settings, const scene_light *light) {
+    if (shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
+        return "soft: its moment map blurred to its casters' mean penumbra, one width (no contact hardening)";
     return shadow_map_light_soft(settings, light) ? "soft: pcss, a blocker search then a filter of the penumbra's width"
                                                   : "hard, from its centre: --soft off";
 }
 
-float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool soft) {
+float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool area) {
     float offset = 0, footprint = SHADOW_MAP_BILINEAR_TEXELS; /* how far taps lie from the point; what each reads */
+    scene_light light = {.radius = area ? 1.0f : 0.0f};
+    bool soft = shadow_map_light_soft(settings, &light);
     /* A soft light's discs (the search's and the filter's) reach at most
      * this far, whatever the filter. */
     switch (soft ? SHADOW_MAP_FILTER_HW : (shadow_map_filter)settings->filter) {
@@ -63,6 +68,15 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
         break;
     case SHADOW_MAP_FILTER_POISSON:
         offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2;
+        break;
+    /* A moment map's texel holds its box's depths: one bilinear read
+     * reaches the box's radius beyond its footprint (a cube's box stays in
+     * its face; the stretch is a bound all the same). */
+    case SHADOW_MAP_FILTER_VSM:
+    case SHADOW_MAP_FILTER_EVSM2:
+    case SHADOW_MAP_FILTER_EVSM4:
+    case SHADOW_MAP_FILTER_MSM:
+        offset = area ? SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS : SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS;
         break;
     }
     if (soft)
@@ -262,12 +276,16 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
     const scene *s = f->gpu->scene;
     const shadow_map *m = &r->maps[l];
     bool cull = shadow_map_culls(st, f, l);
-    /* A soft light's taps follow the receiver's plane, as receiver-plane taps do. */
+    /* A soft light's taps follow the receiver's plane, as receiver-plane
+     * taps do; a moment map's texel holds every depth of its box, a
+     * caster's behind the receivers too. */
     bool soft = shadow_map_light_soft(st, &s->lights[l]);
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind, soft),
+    bool moments = shadow_map_filter_moments(st->filter) != SHADOW_MAP_MOMENTS_NONE;
+    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind, s->lights[l].radius > 0),
                                    .size = m->size,
                                    .cube = m->kind == SHADOW_MAP_CUBE,
-                                   .any_depth = soft || st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+                                   .any_depth = soft || moments ||
+                                                st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
     glm_vec3_copy((float *)s->lights[l].position, setup.center);
     shadow_map_reads reads[SHADOW_MAP_MAX_LAYERS];
     int box_count = cull ? shadow_map_light_receivers(f, l, r->receiver_boxes) : 0;

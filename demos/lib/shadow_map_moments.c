@@ -1,0 +1,297 @@
+/* shadow_map: moment shadow maps (see shadow_map.h, "Moment shadow maps"):
+ * the blur's width, the moment textures and the blur's two passes.
+ *
+ * The blur's width. A hard light's box is SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS
+ * wide past the centre texel: with the bilinear read, a filter a few
+ * texels across, as the kernels are. An area light's is the mean
+ * penumbra its casters cast, each caster's weighed by the area of its box
+ * seen along the light's ray (how much shadow it casts): the ray through
+ * a caster's centre, at distance d from a light of radius R (a sun's
+ * rays, of angular radius a), meets the first receiver box h farther on;
+ * a blocker there casts a penumbra of radius R h / d (a sun's: tan(a) h)
+ * by similar triangles, measured in the layer's texels where the ray
+ * meets the receiver. One width for the whole
+ * layer (a cube's six faces share one, so that their edges meet): the
+ * penumbra is as wide at contact as far from it (no contact hardening,
+ * which PCSS's blocker search gives). */
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+
+#include "shadow_map.h"
+
+/* The least derivative of map coordinates along a world axis: a matrix
+ * degenerate there gives an infinite texel, left out of the mean. */
+#define SHADOW_MAP_MOMENTS_MIN_DERIVATIVE 1e-20f
+/* Texture units of the blur's first pass, by the kind of map it reads
+ * (the second reads its 2D sums on the first). */
+#define SHADOW_MAP_MOMENTS_UNIT_2D 0
+#define SHADOW_MAP_MOMENTS_UNIT_CUBE 1
+#define SHADOW_MAP_MOMENTS_UNIT_ARRAY 2
+
+shadow_map_moments shadow_map_filter_moments(int filter) {
+    switch (filter) {
+    case SHADOW_MAP_FILTER_VSM:
+        return SHADOW_MAP_MOMENTS_VSM;
+    case SHADOW_MAP_FILTER_EVSM2:
+        return SHADOW_MAP_MOMENTS_EVSM2;
+    case SHADOW_MAP_FILTER_EVSM4:
+        return SHADOW_MAP_MOMENTS_EVSM4;
+    case SHADOW_MAP_FILTER_MSM:
+        return SHADOW_MAP_MOMENTS_MSM;
+    default:
+        return SHADOW_MAP_MOMENTS_NONE;
+    }
+}
+
+/* A texel's world size at p in a layer of a size x size map: how far p
+ * moves across the light's ray for its map coordinates to change by one
+ * texel, from the matrix's derivatives (as the camera pass measures a
+ * warp's texel, shaders/shadowmap_2d.glsl); infinite behind the layer. */
+static float shadow_map_moments_texel(const mat4 layer, const float p[3], int size) {
+    vec4 clip;
+    glm_mat4_mulv((vec4 *)layer, (vec4){p[0], p[1], p[2], 1}, clip);
+    if (clip[3] <= 0)
+        return INFINITY;
+    vec3 du, dv;
+    for (int k = 0; k < 3; k++) {
+        du[k] = (layer[k][0] - clip[0] / clip[3] * layer[k][3]) / clip[3];
+        dv[k] = (layer[k][1] - clip[1] / clip[3] * layer[k][3]) / clip[3];
+    }
+    float derivative = fmaxf(fminf(glm_vec3_norm(du), glm_vec3_norm(dv)), SHADOW_MAP_MOMENTS_MIN_DERIVATIVE);
+    return 2.0f / ((float)size * derivative);
+}
+
+/* The cube face a direction from the light falls on (GL's major axis). */
+static int shadow_map_moments_face(const float d[3]) {
+    int axis = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabsf(d[k]) > fabsf(d[axis]))
+            axis = k;
+    return 2 * axis + (d[axis] < 0);
+}
+
+/* Where a ray from `from` along unit `ray` first enters the box lo..hi
+ * (the slab test; a flat box too), or INFINITY where it misses; 0 from
+ * inside. */
+static float shadow_map_moments_ray_box(const vec3 from, const vec3 ray, const vec3 lo, const vec3 hi) {
+    float enter = 0, leave = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (ray[k] == 0) {
+            if (from[k] < lo[k] || from[k] > hi[k])
+                return INFINITY;
+            continue;
+        }
+        float a = (lo[k] - from[k]) / ray[k], b = (hi[k] - from[k]) / ray[k];
+        enter = fmaxf(enter, fminf(a, b));
+        leave = fminf(leave, fmaxf(a, b));
+    }
+    return enter <= leave ? enter : INFINITY;
+}
+
+/* How far along the ray from a caster's centre the first receiver (not
+ * the caster itself) lies: INFINITY where the ray meets none. */
+static float shadow_map_moments_drop(const scene *s, int caster, const vec3 centre, const vec3 ray) {
+    float nearest = INFINITY;
+    for (int j = 0; j < s->object_count; j++) {
+        if (j == caster || !s->objects[j].receives)
+            continue;
+        vec3 lo, hi;
+        scene_object_world_bounds(&s->objects[j], lo, hi);
+        nearest = fminf(nearest, shadow_map_moments_ray_box(centre, ray, lo, hi));
+    }
+    return nearest;
+}
+
+float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, int layer) {
+    const scene_light *light = &s->lights[l];
+    if (light->radius <= 0)
+        return SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS;
+    bool directional = light->type == SCENE_LIGHT_DIRECTIONAL;
+    double sum = 0, weights = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        if (!s->objects[i].casts || (m->casters && !m->casters[i]))
+            continue;
+        vec3 lo, hi, centre, ray, foot;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        glm_vec3_center(lo, hi, centre);
+        float distance = 1;
+        if (directional) {
+            glm_vec3_normalize_to((float *)light->direction, ray);
+        } else {
+            glm_vec3_sub(centre, (float *)light->position, ray);
+            distance = glm_vec3_norm(ray);
+            if (distance <= 0)
+                continue;
+            glm_vec3_scale(ray, 1 / distance, ray);
+        }
+        float drop = shadow_map_moments_drop(s, i, centre, ray);
+        if (!isfinite(drop))
+            continue;
+        float penumbra = directional ? tanf(glm_rad(light->radius)) * drop : light->radius * drop / distance;
+        glm_vec3_copy(centre, foot);
+        glm_vec3_muladds(ray, drop, foot);
+        int at = layer;
+        if (m->kind == SHADOW_MAP_CUBE) {
+            vec3 d;
+            glm_vec3_sub(foot, (float *)light->position, d);
+            at = shadow_map_moments_face(d);
+        }
+        float texel = shadow_map_moments_texel(m->layer_view_projection[at], foot, m->size);
+        /* The box's shadow's size: its area seen along the ray. */
+        vec3 e;
+        glm_vec3_sub(hi, lo, e);
+        double area = fabsf(ray[0]) * e[1] * e[2] + fabsf(ray[1]) * e[0] * e[2] + fabsf(ray[2]) * e[0] * e[1];
+        if (!isfinite(texel) || area <= 0)
+            continue;
+        sum += area * penumbra / texel;
+        weights += area;
+    }
+    return weights > 0 ? (float)(sum / weights) : SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS;
+}
+
+/* ---- the textures ---- */
+
+static void shadow_map_moments_image(GLenum target, shadow_map_kind kind, int size, int layers, GLenum format,
+                                     GLint filter) {
+    if (kind == SHADOW_MAP_ARRAY)
+        glTexImage3D(target, 0, (GLint)format, size, size, layers, 0, GL_RGBA, GL_FLOAT, NULL);
+    else
+        for (int layer = 0; layer < layers; layer++)
+            glTexImage2D(shadow_map_layer_image(kind, layer), 0, (GLint)format, size, size, 0, GL_RGBA, GL_FLOAT,
+                         NULL);
+    shadow_map_texture_filter(target, filter);
+}
+
+void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments) {
+    shadow_map_texture *t = &m->texture;
+    glDeleteTextures(1, &t->moments);
+    glDeleteTextures(1, &t->blur);
+    t->moments = t->blur = 0;
+    if (moments == SHADOW_MAP_MOMENTS_NONE)
+        return;
+    /* 32-bit floats: EVSM's warp reaches e^84 (16-bit floats end at 65504). */
+    bool two = moments == SHADOW_MAP_MOMENTS_VSM || moments == SHADOW_MAP_MOMENTS_EVSM2;
+    GLenum format = two ? GL_RG32F : GL_RGBA32F;
+    GLenum target = shadow_map_target(m->kind);
+    glGenTextures(1, &t->moments);
+    glBindTexture(target, t->moments);
+    /* Read bilinear by the camera pass: a filtered map's point of it all. */
+    shadow_map_moments_image(target, m->kind, m->size, m->layer_count, format, GL_LINEAR);
+    glGenTextures(1, &t->blur);
+    glBindTexture(GL_TEXTURE_2D, t->blur);
+    shadow_map_moments_image(GL_TEXTURE_2D, SHADOW_MAP_2D, m->size, 1, format, GL_NEAREST);
+}
+
+/* ---- the blur ---- */
+
+static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_moments moments, bool from_depth,
+                                       shadow_map_kind kind) {
+    if (p->id)
+        return true;
+    static const char *const files[] = {"shadow_moments.vert", "shadow_moments.frag"};
+    const shader_define defines[] = {
+        {"SHADOW_MAP_PASS_MOMENTS", (int)moments},
+        {"SHADOW_MAP_BLUR_FROM_DEPTH", from_depth},
+        {"SHADOW_MAP_BLUR_KIND", (int)kind},
+        SHADER_DEFINE(SHADOW_MAP_MOMENTS_VSM),
+        SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM2),
+        SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM4),
+        SHADER_DEFINE(SHADOW_MAP_MOMENTS_MSM),
+        SHADER_DEFINE(SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS),
+        SHADER_DEFINE(SHADOW_MAP_2D),
+        SHADER_DEFINE(SHADOW_MAP_CUBE),
+        SHADER_DEFINE(SHADOW_MAP_ARRAY),
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),
+        SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),
+        SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
+        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z),
+        {NULL, 0}};
+    p->id = shader_load_program(files, 2, defines);
+    if (!p->id)
+        return false;
+    p->radius = glGetUniformLocation(p->id, "u_radius");
+    p->layer = glGetUniformLocation(p->id, "u_layer");
+    glUseProgram(p->id);
+    glUniform1i(glGetUniformLocation(p->id, "u_source_2d"), SHADOW_MAP_MOMENTS_UNIT_2D);
+    glUniform1i(glGetUniformLocation(p->id, "u_source_cube"), SHADOW_MAP_MOMENTS_UNIT_CUBE);
+    glUniform1i(glGetUniformLocation(p->id, "u_source_array"), SHADOW_MAP_MOMENTS_UNIT_ARRAY);
+    return true;
+}
+
+/* The blur's framebuffer with the half-blurred texture (`blur`) or the
+ * moment map's layer as its colour: complete, or said once. */
+static bool shadow_map_moments_target(shadow_map_renderer *r, const shadow_map *m, bool blur, int layer) {
+    if (!r->blur_framebuffer)
+        glGenFramebuffers(1, &r->blur_framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->blur_framebuffer);
+    if (blur)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m->texture.blur, 0);
+    else if (m->kind == SHADOW_MAP_ARRAY)
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, m->texture.moments, 0, layer);
+    else
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, shadow_map_layer_image(m->kind, layer),
+                               m->texture.moments, 0);
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE)
+        return true;
+    fprintf(stderr,
+            "shadow maps: this GL cannot draw into a float colour texture (framebuffer status 0x%x): a moment "
+            "filter reads one bilinear depth test instead; use a kernel (--filter poisson)\n",
+            status);
+    return false;
+}
+
+bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow_map_moments moments, int layer) {
+    if (r->blur_failed)
+        return false;
+    shadow_map_blur_program *first = &r->blur_depth[moments][m->kind], *second = &r->blur_moments;
+    if (!shadow_map_moments_program(first, moments, true, m->kind) ||
+        !shadow_map_moments_program(second, moments, false, SHADOW_MAP_2D) ||
+        !shadow_map_moments_target(r, m, true, layer)) {
+        r->blur_failed = true;
+        return false;
+    }
+    if (!r->blur_vao)
+        glGenVertexArrays(1, &r->blur_vao);
+    GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glViewport(0, 0, m->size, m->size);
+    glBindVertexArray(r->blur_vao);
+    static const GLuint units[] = {[SHADOW_MAP_2D] = SHADOW_MAP_MOMENTS_UNIT_2D,
+                                   [SHADOW_MAP_CUBE] = SHADOW_MAP_MOMENTS_UNIT_CUBE,
+                                   [SHADOW_MAP_ARRAY] = SHADOW_MAP_MOMENTS_UNIT_ARRAY};
+    GLuint unit = units[m->kind];
+    /* The depths as stored: compare mode off, nearest. */
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(shadow_map_target(m->kind), m->texture.id);
+    glBindSampler(unit, r->depth_sampler);
+    glUseProgram(first->id);
+    glUniform1f(first->radius, m->blur_texels[layer]);
+    glUniform1i(first->layer, layer);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindSampler(unit, 0);
+    bool ok = shadow_map_moments_target(r, m, false, layer);
+    if (ok) {
+        glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_MOMENTS_UNIT_2D);
+        glBindTexture(GL_TEXTURE_2D, m->texture.blur);
+        glUseProgram(second->id);
+        glUniform1f(second->radius, m->blur_texels[layer]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    r->blur_failed = !ok;
+    glBindVertexArray(0);
+    if (depth_test)
+        glEnable(GL_DEPTH_TEST);
+    return ok;
+}
+
+void shadow_map_moments_destroy(shadow_map_renderer *r) {
+    for (int k = 0; k <= SHADOW_MAP_MOMENTS_MSM; k++)
+        for (int kind = 0; kind <= SHADOW_MAP_ARRAY; kind++)
+            glDeleteProgram(r->blur_depth[k][kind].id);
+    glDeleteProgram(r->blur_moments.id);
+    glDeleteFramebuffers(1, &r->blur_framebuffer);
+    glDeleteVertexArrays(1, &r->blur_vao);
+}
