@@ -123,8 +123,13 @@ endif
 # against --no-skip, with time per frame against object count
 # (out/bench/scaling.png, and cities-light/scaling.png with the lights moving).
 # The cities see the same street, so their plot is cost against object
-# count; dense (one view, many triangles) is timed on its own.
+# count; dense (one view, many triangles) is timed on its own. Last, the
+# shadow maps' whole sweeps (PCSS, the moment filters, the hard kernels) on
+# the area lights' scenes and the flat boxes, still and with the lights
+# moving: the soft ruler's figures (README, "Soft shadows from area lights").
 BENCH_CITIES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000)
+BENCH_SOFT := $(patsubst %,assets/scenes/%.json,soft_table soft_sun flat_boxes flat_boxes_point)
+BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
 BENCH_QUICK := $(if $(filter 1,$(QUICK)),--quick)
 bench: $(PROGRAMS)
 	$(BUILD)/bench $(BENCH_QUICK) --motion static --out out/bench/static
@@ -139,6 +144,8 @@ bench: $(PROGRAMS)
 		assets/scenes/dense.json
 	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion light --out out/bench/dense-light \
 		assets/scenes/dense.json
+	$(BUILD)/bench $(BENCH_QUICK) $(BENCH_MAPS) --motion static --out out/bench/soft $(BENCH_SOFT)
+	$(BUILD)/bench $(BENCH_QUICK) $(BENCH_MAPS) --motion light --out out/bench/soft-light $(BENCH_SOFT)
 
 # Every case of build/stress's table, every technique configuration
 # against the reference: out/stress/table.md; fails unless every row
