@@ -1,23 +1,26 @@
 #version 330 core
-// The moment maps' blur (demos/lib/shadow_map_moments.c), a separable box
-// over one layer of a map, in two passes: the first reads the layer's
-// depths (SHADOW_MAP_BLUR_FROM_DEPTH, from a map of kind
-// SHADOW_MAP_BLUR_KIND) and sums their moments (moments.glsl) along x into
-// a 2D texture; the second sums that along y into the moment map's layer.
-// The box is 2 u_radius + 1 texels across, its two end texels weighted by
-// the radius's fraction; reads past the layer's edge clamp to it.
+// The moment maps' passes (demos/lib/shadow_map_moments.c) over one layer
+// of a map. SHADOW_MAP_BLUR_FROM_DEPTH: the layer's depths (a map of kind
+// SHADOW_MAP_BLUR_KIND) as moments (moments.glsl), a texel each. Else a
+// separable box along u_axis over a 2D texture of moments: 2 u_radius + 1
+// texels across, its two end texels weighted by the radius's fraction,
+// reads past the edge clamped to it. The box's texels are read in pairs,
+// one bilinear read between a pair's centres weighted by their sum (the
+// texture's linear filter mixes them by their weights), so a box of N
+// texels takes about N / 2 reads.
 #include "moments.glsl"
 
-uniform float u_radius;             // texels past the centre one
-uniform int u_layer;                // the first pass's layer (a cube's face)
-uniform sampler2D u_source_2d;      // a 2D map's depths, or the first pass's sums
-uniform samplerCube u_source_cube;  // a cube map's depths
+uniform float u_radius;                // texels past the centre one
+uniform vec2 u_axis;                   // (1, 0) or (0, 1)
+uniform int u_layer;                   // the depths' layer (a cube's face)
+uniform sampler2D u_source_2d;         // a 2D map's depths, or moments to blur (linear filter)
+uniform samplerCube u_source_cube;     // a cube map's depths
 uniform sampler2DArray u_source_array; // an array map's depths
 
 out vec4 out_moments;
 
 // The box's most texels past the centre (C clamps the radius below it).
-const int MOMENTS_BLUR_MAX_TAPS = SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS + 1;
+const int MOMENTS_BLUR_MAX_TEXELS = SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS + 1;
 
 // The direction from a cube's centre through texel `texel` of face
 // `face` (GL's table of faces, inverted; a texel's centre).
@@ -31,44 +34,33 @@ vec3 moments_cube_direction(ivec2 texel, int face, int size) {
     return vec3(-st.x, -st.y, -1.0);
 }
 
-// The sampler the pass reads (only it is active: C puts each type on a
-// unit of its own all the same).
-#if SHADOW_MAP_BLUR_FROM_DEPTH && SHADOW_MAP_BLUR_KIND == SHADOW_MAP_CUBE
-#define MOMENTS_SOURCE u_source_cube
-#elif SHADOW_MAP_BLUR_FROM_DEPTH && SHADOW_MAP_BLUR_KIND == SHADOW_MAP_ARRAY
-#define MOMENTS_SOURCE u_source_array
-#else
-#define MOMENTS_SOURCE u_source_2d
-#endif
-
-// What the pass sums at a texel of the layer: the moments of its depth,
-// or the first pass's sums.
-vec4 moments_source(ivec2 texel) {
-#if SHADOW_MAP_BLUR_FROM_DEPTH
-#if SHADOW_MAP_BLUR_KIND == SHADOW_MAP_CUBE
-    int size = textureSize(MOMENTS_SOURCE, 0).x;
-    return moments_of(texture(MOMENTS_SOURCE, moments_cube_direction(texel, u_layer, size)).r);
-#elif SHADOW_MAP_BLUR_KIND == SHADOW_MAP_ARRAY
-    return moments_of(texelFetch(MOMENTS_SOURCE, ivec3(texel, u_layer), 0).r);
-#else
-    return moments_of(texelFetch(MOMENTS_SOURCE, texel, 0).r);
-#endif
-#else
-    return texelFetch(MOMENTS_SOURCE, texel, 0);
-#endif
+// Texel k's weight in the box (k texels from the centre, k >= 1).
+float moments_box_weight(int k) {
+    float whole = floor(u_radius);
+    return float(k) <= whole ? 1.0 : float(k) == whole + 1.0 ? u_radius - whole : 0.0;
 }
 
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
-    ivec2 axis = SHADOW_MAP_BLUR_FROM_DEPTH != 0 ? ivec2(1, 0) : ivec2(0, 1);
-    int last = textureSize(MOMENTS_SOURCE, 0).x - 1;
-    int whole = int(floor(u_radius));
-    float end = u_radius - float(whole);
-    vec4 sum = moments_source(texel);
-    for (int k = 1; k <= MOMENTS_BLUR_MAX_TAPS && k <= whole + 1; k++) {
-        float weight = k <= whole ? 1.0 : end;
-        sum += weight * (moments_source(clamp(texel + k * axis, 0, last)) +
-                         moments_source(clamp(texel - k * axis, 0, last)));
+#if SHADOW_MAP_BLUR_FROM_DEPTH && SHADOW_MAP_BLUR_KIND == SHADOW_MAP_CUBE
+    int size = textureSize(u_source_cube, 0).x;
+    out_moments = moments_of(texture(u_source_cube, moments_cube_direction(texel, u_layer, size)).r);
+#elif SHADOW_MAP_BLUR_FROM_DEPTH && SHADOW_MAP_BLUR_KIND == SHADOW_MAP_ARRAY
+    out_moments = moments_of(texelFetch(u_source_array, ivec3(texel, u_layer), 0).r);
+#elif SHADOW_MAP_BLUR_FROM_DEPTH
+    out_moments = moments_of(texelFetch(u_source_2d, texel, 0).r);
+#else
+    vec2 size = vec2(textureSize(u_source_2d, 0));
+    vec2 centre = (vec2(texel) + 0.5) / size, step = u_axis / size;
+    vec4 sum = texelFetch(u_source_2d, texel, 0);
+    // Pairs (k, k + 1) for k = 1, 3, 5...: both sides at once.
+    for (int k = 1; k <= MOMENTS_BLUR_MAX_TEXELS && float(k) <= u_radius + 1.0; k += 2) {
+        float a = moments_box_weight(k), b = moments_box_weight(k + 1);
+        if (a + b <= 0.0)
+            break;
+        float offset = float(k) + b / (a + b);
+        sum += (a + b) * (texture(u_source_2d, centre + offset * step) + texture(u_source_2d, centre - offset * step));
     }
     out_moments = sum / (2.0 * u_radius + 1.0);
+#endif
 }

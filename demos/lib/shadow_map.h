@@ -401,7 +401,8 @@ _Static_assert(SHADOW_MAP_MAX_LAYERS >= SHADOW_MAP_CUBE_FACES, "a map holds a cu
 /* The GL texture behind a map, and what it was made with. */
 typedef struct shadow_map_texture {
     unsigned id;
-    unsigned moments, blur; /* a moment filter's: its blurred moments (the map's kind), one layer's half-blurred */
+    unsigned moments;      /* a moment filter's blurred moments (the map's kind) */
+    unsigned blur[2];      /* one layer's moments, then those blurred along x */
     shadow_map_kind kind;
     int size, layer_count, depth, filter;
 } shadow_map_texture;
@@ -517,7 +518,7 @@ typedef struct shadow_map_legend_program {
 /* A moment blur pass (shaders/shadow_moments.frag) and its uniforms. */
 typedef struct shadow_map_blur_program {
     unsigned id;
-    int radius, layer;
+    int radius, axis, layer;
 } shadow_map_blur_program;
 
 /* What a light's map was rendered with (the cache's key): all ints, so
@@ -546,9 +547,10 @@ typedef struct shadow_map_renderer {
     shadow_map_inset_program inset;
     shadow_map_legend_program legend;
     unsigned framebuffer, overlay_vao, overlay_buffer;
-    /* The moment maps' blur: per moment kind its first pass from each
-     * kind of depth map, its second pass; their framebuffer and the empty
-     * vertex array of their full-screen triangle (loaded as needed). */
+    /* The moment maps' passes: per moment kind the depths' moments from
+     * each kind of map, and the box along an axis; their framebuffer and
+     * the empty vertex array of their full-screen triangle (loaded as
+     * needed). */
     shadow_map_blur_program blur_depth[SHADOW_MAP_MOMENTS_MSM + 1][SHADOW_MAP_ARRAY + 1], blur_moments;
     unsigned blur_framebuffer, blur_vao;
     bool blur_failed; /* said once: moment filters read one bilinear depth test */
@@ -695,7 +697,8 @@ float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m,
 /* (Re)makes a moment filter's textures beside m's depth texture (or
  * deletes them for the kernels). */
 void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments);
-/* The depths of layer `layer` as blurred moments (two passes); false (said
+/* The depths of layer `layer` as blurred moments (their moments, then
+ * the box along x and along y); false (said
  * once, r->blur_failed) where a pass cannot run. Leaves its framebuffer
  * bound. */
 bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow_map_moments moments, int layer);

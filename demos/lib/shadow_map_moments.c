@@ -166,8 +166,8 @@ static void shadow_map_moments_image(GLenum target, shadow_map_kind kind, int si
 void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments) {
     shadow_map_texture *t = &m->texture;
     glDeleteTextures(1, &t->moments);
-    glDeleteTextures(1, &t->blur);
-    t->moments = t->blur = 0;
+    glDeleteTextures(2, t->blur);
+    t->moments = t->blur[0] = t->blur[1] = 0;
     if (moments == SHADOW_MAP_MOMENTS_NONE)
         return;
     /* 32-bit floats: EVSM's warp reaches e^84 (16-bit floats end at 65504). */
@@ -178,9 +178,12 @@ void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments) {
     glBindTexture(target, t->moments);
     /* Read bilinear by the camera pass: a filtered map's point of it all. */
     shadow_map_moments_image(target, m->kind, m->size, m->layer_count, format, GL_LINEAR);
-    glGenTextures(1, &t->blur);
-    glBindTexture(GL_TEXTURE_2D, t->blur);
-    shadow_map_moments_image(GL_TEXTURE_2D, SHADOW_MAP_2D, m->size, 1, format, GL_NEAREST);
+    /* Read by the box's pairs, bilinear too. */
+    glGenTextures(2, t->blur);
+    for (int k = 0; k < 2; k++) {
+        glBindTexture(GL_TEXTURE_2D, t->blur[k]);
+        shadow_map_moments_image(GL_TEXTURE_2D, SHADOW_MAP_2D, m->size, 1, format, GL_LINEAR);
+    }
 }
 
 /* ---- the blur ---- */
@@ -212,6 +215,7 @@ static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_mo
     if (!p->id)
         return false;
     p->radius = glGetUniformLocation(p->id, "u_radius");
+    p->axis = glGetUniformLocation(p->id, "u_axis");
     p->layer = glGetUniformLocation(p->id, "u_layer");
     glUseProgram(p->id);
     glUniform1i(glGetUniformLocation(p->id, "u_source_2d"), SHADOW_MAP_MOMENTS_UNIT_2D);
@@ -220,19 +224,17 @@ static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_mo
     return true;
 }
 
-/* The blur's framebuffer with the half-blurred texture (`blur`) or the
- * moment map's layer as its colour: complete, or said once. */
-static bool shadow_map_moments_target(shadow_map_renderer *r, const shadow_map *m, bool blur, int layer) {
+/* The passes' framebuffer with `texture`'s image `image` (GL_TEXTURE_2D,
+ * a cube face's; an array's layer `layer`) as its colour: complete, or
+ * said once. */
+static bool shadow_map_moments_target(shadow_map_renderer *r, unsigned texture, GLenum image, int layer) {
     if (!r->blur_framebuffer)
         glGenFramebuffers(1, &r->blur_framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, r->blur_framebuffer);
-    if (blur)
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m->texture.blur, 0);
-    else if (m->kind == SHADOW_MAP_ARRAY)
-        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, m->texture.moments, 0, layer);
+    if (image == GL_TEXTURE_2D_ARRAY)
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, texture, 0, layer);
     else
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, shadow_map_layer_image(m->kind, layer),
-                               m->texture.moments, 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, image, texture, 0);
     GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status == GL_FRAMEBUFFER_COMPLETE)
         return true;
@@ -243,13 +245,25 @@ static bool shadow_map_moments_target(shadow_map_renderer *r, const shadow_map *
     return false;
 }
 
+/* One box pass along `axis` from the 2D texture `source` into the target
+ * bound. */
+static void shadow_map_moments_box(const shadow_map_blur_program *p, unsigned source, float radius, float axis_x) {
+    glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_MOMENTS_UNIT_2D);
+    glBindTexture(GL_TEXTURE_2D, source);
+    glUseProgram(p->id);
+    glUniform1f(p->radius, radius);
+    glUniform2f(p->axis, axis_x, 1 - axis_x);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow_map_moments moments, int layer) {
     if (r->blur_failed)
         return false;
-    shadow_map_blur_program *first = &r->blur_depth[moments][m->kind], *second = &r->blur_moments;
+    shadow_map_blur_program *first = &r->blur_depth[moments][m->kind], *box = &r->blur_moments;
+    const shadow_map_texture *t = &m->texture;
     if (!shadow_map_moments_program(first, moments, true, m->kind) ||
-        !shadow_map_moments_program(second, moments, false, SHADOW_MAP_2D) ||
-        !shadow_map_moments_target(r, m, true, layer)) {
+        !shadow_map_moments_program(box, moments, false, SHADOW_MAP_2D) ||
+        !shadow_map_moments_target(r, t->blur[0], GL_TEXTURE_2D, 0)) {
         r->blur_failed = true;
         return false;
     }
@@ -265,21 +279,19 @@ bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow
     GLuint unit = units[m->kind];
     /* The depths as stored: compare mode off, nearest. */
     glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(shadow_map_target(m->kind), m->texture.id);
+    glBindTexture(shadow_map_target(m->kind), t->id);
     glBindSampler(unit, r->depth_sampler);
     glUseProgram(first->id);
-    glUniform1f(first->radius, m->blur_texels[layer]);
     glUniform1i(first->layer, layer);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindSampler(unit, 0);
-    bool ok = shadow_map_moments_target(r, m, false, layer);
-    if (ok) {
-        glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_MOMENTS_UNIT_2D);
-        glBindTexture(GL_TEXTURE_2D, m->texture.blur);
-        glUseProgram(second->id);
-        glUniform1f(second->radius, m->blur_texels[layer]);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
+    GLenum image = m->kind == SHADOW_MAP_ARRAY ? GL_TEXTURE_2D_ARRAY : shadow_map_layer_image(m->kind, layer);
+    bool ok = shadow_map_moments_target(r, t->blur[1], GL_TEXTURE_2D, 0);
+    if (ok)
+        shadow_map_moments_box(box, t->blur[0], m->blur_texels[layer], 1);
+    ok = ok && shadow_map_moments_target(r, t->moments, image, layer);
+    if (ok)
+        shadow_map_moments_box(box, t->blur[1], m->blur_texels[layer], 0);
     r->blur_failed = !ok;
     glBindVertexArray(0);
     if (depth_test)
