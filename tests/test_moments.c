@@ -35,8 +35,9 @@ _Static_assert(sizeof filters / sizeof *filters == FILTER_COUNT, "a name per fil
  * half a penumbra where the reference's narrows to nothing), nor is VSM's
  * and EVSM2's penumbra nearer the sun's than a hard edge (bleeding across
  * the bunny's own curves; README, "Moment shadow maps"). On the point
- * light every filter's penumbra is nearer the reference than pcf3's hard
- * edge (0.231): a moment map drawn without its blur fails there. */
+ * light every filter's bound lies below the penumbra MAE of a hard edge
+ * (--filter pcf3 --soft off): a moment map drawn without its blur fails
+ * there. */
 #define MOMENTS_GOAL_UMBRA_MAE 0.03
 static const struct {
     const char *program, *scene, *size;

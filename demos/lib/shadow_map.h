@@ -454,9 +454,10 @@ _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combinati
 #define SHADOW_MAP_IDLE_UNITS SCENE_MAX_LIGHTS
 /* A soft light's map is also read as depth (compare mode off, by
  * r->depth_sampler): light i's on unit SHADOW_MAP_DEPTH_UNITS + i, after
- * the idle units of the comparison and the depth samplers' types. A GL
- * with fewer units (3.3 promises 16) draws the lights past them hard,
- * and says so. */
+ * the idle units of the comparison and the depth samplers' types; a
+ * moment filter's light reads its moments there (the same sampler
+ * types). A GL with fewer units (3.3 promises 16) draws the lights past
+ * them hard (a moment filter's with one bilinear test), and says so. */
 #define SHADOW_MAP_SAMPLER_TYPES 3
 #define SHADOW_MAP_DEPTH_UNITS (SHADOW_MAP_IDLE_UNITS + 2 * SHADOW_MAP_SAMPLER_TYPES)
 
