@@ -505,7 +505,8 @@ static void cascades_describe(char *out, size_t size) {
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count
  * and size at equal texels (2 x 2048 against 4 x 1024) and beyond, and
- * stabilisation and the blend off, and two moment filters. */
+ * stabilisation and the blend off; an area light drawn hard (what PCSS costs
+ * and buys), and two moment filters. */
 static const char *const cascades_bench_configs[] = {
     "",
     "practical: --splits practical",
@@ -517,6 +518,7 @@ static const char *const cascades_bench_configs[] = {
     "--splits practical --stabilize sphere",
     "--stabilize off",
     "--no-blend",
+    "hard: --soft off",
     "--filter evsm4",
     "--filter msm",
 };
