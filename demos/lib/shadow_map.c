@@ -763,10 +763,9 @@ static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_sett
  * then any wider one is clamped to it. */
 static void shadow_map_moments_fit(const scene *s, int l, shadow_map *m, bool auto_size) {
     float widest = 0, blur[SHADOW_MAP_MAX_LAYERS];
-    for (int layer = 0; layer < m->layer_count; layer++) {
-        blur[layer] = shadow_map_moments_blur_texels(s, l, m, layer);
+    shadow_map_moments_blur_texels(s, l, m, blur);
+    for (int layer = 0; layer < m->layer_count; layer++)
         widest = fmaxf(widest, blur[layer]);
-    }
     int size = m->size;
     /* A texel's world size goes as 1 / size: so does the blur in texels. */
     while (auto_size && m->kind != SHADOW_MAP_ARRAY && s->lights[l].radius > 0 &&
@@ -776,8 +775,7 @@ static void shadow_map_moments_fit(const scene *s, int l, shadow_map *m, bool au
     }
     if (size != m->size) {
         shadow_map_resize(m, size);
-        for (int layer = 0; layer < m->layer_count; layer++)
-            blur[layer] = shadow_map_moments_blur_texels(s, l, m, layer);
+        shadow_map_moments_blur_texels(s, l, m, blur);
     }
     for (int layer = 0; layer < m->layer_count; layer++)
         m->blur_texels[layer] = fminf(blur[layer], SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);

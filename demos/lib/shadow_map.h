@@ -690,11 +690,12 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
 
 /* ---- moment maps (shadow_map_moments.c) ---- */
 
-/* The box radius, in texels of layer `layer` of light l's fitted map m,
- * of a moment filter's blur (see shadow_map_moments.c): a hard light's
- * SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS, an area light's the mean penumbra
- * its casters cast at their feet, unclamped. */
-float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, int layer);
+/* The box radius of a moment filter's blur, in texels of each layer of
+ * light l's fitted map m, into blur (see shadow_map_moments.c): a hard
+ * light's SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS, an area light's the mean
+ * penumbra its casters cast at their feet, unclamped; each caster's
+ * shadow is traced once for every layer. */
+void shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, float blur[SHADOW_MAP_MAX_LAYERS]);
 /* (Re)makes a moment filter's textures beside m's depth texture (or
  * deletes them for the kernels). */
 void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments);

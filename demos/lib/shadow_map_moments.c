@@ -103,13 +103,14 @@ static float shadow_map_moments_drop(const scene *s, int caster, const vec3 cent
     return nearest;
 }
 
-float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, int layer) {
+void shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, float blur[SHADOW_MAP_MAX_LAYERS]) {
     const scene_light *light = &s->lights[l];
-    if (light->radius <= 0)
-        return SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS;
     bool directional = light->type == SCENE_LIGHT_DIRECTIONAL;
-    double sum = 0, weights = 0;
-    for (int i = 0; i < s->object_count; i++) {
+    /* A cube's faces share one width (each shadow measured on the face it
+     * lands on): one sum for all six. */
+    int sums = m->kind == SHADOW_MAP_CUBE ? 1 : m->layer_count;
+    double sum[SHADOW_MAP_MAX_LAYERS] = {0}, weights[SHADOW_MAP_MAX_LAYERS] = {0};
+    for (int i = 0; light->radius > 0 && i < s->object_count; i++) {
         if (!s->objects[i].casts || (m->casters && !m->casters[i]))
             continue;
         vec3 lo, hi, centre, ray, foot;
@@ -131,23 +132,29 @@ float shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m,
         float penumbra = directional ? tanf(glm_rad(light->radius)) * drop : light->radius * drop / distance;
         glm_vec3_copy(centre, foot);
         glm_vec3_muladds(ray, drop, foot);
-        int at = layer;
+        int face = 0;
         if (m->kind == SHADOW_MAP_CUBE) {
             vec3 d;
             glm_vec3_sub(foot, (float *)light->position, d);
-            at = shadow_map_moments_face(d);
+            face = shadow_map_moments_face(d);
         }
-        float texel = shadow_map_moments_texel(m->layer_view_projection[at], foot, m->size);
         /* The box's shadow's size: its area seen along the ray. */
         vec3 e;
         glm_vec3_sub(hi, lo, e);
         double area = fabsf(ray[0]) * e[1] * e[2] + fabsf(ray[1]) * e[0] * e[2] + fabsf(ray[2]) * e[0] * e[1];
-        if (!isfinite(texel) || area <= 0)
-            continue;
-        sum += area * penumbra / texel;
-        weights += area;
+        for (int layer = 0; layer < sums; layer++) {
+            int at = m->kind == SHADOW_MAP_CUBE ? face : layer;
+            float texel = shadow_map_moments_texel(m->layer_view_projection[at], foot, m->size);
+            if (!isfinite(texel) || area <= 0)
+                continue;
+            sum[layer] += area * penumbra / texel;
+            weights[layer] += area;
+        }
     }
-    return weights > 0 ? (float)(sum / weights) : SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS;
+    for (int layer = 0; layer < m->layer_count; layer++) {
+        int k = layer < sums ? layer : 0;
+        blur[layer] = weights[k] > 0 ? (float)(sum[k] / weights[k]) : SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS;
+    }
 }
 
 /* ---- the textures ---- */
