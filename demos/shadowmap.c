@@ -131,7 +131,6 @@ static const char *const shadowmap_bench_configs[] = {
     "--filter tent5 --no-early-out",
     "--no-early-out",
     "--kernel-depth centre",
-    "--filter pcf7",
     "--filter vsm",
     "--filter evsm2",
     "--filter evsm4",

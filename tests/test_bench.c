@@ -356,13 +356,20 @@ static void test_error_frames_pool(void **state) {
     assert_true(both[n - 1].misclassified > 0);
 }
 
+/* A plot gnuplot drew: a PNG of at least PLOT_MIN_WIDTH x PLOT_MIN_HEIGHT. */
+#define PLOT_MIN_WIDTH 640
+#define PLOT_MIN_HEIGHT 400
+static void check_plot(const char *path) {
+    int w, h;
+    unsigned char *pixels = image_read_png(path, &w, &h);
+    assert_non_null(pixels);
+    assert_true(w >= PLOT_MIN_WIDTH && h >= PLOT_MIN_HEIGHT);
+    free(pixels);
+}
+
 static void test_scaling_plot_is_an_image(void **state) {
     (void)state;
-    int w, h;
-    unsigned char *pixels = image_read_png(LIGHT_OUT "/scaling.png", &w, &h);
-    assert_non_null(pixels);
-    assert_true(w >= 640 && h >= 400);
-    free(pixels);
+    check_plot(LIGHT_OUT "/scaling.png");
 }
 
 /* Usage errors: exit 2, one line naming what is wrong. */
@@ -518,12 +525,8 @@ static void test_report_has_a_table_front_and_comparison_per_scene(void **state)
 static void check_plots(const char *dir, const char *scene, const char *const *prefixes, size_t n) {
     for (size_t p = 0; p < n; p++) {
         char path[256];
-        int w, h;
         snprintf(path, sizeof path, "%s/%s_%s.png", dir, prefixes[p], scene);
-        unsigned char *pixels = image_read_png(path, &w, &h);
-        assert_non_null(pixels);
-        assert_true(w >= 640 && h >= 400);
-        free(pixels);
+        check_plot(path);
     }
 }
 
