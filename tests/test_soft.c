@@ -185,11 +185,7 @@ static void test_penumbra_overlay_colours_the_penumbra(void **state) {
     for (size_t i = 0; i < (size_t)width * (size_t)height; i++) {
         if (in_legend_corner(i, width, height))
             continue;
-        float v = reference.visibility[i];
-        int kind = reference.ids[i] < 0                       ? OVERLAY_NO_SURFACE
-                   : v <= SHADOWDIFF_UMBRA_MAX_VISIBILITY     ? SHADOWDIFF_CLASS_UMBRA
-                   : v >= SHADOWDIFF_LIT_MIN_VISIBILITY       ? SHADOWDIFF_CLASS_LIT
-                                                              : SHADOWDIFF_CLASS_PENUMBRA;
+        int kind = reference.ids[i] < 0 ? OVERLAY_NO_SURFACE : (int)shadowdiff_class_of(reference.visibility[i]);
         pixels[kind]++;
         coloured[kind] += memcmp(before + 4 * i, after + 4 * i, 3) != 0;
     }

@@ -151,7 +151,7 @@ static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, siz
 
 static bool shadowdiff_lit(const dump_frame *d, size_t i) { return d->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD; }
 
-static shadowdiff_class shadowdiff_class_of(float reference_visibility) {
+shadowdiff_class shadowdiff_class_of(float reference_visibility) {
     if (reference_visibility <= SHADOWDIFF_UMBRA_MAX_VISIBILITY)
         return SHADOWDIFF_CLASS_UMBRA;
     return reference_visibility >= SHADOWDIFF_LIT_MIN_VISIBILITY ? SHADOWDIFF_CLASS_LIT : SHADOWDIFF_CLASS_PENUMBRA;

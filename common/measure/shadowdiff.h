@@ -196,6 +196,9 @@ typedef enum shadowdiff_class {
     SHADOWDIFF_CLASS_LIT,
     SHADOWDIFF_CLASS_COUNT
 } shadowdiff_class;
+/* The class of a pixel whose reference visibility is v (by the bounds
+ * SHADOWDIFF_UMBRA_MAX_VISIBILITY and SHADOWDIFF_LIT_MIN_VISIBILITY). */
+shadowdiff_class shadowdiff_class_of(float v);
 
 /* Each class's name ("umbra", "penumbra", "lit"): the one definition the
  * reports' labels and keys use. */
