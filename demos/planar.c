@@ -236,6 +236,10 @@ static const technique_stencil_lit planar_lit = {
 static void planar_render_stencil(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     render_depth_prepass(f->gpu, f->view, f->in_view);
+    /* A caster's anti-shadow (reject off) lies nearer the light than the
+     * caster: the masks of what is seen bound true shadows only. */
+    if (!planar.settings.no_reject)
+        technique_see(f);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;

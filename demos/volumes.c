@@ -292,6 +292,9 @@ static void volumes_render(const technique_frame *f) {
     volume_mesh_receivers_scissor(s, f->view->view_projection, f->width, f->height, receivers_rect);
     volumes.huge_count = volumes.settings.no_exact_depth ? 0 : volume_receivers_update(&volumes.receivers, f);
     bool exact = volumes.huge_count > 0;
+    if (exact && f->seen) /* what is seen, as the volumes are counted against it */
+        volume_receivers_depth(&volumes.receivers, f, true);
+    technique_see(f);
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;

@@ -4,13 +4,16 @@
  * holds what would be made again. So with skips on and with --no-skip
  * every technique's dump (visibility, depth, object ids, the picture) is
  * the same byte for byte, on the standard scenes, long_view, the
- * 1000-object city and the dense scene, static and over frames in which
- * the light or the camera moves. And the skips do skip: most of the city
- * lies outside its street-level view and most of its lights out of reach
- * of it; nothing of simple is culled. Each switch turns its skip off.
+ * 1000-object city, the dense scene, the street city and the engines,
+ * static and over frames in which the light or the camera moves. And the
+ * skips do skip: most of the city lies outside its street-level view and
+ * most of its lights out of reach of it; most of the street city's
+ * casters are hidden; nothing of simple is culled. Each switch turns its
+ * skip off.
  *
  * The geometry is checked in process first: the box and sphere against a
- * frustum, the hull of a light and a box, a light's reach. */
+ * frustum, the hull of a light and a box, a light's reach, a light's mask
+ * of what is seen. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -21,6 +24,7 @@
 #include <string.h>
 
 #include "frustum.h"
+#include "light_mask.h"
 #include "scene.h"
 #include "registry.h"
 #include "support.h"
@@ -31,6 +35,8 @@
 #define CITY_OBJECTS 1001 /* the ground and 1000 buildings */
 #define CITY_LIGHTS 7
 #define CITY_SKIPPED_LIGHT "4" /* a point light far to the left of the street */
+#define STREET "street"
+#define ENGINE "engine"
 /* A test frustum: 90 degrees, square, near 1, far 100, looking down -z. */
 #define TEST_FOV_DEG 90.0f
 #define TEST_NEAR 1.0f
@@ -58,6 +64,13 @@ static const struct {
      * dump is still the same (it adds 0 everywhere on screen). */
     {CITY, "--light " CITY_SKIPPED_LIGHT},
     {"dense", "--frames 2 --motion light"},
+    /* Scenes whose casters are hidden rather than out of view: the city
+     * seen across from its edge with unranged lamps, and two dense real
+     * models; hidden casters are culled there (test_hidden_casters_culled). */
+    {STREET, "--frames 2"},
+    {STREET, "--frames 3 --motion light"},
+    {STREET, "--frames 3 --motion camera"},
+    {ENGINE, "--frames 2 --motion light"},
 };
 SUPPORT_SWEEPABLE(sizeof cases / sizeof *cases); /* test_dumps_identical_with_and_without_skips */
 /* What a dump holds that a technique or the capture decides. */
@@ -151,6 +164,48 @@ static void test_light_reach(void **state) {
     assert_true(frustum_sphere_outside(projection, (vec3){0, 0, 10}, 3)); /* behind the eye */
 }
 
+/* A light's mask of one visible patch of ground (light_mask.h): a box
+ * between the light and the patch shadows it, one beyond the patch, one
+ * behind the light and one beside the shadow's path do not, one around
+ * a positional light sees everything. */
+static void test_light_mask(void **state) {
+    (void)state;
+    static const vec3 patch_lo = {2, 0, -0.5f}, patch_hi = {3, 0.01f, 0.5f};
+    static const scene_light sun = {.type = SCENE_LIGHT_DIRECTIONAL, .direction = {0, -1, 0}};
+    static const scene_light lamp = {.type = SCENE_LIGHT_POINT, .position = {0, 5, 0}};
+    static const struct {
+        const char *what;
+        const scene_light *light;
+        vec3 lo, hi;
+        bool read;
+    } cases[] = {
+        {"sun: above the patch", &sun, {2.2f, 2, -0.2f}, {2.8f, 3, 0.2f}, true},
+        {"sun: beside it", &sun, {5, 2, -0.2f}, {6, 3, 0.2f}, false},
+        {"sun: below it", &sun, {2.2f, -3, -0.2f}, {2.8f, -2, 0.2f}, false},
+        {"lamp: on the way to the patch", &lamp, {1.05f, 2.3f, -0.2f}, {1.45f, 2.7f, 0.2f}, true},
+        {"lamp: beyond the patch", &lamp, {3.55f, -2.7f, -0.2f}, {3.95f, -2.3f, 0.2f}, false},
+        {"lamp: behind the lamp", &lamp, {-1.45f, 7.3f, -0.2f}, {-1.05f, 7.7f, 0.2f}, false},
+        {"lamp: beside the way", &lamp, {-2, 2, -3}, {-1, 3, -2}, false},
+        {"lamp: around the lamp", &lamp, {-0.5f, 4.5f, -0.5f}, {0.5f, 5.5f, 0.5f}, true},
+    };
+    float patch[1][8][3];
+    frustum_box_corners(patch_lo, patch_hi, patch[0]);
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        mat4 layers[LIGHT_MASK_MAX_LAYERS];
+        int count = light_mask_layers(cases[i].light, (const float(*)[8][3])patch, 1, layers);
+        assert_int_equal(count, cases[i].light->type == SCENE_LIGHT_DIRECTIONAL ? 1 : LIGHT_MASK_MAX_LAYERS);
+        bool read = false;
+        for (int m = 0; m < count; m++) {
+            static light_mask mask;
+            light_mask_start(&mask, layers[m], 0, false);
+            light_mask_add(&mask, (const float(*)[3])patch[0]);
+            read = read || light_mask_box_read(&mask, cases[i].lo, cases[i].hi);
+        }
+        if (read != cases[i].read)
+            fail_msg("%s: expected %s", cases[i].what, cases[i].read ? "needed" : "culled");
+    }
+}
+
 static void dump_dir(const char *technique, size_t c, const char *skips, char *out, size_t size) {
     snprintf(out, size, OUT "/%s_%zu_%s_%s", technique, c, cases[c].scene, skips);
 }
@@ -233,6 +288,35 @@ static void test_city_lights_skipped(void **state) {
     assert_int_equal(skipped, 0);
 }
 
+/* Light 0's casters drawn by `technique` on `scene` with `flags`. */
+static int casters_drawn(const char *technique, const char *scene, const char *flags) {
+    char scene_file[256];
+    snprintf(scene_file, sizeof scene_file, SCENES "/%s.json", scene);
+    const char *line = support_verbose_line(technique, scene_file, flags, "[X] caster culling: ");
+    int drawn, culled;
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "[X] caster culling: casters drawn / culled per light: 0: %d/%d", &drawn, &culled),
+                     2);
+    return drawn;
+}
+
+/* Across the street city's view most buildings stand behind the first
+ * rows, inside the hull of the sun and the visible ground: culled as
+ * hidden, by the volumes and by the shadow map, and drawn with
+ * --no-hidden-cull. */
+static void test_hidden_casters_culled(void **state) {
+    (void)state;
+    static const char *const techniques[] = {"volumes", "shadowmap"};
+    for (size_t i = 0; i < sizeof techniques / sizeof *techniques; i++) {
+        int hidden = casters_drawn(techniques[i], STREET, "");
+        int boxes = casters_drawn(techniques[i], STREET, "--no-hidden-cull");
+        printf("    %s on %s: light 0 draws %d casters, %d with --no-hidden-cull\n", techniques[i], STREET, hidden,
+               boxes);
+        if (!(hidden > 0 && 2 * hidden < boxes))
+            fail_msg("%s: %d casters drawn, not under half of %d", techniques[i], hidden, boxes);
+    }
+}
+
 /* Each switch turns its skip off: its own and the program-wide one. */
 static void test_switches_turn_skips_off(void **state) {
     (void)state;
@@ -242,6 +326,7 @@ static void test_switches_turn_skips_off(void **state) {
         {"--no-view-cull", "view culling: OFF"},
         {"--no-light-reach", "light reach: OFF"},
         {"--no-caster-cull", "caster culling: OFF"},
+        {"--no-hidden-cull", "hidden casters: OFF"},
         {"--no-cache", "caching: OFF"},
     };
     for (size_t i = 0; i < sizeof switches / sizeof *switches; i++) {
@@ -265,8 +350,10 @@ int main(void) {
         cmocka_unit_test(test_simple_nothing_culled),
         cmocka_unit_test(test_light_hull),
         cmocka_unit_test(test_light_reach),
+        cmocka_unit_test(test_light_mask),
         cmocka_unit_test(test_city_lights_skipped),
         cmocka_unit_test(test_switches_turn_skips_off),
+        cmocka_unit_test(test_hidden_casters_culled),
         cmocka_unit_test(test_dumps_identical_with_and_without_skips),
     };
     return cmocka_run_group_tests_name("skips", tests, NULL, NULL);

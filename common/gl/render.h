@@ -93,6 +93,7 @@ typedef struct render_skips {
     bool no_view_cull;   /* --no-view-cull: camera passes draw objects outside the view */
     bool no_light_reach; /* --no-light-reach: lights that reach nothing visible still render */
     bool no_caster_cull; /* --no-caster-cull: every caster casts for every light */
+    bool no_hidden_cull; /* --no-hidden-cull: casters culled against the receivers' boxes only */
     bool no_cache;       /* --no-cache: maps and volumes are made again every frame */
 } render_skips;
 

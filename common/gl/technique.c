@@ -155,6 +155,60 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
     glDisable(GL_SCISSOR_TEST);
 }
 
+void technique_see(const technique_frame *f) {
+    technique_seen *seen = f->seen;
+    if (!seen)
+        return;
+    seen->masks_made = 0;
+    seen->read = visible_read(&seen->pixels, f->view, f->width, f->height);
+}
+
+const visible *technique_seen_pixels(const technique_frame *f) {
+    return f->seen && f->seen->read ? &f->seen->pixels : NULL;
+}
+
+/* Whether the slab's box meets the box lo..hi and the light reaches it
+ * (its range, a spot's cone): else what is seen there takes nothing
+ * from the light, and no shadow of it matters. */
+static bool technique_slab_reached(const scene_light *light, const float slab[8][3], const vec3 lo, const vec3 hi) {
+    vec3 slab_lo = {INFINITY, INFINITY, INFINITY}, slab_hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (int c = 0; c < 8; c++) {
+        glm_vec3_minv(slab_lo, (float *)slab[c], slab_lo);
+        glm_vec3_maxv(slab_hi, (float *)slab[c], slab_hi);
+    }
+    for (int k = 0; k < 3; k++)
+        if (slab_lo[k] > hi[k] || slab_hi[k] < lo[k])
+            return false;
+    return scene_light_reaches_box(light, slab_lo, slab_hi);
+}
+
+/* Light l's masks of the visible slabs that meet the box lo..hi (the
+ * receivers within its range) and that it reaches. The slabs
+ * that do are swapped to the front of the frame's list, which stays the
+ * same set: a mask is a maximum, the same in any order. */
+static void technique_light_masks(technique_seen *seen, const scene_light *light, int l, const vec3 lo,
+                                  const vec3 hi) {
+    float(*slabs)[8][3] = seen->pixels.slabs;
+    int count = 0;
+    for (int i = 0; i < seen->pixels.count; i++)
+        if (technique_slab_reached(light, (const float(*)[3])slabs[i], lo, hi)) {
+            float swap[8][3];
+            memcpy(swap, slabs[count], sizeof swap);
+            memcpy(slabs[count], slabs[i], sizeof swap);
+            memcpy(slabs[i], swap, sizeof swap);
+            count++;
+        }
+    mat4 layers[LIGHT_MASK_MAX_LAYERS];
+    seen->mask_count[l] = light_mask_layers(light, (const float(*)[8][3])slabs, count, layers);
+    for (int m = 0; m < seen->mask_count[l]; m++) {
+        light_mask *mask = &seen->masks[l][m];
+        light_mask_start(mask, layers[m], 0, false);
+        for (int i = 0; i < count; i++)
+            light_mask_add(mask, (const float(*)[3])slabs[i]);
+    }
+    seen->masks_made |= RENDER_LIGHT_BIT(l);
+}
+
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
     const scene_light *l = &f->gpu->scene->lights[light];
     *out = (technique_hull){.light = light};
@@ -175,6 +229,18 @@ void technique_light_hull(const technique_frame *f, int light, technique_hull *o
     float homogeneous[4];
     scene_light_homogeneous(l, homogeneous);
     out->plane_count = frustum_light_hull(homogeneous, lo, hi, out->planes);
+    technique_seen *seen = f->seen;
+    if (!seen || !seen->read)
+        return;
+    if (!(seen->masks_made & RENDER_LIGHT_BIT(light))) {
+        /* The slabs' own rounding stays inside the hull's margin. */
+        vec3 grown_lo, grown_hi;
+        glm_vec3_subs(lo, out->margin, grown_lo);
+        glm_vec3_adds(hi, out->margin, grown_hi);
+        technique_light_masks(seen, l, light, grown_lo, grown_hi);
+    }
+    out->masks = seen->masks[light];
+    out->mask_count = seen->mask_count[light];
 }
 
 bool technique_caster_needed(const technique_frame *f, const technique_hull *hull, int object) {
@@ -186,6 +252,11 @@ bool technique_caster_needed(const technique_frame *f, const technique_hull *hul
         vec3 lo, hi;
         scene_object_world_bounds(o, lo, hi);
         needed = !frustum_planes_box_outside((const vec4 *)hull->planes, hull->plane_count, lo, hi, hull->margin);
+        if (needed && hull->masks) {
+            needed = false;
+            for (int m = 0; m < hull->mask_count && !needed; m++)
+                needed = light_mask_box_read(&hull->masks[m], lo, hi);
+        }
     }
     if (needed)
         f->counts->casters_drawn[hull->light]++;
@@ -213,7 +284,11 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
     return technique_init(t, gpu);
 }
 
-void technique_host_stop(technique_host *h) { h->technique->destroy(); }
+void technique_host_stop(technique_host *h) {
+    h->technique->destroy();
+    visible_destroy(&h->seen.pixels);
+    h->seen.read = false;
+}
 
 /* Whether a light moved in any way a shadow depends on (not its colour). */
 static bool technique_light_moved(const scene_light *a, const scene_light *b) {
@@ -401,11 +476,16 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
                           double time, int visibility_of) {
     const scene *s = h->gpu->scene;
     h->counts = (technique_counts){0};
+    h->seen.read = false; /* until the technique's technique_see */
     h->objects_in_view = render_cull_view(h->gpu, view, h->skips);
     technique_frame f = {.gpu = h->gpu,
                          .view = view,
                          .in_view = h->gpu->in_view,
                          .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
+                         .seen = render_skip_on(h->skips, h->skips->no_caster_cull) &&
+                                         render_skip_on(h->skips, h->skips->no_hidden_cull)
+                                     ? &h->seen
+                                     : NULL,
                          .changed = technique_host_changes(h, view),
                          .counts = &h->counts,
                          .width = target->width,

@@ -43,7 +43,8 @@
  * pixels its lighting pass needs (light reach; technique_light_on,
  * technique_light_pass); receivers: the visible receivers' points, for
  * fitting and for caster culling (technique_light_hull,
- * technique_caster_needed, when cull_casters); changed: what moved since
+ * technique_caster_needed, when cull_casters), and what the depth
+ * pre-pass shows (technique_see: hidden casters); changed: what moved since
  * the technique's last frame, which its caches obey (all of it on a first
  * frame and with --no-cache). A technique fills counts for the HUD.
  */
@@ -54,8 +55,10 @@
 #include "camera.h"
 #include "flags.h"
 #include "frustum.h"
+#include "light_mask.h"
 #include "render.h"
 #include "target.h"
+#include "visible.h"
 
 /* What changed since the technique's last frame (technique_host_frame
  * compares): a cache keeps what did not. All set on a technique's first
@@ -85,6 +88,18 @@ typedef struct technique_counts {
  * rasterizer's pixel centres and float rounding at its edge. */
 #define TECHNIQUE_RECT_MARGIN_PIXELS 1
 
+/* What the camera's depth pre-pass shows (technique_see): the visible
+ * pixels' slabs and, made on a light's first technique_light_hull, the
+ * masks of where they lie as that light sees them. The host's; a frame
+ * points at it. */
+typedef struct technique_seen {
+    bool read; /* this frame's pixels are read */
+    visible pixels;
+    unsigned masks_made; /* RENDER_LIGHT_BIT(l): light l's masks */
+    int mask_count[SCENE_MAX_LIGHTS];
+    light_mask masks[SCENE_MAX_LIGHTS][LIGHT_MASK_MAX_LAYERS];
+} technique_seen;
+
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
     const camera_view *view;
@@ -108,6 +123,9 @@ typedef struct technique_frame {
     int receiver_count;
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
     bool cull_casters; /* technique_caster_needed culls (--no-caster-cull: never) */
+    /* With cull_casters and without --no-hidden-cull: where technique_see
+     * keeps what the pre-pass shows; else NULL. */
+    technique_seen *seen;
     technique_changes changed;
     technique_counts *counts;
     int width, height;
@@ -170,9 +188,22 @@ typedef struct technique_stencil_lit {
  * test on, blending and the scissor test off. */
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
 
+/* Hidden casters. A technique calls this after its depth pre-pass (the
+ * framebuffer bound, the camera's depth written): the visible pixels are
+ * read (visible.h) for the caster culling that follows, which then also
+ * culls a caster whose shadow reaches none of them, however near its
+ * box lies to the receivers' (technique_caster_needed; a shadow map's
+ * own layers, technique_seen_pixels). Nothing without f->seen. */
+void technique_see(const technique_frame *f);
+/* The slabs technique_see read this frame; NULL when it read none. */
+const visible *technique_seen_pixels(const technique_frame *f);
+
 /* Caster culling for one light: the hull of the light and the visible
  * receivers it can reach (their bounds, clipped to its range), outside
- * which a caster shadows nothing the camera sees (frustum_light_hull). */
+ * which a caster shadows nothing the camera sees (frustum_light_hull);
+ * after technique_see, also the light's masks of the visible pixels
+ * within those bounds (light_mask.h: the layers of light_mask_layers),
+ * which a caster's box must reach as well. */
 typedef struct technique_hull {
     int light;
     bool empty; /* no visible receiver in reach: no caster is needed */
@@ -180,6 +211,8 @@ typedef struct technique_hull {
     vec4 planes[FRUSTUM_HULL_MAX_PLANES];
     int plane_count;
     float margin; /* world units: FRUSTUM_BOX_TOLERANCE of the hull's size */
+    const light_mask *masks; /* NULL: none (no technique_see this frame) */
+    int mask_count;
 } technique_hull;
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out);
 /* Object i casts and its shadow may reach a visible receiver for the
@@ -261,11 +294,12 @@ typedef struct technique_host {
     scene_light last_lights[SCENE_MAX_LIGHTS];
     float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
     float fit_receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3]; /* fit_view's */
+    technique_seen seen;
 } technique_host;
 
 /* technique_init of t on gpu, under skips; the next frame is its first. */
 bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips);
-/* The technique's destroy. */
+/* The technique's destroy; frees what the host kept. */
 void technique_host_stop(technique_host *h);
 /* One frame: the view culled (render_cull_view), the lights that reach it,
  * the receivers it sees, what changed since the last frame, then

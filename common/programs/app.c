@@ -127,6 +127,8 @@ static const flags_param app_flags[] = {
      .disabled = &app.skips.no_light_reach},
     {"caster-cull", "every caster casts for every light, seen or not", GLFW_KEY_X, FLAGS_TOGGLE,
      .disabled = &app.skips.no_caster_cull},
+    {"hidden-cull", "casters culled against the visible receivers' boxes\nonly, not the pixels the camera sees", GLFW_KEY_I,
+     FLAGS_TOGGLE, .disabled = &app.skips.no_hidden_cull},
     {"cache", "shadow maps and volumes made again every frame", GLFW_KEY_J, FLAGS_TOGGLE,
      .disabled = &app.skips.no_cache},
     {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
@@ -649,6 +651,7 @@ static int app_skips_text(char *out, size_t size) {
     APP_TEXT("\n[X] caster culling: %s", casters ? "casters drawn / culled per light:" : off);
     for (int l = 0; casters && l < app.scene.light_count; l++)
         APP_TEXT(" %d: %d/%d", l, c->casters_drawn[l], c->casters_culled[l]);
+    APP_TEXT("   [I] hidden casters: %s", render_skip_on(k, k->no_hidden_cull) ? "culled" : off);
     APP_TEXT("   [J] caching: ");
     if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);

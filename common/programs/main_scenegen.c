@@ -5,6 +5,10 @@
  *                ground plane (N + 1 objects in all), streets between the
  *                blocks, a street-level camera looking down a street, a sun
  *                and street lamps of limited range, most out of view;
+ *   street.json  city_1000 seen down the same street from the city's edge,
+ *                into the sun, the far plane across it, a sun and three spot lamps
+ *                without a range, so that nothing is culled for being out
+ *                of view or out of reach and only what is hidden can be;
  *   dense.json   a field of high-segment spheres and tori on a ground slab,
  *                every mesh closed, over 100k triangles, one light.
  *
@@ -67,6 +71,18 @@
 #define CITY_FOV 40.0
 #define CITY_NEAR 0.1
 #define CITY_FAR 130.0
+
+/* The street scene: its far plane reaches across the largest ring of
+ * city_1000, and its lamps, unranged spots over the street, light far. */
+#define STREET_COUNT 1000
+/* At the city's edge, looking across it into the sun, so that the
+ * shadows come towards the eye. */
+#define STREET_EYE_Z -200.0
+#define STREET_LOOK 1.0 /* along +z */
+#define STREET_FAR 450.0
+#define STREET_LAMP_INTENSITY 0.5
+#define STREET_SPOT_INNER 25.0
+#define STREET_SPOT_OUTER 40.0
 
 #define CITY_LAMP_RANGE 14.0
 #define CITY_LAMP_INTENSITY 0.8
@@ -207,44 +223,82 @@ static bool scenegen_write(const cJSON *root, const char *dir, const char *name)
 
 /* ---- the city ---- */
 
-/* The camera, the ambient term and the lights: the same in every city. */
-static void scenegen_city_setting(cJSON *root) {
-    const double eye[3] = {CITY_EYE_X, CITY_EYE_HEIGHT, CITY_EYE_Z};
-    const double target[3] = {CITY_EYE_X, CITY_LOOK_HEIGHT, CITY_EYE_Z - CITY_LOOK_DISTANCE};
-    scenegen_camera(root, eye, target, CITY_FOV, CITY_NEAR, CITY_FAR);
+/* The sun of every city: a low afternoon sun from behind on the right,
+ * so that the buildings on the right throw long shadows across the
+ * street and the crossings let it through. */
+static void scenegen_city_sun(cJSON *root, cJSON **lights) {
     scenegen_vec3(root, "ambient", 0.24, 0.25, 0.28, SCENEGEN_DECIMALS);
-    cJSON *lights = cJSON_CreateArray();
-    scenegen_put(root, "lights", lights);
-    /* A low afternoon sun from behind on the right: the buildings on the
-     * right throw long shadows across the street, the crossings let it
-     * through. */
-    cJSON *sun = scenegen_light(lights, "directional", 1);
+    *lights = cJSON_CreateArray();
+    scenegen_put(root, "lights", *lights);
+    cJSON *sun = scenegen_light(*lights, "directional", 1);
     scenegen_unit(sun, "direction", -0.5, -0.65, -0.55);
     scenegen_vec3(sun, "color", 1, 0.95, 0.85, SCENEGEN_DECIMALS);
+}
+
+/* The eye at eye_z, looking along z's `look` (1 or -1). */
+static void scenegen_city_camera(cJSON *root, double eye_z, double look, double far) {
+    const double eye[3] = {CITY_EYE_X, CITY_EYE_HEIGHT, eye_z};
+    const double target[3] = {CITY_EYE_X, CITY_LOOK_HEIGHT, eye_z + look * CITY_LOOK_DISTANCE};
+    scenegen_camera(root, eye, target, CITY_FOV, CITY_NEAR, far);
+}
+
+/* A spot lamp looking straight down; range 0: none. */
+static void scenegen_spot(cJSON *lights, double x, double y, double z, double intensity, double range,
+                          double inner, double outer) {
+    cJSON *l = scenegen_light(lights, "spot", intensity);
+    scenegen_vec3(l, "position", x, y, z, SCENEGEN_DECIMALS);
+    scenegen_vec3(l, "color", 1, 0.82, 0.6, SCENEGEN_DECIMALS);
+    if (range > 0)
+        scenegen_number(l, "range", range);
+    scenegen_vec3(l, "direction", 0, -1, 0, SCENEGEN_DIRECTION_DECIMALS);
+    scenegen_number(l, "inner_angle", inner);
+    scenegen_number(l, "outer_angle", outer);
+}
+
+/* The camera, the ambient term and the lights: the same in every city. */
+static void scenegen_city_setting(cJSON *root) {
+    scenegen_city_camera(root, CITY_EYE_Z, -1, CITY_FAR);
+    cJSON *lights;
+    scenegen_city_sun(root, &lights);
     /* Street lamps on the kerbs: two down the street in view, the others
      * behind the camera or down side streets, out of view. */
     static const struct {
-        const char *type;
+        bool spot;
         double x, y, z;
     } lamps[] = {
-        {"spot", CITY_PITCH / 2 - 5, 6, 18},
-        {"point", CITY_PITCH / 2 + 5, 4, -14},
-        {"spot", CITY_PITCH / 2 + 5, 6, 78},
-        {"point", -CITY_PITCH * 1.5, 4, CITY_PITCH / 2 + 4},
-        {"spot", CITY_PITCH * 2.5, 6, -CITY_PITCH / 2 - 4},
-        {"point", -CITY_PITCH / 2, 4, CITY_PITCH * 2.5},
+        {true, CITY_PITCH / 2 - 5, 6, 18},
+        {false, CITY_PITCH / 2 + 5, 4, -14},
+        {true, CITY_PITCH / 2 + 5, 6, 78},
+        {false, -CITY_PITCH * 1.5, 4, CITY_PITCH / 2 + 4},
+        {true, CITY_PITCH * 2.5, 6, -CITY_PITCH / 2 - 4},
+        {false, -CITY_PITCH / 2, 4, CITY_PITCH * 2.5},
     };
     for (size_t i = 0; i < sizeof lamps / sizeof *lamps; i++) {
-        cJSON *l = scenegen_light(lights, lamps[i].type, CITY_LAMP_INTENSITY);
+        if (lamps[i].spot) {
+            scenegen_spot(lights, lamps[i].x, lamps[i].y, lamps[i].z, CITY_LAMP_INTENSITY, CITY_LAMP_RANGE,
+                          CITY_SPOT_INNER, CITY_SPOT_OUTER);
+            continue;
+        }
+        cJSON *l = scenegen_light(lights, "point", CITY_LAMP_INTENSITY);
         scenegen_vec3(l, "position", lamps[i].x, lamps[i].y, lamps[i].z, SCENEGEN_DECIMALS);
         scenegen_vec3(l, "color", 1, 0.82, 0.6, SCENEGEN_DECIMALS);
         scenegen_number(l, "range", CITY_LAMP_RANGE);
-        if (strcmp(lamps[i].type, "spot") == 0) {
-            scenegen_vec3(l, "direction", 0, -1, 0, SCENEGEN_DIRECTION_DECIMALS);
-            scenegen_number(l, "inner_angle", CITY_SPOT_INNER);
-            scenegen_number(l, "outer_angle", CITY_SPOT_OUTER);
-        }
     }
+}
+
+/* The street scene's: the eye at the city's edge, the far plane across
+ * it, three unranged spots down the street, on alternate kerbs. */
+static void scenegen_street_setting(cJSON *root) {
+    scenegen_city_camera(root, STREET_EYE_Z, STREET_LOOK, STREET_FAR);
+    cJSON *lights;
+    scenegen_city_sun(root, &lights);
+    static const double lamps[][3] = {
+        {CITY_PITCH / 2 - 5, 8, STREET_EYE_Z + STREET_LOOK * 25},
+        {CITY_PITCH / 2 + 5, 8, STREET_EYE_Z + STREET_LOOK * 70},
+        {CITY_PITCH / 2 - 5, 8, STREET_EYE_Z + STREET_LOOK * 120}};
+    for (size_t i = 0; i < sizeof lamps / sizeof *lamps; i++)
+        scenegen_spot(lights, lamps[i][0], lamps[i][1], lamps[i][2], STREET_LAMP_INTENSITY, 0, STREET_SPOT_INNER,
+                      STREET_SPOT_OUTER);
 }
 
 /* The block `index` in ring order: ring 0 is block (0, 0), ring r the 8r
@@ -302,9 +356,9 @@ static void scenegen_lot(cJSON *objects, uint64_t *rng, double cx, double cz, in
     scenegen_vec3(o, "color", color[0], color[1], color[2], SCENEGEN_DECIMALS);
 }
 
-static cJSON *scenegen_city(int count) {
+static cJSON *scenegen_city(int count, void (*setting)(cJSON *root)) {
     cJSON *root = cJSON_CreateObject();
-    scenegen_city_setting(root);
+    setting(root);
     cJSON *objects = cJSON_CreateArray();
     scenegen_put(root, "objects", objects);
     cJSON *mesh, *ground = scenegen_object(objects, "ground", "plane", &mesh);
@@ -388,9 +442,10 @@ static bool scenegen_run(const char *dir) {
     for (size_t i = 0; ok && i < sizeof scenegen_city_counts / sizeof *scenegen_city_counts; i++) {
         char name[32];
         snprintf(name, sizeof name, "city_%d.json", scenegen_city_counts[i]);
-        ok = scenegen_emit(scenegen_city(scenegen_city_counts[i]), dir, name);
+        ok = scenegen_emit(scenegen_city(scenegen_city_counts[i], scenegen_city_setting), dir, name);
     }
-    return ok && scenegen_emit(scenegen_dense(), dir, "dense.json");
+    return ok && scenegen_emit(scenegen_city(STREET_COUNT, scenegen_street_setting), dir, "street.json") &&
+           scenegen_emit(scenegen_dense(), dir, "dense.json");
 }
 
 int main(int argc, char **argv) {
@@ -405,7 +460,8 @@ int main(int argc, char **argv) {
     if (status == FLAGS_HELP_ASKED) {
         printf("usage: %s [flags]\n"
                "Writes the generated scenes, the same bytes on every run: city_100, city_300,\n"
-               "city_1000 and city_3000.json (that many objects plus the ground) and dense.json.\n",
+               "city_1000 and city_3000.json (that many objects plus the ground), street.json\n"
+               "(city_1000 seen to the far side, unranged lamps) and dense.json.\n",
                program);
         flags_print_help(stdout, params, count, 2, 0);
         return 0;

@@ -196,6 +196,8 @@ static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_sett
                                    const shadow_map *m) {
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     glViewport(0, 0, m->size, m->size);
+    glDepthFunc(GL_LESS); /* after the camera's pre-pass */
+    glDepthMask(GL_TRUE);
     if (settings->no_slope_bias) {
         glDisable(GL_POLYGON_OFFSET_FILL);
     } else {
@@ -508,9 +510,10 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
     r->closed = calloc(n + 1, sizeof *r->closed);
+    r->masks = malloc(layers * sizeof *r->masks);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes || !r->closed) {
+    if (!sets || !r->receiver_boxes || !r->closed || !r->masks) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
     }
@@ -592,6 +595,7 @@ void shadow_map_destroy(shadow_map_renderer *r) {
     free(r->needed[0]);
     free(r->receiver_boxes);
     free(r->closed);
+    free(r->masks);
     memset(r, 0, sizeof *r);
 }
 
@@ -790,6 +794,11 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     bool fitted[SCENE_MAX_LIGHTS] = {false};
     int size = shadow_map_settings_size(settings);
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
+    /* The camera's depth first: the shading pass tests against it (each
+     * visible pixel filtered once), and the maps cull the casters it
+     * shows hidden (technique_see). */
+    render_depth_prepass(f->gpu, f->view, f->in_view);
+    technique_see(f);
     depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
     const technique_frame *fit_frame = shadow_map_fit_frame(f);
     for (int l = 0; l < s->light_count && fit_frame->receiver_count > 0; l++) {
@@ -816,9 +825,6 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     depth_use_camera(f->view);
-    /* After a depth pre-pass, one shading pass: the filter runs once per
-     * visible pixel and light that adds to it. */
-    render_depth_prepass(f->gpu, f->view, f->in_view);
     shadow_map_camera_key key = shadow_map_settings_key(settings);
     for (int l = 0; l < s->light_count; l++) {
         if (fitted[l] && shadow_map_soft_unit(r, settings, &s->lights[l], l))

@@ -564,6 +564,7 @@ typedef struct shadow_map_renderer {
     int object_count;                      /* the scene's, at init: the sets' size */
     bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
     float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
+    light_mask *masks;                     /* one light's layers' masks of the visible pixels */
     bool *closed;                          /* per object: a caster whose mesh is closed */
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
      * frame), and those light sample_light is measured at
@@ -678,8 +679,11 @@ const char *shadow_map_area_light_text(const shadow_map_settings *settings, cons
  * no bound from them) and by the surfaces of the receiver boxes (lo, hi). */
 void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *setup, const float (*points)[3],
                             int point_count, const float (*boxes)[2][3], int box_count, shadow_map_reads *out);
-/* The caster box lo..hi may change a read of the layer. */
-bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi);
+/* The caster box lo..hi may change a read of the layer: by the reads, and
+ * by the mask of the visible pixels' reads where there is one (NULL:
+ * none; light_mask.h). */
+bool shadow_map_caster_read(const shadow_map_reads *reads, const light_mask *mask, const mat4 layer, const vec3 lo,
+                            const vec3 hi);
 /* The boxes of f's receivers that meet the view, clipped to light's range
  * (at most the scene's object count); returns how many. */
 int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]);

@@ -1,6 +1,7 @@
 /* shadow_map: which casters a layer needs (see shadow_map.h, "Caster
  * culling"). Pure math on the scene: no GL. */
 #include <math.h>
+#include <string.h>
 
 #include "shadow_map.h"
 
@@ -22,9 +23,6 @@
 /* Clip w at or below this fraction of a point's clip coordinates: the
  * point is at the map's centre of projection, where it sees everything. */
 #define SHADOW_MAP_MIN_W FRUSTUM_FLOAT_TOLERANCE
-/* A box face clipped by the layer's five planes has at most 4 + 5 corners. */
-#define SHADOW_MAP_CLIP_PLANES 5
-#define SHADOW_MAP_POLYGON_MAX (4 + SHADOW_MAP_CLIP_PLANES)
 
 bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light) {
     return light->radius > 0 && settings->soft == SHADOW_MAP_SOFT_PCSS &&
@@ -119,63 +117,31 @@ static bool shadow_map_reads_add(shadow_map_reads *r, const mat4 layer, const sh
     return true;
 }
 
-/* The layer's planes a reading point lies inside (clip coordinates,
- * world-homogeneous: plane . (p, 1) >= 0): its sides, widened by `widen`
- * in NDC, and w >= 0. Near and far are no limit: a receiver beyond the far
- * plane compares depth 1 and is shadowed by any caster. */
-static void shadow_map_layer_planes(const mat4 layer, float widen, vec4 planes[SHADOW_MAP_CLIP_PLANES]) {
-    float side = 1 + widen + FRUSTUM_CLIP_TOLERANCE;
-    for (int j = 0; j < 4; j++) {
-        float w = layer[j][3], x = layer[j][0], y = layer[j][1];
-        planes[0][j] = side * w - x;
-        planes[1][j] = side * w + x;
-        planes[2][j] = side * w - y;
-        planes[3][j] = side * w + y;
-        planes[4][j] = w;
-    }
+/* A cube's read body pushed away from the light, as shadow_map_reads_add
+ * pushes a point: the same directions, the depth a tap compares. */
+static void shadow_map_push_body(const shadow_map_read_setup *s, float corners[8][3]) {
+    float stretch = 1 + shadow_map_read_margin(s);
+    for (int c = 0; s->cube && c < 8; c++)
+        for (int k = 0; k < 3; k++)
+            corners[c][k] = s->center[k] + stretch * (corners[c][k] - s->center[k]);
 }
 
-/* Sutherland-Hodgman: the polygon's part inside one plane. */
-static int shadow_map_clip_polygon(const float (*in)[3], int n, const vec4 plane, float (*out)[3]) {
-    int m = 0;
-    for (int i = 0; i < n; i++) {
-        const float *a = in[i], *b = in[(i + 1) % n];
-        float da = glm_vec3_dot((float *)plane, (float *)a) + plane[3];
-        float db = glm_vec3_dot((float *)plane, (float *)b) + plane[3];
-        if (da >= 0)
-            glm_vec3_copy((float *)a, out[m++]);
-        if ((da >= 0) != (db >= 0))
-            glm_vec3_lerp((float *)a, (float *)b, da / (da - db), out[m++]);
-    }
-    return m;
-}
-
-/* Adds the part of the box's surface inside the layer's planes. Every line
- * through the centre of projection inside a convex body leaves it through
- * its surface, at its least and greatest depth, and the side planes and
- * w = 0 all pass through that centre: so the surface's part has the same
- * rectangle and depths as the body's. */
+/* Adds the box's part inside the layer's sides widened by `widen`
+ * (light_mask_body_part), each of its points as a receiver would read it. */
 static bool shadow_map_reads_add_box(shadow_map_reads *r, const mat4 layer, const shadow_map_read_setup *s,
-                                     const vec4 planes[SHADOW_MAP_CLIP_PLANES], const float lo[3],
-                                     const float hi[3]) {
-    /* The six faces by their corners' numbers (bit k: hi in axis k), in order around each. */
-    static const int faces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                    {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-    vec3 corners[8];
+                                     float widen, const float lo[3], const float hi[3]) {
+    float corners[8][3];
     frustum_box_corners(lo, hi, corners);
-    for (int f = 0; f < 6; f++) {
-        float a[SHADOW_MAP_POLYGON_MAX][3], b[SHADOW_MAP_POLYGON_MAX][3];
-        int n = 4;
-        for (int i = 0; i < 4; i++)
-            glm_vec3_copy(corners[faces[f][i]], a[i]);
-        for (int p = 0; p < SHADOW_MAP_CLIP_PLANES && n > 0; p++) {
-            n = shadow_map_clip_polygon((const float(*)[3])a, n, planes[p], b);
-            for (int i = 0; i < n; i++)
-                glm_vec3_copy(b[i], a[i]);
+    shadow_map_push_body(s, corners);
+    light_mask_part part = light_mask_body_part(layer, widen, (const float(*)[3])corners);
+    if (part.kind == LIGHT_MASK_PART_WHOLE)
+        return false;
+    if (part.kind == LIGHT_MASK_PART_SOME) {
+        for (int k = 0; k < 2; k++) {
+            r->lo[k] = fminf(r->lo[k], part.lo[k]);
+            r->hi[k] = fmaxf(r->hi[k], part.hi[k]);
         }
-        for (int i = 0; i < n; i++)
-            if (!shadow_map_reads_add(r, layer, s, a[i]))
-                return false;
+        r->max_depth = fmaxf(r->max_depth, part.deepest);
     }
     return true;
 }
@@ -204,12 +170,11 @@ void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *s, co
             shadow_map_reads_whole(&by_points);
             break;
         }
-    vec4 planes[SHADOW_MAP_CLIP_PLANES];
     /* A cube's taps read on across its edges: a point beside the face reads it. */
-    shadow_map_layer_planes(layer, s->cube ? margin : 0, planes);
+    float widen = s->cube ? margin : 0;
     shadow_map_reads_start(&by_boxes);
     for (int i = 0; i < box_count; i++)
-        if (!shadow_map_reads_add_box(&by_boxes, layer, s, planes, boxes[i][0], boxes[i][1])) {
+        if (!shadow_map_reads_add_box(&by_boxes, layer, s, widen, boxes[i][0], boxes[i][1])) {
             shadow_map_reads_whole(&by_boxes);
             break;
         }
@@ -222,25 +187,18 @@ void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *s, co
     out->empty = !(out->lo[0] <= out->hi[0] && out->lo[1] <= out->hi[1]);
 }
 
-bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi) {
+bool shadow_map_caster_read(const shadow_map_reads *reads, const light_mask *mask, const mat4 layer, const vec3 lo,
+                            const vec3 hi) {
     if (reads->empty || frustum_box_outside(layer, lo, hi))
         return false;
-    vec3 corners[8];
+    float corners[8][3];
     frustum_box_corners(lo, hi, corners);
-    float clo[2] = {INFINITY, INFINITY}, chi[2] = {-INFINITY, -INFINITY}, nearest = INFINITY;
-    for (int c = 0; c < 8; c++) {
-        vec4 p;
-        shadow_map_clip_point(layer, corners[c], p);
-        if (p[3] <= SHADOW_MAP_MIN_W * (fabsf(p[0]) + fabsf(p[1]) + fabsf(p[2])))
-            return true; /* around or behind the centre of projection, and not wholly outside */
-        for (int k = 0; k < 2; k++) {
-            clo[k] = fminf(clo[k], p[k] / p[3]);
-            chi[k] = fmaxf(chi[k], p[k] / p[3]);
-        }
-        nearest = fminf(nearest, p[2] / p[3]);
-    }
-    return clo[0] <= reads->hi[0] && chi[0] >= reads->lo[0] && clo[1] <= reads->hi[1] && chi[1] >= reads->lo[1] &&
-           nearest <= reads->max_depth + SHADOW_MAP_DEPTH_TOLERANCE;
+    light_mask_part part = light_mask_body_part(layer, 0, (const float(*)[3])corners);
+    if (part.kind != LIGHT_MASK_PART_SOME)
+        return part.kind == LIGHT_MASK_PART_WHOLE; /* around or behind the centre of projection */
+    return part.lo[0] <= reads->hi[0] && part.hi[0] >= reads->lo[0] && part.lo[1] <= reads->hi[1] &&
+           part.hi[1] >= reads->lo[1] && part.nearest <= reads->max_depth + SHADOW_MAP_DEPTH_TOLERANCE &&
+           (!mask || light_mask_box_read(mask, lo, hi));
 }
 
 int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]) {
@@ -263,6 +221,20 @@ int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxe
 }
 
 /* ---- the plan of a light's depth pass ---- */
+
+/* The mask of where the visible pixels read the layer (light_mask.h):
+ * each slab grown by the kernel's reach, a cube's pushed away from the
+ * light as shadow_map_reads_add pushes a point. */
+static void shadow_map_layer_mask(light_mask *mask, const mat4 layer, const shadow_map_read_setup *s,
+                                  const visible *seen) {
+    light_mask_start(mask, layer, shadow_map_read_margin(s), s->any_depth);
+    for (int i = 0; i < seen->count; i++) {
+        float slab[8][3];
+        memcpy(slab, seen->slabs[i], sizeof slab);
+        shadow_map_push_body(s, slab);
+        light_mask_add(mask, (const float(*)[3])slab);
+    }
+}
 
 /* Light l's map culls its casters (see the top of shadow_map.h). */
 static bool shadow_map_culls(const shadow_map_settings *st, const technique_frame *f, int l) {
@@ -294,6 +266,9 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
     for (int layer = 0; cull && layer < m->layer_count; layer++)
         shadow_map_layer_reads(m->layer_view_projection[layer], &setup, points, f->receiver_count,
                                (const float(*)[2][3])r->receiver_boxes, box_count, &reads[layer]);
+    const visible *seen = cull ? technique_seen_pixels(f) : NULL;
+    for (int layer = 0; seen && layer < m->layer_count; layer++)
+        shadow_map_layer_mask(&r->masks[layer], m->layer_view_projection[layer], &setup, seen);
     for (int i = 0; i < s->object_count; i++) {
         bool candidate = s->objects[i].casts && (!m->casters || m->casters[i]), drawn = false;
         vec3 lo = GLM_VEC3_ZERO_INIT, hi = GLM_VEC3_ZERO_INIT;
@@ -301,7 +276,8 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
             scene_object_world_bounds(&s->objects[i], lo, hi);
         for (int layer = 0; layer < m->layer_count; layer++) {
             r->needed[layer][i] =
-                candidate && (!cull || shadow_map_caster_read(&reads[layer], m->layer_view_projection[layer], lo, hi));
+                candidate && (!cull || shadow_map_caster_read(&reads[layer], seen ? &r->masks[layer] : NULL,
+                                                             m->layer_view_projection[layer], lo, hi));
             drawn = drawn || r->needed[layer][i];
         }
         if (candidate && drawn)

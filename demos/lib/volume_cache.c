@@ -56,7 +56,8 @@ static bool volume_cache_reserve(volume_cache *c, size_t count, size_t *bytes, s
     unsigned grown;
     glGenBuffers(1, &grown);
     glBindBuffer(GL_COPY_WRITE_BUFFER, grown);
-    glBufferData(GL_COPY_WRITE_BUFFER, (GLsizeiptr)(capacity * VOLUME_CACHE_VERTEX_BYTES), NULL, GL_STATIC_DRAW);
+    /* Refilled whenever its light moves. */
+    glBufferData(GL_COPY_WRITE_BUFFER, (GLsizeiptr)(capacity * VOLUME_CACHE_VERTEX_BYTES), NULL, GL_DYNAMIC_DRAW);
     if (c->used > 0) {
         glBindBuffer(GL_COPY_READ_BUFFER, c->buffer);
         glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0,

@@ -1,0 +1,47 @@
+/* visible: what the camera sees, read back from the depth buffer after
+ * the frame's depth pre-pass, as small convex bodies that hold every
+ * visible point, for culling what cannot reach them (light_mask.h).
+ *
+ * The frame is cut into VISIBLE_TILE_PIXELS-square tiles. A tile with a
+ * pixel nearer than the depth buffer's clear value is a slab: the tile's
+ * square on the screen between the least and the greatest depth of its
+ * pixels, each widened by VISIBLE_DEPTH_STEPS steps of the buffer (what
+ * the rasterizer's rounding moves a tested depth by), unprojected into
+ * world space in double from the depth row the camera rasterized with.
+ * A deep tile (its farthest pixel beyond VISIBLE_SPLIT_RATIO times its
+ * nearest: a facade's edge against the street's far end) is cut by
+ * distance into VISIBLE_DEPTH_BINS bins, even in its logarithm, each bin
+ * that holds a pixel a slab of its own depths. Every visible point (a
+ * pixel's centre at its stored depth) lies in a slab of its tile; what is
+ * drawn of the sky lies in none.
+ *
+ * One glReadPixels of the depth a frame: on a GPU it waits for the
+ * pre-pass, the price of skipping what the pre-pass shows hidden.
+ */
+#ifndef VISIBLE_H
+#define VISIBLE_H
+
+#include <stdbool.h>
+
+#include "camera.h"
+
+#define VISIBLE_TILE_PIXELS 16
+#define VISIBLE_DEPTH_STEPS 8
+#define VISIBLE_SPLIT_RATIO 1.25
+#define VISIBLE_DEPTH_BINS 8
+
+/* Zero is an empty one. */
+typedef struct visible {
+    int count; /* slabs this frame */
+    int capacity;
+    float (*slabs)[8][3]; /* corners numbered as frustum_box_corners' */
+    float *depth;         /* the frame's window depths, bottom row first */
+    int width, height;
+} visible;
+
+/* Reads the bound framebuffer's depth (width x height, drawn through
+ * view) into v's slabs; false after printing why (out of memory). */
+bool visible_read(visible *v, const camera_view *view, int width, int height);
+void visible_destroy(visible *v);
+
+#endif
