@@ -127,6 +127,9 @@ endif
 # shadow maps' whole sweeps (PCSS, the moment filters, the hard kernels) on
 # the area lights' scenes and the flat boxes, still and with the lights
 # moving: the soft ruler's figures (README, "Soft shadows from area lights").
+# Then the scenes where what is hidden, not what is outside, is to skip:
+# the city across from its edge with unranged lamps, and the engines.
+BENCH_HIDDEN := assets/scenes/street.json assets/scenes/engine.json
 BENCH_CITIES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000)
 BENCH_SOFT := $(patsubst %,assets/scenes/%.json,soft_table soft_sun flat_boxes flat_boxes_point)
 BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
@@ -146,6 +149,10 @@ bench: $(PROGRAMS)
 		assets/scenes/dense.json
 	$(BUILD)/bench $(BENCH_QUICK) $(BENCH_MAPS) --motion static --out out/bench/soft $(BENCH_SOFT)
 	$(BUILD)/bench $(BENCH_QUICK) $(BENCH_MAPS) --motion light --out out/bench/soft-light $(BENCH_SOFT)
+	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion static --out out/bench/hidden \
+		$(BENCH_HIDDEN)
+	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion light --out out/bench/hidden-light \
+		$(BENCH_HIDDEN)
 
 # Every case of build/stress's table, every technique configuration
 # against the reference: out/stress/table.md; fails unless every row

@@ -56,6 +56,10 @@
  *   visible receivers' bounds; see volumes_caster_needed for why exact);
  * - volumes that miss the view draw none (volume_mesh_misses_view: no
  *   fragment of them would be drawn), counted as culled;
+ * - after technique_see, a volume counts only in the pixels and depths
+ *   where what its shadow may fall on was seen (technique_caster_seen;
+ *   scissor and depth bounds): elsewhere its count is 0 on every visible
+ *   pixel;
  * - the CPU volumes are kept per light, built when a caster is first
  *   needed after the light moved and drawn from there until it moves
  *   again (objects never move; volume_draw.h).
@@ -63,6 +67,7 @@
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -201,9 +206,48 @@ static bool volumes_caster_needed(const technique_frame *f, const technique_hull
     return technique_caster_needed(f, hull, i);
 }
 
+/* Where the light's volumes may count (the scissor's rectangle x, y,
+ * width, height; the depth bounds, where on) and where caster i's may:
+ * the part of that where what its shadow may fall on was seen
+ * (technique_caster_seen), an empty rectangle where nowhere. False: the
+ * light's own, unchanged (no masks this frame). */
+typedef struct volumes_bounds {
+    int rect[4];
+    bool bounded;
+    float depth[2];
+} volumes_bounds;
+
+static bool volumes_caster_bounds(const technique_frame *f, const technique_hull *hull, int i,
+                                  const volumes_bounds *light, volumes_bounds *out) {
+    light_mask_seen seen;
+    if (!hull || !technique_caster_seen(f, hull, i, &seen))
+        return false;
+    *out = *light;
+    int x0 = glm_max(light->rect[0], (int)floorf(seen.lo[0])), y0 = glm_max(light->rect[1], (int)floorf(seen.lo[1]));
+    int x1 = glm_min(light->rect[0] + light->rect[2], (int)ceilf(seen.hi[0]));
+    int y1 = glm_min(light->rect[1] + light->rect[3], (int)ceilf(seen.hi[1]));
+    out->rect[0] = x0;
+    out->rect[1] = y0;
+    out->rect[2] = glm_max(x1 - x0, 0);
+    out->rect[3] = glm_max(y1 - y0, 0);
+    out->depth[0] = fmaxf(light->depth[0], seen.lo[2]);
+    out->depth[1] = fminf(light->depth[1], seen.hi[2]);
+    f->counts->casters_narrowed[hull->light] +=
+        (int64_t)out->rect[2] * out->rect[3] < (int64_t)light->rect[2] * light->rect[3];
+    return true;
+}
+
+static void volumes_use_bounds(const volumes_bounds *b) {
+    glScissor(b->rect[0], b->rect[1], b->rect[2], b->rect[3]);
+    if (b->bounded)
+        glDepthBoundsEXT(b->depth[0], glm_max(b->depth[0], b->depth[1]));
+}
+
 /* Stencil = number of volumes of light l around each visible pixel, of
- * the casters `needed` (NULL: every caster). */
-static void volumes_count(const technique_frame *f, int l, const float light[4], const bool *needed) {
+ * the casters `needed` (NULL: every caster), each within its own bounds
+ * (volumes_caster_bounds) where hull is given, else the light's. */
+static void volumes_count(const technique_frame *f, int l, const float light[4], const bool *needed,
+                          const technique_hull *hull, const volumes_bounds *bounds) {
     const scene *s = f->gpu->scene;
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
@@ -225,7 +269,17 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
         zfail += use_zfail;
         zpass += !use_zfail;
         volumes_stencil_ops(use_zfail);
-        volume_draw_caster(&volumes.draw, f, l, i, light, volumes.settings.silhouette == VOLUMES_GPU, use_zfail);
+        /* Forced z-pass from inside a volume counts it on pixels outside
+         * it too: that volume keeps the light's bounds. */
+        bool counts_inside = use_zfail || volume_mesh_zpass_safe(lo, hi, light, near_rectangle);
+        volumes_bounds own;
+        bool narrowed = counts_inside && volumes_caster_bounds(f, hull, i, bounds, &own);
+        if (narrowed)
+            volumes_use_bounds(&own);
+        if (!narrowed || (own.rect[2] > 0 && own.rect[3] > 0))
+            volume_draw_caster(&volumes.draw, f, l, i, light, volumes.settings.silhouette == VOLUMES_GPU, use_zfail);
+        if (narrowed)
+            volumes_use_bounds(bounds);
     }
     glDisable(GL_DEPTH_CLAMP);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -239,21 +293,19 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
 
 /* Turns on the depth bounds of the hull's light (volume_mesh_depth_bounds:
  * the visible receivers within its range, hull->lo..hi) where the
- * extension is and the frame's receivers are all there (not cut short);
- * false: left off. */
-static bool volumes_depth_bounds(const technique_frame *f, const technique_hull *hull) {
+ * extension is and the frame's receivers are all there (not cut short),
+ * into b; b->bounded false: left off. */
+static void volumes_depth_bounds(const technique_frame *f, const technique_hull *hull, volumes_bounds *b) {
     /* The bounds are window depths of GL's standard convention; with
      * reversed depth they are left off (they only save fill). */
-    if (!volumes.has_depth_bounds || volumes.settings.no_depth_bounds || f->view->reversed_depth ||
-        f->receiver_count >= TECHNIQUE_MAX_RECEIVER_POINTS || hull->empty)
-        return false;
-    float bounds[2];
-    if (!volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, hull->lo, hull->hi,
-                                  bounds))
-        return false;
+    b->bounded = volumes.has_depth_bounds && !volumes.settings.no_depth_bounds && !f->view->reversed_depth &&
+                 f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS && !hull->empty &&
+                 volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, hull->lo,
+                                          hull->hi, b->depth);
+    if (!b->bounded)
+        return;
     glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-    glDepthBoundsEXT(bounds[0], bounds[1]);
-    return true;
+    glDepthBoundsEXT(b->depth[0], b->depth[1]);
 }
 
 /* ---- lighting ---- */
@@ -270,7 +322,7 @@ static const technique_stencil_lit volumes_lit = {
 static void volumes_draw_counts(const technique_frame *f, const float light[4]) {
     glEnable(GL_STENCIL_TEST);
     glClear(GL_STENCIL_BUFFER_BIT);
-    volumes_count(f, 0, light, NULL);
+    volumes_count(f, 0, light, NULL, NULL, NULL);
     volume_overlay_counts(&volumes.draw, VOLUMES_STENCIL_MASK);
 }
 
@@ -307,13 +359,14 @@ static void volumes_render(const technique_frame *f) {
             volumes.needed[i] = volumes_caster_needed(f, &hull, i, light, (const vec3 *)near_rectangle);
         if (exact)
             volume_receivers_depth(&volumes.receivers, f, true);
+        volumes_bounds bounds = {.rect = {receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]}};
         glEnable(GL_SCISSOR_TEST);
         glScissor(receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]);
         glClear(GL_STENCIL_BUFFER_BIT);
         glEnable(GL_STENCIL_TEST);
-        bool bounded = volumes_depth_bounds(f, &hull);
-        volumes_count(f, l, light, volumes.needed);
-        if (bounded)
+        volumes_depth_bounds(f, &hull, &bounds);
+        volumes_count(f, l, light, volumes.needed, &hull, &bounds);
+        if (bounds.bounded)
             glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
         if (exact) { /* the depth the shading passes are equal to */
             glDisable(GL_STENCIL_TEST);

@@ -62,7 +62,7 @@ static void patch_reads(const mat4 layer, const shadow_map_settings *settings, s
 }
 
 static bool caster_needed(const mat4 layer, const shadow_map_reads *reads, vec3 lo, vec3 hi) {
-    return shadow_map_caster_read(reads, NULL, layer, lo, hi);
+    return shadow_map_caster_read(reads, layer, lo, hi);
 }
 
 static void test_caster_cases(void **state) {

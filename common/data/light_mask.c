@@ -123,14 +123,25 @@ light_mask_part light_mask_body_part(const mat4 layer, float widen, const float 
     return part;
 }
 
-void light_mask_start(light_mask *m, const mat4 layer, float grow, bool any_depth) {
+static const light_mask_seen light_mask_nothing = LIGHT_MASK_SEEN_NOTHING;
+
+static void light_mask_seen_grow(light_mask_seen *into, const light_mask_seen *by) {
+    glm_vec3_minv(into->lo, (float *)by->lo, into->lo);
+    glm_vec3_maxv(into->hi, (float *)by->hi, into->hi);
+}
+
+void light_mask_start(light_mask *m, const mat4 layer, float grow, bool any_depth, bool keeps_seen) {
     glm_mat4_copy((vec4 *)layer, m->layer);
     m->grow = grow;
     m->any_depth = any_depth;
     m->whole = false;
     m->empty = true;
-    for (int i = 0; i < LIGHT_MASK_CELLS * LIGHT_MASK_CELLS; i++)
+    m->keeps_seen = keeps_seen;
+    for (int i = 0; i < LIGHT_MASK_CELLS * LIGHT_MASK_CELLS; i++) {
         m->deepest[i] = -INFINITY;
+        if (keeps_seen)
+            m->seen[i] = light_mask_nothing;
+    }
 }
 
 /* The cells from NDC lo to hi on one axis, clamped to the grid; false
@@ -145,7 +156,7 @@ static bool light_mask_cells(float lo, float hi, int *first, int *last) {
     return true;
 }
 
-void light_mask_add(light_mask *m, const float corners[8][3]) {
+void light_mask_add(light_mask *m, const float corners[8][3], const light_mask_seen *seen) {
     if (m->whole)
         return;
     light_mask_part part = light_mask_body_part(m->layer, m->grow, corners);
@@ -160,31 +171,55 @@ void light_mask_add(light_mask *m, const float corners[8][3]) {
     float depth = m->any_depth ? INFINITY : part.deepest;
     for (int y = y0; y <= y1; y++)
         for (int x = x0; x <= x1; x++) {
-            float *cell = &m->deepest[y * LIGHT_MASK_CELLS + x];
-            *cell = fmaxf(*cell, depth);
+            int cell = y * LIGHT_MASK_CELLS + x;
+            m->deepest[cell] = fmaxf(m->deepest[cell], depth);
+            if (m->keeps_seen)
+                light_mask_seen_grow(&m->seen[cell], seen);
         }
     m->empty = false;
 }
 
-bool light_mask_box_read(const light_mask *m, const vec3 lo, const vec3 hi) {
-    if (m->whole)
+/* light_mask_box_read, and with `out` the union of the seen bounds of
+ * every cell that reads the box. */
+static bool light_mask_box(const light_mask *m, const vec3 lo, const vec3 hi, light_mask_seen *out) {
+    static const light_mask_seen everything = {{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+    if (m->whole) {
+        if (out)
+            *out = everything;
         return true;
+    }
     if (m->empty)
         return false;
     float corners[8][3];
     frustum_box_corners(lo, hi, corners);
     light_mask_part part = light_mask_body_part(m->layer, 0, (const float(*)[3])corners);
-    if (part.kind != LIGHT_MASK_PART_SOME)
+    if (part.kind != LIGHT_MASK_PART_SOME) {
+        if (part.kind == LIGHT_MASK_PART_WHOLE && out)
+            *out = everything;
         return part.kind == LIGHT_MASK_PART_WHOLE;
+    }
     int x0, x1, y0, y1;
     if (!light_mask_cells(part.lo[0], part.hi[0], &x0, &x1) || !light_mask_cells(part.lo[1], part.hi[1], &y0, &y1))
         return false;
     float nearest = part.nearest - LIGHT_MASK_DEPTH_TOLERANCE;
+    bool read = false;
     for (int y = y0; y <= y1; y++)
-        for (int x = x0; x <= x1; x++)
-            if (m->deepest[y * LIGHT_MASK_CELLS + x] >= nearest)
+        for (int x = x0; x <= x1; x++) {
+            int cell = y * LIGHT_MASK_CELLS + x;
+            if (m->deepest[cell] < nearest)
+                continue;
+            if (!out)
                 return true;
-    return false;
+            read = true;
+            light_mask_seen_grow(out, &m->seen[cell]);
+        }
+    return read;
+}
+
+bool light_mask_box_read(const light_mask *m, const vec3 lo, const vec3 hi) { return light_mask_box(m, lo, hi, NULL); }
+
+bool light_mask_box_seen(const light_mask *m, const vec3 lo, const vec3 hi, light_mask_seen *out) {
+    return light_mask_box(m, lo, hi, out);
 }
 
 /* The light-view bounds of every corner of the bodies. */

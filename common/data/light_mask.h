@@ -42,13 +42,24 @@
 /* The layers of light_mask_layers: a cube's six faces at most. */
 #define LIGHT_MASK_MAX_LAYERS 6
 
+/* Where a read lies in the picture it was seen in: its pixel rectangle
+ * (x, y) and window depths (z), lo..hi. */
+typedef struct light_mask_seen {
+    float lo[3], hi[3];
+} light_mask_seen;
+/* Nothing seen: where a union starts. */
+#define LIGHT_MASK_SEEN_NOTHING {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}}
+
 typedef struct light_mask {
     mat4 layer; /* world -> the layer's clip space */
     float grow; /* NDC: how far every read's rectangle grows */
     bool any_depth;
     bool whole; /* a read saw the whole layer: every box is needed */
     bool empty; /* nothing read yet */
+    bool keeps_seen; /* the cells keep where their reads were seen */
     float deepest[LIGHT_MASK_CELLS * LIGHT_MASK_CELLS];
+    /* With keeps_seen: per cell, the union of its reads' light_mask_seen. */
+    light_mask_seen seen[LIGHT_MASK_CELLS * LIGHT_MASK_CELLS];
 } light_mask;
 
 /* Where a convex body lies in a layer (light_mask_body_part). */
@@ -70,13 +81,20 @@ typedef struct light_mask_part {
  * and only where a corner lies at or behind the centre. */
 light_mask_part light_mask_body_part(const mat4 layer, float widen, const float corners[8][3]);
 
-/* An empty mask over `layer`. */
-void light_mask_start(light_mask *m, const mat4 layer, float grow, bool any_depth);
-/* Adds the convex body with these corners to what the layer reads. */
-void light_mask_add(light_mask *m, const float corners[8][3]);
+/* An empty mask over `layer`; keeps_seen: its cells keep where their
+ * reads were seen (light_mask_box_seen). */
+void light_mask_start(light_mask *m, const mat4 layer, float grow, bool any_depth, bool keeps_seen);
+/* Adds the convex body with these corners to what the layer reads; seen:
+ * where it was seen (NULL without keeps_seen). */
+void light_mask_add(light_mask *m, const float corners[8][3], const light_mask_seen *seen);
 /* Whether the box lo..hi has a part in a read cell at or before its
  * deepest depth (see top). */
 bool light_mask_box_read(const light_mask *m, const vec3 lo, const vec3 hi);
+/* The same, and where what it may shadow was seen: the union of the seen
+ * bounds of those cells is grown by theirs into *out (a box it shadows
+ * nothing through leaves it as it was). With keeps_seen; a mask that saw
+ * its whole layer grows *out to everything (infinite bounds). */
+bool light_mask_box_seen(const light_mask *m, const vec3 lo, const vec3 hi, light_mask_seen *out);
 
 /* The layers that cover everything `light` shines on, for a light with no
  * map of its own: a directional light's one orthographic layer, fitted

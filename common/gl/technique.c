@@ -196,15 +196,18 @@ static void technique_light_masks(technique_seen *seen, const scene_light *light
             memcpy(swap, slabs[count], sizeof swap);
             memcpy(slabs[count], slabs[i], sizeof swap);
             memcpy(slabs[i], swap, sizeof swap);
+            light_mask_seen seen_swap = seen->pixels.seen[count];
+            seen->pixels.seen[count] = seen->pixels.seen[i];
+            seen->pixels.seen[i] = seen_swap;
             count++;
         }
     mat4 layers[LIGHT_MASK_MAX_LAYERS];
     seen->mask_count[l] = light_mask_layers(light, (const float(*)[8][3])slabs, count, layers);
     for (int m = 0; m < seen->mask_count[l]; m++) {
         light_mask *mask = &seen->masks[l][m];
-        light_mask_start(mask, layers[m], 0, false);
+        light_mask_start(mask, layers[m], 0, false, true);
         for (int i = 0; i < count; i++)
-            light_mask_add(mask, (const float(*)[3])slabs[i]);
+            light_mask_add(mask, (const float(*)[3])slabs[i], &seen->pixels.seen[i]);
     }
     seen->masks_made |= RENDER_LIGHT_BIT(l);
 }
@@ -256,6 +259,7 @@ bool technique_caster_needed(const technique_frame *f, const technique_hull *hul
             needed = false;
             for (int m = 0; m < hull->mask_count && !needed; m++)
                 needed = light_mask_box_read(&hull->masks[m], lo, hi);
+            f->counts->casters_hidden[hull->light] += !needed;
         }
     }
     if (needed)
@@ -263,6 +267,17 @@ bool technique_caster_needed(const technique_frame *f, const technique_hull *hul
     else
         f->counts->casters_culled[hull->light]++;
     return needed;
+}
+
+bool technique_caster_seen(const technique_frame *f, const technique_hull *hull, int object, light_mask_seen *out) {
+    if (!hull->masks)
+        return false;
+    vec3 lo, hi;
+    scene_object_world_bounds(&f->gpu->scene->objects[object], lo, hi);
+    *out = (light_mask_seen)LIGHT_MASK_SEEN_NOTHING;
+    for (int m = 0; m < hull->mask_count; m++)
+        light_mask_box_seen(&hull->masks[m], lo, hi, out);
+    return true;
 }
 
 /* ---- the host ---- */
@@ -281,6 +296,7 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
     h->gpu = gpu;
     h->skips = skips;
     h->started = false;
+    h->hidden_idle = 0;
     return technique_init(t, gpu);
 }
 
@@ -483,7 +499,7 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
                          .in_view = h->gpu->in_view,
                          .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
                          .seen = render_skip_on(h->skips, h->skips->no_caster_cull) &&
-                                         render_skip_on(h->skips, h->skips->no_hidden_cull)
+                                         render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0
                                      ? &h->seen
                                      : NULL,
                          .changed = technique_host_changes(h, view),
@@ -503,5 +519,12 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
             technique_receiver_points(s, fit_view, h->fit_receivers, TECHNIQUE_MAX_RECEIVER_POINTS));
         f.fit = &fit;
     }
-    return technique_render_frame(h->technique, &f, target, visibility_of);
+    h->hidden_idle -= h->hidden_idle > 0;
+    bool rendered = technique_render_frame(h->technique, &f, target, visibility_of);
+    int hidden = 0;
+    for (int l = 0; l < s->light_count; l++)
+        hidden += h->counts.casters_hidden[l] + h->counts.casters_narrowed[l];
+    if (h->seen.read && hidden == 0)
+        h->hidden_idle = TECHNIQUE_HIDDEN_RETRY_FRAMES;
+    return rendered;
 }

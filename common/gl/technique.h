@@ -75,6 +75,10 @@ typedef struct technique_changes {
 typedef struct technique_counts {
     int lights_skipped;
     int casters_drawn[SCENE_MAX_LIGHTS], casters_culled[SCENE_MAX_LIGHTS];
+    /* Of the culled: those only the masks of what is seen culled; of the
+     * drawn: those the masks kept to a smaller part of the frame
+     * (technique_caster_seen). */
+    int casters_hidden[SCENE_MAX_LIGHTS], casters_narrowed[SCENE_MAX_LIGHTS];
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
 } technique_counts;
 
@@ -123,8 +127,9 @@ typedef struct technique_frame {
     int receiver_count;
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
     bool cull_casters; /* technique_caster_needed culls (--no-caster-cull: never) */
-    /* With cull_casters and without --no-hidden-cull: where technique_see
-     * keeps what the pre-pass shows; else NULL. */
+    /* With cull_casters and without --no-hidden-cull, unless the skip
+     * sleeps (TECHNIQUE_HIDDEN_RETRY_FRAMES): where technique_see keeps
+     * what the pre-pass shows; else NULL. */
     technique_seen *seen;
     technique_changes changed;
     technique_counts *counts;
@@ -188,6 +193,12 @@ typedef struct technique_stencil_lit {
  * test on, blending and the scissor test off. */
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
 
+/* The frames the hidden-caster skip sleeps after a frame in which it
+ * culled and narrowed nothing: the read-back then costs without saving
+ * (a scene of a few casters, all in view and in light, under a map). It
+ * never changes a decision, so it may sleep and wake as it likes. */
+#define TECHNIQUE_HIDDEN_RETRY_FRAMES 30
+
 /* Hidden casters. A technique calls this after its depth pre-pass (the
  * framebuffer bound, the camera's depth written): the visible pixels are
  * read (visible.h) for the caster culling that follows, which then also
@@ -217,8 +228,15 @@ typedef struct technique_hull {
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out);
 /* Object i casts and its shadow may reach a visible receiver for the
  * hull's light (always, when f->cull_casters is off); counts it, drawn or
- * culled, in f->counts. */
+ * culled (and hidden, where only the masks culled it), in f->counts. */
 bool technique_caster_needed(const technique_frame *f, const technique_hull *hull, int object);
+
+/* Where object's shadow for the hull's light may fall on what is seen:
+ * the union of the pixels (x, y) and window depths (z) of the visible
+ * slabs in the mask cells its box reads, into *out (empty: nowhere).
+ * False without masks (no technique_see this frame): anywhere. Exact as
+ * light_mask_box_read: every visible point in its shadow lies there. */
+bool technique_caster_seen(const technique_frame *f, const technique_hull *hull, int object, light_mask_seen *out);
 
 typedef struct technique {
     const char *name;  /* "planar": its binary, its registry key */
@@ -295,6 +313,9 @@ typedef struct technique_host {
     float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
     float fit_receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3]; /* fit_view's */
     technique_seen seen;
+    /* Frames left in which technique_see reads nothing: the last read
+     * culled no caster (TECHNIQUE_HIDDEN_RETRY_FRAMES). */
+    int hidden_idle;
 } technique_host;
 
 /* technique_init of t on gpu, under skips; the next frame is its first. */

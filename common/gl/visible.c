@@ -20,7 +20,8 @@ static bool visible_reserve(visible *v, int width, int height) {
                 ((height + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS);
     v->depth = malloc((size_t)width * (size_t)height * sizeof *v->depth);
     v->slabs = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->slabs);
-    if (!v->depth || !v->slabs) {
+    v->seen = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->seen);
+    if (!v->depth || !v->slabs || !v->seen) {
         fprintf(stderr, "visible: out of memory for a %dx%d frame\n", width, height);
         visible_destroy(v);
         return false;
@@ -34,6 +35,7 @@ static bool visible_reserve(visible *v, int width, int height) {
 void visible_destroy(visible *v) {
     free(v->depth);
     free(v->slabs);
+    free(v->seen);
     *v = (visible){0};
 }
 
@@ -59,8 +61,8 @@ static void visible_unproject(const camera_view *view, double x, double y, doubl
 /* One tile's slab from its depths lo..hi (window depth), each end pushed
  * outwards by VISIBLE_DEPTH_STEPS of the buffer's steps there, kept
  * inside the depths that unproject to a finite distance. */
-static void visible_slab(const camera_view *view, int x0, int y0, int x1, int y1, int width, int height,
-                         double lo, double hi, float out[8][3]) {
+static void visible_slab(visible *v, const camera_view *view, int x0, int y0, int x1, int y1, double lo,
+                         double hi) {
     double ends[2];
     if (view->reversed_depth) { /* float, nearer is larger: relative steps */
         ends[0] = lo * (1 - VISIBLE_DEPTH_STEPS * VISIBLE_FLOAT_STEP);
@@ -70,9 +72,11 @@ static void visible_slab(const camera_view *view, int x0, int y0, int x1, int y1
         ends[1] = fmin(hi + VISIBLE_DEPTH_STEPS * VISIBLE_FIXED_STEP, 1 - VISIBLE_FIXED_STEP);
     }
     for (int c = 0; c < 8; c++) {
-        double x = 2.0 * (c & 1 ? x1 : x0) / width - 1, y = 2.0 * (c & 2 ? y1 : y0) / height - 1;
-        visible_unproject(view, x, y, visible_view_distance(view, ends[c >> 2]), out[c]);
+        double x = 2.0 * (c & 1 ? x1 : x0) / v->width - 1, y = 2.0 * (c & 2 ? y1 : y0) / v->height - 1;
+        visible_unproject(view, x, y, visible_view_distance(view, ends[c >> 2]), v->slabs[v->count][c]);
     }
+    v->seen[v->count] = (light_mask_seen){{(float)x0, (float)y0, (float)ends[0]}, {(float)x1, (float)y1, (float)ends[1]}};
+    v->count++;
 }
 
 /* The slabs of the tile x0..x1, y0..y1 (pixels), appended to v's. */
@@ -92,7 +96,7 @@ static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int 
     double near_distance = visible_view_distance(view, view->reversed_depth ? hi : lo);
     double far_distance = visible_view_distance(view, view->reversed_depth ? lo : hi);
     if (!(far_distance > VISIBLE_SPLIT_RATIO * near_distance)) {
-        visible_slab(view, x0, y0, x1, y1, v->width, v->height, lo, hi, v->slabs[v->count++]);
+        visible_slab(v, view, x0, y0, x1, y1, lo, hi);
         return;
     }
     /* Deep: the depths binned by distance, evenly in its logarithm, one
@@ -115,7 +119,7 @@ static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int 
         }
     for (int b = 0; b < VISIBLE_DEPTH_BINS; b++)
         if (bin_lo[b] <= bin_hi[b])
-            visible_slab(view, x0, y0, x1, y1, v->width, v->height, bin_lo[b], bin_hi[b], v->slabs[v->count++]);
+            visible_slab(v, view, x0, y0, x1, y1, bin_lo[b], bin_hi[b]);
 }
 
 bool visible_read(visible *v, const camera_view *view, int width, int height) {

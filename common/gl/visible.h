@@ -24,6 +24,7 @@
 #include <stdbool.h>
 
 #include "camera.h"
+#include "light_mask.h"
 
 #define VISIBLE_TILE_PIXELS 16
 #define VISIBLE_DEPTH_STEPS 8
@@ -35,6 +36,7 @@ typedef struct visible {
     int count; /* slabs this frame */
     int capacity;
     float (*slabs)[8][3]; /* corners numbered as frustum_box_corners' */
+    light_mask_seen *seen; /* per slab: its tile's pixels and its window depths */
     float *depth;         /* the frame's window depths, bottom row first */
     int width, height;
 } visible;

@@ -651,7 +651,15 @@ static int app_skips_text(char *out, size_t size) {
     APP_TEXT("\n[X] caster culling: %s", casters ? "casters drawn / culled per light:" : off);
     for (int l = 0; casters && l < app.scene.light_count; l++)
         APP_TEXT(" %d: %d/%d", l, c->casters_drawn[l], c->casters_culled[l]);
-    APP_TEXT("   [I] hidden casters: %s", render_skip_on(k, k->no_hidden_cull) ? "culled" : off);
+    APP_TEXT("   [I] hidden casters: ");
+    if (!render_skip_on(k, k->no_hidden_cull))
+        APP_TEXT("%s", off);
+    else if (app.host.hidden_idle > 0)
+        APP_TEXT("nothing to cull: asleep %d frames", app.host.hidden_idle);
+    else
+        for (int l = 0; l < app.scene.light_count; l++)
+            APP_TEXT("%s%d: %d/%d", l ? " " : "culled / narrowed per light ", l, c->casters_hidden[l],
+                     c->casters_narrowed[l]);
     APP_TEXT("   [J] caching: ");
     if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);

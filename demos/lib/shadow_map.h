@@ -679,11 +679,8 @@ const char *shadow_map_area_light_text(const shadow_map_settings *settings, cons
  * no bound from them) and by the surfaces of the receiver boxes (lo, hi). */
 void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *setup, const float (*points)[3],
                             int point_count, const float (*boxes)[2][3], int box_count, shadow_map_reads *out);
-/* The caster box lo..hi may change a read of the layer: by the reads, and
- * by the mask of the visible pixels' reads where there is one (NULL:
- * none; light_mask.h). */
-bool shadow_map_caster_read(const shadow_map_reads *reads, const light_mask *mask, const mat4 layer, const vec3 lo,
-                            const vec3 hi);
+/* The caster box lo..hi may change a read of the layer. */
+bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi);
 /* The boxes of f's receivers that meet the view, clipped to light's range
  * (at most the scene's object count); returns how many. */
 int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]);

@@ -187,8 +187,7 @@ void shadow_map_layer_reads(const mat4 layer, const shadow_map_read_setup *s, co
     out->empty = !(out->lo[0] <= out->hi[0] && out->lo[1] <= out->hi[1]);
 }
 
-bool shadow_map_caster_read(const shadow_map_reads *reads, const light_mask *mask, const mat4 layer, const vec3 lo,
-                            const vec3 hi) {
+bool shadow_map_caster_read(const shadow_map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi) {
     if (reads->empty || frustum_box_outside(layer, lo, hi))
         return false;
     float corners[8][3];
@@ -197,8 +196,7 @@ bool shadow_map_caster_read(const shadow_map_reads *reads, const light_mask *mas
     if (part.kind != LIGHT_MASK_PART_SOME)
         return part.kind == LIGHT_MASK_PART_WHOLE; /* around or behind the centre of projection */
     return part.lo[0] <= reads->hi[0] && part.hi[0] >= reads->lo[0] && part.lo[1] <= reads->hi[1] &&
-           part.hi[1] >= reads->lo[1] && part.nearest <= reads->max_depth + SHADOW_MAP_DEPTH_TOLERANCE &&
-           (!mask || light_mask_box_read(mask, lo, hi));
+           part.hi[1] >= reads->lo[1] && part.nearest <= reads->max_depth + SHADOW_MAP_DEPTH_TOLERANCE;
 }
 
 int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3]) {
@@ -227,12 +225,12 @@ int shadow_map_light_receivers(const technique_frame *f, int light, float (*boxe
  * light as shadow_map_reads_add pushes a point. */
 static void shadow_map_layer_mask(light_mask *mask, const mat4 layer, const shadow_map_read_setup *s,
                                   const visible *seen) {
-    light_mask_start(mask, layer, shadow_map_read_margin(s), s->any_depth);
+    light_mask_start(mask, layer, shadow_map_read_margin(s), s->any_depth, false);
     for (int i = 0; i < seen->count; i++) {
         float slab[8][3];
         memcpy(slab, seen->slabs[i], sizeof slab);
         shadow_map_push_body(s, slab);
-        light_mask_add(mask, (const float(*)[3])slab);
+        light_mask_add(mask, (const float(*)[3])slab, NULL);
     }
 }
 
@@ -274,15 +272,18 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
         vec3 lo = GLM_VEC3_ZERO_INIT, hi = GLM_VEC3_ZERO_INIT;
         if (cull && candidate)
             scene_object_world_bounds(&s->objects[i], lo, hi);
+        bool read = false; /* by the receivers' bounds, seen or not */
         for (int layer = 0; layer < m->layer_count; layer++) {
-            r->needed[layer][i] =
-                candidate && (!cull || shadow_map_caster_read(&reads[layer], seen ? &r->masks[layer] : NULL,
-                                                             m->layer_view_projection[layer], lo, hi));
+            bool layer_read =
+                candidate && (!cull || shadow_map_caster_read(&reads[layer], m->layer_view_projection[layer], lo, hi));
+            read = read || layer_read;
+            r->needed[layer][i] = layer_read && (!seen || light_mask_box_read(&r->masks[layer], lo, hi));
             drawn = drawn || r->needed[layer][i];
         }
         if (candidate && drawn)
             f->counts->casters_drawn[l]++;
         else if (candidate)
             f->counts->casters_culled[l]++;
+        f->counts->casters_hidden[l] += read && !drawn;
     }
 }
