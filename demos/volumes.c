@@ -223,13 +223,16 @@ static bool volumes_caster_bounds(const technique_frame *f, const technique_hull
     if (!hull || !technique_caster_seen(f, hull, i, &seen))
         return false;
     *out = *light;
-    int x0 = glm_max(light->rect[0], (int)floorf(seen.lo[0])), y0 = glm_max(light->rect[1], (int)floorf(seen.lo[1]));
-    int x1 = glm_min(light->rect[0] + light->rect[2], (int)ceilf(seen.hi[0]));
-    int y1 = glm_min(light->rect[1] + light->rect[3], (int)ceilf(seen.hi[1]));
-    out->rect[0] = x0;
-    out->rect[1] = y0;
-    out->rect[2] = glm_max(x1 - x0, 0);
-    out->rect[3] = glm_max(y1 - y0, 0);
+    /* Clamped to the light's rectangle before they become pixels: "seen
+     * everywhere" is infinite. */
+    int corner[2][2];
+    for (int k = 0; k < 2; k++) {
+        float first = (float)light->rect[k], last = (float)(light->rect[k] + light->rect[2 + k]);
+        corner[0][k] = (int)floorf(glm_clamp(seen.lo[k], first, last));
+        corner[1][k] = (int)ceilf(glm_clamp(seen.hi[k], first, last));
+        out->rect[k] = corner[0][k];
+        out->rect[2 + k] = glm_max(corner[1][k] - corner[0][k], 0);
+    }
     out->depth[0] = fmaxf(light->depth[0], seen.lo[2]);
     out->depth[1] = fminf(light->depth[1], seen.hi[2]);
     f->counts->casters_narrowed[hull->light] +=

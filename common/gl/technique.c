@@ -246,6 +246,21 @@ void technique_light_hull(const technique_frame *f, int light, technique_hull *o
     out->mask_count = seen->mask_count[light];
 }
 
+/* Whether the box lo..hi holds the hull's positional light, within the
+ * hull's margin: a caster around its light (or with the light in a face)
+ * shadows all around it, which its volume counts as an open mesh's; the
+ * masks see no part of it apart from the rest, so they leave it whole. */
+static bool technique_box_around_light(const technique_frame *f, const technique_hull *hull, const vec3 lo,
+                                       const vec3 hi) {
+    const scene_light *l = &f->gpu->scene->lights[hull->light];
+    if (l->type == SCENE_LIGHT_DIRECTIONAL)
+        return false;
+    for (int k = 0; k < 3; k++)
+        if (l->position[k] < lo[k] - hull->margin || l->position[k] > hi[k] + hull->margin)
+            return false;
+    return true;
+}
+
 bool technique_caster_needed(const technique_frame *f, const technique_hull *hull, int object) {
     const scene_object *o = &f->gpu->scene->objects[object];
     if (!o->casts)
@@ -255,7 +270,7 @@ bool technique_caster_needed(const technique_frame *f, const technique_hull *hul
         vec3 lo, hi;
         scene_object_world_bounds(o, lo, hi);
         needed = !frustum_planes_box_outside((const vec4 *)hull->planes, hull->plane_count, lo, hi, hull->margin);
-        if (needed && hull->masks) {
+        if (needed && hull->masks && !technique_box_around_light(f, hull, lo, hi)) {
             needed = false;
             for (int m = 0; m < hull->mask_count && !needed; m++)
                 needed = light_mask_box_read(&hull->masks[m], lo, hi);
@@ -270,10 +285,10 @@ bool technique_caster_needed(const technique_frame *f, const technique_hull *hul
 }
 
 bool technique_caster_seen(const technique_frame *f, const technique_hull *hull, int object, light_mask_seen *out) {
-    if (!hull->masks)
-        return false;
     vec3 lo, hi;
     scene_object_world_bounds(&f->gpu->scene->objects[object], lo, hi);
+    if (!hull->masks || technique_box_around_light(f, hull, lo, hi))
+        return false;
     *out = (light_mask_seen)LIGHT_MASK_SEEN_NOTHING;
     for (int m = 0; m < hull->mask_count; m++)
         light_mask_box_seen(&hull->masks[m], lo, hi, out);

@@ -80,6 +80,7 @@
 #define STREET_EYE_Z -200.0
 #define STREET_LOOK 1.0 /* along +z */
 #define STREET_FAR 450.0
+#define STREET_NEAR 0.5 /* so that the 24-bit depth resolves the far end */
 #define STREET_LAMP_INTENSITY 0.5
 #define STREET_SPOT_INNER 25.0
 #define STREET_SPOT_OUTER 40.0
@@ -235,11 +236,11 @@ static void scenegen_city_sun(cJSON *root, cJSON **lights) {
     scenegen_vec3(sun, "color", 1, 0.95, 0.85, SCENEGEN_DECIMALS);
 }
 
-/* The eye at eye_z, looking along z's `look` (1 or -1). */
-static void scenegen_city_camera(cJSON *root, double eye_z, double look, double far) {
+/* The eye at eye_z, looking along z's `look` (1 or -1), near and far. */
+static void scenegen_city_camera(cJSON *root, double eye_z, double look, double near, double far) {
     const double eye[3] = {CITY_EYE_X, CITY_EYE_HEIGHT, eye_z};
     const double target[3] = {CITY_EYE_X, CITY_LOOK_HEIGHT, eye_z + look * CITY_LOOK_DISTANCE};
-    scenegen_camera(root, eye, target, CITY_FOV, CITY_NEAR, far);
+    scenegen_camera(root, eye, target, CITY_FOV, near, far);
 }
 
 /* A spot lamp looking straight down; range 0: none. */
@@ -257,7 +258,7 @@ static void scenegen_spot(cJSON *lights, double x, double y, double z, double in
 
 /* The camera, the ambient term and the lights: the same in every city. */
 static void scenegen_city_setting(cJSON *root) {
-    scenegen_city_camera(root, CITY_EYE_Z, -1, CITY_FAR);
+    scenegen_city_camera(root, CITY_EYE_Z, -1, CITY_NEAR, CITY_FAR);
     cJSON *lights;
     scenegen_city_sun(root, &lights);
     /* Street lamps on the kerbs: two down the street in view, the others
@@ -289,7 +290,7 @@ static void scenegen_city_setting(cJSON *root) {
 /* The street scene's: the eye at the city's edge, the far plane across
  * it, three unranged spots down the street, on alternate kerbs. */
 static void scenegen_street_setting(cJSON *root) {
-    scenegen_city_camera(root, STREET_EYE_Z, STREET_LOOK, STREET_FAR);
+    scenegen_city_camera(root, STREET_EYE_Z, STREET_LOOK, STREET_NEAR, STREET_FAR);
     cJSON *lights;
     scenegen_city_sun(root, &lights);
     static const double lamps[][3] = {
