@@ -12,7 +12,15 @@ static bool unshadowed_init(const render_scene *gpu) {
     return true;
 }
 
-static void unshadowed_render(const technique_frame *f) { render_unshadowed(f->gpu, f->view, f->in_view, f->lights); }
+/* As the techniques' camera passes draw: a depth pre-pass, then one lit
+ * pass tested GL_EQUAL against it (where two objects tie for a pixel the
+ * later one drawn shows, as in every technique's picture), of the objects
+ * the pre-pass does not show hidden (technique_see). */
+static void unshadowed_render(const technique_frame *f) {
+    render_depth_prepass(f->gpu, f->view, f->in_view);
+    technique_see(f);
+    render_unshadowed(f->gpu, f->view, f->in_view, f->lights);
+}
 
 static void unshadowed_destroy(void) {}
 

@@ -8,7 +8,7 @@
  * static and over frames in which the light or the camera moves. And the
  * skips do skip: most of the city lies outside its street-level view and
  * most of its lights out of reach of it; most of the street city's
- * casters are hidden; nothing of simple is culled. Each switch turns its
+ * casters and objects are hidden; nothing of simple is culled. Each switch turns its
  * skip off.
  *
  * The geometry is checked in process first: the box and sphere against a
@@ -331,6 +331,26 @@ static void test_hidden_casters_culled(void **state) {
     }
 }
 
+/* Along the street most buildings in the view's frustum stand behind the
+ * first rows: the floor's lit pass, as every shading pass, leaves them
+ * out, and draws them all with --no-hidden-cull. */
+static void test_hidden_objects_left_out(void **state) {
+    (void)state;
+    const char *line = culling_line(STREET, "");
+    int drawn, culled, hidden;
+    assert_non_null(line);
+    assert_int_equal(sscanf(line, "view culling: objects drawn %d / culled %d", &drawn, &culled), 2);
+    const char *objects = strstr(line, "objects hidden ");
+    assert_non_null(objects);
+    assert_int_equal(sscanf(objects, "objects hidden %d", &hidden), 1);
+    printf("    %s: %d objects in view, %d of them hidden\n", STREET, drawn, hidden);
+    if (!(2 * hidden > drawn && hidden < drawn))
+        fail_msg("%d of %d objects in view hidden: expected most, not all", hidden, drawn);
+    line = culling_line(STREET, "--no-hidden-cull");
+    assert_non_null(line);
+    assert_null(strstr(line, "objects hidden"));
+}
+
 /* Each switch turns its skip off: its own and the program-wide one. */
 static void test_switches_turn_skips_off(void **state) {
     (void)state;
@@ -368,6 +388,7 @@ int main(void) {
         cmocka_unit_test(test_city_lights_skipped),
         cmocka_unit_test(test_switches_turn_skips_off),
         cmocka_unit_test(test_hidden_casters_culled),
+        cmocka_unit_test(test_hidden_objects_left_out),
         cmocka_unit_test(test_dumps_identical_with_and_without_skips),
     };
     return cmocka_run_group_tests_name("skips", tests, NULL, NULL);

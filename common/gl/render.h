@@ -93,7 +93,7 @@ typedef struct render_skips {
     bool no_view_cull;   /* --no-view-cull: camera passes draw objects outside the view */
     bool no_light_reach; /* --no-light-reach: lights that reach nothing visible still render */
     bool no_caster_cull; /* --no-caster-cull: every caster casts for every light */
-    bool no_hidden_cull; /* --no-hidden-cull: casters culled against the receivers' boxes only */
+    bool no_hidden_cull; /* --no-hidden-cull: casters and objects hidden behind the pre-pass's depth drawn */
     bool no_cache;       /* --no-cache: maps and volumes are made again every frame */
 } render_skips;
 
@@ -149,10 +149,11 @@ void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights
  * bit for bit those of any program on lit.vert. Leaves the depth test
  * GL_EQUAL with depth writes off. */
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask);
-/* The scene lit by the set `lights`, nothing shadowed: the cost floor,
- * which skips as the techniques' camera passes do (mask: the frame's
- * in_view, NULL: all; lights: those that reach the view), so that ratios
- * to it measure shadows, not culling. */
+/* The scene lit by the set `lights`, nothing shadowed, under the depth
+ * test as it is: the cost floor's lit pass after its pre-pass, which
+ * skips as the techniques' camera passes do (mask: the frame's in_view,
+ * NULL: all; lights: those that reach the view), so that ratios to it
+ * measure shadows, not culling. */
 void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights);
 void render_reset_state(void);
 

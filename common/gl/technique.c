@@ -155,12 +155,35 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
     glDisable(GL_SCISSOR_TEST);
 }
 
+/* Clears from the frame's in_view and lit_by the objects wholly behind
+ * what was seen; none in a frame with a huge object in view. */
+static void technique_hide_objects(const technique_frame *f, technique_seen *seen) {
+    const scene *s = f->gpu->scene;
+    for (int i = 0; i < s->object_count; i++)
+        if (seen->in_view[i] && render_object_huge(f->gpu, i, f->view->eye))
+            return;
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        if (!seen->in_view[i])
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        if (!visible_box_hidden(&seen->pixels, f->view, lo, hi))
+            continue;
+        seen->in_view[i] = false;
+        for (int l = 0; l < s->light_count; l++)
+            seen->lit_by[l][i] = false;
+        f->counts->objects_hidden++;
+    }
+}
+
 void technique_see(const technique_frame *f) {
     technique_seen *seen = f->seen;
     if (!seen)
         return;
     seen->masks_made = 0;
     seen->read = visible_read(&seen->pixels, f->view, f->width, f->height);
+    if (seen->read)
+        technique_hide_objects(f, seen);
 }
 
 const visible *technique_seen_pixels(const technique_frame *f) {
@@ -233,7 +256,7 @@ void technique_light_hull(const technique_frame *f, int light, technique_hull *o
     scene_light_homogeneous(l, homogeneous);
     out->plane_count = frustum_light_hull(homogeneous, lo, hi, out->planes);
     technique_seen *seen = f->seen;
-    if (!seen || !seen->read)
+    if (!f->cull_casters || !seen || !seen->read)
         return;
     if (!(seen->masks_made & RENDER_LIGHT_BIT(light))) {
         /* The slabs' own rounding stays inside the hull's margin. */
@@ -508,13 +531,14 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
     const scene *s = h->gpu->scene;
     h->counts = (technique_counts){0};
     h->seen.read = false; /* until the technique's technique_see */
+    h->seen.in_view = h->gpu->in_view;
+    memcpy(h->seen.lit_by, h->gpu->lit_by, sizeof h->seen.lit_by);
     h->objects_in_view = render_cull_view(h->gpu, view, h->skips);
     technique_frame f = {.gpu = h->gpu,
                          .view = view,
                          .in_view = h->gpu->in_view,
                          .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
-                         .seen = render_skip_on(h->skips, h->skips->no_caster_cull) &&
-                                         render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0
+                         .seen = render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0
                                      ? &h->seen
                                      : NULL,
                          .changed = technique_host_changes(h, view),
@@ -539,6 +563,7 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
     int hidden = 0;
     for (int l = 0; l < s->light_count; l++)
         hidden += h->counts.casters_hidden[l] + h->counts.casters_narrowed[l];
+    hidden += h->counts.objects_hidden;
     if (h->seen.read && hidden == 0)
         h->hidden_idle = TECHNIQUE_HIDDEN_RETRY_FRAMES;
     return rendered;

@@ -79,6 +79,7 @@ typedef struct technique_counts {
      * drawn: those the masks kept to a smaller part of the frame
      * (technique_caster_seen). */
     int casters_hidden[SCENE_MAX_LIGHTS], casters_narrowed[SCENE_MAX_LIGHTS];
+    int objects_hidden; /* in view, behind what the pre-pass shows (technique_see) */
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
 } technique_counts;
 
@@ -99,6 +100,9 @@ typedef struct technique_counts {
 typedef struct technique_seen {
     bool read; /* this frame's pixels are read */
     visible pixels;
+    /* The host's in_view and lit_by of this frame, which technique_see
+     * clears of the objects hidden behind what it read. */
+    bool *in_view, *lit_by[SCENE_MAX_LIGHTS];
     unsigned masks_made; /* RENDER_LIGHT_BIT(l): light l's masks */
     int mask_count[SCENE_MAX_LIGHTS];
     light_mask masks[SCENE_MAX_LIGHTS][LIGHT_MASK_MAX_LAYERS];
@@ -127,9 +131,10 @@ typedef struct technique_frame {
     int receiver_count;
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
     bool cull_casters; /* technique_caster_needed culls (--no-caster-cull: never) */
-    /* With cull_casters and without --no-hidden-cull, unless the skip
-     * sleeps (TECHNIQUE_HIDDEN_RETRY_FRAMES): where technique_see keeps
-     * what the pre-pass shows; else NULL. */
+    /* Without --no-hidden-cull, unless the skip sleeps
+     * (TECHNIQUE_HIDDEN_RETRY_FRAMES): where technique_see keeps what the
+     * pre-pass shows (its masks cull casters only with cull_casters);
+     * else NULL. */
     technique_seen *seen;
     technique_changes changed;
     technique_counts *counts;
@@ -194,17 +199,24 @@ typedef struct technique_stencil_lit {
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
 
 /* The frames the hidden-caster skip sleeps after a frame in which it
- * culled and narrowed nothing: the read-back then costs without saving
- * (a scene of a few casters, all in view and in light, under a map). It
- * never changes a decision, so it may sleep and wake as it likes. */
+ * culled, narrowed and hid nothing: the read-back then costs without
+ * saving (a scene of a few casters and objects, all in view and in
+ * light, under a map). It never changes a decision, so it may sleep and
+ * wake as it likes. */
 #define TECHNIQUE_HIDDEN_RETRY_FRAMES 30
 
-/* Hidden casters. A technique calls this after its depth pre-pass (the
- * framebuffer bound, the camera's depth written): the visible pixels are
- * read (visible.h) for the caster culling that follows, which then also
- * culls a caster whose shadow reaches none of them, however near its
- * box lies to the receivers' (technique_caster_needed; a shadow map's
- * own layers, technique_seen_pixels). Nothing without f->seen. */
+/* Hidden casters and objects. A technique calls this after its depth
+ * pre-pass (the framebuffer bound, the camera's depth written): the
+ * visible pixels are read (visible.h) for the caster culling that
+ * follows, which then also culls a caster whose shadow reaches none of
+ * them, however near its box lies to the receivers'
+ * (technique_caster_needed; a shadow map's own layers,
+ * technique_seen_pixels); and the objects wholly behind them
+ * (visible_box_hidden) leave f->in_view and f->lit_by, so that the
+ * shading passes, which test GL_EQUAL against that depth and would draw
+ * none of their pixels, skip them (not in a frame with an object huge
+ * seen from the eye, whose rasterized depth may stray). Nothing without
+ * f->seen. */
 void technique_see(const technique_frame *f);
 /* The slabs technique_see read this frame; NULL when it read none. */
 const visible *technique_seen_pixels(const technique_frame *f);

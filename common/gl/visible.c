@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "depth.h"
+#include "frustum.h"
 
 /* The 24-bit buffer's step; a float buffer's at depth d is at most d
  * times the float one. */
@@ -21,7 +22,8 @@ static bool visible_reserve(visible *v, int width, int height) {
     v->depth = malloc((size_t)width * (size_t)height * sizeof *v->depth);
     v->slabs = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->slabs);
     v->seen = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->seen);
-    if (!v->depth || !v->slabs || !v->seen) {
+    v->farthest = malloc((size_t)tiles * sizeof *v->farthest);
+    if (!v->depth || !v->slabs || !v->seen || !v->farthest) {
         fprintf(stderr, "visible: out of memory for a %dx%d frame\n", width, height);
         visible_destroy(v);
         return false;
@@ -29,6 +31,8 @@ static bool visible_reserve(visible *v, int width, int height) {
     v->capacity = tiles * VISIBLE_DEPTH_BINS;
     v->width = width;
     v->height = height;
+    v->tiles_x = (width + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS;
+    v->tiles_y = (height + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS;
     return true;
 }
 
@@ -36,6 +40,7 @@ void visible_destroy(visible *v) {
     free(v->depth);
     free(v->slabs);
     free(v->seen);
+    free(v->farthest);
     *v = (visible){0};
 }
 
@@ -91,6 +96,13 @@ static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int 
                 hi = fmax(hi, d);
             }
         }
+    /* The tile's farthest depth: the clear value where any pixel is sky. */
+    bool sky = false;
+    for (int y = y0; y < y1 && !sky; y++)
+        for (int x = x0; x < x1 && !sky; x++)
+            sky = v->depth[(size_t)y * (size_t)v->width + (size_t)x] == clear;
+    v->farthest[(y0 / VISIBLE_TILE_PIXELS) * v->tiles_x + x0 / VISIBLE_TILE_PIXELS] =
+        sky ? clear : (float)(view->reversed_depth ? lo : hi);
     if (!(lo <= hi))
         return; /* sky only */
     double near_distance = visible_view_distance(view, view->reversed_depth ? hi : lo);
@@ -133,5 +145,48 @@ bool visible_read(visible *v, const camera_view *view, int width, int height) {
         for (int x0 = 0; x0 < width; x0 += VISIBLE_TILE_PIXELS)
             visible_tile_slabs(v, view, x0, y0, x0 + VISIBLE_TILE_PIXELS < width ? x0 + VISIBLE_TILE_PIXELS : width,
                                y0 + VISIBLE_TILE_PIXELS < height ? y0 + VISIBLE_TILE_PIXELS : height);
+    return true;
+}
+
+bool visible_box_hidden(const visible *v, const camera_view *view, const vec3 lo, const vec3 hi) {
+    vec3 corners[8];
+    frustum_box_corners(lo, hi, corners);
+    float x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, nearest = INFINITY;
+    for (int c = 0; c < 8; c++) {
+        vec4 clip;
+        glm_mat4_mulv((vec4 *)view->raster_view_projection, (vec4){corners[c][0], corners[c][1], corners[c][2], 1},
+                      clip);
+        /* A corner before the near plane: the box's nearest depth is not
+         * its corners'. */
+        float ndc_z = clip[2] / clip[3];
+        if (!(clip[3] > 0) || ndc_z < (view->reversed_depth ? 0.0f : -1.0f) || ndc_z > 1)
+            return false;
+        float window = view->reversed_depth ? ndc_z : 0.5f * ndc_z + 0.5f;
+        /* Nearness as a depth that grows away from the eye. */
+        nearest = fminf(nearest, view->reversed_depth ? 1 - window : window);
+        x0 = fminf(x0, clip[0] / clip[3]);
+        x1 = fmaxf(x1, clip[0] / clip[3]);
+        y0 = fminf(y0, clip[1] / clip[3]);
+        y1 = fmaxf(y1, clip[1] / clip[3]);
+    }
+    double step = view->reversed_depth ? fmax(VISIBLE_FIXED_STEP, (1 - nearest) * VISIBLE_FLOAT_STEP)
+                                       : VISIBLE_FIXED_STEP;
+    double margin = VISIBLE_DEPTH_STEPS * step;
+    /* The tiles the box's rectangle covers, a pixel wider each side. */
+    int tx0 = (int)floorf(((glm_clamp(x0, -1, 1) * 0.5f + 0.5f) * (float)v->width - 1) / VISIBLE_TILE_PIXELS);
+    int tx1 = (int)floorf(((glm_clamp(x1, -1, 1) * 0.5f + 0.5f) * (float)v->width + 1) / VISIBLE_TILE_PIXELS);
+    int ty0 = (int)floorf(((glm_clamp(y0, -1, 1) * 0.5f + 0.5f) * (float)v->height - 1) / VISIBLE_TILE_PIXELS);
+    int ty1 = (int)floorf(((glm_clamp(y1, -1, 1) * 0.5f + 0.5f) * (float)v->height + 1) / VISIBLE_TILE_PIXELS);
+    tx0 = glm_max(tx0, 0);
+    ty0 = glm_max(ty0, 0);
+    tx1 = glm_min(tx1, v->tiles_x - 1);
+    ty1 = glm_min(ty1, v->tiles_y - 1);
+    for (int ty = ty0; ty <= ty1; ty++)
+        for (int tx = tx0; tx <= tx1; tx++) {
+            float farthest = v->farthest[ty * v->tiles_x + tx];
+            double far_as_depth = view->reversed_depth ? 1.0 - farthest : farthest;
+            if (nearest - margin <= far_as_depth)
+                return false;
+        }
     return true;
 }

@@ -13,7 +13,8 @@
  * distance into VISIBLE_DEPTH_BINS bins, even in its logarithm, each bin
  * that holds a pixel a slab of its own depths. Every visible point (a
  * pixel's centre at its stored depth) lies in a slab of its tile; what is
- * drawn of the sky lies in none.
+ * drawn of the sky lies in none. Each tile also keeps its farthest depth,
+ * against which a box is hidden (visible_box_hidden).
  *
  * One glReadPixels of the depth a frame: on a GPU it waits for the
  * pre-pass, the price of skipping what the pre-pass shows hidden.
@@ -37,6 +38,8 @@ typedef struct visible {
     int capacity;
     float (*slabs)[8][3]; /* corners numbered as frustum_box_corners' */
     light_mask_seen *seen; /* per slab: its tile's pixels and its window depths */
+    float *farthest;       /* per tile, rows from the bottom: its farthest depth, the clear value where sky */
+    int tiles_x, tiles_y;
     float *depth;         /* the frame's window depths, bottom row first */
     int width, height;
 } visible;
@@ -45,5 +48,14 @@ typedef struct visible {
  * view) into v's slabs; false after printing why (out of memory). */
 bool visible_read(visible *v, const camera_view *view, int width, int height);
 void visible_destroy(visible *v);
+/* Whether every point of the box lo..hi lies behind what v saw there: its
+ * nearest window depth (its corners', all beyond the near plane) more
+ * than VISIBLE_DEPTH_STEPS steps beyond the farthest depth of every tile
+ * its screen rectangle, a pixel wider, covers. Then none of its fragments
+ * passes a test against that depth (the shading passes' GL_EQUAL), unless
+ * the rasterizer moves its depths by more than that margin: not for an
+ * object huge seen from the eye (render_object_huge), which the caller
+ * keeps. */
+bool visible_box_hidden(const visible *v, const camera_view *view, const vec3 lo, const vec3 hi);
 
 #endif

@@ -127,8 +127,8 @@ static const flags_param app_flags[] = {
      .disabled = &app.skips.no_light_reach},
     {"caster-cull", "every caster casts for every light, seen or not", GLFW_KEY_X, FLAGS_TOGGLE,
      .disabled = &app.skips.no_caster_cull},
-    {"hidden-cull", "casters culled against the visible receivers' boxes\nonly, not the pixels the camera sees", GLFW_KEY_I,
-     FLAGS_TOGGLE, .disabled = &app.skips.no_hidden_cull},
+    {"hidden-cull", "casters and objects that the depth pre-pass shows\nhidden are drawn anyway", GLFW_KEY_I, FLAGS_TOGGLE,
+     .disabled = &app.skips.no_hidden_cull},
     {"cache", "shadow maps and volumes made again every frame", GLFW_KEY_J, FLAGS_TOGGLE,
      .disabled = &app.skips.no_cache},
     {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
@@ -660,6 +660,8 @@ static int app_skips_text(char *out, size_t size) {
         for (int l = 0; l < app.scene.light_count; l++)
             APP_TEXT("%s%d: %d/%d", l ? " " : "culled / narrowed per light ", l, c->casters_hidden[l],
                      c->casters_narrowed[l]);
+    if (render_skip_on(k, k->no_hidden_cull) && app.host.hidden_idle == 0)
+        APP_TEXT("; objects hidden %d", c->objects_hidden);
     APP_TEXT("   [J] caching: ");
     if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);
