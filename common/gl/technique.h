@@ -44,9 +44,10 @@
  * technique_light_pass); receivers: the visible receivers' points, for
  * fitting and for caster culling (technique_light_hull,
  * technique_caster_needed, when cull_casters), and what the depth
- * pre-pass shows (technique_see: hidden casters); changed: what moved since
- * the technique's last frame, which its caches obey (all of it on a first
- * frame and with --no-cache). A technique fills counts for the HUD.
+ * pre-pass shows (technique_see: hidden casters and objects); changed:
+ * what moved since the technique's last frame, which its caches obey (all
+ * of it on a first frame and with --no-cache). A technique fills counts
+ * for the HUD.
  */
 #ifndef TECHNIQUE_H
 #define TECHNIQUE_H
@@ -326,7 +327,7 @@ typedef struct technique_host {
     float fit_receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3]; /* fit_view's */
     technique_seen seen;
     /* Frames left in which technique_see reads nothing: the last read
-     * culled no caster (TECHNIQUE_HIDDEN_RETRY_FRAMES). */
+     * saved nothing (TECHNIQUE_HIDDEN_RETRY_FRAMES). */
     int hidden_idle;
 } technique_host;
 
