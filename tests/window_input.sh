@@ -26,6 +26,16 @@ done
 cd "$dir"
 eval "$program --scene '$scene' --size 640x360 >stdout.txt 2>stderr.txt &"
 app=$!
+# A failed step says whether the app was still running, or how it ended.
+report_app() {
+    if kill -0 "$app" 2>/dev/null; then
+        echo "window_input.sh: the app was still running" >&2
+    else
+        wait "$app" && status=0 || status=$?
+        echo "window_input.sh: the app had ended, status $status" >&2
+    fi
+}
+trap 'echo "window_input.sh: line $LINENO failed on display $DISPLAY: $BASH_COMMAND" >&2; report_app' ERR
 window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
 sleep "$SETTLE"
 press() {
