@@ -225,13 +225,11 @@ static bool volumes_caster_bounds(const technique_frame *f, const technique_hull
     *out = *light;
     /* Clamped to the light's rectangle before they become pixels: "seen
      * everywhere" is infinite. */
-    int corner[2][2];
     for (int k = 0; k < 2; k++) {
         float first = (float)light->rect[k], last = (float)(light->rect[k] + light->rect[2 + k]);
-        corner[0][k] = (int)floorf(glm_clamp(seen.lo[k], first, last));
-        corner[1][k] = (int)ceilf(glm_clamp(seen.hi[k], first, last));
-        out->rect[k] = corner[0][k];
-        out->rect[2 + k] = glm_max(corner[1][k] - corner[0][k], 0);
+        int lo = (int)floorf(glm_clamp(seen.lo[k], first, last)), hi = (int)ceilf(glm_clamp(seen.hi[k], first, last));
+        out->rect[k] = lo;
+        out->rect[2 + k] = glm_max(hi - lo, 0);
     }
     out->depth[0] = fmaxf(light->depth[0], seen.lo[2]);
     out->depth[1] = fminf(light->depth[1], seen.hi[2]);
@@ -273,8 +271,10 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
         zpass += !use_zfail;
         volumes_stencil_ops(use_zfail);
         /* Forced z-pass from inside a volume counts it on pixels outside
-         * it too: that volume keeps the light's bounds. */
-        bool counts_inside = use_zfail || volume_mesh_zpass_safe(lo, hi, light, near_rectangle);
+         * it too: that volume keeps the light's bounds (auto takes z-pass
+         * only where it is safe). */
+        bool counts_inside =
+            volumes.settings.mode != VOLUMES_ZPASS || volume_mesh_zpass_safe(lo, hi, light, near_rectangle);
         volumes_bounds own;
         bool narrowed = counts_inside && volumes_caster_bounds(f, hull, i, bounds, &own);
         if (narrowed)

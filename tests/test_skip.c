@@ -238,11 +238,17 @@ static void test_dumps_identical_with_and_without_skips(void **state) {
            registry_technique_count * case_count);
 }
 
-/* The --verbose culling line of one frame of the floor on `scene`. */
-static const char *culling_line(const char *scene, const char *flags) {
+/* The --verbose line of one frame of `technique` on `scene` (a name in
+ * SCENES) that starts with `marker` (support_verbose_line). */
+static const char *verbose_line(const char *technique, const char *scene, const char *flags, const char *marker) {
     char scene_file[256];
     snprintf(scene_file, sizeof scene_file, SCENES "/%s.json", scene);
-    return support_verbose_line("unshadowed", scene_file, flags, "view culling: ");
+    return support_verbose_line(technique, scene_file, flags, marker);
+}
+
+/* The --verbose culling line of one frame of the floor on `scene`. */
+static const char *culling_line(const char *scene, const char *flags) {
+    return verbose_line("unshadowed", scene, flags, "view culling: ");
 }
 
 static void culling_counts(const char *scene, int *drawn, int *culled) {
@@ -290,9 +296,7 @@ static void test_city_lights_skipped(void **state) {
 
 /* Light 0's casters drawn by `technique` on `scene` with `flags`. */
 static int casters_drawn(const char *technique, const char *scene, const char *flags) {
-    char scene_file[256];
-    snprintf(scene_file, sizeof scene_file, SCENES "/%s.json", scene);
-    const char *line = support_verbose_line(technique, scene_file, flags, "[X] caster culling: ");
+    const char *line = verbose_line(technique, scene, flags, "[X] caster culling: ");
     int drawn, culled;
     assert_non_null(line);
     assert_int_equal(sscanf(line, "[X] caster culling: casters drawn / culled per light: 0: %d/%d", &drawn, &culled),
@@ -323,8 +327,7 @@ static void test_hidden_casters_culled(void **state) {
                hidden, boxes);
         if (!(hidden > 0 && 2 * hidden < boxes))
             fail_msg("%s: %d casters drawn, not under half of %d", cases[i].technique, hidden, boxes);
-        const char *line =
-            support_verbose_line(cases[i].technique, SCENES "/" ENGINE ".json", "", "[X] caster culling: ");
+        const char *line = verbose_line(cases[i].technique, ENGINE, "", "[X] caster culling: ");
         assert_non_null(line);
         if (!strstr(line, cases[i].on_engine))
             fail_msg("%s on %s: expected \"%s\"", cases[i].technique, ENGINE, cases[i].on_engine);

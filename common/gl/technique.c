@@ -341,7 +341,6 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
 void technique_host_stop(technique_host *h) {
     h->technique->destroy();
     visible_destroy(&h->seen.pixels);
-    h->seen.read = false;
 }
 
 /* Whether a light moved in any way a shadow depends on (not its colour). */
@@ -560,11 +559,10 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
     }
     h->hidden_idle -= h->hidden_idle > 0;
     bool rendered = technique_render_frame(h->technique, &f, target, visibility_of);
-    int hidden = 0;
+    int saved = h->counts.objects_hidden;
     for (int l = 0; l < s->light_count; l++)
-        hidden += h->counts.casters_hidden[l] + h->counts.casters_narrowed[l];
-    hidden += h->counts.objects_hidden;
-    if (h->seen.read && hidden == 0)
+        saved += h->counts.casters_hidden[l] + h->counts.casters_narrowed[l];
+    if (h->seen.read && saved == 0)
         h->hidden_idle = TECHNIQUE_HIDDEN_RETRY_FRAMES;
     return rendered;
 }

@@ -17,8 +17,8 @@ static bool visible_reserve(visible *v, int width, int height) {
     if (v->width == width && v->height == height)
         return true;
     visible_destroy(v);
-    int tiles = ((width + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS) *
-                ((height + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS);
+    int tiles_x = (width + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS;
+    int tiles_y = (height + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS, tiles = tiles_x * tiles_y;
     v->depth = malloc((size_t)width * (size_t)height * sizeof *v->depth);
     v->slabs = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->slabs);
     v->seen = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->seen);
@@ -28,11 +28,10 @@ static bool visible_reserve(visible *v, int width, int height) {
         visible_destroy(v);
         return false;
     }
-    v->capacity = tiles * VISIBLE_DEPTH_BINS;
     v->width = width;
     v->height = height;
-    v->tiles_x = (width + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS;
-    v->tiles_y = (height + VISIBLE_TILE_PIXELS - 1) / VISIBLE_TILE_PIXELS;
+    v->tiles_x = tiles_x;
+    v->tiles_y = tiles_y;
     return true;
 }
 
@@ -88,19 +87,17 @@ static void visible_slab(visible *v, const camera_view *view, int x0, int y0, in
 static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int y0, int x1, int y1) {
     float clear = depth_far(view);
     double lo = INFINITY, hi = -INFINITY;
+    bool sky = false;
     for (int y = y0; y < y1; y++)
         for (int x = x0; x < x1; x++) {
             float d = v->depth[(size_t)y * (size_t)v->width + (size_t)x];
+            sky = sky || d == clear;
             if (d != clear) {
                 lo = fmin(lo, d);
                 hi = fmax(hi, d);
             }
         }
     /* The tile's farthest depth: the clear value where any pixel is sky. */
-    bool sky = false;
-    for (int y = y0; y < y1 && !sky; y++)
-        for (int x = x0; x < x1 && !sky; x++)
-            sky = v->depth[(size_t)y * (size_t)v->width + (size_t)x] == clear;
     v->farthest[(y0 / VISIBLE_TILE_PIXELS) * v->tiles_x + x0 / VISIBLE_TILE_PIXELS] =
         sky ? clear : (float)(view->reversed_depth ? lo : hi);
     if (!(lo <= hi))

@@ -35,7 +35,6 @@
 /* Zero is an empty one. */
 typedef struct visible {
     int count; /* slabs this frame */
-    int capacity;
     float (*slabs)[8][3]; /* corners numbered as frustum_box_corners' */
     light_mask_seen *seen; /* per slab: its tile's pixels and its window depths */
     float *farthest;       /* per tile, rows from the bottom: its farthest depth, the clear value where sky */
