@@ -128,12 +128,18 @@ bool support_have_command(const char *name) {
     return system(command) == 0;
 }
 
+#define SUPPORT_XVFB_LOCK "/tmp/shadows-test-xvfb.lock"
+
 const char *support_xvfb_run(void) {
     if (!support_have_command("xvfb-run")) {
         fprintf(stderr, "    xvfb-run is not installed here: skipped\n");
         skip();
     }
-    return "env -u LD_PRELOAD xvfb-run -a -s '-screen 0 1024x768x24'";
+    /* One virtual X server at a time (flock on SUPPORT_XVFB_LOCK): the two
+     * builds' test passes run side by side, and two xvfb-run -a started
+     * together can take the same display, where one script's keys reach
+     * the other's window. */
+    return "flock " SUPPORT_XVFB_LOCK " env -u LD_PRELOAD xvfb-run -a -s '-screen 0 1024x768x24'";
 }
 
 static FILE *support_capture_file;

@@ -51,8 +51,9 @@ unsigned char *support_read_png(const char *path, int width, int height);
 bool support_have_command(const char *name);
 /* The command prefix that runs a program in a window under a virtual X
  * server (the server without this process's LD_PRELOAD: support_program
- * gives the program its own); skips the running cmocka test, saying so,
- * where xvfb-run is not installed. */
+ * gives the program its own), one such server at a time across
+ * processes; skips the running cmocka test, saying so, where xvfb-run is
+ * not installed. */
 const char *support_xvfb_run(void);
 /* The first of the count files `names` that differs between directories
  * a and b (or is missing from one), or NULL when all are byte-identical. */
