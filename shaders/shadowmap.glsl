@@ -198,6 +198,14 @@ int shadowmap_kernel_rim(int k) {
     return k == 0 ? middle : k == 1 ? middle * side : k == 2 ? middle * side + side - 1 : (side - 1) * side + middle;
 }
 
+// Which rim tap (0..3) tap i is, or -1.
+int shadowmap_kernel_rim_index(int i) {
+    for (int k = 0; k < SHADOWMAP_RIM_TAPS; k++)
+        if (shadowmap_kernel_rim(k) == i)
+            return k;
+    return -1;
+}
+
 // What four rim taps agree on: 0 or 1 where they are all that, else -1.
 float shadowmap_rim_agreement(vec4 rim) {
     return rim == vec4(0.0) || rim == vec4(1.0) ? rim.x : -1.0;

@@ -39,18 +39,21 @@ float shadowmap_kernel_filter(SHADOWMAP_SAMPLER map, vec2 fraction, float unit) 
     mat2 rotation = shadowmap_kernel_rotation();
     if (shadowmap_shape == SHADOW_MAP_KERNEL_TENT)
         shadowmap_tent_place(fraction);
+    vec4 rim;
     if (shadowmap_kernel_early_out()) {
-        vec4 rim;
         for (int k = 0; k < SHADOWMAP_RIM_TAPS; k++)
             rim[k] = shadowmap_kernel_read(map, shadowmap_kernel_tap(shadowmap_kernel_rim(k), rotation, unit).xy);
         float agreed = shadowmap_rim_agreement(rim);
         if (agreed >= 0.0)
             return agreed;
     }
+    // The rim's taps are not read twice: the sum takes them in their
+    // place in the list, so that it is the one without the early-out.
     float sum = 0.0;
     for (int i = 0; i < shadowmap_kernel_taps(); i++) {
         vec3 tap = shadowmap_kernel_tap(i, rotation, unit);
-        sum += tap.z * shadowmap_kernel_read(map, tap.xy);
+        int k = shadowmap_kernel_early_out() ? shadowmap_kernel_rim_index(i) : -1;
+        sum += tap.z * (k >= 0 ? rim[k] : shadowmap_kernel_read(map, tap.xy));
     }
     return sum / shadowmap_kernel_norm();
 }
