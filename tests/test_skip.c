@@ -37,6 +37,7 @@
 #define CITY_SKIPPED_LIGHT "4" /* a point light far to the left of the street */
 #define STREET "street"
 #define ENGINE "engine"
+#define STREET_LAMPS 3 /* its spot lights, none with a range */
 /* A test frustum: 90 degrees, square, near 1, far 100, looking down -z. */
 #define TEST_FOV_DEG 90.0f
 #define TEST_NEAR 1.0f
@@ -354,6 +355,27 @@ static void test_hidden_objects_left_out(void **state) {
     assert_null(strstr(line, "objects hidden"));
 }
 
+/* Along the street each lamp lights a few tiles of what is seen: every
+ * technique draws it in its rectangle narrowed to them (the shadow maps
+ * then shade it in a pass of its own, technique_split_lights), and in
+ * the frame's rectangle with --no-hidden-cull. */
+static void test_lights_narrowed(void **state) {
+    (void)state;
+    static const char *const techniques[] = {"planar", "shadowmap", "psm", "cascades", "volumes"};
+    for (size_t i = 0; i < sizeof techniques / sizeof *techniques; i++) {
+        const char *line = verbose_line(techniques[i], STREET, "", "[X] caster culling: ");
+        const char *narrowed = line ? strstr(line, "lights narrowed ") : NULL;
+        int count;
+        assert_non_null(narrowed);
+        assert_int_equal(sscanf(narrowed, "lights narrowed %d", &count), 1);
+        printf("    %s on %s: lights narrowed %d\n", techniques[i], STREET, count);
+        assert_int_equal(count, STREET_LAMPS);
+        line = verbose_line(techniques[i], STREET, "--no-hidden-cull", "[X] caster culling: ");
+        assert_non_null(line);
+        assert_null(strstr(line, "lights narrowed"));
+    }
+}
+
 /* Each switch turns its skip off: its own and the program-wide one. */
 static void test_switches_turn_skips_off(void **state) {
     (void)state;
@@ -392,6 +414,7 @@ int main(void) {
         cmocka_unit_test(test_switches_turn_skips_off),
         cmocka_unit_test(test_hidden_casters_culled),
         cmocka_unit_test(test_hidden_objects_left_out),
+        cmocka_unit_test(test_lights_narrowed),
         cmocka_unit_test(test_dumps_identical_with_and_without_skips),
     };
     return cmocka_run_group_tests_name("skips", tests, NULL, NULL);

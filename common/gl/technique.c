@@ -78,9 +78,22 @@ bool technique_render_frame(const technique *t, const technique_frame *f, target
 
 bool technique_light_on(const technique_frame *f, int l) { return (f->lights & RENDER_LIGHT_BIT(l)) != 0; }
 
+const int *technique_light_rect(const technique_frame *f, int l) {
+    return f->seen && f->seen->read ? f->seen->light_rect[l] : f->light_rect[l];
+}
+
+/* Light l's rectangle covers at most TECHNIQUE_NARROW_LIGHT_SHARE of the frame. */
+static bool technique_light_narrow(const technique_frame *f, int l) {
+    const int *rect = technique_light_rect(f, l);
+    return (double)rect[2] * (double)rect[3] <= TECHNIQUE_NARROW_LIGHT_SHARE * (double)f->width * (double)f->height;
+}
+
 const bool *technique_light_pass(const technique_frame *f, int l) {
+    const int *rect = technique_light_rect(f, l);
+    if (technique_light_narrow(f, l) && memcmp(rect, f->light_rect[l], sizeof f->light_rect[l]) != 0)
+        f->counts->lights_narrowed |= RENDER_LIGHT_BIT(l);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(f->light_rect[l][0], f->light_rect[l][1], f->light_rect[l][2], f->light_rect[l][3]);
+    glScissor(rect[0], rect[1], rect[2], rect[3]);
     return f->lit_by[l];
 }
 
@@ -122,6 +135,14 @@ const bool *technique_shade_all_begin(const technique_frame *f) {
     return f->in_view;
 }
 
+unsigned technique_split_lights(const technique_frame *f) {
+    unsigned split = 0;
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        if (technique_light_on(f, l) && technique_light_narrow(f, l))
+            split |= RENDER_LIGHT_BIT(l);
+    return split;
+}
+
 void technique_shade_ambient(const technique_frame *f) {
     technique_shade_depth();
     render_use_lit(f->gpu, f->view, 0, true);
@@ -155,6 +176,16 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
     glDisable(GL_SCISSOR_TEST);
 }
 
+/* The bounds of a slab's corners. */
+static void technique_slab_bounds(const float slab[8][3], vec3 lo, vec3 hi) {
+    glm_vec3_fill(lo, INFINITY);
+    glm_vec3_fill(hi, -INFINITY);
+    for (int c = 0; c < 8; c++) {
+        glm_vec3_minv(lo, (float *)slab[c], lo);
+        glm_vec3_maxv(hi, (float *)slab[c], hi);
+    }
+}
+
 /* Clears from the frame's in_view and lit_by the objects wholly behind
  * what was seen; none in a frame with a huge object in view. */
 static void technique_hide_objects(const technique_frame *f, technique_seen *seen) {
@@ -176,14 +207,50 @@ static void technique_hide_objects(const technique_frame *f, technique_seen *see
     }
 }
 
+/* Each light's rectangle narrowed to the tiles of the slabs it reaches
+ * (technique_light_rect); a directional light reaches every one. */
+static void technique_narrow_light_rects(const technique_frame *f, technique_seen *seen) {
+    const scene *s = f->gpu->scene;
+    for (int l = 0; l < s->light_count; l++) {
+        const int *frame_rect = f->light_rect[l];
+        int *rect = seen->light_rect[l];
+        memcpy(rect, frame_rect, sizeof seen->light_rect[l]);
+        if (s->lights[l].type == SCENE_LIGHT_DIRECTIONAL || !technique_light_on(f, l))
+            continue;
+        float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (int i = 0; i < seen->pixels.count; i++) {
+            const light_mask_seen *tile = &seen->pixels.seen[i];
+            vec3 slab_lo, slab_hi;
+            technique_slab_bounds((const float(*)[3])seen->pixels.slabs[i], slab_lo, slab_hi);
+            if (!scene_light_reaches_box(&s->lights[l], slab_lo, slab_hi))
+                continue;
+            for (int k = 0; k < 2; k++) {
+                lo[k] = fminf(lo[k], tile->lo[k]);
+                hi[k] = fmaxf(hi[k], tile->hi[k]);
+            }
+        }
+        int x0 = glm_max(frame_rect[0], (int)lo[0]), y0 = glm_max(frame_rect[1], (int)lo[1]);
+        int x1 = glm_min(frame_rect[0] + frame_rect[2], (int)hi[0]);
+        int y1 = glm_min(frame_rect[1] + frame_rect[3], (int)hi[1]);
+        if (!(lo[0] <= hi[0])) /* no slab: nothing seen is reached */
+            x1 = x0, y1 = y0;
+        rect[0] = x0;
+        rect[1] = y0;
+        rect[2] = glm_max(x1 - x0, 0);
+        rect[3] = glm_max(y1 - y0, 0);
+    }
+}
+
 void technique_see(const technique_frame *f) {
     technique_seen *seen = f->seen;
     if (!seen)
         return;
     seen->masks_made = 0;
     seen->read = visible_read(&seen->pixels, f->view, f->width, f->height);
-    if (seen->read)
-        technique_hide_objects(f, seen);
+    if (!seen->read)
+        return;
+    technique_hide_objects(f, seen);
+    technique_narrow_light_rects(f, seen);
 }
 
 const visible *technique_seen_pixels(const technique_frame *f) {
@@ -194,11 +261,8 @@ const visible *technique_seen_pixels(const technique_frame *f) {
  * (its range, a spot's cone): else what is seen there takes nothing
  * from the light, and no shadow of it matters. */
 static bool technique_slab_reached(const scene_light *light, const float slab[8][3], const vec3 lo, const vec3 hi) {
-    vec3 slab_lo = {INFINITY, INFINITY, INFINITY}, slab_hi = {-INFINITY, -INFINITY, -INFINITY};
-    for (int c = 0; c < 8; c++) {
-        glm_vec3_minv(slab_lo, (float *)slab[c], slab_lo);
-        glm_vec3_maxv(slab_hi, (float *)slab[c], slab_hi);
-    }
+    vec3 slab_lo, slab_hi;
+    technique_slab_bounds(slab, slab_lo, slab_hi);
     for (int k = 0; k < 3; k++)
         if (slab_lo[k] > hi[k] || slab_hi[k] < lo[k])
             return false;
@@ -471,7 +535,7 @@ static int technique_pixel(float ndc, int size, bool up) {
  * range (the range window is 0 beyond it); the whole frame without a
  * range, when the cube reaches behind the eye, or without the skip
  * (`bounded` false). */
-static void technique_light_rect(const scene_light *l, const camera_view *view, int width, int height, bool bounded,
+static void technique_range_rect(const scene_light *l, const camera_view *view, int width, int height, bool bounded,
                                  int rect[4]) {
     rect[0] = rect[1] = 0;
     rect[2] = width;
@@ -513,7 +577,7 @@ static void technique_host_light_passes(technique_host *h, const camera_view *vi
     for (int l = 0; l < s->light_count; l++) {
         bool *lit = h->gpu->lit_by[l];
         f->lit_by[l] = lit;
-        technique_light_rect(&s->lights[l], view, f->width, f->height, reach_skip, f->light_rect[l]);
+        technique_range_rect(&s->lights[l], view, f->width, f->height, reach_skip, f->light_rect[l]);
         for (int i = 0; i < s->object_count; i++) {
             lit[i] = h->gpu->in_view[i];
             if (lit[i] && reach_skip && technique_light_on(f, l)) {
@@ -559,7 +623,7 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
     }
     h->hidden_idle -= h->hidden_idle > 0;
     bool rendered = technique_render_frame(h->technique, &f, target, visibility_of);
-    int saved = h->counts.objects_hidden;
+    int saved = h->counts.objects_hidden + (h->counts.lights_narrowed != 0);
     for (int l = 0; l < s->light_count; l++)
         saved += h->counts.casters_hidden[l] + h->counts.casters_narrowed[l];
     if (h->seen.read && saved == 0)

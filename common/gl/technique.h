@@ -81,6 +81,10 @@ typedef struct technique_counts {
      * (technique_caster_seen). */
     int casters_hidden[SCENE_MAX_LIGHTS], casters_narrowed[SCENE_MAX_LIGHTS];
     int objects_hidden; /* in view, behind what the pre-pass shows (technique_see) */
+    /* RENDER_LIGHT_BIT(l): a pass of light l drew in its rectangle as
+     * technique_see narrowed it to TECHNIQUE_NARROW_LIGHT_SHARE of the
+     * frame or less (technique_light_pass). */
+    unsigned lights_narrowed;
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
 } technique_counts;
 
@@ -104,6 +108,9 @@ typedef struct technique_seen {
     /* The host's in_view and lit_by of this frame, which technique_see
      * clears of the objects hidden behind what it read. */
     bool *in_view, *lit_by[SCENE_MAX_LIGHTS];
+    /* Light l's pixels: its frame rectangle narrowed to the tiles whose
+     * slabs it reaches (technique_light_rect). */
+    int light_rect[SCENE_MAX_LIGHTS][4];
     unsigned masks_made; /* RENDER_LIGHT_BIT(l): light l's masks */
     int mask_count[SCENE_MAX_LIGHTS];
     light_mask masks[SCENE_MAX_LIGHTS][LIGHT_MASK_MAX_LAYERS];
@@ -157,8 +164,17 @@ int technique_receiver_points(const scene *s, const camera_view *view, float (*p
 
 /* Light l reaches the view this frame. */
 bool technique_light_on(const technique_frame *f, int l);
-/* Scissors to light l's rectangle (scissor test on) and returns the
- * objects its lighting pass draws: what it reaches. */
+/* A light whose rectangle covers at most this share of the frame is
+ * narrowed enough to pay for the read-back of technique_see, and split
+ * from the one shading pass (technique_split_lights). */
+#define TECHNIQUE_NARROW_LIGHT_SHARE 0.25
+/* Light l's pixel rectangle (x, y, width, height), outside of which it
+ * adds exactly 0: f->light_rect[l], narrowed after technique_see to the
+ * tiles whose slabs the light reaches (its range, a spot's cone): every
+ * visible point lies in a slab of its own tile. */
+const int *technique_light_rect(const technique_frame *f, int l);
+/* Scissors to light l's rectangle (technique_light_rect; scissor test
+ * on) and returns the objects its lighting pass draws: what it reaches. */
 const bool *technique_light_pass(const technique_frame *f, int l);
 
 /* The shading passes, after render_depth_prepass of f->in_view (depth
@@ -181,6 +197,17 @@ int technique_ambient_light(const technique_frame *f);
 /* The one shading pass's state; returns the objects it draws: every one
  * in view. */
 const bool *technique_shade_all_begin(const technique_frame *f);
+/* The lights on whose rectangle covers at most TECHNIQUE_NARROW_LIGHT_SHARE
+ * of the frame, which the one shading pass leaves to passes of their own,
+ * for a shader that pays for every light it holds on every pixel (one
+ * whose lights are fixed when it is compiled: llvmpipe runs both sides of
+ * a branch). The one pass then shades every object in view with the other
+ * lights; light l's own pass (technique_light_pass), with every light,
+ * shades again what it reaches in its rectangle. A light adds exactly 0
+ * outside its rectangle, so each pixel's sum is the one pass's with every
+ * light, bit for bit. None with the skips off (every rectangle the whole
+ * frame). */
+unsigned technique_split_lights(const technique_frame *f);
 /* The frame's only shading pass when no light is on: the ambient term on
  * every object in view. */
 void technique_shade_ambient(const technique_frame *f);

@@ -661,7 +661,8 @@ static int app_skips_text(char *out, size_t size) {
             APP_TEXT("%s%d: %d/%d", l ? " " : "culled / narrowed per light ", l, c->casters_hidden[l],
                      c->casters_narrowed[l]);
     if (render_skip_on(k, k->no_hidden_cull) && app.host.hidden_idle == 0)
-        APP_TEXT("; objects hidden %d", c->objects_hidden);
+        APP_TEXT("; objects hidden %d; lights narrowed %d", c->objects_hidden,
+                 __builtin_popcount(c->lights_narrowed));
     APP_TEXT("   [J] caching: ");
     if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);

@@ -651,72 +651,105 @@ static void shadow_map_bind_soft(const shadow_map_renderer *r, const shadow_map_
     glUniformMatrix4fv(p->lights[l].light_inverse, 1, GL_FALSE, (const float *)inverse);
 }
 
-/* Every light on, by its kind in key k (shadowed where its map lets it
- * through, or unshadowed), and the ambient term: the one shading pass.
- * Only receivers read maps (the caster culling is for them too); the
- * others take every light unshadowed, as in the reference. */
+/* Key k without the lights of `lights` (RENDER_LIGHT_BIT). */
+static shadow_map_camera_key shadow_map_key_without(shadow_map_camera_key k, unsigned lights) {
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        unsigned field = shadow_map_light_bits(l, (1u << SHADOW_MAP_LIGHT_KIND_BITS) - 1);
+        if (lights & RENDER_LIGHT_BIT(l)) {
+            k.kinds &= ~field;
+            k.texel_kinds &= ~field;
+        }
+    }
+    k.soft_lights &= ~lights;
+    k.moment_lights &= ~lights;
+    return k;
+}
+
+/* The receivers of `objects` through camera program p: every light of its
+ * key by its kind (shadowed where its map lets it through, or
+ * unshadowed), and the ambient term. */
+static void shadow_map_shade_receivers(shadow_map_renderer *r, const shadow_map_settings *st,
+                                       const technique_frame *f, const shadow_map_camera_program *p,
+                                       const bool *objects) {
+    const shadow_map_camera_key *k = &p->key;
+    render_program_use(&p->program, f->view);
+    glUniform1f(p->constant_bias,
+                st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
+    glUniform1f(p->normal_offset, st->normal_texels);
+    glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
+    /* The camera's view depth of a world point: minus its view-space
+     * z, as the fit measured the cascades' splits. */
+    const mat4 *view = &shadow_map_fit_frame(f)->view->view;
+    glUniform4f(p->view_depth, -(*view)[0][2], -(*view)[1][2], -(*view)[2][2], -(*view)[3][2]);
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
+            continue;
+        const shadow_map *m = &r->maps[l];
+        glActiveTexture(GL_TEXTURE0 + (GLenum)l);
+        glBindTexture(shadow_map_target(m->kind), m->texture.id);
+        glUniform1f(p->lights[l].map_size, (float)m->size);
+        glUniform1f(p->lights[l].texel_scale, m->texel_scale);
+        glUniform1f(p->lights[l].near_plane, m->near_plane);
+        glUniform1f(p->lights[l].far_plane, m->far_plane);
+        if (k->soft_lights >> l & 1u)
+            shadow_map_bind_soft(r, p, f->gpu->scene, l);
+        if (k->moment_lights >> l & 1u) {
+            /* Its moments, bilinear (the texture's own filter). */
+            glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_DEPTH_UNITS + (GLenum)l);
+            glBindTexture(shadow_map_target(m->kind), m->texture.moments);
+        }
+        if (m->kind != SHADOW_MAP_ARRAY) {
+            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE,
+                               (const float *)m->layer_view_projection[0]);
+            continue;
+        }
+        /* Layer k's scale and offset, w its slice's far and near ends. */
+        float scale[SHADOW_MAP_MAX_ARRAY_LAYERS][4], offset[SHADOW_MAP_MAX_ARRAY_LAYERS][4];
+        for (int layer = 0; layer < m->layer_count; layer++) {
+            memcpy(scale[layer], m->cascade_scale[layer], sizeof m->cascade_scale[layer]);
+            memcpy(offset[layer], m->cascade_offset[layer], sizeof m->cascade_offset[layer]);
+            scale[layer][3] = m->cascade_split[layer + 1];
+            offset[layer][3] = m->cascade_split[layer];
+        }
+        glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->cascade_view);
+        glUniform4fv(p->lights[l].cascade_scale, m->layer_count, (const float *)scale);
+        glUniform4fv(p->lights[l].cascade_offset, m->layer_count, (const float *)offset);
+        glUniform1i(p->lights[l].cascade_count, m->layer_count);
+        glUniform1f(p->cascade_blend, m->cascade_blend);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    const scene *s = f->gpu->scene;
+    for (int i = 0; i < s->object_count; i++) {
+        if (!render_in_mask(objects, i) || !s->objects[i].receives)
+            continue;
+        glUniform1i(p->closed_outside, (GLint)shadow_map_closed_outside(r, f, k, i));
+        render_draw_object(f->gpu, &p->program, i);
+    }
+}
+
+/* Every light on, by its kind in key k, and the ambient term: the one
+ * shading pass, with the lights technique_split_lights leaves out shaded
+ * again each in its own rectangle. Only receivers read maps (the caster
+ * culling is for them too); the others take every light unshadowed, as in
+ * the reference. */
 static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
                              const shadow_map_camera_key *k) {
+    unsigned split = technique_split_lights(f);
+    shadow_map_camera_key first_key = shadow_map_key_without(*k, split);
     const bool *objects = technique_shade_all_begin(f);
-    const shadow_map_camera_program *p = shadow_map_camera_program_for(r, k);
-    if (p) {
-        render_program_use(&p->program, f->view);
-        glUniform1f(p->constant_bias,
-                    st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
-        glUniform1f(p->normal_offset, st->normal_texels);
-        glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
-        /* The camera's view depth of a world point: minus its view-space
-         * z, as the fit measured the cascades' splits. */
-        const mat4 *view = &shadow_map_fit_frame(f)->view->view;
-        glUniform4f(p->view_depth, -(*view)[0][2], -(*view)[1][2], -(*view)[2][2], -(*view)[3][2]);
-        for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-            if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
-                continue;
-            const shadow_map *m = &r->maps[l];
-            glActiveTexture(GL_TEXTURE0 + (GLenum)l);
-            glBindTexture(shadow_map_target(m->kind), m->texture.id);
-            glUniform1f(p->lights[l].map_size, (float)m->size);
-            glUniform1f(p->lights[l].texel_scale, m->texel_scale);
-            glUniform1f(p->lights[l].near_plane, m->near_plane);
-            glUniform1f(p->lights[l].far_plane, m->far_plane);
-            if (k->soft_lights >> l & 1u)
-                shadow_map_bind_soft(r, p, f->gpu->scene, l);
-            if (k->moment_lights >> l & 1u) {
-                /* Its moments, bilinear (the texture's own filter). */
-                glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_DEPTH_UNITS + (GLenum)l);
-                glBindTexture(shadow_map_target(m->kind), m->texture.moments);
-            }
-            if (m->kind != SHADOW_MAP_ARRAY) {
-                glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE,
-                                   (const float *)m->layer_view_projection[0]);
-                continue;
-            }
-            /* Layer k's scale and offset, w its slice's far and near ends. */
-            float scale[SHADOW_MAP_MAX_ARRAY_LAYERS][4], offset[SHADOW_MAP_MAX_ARRAY_LAYERS][4];
-            for (int layer = 0; layer < m->layer_count; layer++) {
-                memcpy(scale[layer], m->cascade_scale[layer], sizeof m->cascade_scale[layer]);
-                memcpy(offset[layer], m->cascade_offset[layer], sizeof m->cascade_offset[layer]);
-                scale[layer][3] = m->cascade_split[layer + 1];
-                offset[layer][3] = m->cascade_split[layer];
-            }
-            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->cascade_view);
-            glUniform4fv(p->lights[l].cascade_scale, m->layer_count, (const float *)scale);
-            glUniform4fv(p->lights[l].cascade_offset, m->layer_count, (const float *)offset);
-            glUniform1i(p->lights[l].cascade_count, m->layer_count);
-            glUniform1f(p->cascade_blend, m->cascade_blend);
-        }
-        glActiveTexture(GL_TEXTURE0);
-        const scene *s = f->gpu->scene;
-        for (int i = 0; i < s->object_count; i++) {
-            if (!render_in_mask(objects, i) || !s->objects[i].receives)
-                continue;
-            glUniform1i(p->closed_outside, (GLint)shadow_map_closed_outside(r, f, k, i));
-            render_draw_object(f->gpu, &p->program, i);
-        }
+    const shadow_map_camera_program *first = shadow_map_camera_program_for(r, &first_key);
+    const shadow_map_camera_program *p = split ? shadow_map_camera_program_for(r, k) : first;
+    if (first && p) {
+        shadow_map_shade_receivers(r, st, f, first, objects);
+        for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+            if (split & RENDER_LIGHT_BIT(l))
+                shadow_map_shade_receivers(r, st, f, p, technique_light_pass(f, l));
+        glDisable(GL_SCISSOR_TEST);
     }
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (k->soft_lights >> l & 1u)
             glBindSampler(SHADOW_MAP_DEPTH_UNITS + (GLuint)l, 0);
+    p = first ? p : NULL;
     render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
     for (int i = 0; i < f->gpu->scene->object_count; i++)
