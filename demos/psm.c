@@ -27,16 +27,10 @@
  *
  * The same virtual near plane sets both warps' strength: z_n + sqrt(z_n
  * z_f), the optimum both papers derive for a light overhead. A warp can
- * lose to the uniform map (light nearly along the view, a point light
- * among the receivers), so each frame both are measured where the camera
- * looks: rays through a grid of pixels hit the receivers' boxes, and at
- * each hit the map texel's size in pixels on that plane (the dp/ds of the
- * papers) is found from both matrices. The warp is kept only where its
- * mean is at least a fifth smaller; the HUD says which won and why.
- *
- * Bias and filtering are shadowmap.c's: the constant and normal-offset
- * biases move the point in world units, one texel of the warped map there
- * (found from the matrix's derivatives), since the warp distorts depth.
+ * lose to the uniform map, so each frame both are measured where the
+ * camera looks and the warp is kept only where it pays (psm_fit); the HUD
+ * says which won and why. Bias and filtering are shadowmap.c's, the biases
+ * in texels of the warped map found from its matrix's derivatives.
  *
  * The warps' math is demos/lib/warp.h (no GL, unit-tested in
  * tests/test_warp.c); the maps, passes and overlays are
@@ -122,7 +116,16 @@ static bool psm_place_warp(const technique_frame *f, int light, const float (*re
 }
 
 /* The uniform map, replaced by the warp where the warp's texels are
- * smaller on screen. */
+ * smaller on screen. A warp can lose to the uniform map (light nearly
+ * along the view, a point light among the receivers), so both are
+ * measured where the camera looks: rays through a grid of pixels hit the
+ * receivers' boxes, and at each hit the map texel's size in pixels on
+ * that plane (the dp/ds of the papers) is found from both matrices
+ * (warp_texel_pixels). The warp is kept only where its mean is at least a
+ * fifth smaller (PSM_WARP_GAIN). Either way the constant and
+ * normal-offset biases move the point in world units, one texel of the
+ * map in use there (found from the matrix's derivatives,
+ * SHADOW_MAP_TEXEL_PROJECTIVE), since the warp distorts depth. */
 static bool psm_fit(const technique_frame *f, int light, shadow_map *m, const float (*receivers)[3],
                     int receiver_count) {
     const scene_light *l = &f->gpu->scene->lights[light];
@@ -219,7 +222,7 @@ static void psm_describe(char *out, size_t size) {
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the
  * filters' early-out off, the tents and two moment filters at the
- * defaults (shadow_map.h, "filters", "Moment shadow maps"). */
+ * defaults (shadow_map.h, "The camera pass", "Moment shadow maps"). */
 static const char *const psm_bench_configs[] = {
     "",
     "--map-size 1024",

@@ -5,58 +5,41 @@
  * render depth from the light, then test each camera fragment's depth in
  * the light against the map. Reeves, Salesin & Cook, "Rendering antialiased
  * shadows with depth maps", SIGGRAPH 1987: filter the results of the tests
- * (never the depths) over a kernel: percentage-closer filtering. The
- * moment filters (--filter vsm|evsm2|evsm4|msm) filter the depths'
- * moments instead (shadow_map.h, "Moment shadow maps").
+ * (never the depths) over a kernel: percentage-closer filtering.
  *
- *   spot         a perspective map around the cone (outside it the spot
- *                lights nothing: the cone decides there, not the map)
- *   directional  an orthographic map
- *   point        a cube map of six 90-degree faces, read with seamless
- *                filtering so that kernels cross face edges
+ * A spot gets a perspective map around its cone (outside it the spot
+ * lights nothing: the cone decides there, not the map), a directional
+ * light an orthographic map, a point light a cube map of six 90-degree
+ * faces, read with seamless filtering so that kernels cross face edges.
  *
- * Each frame the map's frustum is fitted to the receivers the camera can
- * see (the part of their boxes inside the camera's frustum) and to the
- * casters whose shadow can reach them, even casters outside the view; the
- * tighter the depth range, the more of the depth buffer's precision is
- * spent where shadows are decided. The HUD shows the range. The machinery,
- * the same for demos/psm.c, is demos/lib/shadow_map.h; this file is the
- * uniform placement and the settings' story.
+ * Each frame the map is fitted to the visible receivers and the casters
+ * whose shadow can reach them, even outside the view (the HUD shows its
+ * depth range). The machinery, shared with demos/psm.c and
+ * demos/cascades.c, is demos/lib/shadow_map.h ("The camera pass": the
+ * filters, --filter, and the early-out, --no-early-out, key E; "Moment
+ * shadow maps"); this file is the uniform placement and the settings.
  *
- * Bias, with its size as a number: constant (a toggle; the point is moved
+ * Bias, with its size as a number: constant (a toggle; the point moves
  * towards the light by N map texels of world distance), slope-scaled (a
  * toggle; glPolygonOffset factor in the depth pass, which grows with the
  * caster's depth slope) and normal offset (N texels along the normal,
- * times the sine of the light's angle, where one texel spans most depth;
- * 0 by default). Texel-sized biases hold at every map size, distance and
- * scene scale. Receiver-plane depth bias (--kernel-depth receiver-plane,
- * the default; Isidoro, GDC 2006) makes each tap of a wide kernel compare
- * the receiver's own depth there: taps at the centre's depth (--kernel-depth
- * centre) reach texels of a flat or slanted receiver itself and speckle it
- * with partial acne, which misclassified % cannot see and the lit class's
- * MAE can (assets/scenes/flat_boxes*.json; tests/test_shadowmap.c).
+ * times the sine of the light's angle; 0 by default): texel-sized, they
+ * hold at every map size, distance and scene scale. Receiver-plane depth
+ * bias (--kernel-depth receiver-plane, the default; Isidoro, GDC 2006)
+ * makes each tap of a wide kernel compare the receiver's own depth there:
+ * taps at the centre's depth (--kernel-depth centre) speckle flat and
+ * slanted receivers with partial acne, which the lit class's MAE sees and
+ * misclassified % does not (assets/scenes/flat_boxes*.json,
+ * test_shadowmap's test_receiver_plane_removes_partial_acne).
  *
  * The defaults (poisson, constant 1 texel, slope factor 1.5, no normal
- * offset, receiver-plane taps, early-out on) come from `make bench`, by
- * misclassified % and lit MAE together: of the settings on the technique's
- * own Pareto fronts on every standard scene and the flat boxes, the one
- * that misclassifies least without darkening fully lit surfaces, and that
- * no textbook configuration of the sweep beats on both figures, with no
- * acne anywhere in the elevation sweep (tests/test_shadowmap.c). The
- * README's "Shadow maps" section has the figures.
- *
- * Filters: none (one nearest test), hw (one bilinear test: 2x2 in
- * hardware), pcf3/5/7 (an N x N grid of bilinear tests), tent3/5 (an N x N
- * tent from 4 or 9 bilinear tests placed by where the point lies in its
- * texel; shaders/shadowmap.glsl), poisson (16 bilinear tests on a Poisson
- * disc of scale 3 texels, whose taps span 3.7 texels, rotated per pixel by
- * a hash of the pixel, so frames stay deterministic).
- *
- * The early-out (--no-early-out, key E, turns it off): kernels of more
- * than four taps read four on their rim first and stop where those agree:
- * outside penumbrae, four taps instead of the kernel's. It changes no
- * decision on the standard scenes (tests/test_shadowmap.c) and snaps
- * penumbra values near 0 or 1 to them.
+ * offset, receiver-plane taps, early-out on) are, in the bench's shadowmap
+ * sweep, the setting on the technique's Pareto fronts (misclassified % and
+ * lit MAE, every standard scene and the flat boxes) that misclassifies
+ * least without darkening lit surfaces and that no textbook configuration
+ * beats on both, with no acne at any elevation (test_shadowmap's
+ * test_no_acne_at_any_elevation). The README's "Shadow maps" section has
+ * the figures.
  */
 #include <stdio.h>
 
@@ -105,14 +88,12 @@ static void shadowmap_describe(char *out, size_t size) {
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
 }
 
-/* The sweep: map size x filter x bias (the tents, and the early-out off:
- * the defaults' figures before it; the moment filters), and two
- * configurations popular
- * tutorials use ("label: flags"), so the report shows where our biases
- * stand at the same cost: LearnOpenGL's bias max(0.05 (1 - N.L), 0.005)
- * with 3x3 PCF at 1024 (against --map-size 1024 --filter pcf3), and
- * polygon offset (1.25, 1.75) with 3x3 PCF at 2048 (against --filter
- * pcf3). */
+/* The sweep: map size x filter x bias (the tents, the early-out off, the
+ * moment filters), and two configurations popular tutorials use ("label:
+ * flags"), so the report shows where our biases stand at the same cost:
+ * LearnOpenGL's bias max(0.05 (1 - N.L), 0.005) with 3x3 PCF at 1024
+ * (against --map-size 1024 --filter pcf3), and polygon offset (1.25,
+ * 1.75) with 3x3 PCF at 2048 (against --filter pcf3). */
 static const char *const shadowmap_bench_configs[] = {
     "",
     "--map-size 1024",

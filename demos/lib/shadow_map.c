@@ -607,8 +607,8 @@ void shadow_map_destroy(shadow_map_renderer *r) {
  * reaches on the eye's side is in the mesh's shadow. Only with the eye
  * inside: from outside, a triangle whose back the eye sees wins the
  * depth test at a few silhouette pixels, and the reference may see the
- * lit front there (4 pixels of long_view_behind and of a low point light
- * in tests/test_psm.c read shadowed). */
+ * lit front there (long_view_behind and test_psm's low point light would
+ * read shadowed there). */
 static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const technique_frame *f,
                                           const shadow_map_camera_key *k, int i) {
     const scene *s = f->gpu->scene;

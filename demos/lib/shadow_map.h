@@ -1,6 +1,10 @@
-/* shadow_map: the shadow-map library that demos/shadowmap.c (uniform maps)
- * and demos/psm.c (warped maps) are built on. GL lives here, not in the
- * techniques.
+/* shadow_map: the shadow-map library that demos/shadowmap.c (uniform
+ * maps), demos/psm.c (warped maps) and demos/cascades.c (array maps for
+ * directional lights, the uniform fit for the others) are built on. GL
+ * lives here, not in the techniques. Each part of the manual stands beside
+ * what it describes: map size, the camera pass and its filters, soft
+ * shadows, moment maps, overlays, storage, array maps, caching, the depth
+ * pass, fitting and caster culling.
  *
  * Using it. A technique keeps a shadow_map_settings and a
  * shadow_map_renderer in its static state, lists SHADOW_MAP_PARAMS(its
@@ -14,11 +18,10 @@
  *        part of every receiver's box inside the camera's frustum;
  *     2. per light: fit(frame, light, map, receivers) places the map
  *        (a fit that measures its texels, as psm does, takes the samples
- *        of shadow_map_light_samples), the automatic size sizes it
- *        (below), and
+ *        of shadow_map_light_samples), the automatic size sizes it, and
  *        the depth pass renders each layer that its cache cannot give,
- *        with the casters that layer needs (below); a fit that returns
- *        false means nothing can be shadowed, and the light is added
+ *        with the casters that layer needs; a fit that returns false
+ *        means nothing can be shadowed, and the light is added
  *        unshadowed;
  *     3. the camera pass: a depth pre-pass, then one pass (GL_EQUAL
  *        depth) that shades every light on where its map lets it through,
@@ -26,72 +29,51 @@
  *        filtered once per light that adds to it (beyond a light's range,
  *        outside its cone or facing away the filter is skipped);
  *     4. the overlays of settings->overlay.
- *
- * Storage (shadow_map). A map has a kind and layers: SHADOW_MAP_2D has
- * one layer (spot, directional, any warped map), SHADOW_MAP_CUBE six, the
- * faces in GL's order (SHADOW_MAP_FACE_*), SHADOW_MAP_ARRAY layer_count
- * of them (1..SHADOW_MAP_MAX_ARRAY_LAYERS) in one GL_TEXTURE_2D_ARRAY, for
- * cascades (one layer per slice of the view). Each layer has its own
- * matrix, layer_view_projection[layer] (world -> that layer's clip space);
- * the depth range, texel measure and caster list are the map's. The
- * texture is (re)made only when kind, size, layer count, depth format or
- * filter change; every kind compares in hardware (compare mode on, clamped
- * to its edges).
- *
- * Fitting (shadow_map_fit.c, no GL). shadow_map_fit_uniform is
- * demos/shadowmap.c's placement and the fallback of every warp:
- *   spot         a perspective map around the cone, or around the
- *                receivers where they lie in a narrower one (the light
- *                far from them), from the nearest caster in front of the
- *                light to the farthest receiver; a spot wider than 85
- *                degrees as a point light;
- *   directional  an orthographic box around the receivers seen along the
- *                light, deepened towards it to every caster whose box
- *                overlaps them seen from the light (caster selection: so
- *                casters outside the view still cast);
- *   point        one perspective map around the receivers where they lie
- *                in a cone of at most 45 degrees, else a cube map, from
- *                the nearest caster to the farthest receiver.
- * A fit fills the map's kind, layer matrices, depth range (for the inset
- * and the HUD), texel_kind / texel_scale (how the camera pass finds a
- * texel's world size, which the constant and normal-offset biases are
- * measured in) and casters (which objects the depth pass draws; NULL:
- * every caster).
- *
- * The depth pass (shadow_map_render_depth) renders each layer's depth from
- * its matrix, with glPolygonOffset as the slope-scaled bias (unless
- * --no-slope-bias); an array map's layers are attached one at a time
- * (glFramebufferTextureLayer).
- *
- * Array maps (demos/cascades.c's cascades). Every layer is an orthographic
- * box of one light view, cascade_view (world -> light space, orthonormal),
- * so a layer is that view, then a scale and an offset per axis
- * (cascade_scale, cascade_offset: its glm_ortho's diagonal and
- * translation; shadow_map_cascade_layer sets them with its
- * layer_view_projection). The camera pass reads layer k where the
- * camera's view depth lies between cascade_split[k] and [k + 1] (beyond
- * the ends, the nearest layer), and over the last cascade_blend of a
- * slice reads layer k + 1 at a share of the pixels rising linearly to 1
- * (dithered by a hash of the pixel: each pixel filters one layer), so the
- * switch of texel size shows no seam; the box of layer k + 1 covers that
- * band. Per layer the shader
- * has 2 vec4 (scale, offset; their w the slice's ends), not a mat4: a
- * program with array lights holds 2 x SCENE_MAX_LIGHTS x
- * SHADOW_MAP_MAX_ARRAY_LAYERS vec4 of them, where mat4s would take twice
- * that. A layer's world texel is 2 / (size x its smaller xy scale): the
- * constant and normal-offset biases are measured in the texel of the
- * layer read. An array light's sampler is on its
- * 2D unit (a light has one kind of map). --map-size auto does not size
- * an array map: the fit sets its size (a cascade's texels are sized by
- * their count, not measured).
- *
- * The camera pass (shaders/shadowmap.frag: shadowmap.glsl's kernels,
+ */
+#ifndef SHADOW_MAP_H
+#define SHADOW_MAP_H
+
+#include <GLFW/glfw3.h>
+#include <stdbool.h>
+
+#include "technique.h"
+#include "warp.h"
+
+/* Map size (--map-size; auto, the default). Fixed sizes are as given.
+ * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
+ * on screen of its texels at shadow_map_light_samples (the dp/ds of the
+ * perspective shadow map papers, warp_sample_texel_pixels: a
+ * WARP_SAMPLES_X x WARP_SAMPLES_Y grid of pixels cast onto the receivers' boxes, the same measure psm judges
+ * its warps by; samples beyond the light's range or outside the map left
+ * out) and takes the smallest power of two from MIN to MAX at which a
+ * texel covers at most TEXEL_PIXELS pixels on average
+ * (shadow_map_auto_size; MAX where most receivers seen are edge-on to the
+ * light): shadows no sharper than the pixels that show them, and no depth
+ * pass larger than that needs. The size follows the picture's: half as
+ * wide a picture, half the size (test_shadowmap's test_map_size_from_need
+ * checks the sizes it picks). A cube map has one size for its six faces
+ * (one cube texture, so that kernels filter across face edges): the mean
+ * is over the samples on all faces. FALLBACK where nothing can be measured
+ * (no sample of the pixel grid lands on a receiver the light reaches). An
+ * array map is not sized here: its fit sets its size. */
+#define SHADOW_MAP_AUTO_MIN_SIZE 256
+#define SHADOW_MAP_AUTO_MAX_SIZE 4096
+#define SHADOW_MAP_AUTO_TEXEL_PIXELS 1.0f
+#define SHADOW_MAP_AUTO_FALLBACK_SIZE 2048
+
+/* The defaults of the numbers, from `make bench` (see demos/shadowmap.c). */
+#define SHADOW_MAP_CONSTANT_TEXELS 1.0f
+#define SHADOW_MAP_SLOPE_FACTOR 1.5f
+#define SHADOW_MAP_SLOPE_UNITS 1.0f
+
+/* The camera pass (shaders/shadowmap.frag: shadowmap.glsl's kernels,
  * shadowmap_2d.glsl's, shadowmap_cube.glsl's and shadowmap_array.glsl's
  * maps, the flat ones' filter shadowmap_flat.glsl's, one program per
- * combination of the lights' kinds of map, shadow_map_light_kind) moves each point towards the light by the constant
- * bias and along its normal by the normal offset (both in map texels of
- * world distance, so they hold at any map size and scene scale), then
- * filters the hardware comparisons over the kernel of settings->filter:
+ * combination of the lights' kinds of map, shadow_map_light_kind) moves
+ * each point towards the light by the constant bias and along its normal
+ * by the normal offset (both in map texels of world distance, so they hold
+ * at any map size and scene scale), then filters the hardware comparisons
+ * over the kernel of settings->filter:
  *   none     one nearest test;          hw     one bilinear test (2x2);
  *   pcf3/5/7 an N x N grid of bilinear tests;
  *   tent3/5  an N x N tent: each texel's test weighted by the area of a
@@ -103,138 +85,21 @@
  *            direction space: there the taps are a point's on a texel
  *            corner, across the direction;
  *   poisson  16 bilinear tests on a Poisson disc rotated per pixel by a
- *            hash of the pixel (frames stay deterministic). The disc's
- *            points are scaled by SHADOW_MAP_POISSON_SCALE_TEXELS / 2 = 1.5
- *            texels; they reach out to radius 1.234 of the unit scale, so
- *            the taps span 3.7 texels across (the scale of 3 misclassified
- *            least of 2 to 6 on the standard scenes).
+ *            hash of the pixel (frames stay deterministic), of scale
+ *            SHADOW_MAP_POISSON_SCALE_TEXELS;
+ *   vsm, evsm2, evsm4, msm  the moment maps (below, "Moment shadow maps").
  * The early-out (on; --no-early-out, key E): a kernel of more than four
  * taps reads four on its rim first and stops where they agree wholly,
  * outside any penumbra (nearly every pixel): 4 taps instead of 9 to 49.
- * On the standard scenes and long_view it changes no decision with any
- * kernel and lowers the mean error a little (penumbra values near 0 or 1
- * snap to it); see demos/shadowmap.c for the figures.
+ * It changes no decision with any kernel on the standard scenes and
+ * long_view (test_shadowmap's test_early_out_changes_no_decision), and
+ * snaps penumbra values near 0 or 1 to them.
  * --kernel-depth receiver-plane (Isidoro, GDC 2006; the default) makes each
  * tap compare the receiver's own depth there rather than the centre's
  * (--kernel-depth centre), which speckles flat receivers with partial
  * acne where a tap reaches texels of the receiver itself.
- * The moment filters (vsm, evsm2, evsm4, msm; shadow_map_moments.c,
- * shaders/moments.glsl) filter the map before the camera pass instead:
- * the depth pass draws the receivers that cast nothing too, then each
- * layer it rendered becomes moments blurred by a separable box into a
- * float texture beside the depth texture (texture.moments), which the
- * camera pass reads once, bilinear, on the light's depth unit. They
- * replace the kernel and PCSS alike: an area light's box is its casters'
- * mean penumbra wide (one width, no contact hardening).
- * An area light (radius > 0) with --soft pcss, the default, is filtered
- * instead by percentage-closer soft shadows (shaders/shadowmap_soft.glsl:
- * a blocker search, the penumbra by similar triangles, a filter of its
- * width), its taps on the receiver's plane; the blocker search reads the
- * map's depths on unit SHADOW_MAP_DEPTH_UNITS + light through
- * r->depth_sampler (compare mode off). Its bit of the key's soft_lights
- * compiles that code in: a light of radius 0 runs the code it always did.
- * With the eye inside a closed caster (r->closed: its welded edge table,
- * as the volumes weigh it; the eye inside by its winding number), a face
- * that a light outside the mesh reaches on the eye's side is in the
- * mesh's shadow without a read: the light came through the mesh
- * (shaders/shadowmap.frag, shadowmap_through_closed).
  *
- * Map size (--map-size; auto, the default). Fixed sizes are as given.
- * Auto fits the map at SHADOW_MAP_AUTO_MAX_SIZE, measures the mean size
- * on screen of its texels at shadow_map_light_samples (the dp/ds of the
- * perspective shadow map papers, warp_sample_texel_pixels: a 32 x 18 grid
- * of pixels cast onto the receivers' boxes, the same measure psm judges
- * its warps by; samples beyond the light's range or outside the map left out) and
- * takes the smallest power of two from 256 to 4096 at which a texel
- * covers at most about one pixel on average (shadow_map_auto_size; the
- * largest where most receivers seen are edge-on to the light):
- * shadows no sharper than the pixels that show them, and no depth pass
- * larger than that needs. At 1280x720 that is 2048 on simple, bunny and
- * teapot, 4096 (the cap) on long_view and the city, half as much in a
- * picture half as wide. A cube map has one size for its six faces (one
- * cube texture, so that kernels filter across face edges): the mean is
- * over the samples on all faces.
- *
- * Caster culling (shadow_map_cull.c, no GL; with f->cull_casters). Each
- * layer (a cube's faces each on its own) draws only the casters that can
- * shadow a visible receiver through it. Where receivers read a layer, in
- * its clip space: the NDC rectangle and deepest depth of both the frame's
- * receiver points and the surfaces of the visible receivers' boxes within
- * the light's range inside the layer's sides (a cube's widened by the
- * kernel, whose taps cross its edges), the tighter of the two, grown by
- * the kernel's reach (shadow_map_read_reach: its farthest tap, the
- * bilinear footprint, a texel of safety; a cube's taps stretched) and
- * clamped to the layer. A caster's box is needed unless it lies beyond one
- * of the layer's clip planes, or, wholly in front of the centre of
- * projection, its rectangle misses that one or its nearest depth lies
- * beyond the deepest read (any depth with receiver-plane taps; a cube tap
- * compares its own direction's depth, bounded by the point pushed away
- * from the light by the tap's offset; a moment filter's box holds every
- * depth, and reaches its blur's width). Exact: the constant bias moves a
- * point along its ray to the light, which keeps its place in every map,
- * and the depth a culled caster would have stored is never one a read
- * compares with. Not culled: with a normal offset (the point leaves its
- * surface), and light 0's map while the inset shows it. The fit never
- * depends on culling.
- *
- * Caching. Per light and layer the renderer keeps what the layer holds:
- * its matrix (bit for bit), the casters drawn, a moment filter's blur
- * width, and per light the texture, size, depth format, filter and slope
- * bias. A layer is reused, with no
- * depth pass, while the scene and the light have not changed
- * (f->changed), those are the same and the casters it needs are among
- * those drawn: a layer with more casters than needed decides every read
- * as one with exactly those. A remade texture, a frame with the light
- * skipped or unfitted, or any change empties the light's cache. Counted in
- * f->counts (casters per light: drawn into any layer, or culled; layers
- * rendered and reused).
- *
- * Overlays, for lectures (shadow_map_overlay.c), drawn into the picture:
- *   texels      the map's texel boundaries on the receivers (camera pass);
- *   texel-size  a heat map of a texel's size in pixels (camera pass);
- *   penumbra    a soft light's receivers coloured by the penumbra radius
- *               PCSS estimated there (world units; camera pass), where
- *               its blocker search found a blocker;
- *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
- *   map         light 0's map as an inset of linear depth (a cube's faces
- *               in two rows: +X -X +Y, then -Y +Z -Z; an array's layers
- *               in a row);
- *   all         texels, frustum and map;
- *   cascades    (an array map's technique: SHADOW_MAP_ARRAY_OVERLAY_NAMES)
- *               each layer's receivers tinted, and the inset.
- * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
- * go on with its own (psm's post-perspective view: shadow_map_warp_view).
- *
- * The C/GLSL contract: the camera pass's kernel shapes
- * (shadow_map_kernel), texel kinds and cube faces are C enums passed to
- * the shaders as defines (common/gl/shader.h); the shaders compare with
- * their names.
- */
-#ifndef SHADOW_MAP_H
-#define SHADOW_MAP_H
-
-#include <GLFW/glfw3.h>
-#include <stdbool.h>
-
-#include "technique.h"
-#include "warp.h"
-
-/* --map-size auto: per light, the smallest power of two from MIN to MAX
- * at which a texel covers at most TEXEL_PIXELS pixels on average where
- * the camera sees the map's receivers (shadow_map_auto_size); FALLBACK
- * where nothing can be measured (no sample of the pixel grid lands on a
- * receiver the light reaches). */
-#define SHADOW_MAP_AUTO_MIN_SIZE 256
-#define SHADOW_MAP_AUTO_MAX_SIZE 4096
-#define SHADOW_MAP_AUTO_TEXEL_PIXELS 1.0f
-#define SHADOW_MAP_AUTO_FALLBACK_SIZE 2048
-
-/* The defaults of the numbers, from `make bench` (see demos/shadowmap.c). */
-#define SHADOW_MAP_CONSTANT_TEXELS 1.0f
-#define SHADOW_MAP_SLOPE_FACTOR 1.5f
-#define SHADOW_MAP_SLOPE_UNITS 1.0f
-
-/* The choices of the settings, in the order of their names (the default
+ * The choices of the settings, in the order of their names (the default
  * first): shadow_map_filters, shadow_map_depths, shadow_map_kernel_depths. */
 typedef enum shadow_map_filter {
     SHADOW_MAP_FILTER_POISSON,
@@ -289,6 +154,19 @@ typedef struct shadow_map_settings {
  * green at 1/16, red at 2 and more. */
 #define SHADOW_MAP_PENUMBRA_LOG2_MIN (-6)
 #define SHADOW_MAP_PENUMBRA_LOG2_MAX (SHADOW_MAP_PENUMBRA_LOG2_MIN + SHADOW_MAP_HEAT_LOG2_MAX - SHADOW_MAP_HEAT_LOG2_MIN)
+/* Overlays, for lectures (shadow_map_overlay.c), drawn into the picture:
+ *   texels      the map's texel boundaries on the receivers (camera pass);
+ *   texel-size  a heat map of a texel's size in pixels (camera pass);
+ *   penumbra    a soft light's receivers coloured by the penumbra radius
+ *               PCSS estimated there (world units; camera pass), where
+ *               its blocker search found a blocker;
+ *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
+ *   map         light 0's map as an inset of linear depth (a cube's faces
+ *               in two rows: +X -X +Y, then -Y +Z -Z; an array's layers
+ *               in a row);
+ *   all         texels, frustum and map.
+ * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
+ * go on with its own (psm's post-perspective view: shadow_map_warp_view). */
 #define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size", "penumbra"
 enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
        SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_PENUMBRA, SHADOW_MAP_OVERLAY_COUNT };
@@ -339,31 +217,47 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
     {"depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, FLAGS_NUMBER,                           \
      .number = &(s).depth_bias_min, .fallback = 0, .min = 0, .max = 1}
 
-/* The shape of the camera pass's kernel (the shaders' u_filter). */
+/* The shape of the camera pass's kernel (the shaders' u_filter). The
+ * C/GLSL contract: the kernel shapes, texel kinds and cube faces are C
+ * enums passed to the shaders as defines (common/gl/shader.h); the shaders
+ * compare with their names. */
 typedef enum shadow_map_kernel {
     SHADOW_MAP_KERNEL_SINGLE,  /* one test: nearest or bilinear by the texture's filter */
     SHADOW_MAP_KERNEL_GRID,    /* N x N bilinear tests a texel apart (u_kernel: N) */
     SHADOW_MAP_KERNEL_POISSON, /* the rotated Poisson disc (u_kernel: its scale in texels) */
     SHADOW_MAP_KERNEL_TENT,    /* an N x N tent from ((N + 1)/2)^2 bilinear tests (u_kernel: N) */
 } shadow_map_kernel;
-/* The Poisson disc's scale: its unit circle is this many texels across.
- * Its points reach radius 1.234 of that circle, so the taps span 3.7
- * texels (see shaders/shadowmap.glsl). */
+/* The Poisson disc's scale: its unit circle is this many texels across,
+ * the scale that misclassifies least on the standard scenes. Its points
+ * reach radius 1.234 of that circle, so the taps span 3.7 texels (see
+ * shaders/shadowmap.glsl). */
 #define SHADOW_MAP_POISSON_SCALE_TEXELS 3
 
-/* Soft shadows (shaders/shadowmap_soft.glsl): the blocker search's and
- * the filter's taps, and the most radius of either disc in texels, which
- * caster culling allows for (shadow_map_read_reach); the least is the hard
- * default's disc's, SHADOW_MAP_POISSON_SCALE_TEXELS / 2. */
+/* Soft shadows. An area light (radius > 0) with --soft pcss, the default,
+ * is filtered by percentage-closer soft shadows instead of the kernel
+ * (shaders/shadowmap_soft.glsl: a blocker search, the penumbra by similar
+ * triangles, a filter of its width), its taps on the receiver's plane; the
+ * blocker search reads the map's depths on unit SHADOW_MAP_DEPTH_UNITS +
+ * light through r->depth_sampler (compare mode off). Its bit of the key's
+ * soft_lights compiles that code in: a light of radius 0 runs the code it
+ * always did. The blocker search's and the filter's taps, and the most
+ * radius of either disc in texels, which caster culling allows for
+ * (shadow_map_read_reach); the least is the hard default's disc's,
+ * SHADOW_MAP_POISSON_SCALE_TEXELS / 2. */
 #define SHADOW_MAP_SOFT_SEARCH_TAPS 16
 #define SHADOW_MAP_SOFT_FILTER_TAPS 32
 #define SHADOW_MAP_SOFT_MAX_TEXELS 48
 
 /* Moment shadow maps (shadow_map_moments.c, shaders/moments.glsl): the
- * filters vsm, evsm2, evsm4 and msm store moments of the depth in a float
- * colour texture beside the depth texture, blurred per layer by a
- * separable box, and the camera pass reads them once, bilinear. Which
- * moments a filter stores (the shaders' SHADOW_MAP_PASS_MOMENTS): */
+ * filters vsm, evsm2, evsm4 and msm filter the map before the camera pass
+ * instead of its reads: the depth pass draws the receivers that cast
+ * nothing too, then each layer it rendered becomes moments of the depth,
+ * blurred by a separable box, in a float colour texture beside the depth
+ * texture (texture.moments), which the camera pass reads once, bilinear,
+ * on the light's depth unit. They replace the kernel and PCSS alike: an
+ * area light's box is its casters' mean penumbra wide (one width, no
+ * contact hardening). Which moments a filter stores (the shaders'
+ * SHADOW_MAP_PASS_MOMENTS): */
 typedef enum shadow_map_moments {
     SHADOW_MAP_MOMENTS_NONE,
     SHADOW_MAP_MOMENTS_VSM,   /* d, d^2: Chebyshev's bound */
@@ -388,6 +282,16 @@ typedef enum shadow_map_texel_kind {
     SHADOW_MAP_TEXEL_PROJECTIVE,   /* from the matrix's derivatives: any warp */
 } shadow_map_texel_kind;
 
+/* Storage (shadow_map). A map has a kind and layers: SHADOW_MAP_2D has
+ * one layer (spot, directional, any warped map), SHADOW_MAP_CUBE six, the
+ * faces in GL's order (SHADOW_MAP_FACE_*), SHADOW_MAP_ARRAY layer_count
+ * of them (1..SHADOW_MAP_MAX_ARRAY_LAYERS) in one GL_TEXTURE_2D_ARRAY, for
+ * cascades (one layer per slice of the view). Each layer has its own
+ * matrix, layer_view_projection[layer] (world -> that layer's clip space);
+ * the depth range, texel measure and caster list are the map's. The
+ * texture is (re)made only when kind, size, layer count, depth format or
+ * filter change; every kind compares in hardware (compare mode on, clamped
+ * to its edges). */
 typedef enum shadow_map_kind { SHADOW_MAP_2D, SHADOW_MAP_CUBE, SHADOW_MAP_ARRAY } shadow_map_kind;
 /* A cube's faces in GL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face). */
 enum { SHADOW_MAP_FACE_POSITIVE_X, SHADOW_MAP_FACE_NEGATIVE_X, SHADOW_MAP_FACE_POSITIVE_Y,
@@ -407,7 +311,28 @@ typedef struct shadow_map_texture {
     int size, layer_count, depth, filter;
 } shadow_map_texture;
 
-/* One light's map: what it was fitted to, and its texture. */
+/* Array maps (demos/cascades.c's cascades). Every layer is an orthographic
+ * box of one light view, cascade_view (world -> light space, orthonormal),
+ * so a layer is that view, then a scale and an offset per axis
+ * (cascade_scale, cascade_offset: its glm_ortho's diagonal and
+ * translation; shadow_map_cascade_layer sets them with its
+ * layer_view_projection). The camera pass reads layer k where the
+ * camera's view depth lies between cascade_split[k] and [k + 1] (beyond
+ * the ends, the nearest layer), and over the last cascade_blend of a
+ * slice reads layer k + 1 at a share of the pixels rising linearly to 1
+ * (dithered by a hash of the pixel: each pixel filters one layer), so the
+ * switch of texel size shows no seam; the box of layer k + 1 covers that
+ * band. Per layer the shader has 2 vec4 (scale, offset; their w the
+ * slice's ends), not a mat4: a program with array lights holds 2 x
+ * SCENE_MAX_LIGHTS x SHADOW_MAP_MAX_ARRAY_LAYERS vec4 of them, where mat4s
+ * would take twice that. A layer's world texel is 2 / (size x its smaller
+ * xy scale): the constant and normal-offset biases are measured in the
+ * texel of the layer read. An array light's sampler is on its own unit,
+ * as any light's map (a light has one kind of map). --map-size auto does
+ * not size an array map: the fit sets its size (a cascade's texels are
+ * sized by their count, not measured).
+ *
+ * One light's map: what it was fitted to, and its texture. */
 typedef struct shadow_map {
     shadow_map_kind kind;
     int layer_count; /* 1 (2D), SHADOW_MAP_CUBE_FACES, or 1..SHADOW_MAP_MAX_ARRAY_LAYERS (array) */
@@ -418,7 +343,7 @@ typedef struct shadow_map {
     float texel_scale;
     bool orthographic;   /* the stored depth is linear (the inset shows it as it is) */
     const bool *casters; /* objects to draw into the map; NULL: every caster */
-    /* An array map's layers (see the top): */
+    /* An array map's layers (see "Array maps" above): */
     mat4 cascade_view;
     float cascade_scale[SHADOW_MAP_MAX_ARRAY_LAYERS][3], cascade_offset[SHADOW_MAP_MAX_ARRAY_LAYERS][3];
     float cascade_split[SHADOW_MAP_MAX_ARRAY_LAYERS + 1]; /* camera view depths */
@@ -448,16 +373,19 @@ _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combinati
 #define SHADOW_MAP_CAMERA_PROGRAMS 16
 /* Texture units: light i's map, of any kind, on unit i; the samplers a
  * program holds but does not read (an array's elements below the last one
- * used stay active) on one unit per sampler type after those,
- * SHADOW_MAP_IDLE_UNITS + t: samplers of two types on one unit would fail
- * every draw. 11 units, within GL 3.3's 16. */
+ * used stay active) on one unit per sampler type after those, the
+ * comparisons' at SHADOW_MAP_IDLE_UNITS + t, the depths' at
+ * SHADOW_MAP_IDLE_UNITS + SHADOW_MAP_SAMPLER_TYPES + t: samplers of two
+ * types on one unit would fail every draw. */
 #define SHADOW_MAP_IDLE_UNITS SCENE_MAX_LIGHTS
 /* A soft light's map is also read as depth (compare mode off, by
  * r->depth_sampler): light i's on unit SHADOW_MAP_DEPTH_UNITS + i, after
  * the idle units of the comparison and the depth samplers' types; a
  * moment filter's light reads its moments there (the same sampler
- * types). A GL with fewer units (3.3 promises 16) draws the lights past
- * them hard (a moment filter's with one bilinear test), and says so. */
+ * types). GL 3.3 promises 16 units, which hold the depth units of the
+ * first lights only: a light whose depth unit the GL lacks
+ * (r->texture_units) is drawn hard (a moment filter's with one bilinear
+ * test), and says so. */
 #define SHADOW_MAP_SAMPLER_TYPES 3
 #define SHADOW_MAP_DEPTH_UNITS (SHADOW_MAP_IDLE_UNITS + 2 * SHADOW_MAP_SAMPLER_TYPES)
 
@@ -466,9 +394,7 @@ _Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combinati
  * SHADOW_MAP_PASS_*): whatever chooses code rather than a number, so
  * that a program holds only the code it runs. As uniforms every pixel
  * would run every choice's code: llvmpipe runs both sides of a branch,
- * masked (on simple the kinds alone, as uniforms, cost 0.56x more in the
- * camera pass's fragment shader; callgrind). All unsigned: keys compare
- * with memcmp. */
+ * masked. All unsigned: keys compare with memcmp. */
 typedef struct shadow_map_camera_key {
     unsigned kinds, texel_kinds; /* per light (SHADOW_MAP_LIGHT_KIND_BITS) */
     unsigned shape, kernel;      /* shadow_map_kernel, N or the disc's scale */
@@ -530,7 +456,18 @@ typedef struct shadow_map_depth_key {
     float slope_factor, slope_units;
 } shadow_map_depth_key;
 
-/* What each layer of a light's map holds. */
+/* Caching. Per light and layer the renderer keeps what the layer holds:
+ * its matrix (bit for bit), the casters drawn, a moment filter's blur
+ * width, and per light the texture, size, depth format, filter and slope
+ * bias. A layer is reused, with no depth pass, while the scene and the
+ * light have not changed (f->changed), those are the same and the casters
+ * it needs are among those drawn: a layer with more casters than needed
+ * decides every read as one with exactly those. A remade texture, a frame
+ * with the light skipped or unfitted, or any change empties the light's
+ * cache. Counted in f->counts (casters per light: drawn into any layer, or
+ * culled; layers rendered and reused).
+ *
+ * What each layer of a light's map holds. */
 typedef struct shadow_map_cache {
     shadow_map_depth_key key;
     bool valid[SHADOW_MAP_MAX_LAYERS];
@@ -585,12 +522,19 @@ typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, sha
 bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu);
 void shadow_map_destroy(shadow_map_renderer *r);
 /* The whole frame (see the top of this file); fit places a map of any
- * kind (an array map with its size set). */
+ * kind (an array map with its size set). With the eye inside a closed
+ * caster (r->closed: its welded edge table, as the volumes weigh it; the
+ * eye inside by its winding number), a face that a light outside the mesh
+ * reaches on the eye's side is in the mesh's shadow without a read: the
+ * light came through the mesh (shaders/shadowmap.frag,
+ * shadowmap_through_closed). */
 void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                        shadow_map_fit_function fit);
 /* The depth pass of a fitted map of any kind: (re)makes its texture when
- * needed, then renders every layer from its matrix (and a moment
- * filter's blurs each). Leaves r->framebuffer (or the blur's) bound and
+ * needed, then renders every layer from its matrix, with glPolygonOffset
+ * as the slope-scaled bias (unless --no-slope-bias; an array map's layers
+ * attached one at a time, glFramebufferTextureLayer), and a moment
+ * filter's blurs each. Leaves r->framebuffer (or the blur's) bound and
  * the viewport at the map's size: the caller binds its target again. */
 void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
                              shadow_map *m);
@@ -611,11 +555,11 @@ int shadow_map_settings_size(const shadow_map_settings *settings);
  * were left out as edge-on to the light (`grazing`, warp_samples_lit)
  * than measured, the faces measured are not where its shadows are seen:
  * on those faces every texel is unboundedly long and only its width
- * across the light can shrink, so the map takes the most texels, MAX (a
- * sun 0.1 degrees above the ground, measured on the casters' sides alone,
- * got 256, texels a tenth of a unit across, and every long shadow edge
- * on the ground followed one texel's rounding: 0.57 % misclassified;
- * tests/data/shadowmap_grazing_sun.json). */
+ * across the light can shrink, so the map takes the most texels, MAX
+ * (else a sun a fraction of a degree above the ground, measured on the
+ * casters' sides alone, gets a small map and every long shadow edge on
+ * the ground follows one texel's rounding: test_shadowmap's stress
+ * extremes, tests/data/shadowmap_grazing_sun.json). */
 int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
                          int grazing);
 /* A kind's GL texture target, and the image of a 2D map's or a cube
@@ -630,7 +574,28 @@ const char *shadow_map_kind_name(shadow_map_kind kind);
 
 /* ---- fitting (shadow_map_fit.c) ---- */
 
-/* The uniform placement of light `light` of `s` (see the top). */
+/* Fitting (shadow_map_fit.c, no GL). shadow_map_fit_uniform is
+ * demos/shadowmap.c's placement, cascades' for spot and point lights and
+ * the fallback of every warp:
+ *   spot         a perspective map around the cone, or around the
+ *                receivers where they lie in a narrower one (the light
+ *                far from them), from the nearest caster in front of the
+ *                light to the farthest receiver; a spot wider than 85
+ *                degrees as a point light;
+ *   directional  an orthographic box around the receivers seen along the
+ *                light, deepened towards it to every caster whose box
+ *                overlaps them seen from the light (caster selection: so
+ *                casters outside the view still cast);
+ *   point        one perspective map around the receivers where they lie
+ *                in a cone of at most 45 degrees, else a cube map, from
+ *                the nearest caster to the farthest receiver.
+ * A fit fills the map's kind, layer matrices, depth range (for the inset
+ * and the HUD), texel_kind / texel_scale (how the camera pass finds a
+ * texel's world size, which the constant and normal-offset biases are
+ * measured in) and casters (which objects the depth pass draws; NULL:
+ * every caster). */
+
+/* The uniform placement of light `light` of `s` (see "Fitting" above). */
 bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const float (*receivers)[3],
                             int receiver_count);
 /* The depth (view space, along -z) of the nearest caster that can shadow
@@ -649,6 +614,28 @@ void shadow_map_depth_range(float near_plane, float far_plane, float *near_out, 
 void shadow_map_cascade_layer(shadow_map *m, int layer, const mat4 projection);
 
 /* ---- caster culling (shadow_map_cull.c) ---- */
+
+/* Caster culling (shadow_map_cull.c, no GL; with f->cull_casters). Each
+ * layer (a cube's faces each on its own) draws only the casters that can
+ * shadow a visible receiver through it. Where receivers read a layer, in
+ * its clip space: the NDC rectangle and deepest depth of both the frame's
+ * receiver points and the surfaces of the visible receivers' boxes within
+ * the light's range inside the layer's sides (a cube's widened by the
+ * kernel, whose taps cross its edges), the tighter of the two, grown by
+ * the kernel's reach (shadow_map_read_reach: its farthest tap, the
+ * bilinear footprint, a texel of safety; a cube's taps stretched) and
+ * clamped to the layer. A caster's box is needed unless it lies beyond one
+ * of the layer's clip planes, or, wholly in front of the centre of
+ * projection, its rectangle misses that one or its nearest depth lies
+ * beyond the deepest read (any depth with receiver-plane taps; a cube tap
+ * compares its own direction's depth, bounded by the point pushed away
+ * from the light by the tap's offset; a moment filter's box holds every
+ * depth, and reaches its blur's width). Exact: the constant bias moves a
+ * point along its ray to the light, which keeps its place in every map,
+ * and the depth a culled caster would have stored is never one a read
+ * compares with. Not culled: with a normal offset (the point leaves its
+ * surface), and light 0's map while the inset shows it. The fit never
+ * depends on culling. */
 
 /* How a layer is read: the kernel's reach in texels from a point's
  * projection (shadow_map_read_reach), the map's size, whether it is a cube

@@ -234,7 +234,7 @@ static void shadow_map_layer_mask(light_mask *mask, const mat4 layer, const shad
     }
 }
 
-/* Light l's map culls its casters (see the top of shadow_map.h). */
+/* Light l's map culls its casters (see shadow_map.h, "Caster culling"). */
 static bool shadow_map_culls(const shadow_map_settings *st, const technique_frame *f, int l) {
     bool inset = l == 0 && (st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_MAP ||
                             SHADOW_MAP_SHOWS_CASCADES(st));

@@ -193,9 +193,10 @@ bool shadow_map_fit_uniform(const scene *s, int light, shadow_map *m, const floa
     /* A spot lights nothing outside its cone and the camera sees nothing
      * outside the receivers': its map covers the narrower of the two. The
      * receivers' is narrower for a spot far from what it lights (1e4 away,
-     * a 38-degree cone's map spans 16000 units, its texels 4 at 4096: the
-     * shadow of a sphere of radius 0.8 was lost, 0.70 % misclassified;
-     * tests/data/shadowmap_far_spot.json). */
+     * a 38-degree cone's map spans 16000 units, its texels 4 at 4096, and
+     * would lose the shadow of a sphere of radius 0.8:
+     * tests/data/shadowmap_far_spot.json, test_shadowmap's stress
+     * extremes). */
     if (spot && !(around && half_angle < spot_half_angle))
         return shadow_map_fit_2d(s, l, m, receivers, receiver_count, l->direction, spot_half_angle,
                                  SHADOW_MAP_TEXEL_PERSPECTIVE);
