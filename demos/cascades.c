@@ -4,100 +4,40 @@
  * viewer a texel covers many pixels, far away many texels share a pixel
  * (perspective aliasing). Cascades cut the view frustum into slices by
  * depth and give each slice its own orthographic map, layer k of one
- * SHADOW_MAP_ARRAY (demos/lib/shadow_map.h), so near slices get small
- * texels (Engel, "Cascaded shadow maps", ShaderX5 2006; Dimitrov,
+ * SHADOW_MAP_ARRAY (demos/lib/shadow_map.h, "Array maps"), so near slices
+ * get small texels (Engel, "Cascaded shadow maps", ShaderX5 2006; Dimitrov,
  * "Cascaded shadow maps", NVIDIA 2007). The camera pass reads the layer
  * whose slice holds the fragment's view depth and, over the last --blend
  * of a slice, the next one at a share of the pixels rising to all of them
  * (dithered, one layer filtered a pixel), so the change of texel size
  * shows no seam.
  *
- * Where the slices end (--splits):
+ * Where the slices end (--splits; cascades_fit_array says how):
  *   sdsm       (the default) Lauritzen, Salvi & Lefohn, "Sample
  *              distribution shadow maps", I3D 2011: the logarithmic split
- *              of the depth range the camera actually sees rather than
- *              near..far, so no slice is spent on air in front of the
- *              nearest receiver (the walked city's first practical slice,
- *              0.1..3.8, held no pixel) or beyond the farthest. Pooled
- *              over the frames of a walk and a yaw (README, "Cascades
- *              against one map and the warps") it misclassified the
- *              fewest of the four walking, and within an eighth of
- *              practical under the yaw. The paper reduces the depth pre-pass
- *              on the GPU; here the range comes from the frame's receiver
- *              points (the corners of the visible receivers' boxes
- *              clipped to the view, which bound every visible receiver
- *              fragment, so no fragment falls outside it), already on the
- *              CPU: a read-back of the depth buffer would stall the frame
- *              on the pre-pass, which the library draws after the maps,
- *              or make the maps depend on the frame before, for little:
- *              against the exact range of the pixels' view depths the
- *              near end agreed within 0.3 % and the far end was up to
- *              25 % farther (long_view: 505 against 404), which moves
- *              the first split by its fourth root, at most 6 %;
+ *              of the depth range the camera actually sees, not near..far;
  *   practical  Zhang, Sun, Xu & Lun, "Parallel-split shadow maps for
  *              large-scale virtual environments", VRCIA 2006: lambda of
  *              the logarithmic split of near..far plus 1 - lambda of the
- *              uniform one (--lambda, 0.9 by default: log alone spends
- *              its first slice on the metres in front of the near plane);
+ *              uniform one (--lambda, 0.9 by default);
  *   uniform    slices of equal depth: far ones get the texels;
  *   log        equal ratios far / near: the split that keeps a texel's
  *              size on screen the same in every slice.
  *
- * Each cascade's box (cascades_slice_box): in the light's view, around its
- * slice of the view frustum (grown at its near end by the band where the
- * slice before blends into it), clipped to the parts of the receivers'
- * boxes inside the slice where they are tighter (a slice is mostly air
- * above the ground: long_view, sdsm unstabilised, 0.033 -> 0.021 %
- * misclassified), aligned with the view direction as the light sees it
- * (cascades_light_view: a slice is long along it, 0.048 -> 0.033 %; the
- * sphere's box is not), and deepened towards the light to every caster that
- * overlaps it (shadow_map_nearest_caster: casters outside the view still
- * cast); the library's caster culling then draws into each layer only the
- * casters a read of that layer can meet. Biases are the library's, in
- * texels of world size: each layer's texel is known to the shader (its
- * box's scale), and the layer read sizes them.
+ * Each cascade's box (cascades_slice_box) is fitted in the light's view to
+ * its slice and the receivers in it, and deepened towards the light to
+ * every caster that overlaps it. --stabilize (key Z) holds its texel grid
+ * while the camera moves: steps (the default: the corner on whole texels,
+ * size and heading changing only in steps), sphere (Valient, "Stable
+ * rendering of cascaded shadow maps", ShaderX6 2008: the slice's bounding
+ * sphere) or off (shadow edges crawl).
  *
- * Stabilisation (--stabilize): a box that follows its slice changes size
- * as the camera turns and slides by fractions of a texel as it moves, so
- * every shadow edge crawls (off, Z shows it). Two ways to hold the grid:
- *   steps   (the default) the boxes above, in a light space fixed in the
- *           world but for its heading, its corners snapped to whole
- *           texels, and what may change only in steps: each side rounded
- *           up to a power of 2^(1/CASCADES_SIDE_STEPS), the heading (the
- *           view direction as the light sees it, which the boxes are
- *           aligned with) rounded to 1/CASCADES_HEADING_STEPS of a turn.
- *           Walking, nothing changes but where a side crosses a step;
- *           turning, the grid turns once a sixteenth of a turn. Between
- *           steps a still receiver's shadow stays put, and a box is at
- *           most a step larger than the free one (long_view, 1280x720:
- *           0.022 % misclassified against the sphere's 0.082 %).
- *   sphere  Valient, "Stable rendering of cascaded shadow maps", ShaderX6
- *           2008: the slice's bounding sphere, whose size depends only on
- *           its depths and the projection, snapped likewise in a light
- *           space fixed in the world: no step at all, for texels larger by
- *           the air the sphere holds, unaligned with the view. sdsm's
- *           slices follow what is seen, so their spheres change size
- *           where the seen range steps (use it with practical splits). A
- *           sun a fraction of a degree above the ground sees the ground
- *           as a sliver, which a sphere's box gives a row of texels
- *           (build/stress grazing_0.1 and 0.5_directional: 1.00 and 0.87 %
- *           misclassified), so a grazing light gets the steps' boxes.
- *
- * Map size: --map-size gives each cascade's; auto, the default, is 1024
- * a cascade (CASCADES_DEFAULT_SIZE): four cascades of 1024 hold the
- * texels of one 2048 map, the size shadowmap's auto gives the standard
- * scenes, so the comparison is at equal memory and depth-pass fill.
- *
- * Spot and point lights get shadowmap's uniform fit (a perspective map or
- * a cube): cascades answer the perspective aliasing of a map that spans
- * the whole view, and a spot's or point light's perspective already puts
- * its texels near the light, where its shadows are sharpest; slicing it
- * by the camera's depth would not follow where its texels go.
- *
- * For lectures (--overlay): shadowmap's overlays, and "cascades": each
- * cascade's receivers tinted in its colour (the blend band mixing two)
- * with every layer as an inset along the bottom (a spot's or point
- * light's map as its inset); the HUD line gives the split distances.
+ * --map-size gives each cascade's size; auto, the default, is
+ * CASCADES_DEFAULT_SIZE. Spot and point lights get shadowmap's uniform fit
+ * (cascades_fit). For lectures (--overlay): shadowmap's overlays, and
+ * "cascades": each cascade's receivers tinted in its colour (the blend
+ * band mixing two) with every layer as an inset along the bottom (a spot's
+ * or point light's map as its inset); the HUD line gives the splits.
  */
 #include <math.h>
 #include <stdio.h>
@@ -107,12 +47,15 @@
 #include "cascades.h"
 #include "shadow_map.h"
 
-/* --map-size auto: each cascade's size (see the top). */
+/* --map-size auto: each cascade's size. Four cascades of 1024 hold the
+ * texels of one 2048 map, the size shadowmap's auto gives the standard
+ * scenes at the bench's size (test_shadowmap's test_map_size_from_need),
+ * so the comparison is at equal memory and depth-pass fill. */
 #define CASCADES_DEFAULT_SIZE 1024
 /* The logarithmic split's weight in the practical scheme: 0.9 spends
- * fewer texels far away than Zhang et al.'s 0.75 (long_view at 1280x720,
- * stabilised by steps: 0.040 -> 0.022 % misclassified; city_1000 walked:
- * 0.051 -> 0.043 %). */
+ * fewer texels far away than Zhang et al.'s 0.75, which misclassifies more
+ * on long_view (stabilised by steps) and on city_1000 walked; log alone
+ * spends its first slice on the metres in front of the near plane. */
 #define CASCADES_DEFAULT_LAMBDA 0.9f
 /* The far fraction of a slice blended into the next layer. */
 #define CASCADES_DEFAULT_BLEND 0.1f
@@ -122,16 +65,23 @@
 /* The sine between the view and the light below which the view, seen from
  * the light, has no direction to align a box with. */
 #define CASCADES_MIN_VIEW_ACROSS_LIGHT 1e-3f
-/* Stabilised by steps: a box's side is a power of 2^(1 / SIDE_STEPS) (at
- * most 9 % more than it needs), its heading a multiple of 1 / HEADING_STEPS
- * of a turn (at most 11.25 degrees off the view's). Finer steps fit
- * tighter and step more often. */
+/* Stabilised by steps (--stabilize steps, the default): the boxes of
+ * cascades_slice_box in a light space fixed in the world but for its
+ * heading, their corners snapped to whole texels, and what may change
+ * only in steps: a box's side is a power of 2^(1 / SIDE_STEPS) (at most
+ * 9 % more than it needs), its heading (the view direction as the light
+ * sees it, which the boxes are aligned with) a multiple of 1 /
+ * HEADING_STEPS of a turn (at most 11.25 degrees off the view's). Walking,
+ * nothing changes but where a side crosses a step; turning, the grid turns
+ * once a sixteenth of a turn. Between steps a still receiver's shadow
+ * stays put, and a box is at most a step larger than the free one, so
+ * tighter than the sphere's. Finer steps fit tighter and step more often. */
 #define CASCADES_SIDE_STEPS 8.0f
 #define CASCADES_HEADING_STEPS 16.0f
 /* Stabilised sdsm: the seen range's ends are widened to powers of
  * 2^(1 / RANGE_STEPS) (the near end at most 16 % nearer, the far one 19 %
  * farther), so that walking moves the splits only where an end crosses a
- * step (the teapot walked: 0.022 -> 0.000 % shimmer). */
+ * step (test_shimmer's test_stabilised_cascades_stand_still). */
 #define CASCADES_RANGE_STEPS 4.0f
 
 static const char *const cascades_counts[] = {"4", "5", "6", "7", "8", "1", "2", "3", NULL};
@@ -211,9 +161,9 @@ static float cascades_power_step(float x, float steps, float (*round)(float)) {
 
 /* How far from the eye any receiver of s can be: the farthest corner of
  * their boxes, rounded up to a power of two. The splits end there when the
- * camera's far plane lies beyond (a far plane 1e6 away put the first
- * practical split at 2e5 and every shadow in one texel: 0.88 %
- * misclassified, build/stress near_far_1e6_far_directional). The same
+ * camera's far plane lies beyond (else a far plane far past the scene puts
+ * the first practical split beyond it and every shadow in one texel: the
+ * stress suite's near_far_1e6_far_directional). The same
  * whichever way the camera looks, and, rounded, the same while it moves a
  * little: the stabilised boxes keep their size. */
 static float cascades_receivers_reach(const scene *s, const float eye[3]) {
@@ -247,7 +197,14 @@ static void cascades_camera_axes(const camera_view *view, vec3 right, vec3 up, v
 
 /* The slice's bounding sphere in light space: its centre on the view
  * axis where the near and far corners are equally far (clamped to the
- * far face's centre), from the depths and the half-angles alone. */
+ * far face's centre), from the depths and the half-angles alone.
+ * --stabilize sphere (Valient 2008) fits a box to it, snapped in a light
+ * space fixed in the world: its size depends only on the slice's depths
+ * and the projection, so no step at all, for texels larger by the air the
+ * sphere holds, unaligned with the view. sdsm's slices follow what is
+ * seen, so their spheres change size where the seen range steps (use it
+ * with practical splits). A grazing light gets the steps' boxes instead
+ * (cascades_grazing). */
 static float cascades_slice_sphere(const camera_view *view, const mat4 light_view, float a, float b, vec3 center) {
     vec3 right, up, forward, world;
     float tan_x, tan_y;
@@ -312,6 +269,18 @@ static void cascades_slice_receivers(const scene *s, const camera_view *view, co
     }
 }
 
+/* The box, in the light's view (cascades.h): around its slice of the view
+ * frustum (a: grown at its near end by the band where the slice before
+ * blends into it), clipped to the parts of the receivers' boxes inside the
+ * slice where they are tighter (a slice is mostly air above the ground),
+ * aligned with the view direction as the light sees it
+ * (cascades_light_view: a slice is long along it; the sphere's box is
+ * not). The caller deepens it towards the light to every caster that
+ * overlaps it (shadow_map_nearest_caster: casters outside the view still
+ * cast); the library's caster culling then draws into each layer only the
+ * casters a read of that layer can meet. Biases are the library's, in
+ * texels of world size: each layer's texel is known to the shader (its
+ * box's scale), and the layer read sizes them. */
 void cascades_slice_box(const camera_view *view, const mat4 light_view, float a, float b, int size, float margin,
                         cascades_stabilize stabilize, const float receivers_lo[3], const float receivers_hi[3],
                         float lo[3], float hi[3]) {
@@ -385,21 +354,35 @@ void cascades_light_view(const float direction[3], const camera_view *view, casc
 /* Whether light `light` grazes what the view sees: more of the library's
  * samples of the receivers (shadow_map_light_samples) left out as edge-on
  * to it than measured, the rule by which --map-size auto gives a grazing
- * sun its largest map. Seen from such a light the ground is a sliver a
- * few hundredths of a unit high, which a box the size of the slice's
- * sphere gives one row of texels (a sun 0.1 and 0.5 degrees up,
- * build/stress grazing_*_directional: 1.00 and 0.87 % misclassified),
- * so it gets the steps' boxes, fitted to the receivers, instead. */
+ * sun its largest map. Seen from such a light the ground is a thin
+ * sliver, which a box the size of the slice's sphere gives one row of
+ * texels (a sun a fraction of a degree up: the stress suite's
+ * grazing_0.1_directional and grazing_0.5_directional), so it gets the
+ * steps' boxes, fitted to the receivers, instead. */
 static bool cascades_grazing(const technique_frame *f, int light) {
     int measured = shadow_map_light_samples(&cascades.maps, f, light);
     return cascades.maps.grazing_count > measured;
 }
 
-/* The directional light's cascades: the splits, then each layer's box. */
+/* The directional light's cascades: the splits, then each layer's box.
+ * The splits end at the camera's far plane or the receivers' reach,
+ * whichever is nearer. sdsm splits the range of view depths the frame's
+ * receiver points span (the corners of the visible receivers' boxes
+ * clipped to the view, which bound every visible receiver fragment), so
+ * no slice is spent on air in front of the nearest receiver (walking the
+ * city, the first practical slice can hold no pixel) or beyond the
+ * farthest. The paper reduces the depth pre-pass on the GPU; the points
+ * are already on the CPU, and a read-back of the depth buffer would stall
+ * the frame on the pre-pass, which the library draws after the maps, or
+ * make the maps depend on the frame before, for little: the points' range
+ * agrees with the pixels' at its near end and can lie farther at its far
+ * end, which moves the first of four splits by only its fourth root. The README's
+ * "Cascades against one map and the warps" compares the schemes over the
+ * frames of a walk and a yaw: the comparison that makes sdsm the default. */
 static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *m) {
     const scene_light *l = &f->gpu->scene->lights[light];
     const scene_camera *camera = &f->gpu->scene->camera;
-    /* Only the sphere's boxes need the grazing check (576 samples a frame). */
+    /* Only the sphere's boxes need the grazing check (WARP_SAMPLE_COUNT rays a frame). */
     cascades_stabilize stabilize = (cascades_stabilize)cascades.stabilize;
     cascades.grazed[light] = stabilize == CASCADES_STABILIZE_SPHERE && cascades_grazing(f, light);
     if (cascades.grazed[light])
@@ -461,8 +444,12 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
     return true;
 }
 
-/* Cascades for a directional light; shadowmap's uniform fit for the
- * others (see the top). */
+/* Cascades for a directional light; shadowmap's uniform fit (a
+ * perspective map or a cube) for the others: cascades answer the
+ * perspective aliasing of a map that spans the whole view, and a spot's or
+ * point light's perspective already puts its texels near the light, where
+ * its shadows are sharpest; slicing it by the camera's depth would not
+ * follow where its texels go. */
 static bool cascades_fit(const technique_frame *f, int light, shadow_map *m, const float (*receivers)[3],
                          int receiver_count) {
     if (f->gpu->scene->lights[light].type != SCENE_LIGHT_DIRECTIONAL)

@@ -21,7 +21,8 @@ bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int
                           float far_plane, float *lo, float *hi);
 
 /* How a cascade's box keeps its texel grid while the camera moves
- * (--stabilize, in this order; cascades.c's top says why each). */
+ * (--stabilize, in this order; cascades.c says why each, at
+ * CASCADES_SIDE_STEPS and cascades_slice_sphere). */
 typedef enum cascades_stabilize {
     CASCADES_STABILIZE_STEPS,  /* the tight box, its sides and heading in steps, its corner on whole texels */
     CASCADES_STABILIZE_SPHERE, /* the slice's bounding sphere, its corner on whole texels */
