@@ -11,7 +11,7 @@
  * Kilgard, "Practical and robust stenciled shadow volumes", 2002) counts
  * the faces behind the surface instead (z-fail), which needs caps; the far
  * ones lie at infinity (w = 0), kept from the far plane by depth clamp.
- * The volumes are built by demos/lib/volume_mesh.h, whose top comment is
+ * The volumes are built by demos/lib/volume_mesh.h, whose comments are
  * their manual (every triangle its own occluder, Aldridge & Woods 2004).
  * Counts wrap at 256: wrong only behind an exact multiple of 256 triangles
  * (closed meshes: casters).
@@ -27,42 +27,15 @@
  * rectangle, z-fail with caps elsewhere; --mode zpass with the camera
  * inside a shadow visibly fails (shadows inverted).
  *
- * --silhouette gpu finds the sides in a geometry shader, for any mesh, by
- * the CPU path's rule; z-fail's caps still come from the CPU
- * (demos/lib/volume_silhouette.h says how and why). How each caster's
- * volume is drawn, kept or streamed, is demos/lib/volume_draw.h's.
- * --extrude reach (key T) trims the CPU volumes past the light's reach
- * (every receiver, clipped to its range; volume_mesh_trim_for), closed
- * there by far caps, so that they fill less; off by default: a shadow
- * edge's pixel may flip by the rounding of the shorter sides' depth
- * (measured: 8 to 60 of 230400 pixels on the standard scenes, no worse
- * against the reference). Not with --mode zpass (see volumes_trim).
- * Depth bounds (GL_EXT_depth_bounds_test, where present; --no-depth-bounds
- * turns them off): while counting a light, only pixels whose depth lies
- * within the visible receivers in its reach take stencil updates
- * (volume_mesh_depth_bounds); no decision changes, as the others keep the
- * cleared count where the light adds 0.
- * Receivers huge seen from the eye (a ground 1e5 across) are counted
- * against their exact depth, not the rasterizer's interpolation across
- * them, which moves shadow edges (demos/lib/volume_receivers.h); their
- * shading passes against the pre-pass's depth, drawn again.
- * --overlay (key V), for lectures: the volumes of light 0 translucent with
- * their edges, its silhouette edges, or its stencil count as colour.
- *
- * Skips (README, "Skips"), none of which changes a count on a visible
- * receiver, the only pixels the stencil decides:
- * - casters whose shadow cannot reach a visible receiver draw no volume
- *   (technique_caster_needed: outside the hull of the light and the
- *   visible receivers' bounds; see volumes_caster_needed for why exact);
- * - volumes that miss the view draw none (volume_mesh_misses_view: no
- *   fragment of them would be drawn), counted as culled;
- * - after technique_see, a volume counts only in the pixels and depths
- *   where what its shadow may fall on was seen (technique_caster_seen;
- *   scissor and depth bounds): elsewhere its count is 0 on every visible
- *   pixel;
- * - the CPU volumes are kept per light, built when a caster is first
- *   needed after the light moved and drawn from there until it moves
- *   again (objects never move; volume_draw.h).
+ * Options (each also a key): --silhouette gpu finds the sides in a
+ * geometry shader (demos/lib/volume_silhouette.h); --extrude reach trims
+ * the CPU volumes past the light's reach (volumes_trim); --no-depth-bounds
+ * and --no-exact-depth turn off the depth bounds (volumes_depth_bounds)
+ * and the exact depth of receivers huge seen from the eye
+ * (demos/lib/volume_receivers.h); --overlay, for lectures, shows light 0's
+ * volumes, silhouette edges or stencil count as colour. How each caster's
+ * volume is drawn, kept or streamed, is demos/lib/volume_draw.h's; the
+ * skips that leave volumes out (README, "Skips") are volumes_render's.
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -163,8 +136,13 @@ static void volumes_stencil_ops(bool zfail) {
     }
 }
 
-/* Whether volumes end past their light's reach (volume_mesh_trim_for):
- * not for forced z-pass, whose count from an eye inside a volume (wrong,
+/* Whether volumes end past their light's reach (--extrude reach, key T;
+ * volume_mesh_trim_for): the CPU volumes are trimmed past every receiver
+ * clipped to the light's range, closed there by far caps, so that they
+ * fill less. Off by default: a shadow edge's pixel may flip by the
+ * rounding of the shorter sides' depth (test_volumes'
+ * test_trimmed_within_bound keeps the trimmed pictures within the bound).
+ * Not for forced z-pass, whose count from an eye inside a volume (wrong,
  * for lectures) a trim could change. */
 static bool volumes_trim(void) {
     return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUMES_ZPASS;
@@ -297,7 +275,10 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
 /* Turns on the depth bounds of the hull's light (volume_mesh_depth_bounds:
  * the visible receivers within its range, hull->lo..hi) where the
  * extension is and the frame's receivers are all there (not cut short),
- * into b; b->bounded false: left off. */
+ * into b; b->bounded false: left off. While counting a light, only pixels
+ * whose depth lies within those receivers take stencil updates; no
+ * decision changes, as the others keep the cleared count where the light
+ * adds 0. */
 static void volumes_depth_bounds(const technique_frame *f, const technique_hull *hull, volumes_bounds *b) {
     /* The bounds are window depths of GL's standard convention; with
      * reversed depth they are left off (they only save fill). */
@@ -331,6 +312,24 @@ static void volumes_draw_counts(const technique_frame *f, const float light[4]) 
 
 /* ---- the frame ---- */
 
+/* The frame. Receivers huge seen from the eye (a ground 1e5 across) are
+ * counted against their exact depth, not the rasterizer's interpolation
+ * across them, which moves shadow edges (demos/lib/volume_receivers.h);
+ * their shading passes against the pre-pass's depth, drawn again.
+ * Skips (README, "Skips"), none of which changes a count on a visible
+ * receiver, the only pixels the stencil decides:
+ * - casters whose shadow cannot reach a visible receiver draw no volume
+ *   (technique_caster_needed: outside the hull of the light and the
+ *   visible receivers' bounds; see volumes_caster_needed for why exact);
+ * - volumes that miss the view draw none (volume_mesh_misses_view: no
+ *   fragment of them would be drawn), counted as culled;
+ * - after technique_see, a volume counts only in the pixels and depths
+ *   where what its shadow may fall on was seen (technique_caster_seen;
+ *   scissor and depth bounds): elsewhere its count is 0 on every visible
+ *   pixel;
+ * - the CPU volumes are kept per light, built when a caster is first
+ *   needed after the light moved and drawn from there until it moves
+ *   again (objects never move; volume_draw.h). */
 static void volumes_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     render_depth_prepass(f->gpu, f->view, f->in_view); /* the depth every pass tests against */

@@ -28,31 +28,25 @@
  * textbook volume. A directional light sends an edge's two far points to
  * one: a side is then one triangle, not two.
  *
- * A triangle edge-on to the light (the light in its plane, within
- * VOLUME_MESH_EDGE_ON_RECIPROCAL) weighs 0 in either rule: its prism is
- * flat, no space, and its far cap would be ill-posed (a light in the
- * triangle sends its corners to directions all round, whose cap covers
- * the screen by rounding). The sides still close: an edge's multiplicity
- * sums its triangles' weights, whatever they are.
- *
- * The closed rule counts the light-facing triangles a ray from the light
- * crosses: right from outside (it enters before it leaves), but from a
- * light inside a mesh wound outwards every ray leaves first, so that
- * inside a box nothing faces the light and no volume is cast although
- * the box blocks everything outside (measured before: 97 % of the
- * compared pixels wrong). For such a light, or one on the surface (in a
- * face: its triangles edge-on, the others facing away, also nothing
- * cast), the mesh is weighed as an open one (volume_mesh_closed_rule):
- * every prism, each counting +1, sums right from anywhere. Inside: the
- * generalized winding number (the triangles' signed solid angles over
- * 4 pi, Jacobson et al. 2013) above VOLUME_MESH_INSIDE_WINDING: 1 inside,
- * 0 outside, 1/2 on the surface, where the triangle holding the light is
- * edge-on and counts 0, whichever side of it rounding put the light.
- * Only for a light within the mesh's bounds (and a margin for that
- * rounding): elsewhere the test costs nothing. A directional light is
- * outside every mesh.
- *
- * Parts: the sides alone close the volume for z-pass counting (Heidmann
+ * The rest stands beside its declarations: the parts a volume is built
+ * of, trimmed to the light's reach, a triangle edge-on to the light, the
+ * closed rule and a light inside a mesh, when z-pass is safe, when a
+ * volume misses the view, and depth bounds. Also here, the rest of the
+ * technique's CPU geometry: the edge table a volume needs, and the screen
+ * rectangle of the receivers, outside which the stencil need not be
+ * cleared.
+ */
+#ifndef VOLUME_MESH_H
+#define VOLUME_MESH_H
+
+#include <cglm/cglm.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "mesh.h"
+#include "scene.h"
+
+/* Parts: the sides alone close the volume for z-pass counting (Heidmann
  * 1991), which counts only faces in front of the visible surface. z-fail
  * (Carmack's reverse) counts the faces behind it, so the volume needs
  * caps: every triangle of non-zero weight near (wound the other way round
@@ -60,33 +54,27 @@
  * infinity, far (none for a directional light: a point). The silhouette
  * lines are the edges of non-zero multiplicity, each once, for overlays.
  *
- * When z-pass is safe: z-pass counts wrong only where the eye ray starts
- * inside a volume, that is where a point of the camera's near-plane
- * rectangle is in the caster's shadow. Any occluder of a point of that
- * rectangle lies in the convex hull of the light (a point, or a direction
- * swept to infinity) and the rectangle; so a caster whose world box lies
- * wholly outside one face of that hull (four faces through the light and
- * an edge of the rectangle, and the rectangle's own plane) is safe. The
- * test is conservative and has no tolerance: a box touching the hull, or
- * straddling every one of its face planes, is not safe.
- *
- * When a volume misses the view: every point of a caster's volume is a
- * combination with non-negative weights of the homogeneous corners of its
- * world box (c, 1) and of those corners swept away from the light, (c -
- * light.xyz, 0) for a point light, (-light.xyz, 0), the direction of
- * travel, for a directional one: a vertex on the mesh is a convex
- * combination of the corners, its image at infinity the same combination
- * of their images, and a triangle's points combine its vertices with
- * non-negative weights, which is also how the GL clips it. A clip plane
- * is a linear function of those homogeneous points (a row combination of
- * the view-projection matrix), so when it is negative at each of the 16
- * it is negative on the whole volume, and no fragment of it is drawn. The
- * planes: x and y against w (w + x, w - x, w + y, w - y), and w itself
- * (the eye's plane: a point with w < 0 fails one of the four). Not the
- * near and far planes: with depth clamp (which the volumes are drawn
- * with) they clip nothing, and faces beyond them still count.
- *
- * Trimmed to the light's reach: a volume need only be right where the
+ * What volume_mesh_build emits: the sides (triangles; all z-pass needs),
+ * the caps (triangles; z-fail draws them after the sides), or the
+ * silhouette edges (lines). Sides and caps apart, so that a volume kept
+ * for a light serves either mode, which the camera picks each frame. */
+typedef enum volume_mesh_parts {
+    VOLUME_MESH_SIDES,
+    VOLUME_MESH_CAPS,
+    VOLUME_MESH_SILHOUETTE_LINES,
+} volume_mesh_parts;
+
+/* One caster's volume, rebuilt per light and kept for its storage: zero
+ * is an empty one. */
+typedef struct volume_mesh {
+    float (*vertices)[4]; /* homogeneous, in the mesh's space */
+    size_t count, capacity;
+    bool out_of_memory;
+    signed char *weights; /* scratch: per triangle of the mesh at hand */
+    size_t weight_capacity;
+} volume_mesh;
+
+/* Trimmed to the light's reach: a volume need only be right where the
  * light can light a receiver; beyond, the light adds 0 whatever the count.
  * Given a convex region (the reach: a box) holding every such point, the
  * extrusion stops at a surface beyond it, and far caps there close the
@@ -107,54 +95,7 @@
  * swept vertex on one plane across the travel, beyond the reach and the
  * caster. Both grown by VOLUME_MESH_TRIM_MARGIN for rounding.
  *
- * Depth bounds (GL_EXT_depth_bounds_test): a fragment is dropped where
- * the depth already stored at its pixel lies outside [lo, hi], whatever
- * its own depth, so each pixel takes all of its stencil updates or none.
- * Every pixel a light can light shows a visible receiver's point within
- * its reach: in the hull of the receivers' points (technique_frame's
- * receivers) and in the box round its range. Window depth is monotone in
- * the eye's distance along the view axis, which is linear, so over a
- * convex set it lies between its corners' depths: [lo, hi] is the
- * intersection of the two sets' ranges, grown by
- * VOLUME_MESH_DEPTH_BOUNDS_MARGIN for rounding; a pixel outside it keeps
- * the cleared count and is lit, where the light adds 0.
- *
- * Also here, the rest of the technique's CPU geometry: the edge table a
- * volume needs, and the screen rectangle of the receivers, outside which
- * the stencil need not be cleared.
- */
-#ifndef VOLUME_MESH_H
-#define VOLUME_MESH_H
-
-#include <cglm/cglm.h>
-#include <stdbool.h>
-#include <stddef.h>
-
-#include "mesh.h"
-#include "scene.h"
-
-/* What volume_mesh_build emits: the sides (triangles; all z-pass needs),
- * the caps (triangles; z-fail draws them after the sides), or the
- * silhouette edges (lines). Sides and caps apart, so that a volume kept
- * for a light serves either mode, which the camera picks each frame. */
-typedef enum volume_mesh_parts {
-    VOLUME_MESH_SIDES,
-    VOLUME_MESH_CAPS,
-    VOLUME_MESH_SILHOUETTE_LINES,
-} volume_mesh_parts;
-
-/* One caster's volume, rebuilt per light and kept for its storage: zero
- * is an empty one. */
-typedef struct volume_mesh {
-    float (*vertices)[4]; /* homogeneous, in the mesh's space */
-    size_t count, capacity;
-    bool out_of_memory;
-    signed char *weights; /* scratch: per triangle of the mesh at hand */
-    size_t weight_capacity;
-} volume_mesh;
-
-/* Where a volume's extrusion stops (see "Trimmed to the light's reach"):
- * zero (or NULL) is at infinity. */
+ * Where a volume's extrusion stops: zero (or NULL) is at infinity. */
 typedef struct volume_mesh_trim {
     bool on;
     /* Point light: from the light; directional: along the travel (minus
@@ -167,7 +108,14 @@ typedef struct volume_mesh_trim {
 /* How far beyond what it must clear a trimmed extrusion stops, relative. */
 #define VOLUME_MESH_TRIM_MARGIN 0.01f
 
-/* A triangle is edge-on to a light whose distance from its plane is at
+/* A triangle edge-on to the light (the light in its plane, within
+ * VOLUME_MESH_EDGE_ON_RECIPROCAL) weighs 0 in either rule: its prism is
+ * flat, no space, and its far cap would be ill-posed (a light in the
+ * triangle sends its corners to directions all round, whose cap covers
+ * the screen by rounding). The sides still close: an edge's multiplicity
+ * sums its triangles' weights, whatever they are.
+ *
+ * A triangle is edge-on to a light whose distance from its plane is at
  * most the sum of its corners' distances from the light over this (for
  * a directional light: the sine of its angle to the plane, over 3): far
  * above float rounding of positions moved into an object's space, and
@@ -177,13 +125,31 @@ typedef struct volume_mesh_trim {
 #define VOLUME_MESH_EDGE_ON_RECIPROCAL 100000
 /* +1 when triangle (a, b, c) (positions in the light's space, as it is
  * wound) faces the light (homogeneous), -1 when it faces away, 0 when it
- * is edge-on to it (see the top). */
+ * is edge-on to it (see above). */
 int volume_mesh_facing(const float *a, const float *b, const float *c, const float light[4]);
-/* The winding number above which a light is inside a closed mesh, or on
+/* The closed rule counts the light-facing triangles a ray from the light
+ * crosses: right from outside (it enters before it leaves), but from a
+ * light inside a mesh wound outwards every ray leaves first, so that
+ * inside a box nothing faces the light and no volume is cast although
+ * the box blocks everything outside (test_volumes'
+ * test_light_inside_caster: a light inside a box, a bunny, on a box's
+ * face). For such a light, or one on the surface (in a face: its
+ * triangles edge-on, the others facing away, also nothing cast), the
+ * mesh is weighed as an open one (volume_mesh_closed_rule): every prism,
+ * each counting +1, sums right from anywhere. Inside: the
+ * generalized winding number (the triangles' signed solid angles over
+ * 4 pi, Jacobson et al. 2013) above VOLUME_MESH_INSIDE_WINDING: 1 inside,
+ * 0 outside, 1/2 on the surface, where the triangle holding the light is
+ * edge-on and counts 0, whichever side of it rounding put the light.
+ * Only for a light within the mesh's bounds (and a margin for that
+ * rounding): elsewhere the test costs nothing. A directional light is
+ * outside every mesh.
+ *
+ * The winding number above which a light is inside a closed mesh, or on
  * it (1/2). */
 #define VOLUME_MESH_INSIDE_WINDING 0.25
 /* Whether the light (homogeneous, m's space) lies inside mesh m (closed,
- * wound outwards) or on its surface (see the top). */
+ * wound outwards) or on its surface (see "The closed rule" above). */
 bool volume_mesh_light_inside(const mesh *m, const float light[4]);
 /* Whether m's volume for the light takes the closed rule (back-facing
  * triangles weigh 0): a closed edge table e and the light outside. */
@@ -197,9 +163,9 @@ bool volume_mesh_closed_rule(const mesh *m, const mesh_edges *e, const float lig
  * bit (volume_mesh_uses_meet), since the geometry shader judges a
  * neighbour from the triangle's own ends of the edge and its neighbour's
  * third vertex: from other positions a needle or sliver neighbour's
- * facing comes out at random, and an unmatched side drew streaks of
- * false shadow (measured on tests/data/vol_welded_sliver.json: 11.7 % of
- * the compared pixels, 0.83 % with z-fail; the CPU path exact). Such a
+ * facing comes out at random, and an unmatched side draws streaks of
+ * false shadow (tests/data/vol_welded_sliver.json, test_volumes'
+ * test_welded_sliver; the CPU path is exact there either way). Such a
  * mesh takes the open rule, which is exact for any mesh; the CPU path's
  * multiplicities are the same sums over the welded edges. */
 bool volume_mesh_edges_build(const mesh *m, mesh_edges *e);
@@ -225,12 +191,38 @@ void volume_mesh_object_light(const mat4 model, const float light[4], float out[
 /* The corners of the near-plane rectangle of `view_projection`, in world
  * space, in order round the rectangle (NDC x, y: -1 -1, 1 -1, 1 1, -1 1). */
 void volume_mesh_near_rectangle(const mat4 view_projection, vec3 out[4]);
-/* True when no point of the near rectangle (volume_mesh_near_rectangle)
+/* When z-pass is safe: z-pass counts wrong only where the eye ray starts
+ * inside a volume, that is where a point of the camera's near-plane
+ * rectangle is in the caster's shadow. Any occluder of a point of that
+ * rectangle lies in the convex hull of the light (a point, or a direction
+ * swept to infinity) and the rectangle; so a caster whose world box lies
+ * wholly outside one face of that hull (four faces through the light and
+ * an edge of the rectangle, and the rectangle's own plane) is safe. The
+ * test is conservative and has no tolerance: a box touching the hull, or
+ * straddling every one of its face planes, is not safe.
+ *
+ * True when no point of the near rectangle (volume_mesh_near_rectangle)
  * can be in the shadow of a caster whose world box is [lo, hi], from the
  * light (homogeneous, world space). */
 bool volume_mesh_zpass_safe(const float lo[3], const float hi[3], const float light[4], const vec3 rectangle[4]);
 
-/* True when the volume of a caster whose world box is [lo, hi], from the
+/* When a volume misses the view: every point of a caster's volume is a
+ * combination with non-negative weights of the homogeneous corners of its
+ * world box (c, 1) and of those corners swept away from the light, (c -
+ * light.xyz, 0) for a point light, (-light.xyz, 0), the direction of
+ * travel, for a directional one: a vertex on the mesh is a convex
+ * combination of the corners, its image at infinity the same combination
+ * of their images, and a triangle's points combine its vertices with
+ * non-negative weights, which is also how the GL clips it. A clip plane
+ * is a linear function of those homogeneous points (a row combination of
+ * the view-projection matrix), so when it is negative at each of the 16
+ * it is negative on the whole volume, and no fragment of it is drawn. The
+ * planes: x and y against w (w + x, w - x, w + y, w - y), and w itself
+ * (the eye's plane: a point with w < 0 fails one of the four). Not the
+ * near and far planes: with depth clamp (which the volumes are drawn
+ * with) they clip nothing, and faces beyond them still count.
+ *
+ * True when the volume of a caster whose world box is [lo, hi], from the
  * light (homogeneous, world), has no point that survives clipping to
  * `view_projection` with depth clamp on, so that it covers no pixel (see
  * "When a volume misses the view" above). Conservative: false for a
@@ -238,7 +230,19 @@ bool volume_mesh_zpass_safe(const float lo[3], const float hi[3], const float li
 bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4],
                              const mat4 view_projection);
 
-/* Window depth (glDepthRange 0..1) the depth bounds grow by each side:
+/* Depth bounds (GL_EXT_depth_bounds_test): a fragment is dropped where
+ * the depth already stored at its pixel lies outside [lo, hi], whatever
+ * its own depth, so each pixel takes all of its stencil updates or none.
+ * Every pixel a light can light shows a visible receiver's point within
+ * its reach: in the hull of the receivers' points (technique_frame's
+ * receivers) and in the box round its range. Window depth is monotone in
+ * the eye's distance along the view axis, which is linear, so over a
+ * convex set it lies between its corners' depths: [lo, hi] is the
+ * intersection of the two sets' ranges, grown by
+ * VOLUME_MESH_DEPTH_BOUNDS_MARGIN for rounding; a pixel outside it keeps
+ * the cleared count and is lit, where the light adds 0.
+ *
+ * Window depth (glDepthRange 0..1) the depth bounds grow by each side:
  * far more than a 24-bit depth buffer's step or float rounding. */
 #define VOLUME_MESH_DEPTH_BOUNDS_MARGIN (1.0f / 65536)
 /* The window-depth bounds (see "Depth bounds") of the points (world, in

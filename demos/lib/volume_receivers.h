@@ -5,13 +5,12 @@
  * triangle from the corners, in float: far from the corners the rounding
  * grows with the triangle's size over the fragment's distance from the
  * eye. A shadow edge on a receiver lies where a volume's side crosses the
- * receiver's depth, so that error moves it. Measured, stress scene
- * huge_ground_*: a ground of two triangles seen from 10 units away, 1e5
- * across, lies 9e-5 of its distance too far (20 depth-buffer steps; a
- * 20-unit ground 3e-7), and the volumes' shadow edges on it move by a
- * pixel or two: 0.056 % misclassified at 320x180, the same ground
- * tessellated near the eye 0. By the ground's size: 3e3, 0.007 %; 1e4,
- * 0.014 %; 3e4, 0.19 %.
+ * receiver's depth, so that error moves it: a ground of two triangles
+ * 1e5 across, seen from 10 units away (the stress cases huge_ground_*,
+ * test_volumes' test_huge_ground), lies many depth-buffer steps too far,
+ * and the volumes' shadow edges on it move by whole pixels, where on the
+ * same ground tessellated near the eye they hold; the larger the ground,
+ * the farther they move.
  *
  * An object in view is huge this frame as render_object_huge says
  * (render.h: its longest edge against its box's distance from the eye). For the counting,
@@ -25,8 +24,8 @@
  * depth: after the counting the caller draws the pre-pass's depth again
  * (volume_receivers_depth, exact false). Neither touches the stencil.
  *
- * Where no object is huge (every standard and test scene: the largest
- * ratio is long_view's 786) the caller takes neither pass: nothing
+ * Where no object is huge (every standard scene: none comes near
+ * render_object_huge's ratio) the caller takes neither pass: nothing
  * changes there. A mesh with more triangles than the GL's texture buffer
  * holds (GL_MAX_TEXTURE_BUFFER_SIZE, at least 65536) is never huge: it
  * keeps the rasterized depth.

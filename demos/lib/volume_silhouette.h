@@ -2,21 +2,8 @@
  * (--silhouette gpu), by a geometry shader over GL_TRIANGLES_ADJACENCY
  * (shaders/volume_silhouette.geom), for any mesh: closed, open or
  * non-manifold, with the decisions of the CPU path (demos/lib/volume_mesh.h,
- * whose top comment is the rule both follow).
- *
- * Adjacency: six indices per triangle, each corner and then the vertex
- * across the edge it starts (the third vertex of the triangle on the
- * other side). An edge of the welded edge table with exactly two uses has
- * that one triangle across, whichever way it runs, where the two hold the
- * edge's ends at the same positions (volume_mesh_uses_meet: the weld's
- * tolerance may pair positions a few ulps apart, and the neighbour is
- * judged from this triangle's ends). A border has none across (an open
- * edge: one use; two uses at other positions, which makes the mesh open,
- * volume_mesh_edges_build) or no single one (a non-manifold edge: three
- * or more); its index across is then the triangle's own third
- * vertex, the mark the shader reads (same index, so the same position, bit
- * for bit). A closed mesh has no border: its indices are those of
- * mesh_adjacency_indices.
+ * whose "Which meshes" is the rule both follow). The adjacency it reads is
+ * volume_silhouette_adjacency's.
  *
  * The shader, per triangle, edge by edge (a -> b, as the triangle runs):
  * - closed meshes (VOLUME_SILHOUETTE_CLOSED): only light-facing triangles
@@ -41,29 +28,8 @@
  * on the CPU per caster and light: u_topology), as on the CPU; the
  * shader's test is then "the weight of (a, across, b) differs from mine",
  * weights -1, 0 and 1 as volume_mesh_facing and the rule give them.
- * The facing tests are the CPU's expression in object space; the
- * neighbour's is taken from this triangle's corners, so a triangle edge-on
- * to the light could be judged otherwise than by itself (on the tests'
- * scenes none is: the same expressions in C give every edge the CPU's
- * multiplicity). What differs is rasterization: a side from the shader
- * is the CPU's quad in other triangles (split along the other diagonal,
- * from other leading vertices, emitted by a geometry shader, whose
- * triangles llvmpipe rasterizes at slightly other depths; split as the
- * CPU splits, spider still differs on 6 pixels, bunny on 19), so where a
- * side starts at its surface's depth (a caster's own terminator) a pixel
- * may round the other way. Measured against --silhouette cpu at 640x360,
- * pixels whose visibility differs: teapot and wuson 0, spider 3, and on
- * closed meshes simple 3, bunny 19, dense 23 (0.002 to 0.014 %).
- *
- * The shader emits the sides alone: z-fail's caps come from the CPU (kept
- * like its sides, demos/lib/volume_draw.h) through volume.vert, the vertex
- * path of the depth pre-pass (lit.vert's invariant expression, the same
- * uniforms), since caps must lie at exactly the depth of their surface
- * and llvmpipe rasterizes a geometry shader's triangles at slightly other
- * depths than a vertex shader's (measured with the shader's caps: 0.2 to
- * 0.4 % false shadow on simple and bunny; with the vertex path's, as exact
- * as the CPU's). The mesh's own vertices of a side come placed by the
- * vertex stage too (volume_adjacency.vert), for the same reason.
+ * The shader emits the sides alone: z-fail's caps come from the CPU
+ * (volume_silhouette_draw says why).
  */
 #ifndef VOLUME_SILHOUETTE_H
 #define VOLUME_SILHOUETTE_H
@@ -81,9 +47,23 @@ enum { VOLUME_SILHOUETTE_CLOSED, VOLUME_SILHOUETTE_OPEN };
  * vertex across. */
 #define VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE 6
 
-/* The adjacency indices of mesh m, whose welded edge table is e, into out
+/* Adjacency: six indices per triangle, each corner and then the vertex
+ * across the edge it starts (the third vertex of the triangle on the
+ * other side). An edge of the welded edge table with exactly two uses has
+ * that one triangle across, whichever way it runs, where the two hold the
+ * edge's ends at the same positions (volume_mesh_uses_meet: the weld's
+ * tolerance may pair positions a few ulps apart, and the neighbour is
+ * judged from this triangle's ends). A border has none across (an open
+ * edge: one use; two uses at other positions, which makes the mesh open,
+ * volume_mesh_edges_build) or no single one (a non-manifold edge: three
+ * or more); its index across is then the triangle's own third
+ * vertex, the mark the shader reads (same index, so the same position, bit
+ * for bit). A closed mesh has no border: its indices are those of
+ * mesh_adjacency_indices.
+ *
+ * The adjacency indices of mesh m, whose welded edge table is e, into out
  * (VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE per triangle), borders marked
- * (see the top). */
+ * as above. */
 void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *out);
 
 /* One caster on the GPU: its vertex buffer with its adjacency indices.
@@ -108,7 +88,30 @@ void volume_silhouette_destroy(volume_silhouette *s);
 bool volume_silhouette_mesh_init(volume_silhouette_mesh *out, const mesh *m, const mesh_edges *e,
                                  unsigned vertex_buffer);
 void volume_silhouette_mesh_free(volume_silhouette_mesh *m);
-/* The sides of m's volume from the light (homogeneous, in m's space),
+/* The facing tests are the CPU's expression in object space; the
+ * neighbour's is taken from this triangle's corners, so a triangle edge-on
+ * to the light could be judged otherwise than by itself (on the tests'
+ * scenes none is: the same expressions in C give every edge the CPU's
+ * multiplicity). What differs is rasterization: a side from the shader
+ * is the CPU's quad in other triangles (split along the other diagonal,
+ * from other leading vertices, emitted by a geometry shader, whose
+ * triangles llvmpipe rasterizes at slightly other depths, even split as
+ * the CPU splits), so where a side starts at its surface's depth (a
+ * caster's own terminator) a pixel may round the other way: a few pixels'
+ * visibility differs from --silhouette cpu's, within the bound of
+ * test_volumes' test_gpu_silhouettes_of_open_meshes_match_cpu.
+ *
+ * The shader emits the sides alone: z-fail's caps come from the CPU (kept
+ * like its sides, demos/lib/volume_draw.h) through volume.vert, the vertex
+ * path of the depth pre-pass (lit.vert's invariant expression, the same
+ * uniforms), since caps must lie at exactly the depth of their surface
+ * and llvmpipe rasterizes a geometry shader's triangles at slightly other
+ * depths than a vertex shader's (caps from the shader speckle their own
+ * surfaces with false shadow; from the vertex path they are as exact as
+ * the CPU's). The mesh's own vertices of a side come placed by the
+ * vertex stage too (volume_adjacency.vert), for the same reason.
+ *
+ * The sides of m's volume from the light (homogeneous, in m's space),
  * the object's model matrix `model` (16 floats, column-major), seen from
  * `view`; a closed mesh by the open rule unless `closed_rule` (false for
  * a light inside it or on it: volume_mesh_closed_rule). */
