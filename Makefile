@@ -106,10 +106,13 @@ demo: $(PROGRAMS)
 gallery: $(PROGRAMS)
 	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json $(SOFT_SCENES)
 
-# The suite runs twice, plain and built with ASan+UBSan (build-san/), both at
-# once (tests/run.sh).
+# First the comments' check (tests/check_comments.sh: no measured figure
+# or tracker number in a comment), itself checked first; then the suite,
+# twice, plain and built with ASan+UBSan (build-san/), both at once
+# (tests/run.sh).
 # `make test SANITIZE=1` runs only the sanitizer pass.
 test: $(PROGRAMS) $(TESTS)
+	@tests/check_comments.sh --self-test && tests/check_comments.sh
 ifeq ($(SANITIZE),1)
 	@tests/run.sh $(BUILD)
 else

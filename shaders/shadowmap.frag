@@ -1,8 +1,9 @@
 #version 330 core
 // The camera pass of the shadow maps (demos/lib/shadow_map.c, for
-// demos/shadowmap.c and demos/psm.c): every light in one pass over the
-// visible receivers, after a depth pre-pass, so that each visible pixel is
-// shaded once and filtered once per light that reaches it.
+// demos/shadowmap.c, demos/psm.c and demos/cascades.c): every light in one
+// pass over the visible receivers, after a depth pre-pass, so that each
+// visible pixel is shaded once and filtered once per light that reaches
+// it.
 //
 // Samplers can be indexed only by constant expressions in GLSL 3.30, so
 // the lights are listed one by one below, and what light i is in this pass
@@ -36,8 +37,9 @@ vec3 shadowmap_face_normal;
 // The map cannot tell where such a face meets one that faces the light:
 // the depth between the two goes to zero at their edge and the
 // slope-scaled bias of the steeper is thicker than the mesh there (seen
-// from inside a box, a column of false light along the corner, issue 14's
-// failure 7). With the eye outside, every fragment is as it was.
+// from inside a box, a column of false light along the corner: the stress
+// suite's camera_inside cases). With the eye outside, every fragment is
+// as it was.
 bool shadowmap_through_closed(int i, vec3 to_light) {
     return !gl_FrontFacing && (u_closed_outside & (1 << i)) != 0 && dot(shadowmap_face_normal, to_light) > 0.0;
 }

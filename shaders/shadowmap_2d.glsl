@@ -1,6 +1,6 @@
 // The camera pass's 2D maps (shaders/shadowmap.frag): a spot or
-// directional light's (demos/shadowmap.c), or any light's warped map
-// (demos/psm.c). Light i's map is u_maps_2d[i] and the uniforms of index i.
+// directional light's (demos/shadowmap.c, and demos/cascades.c's spot
+// lights), or any light's warped map (demos/psm.c). Light i's map is u_maps_2d[i] and the uniforms of index i.
 
 uniform sampler2DShadow u_maps_2d[SCENE_MAX_LIGHTS]; // compare mode on: every read is a test
 uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's clip space (an array map: its light view)

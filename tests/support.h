@@ -15,8 +15,9 @@
 #include "dump.h"
 #include "shadowdiff.h"
 
-/* Golden-image tolerance: at most 0.1 % of pixels may differ by more than
- * 8/255 in any channel (rasterizers may round an edge pixel differently). */
+/* Golden-image tolerance: at most a thousandth of the pixels may differ by
+ * more than 8/255 in any channel (rasterizers may round an edge pixel
+ * differently). */
 #define SUPPORT_TOLERANCE 8
 #define SUPPORT_MAX_DIFFERING 0.001
 

@@ -36,11 +36,10 @@
 
 /* The shadow maps' bound on the standard scenes (tests/test_shadowmap.c). */
 #define STANDARD_MAX_MISCLASSIFIED_PERCENT 0.5
-/* long_view at 640x360 and 4 x 1024, measured: practical 0.027 % and
- * sdsm 0.024 % stabilised by steps (sdsm unstabilised 0.020 %), practical
- * by the sphere 0.078 %, log 0.092 %, uniform 0.36 %; one shadowmap of
- * 1024 1.96 %, lispsm at 2048 0.031 %. The bounds leave a third for
- * drivers. */
+/* long_view at 640x360 and 4 x 1024, in misclassified percent: each
+ * scheme's bound is the figure test_long_view_splits prints for it with a
+ * third added for drivers (practical and sdsm stabilised by steps share
+ * one). */
 #define LONG_VIEW_MAX_PERCENT 0.04
 #define LONG_VIEW_SPHERE_MAX_PERCENT 0.12
 #define LONG_VIEW_LOG_MAX_PERCENT 0.14
@@ -256,8 +255,8 @@ static void test_standard_scenes_within_bound(void **state) {
  * within its bound, each but uniform misclassifying less than half of
  * uniform's, and every one less than one map of a cascade's size, with at
  * most half its mean error (but uniform's); the default (sdsm, stabilised
- * by steps), practical and unstabilised sdsm within the issue's goal, no
- * more than lispsm at one 2048 map. */
+ * by steps), practical and unstabilised sdsm within the goal set for
+ * cascades: no more than lispsm at one 2048 map. */
 static void test_long_view_splits(void **state) {
     (void)state;
     shadowdiff_result one_map = support_measure("shadowmap", LONG_VIEW, "", "--map-size 1024", "long_view_1024");
@@ -285,11 +284,10 @@ static void test_long_view_splits(void **state) {
     }
 }
 
-/* long_view walked (--motion dolly), the issue's goal over several
- * frames (one frame's error is noise: lispsm 0.022 to 0.098 % from frame
- * to frame): the default's compared pixels of frames 8, 24 and 40, pooled,
- * misclassify no more than lispsm's at one 2048 map (measured 0.041
- * against 0.064 %). */
+/* long_view walked (--motion dolly), the same goal over several frames
+ * (one frame's error is noise: shadow edges cross texels from frame to
+ * frame): the default's compared pixels of frames 8, 24 and 40, pooled,
+ * misclassify no more than lispsm's at one 2048 map. */
 static void test_long_view_walked(void **state) {
     (void)state;
     static const int walk_frames[] = {8, 24, 40};

@@ -24,7 +24,7 @@ static void assert_vec3(const float *actual, float x, float y, float z) {
     assert_float_equal(actual[2], z, TOLERANCE);
 }
 
-/* --motion camera is camera_orbit's yaw, bit for bit, as before dolly. */
+/* --motion camera is camera_orbit's yaw, bit for bit. */
 static void test_camera_is_the_orbit(void **state) {
     (void)state;
     for (int frame = 0; frame < 120; frame += 7) {

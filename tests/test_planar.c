@@ -219,7 +219,7 @@ static void test_light_orbit_turns_direction_with_position(void **state) {
 
 /* ---- planar at the extremes against the reference ---- */
 
-/* The goal for planar on its receivers, as test_accuracy's. */
+/* The goal set for planar on its receivers, as test_accuracy's. */
 #define PLANAR_MAX_MISCLASSIFIED_PERCENT 0.05
 
 typedef struct planar_case {
@@ -237,10 +237,10 @@ static const planar_case planar_cases[] = {
     {"huge_ground", "tests/data/planar_huge_ground.json", "", "ground", 0, false},
     {"huge_ground_depth_tested", "tests/data/planar_huge_ground.json", "--no-offset", "ground", 0, true},
     /* 1e6 across: the dumps' own positions, interpolated, would be off by
-     * 0.4 % of the distance and compare almost nothing (render.h, huge
-     * receivers: the capture's exact positions). A sun: a spot's cone edge
-     * on it is where the shading's interpolated position puts it, a pixel
-     * off (README, "Where it stands"). */
+     * far more than shadowdiff's depth tolerance and compare almost
+     * nothing (render.h, huge receivers: the capture's exact positions).
+     * A sun: a spot's cone edge on it is where the shading's interpolated
+     * position puts it, a pixel off (README, "Where it stands"). */
     {"huge_ground_1e6", "tests/data/planar_huge_ground_1e6.json", "", "ground", 0, false},
     /* A mat (casts, receives) on a ground that casts: each is the other's
      * coplanar caster. */

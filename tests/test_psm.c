@@ -21,14 +21,14 @@
 #define LONG_VIEW_BEHIND "assets/scenes/long_view_behind.json"
 #define MAP "--map-size 1024"
 /* The sweep's bound: a warp may exceed uniform's misclassified pixels by
- * 10 %, plus a few pixels of one edge that the rasterizer and the
+ * a tenth, plus a few pixels of one edge that the rasterizer and the
  * reference's rays round differently (with uniform at 0, a ratio alone
  * would fail on a single pixel). */
 #define SWEEP_RATIO 1.1
 #define SWEEP_SLACK_PIXELS 8
 /* The sweep leaves out surfaces within 3 degrees of edge-on to the light:
- * they take under 5 % of it, and there every map's decision is
- * ill-conditioned (see shadowdiff.h). */
+ * they take about a twentieth of it at most, and there every map's
+ * decision is ill-conditioned (see shadowdiff.h). */
 #define SWEEP_GRAZING_DEGREES 3
 #define SWEEP_SIZE "--size 480x270"
 #define SWEEP_DIRECTIONS 64 /* sweep_direction's */

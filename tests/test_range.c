@@ -1,6 +1,6 @@
 /* Tests that the GL techniques hold at extreme camera near/far ranges
- * (issue 14), or refuse them at load with one line; each measuring test
- * prints what it measured.
+ * (as the stress suite's near/far cases push them), or refuse them at
+ * load with one line; each measuring test prints what it measured.
  *
  *   corners     the camera's frustum corners (camera.h), computed in
  *               double from the camera beyond CAMERA_INVERSE_MAX_RATIO,
@@ -287,9 +287,9 @@ static void test_ranges(void **state) {
 /* A far plane far beyond the scene changes no map: long_view (whose
  * uniform map exceeds the bound at this size on its own, perspective
  * aliasing) misclassifies as much with far 1e7 as with its own 600. Past
- * far / near 1e7 the inverse view-projection loses the far plane; the map
- * measure (warp_samples) once took its rays from it, and the automatic
- * size and psm's choice fell back (1.56 % then). */
+ * far / near 1e7 the inverse view-projection loses the far plane, so the
+ * map measure (warp_samples) must not take its rays from it: the automatic
+ * size and psm's choice would fall back. */
 #define RANGE_LONG_VIEW "assets/scenes/long_view.json"
 #define RANGE_SAME_PERCENT 0.01
 static void test_far_plane_changes_no_map(void **state) {

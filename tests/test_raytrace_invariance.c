@@ -43,7 +43,7 @@
 #define WIDTH 320
 #define HEIGHT 180
 #define MAX_SCENE_BYTES (1 << 20)
-/* Reference against reference (issue 14): at most this many misclassified,
+/* Reference against reference: at most this many misclassified,
  * over at least this share of the pixels the unmoved scene compares. */
 #define MAX_MISCLASSIFIED_PERCENT 0.01
 #define MIN_COMPARED_SHARE 0.99

@@ -2,10 +2,10 @@
  * scene, the technique's flags and the golden's name. Each case is
  * rendered headless at 640x360 on EGL and (but for the lecture pictures)
  * OSMesa; each picture must match tests/golden/NAME.png and the other
- * backend's within the tolerance in support.h (at most 0.1 % of pixels
- * differ by more than 8/255). On a failure the actual image and a diff
- * image are left in out/test/, with the commands that reproduce the case
- * and re-record its golden.
+ * backend's within the tolerance in support.h (at most a thousandth of
+ * the pixels differ by more than 8/255). On a failure the actual image
+ * and a diff image are left in out/test/, with the commands that
+ * reproduce the case and re-record its golden.
  *
  * The same table re-records, on purpose only (look at the pictures, say
  * why in the commit): `test_render --record [NAME...]` renders every case,
@@ -388,8 +388,9 @@ static void test_each_fix_shows_when_off(void **state) {
 /* The texel overlay at a 2048 map, a third of a pixel a texel on simple:
  * a line at every texel would darken nearly every lit pixel (moire); the
  * lines every 2^k texels, at least SHADOWMAP_TEXEL_LINE_MIN_PIXELS (4)
- * apart, darken a share of them (measured at 640x360: 22.1 % of the
- * picture's pixels; a line at every texel: 48.1 %, every lit pixel). */
+ * apart, darken a share of them, between these fractions of the
+ * picture's pixels (the test prints the share); a line at every texel
+ * would darken more than the upper one, every lit pixel. */
 #define TEXEL_GRID_MAX_DARKENED 0.35
 #define TEXEL_GRID_MIN_DARKENED 0.05
 static void test_texel_grid_is_not_moire(void **state) {
@@ -405,9 +406,10 @@ static void test_texel_grid_is_not_moire(void **state) {
  * to see only without the kernel: the default Poisson disc averages the
  * stripes into a faint darkening, `--filter none` (the lecture's acne
  * slide) shows each stripe dark. Plain: a pixel darker by more than
- * ACNE_PLAIN_DROP of 255 in its brightest channel (measured at 640x360:
- * 0.78 % of the pixels with the disc, 1.04 % without; the disc's acne
- * differs from the biased picture on 3.6 %, mostly by less). */
+ * ACNE_PLAIN_DROP of 255 in its brightest channel; unfiltered, more
+ * pixels are plainly darker than with the disc (more than
+ * ACNE_UNFILTERED_OVER_FILTERED times as many), while the disc's acne
+ * differs from the biased picture on many more pixels, mostly by less. */
 #define ACNE_PLAIN_DROP 64
 #define ACNE_UNFILTERED_OVER_FILTERED 1.2
 #define ACNE_CHANNELS 4 /* image_read_png: RGBA */

@@ -163,9 +163,9 @@ static void test_depth_tolerance(void **state) {
     const struct {
         float test_depth, r, t;
     } pixels[] = {
-        {DEPTH * 1.002f, 1, 0},  /* 0.2 % further: another surface */
-        {DEPTH * 0.998f, 0, 1},  /* 0.2 % nearer */
-        {DEPTH * 1.0005f, 1, 0}, /* 0.05 %: the same surface */
+        {DEPTH * 1.002f, 1, 0},  /* twice the tolerance further: another surface */
+        {DEPTH * 0.998f, 0, 1},  /* twice the tolerance nearer */
+        {DEPTH * 1.0005f, 1, 0}, /* half the tolerance: the same surface */
         {DEPTH * 0.9995f, 0, 1},
     };
     for (size_t i = 0; i < sizeof pixels / sizeof *pixels; i++) {
@@ -371,9 +371,9 @@ static shadowdiff_result compare_class_case(const class_case *c) {
 }
 
 /* Each wrong picture moves the figure that names its fault, and only
- * that one where the fault is one: a hard shadow of a soft truth is 0 %
- * misclassified and 0.3 off in the penumbra; a leak is the umbra's, a
- * speckle the lit class's. The classes partition the compared pixels. */
+ * that one where the fault is one: a hard shadow of a soft truth
+ * misclassifies nothing and is 0.3 off in the penumbra; a leak is the
+ * umbra's, a speckle the lit class's. The classes partition the compared pixels. */
 static void test_classes_name_the_fault(void **state) {
     (void)state;
     for (int k = 0; k < CLASS_CASE_COUNT; k++) {
@@ -740,11 +740,11 @@ static void test_shimmer_leaves_out_disocclusions(void **state) {
     make_shimmer_frames(&f, 1);
     f.r0.ids[pixel(2, 1)] = f.t0.ids[pixel(2, 1)] = BOX; /* frame 1's (1, 1) */
     f.t1.visibility[pixel(1, 1)] = 0;
-    /* Frame 0's (4, 3) is 0.2 above frame 1's (3, 3): 2 % of its distance
-     * of 10, over the 1 % tolerance. */
+    /* Frame 0's (4, 3) is 0.2 above frame 1's (3, 3): a fiftieth of its
+     * distance of 10, over the tolerance (a hundredth). */
     f.r0.position[3 * pixel(4, 3) + 1] = 0.2f;
     f.t1.visibility[pixel(3, 3)] = 0;
-    /* 0.05 above: 0.5 %, within; a flip there counts. */
+    /* 0.05 above: half the tolerance, within; a flip there counts. */
     f.r0.position[3 * pixel(4, 5) + 1] = 0.05f;
     f.t1.visibility[pixel(3, 5)] = 0;
     shadowdiff_shimmer_result r = shimmer(&f, 0);
@@ -821,7 +821,8 @@ static void test_shimmer_problems(void **state) {
 
 /* ---- build/shadowdiff ---- */
 
-/* DIR/ref and DIR/test hold the known verdicts (12.5 % misclassified);
+/* DIR/ref and DIR/test hold the known verdicts (one pixel in eight
+ * misclassified);
  * DIR/shimmer_ref0, _test0, _ref1, _test1 two frames with one pixel of
  * shimmer among SHIMMER_FOLLOWED;
  * DIR/small is another size, DIR/moved another light, DIR/far sees
@@ -970,7 +971,7 @@ static void test_cli_heatmap(void **state) {
     free(rgba);
 }
 
-/* No figure on stdout: a script reading it must not find 0 %. */
+/* No figure on stdout: a script reading it must not find a zero. */
 static void test_cli_nothing_compared_fails(void **state) {
     (void)state;
     char out[4096];
@@ -990,7 +991,8 @@ static void test_cli_non_finite_fails(void **state) {
     assert_string_equal(out, "");
 }
 
-/* DIR/test misclassifies 12.5 %: over 12 and 0, not over 12.5 or 100. The
+/* DIR/test misclassifies one pixel in eight (12.5 in percent, the flag's
+ * unit): over 12 and 0, not over 12.5 or 100. The
  * report comes first, whole, as without the flag. */
 static void test_cli_max_misclassified(void **state) {
     (void)state;

@@ -43,13 +43,13 @@ static void test_standard_scenes_within_bound(void **state) {
     support_standard_scenes_within("shadowmap", STANDARD_MAX_MISCLASSIFIED_PERCENT);
 }
 
-/* Lights a single map did not serve (issue 14): a spot wider than a 2D
- * map can hold (89.5 degrees: the map stopped at 85 and what lay outside
- * read lit, 4.7 % misclassified before) gets a cube map; a point light a
- * million units away, whose receivers lie in a cone a few microradians
- * wide (a cube face's texel spanned 500 units there: every ground shadow
- * lost, 1.97 %), gets one perspective map around them. Within the shadow
- * maps' bound. */
+/* Lights a single map of their own kind cannot serve (the stress suite's
+ * extremes): a spot wider than a 2D map can hold (89.5 degrees: a 2D
+ * map's frustum must stop short of 90, and what lay outside it would read
+ * lit) gets a cube map; a point light a million units away, whose
+ * receivers lie in a cone a few microradians wide (a cube face's texel
+ * would span hundreds of units there and lose every ground shadow), gets
+ * one perspective map around them. Within the shadow maps' bound. */
 static void test_extreme_lights_within_bound(void **state) {
     (void)state;
     static const char *const scenes[] = {"shadowmap_wide_spot", "shadowmap_far_point"};
@@ -64,14 +64,15 @@ static void test_extreme_lights_within_bound(void **state) {
     }
 }
 
-/* The stress suite's shadow-map failures (issue 14), at its picture size
- * (320x180), through both techniques on the shared fit and camera pass.
- * Before: a spot 1e4 away whose map spanned its whole 38-degree cone
- * (texels of 2 units: the sphere's shadow lost, 0.70 % misclassified),
- * now a map around the receivers; a sun 0.1 degrees above the ground,
- * whose map was sized on the casters' sides alone (256, 0.57 %), now the
- * most texels; the camera inside a box, false light along the corner of a
- * face turned from the light (1.12 %), now the closed mesh's own shadow. */
+/* The stress suite's shadow-map extremes, at its picture size (320x180),
+ * through both techniques on the shared fit and camera pass: a spot 1e4
+ * away, whose map around its whole 38-degree cone would have texels of 2
+ * units and lose the sphere's shadow, gets a map around the receivers; a
+ * sun 0.1 degrees above the ground, whose map sized on the casters' sides
+ * alone would be small, gets the most texels; with the camera inside a
+ * box, a face turned from the light gets the closed mesh's own shadow,
+ * not false light along its corner (shadowmap.frag,
+ * shadowmap_through_closed). */
 static void test_stress_extremes_within_bound(void **state) {
     (void)state;
     static const char *const scenes[] = {"shadowmap_far_spot", "shadowmap_grazing_sun", "shadowmap_camera_inside"};
@@ -226,8 +227,7 @@ static void test_receiver_plane_removes_partial_acne(void **state) {
 /* The tents (tent3, tent5: 4 and 9 bilinear taps, shadowmap.glsl) on the
  * standard scenes: within the same bound as the defaults, and blurring
  * less than the N x N grid of as many texels (pcfN, N^2 taps: its weights
- * reach a texel farther): a lower mean error. Measured at 640x360, mean
- * error tent / pcf: simple 0.0012 / 0.0020 (N = 3), 0.0037 / 0.0075 (5). */
+ * reach a texel farther): a lower mean error (the test prints both). */
 static void test_tents_within_bound_and_sharper_than_grids(void **state) {
     (void)state;
     static const char *const scenes[] = {"simple", "bunny", "teapot"};
@@ -354,8 +354,8 @@ static void test_no_peter_panning_at_contact(void **state) {
 }
 
 /* A point light's cube map has no seams: false-lit pixels whose direction
- * from the light lies within 1 % of a face edge (two largest components
- * nearly equal) are at most 0.05 % of the compared pixels. */
+ * from the light lies near a face edge (its two largest components within
+ * a hundredth of the largest) are at most 5e-4 of the compared pixels. */
 static void test_no_cube_seams(void **state) {
     (void)state;
     dump_frame reference, test;

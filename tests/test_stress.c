@@ -1,5 +1,5 @@
-/* build/stress: its quick subset (the cases that pass today, near 1e-6 of
- * far among them) passes, with each class's MAE in its table (a reference
+/* build/stress: its quick subset (the cases marked quick, near 1e-6 of far
+ * among them) passes, with each class's MAE in its table (a reference
  * copied as the technique's dump gives 0 in each class it has, "none" in
  * the penumbra of a hard light), and its verdicts say what happened: a GL
  * error is a gl-error, and fake programs that crash, hang, write a NaN,

@@ -208,9 +208,9 @@ static void test_tour_checks_techniques_and_flags(void **state) {
 /* The tour CI records whole: every technique and a path, the tour a
  * lecture opens with. */
 #define RECORDED_TOUR "assets/tours/overview.json"
-/* Small, for time: its 720 frames took 2.5 s at 160x90 here (1.6 s at
- * 64x36; each recording, plain build), so the two recordings and the
- * ffprobe stay well under 20 s under the sanitizers too. */
+/* Small, for time: a recording's time grows with its pixels, and the two
+ * recordings and the ffprobe must stay short under the sanitizers too
+ * (run.sh prints each program's time). */
 #define RECORDED_WIDTH 160
 #define RECORDED_HEIGHT 90
 

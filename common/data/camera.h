@@ -40,8 +40,8 @@
  * it loses the far plane once far / near passes about 1e7 (the depth row
  * is then the infinite projection's, its far corners at infinity: NaN,
  * and every receiver point with them). Up to this ratio the corners are
- * still the inverse's, as every picture and figure measured so far had
- * them (the standard scenes go up to 6000), beyond it the camera's. */
+ * the inverse's, so that the standard scenes (up to 6000) keep their
+ * goldens and figures; beyond it the camera's. */
 #define CAMERA_INVERSE_MAX_RATIO 1e4
 /* Bits of window depth in the target's depth buffer (GL_DEPTH24_STENCIL8). */
 #define CAMERA_DEPTH_BITS 24

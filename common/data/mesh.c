@@ -514,9 +514,9 @@ static bool mesh_read_ply_claim(FILE *f, mesh_claim *c) {
  * before it reads one vertex, and hands back a scene of that many
  * vertices, nearly all zero: OutOfMemory.off (309 bytes) claims
  * 353535235358 vertices, 1347917086 after wrapping, 16 GB that the kernel
- * grants and then kills the process for (24 GB in all); a claim that fits
- * in memory is post-processed at length (250 M vertices: 29 s and 5.7 GB
- * for a 180-byte file, then a picture of a cube). Its PLY reader allocates
+ * grants and then kills the process for; a claim that fits in memory is
+ * post-processed at length (250 M vertices from a 180-byte file: many
+ * seconds and gigabytes, then a picture of a cube). Its PLY reader allocates
  * for the claimed elements likewise (std::bad_alloc under a 4 GB address
  * space for 2 G vertices in 200 bytes). No
  * import property bounds it, and it happens inside aiImportFile, so the

@@ -39,24 +39,8 @@
  * Unknown keys are errors (they are usually typos), as are wrong types,
  * non-finite numbers and out-of-range values.
  *
- * Large worlds: every position in the scene (camera, lights, objects'
- * translations) is relative to the scene's origin, subtracted in double
- * from the file's numbers before they are rounded to float. The origin is
- * the camera's eye (as a float) where the eye lies farther from the
- * world's origin than SCENE_REBASE_RATIO times its distance to the
- * target, else the world's origin: a float keeps 24 bits of its own
- * magnitude, so 1e6 from the origin the world's coordinates would be
- * rounded to 0.06 while the eye sees centimetres; relative to the eye
- * they keep the precision of a scene at the origin (the "floating
- * origin" of large-world engines). Every consumer (techniques, maps and
- * their fits, the reference, the dumps' positions) works in this frame,
- * so the origin never needs adding back. It is chosen once, at load: a
- * camera that travels far from where it started loses precision as a
- * camera that far from the world's origin would.
- *
- * scene_load reports the first problem as one line
- * "FILE: where: problem" (FILE:LINE for JSON syntax) on stderr and returns
- * false, leaving the scene empty (safe to scene_free).
+ * Positions are relative to the scene's origin ("Large worlds", at
+ * SCENE_REBASE_RATIO below); scene_load says how it fails.
  */
 #ifndef SCENE_H
 #define SCENE_H
@@ -126,7 +110,22 @@ typedef struct scene_object {
     bool receives;
 } scene_object;
 
-/* Below this many target distances from the world's origin the eye
+/* Large worlds: every position in the scene (camera, lights, objects'
+ * translations) is relative to the scene's origin, subtracted in double
+ * from the file's numbers before they are rounded to float. The origin is
+ * the camera's eye (as a float) where the eye lies farther from the
+ * world's origin than SCENE_REBASE_RATIO times its distance to the
+ * target, else the world's origin: a float keeps 24 bits of its own
+ * magnitude, so 1e6 from the origin the world's coordinates would be
+ * rounded to 0.06 while the eye sees centimetres; relative to the eye
+ * they keep the precision of a scene at the origin (the "floating
+ * origin" of large-world engines). Every consumer (techniques, maps and
+ * their fits, the reference, the dumps' positions) works in this frame,
+ * so the origin never needs adding back. It is chosen once, at load: a
+ * camera that travels far from where it started loses precision as a
+ * camera that far from the world's origin would.
+ *
+ * Below this many target distances from the world's origin the eye
  * stays in world coordinates: near the eye they then carry at most 2 bits
  * less than relative to the eye, and every scene built by hand (eye
  * within 1.0 target distance of the origin) keeps its own numbers. */
@@ -142,6 +141,9 @@ typedef struct scene {
     int object_count;
 } scene;
 
+/* Reports the first problem as one line "FILE: where: problem"
+ * (FILE:LINE for JSON syntax) on stderr and returns false, leaving the
+ * scene empty (safe to scene_free). */
 bool scene_load(scene *s, const char *path);
 void scene_free(scene *s);
 

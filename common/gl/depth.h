@@ -14,8 +14,8 @@
  * Only the camera's passes change: a pass that draws through a matrix of
  * its own (a light's depth map, a lecture's view of a warped space) runs
  * between depth_use_standard and depth_use_camera. With the standard
- * depth every function here leaves GL as it is, so its pictures are those
- * from before reversed depth existed.
+ * depth every function here leaves GL as it is, so its pictures are
+ * exactly those of a build without reversed depth.
  *
  * Reversed depth needs ARB_clip_control (core in GL 4.5; glad loads
  * glClipControl through the extension, which 4.5 drivers list too); a

@@ -61,9 +61,11 @@ typedef struct render_mesh {
  * distance from the eye to its world box (at least the near plane's);
  * what needs the exact surface there (the volumes' counting, the dumps'
  * positions) intersects the pixel's eye ray with the triangle's plane.
- * The ratio is measured: grounds up to a ratio of 700 (3e3 across) stay
- * within the volumes' bound (0.01 %), from 2400 (1e4) they do not; the
- * standard scenes' largest, long_view's, is 786, so none is huge. */
+ * The ratio lies between the largest ground whose rasterized surface
+ * still keeps the volumes within their bound and the smallest that does
+ * not (test_volumes' test_huge_ground: with --no-exact-depth that ground
+ * misclassifies over the bound), and above the standard scenes' largest,
+ * long_view's, so none of those is huge. */
 #define RENDER_HUGE_RATIO 1024.0
 
 typedef struct render_scene {

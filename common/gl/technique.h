@@ -35,19 +35,7 @@
  * Time comes in as frame->time, never from a clock: frames are
  * deterministic.
  *
- * Skips. The frame's owner (technique_host, below: the app and the
- * benchmark) works out per frame what a technique need not do, and hands
- * it over in the frame; none may change a pixel. in_view: the objects the
- * camera passes draw (view culling); lights, lit_by and light_rect: the
- * lights that reach anything visible, and per light the objects and
- * pixels its lighting pass needs (light reach; technique_light_on,
- * technique_light_pass); receivers: the visible receivers' points, for
- * fitting and for caster culling (technique_light_hull,
- * technique_caster_needed, when cull_casters), and what the depth
- * pre-pass shows (technique_see: hidden casters and objects); changed:
- * what moved since the technique's last frame, which its caches obey (all
- * of it on a first frame and with --no-cache). A technique fills counts
- * for the HUD.
+ * Skips: see technique_frame.
  */
 #ifndef TECHNIQUE_H
 #define TECHNIQUE_H
@@ -116,6 +104,19 @@ typedef struct technique_seen {
     light_mask masks[SCENE_MAX_LIGHTS][LIGHT_MASK_MAX_LAYERS];
 } technique_seen;
 
+/* Skips. The frame's owner (technique_host, below: the app and the
+ * benchmark) works out per frame what a technique need not do, and hands
+ * it over in the frame; none may change a pixel. in_view: the objects the
+ * camera passes draw (view culling); lights, lit_by and light_rect: the
+ * lights that reach anything visible, and per light the objects and
+ * pixels its lighting pass needs (light reach; technique_light_on,
+ * technique_light_pass); receivers: the visible receivers' points, for
+ * fitting and for caster culling (technique_light_hull,
+ * technique_caster_needed, when cull_casters), and what the depth
+ * pre-pass shows (technique_see: hidden casters and objects); changed:
+ * what moved since the technique's last frame, which its caches obey (all
+ * of it on a first frame and with --no-cache). A technique fills counts
+ * for the HUD. */
 typedef struct technique_frame {
     const render_scene *gpu; /* gpu->scene holds this frame's lights */
     const camera_view *view;

@@ -9,7 +9,29 @@
  *       dump_frame_free(&frame);
  *   }
  *
- * What it computes, pixel by pixel:
+ * raytrace_render says what it computes, pixel by pixel, and how it
+ * fails.
+ */
+#ifndef RAYTRACE_H
+#define RAYTRACE_H
+
+#include <stdbool.h>
+#include "dump.h"
+#include "scene.h"
+
+#define RAYTRACE_DEFAULT_LIGHT_SAMPLES 256
+#define RAYTRACE_MAX_LIGHT_SAMPLES 65536
+/* Shadow-ray offset, in float ulps of the hit point's coordinates from the
+ * eye (see raytrace.c). */
+#define RAYTRACE_OFFSET_ULPS 8.0
+
+typedef struct raytrace_settings {
+    int light_samples;      /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
+    bool verbose;
+    const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
+} raytrace_settings;
+
+/* What raytrace_render computes, pixel by pixel:
  *   camera    one primary ray through the centre of each pixel of the
  *             raster camera (the view and projection camera_view_compute
  *             makes with aspect W/H), between its near and far planes, so
@@ -56,27 +78,7 @@
  * settings->scene_name for the camera) and returns false with nothing to
  * free. No ray it hands Embree is invalid, whatever the scene. With
  * `verbose`, it prints the Embree version, the thread count and where the
- * time went on stderr.
- */
-#ifndef RAYTRACE_H
-#define RAYTRACE_H
-
-#include <stdbool.h>
-#include "dump.h"
-#include "scene.h"
-
-#define RAYTRACE_DEFAULT_LIGHT_SAMPLES 256
-#define RAYTRACE_MAX_LIGHT_SAMPLES 65536
-/* Shadow-ray offset, in float ulps of the hit point's coordinates from the
- * eye (see raytrace.c). */
-#define RAYTRACE_OFFSET_ULPS 8.0
-
-typedef struct raytrace_settings {
-    int light_samples;      /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
-    bool verbose;
-    const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
-} raytrace_settings;
-
+ * time went on stderr. */
 bool raytrace_render(const scene *s, int width, int height, int light_index, const raytrace_settings *settings,
                      dump_frame *out);
 

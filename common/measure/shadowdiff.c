@@ -125,10 +125,10 @@ static void shadowdiff_print_unknown_receiver(const dump_frame *d, const char *d
 /* light.xyz - w * position is the direction towards the light for both a
  * point (w = 1) and a directional light (w = 0). The cosine must pass
  * FLT_EPSILON too: the normal is a float, so no smaller cosine tells a
- * surface facing the light from one exactly edge-on to it (measured:
- * stress light_on_ground_point's ground, the light in its plane, at
- * cosines of +-6e-17 row by row, from hit points a rounding off the
- * plane). */
+ * surface facing the light from one exactly edge-on to it (the stress
+ * case light_on_ground_point's ground, the light in its plane, has cosines
+ * of the order of 1e-17 either way, row by row, from hit points a rounding
+ * off the plane). */
 static bool shadowdiff_faces_light(const dump_frame *d, size_t i, double min_cosine) {
     const float *n = d->normal + 3 * i, *p = d->position + 3 * i;
     double n_dot_l = 0, n_length = 0, l_length = 0;

@@ -10,7 +10,7 @@
  * A pixel is compared when all of these hold (the same rules for every
  * technique, so that none can look better by comparing fewer pixels):
  *   - both dumps see a surface there (ids >= 0 in both);
- *   - their depths agree within 0.1 %: |d_test - d_ref| <= 0.001 * d_ref
+ *   - their depths agree within a thousandth: |d_test - d_ref| <= 0.001 * d_ref
  *     (otherwise they see different surfaces, e.g. at a silhouette);
  *   - the reference's surface faces the light: N . L > sin(grazing), N the
  *     reference normal, L towards the light from the reference position
@@ -36,88 +36,9 @@
  * misclassified counts both. The percentages are of the compared pixels;
  * mean_abs_error is the mean of |v_ref - v_test| over them.
  *
- * Misclassified % cannot see a soft shadow drawn hard or a hard one drawn
- * soft: only the side of 0.5 counts. So the compared pixels are also
- * split into classes by the REFERENCE's visibility v alone (whatever the
- * test says there):
- *   umbra     v <= SHADOWDIFF_UMBRA_MAX_VISIBILITY (1/32): no light, or
- *             almost none, reaches the point (outside a spot light's
- *             cone too);
- *   lit       v >= SHADOWDIFF_LIT_MIN_VISIBILITY (31/32): all of it, or
- *             almost all;
- *   penumbra  in between: part of an area light is hidden.
- * Each class has its pixel count and its MAE, the mean of |v_ref - v_test|
- * over that class's pixels (class_pixels, class_mae; the classes
- * partition the compared pixels, so the counts sum to `compared` and the
- * three MAEs weighed by their counts to mean_abs_error):
- *   the umbra's MAE is light leaking or bleeding into full shadow
- *             (peter-panning, a shadow filtered too wide);
- *   the lit class's MAE is acne and over-darkening of fully lit surfaces
- *             (bias too small, a shadow grown or blurred outwards);
- *   the penumbra's MAE is how well a soft shadow is drawn: a hard edge
- *             through a penumbra whose visibility ramps evenly from 0 to 1
- *             is off by 1/4 on average there, even where it sits on the
- *             0.5 line and misclassifies nothing.
- * A class with no pixel has no MAE: class_mae is 0 there and the reports
- * print "none" (JSON null), since a 0 would read as perfect. A hard
- * reference (point, spot or directional light without a radius) has
- * visibilities of exactly 0 and 1, so its penumbra is always empty.
- *
- * No figure is given (shadowdiff_compare prints one line naming the dumps
- * and returns false, with `problem` saying why) when
- *   - the dumps disagree as above, or the receiver is unknown (MISMATCH);
- *   - a value the rules read is NaN or infinite (NOT_FINITE): an id
- *     anywhere, or, where that dump sees a surface (id >= 0), its depth or
- *     visibility, or the reference's normal or position. A NaN visibility
- *     would otherwise count as shadow, a NaN depth or normal would leave the
- *     pixel out: a broken technique would get plausible figures;
- *   - no pixel is compared (NOTHING_COMPARED): every percentage would be
- *     0, which reads as a perfect technique. The counts are then 0.
- *
- * Shimmer (shadowdiff_shimmer): how much a technique's shadows crawl or
- * flicker from one frame to the next where the truth does not, from four
- * dumps: the technique's and the reference's of a previous frame (frame 0)
- * and of the current one (frame 1), the camera (or anything) having moved
- * between them. Each pair is first compared as above (every rule and
- * problem of shadowdiff_compare, each frame's figures kept); the cameras
- * of a pair must agree (eye and target within 1e-4 of their distance, up,
- * fov, near and far within 1e-4 of their size), and the frames must have
- * the same size and objects (MISMATCH otherwise). Then every pixel i1 of
- * frame 1 that the rules compare is followed to frame 0:
- *   - its reference's world position p (position.pfm) is projected by
- *     frame 0's camera (meta.json's "camera", dump.h, with aspect width /
- *     height) to the frame-0 pixel i0 whose square it falls in (pixel
- *     centres as the rasterizer samples them: none rounds by more than
- *     half a pixel); it is not followed where p is behind frame 0's eye or
- *     outside its picture;
- *   - i0 must be compared by the rules too (frame 0's pair, the same
- *     receiver and grazing setting), see the same object as i1 in the
- *     reference and in the test, and its reference position must lie
- *     within SHADOWDIFF_SHIMMER_POSITION_TOLERANCE (1 %) of i1's distance
- *     from the eye of p: otherwise the point was hidden (or off the
- *     surface seen) in frame 0, a disocclusion, and is not followed. A
- *     surface seen nearly edge-on from the eye, where half a pixel spans
- *     more than that, is left out the same way.
- * Of the followed pixels, `truth_changed` counts those whose reference
- * decision (lit: visibility >= 0.5) differs between i0 and i1, and
- * `shimmered` those whose test decision differs while the reference's
- * does not:
- *   shimmer % = 100 * shimmered / followed.
- * A pixel whose truth changes counts as not shimmering whatever the test
- * does (a moving light, a shadow edge passing through it). A technique
- * whose decisions are stable in the world, exact or not, scores 0; one
- * whose shadow-map texels slide over the receivers as its fit follows the
- * camera scores the edge pixels that flip. No figure (problem set,
- * false returned) when a pair gives none, as above, or nothing is
- * followed (NOTHING_COMPARED).
- *
- * The heat map (RGBA, top row first, opaque) shows
- *   red  (255, 0, 0)    false shadow
- *   blue (0, 0, 255)    false lit
- *   grey 96..255        compared and agreeing, by the reference visibility
- *                       (lighter where lit)
- *   dark grey (40)      not compared
- *   black               no surface in the reference
+ * Below: the classes of compared pixels (shadowdiff_class), the cases
+ * without a figure (shadowdiff_compare), shimmer (shadowdiff_shimmer) and
+ * the heat map (shadowdiff_pixel).
  */
 #ifndef SHADOWDIFF_H
 #define SHADOWDIFF_H
@@ -128,7 +49,7 @@
 #include "dump.h"
 
 #define SHADOWDIFF_LIT_THRESHOLD 0.5f
-/* The classes' bounds on the reference visibility (see the top): at or
+/* The classes' bounds on the reference visibility (shadowdiff_class): at or
  * below the first the umbra, at or above the second the lit class. The
  * 1/32 at either end keeps a pixel where a few of the reference's light
  * samples (256 by default) are hidden, at the rim of a penumbra, in the
@@ -169,7 +90,14 @@ typedef enum shadowdiff_problem {
     SHADOWDIFF_PROBLEM_NOTHING_COMPARED,
 } shadowdiff_problem;
 
-/* What a heat-map pixel says; compared pixels are AGREES and after. */
+/* The heat map (RGBA, top row first, opaque) shows
+ *   red  (255, 0, 0)    false shadow
+ *   blue (0, 0, 255)    false lit
+ *   grey 96..255        compared and agreeing, by the reference visibility
+ *                       (lighter where lit)
+ *   dark grey (40)      not compared
+ *   black               no surface in the reference
+ * Each pixel's kind; compared pixels are AGREES and after. */
 typedef enum shadowdiff_pixel {
     SHADOWDIFF_PIXEL_NO_SURFACE,
     SHADOWDIFF_PIXEL_NOT_COMPARED,
@@ -188,8 +116,32 @@ extern const char *const shadowdiff_pixel_names[SHADOWDIFF_PIXEL_KIND_COUNT];
 /* The kinds in the order a legend lists them: the errors first. */
 extern const shadowdiff_pixel shadowdiff_legend_kinds[SHADOWDIFF_PIXEL_KIND_COUNT];
 
-/* The classes of compared pixels, by the reference's visibility (see the
- * top). */
+/* Misclassified % cannot see a soft shadow drawn hard or a hard one drawn
+ * soft: only the side of 0.5 counts. So the compared pixels are also
+ * split into classes by the REFERENCE's visibility v alone (whatever the
+ * test says there):
+ *   umbra     v <= SHADOWDIFF_UMBRA_MAX_VISIBILITY (1/32): no light, or
+ *             almost none, reaches the point (outside a spot light's
+ *             cone too);
+ *   lit       v >= SHADOWDIFF_LIT_MIN_VISIBILITY (31/32): all of it, or
+ *             almost all;
+ *   penumbra  in between: part of an area light is hidden.
+ * Each class has its pixel count and its MAE, the mean of |v_ref - v_test|
+ * over that class's pixels (class_pixels, class_mae; the classes
+ * partition the compared pixels, so the counts sum to `compared` and the
+ * three MAEs weighed by their counts to mean_abs_error):
+ *   the umbra's MAE is light leaking or bleeding into full shadow
+ *             (peter-panning, a shadow filtered too wide);
+ *   the lit class's MAE is acne and over-darkening of fully lit surfaces
+ *             (bias too small, a shadow grown or blurred outwards);
+ *   the penumbra's MAE is how well a soft shadow is drawn: a hard edge
+ *             through a penumbra whose visibility ramps evenly from 0 to 1
+ *             is off by 1/4 on average there, even where it sits on the
+ *             0.5 line and misclassifies nothing.
+ * A class with no pixel has no MAE: class_mae is 0 there and the reports
+ * print "none" (JSON null), since a 0 would read as perfect. A hard
+ * reference (point, spot or directional light without a radius) has
+ * visibilities of exactly 0 and 1, so its penumbra is always empty. */
 typedef enum shadowdiff_class {
     SHADOWDIFF_CLASS_UMBRA,
     SHADOWDIFF_CLASS_PENUMBRA,
@@ -214,6 +166,16 @@ typedef struct shadowdiff_result {
     double class_mae[SHADOWDIFF_CLASS_COUNT];  /* over the class's pixels; 0 where it has none */
 } shadowdiff_result;
 
+/* No figure is given (shadowdiff_compare prints one line naming the dumps
+ * and returns false, with `problem` saying why) when
+ *   - the dumps disagree as above, or the receiver is unknown (MISMATCH);
+ *   - a value the rules read is NaN or infinite (NOT_FINITE): an id
+ *     anywhere, or, where that dump sees a surface (id >= 0), its depth or
+ *     visibility, or the reference's normal or position. A NaN visibility
+ *     would otherwise count as shadow, a NaN depth or normal would leave the
+ *     pixel out: a broken technique would get plausible figures;
+ *   - no pixel is compared (NOTHING_COMPARED): every percentage would be
+ *     0, which reads as a perfect technique. The counts are then 0. */
 /* `settings` may be NULL (every object, default names). `heatmap_rgba`
  * may be NULL, else width * height * 4 bytes (not painted after a MISMATCH
  * or NOT_FINITE). Returns whether the figures in `out` mean something; `out`
@@ -250,7 +212,43 @@ typedef struct shadowdiff_shimmer_result {
     double shimmer_percent, truth_changed_percent; /* of followed */
 } shadowdiff_shimmer_result;
 
-/* Shimmer from frame 0 (previous_*) to frame 1 (see the top). Returns
+/* Shimmer (shadowdiff_shimmer): how much a technique's shadows crawl or
+ * flicker from one frame to the next where the truth does not, from four
+ * dumps: the technique's and the reference's of a previous frame (frame 0)
+ * and of the current one (frame 1), the camera (or anything) having moved
+ * between them. Each pair is first compared as above (every rule and
+ * problem of shadowdiff_compare, each frame's figures kept); the cameras
+ * of a pair must agree (eye and target within 1e-4 of their distance, up,
+ * fov, near and far within 1e-4 of their size), and the frames must have
+ * the same size and objects (MISMATCH otherwise). Then every pixel i1 of
+ * frame 1 that the rules compare is followed to frame 0:
+ *   - its reference's world position p (position.pfm) is projected by
+ *     frame 0's camera (meta.json's "camera", dump.h, with aspect width /
+ *     height) to the frame-0 pixel i0 whose square it falls in (pixel
+ *     centres as the rasterizer samples them: none rounds by more than
+ *     half a pixel); it is not followed where p is behind frame 0's eye or
+ *     outside its picture;
+ *   - i0 must be compared by the rules too (frame 0's pair, the same
+ *     receiver and grazing setting), see the same object as i1 in the
+ *     reference and in the test, and its reference position must lie
+ *     within SHADOWDIFF_SHIMMER_POSITION_TOLERANCE (a hundredth) of i1's distance
+ *     from the eye of p: otherwise the point was hidden (or off the
+ *     surface seen) in frame 0, a disocclusion, and is not followed. A
+ *     surface seen nearly edge-on from the eye, where half a pixel spans
+ *     more than that, is left out the same way.
+ * Of the followed pixels, `truth_changed` counts those whose reference
+ * decision (lit: visibility >= 0.5) differs between i0 and i1, and
+ * `shimmered` those whose test decision differs while the reference's
+ * does not:
+ *   shimmer % = 100 * shimmered / followed.
+ * A pixel whose truth changes counts as not shimmering whatever the test
+ * does (a moving light, a shadow edge passing through it). A technique
+ * whose decisions are stable in the world, exact or not, scores 0; one
+ * whose shadow-map texels slide over the receivers as its fit follows the
+ * camera scores the edge pixels that flip. No figure (problem set,
+ * false returned) when a pair gives none, as above, or nothing is
+ * followed (NOTHING_COMPARED). */
+/* Shimmer from frame 0 (previous_*) to frame 1 (above). Returns
  * whether the figures mean something; `out` always gets the problem. */
 bool shadowdiff_shimmer(const dump_frame *previous_reference, const dump_frame *previous_test,
                         const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,

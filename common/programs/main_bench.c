@@ -8,19 +8,9 @@
  * its first, ""): warm-up frames, then timed frames (GPU time from
  * GL_TIME_ELAPSED queries, CPU time from the clock around the frame and
  * glFinish), then the technique's own dumps of --error-frames of the timed
- * frames compared with their references (shadowdiff rules), pooled.
- *
- * The ratio to the cost floor is measured in the same moments as the
- * configuration: the machine is shared, and a floor timed once per scene,
- * minutes away, moved the ratios by a third between runs. So every frame k
- * of a configuration, warm-up included, is a floor frame then the
- * configuration's frame, both at time k and under the row's skips, each
- * timed on its own (two technique hosts at once: the floor's and the
- * configuration's); the row's ratio is its median over the median of its
- * own floor frames (results.csv's floor_ms_median). The floor's own row is
- * timed alone, ratio 1. The configuration's frames and its dump are those
- * it renders alone: the floor frames between them share no state with it
- * that a frame does not set afresh. Writes
+ * frames compared with their references (shadowdiff rules), pooled. Each
+ * frame's time is also a cost-floor frame's, timed in the same moments
+ * (bench_time_frames). Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
  *                           (its last column, floor_ms_median, the row's floor)
  *   OUT/report.md           a table per scene, its Pareto fronts (one per
@@ -33,31 +23,8 @@
  * Timings are medians and 90th percentiles of the timed frames: single
  * frames on a shared machine are noise.
  *
- * Motion (--motion, motion.h, the app's paths): frame k of a configuration,
- * warm-up frames first, is rendered at time k / BENCH_FRAME_RATE with the
- * lights or the camera moved from the scene's own, so that caches are
- * measured as the app exercises them; every configuration starts again at
- * frame 0. One frame's error is noise under a motion (lispsm walking the
- * city: 0.029 to 0.066 % misclassified from frame to frame), so the error
- * figures pool the compared pixels of --error-frames frames spread evenly
- * over the timed ones, the last timed frame the last of them (under a
- * motion 6 by default, static 1: its frames are one picture); each is
- * dumped after the timing, in order of time (frames are deterministic in
- * their time, and a skip or cache never changes a decision), and each
- * has its reference, ray traced for its time and cached under a name that
- * says the motion and that time.
- *
- * Shimmer: under the motions that move the camera (camera, dolly), each
- * configuration also dumps each error frame with the maps held as the
- * frame before fitted them (technique_host_frame's fit_view: the app's
- * --hold-fit), and results.csv's shimmer_percent is the share of compared
- * pixels whose decision the fit's motion alone changed, pooled likewise
- * (shadowdiff's shimmer of the two dumps of one view against its one reference:
- * every pixel follows itself and the truth is the same, so the figure is
- * free of the sub-pixel resampling that two views' pixels add; README,
- * "Temporal stability"; report.md's "shimmer %"). Under static and light
- * it is "-": with the camera still nothing is refitted for the viewer,
- * and a moving light moves the true shadows.
+ * Motion (--motion) is described at bench_error_time, shimmer at
+ * bench_shimmers.
  *
  * Skips (render.h) are on, as in the app; --no-skip turns them off, and
  * --skips-compare runs every configuration twice, skips on then off, each
@@ -309,7 +276,21 @@ static void bench_move(double time) {
 }
 
 /* The time of error frame k (0..error_frames - 1, in order of time; the
- * last is the last timed frame): timed frames spread evenly. */
+ * last is the last timed frame): timed frames spread evenly.
+ *
+ * Motion (--motion, motion.h, the app's paths): frame k of a configuration,
+ * warm-up frames first, is rendered at time k / BENCH_FRAME_RATE with the
+ * lights or the camera moved from the scene's own, so that caches are
+ * measured as the app exercises them; every configuration starts again at
+ * frame 0. One frame's error is noise under a motion (shadow edges cross
+ * texels from frame to frame: test_cascades' walked long_view), so the
+ * error figures pool the compared pixels of --error-frames frames spread
+ * evenly over the timed ones, the last timed frame the last of them (under
+ * a motion BENCH_DEFAULT_ERROR_FRAMES by default, static 1: its frames are
+ * one picture); each is dumped after the timing, in order of time (frames
+ * are deterministic in their time, and a skip or cache never changes a
+ * decision), and each has its reference, ray traced for its time and
+ * cached under a name that says the motion and that time. */
 static double bench_error_time(int k) {
     int timed = bench.frames - 1 - (bench.error_frames - 1 - k) * bench.frames / bench.error_frames;
     return (bench.warmup + timed) / BENCH_FRAME_RATE;
@@ -364,7 +345,19 @@ static double bench_sort_series(bench_series *s) {
 
 /* Warms up and times the current technique (bench.host); with a floor
  * host, each frame k is the floor's then the technique's, so that the
- * row's floor_ms is of the same moments as its frames. */
+ * row's floor_ms is of the same moments as its frames.
+ *
+ * The ratio to the cost floor is measured in the same moments as the
+ * configuration: the machine is shared, and a floor timed once per scene,
+ * minutes away, would be timed under another load. So every frame k
+ * of a configuration, warm-up included, is a floor frame then the
+ * configuration's frame, both at time k and under the row's skips, each
+ * timed on its own (two technique hosts at once: the floor's and the
+ * configuration's); the row's ratio is its median over the median of its
+ * own floor frames (results.csv's floor_ms_median). The floor's own row is
+ * timed alone, ratio 1. The configuration's frames and its dump are those
+ * it renders alone: the floor frames between them share no state with it
+ * that a frame does not set afresh. */
 static bool bench_time_frames(bench_row *row, technique_host *floor_host) {
     static bench_series own, floor_series;
     int frame = 0;
@@ -395,7 +388,19 @@ static bool bench_newer(const char *path, const char *than) {
     return stat(path, &a) == 0 && stat(than, &b) == 0 && a.st_mtime >= b.st_mtime;
 }
 
-/* Whether the run measures shimmer (see the top). */
+/* Whether the run measures shimmer.
+ *
+ * Shimmer: under the motions that move the camera (camera, dolly), each
+ * configuration also dumps each error frame with the maps held as the
+ * frame before fitted them (technique_host_frame's fit_view: the app's
+ * --hold-fit), and results.csv's shimmer_percent is the share of compared
+ * pixels whose decision the fit's motion alone changed, pooled likewise
+ * (shadowdiff's shimmer of the two dumps of one view against its one
+ * reference: every pixel follows itself and the truth is the same, so the
+ * figure is free of the sub-pixel resampling that two views' pixels add;
+ * README, "Temporal stability"; report.md's "shimmer %"). Under static and
+ * light it is "-": with the camera still nothing is refitted for the
+ * viewer, and a moving light moves the true shadows. */
 static bool bench_shimmers(void) { return motion_moves_camera((motion_kind)bench.motion); }
 
 /* The reference of light 0 for the frame at `time`, from the cache when

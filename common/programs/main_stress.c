@@ -12,25 +12,10 @@
  * written to OUT/scenes/CASE.json, ray traced by `raytrace --dump`, rendered
  * by each technique configuration of stress_configs with `--dump`, and the
  * pair compared by `shadowdiff --json` (planar on its receiver, the ground).
- * --quick runs the few cases marked quick, which pass today (make test).
+ * --quick runs the few cases marked quick, which pass (make test runs
+ * them).
  *
- * Every row gets one verdict:
- *   pass              misclassified within the technique's bound (the
- *                     reference's row: it ran)
- *   fail              over the bound
- *   refused           a non-zero exit with exactly one stderr line naming
- *                     the case's scene or model file (a documented refusal)
- *   crash             killed by a signal, an exit status of 128 or more, or
- *                     a sanitizer's report on stderr
- *   nan               shadowdiff exit 5: NaN or infinity in a dump
- *   nothing-compared  shadowdiff exit 4
- *   gl-error          stderr mentions "GL error"
- *   timeout           ran past --timeout seconds (its process group killed)
- *   error             any other failure (several lines, an exit status 1
- *                     without naming the file, shadowdiff's own failure)
- *   no-reference      the technique ran but the reference did not
- *   unmeasured        nothing compared on the receiver of a case whose
- *                     camera sees none of it lit (stress_case.no_ground)
+ * Every row gets one verdict (stress_verdict, below, lists them).
  * The run writes OUT/table.csv and OUT/table.md (scene, technique, config,
  * bound, figures: misclassified %, MAE, each of shadowdiff's classes' MAE
  * ("none" where the truth has no pixel of it) and the pixels compared;
@@ -90,7 +75,7 @@
 #define STRESS_NOTHING_COMPARED 4 /* shadowdiff's exit statuses */
 #define STRESS_NOT_FINITE 5
 
-/* The bounds of issue 14, misclassified % of compared pixels. */
+/* Each technique's bound: misclassified, in percent of compared pixels. */
 #define STRESS_BOUND_VOLUMES 0.01
 #define STRESS_BOUND_MAPS 0.5
 #define STRESS_BOUND_PLANAR 0.05
@@ -435,7 +420,7 @@ static void stress_mirror_all(stress_scene *s, double value) {
 
 typedef struct stress_case {
     const char *name;
-    bool quick; /* passes today and is cheap: `make test` runs it (--quick) */
+    bool quick; /* passes and is cheap: `make test` runs it (--quick) */
     stress_light_kind light;
     stress_axis *axis;
     double value;
@@ -880,6 +865,23 @@ static const stress_config stress_configs[] = {
 static const stress_config stress_reference = {"raytrace", "reference", {NULL}, 0, NULL};
 #define STRESS_ROWS_PER_CASE (1 + STRESS_CONFIG_COUNT)
 
+/* A row's verdict:
+ *   pass              misclassified within the technique's bound (the
+ *                     reference's row: it ran)
+ *   fail              over the bound
+ *   refused           a non-zero exit with exactly one stderr line naming
+ *                     the case's scene or model file (a documented refusal)
+ *   crash             killed by a signal, an exit status of 128 or more, or
+ *                     a sanitizer's report on stderr
+ *   nan               shadowdiff exit 5: NaN or infinity in a dump
+ *   nothing-compared  shadowdiff exit 4
+ *   gl-error          stderr mentions "GL error"
+ *   timeout           ran past --timeout seconds (its process group killed)
+ *   error             any other failure (several lines, an exit status 1
+ *                     without naming the file, shadowdiff's own failure)
+ *   no-reference      the technique ran but the reference did not
+ *   unmeasured        nothing compared on the receiver of a case whose
+ *                     camera sees none of it lit (stress_case.no_ground) */
 typedef enum stress_verdict {
     STRESS_PASS,
     STRESS_FAIL,
