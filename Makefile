@@ -76,7 +76,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test bench stress scenes update-golden clean help
+.PHONY: all deps demo gallery test bench stress scenes update-golden readme-flags clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -88,6 +88,7 @@ help:
 	@echo "make stress         adversarial scenes through every technique against the reference: out/stress/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
+	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
 	@echo "make clean          remove build/, build-san/ and out/"
 
 DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \
@@ -172,6 +173,25 @@ scenes: $(BUILD)/scenegen
 # flags it checks with); ONLY="NAME..." re-records just those cases.
 update-golden: $(PROGRAMS) $(BUILD)/tests/test_render
 	BUILD=$(BUILD) $(BUILD)/tests/test_render --record $(ONLY)
+
+# README.md's "Keys and flags": what build/shadows --flags-markdown prints,
+# between the lines <!-- flags:begin --> and <!-- flags:end -->, a blank
+# line either side (test_cli fails while the copy there differs).
+README_FLAGS := $(BUILD)/readme-flags.md
+readme-flags: $(BUILD)/shadows
+	$(BUILD)/shadows --flags-markdown > $(README_FLAGS)
+	awk -v table=$(README_FLAGS) ' \
+		/^<!-- flags:end -->$$/ { inside = 0; ends++ } \
+		!inside { print } \
+		/^<!-- flags:begin -->$$/ { \
+			inside = 1; begins++; print ""; \
+			while ((got = (getline line < table)) > 0) print line; \
+			if (got < 0) { print table ": cannot read" > "/dev/stderr"; unread = 1; exit 1 } \
+			print "" } \
+		END { if (unread) exit 1; if (begins != 1 || ends != 1 || inside) { \
+			print "README.md: expected one <!-- flags:begin --> line, then one <!-- flags:end -->" > "/dev/stderr"; \
+			exit 1 } }' README.md > $(BUILD)/README.md.new
+	mv $(BUILD)/README.md.new README.md
 
 clean:
 	rm -rf build build-san out

@@ -10,12 +10,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "path.h"
 #include "registry.h"
 #include "render.h"
 #include "support.h"
 
 #define EXIT_RUNTIME 1
 #define EXIT_USAGE 2
+#define README_MAX_BYTES (1 << 20)
 
 static char err[16384];
 
@@ -158,6 +160,33 @@ static void test_help_lists_flags_and_toggles(void **state) {
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
+/* README.md's "Keys and flags" is what build/shadows --flags-markdown
+ * prints now, between its markers with a blank line either side (as
+ * make readme-flags writes it). */
+static void test_readme_flags_current(void **state) {
+    (void)state;
+    char command[1024];
+    snprintf(command, sizeof command, "{ %s --flags-markdown > out/test/readme_flags.md; }",
+             support_program("shadows"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    size_t length;
+    char *table = path_read_text("out/test/readme_flags.md", README_MAX_BYTES, &length);
+    char *readme = path_read_text("README.md", README_MAX_BYTES, NULL);
+    assert_non_null(table);
+    assert_non_null(readme);
+    size_t size = length + 64;
+    char *expected = malloc(size);
+    assert_non_null(expected);
+    snprintf(expected, size, "\n<!-- flags:begin -->\n\n%s\n<!-- flags:end -->\n", table);
+    bool current = strstr(readme, expected) != NULL;
+    if (!current)
+        print_message("README.md's keys and flags are not build/shadows --flags-markdown's: run `make readme-flags`\n");
+    free(expected);
+    free(readme);
+    free(table);
+    assert_true(current);
+}
+
 /* A headless run that writes nothing says so, and names the flags that
  * would write something. */
 static void test_headless_run_says_nothing_written(void **state) {
@@ -242,6 +271,7 @@ int main(void) {
         cmocka_unit_test(test_missing_shader_dir),
         cmocka_unit_test(test_broken_shader_names_file_and_line),
         cmocka_unit_test(test_help_lists_flags_and_toggles),
+        cmocka_unit_test(test_readme_flags_current),
         cmocka_unit_test(test_headless_run_says_nothing_written),
         cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
         cmocka_unit_test(test_record_writes_a_video),

@@ -1,5 +1,5 @@
 /* Tests of common/data/flags.c, in-process: one table parses every kind of
- * flag the programs and techniques declare, and prints their --help. */
+ * flag the programs and techniques declare, and prints their --help and markdown. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -141,6 +141,35 @@ static void test_help_lists_every_flag(void **state) {
     free(text);
 }
 
+static void test_markdown_lists_every_flag(void **state) {
+    (void)state;
+    char *text = NULL;
+    size_t size = 0;
+    FILE *out = open_memstream(&text, &size);
+    assert_non_null(out);
+    flags_print_markdown(out, params, param_count);
+    static const flags_param piped[] = {
+        {"mode", "a|b\nover two lines", 0, FLAGS_STRING, .text = &v.scene, .value_name = "M"},
+    };
+    flags_print_markdown(out, piped, 1);
+    fclose(out);
+    static const char *const lines[] = {
+        "| flag | key | values | what it does |\n|---|---|---|---|\n| `--no-stencil` | S |",
+        "| `--no-stencil` | S | on (the flag: off) | shadows blend twice |\n",
+        "| `--filter` | F | `poisson` (default), `none`, `pcf3` | what reads the map |\n",
+        "| `--bias X` |  | 0.01..64, default 1.5 | constant bias |\n",
+        "| `--frames N` |  | 1..100 | frames |\n",
+        "| `--size WxH` |  | each 1..16384 | size |\n",
+        "| `--verbose` |  | off (the flag: on) | say more over two lines |\n",
+        "| `--gallery ARG...` |  | DIR then a scene | the rest |\n",
+        "| `--mode M` |  |  | a\\|b over two lines |\n",
+    };
+    for (size_t i = 0; i < sizeof lines / sizeof *lines; i++)
+        assert_non_null(strstr(text, lines[i]));
+    assert_null(strstr(text, "one to three files")); /* the positional arguments have no row */
+    free(text);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_kind),
@@ -149,6 +178,7 @@ int main(void) {
         cmocka_unit_test(test_list_repeats),
         cmocka_unit_test(test_bad_command_lines),
         cmocka_unit_test(test_help_lists_every_flag),
+        cmocka_unit_test(test_markdown_lists_every_flag),
     };
     return cmocka_run_group_tests_name("flags", tests, NULL, NULL);
 }

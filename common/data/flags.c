@@ -212,13 +212,15 @@ void flags_reset(const flags_param *params, int count) {
 
 float flags_number(const flags_param *p) { return *p->number != 0 ? *p->number : p->fallback; }
 
-/* The flag as --help shows it: "--no-stencil", "--size WxH", "--depth 24|32f". */
-static int flags_usage_text(const flags_param *p, char *out, size_t size) {
+/* The flag as --help shows it: "--no-stencil", "--size WxH", "--depth 24|32f"
+ * (with `choices` false, a choice's values left to another column:
+ * "--depth"). */
+static int flags_usage_text(const flags_param *p, bool choices, char *out, size_t size) {
     static const char *const value_names[FLAGS_HELP + 1] = {
         [FLAGS_NUMBER] = "X", [FLAGS_INT] = "N", [FLAGS_SIZE] = "WxH", [FLAGS_STRING] = "TEXT", [FLAGS_LIST] = "ARG...",
     };
     int n = snprintf(out, size, "--%s%s", p->kind == FLAGS_TOGGLE ? "no-" : "", p->name);
-    if (p->kind == FLAGS_CHOICE && n + 1 < (int)size) {
+    if (p->kind == FLAGS_CHOICE && choices && n + 1 < (int)size) {
         out[n++] = ' ';
         flags_join(p->choices, "|", out + n, size - (size_t)n);
     } else if (p->value_name || value_names[p->kind]) {
@@ -228,11 +230,27 @@ static int flags_usage_text(const flags_param *p, char *out, size_t size) {
     return (int)strlen(out);
 }
 
+/* Text into a --help column (`column` >= 0: each '\n' starts a line
+ * indented that far) or into a markdown table's cell (column < 0: '\n'
+ * is a space, '|' escaped). */
+static void flags_print_text(FILE *out, const char *text, int column) {
+    for (const char *c = text; *c; c++) {
+        if (*c == '\n' && column >= 0)
+            fprintf(out, "\n%*s", column, "");
+        else if (*c == '\n')
+            fputc(' ', out);
+        else if (*c == '|' && column < 0)
+            fputs("\\|", out);
+        else
+            fputc(*c, out);
+    }
+}
+
 void flags_print_help(FILE *out, const flags_param *params, int count, int indent, int width) {
     char text[FLAGS_LINE_MAX];
     bool fit = width == 0;
     for (const flags_param *p = params; p < params + count && fit; p++) {
-        int n = p->name ? flags_usage_text(p, text, sizeof text) : 0;
+        int n = p->name ? flags_usage_text(p, true, text, sizeof text) : 0;
         width = n > width && n <= FLAGS_HELP_WIDTH ? n : width;
     }
     /* Two spaces between the flag and its help, which continues there. */
@@ -240,7 +258,7 @@ void flags_print_help(FILE *out, const flags_param *params, int count, int inden
     for (const flags_param *p = params; p < params + count; p++) {
         if (!p->name)
             continue;
-        int n = flags_usage_text(p, text, sizeof text);
+        int n = flags_usage_text(p, true, text, sizeof text);
         fprintf(out, "%*s%s", indent, "", text);
         if (n > width)
             fprintf(out, "\n%*s", column, "");
@@ -248,10 +266,45 @@ void flags_print_help(FILE *out, const flags_param *params, int count, int inden
             fprintf(out, "%*s", width - n + 2, "");
         if (p->key)
             fprintf(out, "key %c: ", p->key);
-        const char *line = p->help ? p->help : "";
-        for (const char *end; (end = strchr(line, '\n')); line = end + 1)
-            fprintf(out, "%.*s\n%*s", (int)(end - line), line, column, "");
-        fprintf(out, "%s\n", line);
+        flags_print_text(out, p->help ? p->help : "", column);
+        fputc('\n', out);
+    }
+}
+
+/* A markdown table's values cell: a choice's values, the default first;
+ * a number's range and default; a count's range; what a list takes. */
+static void flags_print_values(FILE *out, const flags_param *p) {
+    switch (p->kind) {
+    case FLAGS_TOGGLE: fputs("on (the flag: off)", out); break;
+    case FLAGS_SWITCH: fputs("off (the flag: on)", out); break;
+    case FLAGS_CHOICE:
+        for (int c = 0; p->choices[c]; c++)
+            fprintf(out, "%s`%s`%s", c ? ", " : "", p->choices[c], c ? "" : " (default)");
+        break;
+    case FLAGS_NUMBER: fprintf(out, "%g..%g, default %g", p->min, p->max, p->fallback); break;
+    case FLAGS_INT: fprintf(out, "%d..%d", (int)p->min, (int)p->max); break;
+    case FLAGS_SIZE: fprintf(out, "each 1..%d", FLAGS_MAX_SIZE); break;
+    case FLAGS_LIST: flags_print_text(out, p->what ? p->what : "", -1); break;
+    case FLAGS_STRING:
+    case FLAGS_HELP: break;
+    }
+}
+
+void flags_print_markdown(FILE *out, const flags_param *params, int count) {
+    char text[FLAGS_LINE_MAX];
+    fputs("| flag | key | values | what it does |\n|---|---|---|---|\n", out);
+    for (const flags_param *p = params; p < params + count; p++) {
+        if (!p->name)
+            continue;
+        flags_usage_text(p, false, text, sizeof text);
+        fprintf(out, "| `%s` | ", text);
+        if (p->key)
+            fprintf(out, "%c", p->key);
+        fputs(" | ", out);
+        flags_print_values(out, p);
+        fputs(" | ", out);
+        flags_print_text(out, p->help ? p->help : "", -1);
+        fputs(" |\n", out);
     }
 }
 

@@ -95,6 +95,11 @@ bool flags_press_key(const flags_param *params, int count, int key);
  * (a choice's values as a|b|c), "key K: " and the help, which starts
  * after a column `width` wide (0: as wide as the table's flags need). */
 void flags_print_help(FILE *out, const flags_param *params, int count, int indent, int width);
+/* The same table as markdown (the README's "Keys and flags"): a header,
+ * then one row per flag: the flag and its value's name, its key, its
+ * values (a choice's, the default first; a number's range and default),
+ * and the help on one line. */
+void flags_print_markdown(FILE *out, const flags_param *params, int count);
 /* Prints "program: message 'value' (see --help)" (value may be NULL) and
  * returns FLAGS_EXIT_USAGE: for checks after parsing. */
 int flags_usage_error(const char *program, const char *message, const char *value);

@@ -52,6 +52,7 @@ static struct {
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
     bool hud_compact;      /* --hud-compact, Tab: the first lines only */
+    bool flags_markdown;   /* --flags-markdown: print the tables, then exit */
     bool compare_on;       /* --compare, A, a tour's step: the technique beside the truth (compare.h) */
     bool compare_given;    /* --compare: every step of a tour too */
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
@@ -150,9 +151,42 @@ static const flags_param app_flags[] = {
      .on = &app.hud_compact},
     {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)", 0,
      FLAGS_SWITCH, .on = &app.verbose},
+    {"flags-markdown", "print every flag and key as the README's markdown tables\n(make readme-flags), then exit", 0,
+     FLAGS_SWITCH, .on = &app.flags_markdown},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 enum { app_flag_count = sizeof app_flags / sizeof *app_flags };
+
+/* The window's keys that are no flag's (the flags' own are in their
+ * tables): --help's window lines and the README's table. */
+typedef struct app_window_key {
+    int letter;        /* the key app_on_key takes, shown as its letter */
+    const char *label; /* or, without one, what is pressed */
+    const char *help;
+} app_window_key;
+
+static const app_window_key app_window_keys[] = {
+    {0, "drag", "orbit (above the target; with Shift also below)"},
+    {0, "scroll", "zoom"},
+    {0, "arrows", "move the light"},
+    {0, "Space", "animate the light (--animate)"},
+    {APP_RESET_KEY, NULL, "camera and lights back as the scene file has them"},
+    {0, "1-" FLAGS_TEXT(APP_MAX_TECHNIQUES), "the technique of that number in --help's list"},
+    {0, "Page Down / Up", "the next / previous scene of the scene's directory"},
+    {APP_COMPARE_KEY, NULL, "compare against the ray-traced truth (--compare)"},
+    {0, "Tab", "the HUD's first lines only (--hud-compact)"},
+    {GLFW_KEY_H, NULL, "help on the HUD"},
+    {0, "F12", "screenshot (screenshot-TECHNIQUE-N.png, never overwritten)"},
+    {0, "Esc", "quit"},
+};
+enum { app_window_key_count = sizeof app_window_keys / sizeof *app_window_keys };
+
+static const char *app_window_key_name(const app_window_key *k, char *out, size_t size) {
+    if (k->label)
+        return k->label;
+    snprintf(out, size, "%c", k->letter);
+    return out;
+}
 
 static void app_usage(void) {
     printf("usage: %s [flags]\n", app.program);
@@ -163,17 +197,44 @@ static void app_usage(void) {
         printf("  %d %-12s %s\n", i + 1, t->name, t->title);
         flags_print_help(stdout, t->params, t->param_count, 6, APP_TECHNIQUE_FLAG_WIDTH);
     }
-    printf("window: drag to orbit (above the target; with Shift also below), scroll to zoom,\n"
-           "        arrows move the light, space animates it, 0 resets camera and lights,\n"
-           "        Page Down / Up the next / previous scene of the scene's directory,\n"
-           "        A compare against the ray-traced truth (--compare),\n"
-           "        K view culling, U light reach, X caster culling, J caching, H help,\n"
-           "        F12 screenshot (screenshot-TECHNIQUE-N.png, never overwritten), Esc quits\n");
+    printf("window (besides the keys above):\n");
+    for (const app_window_key *k = app_window_keys; k < app_window_keys + app_window_key_count; k++) {
+        char letter[2];
+        printf("  %-16s%s\n", app_window_key_name(k, letter, sizeof letter), k->help);
+    }
+}
+
+/* --flags-markdown: the README's "Keys and flags" (make readme-flags),
+ * from the tables --help prints; false after saying why when stdout did
+ * not take it all. */
+static bool app_print_markdown(void) {
+    printf("The flags of `build/shadows` and of each technique's own program, and\n"
+           "their keys in the window (`--help` prints the same):\n\n");
+    flags_print_markdown(stdout, app_flags, app_flag_count);
+    printf("\nThe window's keys besides the flags':\n\n| key | what it does |\n|---|---|\n");
+    for (const app_window_key *k = app_window_keys; k < app_window_keys + app_window_key_count; k++) {
+        char letter[2];
+        printf("| %s | %s |\n", app_window_key_name(k, letter, sizeof letter), k->help);
+    }
+    printf("\nEach technique's parameters, flags of its own program (`build/NAME`) and\n"
+           "of `build/shadows`, whose key N picks the technique:\n");
+    for (int i = 0; i < app.technique_count; i++) {
+        const technique *t = app.techniques[i];
+        printf("\n**%d `%s`**: %s%s\n", i + 1, t->name, t->title, t->param_count ? "\n" : "; no parameters.");
+        if (t->param_count)
+            flags_print_markdown(stdout, t->params, t->param_count);
+    }
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "%s: --flags-markdown: writing stdout: %s\n", app.program, strerror(errno));
+        return false;
+    }
+    return true;
 }
 
 /* The app's flags and every technique's in one table, so that a flag
  * several techniques share (--no-offset) sets each of them. Returns 0 to
- * run, FLAGS_HELP_ASKED after --help, or an exit status. */
+ * run, FLAGS_HELP_ASKED after --help or --flags-markdown, or an exit
+ * status. */
 static int app_parse_flags(int argc, char **argv) {
     int count = app_flag_count;
     for (int i = 0; i < app.technique_count; i++)
@@ -191,6 +252,8 @@ static int app_parse_flags(int argc, char **argv) {
     free(params);
     if (status == FLAGS_HELP_ASKED)
         app_usage();
+    else if (status == 0 && app.flags_markdown)
+        status = app_print_markdown() ? FLAGS_HELP_ASKED : APP_EXIT_RUNTIME;
     return status;
 }
 

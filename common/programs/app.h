@@ -7,7 +7,8 @@
  * --shader-dir DIR, --technique NAME, --motion static|light|camera,
  * --animate, the skips (--no-skip, --no-view-cull, --no-light-reach,
  * --no-caster-cull, --no-cache: technique.h), the HUD (--hud: in headless
- * pictures too; --hud-scale N, --hud-compact: hud.h), --verbose, --help, and
+ * pictures too; --hud-scale N, --hud-compact: hud.h), --verbose, --help,
+ * --flags-markdown (every flag and key as the README's tables), and
  * --gallery DIR SCENE... (every technique on every scene, to
  * DIR/TECHNIQUE_SCENE.png), --tour FILE (a tour file, tour.h: its steps
  * one by one, stepped by keys in the window, every one headless). Each technique parameter adds its flag
