@@ -69,7 +69,7 @@
  * cascades_slice_box in a light space fixed in the world but for its
  * heading, their corners snapped to whole texels, and what may change
  * only in steps: a box's side is a power of 2^(1 / SIDE_STEPS) (at most
- * 9 % more than it needs), its heading (the view direction as the light
+ * that factor more than it needs), its heading (the view direction as the light
  * sees it, which the boxes are aligned with) a multiple of 1 /
  * HEADING_STEPS of a turn (at most 11.25 degrees off the view's). Walking,
  * nothing changes but where a side crosses a step; turning, the grid turns
@@ -79,8 +79,8 @@
 #define CASCADES_SIDE_STEPS 8.0f
 #define CASCADES_HEADING_STEPS 16.0f
 /* Stabilised sdsm: the seen range's ends are widened to powers of
- * 2^(1 / RANGE_STEPS) (the near end at most 16 % nearer, the far one 19 %
- * farther), so that walking moves the splits only where an end crosses a
+ * 2^(1 / RANGE_STEPS) (the far end at most that factor farther, the near
+ * one at most that factor nearer), so that walking moves the splits only where an end crosses a
  * step (test_shimmer's test_stabilised_cascades_stand_still). */
 #define CASCADES_RANGE_STEPS 4.0f
 

@@ -14,8 +14,10 @@
  * where techniques differ is how a light's map is placed.
  *
  *   shadow_map_render(renderer, settings, frame, fit)
- *     1. the receiver points: the frame's (technique.h), the corners of the
- *        part of every receiver's box inside the camera's frustum;
+ *     1. the camera's depth pre-pass, read back (technique_see) so that
+ *        the depth passes cull the casters it shows hidden; the receiver
+ *        points are the frame's (technique.h), the corners of the part of
+ *        every receiver's box inside the camera's frustum;
  *     2. per light: fit(frame, light, map, receivers) places the map
  *        (a fit that measures its texels, as psm does, takes the samples
  *        of shadow_map_light_samples), the automatic size sizes it, and
@@ -23,11 +25,13 @@
  *        with the casters that layer needs; a fit that returns false
  *        means nothing can be shadowed, and the light is added
  *        unshadowed;
- *     3. the camera pass: a depth pre-pass, then one pass (GL_EQUAL
- *        depth) that shades every light on where its map lets it through,
- *        and the ambient term: each visible pixel is shaded once, and
- *        filtered once per light that adds to it (beyond a light's range,
- *        outside its cone or facing away the filter is skipped);
+ *     3. the camera pass: one pass (GL_EQUAL depth) that shades every
+ *        light on where its map lets it through, and the ambient term;
+ *        each visible pixel is filtered once per light that adds to it
+ *        (beyond a light's range, outside its cone or facing away the
+ *        filter is skipped), and a light that lights a small part of the
+ *        frame is shaded in a pass of its own over it
+ *        (technique_split_lights);
  *     4. the overlays of settings->overlay.
  */
 #ifndef SHADOW_MAP_H

@@ -28,7 +28,7 @@
  * the light (a point light 1e6 away: a cube's texel spans 1000 units). */
 #define SHADOW_MAP_RECEIVER_CONE_MAX_DEG 45.0f
 /* That map is this fraction wider than the receivers' cone: room for the
- * kernel's taps at its edge (2 % of a 256 map is 5 texels), in proportion,
+ * kernel's taps at its edge (on a 256 map, 5 texels), in proportion,
  * since the cone may be a few microradians across. */
 #define SHADOW_MAP_RECEIVER_CONE_MARGIN 0.02f
 
