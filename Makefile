@@ -70,13 +70,13 @@ LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) $(wildcard demo
 # Programs whose main is common/programs/main_NAME.c (the reference, the
 # metrics, the benchmark, the scene generator, the stress suite); the
 # demos' main is common/programs/main_single.c.
-TOOLS := raytrace shadowdiff bench scenegen stress
+TOOLS := raytrace shadowdiff bench scenegen stress report
 PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test bench stress scenes update-golden readme-flags clean help
+.PHONY: all deps demo gallery test bench stress report readme-report scenes update-golden readme-flags clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -86,6 +86,8 @@ help:
 	@echo "make test           build and run every test, plain and under ASan+UBSan"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
 	@echo "make stress         adversarial scenes through every technique against the reference: out/stress/"
+	@echo "make report         make bench, make stress, then make readme-report (QUICK=1: short runs)"
+	@echo "make readme-report  out/report/ and README.md's current figures from the runs already in out/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
@@ -137,32 +139,47 @@ BENCH_HIDDEN := assets/scenes/street.json assets/scenes/engine.json
 BENCH_CITIES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000)
 BENCH_SOFT := $(patsubst %,assets/scenes/%.json,soft_table soft_sun flat_boxes flat_boxes_point)
 BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
-BENCH_QUICK := $(if $(filter 1,$(QUICK)),--quick)
+QUICK_FLAG := $(if $(filter 1,$(QUICK)),--quick)
 bench: $(PROGRAMS)
-	$(BUILD)/bench $(BENCH_QUICK) --motion static --out out/bench/static
-	$(BUILD)/bench $(BENCH_QUICK) --motion light --out out/bench/light
-	$(BUILD)/bench $(BENCH_QUICK) --motion camera --out out/bench/camera
-	$(BUILD)/bench $(BENCH_QUICK) --motion dolly --out out/bench/dolly
-	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --scaling --motion static --out out/bench \
+	$(BUILD)/bench $(QUICK_FLAG) --motion static --out out/bench/static
+	$(BUILD)/bench $(QUICK_FLAG) --motion light --out out/bench/light
+	$(BUILD)/bench $(QUICK_FLAG) --motion camera --out out/bench/camera
+	$(BUILD)/bench $(QUICK_FLAG) --motion dolly --out out/bench/dolly
+	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --scaling --motion static --out out/bench \
 		$(BENCH_CITIES)
-	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --scaling --motion light \
+	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --scaling --motion light \
 		--out out/bench/cities-light $(BENCH_CITIES)
-	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion static --out out/bench/dense \
+	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion static --out out/bench/dense \
 		assets/scenes/dense.json
-	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion light --out out/bench/dense-light \
+	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion light --out out/bench/dense-light \
 		assets/scenes/dense.json
-	$(BUILD)/bench $(BENCH_QUICK) $(BENCH_MAPS) --motion static --out out/bench/soft $(BENCH_SOFT)
-	$(BUILD)/bench $(BENCH_QUICK) $(BENCH_MAPS) --motion light --out out/bench/soft-light $(BENCH_SOFT)
-	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion static --out out/bench/hidden \
+	$(BUILD)/bench $(QUICK_FLAG) $(BENCH_MAPS) --motion static --out out/bench/soft $(BENCH_SOFT)
+	$(BUILD)/bench $(QUICK_FLAG) $(BENCH_MAPS) --motion light --out out/bench/soft-light $(BENCH_SOFT)
+	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion static --out out/bench/hidden \
 		$(BENCH_HIDDEN)
-	$(BUILD)/bench $(BENCH_QUICK) --configs defaults --skips-compare --motion light --out out/bench/hidden-light \
+	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion light --out out/bench/hidden-light \
 		$(BENCH_HIDDEN)
 
 # Every case of build/stress's table, every technique configuration
 # against the reference: out/stress/table.md; fails unless every row
-# passes, is refused or unmeasured (`make test` runs cases that pass today).
+# passes, is refused or unmeasured (`make test` runs cases that pass today;
+# QUICK=1 runs those alone).
 stress: $(PROGRAMS)
-	$(BUILD)/stress --out out/stress
+	$(BUILD)/stress $(QUICK_FLAG) --out out/stress
+
+# The runs, one after the other so that neither is timed under the
+# other's load, then the pages and the README's figures from them.
+report: $(PROGRAMS)
+	@$(MAKE) --no-print-directory bench
+	@$(MAKE) --no-print-directory stress
+	@$(MAKE) --no-print-directory readme-report
+
+# out/report/ (index.md, index.html, compact.md, each run's report.md and
+# plots) from the runs already in out/, and README.md's current figures:
+# out/report/compact.md between the lines <!-- report:begin --> and
+# <!-- report:end -->, a blank line either side.
+readme-report: $(BUILD)/report
+	$(BUILD)/report --readme README.md
 
 # The generated scenes are committed; test_scenegen checks they are what
 # the generator writes.

@@ -36,7 +36,7 @@
 #define SOFT_OUT OUT "-soft"
 #define SOFT_SCENE "soft_table"
 #define SOFT_RUN "--quick --frames 2 --technique shadowmap assets/scenes/" SOFT_SCENE ".json"
-#define CSV_COLUMNS 24
+#define CSV_COLUMNS 25
 #define CSV_MAX_ROWS 512
 /* results.csv's columns the tests read by position. */
 #define CSV_GPU_MEDIAN 3
@@ -50,9 +50,13 @@
 #define CSV_SKIPS 15
 #define CSV_FLOOR_MS 16
 #define CSV_SHIMMER 17
-/* Then per shadowdiff class (umbra, penumbra, lit) its pixels and MAE. */
+/* Then per shadowdiff class (umbra, penumbra, lit) its pixels and MAE,
+ * then the frame size. */
 #define CSV_CLASS_PIXELS(c) (18 + 2 * (c))
 #define CSV_CLASS_MAE(c) (19 + 2 * (c))
+#define CSV_FRAME_SIZE 24
+/* --quick's frame size. */
+#define QUICK_SIZE "320x180"
 /* The CSV's rounding: the ratio is printed to 3 decimals, the times and
  * percentages to 4, the MAE to 6. */
 #define CSV_RATIO_ROUNDING 0.0005
@@ -177,7 +181,7 @@ static int read_csv(const char *dir, csv_row *rows) {
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
                               "mae,compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent,"
-                              "umbra_pixels,umbra_mae,penumbra_pixels,penumbra_mae,lit_pixels,lit_mae");
+                              "umbra_pixels,umbra_mae,penumbra_pixels,penumbra_mae,lit_pixels,lit_mae,frame_size");
     int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
@@ -189,12 +193,13 @@ static int read_csv(const char *dir, csv_row *rows) {
             /* shimmer: "-" where the camera stands still (checked below);
              * a class's MAE "none" where it has no pixel (checked below) */
             if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS || (c == CSV_SHIMMER && !moving) ||
-                strcmp(fields[c], "none") == 0)
+                c == CSV_FRAME_SIZE || strcmp(fields[c], "none") == 0)
                 continue;
             char *end;
             double v = strtod(fields[c], &end);
             assert_true(end != fields[c] && *end == '\0' && isfinite(v) && v >= 0);
         }
+        assert_string_equal(fields[CSV_FRAME_SIZE], QUICK_SIZE); /* every run here is --quick */
         assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);  /* a frame takes time */
         assert_true(atol(fields[CSV_COMPARED]) > 1000); /* pixels were compared */
         check_ratio(fields);

@@ -5,8 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* text with &, <, > and " escaped, as HTML wants in content and attributes. */
-static void gallery_page_text(FILE *f, const char *text) {
+void gallery_page_text(FILE *f, const char *text) {
     for (const char *c = text; *c; c++) {
         switch (*c) {
         case '&': fputs("&amp;", f); break;

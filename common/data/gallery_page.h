@@ -12,6 +12,7 @@
 #define GALLERY_PAGE_H
 
 #include <stdbool.h>
+#include <stdio.h>
 
 #define GALLERY_PAGE_NAME_MAX 256
 /* Further figures of a row: how many at most, and room for each one's
@@ -34,6 +35,10 @@ typedef struct gallery_page_key {
     const char *name;
     unsigned char rgb[3];
 } gallery_page_key;
+
+/* text with &, <, > and " escaped, as HTML wants in content and
+ * attributes (the report's page writes with it too). */
+void gallery_page_text(FILE *f, const char *text);
 
 /* Writes DIR/index.html; false after printing why. */
 bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count, const gallery_page_key *key,

@@ -56,6 +56,11 @@ bool context_gl_ok(const char *where) {
     return ok;
 }
 
+/* Mesa's software rasterizers name themselves in GL_RENDERER. */
+bool context_software_renderer(const char *renderer) {
+    return strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe");
+}
+
 static context_loader context_create_backend(context *c, const context_settings *s, context_backend b) {
     c->backend = b;
     switch (b) {

@@ -53,6 +53,9 @@ extern const char *const context_backend_names[];
 bool context_create(context *c, const context_settings *s);
 void context_destroy(context *c);
 bool context_gl_ok(const char *where);
+/* Whether GL_RENDERER names one of Mesa's software rasterizers, whose
+ * timer queries see only the submission: time is then the CPU's. */
+bool context_software_renderer(const char *renderer);
 
 /* Backends (context_<name>.c); each fills c->platform and c->impl, makes
  * its context current and returns the loader glad should use. */

@@ -12,7 +12,8 @@
  * frame's time is also a cost-floor frame's, timed in the same moments
  * (bench_time_frames). Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
- *                           (its last column, floor_ms_median, the row's floor)
+ *                           (floor_ms_median: the row's floor; the last,
+ *                           frame_size: WxH)
  *   OUT/report.md           a table per scene, its Pareto fronts (one per
  *                           error figure), and each technique's defaults
  *                           against its named (textbook) configurations
@@ -647,7 +648,7 @@ static bool bench_write_csv(void) {
                "compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent");
     for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++)
         fprintf(f, ",%s_pixels,%s_mae", shadowdiff_class_names[c], shadowdiff_class_names[c]);
-    fprintf(f, "\n");
+    fprintf(f, ",frame_size\n");
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
         fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s", r->scene,
@@ -660,7 +661,7 @@ static bool bench_write_csv(void) {
             fprintf(f, ",%ld,%s", r->error.class_pixels[c],
                     shadowdiff_class_mae_text(&r->error, (shadowdiff_class)c, BENCH_MAE_DECIMALS, mae, sizeof mae));
         }
-        fprintf(f, "\n");
+        fprintf(f, ",%dx%d\n", bench.width, bench.height);
     }
     return bench_close(f, path);
 }
@@ -980,8 +981,7 @@ int main(int argc, char **argv) {
     const context_settings settings = {.backend = CONTEXT_AUTO, .verbose = bench.verbose};
     if (!context_create(&bench.ctx, &settings))
         return 1;
-    /* Mesa's software rasterizers name themselves in GL_RENDERER. */
-    bench.software = strstr(bench.ctx.renderer, "llvmpipe") || strstr(bench.ctx.renderer, "softpipe");
+    bench.software = context_software_renderer(bench.ctx.renderer);
     /* The registry marks one technique the cost floor (registry.c). */
     for (int t = 0; t < registry_technique_count; t++)
         if (registry_techniques[t]->cost_floor)

@@ -1,0 +1,153 @@
+/* build/report on fixture runs (tests/data/report/): the stamp says the
+ * commit, the date (SOURCE_DATE_EPOCH's), the renderer and the frame size
+ * of the CSVs; a fixture's figure lands in its technique's row, a run's
+ * skips-off twin gives the speed-up; the page is plain HTML; refilling the
+ * README's markers keeps what is outside them and twice is once; a
+ * malformed CSV, a missing run or missing markers stop it with one line
+ * naming the file. No GPU: the generator only reads files. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "path.h"
+#include "support.h"
+
+#define EXIT_FAILED 1
+#define DATA "tests/data/report"
+#define OUT "out/test/report"
+/* 1970-01-02 00:00 UTC */
+#define EPOCH "86400"
+#define RUN_FLAGS "--bench " DATA "/bench --stress " DATA "/stress --out " OUT
+#define MAX_TEXT (1 << 20)
+
+static char err[8192];
+
+/* Runs build/report with `flags` at the fixed date; its exit status. */
+static int run_report(const char *flags) {
+    char command[2048];
+    snprintf(command, sizeof command, "SOURCE_DATE_EPOCH=" EPOCH " %s %s >/dev/null", support_program("report"),
+             flags);
+    return support_run(command, err, sizeof err);
+}
+
+static char *read_text(const char *path) {
+    char *text = path_read_text(path, MAX_TEXT, NULL);
+    assert_non_null(text);
+    return text;
+}
+
+/* The line of `text` that starts with `start`, into line. */
+static void find_line(const char *text, const char *start, char *line, size_t size) {
+    const char *at = strstr(text, start);
+    assert_non_null(at);
+    snprintf(line, size, "%.*s", (int)strcspn(at, "\n"), at);
+}
+
+static void test_stamp(void **state) {
+    (void)state;
+    assert_int_equal(run_report(RUN_FLAGS), 0);
+    char *index = read_text(OUT "/index.md");
+    char line[1024];
+    find_line(index, "Commit ", line, sizeof line);
+    assert_non_null(strstr(line, "1970-01-02 00:00 UTC"));
+    assert_non_null(strstr(line, "renderer llvmpipe (fixture, 2 cores)"));
+    assert_non_null(strstr(line, "frame size 320x180"));
+    assert_non_null(strstr(line, "machine "));
+    free(index);
+}
+
+/* The compact table's shadowmap row: its defaults' CPU ms (the renderer is
+ * a software one), ratio, misclassified % and MAE on each scene, and the
+ * hidden run's speed-up, its skips-off ms over its skips-on ms. */
+static void test_figures_land_in_their_rows(void **state) {
+    (void)state;
+    assert_int_equal(run_report(RUN_FLAGS), 0);
+    char *compact = read_text(OUT "/compact.md"), line[1024];
+    find_line(compact, "| shadowmap |", line, sizeof line);
+    assert_string_equal(line, "| shadowmap | 12.35 / 10.00 | 2.47 / 2.50 | 0.012 / 0.017 | 0.0012 / 0.0020 | 2.13x |");
+    find_line(compact, "| technique |", line, sizeof line);
+    assert_non_null(strstr(line, "ms (simple / teapot)"));
+    assert_non_null(strstr(line, "skips speed-up, hidden (street)"));
+    char *index = read_text(OUT "/index.md");
+    find_line(index, "| simple | --filter pcf5 |", line, sizeof line);
+    assert_string_equal(line, "| simple | --filter pcf5 | 20.0000 | 4.000 | 0.0080 | 0.000900 | 0.000300 |");
+    /* a run that is not there is named, not guessed */
+    assert_non_null(strstr(index, "camera (not run: no " DATA "/bench/camera/results.csv)"));
+    assert_non_null(strstr(index, "| shadowmap | 1 | 0 |")); /* the stress summary */
+    char *html = read_text(OUT "/index.html");
+    assert_non_null(strstr(html, "<td>shadowmap</td>"));
+    assert_non_null(strstr(html, "<a href=\"stress/table.md\">"));
+    assert_null(strstr(html, "<script"));
+    free(html);
+    free(index);
+    free(compact);
+}
+
+static void test_readme_refill_is_idempotent(void **state) {
+    (void)state;
+    char *fixture = read_text(DATA "/readme.md");
+    assert_true(path_make_directories(OUT));
+    FILE *f = fopen(OUT "/README.md", "w");
+    assert_non_null(f);
+    fputs(fixture, f);
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(run_report(RUN_FLAGS " --readme " OUT "/README.md"), 0);
+    char *once = read_text(OUT "/README.md");
+    assert_int_equal(run_report(RUN_FLAGS " --readme " OUT "/README.md"), 0);
+    char *twice = read_text(OUT "/README.md");
+    assert_string_equal(once, twice);
+    assert_null(strstr(once, "an old table"));
+    char *compact = read_text(OUT "/compact.md");
+    char expected[MAX_TEXT / 64];
+    snprintf(expected, sizeof expected,
+             "# A notebook\n\nText before the figures.\n\n<!-- report:begin -->\n\n%s\n<!-- report:end -->\n\n"
+             "Text after the figures.\n",
+             compact);
+    assert_string_equal(once, expected);
+    free(compact);
+    free(twice);
+    free(once);
+    free(fixture);
+}
+
+static void test_malformed_csv_is_one_line(void **state) {
+    (void)state;
+    assert_int_equal(run_report("--bench " DATA "/malformed --out " OUT "-malformed"), EXIT_FAILED);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, DATA "/malformed/static/results.csv:4: column mae: expected a number, got 'x'"));
+}
+
+static void test_missing_input_is_one_line(void **state) {
+    (void)state;
+    assert_int_equal(run_report("--bench " OUT "-nothing --out " OUT "-nothing"), EXIT_FAILED);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, OUT "-nothing/static/results.csv: missing"));
+    /* a README without its markers is left as it was */
+    assert_true(path_make_directories(OUT));
+    FILE *f = fopen(OUT "/unmarked.md", "w");
+    assert_non_null(f);
+    fputs("# No markers\n", f);
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(run_report(RUN_FLAGS " --readme " OUT "/unmarked.md"), EXIT_FAILED);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, OUT "/unmarked.md: expected one line <!-- report:begin -->"));
+    char *unmarked = read_text(OUT "/unmarked.md");
+    assert_string_equal(unmarked, "# No markers\n");
+    free(unmarked);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_stamp),
+        cmocka_unit_test(test_figures_land_in_their_rows),
+        cmocka_unit_test(test_readme_refill_is_idempotent),
+        cmocka_unit_test(test_malformed_csv_is_one_line),
+        cmocka_unit_test(test_missing_input_is_one_line),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
