@@ -499,7 +499,7 @@ static void report_compact_cell(const report_run *run, const char *technique, co
             report_figure_text(figure, run, found, text, sizeof text);
         else if (found >= 0) {
             static const char *const formats[REPORT_FIGURE_COUNT] = {
-                [REPORT_RATIO] = "%.2f", [REPORT_MISCLASSIFIED] = "%.3f", [REPORT_MAE] = "%.4f"};
+                [REPORT_RATIO] = "%.2f", [REPORT_MISCLASSIFIED] = "%.4f", [REPORT_MAE] = "%.5f"};
             snprintf(text, sizeof text, formats[figure],
                      atof(report_cell(run, found, (report_csv)report_figures[figure].csv)));
         }
