@@ -132,7 +132,7 @@ endif
 # count; dense (one view, many triangles) is timed on its own. Last, the
 # shadow maps' whole sweeps (PCSS, the moment filters, the hard kernels) on
 # the area lights' scenes and the flat boxes, still and with the lights
-# moving: the soft ruler's figures (README, "Soft shadows from area lights").
+# moving: the soft ruler's figures (make report's "Soft shadows").
 # Then the scenes where what is hidden, not what is outside, is to skip:
 # the city across from its edge with unranged lamps, and the engines.
 BENCH_HIDDEN := assets/scenes/street.json assets/scenes/engine.json

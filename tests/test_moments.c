@@ -34,7 +34,7 @@ _Static_assert(sizeof filters / sizeof *filters == FILTER_COUNT, "a name per fil
  * (a uniform blur has no contact hardening: the umbra's rim is lit by
  * half a penumbra where the reference's narrows to nothing), nor is VSM's
  * and EVSM2's penumbra nearer the sun's than a hard edge (bleeding across
- * the bunny's own curves; README, "Moment shadow maps"). On the point
+ * the bunny's own curves). On the point
  * light every filter's bound lies below the penumbra MAE of a hard edge
  * (--filter pcf3 --soft off): a moment map drawn without its blur fails
  * there. */

@@ -240,7 +240,7 @@ static const planar_case planar_cases[] = {
      * far more than shadowdiff's depth tolerance and compare almost
      * nothing (render.h, huge receivers: the capture's exact positions).
      * A sun: a spot's cone edge on it is where the shading's interpolated
-     * position puts it, a pixel off (README, "Where it stands"). */
+     * position puts it, a pixel off. */
     {"huge_ground_1e6", "tests/data/planar_huge_ground_1e6.json", "", "ground", 0, false},
     /* A mat (casts, receives) on a ground that casts: each is the other's
      * coplanar caster. */

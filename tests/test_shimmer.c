@@ -1,4 +1,4 @@
-/* End-to-end test of the shimmer figure (README, "Temporal stability"):
+/* End-to-end test of the shimmer figure (common/programs/main_bench.c):
  * the teapot under its directional light, 640x360, frame 30 of the
  * camera's yaw and of dolly's walk, dumped twice by each program: as it
  * is, and with --hold-fit (the maps fitted to frame 29's camera, drawn

@@ -22,8 +22,8 @@
  * end blurs over more of it). The goals: a penumbra drawn within 0.05 and
  * a quarter of the hard picture's error, light leaking into the umbra
  * within 0.01, the lit class no worse than hard, the whole picture's
- * error at most half. A case that misses one has its own bound, and the
- * README says by how much and why. */
+ * error at most half. A case that misses one has its own bound, with
+ * its reason beside it. */
 #define SOFT_SIZE "--size 1280x720"
 #define SOFT_GOAL_PENUMBRA_MAE 0.05
 #define SOFT_GOAL_SHARE_OF_HARD 0.25

@@ -399,7 +399,7 @@ static bool bench_newer(const char *path, const char *than) {
  * (shadowdiff's shimmer of the two dumps of one view against its one
  * reference: every pixel follows itself and the truth is the same, so the
  * figure is free of the sub-pixel resampling that two views' pixels add;
- * README, "Temporal stability"; report.md's "shimmer %"). Under static and
+ * report.md's "shimmer %"). Under static and
  * light it is "-": with the camera still nothing is refitted for the
  * viewer, and a moving light moves the true shadows. */
 static bool bench_shimmers(void) { return motion_moves_camera((motion_kind)bench.motion); }

@@ -1,12 +1,12 @@
-/* report: `make report`'s pages, the README's results tables regenerated
- * from the runs' own files, so that no copied figure drifts from them.
+/* report: `make report`'s pages, every results table regenerated from
+ * the runs' own files, so that no copied figure drifts from them.
  *
  * Reads BENCH/RUN/results.csv for each run `make bench` makes (report_runs;
  * the cities' run is BENCH itself) and STRESS/table.md, and writes
  *   OUT/index.md    the stamp (commit, "dirty" when tracked files changed,
  *                   date in UTC, machine and CPU, renderer, frame size),
  *                   the compact table of current figures, one section per
- *                   results section of the README (report_tables), the
+ *                   table of report_tables, the
  *                   stress suite's summary, and each run's report.md and
  *                   plots, copied under OUT/RUN/
  *   OUT/index.html  the same page in plain HTML, nothing loaded from elsewhere
@@ -157,7 +157,7 @@ static const struct {
  * techniques, one scene, the defaults only, where it says), each with its
  * figures and those of the same configuration in another run. */
 typedef struct report_table {
-    const char *title, *readme; /* readme: the README's section it regenerates ("A > B": B under A) */
+    const char *title;
     const char *run, *other;    /* run names; other may be NULL */
     const char *techniques[4];  /* none: every technique */
     const char *scene;          /* NULL: every scene */
@@ -170,33 +170,32 @@ typedef struct report_table {
     {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_MS, REPORT_RATIO, REPORT_MS_SKIPS_OFF, REPORT_SKIPS_SPEED_UP,              \
      REPORT_MS | REPORT_OTHER, REPORT_RATIO | REPORT_OTHER, REPORT_SKIPS_SPEED_UP | REPORT_OTHER}
 static const report_table report_tables[] = {
-    {"Shadow maps", "Shadow maps", "static", NULL, {"shadowmap"}, NULL, false,
+    {"Shadow maps", "static", NULL, {"shadowmap"}, NULL, false,
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS, REPORT_LIT_MAE}},
-    {"Perspective shadow maps", "Perspective shadow maps", "static", NULL, {"psm"}, NULL, false,
+    {"Perspective shadow maps", "static", NULL, {"psm"}, NULL, false,
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
-    {"Cascaded shadow maps", "Cascaded shadow maps", "static", NULL, {"cascades"}, NULL, false,
+    {"Cascaded shadow maps", "static", NULL, {"cascades"}, NULL, false,
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
-    {"Cascades against one map and the warps, on one ruler",
-     "Cascaded shadow maps > Cascades against one map and the warps, on one ruler", "camera", "dolly",
+    {"Cascades against one map and the warps, on one ruler", "camera", "dolly",
      {"shadowmap", "psm", "cascades"}, "long_view", false,
      {REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_ERRORS, REPORT_SHIMMER, REPORT_RATIO,
       REPORT_MISCLASSIFIED | REPORT_OTHER, REPORT_MAE | REPORT_OTHER, REPORT_SHIMMER | REPORT_OTHER,
       REPORT_RATIO | REPORT_OTHER}},
-    {"Soft shadows from area lights", "Soft shadows from area lights > Measured", "soft", "soft-light",
+    {"Soft shadows from area lights", "soft", "soft-light",
      {NULL}, NULL, false,
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_PENUMBRA_MAE, REPORT_UMBRA_MAE,
       REPORT_LIT_MAE, REPORT_MAE, REPORT_MISCLASSIFIED, REPORT_RATIO, REPORT_RATIO | REPORT_OTHER}},
-    {"Skips: the cities", "Skips", "cities", "cities-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Skips: the dense scene", "Skips", "dense", "dense-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Hidden casters and objects", "Skips > Hidden casters and objects, measured", "hidden", "hidden-light",
+    {"Skips: the cities", "cities", "cities-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
+    {"Skips: the dense scene", "dense", "dense-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
+    {"Hidden casters and objects", "hidden", "hidden-light",
      {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Frame cost", "Frame cost", "static", "light", {NULL}, NULL, true,
+    {"Frame cost", "static", "light", {NULL}, NULL, true,
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_MS, REPORT_RATIO, REPORT_FLOOR_MS, REPORT_MS | REPORT_OTHER,
       REPORT_RATIO | REPORT_OTHER, REPORT_FLOOR_MS | REPORT_OTHER}},
-    {"Measuring accuracy and speed", "Measuring accuracy and speed", "static", NULL, {NULL}, NULL, false,
+    {"Measuring accuracy and speed", "static", NULL, {NULL}, NULL, false,
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS,
       REPORT_PENUMBRA_MAE, REPORT_LIT_MAE}},
-    {"Temporal stability: shimmer", "Measuring accuracy and speed > Temporal stability: shimmer", "camera",
+    {"Temporal stability: shimmer", "camera",
      "dolly", {NULL}, NULL, false,
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_SHIMMER, REPORT_MISCLASSIFIED,
       REPORT_SHIMMER | REPORT_OTHER, REPORT_MISCLASSIFIED | REPORT_OTHER}},
@@ -361,7 +360,7 @@ static void report_run_reference(FILE *f, const report_run *run) {
 
 static void report_write_table(FILE *f, const report_table *t) {
     report_run *run = report_find_run(t->run), *other = t->other ? report_find_run(t->other) : NULL;
-    fprintf(f, "\n## %s\n\nIn the README: \"%s\". Run: ", t->title, t->readme);
+    fprintf(f, "\n## %s\n\nRun: ", t->title);
     report_run_reference(f, run);
     if (other) {
         fputs("; in brackets: ", f);
@@ -653,7 +652,7 @@ static bool report_write_run(FILE *f, const report_run *run) {
 static bool report_write_stress(FILE *f) {
     char path[PATH_MAX], dir[PATH_MAX], copy[PATH_MAX + 16];
     snprintf(path, sizeof path, "%s/table.md", report.stress_dir);
-    fputs("\n## Stress suite\n\nIn the README: \"Stress suite\". ", f);
+    fputs("\n## Stress suite\n\n", f);
     if (access(path, F_OK) != 0) {
         fprintf(f, "Not run: no %s (make stress).\n", path);
         return true;
