@@ -16,12 +16,13 @@
  * Counts wrap at 256: wrong only behind an exact multiple of 256 triangles
  * (closed meshes: casters).
  *
- * After a depth pre-pass, per light (up to 8): clear the stencil in the
- * screen rectangle of the receivers; draw every caster's volume with colour
- * and depth writes off, both faces counted in one pass (glStencilOpSeparate,
- * wrapping); shade the light where the stencil is 0 (everywhere on objects
- * that receive no shadows), the first light's pass with the ambient term
- * (technique_shade_light), so that one light costs one shading pass.
+ * After a depth pre-pass, per light (up to 8): plan which casters count
+ * where (volumes_plan_light); clear the stencil in the plan's rectangle;
+ * draw their volumes with colour and depth writes off, both faces counted
+ * in one pass (glStencilOpSeparate, wrapping); shade the light where the
+ * stencil is 0 (everywhere on objects that receive no shadows), the first
+ * light's pass with the ambient term (technique_shade_light), so that one
+ * light costs one shading pass.
  * --mode auto (default) takes z-pass, without caps, where
  * volume_mesh_zpass_safe says the volume cannot reach the near-plane
  * rectangle, z-fail with caps elsewhere; --mode zpass with the camera
@@ -30,22 +31,21 @@
  * Options (each also a key): --silhouette gpu finds the sides in a
  * geometry shader (demos/lib/volume_silhouette.h); --extrude reach trims
  * the CPU volumes past the light's reach (volumes_trim); --no-depth-bounds
- * and --no-exact-depth turn off the depth bounds (volumes_depth_bounds)
+ * and --no-exact-depth turn off the depth bounds (volume_bounds_light)
  * and the exact depth of receivers huge seen from the eye
  * (demos/lib/volume_receivers.h); --overlay, for lectures, shows light 0's
  * volumes, silhouette edges or stencil count as colour. How each caster's
  * volume is drawn, kept or streamed, is demos/lib/volume_draw.h's; the
- * skips that leave volumes out (README, "Skips") are volumes_render's.
+ * skips that leave volumes out (README, "Skips") are volumes_plan_light's.
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
-#include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "depth.h"
 #include "technique.h"
+#include "volume_bounds.h"
 #include "volume_draw.h"
 #include "volume_overlay.h"
 #include "volume_receivers.h"
@@ -71,13 +71,31 @@ enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTE
 /* Every bit of the 8-bit stencil: counts wrap at 256 (see top). */
 #define VOLUMES_STENCIL_MASK 0xff
 
+/* How caster i's volume counts for the light at hand. */
+typedef struct volumes_caster_plan {
+    bool needed;   /* it casts a volume for the light */
+    bool zfail;    /* counted behind the surface, with caps; else in front */
+    bool narrowed; /* within `bounds`, not the light's */
+    volume_bounds bounds;
+} volumes_caster_plan;
+
+/* A light's plan: every decision its count takes before it draws. */
+typedef struct volumes_light_plan {
+    int light;
+    vec4 position;                /* homogeneous, world; aligned as cglm loads it */
+    technique_hull hull;
+    volume_bounds bounds;         /* where the light's volumes may count */
+    volumes_caster_plan *casters; /* per object (volumes.casters) */
+    bool reported;                /* the HUD's figures are this count's */
+} volumes_light_plan;
+
 static struct {
     volumes_settings settings;
     volume_draw draw;
     volume_receivers receivers;
-    bool *needed;  /* per object: it casts a volume for the light at hand */
-    int trim_kept; /* whether the kept volumes are trimmed; -1: none kept yet */
-    bool has_depth_bounds; /* GL_EXT_depth_bounds_test */
+    volumes_caster_plan *casters; /* per object: the plan of the light at hand */
+    int trim_kept;                /* whether the kept volumes are trimmed; -1: none kept yet */
+    bool has_depth_bounds;        /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
     int huge_count; /* objects counted against their exact depth (volume_receivers.h) */
@@ -105,8 +123,8 @@ static const flags_param volumes_params[] = {
 static bool volumes_init(const render_scene *gpu) {
     if (!volume_draw_init(&volumes.draw, gpu) || !volume_receivers_init(&volumes.receivers, gpu))
         return false;
-    volumes.needed = calloc((size_t)gpu->scene->object_count, sizeof *volumes.needed);
-    if (!volumes.needed) {
+    volumes.casters = calloc((size_t)gpu->scene->object_count, sizeof *volumes.casters);
+    if (!volumes.casters) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
@@ -118,8 +136,109 @@ static bool volumes_init(const render_scene *gpu) {
 static void volumes_destroy(void) {
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
-    free(volumes.needed);
-    volumes.needed = NULL;
+    free(volumes.casters);
+    volumes.casters = NULL;
+}
+
+/* ---- the plan: every skip ---- */
+
+/* Whether volumes end past their light's reach (--extrude reach, key T;
+ * volume_mesh_trim_for): the CPU volumes are trimmed past every receiver
+ * clipped to the light's range, closed there by far caps, so that they
+ * fill less. Off by default: a shadow edge's pixel may flip by the
+ * rounding of the shorter sides' depth (test_volumes'
+ * test_trimmed_within_bound keeps the trimmed pictures within the bound).
+ * Not for forced z-pass, whose count from an eye inside a volume (wrong,
+ * for lectures) a trim could change. */
+static bool volumes_trim(void) {
+    return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUMES_ZPASS;
+}
+
+/* Whether a caster takes z-fail, with caps (see top), given whether
+ * z-pass is safe for it (volume_mesh_zpass_safe). */
+static bool volumes_use_zfail(bool zpass_safe) {
+    if (volumes.settings.mode != VOLUMES_AUTO)
+        return volumes.settings.mode == VOLUMES_ZFAIL;
+    return !zpass_safe;
+}
+
+/* Caster i's part of the plan. Leaving its volume out is exact when its
+ * count is 0 on every visible receiver. A volume that misses the view has
+ * no fragment (counted as culled). A point inside a caster's volume lies
+ * beyond the caster on a segment from the light, so outside the hull of
+ * the light and the visible receivers' bounds (convex) it contains no
+ * visible receiver point (technique_caster_needed): z-fail counts there
+ * exactly that, 0, and so does z-pass where it starts from 0, which auto
+ * takes z-pass only where volume_mesh_zpass_safe says; forced z-pass keeps
+ * casters that may shadow the eye (they count there), and as it counts
+ * them on pixels outside them too, they keep the light's bounds. */
+static void volumes_plan_caster(const technique_frame *f, volumes_light_plan *plan, int i,
+                                const vec3 near_rectangle[4]) {
+    const scene_object *o = &f->gpu->scene->objects[i];
+    volumes_caster_plan *c = &plan->casters[i];
+    *c = (volumes_caster_plan){0};
+    if (!o->casts)
+        return;
+    float lo[3], hi[3];
+    scene_object_world_bounds(o, lo, hi);
+    if (f->cull_casters && volume_mesh_misses_view(lo, hi, plan->position, f->view->view_projection)) {
+        f->counts->casters_culled[plan->light]++;
+        return;
+    }
+    bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, near_rectangle);
+    c->zfail = volumes_use_zfail(zpass_safe);
+    if (volumes.settings.mode == VOLUMES_ZPASS && !zpass_safe) {
+        f->counts->casters_drawn[plan->light]++;
+        c->needed = true;
+        return;
+    }
+    c->needed = technique_caster_needed(f, &plan->hull, i);
+    c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
+}
+
+/* Light l's plan. Skips (README, "Skips"), none of which changes a count
+ * on a visible receiver, the only pixels the stencil decides:
+ * - casters whose shadow cannot reach a visible receiver, and volumes that
+ *   miss the view, draw no volume (volumes_plan_caster);
+ * - the light's volumes count only in the screen rectangle of every
+ *   receiver's box and, with the depth bounds (unless --no-depth-bounds),
+ *   between the depths of the visible receivers within its range
+ *   (volume_bounds_light): the other pixels keep the cleared count;
+ * - after technique_see, a volume counts only in the pixels and depths
+ *   where what its shadow may fall on was seen (volume_bounds_caster);
+ * - with --extrude reach the CPU volumes end past the light's reach
+ *   (volumes_trim, volume_draw_reach). */
+static void volumes_plan_light(const technique_frame *f, int l, volumes_light_plan *plan) {
+    const scene *s = f->gpu->scene;
+    *plan = (volumes_light_plan){.light = l, .casters = volumes.casters, .reported = l == 0};
+    scene_light_homogeneous(&s->lights[l], plan->position);
+    technique_light_hull(f, l, &plan->hull);
+    volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
+    volume_bounds_light(f, &plan->hull, volumes.has_depth_bounds && !volumes.settings.no_depth_bounds,
+                        &plan->bounds);
+    vec3 near_rectangle[4];
+    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
+    for (int i = 0; i < s->object_count; i++)
+        volumes_plan_caster(f, plan, i, (const vec3 *)near_rectangle);
+}
+
+/* Light l's plan with no skip: every caster's volume, each z-pass or
+ * z-fail as the mode says, under whatever scissor is on. */
+static void volumes_plan_every_caster(const technique_frame *f, int l, volumes_light_plan *plan) {
+    const scene *s = f->gpu->scene;
+    *plan = (volumes_light_plan){.light = l, .casters = volumes.casters};
+    scene_light_homogeneous(&s->lights[l], plan->position);
+    vec3 near_rectangle[4];
+    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
+    for (int i = 0; i < s->object_count; i++) {
+        plan->casters[i] = (volumes_caster_plan){.needed = s->objects[i].casts};
+        if (!plan->casters[i].needed)
+            continue;
+        float lo[3], hi[3];
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        plan->casters[i].zfail =
+            volumes_use_zfail(volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle));
+    }
 }
 
 /* ---- counting ---- */
@@ -136,102 +255,25 @@ static void volumes_stencil_ops(bool zfail) {
     }
 }
 
-/* Whether volumes end past their light's reach (--extrude reach, key T;
- * volume_mesh_trim_for): the CPU volumes are trimmed past every receiver
- * clipped to the light's range, closed there by far caps, so that they
- * fill less. Off by default: a shadow edge's pixel may flip by the
- * rounding of the shorter sides' depth (test_volumes'
- * test_trimmed_within_bound keeps the trimmed pictures within the bound).
- * Not for forced z-pass, whose count from an eye inside a volume (wrong,
- * for lectures) a trim could change. */
-static bool volumes_trim(void) {
-    return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUMES_ZPASS;
+/* Stencil 0 in the plan's rectangle, stencil test on. */
+static void volumes_clear_stencil(const volumes_light_plan *plan) {
+    const int *rect = plan->bounds.rect;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect[0], rect[1], rect[2], rect[3]);
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glEnable(GL_STENCIL_TEST);
 }
 
-/* Whether the caster with world box [lo, hi] takes z-fail, with caps, for
- * the light (see top). */
-static bool volumes_use_zfail(const float lo[3], const float hi[3], const float light[4],
-                              const vec3 near_rectangle[4]) {
-    if (volumes.settings.mode != VOLUMES_AUTO)
-        return volumes.settings.mode == VOLUMES_ZFAIL;
-    return !volume_mesh_zpass_safe(lo, hi, light, near_rectangle);
-}
-
-/* Whether caster i draws a volume for the hull's light; counted once,
- * drawn or culled. Leaving one out is exact when its count is 0 on every
- * visible receiver. A volume that misses the view has no fragment. A
- * point inside a caster's volume lies beyond the caster on a segment from
- * the light, so outside the hull of the light and the visible receivers'
- * bounds (convex) it contains no visible receiver point: z-fail counts
- * there exactly that, 0, and so does z-pass where it starts from 0, which
- * auto takes z-pass only where volume_mesh_zpass_safe says; forced z-pass
- * keeps casters that may shadow the eye (they count there). */
-static bool volumes_caster_needed(const technique_frame *f, const technique_hull *hull, int i, const float light[4],
-                                  const vec3 near_rectangle[4]) {
-    const scene_object *o = &f->gpu->scene->objects[i];
-    if (!o->casts)
-        return false;
-    float lo[3], hi[3];
-    scene_object_world_bounds(o, lo, hi);
-    if (f->cull_casters && volume_mesh_misses_view(lo, hi, light, f->view->view_projection)) {
-        f->counts->casters_culled[hull->light]++;
-        return false;
-    }
-    if (volumes.settings.mode == VOLUMES_ZPASS && !volume_mesh_zpass_safe(lo, hi, light, near_rectangle)) {
-        f->counts->casters_drawn[hull->light]++;
-        return true;
-    }
-    return technique_caster_needed(f, hull, i);
-}
-
-/* Where the light's volumes may count (the scissor's rectangle x, y,
- * width, height; the depth bounds, where on) and where caster i's may:
- * the part of that where what its shadow may fall on was seen
- * (technique_caster_seen), an empty rectangle where nowhere. False: the
- * light's own, unchanged (no masks this frame). */
-typedef struct volumes_bounds {
-    int rect[4];
-    bool bounded;
-    float depth[2];
-} volumes_bounds;
-
-static bool volumes_caster_bounds(const technique_frame *f, const technique_hull *hull, int i,
-                                  const volumes_bounds *light, volumes_bounds *out) {
-    light_mask_seen seen;
-    if (!hull || !technique_caster_seen(f, hull, i, &seen))
-        return false;
-    *out = *light;
-    /* Clamped to the light's rectangle before they become pixels: "seen
-     * everywhere" is infinite. */
-    for (int k = 0; k < 2; k++) {
-        float first = (float)light->rect[k], last = (float)(light->rect[k] + light->rect[2 + k]);
-        int lo = (int)floorf(glm_clamp(seen.lo[k], first, last)), hi = (int)ceilf(glm_clamp(seen.hi[k], first, last));
-        out->rect[k] = lo;
-        out->rect[2 + k] = glm_max(hi - lo, 0);
-    }
-    out->depth[0] = fmaxf(light->depth[0], seen.lo[2]);
-    out->depth[1] = fminf(light->depth[1], seen.hi[2]);
-    f->counts->casters_narrowed[hull->light] +=
-        (int64_t)out->rect[2] * out->rect[3] < (int64_t)light->rect[2] * light->rect[3];
-    return true;
-}
-
-static void volumes_use_bounds(const volumes_bounds *b) {
-    glScissor(b->rect[0], b->rect[1], b->rect[2], b->rect[3]);
-    if (b->bounded)
-        glDepthBoundsEXT(b->depth[0], glm_max(b->depth[0], b->depth[1]));
-}
-
-/* Stencil = number of volumes of light l around each visible pixel, of
- * the casters `needed` (NULL: every caster), each within its own bounds
- * (volumes_caster_bounds) where hull is given, else the light's. */
-static void volumes_count(const technique_frame *f, int l, const float light[4], const bool *needed,
-                          const technique_hull *hull, const volumes_bounds *bounds) {
+/* Stencil = number of volumes of the plan's light around each visible
+ * pixel, of the casters it needs, each within its bounds. */
+static void volumes_count(const technique_frame *f, const volumes_light_plan *plan) {
     const scene *s = f->gpu->scene;
-    vec3 near_rectangle[4];
-    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     int zpass = 0, zfail = 0;
     volumes.draw.built = volumes.draw.reused = 0;
+    if (plan->bounds.bounded) {
+        glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
+        glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
+    }
     glEnable(GL_DEPTH_CLAMP); /* far caps at infinity stay in */
     glDisable(GL_CULL_FACE);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -240,31 +282,25 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
     glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
     /* Not only casters in view: one outside may cast a volume across it. */
     for (int i = 0; i < s->object_count; i++) {
-        if (!s->objects[i].casts || (needed && !needed[i]))
+        const volumes_caster_plan *c = &plan->casters[i];
+        if (!c->needed)
             continue;
-        float lo[3], hi[3];
-        scene_object_world_bounds(&s->objects[i], lo, hi);
-        bool use_zfail = volumes_use_zfail(lo, hi, light, near_rectangle);
-        zfail += use_zfail;
-        zpass += !use_zfail;
-        volumes_stencil_ops(use_zfail);
-        /* Forced z-pass from inside a volume counts it on pixels outside
-         * it too: that volume keeps the light's bounds (auto takes z-pass
-         * only where it is safe). */
-        bool counts_inside =
-            volumes.settings.mode != VOLUMES_ZPASS || volume_mesh_zpass_safe(lo, hi, light, near_rectangle);
-        volumes_bounds own;
-        bool narrowed = counts_inside && volumes_caster_bounds(f, hull, i, bounds, &own);
-        if (narrowed)
-            volumes_use_bounds(&own);
-        if (!narrowed || (own.rect[2] > 0 && own.rect[3] > 0))
-            volume_draw_caster(&volumes.draw, f, l, i, light, volumes.settings.silhouette == VOLUMES_GPU, use_zfail);
-        if (narrowed)
-            volumes_use_bounds(bounds);
+        zfail += c->zfail;
+        zpass += !c->zfail;
+        volumes_stencil_ops(c->zfail);
+        if (c->narrowed)
+            volume_bounds_use(&c->bounds);
+        if (!c->narrowed || (c->bounds.rect[2] > 0 && c->bounds.rect[3] > 0))
+            volume_draw_caster(&volumes.draw, f, plan->light, i, plan->position,
+                               volumes.settings.silhouette == VOLUMES_GPU, c->zfail);
+        if (c->narrowed)
+            volume_bounds_use(&plan->bounds);
     }
     glDisable(GL_DEPTH_CLAMP);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    if (l == 0 && needed) {
+    if (plan->bounds.bounded)
+        glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
+    if (plan->reported) {
         volumes.zpass_count = zpass;
         volumes.zfail_count = zfail;
         volumes.built_count = volumes.draw.built;
@@ -272,24 +308,24 @@ static void volumes_count(const technique_frame *f, int l, const float light[4],
     }
 }
 
-/* Turns on the depth bounds of the hull's light (volume_mesh_depth_bounds:
- * the visible receivers within its range, hull->lo..hi) where the
- * extension is and the frame's receivers are all there (not cut short),
- * into b; b->bounded false: left off. While counting a light, only pixels
- * whose depth lies within those receivers take stencil updates; no
- * decision changes, as the others keep the cleared count where the light
- * adds 0. */
-static void volumes_depth_bounds(const technique_frame *f, const technique_hull *hull, volumes_bounds *b) {
-    /* The bounds are window depths of GL's standard convention; with
-     * reversed depth they are left off (they only save fill). */
-    b->bounded = volumes.has_depth_bounds && !volumes.settings.no_depth_bounds && !f->view->reversed_depth &&
-                 f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS && !hull->empty &&
-                 volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, hull->lo,
-                                          hull->hi, b->depth);
-    if (!b->bounded)
+/* ---- the depth counted against ---- */
+
+/* Receivers huge seen from the eye (a ground 1e5 across) are counted
+ * against their exact depth, not the rasterizer's interpolation across
+ * them, which moves shadow edges (demos/lib/volume_receivers.h). Where
+ * none is, nothing is drawn. */
+static void volumes_exact_depth(const technique_frame *f) {
+    if (volumes.huge_count > 0)
+        volume_receivers_depth(&volumes.receivers, f, true);
+}
+
+/* After an exact count the pre-pass's depth again, which the shading
+ * passes are equal to; stencil test off while it is drawn. */
+static void volumes_prepass_depth(const technique_frame *f) {
+    if (volumes.huge_count == 0)
         return;
-    glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-    glDepthBoundsEXT(b->depth[0], b->depth[1]);
+    glDisable(GL_STENCIL_TEST);
+    volume_receivers_depth(&volumes.receivers, f, false);
 }
 
 /* ---- lighting ---- */
@@ -299,96 +335,81 @@ static void volumes_depth_bounds(const technique_frame *f, const technique_hull 
 static const technique_stencil_lit volumes_lit = {
     .lit = GL_EQUAL, .blocked = GL_NOTEQUAL, .ref = 0, .mask = VOLUMES_STENCIL_MASK, .receivers_only = true};
 
+/* ---- the kept volumes ---- */
+
+/* The CPU volumes are kept per light, built when a caster is first needed
+ * after the light moved and drawn from there until it moves again
+ * (objects never move; volume_draw.h): forgets those of the lights that
+ * moved, or all where the trim changed. */
+static void volumes_forget_moved(const technique_frame *f) {
+    bool trim_changed = volumes.trim_kept != (int)volumes_trim();
+    volumes.trim_kept = volumes_trim();
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        if (f->changed.scene || trim_changed || (f->changed.lights & RENDER_LIGHT_BIT(l)))
+            volume_draw_forget(&volumes.draw, l);
+}
+
 /* ---- overlays ---- */
 
-/* The stencil still holds the last light's counts: recount light 0 with
- * every volume (the overlay colours every pixel), then colour them. */
-static void volumes_draw_counts(const technique_frame *f, const float light[4]) {
-    glEnable(GL_STENCIL_TEST);
-    glClear(GL_STENCIL_BUFFER_BIT);
-    volumes_count(f, 0, light, NULL, NULL, NULL);
-    volume_overlay_counts(&volumes.draw, VOLUMES_STENCIL_MASK);
+/* For lectures, over the finished picture: light 0's volumes, silhouette
+ * edges, or stencil counts. The stencil still holds the last light's
+ * counts: the counts recount light 0 with every volume (the overlay
+ * colours every pixel). */
+static void volumes_draw_overlay(const technique_frame *f) {
+    const scene *s = f->gpu->scene;
+    if (volumes.settings.overlay == VOLUMES_OVERLAY_NONE || s->light_count == 0)
+        return;
+    volume_draw_reach(&volumes.draw, &s->lights[0], volumes_trim());
+    volumes_light_plan plan;
+    volumes_plan_every_caster(f, 0, &plan);
+    if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
+        glEnable(GL_STENCIL_TEST);
+        glClear(GL_STENCIL_BUFFER_BIT);
+        volumes_count(f, &plan);
+        volume_overlay_counts(&volumes.draw, VOLUMES_STENCIL_MASK);
+    } else {
+        volume_overlay_shapes(&volumes.draw, f, plan.position, volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES);
+    }
 }
 
 /* ---- the frame ---- */
 
-/* The frame. Receivers huge seen from the eye (a ground 1e5 across) are
- * counted against their exact depth, not the rasterizer's interpolation
- * across them, which moves shadow edges (demos/lib/volume_receivers.h);
- * their shading passes against the pre-pass's depth, drawn again.
- * Skips (README, "Skips"), none of which changes a count on a visible
- * receiver, the only pixels the stencil decides:
- * - casters whose shadow cannot reach a visible receiver draw no volume
- *   (technique_caster_needed: outside the hull of the light and the
- *   visible receivers' bounds; see volumes_caster_needed for why exact);
- * - volumes that miss the view draw none (volume_mesh_misses_view: no
- *   fragment of them would be drawn), counted as culled;
- * - after technique_see, a volume counts only in the pixels and depths
- *   where what its shadow may fall on was seen (technique_caster_seen;
- *   scissor and depth bounds): elsewhere its count is 0 on every visible
- *   pixel;
- * - the CPU volumes are kept per light, built when a caster is first
- *   needed after the light moved and drawn from there until it moves
- *   again (objects never move; volume_draw.h). */
 static void volumes_render(const technique_frame *f) {
-    const scene *s = f->gpu->scene;
-    render_depth_prepass(f->gpu, f->view, f->in_view); /* the depth every pass tests against */
-    bool trim_changed = volumes.trim_kept != (int)volumes_trim();
-    volumes.trim_kept = volumes_trim();
-    for (int l = 0; l < s->light_count; l++)
-        if (f->changed.scene || trim_changed || (f->changed.lights & RENDER_LIGHT_BIT(l)))
-            volume_draw_forget(&volumes.draw, l);
-    vec3 near_rectangle[4];
-    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
-    /* The screen rectangle of every receiver's box, the same for every
-     * light: no shadow is counted outside it. */
-    int receivers_rect[4];
-    volume_mesh_receivers_scissor(s, f->view->view_projection, f->width, f->height, receivers_rect);
+    volumes_forget_moved(f);
+    /* 1. Depth pre-pass: the depth every pass tests against; what it
+     *    shows (technique_see) is read from the depth the volumes are
+     *    counted against. */
+    render_depth_prepass(f->gpu, f->view, f->in_view);
     volumes.huge_count = volumes.settings.no_exact_depth ? 0 : volume_receivers_update(&volumes.receivers, f);
-    bool exact = volumes.huge_count > 0;
-    if (exact && f->seen) /* what is seen, as the volumes are counted against it */
-        volume_receivers_depth(&volumes.receivers, f, true);
+    if (f->seen)
+        volumes_exact_depth(f);
     technique_see(f);
-    for (int l = 0; l < s->light_count; l++) {
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
-        float light[4];
-        scene_light_homogeneous(&s->lights[l], light);
-        technique_hull hull;
-        technique_light_hull(f, l, &hull);
-        volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
-        for (int i = 0; i < s->object_count; i++)
-            volumes.needed[i] = volumes_caster_needed(f, &hull, i, light, (const vec3 *)near_rectangle);
-        if (exact)
-            volume_receivers_depth(&volumes.receivers, f, true);
-        volumes_bounds bounds = {.rect = {receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]}};
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(receivers_rect[0], receivers_rect[1], receivers_rect[2], receivers_rect[3]);
-        glClear(GL_STENCIL_BUFFER_BIT);
-        glEnable(GL_STENCIL_TEST);
-        volumes_depth_bounds(f, &hull, &bounds);
-        volumes_count(f, l, light, volumes.needed, &hull, &bounds);
-        if (bounds.bounded)
-            glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
-        if (exact) { /* the depth the shading passes are equal to */
-            glDisable(GL_STENCIL_TEST);
-            volume_receivers_depth(&volumes.receivers, f, false);
-        }
-        /* Its own scissor: objects that take no shadows may lie outside the receivers'. */
+        /* 2. Plan: which casters, each z-pass or z-fail, and where their
+         *    volumes may count (the skips). */
+        volumes_light_plan plan;
+        volumes_plan_light(f, l, &plan);
+        volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
+        /* 3. Clear the stencil in the plan's rectangle. */
+        volumes_clear_stencil(&plan);
+        /* 4. Count the volumes into the stencil, per caster the faces in
+         *    front of the surface (z-pass) or behind it (z-fail), +1 or -1
+         *    by their facing. */
+        volumes_count(f, &plan);
+        volumes_prepass_depth(f); /* back to the depth the shading is equal to */
+        /* 5. Shade the light where the count is 0, in its own scissor
+         *    (objects that take no shadows may lie outside the plan's);
+         *    the first light's pass adds the ambient term. */
         technique_shade_light(f, l, &volumes_lit);
         glDisable(GL_STENCIL_TEST);
     }
+    /* 6. Ambient alone where no light is on. */
     if (technique_ambient_light(f) < 0)
         technique_shade_ambient(f);
-    if (volumes.settings.overlay == VOLUMES_OVERLAY_NONE || s->light_count == 0)
-        return;
-    float light[4]; /* for lectures, over the finished picture: light 0's */
-    scene_light_homogeneous(&s->lights[0], light);
-    volume_draw_reach(&volumes.draw, &s->lights[0], volumes_trim());
-    if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS)
-        volumes_draw_counts(f, light);
-    else
-        volume_overlay_shapes(&volumes.draw, f, light, volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES);
+    /* 7. For lectures, the overlays. */
+    volumes_draw_overlay(f);
 }
 
 static void volumes_describe(char *out, size_t size) {
