@@ -469,8 +469,26 @@ static const char *cascades_area_light(const scene_light *light) {
     return shadow_map_area_light_text(&cascades.settings, light);
 }
 
+/* The frame: shadowmap.c's passes, a directional light's map an array
+ * of cascades, one layer a slice of the view. */
 static void cascades_render(const technique_frame *f) {
-    shadow_map_render(&cascades.maps, &cascades.settings, f, cascades_fit);
+    shadow_map_renderer *r = &cascades.maps;
+    const shadow_map_settings *settings = &cascades.settings;
+    /* 1. The camera's depth pre-pass: what is seen. */
+    shadow_map_begin(r, f);
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+        /* 2. The splits, then each cascade's box around its slice and the
+         * receivers in it (cascades_fit_array). */
+        if (!shadow_map_fit_light(r, settings, f, l, cascades_fit))
+            continue;
+        /* 3. Depth from the light into each layer. */
+        shadow_map_draw_depth(r, settings, f, l);
+    }
+    /* 4. Shading: each pixel reads the layer of its view depth, blended
+     * into the next over the last part of a slice. */
+    shadow_map_shade(r, settings, f);
+    /* 5. The lecture's overlays. */
+    shadow_map_draw_overlays(r, settings, f);
 }
 
 /* Light 0's map, and for cascades the split distances and the world size
