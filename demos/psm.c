@@ -202,7 +202,8 @@ static void psm_draw_warp_view(const technique_frame *f) {
     if (w->has_space)
         shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, w->space, m->layer_view_projection[0]);
     else if (m->kind == SHADOW_MAP_2D)
-        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, m->layer_view_projection[0], m->layer_view_projection[0]);
+        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, m->layer_view_projection[0],
+                                  m->layer_view_projection[0]);
 }
 
 /* The frame: shadowmap.c's passes, with each light's map placed by

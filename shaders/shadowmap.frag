@@ -3,18 +3,36 @@
 // demos/shadowmap.c, demos/psm.c and demos/cascades.c): every light in one
 // pass over the visible receivers, after a depth pre-pass, so that each
 // visible pixel is shaded once and filtered once per light that reaches
-// it.
+// it. main, at the end, is the whole pass: the ambient term, then each
+// light's share by its kind (shadowmap_share, shadowmap_light.glsl).
 //
-// Samplers can be indexed only by constant expressions in GLSL 3.30, so
-// the lights are listed one by one below, and what light i is in this pass
-// is the define SHADOW_MAP_LIGHT_KIND_<i> (a shadow_map_light_kind from C:
-// off, on without a map (nothing it reaches receives: added unshadowed),
-// with a 2D map, a cube map or an array map), and how its 2D map's texel is
-// measured SHADOW_MAP_TEXEL_KIND_<i> (a shadow_map_texel_kind). C compiles
-// a program per combination (and per kernel and overlay), in which each
-// light's code is there only for its kind: read from uniforms, every pixel
-// would run every kind's code (llvmpipe runs both sides of a branch,
-// masked).
+// C compiles one program per combination of the defines below
+// (shadow_map_camera_program_load), in which each light's code is there
+// only for its kind and the kernel's only for its shape: read from
+// uniforms, every pixel would run every kind's code (llvmpipe runs both
+// sides of a branch, masked). Samplers can be indexed only by constant
+// expressions in GLSL 3.30, so the lights are listed one by one. The
+// permutation's axes, and where each is read:
+//   SHADOW_MAP_LIGHT_KIND_<i>   light i: off, on without a map (nothing it
+//       reaches receives: added unshadowed), or with a 2D, cube or array
+//       map (a shadow_map_light_kind): here, SHADOWMAP_LIGHT;
+//   SHADOW_MAP_TEXEL_KIND_<i>   how light i's 2D map's texel is measured
+//       (a shadow_map_texel_kind): shadowmap_2d.glsl, shadowmap_texel_world;
+//   SHADOW_MAP_PASS_SHAPE, SHADOW_MAP_PASS_KERNEL   the kernel's shape and
+//       size: shadowmap.glsl (shadowmap_shape, shadowmap_kernel_size);
+//   SHADOW_MAP_PASS_EARLY_OUT   the rim's taps first: shadowmap.glsl
+//       (shadowmap_early_out), for shadowmap_light.glsl's kernel filter;
+//   SHADOW_MAP_PASS_RECEIVER_PLANE   taps at the receiver plane's depth:
+//       shadowmap.glsl (shadowmap_receiver_plane), and shadowmap_cube.glsl;
+//   SHADOW_MAP_PASS_SOFT_LIGHTS, SHADOW_MAP_PASS_MOMENT_LIGHTS   bit i:
+//       light i is soft (shadowmap_soft.glsl's filter), or reads its
+//       moment map: here, SHADOWMAP_SOFT and SHADOWMAP_MOMENTS;
+//   SHADOW_MAP_PASS_MOMENTS   which moments: moments.glsl;
+//   SHADOW_MAP_PASS_SHOW_*   the lecture's overlays: here (shadowmap_show_*),
+//       for shadowmap_light.glsl's shadowmap_share, shadowmap_soft.glsl
+//       (the penumbra) and main (the cascades' tint).
+// The other SHADOW_MAP_* names are the C constants these are compared with
+// (shadow_map.c, shadow_map_defines).
 #include "lighting.glsl"
 
 in vec3 v_position;
@@ -73,7 +91,17 @@ float shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
 // where its bit of SHADOW_MAP_PASS_MOMENT_LIGHTS is set.
 #define SHADOWMAP_SOFT(i) (((SHADOW_MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
 #define SHADOWMAP_MOMENTS(i) (((SHADOW_MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
-#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n)
+#define SHADOWMAP_LIGHT(i, kind, texel_kind) \
+    if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) \
+        c += lighting_unshadowed(i, v_position, n, u_albedo); \
+    else if (kind == SHADOW_MAP_LIGHT_2D) \
+        c += shadowmap_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); \
+    else if (kind == SHADOW_MAP_LIGHT_CUBE) \
+        c += shadowmap_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), \
+                             n); \
+    else if (kind == SHADOW_MAP_LIGHT_ARRAY) \
+        c += shadowmap_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOWMAP_SOFT(i), \
+                             SHADOWMAP_MOMENTS(i), n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
