@@ -552,7 +552,7 @@ void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *se
  * the volumes weigh it; the eye inside by its winding number), a face
  * that a light outside the mesh reaches on the eye's side is in the
  * mesh's shadow without a read: the light came through the mesh
- * (shaders/shadowmap.frag, shadowmap_through_closed). */
+ * (shaders/shadowmap.frag, shadow_map_through_closed). */
 void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f);
 /* The depth pass of a fitted map of any kind, uncached (the tests'):
  * (re)makes its texture when needed, then renders every layer from its matrix, with glPolygonOffset
