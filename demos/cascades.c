@@ -131,13 +131,13 @@ static bool cascades_grazing(const technique_frame *f, int light) {
  * no slice is spent on air in front of the nearest receiver (walking the
  * city, the first practical slice can hold no pixel) or beyond the
  * farthest. The paper reduces the depth pre-pass on the GPU; the points
- * are already on the CPU, and a read-back of the depth buffer would stall
- * the frame on the pre-pass, which the library draws after the maps, or
- * make the maps depend on the frame before, for little: the points' range
- * agrees with the pixels' at its near end and can lie farther at its far
- * end, which moves the first of four splits by only its fourth root. The README's
- * "Cascades against one map and the warps" compares the schemes over the
- * frames of a walk and a yaw: the comparison that makes sdsm the default. */
+ * are already on the CPU, and reducing the depth buffer would stall the
+ * fit on the pre-pass, or make the maps depend on the frame before, for
+ * little: the points' range agrees with the pixels' at its near end and
+ * can lie farther at its far end, which moves the first of four splits by
+ * only its fourth root. The README's "Cascades against one map and the
+ * warps" compares the schemes over the frames of a walk and a yaw: the
+ * comparison that makes sdsm the default. */
 static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *m) {
     const scene_light *l = &f->gpu->scene->lights[light];
     const scene_camera *camera = &f->gpu->scene->camera;
