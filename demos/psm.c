@@ -191,21 +191,42 @@ static const char *psm_area_light(const scene_light *light) {
     return shadow_map_area_light_text(&psm.settings, light);
 }
 
-static void psm_render(const technique_frame *f) {
-    shadow_map_render(&psm.maps, &psm.settings, f, psm_fit);
-    /* Light 0's warp space, with the map in use placed in it; where the
-     * uniform map is in use (asked for, or the warp did not pay), its own
-     * clip space, the map's frustum the unit cube there: how the scene
-     * fills a map nothing warps, to set beside the warps'. A cube map has
-     * no one space: nothing is drawn. */
+/* Light 0's warp space, with the map in use placed in it; where the
+ * uniform map is in use (asked for, or the warp did not pay), its own clip
+ * space, the map's frustum the unit cube there: how the scene fills a map
+ * nothing warps, to set beside the warps'. A cube map has no one space:
+ * nothing is drawn. */
+static void psm_draw_warp_view(const technique_frame *f) {
     const warp_result *w = &psm.choice[0].result;
     const shadow_map *m = &psm.maps.maps[0];
-    if (psm.settings.overlay != PSM_OVERLAY_POST_PERSPECTIVE)
-        return;
     if (w->has_space)
         shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, w->space, m->layer_view_projection[0]);
     else if (m->kind == SHADOW_MAP_2D)
-        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, m->layer_view_projection[0], m->layer_view_projection[0]);
+        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, m->layer_view_projection[0],
+                                  m->layer_view_projection[0]);
+}
+
+/* The frame: shadowmap.c's passes, with each light's map placed by
+ * psm_fit, warped where the warp pays. */
+static void psm_render(const technique_frame *f) {
+    shadow_map_renderer *r = &psm.maps;
+    const shadow_map_settings *settings = &psm.settings;
+    /* 1. The camera's depth pre-pass: what is seen. */
+    shadow_map_begin(r, f);
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+        /* 2. The warp (or the uniform map where it does not pay), fitted
+         * to the visible receivers and the casters that shadow them. */
+        if (!shadow_map_fit_light(r, settings, f, l, psm_fit))
+            continue;
+        /* 3. Depth from the light through the warp. */
+        shadow_map_draw_depth(r, settings, f, l);
+    }
+    /* 4. Shading: each pixel compared in the map's warped space. */
+    shadow_map_shade(r, settings, f);
+    /* 5. The lecture's overlays, then light 0's warp space. */
+    shadow_map_draw_overlays(r, settings, f);
+    if (settings->overlay == PSM_OVERLAY_POST_PERSPECTIVE)
+        psm_draw_warp_view(f);
 }
 
 static void psm_describe(char *out, size_t size) {

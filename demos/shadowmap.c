@@ -76,8 +76,25 @@ static const char *shadowmap_area_light(const scene_light *light) {
     return shadow_map_area_light_text(&shadowmap.settings, light);
 }
 
+/* The frame: Williams's two passes, the depth pass per light, then the
+ * camera pass comparing each pixel's depth in the light with the map. */
 static void shadowmap_render(const technique_frame *f) {
-    shadow_map_render(&shadowmap.maps, &shadowmap.settings, f, shadowmap_fit);
+    shadow_map_renderer *r = &shadowmap.maps;
+    const shadow_map_settings *settings = &shadowmap.settings;
+    /* 1. The camera's depth pre-pass: what is seen. */
+    shadow_map_begin(r, f);
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+        /* 2. The light's map fitted to the visible receivers. */
+        if (!shadow_map_fit_light(r, settings, f, l, shadowmap_fit))
+            continue;
+        /* 3. Depth from the light (layers the cache holds are kept). */
+        shadow_map_draw_depth(r, settings, f, l);
+    }
+    /* 4. Shading: each pixel's depth in the light against the map, the
+     * tests filtered over the kernel. */
+    shadow_map_shade(r, settings, f);
+    /* 5. The lecture's overlays. */
+    shadow_map_draw_overlays(r, settings, f);
 }
 
 static void shadowmap_describe(char *out, size_t size) {

@@ -3,18 +3,36 @@
 // demos/shadowmap.c, demos/psm.c and demos/cascades.c): every light in one
 // pass over the visible receivers, after a depth pre-pass, so that each
 // visible pixel is shaded once and filtered once per light that reaches
-// it.
+// it. main, at the end, is the whole pass: the ambient term, then each
+// light's share by its kind (shadow_map_share, shadowmap_light.glsl).
 //
-// Samplers can be indexed only by constant expressions in GLSL 3.30, so
-// the lights are listed one by one below, and what light i is in this pass
-// is the define SHADOW_MAP_LIGHT_KIND_<i> (a shadow_map_light_kind from C:
-// off, on without a map (nothing it reaches receives: added unshadowed),
-// with a 2D map, a cube map or an array map), and how its 2D map's texel is
-// measured SHADOW_MAP_TEXEL_KIND_<i> (a shadow_map_texel_kind). C compiles
-// a program per combination (and per kernel and overlay), in which each
-// light's code is there only for its kind: read from uniforms, every pixel
-// would run every kind's code (llvmpipe runs both sides of a branch,
-// masked).
+// C compiles one program per combination of the defines below
+// (shadow_map_camera_program_load), in which each light's code is there
+// only for its kind and the kernel's only for its shape: read from
+// uniforms, every pixel would run every kind's code (llvmpipe runs both
+// sides of a branch, masked). Samplers can be indexed only by constant
+// expressions in GLSL 3.30, so the lights are listed one by one. The
+// permutation's axes, and where each is read:
+//   SHADOW_MAP_LIGHT_KIND_<i>   light i: off, on without a map (nothing it
+//       reaches receives: added unshadowed), or with a 2D, cube or array
+//       map (a shadow_map_light_kind): here, SHADOW_MAP_LIGHT;
+//   SHADOW_MAP_TEXEL_KIND_<i>   how light i's 2D map's texel is measured
+//       (a shadow_map_texel_kind): shadowmap_2d.glsl, shadow_map_texel_world;
+//   SHADOW_MAP_PASS_SHAPE, SHADOW_MAP_PASS_KERNEL   the kernel's shape and
+//       size: shadowmap.glsl (shadow_map_shape, shadow_map_kernel_size);
+//   SHADOW_MAP_PASS_EARLY_OUT   the rim's taps first: shadowmap.glsl
+//       (shadow_map_early_out), for shadowmap_light.glsl's kernel filter;
+//   SHADOW_MAP_PASS_RECEIVER_PLANE   taps at the receiver plane's depth:
+//       shadowmap.glsl (shadow_map_receiver_plane), and shadowmap_cube.glsl;
+//   SHADOW_MAP_PASS_SOFT_LIGHTS, SHADOW_MAP_PASS_MOMENT_LIGHTS   bit i:
+//       light i is soft (shadowmap_soft.glsl's filter), or reads its
+//       moment map: here, SHADOW_MAP_SOFT and SHADOW_MAP_MOMENTS;
+//   SHADOW_MAP_PASS_MOMENTS   which moments: moments.glsl;
+//   SHADOW_MAP_PASS_SHOW_*   the lecture's overlays: here (shadow_map_show_*),
+//       for shadowmap_light.glsl's shadow_map_share, shadowmap_soft.glsl
+//       (the penumbra) and main (the cascades' tint).
+// The other SHADOW_MAP_* names are the C constants these are compared with
+// (shadow_map.c, shadow_map_defines).
 #include "lighting.glsl"
 
 in vec3 v_position;
@@ -27,8 +45,8 @@ uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the
 uniform int u_closed_outside;    // bit i: a closed caster with the eye inside it and light i outside
 
 // The triangle's own (flat) normal, on the side the eye sees: set first in
-// main, where derivatives are defined, for shadowmap_share.
-vec3 shadowmap_face_normal;
+// main, where derivatives are defined, for shadow_map_share.
+vec3 shadow_map_face_normal;
 
 // Light i reaches this fragment's face from the inside of a closed caster
 // (the eye is inside the mesh and sees the triangle's back, the light is
@@ -40,22 +58,22 @@ vec3 shadowmap_face_normal;
 // from inside a box, a column of false light along the corner: the stress
 // suite's camera_inside cases). With the eye outside, every fragment is
 // as it was.
-bool shadowmap_through_closed(int i, vec3 to_light) {
-    return !gl_FrontFacing && (u_closed_outside & (1 << i)) != 0 && dot(shadowmap_face_normal, to_light) > 0.0;
+bool shadow_map_through_closed(int i, vec3 to_light) {
+    return !gl_FrontFacing && (u_closed_outside & (1 << i)) != 0 && dot(shadow_map_face_normal, to_light) > 0.0;
 }
 
 out vec4 out_color;
 
 // The lecture's overlays, fixed per program like the kernel.
-const bool shadowmap_show_texels = SHADOW_MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
-const bool shadowmap_show_texel_size = SHADOW_MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
-const bool shadowmap_show_cascades = SHADOW_MAP_PASS_SHOW_CASCADES != 0;     // tint by light 0's cascade
-const bool shadowmap_show_penumbra = SHADOW_MAP_PASS_SHOW_PENUMBRA != 0;     // colour by PCSS's penumbra estimate
+const bool shadow_map_show_texels = SHADOW_MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
+const bool shadow_map_show_texel_size = SHADOW_MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
+const bool shadow_map_show_cascades = SHADOW_MAP_PASS_SHOW_CASCADES != 0;     // tint by light 0's cascade
+const bool shadow_map_show_penumbra = SHADOW_MAP_PASS_SHOW_PENUMBRA != 0;     // colour by PCSS's penumbra estimate
 // With the penumbra overlay: the penumbra radius (world units) that the
-// last soft filter estimated, or SHADOWMAP_NO_PENUMBRA where its blocker
+// last soft filter estimated, or SHADOW_MAP_NO_PENUMBRA where its blocker
 // search found no blocker (or no filter ran).
-const float SHADOWMAP_NO_PENUMBRA = -1.0;
-float shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
+const float SHADOW_MAP_NO_PENUMBRA = -1.0;
+float shadow_map_penumbra_estimate = SHADOW_MAP_NO_PENUMBRA;
 
 #include "moments.glsl"
 #include "shadowmap.glsl"
@@ -64,33 +82,44 @@ float shadowmap_penumbra_estimate = SHADOWMAP_NO_PENUMBRA;
 #include "shadowmap_array.glsl"
 
 #if SCENE_MAX_LIGHTS != 8
-#error "shadowmap.frag lists SCENE_MAX_LIGHTS lights one by one: one SHADOWMAP_LIGHT line each"
+#error "shadowmap.frag lists SCENE_MAX_LIGHTS lights one by one: one SHADOW_MAP_LIGHT line each"
 #endif
 // Light i's share by its kind (a constant: the other kinds' code is dropped).
 // Light i is soft (an area light, filtered by shadowmap_soft.glsl) where
 // its bit of SHADOW_MAP_PASS_SOFT_LIGHTS is set.
 // Light i reads its moment map (moments.glsl; in its depths' sampler)
 // where its bit of SHADOW_MAP_PASS_MOMENT_LIGHTS is set.
-#define SHADOWMAP_SOFT(i) (((SHADOW_MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
-#define SHADOWMAP_MOMENTS(i) (((SHADOW_MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
-#define SHADOWMAP_LIGHT(i, kind, texel_kind) if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) c += lighting_unshadowed(i, v_position, n, u_albedo); else if (kind == SHADOW_MAP_LIGHT_2D) c += shadowmap_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); else if (kind == SHADOW_MAP_LIGHT_CUBE) c += shadowmap_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n); else if (kind == SHADOW_MAP_LIGHT_ARRAY) c += shadowmap_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOWMAP_SOFT(i), SHADOWMAP_MOMENTS(i), n)
+#define SHADOW_MAP_SOFT(i) (((SHADOW_MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
+#define SHADOW_MAP_MOMENTS(i) (((SHADOW_MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
+#define SHADOW_MAP_LIGHT(i, kind, texel_kind) \
+    if (kind == SHADOW_MAP_LIGHT_UNSHADOWED) \
+        c += lighting_unshadowed(i, v_position, n, u_albedo); \
+    else if (kind == SHADOW_MAP_LIGHT_2D) \
+        c += shadow_map_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, SHADOW_MAP_SOFT(i), \
+                              SHADOW_MAP_MOMENTS(i), n); \
+    else if (kind == SHADOW_MAP_LIGHT_CUBE) \
+        c += shadow_map_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, SHADOW_MAP_SOFT(i), \
+                              SHADOW_MAP_MOMENTS(i), n); \
+    else if (kind == SHADOW_MAP_LIGHT_ARRAY) \
+        c += shadow_map_share(u_maps_array[i], u_depths_array[i], i, texel_kind, SHADOW_MAP_SOFT(i), \
+                              SHADOW_MAP_MOMENTS(i), n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
-    shadowmap_face_normal = cross(dFdx(v_position), dFdy(v_position));
-    if (dot(shadowmap_face_normal, n) < 0.0)
-        shadowmap_face_normal = -shadowmap_face_normal;
+    shadow_map_face_normal = cross(dFdx(v_position), dFdy(v_position));
+    if (dot(shadow_map_face_normal, n) < 0.0)
+        shadow_map_face_normal = -shadow_map_face_normal;
     vec3 c = lighting_ambient(u_albedo);
-    SHADOWMAP_LIGHT(0, SHADOW_MAP_LIGHT_KIND_0, SHADOW_MAP_TEXEL_KIND_0);
-    SHADOWMAP_LIGHT(1, SHADOW_MAP_LIGHT_KIND_1, SHADOW_MAP_TEXEL_KIND_1);
-    SHADOWMAP_LIGHT(2, SHADOW_MAP_LIGHT_KIND_2, SHADOW_MAP_TEXEL_KIND_2);
-    SHADOWMAP_LIGHT(3, SHADOW_MAP_LIGHT_KIND_3, SHADOW_MAP_TEXEL_KIND_3);
-    SHADOWMAP_LIGHT(4, SHADOW_MAP_LIGHT_KIND_4, SHADOW_MAP_TEXEL_KIND_4);
-    SHADOWMAP_LIGHT(5, SHADOW_MAP_LIGHT_KIND_5, SHADOW_MAP_TEXEL_KIND_5);
-    SHADOWMAP_LIGHT(6, SHADOW_MAP_LIGHT_KIND_6, SHADOW_MAP_TEXEL_KIND_6);
-    SHADOWMAP_LIGHT(7, SHADOW_MAP_LIGHT_KIND_7, SHADOW_MAP_TEXEL_KIND_7);
-    if (shadowmap_show_cascades && SHADOW_MAP_LIGHT_KIND_0 == SHADOW_MAP_LIGHT_ARRAY)
-        c = shadowmap_cascade_tint(0, c);
+    SHADOW_MAP_LIGHT(0, SHADOW_MAP_LIGHT_KIND_0, SHADOW_MAP_TEXEL_KIND_0);
+    SHADOW_MAP_LIGHT(1, SHADOW_MAP_LIGHT_KIND_1, SHADOW_MAP_TEXEL_KIND_1);
+    SHADOW_MAP_LIGHT(2, SHADOW_MAP_LIGHT_KIND_2, SHADOW_MAP_TEXEL_KIND_2);
+    SHADOW_MAP_LIGHT(3, SHADOW_MAP_LIGHT_KIND_3, SHADOW_MAP_TEXEL_KIND_3);
+    SHADOW_MAP_LIGHT(4, SHADOW_MAP_LIGHT_KIND_4, SHADOW_MAP_TEXEL_KIND_4);
+    SHADOW_MAP_LIGHT(5, SHADOW_MAP_LIGHT_KIND_5, SHADOW_MAP_TEXEL_KIND_5);
+    SHADOW_MAP_LIGHT(6, SHADOW_MAP_LIGHT_KIND_6, SHADOW_MAP_TEXEL_KIND_6);
+    SHADOW_MAP_LIGHT(7, SHADOW_MAP_LIGHT_KIND_7, SHADOW_MAP_TEXEL_KIND_7);
+    if (shadow_map_show_cascades && SHADOW_MAP_LIGHT_KIND_0 == SHADOW_MAP_LIGHT_ARRAY)
+        c = shadow_map_cascade_tint(0, c);
     out_color = vec4(c, 1.0);
 }

@@ -15,39 +15,39 @@ uniform int u_cascade_count[SCENE_MAX_LIGHTS];
 uniform float u_cascade_blend; // the far fraction of a slice mixed into the next layer (0: a hard switch)
 uniform vec4 u_view_depth;     // the camera's view depth of a world point p: dot(this, vec4(p, 1))
 
-// The layer the kernel reads: set with the point by shadowmap_visibility.
-float shadowmap_array_layer;
+// The layer the kernel reads: set with the point by shadow_map_visibility.
+float shadow_map_array_layer;
 
 // offset: in map coordinates.
-float shadowmap_kernel_read(sampler2DArrayShadow map, vec2 offset) {
-    return texture(map, vec4(shadowmap_point.xy + offset, shadowmap_array_layer,
-                             shadowmap_point.z + dot(shadowmap_gradient, offset)));
+float shadow_map_kernel_read(sampler2DArrayShadow map, vec2 offset) {
+    return texture(map, vec4(shadow_map_point.xy + offset, shadow_map_array_layer,
+                             shadow_map_point.z + dot(shadow_map_gradient, offset)));
 }
 
 // The raw map's texel an offset away: a depth (.r), or moments.
-vec4 shadowmap_raw_read(sampler2DArray raw, vec2 offset) {
-    return texture(raw, vec3(shadowmap_point.xy + offset, shadowmap_array_layer));
+vec4 shadow_map_raw_read(sampler2DArray raw, vec2 offset) {
+    return texture(raw, vec3(shadow_map_point.xy + offset, shadow_map_array_layer));
 }
 
 // A layer's depth is its box's, orthographic: distance along the light up
 // to a constant, 2 / |scale.z| world units to the unit of depth.
-float shadowmap_soft_distance(sampler2DArray raw, int i, float depth) {
-    return 2.0 * depth / abs(u_cascade_scale[i * SHADOW_MAP_MAX_ARRAY_LAYERS + int(shadowmap_array_layer)].z);
+float shadow_map_soft_distance(sampler2DArray raw, int i, float depth) {
+    return 2.0 * depth / abs(u_cascade_scale[i * SHADOW_MAP_MAX_ARRAY_LAYERS + int(shadow_map_array_layer)].z);
 }
 
-#define SHADOWMAP_SAMPLER sampler2DArrayShadow
-#define SHADOWMAP_RAW_SAMPLER sampler2DArray
+#define SHADOW_MAP_SAMPLER sampler2DArrayShadow
+#define SHADOW_MAP_RAW_SAMPLER sampler2DArray
 #include "shadowmap_light.glsl"
 #include "shadowmap_flat.glsl"
 #include "shadowmap_soft.glsl"
-#undef SHADOWMAP_RAW_SAMPLER
-#undef SHADOWMAP_SAMPLER
+#undef SHADOW_MAP_RAW_SAMPLER
+#undef SHADOW_MAP_SAMPLER
 
 // Which of light i's layers a point at view depth `depth` reads: x the
 // layer whose slice holds it (the first before the first split, the last
 // beyond the last), y the weight of the next layer, rising from 0 to 1
 // over the blend band at the slice's far end (0 on the last layer).
-vec2 shadowmap_cascade_at(int i, vec3 p) {
+vec2 shadow_map_cascade_at(int i, vec3 p) {
     float depth = dot(u_view_depth, vec4(p, 1.0));
     int base = i * SHADOW_MAP_MAX_ARRAY_LAYERS, last = u_cascade_count[i] - 1, k = 0;
     while (k < last && depth > u_cascade_scale[base + k].w)
@@ -58,19 +58,19 @@ vec2 shadowmap_cascade_at(int i, vec3 p) {
 }
 
 // Layer k's scale from light view to map coordinates (0..1) and depth.
-vec3 shadowmap_cascade_scale(int i, int k) {
+vec3 shadow_map_cascade_scale(int i, int k) {
     return 0.5 * u_cascade_scale[i * SHADOW_MAP_MAX_ARRAY_LAYERS + k].xyz;
 }
 
-vec3 shadowmap_cascade_uvz(int i, int k, vec3 light_p) {
+vec3 shadow_map_cascade_uvz(int i, int k, vec3 light_p) {
     vec3 offset = u_cascade_offset[i * SHADOW_MAP_MAX_ARRAY_LAYERS + k].xyz;
-    return light_p * shadowmap_cascade_scale(i, k) + 0.5 * offset + 0.5;
+    return light_p * shadow_map_cascade_scale(i, k) + 0.5 * offset + 0.5;
 }
 
 // A layer's texel in world units: its box over the map's size (the wider
 // side's texel, where a box is not square).
-float shadowmap_cascade_texel(int i, int k) {
-    vec3 scale = shadowmap_cascade_scale(i, k);
+float shadow_map_cascade_texel(int i, int k) {
+    vec3 scale = shadow_map_cascade_scale(i, k);
     return 1.0 / (u_map_size[i] * min(abs(scale.x), abs(scale.y)));
 }
 
@@ -80,49 +80,49 @@ float shadowmap_cascade_texel(int i, int k) {
 // every pixel on llvmpipe, which runs both sides of a branch, and would
 // make the cascades' pass far dearer than one map's). By the fragment's own view depth (v_position), not the
 // biased point's.
-int shadowmap_cascade_layer(int i) {
-    vec2 cascade = shadowmap_cascade_at(i, v_position);
-    return int(cascade.x) + (cascade.y > float(shadowmap_pixel_hash()) * SHADOWMAP_HASH_TO_FRACTION ? 1 : 0);
+int shadow_map_pixel_cascade(int i) {
+    vec2 cascade = shadow_map_cascade_at(i, v_position);
+    return int(cascade.x) + (cascade.y > float(shadow_map_pixel_hash()) * SHADOW_MAP_HASH_TO_FRACTION ? 1 : 0);
 }
 
 // The biases are measured in the texel of the layer read.
-float shadowmap_texel_world(sampler2DArrayShadow map, int i, int texel_kind, vec3 p) {
-    return shadowmap_cascade_texel(i, shadowmap_cascade_layer(i));
+float shadow_map_texel_world(sampler2DArrayShadow map, int i, int texel_kind, vec3 p) {
+    return shadow_map_cascade_texel(i, shadow_map_pixel_cascade(i));
 }
 
 // Layer k's filtered comparison at p, with the receiver plane from the
 // screen derivatives of p in light view (per layer: its scale).
-float shadowmap_visibility(sampler2DArrayShadow map, sampler2DArray raw, int i, vec3 p, float depth_bias,
-                           bool soft, bool moments, float texel, bool needed) {
+float shadow_map_visibility(sampler2DArrayShadow map, sampler2DArray raw, int i, vec3 p, float depth_bias,
+                            bool soft, bool moments, float texel, bool needed) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz; /* an orthonormal view: w is 1 */
     vec3 dx = dFdx(light_p), dy = dFdy(light_p);           /* derivatives: before any branch */
     if (!needed)
         return 1.0;
-    int k = shadowmap_cascade_layer(i);
-    vec3 scale = shadowmap_cascade_scale(i, k);
-    shadowmap_array_layer = float(k);
-    return shadowmap_flat_filter(map, raw, i, shadowmap_cascade_uvz(i, k, light_p),
-                                 shadowmap_depth_gradient(dx * scale, dy * scale, soft), depth_bias, soft, moments,
-                                 texel);
+    int k = shadow_map_pixel_cascade(i);
+    vec3 scale = shadow_map_cascade_scale(i, k);
+    shadow_map_array_layer = float(k);
+    return shadow_map_flat_filter(map, raw, i, shadow_map_cascade_uvz(i, k, light_p),
+                                  shadow_map_depth_gradient(dx * scale, dy * scale, soft), depth_bias, soft, moments,
+                                  texel);
 }
 
-vec2 shadowmap_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {
+vec2 shadow_map_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz;
-    return shadowmap_cascade_uvz(i, int(shadowmap_cascade_at(i, p).x), light_p).xy * u_map_size[i];
+    return shadow_map_cascade_uvz(i, int(shadow_map_cascade_at(i, p).x), light_p).xy * u_map_size[i];
 }
 
 // The lecture's cascade overlay: each layer's colour, the blend band
 // mixing two (SHADOW_MAP_MAX_ARRAY_LAYERS of them), laid over light i's
-// share with SHADOWMAP_CASCADE_TINT of its weight.
-const vec3 shadowmap_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS] = vec3[](
+// share with SHADOW_MAP_CASCADE_TINT of its weight.
+const vec3 shadow_map_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS] = vec3[](
     vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25), vec3(0.3, 0.45, 1.0), vec3(1.0, 0.9, 0.2),
     vec3(1.0, 0.3, 1.0), vec3(0.2, 1.0, 1.0), vec3(1.0, 0.6, 0.2), vec3(0.65, 0.4, 1.0));
-const float SHADOWMAP_CASCADE_TINT = 0.6;
+const float SHADOW_MAP_CASCADE_TINT = 0.6;
 
-vec3 shadowmap_cascade_tint(int i, vec3 c) {
-    vec2 cascade = shadowmap_cascade_at(i, v_position);
+vec3 shadow_map_cascade_tint(int i, vec3 c) {
+    vec2 cascade = shadow_map_cascade_at(i, v_position);
     int k = int(cascade.x);
-    vec3 color = mix(shadowmap_cascade_colors[k], shadowmap_cascade_colors[min(k + 1, SHADOW_MAP_MAX_ARRAY_LAYERS - 1)],
-                     cascade.y);
-    return mix(c, c * color, SHADOWMAP_CASCADE_TINT);
+    vec3 color = mix(shadow_map_cascade_colors[k],
+                     shadow_map_cascade_colors[min(k + 1, SHADOW_MAP_MAX_ARRAY_LAYERS - 1)], cascade.y);
+    return mix(c, c * color, SHADOW_MAP_CASCADE_TINT);
 }

@@ -9,23 +9,23 @@ uniform float u_far[SCENE_MAX_LIGHTS];
 
 // A tap ray this close to parallel with the receiver's plane would slide
 // far along it onto the plane: such taps keep their own point.
-const float SHADOWMAP_MIN_PLANE_FACING = 0.05;
+const float SHADOW_MAP_MIN_PLANE_FACING = 0.05;
 // The kernel's plane is built across the direction from the up axis, or
 // from the x axis when the direction is this close to up (where the cross
 // product with up vanishes).
-const float SHADOWMAP_NEAR_UP = 0.9;
+const float SHADOW_MAP_NEAR_UP = 0.9;
 
 // The point's direction from the light, the receiver's normal, the depth
 // bias, the plane across the direction (two unit axes), a texel's size
-// there and the light's depth range: set by shadowmap_visibility for
-// shadowmap_kernel_read.
-vec3 shadowmap_direction, shadowmap_receiver_normal, shadowmap_across_u, shadowmap_across_v;
-float shadowmap_depth_bias, shadowmap_step;
-vec2 shadowmap_depth_range;
+// there and the light's depth range: set by shadow_map_visibility for
+// shadow_map_kernel_read.
+vec3 shadow_map_direction, shadow_map_receiver_normal, shadow_map_across_u, shadow_map_across_v;
+float shadow_map_depth_bias, shadow_map_step;
+vec2 shadow_map_cube_depth_range;
 
 // The depth a face's projection stores for a point at this direction:
 // the perspective depth of its distance along the face's axis.
-float shadowmap_face_depth(vec3 d, vec2 range) {
+float shadow_map_face_depth(vec3 d, vec2 range) {
     float near = range.x, far = range.y;
     vec3 a = abs(d);
     float z = max(a.x, max(a.y, a.z));
@@ -34,8 +34,8 @@ float shadowmap_face_depth(vec3 d, vec2 range) {
 }
 
 // A tap's direction, offset (in texels) across the point's.
-vec3 shadowmap_tap_direction(vec2 offset) {
-    return shadowmap_direction + (shadowmap_across_u * offset.x + shadowmap_across_v * offset.y) * shadowmap_step;
+vec3 shadow_map_tap_direction(vec2 offset) {
+    return shadow_map_direction + (shadow_map_across_u * offset.x + shadow_map_across_v * offset.y) * shadow_map_step;
 }
 
 // The depth a tap compares. With the receiver-plane bias (and for soft
@@ -43,40 +43,40 @@ vec3 shadowmap_tap_direction(vec2 offset) {
 // plane, and compares that point's own depth (as Isidoro's receiver-plane
 // bias does for 2D maps), so a slanted receiver does not shadow its own
 // kernel.
-bool shadowmap_plane_taps;
-float shadowmap_tap_depth(vec2 offset) {
-    vec3 t = shadowmap_tap_direction(offset), w = t - shadowmap_direction;
-    float facing = dot(normalize(t), shadowmap_receiver_normal);
-    if (shadowmap_plane_taps && abs(facing) > SHADOWMAP_MIN_PLANE_FACING)
-        t -= normalize(t) * (dot(w, shadowmap_receiver_normal) / facing);
-    return shadowmap_face_depth(t, shadowmap_depth_range) - shadowmap_depth_bias;
+bool shadow_map_plane_taps;
+float shadow_map_tap_depth(vec2 offset) {
+    vec3 t = shadow_map_tap_direction(offset), w = t - shadow_map_direction;
+    float facing = dot(normalize(t), shadow_map_receiver_normal);
+    if (shadow_map_plane_taps && abs(facing) > SHADOW_MAP_MIN_PLANE_FACING)
+        t -= normalize(t) * (dot(w, shadow_map_receiver_normal) / facing);
+    return shadow_map_face_depth(t, shadow_map_cube_depth_range) - shadow_map_depth_bias;
 }
 
-float shadowmap_kernel_read(samplerCubeShadow map, vec2 offset) {
-    return texture(map, vec4(shadowmap_tap_direction(offset), shadowmap_tap_depth(offset)));
+float shadow_map_kernel_read(samplerCubeShadow map, vec2 offset) {
+    return texture(map, vec4(shadow_map_tap_direction(offset), shadow_map_tap_depth(offset)));
 }
 
 // A soft light's reads (shadowmap_soft.glsl).
-float shadowmap_reference_depth(samplerCube raw, vec2 offset) { return shadowmap_tap_depth(offset); }
+float shadow_map_reference_depth(samplerCube raw, vec2 offset) { return shadow_map_tap_depth(offset); }
 
 // The raw map's texel an offset away: a depth (.r), or moments.
-vec4 shadowmap_raw_read(samplerCube raw, vec2 offset) { return texture(raw, shadowmap_tap_direction(offset)); }
+vec4 shadow_map_raw_read(samplerCube raw, vec2 offset) { return texture(raw, shadow_map_tap_direction(offset)); }
 
 // A stored depth back to its distance along the face's axis.
-float shadowmap_soft_distance(samplerCube raw, int i, float depth) {
+float shadow_map_soft_distance(samplerCube raw, int i, float depth) {
     float near = u_near[i], far = u_far[i], ndc = depth * 2.0 - 1.0;
     return 2.0 * far * near / ((far + near) - ndc * (far - near));
 }
 
-#define SHADOWMAP_SAMPLER samplerCubeShadow
-#define SHADOWMAP_RAW_SAMPLER samplerCube
+#define SHADOW_MAP_SAMPLER samplerCubeShadow
+#define SHADOW_MAP_RAW_SAMPLER samplerCube
 #include "shadowmap_light.glsl"
 #include "shadowmap_soft.glsl"
-#undef SHADOWMAP_RAW_SAMPLER
-#undef SHADOWMAP_SAMPLER
+#undef SHADOW_MAP_RAW_SAMPLER
+#undef SHADOW_MAP_SAMPLER
 
 // A 90-degree face spans 2 |major axis| over the map's size.
-float shadowmap_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
+float shadow_map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
     vec3 d = abs(p - lights_position[i].xyz);
     return 2.0 * max(d.x, max(d.y, d.z)) / u_map_size[i];
 }
@@ -86,35 +86,35 @@ float shadowmap_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p
 // tents take the taps and weights of a point on a texel corner (fraction
 // 0): symmetric about the point, the same tap count and footprint as on a
 // 2D map, but not following where the point lies in its texel.
-float shadowmap_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
-                           bool moments, float texel, bool needed) {
+float shadow_map_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
+                            bool moments, float texel, bool needed) {
     vec3 d = p - lights_position[i].xyz;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (!needed)
         return 1.0;
     vec2 range = vec2(u_near[i], u_far[i]);
     if (moments)
-        return moments_visibility(texture(raw, d), shadowmap_face_depth(d, range) - depth_bias);
-    if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE && !soft)
-        return texture(map, vec4(d, shadowmap_face_depth(d, range) - depth_bias));
+        return moments_visibility(texture(raw, d), shadow_map_face_depth(d, range) - depth_bias);
+    if (shadow_map_shape == SHADOW_MAP_KERNEL_SINGLE && !soft)
+        return texture(map, vec4(d, shadow_map_face_depth(d, range) - depth_bias));
     vec3 axis = normalize(d);
-    vec3 u = normalize(cross(abs(axis.y) < SHADOWMAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
-    shadowmap_direction = d;
-    shadowmap_receiver_normal = receiver_normal;
-    shadowmap_depth_bias = depth_bias;
-    shadowmap_depth_range = range;
-    shadowmap_across_u = u;
-    shadowmap_across_v = cross(axis, u);
-    shadowmap_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
-    shadowmap_plane_taps = shadowmap_receiver_plane || soft;
+    vec3 u = normalize(cross(abs(axis.y) < SHADOW_MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
+    shadow_map_direction = d;
+    shadow_map_receiver_normal = receiver_normal;
+    shadow_map_depth_bias = depth_bias;
+    shadow_map_cube_depth_range = range;
+    shadow_map_across_u = u;
+    shadow_map_across_v = cross(axis, u);
+    shadow_map_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    shadow_map_plane_taps = shadow_map_receiver_plane || soft;
     if (soft)
-        return shadowmap_soft_filter(map, raw, i, shadowmap_step, 1.0);
-    return shadowmap_kernel_filter(map, vec2(0.0), 1.0);
+        return shadow_map_soft_filter(map, raw, i, shadow_map_step, 1.0);
+    return shadow_map_kernel_filter(map, vec2(0.0), 1.0);
 }
 
 // On the face the direction falls on: the two other components over the
 // major one span -1..1 across the face.
-vec2 shadowmap_texel_coord(samplerCubeShadow map, int i, vec3 p) {
+vec2 shadow_map_texel_coord(samplerCubeShadow map, int i, vec3 p) {
     vec3 d = p - lights_position[i].xyz, a = abs(d);
     vec2 face = a.x >= a.y && a.x >= a.z ? d.yz / a.x : a.y >= a.z ? d.xz / a.y : d.xy / a.z;
     return (face * 0.5 + 0.5) * u_map_size[i];

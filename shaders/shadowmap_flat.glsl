@@ -1,17 +1,17 @@
 // A flat map's filtered comparison, for the camera pass's 2D maps
 // (shadowmap_2d.glsl) and array maps' layers (shadowmap_array.glsl):
 // included once by each, after shadowmap_light.glsl, for its
-// SHADOWMAP_SAMPLER and SHADOWMAP_RAW_SAMPLER. The point and its depth
-// gradient are set here for the type's shadowmap_kernel_read (declared
+// SHADOW_MAP_SAMPLER and SHADOW_MAP_RAW_SAMPLER. The point and its depth
+// gradient are set here for the type's shadow_map_kernel_read (declared
 // once, in shadowmap.glsl) and blocker reads.
 
 // The receiver's depth an offset (map coordinates) from the point, along
 // its plane where the gradient follows it.
-float shadowmap_reference_depth(SHADOWMAP_RAW_SAMPLER raw, vec2 offset) {
-    return shadowmap_point.z + dot(shadowmap_gradient, offset);
+float shadow_map_reference_depth(SHADOW_MAP_RAW_SAMPLER raw, vec2 offset) {
+    return shadow_map_point.z + dot(shadow_map_gradient, offset);
 }
 
-float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, float texel_world, float unit);
+float shadow_map_soft_filter(SHADOW_MAP_SAMPLER map, SHADOW_MAP_RAW_SAMPLER raw, int i, float texel_world, float unit);
 
 // The filtered comparison about uvz (map coordinates and depth) of light
 // i's map, its depth lowered by depth_bias first, with the receiver's
@@ -19,18 +19,18 @@ float shadowmap_soft_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, in
 // light's (shadowmap_soft.glsl; texel: a texel's world size at the
 // point), or from raw's moments (`moments`, moments.glsl). Outside the
 // map nothing was rendered: lit, never a wrapped read.
-float shadowmap_flat_filter(SHADOWMAP_SAMPLER map, SHADOWMAP_RAW_SAMPLER raw, int i, vec3 uvz, vec2 gradient,
-                           float depth_bias, bool soft, bool moments, float texel) {
+float shadow_map_flat_filter(SHADOW_MAP_SAMPLER map, SHADOW_MAP_RAW_SAMPLER raw, int i, vec3 uvz, vec2 gradient,
+                             float depth_bias, bool soft, bool moments, float texel) {
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
-    shadowmap_point = vec3(uvz.xy, min(uvz.z - depth_bias, 1.0));
-    shadowmap_gradient = gradient;
+    shadow_map_point = vec3(uvz.xy, min(uvz.z - depth_bias, 1.0));
+    shadow_map_gradient = gradient;
     if (moments)
-        return moments_visibility(shadowmap_raw_read(raw, vec2(0.0)), shadowmap_point.z);
+        return moments_visibility(shadow_map_raw_read(raw, vec2(0.0)), shadow_map_point.z);
     if (soft)
-        return shadowmap_soft_filter(map, raw, i, texel, u_map_size[i]);
-    if (shadowmap_shape == SHADOW_MAP_KERNEL_SINGLE)
-        return shadowmap_kernel_read(map, vec2(0.0));
+        return shadow_map_soft_filter(map, raw, i, texel, u_map_size[i]);
+    if (shadow_map_shape == SHADOW_MAP_KERNEL_SINGLE)
+        return shadow_map_kernel_read(map, vec2(0.0));
     vec2 map_texel = uvz.xy * u_map_size[i];
-    return shadowmap_kernel_filter(map, map_texel - floor(map_texel + 0.5), u_map_size[i]);
+    return shadow_map_kernel_filter(map, map_texel - floor(map_texel + 0.5), u_map_size[i]);
 }

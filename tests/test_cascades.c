@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cascades.h"
+#include "cascades_fit.h"
 #include "frustum.h"
 #include "support.h"
 

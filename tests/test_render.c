@@ -387,7 +387,7 @@ static void test_each_fix_shows_when_off(void **state) {
 
 /* The texel overlay at a 2048 map, a third of a pixel a texel on simple:
  * a line at every texel would darken nearly every lit pixel (moire); the
- * lines every 2^k texels, at least SHADOWMAP_TEXEL_LINE_MIN_PIXELS (4)
+ * lines every 2^k texels, at least SHADOW_MAP_TEXEL_LINE_MIN_PIXELS (4)
  * apart, darken a share of them, between these fractions of the
  * picture's pixels (the test prints the share); a line at every texel
  * would darken more than the upper one, every lit pixel. */

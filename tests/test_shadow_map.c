@@ -2,8 +2,8 @@
  * real headless GL context (EGL: a GPU's, else Mesa's llvmpipe, as in CI).
  * An array map (the cascades' storage) must hold in each layer exactly
  * what a 2D map rendered from that layer's matrix holds, through the
- * library's own depth pass (shadow_map_render_depth, which
- * shadow_map_render runs too). */
+ * library's own depth pass (shadow_map_render_depth, whose layer passes
+ * the frame's shadow_map_draw_depth runs too). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -72,7 +72,7 @@ static void test_extreme_lights_within_bound(void **state) {
  * alone would be small, gets the most texels; with the camera inside a
  * box, a face turned from the light gets the closed mesh's own shadow,
  * not false light along its corner (shadowmap.frag,
- * shadowmap_through_closed). */
+ * shadow_map_through_closed). */
 static void test_stress_extremes_within_bound(void **state) {
     (void)state;
     static const char *const scenes[] = {"shadowmap_far_spot", "shadowmap_grazing_sun", "shadowmap_camera_inside"};

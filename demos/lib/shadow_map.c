@@ -253,12 +253,11 @@ static bool shadow_map_layer_cached(const shadow_map_renderer *r, const shadow_m
     return true;
 }
 
-/* Light l's fitted map: each layer from the cache, or rendered with the
- * casters it needs (and, for a moment filter, then blurred). */
-static void shadow_map_render_layers(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                                     int l) {
+void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f, int l) {
     shadow_map *m = &r->maps[l];
     shadow_map_cache *c = &r->caches[l];
+    if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
+        shadow_map_forget(c);
     bool remade = shadow_map_prepare_texture(m, st);
     shadow_map_depth_key key = {.texture = m->texture.id,
                                 .size = m->size,
@@ -732,8 +731,8 @@ static void shadow_map_shade_receivers(shadow_map_renderer *r, const shadow_map_
  * again each in its own rectangle. Only receivers read maps (the caster
  * culling is for them too); the others take every light unshadowed, as in
  * the reference. */
-static void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                             const shadow_map_camera_key *k) {
+static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                                    const shadow_map_camera_key *k) {
     unsigned split = technique_split_lights(f);
     shadow_map_camera_key first_key = shadow_map_key_without(*k, split);
     const bool *objects = technique_shade_all_begin(f);
@@ -818,14 +817,10 @@ static void shadow_map_moments_fit(const scene *s, int l, shadow_map *m, bool au
         m->blur_texels[layer] = fminf(blur[layer], SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);
 }
 
-void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
-                       shadow_map_fit_function fit) {
-    const scene *s = f->gpu->scene;
-    GLint target_framebuffer, viewport[4];
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_framebuffer);
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    bool fitted[SCENE_MAX_LIGHTS] = {false};
-    int size = shadow_map_settings_size(settings);
+void shadow_map_begin(shadow_map_renderer *r, const technique_frame *f) {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &r->target_framebuffer);
+    glGetIntegerv(GL_VIEWPORT, r->viewport);
+    memset(r->fitted, 0, sizeof r->fitted);
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     /* The camera's depth first: the shading pass tests against it (each
      * visible pixel filtered once), and the maps cull the casters it
@@ -833,45 +828,52 @@ void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settin
     render_depth_prepass(f->gpu, f->view, f->in_view);
     technique_see(f);
     depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
+}
+
+bool shadow_map_fit_light(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                          int l, shadow_map_fit_function fit) {
+    const scene *s = f->gpu->scene;
     const technique_frame *fit_frame = shadow_map_fit_frame(f);
-    for (int l = 0; l < s->light_count && fit_frame->receiver_count > 0; l++) {
-        if (!technique_light_on(f, l))
-            continue;
-        shadow_map *m = &r->maps[l];
-        m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
-        fitted[l] = fit(fit_frame, l, m, fit_frame->receivers, fit_frame->receiver_count);
-        if (fitted[l] && !size && m->kind != SHADOW_MAP_ARRAY) {
-            int sample_count = shadow_map_light_samples(r, fit_frame, l);
-            shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
-        }
-        if (fitted[l] && shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
-            shadow_map_moments_fit(s, l, m, !size);
-        if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
-            shadow_map_forget(&r->caches[l]);
-        if (fitted[l])
-            shadow_map_render_layers(r, settings, f, l);
+    if (fit_frame->receiver_count == 0 || !technique_light_on(f, l))
+        return false;
+    shadow_map *m = &r->maps[l];
+    int size = shadow_map_settings_size(settings);
+    m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
+    r->fitted[l] = fit(fit_frame, l, m, fit_frame->receivers, fit_frame->receiver_count);
+    if (!r->fitted[l])
+        return false;
+    if (!size && m->kind != SHADOW_MAP_ARRAY) {
+        int sample_count = shadow_map_light_samples(r, fit_frame, l);
+        shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
     }
+    if (shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
+        shadow_map_moments_fit(s, l, m, !size);
+    return true;
+}
+
+void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f) {
+    const scene *s = f->gpu->scene;
     /* A light without a map this frame may change unseen before the next. */
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        if (!fitted[l])
+        if (!r->fitted[l])
             shadow_map_forget(&r->caches[l]);
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target_framebuffer);
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
+    glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     depth_use_camera(f->view);
     shadow_map_camera_key key = shadow_map_settings_key(settings);
     for (int l = 0; l < s->light_count; l++) {
-        if (fitted[l] && shadow_map_soft_unit(r, settings, &s->lights[l], l))
+        bool fitted = r->fitted[l];
+        if (fitted && shadow_map_soft_unit(r, settings, &s->lights[l], l))
             key.soft_lights |= 1u << l;
-        if (fitted[l] && shadow_map_moment_unit(r, settings, l))
+        if (fitted && shadow_map_moment_unit(r, settings, l))
             key.moment_lights |= 1u << l;
-        if (fitted[l])
+        if (fitted)
             shadow_map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
         else if (technique_light_on(f, l)) /* nothing visible receives: no map needed, nothing shadowed */
             key.kinds |= shadow_map_light_bits(l, SHADOW_MAP_LIGHT_UNSHADOWED);
     }
     if (f->lights)
-        shadow_map_shade(r, settings, f, &key);
+        shadow_map_shade_lights(r, settings, f, &key);
     else
         technique_shade_ambient(f);
-    shadow_map_draw_overlays(r, settings, f, fitted, viewport);
 }

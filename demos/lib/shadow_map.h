@@ -10,29 +10,31 @@
  * shadow_map_renderer in its static state, lists SHADOW_MAP_PARAMS(its
  * settings) among its parameters (the same flags and keys everywhere),
  * calls shadow_map_init / shadow_map_destroy from its own init / destroy,
- * and each frame shadow_map_render with a fitting function: the one place
- * where techniques differ is how a light's map is placed.
+ * and each frame the steps below from its render function, in this order,
+ * with its own fitting function: the one place where techniques differ is
+ * how a light's map is placed.
  *
- *   shadow_map_render(renderer, settings, frame, fit)
- *     1. the camera's depth pre-pass, read back (technique_see) so that
- *        the depth passes cull the casters it shows hidden; the receiver
- *        points are the frame's (technique.h), the corners of the part of
- *        every receiver's box inside the camera's frustum;
- *     2. per light: fit(frame, light, map, receivers) places the map
- *        (a fit that measures its texels, as psm does, takes the samples
- *        of shadow_map_light_samples), the automatic size sizes it, and
- *        the depth pass renders each layer that its cache cannot give,
- *        with the casters that layer needs; a fit that returns false
- *        means nothing can be shadowed, and the light is added
- *        unshadowed;
- *     3. the camera pass: one pass (GL_EQUAL depth) that shades every
- *        light on where its map lets it through, and the ambient term;
- *        each visible pixel is filtered once per light that adds to it
- *        (beyond a light's range, outside its cone or facing away the
- *        filter is skipped), and a light that lights a small part of the
- *        frame is shaded in a pass of its own over it
- *        (technique_split_lights);
- *     4. the overlays of settings->overlay.
+ *   1. shadow_map_begin: the camera's depth pre-pass, read back
+ *      (technique_see) so that the depth passes cull the casters it shows
+ *      hidden; the receiver points are the frame's (technique.h), the
+ *      corners of the part of every receiver's box inside the camera's
+ *      frustum;
+ *   2. per light, shadow_map_fit_light: fit(frame, light, map, receivers)
+ *      places the map (a fit that measures its texels, as psm does, takes
+ *      the samples of shadow_map_light_samples) and the automatic size
+ *      sizes it; false where the light is off or nothing can be shadowed
+ *      (then the light is added unshadowed);
+ *   3. per fitted light, shadow_map_draw_depth: the depth pass renders
+ *      each layer that its cache cannot give, with the casters that layer
+ *      needs;
+ *   4. shadow_map_shade, the camera pass: one pass (GL_EQUAL depth) that
+ *      shades every light on where its map lets it through, and the
+ *      ambient term; each visible pixel is filtered once per light that
+ *      adds to it (beyond a light's range, outside its cone or facing away
+ *      the filter is skipped), and a light that lights a small part of the
+ *      frame is shaded in a pass of its own over it
+ *      (technique_split_lights);
+ *   5. shadow_map_draw_overlays: those of settings->overlay.
  */
 #ifndef SHADOW_MAP_H
 #define SHADOW_MAP_H
@@ -513,6 +515,10 @@ typedef struct shadow_map_renderer {
     warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
     int hit_count, sample_count, sample_light;
     int grazing_count; /* of sample_light's: the hits left out as edge-on to it */
+    /* This frame's, from shadow_map_begin on: the target the camera pass
+     * draws into, and which lights have a map. */
+    int target_framebuffer, viewport[4];
+    bool fitted[SCENE_MAX_LIGHTS];
 } shadow_map_renderer;
 
 /* The frame a fit takes: f->fit, where the host holds the fit to another
@@ -525,17 +531,31 @@ typedef bool (*shadow_map_fit_function)(const technique_frame *f, int light, sha
  * the settings give the first camera program, compiled now. */
 bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu);
 void shadow_map_destroy(shadow_map_renderer *r);
-/* The whole frame (see the top of this file); fit places a map of any
- * kind (an array map with its size set). With the eye inside a closed
- * caster (r->closed: its welded edge table, as the volumes weigh it; the
- * eye inside by its winding number), a face that a light outside the mesh
- * reaches on the eye's side is in the mesh's shadow without a read: the
- * light came through the mesh (shaders/shadowmap.frag,
- * shadowmap_through_closed). */
-void shadow_map_render(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
-                       shadow_map_fit_function fit);
-/* The depth pass of a fitted map of any kind: (re)makes its texture when
- * needed, then renders every layer from its matrix, with glPolygonOffset
+/* The frame's steps (see the top of this file), in their order. Step 1:
+ * the camera's depth pre-pass; notes the target the camera pass will draw
+ * into (the framebuffer and viewport bound now) and forgets the last
+ * frame's maps. */
+void shadow_map_begin(shadow_map_renderer *r, const technique_frame *f);
+/* Step 2: fit places light l's map, of any kind (an array map with its
+ * size set), at the size of the settings (auto: sized after the fit), and
+ * a moment filter's blur is set. False, with no map this frame, where the
+ * light is off, no receiver is visible or the fit fails. */
+bool shadow_map_fit_light(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                          int l, shadow_map_fit_function fit);
+/* Step 3: the depth pass of fitted light l (see "Caching" above): its
+ * layers from its cache, or rendered with the casters each needs (and a
+ * moment filter's blurred). */
+void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
+                           int l);
+/* Step 4: the camera pass, into the target shadow_map_begin found. With
+ * the eye inside a closed caster (r->closed: its welded edge table, as
+ * the volumes weigh it; the eye inside by its winding number), a face
+ * that a light outside the mesh reaches on the eye's side is in the
+ * mesh's shadow without a read: the light came through the mesh
+ * (shaders/shadowmap.frag, shadow_map_through_closed). */
+void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f);
+/* The depth pass of a fitted map of any kind, uncached (the tests'):
+ * (re)makes its texture when needed, then renders every layer from its matrix, with glPolygonOffset
  * as the slope-scaled bias (unless --no-slope-bias; an array map's layers
  * attached one at a time, glFramebufferTextureLayer), and a moment
  * filter's blurs each. Leaves r->framebuffer (or the blur's) bound and
@@ -703,12 +723,11 @@ void shadow_map_moments_destroy(shadow_map_renderer *r);
 /* The 12 edges of the frustum of `frustum` (its clip cube mapped back to
  * world space), drawn through `view_projection`. */
 void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const mat4 view_projection);
-/* Those of settings->overlay drawn after the camera pass: frusta, inset,
- * the texel-size and penumbra heat maps' legends (a colour bar with
- * labelled ticks).
- * fitted[l]: light l has a map this frame. */
-void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
-                              const bool *fitted, const int viewport[4]);
+/* Step 5 of the frame: those of settings->overlay drawn after the camera
+ * pass, for the lights with a map this frame: frusta, inset, the
+ * texel-size and penumbra heat maps' legends (a colour bar with labelled
+ * ticks). */
+void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f);
 
 /* A warp's space in a second viewport (psm's post-perspective view): the
  * scene carried into `space` and clipped to its clip cube, the cube's

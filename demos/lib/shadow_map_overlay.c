@@ -219,23 +219,22 @@ static void shadow_map_draw_legend(shadow_map_renderer *r, const shadow_map_lege
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
-void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
-                              const bool *fitted, const int viewport[4]) {
+void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f) {
     int overlay = settings->overlay;
     glDisable(GL_BLEND);
     glDepthFunc(depth_func(f->view, GL_LEQUAL));
     bool frustum = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_FRUSTUM;
     for (int l = 0; frustum && l < f->gpu->scene->light_count; l++)
-        for (int layer = 0; fitted[l] && layer < r->maps[l].layer_count; layer++)
+        for (int layer = 0; r->fitted[l] && layer < r->maps[l].layer_count; layer++)
             shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
     bool inset = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP ||
                  SHADOW_MAP_SHOWS_CASCADES(settings);
-    if (fitted[0] && inset)
-        shadow_map_draw_inset(r, &r->maps[0], viewport);
+    if (r->fitted[0] && inset)
+        shadow_map_draw_inset(r, &r->maps[0], r->viewport);
     if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)
-        shadow_map_draw_legend(r, &shadow_map_texel_size_legend, viewport);
+        shadow_map_draw_legend(r, &shadow_map_texel_size_legend, r->viewport);
     if (overlay == SHADOW_MAP_OVERLAY_PENUMBRA)
-        shadow_map_draw_legend(r, &shadow_map_penumbra_legend, viewport);
+        shadow_map_draw_legend(r, &shadow_map_penumbra_legend, r->viewport);
 }
 
 /* ---- a warp's space ---- */

@@ -1,11 +1,13 @@
-/* cascades: cascaded shadow maps (see cascades.c). Exposed for its tests:
- * the split schemes, the seen depth range sdsm splits, and a cascade's
- * box (its fit and stabilisation). No GL. */
-#ifndef CASCADES_H
-#define CASCADES_H
+/* cascades_fit: the geometry of demos/cascades.c's fit, also exposed for
+ * its tests: the split schemes, the seen depth range sdsm splits, the
+ * receivers' reach, and a cascade's box (its fit and stabilisation). No
+ * GL. */
+#ifndef CASCADES_FIT_H
+#define CASCADES_FIT_H
 
 #include <stdbool.h>
 #include "camera.h"
+#include "scene.h"
 
 /* The split distances of `count` slices of near..far, splits[0..count]
  * (view depths, splits[0] = near, splits[count] = far): the practical
@@ -20,8 +22,17 @@ void cascades_splits(int count, float lambda, float near_plane, float far_plane,
 bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane,
                           float far_plane, float *lo, float *hi);
 
+/* x rounded (by `round`: floorf or ceilf) to a power of 2^(1/steps): what
+ * the stabilised fit lets change only in steps. */
+float cascades_power_step(float x, float steps, float (*round)(float));
+
+/* How far from `eye` any receiver of s can be, rounded up to a power of
+ * two (see cascades_fit.c): where the splits end when the camera's far
+ * plane lies beyond. */
+float cascades_receivers_reach(const scene *s, const float eye[3]);
+
 /* How a cascade's box keeps its texel grid while the camera moves
- * (--stabilize, in this order; cascades.c says why each, at
+ * (--stabilize, in this order; cascades_fit.c says why each, at
  * CASCADES_SIDE_STEPS and cascades_slice_sphere). */
 typedef enum cascades_stabilize {
     CASCADES_STABILIZE_STEPS,  /* the tight box, its sides and heading in steps, its corner on whole texels */
@@ -38,6 +49,12 @@ typedef enum cascades_stabilize {
  * heading). */
 void cascades_light_view(const float direction[3], const camera_view *view, cascades_stabilize stabilize,
                          mat4 light_view);
+
+/* lo..hi (empty, lo > hi, when called) grown to the light-space bounds of
+ * the parts of s's receivers' boxes inside the slice of view's frustum
+ * between view depths a and b: still empty where none is in it. */
+void cascades_slice_receivers(const scene *s, const camera_view *view, const mat4 light_view, float a, float b,
+                              vec3 lo, vec3 hi);
 
 /* The box in light view space (light_view: cascades_light_view's) of the
  * slice of view's frustum between view depths a and b, for a map `size`
