@@ -135,9 +135,9 @@ static bool cascades_grazing(const technique_frame *f, int light) {
  * fit on the pre-pass, or make the maps depend on the frame before, for
  * little: the points' range agrees with the pixels' at its near end and
  * can lie farther at its far end, which moves the first of four splits by
- * only its fourth root. The README's "Cascades against one map and the
- * warps" compares the schemes over the frames of a walk and a yaw: the
- * comparison that makes sdsm the default. */
+ * only its fourth root. make report's "Cascades against one map and the
+ * warps, on one ruler" compares the schemes over the frames of a walk and
+ * a yaw: the comparison that makes sdsm the default. */
 static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *m) {
     const scene_light *l = &f->gpu->scene->lights[light];
     const scene_camera *camera = &f->gpu->scene->camera;

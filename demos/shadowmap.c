@@ -38,8 +38,8 @@
  * lit MAE, every standard scene and the flat boxes) that misclassifies
  * least without darkening lit surfaces and that no textbook configuration
  * beats on both, with no acne at any elevation (test_shadowmap's
- * test_no_acne_at_any_elevation). The README's "Shadow maps" section has
- * the figures.
+ * test_no_acne_at_any_elevation). make report's "Shadow maps" has the
+ * figures.
  */
 #include <stdio.h>
 

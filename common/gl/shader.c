@@ -86,6 +86,7 @@ static bool shader_expand(shader_source *s, const char *name, int depth, const s
         return false;
     bool ok = depth == 0 || shader_append_line_directive(s, 1, file);
     int line = 1;
+    bool joined = false; /* the line before ended in a continuation */
     for (char *p = text; ok && *p; line++) {
         char *end = strchr(p, '\n');
         size_t n = end ? (size_t)(end - p + 1) : strlen(p);
@@ -98,8 +99,17 @@ static bool shader_expand(shader_source *s, const char *name, int depth, const s
             ok = shader_expand(s, included, depth + 1, NULL) && shader_append_line_directive(s, line + 1, file);
             if (!ok)
                 fprintf(stderr, "%s/%s:%d: included from here\n", shader_dir, s->files[file], line);
+        } else if (n >= 2 && p[n - 1] == '\n' && p[n - 2] == '\\') {
+            /* A backslash ends the line: GLSL continues it from 4.20 on,
+             * 3.30 does not, so the loader joins the two lines itself,
+             * then says which line follows. */
+            ok = shader_append(s, p, n - 2) && shader_append(s, " ", 1);
+            joined = true;
         } else {
             ok = shader_append(s, p, n);
+            if (ok && joined)
+                ok = shader_append_line_directive(s, line + 1, file);
+            joined = false;
             if (ok && depth == 0 && line == 1)
                 ok = shader_append_defines(s, shader_common_defines) && shader_append_defines(s, defines) &&
                      shader_append_line_directive(s, 2, file);

@@ -4,7 +4,9 @@
  * extension: .vert, .geom, .frag) and links them. A line
  *     #include "name.glsl"
  * is replaced by that file from the same directory (nested includes too),
- * with #line directives so that the driver's messages keep their lines; on
+ * with #line directives so that the driver's messages keep their lines
+ * (as after a line ending in a backslash, which the loader joins to the
+ * next: GLSL 3.30 has no line continuation, 4.20 on has); on
  * a compile or link error the log is printed with each "source:line"
  * rewritten as "FILE:LINE", and 0 is returned.
  *
