@@ -873,8 +873,8 @@ int main(int argc, char **argv) {
     int status = flags_parse("report", report_flags, count, argc - 1, argv + 1);
     if (status == FLAGS_HELP_ASKED) {
         printf("usage: report [flags]\n"
-               "Writes OUT/index.md and index.html: every results table of the README, from the runs of make "
-               "bench\nand make stress, stamped with the commit, date, machine, renderer and frame size.\n");
+               "Writes OUT/index.md and index.html: every results table, from the runs of make bench"
+               "\nand make stress, stamped with the commit, date, machine, renderer and frame size.\n");
         flags_print_help(stdout, report_flags, count, 2, 0);
         return 0;
     }
