@@ -115,9 +115,9 @@ static bool planar_init(const render_scene *gpu) {
     static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
     if (!render_program_load(&planar.flatten, files, 2, NULL))
         return false;
-    planar.shadow = glGetUniformLocation(planar.flatten.id, "u_shadow");
-    planar.plane = glGetUniformLocation(planar.flatten.id, "u_plane");
-    planar.reject = glGetUniformLocation(planar.flatten.id, "u_reject");
+    planar.shadow = shader_uniform(planar.flatten.id, "u_shadow");
+    planar.plane = shader_uniform(planar.flatten.id, "u_plane");
+    planar.reject = shader_uniform(planar.flatten.id, "u_reject");
     planar.casters = malloc((size_t)gpu->scene->object_count * sizeof *planar.casters);
     if (!planar.casters) {
         fprintf(stderr, "planar: out of memory\n");

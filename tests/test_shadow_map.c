@@ -3,7 +3,8 @@
  * An array map (the cascades' storage) must hold in each layer exactly
  * what a 2D map rendered from that layer's matrix holds, through the
  * library's own depth pass (shadow_map_render_depth, whose layer passes
- * the frame's shadow_map_draw_depth runs too). */
+ * the frame's shadow_map_draw_depth runs too). The shader loader's check of
+ * uniform names needs a context too, and is tested here. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -182,10 +183,28 @@ static void test_array_texture_kept(void **state) {
     assert_true(context_gl_ok("array texture"));
 }
 
+/* A uniform the program does not declare (a misspelt name) is an error
+ * that the frame's owner's check reports once; one it declares, an
+ * array's element too, is not. */
+static void test_undeclared_uniform_is_an_error(void **state) {
+    (void)state;
+    static const char *const files[] = {"lit.vert", "lit.frag"};
+    unsigned program = shader_load_program(files, 2, NULL);
+    assert_true(program != 0);
+    assert_true(shader_uniform(program, "u_model") >= 0);
+    assert_true(shader_uniform(program, "u_light_list[3]") >= 0);
+    assert_true(context_gl_ok("declared uniforms"));
+    assert_int_equal(shader_uniform(program, "u_modle"), -1);
+    assert_false(context_gl_ok("a misspelt uniform"));
+    assert_true(context_gl_ok("after the report"));
+    shader_delete_program(program);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_array_layers_match_2d_maps),
         cmocka_unit_test(test_array_texture_kept),
+        cmocka_unit_test(test_undeclared_uniform_is_an_error),
     };
     return cmocka_run_group_tests(tests, gl_setup, gl_teardown);
 }

@@ -65,9 +65,9 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
         render_reset_state();
         depth_use_camera(view); /* the nearest surface, as the frame's depth test finds it */
         render_program_use(&program, view);
-        glUniform3fv(glGetUniformLocation(program.id, "u_eye"), 1, view->eye);
+        glUniform3fv(shader_uniform(program.id, "u_eye"), 1, view->eye);
         render_eye_ray_uniforms(program.id, view, out->width, out->height);
-        int object = glGetUniformLocation(program.id, "u_object"), exact = glGetUniformLocation(program.id, "u_exact");
+        int object = shader_uniform(program.id, "u_object"), exact = shader_uniform(program.id, "u_exact");
         /* Every object, never the frame's culling: the dump's geometry is
          * the scene's, the ground truth that culling is checked against. */
         for (int i = 0; i < gpu->scene->object_count; i++) {

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "shader.h"
+
 const char *const context_backend_names[] = {
     [CONTEXT_AUTO] = "auto",
     [CONTEXT_GLFW] = "glfw",
@@ -53,6 +55,10 @@ bool context_gl_ok(const char *where) {
     }
     if (!ok && context_debug_errors == 0)
         fprintf(stderr, "%s: GL errors reported (see above)\n", where);
+    if (!shader_uniforms_ok()) {
+        fprintf(stderr, "%s: a uniform asked for that its program does not declare (see above)\n", where);
+        ok = false;
+    }
     return ok;
 }
 

@@ -13,8 +13,9 @@
  * context_create also loads the GL entry points (glad, through the
  * backend's get-proc-address: no GL symbol is linked directly) and turns on
  * KHR_debug output where the driver has it. GL errors are bugs here:
- * context_gl_ok reports every error raised since the last call, naming
- * `where`, and returns false.
+ * context_gl_ok reports every error raised since the last call, and any
+ * uniform asked of a program that does not declare it (shader_uniform),
+ * naming `where`, and returns false.
  *
  * Rendering never targets the window's framebuffer directly: see target.h.
  */

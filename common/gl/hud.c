@@ -27,8 +27,8 @@ bool hud_init(void) {
     hud.program = shader_load_program(files, 2, NULL);
     if (!hud.program)
         return false;
-    hud.viewport = glGetUniformLocation(hud.program, "u_viewport");
-    hud.scale = glGetUniformLocation(hud.program, "u_scale");
+    hud.viewport = shader_uniform(hud.program, "u_viewport");
+    hud.scale = shader_uniform(hud.program, "u_scale");
     /* stb_easy_font emits quads; GL 3.3 core draws triangles. */
     static unsigned indices[HUD_MAX_QUADS * 6];
     for (unsigned q = 0; q < HUD_MAX_QUADS; q++) {
@@ -168,7 +168,7 @@ void hud_draw(const char *text, int width, int height, int scale) {
 }
 
 void hud_destroy(void) {
-    glDeleteProgram(hud.program);
+    shader_delete_program(hud.program);
     glDeleteVertexArrays(1, &hud.vao);
     glDeleteBuffers(1, &hud.vertex_buffer);
     glDeleteBuffers(1, &hud.index_buffer);

@@ -40,15 +40,17 @@ bool render_program_load(render_program *p, const char *const *files, int count,
     *p = (render_program){.id = shader_load_program(files, count, defines)};
     if (!p->id)
         return false;
-    p->model = glGetUniformLocation(p->id, "u_model");
-    p->normal_matrix = glGetUniformLocation(p->id, "u_normal_matrix");
-    p->albedo = glGetUniformLocation(p->id, "u_albedo");
-    p->view_projection = glGetUniformLocation(p->id, "u_view_projection");
+    /* The uniforms render_draw_object sets, each where the program has it
+     * (a depth program has no albedo, an overlay no model). */
+    p->model = shader_uniform_optional(p->id, "u_model");
+    p->normal_matrix = shader_uniform_optional(p->id, "u_normal_matrix");
+    p->albedo = shader_uniform_optional(p->id, "u_albedo");
+    p->view_projection = shader_uniform_optional(p->id, "u_view_projection");
     return true;
 }
 
 void render_program_destroy(render_program *p) {
-    glDeleteProgram(p->id);
+    shader_delete_program(p->id);
     *p = (render_program){0};
 }
 
@@ -137,10 +139,10 @@ void render_eye_ray_uniforms(unsigned program, const camera_view *v, int width, 
     for (int c = 0; c < 3; c++)
         for (int row = 0; row < 3; row++)
             rotation[c][row] = v->view[c][row];
-    glUniformMatrix3fv(glGetUniformLocation(program, "u_view_rotation"), 1, GL_FALSE, (const float *)rotation);
-    glUniform4f(glGetUniformLocation(program, "u_ray"), 1 / v->projection[0][0], 1 / v->projection[1][1],
+    glUniformMatrix3fv(shader_uniform(program, "u_view_rotation"), 1, GL_FALSE, (const float *)rotation);
+    glUniform4f(shader_uniform(program, "u_ray"), 1 / v->projection[0][0], 1 / v->projection[1][1],
                 v->projection[2][0], v->projection[2][1]);
-    glUniform4f(glGetUniformLocation(program, "u_viewport"), 0, 0, (float)width, (float)height);
+    glUniform4f(shader_uniform(program, "u_viewport"), 0, 0, (float)width, (float)height);
 }
 
 static void render_mesh_upload(render_mesh *g, const scene_object *o) {
@@ -192,9 +194,9 @@ bool render_scene_create(render_scene *r, const scene *s) {
         render_scene_destroy(r);
         return false;
     }
-    r->lit_ambient = glGetUniformLocation(r->lit.id, "u_ambient");
-    r->lit_light_count = glGetUniformLocation(r->lit.id, "u_light_count");
-    r->lit_light_list = glGetUniformLocation(r->lit.id, "u_light_list");
+    r->lit_ambient = shader_uniform(r->lit.id, "u_ambient");
+    r->lit_light_count = shader_uniform(r->lit.id, "u_light_count");
+    r->lit_light_list = shader_uniform(r->lit.id, "u_light_list");
     return context_gl_ok("render_scene_create");
 }
 

@@ -159,7 +159,30 @@ static GLenum shader_stage(const char *file) {
     return 0;
 }
 
-static GLuint shader_compile(const char *file, const shader_define *defines) {
+/* Each program's expanded sources, every stage's one after another, kept
+ * from its link to its deletion for shader_uniform's check. */
+#define SHADER_MAX_PROGRAMS 256
+static struct {
+    unsigned program; /* 0: a free slot */
+    char *text;
+    char name[256];   /* its first file */
+} shader_programs[SHADER_MAX_PROGRAMS];
+static bool shader_uniform_missed; /* since shader_uniforms_ok's last call */
+
+/* Appends one stage's expanded text to *all (NULL at first). */
+static bool shader_keep_text(char **all, const char *text) {
+    size_t had = *all ? strlen(*all) : 0, n = strlen(text);
+    char *grown = realloc(*all, had + n + 1);
+    if (!grown) {
+        fprintf(stderr, "shader: out of memory\n");
+        return false;
+    }
+    memcpy(grown + had, text, n + 1);
+    *all = grown;
+    return true;
+}
+
+static GLuint shader_compile(const char *file, const shader_define *defines, char **all) {
     GLenum stage = shader_stage(file);
     if (!stage) {
         fprintf(stderr, "%s/%s: unknown shader stage (expected .vert, .geom or .frag)\n", shader_dir, file);
@@ -179,6 +202,8 @@ static GLuint shader_compile(const char *file, const shader_define *defines) {
             glGetShaderInfoLog(shader, sizeof log, NULL, log);
             fprintf(stderr, "%s/%s: compile error:\n", shader_dir, file);
             shader_print_log(&s, log);
+        }
+        if (!ok || !shader_keep_text(all, s.text)) {
             glDeleteShader(shader);
             shader = 0;
         }
@@ -187,11 +212,27 @@ static GLuint shader_compile(const char *file, const shader_define *defines) {
     return shader;
 }
 
+/* Keeps program's sources (text, taken over) under its first file's name;
+ * false after printing why. */
+static bool shader_keep_program(unsigned program, const char *name, char *text) {
+    for (int i = 0; i < SHADER_MAX_PROGRAMS; i++)
+        if (shader_programs[i].program == 0) {
+            shader_programs[i].program = program;
+            shader_programs[i].text = text;
+            snprintf(shader_programs[i].name, sizeof shader_programs[i].name, "%s", name);
+            return true;
+        }
+    fprintf(stderr, "%s/%s: more than %d programs at once\n", shader_dir, name, SHADER_MAX_PROGRAMS);
+    free(text);
+    return false;
+}
+
 unsigned shader_load_program(const char *const *files, int count, const shader_define *defines) {
     GLuint program = glCreateProgram();
     bool ok = true;
+    char *text = NULL;
     for (int i = 0; i < count && ok; i++) {
-        GLuint shader = shader_compile(files[i], defines);
+        GLuint shader = shader_compile(files[i], defines, &text);
         ok = shader != 0;
         if (ok) {
             glAttachShader(program, shader);
@@ -209,7 +250,8 @@ unsigned shader_load_program(const char *const *files, int count, const shader_d
             ok = false;
         }
     }
-    if (!ok) {
+    if (!ok || !shader_keep_program(program, files[0], text)) {
+        free(ok ? NULL : text);
         glDeleteProgram(program);
         return 0;
     }
@@ -217,4 +259,60 @@ unsigned shader_load_program(const char *const *files, int count, const shader_d
     if (lights != GL_INVALID_INDEX)
         glUniformBlockBinding(program, lights, SHADER_LIGHTS_BINDING);
     return program;
+}
+
+void shader_delete_program(unsigned program) {
+    for (int i = 0; i < SHADER_MAX_PROGRAMS && program; i++)
+        if (shader_programs[i].program == program) {
+            free(shader_programs[i].text);
+            shader_programs[i].program = 0;
+            shader_programs[i].text = NULL;
+        }
+    glDeleteProgram(program);
+}
+
+/* Whether `text` declares a uniform `name`: a statement from the word
+ * "uniform" to its semicolon that holds the name as a whole word. */
+static bool shader_declares(const char *text, const char *name) {
+    size_t n = strlen(name);
+    for (const char *p = strstr(text, "uniform"); p; p = strstr(p + 1, "uniform")) {
+        bool word = (p == text || !(isalnum((unsigned char)p[-1]) || p[-1] == '_')) && isspace((unsigned char)p[7]);
+        const char *end = strchr(p, ';');
+        for (const char *q = p; word && end && (q = strstr(q, name)) && q < end; q += n) {
+            char after = q[n];
+            if (!(isalnum((unsigned char)q[-1]) || q[-1] == '_') && !(isalnum((unsigned char)after) || after == '_'))
+                return true;
+        }
+    }
+    return false;
+}
+
+int shader_uniform(unsigned program, const char *name) {
+    int location = glGetUniformLocation(program, name);
+    if (location != -1)
+        return location;
+    char base[256];
+    snprintf(base, sizeof base, "%s", name);
+    base[strcspn(base, "[")] = '\0'; /* an element of an array: the array's name */
+    for (int i = 0; i < SHADER_MAX_PROGRAMS; i++)
+        if (shader_programs[i].program == program && program) {
+            if (!shader_declares(shader_programs[i].text, base)) {
+                fprintf(stderr, "%s/%s: the program declares no uniform %s\n", shader_dir, shader_programs[i].name,
+                        base);
+                shader_uniform_missed = true;
+            }
+            return -1;
+        }
+    fprintf(stderr, "shader: uniform %s asked of program %u, which shader_load_program did not make\n", name,
+            program);
+    shader_uniform_missed = true;
+    return -1;
+}
+
+int shader_uniform_optional(unsigned program, const char *name) { return glGetUniformLocation(program, name); }
+
+bool shader_uniforms_ok(void) {
+    bool ok = !shader_uniform_missed;
+    shader_uniform_missed = false;
+    return ok;
 }

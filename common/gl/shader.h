@@ -25,6 +25,8 @@
 #ifndef SHADER_H
 #define SHADER_H
 
+#include <stdbool.h>
+
 #define SHADER_LIGHTS_BINDING 0
 
 typedef struct shader_define {
@@ -37,5 +39,21 @@ void shader_set_directory(const char *dir);
 const char *shader_directory(void);
 /* defines: NULL, or a list ended by {NULL}. */
 unsigned shader_load_program(const char *const *files, int count, const shader_define *defines);
+/* Deletes a program of shader_load_program's (0: nothing). */
+void shader_delete_program(unsigned program);
+/* The location of uniform `name` (an array's element: "u_x[3]") in a
+ * program of shader_load_program's. -1 where the program declares it but
+ * does not use it (the compiler dropped it): setting -1 does nothing, by
+ * the GL's rule. A name the program's sources do not declare (a misspelt
+ * uniform) is said on stderr, naming the program and the uniform, and
+ * shader_uniforms_ok is false until its next call: the frame's owner
+ * checks it with the GL's errors (context_gl_ok). */
+int shader_uniform(unsigned program, const char *name);
+/* A uniform that some programs of one loader lack by design (a depth-only
+ * program has no colour; render_program_load's): its location, or -1,
+ * never an error. */
+int shader_uniform_optional(unsigned program, const char *name);
+/* No uniform was missed since the last call. */
+bool shader_uniforms_ok(void);
 
 #endif

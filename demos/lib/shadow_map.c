@@ -303,7 +303,7 @@ typedef struct shadow_map_uniform {
 
 static void shadow_map_find_uniforms(unsigned program, const shadow_map_uniform *uniforms, size_t count) {
     for (size_t i = 0; i < count; i++)
-        *uniforms[i].location = glGetUniformLocation(program, uniforms[i].name);
+        *uniforms[i].location = shader_uniform(program, uniforms[i].name);
 }
 
 /* The names of the per-light defines: light i's kind, its map's texel
@@ -324,7 +324,7 @@ static unsigned shadow_map_light_field(unsigned bits, int light) {
 static int shadow_map_light_uniform(unsigned program, const char *name, int light) {
     char element[64];
     snprintf(element, sizeof element, "%s[%d]", name, light);
-    return glGetUniformLocation(program, element);
+    return shader_uniform(program, element);
 }
 
 /* The camera program of key k. */
@@ -490,8 +490,8 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
         !render_program_load(&r->inset.program, inset_files, 2, inset_defines) ||
         !render_program_load(&r->legend.program, legend_files, 2, shadow_map_defines))
         return false;
-    r->lines.color = glGetUniformLocation(r->lines.program.id, "u_color");
-    r->legend.log2_range = glGetUniformLocation(r->legend.program.id, "u_log2_range");
+    r->lines.color = shader_uniform(r->lines.program.id, "u_color");
+    r->legend.log2_range = shader_uniform(r->legend.program.id, "u_log2_range");
     shadow_map_inset_program *p = &r->inset;
     const shadow_map_uniform uniforms[] = {
         {&p->map, "u_map"}, {&p->cube_map, "u_cube_map"}, {&p->array_map, "u_array_map"},

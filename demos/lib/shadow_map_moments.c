@@ -221,13 +221,13 @@ static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_mo
     p->id = shader_load_program(files, 2, defines);
     if (!p->id)
         return false;
-    p->radius = glGetUniformLocation(p->id, "u_radius");
-    p->axis = glGetUniformLocation(p->id, "u_axis");
-    p->layer = glGetUniformLocation(p->id, "u_layer");
+    p->radius = shader_uniform(p->id, "u_radius");
+    p->axis = shader_uniform(p->id, "u_axis");
+    p->layer = shader_uniform(p->id, "u_layer");
     glUseProgram(p->id);
-    glUniform1i(glGetUniformLocation(p->id, "u_source_2d"), SHADOW_MAP_MOMENTS_UNIT_2D);
-    glUniform1i(glGetUniformLocation(p->id, "u_source_cube"), SHADOW_MAP_MOMENTS_UNIT_CUBE);
-    glUniform1i(glGetUniformLocation(p->id, "u_source_array"), SHADOW_MAP_MOMENTS_UNIT_ARRAY);
+    glUniform1i(shader_uniform(p->id, "u_source_2d"), SHADOW_MAP_MOMENTS_UNIT_2D);
+    glUniform1i(shader_uniform(p->id, "u_source_cube"), SHADOW_MAP_MOMENTS_UNIT_CUBE);
+    glUniform1i(shader_uniform(p->id, "u_source_array"), SHADOW_MAP_MOMENTS_UNIT_ARRAY);
     return true;
 }
 
@@ -309,8 +309,8 @@ bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow
 void shadow_map_moments_destroy(shadow_map_renderer *r) {
     for (int k = 0; k <= SHADOW_MAP_MOMENTS_MSM; k++)
         for (int kind = 0; kind <= SHADOW_MAP_ARRAY; kind++)
-            glDeleteProgram(r->blur_depth[k][kind].id);
-    glDeleteProgram(r->blur_moments.id);
+            shader_delete_program(r->blur_depth[k][kind].id);
+    shader_delete_program(r->blur_moments.id);
     glDeleteFramebuffers(1, &r->blur_framebuffer);
     glDeleteVertexArrays(1, &r->blur_vao);
 }

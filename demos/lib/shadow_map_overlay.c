@@ -243,7 +243,7 @@ bool shadow_map_warp_view_init(shadow_map_warp_view *w) {
     static const char *const files[] = {"post_perspective.vert", "post_perspective.frag"};
     if (!render_program_load(&w->program, files, 2, NULL))
         return false;
-    w->space = glGetUniformLocation(w->program.id, "u_warp_space");
+    w->space = shader_uniform(w->program.id, "u_warp_space");
     return true;
 }
 

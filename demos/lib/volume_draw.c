@@ -19,7 +19,7 @@ bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
     if (!render_program_load(&d->cpu, cpu_files, (int)(sizeof cpu_files / sizeof *cpu_files), NULL) ||
         !volume_silhouette_load(&d->gpu))
         return false;
-    d->cpu_color = glGetUniformLocation(d->cpu.id, "u_color");
+    d->cpu_color = shader_uniform(d->cpu.id, "u_color");
     const scene *s = gpu->scene;
     size_t objects = (size_t)s->object_count;
     d->edges = calloc(objects, sizeof *d->edges);

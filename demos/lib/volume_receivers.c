@@ -16,9 +16,9 @@ bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
     static const char *const files[] = {"lit.vert", "volume_receiver_depth.frag"};
     if (!render_program_load(&r->program, files, (int)(sizeof files / sizeof *files), NULL))
         return false;
-    r->projection = glGetUniformLocation(r->program.id, "u_projection");
-    r->zero_to_one = glGetUniformLocation(r->program.id, "u_zero_to_one");
-    r->planes = glGetUniformLocation(r->program.id, "u_planes");
+    r->projection = shader_uniform(r->program.id, "u_projection");
+    r->zero_to_one = shader_uniform(r->program.id, "u_zero_to_one");
+    r->planes = shader_uniform(r->program.id, "u_planes");
     const scene *s = gpu->scene;
     size_t objects = (size_t)s->object_count;
     r->object_count = s->object_count;

@@ -35,8 +35,8 @@ bool volume_silhouette_load(volume_silhouette *s) {
         SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL), {NULL, 0}};
     if (!render_program_load(&s->program, files, (int)(sizeof files / sizeof *files), defines))
         return false;
-    s->light = glGetUniformLocation(s->program.id, "u_light");
-    s->topology = glGetUniformLocation(s->program.id, "u_topology");
+    s->light = shader_uniform(s->program.id, "u_light");
+    s->topology = shader_uniform(s->program.id, "u_topology");
     return true;
 }
 
