@@ -61,6 +61,8 @@ COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) commo
 DEMO_SRC := $(filter-out demos/registry.c,$(wildcard demos/*.c))
 DEMOS := $(patsubst demos/%.c,%,$(DEMO_SRC))
 TEST_SRC := $(wildcard tests/test_*.c)
+# Every C file of the suite, for the format's check.
+C_FILES := $(wildcard demos/*.[ch] demos/lib/*.[ch] common/*/*.[ch] tests/*.[ch])
 TEST_SUPPORT := $(BUILD)/tests/support.o
 TESTS := $(patsubst tests/%.c,$(BUILD)/tests/%,$(TEST_SRC))
 
@@ -76,7 +78,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test bench stress report readme-report scenes update-golden readme-flags clean help
+.PHONY: all deps demo gallery test bench stress report readme-report scenes update-golden readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -91,11 +93,13 @@ help:
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
+	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"
 	@echo "make clean          remove build/, build-san/ and out/"
 
 DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \
 	libegl-mesa0 libgl1-mesa-dri libosmesa6 libcglm-dev libstb-dev libassimp-dev \
-	assimp-testmodels libcjson-dev libembree-dev libcmocka-dev gnuplot-nox xvfb xauth xdotool ffmpeg chromium
+	assimp-testmodels libcjson-dev libembree-dev libcmocka-dev gnuplot-nox xvfb xauth xdotool ffmpeg chromium \
+	clang-format
 deps:
 	@if [ "$$(id -u)" = 0 ]; then SUDO=; elif command -v sudo >/dev/null; then SUDO=sudo; \
 	else echo "make deps: not root and no sudo; run as root:"; \
@@ -109,12 +113,14 @@ demo: $(PROGRAMS)
 gallery: $(PROGRAMS)
 	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json $(SOFT_SCENES)
 
-# First the comments' check (tests/check_comments.sh: no measured figure
-# or tracker number in a comment), itself checked first; then the suite,
+# First the C files' format (.clang-format) and the comments' check
+# (tests/check_comments.sh: no measured figure or tracker number in a
+# comment), itself checked first; then the suite,
 # twice, plain and built with ASan+UBSan (build-san/), both at once
 # (tests/run.sh).
 # `make test SANITIZE=1` runs only the sanitizer pass.
 test: $(PROGRAMS) $(TESTS)
+	@clang-format --dry-run --Werror $(C_FILES) || { echo "make test: C files not in .clang-format's style: run make format"; exit 1; }
 	@tests/check_comments.sh --self-test && tests/check_comments.sh
 ifeq ($(SANITIZE),1)
 	@tests/run.sh $(BUILD)
@@ -195,6 +201,9 @@ update-golden: $(PROGRAMS) $(BUILD)/tests/test_render
 # between the lines <!-- flags:begin --> and <!-- flags:end -->, a blank
 # line either side (test_cli fails while the copy there differs).
 README_FLAGS := $(BUILD)/readme-flags.md
+format:
+	clang-format -i $(C_FILES)
+
 readme-flags: $(BUILD)/shadows
 	$(BUILD)/shadows --flags-markdown > $(README_FLAGS)
 	awk -v table=$(README_FLAGS) ' \

@@ -88,8 +88,9 @@ static struct {
 static const flags_param cascades_params[] = {
     {"cascades", "how many slices of the view, each with its own map", GLFW_KEY_N, FLAGS_CHOICE,
      .index = &cascades.count, .choices = cascades_counts},
-    {"splits", "where slices end: sdsm (the seen depth range, Lauritzen et al. 2011), practical (Zhang et al. 2006), "
-               "uniform, log",
+    {"splits",
+     "where slices end: sdsm (the seen depth range, Lauritzen et al. 2011), practical (Zhang et al. 2006), "
+     "uniform, log",
      GLFW_KEY_S, FLAGS_CHOICE, .index = &cascades.scheme, .choices = cascades_schemes},
     {"lambda", "practical splits: the logarithmic split's weight (0: 0.9; uniform is --splits uniform)", 0,
      FLAGS_NUMBER, .number = &cascades.lambda, .fallback = CASCADES_DEFAULT_LAMBDA, .min = 0, .max = 1},
@@ -149,7 +150,7 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
     int count = atoi(cascades_counts[cascades.count]);
     float near_plane = camera->near_plane;
     float far_plane = fminf(camera->far_plane, cascades_receivers_reach(f->gpu->scene, f->view->eye));
-    float lambda = cascades.scheme == CASCADES_UNIFORM ? 0
+    float lambda = cascades.scheme == CASCADES_UNIFORM     ? 0
                    : cascades.scheme == CASCADES_PRACTICAL ? cascades_or(cascades.lambda, CASCADES_DEFAULT_LAMBDA)
                                                            : 1;
     if (cascades.scheme == CASCADES_SDSM) {

@@ -76,8 +76,8 @@ static const flags_param planar_params[] = {
      FLAGS_TOGGLE, .disabled = &planar.settings.no_stencil},
     {"offset", "projected shadows z-fight with the receiver", GLFW_KEY_O, FLAGS_TOGGLE,
      .disabled = &planar.settings.no_offset},
-    {"reject", "lights below the plane and casters beyond the light cast anti-shadows", GLFW_KEY_R,
-     FLAGS_TOGGLE, .disabled = &planar.settings.no_reject},
+    {"reject", "lights below the plane and casters beyond the light cast anti-shadows", GLFW_KEY_R, FLAGS_TOGGLE,
+     .disabled = &planar.settings.no_reject},
 };
 
 void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]) {

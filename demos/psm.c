@@ -79,13 +79,13 @@ static struct {
     bool *casters[SCENE_MAX_LIGHTS]; /* per light: the casters that can shadow what is seen */
     psm_choice choice[SCENE_MAX_LIGHTS];
     /* Scratch space of a fit: */
-    float points[PSM_MAX_POINTS][3];  /* the receivers, then the relevant casters' corners */
-    float warped[PSM_MAX_POINTS][3];  /* the same points in the warp's space */
+    float points[PSM_MAX_POINTS][3]; /* the receivers, then the relevant casters' corners */
+    float warped[PSM_MAX_POINTS][3]; /* the same points in the warp's space */
 } psm;
 
 static const flags_param psm_params[] = {
-    {"warp", "how the map is placed: post-perspective, light-space perspective, or uniform", GLFW_KEY_W,
-     FLAGS_CHOICE, .index = &psm.warp, .choices = psm_warps},
+    {"warp", "how the map is placed: post-perspective, light-space perspective, or uniform", GLFW_KEY_W, FLAGS_CHOICE,
+     .index = &psm.warp, .choices = psm_warps},
     SHADOW_MAP_PARAMS(psm.settings),
     {"overlay", "for lectures: shadowmap's overlays, texel size on screen, the post-perspective view", GLFW_KEY_V,
      FLAGS_CHOICE, .index = &psm.settings.overlay, .choices = psm_overlays},
@@ -103,7 +103,7 @@ static bool psm_place_warp(const technique_frame *f, int light, const float (*re
         snprintf(w->why, sizeof w->why, "more casters than the warp's fit holds");
         return false;
     }
-    const float (*points)[3] = (const float(*)[3])psm.points;
+    const float(*points)[3] = (const float(*)[3])psm.points;
     warp_view v;
     bool ok = warp_view_of(f->view, receivers, receiver_count, &v) &&
               (psm.warp == PSM_WARP_PSM ? warp_psm(f->view, l, &v, points, n, psm.warped, w)
@@ -237,8 +237,8 @@ static void psm_describe(char *out, size_t size) {
     /* A texel's size on screen scales as 1 / size. */
     float scale = (float)c->measured_size / (float)m->size;
     if (n > 0 && (size_t)n < size && isfinite(c->texel_pixels[1]))
-        snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px", c->texel_pixels[0] * scale,
-                 c->texel_pixels[1] * scale);
+        snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px",
+                 c->texel_pixels[0] * scale, c->texel_pixels[1] * scale);
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the

@@ -54,8 +54,9 @@ static struct {
 
 static const flags_param shadowmap_params[] = {
     SHADOW_MAP_PARAMS(shadowmap.settings),
-    {"overlay", "for lectures: texel boundaries on receivers, the light frustum, the map as an inset, texel size on "
-                "screen, the penumbra radius PCSS estimated",
+    {"overlay",
+     "for lectures: texel boundaries on receivers, the light frustum, the map as an inset, texel size on "
+     "screen, the penumbra radius PCSS estimated",
      GLFW_KEY_V, FLAGS_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
 };
 

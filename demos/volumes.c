@@ -51,10 +51,10 @@
 #include "volume_receivers.h"
 
 typedef struct volumes_settings {
-    int mode;       /* choice */
-    int silhouette; /* choice */
-    int overlay;    /* choice */
-    int extrude;    /* choice */
+    int mode;             /* choice */
+    int silhouette;       /* choice */
+    int overlay;          /* choice */
+    int extrude;          /* choice */
     bool no_depth_bounds; /* toggle */
     bool no_exact_depth;  /* toggle */
 } volumes_settings;
@@ -82,7 +82,7 @@ typedef struct volumes_caster_plan {
 /* A light's plan: every decision its count takes before it draws. */
 typedef struct volumes_light_plan {
     int light;
-    vec4 position;                /* homogeneous, world; aligned as cglm loads it */
+    vec4 position; /* homogeneous, world; aligned as cglm loads it */
     technique_hull hull;
     volume_bounds bounds;         /* where the light's volumes may count */
     volumes_caster_plan *casters; /* per object (volumes.casters) */
@@ -104,17 +104,19 @@ static struct {
 static const flags_param volumes_params[] = {
     {"mode", "z-pass (no caps) where safe, else z-fail (caps); or force one", GLFW_KEY_Z, FLAGS_CHOICE,
      .index = &volumes.settings.mode, .choices = volumes_modes},
-    {"silhouette", "where silhouettes are found: the CPU edge table or a geometry shader", GLFW_KEY_G,
-     FLAGS_CHOICE, .index = &volumes.settings.silhouette, .choices = volumes_silhouettes},
+    {"silhouette", "where silhouettes are found: the CPU edge table or a geometry shader", GLFW_KEY_G, FLAGS_CHOICE,
+     .index = &volumes.settings.silhouette, .choices = volumes_silhouettes},
     {"overlay", "for lectures: the volumes, the silhouette edges, or the stencil count as colour", GLFW_KEY_V,
      FLAGS_CHOICE, .index = &volumes.settings.overlay, .choices = volumes_overlays},
-    {"extrude", "CPU volumes swept to infinity, or trimmed past the light's reach (less fill; shadow edges may "
-                "move by rounding)",
+    {"extrude",
+     "CPU volumes swept to infinity, or trimmed past the light's reach (less fill; shadow edges may "
+     "move by rounding)",
      GLFW_KEY_T, FLAGS_CHOICE, .index = &volumes.settings.extrude, .choices = volumes_extrusions},
     {"depth-bounds", "volumes also count where no receiver in the light's reach is (no decision changes)", GLFW_KEY_B,
      FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_bounds},
-    {"exact-depth", "volumes counted against the exact depth of receivers huge seen from the eye (else their "
-                    "shadow edges move)",
+    {"exact-depth",
+     "volumes counted against the exact depth of receivers huge seen from the eye (else their "
+     "shadow edges move)",
      GLFW_KEY_E, FLAGS_TOGGLE, .disabled = &volumes.settings.no_exact_depth},
 };
 
@@ -214,8 +216,7 @@ static void volumes_plan_light(const technique_frame *f, int l, volumes_light_pl
     scene_light_homogeneous(&s->lights[l], plan->position);
     technique_light_hull(f, l, &plan->hull);
     volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
-    volume_bounds_light(f, &plan->hull, volumes.has_depth_bounds && !volumes.settings.no_depth_bounds,
-                        &plan->bounds);
+    volume_bounds_light(f, &plan->hull, volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, &plan->bounds);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     for (int i = 0; i < s->object_count; i++)
@@ -419,7 +420,7 @@ static void volumes_describe(char *out, size_t size) {
                       volumes.built_count, volumes.reused_count, (double)volumes.draw.cache_bytes / VOLUME_DRAW_MIB);
     if (n > 0 && (size_t)n < size)
         n += snprintf(out + n, size - (size_t)n, "; depth bounds %s",
-                      !volumes.has_depth_bounds           ? "off (no GL_EXT_depth_bounds_test)"
+                      !volumes.has_depth_bounds          ? "off (no GL_EXT_depth_bounds_test)"
                       : volumes.settings.no_depth_bounds ? "OFF"
                                                          : "on");
     if (n > 0 && (size_t)n < size) {

@@ -47,8 +47,8 @@ int support_run(const char *command, char *stderr_text, size_t capacity) {
 const char *support_verbose_line(const char *program, const char *scene, const char *flags, const char *marker) {
     static char text[16384];
     char command[2048];
-    snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --frames 1 --verbose", support_program(program),
-             scene, flags);
+    snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --frames 1 --verbose",
+             support_program(program), scene, flags);
     assert_int_equal(support_run(command, text, sizeof text), 0);
     return strstr(text, marker);
 }
@@ -216,8 +216,9 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
     assert_non_null(*heatmap);
     shadowdiff_result r;
     assert_true(shadowdiff_compare(reference, test, NULL, &r, *heatmap));
-    fprintf(stderr, "    %-26s %s: %ld compared, false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
-                    "misclassified %.4f %%\n",
+    fprintf(stderr,
+            "    %-26s %s: %ld compared, false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
+            "misclassified %.4f %%\n",
             name, flags, r.compared, r.false_shadow_percent, r.false_shadow, r.false_lit_percent, r.false_lit,
             r.misclassified_percent);
     return r;

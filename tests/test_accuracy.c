@@ -38,8 +38,9 @@ static shadowdiff_result compare_on_ground(const char *reference_dir, const char
     long ground_pixels = 0;
     for (long i = 0; i < (long)reference.width * reference.height; i++)
         ground_pixels += reference.ids[i] == 0 && reference.visibility[i] >= 0;
-    fprintf(stderr, "    %s vs %s, ground: %ld compared of %ld ground pixels; false-shadow %.4f %%, "
-                    "false-lit %.4f %%, misclassified %.4f %%, MAE %.5f\n",
+    fprintf(stderr,
+            "    %s vs %s, ground: %ld compared of %ld ground pixels; false-shadow %.4f %%, "
+            "false-lit %.4f %%, misclassified %.4f %%, MAE %.5f\n",
             test_dir, reference_dir, r.compared, ground_pixels, r.false_shadow_percent, r.false_lit_percent,
             r.misclassified_percent, r.mean_abs_error);
     assert_true(r.compared > ground_pixels / 2);
@@ -97,7 +98,9 @@ static void check_ground_colour(const char *scene, const char *name, dump_frame 
         ground++;
         int worst = 0;
         for (int c = 0; c < 3; c++)
-            worst = abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) > worst ? abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) : worst;
+            worst = abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c]) > worst
+                        ? abs(ref_rgb[i * 4 + c] - test_rgb[i * 4 + c])
+                        : worst;
         differ += worst > SUPPORT_TOLERANCE;
     }
     fprintf(stderr, "    %s, ground colour: %ld of %ld pixels differ by more than %d/255 (%.4f %%)\n", name, differ,

@@ -200,8 +200,8 @@ static int read_csv(const char *dir, csv_row *rows) {
             assert_true(end != fields[c] && *end == '\0' && isfinite(v) && v >= 0);
         }
         assert_string_equal(fields[CSV_FRAME_SIZE], QUICK_SIZE); /* every run here is --quick */
-        assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);  /* a frame takes time */
-        assert_true(atol(fields[CSV_COMPARED]) > 1000); /* pixels were compared */
+        assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);           /* a frame takes time */
+        assert_true(atol(fields[CSV_COMPARED]) > 1000);          /* pixels were compared */
         check_ratio(fields);
         assert_true(n < CSV_MAX_ROWS);
         csv_row *r = &rows[n++];

@@ -140,7 +140,8 @@ static void assert_on_grid(float coordinate, float texel) {
 /* The test slice's corners lie inside lo..hi, to the precision of
  * view->corners (CORNERS_RELATIVE of the box's size: the box's
  * light-space depth is the slice's own, with no margin). */
-static void assert_slice_inside(const camera_view *view, const mat4 light_view, const float lo[3], const float hi[3]) {
+static void assert_slice_inside(const camera_view *view, const mat4 light_view, const float lo[3],
+                                const float hi[3]) {
     float tolerance = CORNERS_RELATIVE * (hi[0] - lo[0]);
     for (int c = 0; c < 8; c++) {
         float depth = c & 4 ? SLICE_FAR : SLICE_NEAR, t = (depth - NEAR_PLANE) / (FAR_PLANE - NEAR_PLANE), p[3], q[3];
@@ -169,9 +170,8 @@ static void test_sphere_box(void **state) {
         slice_box(&view, light_view, CASCADES_STABILIZE_SPHERE, lo, hi);
         slice_box(&view, free_view, CASCADES_STABILIZE_OFF, free_lo, free_hi);
         float size = hi[0] - lo[0], texel = size / SIZE;
-        fprintf(stderr, "    yaw %5.1f: sphere's box %.6g x %.6g at (%.6g, %.6g) texels; free %.6g x %.6g\n",
-                yaws[y], size, hi[1] - lo[1], lo[0] / texel, lo[1] / texel, free_hi[0] - free_lo[0],
-                free_hi[1] - free_lo[1]);
+        fprintf(stderr, "    yaw %5.1f: sphere's box %.6g x %.6g at (%.6g, %.6g) texels; free %.6g x %.6g\n", yaws[y],
+                size, hi[1] - lo[1], lo[0] / texel, lo[1] / texel, free_hi[0] - free_lo[0], free_hi[1] - free_lo[1]);
         assert_relative(size, hi[1] - lo[1]);
         if (y == 0) {
             glm_vec3_copy(lo, first_lo);

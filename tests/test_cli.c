@@ -63,7 +63,8 @@ static void test_bad_technique_parameters(void **state) {
         {"psm", "--map-size 3", "--map-size", "'3'"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        snprintf(command, sizeof command, "%s --backend egl --frames 1 %s", support_program(cases[i][0]), cases[i][1]);
+        snprintf(command, sizeof command, "%s --backend egl --frames 1 %s", support_program(cases[i][0]),
+                 cases[i][1]);
         assert_int_equal(support_run(command, err, sizeof err), EXIT_USAGE);
         assert_int_equal(support_count_lines(err), 1);
         assert_non_null(strstr(err, cases[i][2]));
@@ -79,8 +80,8 @@ static void test_missing_scene(void **state) {
 
 static void test_malformed_scene(void **state) {
     (void)state;
-    expect_failure("--frames 1 --scene tests/data/cli_syntax_error.json", EXIT_RUNTIME,
-                   "cli_syntax_error.json", "syntax");
+    expect_failure("--frames 1 --scene tests/data/cli_syntax_error.json", EXIT_RUNTIME, "cli_syntax_error.json",
+                   "syntax");
 }
 
 static void test_broken_model_file(void **state) {
@@ -155,8 +156,10 @@ static void test_broken_shader_names_file_and_line(void **state) {
 static void test_help_lists_flags_and_toggles(void **state) {
     (void)state;
     char command[4096];
-    snprintf(command, sizeof command, "%s --help | grep -q -- '--no-stencil' && %s --help | grep -q -- "
-             "'--backend auto|glfw|egl|osmesa'", support_program("planar"), support_program("shadows"));
+    snprintf(command, sizeof command,
+             "%s --help | grep -q -- '--no-stencil' && %s --help | grep -q -- "
+             "'--backend auto|glfw|egl|osmesa'",
+             support_program("planar"), support_program("shadows"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
@@ -180,7 +183,8 @@ static void test_readme_flags_current(void **state) {
     snprintf(expected, size, "\n<!-- flags:begin -->\n\n%s\n<!-- flags:end -->\n", table);
     bool current = strstr(readme, expected) != NULL;
     if (!current)
-        print_message("README.md's keys and flags are not build/shadows --flags-markdown's: run `make readme-flags`\n");
+        print_message(
+            "README.md's keys and flags are not build/shadows --flags-markdown's: run `make readme-flags`\n");
     free(expected);
     free(readme);
     free(table);
@@ -192,7 +196,8 @@ static void test_readme_flags_current(void **state) {
 static void test_headless_run_says_nothing_written(void **state) {
     (void)state;
     char command[2048];
-    snprintf(command, sizeof command, "{ %s --backend egl --size 64x36 --frames 2 1>&2; }", support_program("planar"));
+    snprintf(command, sizeof command, "{ %s --backend egl --size 64x36 --frames 2 1>&2; }",
+             support_program("planar"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
     assert_int_equal(support_count_lines(err), 1);
     assert_non_null(strstr(err, "2 frames of"));

@@ -223,7 +223,8 @@ static void test_window_shows_the_same(void **state) {
 static void test_refused_with_gallery(void **state) {
     (void)state;
     char command[1024];
-    snprintf(command, sizeof command, "%s --backend egl --compare --gallery " DIR "/gallery assets/scenes/simple.json",
+    snprintf(command, sizeof command,
+             "%s --backend egl --compare --gallery " DIR "/gallery assets/scenes/simple.json",
              support_program("shadows"));
     assert_int_equal(support_run(command, err, sizeof err), EXIT_USAGE);
     assert_int_equal(support_count_lines(err), 1);
@@ -315,10 +316,8 @@ static void test_frame_loop_never_waits(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cells_are_the_programs_pictures),
-        cmocka_unit_test(test_same_command_same_bytes),
-        cmocka_unit_test(test_window_shows_the_same),
-        cmocka_unit_test(test_refused_with_gallery),
+        cmocka_unit_test(test_cells_are_the_programs_pictures), cmocka_unit_test(test_same_command_same_bytes),
+        cmocka_unit_test(test_window_shows_the_same),           cmocka_unit_test(test_refused_with_gallery),
         cmocka_unit_test(test_frame_loop_never_waits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

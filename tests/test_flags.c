@@ -36,8 +36,8 @@ static const flags_param params[] = {
     {"verbose", "say more\nover two lines", 0, FLAGS_SWITCH, .on = &v.verbose},
     {"pick", "one each time", 0, FLAGS_LIST, .repeat = true, .items = v.picks, .count = &v.pick_count, .min = 1,
      .max = TEST_MAX_ITEMS, .what = "names"},
-    {"gallery", "the rest", 0, FLAGS_LIST, .items = v.rest, .count = &v.rest_count, .min = 2,
-     .max = TEST_MAX_ITEMS, .what = "DIR then a scene"},
+    {"gallery", "the rest", 0, FLAGS_LIST, .items = v.rest, .count = &v.rest_count, .min = 2, .max = TEST_MAX_ITEMS,
+     .what = "DIR then a scene"},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 enum { param_count = sizeof params / sizeof *params };
@@ -108,9 +108,9 @@ static void test_list_repeats(void **state) {
 static void test_bad_command_lines(void **state) {
     (void)state;
     static const char *const bad[] = {
-        "a --bogus",   "a --filter blur", "a --bias 0",    "a --bias x",      "a --frames 101",
-        "a --size 3",  "a --frames",      "a --verbose=1", "a --no-stencil=1", "",
-        "a b c d",     "a --stencil",     "a --no-filter",
+        "a --bogus",  "a --filter blur", "a --bias 0",    "a --bias x",       "a --frames 101",
+        "a --size 3", "a --frames",      "a --verbose=1", "a --no-stencil=1", "",
+        "a b c d",    "a --stencil",     "a --no-filter",
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
         assert_int_equal(parse(bad[i]), FLAGS_EXIT_USAGE);

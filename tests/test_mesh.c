@@ -34,15 +34,16 @@
 #define UNDER_ASAN 0
 #endif
 
-
 /* The text is one line holding every one of the (NULL-terminated) parts. */
 static void assert_one_line_with(const char *text, ...) {
     const char *newline = strchr(text, '\n');
-    if (!newline || newline[1] != '\0') fail_msg("expected exactly one line, got \"%s\"", text);
+    if (!newline || newline[1] != '\0')
+        fail_msg("expected exactly one line, got \"%s\"", text);
     va_list parts;
     va_start(parts, text);
     for (const char *part = va_arg(parts, const char *); part; part = va_arg(parts, const char *)) {
-        if (!strstr(text, part)) fail_msg("expected \"%s\" in \"%s\"", part, text);
+        if (!strstr(text, part))
+            fail_msg("expected \"%s\" in \"%s\"", part, text);
     }
     va_end(parts);
 }
@@ -101,10 +102,12 @@ static void assert_sane_mesh(const mesh *m) {
         assert_float_equal(sqrt(length), 1.0, 1e-3);
     }
     double diagonal = 0;
-    for (int k = 0; k < 3; k++) diagonal += pow(m->bounds_max[k] - m->bounds_min[k], 2);
+    for (int k = 0; k < 3; k++)
+        diagonal += pow(m->bounds_max[k] - m->bounds_min[k], 2);
     for (uint32_t i = 0; i < m->index_count; i += 3) {
         double cross[3];
-        for (int k = 0; k < 3; k++) assert_true(m->indices[i + k] < m->vertex_count);
+        for (int k = 0; k < 3; k++)
+            assert_true(m->indices[i + k] < m->vertex_count);
         cross_of(m, i, cross);
         assert_true(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 1e-20 * diagonal * diagonal);
     }
@@ -118,7 +121,8 @@ static void assert_normals_follow_winding(const mesh *m) {
         double cross[3], normal_sum[3] = {0, 0, 0};
         cross_of(m, i, cross);
         for (int k = 0; k < 3; k++) {
-            for (int j = 0; j < 3; j++) normal_sum[j] += m->vertices[m->indices[i + k]].normal[j];
+            for (int j = 0; j < 3; j++)
+                normal_sum[j] += m->vertices[m->indices[i + k]].normal[j];
         }
         assert_true(cross[0] * normal_sum[0] + cross[1] * normal_sum[1] + cross[2] * normal_sum[2] > 0);
     }
@@ -288,7 +292,8 @@ static void test_generators_reject_bad_sizes(void **state) {
     bool made;
     support_capture_stderr();
     made = mesh_make_sphere(&m, 1, 2);
-    expect_generator_error(made, &m, support_release_stderr(), "sphere: ", "segments must be between 3 and 1024 (got 2)");
+    expect_generator_error(made, &m, support_release_stderr(),
+                           "sphere: ", "segments must be between 3 and 1024 (got 2)");
     support_capture_stderr();
     made = mesh_make_cylinder(&m, 1, 1, MESH_MAX_SEGMENTS + 1);
     expect_generator_error(made, &m, support_release_stderr(), "cylinder: ", "segments");
@@ -318,8 +323,8 @@ static void test_weld_joins_copies_within_tolerance(void **state) {
      * bit-identical, one off by far less than the tolerance (1e-6 of the
      * diagonal). The last vertex is near (1,0,0) but well outside it. */
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},        {{0, 1, 0}, {0, 0, 1}},
-        {{1, 0, 0}, {0, 0, 1}}, {{1, 1, 0}, {0, 0, 1}},        {{0, 1.0f + 1e-9f, 0}, {0, 0, 1}},
+        {{0, 0, 0}, {0, 0, 1}},      {{1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}},
+        {{1, 0, 0}, {0, 0, 1}},      {{1, 1, 0}, {0, 0, 1}}, {{0, 1.0f + 1e-9f, 0}, {0, 0, 1}},
         {{1.001f, 0, 0}, {0, 0, 1}},
     };
     uint32_t indices[] = {0, 1, 2, 3, 4, 5};
@@ -341,7 +346,7 @@ static void test_edge_counts_see_non_manifold_edges(void **state) {
     (void)state;
     /* Three triangles on one edge, like pages of a book. */
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
+        {{0, 0, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
         {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}},
     };
     uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4};
@@ -412,7 +417,7 @@ static void test_edge_table_of_closed_box(void **state) {
 static void test_edge_table_of_open_and_non_manifold_meshes(void **state) {
     (void)state;
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
+        {{0, 0, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
         {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}},
     };
     uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4};
@@ -468,7 +473,8 @@ static void test_sanitize_repairs_hand_made_mesh(void **state) {
     assert_sane_mesh(&m);
     assert_float_equal(m.bounds_max[0], 2, 0);
     assert_float_equal(m.bounds_max[2], 0, 0);
-    for (uint32_t v = 0; v < m.vertex_count; v++) assert_float_equal(m.vertices[v].normal[2], 1, 1e-6);
+    for (uint32_t v = 0; v < m.vertex_count; v++)
+        assert_float_equal(m.vertices[v].normal[2], 1, 1e-6);
     mesh_free(&m);
 }
 
@@ -650,7 +656,8 @@ static void test_load_checks_header_claims(void **state) {
         {"tests/data/io_off_cube.off", NULL, 12},
         {"tests/data/io_off_claims_too_many.off",
          "OFF header claims 100000000 vertices and 6 faces: at least 200000012 bytes, but the file holds 171 after "
-         "the header (refused before assimp allocates for them)", 0},
+         "the header (refused before assimp allocates for them)",
+         0},
         {"tests/data/io_off_no_keyword_claims_too_many.off", "OFF header claims 8 vertices and 100000000 faces", 0},
         {"tests/data/io_ply_triangle.ply", NULL, 1},
         {"tests/data/io_ply_claims_too_many.ply",
@@ -680,8 +687,8 @@ static void test_load_removes_non_finite_triangles(void **state) {
     bool loaded = mesh_load_file(&m, "tests/data/mesh_nan_vertex.obj");
     const char *text = support_release_stderr();
     assert_true(loaded);
-    assert_one_line_with(text, "warning: tests/data/mesh_nan_vertex.obj: ",
-                         "removed 0 degenerate and 2 non-finite triangles", NULL);
+    assert_one_line_with(
+        text, "warning: tests/data/mesh_nan_vertex.obj: ", "removed 0 degenerate and 2 non-finite triangles", NULL);
     assert_int_equal(m.index_count, 12);
     assert_sane_mesh(&m);
     assert_bounds(&m, (const float[3]){0, 0, 0}, (const float[3]){1, 1, 1});
@@ -737,8 +744,7 @@ static void test_load_errors(void **state) {
                       "no triangles left after removing 2 degenerate and 0 non-finite");
     expect_load_error("tests/data/mesh_lines_only.obj", "no triangles");
     expect_load_error("tests/data/mesh_bad_index.obj", "OBJ:");
-    expect_load_error("tests/data/mesh_single_vertex_line.obj",
-                      "line 8: a line statement needs 2 or more vertices");
+    expect_load_error("tests/data/mesh_single_vertex_line.obj", "line 8: a line statement needs 2 or more vertices");
     expect_load_error("tests/data/no_such_file.obj", "cannot open: No such file or directory");
     expect_load_error("tests/data", "not a regular file");
     expect_load_error("tests/data/scene_good.json", ""); /* assimp has no reader for it */

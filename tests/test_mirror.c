@@ -78,10 +78,11 @@ static void test_reference_sees_mirror_image(void **state) {
         ids += mirrored.ids[i] != unmirrored.ids[i];
         visibility += mirrored.ids[i] == unmirrored.ids[i] && mirrored.visibility[i] != unmirrored.visibility[i];
     }
-    long colour = image_compare(mirrored_rgba, unmirrored_rgba, mirrored.width, mirrored.height, SUPPORT_TOLERANCE,
-                                NULL);
-    fprintf(stderr, "    mirrored against the unmirrored scene turned, of %ld pixels (%ld surface): "
-                    "ids differ on %ld, visibility on %ld, colour by more than %d/255 on %ld\n",
+    long colour =
+        image_compare(mirrored_rgba, unmirrored_rgba, mirrored.width, mirrored.height, SUPPORT_TOLERANCE, NULL);
+    fprintf(stderr,
+            "    mirrored against the unmirrored scene turned, of %ld pixels (%ld surface): "
+            "ids differ on %ld, visibility on %ld, colour by more than %d/255 on %ld\n",
             pixels, surface, ids, visibility, SUPPORT_TOLERANCE, colour);
     assert_true(surface > pixels / 2);
     assert_true(ids <= pixels * MIRROR_MAX_DIFFERING);
@@ -124,8 +125,8 @@ static void test_every_technique_within_bound(void **state) {
         snprintf(name, sizeof name, "mirror_%zu", i);
         dump_frame reference, test;
         unsigned char *heatmap;
-        shadowdiff_result r = support_measure_dumps(c->program, MIRRORED, "", c->flags, name, &reference, &test,
-                                                    &heatmap);
+        shadowdiff_result r =
+            support_measure_dumps(c->program, MIRRORED, "", c->flags, name, &reference, &test, &heatmap);
         if (c->receiver) {
             const shadowdiff_settings settings = {.receiver = c->receiver};
             assert_true(shadowdiff_compare(&reference, &test, &settings, &r, NULL));
@@ -164,8 +165,9 @@ static void test_mirrored_node_renders_as_scene_mirror(void **state) {
         visibility += node.ids[i] >= 0 && scene.ids[i] >= 0 && node.visibility[i] != scene.visibility[i];
     }
     long colour = image_compare(node_rgba, scene_rgba, node.width, node.height, SUPPORT_TOLERANCE, NULL);
-    fprintf(stderr, "    mirrored node against the scene's mirror, of %ld pixels: surface differs on %ld, "
-                    "visibility on %ld, colour by more than %d/255 on %ld\n",
+    fprintf(stderr,
+            "    mirrored node against the scene's mirror, of %ld pixels: surface differs on %ld, "
+            "visibility on %ld, colour by more than %d/255 on %ld\n",
             pixels, surface, visibility, SUPPORT_TOLERANCE, colour);
     assert_true(surface <= pixels * MIRROR_MAX_DIFFERING);
     assert_true(visibility <= pixels * MIRROR_MAX_DIFFERING);
@@ -180,8 +182,8 @@ static void test_mirrored_node_renders_as_scene_mirror(void **state) {
         snprintf(name, sizeof name, "mirror_node_%zu", i);
         dump_frame reference, test;
         unsigned char *heatmap;
-        shadowdiff_result r = support_measure_dumps("volumes", NODE_MIRRORED, "", volume_flags[i], name, &reference,
-                                                    &test, &heatmap);
+        shadowdiff_result r =
+            support_measure_dumps("volumes", NODE_MIRRORED, "", volume_flags[i], name, &reference, &test, &heatmap);
         assert_true(r.compared > pixels / 2);
         assert_true(r.misclassified_percent <= MIRROR_VOLUMES_MAX_MISCLASSIFIED_PERCENT);
         free(heatmap);

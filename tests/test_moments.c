@@ -44,18 +44,38 @@ static const struct {
     double max_umbra_mae[FILTER_COUNT], max_lit_mae[FILTER_COUNT], max_penumbra_mae[FILTER_COUNT];
 } cases[] = {
     /* an area point light: a cube map */
-    {"shadowmap", "assets/scenes/soft_table.json", MOMENTS_SIZE, {0.039, 0.049, 0.045, 0.044},
-     {0.002, 0.001, 0.002, 0.002}, {0.2, 0.18, 0.15, 0.14}},
+    {"shadowmap",
+     "assets/scenes/soft_table.json",
+     MOMENTS_SIZE,
+     {0.039, 0.049, 0.045, 0.044},
+     {0.002, 0.001, 0.002, 0.002},
+     {0.2, 0.18, 0.15, 0.14}},
     /* an area sun: a 2D map, then cascades' array map */
-    {"shadowmap", "assets/scenes/soft_sun.json", MOMENTS_SIZE, {0.16, 0.33, 0.21, 0.19},
-     {0.002, 0.001, 0.004, 0.003}, {0.26, 0.31, 0.2, 0.18}},
-    {"cascades", "assets/scenes/soft_sun.json", MOMENTS_SIZE, {0.13, 0.26, 0.15, 0.13},
-     {0.001, 0.001, 0.002, 0.002}, {0.26, 0.37, 0.24, 0.2}},
+    {"shadowmap",
+     "assets/scenes/soft_sun.json",
+     MOMENTS_SIZE,
+     {0.16, 0.33, 0.21, 0.19},
+     {0.002, 0.001, 0.004, 0.003},
+     {0.26, 0.31, 0.2, 0.18}},
+    {"cascades",
+     "assets/scenes/soft_sun.json",
+     MOMENTS_SIZE,
+     {0.13, 0.26, 0.15, 0.13},
+     {0.001, 0.001, 0.002, 0.002},
+     {0.26, 0.37, 0.24, 0.2}},
     /* a hard spot light, a 2D map; and psm's warped one */
-    {"shadowmap", "assets/scenes/simple.json", MOMENTS_SIZE, {0.002, 0.003, 0.003, 0.003},
-     {0.001, 0.001, 0.001, 0.001}, {1, 1, 1, 1}},
-    {"psm", "assets/scenes/simple.json", MOMENTS_SIZE, {0.002, 0.003, 0.003, 0.003},
-     {0.001, 0.001, 0.001, 0.001}, {1, 1, 1, 1}},
+    {"shadowmap",
+     "assets/scenes/simple.json",
+     MOMENTS_SIZE,
+     {0.002, 0.003, 0.003, 0.003},
+     {0.001, 0.001, 0.001, 0.001},
+     {1, 1, 1, 1}},
+    {"psm",
+     "assets/scenes/simple.json",
+     MOMENTS_SIZE,
+     {0.002, 0.003, 0.003, 0.003},
+     {0.001, 0.001, 0.001, 0.001},
+     {1, 1, 1, 1}},
 };
 
 static void test_filters_against_reference(void **state) {

@@ -15,8 +15,12 @@
 /* Float rounding of a few operations on coordinates of about 10. */
 #define TOLERANCE 1e-4
 
-static const scene_camera base = {
-    .position = {2, 3, 10}, .target = {1, 1, 0}, .up = {0, 1, 0}, .fov_deg = 60, .near_plane = 0.1f, .far_plane = 100};
+static const scene_camera base = {.position = {2, 3, 10},
+                                  .target = {1, 1, 0},
+                                  .up = {0, 1, 0},
+                                  .fov_deg = 60,
+                                  .near_plane = 0.1f,
+                                  .far_plane = 100};
 
 static void assert_vec3(const float *actual, float x, float y, float z) {
     assert_float_equal(actual[0], x, TOLERANCE);

@@ -152,8 +152,12 @@ static void test_caster_in_tilted_plane_far_away(void **state) {
 
 static void test_camera_view_centres_target(void **state) {
     (void)state;
-    const scene_camera c = {.position = {4, 3, 5}, .target = {0, 1, 0}, .up = {0, 1, 0},
-                            .fov_deg = 45, .near_plane = 0.1f, .far_plane = 50};
+    const scene_camera c = {.position = {4, 3, 5},
+                            .target = {0, 1, 0},
+                            .up = {0, 1, 0},
+                            .fov_deg = 45,
+                            .near_plane = 0.1f,
+                            .far_plane = 50};
     camera_view v;
     camera_view_compute(&c, 16.0f / 9.0f, &v);
     vec4 target = {0, 1, 0, 1}, clip;
@@ -174,8 +178,8 @@ static void test_camera_orbit_keeps_distance_and_stops_at_pole(void **state) {
     scene_camera c = {.position = {0, 0, 10}, .target = {0, 0, 0}, .up = {0, 1, 0}};
     camera_orbit(&c, glm_rad(90), 0, 1, CAMERA_ORBIT_ANY);
     assert_true(fabsf(glm_vec3_norm(c.position) - 10) < EPS);
-    assert_true(fabsf(c.position[0] - 10) < 1e-3f); /* turned about +Y */
-    camera_orbit(&c, 0, glm_rad(200), 0.5f, CAMERA_ORBIT_ANY);    /* far past the pole */
+    assert_true(fabsf(c.position[0] - 10) < 1e-3f);            /* turned about +Y */
+    camera_orbit(&c, 0, glm_rad(200), 0.5f, CAMERA_ORBIT_ANY); /* far past the pole */
     assert_true(fabsf(glm_vec3_norm(c.position) - 5) < EPS);
     float elevation = glm_deg(asinf(c.position[1] / 5));
     assert_true(elevation > 88.9f && elevation < 89.1f);
@@ -291,8 +295,9 @@ static void test_planar_case(void **state) {
     long receiver_pixels = 0;
     for (long i = 0; i < (long)reference.width * reference.height; i++)
         receiver_pixels += reference.ids[i] == receiver;
-    fprintf(stderr, "    %-24s %-12s on %s: %ld compared of %ld; false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
-                    "misclassified %.4f %%\n",
+    fprintf(stderr,
+            "    %-24s %-12s on %s: %ld compared of %ld; false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
+            "misclassified %.4f %%\n",
             c->name, c->flags, c->receiver, r.compared, receiver_pixels, r.false_shadow_percent, r.false_shadow,
             r.false_lit_percent, r.false_lit, r.misclassified_percent);
     assert_true(r.compared * 4 > receiver_pixels);
@@ -324,7 +329,7 @@ int main(void) {
     for (size_t i = 0; i < UNIT_COUNT; i++)
         tests[count++] = units[i];
     for (size_t i = 0; i < PLANAR_CASE_COUNT; i++)
-        tests[count++] = (struct CMUnitTest){.name = planar_cases[i].name, .test_func = test_planar_case,
-                                             .initial_state = (void *)&planar_cases[i]};
+        tests[count++] = (struct CMUnitTest){
+            .name = planar_cases[i].name, .test_func = test_planar_case, .initial_state = (void *)&planar_cases[i]};
     return _cmocka_run_group_tests("planar and camera", tests, count, NULL, NULL);
 }

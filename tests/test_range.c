@@ -54,8 +54,12 @@
 /* ---- corners and projection, in process ---- */
 
 static scene_camera simple_camera(float near_plane, float far_plane) {
-    return (scene_camera){.position = {7.5f, 6, 9.5f}, .target = {0, 0.6f, 0}, .up = {0, 1, 0}, .fov_deg = 45,
-                          .near_plane = near_plane, .far_plane = far_plane};
+    return (scene_camera){.position = {7.5f, 6, 9.5f},
+                          .target = {0, 0.6f, 0},
+                          .up = {0, 1, 0},
+                          .fov_deg = 45,
+                          .near_plane = near_plane,
+                          .far_plane = far_plane};
 }
 
 /* Just beyond CAMERA_INVERSE_MAX_RATIO, where the corners switch to the
@@ -151,7 +155,7 @@ static void test_scenes_pass_the_depth_check(void **state) {
             bool loaded = scene_load(&s, path);
             support_release_stderr();
             if (!loaded)
-                continue; /* the files that test refusals */
+                continue;                             /* the files that test refusals */
             if (!camera_check_depth(&s, path, false)) /* the standard depth: every file keeps it */
                 fail_msg("%s: refused", path);
             scene_free(&s);

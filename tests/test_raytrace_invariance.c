@@ -66,12 +66,9 @@ typedef struct invariance_case {
 } invariance_case;
 
 static const invariance_case invariance_cases[] = {
-    {"translated 1e5", {1e5, 1e5, 1e5}, 0, 0, 0},
-    {"translated 1e6", {1e6, -1e6, 1e6}, 0, 0, 0},
-    {"scaled 1e-3", {0, 0, 0}, 1e-3, 0, 0},
-    {"scaled 1e4", {0, 0, 0}, 1e4, 0, 0},
-    {"near 1e-4 far 1e5", {0, 0, 0}, 0, 1e-4, 1e5},
-    {"near 0.1 far 1e7", {0, 0, 0}, 0, 0.1, 1e7},
+    {"translated 1e5", {1e5, 1e5, 1e5}, 0, 0, 0},   {"translated 1e6", {1e6, -1e6, 1e6}, 0, 0, 0},
+    {"scaled 1e-3", {0, 0, 0}, 1e-3, 0, 0},         {"scaled 1e4", {0, 0, 0}, 1e4, 0, 0},
+    {"near 1e-4 far 1e5", {0, 0, 0}, 0, 1e-4, 1e5}, {"near 0.1 far 1e7", {0, 0, 0}, 0, 0.1, 1e7},
 };
 
 static double case_scale(const invariance_case *c) { return c->scale != 0 ? c->scale : 1; }
@@ -118,10 +115,10 @@ static void move_camera(cJSON *camera, const invariance_case *c) {
     move_point(camera, "target", NULL, c);
     const cJSON *near_plane = cJSON_GetObjectItemCaseSensitive(camera, "near");
     const cJSON *far_plane = cJSON_GetObjectItemCaseSensitive(camera, "far");
-    double near_value = c->near_plane != 0 ? c->near_plane
-                                           : (near_plane ? near_plane->valuedouble : scene_near) * case_scale(c);
-    double far_value = c->far_plane != 0 ? c->far_plane
-                                         : (far_plane ? far_plane->valuedouble : scene_far) * case_scale(c);
+    double near_value =
+        c->near_plane != 0 ? c->near_plane : (near_plane ? near_plane->valuedouble : scene_near) * case_scale(c);
+    double far_value =
+        c->far_plane != 0 ? c->far_plane : (far_plane ? far_plane->valuedouble : scene_far) * case_scale(c);
     set_item(camera, "near", cJSON_CreateNumber(near_value));
     set_item(camera, "far", cJSON_CreateNumber(far_value));
 }
@@ -187,8 +184,8 @@ static void expect_same_shadows(const char *what, const dump_frame *reference, c
     assert_true(shadowdiff_compare(reference, test, &settings, &r, NULL));
     long comparable = comparable_pixels(reference);
     printf("    %-20s %6ld of %6ld pixels compared (%6.2f %%), %ld misclassified (%.4f %%), mean error %.2g\n", what,
-           r.compared, comparable, 100.0 * (double)r.compared / (double)comparable,
-           r.false_shadow + r.false_lit, r.misclassified_percent, r.mean_abs_error);
+           r.compared, comparable, 100.0 * (double)r.compared / (double)comparable, r.false_shadow + r.false_lit,
+           r.misclassified_percent, r.mean_abs_error);
     assert_true(comparable > WIDTH * HEIGHT / 4);
     assert_true((double)r.compared >= MIN_COMPARED_SHARE * (double)comparable);
     assert_true(r.misclassified_percent <= MAX_MISCLASSIFIED_PERCENT);
@@ -247,7 +244,7 @@ static void test_offsets_ignore_the_size_of_the_scene(void **state) {
     scene s;
     assert_true(scene_load(&s, SKY_SCENE));
     int sky = object_named(&s, "sky"), ground = object_named(&s, "ground");
-    float (*sky_model)[4] = s.objects[sky].model, (*ground_model)[4] = s.objects[ground].model;
+    float(*sky_model)[4] = s.objects[sky].model, (*ground_model)[4] = s.objects[ground].model;
     float full_sky[4][4];
     memcpy(full_sky, sky_model, sizeof full_sky);
     glm_mat4_identity(sky_model);

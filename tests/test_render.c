@@ -43,9 +43,9 @@
 #define GOLDEN_LECTURE "-lecture_"
 
 typedef struct golden_case {
-    const char *technique; /* its program, $BUILD/TECHNIQUE */
-    const char *scene;     /* assets/scenes/SCENE.json */
-    const char *flags;     /* the technique's own flags; "" for its defaults */
+    const char *technique;       /* its program, $BUILD/TECHNIQUE */
+    const char *scene;           /* assets/scenes/SCENE.json */
+    const char *flags;           /* the technique's own flags; "" for its defaults */
     char name[GOLDEN_NAME_SIZE]; /* tests/golden/NAME.png */
     /* Checked on EGL alone: the lecture pictures, whose overlays add
      * nothing about the backends to what the standard cases show. */
@@ -118,8 +118,8 @@ static bool golden_make_cases(void) {
     for (int t = 0; t < registry_technique_count; t++) {
         for (int s = 0; s < standard; s++) {
             golden_case *c = &golden_cases[golden_case_count++];
-            *c = (golden_case){.technique = registry_techniques[t]->name, .scene = golden_standard_scenes[s],
-                               .flags = ""};
+            *c = (golden_case){
+                .technique = registry_techniques[t]->name, .scene = golden_standard_scenes[s], .flags = ""};
             snprintf(c->name, sizeof c->name, "%s_%s", c->technique, c->scene);
         }
     }
@@ -181,9 +181,10 @@ static bool golden_is_tour_step(const char *name) {
 static bool golden_render_tour(int i, const char *dir) {
     char command[4096];
     return snprintf(command, sizeof command,
-             "%s --backend egl --size " TOUR_SIZE " --tour " TOUR_DIR "/%s.json --screenshot %s/" TOUR_GOLDEN_PREFIX
-             "%s.png",
-             support_program("shadows"), golden_tours[i].name, dir, golden_tours[i].name) < (int)sizeof command &&
+                    "%s --backend egl --size " TOUR_SIZE " --tour " TOUR_DIR
+                    "/%s.json --screenshot %s/" TOUR_GOLDEN_PREFIX "%s.png",
+                    support_program("shadows"), golden_tours[i].name, dir,
+                    golden_tours[i].name) < (int)sizeof command &&
            support_run(command, err, sizeof err) == 0;
 }
 
@@ -198,8 +199,8 @@ static const golden_case *golden_find(const char *name) {
 static const golden_case *golden_plain_of(const golden_case *c) {
     for (int i = 0; i < golden_case_count; i++) {
         const golden_case *p = &golden_cases[i];
-        if (!p->flags[0] && strcmp(p->technique, c->technique) == 0 && strcmp(p->scene, c->scene) == 0 &&
-            !p->size && !c->size)
+        if (!p->flags[0] && strcmp(p->technique, c->technique) == 0 && strcmp(p->scene, c->scene) == 0 && !p->size &&
+            !c->size)
             return p;
     }
     return NULL;
@@ -252,13 +253,9 @@ static double compare_with_golden(const char *golden, const char *name) {
     return support_compare_images(golden_path, actual);
 }
 
-static bool osmesa_installed(void) {
-    return system("ldconfig -p | grep -q libOSMesa.so") == 0;
-}
+static bool osmesa_installed(void) { return system("ldconfig -p | grep -q libOSMesa.so") == 0; }
 
-static bool within_tolerance(double fraction) {
-    return fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING;
-}
+static bool within_tolerance(double fraction) { return fraction >= 0 && fraction <= SUPPORT_MAX_DIFFERING; }
 
 /* Fails the case, naming the commands that reproduce its picture on each
  * backend involved and, where a new golden could be the answer, the one
@@ -308,7 +305,7 @@ static void test_golden_case(void **state) {
     const golden_case *plain = golden_plain_of(c);
     if (c->flags[0] && plain && compare_with_golden(plain->name, actual[0]) <= SUPPORT_MAX_DIFFERING)
         golden_fail(c, "its flags change nothing: it matches its technique's plain golden", golden_backends, 1,
-                        false);
+                    false);
 }
 
 /* The table names every case as the gallery names its picture (TECHNIQUE_
@@ -381,8 +378,7 @@ static void test_each_fix_shows_when_off(void **state) {
      * half throws an anti-shadow onto the ground on the light's side. */
     render("egl", "tests/data/anti_shadow.json", "", "reject_on");
     render("egl", "tests/data/anti_shadow.json", "--no-reject", "reject_off");
-    assert_true(support_compare_images("out/test/reject_on.png", "out/test/reject_off.png") >
-                SUPPORT_MAX_DIFFERING);
+    assert_true(support_compare_images("out/test/reject_on.png", "out/test/reject_off.png") > SUPPORT_MAX_DIFFERING);
 }
 
 /* The texel overlay at a 2048 map, a third of a pixel a texel on simple:
@@ -439,7 +435,8 @@ static void test_shadowmap_without_bias_shows_acne(void **state) {
     render_with("shadowmap", "egl", "assets/scenes/simple.json", "--filter none --no-constant-bias --no-slope-bias",
                 "shadowmap_unfiltered_no_bias");
     double filtered = plainly_darker(GOLDEN_DIR "/shadowmap_simple.png", "out/test/shadowmap_no_bias.png");
-    double unfiltered = plainly_darker("out/test/shadowmap_unfiltered.png", "out/test/shadowmap_unfiltered_no_bias.png");
+    double unfiltered =
+        plainly_darker("out/test/shadowmap_unfiltered.png", "out/test/shadowmap_unfiltered_no_bias.png");
     fprintf(stderr, "    acne plainly darker: %.4f of the pixels (poisson), %.4f (--filter none)\n", filtered,
             unfiltered);
     assert_true(unfiltered > ACNE_UNFILTERED_OVER_FILTERED * filtered);
@@ -456,7 +453,7 @@ static void test_psm_texel_size_shows(void **state) {
  * bar runs from x 468 to 628 on rows 325 to 333 (shadow_map_overlay.c's
  * sizes), blue at a quarter pixel, red at 32, on a dark panel. */
 enum { LEGEND_ROW = 329, LEGEND_BLUE_X = 470, LEGEND_RED_X = 625, LEGEND_PANEL_X = 550, LEGEND_PANEL_ROW = 323 };
-#define LEGEND_DARK 40 /* the panel's channels at most */
+#define LEGEND_DARK 40            /* the panel's channels at most */
 #define LEGEND_SWATCH_TOLERANCE 3 /* summed over the channels: rounding to bytes */
 static const unsigned char *legend_pixel(const unsigned char *image, int width, int x, int y) {
     return image + ((size_t)y * (size_t)width + (size_t)x) * ACNE_CHANNELS;
@@ -485,7 +482,8 @@ static void test_post_perspective_shows_for_uniform(void **state) {
     render_with("psm", "egl", "assets/scenes/long_view.json", "--warp uniform --overlay post-perspective",
                 "psm_uniform_post_perspective_long_view");
     assert_true(support_compare_images("out/test/psm_uniform_long_view.png",
-                                       "out/test/psm_uniform_post_perspective_long_view.png") > SUPPORT_MAX_DIFFERING);
+                                       "out/test/psm_uniform_post_perspective_long_view.png") >
+                SUPPORT_MAX_DIFFERING);
 }
 
 /* Each shadow-volume overlay draws into the picture. */
@@ -534,9 +532,8 @@ static void test_window_matches_golden(void **state) {
     const char *xvfb = support_xvfb_run();
     char command[1024];
     snprintf(command, sizeof command,
-             "%s %s --backend glfw --size " SIZE
-             " --frames 2 --screenshot out/test/planar_simple_glfw.png",
-             xvfb, support_program("planar"));
+             "%s %s --backend glfw --size " SIZE " --frames 2 --screenshot out/test/planar_simple_glfw.png", xvfb,
+             support_program("planar"));
     assert_int_equal(support_run(command, err, sizeof err), 0);
     assert_true(within_tolerance(compare_with_golden("planar_simple", "planar_simple_glfw")));
 }
@@ -667,8 +664,9 @@ static void test_gallery_soft_scene_has_penumbra(void **state) {
     double misclassified, mae;
     long compared, total = 0;
     int n = 0;
-    assert_int_equal(sscanf(at, "<td>misclassified %lf %%</td><td>mean absolute error %lf</td><td>%ld pixels "
-                                "compared</td>%n",
+    assert_int_equal(sscanf(at,
+                            "<td>misclassified %lf %%</td><td>mean absolute error %lf</td><td>%ld pixels "
+                            "compared</td>%n",
                             &misclassified, &mae, &compared, &n),
                      3);
     at += n;
@@ -724,8 +722,8 @@ static void test_tours_match_goldens(void **state) {
                     (int)sizeof names[k]);
         list[k] = names[k];
     }
-    const char *different = support_first_difference("out/test/tours", "out/test/tours_again", list,
-                                                     (size_t)golden_tours[0].step_count);
+    const char *different =
+        support_first_difference("out/test/tours", "out/test/tours_again", list, (size_t)golden_tours[0].step_count);
     if (different)
         fail_msg("tour %s rendered twice: %s differs", golden_tours[0].name, different);
 }
@@ -801,8 +799,8 @@ int main(int argc, char **argv) {
     size_t count = 0;
     tests[count++] = (struct CMUnitTest)cmocka_unit_test(test_golden_table_is_consistent);
     for (int i = 0; i < golden_case_count; i++)
-        tests[count++] = (struct CMUnitTest){.name = golden_cases[i].name, .test_func = test_golden_case,
-                                             .initial_state = &golden_cases[i]};
+        tests[count++] = (struct CMUnitTest){
+            .name = golden_cases[i].name, .test_func = test_golden_case, .initial_state = &golden_cases[i]};
     for (size_t i = 0; i < OTHER_COUNT; i++)
         tests[count++] = others[i];
     /* What cmocka_run_group_tests_name expands to, with the count known

@@ -69,7 +69,8 @@ static void test_figures_land_in_their_rows(void **state) {
     assert_int_equal(run_report(RUN_FLAGS), 0);
     char *compact = read_text(OUT "/compact.md"), line[1024];
     find_line(compact, "| shadowmap |", line, sizeof line);
-    assert_string_equal(line, "| shadowmap | 12.35 / 10.00 | 2.47 / 2.50 | 0.0123 / 0.0166 | 0.00123 / 0.00200 | 2.13x |");
+    assert_string_equal(line,
+                        "| shadowmap | 12.35 / 10.00 | 2.47 / 2.50 | 0.0123 / 0.0166 | 0.00123 / 0.00200 | 2.13x |");
     find_line(compact, "| technique |", line, sizeof line);
     assert_non_null(strstr(line, "ms (simple / teapot)"));
     assert_non_null(strstr(line, "skips speed-up, hidden (street)"));

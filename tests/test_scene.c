@@ -17,7 +17,6 @@
 
 #define PI 3.14159265358979323846
 
-
 static void assert_vec3(const float actual[3], double x, double y, double z) {
     assert_float_equal(actual[0], x, 1e-5);
     assert_float_equal(actual[1], y, 1e-5);
@@ -26,7 +25,8 @@ static void assert_vec3(const float actual[3], double x, double y, double z) {
 
 static void assert_identity(const float m[4][4]) {
     for (int column = 0; column < 4; column++) {
-        for (int row = 0; row < 4; row++) assert_float_equal(m[column][row], column == row, 0);
+        for (int row = 0; row < 4; row++)
+            assert_float_equal(m[column][row], column == row, 0);
     }
 }
 
@@ -34,7 +34,8 @@ static void assert_identity(const float m[4][4]) {
 static void transform_point(const float m[4][4], const double p[3], double out[3]) {
     for (int row = 0; row < 3; row++) {
         out[row] = m[3][row];
-        for (int column = 0; column < 3; column++) out[row] += m[column][row] * p[column];
+        for (int column = 0; column < 3; column++)
+            out[row] += m[column][row] * p[column];
     }
 }
 
@@ -49,7 +50,8 @@ static void rotate_about(int axis, double degrees, double p[3]) {
 
 static const scene_object *find_object(const scene *s, const char *name) {
     for (int i = 0; i < s->object_count; i++) {
-        if (strcmp(s->objects[i].name, name) == 0) return &s->objects[i];
+        if (strcmp(s->objects[i].name, name) == 0)
+            return &s->objects[i];
     }
     fail_msg("no object \"%s\"", name);
     return NULL;
@@ -65,7 +67,8 @@ static void load_quietly(scene *s, const char *path) {
     support_capture_stderr();
     bool loaded = scene_load(s, path);
     const char *text = support_release_stderr();
-    if (!loaded) fail_msg("%s did not load: %s", path, text);
+    if (!loaded)
+        fail_msg("%s did not load: %s", path, text);
     assert_string_equal(text, "");
 }
 
@@ -113,7 +116,7 @@ static void test_good_scene_objects(void **state) {
     load_quietly(&s, "tests/data/scene_good.json");
     assert_int_equal(s.object_count, 6);
     const char *names[] = {"ground", "crate", "ball", "ring", "pillar", "tetra"};
-    const scene_mesh_kind kinds[] = {SCENE_MESH_PLANE, SCENE_MESH_BOX, SCENE_MESH_SPHERE,
+    const scene_mesh_kind kinds[] = {SCENE_MESH_PLANE, SCENE_MESH_BOX,      SCENE_MESH_SPHERE,
                                      SCENE_MESH_TORUS, SCENE_MESH_CYLINDER, SCENE_MESH_MODEL};
     for (int i = 0; i < s.object_count; i++) {
         assert_string_equal(s.objects[i].name, names[i]);
@@ -171,9 +174,11 @@ static void test_model_matrix_order(void **state) {
         expected[2] += 3;
         double actual[3];
         transform_point(ring->model, points[i], actual);
-        for (int k = 0; k < 3; k++) assert_float_equal(actual[k], expected[k], 1e-5);
+        for (int k = 0; k < 3; k++)
+            assert_float_equal(actual[k], expected[k], 1e-5);
     }
-    for (int row = 0; row < 3; row++) assert_float_equal(ring->model[row][3], 0, 0);
+    for (int row = 0; row < 3; row++)
+        assert_float_equal(ring->model[row][3], 0, 0);
     assert_float_equal(ring->model[3][3], 1, 0);
     scene_free(&s);
 }
@@ -196,7 +201,8 @@ static void test_world_bounds(void **state) {
         const float *p = ring->mesh.vertices[v].position;
         double world[3];
         transform_point(ring->model, (const double[3]){p[0], p[1], p[2]}, world);
-        for (int k = 0; k < 3; k++) assert_true(world[k] >= min[k] - 1e-4 && world[k] <= max[k] + 1e-4);
+        for (int k = 0; k < 3; k++)
+            assert_true(world[k] >= min[k] - 1e-4 && world[k] <= max[k] + 1e-4);
     }
     scene_free(&s);
 }
@@ -259,7 +265,8 @@ static double world_signed_volume(const scene_object *o) {
     double volume = 0;
     for (uint32_t i = 0; i < o->mesh.index_count; i += 3) {
         float p[3][3];
-        for (int c = 0; c < 3; c++) world_vertex(o, o->mesh.indices[i + (uint32_t)c], p[c]);
+        for (int c = 0; c < 3; c++)
+            world_vertex(o, o->mesh.indices[i + (uint32_t)c], p[c]);
         volume += ((double)p[0][0] * ((double)p[1][1] * p[2][2] - (double)p[1][2] * p[2][1]) +
                    (double)p[0][1] * ((double)p[1][2] * p[2][0] - (double)p[1][0] * p[2][2]) +
                    (double)p[0][2] * ((double)p[1][0] * p[2][1] - (double)p[1][1] * p[2][0])) /
@@ -301,7 +308,8 @@ static void test_mirrored_objects(void **state) {
                          pa[1], pa[2], pb[0], pb[1], pb[2]);
         }
         /* The ground is open and flat: no volume to measure. */
-        if (a->mesh_kind == SCENE_MESH_PLANE) continue;
+        if (a->mesh_kind == SCENE_MESH_PLANE)
+            continue;
         double va = world_signed_volume(a), vb = world_signed_volume(b);
         assert_true(va > 0);
         assert_float_equal(va, vb, 1e-9 * vb);
@@ -318,7 +326,8 @@ static void test_far_from_origin(void **state) {
     scene s;
     load_quietly(&s, "tests/data/scene_far_from_origin.json");
     const double eye[3] = {1000000.3, 250004.1, -999987.3};
-    for (int k = 0; k < 3; k++) assert_true(s.origin[k] == (double)(float)eye[k]);
+    for (int k = 0; k < 3; k++)
+        assert_true(s.origin[k] == (double)(float)eye[k]);
     const float *camera = s.camera.position;
     float light[3], box[3], target[3];
     const scene_object *b = find_object(&s, "box");
@@ -336,7 +345,8 @@ static void test_far_from_origin(void **state) {
     scene_free(&s);
     /* Near the origin a scene keeps its own numbers. */
     load_quietly(&s, "tests/data/scene_good.json");
-    for (int k = 0; k < 3; k++) assert_true(s.origin[k] == 0);
+    for (int k = 0; k < 3; k++)
+        assert_true(s.origin[k] == 0);
     scene_free(&s);
 }
 
@@ -395,7 +405,8 @@ static void test_bad_scenes(void **state) {
         support_capture_stderr();
         bool loaded = scene_load(&s, bad->path);
         const char *text = support_release_stderr();
-        if (loaded) fail_msg("%s: loaded, expected \"%s\"", bad->path, bad->problem);
+        if (loaded)
+            fail_msg("%s: loaded, expected \"%s\"", bad->path, bad->problem);
         assert_empty_scene(&s);
         char expected[512];
         snprintf(expected, sizeof expected, "%s%s", bad->path, bad->problem);

@@ -65,9 +65,7 @@ static const char *load_city(scene *s, size_t i) {
     return name;
 }
 
-static bool limited(const scene_light *l) {
-    return l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0;
-}
+static bool limited(const scene_light *l) { return l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0; }
 
 /* N objects plus the ground (first, casting nothing); a sun and at least
  * three lamps of limited range, within the light limit. */
@@ -80,7 +78,8 @@ static void test_city_counts_and_lights(void **state) {
         assert_string_equal(s.objects[0].name, "ground");
         assert_int_equal(s.objects[0].mesh_kind, SCENE_MESH_PLANE);
         assert_false(s.objects[0].casts);
-        for (int o = 1; o < s.object_count; o++) assert_true(s.objects[o].casts && s.objects[o].receives);
+        for (int o = 1; o < s.object_count; o++)
+            assert_true(s.objects[o].casts && s.objects[o].receives);
         assert_true(s.light_count <= SCENE_MAX_LIGHTS);
         int suns = 0, lamps = 0;
         for (int l = 0; l < s.light_count; l++) {
@@ -93,9 +92,7 @@ static void test_city_counts_and_lights(void **state) {
     }
 }
 
-static void view_of(const scene *s, camera_view *view) {
-    camera_view_compute(&s->camera, VIEW_ASPECT, view);
-}
+static void view_of(const scene *s, camera_view *view) { camera_view_compute(&s->camera, VIEW_ASPECT, view); }
 
 /* Entirely outside: beyond one of the frustum's planes by more than r. */
 static bool sphere_outside(const vec4 planes[6], const float center[3], float radius) {
@@ -190,10 +187,8 @@ static void test_dense_is_closed_and_large(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_generated_match_committed),
-        cmocka_unit_test(test_city_counts_and_lights),
-        cmocka_unit_test(test_city_lamps_mostly_out_of_view),
-        cmocka_unit_test(test_city_view_is_small_and_shared),
+        cmocka_unit_test(test_generated_match_committed),     cmocka_unit_test(test_city_counts_and_lights),
+        cmocka_unit_test(test_city_lamps_mostly_out_of_view), cmocka_unit_test(test_city_view_is_small_and_shared),
         cmocka_unit_test(test_dense_is_closed_and_large),
     };
     return cmocka_run_group_tests_name("generated scenes", tests, generate, NULL);

@@ -37,7 +37,7 @@ static struct {
     scene scene;
     render_scene gpu;
     shadow_map_renderer maps;
-    shadow_map fitted;     /* light 0's uniform fit */
+    shadow_map fitted; /* light 0's uniform fit */
     float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
     unsigned readback; /* a framebuffer to read a layer's depth from */
     /* MAP_SIZE^2 depths each: the 2D map's, the array layer's, the 2D map of layer 0's */

@@ -111,18 +111,20 @@ static void test_kernel_margin(void **state) {
     vec3 lo = {(patch_edge + gap_texels * texel) * (LIGHT_Y - low), low, -PATCH}, hi = {lo[0] + 0.5f, high, PATCH};
     shadow_map_reads reads;
     const shadow_map_settings poisson = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE},
-                              nearest = {.filter = SHADOW_MAP_FILTER_NONE, .kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE};
+                              nearest = {.filter = SHADOW_MAP_FILTER_NONE,
+                                         .kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE};
     patch_reads(layer, &poisson, &reads);
     assert_true(caster_needed(layer, &reads, lo, hi));
     patch_reads(layer, &nearest, &reads);
     assert_false(caster_needed(layer, &reads, lo, hi));
     /* Wider kernels reach farther. */
-    static const shadow_map_filter order[] = {SHADOW_MAP_FILTER_NONE, SHADOW_MAP_FILTER_HW, SHADOW_MAP_FILTER_PCF3,
-                                              SHADOW_MAP_FILTER_POISSON, SHADOW_MAP_FILTER_PCF5,
-                                              SHADOW_MAP_FILTER_PCF7};
+    static const shadow_map_filter order[] = {SHADOW_MAP_FILTER_NONE, SHADOW_MAP_FILTER_HW,
+                                              SHADOW_MAP_FILTER_PCF3, SHADOW_MAP_FILTER_POISSON,
+                                              SHADOW_MAP_FILTER_PCF5, SHADOW_MAP_FILTER_PCF7};
     for (size_t i = 1; i < sizeof order / sizeof *order; i++) {
         shadow_map_settings a = {.filter = order[i - 1]}, b = {.filter = order[i]};
-        assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D, false) < shadow_map_read_reach(&b, SHADOW_MAP_2D, false));
+        assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D, false) <
+                    shadow_map_read_reach(&b, SHADOW_MAP_2D, false));
     }
     /* A tent N reads the texels pcfN does (centres within (N + 1) / 2
      * texels), from nearer taps: the same reach, not less. */
@@ -166,8 +168,8 @@ static void test_cube_face(void **state) {
     glm_perspective(glm_rad(FOV_DEG), 1, NEAR, FAR, projection);
     glm_mat4_mul(projection, view, face);
     const shadow_map_settings settings = {0};
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_CUBE, false), .size = MAP_SIZE,
-                                   .cube = true};
+    shadow_map_read_setup setup = {
+        .reach = shadow_map_read_reach(&settings, SHADOW_MAP_CUBE, false), .size = MAP_SIZE, .cube = true};
     /* A ground patch below the light, on the +X side, beyond 45 degrees. */
     const float box[1][2][3] = {{{2, -3, -1}, {8, -3, 1}}};
     shadow_map_reads reads;
@@ -175,9 +177,9 @@ static void test_cube_face(void **state) {
     frustum_box_corners(box[0][0], box[0][1], (vec3 *)points);
     shadow_map_layer_reads(face, &setup, (const float(*)[3])points, 8, box, 1, &reads);
     assert_false(reads.empty);
-    assert_true(caster_needed(face, &reads, (vec3){4, -2, -0.5f}, (vec3){5, -1, 0.5f}));  /* between */
+    assert_true(caster_needed(face, &reads, (vec3){4, -2, -0.5f}, (vec3){5, -1, 0.5f}));    /* between */
     assert_false(caster_needed(face, &reads, (vec3){-5, -2, -0.5f}, (vec3){-4, -1, 0.5f})); /* the -X side */
-    assert_false(caster_needed(face, &reads, (vec3){4, 2, -0.5f}, (vec3){5, 3, 0.5f}));   /* above the light */
+    assert_false(caster_needed(face, &reads, (vec3){4, 2, -0.5f}, (vec3){5, 3, 0.5f}));     /* above the light */
 }
 
 /* ---- the programs ---- */
@@ -270,12 +272,9 @@ static void test_static_reuses_every_layer(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_caster_cases),
-        cmocka_unit_test(test_kernel_margin),
-        cmocka_unit_test(test_cube_face),
-        cmocka_unit_test(test_static_reuses_every_layer),
-        cmocka_unit_test(test_most_casters_culled),
-        cmocka_unit_test(test_dumps_identical_other_kernels),
+        cmocka_unit_test(test_caster_cases),        cmocka_unit_test(test_kernel_margin),
+        cmocka_unit_test(test_cube_face),           cmocka_unit_test(test_static_reuses_every_layer),
+        cmocka_unit_test(test_most_casters_culled), cmocka_unit_test(test_dumps_identical_other_kernels),
     };
     return cmocka_run_group_tests_name("shadow map skips", tests, NULL, NULL);
 }

@@ -304,9 +304,11 @@ static void test_receiver_restricts(void **state) {
 
 /* A soft truth across the columns (every row the same): two umbra
  * columns, a penumbra ramp of four, two lit ones. */
-#define SOFT_TRUTH {0, 0, 0.2f, 0.4f, 0.6f, 0.8f, 1, 1}
+#define SOFT_TRUTH                                                                                                   \
+    { 0, 0, 0.2f, 0.4f, 0.6f, 0.8f, 1, 1 }
 /* The same edge, hard: the picture a hard shadow map draws of it. */
-#define HARD_EDGE {0, 0, 0, 0, 1, 1, 1, 1}
+#define HARD_EDGE                                                                                                    \
+    { 0, 0, 0, 0, 1, 1, 1, 1 }
 #define CLASS_CASE_TOLERANCE 1e-6
 
 /* One picture against its truth: the visibilities by column, and on the
@@ -336,18 +338,24 @@ static const class_case class_cases[CLASS_CASE_COUNT] = {
     /* Steps on the 0.5 line: nothing misclassified, the ramp off by 0.2,
      * 0.4, 0.4, 0.2 in the penumbra. */
     [CASE_HARD_AGAINST_SOFT] = {"hard against soft", SOFT_TRUTH, HARD_EDGE, 0, 0, 0.15, {16, 32, 16}, {0, 0.3, 0}},
-    [CASE_BLURRED] = {"blurred everywhere", SOFT_TRUTH, {0.1f, 0.15f, 0.3f, 0.4f, 0.6f, 0.7f, 0.85f, 0.9f}, 0, 0,
-                      0.0875, {16, 32, 16}, {0.125, 0.05, 0.125}},
+    [CASE_BLURRED] = {"blurred everywhere",
+                      SOFT_TRUTH,
+                      {0.1f, 0.15f, 0.3f, 0.4f, 0.6f, 0.7f, 0.85f, 0.9f},
+                      0,
+                      0,
+                      0.0875,
+                      {16, 32, 16},
+                      {0.125, 0.05, 0.125}},
     /* Light in the umbra, one column over 0.5: the umbra's error only. */
-    [CASE_LEAKING] = {"leaking", SOFT_TRUTH, {0.5f, 0.3f, 0.2f, 0.4f, 0.6f, 0.8f, 1, 1}, 0, 12.5, 0.1,
-                      {16, 32, 16}, {0.4, 0, 0}},
+    [CASE_LEAKING] =
+        {"leaking", SOFT_TRUTH, {0.5f, 0.3f, 0.2f, 0.4f, 0.6f, 0.8f, 1, 1}, 0, 12.5, 0.1, {16, 32, 16}, {0.4, 0, 0}},
     /* Half the lit pixels at 0.625: still lit, the lit class's error. */
-    [CASE_SPECKLED] = {"speckled lit surface", SOFT_TRUTH, SOFT_TRUTH, 0.625f, 0, 0.046875, {16, 32, 16},
-                       {0, 0, 0.1875}},
+    [CASE_SPECKLED] =
+        {"speckled lit surface", SOFT_TRUTH, SOFT_TRUTH, 0.625f, 0, 0.046875, {16, 32, 16}, {0, 0, 0.1875}},
     /* A hard truth: no penumbra; the old figures are as they always were
      * (column 3 lit, column 7 dark: 16 of 64 misclassified). */
-    [CASE_HARD_TRUTH] = {"hard truth", HARD_EDGE, {0, 0, 0, 1, 1, 1, 1, 0.25f}, 0, 25, 0.21875, {32, 0, 32},
-                         {0.25, 0, 0.1875}},
+    [CASE_HARD_TRUTH] =
+        {"hard truth", HARD_EDGE, {0, 0, 0, 1, 1, 1, 1, 0.25f}, 0, 25, 0.21875, {32, 0, 32}, {0.25, 0, 0.1875}},
 };
 
 /* Case c's picture into rows [row0, row0 + SIZE) of the pair. */
@@ -479,8 +487,8 @@ static void test_nothing_compared_is_an_error(void **state) {
         test.depth[i] = 2 * DEPTH;
         set_visibility(&reference, &test, i, 1, 0);
     }
-    shadowdiff_result r = expect_no_figure(&reference, &test, SHADOWDIFF_PROBLEM_NOTHING_COMPARED,
-                                           "REF and TEST: nothing compared");
+    shadowdiff_result r =
+        expect_no_figure(&reference, &test, SHADOWDIFF_PROBLEM_NOTHING_COMPARED, "REF and TEST: nothing compared");
     assert_counts(&r, 0, 0, 0);
     free_pair(&reference, &test);
 }
@@ -609,8 +617,12 @@ static void test_dump_round_trip(void **state) {
     const size_t n = (size_t)width * (size_t)height;
     dump_frame written, loaded;
     make_frame(&written, width, height, sun);
-    written.camera = (scene_camera){.position = {1.5f, -2, 3e6f}, .target = {0.1f, 0, 7}, .up = {0, 0, 1},
-                                    .fov_deg = 47.5f, .near_plane = 0.01f, .far_plane = 1e5f};
+    written.camera = (scene_camera){.position = {1.5f, -2, 3e6f},
+                                    .target = {0.1f, 0, 7},
+                                    .up = {0, 0, 1},
+                                    .fov_deg = 47.5f,
+                                    .near_plane = 0.01f,
+                                    .far_plane = 1e5f};
     for (size_t i = 0; i < n; i++) {
         written.visibility[i] = (float)i / (float)n;
         written.depth[i] = 1 + 0.25f * (float)i;
@@ -718,9 +730,9 @@ static void test_shimmer_counts_flips_where_the_truth_is_still(void **state) {
     (void)state;
     shimmer_frames f;
     make_shimmer_frames(&f, 1);
-    f.t1.visibility[pixel(2, 0)] = 0; /* t0 (3, 0) lit: counted */
+    f.t1.visibility[pixel(2, 0)] = 0;                                /* t0 (3, 0) lit: counted */
     f.r1.visibility[pixel(4, 0)] = f.t1.visibility[pixel(4, 0)] = 0; /* both flip */
-    f.r1.visibility[pixel(0, 1)] = 0;                                  /* the truth alone */
+    f.r1.visibility[pixel(0, 1)] = 0;                                /* the truth alone */
     /* Shadowed in frame 0 at (6, 2), in frame 1 at the same world point
      * (5, 2): still; frame 1's (6, 2) is lit, another point. */
     f.r0.visibility[pixel(6, 2)] = f.t0.visibility[pixel(6, 2)] = 0;
@@ -1082,8 +1094,8 @@ static void test_cli_shimmer(void **state) {
     /* DIR/ref's camera is no camera at all: nothing lands in its picture. */
     expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/ref " DIR "/test --json",
                    EXIT_NOTHING_COMPARED, "no compared pixel followed", "no shimmer figure");
-    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/ref " DIR "/nan",
-                   EXIT_NOT_FINITE, DIR "/nan/visibility.pfm: nan", "broken dump");
+    expect_failure(DIR "/shimmer_ref1 " DIR "/shimmer_test1 --previous " DIR "/ref " DIR "/nan", EXIT_NOT_FINITE,
+                   DIR "/nan/visibility.pfm: nan", "broken dump");
 }
 
 static void test_cli_help(void **state) {

@@ -16,8 +16,8 @@
 
 #define STANDARD_MAX_MISCLASSIFIED_PERCENT 0.5
 #define BENCH_SIZE "--size 1280x720" /* make bench's frame size */
-#define STRESS_SIZE "--size 320x180"  /* make stress's */
-#define STRESS_MIN_COMPARED 30000     /* of its 57600 pixels: the receivers seen */
+#define STRESS_SIZE "--size 320x180" /* make stress's */
+#define STRESS_MIN_COMPARED 30000    /* of its 57600 pixels: the receivers seen */
 
 static shadowdiff_result measure_dumps(const char *scene, const char *size, const char *flags, const char *name,
                                        dump_frame *reference, dump_frame *test, unsigned char **heatmap) {
@@ -96,12 +96,14 @@ static void write_acne_scene(const char *path, const char *light_type, float ele
     FILE *f = fopen(path, "w");
     assert_non_null(f);
     if (light_type[0] == 'd')
-        fprintf(f, "{\"camera\": {\"position\": [0, 7, 12], \"target\": [0, 0, 0]},\n"
-                   " \"lights\": [{\"type\": \"directional\", \"direction\": [%g, %g, %g]}],\n",
+        fprintf(f,
+                "{\"camera\": {\"position\": [0, 7, 12], \"target\": [0, 0, 0]},\n"
+                " \"lights\": [{\"type\": \"directional\", \"direction\": [%g, %g, %g]}],\n",
                 -c * 0.8f, -s, -c * 0.6f);
     else
-        fprintf(f, "{\"camera\": {\"position\": [0, 7, 12], \"target\": [0, 0, 0]},\n"
-                   " \"lights\": [{\"type\": \"point\", \"position\": [%g, %g, %g]}],\n",
+        fprintf(f,
+                "{\"camera\": {\"position\": [0, 7, 12], \"target\": [0, 0, 0]},\n"
+                " \"lights\": [{\"type\": \"point\", \"position\": [%g, %g, %g]}],\n",
                 c * 8, s * 8 + 0.01f, c * 6);
     fprintf(f, " \"objects\": [{\"name\": \"ground\", \"mesh\": {\"kind\": \"plane\", \"size\": [20, 20]}}]}\n");
     fclose(f);
@@ -130,8 +132,8 @@ static void test_no_acne_at_any_elevation(void **state) {
 static void test_acne_without_bias(void **state) {
     (void)state;
     write_acne_scene("out/test/shadowmap/acne_unbiased.json", "directional", 30);
-    shadowdiff_result r = measure("out/test/shadowmap/acne_unbiased.json",
-                                  "--no-constant-bias --no-slope-bias", "acne_unbiased");
+    shadowdiff_result r =
+        measure("out/test/shadowmap/acne_unbiased.json", "--no-constant-bias --no-slope-bias", "acne_unbiased");
     assert_true(r.false_shadow_percent > 1);
 }
 
@@ -169,8 +171,10 @@ static void test_defaults_and_our_bias_beat_textbook(void **state) {
             shadowdiff_result textbook = measure_sized(path, BENCH_SIZE, pairs[k][1], name);
             const double lit = defaults.class_mae[SHADOWDIFF_CLASS_LIT];
             const double textbook_lit = textbook.class_mae[SHADOWDIFF_CLASS_LIT];
-            fprintf(stderr, "    %s, textbook %zu: misclassified %.4f %% (defaults %.4f %%), lit MAE %.5f (defaults %.5f)\n",
-                    scenes[i], k + 1, textbook.misclassified_percent, defaults.misclassified_percent, textbook_lit, lit);
+            fprintf(stderr,
+                    "    %s, textbook %zu: misclassified %.4f %% (defaults %.4f %%), lit MAE %.5f (defaults %.5f)\n",
+                    scenes[i], k + 1, textbook.misclassified_percent, defaults.misclassified_percent, textbook_lit,
+                    lit);
             assert_false(textbook.misclassified_percent < defaults.misclassified_percent && textbook_lit < lit);
             assert_true(ours.misclassified_percent <= textbook.misclassified_percent);
             ours_total[k] += ours.misclassified_percent;
@@ -369,8 +373,8 @@ static void test_no_cube_seams(void **state) {
         double a[3];
         for (int k = 0; k < 3; k++)
             a[k] = fabs(reference.position[i * 3 + k] - reference.light[k]);
-        double largest = fmax(a[0], fmax(a[1], a[2])), second = a[0] + a[1] + a[2] - largest -
-                                                                  fmin(a[0], fmin(a[1], a[2]));
+        double largest = fmax(a[0], fmax(a[1], a[2])),
+               second = a[0] + a[1] + a[2] - largest - fmin(a[0], fmin(a[1], a[2]));
         if (largest - second > 0.01 * largest)
             continue;
         on_edges++;

@@ -82,8 +82,8 @@ static double measure_shimmer(const char *program, const char *flags, const char
     assert_true(dump_read(&held, held_dir));
     shadowdiff_shimmer_result r;
     assert_true(shadowdiff_shimmer(&reference, &held, &reference, &test, NULL, &r));
-    fprintf(stderr, "    %s %s, motion %s: shimmer %.4f %% (%ld of %ld)\n", program, flags, motion,
-            r.shimmer_percent, r.shimmered, r.followed);
+    fprintf(stderr, "    %s %s, motion %s: shimmer %.4f %% (%ld of %ld)\n", program, flags, motion, r.shimmer_percent,
+            r.shimmered, r.followed);
     /* One view: every compared pixel follows itself, the truth the same. */
     assert_int_equal(r.followed, r.current.compared);
     assert_true(r.truth_changed_percent == 0);

@@ -147,11 +147,14 @@ static void test_light_reach(void **state) {
         {"point out of range", {.type = SCENE_LIGHT_POINT, .position = {0, 5, 0}, .range = 3.5f}, false},
         {"point without a range", {.type = SCENE_LIGHT_POINT, .position = {0, 500, 0}}, true},
         {"spot aimed at it",
-         {.type = SCENE_LIGHT_SPOT, .position = {0, 5, 0}, .direction = {0, -1, 0}, .outer_angle_deg = 10}, true},
+         {.type = SCENE_LIGHT_SPOT, .position = {0, 5, 0}, .direction = {0, -1, 0}, .outer_angle_deg = 10},
+         true},
         {"spot aimed away",
-         {.type = SCENE_LIGHT_SPOT, .position = {0, 5, 0}, .direction = {0, 1, 0}, .outer_angle_deg = 60}, false},
+         {.type = SCENE_LIGHT_SPOT, .position = {0, 5, 0}, .direction = {0, 1, 0}, .outer_angle_deg = 60},
+         false},
         {"spot aimed beside",
-         {.type = SCENE_LIGHT_SPOT, .position = {10, 5, 0}, .direction = {0, -1, 0}, .outer_angle_deg = 30}, false},
+         {.type = SCENE_LIGHT_SPOT, .position = {10, 5, 0}, .direction = {0, -1, 0}, .outer_angle_deg = 30},
+         false},
         {"directional", {.type = SCENE_LIGHT_DIRECTIONAL, .direction = {0, 1, 0}}, true},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++)
@@ -404,18 +407,12 @@ static void test_switches_turn_skips_off(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_box_outside),
-        cmocka_unit_test(test_city_mostly_culled),
-        cmocka_unit_test(test_simple_nothing_culled),
-        cmocka_unit_test(test_light_hull),
-        cmocka_unit_test(test_light_reach),
-        cmocka_unit_test(test_light_mask),
-        cmocka_unit_test(test_city_lights_skipped),
-        cmocka_unit_test(test_switches_turn_skips_off),
-        cmocka_unit_test(test_hidden_casters_culled),
-        cmocka_unit_test(test_hidden_objects_left_out),
-        cmocka_unit_test(test_lights_narrowed),
-        cmocka_unit_test(test_dumps_identical_with_and_without_skips),
+        cmocka_unit_test(test_box_outside),           cmocka_unit_test(test_city_mostly_culled),
+        cmocka_unit_test(test_simple_nothing_culled), cmocka_unit_test(test_light_hull),
+        cmocka_unit_test(test_light_reach),           cmocka_unit_test(test_light_mask),
+        cmocka_unit_test(test_city_lights_skipped),   cmocka_unit_test(test_switches_turn_skips_off),
+        cmocka_unit_test(test_hidden_casters_culled), cmocka_unit_test(test_hidden_objects_left_out),
+        cmocka_unit_test(test_lights_narrowed),       cmocka_unit_test(test_dumps_identical_with_and_without_skips),
     };
     return cmocka_run_group_tests_name("skips", tests, NULL, NULL);
 }

@@ -61,7 +61,8 @@ static void test_pcss_draws_the_penumbra(void **state) {
         snprintf(name, sizeof name, "soft_%zu", i);
         shadowdiff_result soft = support_measure(soft_cases[i].program, soft_cases[i].scene, SOFT_SIZE, "", name);
         snprintf(name, sizeof name, "hard_%zu", i);
-        shadowdiff_result hard = support_measure(soft_cases[i].program, soft_cases[i].scene, SOFT_SIZE, "--soft off", name);
+        shadowdiff_result hard =
+            support_measure(soft_cases[i].program, soft_cases[i].scene, SOFT_SIZE, "--soft off", name);
         const double *s = soft.class_mae, *h = hard.class_mae;
         printf("    %s %s: penumbra MAE %.4f (hard %.4f) of %ld pixels, lit %.5f (hard %.5f), umbra %.4f (hard "
                "%.4f), whole %.4f (hard %.4f)\n",
@@ -190,15 +191,17 @@ static void test_penumbra_overlay_colours_the_penumbra(void **state) {
         coloured[kind] += memcmp(before + 4 * i, after + 4 * i, 3) != 0;
     }
     for (int k = 0; k < OVERLAY_KINDS; k++)
-        printf("    %s: %ld of %ld pixels coloured\n", k < SHADOWDIFF_CLASS_COUNT ? shadowdiff_class_names[k] : "no surface",
-               coloured[k], pixels[k]);
+        printf("    %s: %ld of %ld pixels coloured\n",
+               k < SHADOWDIFF_CLASS_COUNT ? shadowdiff_class_names[k] : "no surface", coloured[k], pixels[k]);
     assert_true(pixels[SHADOWDIFF_CLASS_PENUMBRA] >= SOFT_MIN_PENUMBRA_PIXELS && pixels[OVERLAY_NO_SURFACE] > 0);
-    assert_true(coloured[SHADOWDIFF_CLASS_PENUMBRA] >= OVERLAY_MIN_PENUMBRA_SHARE * pixels[SHADOWDIFF_CLASS_PENUMBRA]);
+    assert_true(coloured[SHADOWDIFF_CLASS_PENUMBRA] >=
+                OVERLAY_MIN_PENUMBRA_SHARE * pixels[SHADOWDIFF_CLASS_PENUMBRA]);
     assert_true(coloured[SHADOWDIFF_CLASS_LIT] <= OVERLAY_MAX_LIT_SHARE * pixels[SHADOWDIFF_CLASS_LIT]);
     assert_int_equal(coloured[OVERLAY_NO_SURFACE], 0);
     double near_foot = overlay_redness(&reference, before, after, overlay_near_foot),
            far_end = overlay_redness(&reference, before, after, overlay_far_end);
-    printf("    red less green: %.1f near the tall pole's foot, %.1f near its shadow's far end\n", near_foot, far_end);
+    printf("    red less green: %.1f near the tall pole's foot, %.1f near its shadow's far end\n", near_foot,
+           far_end);
     assert_true(near_foot < 0 && far_end > 0);
     free(before);
     free(after);

@@ -177,17 +177,18 @@ static void test_fake_programs_are_classified(void **state) {
     link_program("raytrace");
     link_program("shadowdiff");
     write_script("planar", "kill -SEGV $$\n");
-    write_script("shadowmap",
-                 "mode=hang\n"
-                 "while [ $# -gt 0 ]; do case $1 in --dump) dump=$2;; --filter) mode=copy;; --depth) mode=nan;; esac;"
-                 " shift; done\n"
-                 "[ $mode = hang ] && sleep 30\n"
-                 "cp \"$dump\"/../reference/*.pfm \"$dump\"/../reference/meta.json \"$dump\"/../reference/color.png "
-                 "\"$dump\"/\n"
-                 "if [ $mode = nan ]; then\n"
-                 "  header=$(head -n 3 \"$dump/ids.pfm\" | wc -c)\n"
-                 "  printf '\\000\\000\\300\\177' | dd of=\"$dump/ids.pfm\" bs=1 seek=$header conv=notrunc 2>/dev/null\n"
-                 "fi\n");
+    write_script(
+        "shadowmap",
+        "mode=hang\n"
+        "while [ $# -gt 0 ]; do case $1 in --dump) dump=$2;; --filter) mode=copy;; --depth) mode=nan;; esac;"
+        " shift; done\n"
+        "[ $mode = hang ] && sleep 30\n"
+        "cp \"$dump\"/../reference/*.pfm \"$dump\"/../reference/meta.json \"$dump\"/../reference/color.png "
+        "\"$dump\"/\n"
+        "if [ $mode = nan ]; then\n"
+        "  header=$(head -n 3 \"$dump/ids.pfm\" | wc -c)\n"
+        "  printf '\\000\\000\\300\\177' | dd of=\"$dump/ids.pfm\" bs=1 seek=$header conv=notrunc 2>/dev/null\n"
+        "fi\n");
     write_script("psm", "while [ $# -gt 0 ]; do case $1 in --scene) scene=$2;; --warp) two=1;; esac; shift; done\n"
                         "echo \"$scene: refused by a fake\" >&2\n"
                         "[ -n \"$two\" ] && echo \"and a second line\" >&2\n"
@@ -202,12 +203,17 @@ static void test_fake_programs_are_classified(void **state) {
     assert_int_equal(support_run(command, err, sizeof err), EXIT_FAILED);
     int count = read_table(FAKE_DIR);
     static const char *const expect[][3] = {
-        {"raytrace", "reference", "pass"},     {"planar", "default", "crash"},
-        {"shadowmap", "default", "timeout"},   {"shadowmap", "filter-none", "pass"},
-        {"shadowmap", "depth-32f", "nan"},     {"psm", "default", "refused"},
-        {"psm", "lispsm", "error"},            {"cascades", "default", "error"},
+        {"raytrace", "reference", "pass"},
+        {"planar", "default", "crash"},
+        {"shadowmap", "default", "timeout"},
+        {"shadowmap", "filter-none", "pass"},
+        {"shadowmap", "depth-32f", "nan"},
+        {"psm", "default", "refused"},
+        {"psm", "lispsm", "error"},
+        {"cascades", "default", "error"},
         {"volumes", "default", "error"},
-        {"volumes", "zfail", "crash"},         {"volumes", "gpu-silhouette", "error"},
+        {"volumes", "zfail", "crash"},
+        {"volumes", "gpu-silhouette", "error"},
     };
     assert_int_equal(count, sizeof expect / sizeof *expect);
     for (size_t i = 0; i < sizeof expect / sizeof *expect; i++) {
@@ -221,9 +227,9 @@ static void test_fake_programs_are_classified(void **state) {
     /* The copy of the reference: off by nothing in every class the spot's
      * hard truth has (outside its cone the umbra), none in the penumbra. */
     const row *copy = find_row(count, "base_spot", "shadowmap", "filter-none");
-    static const char *const copied[SHADOWDIFF_CLASS_COUNT] = {
-        [SHADOWDIFF_CLASS_UMBRA] = "0.00000", [SHADOWDIFF_CLASS_PENUMBRA] = SHADOWDIFF_NO_FIGURE,
-        [SHADOWDIFF_CLASS_LIT] = "0.00000"};
+    static const char *const copied[SHADOWDIFF_CLASS_COUNT] = {[SHADOWDIFF_CLASS_UMBRA] = "0.00000",
+                                                               [SHADOWDIFF_CLASS_PENUMBRA] = SHADOWDIFF_NO_FIGURE,
+                                                               [SHADOWDIFF_CLASS_LIT] = "0.00000"};
     for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
         assert_string_equal(copy->class_mae[k], copied[k]);
     assert_non_null(strstr(find_row(count, "base_spot", "planar", "default")->line, "signal"));

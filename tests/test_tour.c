@@ -60,7 +60,8 @@ static void test_bad_tours(void **state) {
     } cases[] = {
         {"tour_unknown_key.json", "steps[1]: unknown key \"captoin\" (expected scene, technique, flags, caption, "
                                   "seconds, motion, frame, camera, path or compare)"},
-        {"tour_bad_motion.json", "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)"},
+        {"tour_bad_motion.json",
+         "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)"},
         {"tour_bad_frame.json", "steps[0].frame: must be a frame of the step, 0 to 59 (got 60)"},
         {"tour_bad_seconds.json", "steps[0].seconds: expected a number, got a string"},
         {"tour_no_scene.json", "steps[0].scene: missing required field"},
@@ -133,7 +134,8 @@ static void test_path_interpolation(void **state) {
  * scene's origin in the camera, the rest of it kept. */
 static void test_step_view_and_camera(void **state) {
     (void)state;
-    tour_step s = {.frame_count = 31, .view_count = 3,
+    tour_step s = {.frame_count = 31,
+                   .view_count = 3,
                    .views = {view(0, 1, 5, 0, 0, 0), view(5, 1, 0, 0, 1, 0), view(0, 3, -5, 0, 0, 0)}};
     assert_view_equal(tour_step_view(&s, 0), s.views[0]);
     assert_view_equal(tour_step_view(&s, 15.0 / TOUR_FPS), s.views[1]);

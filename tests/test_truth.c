@@ -27,8 +27,7 @@ static bool same_frame(const dump_frame *a, const dump_frame *b) {
     return a->width == b->width && a->height == b->height && a->light_index == b->light_index &&
            memcmp(a->light, b->light, sizeof a->light) == 0 &&
            memcmp(a->visibility, b->visibility, n * sizeof *a->visibility) == 0 &&
-           memcmp(a->depth, b->depth, n * sizeof *a->depth) == 0 &&
-           memcmp(a->ids, b->ids, n * sizeof *a->ids) == 0 &&
+           memcmp(a->depth, b->depth, n * sizeof *a->depth) == 0 && memcmp(a->ids, b->ids, n * sizeof *a->ids) == 0 &&
            memcmp(a->normal, b->normal, 3 * n * sizeof *a->normal) == 0 &&
            memcmp(a->position, b->position, 3 * n * sizeof *a->position) == 0 &&
            memcmp(a->color, b->color, 4 * n) == 0;

@@ -55,9 +55,7 @@ static double det4(const float r[4][4]) {
 }
 
 /* Bit for bit: volumes repeat the mesh's own positions. */
-static bool same_point(const float *a, const float *b) {
-    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
-}
+static bool same_point(const float *a, const float *b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
 
 /* Every triangle of v faces away from the point q (w = 1). */
 static void assert_faces_out(const volume_mesh *v, const float q[3]) {
@@ -185,8 +183,9 @@ static void test_facing_edge_on(void **state) {
     (void)state;
     const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 0, -1}; /* faces +y */
     const float over = 1e-3f, within = 1e-6f;
-    const float lights[][4] = {{0.2f, over, -0.2f, 1}, {0.2f, -over, -0.2f, 1}, {0.2f, within, -0.2f, 1},
-                               {5, 0, 3, 1},           {0, 1, 0, 0},            {1, within, 0, 0}};
+    const float lights[][4] = {
+        {0.2f, over, -0.2f, 1}, {0.2f, -over, -0.2f, 1}, {0.2f, within, -0.2f, 1}, {5, 0, 3, 1},
+        {0, 1, 0, 0},           {1, within, 0, 0}};
     const int expected[] = {1, -1, 0, 0, 1, 0};
     for (size_t i = 0; i < sizeof expected / sizeof *expected; i++) {
         assert_int_equal(volume_mesh_facing(a, b, c, lights[i]), expected[i]);
@@ -223,8 +222,8 @@ static void assert_trimmed_closed_beyond_reach(const float light[4], const float
     for (int c = 0; c < 8; c++) {
         float corner[3] = {c & 1 ? REACH_HALF : -REACH_HALF, c & 2 ? REACH_HALF : -REACH_HALF,
                            c & 4 ? REACH_HALF : -REACH_HALF};
-        beyond = fmaxf(beyond, light[3] != 0 ? glm_vec3_distance(corner, (float *)light)
-                                             : glm_vec3_dot(corner, travel));
+        beyond =
+            fmaxf(beyond, light[3] != 0 ? glm_vec3_distance(corner, (float *)light) : glm_vec3_dot(corner, travel));
     }
     const volume_mesh *parts[2] = {&sides, &caps};
     int unmatched = 0;
@@ -539,7 +538,8 @@ static void test_depth_bounds(void **state) {
     }
     assert_true(inside > 0);
     const float behind_lo[3] = {-5, -5, -12}, behind_hi[3] = {5, 5, 3};
-    assert_true(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 8, behind_lo, behind_hi, bounds));
+    assert_true(
+        volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 8, behind_lo, behind_hi, bounds));
     assert_true(bounds[0] == whole[0] && bounds[1] == whole[1]);
     assert_false(volume_mesh_depth_bounds(view_projection, (const float(*)[3])points, 0, NULL, NULL, bounds));
 }
@@ -550,7 +550,8 @@ static int border_marks(const mesh *m, const uint32_t *indices) {
     int marks = 0;
     for (uint32_t t = 0; t < m->index_count / 3; t++)
         for (int k = 0; k < 3; k++)
-            marks += indices[t * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + k * 2 + 1] == m->indices[t * 3 + (k + 2) % 3];
+            marks +=
+                indices[t * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + k * 2 + 1] == m->indices[t * 3 + (k + 2) % 3];
     return marks;
 }
 
@@ -610,7 +611,7 @@ static void test_adjacency_marks_borders(void **state) {
     mesh_free(&box);
 
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}},  {{1, 0, 0}, {0, 0, 1}},
+        {{0, 0, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
         {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}}, {{1, 1, 0}, {0, 0, -1}},
     };
     uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4, 2, 1, 5};

@@ -40,10 +40,7 @@ static void assert_within_bound(const char *scene, const char *flags, const char
 static void test_every_mesh_every_mode_within_bound(void **state) {
     (void)state;
     static const char *const scenes[] = {"simple", "bunny", "teapot", "spider", "wuson"};
-    static const char *const configs[] = {"",
-                                          "--mode zpass",
-                                          "--mode zfail",
-                                          "--silhouette gpu",
+    static const char *const configs[] = {"", "--mode zpass", "--mode zfail", "--silhouette gpu",
                                           "--mode zfail --silhouette gpu"};
     enum { CONFIG_COUNT = sizeof configs / sizeof *configs };
     /* Under the sanitizers every support_sweep_stride()th pair, spread
@@ -82,7 +79,8 @@ static void test_gpu_silhouettes_of_open_meshes_match_cpu(void **state) {
             dump_frame frames[2];
             for (int gpu = 0; gpu < 2; gpu++) {
                 snprintf(flags[gpu], sizeof flags[gpu], "%s --silhouette %s", modes[k], gpu ? "gpu" : "cpu");
-                snprintf(dirs[gpu], sizeof dirs[gpu], "out/test/volumes/%s_%zu_%s", scenes[i], k, gpu ? "gpu" : "cpu");
+                snprintf(dirs[gpu], sizeof dirs[gpu], "out/test/volumes/%s_%zu_%s", scenes[i], k,
+                         gpu ? "gpu" : "cpu");
                 assert_int_equal(support_dump("volumes", path, flags[gpu], dirs[gpu]), 0);
                 assert_true(dump_read(&frames[gpu], dirs[gpu]));
             }

@@ -32,8 +32,12 @@ static float street_points[POINTS][3];
 
 static int street_setup(void **state) {
     (void)state;
-    scene_camera camera = {.position = {0, 2, 0}, .target = {0, 1.5f, -10}, .up = {0, 1, 0}, .fov_deg = 60,
-                           .near_plane = 0.1f, .far_plane = 200};
+    scene_camera camera = {.position = {0, 2, 0},
+                           .target = {0, 1.5f, -10},
+                           .up = {0, 1, 0},
+                           .fov_deg = 60,
+                           .near_plane = 0.1f,
+                           .far_plane = 200};
     camera_view_compute(&camera, 16.0f / 9.0f, &street_view);
     static const float ground[RECEIVERS][3] = {{-10, 0, -2}, {10, 0, -2}, {-10, 0, -100}, {10, 0, -100}};
     memcpy(street_points, ground, sizeof ground);
@@ -212,8 +216,11 @@ static void test_uniform_fit_contains_receivers(void **state) {
     (void)state;
     scene s = {.light_count = 2};
     s.lights[0] = directional(0.3f, -1, -0.5f);
-    s.lights[1] = (scene_light){.type = SCENE_LIGHT_SPOT, .position = {0, 40, -50}, .direction = {0, -1, 0},
-                                .outer_angle_deg = 70, .inner_angle_deg = 60};
+    s.lights[1] = (scene_light){.type = SCENE_LIGHT_SPOT,
+                                .position = {0, 40, -50},
+                                .direction = {0, -1, 0},
+                                .outer_angle_deg = 70,
+                                .inner_angle_deg = 60};
     for (int l = 0; l < s.light_count; l++) {
         shadow_map m = {.size = 1024};
         assert_true(shadow_map_fit_uniform(&s, l, &m, (const float(*)[3])street_points, RECEIVERS));
@@ -261,8 +268,12 @@ static void test_texel_size_of_orthographic_map_on_plane(void **state) {
     scene_object ground = {.receives = true, .mesh = {.bounds_min = {-100, 0, -100}, .bounds_max = {100, 0, 100}}};
     glm_mat4_identity(ground.model);
     scene s = {.objects = &ground, .object_count = 1};
-    scene_camera camera = {.position = {0, height, 0}, .target = {0, 0, 0}, .up = {0, 0, -1},
-                           .fov_deg = fov_deg, .near_plane = 0.1f, .far_plane = 100};
+    scene_camera camera = {.position = {0, height, 0},
+                           .target = {0, 0, 0},
+                           .up = {0, 0, -1},
+                           .fov_deg = fov_deg,
+                           .near_plane = 0.1f,
+                           .far_plane = 100};
     camera_view view;
     camera_view_compute(&camera, (float)WIDTH / HEIGHT, &view);
     scene_light light = directional(0, -1, 0);

@@ -117,8 +117,10 @@ bool camera_check_depth(scene *s, const char *file, bool reversed_available) {
     }
     size = sqrt(size);
     if (!(largest <= CAMERA_MAX_COORDINATE)) {
-        fprintf(stderr, "%s: camera: the scene reaches %g from the origin: beyond %g, squared distances overflow a "
-                "float\n", file, largest, CAMERA_MAX_COORDINATE);
+        fprintf(stderr,
+                "%s: camera: the scene reaches %g from the origin: beyond %g, squared distances overflow a "
+                "float\n",
+                file, largest, CAMERA_MAX_COORDINATE);
         return false;
     }
     /* The farthest corner of the scene's box along the view, within far. */
@@ -140,14 +142,17 @@ bool camera_check_depth(scene *s, const char *file, bool reversed_available) {
         return true;
     }
     if (reversed_step <= CAMERA_MAX_DEPTH_STEP * size)
-        fprintf(stderr, "%s: camera: near %g and far %g: the %d-bit depth step %.3g at the scene's farthest point "
+        fprintf(stderr,
+                "%s: camera: near %g and far %g: the %d-bit depth step %.3g at the scene's farthest point "
                 "(%.3g away) is above %g of its size %.3g, and the GL context has no ARB_clip_control for reversed "
-                "depth; raise near\n", file, (double)c->near_plane, (double)c->far_plane, CAMERA_DEPTH_BITS, step,
-                farthest, CAMERA_MAX_DEPTH_STEP, size);
+                "depth; raise near\n",
+                file, (double)c->near_plane, (double)c->far_plane, CAMERA_DEPTH_BITS, step, farthest,
+                CAMERA_MAX_DEPTH_STEP, size);
     else
-        fprintf(stderr, "%s: camera: near %g and far %g: the depth step at the scene's farthest point (%.3g away), "
-                "%.3g with %d bits and %.3g reversed in float, is above %g of its size %.3g; raise near\n", file,
-                (double)c->near_plane, (double)c->far_plane, farthest, step, CAMERA_DEPTH_BITS, reversed_step,
+        fprintf(stderr,
+                "%s: camera: near %g and far %g: the depth step at the scene's farthest point (%.3g away), "
+                "%.3g with %d bits and %.3g reversed in float, is above %g of its size %.3g; raise near\n",
+                file, (double)c->near_plane, (double)c->far_plane, farthest, step, CAMERA_DEPTH_BITS, reversed_step,
                 CAMERA_MAX_DEPTH_STEP, size);
     return false;
 }

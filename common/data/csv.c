@@ -68,8 +68,8 @@ bool csv_read(const char *path, csv_table *table) {
     for (int line = 1; *cursor; line++) {
         char *fields[CSV_MAX_COLUMNS];
         int count = csv_split_line(&cursor, fields);
-        const char *problem = count < 0                 ? "a quote is not closed"
-                              : count > CSV_MAX_COLUMNS ? "more fields than the most a row may have"
+        const char *problem = count < 0                      ? "a quote is not closed"
+                              : count > CSV_MAX_COLUMNS      ? "more fields than the most a row may have"
                               : line > 1 && count != columns ? "another field count than the header's"
                                                              : NULL;
         if (problem) {

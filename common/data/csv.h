@@ -17,8 +17,8 @@
 #define CSV_MAX_COLUMNS 64
 
 typedef struct csv_table {
-    char *text;   /* the file, split in place into the cells */
-    char **cells; /* row r's column c: cells[r * columns + c]; row 0 the header */
+    char *text;        /* the file, split in place into the cells */
+    char **cells;      /* row r's column c: cells[r * columns + c]; row 0 the header */
     int columns, rows; /* rows without the header */
 } csv_table;
 

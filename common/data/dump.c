@@ -15,7 +15,10 @@
 
 bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int light_index) {
     size_t n = (size_t)width * (size_t)height;
-    *d = (dump_frame){.width = width, .height = height, .light_index = light_index, .camera = s->camera,
+    *d = (dump_frame){.width = width,
+                      .height = height,
+                      .light_index = light_index,
+                      .camera = s->camera,
                       .object_count = s->object_count};
     scene_light_homogeneous(&s->lights[light_index], d->light);
     d->object_names = calloc((size_t)s->object_count, sizeof *d->object_names);

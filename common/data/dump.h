@@ -41,11 +41,11 @@ typedef struct dump_frame {
     scene_camera camera; /* reversed_depth is not stored: false when read */
     int object_count;
     char (*object_names)[SCENE_NAME_MAX];
-    float *visibility; /* width * height */
-    float *depth;      /* width * height */
-    float *normal;     /* 3 * width * height */
-    float *position;   /* 3 * width * height */
-    float *ids;        /* width * height */
+    float *visibility;    /* width * height */
+    float *depth;         /* width * height */
+    float *normal;        /* 3 * width * height */
+    float *position;      /* 3 * width * height */
+    float *ids;           /* width * height */
     unsigned char *color; /* 4 * width * height, RGBA */
 } dump_frame;
 

@@ -106,8 +106,8 @@ static int flags_set(const char *program, const flags_param *p, const char *valu
     case FLAGS_INT:
         if (flags_parse_int(value, (int)p->min, (int)p->max, p->integer))
             return 0;
-        return flags_error(program, "--%s: expected %s %d..%d, got '%s'", p->name, p->what ? p->what : "a whole number",
-                           (int)p->min, (int)p->max, value);
+        return flags_error(program, "--%s: expected %s %d..%d, got '%s'", p->name,
+                           p->what ? p->what : "a whole number", (int)p->min, (int)p->max, value);
     case FLAGS_SIZE:
         if (flags_parse_size(value, p->width, p->height))
             return 0;
@@ -217,7 +217,8 @@ float flags_number(const flags_param *p) { return *p->number != 0 ? *p->number :
  * "--depth"). */
 static int flags_usage_text(const flags_param *p, bool choices, char *out, size_t size) {
     static const char *const value_names[FLAGS_HELP + 1] = {
-        [FLAGS_NUMBER] = "X", [FLAGS_INT] = "N", [FLAGS_SIZE] = "WxH", [FLAGS_STRING] = "TEXT", [FLAGS_LIST] = "ARG...",
+        [FLAGS_NUMBER] = "X",    [FLAGS_INT] = "N",       [FLAGS_SIZE] = "WxH",
+        [FLAGS_STRING] = "TEXT", [FLAGS_LIST] = "ARG...",
     };
     int n = snprintf(out, size, "--%s%s", p->kind == FLAGS_TOGGLE ? "no-" : "", p->name);
     if (p->kind == FLAGS_CHOICE && choices && n + 1 < (int)size) {

@@ -64,8 +64,8 @@ bool frustum_sphere_outside(const mat4 view_projection, const float center[3], f
 /* The vertices of the meeting of two convex bodies are the corners of each
  * inside the other and the crossings of each one's edges with the other's
  * faces. */
-int frustum_box_part(const mat4 view_projection, const vec3 frustum[8], const vec3 lo, const vec3 hi,
-                                  float (*out)[3], int capacity) {
+int frustum_box_part(const mat4 view_projection, const vec3 frustum[8], const vec3 lo, const vec3 hi, float (*out)[3],
+                     int capacity) {
     vec3 box[8];
     frustum_box_corners(lo, hi, box);
     int n = 0;
@@ -92,8 +92,8 @@ int frustum_box_part(const mat4 view_projection, const vec3 frustum[8], const ve
             }
             /* The box's edge a..a|bit across the frustum's six planes:
              * clip x, y or z minus or plus w, linear along the edge. */
-            vec4 ca, cb, ha = {box[a][0], box[a][1], box[a][2], 1}, hb = {box[a | bit][0], box[a | bit][1],
-                                                                         box[a | bit][2], 1};
+            vec4 ca, cb, ha = {box[a][0], box[a][1], box[a][2], 1},
+                         hb = {box[a | bit][0], box[a | bit][1], box[a | bit][2], 1};
             glm_mat4_mulv((vec4 *)view_projection, ha, ca);
             glm_mat4_mulv((vec4 *)view_projection, hb, cb);
             for (int k = 0; k < 6 && n < capacity; k++) {

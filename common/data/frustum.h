@@ -33,8 +33,8 @@ bool frustum_contains(const mat4 view_projection, const float p[3]);
 bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]);
 /* The corners of the part of the box lo..hi inside the frustum (whose
  * corners are `corners`), at most `capacity` of them; returns how many. */
-int frustum_box_part(const mat4 view_projection, const vec3 corners[8], const vec3 lo, const vec3 hi,
-                     float (*out)[3], int capacity);
+int frustum_box_part(const mat4 view_projection, const vec3 corners[8], const vec3 lo, const vec3 hi, float (*out)[3],
+                     int capacity);
 /* The box lo..hi lies wholly outside the frustum: all its corners beyond
  * one clip plane (by more than FRUSTUM_CLIP_TOLERANCE). Conservative, as
  * culling needs: a box that meets the frustum is never outside, though a

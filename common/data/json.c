@@ -25,18 +25,24 @@ bool json_fail(const char *file, const char *where, const char *key, const char 
 }
 
 const char *json_kind(const cJSON *item) {
-    if (cJSON_IsNumber(item)) return "a number";
-    if (cJSON_IsString(item)) return "a string";
-    if (cJSON_IsArray(item)) return "an array";
-    if (cJSON_IsObject(item)) return "an object";
-    if (cJSON_IsBool(item)) return "a boolean";
+    if (cJSON_IsNumber(item))
+        return "a number";
+    if (cJSON_IsString(item))
+        return "a string";
+    if (cJSON_IsArray(item))
+        return "an array";
+    if (cJSON_IsObject(item))
+        return "an object";
+    if (cJSON_IsBool(item))
+        return "a boolean";
     return "null";
 }
 
 /* "a, b, c or d" */
 void json_join_names(const char *const names[], char *out, size_t size) {
     size_t count = 0, used = 0;
-    while (names[count]) count++;
+    while (names[count])
+        count++;
     out[0] = '\0';
     for (size_t i = 0; i < count && used < size; i++) {
         const char *separator = i == 0 ? "" : i + 1 == count ? " or " : ", ";
@@ -44,20 +50,21 @@ void json_join_names(const char *const names[], char *out, size_t size) {
     }
 }
 
-bool json_lookup(const char *file, const cJSON *object, const char *where, const char *key,
-                         bool required, const cJSON **item) {
+bool json_lookup(const char *file, const cJSON *object, const char *where, const char *key, bool required,
+                 const cJSON **item) {
     *item = cJSON_GetObjectItemCaseSensitive(object, key);
-    if (!*item && required) return json_fail(file, where, key, "missing required field");
+    if (!*item && required)
+        return json_fail(file, where, key, "missing required field");
     return true;
 }
 
 /* Unknown keys are usually typos, and a repeated key hides one value. */
-bool json_check_keys(const char *file, const cJSON *object, const char *where,
-                             const char *const allowed[]) {
+bool json_check_keys(const char *file, const cJSON *object, const char *where, const char *const allowed[]) {
     const cJSON *item;
     cJSON_ArrayForEach(item, object) {
         bool known = false;
-        for (int i = 0; allowed[i] && !known; i++) known = strcmp(allowed[i], item->string) == 0;
+        for (int i = 0; allowed[i] && !known; i++)
+            known = strcmp(allowed[i], item->string) == 0;
         if (!known) {
             char expected[256];
             json_join_names(allowed, expected, sizeof expected);
@@ -70,13 +77,13 @@ bool json_check_keys(const char *file, const cJSON *object, const char *where,
     return true;
 }
 
-
 bool json_read_int(const char *file, const cJSON *object, const char *where, const char *key, int *out) {
     const cJSON *item;
-    if (!json_lookup(file, object, where, key, false, &item)) return false;
-    if (!item) return true;
-    if (!cJSON_IsNumber(item) || item->valuedouble != floor(item->valuedouble) ||
-        fabs(item->valuedouble) > INT_MAX) {
+    if (!json_lookup(file, object, where, key, false, &item))
+        return false;
+    if (!item)
+        return true;
+    if (!cJSON_IsNumber(item) || item->valuedouble != floor(item->valuedouble) || fabs(item->valuedouble) > INT_MAX) {
         return json_fail(file, where, key, "expected a whole number");
     }
     *out = (int)item->valuedouble;
@@ -86,7 +93,8 @@ bool json_read_int(const char *file, const cJSON *object, const char *where, con
 bool json_read_numbers(const char *file, const cJSON *object, const char *where, const char *key, double *out,
                        int count) {
     const cJSON *item;
-    if (!json_lookup(file, object, where, key, true, &item)) return false;
+    if (!json_lookup(file, object, where, key, true, &item))
+        return false;
     if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != count) {
         return json_fail(file, where, key, "expected an array of %d numbers", count);
     }
@@ -108,8 +116,10 @@ bool json_read_numbers(const char *file, const cJSON *object, const char *where,
 
 bool json_read_bool(const char *file, const cJSON *object, const char *where, const char *key, bool *out) {
     const cJSON *item;
-    if (!json_lookup(file, object, where, key, false, &item)) return false;
-    if (!item) return true;
+    if (!json_lookup(file, object, where, key, false, &item))
+        return false;
+    if (!item)
+        return true;
     if (!cJSON_IsBool(item)) {
         return json_fail(file, where, key, "expected true or false, got %s", json_kind(item));
     }
@@ -120,8 +130,10 @@ bool json_read_bool(const char *file, const cJSON *object, const char *where, co
 bool json_read_string(const char *file, const cJSON *object, const char *where, const char *key, bool required,
                       const char **out) {
     const cJSON *item;
-    if (!json_lookup(file, object, where, key, required, &item)) return false;
-    if (!item) return true;
+    if (!json_lookup(file, object, where, key, required, &item))
+        return false;
+    if (!item)
+        return true;
     if (!cJSON_IsString(item) || !item->valuestring) {
         return json_fail(file, where, key, "expected a string, got %s", json_kind(item));
     }
@@ -129,25 +141,27 @@ bool json_read_string(const char *file, const cJSON *object, const char *where, 
     return true;
 }
 
-bool json_read_object(const char *file, const cJSON *object, const char *where, const char *key,
-                                   const cJSON **out) {
-    if (!json_lookup(file, object, where, key, true, out)) return false;
+bool json_read_object(const char *file, const cJSON *object, const char *where, const char *key, const cJSON **out) {
+    if (!json_lookup(file, object, where, key, true, out))
+        return false;
     if (!cJSON_IsObject(*out)) {
         return json_fail(file, where, key, "expected an object, got %s", json_kind(*out));
     }
     return true;
 }
 
-
 static cJSON *json_parse(const char *file, const char *text, size_t length) {
     const char *error = NULL;
     /* The length counts the terminating NUL: cJSON wants it to tell the end
      * of the document from trailing garbage. */
     cJSON *root = cJSON_ParseWithLengthOpts(text, length + 1, &error, true);
-    if (root) return root;
-    if (!error) error = text;
+    if (root)
+        return root;
+    if (!error)
+        error = text;
     int line = 1;
-    for (const char *c = text; c < error; c++) line += *c == '\n';
+    for (const char *c = text; c < error; c++)
+        line += *c == '\n';
     if (error >= text + length) {
         fprintf(stderr, "%s:%d: JSON syntax error at the end of the file\n", file, line);
     } else if (isgraph((unsigned char)*error)) {
@@ -158,11 +172,11 @@ static cJSON *json_parse(const char *file, const char *text, size_t length) {
     return NULL;
 }
 
-
 cJSON *json_load(const char *path, size_t max_size) {
     size_t length;
     char *text = path_read_text(path, max_size, &length);
-    if (!text) return NULL;
+    if (!text)
+        return NULL;
     cJSON *root = json_parse(path, text, length);
     free(text);
     return root;

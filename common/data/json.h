@@ -38,7 +38,6 @@ bool json_read_string(const char *file, const cJSON *object, const char *where, 
 bool json_read_numbers(const char *file, const cJSON *object, const char *where, const char *key, double *out,
                        int count);
 /* A required object. */
-bool json_read_object(const char *file, const cJSON *object, const char *where, const char *key,
-                      const cJSON **out);
+bool json_read_object(const char *file, const cJSON *object, const char *where, const char *key, const cJSON **out);
 
 #endif

@@ -216,7 +216,9 @@ static bool light_mask_box(const light_mask *m, const vec3 lo, const vec3 hi, li
     return read;
 }
 
-bool light_mask_box_read(const light_mask *m, const vec3 lo, const vec3 hi) { return light_mask_box(m, lo, hi, NULL); }
+bool light_mask_box_read(const light_mask *m, const vec3 lo, const vec3 hi) {
+    return light_mask_box(m, lo, hi, NULL);
+}
 
 bool light_mask_box_seen(const light_mask *m, const vec3 lo, const vec3 hi, light_mask_seen *out) {
     return light_mask_box(m, lo, hi, out);

@@ -48,14 +48,17 @@ typedef struct light_mask_seen {
     float lo[3], hi[3];
 } light_mask_seen;
 /* Nothing seen: where a union starts. */
-#define LIGHT_MASK_SEEN_NOTHING {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}}
+#define LIGHT_MASK_SEEN_NOTHING                                                                                      \
+    {                                                                                                                \
+        {INFINITY, INFINITY, INFINITY}, { -INFINITY, -INFINITY, -INFINITY }                                          \
+    }
 
 typedef struct light_mask {
     mat4 layer; /* world -> the layer's clip space */
     float grow; /* NDC: how far every read's rectangle grows */
     bool any_depth;
-    bool whole; /* a read saw the whole layer: every box is needed */
-    bool empty; /* nothing read yet */
+    bool whole;      /* a read saw the whole layer: every box is needed */
+    bool empty;      /* nothing read yet */
     bool keeps_seen; /* the cells keep where their reads were seen */
     float deepest[LIGHT_MASK_CELLS * LIGHT_MASK_CELLS];
     /* With keeps_seen: per cell, the union of its reads' light_mask_seen. */

@@ -53,14 +53,16 @@ static bool mesh_fail(mesh *m, const char *name, const char *format, ...) {
     va_end(args);
     /* Importers' messages may span lines; the contract is one line. */
     for (char *c = problem; *c; c++) {
-        if (*c == '\n' || *c == '\r') *c = ' ';
+        if (*c == '\n' || *c == '\r')
+            *c = ' ';
     }
     if (mesh_on_error) {
         mesh_on_error(name, problem, mesh_on_error_user_data);
     } else {
         fprintf(stderr, "%s: %s\n", name, problem);
     }
-    if (m) mesh_free(m);
+    if (m)
+        mesh_free(m);
     return false;
 }
 
@@ -81,12 +83,13 @@ void mesh_topology_free(mesh_topology *t) {
 static bool mesh_alloc(mesh *m, const char *name, size_t vertex_count, size_t index_count) {
     *m = (mesh){0};
     if (vertex_count > UINT32_MAX || index_count > UINT32_MAX) {
-        return mesh_fail(m, name, "too large for 32-bit indices (%zu vertices, %zu indices)",
-                         vertex_count, index_count);
+        return mesh_fail(m, name, "too large for 32-bit indices (%zu vertices, %zu indices)", vertex_count,
+                         index_count);
     }
     m->vertices = malloc(vertex_count * sizeof *m->vertices);
     m->indices = malloc(index_count * sizeof *m->indices);
-    if (!m->vertices || !m->indices) return mesh_fail(m, name, "out of memory");
+    if (!m->vertices || !m->indices)
+        return mesh_fail(m, name, "out of memory");
     return true;
 }
 
@@ -110,15 +113,17 @@ static void mesh_push_quad(mesh *m, uint32_t a, uint32_t b, uint32_t c, uint32_t
 }
 
 static bool mesh_check_size(mesh *m, const char *name, const char *what, float value) {
-    if (isfinite(value) && value > 0) return true;
+    if (isfinite(value) && value > 0)
+        return true;
     return mesh_fail(m, name, "%s must be finite and positive (got %g)", what, value);
 }
 
 static bool mesh_check_segments(mesh *m, const char *name, int *segments) {
-    if (*segments <= 0) *segments = MESH_DEFAULT_SEGMENTS;
-    if (*segments >= 3 && *segments <= MESH_MAX_SEGMENTS) return true;
-    return mesh_fail(m, name, "segments must be between 3 and %d (got %d)", MESH_MAX_SEGMENTS,
-                     *segments);
+    if (*segments <= 0)
+        *segments = MESH_DEFAULT_SEGMENTS;
+    if (*segments >= 3 && *segments <= MESH_MAX_SEGMENTS)
+        return true;
+    return mesh_fail(m, name, "segments must be between 3 and %d (got %d)", MESH_MAX_SEGMENTS, *segments);
 }
 
 /* Point i of n on the unit circle around Y. It starts at +Z and turns towards
@@ -138,8 +143,8 @@ static uint32_t mesh_grid_vertex(uint32_t first, int row, int column, int column
 
 bool mesh_make_plane(mesh *m, float size_x, float size_z) {
     *m = (mesh){0};
-    if (!mesh_check_size(m, "plane", "size_x", size_x) ||
-        !mesh_check_size(m, "plane", "size_z", size_z) || !mesh_alloc(m, "plane", 4, 6)) {
+    if (!mesh_check_size(m, "plane", "size_x", size_x) || !mesh_check_size(m, "plane", "size_z", size_z) ||
+        !mesh_alloc(m, "plane", 4, 6)) {
         return false;
     }
     float x = size_x / 2, z = size_z / 2;
@@ -154,8 +159,7 @@ bool mesh_make_plane(mesh *m, float size_x, float size_z) {
 
 bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z) {
     *m = (mesh){0};
-    if (!mesh_check_size(m, "box", "size_x", size_x) ||
-        !mesh_check_size(m, "box", "size_y", size_y) ||
+    if (!mesh_check_size(m, "box", "size_x", size_x) || !mesh_check_size(m, "box", "size_y", size_y) ||
         !mesh_check_size(m, "box", "size_z", size_z) || !mesh_alloc(m, "box", 24, 36)) {
         return false;
     }
@@ -186,8 +190,7 @@ bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z) {
 
 bool mesh_make_sphere(mesh *m, float radius, int segments) {
     *m = (mesh){0};
-    if (!mesh_check_size(m, "sphere", "radius", radius) ||
-        !mesh_check_segments(m, "sphere", &segments)) {
+    if (!mesh_check_size(m, "sphere", "radius", radius) || !mesh_check_segments(m, "sphere", &segments)) {
         return false;
     }
     /* Rings of latitude between two single pole vertices: the caps are fans
@@ -205,8 +208,7 @@ bool mesh_make_sphere(mesh *m, float radius, int segments) {
         for (int slice = 0; slice < slices; slice++) {
             float x, z;
             mesh_circle_point(slice, slices, &x, &z);
-            float normal[3] = {(float)sin(latitude) * x, (float)cos(latitude),
-                               (float)sin(latitude) * z};
+            float normal[3] = {(float)sin(latitude) * x, (float)cos(latitude), (float)sin(latitude) * z};
             float position[3];
             glm_vec3_scale(normal, radius, position);
             mesh_push_vertex(m, position, normal);
@@ -231,18 +233,18 @@ bool mesh_make_sphere(mesh *m, float radius, int segments) {
 bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segments) {
     *m = (mesh){0};
     if (!mesh_check_size(m, "torus", "major_radius", major_radius) ||
-        !mesh_check_size(m, "torus", "minor_radius", minor_radius) ||
-        !mesh_check_segments(m, "torus", &segments)) {
+        !mesh_check_size(m, "torus", "minor_radius", minor_radius) || !mesh_check_segments(m, "torus", &segments)) {
         return false;
     }
     if (minor_radius >= major_radius) {
         /* The tube would cross the Y axis and intersect itself. */
-        return mesh_fail(m, "torus", "minor_radius (%g) must be smaller than major_radius (%g)",
-                         minor_radius, major_radius);
+        return mesh_fail(m, "torus", "minor_radius (%g) must be smaller than major_radius (%g)", minor_radius,
+                         major_radius);
     }
     int rings = segments;
     int sides = segments / 2 < 3 ? 3 : segments / 2;
-    if (!mesh_alloc(m, "torus", (size_t)rings * sides, 6 * (size_t)rings * sides)) return false;
+    if (!mesh_alloc(m, "torus", (size_t)rings * sides, 6 * (size_t)rings * sides))
+        return false;
     for (int ring = 0; ring < rings; ring++) {
         float ring_x, ring_z;
         mesh_circle_point(ring, rings, &ring_x, &ring_z);
@@ -251,8 +253,7 @@ bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segmen
             float out, up;
             mesh_circle_point(side, sides, &up, &out);
             float normal[3] = {out * ring_x, up, out * ring_z};
-            float position[3] = {major_radius * ring_x + minor_radius * normal[0],
-                                 minor_radius * normal[1],
+            float position[3] = {major_radius * ring_x + minor_radius * normal[0], minor_radius * normal[1],
                                  major_radius * ring_z + minor_radius * normal[2]};
             mesh_push_vertex(m, position, normal);
         }
@@ -260,8 +261,7 @@ bool mesh_make_torus(mesh *m, float major_radius, float minor_radius, int segmen
     for (int ring = 0; ring < rings; ring++) {
         int next_ring = (ring + 1) % rings;
         for (int side = 0; side < sides; side++) {
-            mesh_push_quad(m, mesh_grid_vertex(0, ring, side, sides),
-                           mesh_grid_vertex(0, next_ring, side, sides),
+            mesh_push_quad(m, mesh_grid_vertex(0, ring, side, sides), mesh_grid_vertex(0, next_ring, side, sides),
                            mesh_grid_vertex(0, next_ring, side + 1, sides),
                            mesh_grid_vertex(0, ring, side + 1, sides));
         }
@@ -293,12 +293,12 @@ static void mesh_push_cap(mesh *m, float radius, float y, int segments) {
 
 bool mesh_make_cylinder(mesh *m, float radius, float height, int segments) {
     *m = (mesh){0};
-    if (!mesh_check_size(m, "cylinder", "radius", radius) ||
-        !mesh_check_size(m, "cylinder", "height", height) ||
+    if (!mesh_check_size(m, "cylinder", "radius", radius) || !mesh_check_size(m, "cylinder", "height", height) ||
         !mesh_check_segments(m, "cylinder", &segments)) {
         return false;
     }
-    if (!mesh_alloc(m, "cylinder", 4 * (size_t)segments + 2, 12 * (size_t)segments)) return false;
+    if (!mesh_alloc(m, "cylinder", 4 * (size_t)segments + 2, 12 * (size_t)segments))
+        return false;
     float top = height / 2;
     /* The side: one row of (top, bottom) pairs with horizontal normals. */
     for (int i = 0; i < segments; i++) {
@@ -325,7 +325,8 @@ static bool mesh_scene_positions_finite(const struct aiScene *scene) {
         const struct aiMesh *am = scene->mMeshes[i];
         for (unsigned v = 0; v < am->mNumVertices; v++) {
             const struct aiVector3D *p = &am->mVertices[v];
-            if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) return false;
+            if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z))
+                return false;
         }
     }
     return true;
@@ -333,7 +334,8 @@ static bool mesh_scene_positions_finite(const struct aiScene *scene) {
 
 static unsigned mesh_count_assimp_triangles(const struct aiMesh *am) {
     unsigned count = 0;
-    for (unsigned f = 0; f < am->mNumFaces; f++) count += am->mFaces[f].mNumIndices == 3;
+    for (unsigned f = 0; f < am->mNumFaces; f++)
+        count += am->mFaces[f].mNumIndices == 3;
     return count;
 }
 
@@ -344,13 +346,17 @@ static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct a
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
         unsigned triangles = mesh_count_assimp_triangles(scene->mMeshes[i]);
         triangle_count += triangles;
-        if (triangles) vertex_count += scene->mMeshes[i]->mNumVertices;
+        if (triangles)
+            vertex_count += scene->mMeshes[i]->mNumVertices;
     }
-    if (triangle_count == 0) return mesh_fail(m, path, "no triangles");
-    if (!mesh_alloc(m, path, vertex_count, 3 * triangle_count)) return false;
+    if (triangle_count == 0)
+        return mesh_fail(m, path, "no triangles");
+    if (!mesh_alloc(m, path, vertex_count, 3 * triangle_count))
+        return false;
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
         const struct aiMesh *am = scene->mMeshes[i];
-        if (!mesh_count_assimp_triangles(am)) continue;
+        if (!mesh_count_assimp_triangles(am))
+            continue;
         uint32_t first = m->vertex_count;
         for (unsigned v = 0; v < am->mNumVertices; v++) {
             const struct aiVector3D *p = &am->mVertices[v];
@@ -360,7 +366,8 @@ static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct a
         }
         for (unsigned f = 0; f < am->mNumFaces; f++) {
             const struct aiFace *face = &am->mFaces[f];
-            if (face->mNumIndices != 3) continue;
+            if (face->mNumIndices != 3)
+                continue;
             uint32_t corner[3];
             for (int k = 0; k < 3; k++) {
                 /* An index past this mesh's vertices becomes one past all of
@@ -381,7 +388,8 @@ static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct a
 static long mesh_obj_single_vertex_line(const char *path) {
     const char *extension = strrchr(path, '.');
     FILE *f = extension && strcasecmp(extension, ".obj") == 0 ? fopen(path, "r") : NULL;
-    if (!f) return 0;
+    if (!f)
+        return 0;
     char *text = NULL;
     size_t capacity = 0;
     long number = 0, found = 0;
@@ -390,7 +398,8 @@ static long mesh_obj_single_vertex_line(const char *path) {
         const char *statement = text + strspn(text, " \t");
         bool is_line = statement[0] == 'l' && (statement[1] == '\0' || isspace((unsigned char)statement[1]));
         char second_vertex[2];
-        if (is_line && sscanf(statement + 1, "%*s %1s", second_vertex) != 1) found = number;
+        if (is_line && sscanf(statement + 1, "%*s %1s", second_vertex) != 1)
+            found = number;
     }
     free(text);
     fclose(f);
@@ -418,16 +427,19 @@ static void mesh_claim_add(mesh_claim *c, unsigned long long count, unsigned lon
  * their line (OFF); false at the end of the file. */
 static bool mesh_header_word(FILE *f, char word[MESH_HEADER_WORD_MAX]) {
     while (fscanf(f, " %" MESH_TEXT(MESH_HEADER_WORD_LENGTH) "s", word) == 1) {
-        if (word[0] != '#') return true;
+        if (word[0] != '#')
+            return true;
         int c;
-        while ((c = fgetc(f)) != EOF && c != '\n') continue;
+        while ((c = fgetc(f)) != EOF && c != '\n')
+            continue;
     }
     return false;
 }
 
 static bool mesh_header_count(FILE *f, unsigned long long *count) {
     char word[MESH_HEADER_WORD_MAX], *end;
-    if (!mesh_header_word(f, word) || !isdigit((unsigned char)word[0])) return false;
+    if (!mesh_header_word(f, word) || !isdigit((unsigned char)word[0]))
+        return false;
     errno = 0;
     *count = strtoull(word, &end, 10);
     return *end == '\0' && errno == 0;
@@ -447,18 +459,23 @@ static bool mesh_is_off_keyword(const char *word) {
 static bool mesh_read_off_claim(FILE *f, bool named_off, mesh_claim *c) {
     char word[MESH_HEADER_WORD_MAX];
     unsigned long long dimension, vertices, faces;
-    if (!mesh_header_word(f, word)) return false;
+    if (!mesh_header_word(f, word))
+        return false;
     bool keyword = mesh_is_off_keyword(word);
-    if (keyword && strchr(word, 'n') && !mesh_header_count(f, &dimension)) return false;
+    if (keyword && strchr(word, 'n') && !mesh_header_count(f, &dimension))
+        return false;
     if (keyword) {
-        if (!mesh_header_count(f, &vertices)) return false;
+        if (!mesh_header_count(f, &vertices))
+            return false;
     } else {
         char *end;
         errno = 0;
         vertices = strtoull(word, &end, 10);
-        if (!named_off || !isdigit((unsigned char)word[0]) || *end != '\0' || errno != 0) return false;
+        if (!named_off || !isdigit((unsigned char)word[0]) || *end != '\0' || errno != 0)
+            return false;
     }
-    if (!mesh_header_count(f, &faces)) return false;
+    if (!mesh_header_count(f, &faces))
+        return false;
     snprintf(c->what, sizeof c->what, "%llu vertices and %llu faces", vertices, faces);
     mesh_claim_add(c, vertices, MESH_MIN_TEXT_RECORD_BYTES);
     mesh_claim_add(c, faces, MESH_MIN_TEXT_RECORD_BYTES);
@@ -474,30 +491,36 @@ static bool mesh_read_ply_claim(FILE *f, mesh_claim *c) {
     unsigned long long count = 0, properties = 0;
     bool ascii = false;
     size_t used = 0;
-    if (!mesh_header_word(f, word) || strcmp(word, "ply") != 0) return false;
+    if (!mesh_header_word(f, word) || strcmp(word, "ply") != 0)
+        return false;
     for (;;) {
-        if (!mesh_header_word(f, word)) return false;
+        if (!mesh_header_word(f, word))
+            return false;
         bool last = strcmp(word, "end_header") == 0, element = strcmp(word, "element") == 0;
         if ((last || element) && count) {
             /* The element before this line is complete. */
             mesh_claim_add(c, count, ascii ? (properties ? MESH_MIN_TEXT_RECORD_BYTES : 0) : properties);
-            int n = snprintf(c->what + used, sizeof c->what - used, "%s%llu %s", used ? ", " : "elements (", count,
-                             name);
+            int n =
+                snprintf(c->what + used, sizeof c->what - used, "%s%llu %s", used ? ", " : "elements (", count, name);
             used = n > 0 && (size_t)n < sizeof c->what - used ? used + (size_t)n : used;
         }
-        if (last) break;
+        if (last)
+            break;
         if (element) {
             properties = 0;
-            if (!mesh_header_word(f, name) || !mesh_header_count(f, &count)) return false;
+            if (!mesh_header_word(f, name) || !mesh_header_count(f, &count))
+                return false;
             continue;
         }
         if (strcmp(word, "format") == 0) {
-            if (!mesh_header_word(f, word)) return false;
+            if (!mesh_header_word(f, word))
+                return false;
             ascii = strcmp(word, "ascii") == 0;
         }
         properties += strcmp(word, "property") == 0;
         int ch; /* the rest of the line: types, names, versions, comments */
-        while ((ch = fgetc(f)) != EOF && ch != '\n') continue;
+        while ((ch = fgetc(f)) != EOF && ch != '\n')
+            continue;
     }
     if (used == 0) {
         snprintf(c->what, sizeof c->what, "no elements");
@@ -505,7 +528,8 @@ static bool mesh_read_ply_claim(FILE *f, mesh_claim *c) {
         strcpy(c->what + used, ")");
     }
     int ch;
-    while ((ch = fgetc(f)) != EOF && ch != '\n') continue;
+    while ((ch = fgetc(f)) != EOF && ch != '\n')
+        continue;
     return true;
 }
 
@@ -526,7 +550,8 @@ static bool mesh_check_header_claims(mesh *m, const char *path, long long size) 
     const char *extension = strrchr(path, '.');
     bool named_off = extension && strcasecmp(extension, ".off") == 0;
     FILE *f = fopen(path, "rb");
-    if (!f) return true; /* assimp says why */
+    if (!f)
+        return true; /* assimp says why */
     mesh_claim claim = {.available = 0};
     const char *format = "OFF";
     bool claimed = mesh_read_off_claim(f, named_off, &claim);
@@ -538,13 +563,16 @@ static bool mesh_check_header_claims(mesh *m, const char *path, long long size) 
     }
     long position = ftell(f);
     fclose(f);
-    if (!claimed || position < 0) return true;
+    if (!claimed || position < 0)
+        return true;
     claim.available = size - position;
     /* The last record may end without a line end. */
-    if (claim.min_bytes <= (unsigned long long)claim.available + 1) return true;
-    return mesh_fail(m, path, "%s header claims %s: at least %llu bytes, but the file holds %lld after the "
-                     "header (refused before assimp allocates for them)", format, claim.what, claim.min_bytes,
-                     claim.available);
+    if (claim.min_bytes <= (unsigned long long)claim.available + 1)
+        return true;
+    return mesh_fail(m, path,
+                     "%s header claims %s: at least %llu bytes, but the file holds %lld after the "
+                     "header (refused before assimp allocates for them)",
+                     format, claim.what, claim.min_bytes, claim.available);
 }
 
 /* The triangles and vertices of the imported scene (triangulated, node
@@ -557,9 +585,12 @@ static bool mesh_check_counts(mesh *m, const char *path, const struct aiScene *s
         vertices += scene->mMeshes[i]->mNumVertices;
         triangles += mesh_count_assimp_triangles(scene->mMeshes[i]);
     }
-    if (triangles <= MESH_MAX_TRIANGLES && vertices <= MESH_MAX_VERTICES) return true;
-    return mesh_fail(m, path, "%llu triangles and %llu vertices, over the limit of %d triangles and %d vertices "
-                     "a model may have", triangles, vertices, MESH_MAX_TRIANGLES, MESH_MAX_VERTICES);
+    if (triangles <= MESH_MAX_TRIANGLES && vertices <= MESH_MAX_VERTICES)
+        return true;
+    return mesh_fail(m, path,
+                     "%llu triangles and %llu vertices, over the limit of %d triangles and %d vertices "
+                     "a model may have",
+                     triangles, vertices, MESH_MAX_TRIANGLES, MESH_MAX_VERTICES);
 }
 
 /* The determinant of a node's own transform (its 3x3 part), in double. */
@@ -574,9 +605,11 @@ static double mesh_node_determinant(const struct aiMatrix4x4 *t) {
  * the composed transform is their product, so the signs are all it takes). */
 static bool mesh_node_mirrors(const struct aiNode *node, bool mirrored_above) {
     bool mirrored = mirrored_above != (mesh_node_determinant(&node->mTransformation) < 0);
-    if (mirrored && node->mNumMeshes) return true;
+    if (mirrored && node->mNumMeshes)
+        return true;
     for (unsigned i = 0; i < node->mNumChildren; i++)
-        if (mesh_node_mirrors(node->mChildren[i], mirrored)) return true;
+        if (mesh_node_mirrors(node->mChildren[i], mirrored))
+            return true;
     return false;
 }
 
@@ -592,7 +625,8 @@ static bool mesh_node_mirrors(const struct aiNode *node, bool mirrored_above) {
  * stands first (its read errors are the import's own). */
 static const struct aiScene *mesh_import(const char *path, unsigned flags) {
     const struct aiScene *read = aiImportFile(path, 0);
-    if (!read) return NULL;
+    if (!read)
+        return NULL;
     bool mirrored = mesh_node_mirrors(read->mRootNode, false);
     aiReleaseImport(read);
     struct aiPropertyStore *properties = aiCreatePropertyStore();
@@ -607,14 +641,19 @@ bool mesh_load_file(mesh *m, const char *path) {
     /* assimp reports a directory as an unknown format, or as an empty OBJ:
      * say what it is instead. */
     struct stat info;
-    if (stat(path, &info) != 0) return mesh_fail(m, path, "cannot open: %s", strerror(errno));
-    if (!S_ISREG(info.st_mode)) return mesh_fail(m, path, "not a regular file");
+    if (stat(path, &info) != 0)
+        return mesh_fail(m, path, "cannot open: %s", strerror(errno));
+    if (!S_ISREG(info.st_mode))
+        return mesh_fail(m, path, "not a regular file");
     long bad_line = mesh_obj_single_vertex_line(path);
     if (bad_line) {
-        return mesh_fail(m, path, "line %ld: a line statement needs 2 or more vertices "
-                         "(refused: assimp 5.2 overflows a buffer on it)", bad_line);
+        return mesh_fail(m, path,
+                         "line %ld: a line statement needs 2 or more vertices "
+                         "(refused: assimp 5.2 overflows a buffer on it)",
+                         bad_line);
     }
-    if (!mesh_check_header_claims(m, path, (long long)info.st_size)) return false;
+    if (!mesh_check_header_claims(m, path, (long long)info.st_size))
+        return false;
 
     /* The counts are checked after these steps, not before them from a raw
      * import: a step that fails inside the import is an error, while one
@@ -658,7 +697,8 @@ static void mesh_measure_bounds(const mesh *m, float min[3], float max[3]) {
     bool any = false;
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         const float *p = m->vertices[v].position;
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            continue;
         for (int k = 0; k < 3; k++) {
             min[k] = any ? fminf(min[k], p[k]) : p[k];
             max[k] = any ? fmaxf(max[k], p[k]) : p[k];
@@ -674,7 +714,8 @@ static void mesh_measure_bounds(const mesh *m, float min[3], float max[3]) {
 /* In double: float extents can overflow when squared. */
 static double mesh_diagonal(const float min[3], const float max[3]) {
     double sum = 0;
-    for (int k = 0; k < 3; k++) sum += ((double)max[k] - min[k]) * ((double)max[k] - min[k]);
+    for (int k = 0; k < 3; k++)
+        sum += ((double)max[k] - min[k]) * ((double)max[k] - min[k]);
     return sqrt(sum);
 }
 
@@ -702,7 +743,8 @@ typedef struct mesh_weld_key {
 static int mesh_compare_weld_keys(const void *a, const void *b) {
     const mesh_weld_key *x = a, *y = b;
     for (int k = 0; k < 3; k++) {
-        if (x->cell[k] != y->cell[k]) return x->cell[k] < y->cell[k] ? -1 : 1;
+        if (x->cell[k] != y->cell[k])
+            return x->cell[k] < y->cell[k] ? -1 : 1;
     }
     /* Ties by vertex index: each welded position is its lowest vertex's. */
     return (x->vertex > y->vertex) - (x->vertex < y->vertex);
@@ -711,7 +753,8 @@ static int mesh_compare_weld_keys(const void *a, const void *b) {
 /* mesh_weld without the report, for callers that name the mesh themselves. */
 static bool mesh_build_topology(const mesh *m, mesh_topology *t) {
     *t = (mesh_topology){0};
-    if (m->vertex_count == 0) return true;
+    if (m->vertex_count == 0)
+        return true;
     float min[3], max[3];
     mesh_measure_bounds(m, min, max);
     double diagonal = mesh_diagonal(min, max);
@@ -730,7 +773,8 @@ static bool mesh_build_topology(const mesh *m, mesh_topology *t) {
         keys[v].vertex = v;
         if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])) {
             /* Within the bounds, so at most 1/MESH_WELD_TOLERANCE cells. */
-            for (int k = 0; k < 3; k++) keys[v].cell[k] = llround(((double)p[k] - min[k]) / cell);
+            for (int k = 0; k < 3; k++)
+                keys[v].cell[k] = llround(((double)p[k] - min[k]) / cell);
         } else {
             /* A cell of its own, past every real one: it never welds. */
             keys[v].cell[0] = INT64_MAX;
@@ -742,8 +786,7 @@ static bool mesh_build_topology(const mesh *m, mesh_topology *t) {
     for (uint32_t i = 0; i < m->vertex_count; i++) {
         bool same_cell = i > 0 && memcmp(keys[i].cell, keys[i - 1].cell, sizeof keys[i].cell) == 0;
         if (!same_cell) {
-            memcpy(t->positions[t->position_count], m->vertices[keys[i].vertex].position,
-                   sizeof t->positions[0]);
+            memcpy(t->positions[t->position_count], m->vertices[keys[i].vertex].position, sizeof t->positions[0]);
             t->position_count++;
         }
         t->position_of_vertex[keys[i].vertex] = t->position_count - 1;
@@ -753,7 +796,8 @@ static bool mesh_build_topology(const mesh *m, mesh_topology *t) {
 }
 
 bool mesh_weld(const mesh *m, mesh_topology *t) {
-    if (mesh_build_topology(m, t)) return true;
+    if (mesh_build_topology(m, t))
+        return true;
     return mesh_fail(NULL, "mesh_weld", "out of memory");
 }
 
@@ -764,7 +808,8 @@ typedef struct mesh_corner_key {
 
 static int mesh_compare_corner_keys(const void *a, const void *b) {
     const mesh_corner_key *x = a, *y = b;
-    if (x->edge != y->edge) return (x->edge > y->edge) - (x->edge < y->edge);
+    if (x->edge != y->edge)
+        return (x->edge > y->edge) - (x->edge < y->edge);
     return (x->corner > y->corner) - (x->corner < y->corner);
 }
 
@@ -790,7 +835,8 @@ bool mesh_edges_build(const mesh *m, const mesh_topology *t, mesh_edges *e) {
     e->closed = corner_count > 0;
     for (uint32_t i = 0; i < corner_count;) {
         uint32_t uses = 1;
-        while (i + uses < corner_count && keys[i + uses].edge == keys[i].edge) uses++;
+        while (i + uses < corner_count && keys[i + uses].edge == keys[i].edge)
+            uses++;
         mesh_edge *edge = &e->edges[e->edge_count++];
         uint32_t first = keys[i].corner;
         edge->a = m->indices[first];
@@ -804,7 +850,8 @@ bool mesh_edges_build(const mesh *m, const mesh_topology *t, mesh_edges *e) {
             e->uses[i + k] = (mesh_edge_use){corner, same ? 1 : -1};
             direction_sum += same ? 1 : -1;
         }
-        if (uses != 2 || direction_sum != 0) e->closed = false;
+        if (uses != 2 || direction_sum != 0)
+            e->closed = false;
         i += uses;
     }
     free(keys);
@@ -820,7 +867,8 @@ void mesh_edges_free(mesh_edges *e) {
 mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t) {
     mesh_edge_counts counts = {0, 0, 0};
     mesh_edges e;
-    if (!mesh_edges_build(m, t, &e)) return counts;
+    if (!mesh_edges_build(m, t, &e))
+        return counts;
     for (uint32_t i = 0; i < e.edge_count; i++) {
         if (e.edges[i].use_count == 1) {
             counts.boundary++;
@@ -835,7 +883,8 @@ mesh_edge_counts mesh_topology_count_edges(const mesh *m, const mesh_topology *t
 }
 
 bool mesh_adjacency_indices(const mesh *m, const mesh_edges *e, uint32_t *out) {
-    if (!e->closed) return false;
+    if (!e->closed)
+        return false;
     for (uint32_t i = 0; i < e->edge_count; i++) {
         const mesh_edge_use *u = &e->uses[e->edges[i].first_use];
         for (int k = 0; k < 2; k++) {
@@ -856,8 +905,10 @@ typedef bool (*mesh_triangle_test)(const mesh *m, const uint32_t corner[3], cons
 static uint32_t mesh_remove_triangles(mesh *m, mesh_triangle_test is_bad, const void *context) {
     uint32_t kept = 0;
     for (uint32_t i = 0; i < m->index_count; i += 3) {
-        if (is_bad(m, &m->indices[i], context)) continue;
-        for (int k = 0; k < 3; k++) m->indices[kept + k] = m->indices[i + k];
+        if (is_bad(m, &m->indices[i], context))
+            continue;
+        for (int k = 0; k < 3; k++)
+            m->indices[kept + k] = m->indices[i + k];
         kept += 3;
     }
     uint32_t removed = (m->index_count - kept) / 3;
@@ -869,9 +920,11 @@ static uint32_t mesh_remove_triangles(mesh *m, mesh_triangle_test is_bad, const 
 static bool mesh_triangle_non_finite(const mesh *m, const uint32_t corner[3], const void *unused) {
     (void)unused;
     for (int k = 0; k < 3; k++) {
-        if (corner[k] >= m->vertex_count) return true;
+        if (corner[k] >= m->vertex_count)
+            return true;
         const float *p = m->vertices[corner[k]].position;
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) return true;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+            return true;
     }
     return false;
 }
@@ -885,15 +938,15 @@ static bool mesh_triangle_degenerate(const mesh *m, const uint32_t corner[3], co
     const mesh_degeneracy *d = context;
     const uint32_t *welded = d->topology->position_of_vertex;
     uint32_t a = welded[corner[0]], b = welded[corner[1]], c = welded[corner[2]];
-    if (a == b || b == c || c == a) return true;
+    if (a == b || b == c || c == a)
+        return true;
     double cross[3];
     mesh_triangle_cross(m, corner, cross);
     return sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) <= d->min_cross_length;
 }
 
 static bool mesh_normal_usable(const float n[3]) {
-    return isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2]) &&
-           n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 1e-12f;
+    return isfinite(n[0]) && isfinite(n[1]) && isfinite(n[2]) && n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 1e-12f;
 }
 
 /* Vertices without a usable normal (missing, zero or non-finite) get the
@@ -904,25 +957,30 @@ static bool mesh_repair_normals(mesh *m, const mesh_topology *t) {
     for (uint32_t v = 0; v < m->vertex_count && !any_broken; v++) {
         any_broken = !mesh_normal_usable(m->vertices[v].normal);
     }
-    if (!any_broken) return true;
-    double (*sums)[3] = calloc(t->position_count, sizeof *sums);
-    if (!sums) return false;
+    if (!any_broken)
+        return true;
+    double(*sums)[3] = calloc(t->position_count, sizeof *sums);
+    if (!sums)
+        return false;
     for (uint32_t i = 0; i < m->index_count; i += 3) {
         double cross[3];
         mesh_triangle_cross(m, &m->indices[i], cross);
         for (int k = 0; k < 3; k++) {
             double *sum = sums[t->position_of_vertex[m->indices[i + k]]];
-            for (int j = 0; j < 3; j++) sum[j] += cross[j];
+            for (int j = 0; j < 3; j++)
+                sum[j] += cross[j];
         }
     }
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         float *n = m->vertices[v].normal;
-        if (mesh_normal_usable(n)) continue;
+        if (mesh_normal_usable(n))
+            continue;
         const double *sum = sums[t->position_of_vertex[v]];
         double length = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
         /* Faces that cancel out (a two-sided sheet) leave no direction. */
         if (length > 0) {
-            for (int j = 0; j < 3; j++) n[j] = (float)(sum[j] / length);
+            for (int j = 0; j < 3; j++)
+                n[j] = (float)(sum[j] / length);
         } else {
             glm_vec3_copy((vec3){0, 1, 0}, n);
         }
@@ -936,16 +994,21 @@ static bool mesh_repair_normals(mesh *m, const mesh_topology *t) {
 static bool mesh_remove_unused_vertices(mesh *m, const char *name) {
     if (m->vertex_count > 0) {
         uint32_t *new_index = malloc(m->vertex_count * sizeof *new_index);
-        if (!new_index) return mesh_fail(m, name, "out of memory");
-        for (uint32_t v = 0; v < m->vertex_count; v++) new_index[v] = UINT32_MAX;
-        for (uint32_t i = 0; i < m->index_count; i++) new_index[m->indices[i]] = 0;
+        if (!new_index)
+            return mesh_fail(m, name, "out of memory");
+        for (uint32_t v = 0; v < m->vertex_count; v++)
+            new_index[v] = UINT32_MAX;
+        for (uint32_t i = 0; i < m->index_count; i++)
+            new_index[m->indices[i]] = 0;
         uint32_t kept = 0;
         for (uint32_t v = 0; v < m->vertex_count; v++) {
-            if (new_index[v] == UINT32_MAX) continue;
+            if (new_index[v] == UINT32_MAX)
+                continue;
             m->vertices[kept] = m->vertices[v];
             new_index[v] = kept++;
         }
-        for (uint32_t i = 0; i < m->index_count; i++) m->indices[i] = new_index[m->indices[i]];
+        for (uint32_t i = 0; i < m->index_count; i++)
+            m->indices[i] = new_index[m->indices[i]];
         m->vertex_count = kept;
         free(new_index);
     }
@@ -956,10 +1019,12 @@ static bool mesh_remove_unused_vertices(mesh *m, const char *name) {
 bool mesh_sanitize(mesh *m, const char *name) {
     m->index_count -= m->index_count % 3;
     uint32_t non_finite = mesh_remove_triangles(m, mesh_triangle_non_finite, NULL);
-    if (!mesh_remove_unused_vertices(m, name)) return false;
+    if (!mesh_remove_unused_vertices(m, name))
+        return false;
 
     mesh_topology topology;
-    if (!mesh_build_topology(m, &topology)) return mesh_fail(m, name, "out of memory");
+    if (!mesh_build_topology(m, &topology))
+        return mesh_fail(m, name, "out of memory");
     /* The cross product of two edges as short as the weld tolerance: a face
      * smaller than that has no usable normal. */
     double tolerance = MESH_WELD_TOLERANCE * mesh_diagonal(m->bounds_min, m->bounds_max);
@@ -967,17 +1032,20 @@ bool mesh_sanitize(mesh *m, const char *name) {
     uint32_t degenerate = mesh_remove_triangles(m, mesh_triangle_degenerate, &degeneracy);
     bool repaired = mesh_repair_normals(m, &topology);
     mesh_topology_free(&topology);
-    if (!repaired) return mesh_fail(m, name, "out of memory");
+    if (!repaired)
+        return mesh_fail(m, name, "out of memory");
 
     if (m->index_count == 0) {
-        if (degenerate + non_finite == 0) return mesh_fail(m, name, "no triangles");
-        return mesh_fail(m, name, "no triangles left after removing %u degenerate and %u non-finite",
-                         degenerate, non_finite);
+        if (degenerate + non_finite == 0)
+            return mesh_fail(m, name, "no triangles");
+        return mesh_fail(m, name, "no triangles left after removing %u degenerate and %u non-finite", degenerate,
+                         non_finite);
     }
-    if (!mesh_remove_unused_vertices(m, name)) return false;
+    if (!mesh_remove_unused_vertices(m, name))
+        return false;
     if (degenerate + non_finite > 0) {
-        fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles\n", name,
-                degenerate, non_finite);
+        fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles\n", name, degenerate,
+                non_finite);
     }
     return true;
 }

@@ -97,9 +97,7 @@ bool path_numbered_unused(const char *prefix, const char *extension, char *out, 
     return false;
 }
 
-static int path_compare_names(const void *a, const void *b) {
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
+static int path_compare_names(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 bool path_next_in_directory(const char *path, const char *extension, int step, char *out, size_t size) {
     char copy[PATH_MAX], dir[PATH_MAX];

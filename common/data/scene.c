@@ -41,7 +41,8 @@ typedef struct scene_variant {
 
 static const scene_variant scene_light_types[] = {
     {"point", SCENE_LIGHT_POINT, {"type", "position", "color", "intensity", "radius", "range", NULL}},
-    {"spot", SCENE_LIGHT_SPOT,
+    {"spot",
+     SCENE_LIGHT_SPOT,
      {"type", "position", "direction", "color", "intensity", "inner_angle", "outer_angle", "radius", "range", NULL}},
     {"directional", SCENE_LIGHT_DIRECTIONAL, {"type", "direction", "color", "intensity", "radius", NULL}},
     {NULL, 0, {NULL}},
@@ -60,8 +61,8 @@ static const scene_variant scene_mesh_kinds[] = {
 /* One JSON number less `offset` (subtracted in double, before the
  * rounding to float: see scene.h, "Large worlds"), as a float in the
  * range. */
-static bool scene_number(const char *file, const char *where, const char *key, const cJSON *item,
-                         scene_range range, double offset, float *out) {
+static bool scene_number(const char *file, const char *where, const char *key, const cJSON *item, scene_range range,
+                         double offset, float *out) {
     if (!cJSON_IsNumber(item)) {
         return json_fail(file, where, key, "expected a number, got %s", json_kind(item));
     }
@@ -78,17 +79,17 @@ static bool scene_number(const char *file, const char *where, const char *key, c
     }
     /* The float, not the double: 1e-50 is 0 once stored. */
     if (range == SCENE_NON_ZERO && value == 0) {
-        return json_fail(file, where, key, "must not be zero: it flattens the object (got %g)",
-                          item->valuedouble);
+        return json_fail(file, where, key, "must not be zero: it flattens the object (got %g)", item->valuedouble);
     }
     *out = value;
     return true;
 }
 
-static bool scene_read_float(const char *file, const cJSON *object, const char *where, const char *key,
-                             bool required, scene_range range, float *out) {
+static bool scene_read_float(const char *file, const cJSON *object, const char *where, const char *key, bool required,
+                             scene_range range, float *out) {
     const cJSON *item;
-    if (!json_lookup(file, object, where, key, required, &item)) return false;
+    if (!json_lookup(file, object, where, key, required, &item))
+        return false;
     return !item || scene_number(file, where, key, item, range, 0, out);
 }
 
@@ -98,8 +99,10 @@ static bool scene_read_float(const char *file, const cJSON *object, const char *
 static bool scene_read_floats(const char *file, const cJSON *object, const char *where, const char *key,
                               bool required, scene_range range, const double *offset, float *out, int count) {
     const cJSON *item;
-    if (!json_lookup(file, object, where, key, required, &item)) return false;
-    if (!item) return true;
+    if (!json_lookup(file, object, where, key, required, &item))
+        return false;
+    if (!item)
+        return true;
     if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != count) {
         return json_fail(file, where, key, "expected an array of %d numbers", count);
     }
@@ -117,7 +120,8 @@ static bool scene_read_floats(const char *file, const cJSON *object, const char 
 static bool scene_read_variant(const char *file, const cJSON *object, const char *where, const char *key,
                                const char *what, const scene_variant table[], const scene_variant **out) {
     const char *name;
-    if (!json_read_string(file, object, where, key, true, &name)) return false;
+    if (!json_read_string(file, object, where, key, true, &name))
+        return false;
     const char *names[16];
     int count = 0;
     for (const scene_variant *v = table; v->name; v++) {
@@ -134,14 +138,15 @@ static bool scene_read_variant(const char *file, const cJSON *object, const char
 }
 
 /* A list at the top level, with 1..max_count entries. */
-static bool scene_read_list(const char *file, const cJSON *root, const char *key, int max_count,
-                            const cJSON **out) {
-    if (!json_lookup(file, root, "", key, true, out)) return false;
+static bool scene_read_list(const char *file, const cJSON *root, const char *key, int max_count, const cJSON **out) {
+    if (!json_lookup(file, root, "", key, true, out))
+        return false;
     if (!cJSON_IsArray(*out)) {
         return json_fail(file, "", key, "expected an array, got %s", json_kind(*out));
     }
     int count = cJSON_GetArraySize(*out);
-    if (count == 0) return json_fail(file, "", key, "must not be empty");
+    if (count == 0)
+        return json_fail(file, "", key, "must not be empty");
     if (count > max_count) {
         return json_fail(file, "", key, "too many entries: %d (at most %d)", count, max_count);
     }
@@ -152,8 +157,10 @@ static bool scene_read_list(const char *file, const cJSON *root, const char *key
  * tiny ones to zero. */
 static bool scene_normalize(float v[3]) {
     double length = sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
-    if (!(length > 0)) return false;
-    for (int k = 0; k < 3; k++) v[k] = (float)(v[k] / length);
+    if (!(length > 0))
+        return false;
+    for (int k = 0; k < 3; k++)
+        v[k] = (float)(v[k] / length);
     return true;
 }
 
@@ -167,15 +174,15 @@ static void scene_choose_origin(const scene_camera *c, double origin[3]) {
         view += ((double)c->target[k] - c->position[k]) * ((double)c->target[k] - c->position[k]);
     }
     bool rebase = eye > SCENE_REBASE_RATIO * sqrt(view);
-    for (int k = 0; k < 3; k++) origin[k] = rebase ? c->position[k] : 0;
+    for (int k = 0; k < 3; k++)
+        origin[k] = rebase ? c->position[k] : 0;
 }
 
 static bool scene_read_camera(const char *file, const cJSON *root, scene_camera *c, double origin[3]) {
     static const char *const keys[] = {"position", "target", "up", "fov", "near", "far", NULL};
     *c = (scene_camera){.up = {0, 1, 0}, .fov_deg = 45, .near_plane = 0.1f, .far_plane = 100};
     const cJSON *json;
-    if (!json_read_object(file, root, "", "camera", &json) ||
-        !json_check_keys(file, json, "camera", keys) ||
+    if (!json_read_object(file, root, "", "camera", &json) || !json_check_keys(file, json, "camera", keys) ||
         !scene_read_floats(file, json, "camera", "position", true, SCENE_ANY, NULL, c->position, 3) ||
         !scene_read_floats(file, json, "camera", "target", true, SCENE_ANY, NULL, c->target, 3) ||
         !scene_read_floats(file, json, "camera", "up", false, SCENE_ANY, NULL, c->up, 3) ||
@@ -195,13 +202,13 @@ static bool scene_read_camera(const char *file, const cJSON *root, scene_camera 
         return json_fail(file, "camera", "fov", "must be less than 180 degrees (got %g)", c->fov_deg);
     }
     if (c->far_plane <= c->near_plane) {
-        return json_fail(file, "camera", "far", "must be greater than near (%g <= %g)", c->far_plane,
-                          c->near_plane);
+        return json_fail(file, "camera", "far", "must be greater than near (%g <= %g)", c->far_plane, c->near_plane);
     }
     /* Either would leave the view matrix undefined (NaN). */
     vec3 view, side;
     glm_vec3_sub(c->target, c->position, view);
-    if (!(glm_vec3_norm2(view) > 0)) return json_fail(file, "camera", "target", "must differ from position");
+    if (!(glm_vec3_norm2(view) > 0))
+        return json_fail(file, "camera", "target", "must differ from position");
     glm_vec3_cross(view, c->up, side);
     if (!(glm_vec3_norm2(side) > 0)) {
         return json_fail(file, "camera", "up", "must be non-zero and not parallel to the view direction");
@@ -216,7 +223,8 @@ static bool scene_read_light(const char *file, const cJSON *json, const char *wh
         return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
     }
     const scene_variant *type;
-    if (!scene_read_variant(file, json, where, "type", "light type", scene_light_types, &type)) return false;
+    if (!scene_read_variant(file, json, where, "type", "light type", scene_light_types, &type))
+        return false;
     l->type = (scene_light_type)type->value;
     bool positioned = l->type != SCENE_LIGHT_DIRECTIONAL;
     bool aimed = l->type != SCENE_LIGHT_POINT;
@@ -230,14 +238,15 @@ static bool scene_read_light(const char *file, const cJSON *json, const char *wh
         !scene_read_float(file, json, where, "range", false, SCENE_POSITIVE, &l->range)) {
         return false;
     }
-    if (aimed && !scene_normalize(l->direction)) return json_fail(file, where, "direction", "must not be zero");
+    if (aimed && !scene_normalize(l->direction))
+        return json_fail(file, where, "direction", "must not be zero");
     /* The cone must open: at 90 degrees and beyond it is no cone at all. */
     if (l->outer_angle_deg >= 90) {
         return json_fail(file, where, "outer_angle", "must be less than 90 degrees (got %g)", l->outer_angle_deg);
     }
     if (l->outer_angle_deg < l->inner_angle_deg) {
         return json_fail(file, where, "outer_angle", "must not be less than inner_angle (%g < %g)",
-                          l->outer_angle_deg, l->inner_angle_deg);
+                         l->outer_angle_deg, l->inner_angle_deg);
     }
     return true;
 }
@@ -257,7 +266,8 @@ static void scene_report_mesh_error(const char *name, const char *problem, void 
 /* Model paths are relative to the scene file's folder, unless absolute. */
 static bool scene_load_model(const char *file, const char *path, mesh *m) {
     char resolved[PATH_MAX];
-    if (!path_beside(file, path, resolved, sizeof resolved)) return json_fail(file, "", NULL, "model path too long");
+    if (!path_beside(file, path, resolved, sizeof resolved))
+        return json_fail(file, "", NULL, "model path too long");
     return mesh_load_file(m, resolved);
 }
 
@@ -308,8 +318,7 @@ static bool scene_build_mesh(const char *file, const cJSON *json, const char *wh
 static bool scene_check_name(const char *file, const char *where, const char *name) {
     size_t length = strlen(name);
     if (length == 0 || length >= SCENE_NAME_MAX) {
-        return json_fail(file, where, "name", "must be 1 to %d bytes long (got %zu)", SCENE_NAME_MAX - 1,
-                          length);
+        return json_fail(file, where, "name", "must be 1 to %d bytes long (got %zu)", SCENE_NAME_MAX - 1, length);
     }
     /* It is quoted in messages, which must stay one line. */
     for (const char *c = name; *c; c++) {
@@ -327,7 +336,8 @@ static bool scene_read_scale(const char *file, const cJSON *json, const char *wh
     if (!cJSON_IsNumber(item)) {
         return scene_read_floats(file, json, where, "scale", false, SCENE_NON_ZERO, NULL, scale, 3);
     }
-    if (!scene_number(file, where, "scale", item, SCENE_NON_ZERO, 0, &scale[0])) return false;
+    if (!scene_number(file, where, "scale", item, SCENE_NON_ZERO, 0, &scale[0]))
+        return false;
     scale[1] = scale[2] = scale[0];
     return true;
 }
@@ -346,9 +356,10 @@ static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 s
 
 static bool scene_read_object(const char *file, const cJSON *json, const char *where, const double origin[3],
                               scene_object *o) {
-    static const char *const keys[] = {"name", "mesh", "translate", "rotate", "scale",
-                                       "color", "casts", "receives", NULL};
-    vec3 translate = {(float)-origin[0], (float)-origin[1], (float)-origin[2]}, rotate_deg = {0, 0, 0}, scale = {1, 1, 1};
+    static const char *const keys[] = {"name",  "mesh",  "translate", "rotate", "scale",
+                                       "color", "casts", "receives",  NULL};
+    vec3 translate = {(float)-origin[0], (float)-origin[1], (float)-origin[2]}, rotate_deg = {0, 0, 0},
+         scale = {1, 1, 1};
     *o = (scene_object){.color = {0.8f, 0.8f, 0.8f}, .casts = true, .receives = true};
     if (!cJSON_IsObject(json)) {
         return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
@@ -380,11 +391,14 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
      * keeps a positive determinant: its x column only changes sign, so
      * every world position is bit for bit the mirrored matrix's. */
     bool mirrored = ((scale[0] < 0) ^ (scale[1] < 0) ^ (scale[2] < 0)) != 0;
-    if (mirrored) scale[0] = -scale[0];
+    if (mirrored)
+        scale[0] = -scale[0];
     scene_model_matrix(translate, rotate_deg, scale, o->model);
     /* Last: loading a model is the slow part, and every cheap check passed. */
-    if (!scene_build_mesh(file, mesh_json, mesh_where, where, o)) return false;
-    if (mirrored) mesh_reflect_x(&o->mesh);
+    if (!scene_build_mesh(file, mesh_json, mesh_where, where, o))
+        return false;
+    if (mirrored)
+        mesh_reflect_x(&o->mesh);
     return true;
 }
 
@@ -404,15 +418,18 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     char where[32];
     cJSON_ArrayForEach(entry, lights) {
         snprintf(where, sizeof where, "lights[%d]", s->light_count);
-        if (!scene_read_light(file, entry, where, s->origin, &s->lights[s->light_count])) return false;
+        if (!scene_read_light(file, entry, where, s->origin, &s->lights[s->light_count]))
+            return false;
         s->light_count++;
     }
     s->objects = calloc((size_t)cJSON_GetArraySize(objects), sizeof *s->objects);
-    if (!s->objects) return json_fail(file, "", "objects", "out of memory");
+    if (!s->objects)
+        return json_fail(file, "", "objects", "out of memory");
     cJSON_ArrayForEach(entry, objects) {
         snprintf(where, sizeof where, "objects[%d]", s->object_count);
         /* A failed object owns nothing: mesh constructors leave it empty. */
-        if (!scene_read_object(file, entry, where, s->origin, &s->objects[s->object_count])) return false;
+        if (!scene_read_object(file, entry, where, s->origin, &s->objects[s->object_count]))
+            return false;
         s->object_count++;
     }
     return true;
@@ -421,15 +438,18 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
 bool scene_load(scene *s, const char *path) {
     *s = (scene){0};
     cJSON *root = json_load(path, SCENE_MAX_FILE_SIZE);
-    if (!root) return false;
+    if (!root)
+        return false;
     bool loaded = scene_read_root(path, root, s);
     cJSON_Delete(root);
-    if (!loaded) scene_free(s);
+    if (!loaded)
+        scene_free(s);
     return loaded;
 }
 
 void scene_free(scene *s) {
-    for (int i = 0; i < s->object_count; i++) mesh_free(&s->objects[i].mesh);
+    for (int i = 0; i < s->object_count; i++)
+        mesh_free(&s->objects[i].mesh);
     free(s->objects);
     *s = (scene){0};
 }

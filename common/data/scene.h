@@ -97,7 +97,7 @@ typedef enum scene_mesh_kind {
 typedef struct scene_object {
     char name[SCENE_NAME_MAX];
     scene_mesh_kind mesh_kind;
-    mesh mesh;          /* in object space */
+    mesh mesh; /* in object space */
     /* object -> world, column-major (cglm mat4). Aligned like a mat4, so
      * cglm's SIMD code can use it in place. Its determinant is positive:
      * where the scale mirrors (an odd number of negative factors), the

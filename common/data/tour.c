@@ -17,8 +17,8 @@
 #define TOUR_FRAME_SNAP 1e-6
 
 static const char *const tour_keys[] = {"title", "steps", NULL};
-static const char *const tour_step_keys[] = {"scene", "technique", "flags", "caption", "seconds",
-                                             "motion", "frame", "camera", "path", "compare", NULL};
+static const char *const tour_step_keys[] = {"scene", "technique", "flags", "caption", "seconds", "motion",
+                                             "frame", "camera",    "path",  "compare", NULL};
 static const char *const tour_view_keys[] = {"position", "target", NULL};
 
 /* An optional or required string into a fixed buffer, which it must fit. */

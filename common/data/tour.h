@@ -46,11 +46,11 @@
 #include "video.h"
 
 #define TOUR_MAX_STEPS 32
-#define TOUR_TEXT_MAX 256   /* title, caption, technique, flags */
+#define TOUR_TEXT_MAX 256 /* title, caption, technique, flags */
 #define TOUR_DEFAULT_SECONDS 2.0
 #define TOUR_MAX_SECONDS 600.0 /* ten minutes: longer is a typo */
-#define TOUR_FPS VIDEO_FPS /* the headless rate and the video's */
-#define TOUR_MIN_PATH_VIEWS 2 /* fewer is a "camera" */
+#define TOUR_FPS VIDEO_FPS     /* the headless rate and the video's */
+#define TOUR_MIN_PATH_VIEWS 2  /* fewer is a "camera" */
 #define TOUR_MAX_PATH_VIEWS 16
 
 /* Where the eye is and what it looks at, in the scene file's world

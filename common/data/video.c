@@ -11,9 +11,7 @@
 
 static void (*video_old_sigpipe)(int);
 
-static bool video_have_ffmpeg(void) {
-    return system("command -v ffmpeg >/dev/null 2>&1") == 0;
-}
+static bool video_have_ffmpeg(void) { return system("command -v ffmpeg >/dev/null 2>&1") == 0; }
 
 /* The path in single quotes for the shell, quotes inside escaped. */
 static bool video_quote(const char *path, char *out, size_t size) {

@@ -8,11 +8,7 @@
 #include "shader.h"
 
 const char *const context_backend_names[] = {
-    [CONTEXT_AUTO] = "auto",
-    [CONTEXT_GLFW] = "glfw",
-    [CONTEXT_EGL] = "egl",
-    [CONTEXT_OSMESA] = "osmesa",
-    NULL,
+    [CONTEXT_AUTO] = "auto", [CONTEXT_GLFW] = "glfw", [CONTEXT_EGL] = "egl", [CONTEXT_OSMESA] = "osmesa", NULL,
 };
 
 /* Errors seen by the KHR_debug callback since the last context_gl_ok. */
@@ -21,8 +17,8 @@ static bool context_verbose;
 
 const char *context_backend_name(context_backend b) { return context_backend_names[b]; }
 
-static void GLAD_API_PTR context_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity,
-                                           GLsizei length, const GLchar *message, const void *user) {
+static void GLAD_API_PTR context_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                                               const GLchar *message, const void *user) {
     (void)id, (void)length, (void)user;
     /* shader.c reports compile errors itself, with file names and lines. */
     if (source == GL_DEBUG_SOURCE_SHADER_COMPILER)

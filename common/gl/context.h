@@ -33,14 +33,14 @@ typedef enum context_backend {
 
 typedef struct context_settings {
     context_backend backend;
-    bool want_window;   /* AUTO picks GLFW only for interactive runs */
-    int width, height;  /* window size (headless: unused) */
+    bool want_window;  /* AUTO picks GLFW only for interactive runs */
+    int width, height; /* window size (headless: unused) */
     const char *title;
-    bool verbose;       /* print backend, platform and GL renderer */
+    bool verbose; /* print backend, platform and GL renderer */
 } context_settings;
 
 typedef struct context {
-    context_backend backend; /* the one in use, never AUTO */
+    context_backend backend;   /* the one in use, never AUTO */
     struct GLFWwindow *window; /* GLFW only */
     char platform[64];         /* e.g. "EGL device (NVIDIA)", "EGL surfaceless" */
     char renderer[256];        /* GL_RENDERER */

@@ -89,15 +89,15 @@ context_loader context_egl_create(context *c, const context_settings *s) {
     }
     c->impl = egl;
     static const EGLint config_attribs[] = {
-        EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-        EGL_SURFACE_TYPE, 0, /* no surface: any config will do */
+        EGL_RENDERABLE_TYPE,
+        EGL_OPENGL_BIT,
+        EGL_SURFACE_TYPE,
+        0, /* no surface: any config will do */
         EGL_NONE,
     };
     static const EGLint context_attribs[] = {
-        EGL_CONTEXT_MAJOR_VERSION, 3,
-        EGL_CONTEXT_MINOR_VERSION, 3,
-        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-        EGL_NONE,
+        EGL_CONTEXT_MAJOR_VERSION,           3,        EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE,
     };
     EGLConfig config;
     EGLint config_count = 0;

@@ -71,12 +71,18 @@ context_loader context_osmesa_create(context *c, const context_settings *s) {
         return NULL;
     }
     static const int attribs[] = {
-        OSMESA_FORMAT, OSMESA_RGBA,
-        OSMESA_DEPTH_BITS, 0,
-        OSMESA_STENCIL_BITS, 0,
-        OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-        OSMESA_CONTEXT_MAJOR_VERSION, 3,
-        OSMESA_CONTEXT_MINOR_VERSION, 3,
+        OSMESA_FORMAT,
+        OSMESA_RGBA,
+        OSMESA_DEPTH_BITS,
+        0,
+        OSMESA_STENCIL_BITS,
+        0,
+        OSMESA_PROFILE,
+        OSMESA_CORE_PROFILE,
+        OSMESA_CONTEXT_MAJOR_VERSION,
+        3,
+        OSMESA_CONTEXT_MINOR_VERSION,
+        3,
         0,
     };
     o->context = o->create_context_attribs(attribs, NULL);

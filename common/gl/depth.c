@@ -11,16 +11,11 @@ unsigned depth_func(const camera_view *v, unsigned standard) {
     if (!v->reversed_depth)
         return standard;
     switch (standard) {
-    case GL_LESS:
-        return GL_GREATER;
-    case GL_LEQUAL:
-        return GL_GEQUAL;
-    case GL_GREATER:
-        return GL_LESS;
-    case GL_GEQUAL:
-        return GL_LEQUAL;
-    default:
-        return standard; /* GL_EQUAL, GL_NOTEQUAL, GL_ALWAYS, GL_NEVER */
+    case GL_LESS: return GL_GREATER;
+    case GL_LEQUAL: return GL_GEQUAL;
+    case GL_GREATER: return GL_LESS;
+    case GL_GEQUAL: return GL_LEQUAL;
+    default: return standard; /* GL_EQUAL, GL_NOTEQUAL, GL_ALWAYS, GL_NEVER */
     }
 }
 

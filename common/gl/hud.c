@@ -82,7 +82,7 @@ static void hud_append(char *out, size_t size, size_t *n, const char *text, size
 
 int hud_wrap(const char *text, int width, int scale, char *out, size_t size) {
     int room = width / (scale > 0 ? scale : 1) - 2 * HUD_MARGIN; /* font units a line may take */
-    char line[HUD_MAX_TEXT];                                      /* the output line being filled */
+    char line[HUD_MAX_TEXT];                                     /* the output line being filled */
     size_t length = 0, n = 0;
     bool empty = true; /* nothing on the line yet but a continuation's indent */
     int lines = 1;

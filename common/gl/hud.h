@@ -19,10 +19,10 @@
  * letters), 1080 get 3. */
 #define HUD_LINES_PER_SCALE 360
 #define HUD_MAX_SCALE 8
-#define HUD_MARGIN 4 /* font units between the panel's edge and the text */
-#define HUD_LINE_UNITS 12 /* stb_easy_font's line height, in font units */
+#define HUD_MARGIN 4       /* font units between the panel's edge and the text */
+#define HUD_LINE_UNITS 12  /* stb_easy_font's line height, in font units */
 #define HUD_LETTER_UNITS 8 /* how tall its capitals are */
-#define HUD_INDENT "  " /* what a wrapped line's continuation starts with */
+#define HUD_INDENT "  "    /* what a wrapped line's continuation starts with */
 
 /* max(1, round(height / HUD_LINES_PER_SCALE)), at most HUD_MAX_SCALE. */
 int hud_scale_for(int height);

@@ -23,9 +23,7 @@ int legend_width_units(const legend_line *lines, int count) {
     return LEGEND_SWATCH_UNITS + LEGEND_SWATCH_GAP_UNITS + hud_text_width(text) + 2 * HUD_MARGIN;
 }
 
-int legend_height_units(int count) {
-    return count * HUD_LINE_UNITS + 2 * HUD_MARGIN;
-}
+int legend_height_units(int count) { return count * HUD_LINE_UNITS + 2 * HUD_MARGIN; }
 
 int legend_scale_to_fit(const legend_line *lines, int count, int width, int height, int framebuffer_height) {
     int width_units = legend_width_units(lines, count), height_units = legend_height_units(count);

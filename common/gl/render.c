@@ -151,8 +151,7 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
     glBindVertexArray(g->vao);
     glGenBuffers(1, &g->vertex_buffer);
     glBindBuffer(GL_ARRAY_BUFFER, g->vertex_buffer);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * sizeof *m->vertices), m->vertices,
-                 GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * sizeof *m->vertices), m->vertices, GL_STATIC_DRAW);
     glGenBuffers(1, &g->index_buffer);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->index_buffer);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m->index_count * sizeof *m->indices), m->indices,

@@ -70,9 +70,9 @@ typedef struct render_mesh {
 
 typedef struct render_scene {
     const scene *scene;
-    render_mesh *meshes; /* one per scene object */
-    bool *in_view;       /* one per scene object: render_cull_view's mask */
-    bool *in_frustum;    /* one per scene object: its box meets the view, whatever the skips */
+    render_mesh *meshes;            /* one per scene object */
+    bool *in_view;                  /* one per scene object: render_cull_view's mask */
+    bool *in_frustum;               /* one per scene object: its box meets the view, whatever the skips */
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
     unsigned lights_buffer;
     render_program lit;

@@ -131,7 +131,8 @@ static void shader_print_log(const shader_source *s, const char *log) {
         if (strncmp(q, "ERROR: ", 7) == 0 || strncmp(q, "WARNING: ", 9) == 0)
             q = strchr(q, ' ') + 1;
         int source, line, used = 0;
-        bool located = sscanf(q, "%d:%d%n", &source, &line, &used) == 2 || sscanf(q, "%d(%d)%n", &source, &line, &used) == 2;
+        bool located =
+            sscanf(q, "%d:%d%n", &source, &line, &used) == 2 || sscanf(q, "%d(%d)%n", &source, &line, &used) == 2;
         if (located) {
             source = line / SHADER_LINE_STRIDE;
             line %= SHADER_LINE_STRIDE;
@@ -165,7 +166,7 @@ static GLenum shader_stage(const char *file) {
 static struct {
     unsigned program; /* 0: a free slot */
     char *text;
-    char name[256];   /* its first file */
+    char name[256]; /* its first file */
 } shader_programs[SHADER_MAX_PROGRAMS];
 static bool shader_uniform_missed; /* since shader_uniforms_ok's last call */
 

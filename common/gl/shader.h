@@ -33,7 +33,8 @@ typedef struct shader_define {
     const char *name; /* NULL ends a list */
     int value;
 } shader_define;
-#define SHADER_DEFINE(constant) {#constant, (int)(constant)}
+#define SHADER_DEFINE(constant)                                                                                      \
+    { #constant, (int)(constant) }
 
 void shader_set_directory(const char *dir);
 const char *shader_directory(void);

@@ -90,8 +90,7 @@ bool target_read_rgba(const target *t, unsigned char *rgba) {
 void target_blit_to_window(const target *t, int window_width, int window_height) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, t->framebuffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, t->width, t->height, 0, 0, window_width, window_height, GL_COLOR_BUFFER_BIT,
-                      GL_LINEAR);
+    glBlitFramebuffer(0, 0, t->width, t->height, 0, 0, window_width, window_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
 void target_destroy(target *t) {

@@ -392,8 +392,10 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
     const scene *s = gpu->scene;
     for (int l = 0; l < s->light_count && !t->area_light && !t->cost_floor; l++)
         if (s->lights[l].radius > 0)
-            fprintf(stderr, "%s: light %d is an area light (radius %g): drawn hard, from its centre: %s draws no soft "
-                            "shadows\n", t->name, l, s->lights[l].radius, t->name);
+            fprintf(stderr,
+                    "%s: light %d is an area light (radius %g): drawn hard, from its centre: %s draws no soft "
+                    "shadows\n",
+                    t->name, l, s->lights[l].radius, t->name);
     h->technique = t;
     h->gpu = gpu;
     h->skips = skips;
@@ -601,9 +603,8 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
                          .view = view,
                          .in_view = h->gpu->in_view,
                          .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
-                         .seen = render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0
-                                     ? &h->seen
-                                     : NULL,
+                         .seen = render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0 ? &h->seen
+                                                                                                           : NULL,
                          .changed = technique_host_changes(h, view),
                          .counts = &h->counts,
                          .width = target->width,

@@ -139,7 +139,7 @@ typedef struct technique_frame {
     const float (*receivers)[3];
     int receiver_count;
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
-    bool cull_casters; /* technique_caster_needed culls (--no-caster-cull: never) */
+    bool cull_casters;                      /* technique_caster_needed culls (--no-caster-cull: never) */
     /* Without --no-hidden-cull, unless the skip sleeps
      * (TECHNIQUE_HIDDEN_RETRY_FRAMES): where technique_see keeps what the
      * pre-pass shows (its masks cull casters only with cull_casters);
@@ -258,11 +258,11 @@ const visible *technique_seen_pixels(const technique_frame *f);
  * which a caster's box must reach as well. */
 typedef struct technique_hull {
     int light;
-    bool empty; /* no visible receiver in reach: no caster is needed */
+    bool empty;  /* no visible receiver in reach: no caster is needed */
     vec3 lo, hi; /* the visible receivers' bounds clipped to the light's range (unless empty) */
     vec4 planes[FRUSTUM_HULL_MAX_PLANES];
     int plane_count;
-    float margin; /* world units: FRUSTUM_BOX_TOLERANCE of the hull's size */
+    float margin;            /* world units: FRUSTUM_BOX_TOLERANCE of the hull's size */
     const light_mask *masks; /* NULL: none (no technique_see this frame) */
     int mask_count;
 } technique_hull;

@@ -58,15 +58,14 @@ static double visible_view_distance(const camera_view *view, double d) {
 static void visible_unproject(const camera_view *view, double x, double y, double distance, float out[3]) {
     double eye_x = x * distance / view->projection[0][0], eye_y = y * distance / view->projection[1][1];
     for (int k = 0; k < 3; k++)
-        out[k] = (float)(view->eye[k] + eye_x * view->view[k][0] + eye_y * view->view[k][1] -
-                         distance * view->view[k][2]);
+        out[k] =
+            (float)(view->eye[k] + eye_x * view->view[k][0] + eye_y * view->view[k][1] - distance * view->view[k][2]);
 }
 
 /* One tile's slab from its depths lo..hi (window depth), each end pushed
  * outwards by VISIBLE_DEPTH_STEPS of the buffer's steps there, kept
  * inside the depths that unproject to a finite distance. */
-static void visible_slab(visible *v, const camera_view *view, int x0, int y0, int x1, int y1, double lo,
-                         double hi) {
+static void visible_slab(visible *v, const camera_view *view, int x0, int y0, int x1, int y1, double lo, double hi) {
     double ends[2];
     if (view->reversed_depth) { /* float, nearer is larger: relative steps */
         ends[0] = lo * (1 - VISIBLE_DEPTH_STEPS * VISIBLE_FLOAT_STEP);
@@ -79,7 +78,8 @@ static void visible_slab(visible *v, const camera_view *view, int x0, int y0, in
         double x = 2.0 * (c & 1 ? x1 : x0) / v->width - 1, y = 2.0 * (c & 2 ? y1 : y0) / v->height - 1;
         visible_unproject(view, x, y, visible_view_distance(view, ends[c >> 2]), v->slabs[v->count][c]);
     }
-    v->seen[v->count] = (light_mask_seen){{(float)x0, (float)y0, (float)ends[0]}, {(float)x1, (float)y1, (float)ends[1]}};
+    v->seen[v->count] =
+        (light_mask_seen){{(float)x0, (float)y0, (float)ends[0]}, {(float)x1, (float)y1, (float)ends[1]}};
     v->count++;
 }
 
@@ -166,8 +166,8 @@ bool visible_box_hidden(const visible *v, const camera_view *view, const vec3 lo
         y0 = fminf(y0, clip[1] / clip[3]);
         y1 = fmaxf(y1, clip[1] / clip[3]);
     }
-    double step = view->reversed_depth ? fmax(VISIBLE_FIXED_STEP, (1 - nearest) * VISIBLE_FLOAT_STEP)
-                                       : VISIBLE_FIXED_STEP;
+    double step =
+        view->reversed_depth ? fmax(VISIBLE_FIXED_STEP, (1 - nearest) * VISIBLE_FLOAT_STEP) : VISIBLE_FIXED_STEP;
     double margin = VISIBLE_DEPTH_STEPS * step;
     /* The tiles the box's rectangle covers, a pixel wider each side. */
     int tx0 = (int)floorf(((glm_clamp(x0, -1, 1) * 0.5f + 0.5f) * (float)v->width - 1) / VISIBLE_TILE_PIXELS);

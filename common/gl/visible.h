@@ -34,12 +34,12 @@
 
 /* Zero is an empty one. */
 typedef struct visible {
-    int count; /* slabs this frame */
-    float (*slabs)[8][3]; /* corners numbered as frustum_box_corners' */
+    int count;             /* slabs this frame */
+    float (*slabs)[8][3];  /* corners numbered as frustum_box_corners' */
     light_mask_seen *seen; /* per slab: its tile's pixels and its window depths */
     float *farthest;       /* per tile, rows from the bottom: its farthest depth, the clear value where sky */
     int tiles_x, tiles_y;
-    float *depth;         /* the frame's window depths, bottom row first */
+    float *depth; /* the frame's window depths, bottom row first */
     int width, height;
 } visible;
 

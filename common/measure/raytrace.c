@@ -440,8 +440,12 @@ static void raytrace_pixel_direction(const raytrace_tracer *t, int x, int y, dou
 /* From the eye (the local origin) between the near and far planes. */
 static struct RTCRayHit raytrace_primary_ray(const raytrace_tracer *t, const double direction[3]) {
     return (struct RTCRayHit){
-        .ray = {.tnear = t->near_plane, .dir_x = (float)direction[0], .dir_y = (float)direction[1],
-                .dir_z = (float)direction[2], .tfar = t->far_plane, .mask = UINT32_MAX},
+        .ray = {.tnear = t->near_plane,
+                .dir_x = (float)direction[0],
+                .dir_y = (float)direction[1],
+                .dir_z = (float)direction[2],
+                .tfar = t->far_plane,
+                .mask = UINT32_MAX},
         .hit = {.geomID = RTC_INVALID_GEOMETRY_ID, .instID = {RTC_INVALID_GEOMETRY_ID}},
     };
 }
@@ -467,8 +471,8 @@ static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *r
     double along = on_plane ? raytrace_dot_d(v[0], normal) / approach : 0;
     double extent = 0;
     for (int k = 0; k < 3; k++)
-        h->position[k] = on_plane ? along * direction[k]
-                                  : weight[0] * v[0][k] + weight[1] * v[1][k] + weight[2] * v[2][k];
+        h->position[k] =
+            on_plane ? along * direction[k] : weight[0] * v[0][k] + weight[1] * v[1][k] + weight[2] * v[2][k];
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < 3; k++)
             extent = fmax(extent, fabs(v[c][k] - h->position[k]));
@@ -517,9 +521,15 @@ static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *
         end = length - RAYTRACE_OFFSET_ULPS * FLT_EPSILON * (raytrace_max_abs(light) + length);
     }
     c->end = (float)end;
-    struct RTCRay ray = {.org_x = origin[0], .org_y = origin[1], .org_z = origin[2], .tnear = 0,
-                         .dir_x = (float)direction[0], .dir_y = (float)direction[1], .dir_z = (float)direction[2],
-                         .tfar = c->end, .mask = UINT32_MAX};
+    struct RTCRay ray = {.org_x = origin[0],
+                         .org_y = origin[1],
+                         .org_z = origin[2],
+                         .tnear = 0,
+                         .dir_x = (float)direction[0],
+                         .dir_y = (float)direction[1],
+                         .dir_z = (float)direction[2],
+                         .tfar = c->end,
+                         .mask = UINT32_MAX};
     if (!raytrace_ray_valid(&ray))
         return true;
     rtcOccluded1(c->tracer->rtc, &c->embree, &ray);
@@ -529,8 +539,8 @@ static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *
 /* Fraction of light `index` reaching the hit: one ray for a hard light,
  * light_samples for an area light (see raytrace_disk_sample) spread about
  * `to_light`, the unit vector to its centre (0 at the centre itself). */
-static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *h, int index, const float to_light[3],
-                                 uint32_t pixel) {
+static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *h, int index,
+                                 const float to_light[3], uint32_t pixel) {
     const raytrace_tracer *t = c->tracer;
     const raytrace_light *l = &t->lights[index];
     if (!t->scene->objects[h->object].receives)
@@ -599,8 +609,7 @@ static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext 
         float cos_axis = -raytrace_dot(to_light, light->light->direction);
         float window = light->position[3] != 0 ? scene_light_range_window(light->light, (float)distance) : 1.0f;
         float unshadowed = fmaxf(raytrace_dot(h.shading_normal, to_light), 0.0f) *
-                           (spot ? raytrace_smoothstep(light->cos_outer, light->cos_inner, cos_axis) : 1.0f) *
-                           window;
+                           (spot ? raytrace_smoothstep(light->cos_outer, light->cos_inner, cos_axis) : 1.0f) * window;
         bool reaches = (!spot || cos_axis > light->cos_outer) && window > 0;
         /* Light K's visibility is dumped wherever it reaches; the others
          * are traced only where they would add light. */
@@ -712,8 +721,7 @@ void raytrace_rows(raytrace_tracer *t, const int *rows, int count, dump_frame *o
 bool raytrace_end(raytrace_tracer *t) {
     bool ok = rtcGetDeviceError(t->device) == RTC_ERROR_NONE;
     if (ok && t->verbose)
-        fprintf(stderr,
-                "raytrace: Embree %zd.%zd.%zd, %d threads; BVH built in %.1f ms, %dx%d traced in %.1f ms\n",
+        fprintf(stderr, "raytrace: Embree %zd.%zd.%zd, %d threads; BVH built in %.1f ms, %dx%d traced in %.1f ms\n",
                 rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_VERSION_MAJOR),
                 rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_VERSION_MINOR),
                 rtcGetDeviceProperty(t->device, RTC_DEVICE_PROPERTY_VERSION_PATCH), omp_get_max_threads(),

@@ -26,7 +26,7 @@
 #define RAYTRACE_OFFSET_ULPS 8.0
 
 typedef struct raytrace_settings {
-    int light_samples;      /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
+    int light_samples; /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
     bool verbose;
     const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
 } raytrace_settings;

@@ -27,7 +27,7 @@ const char *const shadowdiff_class_names[SHADOWDIFF_CLASS_COUNT] = {
     [SHADOWDIFF_CLASS_LIT] = "lit",
 };
 const shadowdiff_pixel shadowdiff_legend_kinds[SHADOWDIFF_PIXEL_KIND_COUNT] = {
-    SHADOWDIFF_PIXEL_FALSE_SHADOW, SHADOWDIFF_PIXEL_FALSE_LIT, SHADOWDIFF_PIXEL_AGREES,
+    SHADOWDIFF_PIXEL_FALSE_SHADOW, SHADOWDIFF_PIXEL_FALSE_LIT,  SHADOWDIFF_PIXEL_AGREES,
     SHADOWDIFF_PIXEL_NOT_COMPARED, SHADOWDIFF_PIXEL_NO_SURFACE,
 };
 
@@ -146,7 +146,8 @@ static bool shadowdiff_is_compared(const dump_frame *r, const dump_frame *t, siz
                                    double min_cosine) {
     double r_depth = r->depth[i], t_depth = t->depth[i];
     return r->ids[i] >= 0 && t->ids[i] >= 0 && fabs(t_depth - r_depth) <= SHADOWDIFF_DEPTH_TOLERANCE * r_depth &&
-           shadowdiff_faces_light(r, i, min_cosine) && (receiver < 0 || (r->ids[i] == receiver && t->ids[i] == receiver));
+           shadowdiff_faces_light(r, i, min_cosine) &&
+           (receiver < 0 || (r->ids[i] == receiver && t->ids[i] == receiver));
 }
 
 static bool shadowdiff_lit(const dump_frame *d, size_t i) { return d->visibility[i] >= SHADOWDIFF_LIT_THRESHOLD; }
@@ -172,8 +173,8 @@ static shadowdiff_pixel shadowdiff_classify(const dump_frame *r, const dump_fram
 static void shadowdiff_paint(unsigned char *rgba, shadowdiff_pixel pixel, float reference_visibility) {
     if (pixel == SHADOWDIFF_PIXEL_AGREES) {
         float v = fminf(fmaxf(reference_visibility, 0), 1);
-        unsigned char grey = (unsigned char)lroundf(SHADOWDIFF_AGREES_GREY_SHADOWED +
-                                                    (SHADOWDIFF_AGREES_GREY_LIT - SHADOWDIFF_AGREES_GREY_SHADOWED) * v);
+        unsigned char grey = (unsigned char)lroundf(
+            SHADOWDIFF_AGREES_GREY_SHADOWED + (SHADOWDIFF_AGREES_GREY_LIT - SHADOWDIFF_AGREES_GREY_SHADOWED) * v);
         memset(rgba, grey, 3);
     } else {
         memcpy(rgba, shadowdiff_pixel_colors[pixel], 3);
@@ -306,8 +307,8 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
 }
 
 void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *frame) {
-    double error_sum = total->mean_abs_error * (double)total->compared +
-                       frame->mean_abs_error * (double)frame->compared;
+    double error_sum =
+        total->mean_abs_error * (double)total->compared + frame->mean_abs_error * (double)frame->compared;
     double class_error_sum[SHADOWDIFF_CLASS_COUNT];
     for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
         class_error_sum[c] = total->class_mae[c] * (double)total->class_pixels[c] +
@@ -340,7 +341,8 @@ const char *shadowdiff_class_figures_text(const shadowdiff_result *r, shadowdiff
 
 /* Whether the camera of dump `r` and of its test `t` agree; says so if
  * not. */
-static bool shadowdiff_check_camera(const dump_frame *r, const dump_frame *t, const char *r_name, const char *t_name) {
+static bool shadowdiff_check_camera(const dump_frame *r, const dump_frame *t, const char *r_name,
+                                    const char *t_name) {
     if (shadowdiff_same_camera(&r->camera, &t->camera))
         return true;
     fprintf(stderr, "shadowdiff: %s and %s are seen from different cameras: eyes (%g, %g, %g) and (%g, %g, %g)\n",
@@ -422,8 +424,8 @@ bool shadowdiff_shimmer(const dump_frame *previous_reference, const dump_frame *
         !shadowdiff_check_objects(previous_reference, reference, previous_settings.reference_name, r_name))
         return false;
     int receiver = s.receiver ? shadowdiff_find_object(reference, s.receiver) : -1;
-    shadowdiff_count_shimmer(previous_reference, previous_test, reference, test, receiver,
-                             shadowdiff_min_cosine(&s), out);
+    shadowdiff_count_shimmer(previous_reference, previous_test, reference, test, receiver, shadowdiff_min_cosine(&s),
+                             out);
     if (out->followed == 0) {
         fprintf(stderr,
                 "shadowdiff: %s and %s: no compared pixel followed to a compared pixel of %s on the same surface: "

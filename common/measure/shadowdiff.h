@@ -80,7 +80,7 @@ typedef struct shadowdiff_settings {
     /* shadowdiff_shimmer's previous frame, for messages; NULL: "previous
      * reference", "previous test" */
     const char *previous_reference_name, *previous_test_name;
-    double grazing_degrees;     /* also skip surfaces within this of edge-on to the light */
+    double grazing_degrees; /* also skip surfaces within this of edge-on to the light */
 } shadowdiff_settings;
 
 typedef enum shadowdiff_problem {
@@ -204,11 +204,11 @@ const char *shadowdiff_class_figures_text(const shadowdiff_result *r, shadowdiff
                                           size_t size);
 
 typedef struct shadowdiff_shimmer_result {
-    shadowdiff_problem problem;             /* NONE exactly when shadowdiff_shimmer returns true */
-    shadowdiff_result previous, current;    /* each frame's own comparison */
-    long followed;                          /* compared pixels of frame 1 followed to frame 0 */
-    long shimmered;                         /* of those: the test's decision changed, the truth's did not */
-    long truth_changed;                     /* of those: the truth's decision changed */
+    shadowdiff_problem problem;                    /* NONE exactly when shadowdiff_shimmer returns true */
+    shadowdiff_result previous, current;           /* each frame's own comparison */
+    long followed;                                 /* compared pixels of frame 1 followed to frame 0 */
+    long shimmered;                                /* of those: the test's decision changed, the truth's did not */
+    long truth_changed;                            /* of those: the truth's decision changed */
     double shimmer_percent, truth_changed_percent; /* of followed */
 } shadowdiff_shimmer_result;
 

@@ -47,13 +47,13 @@
 
 /* What has been traced of one request, the caller's copy. */
 typedef struct truth_frame {
-    dump_frame dump;  /* every array; rows not traced are "no surface" */
-    int rows;         /* traced, of dump.height, in truth_row_order */
-    long request;     /* the request it is of, counted from 1; 0: none yet */
-    bool current;     /* of the latest request (the view asked for last) */
-    bool complete;    /* current, and every row traced */
-    bool failed;      /* the trace of that request failed (said on stderr) */
-    double seconds;   /* from the request to the last row, when complete */
+    dump_frame dump; /* every array; rows not traced are "no surface" */
+    int rows;        /* traced, of dump.height, in truth_row_order */
+    long request;    /* the request it is of, counted from 1; 0: none yet */
+    bool current;    /* of the latest request (the view asked for last) */
+    bool complete;   /* current, and every row traced */
+    bool failed;     /* the trace of that request failed (said on stderr) */
+    double seconds;  /* from the request to the last row, when complete */
 } truth_frame;
 
 typedef struct truth {
@@ -68,7 +68,7 @@ typedef struct truth {
     bool quit;
     bool has_request; /* false at first and after truth_forget */
     bool busy;        /* the thread is tracing, its frame in use */
-    scene requested; /* camera and lights of the latest request */
+    scene requested;  /* camera and lights of the latest request */
     int requested_light;
     long request_count; /* requests that restarted the trace */
     long tracing;       /* the request the thread's frame is of; 0: none */

@@ -43,12 +43,12 @@ static struct {
     const char *program;
     const technique *const *techniques;
     int technique_count, current;
-    bool technique_given; /* --technique: the gallery shows that one only */
+    bool technique_given;                                /* --technique: the gallery shows that one only */
     const char *technique_names[APP_MAX_TECHNIQUES + 1]; /* --technique's choices */
     /* flags (zero: the default) */
     int backend; /* context_backend */
     int width, height;
-    int frames; /* 0: not given, so one frame headless or a window */
+    int frames;            /* 0: not given, so one frame headless or a window */
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
     bool hud_compact;      /* --hud-compact, Tab: the first lines only */
@@ -65,24 +65,24 @@ static struct {
     int gallery_count;
     char default_shader_dir[PATH_MAX], default_scene[PATH_MAX];
     char paged_scene[PATH_MAX]; /* Page Up/Down's: the scene_path then */
-    const char *tour_path; /* --tour */
+    const char *tour_path;      /* --tour */
     tour tour;
-    int tour_step;                    /* the step shown */
-    bool step_scene, step_technique;  /* what the step has loaded and started, for leaving it */
-    bool tour_failed;                 /* a step did not start in the window */
+    int tour_step;                   /* the step shown */
+    bool step_scene, step_technique; /* what the step has loaded and started, for leaving it */
+    bool tour_failed;                /* a step did not start in the window */
     /* run */
     context ctx;
-    target target; /* the technique's frame: the picture, or compare mode's cell */
+    target target;     /* the technique's frame: the picture, or compare mode's cell */
     compare comparing; /* while compare_on */
     scene scene;
     render_scene gpu;
-    scene_light base_lights[SCENE_MAX_LIGHTS]; /* before motion */
-    scene_camera base_camera;                  /* before motion: what dragging moves */
+    scene_light base_lights[SCENE_MAX_LIGHTS];   /* before motion */
+    scene_camera base_camera;                    /* before motion: what dragging moves */
     scene_light loaded_lights[SCENE_MAX_LIGHTS]; /* as the scene file has them: the reset key's */
     scene_camera loaded_camera;
     technique_host host;
     double time;
-    video video;           /* --record: open while recording */
+    video video;               /* --record: open while recording */
     unsigned char *frame_rgba; /* the picture read back for the video */
     /* window */
     bool show_help, dragging, resized;
@@ -115,25 +115,28 @@ static const flags_param app_flags[] = {
      .value_name = "DIR"},
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
      .choices = app.technique_names},
-    {"motion", "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), or the\ncamera forward and back along its view (dolly)", 0,
-     FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
+    {"motion",
+     "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), or the\ncamera forward and back along its view (dolly)",
+     0, FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
     {"animate", "--motion light (space in the window)", 0, FLAGS_SWITCH, .on = &app.animate},
-    {"hold-fit", "shadow maps fitted to the frame before's camera, drawn\nfrom this frame's: with --dump, what only the fit's\nmotion changes (the benchmark's shimmer)", 0,
-     FLAGS_SWITCH, .on = &app.hold_fit},
-    {"skip", "no skips at all: every pass draws the whole scene,\nevery light, every caster, every frame anew; the same\npicture at the full cost", 0,
-     FLAGS_TOGGLE, .disabled = &app.skips.no_skip},
+    {"hold-fit",
+     "shadow maps fitted to the frame before's camera, drawn\nfrom this frame's: with --dump, what only the fit's\nmotion changes (the benchmark's shimmer)",
+     0, FLAGS_SWITCH, .on = &app.hold_fit},
+    {"skip",
+     "no skips at all: every pass draws the whole scene,\nevery light, every caster, every frame anew; the same\npicture at the full cost",
+     0, FLAGS_TOGGLE, .disabled = &app.skips.no_skip},
     {"view-cull", "camera passes draw objects outside the view too", GLFW_KEY_K, FLAGS_TOGGLE,
      .disabled = &app.skips.no_view_cull},
     {"light-reach", "lights that reach nothing visible render anyway", GLFW_KEY_U, FLAGS_TOGGLE,
      .disabled = &app.skips.no_light_reach},
     {"caster-cull", "every caster casts for every light, seen or not", GLFW_KEY_X, FLAGS_TOGGLE,
      .disabled = &app.skips.no_caster_cull},
-    {"hidden-cull", "casters and objects that the depth pre-pass shows\nhidden are drawn anyway", GLFW_KEY_I, FLAGS_TOGGLE,
-     .disabled = &app.skips.no_hidden_cull},
+    {"hidden-cull", "casters and objects that the depth pre-pass shows\nhidden are drawn anyway", GLFW_KEY_I,
+     FLAGS_TOGGLE, .disabled = &app.skips.no_hidden_cull},
     {"cache", "shadow maps and volumes made again every frame", GLFW_KEY_J, FLAGS_TOGGLE,
      .disabled = &app.skips.no_cache},
-    {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST, .items = app.gallery,
-     .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
+    {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST,
+     .items = app.gallery, .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
     {"tour",
      "play a tour file (assets/tours/): in the window Space, Right\nor Page Down the next step, Left or Page Up the previous;\n"
@@ -143,14 +146,17 @@ static const flags_param app_flags[] = {
      "the technique beside the ray-traced truth of the same view\n(traced in the background, progressively) and the heat\n"
      "map of its errors, with legend and figures: four cells (A);\nheadless, the finished picture",
      0, FLAGS_SWITCH, .on = &app.compare_on},
-    {"hud", "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time", 0,
-     FLAGS_SWITCH, .on = &app.hud_in_pictures},
-    {"hud-scale", "pixels per font unit of the HUD's text (default: one per\n360 lines of the framebuffer, 2 at 720, 3 at 1080, less\nwhere the text would not fit)", 0,
-     FLAGS_INT, .integer = &app.hud_scale, .min = 1, .max = HUD_MAX_SCALE, .what = "a scale"},
+    {"hud",
+     "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time",
+     0, FLAGS_SWITCH, .on = &app.hud_in_pictures},
+    {"hud-scale",
+     "pixels per font unit of the HUD's text (default: one per\n360 lines of the framebuffer, 2 at 720, 3 at 1080, less\nwhere the text would not fit)",
+     0, FLAGS_INT, .integer = &app.hud_scale, .min = 1, .max = HUD_MAX_SCALE, .what = "a scale"},
     {"hud-compact", "the HUD's first lines only: technique, scene, skips (Tab)", 0, FLAGS_SWITCH,
      .on = &app.hud_compact},
-    {"verbose", "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)", 0,
-     FLAGS_SWITCH, .on = &app.verbose},
+    {"verbose",
+     "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)",
+     0, FLAGS_SWITCH, .on = &app.verbose},
     {"flags-markdown", "print every flag and key as the README's markdown tables\n(make readme-flags), then exit", 0,
      FLAGS_SWITCH, .on = &app.flags_markdown},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
@@ -626,8 +632,8 @@ static bool app_gallery_picture(int t, const char *config, const char *stem, con
     snprintf(row->picture, sizeof row->picture, "%s.png", stem);
     snprintf(row->reference, sizeof row->reference, "%s", reference_file);
     snprintf(path, sizeof path, "%s/%s", dir, row->picture);
-    bool ok = (!config || technique_apply_config(tech, config)) && app_start_technique(t) &&
-              app_run_headless(1, path);
+    bool ok =
+        (!config || technique_apply_config(tech, config)) && app_start_technique(t) && app_run_headless(1, path);
     /* A lecture picture's overlays are drawn over its decisions. */
     ok = ok && (config || app_gallery_measure(reference, dir, stem, row));
     technique_host_stop(&app.host);
@@ -752,8 +758,8 @@ static void app_hud(int width, int height, int frame) {
                                      app.tour.steps[app.tour_step].caption)
                           : 0;
     n += snprintf(text + n, sizeof text - (size_t)n, "%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1,
-                     app.technique_count, t->name, t->title, app.scene_path, app.target.width, app.target.height,
-                     timing, app_motion() ? "   moving: " : "", app_motion() ? motion_names[app_motion()] : "");
+                  app.technique_count, t->name, t->title, app.scene_path, app.target.width, app.target.height, timing,
+                  app_motion() ? "   moving: " : "", app_motion() ? motion_names[app_motion()] : "");
     if (n < (int)sizeof text)
         n += app_skips_text(text + n, sizeof text - (size_t)n);
     /* The compact HUD ends at the skips. */
@@ -782,11 +788,12 @@ static void app_hud(int width, int height, int frame) {
             n += snprintf(text + n, sizeof text - (size_t)n, "\n");
     }
     if (frame < 0 && n < (int)sizeof text && app.show_help)
-        n += snprintf(text + n, sizeof text - (size_t)n,
-                      "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
-                      "1-%d: technique   PgUp/PgDn: scene   0: reset view   A: compare   K U X J: skips   Tab: compact HUD   "
-                      "F12: screenshot   H: hide help   Esc: quit",
-                      app.technique_count);
+        n += snprintf(
+            text + n, sizeof text - (size_t)n,
+            "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
+            "1-%d: technique   PgUp/PgDn: scene   0: reset view   A: compare   K U X J: skips   Tab: compact HUD   "
+            "F12: screenshot   H: hide help   Esc: quit",
+            app.technique_count);
     else if (frame < 0 && n < (int)sizeof text)
         n += snprintf(text + n, sizeof text - (size_t)n, "\nH: help");
     if (frame < 0 && n < (int)sizeof text && glfwGetTime() < app.note_until)
@@ -852,7 +859,6 @@ static bool app_tour_key(int key) {
     return true;
 }
 
-
 static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mods) {
     (void)scancode, (void)mods;
     if (action == GLFW_RELEASE)
@@ -917,7 +923,8 @@ static void app_on_mouse_button(GLFWwindow *w, int button, int action, int mods)
 static void app_on_cursor(GLFWwindow *w, double x, double y) {
     if (!app.dragging)
         return;
-    bool below = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    bool below =
+        glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
     camera_orbit(&app.base_camera, -(float)(x - app.drag_x) * APP_ORBIT_RAD_PER_PIXEL,
                  (float)(y - app.drag_y) * APP_ORBIT_RAD_PER_PIXEL, 1, below ? CAMERA_ORBIT_ANY : CAMERA_ORBIT_ABOVE);
     app.drag_x = x;
@@ -1024,8 +1031,7 @@ static bool app_run(void) {
     } else if (ok && (ok = app_load_scene(app.scene_path))) {
         ok = app_start_technique(app.current) && (!app.record_path || app_start_recording());
         if (ok && app.ctx.window)
-            ok = app_run_window(app.frames) &&
-                 (!app.screenshot || app_save_screenshot(app.screenshot));
+            ok = app_run_window(app.frames) && (!app.screenshot || app_save_screenshot(app.screenshot));
         else if (ok)
             ok = app_run_headless(app.frames ? app.frames : APP_HEADLESS_FRAMES, app.screenshot);
         if (ok && !app.ctx.window && app.compare_on)
@@ -1056,8 +1062,7 @@ static bool app_run(void) {
 int app_main(int argc, char **argv, const technique *const *techniques, int technique_count) {
     app.program = flags_program_name(argv[0]);
     if (technique_count > APP_MAX_TECHNIQUES) {
-        fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count,
-                APP_MAX_TECHNIQUES);
+        fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count, APP_MAX_TECHNIQUES);
         return APP_EXIT_RUNTIME;
     }
     app.techniques = techniques;

@@ -112,8 +112,8 @@ typedef struct bench_row {
     double frame_ms; /* what the ratio, the front and the plot use */
     double floor_ms; /* the median of the floor frames interleaved with the row's (the floor's row: frame_ms) */
     double ratio;    /* frame_ms / floor_ms */
-    shadowdiff_result error; /* pooled over the error frames (shadowdiff_result_add) */
-    bool shimmer_measured;   /* under a motion that moves the camera */
+    shadowdiff_result error;  /* pooled over the error frames (shadowdiff_result_add) */
+    bool shimmer_measured;    /* under a motion that moves the camera */
     long followed, shimmered; /* summed over the error frames: shimmer % is their ratio */
 } bench_row;
 
@@ -147,7 +147,7 @@ static struct {
     camera_view view;
     bool hold_fit;        /* the maps fitted to fit_view (shimmer's held dump) */
     camera_view fit_view; /* the camera of the frame before the one rendered */
-    double time; /* of the frame being rendered, seconds */
+    double time;          /* of the frame being rendered, seconds */
     const technique *current;
     technique_host host;
     const technique *floor;    /* the registry's cost floor */
@@ -175,13 +175,15 @@ static const flags_param bench_flags[] = {
      0, FLAGS_INT, .integer = &bench.error_frames, .min = 1, .max = BENCH_MAX_ERROR_FRAMES, .what = "a count"},
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
-    {"motion", "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, or along its view (dolly);\nframe k is at k/60 s", 0,
-     FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
+    {"motion",
+     "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, or along its view (dolly);\nframe k is at k/60 s",
+     0, FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
     {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
      .choices = bench_config_choices},
     {"quick", "small and short: a smoke test of the whole pipeline", 0, FLAGS_SWITCH, .on = &bench.quick},
-    {"skip", "no skips at all (view culling...): every pass draws the\nwhole scene; results.csv's skips column says off", 0, FLAGS_TOGGLE,
-     .disabled = &bench.no_skip},
+    {"skip",
+     "no skips at all (view culling...): every pass draws the\nwhole scene; results.csv's skips column says off", 0,
+     FLAGS_TOGGLE, .disabled = &bench.no_skip},
     {"skips-compare", "every configuration twice, skips on then --no-skip;\nthe report compares them", 0,
      FLAGS_SWITCH, .on = &bench.skips_compare},
     {"scaling", "also OUT/scaling.png: ms per frame against the scenes'\nobject counts", 0, FLAGS_SWITCH,
@@ -450,8 +452,8 @@ static bool bench_dumps(double time, dump_frame *held, dump_frame *last) {
 /* Adds one error frame's figures to the row's: the dump against its
  * reference, and where shimmer is measured the held dump's against it. A
  * shimmer that gives no figure (its line says why) leaves the row's "-". */
-static bool bench_measure(bench_row *row, const dump_frame *reference, const dump_frame *held,
-                          const dump_frame *dump, bool first) {
+static bool bench_measure(bench_row *row, const dump_frame *reference, const dump_frame *held, const dump_frame *dump,
+                          bool first) {
     shadowdiff_result error;
     if (!shadowdiff_compare(reference, dump, NULL, &error, NULL))
         return false;
@@ -702,8 +704,9 @@ static void bench_write_named_comparisons(FILE *f, const char *scene) {
         if (r->config[0] == 0)
             defaults = r;
         else if (defaults && strcmp(defaults->technique, r->technique) == 0 && strstr(r->config, ": "))
-            fprintf(f, "\n%s defaults against %s: misclassified %.4f %% against %.4f %%, MAE %.5f against %.5f, "
-                       "%.3f ms against %.3f ms: %s.\n",
+            fprintf(f,
+                    "\n%s defaults against %s: misclassified %.4f %% against %.4f %%, MAE %.5f against %.5f, "
+                    "%.3f ms against %.3f ms: %s.\n",
                     r->technique, bench_config_label(r->config), defaults->error.misclassified_percent,
                     r->error.misclassified_percent, defaults->error.mean_abs_error, r->error.mean_abs_error,
                     defaults->frame_ms, r->frame_ms,
@@ -716,8 +719,9 @@ static void bench_write_named_comparisons(FILE *f, const char *scene) {
 /* --skips-compare: each technique's defaults with every skip on against
  * --no-skip, on the scene. */
 static void bench_write_skips_comparison(FILE *f, const char *scene) {
-    fprintf(f, "\nSkips on against off (defaults, %s ms per frame):\n\n"
-               "| technique | ms skips on | ms skips off | speed-up |\n|---|---|---|---|\n",
+    fprintf(f,
+            "\nSkips on against off (defaults, %s ms per frame):\n\n"
+            "| technique | ms skips on | ms skips off | speed-up |\n|---|---|---|---|\n",
             bench_time_basis());
     for (int t = 0; t < registry_technique_count; t++) {
         const char *name = registry_techniques[t]->name;
@@ -738,26 +742,27 @@ static bool bench_write_report(void) {
     FILE *f = bench_open("report.md", path, sizeof path);
     if (!f)
         return false;
-    fprintf(f, "# Shadow techniques: run time against error\n\n"
-               "Renderer: %s. Frames %dx%d; %d timed frames per configuration after %d warm-up "
-               "frames; times are medians (p90 in brackets) of GPU time (timer queries) and of CPU "
-               "time around each frame and glFinish. Error against the ray-traced reference of light 0 "
-               "(shadowdiff rules; misclassified at visibility threshold 0.5; MAE, the mean absolute "
-               "visibility error, also counts how far off each pixel is, so that blur is a cost too; penumbra "
-               "MAE and lit MAE are the MAE over the pixels the truth has in penumbra (visibility strictly "
-               "between its umbra and lit bounds) and fully lit: how well a soft shadow is drawn, and what a "
-               "filter darkens that should be lit; \"none\" where the truth has no such pixel). A Pareto "
-               "front per error figure: a configuration is on the misclassified front when no other "
-               "configuration of the scene is both faster and more accurate by misclassified %%, on the other "
-               "fronts likewise by their figure (own fronts: no other configuration of the same technique). "
-               "In the comparisons of the defaults with the named configurations, more accurate means no "
-               "worse by any figure both have and better by one.\n\n"
-               "The ratio, the fronts and the plots use **%s time**. %s A row's ratio (x unshadowed) is "
-               "its median over the median of the unshadowed frames interleaved with its own (frame k of "
-               "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
-               "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
-               "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error figures pool the compared pixels of "
-               "%d of the timed frames spread evenly over them, the last at %.3f s). Shimmer %%: %s\n",
+    fprintf(f,
+            "# Shadow techniques: run time against error\n\n"
+            "Renderer: %s. Frames %dx%d; %d timed frames per configuration after %d warm-up "
+            "frames; times are medians (p90 in brackets) of GPU time (timer queries) and of CPU "
+            "time around each frame and glFinish. Error against the ray-traced reference of light 0 "
+            "(shadowdiff rules; misclassified at visibility threshold 0.5; MAE, the mean absolute "
+            "visibility error, also counts how far off each pixel is, so that blur is a cost too; penumbra "
+            "MAE and lit MAE are the MAE over the pixels the truth has in penumbra (visibility strictly "
+            "between its umbra and lit bounds) and fully lit: how well a soft shadow is drawn, and what a "
+            "filter darkens that should be lit; \"none\" where the truth has no such pixel). A Pareto "
+            "front per error figure: a configuration is on the misclassified front when no other "
+            "configuration of the scene is both faster and more accurate by misclassified %%, on the other "
+            "fronts likewise by their figure (own fronts: no other configuration of the same technique). "
+            "In the comparisons of the defaults with the named configurations, more accurate means no "
+            "worse by any figure both have and better by one.\n\n"
+            "The ratio, the fronts and the plots use **%s time**. %s A row's ratio (x unshadowed) is "
+            "its median over the median of the unshadowed frames interleaved with its own (frame k of "
+            "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
+            "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
+            "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error figures pool the compared pixels of "
+            "%d of the timed frames spread evenly over them, the last at %.3f s). Shimmer %%: %s\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
@@ -794,15 +799,17 @@ static bool bench_write_report(void) {
             if (strcmp(r->scene, scene) != 0)
                 continue;
             char penumbra[32], lit[32];
-            fprintf(f, "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f | %s | %s | %s |",
-                    r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median,
-                    r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio, r->floor_ms, r->error.false_shadow_percent,
-                    r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
-                    shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_PENUMBRA, BENCH_REPORT_MAE_DECIMALS,
-                                              penumbra, sizeof penumbra),
-                    shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_LIT, BENCH_REPORT_MAE_DECIMALS, lit,
-                                              sizeof lit),
-                    bench_shimmer_text(r));
+            fprintf(
+                f,
+                "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f | %s | %s | %s |",
+                r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median, r->gpu_p90,
+                r->cpu_median, r->cpu_p90, r->ratio, r->floor_ms, r->error.false_shadow_percent,
+                r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
+                shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_PENUMBRA, BENCH_REPORT_MAE_DECIMALS, penumbra,
+                                          sizeof penumbra),
+                shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_LIT, BENCH_REPORT_MAE_DECIMALS, lit,
+                                          sizeof lit),
+                bench_shimmer_text(r));
             for (int own = 0; own < 2; own++)
                 for (int e = 0; e < BENCH_ERROR_COUNT; e++)
                     fprintf(f, " %s |", bench_on_front(r, own, (bench_error)e) ? "yes" : "");
@@ -838,8 +845,9 @@ static FILE *bench_open_script(const char *name, char *path, size_t size, const 
     snprintf(file, sizeof file, "%s.gp", name);
     FILE *g = bench_open(file, path, size);
     if (g)
-        fprintf(g, "set terminal pngcairo size 960,640 font ',11'\nset output '%s/%s.png'\n"
-                   "set title '%s' noenhanced\nset xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right\n",
+        fprintf(g,
+                "set terminal pngcairo size 960,640 font ',11'\nset output '%s/%s.png'\n"
+                "set title '%s' noenhanced\nset xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right\n",
                 bench.out_dir, name, title, xlabel, ylabel);
     return g;
 }
@@ -891,15 +899,16 @@ static bool bench_plot(const char *scene, bench_error error) {
              bench_errors[error].name, bench.ctx.renderer, motion_names[bench.motion],
              bench_skips_text(bench.no_skip_settings[0]));
     snprintf(xlabel, sizeof xlabel, "%s ms per frame (median)", bench_time_basis());
-    FILE *g = bench_close(d, data) ? bench_open_script(name, script, sizeof script, title, xlabel,
-                                                       bench_errors[error].label)
-                                   : NULL;
+    FILE *g = bench_close(d, data)
+                  ? bench_open_script(name, script, sizeof script, title, xlabel, bench_errors[error].label)
+                  : NULL;
     if (!g)
         return false;
     fprintf(g, "set offsets graph 0.05, graph 0.25, graph 0.1, 0\nset yrange [0:*]\nplot ");
     for (int t = 0; t < blocks; t++)
-        fprintf(g, "'%s' index %d using 1:2 with points pointsize 2 pointtype %d title '%s', "
-                   "'' index %d using 1:2:3 with labels offset 1,0.7 font ',8' left notitle, ",
+        fprintf(g,
+                "'%s' index %d using 1:2 with points pointsize 2 pointtype %d title '%s', "
+                "'' index %d using 1:2:3 with labels offset 1,0.7 font ',8' left notitle, ",
                 data, t, 5 + 2 * t, techniques[t]->name, t);
     fprintf(g, "'%s' index %d using 1:2 with lines dashtype 2 linecolor 'grey40' title 'Pareto front'\n", data,
             blocks);
@@ -928,8 +937,8 @@ static bool bench_plot_scaling(void) {
     for (int t = 0; t < technique_count; t++)
         for (int k = 0; k < bench.setting_count; k++) {
             for (int s = 0; s < bench.scene_count; s++) {
-                const bench_row *r = bench_find_row(bench.scene_names[order[s]], techniques[t]->name, "",
-                                                    bench.no_skip_settings[k]);
+                const bench_row *r =
+                    bench_find_row(bench.scene_names[order[s]], techniques[t]->name, "", bench.no_skip_settings[k]);
                 if (r)
                     fprintf(d, "%d %g\n", bench.scene_objects[order[s]], r->frame_ms);
             }
@@ -952,8 +961,9 @@ static bool bench_plot_scaling(void) {
     for (int t = 0, block = 0; t < technique_count; t++)
         for (int k = 0; k < bench.setting_count; k++, block++) {
             bool no_skip = bench.no_skip_settings[k];
-            fprintf(g, "%s'%s' index %d using 1:2 with linespoints linecolor %d dashtype %d pointtype %d "
-                       "title '%s, skips %s'",
+            fprintf(g,
+                    "%s'%s' index %d using 1:2 with linespoints linecolor %d dashtype %d pointtype %d "
+                    "title '%s, skips %s'",
                     block ? ", " : "", data, block, t + 1, no_skip ? 2 : 1, 5 + 2 * t, techniques[t]->name,
                     bench_skips_text(no_skip));
         }
@@ -991,8 +1001,8 @@ int main(int argc, char **argv) {
         if (bench_selected(registry_techniques[t]))
             total += bench_config_count(registry_techniques[t]) * bench.setting_count * bench.scene_count;
     /* The HUD's text is the techniques' legends' (legend.h). */
-    bool ok = path_make_directories(bench.out_dir) && target_create(&bench.target, bench.width, bench.height) &&
-              hud_init();
+    bool ok =
+        path_make_directories(bench.out_dir) && target_create(&bench.target, bench.width, bench.height) && hud_init();
     glGenQueries(1, &bench.query);
     for (int s = 0; ok && s < bench.scene_count; s++)
         ok = bench_scene(bench.scenes[s], s, &done, total);

@@ -100,12 +100,12 @@ typedef struct report_run {
     int columns[REPORT_CSV_COUNT];
 } report_run;
 static report_run report_runs[] = {
-    {.name = "static", .dir = "static"},     {.name = "light", .dir = "light"},
-    {.name = "camera", .dir = "camera"},     {.name = "dolly", .dir = "dolly"},
-    {.name = "cities", .dir = ""},           {.name = "cities-light", .dir = "cities-light"},
-    {.name = "dense", .dir = "dense"},       {.name = "dense-light", .dir = "dense-light"},
-    {.name = "soft", .dir = "soft"},         {.name = "soft-light", .dir = "soft-light"},
-    {.name = "hidden", .dir = "hidden"},     {.name = "hidden-light", .dir = "hidden-light"},
+    {.name = "static", .dir = "static"}, {.name = "light", .dir = "light"},
+    {.name = "camera", .dir = "camera"}, {.name = "dolly", .dir = "dolly"},
+    {.name = "cities", .dir = ""},       {.name = "cities-light", .dir = "cities-light"},
+    {.name = "dense", .dir = "dense"},   {.name = "dense-light", .dir = "dense-light"},
+    {.name = "soft", .dir = "soft"},     {.name = "soft-light", .dir = "soft-light"},
+    {.name = "hidden", .dir = "hidden"}, {.name = "hidden-light", .dir = "hidden-light"},
 };
 #define REPORT_RUN_COUNT ((int)(sizeof report_runs / sizeof *report_runs))
 
@@ -158,45 +158,83 @@ static const struct {
  * figures and those of the same configuration in another run. */
 typedef struct report_table {
     const char *title;
-    const char *run, *other;    /* run names; other may be NULL */
-    const char *techniques[4];  /* none: every technique */
-    const char *scene;          /* NULL: every scene */
+    const char *run, *other;   /* run names; other may be NULL */
+    const char *techniques[4]; /* none: every technique */
+    const char *scene;         /* NULL: every scene */
     bool defaults_only;
     int columns[REPORT_MAX_TABLE_COLUMNS]; /* report_figure | REPORT_OTHER */
 } report_table;
 
 #define REPORT_ERRORS REPORT_MISCLASSIFIED, REPORT_MAE
-#define REPORT_SKIPS_COLUMNS                                                                                   \
-    {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_MS, REPORT_RATIO, REPORT_MS_SKIPS_OFF, REPORT_SKIPS_SPEED_UP,              \
-     REPORT_MS | REPORT_OTHER, REPORT_RATIO | REPORT_OTHER, REPORT_SKIPS_SPEED_UP | REPORT_OTHER}
+#define REPORT_SKIPS_COLUMNS                                                                                         \
+    {                                                                                                                \
+        REPORT_SCENE, REPORT_TECHNIQUE, REPORT_MS, REPORT_RATIO, REPORT_MS_SKIPS_OFF, REPORT_SKIPS_SPEED_UP,         \
+            REPORT_MS | REPORT_OTHER, REPORT_RATIO | REPORT_OTHER, REPORT_SKIPS_SPEED_UP | REPORT_OTHER              \
+    }
 static const report_table report_tables[] = {
-    {"Shadow maps", "static", NULL, {"shadowmap"}, NULL, false,
+    {"Shadow maps",
+     "static",
+     NULL,
+     {"shadowmap"},
+     NULL,
+     false,
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS, REPORT_LIT_MAE}},
-    {"Perspective shadow maps", "static", NULL, {"psm"}, NULL, false,
+    {"Perspective shadow maps",
+     "static",
+     NULL,
+     {"psm"},
+     NULL,
+     false,
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
-    {"Cascaded shadow maps", "static", NULL, {"cascades"}, NULL, false,
+    {"Cascaded shadow maps",
+     "static",
+     NULL,
+     {"cascades"},
+     NULL,
+     false,
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
-    {"Cascades against one map and the warps, on one ruler", "camera", "dolly",
-     {"shadowmap", "psm", "cascades"}, "long_view", false,
+    {"Cascades against one map and the warps, on one ruler",
+     "camera",
+     "dolly",
+     {"shadowmap", "psm", "cascades"},
+     "long_view",
+     false,
      {REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_ERRORS, REPORT_SHIMMER, REPORT_RATIO,
       REPORT_MISCLASSIFIED | REPORT_OTHER, REPORT_MAE | REPORT_OTHER, REPORT_SHIMMER | REPORT_OTHER,
       REPORT_RATIO | REPORT_OTHER}},
-    {"Soft shadows from area lights", "soft", "soft-light",
-     {NULL}, NULL, false,
-     {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_PENUMBRA_MAE, REPORT_UMBRA_MAE,
-      REPORT_LIT_MAE, REPORT_MAE, REPORT_MISCLASSIFIED, REPORT_RATIO, REPORT_RATIO | REPORT_OTHER}},
+    {"Soft shadows from area lights",
+     "soft",
+     "soft-light",
+     {NULL},
+     NULL,
+     false,
+     {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_PENUMBRA_MAE, REPORT_UMBRA_MAE, REPORT_LIT_MAE,
+      REPORT_MAE, REPORT_MISCLASSIFIED, REPORT_RATIO, REPORT_RATIO | REPORT_OTHER}},
     {"Skips: the cities", "cities", "cities-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
     {"Skips: the dense scene", "dense", "dense-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Hidden casters and objects", "hidden", "hidden-light",
-     {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Frame cost", "static", "light", {NULL}, NULL, true,
+    {"Hidden casters and objects", "hidden", "hidden-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
+    {"Frame cost",
+     "static",
+     "light",
+     {NULL},
+     NULL,
+     true,
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_MS, REPORT_RATIO, REPORT_FLOOR_MS, REPORT_MS | REPORT_OTHER,
       REPORT_RATIO | REPORT_OTHER, REPORT_FLOOR_MS | REPORT_OTHER}},
-    {"Measuring accuracy and speed", "static", NULL, {NULL}, NULL, false,
-     {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS,
-      REPORT_PENUMBRA_MAE, REPORT_LIT_MAE}},
-    {"Temporal stability: shimmer", "camera",
-     "dolly", {NULL}, NULL, false,
+    {"Measuring accuracy and speed",
+     "static",
+     NULL,
+     {NULL},
+     NULL,
+     false,
+     {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS, REPORT_PENUMBRA_MAE,
+      REPORT_LIT_MAE}},
+    {"Temporal stability: shimmer",
+     "camera",
+     "dolly",
+     {NULL},
+     NULL,
+     false,
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_SHIMMER, REPORT_MISCLASSIFIED,
       REPORT_SHIMMER | REPORT_OTHER, REPORT_MISCLASSIFIED | REPORT_OTHER}},
 };
@@ -213,9 +251,7 @@ typedef struct report_stamp {
     char renderers[REPORT_CELL], sizes[REPORT_CELL];
 } report_stamp;
 
-static struct {
-    const char *bench_dir, *stress_dir, *out_dir, *readme;
-} report;
+static struct { const char *bench_dir, *stress_dir, *out_dir, *readme; } report;
 
 static const flags_param report_flags[] = {
     {"bench", "where `make bench` wrote its runs (out/bench)", 0, FLAGS_STRING, .text = &report.bench_dir,
@@ -223,8 +259,8 @@ static const flags_param report_flags[] = {
     {"stress", "where `make stress` wrote table.md (out/stress)", 0, FLAGS_STRING, .text = &report.stress_dir,
      .value_name = "DIR"},
     {"out", "where the report goes (out/report)", 0, FLAGS_STRING, .text = &report.out_dir, .value_name = "DIR"},
-    {"readme", "also put the compact table between FILE's report markers", 0, FLAGS_STRING,
-     .text = &report.readme, .value_name = "FILE"},
+    {"readme", "also put the compact table between FILE's report markers", 0, FLAGS_STRING, .text = &report.readme,
+     .value_name = "FILE"},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 
@@ -307,7 +343,8 @@ static void report_figure_text(report_figure figure, const report_run *run, int 
         snprintf(out, size, "-");
         return;
     }
-    int off = figure == REPORT_MS_SKIPS_OFF || figure == REPORT_SKIPS_SPEED_UP ? report_twin(run, run, row, "off") : -1;
+    int off =
+        figure == REPORT_MS_SKIPS_OFF || figure == REPORT_SKIPS_SPEED_UP ? report_twin(run, run, row, "off") : -1;
     double on_ms = report_ms(run, row);
     switch (figure) {
     case REPORT_MS: snprintf(out, size, "%.4f", on_ms); break;
@@ -378,8 +415,8 @@ static void report_write_table(FILE *f, const report_table *t) {
     for (const int *c = t->columns; *c; c++) {
         char header[REPORT_CELL];
         bool from_other = *c & REPORT_OTHER;
-        snprintf(header, sizeof header, "%s%s%s%s", report_figures[*c & ~REPORT_OTHER].header,
-                 from_other ? " (" : "", from_other ? other->name : "", from_other ? ")" : "");
+        snprintf(header, sizeof header, "%s%s%s%s", report_figures[*c & ~REPORT_OTHER].header, from_other ? " (" : "",
+                 from_other ? other->name : "", from_other ? ")" : "");
         report_markdown_cell(f, header);
     }
     fputs("\n|", f);
@@ -529,8 +566,9 @@ static void report_write_compact(FILE *f, const report_stamp *s) {
     const char *scenes[REPORT_MAX_SCENES], *techniques[REPORT_MAX_TECHNIQUES];
     int scene_count = report_run_values(run, REPORT_CSV_SCENE, scenes, REPORT_MAX_SCENES);
     int technique_count = report_run_values(run, REPORT_CSV_TECHNIQUE, techniques, REPORT_MAX_TECHNIQUES);
-    fprintf(f, "Current figures, from `make report` (commit %s, %s; %s; %s): each technique's defaults, nothing "
-               "moving, skips on; ms is the time the ratio uses. Every table: `out/report/index.md`.\n\n",
+    fprintf(f,
+            "Current figures, from `make report` (commit %s, %s; %s; %s): each technique's defaults, nothing "
+            "moving, skips on; ms is the time the ratio uses. Every table: `out/report/index.md`.\n\n",
             s->commit, s->day, s->renderers, s->sizes);
     char scene_list[REPORT_CELL] = "";
     for (int i = 0; i < scene_count; i++) {
@@ -685,10 +723,11 @@ static bool report_write_markdown(const char *path, const report_stamp *s) {
     FILE *f = report_create(path);
     if (!f)
         return false;
-    fprintf(f, "# Shadow techniques: the results\n\n"
-               "Commit %s; %s; machine %s (%s); renderer %s; frame size %s.\n\n"
-               "Written by `make report` from the runs below (`make bench`, `make stress`): every figure here is "
-               "a run's own, none copied by hand.\n\n## Current figures\n\n",
+    fprintf(f,
+            "# Shadow techniques: the results\n\n"
+            "Commit %s; %s; machine %s (%s); renderer %s; frame size %s.\n\n"
+            "Written by `make report` from the runs below (`make bench`, `make stress`): every figure here is "
+            "a run's own, none copied by hand.\n\n## Current figures\n\n",
             s->commit, s->date, s->machine, s->cpu, s->renderers, s->sizes);
     report_write_compact(f, s);
     for (int t = 0; t < REPORT_TABLE_COUNT; t++)
@@ -725,8 +764,8 @@ static void report_html_inline(FILE *f, const char *text, size_t length) {
             snprintf(piece, sizeof piece, "%.*s", (int)(close - text - 1), text + 1);
             fputs("<code>", f), gallery_page_text(f, piece), fputs("</code>", f);
             text = close + 1;
-        } else if (text + 1 < end && text[0] == '*' && text[1] == '*' &&
-                   (close = strstr(text + 2, "**")) && close < end) {
+        } else if (text + 1 < end && text[0] == '*' && text[1] == '*' && (close = strstr(text + 2, "**")) &&
+                   close < end) {
             snprintf(piece, sizeof piece, "%.*s", (int)(close - text - 2), text + 2);
             fputs("<strong>", f), gallery_page_text(f, piece), fputs("</strong>", f);
             text = close + 2;
@@ -843,8 +882,8 @@ static bool report_refill(const char *readme, const char *compact_path) {
     bool ok = compact != NULL;
     char *begin = ok ? strstr(text, "\n" REPORT_BEGIN "\n") : NULL;
     char *end = begin ? strstr(begin, "\n" REPORT_END "\n") : NULL;
-    if (ok && (!begin || !end || strstr(begin + 1, "\n" REPORT_BEGIN "\n") ||
-               strstr(end + 1, "\n" REPORT_END "\n"))) {
+    if (ok &&
+        (!begin || !end || strstr(begin + 1, "\n" REPORT_BEGIN "\n") || strstr(end + 1, "\n" REPORT_END "\n"))) {
         fprintf(stderr, "%s: expected one line %s, then one line %s\n", readme, REPORT_BEGIN, REPORT_END);
         ok = false;
     }

@@ -55,8 +55,8 @@
 #define CITY_DOME_SHARE 0.08  /* then spheres */
 #define CITY_TOWER_HEIGHT_MIN 12.0
 #define CITY_TOWER_HEIGHT_MAX 48.0
-#define CITY_SEGMENTS 16      /* cylinders and spheres: cheap, still round */
-#define CITY_COLOR_MIN 0.45   /* building colours: light, a little varied */
+#define CITY_SEGMENTS 16    /* cylinders and spheres: cheap, still round */
+#define CITY_COLOR_MIN 0.45 /* building colours: light, a little varied */
 #define CITY_COLOR_SPREAD 0.4
 #define CITY_GROUND_GREY 0.42 /* asphalt */
 
@@ -104,9 +104,7 @@
 
 /* Out of memory anywhere while building a tree sets this: one check at
  * the end instead of one per cJSON call. */
-static struct {
-    bool out_of_memory;
-} scenegen;
+static struct { bool out_of_memory; } scenegen;
 
 /* ---- numbers ---- */
 
@@ -130,9 +128,7 @@ static uint64_t scenegen_block_stream(int bx, int bz) {
     return state;
 }
 
-static double scenegen_round(double x, double decimals) {
-    return round(x * decimals) / decimals;
-}
+static double scenegen_round(double x, double decimals) { return round(x * decimals) / decimals; }
 
 /* ---- JSON ---- */
 
@@ -244,8 +240,8 @@ static void scenegen_city_camera(cJSON *root, double eye_z, double look, double 
 }
 
 /* A spot lamp looking straight down; range 0: none. */
-static void scenegen_spot(cJSON *lights, double x, double y, double z, double intensity, double range,
-                          double inner, double outer) {
+static void scenegen_spot(cJSON *lights, double x, double y, double z, double intensity, double range, double inner,
+                          double outer) {
     cJSON *l = scenegen_light(lights, "spot", intensity);
     scenegen_vec3(l, "position", x, y, z, SCENEGEN_DECIMALS);
     scenegen_vec3(l, "color", 1, 0.82, 0.6, SCENEGEN_DECIMALS);
@@ -293,10 +289,9 @@ static void scenegen_street_setting(cJSON *root) {
     scenegen_city_camera(root, STREET_EYE_Z, STREET_LOOK, STREET_NEAR, STREET_FAR);
     cJSON *lights;
     scenegen_city_sun(root, &lights);
-    static const double lamps[][3] = {
-        {CITY_PITCH / 2 - 5, 8, STREET_EYE_Z + STREET_LOOK * 25},
-        {CITY_PITCH / 2 + 5, 8, STREET_EYE_Z + STREET_LOOK * 70},
-        {CITY_PITCH / 2 - 5, 8, STREET_EYE_Z + STREET_LOOK * 120}};
+    static const double lamps[][3] = {{CITY_PITCH / 2 - 5, 8, STREET_EYE_Z + STREET_LOOK * 25},
+                                      {CITY_PITCH / 2 + 5, 8, STREET_EYE_Z + STREET_LOOK * 70},
+                                      {CITY_PITCH / 2 - 5, 8, STREET_EYE_Z + STREET_LOOK * 120}};
     for (size_t i = 0; i < sizeof lamps / sizeof *lamps; i++)
         scenegen_spot(lights, lamps[i][0], lamps[i][1], lamps[i][2], STREET_LAMP_INTENSITY, 0, STREET_SPOT_INNER,
                       STREET_SPOT_OUTER);
@@ -306,15 +301,16 @@ static void scenegen_street_setting(cJSON *root) {
  * blocks at Chebyshev distance r, walked from its top-left corner round. */
 static void scenegen_block_at(int index, int *bx, int *bz, int *ring) {
     int r = 0;
-    while ((2 * r + 1) * (2 * r + 1) <= index) r++;
+    while ((2 * r + 1) * (2 * r + 1) <= index)
+        r++;
     *ring = r;
     if (r == 0) {
         *bx = *bz = 0;
         return;
     }
     int k = index - (2 * r - 1) * (2 * r - 1), side = k / (2 * r), step = k % (2 * r);
-    static const int start[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, walk[4][2] = {{1, 0}, {0, 1}, {-1, 0},
-                                                                                        {0, -1}};
+    static const int start[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}},
+                     walk[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
     *bx = start[side][0] * r + walk[side][0] * step;
     *bz = start[side][1] * r + walk[side][1] * step;
 }
@@ -322,11 +318,12 @@ static void scenegen_block_at(int index, int *bx, int *bz, int *ring) {
 /* One lot's building: a box mostly, now and then a tower or a dome. */
 static void scenegen_lot(cJSON *objects, uint64_t *rng, double cx, double cz, int number) {
     double setback = scenegen_uniform(rng, CITY_SETBACK_MIN, CITY_SETBACK_MAX);
-    double width = CITY_LOT - 2 * setback, depth = CITY_LOT - 2 * scenegen_uniform(rng, CITY_SETBACK_MIN,
-                                                                                  CITY_SETBACK_MAX);
+    double width = CITY_LOT - 2 * setback,
+           depth = CITY_LOT - 2 * scenegen_uniform(rng, CITY_SETBACK_MIN, CITY_SETBACK_MAX);
     double kind = scenegen_uniform(rng, 0, 1), shape = scenegen_uniform(rng, 0, 1);
     double color[3];
-    for (int c = 0; c < 3; c++) color[c] = CITY_COLOR_MIN + CITY_COLOR_SPREAD * scenegen_uniform(rng, 0, 1);
+    for (int c = 0; c < 3; c++)
+        color[c] = CITY_COLOR_MIN + CITY_COLOR_SPREAD * scenegen_uniform(rng, 0, 1);
     char name[32];
     cJSON *mesh, *o;
     double y;

@@ -78,8 +78,9 @@ static int main_parse_flags(int argc, char **argv, main_options *o) {
         {"json", "one JSON object on stdout instead of text", 0, FLAGS_SWITCH, .on = &o->json},
         {"receiver", "only pixels of that object", 0, FLAGS_STRING, .text = &o->receiver, .value_name = "NAME"},
         {"grazing",
-         "also leave out surfaces within DEG degrees\n(0.." FLAGS_TEXT(MAIN_MAX_GRAZING_DEGREES) ") of "
-         "edge-on to the light (0): for\nsweeps of light directions",
+         "also leave out surfaces within DEG degrees\n(0.." FLAGS_TEXT(
+             MAIN_MAX_GRAZING_DEGREES) ") of "
+                                       "edge-on to the light (0): for\nsweeps of light directions",
          0, FLAGS_INT, .integer = &o->grazing_degrees, .min = 0, .max = MAIN_MAX_GRAZING_DEGREES,
          .what = "whole degrees", .value_name = "DEG"},
         {"max-misclassified", "exit with status 3 when misclassified is over P\npercent (0..100), after the report",
@@ -148,19 +149,19 @@ static void main_print_shimmer_text(const shadowdiff_shimmer_result *r) {
 /* shimmer may be NULL (no --previous). */
 static bool main_print_json(const shadowdiff_result *r, const shadowdiff_shimmer_result *shimmer) {
     cJSON *root = cJSON_CreateObject();
-    bool ok = root && (!shimmer || (cJSON_AddNumberToObject(root, "followed", (double)shimmer->followed) &&
-                                    cJSON_AddNumberToObject(root, "shimmered", (double)shimmer->shimmered) &&
-                                    cJSON_AddNumberToObject(root, "truth_changed", (double)shimmer->truth_changed) &&
-                                    cJSON_AddNumberToObject(root, "shimmer_percent", shimmer->shimmer_percent) &&
-                                    cJSON_AddNumberToObject(root, "truth_changed_percent",
-                                                            shimmer->truth_changed_percent)));
+    bool ok = root &&
+              (!shimmer || (cJSON_AddNumberToObject(root, "followed", (double)shimmer->followed) &&
+                            cJSON_AddNumberToObject(root, "shimmered", (double)shimmer->shimmered) &&
+                            cJSON_AddNumberToObject(root, "truth_changed", (double)shimmer->truth_changed) &&
+                            cJSON_AddNumberToObject(root, "shimmer_percent", shimmer->shimmer_percent) &&
+                            cJSON_AddNumberToObject(root, "truth_changed_percent", shimmer->truth_changed_percent)));
     ok = ok && cJSON_AddNumberToObject(root, "compared", (double)r->compared) &&
-              cJSON_AddNumberToObject(root, "false_shadow", (double)r->false_shadow) &&
-              cJSON_AddNumberToObject(root, "false_lit", (double)r->false_lit) &&
-              cJSON_AddNumberToObject(root, "false_shadow_percent", r->false_shadow_percent) &&
-              cJSON_AddNumberToObject(root, "false_lit_percent", r->false_lit_percent) &&
-              cJSON_AddNumberToObject(root, "misclassified_percent", r->misclassified_percent) &&
-              cJSON_AddNumberToObject(root, "mean_abs_error", r->mean_abs_error) && main_add_class_json(root, r);
+         cJSON_AddNumberToObject(root, "false_shadow", (double)r->false_shadow) &&
+         cJSON_AddNumberToObject(root, "false_lit", (double)r->false_lit) &&
+         cJSON_AddNumberToObject(root, "false_shadow_percent", r->false_shadow_percent) &&
+         cJSON_AddNumberToObject(root, "false_lit_percent", r->false_lit_percent) &&
+         cJSON_AddNumberToObject(root, "misclassified_percent", r->misclassified_percent) &&
+         cJSON_AddNumberToObject(root, "mean_abs_error", r->mean_abs_error) && main_add_class_json(root, r);
     char *text = ok ? cJSON_PrintUnformatted(root) : NULL;
     cJSON_Delete(root);
     if (!text) {
@@ -241,7 +242,8 @@ static int main_run(const main_options *o) {
     shadowdiff_result result;
     bool ok = !o->heatmap_path || heatmap;
     if (!ok)
-        fprintf(stderr, "%s: out of memory for a %dx%d heat map\n", o->heatmap_path, reference.width, reference.height);
+        fprintf(stderr, "%s: out of memory for a %dx%d heat map\n", o->heatmap_path, reference.width,
+                reference.height);
     int status = ok ? 0 : MAIN_EXIT_RUNTIME;
     if (ok && !shadowdiff_compare(&reference, &test, &settings, &result, heatmap))
         status = main_problem_status(result.problem);

@@ -68,10 +68,10 @@
 #define STRESS_STDERR_READ (1 << 20)
 #define STRESS_JSON_READ (1 << 16)
 #define STRESS_KEY_MAX 64
-#define STRESS_MAE_DECIMALS 5 /* the whole MAE's and each class's */
-#define STRESS_POLL_NS 5000000L /* between looks at the running children */
-#define STRESS_EXEC_FAILED 127  /* the shell's status for "cannot run" */
-#define STRESS_SIGNAL_STATUS 128 /* at or above: a shell's death by signal */
+#define STRESS_MAE_DECIMALS 5     /* the whole MAE's and each class's */
+#define STRESS_POLL_NS 5000000L   /* between looks at the running children */
+#define STRESS_EXEC_FAILED 127    /* the shell's status for "cannot run" */
+#define STRESS_SIGNAL_STATUS 128  /* at or above: a shell's death by signal */
 #define STRESS_NOTHING_COMPARED 4 /* shadowdiff's exit statuses */
 #define STRESS_NOT_FINITE 5
 
@@ -143,14 +143,14 @@ static const double stress_colors[STRESS_MAX_OBJECTS][3] = {
 #define STRESS_SPHERE_SEGMENTS 32
 
 /* Distances of the axes below, in the base scene's units. */
-#define STRESS_GRAZING_DISTANCE 12 /* a grazing point or spot light from the box */
-#define STRESS_CONE_HEIGHT 4       /* a wide spot straight down from this height */
-#define STRESS_CONE_INNER 0.9      /* its inner angle, as a share of the outer */
-#define STRESS_VOLUME_LIGHT_BACK 4.3 /* camera on a volume: the light behind the box */
-#define STRESS_VOLUME_LIGHT_UP 0.8   /* and above its top */
-#define STRESS_VOLUME_SUN_SLOPE 0.15 /* the sun's fall per unit along +z */
-#define STRESS_VOLUME_EYE_HEIGHT 0.6 /* where the camera meets the plane */
-#define STRESS_GIANT_GAP 6           /* a huge caster's distance from the scene */
+#define STRESS_GRAZING_DISTANCE 12                             /* a grazing point or spot light from the box */
+#define STRESS_CONE_HEIGHT 4                                   /* a wide spot straight down from this height */
+#define STRESS_CONE_INNER 0.9                                  /* its inner angle, as a share of the outer */
+#define STRESS_VOLUME_LIGHT_BACK 4.3                           /* camera on a volume: the light behind the box */
+#define STRESS_VOLUME_LIGHT_UP 0.8                             /* and above its top */
+#define STRESS_VOLUME_SUN_SLOPE 0.15                           /* the sun's fall per unit along +z */
+#define STRESS_VOLUME_EYE_HEIGHT 0.6                           /* where the camera meets the plane */
+#define STRESS_GIANT_GAP 6                                     /* a huge caster's distance from the scene */
 static const double stress_grazing_travel[3] = {0.8, 0, -0.6}; /* horizontal, unit */
 static const double stress_model_at[3] = {-0.5, 0, 2.5};
 static const double stress_panel_at[3] = {-1, 2.5, -1};
@@ -163,35 +163,31 @@ static void stress_set(double out[3], double x, double y, double z) {
 
 static void stress_unit(double v[3]) {
     double length = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int i = 0; i < 3; i++) v[i] /= length;
+    for (int i = 0; i < 3; i++)
+        v[i] /= length;
 }
 
 /* A spot's direction (or any light's, for the record) at point p. */
 static void stress_aim(stress_scene *s, const double p[3]) {
-    for (int i = 0; i < 3; i++) s->light_direction[i] = p[i] - s->light_position[i];
+    for (int i = 0; i < 3; i++)
+        s->light_direction[i] = p[i] - s->light_position[i];
     stress_unit(s->light_direction);
 }
 
-static const double *stress_box_centre(const stress_scene *s) {
-    return s->objects[STRESS_BOX].translate;
-}
+static const double *stress_box_centre(const stress_scene *s) { return s->objects[STRESS_BOX].translate; }
 
 static stress_object *stress_add(stress_scene *s, const stress_object *o) {
     s->objects[s->object_count] = *o;
     return &s->objects[s->object_count++];
 }
 
-static void stress_light_at(stress_scene *s, double x, double y, double z) {
-    stress_set(s->light_position, x, y, z);
-}
+static void stress_light_at(stress_scene *s, double x, double y, double z) { stress_set(s->light_position, x, y, z); }
 
 /* ---- the axes: each changes the base scene by its value ---- */
 
 typedef void stress_axis(stress_scene *s, double value);
 
-static void stress_none(stress_scene *s, double value) {
-    (void)s, (void)value;
-}
+static void stress_none(stress_scene *s, double value) { (void)s, (void)value; }
 
 /* Every length times `value`, about the origin. */
 static void stress_scale(stress_scene *s, double value) {
@@ -217,17 +213,14 @@ static void stress_translate(stress_scene *s, double value) {
         s->eye[i] += offset[i];
         s->target[i] += offset[i];
         s->light_position[i] += offset[i];
-        for (int o = 0; o < s->object_count; o++) s->objects[o].translate[i] += offset[i];
+        for (int o = 0; o < s->object_count; o++)
+            s->objects[o].translate[i] += offset[i];
     }
 }
 
-static void stress_near_ratio(stress_scene *s, double value) {
-    s->near = s->far / value;
-}
+static void stress_near_ratio(stress_scene *s, double value) { s->near = s->far / value; }
 
-static void stress_far_ratio(stress_scene *s, double value) {
-    s->far = s->near * value;
-}
+static void stress_far_ratio(stress_scene *s, double value) { s->far = s->near * value; }
 
 static void stress_light_inside(stress_scene *s, double value) {
     (void)value;
@@ -247,7 +240,8 @@ static void stress_grazing(stress_scene *s, double value) {
     double a = value * M_PI / 180;
     const double *t = stress_grazing_travel, *c = stress_box_centre(s);
     stress_set(s->light_direction, t[0] * cos(a), -sin(a), t[2] * cos(a));
-    for (int i = 0; i < 3; i++) s->light_position[i] = c[i] - STRESS_GRAZING_DISTANCE * s->light_direction[i];
+    for (int i = 0; i < 3; i++)
+        s->light_position[i] = c[i] - STRESS_GRAZING_DISTANCE * s->light_direction[i];
 }
 
 /* `value` below the ground, aimed at the box, or a sun shining upwards;
@@ -268,9 +262,11 @@ static void stress_below(stress_scene *s, double value) {
 static void stress_far_light(stress_scene *s, double value) {
     const double *c = stress_box_centre(s);
     double away[3];
-    for (int i = 0; i < 3; i++) away[i] = s->light_position[i] - c[i];
+    for (int i = 0; i < 3; i++)
+        away[i] = s->light_position[i] - c[i];
     stress_unit(away);
-    for (int i = 0; i < 3; i++) s->light_position[i] = c[i] + value * away[i];
+    for (int i = 0; i < 3; i++)
+        s->light_position[i] = c[i] + value * away[i];
     stress_aim(s, c);
 }
 
@@ -318,17 +314,17 @@ static void stress_camera_on_volume(stress_scene *s, double value) {
     } else {
         stress_light_at(s, edge[0], edge[1] + STRESS_VOLUME_LIGHT_UP, edge[2] - STRESS_VOLUME_LIGHT_BACK);
         stress_aim(s, c);
-        for (int i = 0; i < 3; i++) d[i] = edge[i] - s->light_position[i];
+        for (int i = 0; i < 3; i++)
+            d[i] = edge[i] - s->light_position[i];
     }
     double beta = (edge[1] - STRESS_VOLUME_EYE_HEIGHT) / -d[1];
-    for (int i = 0; i < 3; i++) s->eye[i] = edge[i] + beta * d[i];
+    for (int i = 0; i < 3; i++)
+        s->eye[i] = edge[i] + beta * d[i];
     s->eye[1] -= value;
     memcpy(s->target, c, sizeof s->target);
 }
 
-static void stress_fov(stress_scene *s, double value) {
-    s->fov = value;
-}
+static void stress_fov(stress_scene *s, double value) { s->fov = value; }
 
 /* `value` straight above the origin, looking down (up along -z). */
 static void stress_camera_down(stress_scene *s, double value) {
@@ -347,9 +343,10 @@ static void stress_huge_caster(stress_scene *s, double value) {
     const double *d = s->light_direction;
     double side[3] = {-d[2], 0, d[0]}; /* d x up, horizontal */
     stress_unit(side);
-    stress_object *o = stress_add(s, &(stress_object){"giant", STRESS_MESH_SPHERE, {value, 0, 0}, {0, 0, 0},
-                                                       {0, 0, 0}, {1, 1, 1}, true});
-    for (int i = 0; i < 3; i++) o->translate[i] = -d[i] * (value + STRESS_GIANT_GAP) + side[i] * value;
+    stress_object *o = stress_add(
+        s, &(stress_object){"giant", STRESS_MESH_SPHERE, {value, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}, true});
+    for (int i = 0; i < 3; i++)
+        o->translate[i] = -d[i] * (value + STRESS_GIANT_GAP) + side[i] * value;
 }
 
 /* The box shrunk to `value` on a side, resting on the ground. */
@@ -362,8 +359,8 @@ static void stress_tiny_caster(stress_scene *s, double value) {
 static void stress_with_model(stress_scene *s, stress_model model, double value, const double at[3]) {
     s->model = model;
     s->model_size = value;
-    stress_object *o = stress_add(
-        s, &(stress_object){"model", STRESS_MESH_MODEL, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}, true});
+    stress_object *o =
+        stress_add(s, &(stress_object){"model", STRESS_MESH_MODEL, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}, true});
     memcpy(o->translate, at, sizeof o->translate);
 }
 
@@ -399,8 +396,8 @@ static void stress_beside(stress_scene *s, double value) {
 /* A plane of side `value` lying on the box's top face, casting. */
 static void stress_panel(stress_scene *s, double value) {
     const stress_object *box = &s->objects[STRESS_BOX];
-    stress_object *o = stress_add(s, &(stress_object){"panel", STRESS_MESH_PLANE, {value, 0, value}, {0, 0, 0},
-                                                       {0, 0, 0}, {1, 1, 1}, true});
+    stress_object *o = stress_add(
+        s, &(stress_object){"panel", STRESS_MESH_PLANE, {value, 0, value}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}, true});
     memcpy(o->translate, box->translate, sizeof o->translate);
     o->translate[1] += box->size[1] / 2;
     memcpy(o->rotate, box->rotate, sizeof o->rotate);
@@ -429,10 +426,11 @@ typedef struct stress_case {
     bool no_ground;
 } stress_case;
 
-#define STRESS_LIGHTS3(name, quick, axis, value) \
-    {name "_spot", quick, STRESS_SPOT, axis, value, false}, \
-    {name "_point", quick, STRESS_POINT, axis, value, false}, \
-    {name "_directional", quick, STRESS_DIRECTIONAL, axis, value, false}
+#define STRESS_LIGHTS3(name, quick, axis, value)                                                                     \
+    {name "_spot", quick, STRESS_SPOT, axis, value, false},                                                          \
+        {name "_point", quick, STRESS_POINT, axis, value, false}, {                                                  \
+        name "_directional", quick, STRESS_DIRECTIONAL, axis, value, false                                           \
+    }
 
 static const stress_case stress_cases[] = {
     STRESS_LIGHTS3("base", true, stress_none, 0),
@@ -653,7 +651,8 @@ static void stress_obj_spikes(stress_obj *m, double width) {
             stress_set(p[k], x + r * cos(M_PI / 2 + k * 2 * M_PI / 3), 0, r * sin(M_PI / 2 + k * 2 * M_PI / 3));
         stress_set(p[3], x, STRESS_MODEL_HEIGHT, 0);
         int first = m->count + 1;
-        for (int k = 0; k < 4; k++) stress_obj_vertex(m, p[k][0], p[k][1], p[k][2]);
+        for (int k = 0; k < 4; k++)
+            stress_obj_vertex(m, p[k][0], p[k][1], p[k][2]);
         for (int f = 0; f < 4; f++) {
             const int *t = faces[f];
             const double out[3] = {p[t[0]][0] - p[t[3]][0], p[t[0]][1] - p[t[3]][1], p[t[0]][2] - p[t[3]][2]};
@@ -813,7 +812,8 @@ static void stress_run_all(stress_process *const *list, int count, int jobs, dou
         int status;
         pid_t pid = waitpid(-1, &status, WNOHANG);
         int done = -1;
-        for (int i = 0; pid > 0 && i < active && done < 0; i++) done = running[i]->pid == pid ? i : -1;
+        for (int i = 0; pid > 0 && i < active && done < 0; i++)
+            done = running[i]->pid == pid ? i : -1;
         if (done >= 0) {
             stress_reap(running[done], status);
             running[done] = running[--active];
@@ -897,8 +897,8 @@ typedef enum stress_verdict {
     STRESS_VERDICT_COUNT
 } stress_verdict;
 static const char *const stress_verdict_names[STRESS_VERDICT_COUNT] = {
-    "pass",    "fail",  "refused",      "crash",     "nan", "nothing-compared", "gl-error",
-    "timeout", "error", "no-reference", "unmeasured",
+    "pass",     "fail",    "refused", "crash",        "nan",        "nothing-compared",
+    "gl-error", "timeout", "error",   "no-reference", "unmeasured",
 };
 
 typedef struct stress_row {
@@ -913,7 +913,7 @@ typedef struct stress_row {
     bool measured;
     double misclassified, mae;
     long compared;
-    shadowdiff_result classes; /* measured: each class's pixels (0: none) and MAE */
+    shadowdiff_result classes;  /* measured: each class's pixels (0: none) and MAE */
     char line[STRESS_LINE_MAX]; /* the first stderr line, or why it ended */
 } stress_row;
 
@@ -948,7 +948,8 @@ static const char *const stress_sanitizer_marks[] = {"ERROR: AddressSanitizer", 
 
 static const char *stress_sanitizer_report(const char *text) {
     const char *at = NULL;
-    for (int i = 0; stress_sanitizer_marks[i] && !at; i++) at = strstr(text, stress_sanitizer_marks[i]);
+    for (int i = 0; stress_sanitizer_marks[i] && !at; i++)
+        at = strstr(text, stress_sanitizer_marks[i]);
     return at;
 }
 
@@ -962,7 +963,8 @@ static stress_verdict stress_classify(const stress_process *p, const char *files
         return STRESS_ERROR;
     }
     int lines = 0;
-    for (const char *c = text; *c; c++) lines += *c == '\n' || !c[1];
+    for (const char *c = text; *c; c++)
+        lines += *c == '\n' || !c[1];
     const char *report = stress_sanitizer_report(text);
     stress_copy_line(report ? report : text, line, size);
     stress_verdict v = STRESS_ERROR;
@@ -1103,8 +1105,8 @@ static bool stress_write_csv(const char *path, const stress_row *rows, int count
         const stress_row *r = &rows[i];
         stress_cells c;
         stress_cells_of(r, &c);
-        fprintf(f, "%s,%s,%s,%s,%s,%s,", r->c->name, r->config->technique, r->config->name, c.bound,
-                c.misclassified, c.mae);
+        fprintf(f, "%s,%s,%s,%s,%s,%s,", r->c->name, r->config->technique, r->config->name, c.bound, c.misclassified,
+                c.mae);
         for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++)
             fprintf(f, "%s,", c.class_mae[k]);
         fprintf(f, "%s,%s,%s,", c.compared, stress_verdict_names[r->verdict], c.seconds);
@@ -1159,9 +1161,11 @@ static void stress_write_summary(FILE *f, const stress_row *rows, int count) {
     const char *names[STRESS_ROWS_PER_CASE];
     int techniques = stress_techniques(names);
     fputs("| technique |", f);
-    for (int v = 0; v < STRESS_VERDICT_COUNT; v++) fprintf(f, " %s |", stress_verdict_names[v]);
+    for (int v = 0; v < STRESS_VERDICT_COUNT; v++)
+        fprintf(f, " %s |", stress_verdict_names[v]);
     fputs("\n|---|", f);
-    for (int v = 0; v < STRESS_VERDICT_COUNT; v++) fputs("---|", f);
+    for (int v = 0; v < STRESS_VERDICT_COUNT; v++)
+        fputs("---|", f);
     fputc('\n', f);
     for (int t = 0; t < techniques; t++) {
         int counts[STRESS_VERDICT_COUNT] = {0};
@@ -1169,11 +1173,13 @@ static void stress_write_summary(FILE *f, const stress_row *rows, int count) {
             if (strcmp(rows[i].config->technique, names[t]) == 0)
                 counts[rows[i].verdict]++;
         fprintf(f, "| %s |", names[t]);
-        for (int v = 0; v < STRESS_VERDICT_COUNT; v++) fprintf(f, " %d |", counts[v]);
+        for (int v = 0; v < STRESS_VERDICT_COUNT; v++)
+            fprintf(f, " %d |", counts[v]);
         fputc('\n', f);
     }
     int failing = 0;
-    for (int i = 0; i < count; i++) failing += !stress_is_ok(rows[i].verdict);
+    for (int i = 0; i < count; i++)
+        failing += !stress_is_ok(rows[i].verdict);
     fprintf(f, "\n%d of %d rows are not pass, refused or unmeasured%s\n", failing, count, failing ? ":\n" : ".");
     if (failing)
         stress_md_header(f);
@@ -1188,13 +1194,15 @@ static bool stress_write_md(const char *path, const stress_row *rows, int count,
         fprintf(stderr, "%s: cannot create: %s\n", path, strerror(errno));
         return false;
     }
-    fprintf(f, "# Stress run\n\n%d rows at %dx%d. Bounds, misclassified %% of compared pixels: volumes %g, shadow "
+    fprintf(f,
+            "# Stress run\n\n%d rows at %dx%d. Bounds, misclassified %% of compared pixels: volumes %g, shadow "
             "maps %g, planar %g on the ground.\n\n## Summary\n\n",
             count, width, height, STRESS_BOUND_VOLUMES, STRESS_BOUND_MAPS, STRESS_BOUND_PLANAR);
     stress_write_summary(f, rows, count);
     fputs("\n## Every row\n\n", f);
     stress_md_header(f);
-    for (int i = 0; i < count; i++) stress_md_row(f, &rows[i]);
+    for (int i = 0; i < count; i++)
+        stress_md_row(f, &rows[i]);
     if (ferror(f) | (fclose(f) != 0)) {
         fprintf(stderr, "%s: cannot write\n", path);
         return false;
@@ -1276,7 +1284,8 @@ static bool stress_prepare(const stress_options *o, const stress_case *c, stress
             return false;
         stress_path(program, "%s/%s", o->bin, r->config->technique);
         stress_args(&r->run, program, "--scene", scene_path, "--size", size, "--dump", r->dir, (char *)NULL);
-        for (int f = 0; r->config->flags[f]; f++) stress_args(&r->run, r->config->flags[f], (char *)NULL);
+        for (int f = 0; r->config->flags[f]; f++)
+            stress_args(&r->run, r->config->flags[f], (char *)NULL);
         stress_path(r->run.out_path, "%s/stdout.txt", r->dir);
         stress_path(r->run.err_path, "%s/stderr.txt", r->dir);
         stress_path(program, "%s/shadowdiff", o->bin);
@@ -1338,7 +1347,8 @@ static void stress_clean(const stress_options *o, const stress_row *rows, int co
 
 static int stress_run(const stress_options *o) {
     int cases = 0;
-    for (int i = 0; i < STRESS_CASE_COUNT; i++) cases += stress_selected(o, &stress_cases[i]);
+    for (int i = 0; i < STRESS_CASE_COUNT; i++)
+        cases += stress_selected(o, &stress_cases[i]);
     int count = cases * STRESS_ROWS_PER_CASE;
     stress_row *rows = calloc((size_t)count, sizeof *rows);
     stress_process **list = calloc((size_t)count, sizeof *list);
@@ -1354,8 +1364,8 @@ static int stress_run(const stress_options *o) {
         }
     }
     if (ok) {
-        printf("stress: %d cases, %d rows at %dx%d, %d jobs, programs from %s/, out to %s/\n", cases, count,
-               o->width, o->height, o->jobs, o->bin, o->out);
+        printf("stress: %d cases, %d rows at %dx%d, %d jobs, programs from %s/, out to %s/\n", cases, count, o->width,
+               o->height, o->jobs, o->bin, o->out);
         fflush(stdout);
     }
     for (int stage = STRESS_STAGE_REFERENCE; ok && stage <= STRESS_STAGE_DIFF && !stress_interrupted; stage++)
@@ -1373,7 +1383,8 @@ static int stress_run(const stress_options *o) {
         bool written = stress_write_csv(csv, rows, count) && stress_write_md(md, rows, count, o->width, o->height);
         stress_write_summary(stdout, rows, count);
         printf("table: %s, %s\n", md, csv);
-        for (int i = 0; i < count; i++) written = written && stress_is_ok(rows[i].verdict);
+        for (int i = 0; i < count; i++)
+            written = written && stress_is_ok(rows[i].verdict);
         status = written ? 0 : STRESS_EXIT_FAILED;
     }
     free(rows);
@@ -1396,8 +1407,8 @@ static void stress_jobs_spelling(int argc, char **argv, char *joined, size_t siz
 static int stress_parse(int argc, char **argv, stress_options *o) {
     const flags_param params[] = {
         {"quick", "only the cases that pass today (make test runs them)", 0, FLAGS_SWITCH, .on = &o->quick},
-        {"only", "only the cases whose name matches PATTERN (fnmatch:\n'scale_*')", 0, FLAGS_STRING,
-         .text = &o->only, .value_name = "PATTERN"},
+        {"only", "only the cases whose name matches PATTERN (fnmatch:\n'scale_*')", 0, FLAGS_STRING, .text = &o->only,
+         .value_name = "PATTERN"},
         {"list", "print the cases' names (quick ones marked) and exit", 0, FLAGS_SWITCH, .on = &o->list},
         {"out", "where the scenes, the runs and the table go (" STRESS_DEFAULT_OUT ")", 0, FLAGS_STRING,
          .text = &o->out, .value_name = "DIR"},
@@ -1408,8 +1419,8 @@ static int stress_parse(int argc, char **argv, stress_options *o) {
         {"timeout", "seconds a program may run before it is killed (" FLAGS_TEXT(STRESS_DEFAULT_TIMEOUT) ")", 0,
          FLAGS_INT, .integer = &o->timeout, .min = 1, .max = STRESS_MAX_TIMEOUT, .what = "seconds",
          .value_name = "S"},
-        {"size", "the pictures' size (" FLAGS_TEXT(STRESS_DEFAULT_WIDTH) "x" FLAGS_TEXT(STRESS_DEFAULT_HEIGHT) ")",
-         0, FLAGS_SIZE, .width = &o->width, .height = &o->height},
+        {"size", "the pictures' size (" FLAGS_TEXT(STRESS_DEFAULT_WIDTH) "x" FLAGS_TEXT(STRESS_DEFAULT_HEIGHT) ")", 0,
+         FLAGS_SIZE, .width = &o->width, .height = &o->height},
         {.name = "help", .help = "this text", .kind = FLAGS_HELP},
     };
     int count = (int)(sizeof params / sizeof *params);
@@ -1447,7 +1458,8 @@ int main(int argc, char **argv) {
     o.width = o.width ? o.width : STRESS_DEFAULT_WIDTH;
     o.height = o.height ? o.height : STRESS_DEFAULT_HEIGHT;
     int selected = 0;
-    for (int i = 0; i < STRESS_CASE_COUNT; i++) selected += stress_selected(&o, &stress_cases[i]);
+    for (int i = 0; i < STRESS_CASE_COUNT; i++)
+        selected += stress_selected(&o, &stress_cases[i]);
     if (!selected)
         return flags_usage_error(o.program, "no case matches --only", o.only);
     if (o.list) {

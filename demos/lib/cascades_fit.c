@@ -38,8 +38,8 @@ void cascades_splits(int count, float lambda, float near_plane, float far_plane,
     splits[count] = far_plane;
 }
 
-bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane,
-                          float far_plane, float *lo, float *hi) {
+bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane, float far_plane,
+                          float *lo, float *hi) {
     *lo = INFINITY;
     *hi = -INFINITY;
     for (int i = 0; i < n; i++) {
@@ -146,8 +146,8 @@ static void cascades_slice_bounds(const camera_view *view, const mat4 light_view
  * the parts of s's receivers' boxes inside the slice (frustum_box_part):
  * where the slice's receivers are, tighter than the slice (a slice is
  * mostly air above the ground); still empty where none is in it. */
-void cascades_slice_receivers(const scene *s, const camera_view *view, const mat4 light_view, float a,
-                                     float b, vec3 lo, vec3 hi) {
+void cascades_slice_receivers(const scene *s, const camera_view *view, const mat4 light_view, float a, float b,
+                              vec3 lo, vec3 hi) {
     vec3 corners[8];
     mat4 view_projection;
     float part[TECHNIQUE_MAX_PART_POINTS][3];
@@ -157,8 +157,8 @@ void cascades_slice_receivers(const scene *s, const camera_view *view, const mat
         if (!s->objects[i].receives)
             continue;
         scene_object_world_bounds(&s->objects[i], box_lo, box_hi);
-        int n = frustum_box_part(view_projection, (const vec3 *)corners, box_lo, box_hi, part,
-                                 TECHNIQUE_MAX_PART_POINTS);
+        int n =
+            frustum_box_part(view_projection, (const vec3 *)corners, box_lo, box_hi, part, TECHNIQUE_MAX_PART_POINTS);
         if (n == 0)
             continue;
         frustum_view_bounds(light_view, (const float(*)[3])part, n, part_lo, part_hi);

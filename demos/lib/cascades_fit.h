@@ -19,8 +19,8 @@ void cascades_splits(int count, float lambda, float near_plane, float far_plane,
 
 /* The view depths of `view` that the points (the frame's receiver points)
  * span, within near..far: sdsm's range. False where no point lies in it. */
-bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane,
-                          float far_plane, float *lo, float *hi);
+bool cascades_seen_depths(const camera_view *view, const float (*points)[3], int n, float near_plane, float far_plane,
+                          float *lo, float *hi);
 
 /* x rounded (by `round`: floorf or ceilf) to a power of 2^(1/steps): what
  * the stabilised fit lets change only in steps. */

@@ -11,15 +11,22 @@
 #include "volume_mesh.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
-const char *const shadow_map_filters[] = {
-    [SHADOW_MAP_FILTER_POISSON] = "poisson", [SHADOW_MAP_FILTER_NONE] = "none", [SHADOW_MAP_FILTER_HW] = "hw",
-    [SHADOW_MAP_FILTER_PCF3] = "pcf3",       [SHADOW_MAP_FILTER_PCF5] = "pcf5", [SHADOW_MAP_FILTER_PCF7] = "pcf7",
-    [SHADOW_MAP_FILTER_TENT3] = "tent3",     [SHADOW_MAP_FILTER_TENT5] = "tent5", [SHADOW_MAP_FILTER_VSM] = "vsm",
-    [SHADOW_MAP_FILTER_EVSM2] = "evsm2",     [SHADOW_MAP_FILTER_EVSM4] = "evsm4", [SHADOW_MAP_FILTER_MSM] = "msm",
-    NULL};
+const char *const shadow_map_filters[] = {[SHADOW_MAP_FILTER_POISSON] = "poisson",
+                                          [SHADOW_MAP_FILTER_NONE] = "none",
+                                          [SHADOW_MAP_FILTER_HW] = "hw",
+                                          [SHADOW_MAP_FILTER_PCF3] = "pcf3",
+                                          [SHADOW_MAP_FILTER_PCF5] = "pcf5",
+                                          [SHADOW_MAP_FILTER_PCF7] = "pcf7",
+                                          [SHADOW_MAP_FILTER_TENT3] = "tent3",
+                                          [SHADOW_MAP_FILTER_TENT5] = "tent5",
+                                          [SHADOW_MAP_FILTER_VSM] = "vsm",
+                                          [SHADOW_MAP_FILTER_EVSM2] = "evsm2",
+                                          [SHADOW_MAP_FILTER_EVSM4] = "evsm4",
+                                          [SHADOW_MAP_FILTER_MSM] = "msm",
+                                          NULL};
 const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
-const char *const shadow_map_kernel_depths[] = {[SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane",
-                                                [SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
+const char *const shadow_map_kernel_depths[] = {
+    [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", [SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
 const char *const shadow_map_softs[] = {[SHADOW_MAP_SOFT_PCSS] = "pcss", [SHADOW_MAP_SOFT_OFF] = "off", NULL};
 
 /* What each filter reads: the kernel's shape and its size (N, or the
@@ -70,7 +77,9 @@ static const struct {
 
 static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
-int shadow_map_settings_size(const shadow_map_settings *settings) { return atoi(shadow_map_sizes[settings->map_size]); }
+int shadow_map_settings_size(const shadow_map_settings *settings) {
+    return atoi(shadow_map_sizes[settings->map_size]);
+}
 
 int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
                          int grazing) {
@@ -82,8 +91,8 @@ int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const wa
         if (light->type != SCENE_LIGHT_DIRECTIONAL && light->range > 0 &&
             glm_vec3_distance((float *)light->position, (float *)samples[i].position) >= light->range)
             continue;
-        float texel = warp_sample_texel_pixels(m->layer_view_projection, m->layer_count, m->size, light->position,
-                                               &samples[i]);
+        float texel =
+            warp_sample_texel_pixels(m->layer_view_projection, m->layer_count, m->size, light->position, &samples[i]);
         if (isfinite(texel)) {
             sum += texel;
             measured++;
@@ -117,13 +126,14 @@ static void shadow_map_resize(shadow_map *m, int size) {
 }
 
 const char *shadow_map_kind_name(shadow_map_kind kind) {
-    static const char *const names[] = {[SHADOW_MAP_2D] = "2D", [SHADOW_MAP_CUBE] = "cube",
-                                        [SHADOW_MAP_ARRAY] = "array"};
+    static const char *const names[] = {
+        [SHADOW_MAP_2D] = "2D", [SHADOW_MAP_CUBE] = "cube", [SHADOW_MAP_ARRAY] = "array"};
     return names[kind];
 }
 
 unsigned shadow_map_target(shadow_map_kind kind) {
-    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D, [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
+    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D,
+                                     [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
                                      [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
     return targets[kind];
 }
@@ -192,8 +202,7 @@ static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
 /* ---- the depth pass ---- */
 
 /* The depth pass's state: its framebuffer, viewport, slope bias, program. */
-static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_settings *settings,
-                                   const shadow_map *m) {
+static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_settings *settings, const shadow_map *m) {
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     glViewport(0, 0, m->size, m->size);
     glDepthFunc(GL_LESS); /* after the camera's pre-pass */
@@ -367,12 +376,9 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         return false;
     unsigned id = p->program.id;
     const shadow_map_uniform uniforms[] = {
-        {&p->constant_bias, "u_constant_bias"},
-        {&p->normal_offset, "u_normal_offset"},
-        {&p->depth_bias, "u_depth_bias"},
-        {&p->closed_outside, "u_closed_outside"},
-        {&p->view_depth, "u_view_depth"},
-        {&p->cascade_blend, "u_cascade_blend"},
+        {&p->constant_bias, "u_constant_bias"}, {&p->normal_offset, "u_normal_offset"},
+        {&p->depth_bias, "u_depth_bias"},       {&p->closed_outside, "u_closed_outside"},
+        {&p->view_depth, "u_view_depth"},       {&p->cascade_blend, "u_cascade_blend"},
     };
     shadow_map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on a unit, those of lights without a map too: an
@@ -393,8 +399,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
                         soft ? SHADOW_MAP_DEPTH_UNITS + l : SHADOW_MAP_IDLE_UNITS + SHADOW_MAP_SAMPLER_TYPES + t);
         }
         p->lights[l].cascade_count = shadow_map_light_uniform(id, "u_cascade_count", l);
-        p->lights[l].cascade_scale =
-            shadow_map_light_uniform(id, "u_cascade_scale", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
+        p->lights[l].cascade_scale = shadow_map_light_uniform(id, "u_cascade_scale", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
         p->lights[l].cascade_offset =
             shadow_map_light_uniform(id, "u_cascade_offset", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
         p->lights[l].map_size = shadow_map_light_uniform(id, "u_map_size", l);
@@ -444,9 +449,9 @@ static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *
 
 /* The camera pass's kind of light for a map's kind. */
 static shadow_map_light_kind shadow_map_light_kind_of(shadow_map_kind kind) {
-    static const shadow_map_light_kind kinds[] = {
-        [SHADOW_MAP_2D] = SHADOW_MAP_LIGHT_2D, [SHADOW_MAP_CUBE] = SHADOW_MAP_LIGHT_CUBE,
-        [SHADOW_MAP_ARRAY] = SHADOW_MAP_LIGHT_ARRAY};
+    static const shadow_map_light_kind kinds[] = {[SHADOW_MAP_2D] = SHADOW_MAP_LIGHT_2D,
+                                                  [SHADOW_MAP_CUBE] = SHADOW_MAP_LIGHT_CUBE,
+                                                  [SHADOW_MAP_ARRAY] = SHADOW_MAP_LIGHT_ARRAY};
     return kinds[kind];
 }
 
@@ -480,12 +485,15 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
     static const char *const legend_files[] = {"overlay.vert", "overlay_heat_legend.frag"};
-    static const shader_define inset_defines[] = {
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z), SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z),
-        SHADER_DEFINE(SHADOW_MAP_CUBE),            SHADER_DEFINE(SHADOW_MAP_ARRAY),
-        {NULL, 0}};
+    static const shader_define inset_defines[] = {SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),
+                                                  SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
+                                                  SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),
+                                                  SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
+                                                  SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z),
+                                                  SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z),
+                                                  SHADER_DEFINE(SHADOW_MAP_CUBE),
+                                                  SHADER_DEFINE(SHADOW_MAP_ARRAY),
+                                                  {NULL, 0}};
     if (!render_program_load(&r->lines.program, lines_files, 2, NULL) ||
         !render_program_load(&r->inset.program, inset_files, 2, inset_defines) ||
         !render_program_load(&r->legend.program, legend_files, 2, shadow_map_defines))
@@ -494,9 +502,9 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     r->legend.log2_range = shader_uniform(r->legend.program.id, "u_log2_range");
     shadow_map_inset_program *p = &r->inset;
     const shadow_map_uniform uniforms[] = {
-        {&p->map, "u_map"}, {&p->cube_map, "u_cube_map"}, {&p->array_map, "u_array_map"},
-        {&p->kind, "u_kind"}, {&p->layer, "u_layer"},
-        {&p->orthographic, "u_orthographic"}, {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"},
+        {&p->map, "u_map"},         {&p->cube_map, "u_cube_map"}, {&p->array_map, "u_array_map"},
+        {&p->kind, "u_kind"},       {&p->layer, "u_layer"},       {&p->orthographic, "u_orthographic"},
+        {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"},
     };
     shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
     return true;
@@ -546,8 +554,7 @@ bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings
         !render_program_load(&r->depth, depth_files, 2, NULL) ||
         /* The scene's own combination now, so that a shader that does not
          * compile fails init; the others as frames need them. */
-        !shadow_map_camera_program_for(r, &scene_key) ||
-        !shadow_map_overlay_programs_load(r))
+        !shadow_map_camera_program_for(r, &scene_key) || !shadow_map_overlay_programs_load(r))
         return false;
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);
@@ -698,8 +705,7 @@ static void shadow_map_shade_receivers(shadow_map_renderer *r, const shadow_map_
             glBindTexture(shadow_map_target(m->kind), m->texture.moments);
         }
         if (m->kind != SHADOW_MAP_ARRAY) {
-            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE,
-                               (const float *)m->layer_view_projection[0]);
+            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
             continue;
         }
         /* Layer k's scale and offset, w its slice's far and near ends. */
@@ -785,8 +791,10 @@ static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_sett
     if (SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
         return true;
     if (!(r->moments_warned >> l & 1u))
-        fprintf(stderr, "shadow maps: light %d: this GL has too few texture units for its moment map (--filter %s): "
-                        "one bilinear depth test instead\n", l, shadow_map_filters[settings->filter]);
+        fprintf(stderr,
+                "shadow maps: light %d: this GL has too few texture units for its moment map (--filter %s): "
+                "one bilinear depth test instead\n",
+                l, shadow_map_filters[settings->filter]);
     r->moments_warned |= 1u << l;
     return false;
 }

@@ -143,7 +143,7 @@ typedef struct shadow_map_settings {
     int overlay;      /* choice: the technique's own list, SHADOW_MAP_OVERLAY_NAMES first */
     bool no_constant_bias, no_slope_bias, no_early_out;
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
-    float depth_bias_slope, depth_bias_min; /* the tutorials' bias; 0: none */
+    float depth_bias_slope, depth_bias_min;                          /* the tutorials' bias; 0: none */
     /* Not a flag: the technique's overlay list goes on with
      * SHADOW_MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on
      * with its own). */
@@ -159,7 +159,8 @@ typedef struct shadow_map_settings {
  * (world units): the texel-size ramp moved to start at 1/64 unit (blue),
  * green at 1/16, red at 2 and more. */
 #define SHADOW_MAP_PENUMBRA_LOG2_MIN (-6)
-#define SHADOW_MAP_PENUMBRA_LOG2_MAX (SHADOW_MAP_PENUMBRA_LOG2_MIN + SHADOW_MAP_HEAT_LOG2_MAX - SHADOW_MAP_HEAT_LOG2_MIN)
+#define SHADOW_MAP_PENUMBRA_LOG2_MAX                                                                                 \
+    (SHADOW_MAP_PENUMBRA_LOG2_MIN + SHADOW_MAP_HEAT_LOG2_MAX - SHADOW_MAP_HEAT_LOG2_MIN)
 /* Overlays, for lectures (shadow_map_overlay.c), drawn into the picture:
  *   texels      the map's texel boundaries on the receivers (camera pass);
  *   texel-size  a heat map of a texel's size in pixels (camera pass);
@@ -174,8 +175,16 @@ typedef struct shadow_map_settings {
  * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
  * go on with its own (psm's post-perspective view: shadow_map_warp_view). */
 #define SHADOW_MAP_OVERLAY_NAMES "none", "all", "texels", "frustum", "map", "texel-size", "penumbra"
-enum { SHADOW_MAP_OVERLAY_NONE, SHADOW_MAP_OVERLAY_ALL, SHADOW_MAP_OVERLAY_TEXELS, SHADOW_MAP_OVERLAY_FRUSTUM,
-       SHADOW_MAP_OVERLAY_MAP, SHADOW_MAP_OVERLAY_TEXEL_SIZE, SHADOW_MAP_OVERLAY_PENUMBRA, SHADOW_MAP_OVERLAY_COUNT };
+enum {
+    SHADOW_MAP_OVERLAY_NONE,
+    SHADOW_MAP_OVERLAY_ALL,
+    SHADOW_MAP_OVERLAY_TEXELS,
+    SHADOW_MAP_OVERLAY_FRUSTUM,
+    SHADOW_MAP_OVERLAY_MAP,
+    SHADOW_MAP_OVERLAY_TEXEL_SIZE,
+    SHADOW_MAP_OVERLAY_PENUMBRA,
+    SHADOW_MAP_OVERLAY_COUNT
+};
 /* An array map's technique lists this one next (and sets the settings'
  * array_overlays): light 0's layers' receivers tinted each in its colour
  * (the blend band mixing two), and its map as an inset (an array's layers
@@ -186,42 +195,90 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
 #define SHADOW_MAP_SHOWS_CASCADES(st) ((st)->array_overlays && (st)->overlay == SHADOW_MAP_OVERLAY_CASCADES)
 
 /* The parameters every shadow-map technique shares, for its params array. */
-#define SHADOW_MAP_PARAMS(s)                                                                                         \
-    {"map-size", "texels on a side; auto: a texel about a pixel where shadows are seen (cascades: 1024 a cascade)", \
-     GLFW_KEY_M,                                                                                                   \
-     FLAGS_CHOICE, .index = &(s).map_size,                                                                         \
-     .choices = shadow_map_sizes},                                                                                 \
-    {"filter", "what reads the map", GLFW_KEY_F, FLAGS_CHOICE, .index = &(s).filter,                               \
-     .choices = shadow_map_filters},                                                                               \
-    {"depth", "depth format: 24-bit or 32-bit float", GLFW_KEY_D, FLAGS_CHOICE, .index = &(s).depth,               \
-     .choices = shadow_map_depths},                                                                                \
-    {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, FLAGS_TOGGLE,                     \
-     .disabled = &(s).no_constant_bias},                                                                           \
-    {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, FLAGS_TOGGLE,                       \
-     .disabled = &(s).no_slope_bias},                                                                              \
-    {"early-out", "wide kernels: four rim taps first, the whole kernel only where they disagree", GLFW_KEY_E,     \
-     FLAGS_TOGGLE, .disabled = &(s).no_early_out},                                                                 \
-    {"soft", "area lights (radius > 0): pcss, soft shadows that harden at contact; off: hard, from the centre",  \
-     GLFW_KEY_Y, FLAGS_CHOICE, .index = &(s).soft, .choices = shadow_map_softs},                                   \
-    {"kernel-depth", "what each kernel tap compares: the receiver plane's depth there, or the centre's",           \
-     GLFW_KEY_P, FLAGS_CHOICE, .index = &(s).kernel_depth, .choices = shadow_map_kernel_depths},                   \
-    {"constant-texels", "constant bias, in map texels of world distance", 0, FLAGS_NUMBER,                         \
-     .number = &(s).constant_texels, .fallback = SHADOW_MAP_CONSTANT_TEXELS, .min = 0.01f, .max = 64},             \
-    {"slope-factor", "slope-scaled bias: glPolygonOffset factor", 0, FLAGS_NUMBER,                                 \
-     .number = &(s).slope_factor, .fallback = SHADOW_MAP_SLOPE_FACTOR, .min = 0.01f, .max = 64},                   \
-    {"slope-units", "slope-scaled bias: glPolygonOffset units", 0, FLAGS_NUMBER, .number = &(s).slope_units,       \
-     .fallback = SHADOW_MAP_SLOPE_UNITS, .min = 0.01f, .max = 64},                                                 \
-    /* Off by default: on the standard scenes it costs accuracy at contact                                        \
-     * shadows and the other two already keep the acne sweep clean. */                                            \
-    {"normal-texels", "normal offset, in map texels (0: off)", 0, FLAGS_NUMBER, .number = &(s).normal_texels,      \
-     .fallback = 0, .min = 0, .max = 64},                                                                          \
-    /* For comparison only: the bias popular tutorials subtract from the                                          \
+/* clang-format off: a flag a line or two, as the techniques' own tables */
+#define SHADOW_MAP_PARAMS(s)                                                                                                      \
+    {"map-size",                                                                                                                  \
+     "texels on a side; auto: a texel about a pixel where shadows are seen (cascades: 1024 a cascade)",                           \
+     GLFW_KEY_M,                                                                                                                  \
+     FLAGS_CHOICE,                                                                                                                \
+     .index = &(s).map_size,                                                                                                      \
+     .choices = shadow_map_sizes},                                                                                                \
+        {"filter",     "what reads the map", GLFW_KEY_F,                                                                          \
+         FLAGS_CHOICE, .index = &(s).filter, .choices = shadow_map_filters},                                                      \
+        {"depth",                                                                                                                 \
+         "depth format: 24-bit or 32-bit float",                                                                                  \
+         GLFW_KEY_D,                                                                                                              \
+         FLAGS_CHOICE,                                                                                                            \
+         .index = &(s).depth,                                                                                                     \
+         .choices = shadow_map_depths},                                                                                           \
+        {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, FLAGS_TOGGLE,                                \
+         .disabled = &(s).no_constant_bias},                                                                                      \
+        {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, FLAGS_TOGGLE,                                  \
+         .disabled = &(s).no_slope_bias},                                                                                         \
+        {"early-out", "wide kernels: four rim taps first, the whole kernel only where they disagree", GLFW_KEY_E,                 \
+         FLAGS_TOGGLE, .disabled = &(s).no_early_out},                                                                            \
+        {"soft",                                                                                                                  \
+         "area lights (radius > 0): pcss, soft shadows that harden at contact; off: hard, from the centre",                       \
+         GLFW_KEY_Y,                                                                                                              \
+         FLAGS_CHOICE,                                                                                                            \
+         .index = &(s).soft,                                                                                                      \
+         .choices = shadow_map_softs},                                                                                            \
+        {"kernel-depth",                                                                                                          \
+         "what each kernel tap compares: the receiver plane's depth there, or the centre's",                                      \
+         GLFW_KEY_P,                                                                                                              \
+         FLAGS_CHOICE,                                                                                                            \
+         .index = &(s).kernel_depth,                                                                                              \
+         .choices = shadow_map_kernel_depths},                                                                                    \
+        {"constant-texels",                                                                                                       \
+         "constant bias, in map texels of world distance",                                                                        \
+         0,                                                                                                                       \
+         FLAGS_NUMBER,                                                                                                            \
+         .number = &(s).constant_texels,                                                                                          \
+         .fallback = SHADOW_MAP_CONSTANT_TEXELS,                                                                                  \
+         .min = 0.01f,                                                                                                            \
+         .max = 64},                                                                                                              \
+        {"slope-factor",                                                                                                          \
+         "slope-scaled bias: glPolygonOffset factor",                                                                             \
+         0,                                                                                                                       \
+         FLAGS_NUMBER,                                                                                                            \
+         .number = &(s).slope_factor,                                                                                             \
+         .fallback = SHADOW_MAP_SLOPE_FACTOR,                                                                                     \
+         .min = 0.01f,                                                                                                            \
+         .max = 64},                                                                                                              \
+        {"slope-units",                                                                                                           \
+         "slope-scaled bias: glPolygonOffset units",                                                                              \
+         0,                                                                                                                       \
+         FLAGS_NUMBER,                                                                                                            \
+         .number = &(s).slope_units,                                                                                              \
+         .fallback = SHADOW_MAP_SLOPE_UNITS,                                                                                      \
+         .min = 0.01f,                                                                                                            \
+         .max =                                                                                                                   \
+             64}, /* Off by default: on the standard scenes it costs accuracy at contact                                        \
+     * shadows and the other two already keep the acne sweep clean. */ \
+        {"normal-texels",                                                                                                         \
+         "normal offset, in map texels (0: off)",                                                                                 \
+         0,                                                                                                                       \
+         FLAGS_NUMBER,                                                                                                            \
+         .number = &(s).normal_texels,                                                                                            \
+         .fallback = 0,                                                                                                           \
+         .min = 0,                                                                                                                \
+         .max =                                                                                                                   \
+             64}, /* For comparison only: the bias popular tutorials subtract from the                                          \
      * map depth, max(slope (1 - N.L), min), whose size in world units                                            \
-     * changes with the light's depth range. */                                                                   \
-    {"depth-bias-slope", "tutorial bias: slope, in map depth (0: off)", 0, FLAGS_NUMBER,                           \
-     .number = &(s).depth_bias_slope, .fallback = 0, .min = 0, .max = 1},                                          \
-    {"depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, FLAGS_NUMBER,                           \
-     .number = &(s).depth_bias_min, .fallback = 0, .min = 0, .max = 1}
+     * changes with the light's depth range. */ \
+        {"depth-bias-slope",                                                                                                      \
+         "tutorial bias: slope, in map depth (0: off)",                                                                           \
+         0,                                                                                                                       \
+         FLAGS_NUMBER,                                                                                                            \
+         .number = &(s).depth_bias_slope,                                                                                         \
+         .fallback = 0,                                                                                                           \
+         .min = 0,                                                                                                                \
+         .max = 1},                                                                                                               \
+    {                                                                                                                             \
+        "depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, FLAGS_NUMBER,                                       \
+            .number = &(s).depth_bias_min, .fallback = 0, .min = 0, .max = 1                                                      \
+    }
+/* clang-format on */
 
 /* The shape of the camera pass's kernel (the shaders' u_filter). The
  * C/GLSL contract: the kernel shapes, texel kinds and cube faces are C
@@ -300,8 +357,15 @@ typedef enum shadow_map_texel_kind {
  * to its edges). */
 typedef enum shadow_map_kind { SHADOW_MAP_2D, SHADOW_MAP_CUBE, SHADOW_MAP_ARRAY } shadow_map_kind;
 /* A cube's faces in GL's order (GL_TEXTURE_CUBE_MAP_POSITIVE_X + face). */
-enum { SHADOW_MAP_FACE_POSITIVE_X, SHADOW_MAP_FACE_NEGATIVE_X, SHADOW_MAP_FACE_POSITIVE_Y,
-       SHADOW_MAP_FACE_NEGATIVE_Y, SHADOW_MAP_FACE_POSITIVE_Z, SHADOW_MAP_FACE_NEGATIVE_Z, SHADOW_MAP_CUBE_FACES };
+enum {
+    SHADOW_MAP_FACE_POSITIVE_X,
+    SHADOW_MAP_FACE_NEGATIVE_X,
+    SHADOW_MAP_FACE_POSITIVE_Y,
+    SHADOW_MAP_FACE_NEGATIVE_Y,
+    SHADOW_MAP_FACE_POSITIVE_Z,
+    SHADOW_MAP_FACE_NEGATIVE_Z,
+    SHADOW_MAP_CUBE_FACES
+};
 /* An array map's most layers: the most cascades. */
 #define SHADOW_MAP_MAX_ARRAY_LAYERS 8
 /* Room for the layers of any kind. */
@@ -311,8 +375,8 @@ _Static_assert(SHADOW_MAP_MAX_LAYERS >= SHADOW_MAP_CUBE_FACES, "a map holds a cu
 /* The GL texture behind a map, and what it was made with. */
 typedef struct shadow_map_texture {
     unsigned id;
-    unsigned moments;      /* a moment filter's blurred moments (the map's kind) */
-    unsigned blur[2];      /* one layer's moments, then those blurred along x */
+    unsigned moments; /* a moment filter's blurred moments (the map's kind) */
+    unsigned blur[2]; /* one layer's moments, then those blurred along x */
     shadow_map_kind kind;
     int size, layer_count, depth, filter;
 } shadow_map_texture;
@@ -371,7 +435,7 @@ typedef enum shadow_map_light_kind {
 /* Light i's kind, and its map's shadow_map_texel_kind, in bits
  * SHADOW_MAP_LIGHT_KIND_BITS i and up of a key's kinds and texel_kinds. */
 #define SHADOW_MAP_LIGHT_KIND_BITS 3
-_Static_assert(SCENE_MAX_LIGHTS * SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
+_Static_assert(SCENE_MAX_LIGHTS *SHADOW_MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
 /* The camera programs kept: the keys a run goes through (lights coming
  * into reach, a point light's warp falling back to a cube, the kernels a
  * lecturer or the benchmark tries) are compiled once each, the oldest
@@ -497,18 +561,18 @@ typedef struct shadow_map_renderer {
      * needed). */
     shadow_map_blur_program blur_depth[SHADOW_MAP_MOMENTS_MSM + 1][SHADOW_MAP_ARRAY + 1], blur_moments;
     unsigned blur_framebuffer, blur_vao;
-    bool blur_failed; /* said once: moment filters read one bilinear depth test */
-    unsigned depth_sampler; /* a map read as depth: compare mode off, nearest */
-    int texture_units;      /* GL_MAX_TEXTURE_IMAGE_UNITS */
-    unsigned soft_warned;   /* bit i: light i's treatment said on stderr */
+    bool blur_failed;        /* said once: moment filters read one bilinear depth test */
+    unsigned depth_sampler;  /* a map read as depth: compare mode off, nearest */
+    int texture_units;       /* GL_MAX_TEXTURE_IMAGE_UNITS */
+    unsigned soft_warned;    /* bit i: light i's treatment said on stderr */
     unsigned moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
     shadow_map maps[SCENE_MAX_LIGHTS];
     shadow_map_cache caches[SCENE_MAX_LIGHTS];
-    int object_count;                      /* the scene's, at init: the sets' size */
-    bool *needed[SHADOW_MAP_MAX_LAYERS];   /* this frame's casters of each layer of one light */
-    float (*receiver_boxes)[2][3];         /* one light's visible receivers' boxes within its range */
-    light_mask *masks;                     /* one light's layers' masks of the visible pixels */
-    bool *closed;                          /* per object: a caster whose mesh is closed */
+    int object_count;                    /* the scene's, at init: the sets' size */
+    bool *needed[SHADOW_MAP_MAX_LAYERS]; /* this frame's casters of each layer of one light */
+    float (*receiver_boxes)[2][3];       /* one light's visible receivers' boxes within its range */
+    light_mask *masks;                   /* one light's layers' masks of the visible pixels */
+    bool *closed;                        /* per object: a caster whose mesh is closed */
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
      * frame), and those light sample_light is measured at
      * (warp_samples_lit): shadow_map_light_samples. */

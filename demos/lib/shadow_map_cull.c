@@ -32,8 +32,9 @@ bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_ligh
 const char *shadow_map_area_light_text(const shadow_map_settings *settings, const scene_light *light) {
     if (shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
         return "soft: its moment map blurred to its casters' mean penumbra, one width (no contact hardening)";
-    return shadow_map_light_soft(settings, light) ? "soft: pcss, a blocker search then a filter of the penumbra's width"
-                                                  : "hard, from its centre: --soft off";
+    return shadow_map_light_soft(settings, light)
+               ? "soft: pcss, a blocker search then a filter of the penumbra's width"
+               : "hard, from its centre: --soft off";
 }
 
 float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool area) {
@@ -43,11 +44,8 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
     /* A soft light's discs (the search's and the filter's) reach at most
      * this far, whatever the filter. */
     switch (soft ? SHADOW_MAP_FILTER_HW : (shadow_map_filter)settings->filter) {
-    case SHADOW_MAP_FILTER_NONE:
-        footprint = SHADOW_MAP_NEAREST_TEXELS;
-        break;
-    case SHADOW_MAP_FILTER_HW:
-        break;
+    case SHADOW_MAP_FILTER_NONE: footprint = SHADOW_MAP_NEAREST_TEXELS; break;
+    case SHADOW_MAP_FILTER_HW: break;
     case SHADOW_MAP_FILTER_PCF3:
     case SHADOW_MAP_FILTER_PCF5:
     case SHADOW_MAP_FILTER_PCF7:
@@ -58,15 +56,9 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
      * (N / 2 to its farthest tap, a texel more to the centres it reads). Its
      * taps lie nearer than pcfN's, each between a pair of those centres. On
      * a cube they are a point's on a texel corner, nearer still. */
-    case SHADOW_MAP_FILTER_TENT3:
-        offset = 1;
-        break;
-    case SHADOW_MAP_FILTER_TENT5:
-        offset = 2;
-        break;
-    case SHADOW_MAP_FILTER_POISSON:
-        offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2;
-        break;
+    case SHADOW_MAP_FILTER_TENT3: offset = 1; break;
+    case SHADOW_MAP_FILTER_TENT5: offset = 2; break;
+    case SHADOW_MAP_FILTER_POISSON: offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2; break;
     /* A moment map's texel holds its box's depths: one bilinear read
      * reaches the box's radius beyond its footprint (a cube's box stays in
      * its face; the stretch is a bound all the same). */
@@ -241,8 +233,7 @@ static bool shadow_map_culls(const shadow_map_settings *st, const technique_fram
     return f->cull_casters && !inset && st->normal_texels == 0;
 }
 
-void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                             int l) {
+void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f, int l) {
     const scene *s = f->gpu->scene;
     const shadow_map *m = &r->maps[l];
     bool cull = shadow_map_culls(st, f, l);
@@ -254,8 +245,8 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
     shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind, s->lights[l].radius > 0),
                                    .size = m->size,
                                    .cube = m->kind == SHADOW_MAP_CUBE,
-                                   .any_depth = soft || moments ||
-                                                st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+                                   .any_depth =
+                                       soft || moments || st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
     glm_vec3_copy((float *)s->lights[l].position, setup.center);
     shadow_map_reads reads[SHADOW_MAP_MAX_LAYERS];
     int box_count = cull ? shadow_map_light_receivers(f, l, r->receiver_boxes) : 0;
@@ -274,8 +265,8 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
             scene_object_world_bounds(&s->objects[i], lo, hi);
         bool read = false; /* by the receivers' bounds, seen or not */
         for (int layer = 0; layer < m->layer_count; layer++) {
-            bool layer_read =
-                candidate && (!cull || shadow_map_caster_read(&reads[layer], m->layer_view_projection[layer], lo, hi));
+            bool layer_read = candidate && (!cull || shadow_map_caster_read(&reads[layer],
+                                                                            m->layer_view_projection[layer], lo, hi));
             read = read || layer_read;
             r->needed[layer][i] = layer_read && (!seen || light_mask_box_read(&r->masks[layer], lo, hi));
             drawn = drawn || r->needed[layer][i];

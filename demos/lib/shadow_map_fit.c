@@ -42,8 +42,8 @@ float shadow_map_nearest_caster(const scene *s, const mat4 view, const vec3 lo, 
         frustum_box_corners(blo, bhi, corners);
         frustum_view_bounds(view, (const float(*)[3])corners, 8, clo, chi);
         /* A spot's caster counts if any of it is in front of the light. */
-        bool overlaps = orthographic ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1]
-                                     : clo[2] < 0;
+        bool overlaps =
+            orthographic ? clo[0] <= hi[0] && chi[0] >= lo[0] && clo[1] <= hi[1] && chi[1] >= lo[1] : clo[2] < 0;
         if (overlaps)
             nearest = fmaxf(nearest, chi[2]);
     }

@@ -31,16 +31,11 @@
 
 shadow_map_moments shadow_map_filter_moments(int filter) {
     switch (filter) {
-    case SHADOW_MAP_FILTER_VSM:
-        return SHADOW_MAP_MOMENTS_VSM;
-    case SHADOW_MAP_FILTER_EVSM2:
-        return SHADOW_MAP_MOMENTS_EVSM2;
-    case SHADOW_MAP_FILTER_EVSM4:
-        return SHADOW_MAP_MOMENTS_EVSM4;
-    case SHADOW_MAP_FILTER_MSM:
-        return SHADOW_MAP_MOMENTS_MSM;
-    default:
-        return SHADOW_MAP_MOMENTS_NONE;
+    case SHADOW_MAP_FILTER_VSM: return SHADOW_MAP_MOMENTS_VSM;
+    case SHADOW_MAP_FILTER_EVSM2: return SHADOW_MAP_MOMENTS_EVSM2;
+    case SHADOW_MAP_FILTER_EVSM4: return SHADOW_MAP_MOMENTS_EVSM4;
+    case SHADOW_MAP_FILTER_MSM: return SHADOW_MAP_MOMENTS_MSM;
+    default: return SHADOW_MAP_MOMENTS_NONE;
     }
 }
 
@@ -200,24 +195,23 @@ static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_mo
     if (p->id)
         return true;
     static const char *const files[] = {"shadow_moments.vert", "shadow_moments.frag"};
-    const shader_define defines[] = {
-        {"SHADOW_MAP_PASS_MOMENTS", (int)moments},
-        {"SHADOW_MAP_BLUR_FROM_DEPTH", from_depth},
-        {"SHADOW_MAP_BLUR_KIND", (int)kind},
-        SHADER_DEFINE(SHADOW_MAP_MOMENTS_VSM),
-        SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM2),
-        SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM4),
-        SHADER_DEFINE(SHADOW_MAP_MOMENTS_MSM),
-        SHADER_DEFINE(SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS),
-        SHADER_DEFINE(SHADOW_MAP_2D),
-        SHADER_DEFINE(SHADOW_MAP_CUBE),
-        SHADER_DEFINE(SHADOW_MAP_ARRAY),
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),
-        SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),
-        SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
-        SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z),
-        {NULL, 0}};
+    const shader_define defines[] = {{"SHADOW_MAP_PASS_MOMENTS", (int)moments},
+                                     {"SHADOW_MAP_BLUR_FROM_DEPTH", from_depth},
+                                     {"SHADOW_MAP_BLUR_KIND", (int)kind},
+                                     SHADER_DEFINE(SHADOW_MAP_MOMENTS_VSM),
+                                     SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM2),
+                                     SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM4),
+                                     SHADER_DEFINE(SHADOW_MAP_MOMENTS_MSM),
+                                     SHADER_DEFINE(SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS),
+                                     SHADER_DEFINE(SHADOW_MAP_2D),
+                                     SHADER_DEFINE(SHADOW_MAP_CUBE),
+                                     SHADER_DEFINE(SHADOW_MAP_ARRAY),
+                                     SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),
+                                     SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
+                                     SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),
+                                     SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
+                                     SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z),
+                                     {NULL, 0}};
     p->id = shader_load_program(files, 2, defines);
     if (!p->id)
         return false;

@@ -69,7 +69,8 @@ void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const m
  * half the picture's width. */
 static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, const int viewport[4]) {
     static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D, [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
+    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D,
+                                     [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
                                      [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
     bool cube = m->kind == SHADOW_MAP_CUBE, array = m->kind == SHADOW_MAP_ARRAY;
     int height = viewport[3] / SHADOW_MAP_INSET_HEIGHT_DIVISOR, width = cube ? height * 3 / 2 : height;
@@ -138,7 +139,7 @@ static const shadow_map_legend_scale shadow_map_penumbra_legend = {
 #define SHADOW_MAP_LEGEND_TICK_UNITS 3
 #define SHADOW_MAP_LEGEND_MARGIN_UNITS 4
 #define SHADOW_MAP_LEGEND_LINE_UNITS 12
-#define SHADOW_MAP_LEGEND_PANEL_UNITS                                                                                 \
+#define SHADOW_MAP_LEGEND_PANEL_UNITS                                                                                \
     (SHADOW_MAP_LEGEND_BAR_HEIGHT_UNITS + SHADOW_MAP_LEGEND_TICK_UNITS + SHADOW_MAP_LEGEND_LINE_UNITS)
 /* stb_easy_font's quads: four vertices of x, y, z floats and RGBA bytes. */
 #define SHADOW_MAP_LEGEND_FONT_VERTEX_BYTES 16
@@ -227,8 +228,8 @@ void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings 
     for (int l = 0; frustum && l < f->gpu->scene->light_count; l++)
         for (int layer = 0; r->fitted[l] && layer < r->maps[l].layer_count; layer++)
             shadow_map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
-    bool inset = overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP ||
-                 SHADOW_MAP_SHOWS_CASCADES(settings);
+    bool inset =
+        overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP || SHADOW_MAP_SHOWS_CASCADES(settings);
     if (r->fitted[0] && inset)
         shadow_map_draw_inset(r, &r->maps[0], r->viewport);
     if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)

@@ -25,8 +25,7 @@ typedef struct volume_bounds {
  * and the frame's receivers are all there (not cut short). The bounds are
  * window depths of GL's standard convention: with reversed depth they are
  * left off (they only save fill). */
-void volume_bounds_light(const technique_frame *f, const technique_hull *hull, bool depth_bounds,
-                         volume_bounds *out);
+void volume_bounds_light(const technique_frame *f, const technique_hull *hull, bool depth_bounds, volume_bounds *out);
 /* Caster i's part of the light's bounds (an empty rectangle where none);
  * false: no masks this frame, the light's unchanged. Counts the caster
  * as narrowed in f->counts where its rectangle is the smaller. */

@@ -67,9 +67,7 @@ void volume_draw_destroy(volume_draw *d) {
     *d = (volume_draw){0};
 }
 
-void volume_draw_forget(volume_draw *d, int l) {
-    volume_cache_forget(&d->caches[l]);
-}
+void volume_draw_forget(volume_draw *d, int l) { volume_cache_forget(&d->caches[l]); }
 
 void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim) {
     glm_vec3_copy(d->receivers_lo, d->reach_lo);

@@ -75,8 +75,7 @@ void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, 
 /* Caster i's part for the light into d->geometry, with the CPU program
  * bound for it and the object's model matrix set; false after printing
  * why. */
-bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const float light[4],
-                       volume_mesh_parts part);
+bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const float light[4], volume_mesh_parts part);
 /* Homogeneous vertices, with the CPU program's uniforms as they are, as
  * `primitive` (a GLenum), through the stream buffer. */
 void volume_draw_stream(volume_draw *d, const float (*vertices)[4], size_t count, unsigned primitive);

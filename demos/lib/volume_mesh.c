@@ -334,8 +334,7 @@ static bool volume_mesh_all_beyond(const float plane[4], const float (*clip)[4],
     return true;
 }
 
-bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4],
-                             const mat4 view_projection) {
+bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4], const mat4 view_projection) {
     enum { CORNERS = 8, POINTS = 2 * CORNERS };
     float corners[CORNERS][3], clip[POINTS][4], magnitude[POINTS][4];
     frustum_box_corners(lo, hi, corners);
@@ -354,8 +353,8 @@ bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float l
         }
     }
     for (int p = 0; p < VOLUME_MESH_CLIP_PLANES; p++)
-        if (volume_mesh_all_beyond(volume_mesh_clip_planes[p], (const float(*)[4])clip,
-                                   (const float(*)[4])magnitude, POINTS))
+        if (volume_mesh_all_beyond(volume_mesh_clip_planes[p], (const float(*)[4])clip, (const float(*)[4])magnitude,
+                                   POINTS))
             return true;
     return false;
 }

@@ -227,8 +227,7 @@ bool volume_mesh_zpass_safe(const float lo[3], const float hi[3], const float li
  * `view_projection` with depth clamp on, so that it covers no pixel (see
  * "When a volume misses the view" above). Conservative: false for a
  * volume that touches the view, or nearly (FRUSTUM_CLIP_TOLERANCE). */
-bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4],
-                             const mat4 view_projection);
+bool volume_mesh_misses_view(const float lo[3], const float hi[3], const float light[4], const mat4 view_projection);
 
 /* Depth bounds (GL_EXT_depth_bounds_test): a fragment is dropped where
  * the depth already stored at its pixel lies outside [lo, hi], whatever

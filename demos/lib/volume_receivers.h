@@ -39,13 +39,13 @@
 
 /* Zero is an unmade one. */
 typedef struct volume_receivers {
-    render_program program; /* lit.vert, volume_receiver_depth.frag */
+    render_program program;              /* lit.vert, volume_receiver_depth.frag */
     int projection, zero_to_one, planes; /* its own uniforms (and eye_ray.glsl's) */
     int object_count;
     unsigned *buffers, *textures; /* per object: its planes; 0 where it can never be huge */
-    bool *huge;          /* per object, this frame */
-    float *scratch;      /* the planes of the largest candidate, 4 floats a triangle */
-    float planes_eye[3]; /* the eye the planes are relative to */
+    bool *huge;                   /* per object, this frame */
+    float *scratch;               /* the planes of the largest candidate, 4 floats a triangle */
+    float planes_eye[3];          /* the eye the planes are relative to */
     bool planes_made;
 } volume_receivers;
 

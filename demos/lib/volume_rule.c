@@ -11,9 +11,7 @@
 /* ---- the edge table ---- */
 
 /* The corner after `corner` in its triangle: where its edge ends. */
-static uint32_t volume_mesh_next_corner(uint32_t corner) {
-    return corner / 3 * 3 + (corner + 1) % 3;
-}
+static uint32_t volume_mesh_next_corner(uint32_t corner) { return corner / 3 * 3 + (corner + 1) % 3; }
 
 static bool volume_mesh_same_position(const mesh *m, uint32_t corner_a, uint32_t corner_b) {
     return memcmp(m->vertices[m->indices[corner_a]].position, m->vertices[m->indices[corner_b]].position,
@@ -98,8 +96,8 @@ bool volume_mesh_light_inside(const mesh *m, const float light[4]) {
     /* A light on a triangle edge-on to it lies within this of the
      * triangle: its distances to the corners sum to at most 3 diagonals
      * (and a little: 4). */
-    float margin = 4 * glm_vec3_distance((float *)m->bounds_min, (float *)m->bounds_max) /
-                   VOLUME_MESH_EDGE_ON_RECIPROCAL;
+    float margin =
+        4 * glm_vec3_distance((float *)m->bounds_min, (float *)m->bounds_max) / VOLUME_MESH_EDGE_ON_RECIPROCAL;
     for (int k = 0; k < 3; k++)
         if (!(light[k] >= m->bounds_min[k] - margin && light[k] <= m->bounds_max[k] + margin))
             return false;

@@ -8,9 +8,7 @@
 
 /* The corner before `corner` in its triangle: the vertex off the edge
  * that `corner` starts. */
-static uint32_t volume_silhouette_third(uint32_t corner) {
-    return corner / 3 * 3 + (corner + 2) % 3;
-}
+static uint32_t volume_silhouette_third(uint32_t corner) { return corner / 3 * 3 + (corner + 2) % 3; }
 
 void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *out) {
     for (uint32_t i = 0; i < e->edge_count; i++) {
@@ -30,9 +28,10 @@ void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *o
 
 bool volume_silhouette_load(volume_silhouette *s) {
     static const char *const files[] = {"volume_adjacency.vert", "volume_silhouette.geom", "volume.frag"};
-    static const shader_define defines[] = {
-        SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED), SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN),
-        SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL), {NULL, 0}};
+    static const shader_define defines[] = {SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED),
+                                            SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN),
+                                            SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL),
+                                            {NULL, 0}};
     if (!render_program_load(&s->program, files, (int)(sizeof files / sizeof *files), defines))
         return false;
     s->light = shader_uniform(s->program.id, "u_light");

@@ -145,8 +145,8 @@ int warp_relevant_casters(const scene *s, const scene_light *l, float (*points)[
             }
             mask[i] = clo[0] <= uhi && chi[0] >= ulo && clo[1] <= vhi && chi[1] >= vlo;
         } else {
-            mask[i] = blo[0] <= hi[0] && bhi[0] >= lo[0] && blo[1] <= hi[1] && bhi[1] >= lo[1] &&
-                      blo[2] <= hi[2] && bhi[2] >= lo[2];
+            mask[i] = blo[0] <= hi[0] && bhi[0] >= lo[0] && blo[1] <= hi[1] && bhi[1] >= lo[1] && blo[2] <= hi[2] &&
+                      bhi[2] >= lo[2];
         }
         if (mask[i] && n + 8 > capacity)
             return -1;
@@ -184,7 +184,7 @@ bool warp_psm(const camera_view *c, const scene_light *l, const warp_view *v, co
     out->has_space = true;
     out->slide = slide;
 
-    float (*warped)[3] = scratch;
+    float(*warped)[3] = scratch;
     for (int i = 0; i < n; i++)
         if (!warp_project(out->space, points[i], warped[i]))
             return false;
@@ -274,7 +274,7 @@ bool warp_lispsm(const scene_light *l, const warp_view *v, const float (*points)
     turn[0][0] = uy, turn[1][0] = -ux;
     turn[0][1] = ux, turn[1][1] = uy;
     glm_mat4_mul(turn, space, space);
-    float (*turned)[3] = scratch;
+    float(*turned)[3] = scratch;
     vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
     for (int i = 0; i < n; i++) {
         if (!warp_project(space, points[i], turned[i]))

@@ -79,8 +79,8 @@ typedef struct warp_result {
     bool has_space;
     char why[WARP_WHY_MAX]; /* the case taken, or why it gave up; left as is where no reason applies */
     warp_psm_case psm_case;
-    vec4 light_in_space; /* psm: the homogeneous light in PPS */
-    float slide;         /* psm: how far the virtual camera slid back */
+    vec4 light_in_space;    /* psm: the homogeneous light in PPS */
+    float slide;            /* psm: how far the virtual camera slid back */
     float n_opt, sin_gamma; /* lispsm */
 } warp_result;
 

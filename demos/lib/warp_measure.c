@@ -75,8 +75,8 @@ int warp_samples(const scene *s, const camera_view *view, int width, int height,
     for (int sy = 0; sy < WARP_SAMPLES_Y; sy++) {
         for (int sx = 0; sx < WARP_SAMPLES_X; sx++) {
             vec3 direction, far_point;
-            warp_far_point(view, (2.0f * (float)sx + 1) / WARP_SAMPLES_X - 1, (2.0f * (float)sy + 1) / WARP_SAMPLES_Y - 1,
-                           far_point);
+            warp_far_point(view, (2.0f * (float)sx + 1) / WARP_SAMPLES_X - 1,
+                           (2.0f * (float)sy + 1) / WARP_SAMPLES_Y - 1, far_point);
             glm_vec3_sub(far_point, (float *)view->eye, direction);
             int best_axis;
             float best = warp_hit_receivers(s, view->eye, direction, &best_axis);
