@@ -98,7 +98,8 @@ static struct {
     bool has_depth_bounds;        /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
-    int huge_count; /* objects counted against their exact depth (volume_receivers.h) */
+    int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
+    int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
 } volumes;
 
 static const flags_param volumes_params[] = {
@@ -216,7 +217,8 @@ static void volumes_plan_light(const technique_frame *f, int l, volumes_light_pl
     scene_light_homogeneous(&s->lights[l], plan->position);
     technique_light_hull(f, l, &plan->hull);
     volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
-    volume_bounds_light(f, &plan->hull, volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, &plan->bounds);
+    volume_bounds_light(f, &plan->hull, volumes.receivers_rect,
+                        volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, &plan->bounds);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     for (int i = 0; i < s->object_count; i++)
@@ -381,6 +383,8 @@ static void volumes_render(const technique_frame *f) {
      *    shows (technique_see) is read from the depth the volumes are
      *    counted against. */
     render_depth_prepass(f->gpu, f->view, f->in_view);
+    volume_mesh_receivers_scissor(f->gpu->scene, f->view->view_projection, f->width, f->height,
+                                  volumes.receivers_rect);
     volumes.huge_count = volumes.settings.no_exact_depth ? 0 : volume_receivers_update(&volumes.receivers, f);
     if (f->seen)
         volumes_exact_depth(f);

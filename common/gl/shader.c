@@ -213,8 +213,9 @@ static GLuint shader_compile(const char *file, const shader_define *defines, cha
     return shader;
 }
 
-/* Keeps program's sources (text, taken over) under its first file's name;
- * false after printing why. */
+/* Keeps program's sources (text, which the table owns from then on)
+ * under its first file's name; false after printing why (text still the
+ * caller's). */
 static bool shader_keep_program(unsigned program, const char *name, char *text) {
     for (int i = 0; i < SHADER_MAX_PROGRAMS; i++)
         if (shader_programs[i].program == 0) {
@@ -224,7 +225,6 @@ static bool shader_keep_program(unsigned program, const char *name, char *text) 
             return true;
         }
     fprintf(stderr, "%s/%s: more than %d programs at once\n", shader_dir, name, SHADER_MAX_PROGRAMS);
-    free(text);
     return false;
 }
 
@@ -252,7 +252,7 @@ unsigned shader_load_program(const char *const *files, int count, const shader_d
         }
     }
     if (!ok || !shader_keep_program(program, files[0], text)) {
-        free(ok ? NULL : text);
+        free(text);
         glDeleteProgram(program);
         return 0;
     }
@@ -272,16 +272,17 @@ void shader_delete_program(unsigned program) {
     glDeleteProgram(program);
 }
 
+static bool shader_identifier_char(char c) { return isalnum((unsigned char)c) || c == '_'; }
+
 /* Whether `text` declares a uniform `name`: a statement from the word
  * "uniform" to its semicolon that holds the name as a whole word. */
 static bool shader_declares(const char *text, const char *name) {
     size_t n = strlen(name);
     for (const char *p = strstr(text, "uniform"); p; p = strstr(p + 1, "uniform")) {
-        bool word = (p == text || !(isalnum((unsigned char)p[-1]) || p[-1] == '_')) && isspace((unsigned char)p[7]);
+        bool word = (p == text || !shader_identifier_char(p[-1])) && isspace((unsigned char)p[7]);
         const char *end = strchr(p, ';');
         for (const char *q = p; word && end && (q = strstr(q, name)) && q < end; q += n) {
-            char after = q[n];
-            if (!(isalnum((unsigned char)q[-1]) || q[-1] == '_') && !(isalnum((unsigned char)after) || after == '_'))
+            if (!shader_identifier_char(q[-1]) && !shader_identifier_char(q[n]))
                 return true;
         }
     }

@@ -208,32 +208,42 @@ static void technique_hide_objects(const technique_frame *f, technique_seen *see
 }
 
 /* Each light's rectangle narrowed to the tiles of the slabs it reaches
- * (technique_light_rect); a directional light reaches every one. */
+ * (technique_light_rect); a directional light reaches every one. One pass
+ * over the slabs, each slab's bounds made once for every light. */
 static void technique_narrow_light_rects(const technique_frame *f, technique_seen *seen) {
     const scene *s = f->gpu->scene;
+    unsigned narrowed = 0;
+    float lo[SCENE_MAX_LIGHTS][2], hi[SCENE_MAX_LIGHTS][2];
     for (int l = 0; l < s->light_count; l++) {
+        memcpy(seen->light_rect[l], f->light_rect[l], sizeof seen->light_rect[l]);
+        if (s->lights[l].type != SCENE_LIGHT_DIRECTIONAL && technique_light_on(f, l))
+            narrowed |= RENDER_LIGHT_BIT(l);
+        lo[l][0] = lo[l][1] = INFINITY;
+        hi[l][0] = hi[l][1] = -INFINITY;
+    }
+    for (int i = 0; i < seen->pixels.count && narrowed; i++) {
+        const light_mask_seen *tile = &seen->pixels.seen[i];
+        vec3 slab_lo, slab_hi;
+        technique_slab_bounds((const float(*)[3])seen->pixels.slabs[i], slab_lo, slab_hi);
+        for (int l = 0; l < s->light_count; l++)
+            if ((narrowed & RENDER_LIGHT_BIT(l)) && scene_light_reaches_box(&s->lights[l], slab_lo, slab_hi))
+                for (int k = 0; k < 2; k++) {
+                    lo[l][k] = fminf(lo[l][k], tile->lo[k]);
+                    hi[l][k] = fmaxf(hi[l][k], tile->hi[k]);
+                }
+    }
+    for (int l = 0; l < s->light_count; l++) {
+        if (!(narrowed & RENDER_LIGHT_BIT(l)))
+            continue;
         const int *frame_rect = f->light_rect[l];
         int *rect = seen->light_rect[l];
-        memcpy(rect, frame_rect, sizeof seen->light_rect[l]);
-        if (s->lights[l].type == SCENE_LIGHT_DIRECTIONAL || !technique_light_on(f, l))
+        if (!(lo[l][0] <= hi[l][0])) { /* no slab: nothing seen is reached */
+            rect[2] = rect[3] = 0;
             continue;
-        float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-        for (int i = 0; i < seen->pixels.count; i++) {
-            const light_mask_seen *tile = &seen->pixels.seen[i];
-            vec3 slab_lo, slab_hi;
-            technique_slab_bounds((const float(*)[3])seen->pixels.slabs[i], slab_lo, slab_hi);
-            if (!scene_light_reaches_box(&s->lights[l], slab_lo, slab_hi))
-                continue;
-            for (int k = 0; k < 2; k++) {
-                lo[k] = fminf(lo[k], tile->lo[k]);
-                hi[k] = fmaxf(hi[k], tile->hi[k]);
-            }
         }
-        int x0 = glm_max(frame_rect[0], (int)lo[0]), y0 = glm_max(frame_rect[1], (int)lo[1]);
-        int x1 = glm_min(frame_rect[0] + frame_rect[2], (int)hi[0]);
-        int y1 = glm_min(frame_rect[1] + frame_rect[3], (int)hi[1]);
-        if (!(lo[0] <= hi[0])) /* no slab: nothing seen is reached */
-            x1 = x0, y1 = y0;
+        int x0 = glm_max(frame_rect[0], (int)lo[l][0]), y0 = glm_max(frame_rect[1], (int)lo[l][1]);
+        int x1 = glm_min(frame_rect[0] + frame_rect[2], (int)hi[l][0]);
+        int y1 = glm_min(frame_rect[1] + frame_rect[3], (int)hi[l][1]);
         rect[0] = x0;
         rect[1] = y0;
         rect[2] = glm_max(x1 - x0, 0);

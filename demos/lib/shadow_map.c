@@ -671,12 +671,10 @@ static shadow_map_camera_key shadow_map_key_without(shadow_map_camera_key k, uns
     return k;
 }
 
-/* The receivers of `objects` through camera program p: every light of its
- * key by its kind (shadowed where its map lets it through, or
- * unshadowed), and the ambient term. */
-static void shadow_map_shade_receivers(shadow_map_renderer *r, const shadow_map_settings *st,
-                                       const technique_frame *f, const shadow_map_camera_program *p,
-                                       const bool *objects) {
+/* Camera program p in use, with every light of its key's map, matrices
+ * and settings. */
+static void shadow_map_camera_use(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
+                                  const shadow_map_camera_program *p) {
     const shadow_map_camera_key *k = &p->key;
     render_program_use(&p->program, f->view);
     glUniform1f(p->constant_bias,
@@ -723,6 +721,14 @@ static void shadow_map_shade_receivers(shadow_map_renderer *r, const shadow_map_
         glUniform1f(p->cascade_blend, m->cascade_blend);
     }
     glActiveTexture(GL_TEXTURE0);
+}
+
+/* The receivers of `objects` through camera program p, in use: every light
+ * of its key by its kind (shadowed where its map lets it through, or
+ * unshadowed), and the ambient term. */
+static void shadow_map_draw_receivers(const shadow_map_renderer *r, const technique_frame *f,
+                                      const shadow_map_camera_program *p, const bool *objects) {
+    const shadow_map_camera_key *k = &p->key;
     const scene *s = f->gpu->scene;
     for (int i = 0; i < s->object_count; i++) {
         if (!render_in_mask(objects, i) || !s->objects[i].receives)
@@ -744,21 +750,24 @@ static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_set
     const bool *objects = technique_shade_all_begin(f);
     const shadow_map_camera_program *first = shadow_map_camera_program_for(r, &first_key);
     const shadow_map_camera_program *p = split ? shadow_map_camera_program_for(r, k) : first;
-    if (first && p) {
-        shadow_map_shade_receivers(r, st, f, first, objects);
+    bool mapped = first && p;
+    if (mapped) {
+        shadow_map_camera_use(r, st, f, first);
+        shadow_map_draw_receivers(r, f, first, objects);
+        if (split)
+            shadow_map_camera_use(r, st, f, p);
         for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
             if (split & RENDER_LIGHT_BIT(l))
-                shadow_map_shade_receivers(r, st, f, p, technique_light_pass(f, l));
+                shadow_map_draw_receivers(r, f, p, technique_light_pass(f, l));
         glDisable(GL_SCISSOR_TEST);
     }
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (k->soft_lights >> l & 1u)
             glBindSampler(SHADOW_MAP_DEPTH_UNITS + (GLuint)l, 0);
-    p = first ? p : NULL;
     render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
     for (int i = 0; i < f->gpu->scene->object_count; i++)
-        if (render_in_mask(objects, i) && (!p || !f->gpu->scene->objects[i].receives))
+        if (render_in_mask(objects, i) && (!mapped || !f->gpu->scene->objects[i].receives))
             render_draw_object(f->gpu, &f->gpu->lit, i);
 }
 

@@ -2,13 +2,14 @@
 #include <glad/gl.h>
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "volume_mesh.h"
 
-void volume_bounds_light(const technique_frame *f, const technique_hull *hull, bool depth_bounds,
-                         volume_bounds *out) {
+void volume_bounds_light(const technique_frame *f, const technique_hull *hull, const int receivers_rect[4],
+                         bool depth_bounds, volume_bounds *out) {
     *out = (volume_bounds){0};
-    volume_mesh_receivers_scissor(f->gpu->scene, f->view->view_projection, f->width, f->height, out->rect);
+    memcpy(out->rect, receivers_rect, sizeof out->rect);
     out->bounded = depth_bounds && !f->view->reversed_depth && f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS &&
                    !hull->empty &&
                    volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, hull->lo,

@@ -20,12 +20,14 @@ typedef struct volume_bounds {
     float depth[2];
 } volume_bounds;
 
-/* The hull's light's: the receivers' rectangle, and the depth bounds when
+/* The hull's light's: the receivers' rectangle (the frame's, the same for
+ * every light: volume_mesh_receivers_scissor), and the depth bounds when
  * `depth_bounds` (the caller has GL_EXT_depth_bounds_test and wants it)
  * and the frame's receivers are all there (not cut short). The bounds are
  * window depths of GL's standard convention: with reversed depth they are
  * left off (they only save fill). */
-void volume_bounds_light(const technique_frame *f, const technique_hull *hull, bool depth_bounds, volume_bounds *out);
+void volume_bounds_light(const technique_frame *f, const technique_hull *hull, const int receivers_rect[4],
+                         bool depth_bounds, volume_bounds *out);
 /* Caster i's part of the light's bounds (an empty rectangle where none);
  * false: no masks this frame, the light's unchanged. Counts the caster
  * as narrowed in f->counts where its rectangle is the smaller. */
