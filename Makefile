@@ -78,7 +78,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test bench stress report readme-report scenes update-golden readme-flags format clean help
+.PHONY: all deps demo gallery test bench stress ruler report readme-report scenes update-golden readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -88,7 +88,8 @@ help:
 	@echo "make test           build and run every test, plain and under ASan+UBSan"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
 	@echo "make stress         adversarial scenes through every technique against the reference: out/stress/"
-	@echo "make report         make bench, make stress, then make readme-report (QUICK=1: short runs)"
+	@echo "make ruler          out/ruler/: the reference's own noise under area lights"
+	@echo "make report         make bench, make stress, make ruler, then make readme-report (QUICK=1: short runs)"
 	@echo "make readme-report  out/report/ and README.md's current figures from the runs already in out/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
@@ -141,10 +142,15 @@ endif
 # moving: the soft ruler's figures (make report's "Soft shadows").
 # Then the scenes where what is hidden, not what is outside, is to skip:
 # the city across from its edge with unranged lamps, and the engines.
+# Last, perspective shadow maps' sweep on its hard cases: the light in
+# front of the viewer and behind it, a caster behind the camera, a point
+# light far above the view and one among the receivers.
 BENCH_HIDDEN := assets/scenes/street.json assets/scenes/engine.json
 BENCH_CITIES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000)
 BENCH_SOFT := $(patsubst %,assets/scenes/%.json,soft_table soft_sun flat_boxes flat_boxes_point)
 BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
+BENCH_PSM_CASES := $(patsubst %,assets/scenes/%.json,long_view long_view_behind psm_caster_behind psm_point_high \
+	psm_point_low)
 QUICK_FLAG := $(if $(filter 1,$(QUICK)),--quick)
 bench: $(PROGRAMS)
 	$(BUILD)/bench $(QUICK_FLAG) --motion static --out out/bench/static
@@ -165,6 +171,7 @@ bench: $(PROGRAMS)
 		$(BENCH_HIDDEN)
 	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion light --out out/bench/hidden-light \
 		$(BENCH_HIDDEN)
+	$(BUILD)/bench $(QUICK_FLAG) --technique psm --motion static --out out/bench/psm-cases $(BENCH_PSM_CASES)
 
 # Every case of build/stress's table, every technique configuration
 # against the reference: out/stress/table.md; fails unless every row
@@ -173,11 +180,27 @@ bench: $(PROGRAMS)
 stress: $(PROGRAMS)
 	$(BUILD)/stress $(QUICK_FLAG) --out out/stress
 
-# The runs, one after the other so that neither is timed under the
-# other's load, then the pages and the README's figures from them.
+# The reference's own noise under an area light: each soft scene traced
+# with raytrace's default rays and with RULER_RAYS, compared by shadowdiff
+# (the many-ray trace as the truth): out/ruler/SCENE.json, and RULER_RAYS
+# in out/ruler/rays.
+RULER_SCENES := soft_table soft_sun
+RULER_RAYS := $(if $(filter 1,$(QUICK)),1024,4096)
+ruler: $(BUILD)/raytrace $(BUILD)/shadowdiff
+	@rm -rf out/ruler && mkdir -p out/ruler && echo $(RULER_RAYS) > out/ruler/rays
+	@for s in $(RULER_SCENES); do \
+		$(BUILD)/raytrace --scene assets/scenes/$$s.json --dump out/ruler/$$s-default && \
+		$(BUILD)/raytrace --scene assets/scenes/$$s.json --light-samples $(RULER_RAYS) --dump out/ruler/$$s-many && \
+		$(BUILD)/shadowdiff out/ruler/$$s-many out/ruler/$$s-default --json > out/ruler/$$s.json || exit 1; \
+		echo "out/ruler/$$s.json"; \
+	done
+
+# The runs, one after the other so that none is timed under another's
+# load, then the pages and the README's figures from them.
 report: $(PROGRAMS)
 	@$(MAKE) --no-print-directory bench
 	@$(MAKE) --no-print-directory stress
+	@$(MAKE) --no-print-directory ruler
 	@$(MAKE) --no-print-directory readme-report
 
 # out/report/ (index.md, index.html, compact.md, each run's report.md and

@@ -198,27 +198,28 @@ static void test_hard_cases_take_their_path(void **state) {
     /* A wall 34 units behind the camera shadows the view: the virtual
      * camera slides back past it, further than the optimum alone (43.2 in
      * long_view), and the wall's shadow is right. */
-    line = describe("tests/data/psm_caster_behind.json", "");
+    line = describe("assets/scenes/psm_caster_behind.json", "");
     fprintf(stderr, "    caster behind: %s", line);
     const char *slide = strstr(line, "slid back ");
     assert_non_null(slide);
     assert_true(atof(slide + strlen("slid back ")) > 60);
-    shadowdiff_result uniform = measure("tests/data/psm_caster_behind.json", "--warp uniform", "behind_uniform");
-    shadowdiff_result warped = measure("tests/data/psm_caster_behind.json", "", "behind_psm");
+    shadowdiff_result uniform = measure("assets/scenes/psm_caster_behind.json", "--warp uniform", "behind_uniform");
+    shadowdiff_result warped = measure("assets/scenes/psm_caster_behind.json", "", "behind_psm");
     assert_true(warped.misclassified_percent <= 0.5 * uniform.misclassified_percent);
     /* A point light far above: warped in both; one among the receivers:
      * no single frustum holds what it lights, so the cube map stays. */
-    static const char *const point_scenes[] = {"tests/data/psm_point_high.json", "tests/data/psm_point_low.json"};
+    static const char *const point_scenes[] = {"assets/scenes/psm_point_high.json",
+                                               "assets/scenes/psm_point_low.json"};
     for (int s = 0; s < 2; s++) {
         shadowdiff_result r[3];
         measure_warps(point_scenes[s], s == 0 ? "point_high" : "point_low", r);
         for (int w = 1; w < 3; w++)
             assert_true(over_bound(r[w].false_shadow + r[w].false_lit, r[0].false_shadow + r[0].false_lit) <= 0);
     }
-    line = describe("tests/data/psm_point_high.json", "");
+    line = describe("assets/scenes/psm_point_high.json", "");
     fprintf(stderr, "    point light high: %s", line);
     assert_non_null(strstr(line, "psm 2D map"));
-    line = describe("tests/data/psm_point_low.json", "");
+    line = describe("assets/scenes/psm_point_low.json", "");
     fprintf(stderr, "    point light low: %s", line);
     assert_non_null(strstr(line, "uniform cube map"));
 }

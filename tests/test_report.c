@@ -2,9 +2,9 @@
  * commit, the date (SOURCE_DATE_EPOCH's), the renderer and the frame size
  * of the CSVs; a fixture's figure lands in its technique's row, a run's
  * skips-off twin gives the speed-up; the page is plain HTML; refilling the
- * README's markers keeps what is outside them and twice is once; a
- * malformed CSV, a missing run or missing markers stop it with one line
- * naming the file. No GPU: the generator only reads files. */
+ * README's markers keeps what is outside them and twice is once; the
+ * ruler's JSON fills its table; a malformed CSV or JSON, a missing run or
+ * missing markers stop it with one line naming the file. No GPU: the generator only reads files. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -22,7 +22,7 @@
 #define OUT "out/test/report"
 /* 1970-01-02 00:00 UTC */
 #define EPOCH "86400"
-#define RUN_FLAGS "--bench " DATA "/bench --stress " DATA "/stress --out " OUT
+#define RUN_FLAGS "--bench " DATA "/bench --stress " DATA "/stress --ruler " DATA "/ruler --out " OUT
 #define MAX_TEXT (1 << 20)
 
 static char err[8192];
@@ -89,6 +89,25 @@ static void test_figures_land_in_their_rows(void **state) {
     free(compact);
 }
 
+/* The psm hard cases' table shows the three warps' defaults, not the
+ * map sizes; the ruler's table each scene's JSON, null as "none". */
+static void test_hard_cases_and_ruler(void **state) {
+    (void)state;
+    assert_int_equal(run_report(RUN_FLAGS), 0);
+    char *index = read_text(OUT "/index.md"), line[1024];
+    find_line(index, "| long_view_behind | --warp uniform |", line, sizeof line);
+    assert_string_equal(line, "| long_view_behind | --warp uniform | 0.7700 | 0.020000 | 1.800 |");
+    assert_non_null(strstr(index, "| long_view_behind | defaults | 0.0800 |"));
+    assert_non_null(strstr(index, "| long_view_behind | --warp lispsm | 0.0910 |"));
+    assert_null(strstr(index, "| long_view_behind | --map-size 1024 | 0.1100 |"));
+    assert_non_null(strstr(index, "default 256 shadow rays per pixel, compared with the same traced with 4096"));
+    find_line(index, "| soft_sun |", line, sizeof line);
+    assert_string_equal(line, "| soft_sun | none | 0.00532 | 10423 | 0.000006 | 0.00010 | 0.011 |");
+    find_line(index, "| soft_table |", line, sizeof line);
+    assert_string_equal(line, "| soft_table | 0.00031 | 0.00542 | 46646 | 0.000050 | 0.00049 | 0.028 |");
+    free(index);
+}
+
 static void test_readme_refill_is_idempotent(void **state) {
     (void)state;
     char *fixture = read_text(DATA "/readme.md");
@@ -121,6 +140,9 @@ static void test_malformed_csv_is_one_line(void **state) {
     assert_int_equal(run_report("--bench " DATA "/malformed --out " OUT "-malformed"), EXIT_FAILED);
     assert_int_equal(support_count_lines(err), 1);
     assert_non_null(strstr(err, DATA "/malformed/static/results.csv:4: column mae: expected a number, got 'x'"));
+    assert_int_equal(run_report(RUN_FLAGS " --ruler " DATA "/ruler-malformed"), EXIT_FAILED);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, DATA "/ruler-malformed/soft_table.json: penumbra_mae: expected a number or null"));
 }
 
 static void test_missing_input_is_one_line(void **state) {
@@ -146,6 +168,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stamp),
         cmocka_unit_test(test_figures_land_in_their_rows),
+        cmocka_unit_test(test_hard_cases_and_ruler),
         cmocka_unit_test(test_readme_refill_is_idempotent),
         cmocka_unit_test(test_malformed_csv_is_one_line),
         cmocka_unit_test(test_missing_input_is_one_line),

@@ -50,6 +50,7 @@
 #include "path.h"
 #include "raytrace.h"
 #include "registry.h"
+#include "results_csv.h"
 #include "shader.h"
 #include "shadowdiff.h"
 
@@ -645,12 +646,7 @@ static bool bench_write_csv(void) {
     FILE *f = bench_open("results.csv", path, sizeof path);
     if (!f)
         return false;
-    fprintf(f, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
-               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,mae,"
-               "compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent");
-    for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++)
-        fprintf(f, ",%s_pixels,%s_mae", shadowdiff_class_names[c], shadowdiff_class_names[c]);
-    fprintf(f, ",frame_size\n");
+    results_csv_write_header(f); /* the row below writes its columns in the same order */
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
         fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s", r->scene,

@@ -2,22 +2,23 @@
  * the runs' own files, so that no copied figure drifts from them.
  *
  * Reads BENCH/RUN/results.csv for each run `make bench` makes (report_runs;
- * the cities' run is BENCH itself) and STRESS/table.md, and writes
+ * the cities' run is BENCH itself), STRESS/table.md and RULER/ (`make
+ * ruler`: the rays file and each scene's shadowdiff JSON), and writes
  *   OUT/index.md    the stamp (commit, "dirty" when tracked files changed,
  *                   date in UTC, machine and CPU, renderer, frame size),
  *                   the compact table of current figures, one section per
- *                   table of report_tables, the
- *                   stress suite's summary, and each run's report.md and
- *                   plots, copied under OUT/RUN/
+ *                   table of report_tables, the stress suite's summary,
+ *                   the reference's own noise, and each run's report.md
+ *                   and plots, copied under OUT/RUN/
  *   OUT/index.html  the same page in plain HTML, nothing loaded from elsewhere
  *   OUT/compact.md  the stamp's line and the compact table alone
  * --readme FILE puts OUT/compact.md between FILE's lines
  * <!-- report:begin --> and <!-- report:end -->, a blank line either side.
  *
- * The static run is required (the compact table's); another run or the
- * stress table that is missing is named where it would stand. Malformed
- * input stops the run with one line naming the file. The date is
- * SOURCE_DATE_EPOCH's when that is set.
+ * The static run is required (the compact table's); another run, the
+ * stress table or the ruler that is missing is named where it would
+ * stand. Malformed input stops the run with one line naming the file. The
+ * date is SOURCE_DATE_EPOCH's when that is set.
  */
 #include <ctype.h>
 #include <dirent.h>
@@ -35,7 +36,10 @@
 #include "csv.h"
 #include "flags.h"
 #include "gallery_page.h"
+#include "json.h"
 #include "path.h"
+#include "raytrace.h"
+#include "results_csv.h"
 
 #define REPORT_MAX_SCENES 16
 #define REPORT_MAX_TECHNIQUES 16
@@ -68,27 +72,27 @@ typedef enum report_csv {
     REPORT_CSV_COUNT
 } report_csv;
 static const struct {
-    const char *name;
+    results_csv_column column;
     bool number;      /* a finite number, or `word` */
     const char *word; /* what stands for no figure ("none", "-"), or NULL */
 } report_csv_columns[REPORT_CSV_COUNT] = {
-    [REPORT_CSV_SCENE] = {"scene", false, NULL},
-    [REPORT_CSV_TECHNIQUE] = {"technique", false, NULL},
-    [REPORT_CSV_PARAMETERS] = {"parameters", false, NULL},
-    [REPORT_CSV_GPU_MS] = {"gpu_ms_median", true, NULL},
-    [REPORT_CSV_CPU_MS] = {"cpu_ms_median", true, NULL},
-    [REPORT_CSV_RATIO] = {"ratio_to_unshadowed", true, NULL},
-    [REPORT_CSV_FLOOR_MS] = {"floor_ms_median", true, NULL},
-    [REPORT_CSV_MISCLASSIFIED] = {"misclassified_percent", true, NULL},
-    [REPORT_CSV_MAE] = {"mae", true, NULL},
-    [REPORT_CSV_UMBRA_MAE] = {"umbra_mae", true, "none"},
-    [REPORT_CSV_PENUMBRA_MAE] = {"penumbra_mae", true, "none"},
-    [REPORT_CSV_LIT_MAE] = {"lit_mae", true, "none"},
-    [REPORT_CSV_SHIMMER] = {"shimmer_percent", true, "-"},
-    [REPORT_CSV_RENDERER] = {"renderer", false, NULL},
-    [REPORT_CSV_MOTION] = {"motion", false, NULL},
-    [REPORT_CSV_SKIPS] = {"skips", false, NULL},
-    [REPORT_CSV_FRAME_SIZE] = {"frame_size", false, NULL},
+    [REPORT_CSV_SCENE] = {RESULTS_CSV_SCENE, false, NULL},
+    [REPORT_CSV_TECHNIQUE] = {RESULTS_CSV_TECHNIQUE, false, NULL},
+    [REPORT_CSV_PARAMETERS] = {RESULTS_CSV_PARAMETERS, false, NULL},
+    [REPORT_CSV_GPU_MS] = {RESULTS_CSV_GPU_MS, true, NULL},
+    [REPORT_CSV_CPU_MS] = {RESULTS_CSV_CPU_MS, true, NULL},
+    [REPORT_CSV_RATIO] = {RESULTS_CSV_RATIO, true, NULL},
+    [REPORT_CSV_FLOOR_MS] = {RESULTS_CSV_FLOOR_MS, true, NULL},
+    [REPORT_CSV_MISCLASSIFIED] = {RESULTS_CSV_MISCLASSIFIED, true, NULL},
+    [REPORT_CSV_MAE] = {RESULTS_CSV_MAE, true, NULL},
+    [REPORT_CSV_UMBRA_MAE] = {RESULTS_CSV_CLASS_MAE(SHADOWDIFF_CLASS_UMBRA), true, "none"},
+    [REPORT_CSV_PENUMBRA_MAE] = {RESULTS_CSV_CLASS_MAE(SHADOWDIFF_CLASS_PENUMBRA), true, "none"},
+    [REPORT_CSV_LIT_MAE] = {RESULTS_CSV_CLASS_MAE(SHADOWDIFF_CLASS_LIT), true, "none"},
+    [REPORT_CSV_SHIMMER] = {RESULTS_CSV_SHIMMER, true, "-"},
+    [REPORT_CSV_RENDERER] = {RESULTS_CSV_RENDERER, false, NULL},
+    [REPORT_CSV_MOTION] = {RESULTS_CSV_MOTION, false, NULL},
+    [REPORT_CSV_SKIPS] = {RESULTS_CSV_SKIPS, false, NULL},
+    [REPORT_CSV_FRAME_SIZE] = {RESULTS_CSV_FRAME_SIZE, false, NULL},
 };
 
 /* One run of `make bench`: OUT/NAME/ holds its copied report and plots. */
@@ -100,12 +104,19 @@ typedef struct report_run {
     int columns[REPORT_CSV_COUNT];
 } report_run;
 static report_run report_runs[] = {
-    {.name = "static", .dir = "static"}, {.name = "light", .dir = "light"},
-    {.name = "camera", .dir = "camera"}, {.name = "dolly", .dir = "dolly"},
-    {.name = "cities", .dir = ""},       {.name = "cities-light", .dir = "cities-light"},
-    {.name = "dense", .dir = "dense"},   {.name = "dense-light", .dir = "dense-light"},
-    {.name = "soft", .dir = "soft"},     {.name = "soft-light", .dir = "soft-light"},
-    {.name = "hidden", .dir = "hidden"}, {.name = "hidden-light", .dir = "hidden-light"},
+    {.name = "static", .dir = "static"},
+    {.name = "light", .dir = "light"},
+    {.name = "camera", .dir = "camera"},
+    {.name = "dolly", .dir = "dolly"},
+    {.name = "cities", .dir = ""},
+    {.name = "cities-light", .dir = "cities-light"},
+    {.name = "dense", .dir = "dense"},
+    {.name = "dense-light", .dir = "dense-light"},
+    {.name = "soft", .dir = "soft"},
+    {.name = "soft-light", .dir = "soft-light"},
+    {.name = "hidden", .dir = "hidden"},
+    {.name = "hidden-light", .dir = "hidden-light"},
+    {.name = "psm-cases", .dir = "psm-cases"},
 };
 #define REPORT_RUN_COUNT ((int)(sizeof report_runs / sizeof *report_runs))
 
@@ -154,14 +165,14 @@ static const struct {
 #define REPORT_OTHER 0x100
 
 /* A section of the report: the rows with skips on of one run (of some
- * techniques, one scene, the defaults only, where it says), each with its
+ * techniques, one scene, some configurations, where it says), each with its
  * figures and those of the same configuration in another run. */
 typedef struct report_table {
     const char *title;
-    const char *run, *other;   /* run names; other may be NULL */
-    const char *techniques[4]; /* none: every technique */
-    const char *scene;         /* NULL: every scene */
-    bool defaults_only;
+    const char *run, *other;               /* run names; other may be NULL */
+    const char *techniques[4];             /* none: every technique */
+    const char *scene;                     /* NULL: every scene */
+    const char *parameters[4];             /* none: every configuration; "": the defaults */
     int columns[REPORT_MAX_TABLE_COLUMNS]; /* report_figure | REPORT_OTHER */
 } report_table;
 
@@ -177,28 +188,35 @@ static const report_table report_tables[] = {
      NULL,
      {"shadowmap"},
      NULL,
-     false,
+     {NULL},
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS, REPORT_LIT_MAE}},
     {"Perspective shadow maps",
      "static",
      NULL,
      {"psm"},
      NULL,
-     false,
+     {NULL},
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
+    {"Perspective shadow maps: the hard cases",
+     "psm-cases",
+     NULL,
+     {"psm"},
+     NULL,
+     {"--warp uniform", "", "--warp lispsm"},
+     {REPORT_SCENE, REPORT_PARAMETERS, REPORT_ERRORS, REPORT_RATIO}},
     {"Cascaded shadow maps",
      "static",
      NULL,
      {"cascades"},
      NULL,
-     false,
+     {NULL},
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
     {"Cascades against one map and the warps, on one ruler",
      "camera",
      "dolly",
      {"shadowmap", "psm", "cascades"},
      "long_view",
-     false,
+     {NULL},
      {REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_ERRORS, REPORT_SHIMMER, REPORT_RATIO,
       REPORT_MISCLASSIFIED | REPORT_OTHER, REPORT_MAE | REPORT_OTHER, REPORT_SHIMMER | REPORT_OTHER,
       REPORT_RATIO | REPORT_OTHER}},
@@ -207,18 +225,18 @@ static const report_table report_tables[] = {
      "soft-light",
      {NULL},
      NULL,
-     false,
+     {NULL},
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_PENUMBRA_MAE, REPORT_UMBRA_MAE, REPORT_LIT_MAE,
       REPORT_MAE, REPORT_MISCLASSIFIED, REPORT_RATIO, REPORT_RATIO | REPORT_OTHER}},
-    {"Skips: the cities", "cities", "cities-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Skips: the dense scene", "dense", "dense-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
-    {"Hidden casters and objects", "hidden", "hidden-light", {NULL}, NULL, true, REPORT_SKIPS_COLUMNS},
+    {"Skips: the cities", "cities", "cities-light", {NULL}, NULL, {""}, REPORT_SKIPS_COLUMNS},
+    {"Skips: the dense scene", "dense", "dense-light", {NULL}, NULL, {""}, REPORT_SKIPS_COLUMNS},
+    {"Hidden casters and objects", "hidden", "hidden-light", {NULL}, NULL, {""}, REPORT_SKIPS_COLUMNS},
     {"Frame cost",
      "static",
      "light",
      {NULL},
      NULL,
-     true,
+     {""},
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_MS, REPORT_RATIO, REPORT_FLOOR_MS, REPORT_MS | REPORT_OTHER,
       REPORT_RATIO | REPORT_OTHER, REPORT_FLOOR_MS | REPORT_OTHER}},
     {"Measuring accuracy and speed",
@@ -226,7 +244,7 @@ static const report_table report_tables[] = {
      NULL,
      {NULL},
      NULL,
-     false,
+     {NULL},
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS, REPORT_PENUMBRA_MAE,
       REPORT_LIT_MAE}},
     {"Temporal stability: shimmer",
@@ -234,7 +252,7 @@ static const report_table report_tables[] = {
      "dolly",
      {NULL},
      NULL,
-     false,
+     {NULL},
      {REPORT_SCENE, REPORT_TECHNIQUE, REPORT_PARAMETERS, REPORT_SHIMMER, REPORT_MISCLASSIFIED,
       REPORT_SHIMMER | REPORT_OTHER, REPORT_MISCLASSIFIED | REPORT_OTHER}},
 };
@@ -251,12 +269,14 @@ typedef struct report_stamp {
     char renderers[REPORT_CELL], sizes[REPORT_CELL];
 } report_stamp;
 
-static struct { const char *bench_dir, *stress_dir, *out_dir, *readme; } report;
+static struct { const char *bench_dir, *stress_dir, *ruler_dir, *out_dir, *readme; } report;
 
 static const flags_param report_flags[] = {
     {"bench", "where `make bench` wrote its runs (out/bench)", 0, FLAGS_STRING, .text = &report.bench_dir,
      .value_name = "DIR"},
     {"stress", "where `make stress` wrote table.md (out/stress)", 0, FLAGS_STRING, .text = &report.stress_dir,
+     .value_name = "DIR"},
+    {"ruler", "where `make ruler` wrote its comparisons (out/ruler)", 0, FLAGS_STRING, .text = &report.ruler_dir,
      .value_name = "DIR"},
     {"out", "where the report goes (out/report)", 0, FLAGS_STRING, .text = &report.out_dir, .value_name = "DIR"},
     {"readme", "also put the compact table between FILE's report markers", 0, FLAGS_STRING, .text = &report.readme,
@@ -292,10 +312,10 @@ static bool report_load_run(report_run *run) {
         return false;
     run->present = true;
     for (int c = 0; c < REPORT_CSV_COUNT; c++) {
-        run->columns[c] = csv_column(&run->table, report_csv_columns[c].name);
+        run->columns[c] = csv_column(&run->table, results_csv_name(report_csv_columns[c].column));
         if (run->columns[c] < 0) {
             fprintf(stderr, "%s: no column %s (a results.csv from an older build/bench? run make bench again)\n",
-                    run->path, report_csv_columns[c].name);
+                    run->path, results_csv_name(report_csv_columns[c].column));
             return false;
         }
     }
@@ -308,7 +328,8 @@ static bool report_load_run(report_run *run) {
             if (!ok) {
                 /* the header is line 1 */
                 fprintf(stderr, "%s:%d: column %s: expected %s, got '%s'\n", run->path, row + 2,
-                        report_csv_columns[c].name, c == REPORT_CSV_SKIPS ? "on or off" : "a number", text);
+                        results_csv_name(report_csv_columns[c].column),
+                        c == REPORT_CSV_SKIPS ? "on or off" : "a number", text);
                 return false;
             }
         }
@@ -377,14 +398,19 @@ static void report_markdown_cell(FILE *f, const char *text) {
     fputs(" |", f);
 }
 
+/* Whether `value` is one of the (up to 4) names; true when none is given. */
+static bool report_named(const char *const names[4], const char *value) {
+    bool named = !names[0];
+    for (int i = 0; i < 4 && names[i] && !named; i++)
+        named = strcmp(names[i], value) == 0;
+    return named;
+}
+
 static bool report_row_selected(const report_table *t, const report_run *run, int row) {
-    const char *technique = report_cell(run, row, REPORT_CSV_TECHNIQUE);
-    bool named = !t->techniques[0];
-    for (int i = 0; i < 4 && t->techniques[i] && !named; i++)
-        named = strcmp(t->techniques[i], technique) == 0;
-    return named && strcmp(report_cell(run, row, REPORT_CSV_SKIPS), "on") == 0 &&
-           (!t->scene || strcmp(t->scene, report_cell(run, row, REPORT_CSV_SCENE)) == 0) &&
-           (!t->defaults_only || !*report_cell(run, row, REPORT_CSV_PARAMETERS));
+    return report_named(t->techniques, report_cell(run, row, REPORT_CSV_TECHNIQUE)) &&
+           report_named(t->parameters, report_cell(run, row, REPORT_CSV_PARAMETERS)) &&
+           strcmp(report_cell(run, row, REPORT_CSV_SKIPS), "on") == 0 &&
+           (!t->scene || strcmp(t->scene, report_cell(run, row, REPORT_CSV_SCENE)) == 0);
 }
 
 /* A link to the run's section of the page, or that it did not run. */
@@ -719,6 +745,92 @@ static bool report_write_stress(FILE *f) {
     return ok;
 }
 
+/* The ruler's comparisons: shadowdiff's JSON files. */
+static int report_select_json(const struct dirent *entry) {
+    size_t n = strlen(entry->d_name);
+    return n > 5 && strcmp(entry->d_name + n - 5, ".json") == 0;
+}
+
+/* shadowdiff's JSON figure `key` of `file` as text: a number, or "none"
+ * for null (a class without pixels). */
+static bool report_json_figure(const char *file, const cJSON *root, const char *key, const char *format, char *out,
+                               size_t size) {
+    const cJSON *item = cJSON_GetObjectItemCaseSensitive(root, key);
+    if (cJSON_IsNull(item)) {
+        snprintf(out, size, "none");
+        return true;
+    }
+    if (!cJSON_IsNumber(item) || !isfinite(item->valuedouble))
+        return json_fail(file, "", key, "expected a number or null, got %s", item ? json_kind(item) : "nothing");
+    snprintf(out, size, format, item->valuedouble);
+    return true;
+}
+
+/* The reference's own noise: RULER/SCENE.json, shadowdiff --json of the
+ * scene traced with raytrace's default rays against RULER/rays rays. */
+static bool report_write_ruler(FILE *f) {
+    static const struct {
+        const char *key, *header, *format;
+    } figures[] = {
+        {"umbra_mae", "umbra MAE", "%.5f"},
+        {"penumbra_mae", "penumbra MAE", "%.5f"},
+        {"penumbra_pixels", "penumbra pixels", "%.0f"},
+        {"lit_mae", "lit MAE", "%.6f"},
+        {"mae", "MAE", "%.5f"},
+        {"misclassified_percent", "misclassified %", "%.3f"},
+    };
+    enum { FIGURE_COUNT = sizeof figures / sizeof *figures };
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/rays", report.ruler_dir);
+    fputs("\n## The reference's own noise\n\n", f);
+    if (access(path, F_OK) != 0) {
+        fprintf(f, "Not run: no %s (make ruler).\n", path);
+        return true;
+    }
+    char *text = path_read_text(path, REPORT_CELL, NULL), *end = NULL;
+    long rays = text ? strtol(text, &end, 10) : 0;
+    bool ok = text && end != text && (*end == '\n' || !*end) && rays > 0;
+    if (text && !ok)
+        fprintf(stderr, "%s: expected a count of rays, got '%s'\n", path, text);
+    free(text);
+    struct dirent **entries = NULL;
+    int count = ok ? scandir(report.ruler_dir, &entries, report_select_json, alphasort) : 0;
+    if (count < 0) {
+        fprintf(stderr, "%s: cannot list: %s\n", report.ruler_dir, strerror(errno));
+        return false;
+    }
+    if (ok) {
+        fprintf(f,
+                "Each area light's scene traced with raytrace's default %d shadow rays per pixel, compared with "
+                "the same traced with %ld (`make ruler`), as shadowdiff compares a technique with the "
+                "reference. A technique's class MAE within these is within the ruler's own noise.\n\n| scene |",
+                RAYTRACE_DEFAULT_LIGHT_SAMPLES, rays);
+        for (int i = 0; i < FIGURE_COUNT; i++)
+            report_markdown_cell(f, figures[i].header);
+        fputs("\n|---|", f);
+        for (int i = 0; i < FIGURE_COUNT; i++)
+            fputs("---|", f);
+        fputs("\n", f);
+    }
+    for (int e = 0; e < count; e++) {
+        snprintf(path, sizeof path, "%s/%s", report.ruler_dir, entries[e]->d_name);
+        cJSON *root = ok ? json_load(path, REPORT_MAX_MARKDOWN) : NULL;
+        ok = root != NULL;
+        fprintf(f, "| %.*s |", (int)(strlen(entries[e]->d_name) - strlen(".json")), entries[e]->d_name);
+        for (int i = 0; ok && i < FIGURE_COUNT; i++) {
+            char cell[REPORT_CELL];
+            ok = report_json_figure(path, root, figures[i].key, figures[i].format, cell, sizeof cell);
+            if (ok)
+                report_markdown_cell(f, cell);
+        }
+        fputs("\n", f);
+        cJSON_Delete(root);
+        free(entries[e]);
+    }
+    free(entries);
+    return ok;
+}
+
 static bool report_write_markdown(const char *path, const report_stamp *s) {
     FILE *f = report_create(path);
     if (!f)
@@ -732,7 +844,7 @@ static bool report_write_markdown(const char *path, const report_stamp *s) {
     report_write_compact(f, s);
     for (int t = 0; t < REPORT_TABLE_COUNT; t++)
         report_write_table(f, &report_tables[t]);
-    bool ok = report_write_stress(f);
+    bool ok = report_write_stress(f) && report_write_ruler(f);
     fputs("\n## Runs\n", f);
     for (int r = 0; ok && r < REPORT_RUN_COUNT; r++)
         ok = !report_runs[r].present || report_write_run(f, &report_runs[r]);
@@ -921,6 +1033,7 @@ int main(int argc, char **argv) {
         return status;
     report.bench_dir = report.bench_dir ? report.bench_dir : "out/bench";
     report.stress_dir = report.stress_dir ? report.stress_dir : "out/stress";
+    report.ruler_dir = report.ruler_dir ? report.ruler_dir : "out/ruler";
     report.out_dir = report.out_dir ? report.out_dir : "out/report";
     bool ok = true;
     for (int r = 0; ok && r < REPORT_RUN_COUNT; r++)
