@@ -255,7 +255,9 @@ static void cascades_render(const technique_frame *f) {
  * of the nearest cascade's texel. */
 static void cascades_describe(char *out, size_t size) {
     const shadow_map *m = &cascades.maps.maps[0];
-    int n = snprintf(out, size, "light 0: %s map %dx%d", shadow_map_kind_name(m->kind), m->size, m->size);
+    char map[64];
+    shadow_map_size_text(&cascades.settings, m, map, sizeof map);
+    int n = snprintf(out, size, "light 0: %s", map);
     if (m->kind != SHADOW_MAP_ARRAY)
         return;
     n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,

@@ -232,8 +232,9 @@ static void psm_render(const technique_frame *f) {
 static void psm_describe(char *out, size_t size) {
     const psm_choice *c = &psm.choice[0];
     const shadow_map *m = &psm.maps.maps[0];
-    int n = snprintf(out, size, "light 0: %s %s map %dx%d (%s)", c->warp, shadow_map_kind_name(m->kind), m->size,
-                     m->size, c->result.why);
+    char map[64];
+    shadow_map_size_text(&psm.settings, m, map, sizeof map);
+    int n = snprintf(out, size, "light 0: %s %s (%s)", c->warp, map, c->result.why);
     /* A texel's size on screen scales as 1 / size. */
     float scale = (float)c->measured_size / (float)m->size;
     if (n > 0 && (size_t)n < size && isfinite(c->texel_pixels[1]))

@@ -100,8 +100,9 @@ static void shadowmap_render(const technique_frame *f) {
 
 static void shadowmap_describe(char *out, size_t size) {
     const shadow_map *m = &shadowmap.maps.maps[0];
-    int n = snprintf(out, size, "light 0: %s map %dx%d, depth range %.3g .. %.3g", shadow_map_kind_name(m->kind),
-                     m->size, m->size, m->near_plane, m->far_plane);
+    char map[64];
+    shadow_map_size_text(&shadowmap.settings, m, map, sizeof map);
+    int n = snprintf(out, size, "light 0: %s, depth range %.3g .. %.3g", map, m->near_plane, m->far_plane);
     if (shadow_map_filter_moments(shadowmap.settings.filter) != SHADOW_MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
 }

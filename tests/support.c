@@ -122,6 +122,17 @@ unsigned char *support_read_png(const char *path, int width, int height) {
     return rgba;
 }
 
+double support_error_share(const unsigned char *rgba, int stride, int x0, int y0, int width, int height) {
+    long errors = 0;
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++) {
+            const unsigned char *p = rgba + ((size_t)(y0 + y) * stride + x0 + x) * 4;
+            errors += memcmp(p, shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_FALSE_SHADOW], 3) == 0 ||
+                      memcmp(p, shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_FALSE_LIT], 3) == 0;
+        }
+    return (double)errors / ((double)width * height);
+}
+
 bool support_have_command(const char *name) {
     char command[256];
     snprintf(command, sizeof command, "command -v %s >/dev/null 2>&1", name);

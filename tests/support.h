@@ -49,6 +49,14 @@ double support_compare_images(const char *golden, const char *actual);
 /* The RGBA pixels of the PNG at `path`, which must be width x height;
  * fails the running cmocka test otherwise. The caller frees them. */
 unsigned char *support_read_png(const char *path, int width, int height);
+/* The share of a heat map that its error discs must cover where there
+ * are errors, to be seen in a hall: a thousandth of a 1080p compare cell
+ * is a 21-pixel square. */
+#define SUPPORT_VISIBLE_ERROR_SHARE 0.001
+/* The share of the width x height rectangle at (x0, y0) of an RGBA
+ * picture `stride` pixels wide that has a heat map's error colours
+ * (false shadow or false lit). */
+double support_error_share(const unsigned char *rgba, int stride, int x0, int y0, int width, int height);
 bool support_have_command(const char *name);
 /* The command prefix that runs a program in a window under a virtual X
  * server (the server without this process's LD_PRELOAD: support_program

@@ -4,12 +4,15 @@
  *   top left     the technique's own screenshot,
  *   top right    build/raytrace's picture (the truth panel is the
  *                reference, byte for byte),
- *   bottom left  build/shadowdiff's heat map of the two dumps,
+ *   bottom left  build/shadowdiff's heat map of the two dumps, its errors
+ *                grown to discs,
  * and the figures it prints are shadowdiff's. Over a spot (simple), a
  * point light (bunny) and a directional one (long_view), for a uniform map
  * and a warped one, and an area light (soft_table: the figures of
  * shadowdiff's classes, its penumbra's among them; the hard lights'
- * penumbra "none"); the same command gives the same bytes, the window
+ * penumbra "none"); the HUD stays in the caption strip above the cells
+ * at a lecture's sizes and the heat map's errors are drawn large enough
+ * to see; the same command gives the same bytes, the window
  * (under Xvfb, scripted with --frames) gives the same picture, and
  * --compare with --gallery is refused. In-process: the frame loop never
  * waits for the truth, which is shown row by row as it comes (rows not
@@ -38,8 +41,11 @@
 #define DIR "out/test/compare"
 #define WIDTH 640
 #define HEIGHT 360
+#define STRIP compare_strip_height(HEIGHT)
 #define CELL_WIDTH (WIDTH / 2)
-#define CELL_HEIGHT (HEIGHT / 2)
+#define CELL_HEIGHT ((HEIGHT - STRIP) / 2)
+/* The lecture sizes at which the HUD must cover no cell. */
+static const int lecture_sizes[][2] = {{1280, 720}, {1920, 1080}};
 #define EXIT_USAGE 2
 /* The figures are printed with 4 decimals (%) and 5 (error). */
 #define PERCENT_PRINTED 5e-5
@@ -69,9 +75,13 @@ static void run(const char *command) {
 }
 
 /* The cell at (x0, y0) of a WIDTH x HEIGHT picture against an image of the
- * cell's size: whether every byte agrees. */
-static bool cell_is(const unsigned char *picture, int x0, int y0, const char *path) {
+ * cell's size (a heat map's errors magnified as compare mode draws them):
+ * whether every byte agrees. */
+static bool cell_is(const unsigned char *picture, int x0, int y0, const char *path, bool heat_map) {
     unsigned char *cell = support_read_png(path, CELL_WIDTH, CELL_HEIGHT);
+    if (heat_map)
+        assert_true(
+            shadowdiff_heatmap_magnify(cell, CELL_WIDTH, CELL_HEIGHT, shadowdiff_magnify_radius(CELL_HEIGHT)));
     bool same = true;
     for (int y = 0; y < CELL_HEIGHT && same; y++)
         same = memcmp(picture + ((size_t)(y0 + y) * WIDTH + (size_t)x0) * 4, cell + (size_t)y * CELL_WIDTH * 4,
@@ -147,14 +157,14 @@ static void test_cells_are_the_programs_pictures(void **state) {
         snprintf(path, sizeof path, "%s.png", prefix);
         unsigned char *picture = support_read_png(path, WIDTH, HEIGHT);
         snprintf(path, sizeof path, "%s_technique.png", prefix);
-        if (!cell_is(picture, 0, 0, path))
+        if (!cell_is(picture, 0, STRIP, path, false))
             fail_msg("%s: the technique's cell is not %s", prefix, path);
         snprintf(path, sizeof path, "%s_truth.png", prefix);
-        if (!cell_is(picture, CELL_WIDTH, 0, path))
+        if (!cell_is(picture, CELL_WIDTH, STRIP, path, false))
             fail_msg("%s: the truth's cell is not build/raytrace's %s", prefix, path);
         snprintf(path, sizeof path, "%s_heatmap.png", prefix);
-        if (!cell_is(picture, 0, CELL_HEIGHT, path))
-            fail_msg("%s: the heat map's cell is not build/shadowdiff's %s", prefix, path);
+        if (!cell_is(picture, 0, STRIP + CELL_HEIGHT, path, true))
+            fail_msg("%s: the heat map's cell is not build/shadowdiff's %s, magnified", prefix, path);
         free(picture);
 
         snprintf(path, sizeof path, "%s.txt", prefix);
@@ -169,7 +179,9 @@ static void test_cells_are_the_programs_pictures(void **state) {
         double error = cJSON_GetObjectItem(figures, "mean_abs_error")->valuedouble;
         double compared = cJSON_GetObjectItem(figures, "compared")->valuedouble;
         printf("    %s on %s: %s", c->technique, c->scene, line);
-        assert_true(strstr(line, "truth 180/180 rows") != NULL);
+        char rows[64];
+        snprintf(rows, sizeof rows, "truth %d/%d rows", CELL_HEIGHT, CELL_HEIGHT);
+        assert_true(strstr(line, rows) != NULL);
         assert_true(fabs(figure_after(line, "misclassified ") - misclassified) <= PERCENT_PRINTED);
         assert_true(fabs(figure_after(line, "mean absolute error ") - error) <= ERROR_PRINTED);
         assert_true(fabs(figure_after(strstr(line, "error "), ", ") - compared) < 0.5);
@@ -220,6 +232,46 @@ static void test_window_shows_the_same(void **state) {
     assert_true(differing >= 0 && differing <= SUPPORT_MAX_DIFFERING);
 }
 
+/* psm on long_view at a lecture's sizes, with the HUD and without: the
+ * HUD is in the caption strip and nowhere else (every row below it the
+ * same bytes), and the heat map's errors, a few hundredths of a percent,
+ * cover a visible share of its cell. */
+static void test_hud_covers_no_cell_and_errors_show(void **state) {
+    (void)state;
+    assert_true(path_make_directories(DIR));
+    for (size_t k = 0; k < sizeof lecture_sizes / sizeof *lecture_sizes; k++) {
+        int width = lecture_sizes[k][0], height = lecture_sizes[k][1];
+        char paths[2][128], command[1024];
+        for (int hud = 0; hud < 2; hud++) {
+            snprintf(paths[hud], sizeof paths[hud], DIR "/lecture_%dx%d%s.png", width, height, hud ? "_hud" : "");
+            snprintf(command, sizeof command,
+                     "%s --backend egl --technique psm --scene assets/scenes/long_view.json --size %dx%d --compare "
+                     "%s --screenshot %s > " DIR "/lecture.txt",
+                     support_program("shadows"), width, height, hud ? "--hud" : "", paths[hud]);
+            run(command);
+        }
+        unsigned char *plain = support_read_png(paths[0], width, height);
+        unsigned char *with_hud = support_read_png(paths[1], width, height);
+        int strip = compare_strip_height(height), cell_width = width / 2, cell_height = (height - strip) / 2;
+        size_t row = (size_t)width * 4;
+        if (memcmp(plain + strip * row, with_hud + strip * row, (size_t)(height - strip) * row) != 0)
+            fail_msg("%dx%d: the HUD reaches below its %d-pixel strip", width, height, strip);
+        if (memcmp(plain, with_hud, (size_t)strip * row) == 0)
+            fail_msg("%dx%d: no HUD in the strip", width, height);
+        double share = support_error_share(plain, width, 0, strip + cell_height, cell_width, cell_height);
+        char *line = path_read_text(DIR "/lecture.txt", 1 << 16, NULL);
+        assert_non_null(line);
+        double misclassified = figure_after(line, "misclassified ");
+        printf("    %dx%d: misclassified %.4f %%, error discs cover %.3f %% of the heat map's cell\n", width, height,
+               misclassified, 100 * share);
+        assert_true(misclassified > 0);
+        assert_true(share >= SUPPORT_VISIBLE_ERROR_SHARE);
+        free(line);
+        free(with_hud);
+        free(plain);
+    }
+}
+
 static void test_refused_with_gallery(void **state) {
     (void)state;
     char command[1024];
@@ -256,7 +308,7 @@ static void expect_truth_cell(const compare *c) {
     int source = 0;
     for (int y = 0; y < CELL_HEIGHT; y++) {
         source = c->traced[y] ? y : source;
-        const unsigned char *shown = picture + ((size_t)y * WIDTH + CELL_WIDTH) * 4;
+        const unsigned char *shown = picture + ((size_t)(STRIP + y) * WIDTH + CELL_WIDTH) * 4;
         assert_memory_equal(shown, c->shown.dump.color + (size_t)source * CELL_WIDTH * 4, (size_t)CELL_WIDTH * 4);
     }
     free(picture);
@@ -316,8 +368,11 @@ static void test_frame_loop_never_waits(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cells_are_the_programs_pictures), cmocka_unit_test(test_same_command_same_bytes),
-        cmocka_unit_test(test_window_shows_the_same),           cmocka_unit_test(test_refused_with_gallery),
+        cmocka_unit_test(test_cells_are_the_programs_pictures),
+        cmocka_unit_test(test_same_command_same_bytes),
+        cmocka_unit_test(test_window_shows_the_same),
+        cmocka_unit_test(test_refused_with_gallery),
+        cmocka_unit_test(test_hud_covers_no_cell_and_errors_show),
         cmocka_unit_test(test_frame_loop_never_waits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

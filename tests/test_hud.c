@@ -1,6 +1,11 @@
 /* Tests of common/gl/hud.c's layout (no GL): the HUD's lines are wrapped
  * at the framebuffer's width, so nothing is cut at any size, and its
- * scale follows the framebuffer's height. */
+ * scale follows the framebuffer's height. Then the HUD build/shadows draws
+ * for a lecture (its text, which --verbose prints): at most
+ * LECTURE_MAX_LINES lines at 1280x720 with the counters left out; the
+ * compact HUD keeps the technique's settings and drops the counters; the
+ * scene is named, not its path; a map's size says whether it was
+ * chosen. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,12 +16,18 @@
 #include <string.h>
 
 #include "hud.h"
+#include "support.h"
+
+#define LECTURE_WIDTH 1280
+#define LECTURE_SCALE 2 /* hud_scale_for(720) */
+#define LECTURE_MAX_LINES 6
+#define HUD_PREFIX "hud: "
 
 /* A HUD as psm shows it: a state line far wider than 640 pixels. */
 static const char hud_text[] =
     "3/5 psm: perspective shadow maps (Stamminger & Drettakis 2002), LiSPSM (Wimmer et al. 2004), uniform\n"
-    "scene assets/scenes/long_view.json   640x360   frame 0 at 0.000 s\n"
-    "light 0: psm 2D map 4096x4096 (light in front of the viewer, virtual camera slid back 43.2); texel on "
+    "scene long_view   640x360   frame 0 at 0.000 s\n"
+    "light 0: psm 2D map auto: 4096 (light in front of the viewer, virtual camera slid back 43.2); texel on "
     "screen 0.632 px, uniform's 5.63 px\n"
     "a_word_far_too_long_for_any_line_of_a_small_window_so_it_is_broken_where_it_stops_fitting_and_goes_on\n"
     "[W] warp: psm   [M] map-size: auto";
@@ -67,10 +78,53 @@ static void test_scale_follows_height(void **state) {
     assert_int_equal(hud_scale_for(100000), HUD_MAX_SCALE);
 }
 
+static char err[16384];
+
+/* build/shadows' HUD text with `flags` (its "hud: " lines), into hud. */
+static void hud_of(const char *flags, char *hud, size_t size) {
+    char command[1024];
+    snprintf(command, sizeof command,
+             "%s --backend egl --technique psm --scene assets/scenes/long_view.json --frames 1 --verbose %s",
+             support_program("shadows"), flags);
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    size_t n = 0;
+    hud[0] = '\0';
+    for (const char *at = err; (at = strstr(at, HUD_PREFIX)); at++) {
+        at += strlen(HUD_PREFIX);
+        size_t length = strcspn(at, "\n");
+        n += (size_t)snprintf(hud + n, size - n, "%.*s\n", (int)length, at);
+        assert_true(n < size);
+    }
+    printf("    HUD with %s:\n%s", flags, hud);
+}
+
+static void test_lecture_hud(void **state) {
+    (void)state;
+    char hud[8192], wrapped[8192];
+    hud_of("--warp lispsm", hud, sizeof hud);
+    assert_non_null(strstr(hud, "scene long_view "));
+    assert_null(strstr(hud, "assets/scenes"));
+    assert_non_null(strstr(hud, "2D map auto: 4096 "));
+    assert_non_null(strstr(hud, "[W] warp: lispsm"));
+    char *counters = strstr(hud, "\nskips"); /* --verbose shows them (F3 in the window) */
+    assert_non_null(counters);
+    counters[1] = '\0';
+    int lines = hud_wrap(hud, LECTURE_WIDTH, LECTURE_SCALE, wrapped, sizeof wrapped);
+    printf("    %d lines at %d pixels\n", lines, LECTURE_WIDTH);
+    assert_true(lines <= LECTURE_MAX_LINES);
+
+    hud_of("--warp lispsm --hud-compact", hud, sizeof hud);
+    assert_non_null(strstr(hud, "psm on long_view "));
+    assert_non_null(strstr(hud, "[W] warp: lispsm"));
+    assert_null(strstr(hud, "skips"));
+    assert_null(strstr(hud, "light 0:"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wrapped_lines_fit_and_lose_nothing),
         cmocka_unit_test(test_scale_follows_height),
+        cmocka_unit_test(test_lecture_hud),
     };
     return cmocka_run_group_tests_name("hud", tests, NULL, NULL);
 }

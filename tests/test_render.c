@@ -35,6 +35,7 @@
 #include "volume_overlay.h"
 
 #define SIZE "640x360"
+#define GALLERY_HEIGHT 360 /* SIZE's */
 #define GOLDEN_DIR "tests/golden"
 #define GOLDEN_MAX_CASES 64
 #define GOLDEN_NAME_SIZE 64
@@ -554,7 +555,7 @@ static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
     char *html = path_read_text("out/test/gallery/index.html", 1 << 20, NULL);
     assert_non_null(html);
     int measured = 0, expected_measured = 0;
-    for (const char *c = html; (c = strstr(c, "misclassified ")); c++)
+    for (const char *c = html; (c = strstr(c, "<td>misclassified ")); c++)
         measured++;
     for (int t = 0; t < registry_technique_count; t++) {
         const technique *tech = registry_techniques[t];
@@ -568,6 +569,13 @@ static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
             }
             snprintf(needle, sizeof needle, "src=\"reference_%s.png\"", scenes[s]);
             assert_non_null(strstr(html, needle));
+            /* the summary's cell links to the picture's section */
+            snprintf(needle, sizeof needle, "<td><a href=\"#%s_%s\">", tech->name, scenes[s]);
+            if (!strstr(html, needle))
+                fail_msg("index.html's summary has no %s", needle);
+            snprintf(needle, sizeof needle, "<section id=\"%s_%s\">", tech->name, scenes[s]);
+            if (!strstr(html, needle))
+                fail_msg("index.html has no %s", needle);
             expected_measured++;
         }
     }
@@ -579,6 +587,18 @@ static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
         if (!strstr(html, needle))
             fail_msg("index.html's key has no %s", needle);
     }
+    char note[64]; /* how wide the heat maps draw an error */
+    snprintf(note, sizeof note, "each error drawn %d px wide", 2 * shadowdiff_magnify_radius(GALLERY_HEIGHT) + 1);
+    if (!strstr(html, note))
+        fail_msg("index.html's key does not say \"%s\"", note);
+    /* shadowmap's errors on simple, a few hundredths of a percent, show */
+    int width, height;
+    unsigned char *heat = image_read_png("out/test/gallery/shadowmap_simple_heatmap.png", &width, &height);
+    assert_non_null(heat);
+    double share = support_error_share(heat, width, 0, 0, width, height);
+    free(heat);
+    fprintf(stderr, "    shadowmap_simple_heatmap.png: error discs over %.3f %% of it\n", 100 * share);
+    assert_true(share >= SUPPORT_VISIBLE_ERROR_SHARE);
     int hard_penumbrae = 0; /* the standard scenes' lights have no radius */
     for (const char *c = html; (c = strstr(c, "<td>penumbra MAE " SHADOWDIFF_NO_FIGURE " (0 px)</td>")); c++)
         hard_penumbrae++;
@@ -594,7 +614,6 @@ static void expect_gallery_page(const char *const *scenes, size_t scene_count) {
              "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,1800 "
              "--screenshot=out/test/gallery_page.png \"file://$PWD/out/test/gallery/index.html\" >/dev/null 2>&1");
     assert_int_equal(system(command), 0);
-    int width, height;
     unsigned char *rgba = image_read_png("out/test/gallery_page.png", &width, &height);
     assert_non_null(rgba);
     static const unsigned char background[3] = {GALLERY_PAGE_BACKGROUND};

@@ -394,19 +394,21 @@ static void test_no_cube_seams(void **state) {
  * about a pixel where the camera sees its receivers (at most 1 on average,
  * rounded up to a power of two): the same scene needs half the map in a
  * picture half as wide, a long view the most (capped at 4096), and a size
- * given stays as given. */
+ * given stays as given; the HUD's line says which ("auto: 2048" or
+ * "2048"). */
 static void test_map_size_from_need(void **state) {
     (void)state;
     static const struct {
         const char *program, *scene, *flags, *expected;
     } cases[] = {
-        {"shadowmap", "simple", BENCH_SIZE, "map 2048x2048"},
-        {"shadowmap", "simple", "", "map 1024x1024"},
-        {"shadowmap", "bunny", BENCH_SIZE, "cube map 2048x2048"},
-        {"shadowmap", "long_view", BENCH_SIZE, "map 4096x4096"},
-        {"shadowmap", "simple", BENCH_SIZE " --map-size 512", "map 512x512"},
-        {"psm", "teapot", BENCH_SIZE, "psm 2D map 2048x2048"},
-        {"psm", "teapot", "", "psm 2D map 1024x1024"},
+        {"shadowmap", "simple", BENCH_SIZE, "2D map auto: 2048,"},
+        {"shadowmap", "simple", "", "2D map auto: 1024,"},
+        {"shadowmap", "bunny", BENCH_SIZE, "cube map auto: 2048,"},
+        {"shadowmap", "long_view", BENCH_SIZE, "2D map auto: 4096,"},
+        {"shadowmap", "simple", BENCH_SIZE " --map-size 512", "2D map 512,"},
+        {"psm", "teapot", BENCH_SIZE, "psm 2D map auto: 2048 "},
+        {"psm", "teapot", "", "psm 2D map auto: 1024 "},
+        {"psm", "teapot", "--map-size 2048", "psm 2D map 2048 "},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char scene[256], marker[64];

@@ -4,7 +4,9 @@
  * What they must do: F12 writes a numbered picture that never overwrites
  * and prints its path; a drag orbits the camera; 0 puts camera and light
  * back exactly as loaded; 2 switches to the second technique; Escape
- * closes the window with exit 0. */
+ * closes the window with exit 0. Without --no-hud, F12's picture is the
+ * window's with its HUD (the rows below the HUD as without it), and a
+ * scene that does not load (Page Down) says why on the HUD. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,11 +16,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image.h"
 #include "path.h"
 #include "support.h"
 
 #define WINDOW_DIR "out/test/window"
 #define WINDOW_SCENE "assets/scenes/simple.json"
+#define WINDOW_SCENES "tests/data/window_scenes" /* simple's copy, then a broken scene */
+#define WINDOW_HEIGHT 360
+#define WINDOW_HUD_ROWS 120 /* the full HUD's at most, at 640x360 */
 
 static char err[16384];
 
@@ -34,7 +40,9 @@ static void test_keys_and_mouse_in_a_real_window(void **state) {
                             "/screenshot-planar-1.png"),
                      0);
     char command[2048];
-    snprintf(command, sizeof command, "timeout 180 %s bash tests/window_input.sh \"%s\" " WINDOW_SCENE " " WINDOW_DIR,
+    snprintf(command, sizeof command,
+             "timeout 240 %s bash tests/window_input.sh \"%s\" " WINDOW_SCENE " " WINDOW_SCENES
+             "/a_simple.json " WINDOW_DIR,
              xvfb, support_program("shadows"));
     int status = support_run(command, err, sizeof err);
     if (status != 0) {
@@ -68,6 +76,33 @@ static void test_keys_and_mouse_in_a_real_window(void **state) {
     assert_true(support_compare_images(loaded, reset) == 0);
     /* The other technique: its own shadows (PCF edges), not planar's. */
     assert_true(support_compare_images(loaded, other) > 0);
+
+    /* With the HUD: F12 keeps it, over the same picture. */
+    out = path_read_text(WINDOW_DIR "/stdout2.txt", 1 << 16, NULL);
+    assert_non_null(out);
+    assert_non_null(strstr(out, "screenshot-planar-5.png"));
+    free(out);
+    int width, height, hud_width, hud_height;
+    unsigned char *clean = image_read_png(loaded, &width, &height);
+    unsigned char *with_hud = image_read_png(WINDOW_DIR "/screenshot-planar-5.png", &hud_width, &hud_height);
+    assert_non_null(clean);
+    assert_non_null(with_hud);
+    assert_int_equal(width, hud_width);
+    assert_int_equal(height, WINDOW_HEIGHT);
+    assert_int_equal(hud_height, WINDOW_HEIGHT);
+    size_t row = (size_t)width * 4;
+    assert_true(memcmp(clean, with_hud, WINDOW_HUD_ROWS * row) != 0);
+    assert_memory_equal(clean + WINDOW_HUD_ROWS * row, with_hud + WINDOW_HUD_ROWS * row,
+                        (WINDOW_HEIGHT - WINDOW_HUD_ROWS) * row);
+    free(with_hud);
+    free(clean);
+    /* The broken scene: why, on the HUD. */
+    char *hud = path_read_text(WINDOW_DIR "/stderr2.txt", 1 << 16, NULL);
+    assert_non_null(hud);
+    const char *note = strstr(hud, "hud: did NOT load: ");
+    if (!note || !strstr(note, "b_broken.json:"))
+        fail_msg("the HUD does not say why the scene did not load: %s", hud);
+    free(hud);
 }
 
 int main(void) {

@@ -10,21 +10,26 @@
 #   2                   the second technique, shadowmap
 #   F12                 screenshot-shadowmap-1.png
 #   Escape              the window closes, exit 0
+# all with --no-hud (clean pictures to compare); then, with the HUD, on
+# SCENE2 (whose directory's next scene is broken) and --verbose:
+#   F12                 screenshot-planar-5.png: the same view, HUD included
+#   Page Down           the broken scene does not load: the HUD says why
+#   Escape              exit 0, the HUD's last text on stderr2.txt
 # Each step waits SETTLE seconds, so that frames are drawn between events
 # (F12 saves the last drawn picture).
-# Usage: tests/window_input.sh PROGRAM SCENE DIR, from the project's root
-# (SCENE relative to it);
+# Usage: tests/window_input.sh PROGRAM SCENE SCENE2 DIR, from the project's
+# root (the scenes relative to it);
 # PROGRAM is a command (tests/support.h's support_program: it may start
 # with env LD_PRELOAD=...) whose build directory DIR links to, since the
 # app runs in DIR (where F12 writes).
 set -eu
-program=$1 scene=$PWD/$2 dir=$3
+program=$1 scene=$PWD/$2 scene2=$PWD/$3 dir=$4
 SETTLE=2
 for build in build build-san; do
     [ ! -e "$build" ] || ln -sfn "$PWD/$build" "$dir/$build"
 done
 cd "$dir"
-eval "$program --scene '$scene' --size 640x360 >stdout.txt 2>stderr.txt &"
+eval "$program --scene '$scene' --size 640x360 --no-hud >stdout.txt 2>stderr.txt &"
 app=$!
 # A failed step says whether the app was still running, or how it ended.
 report_app() {
@@ -42,6 +47,11 @@ press() {
     xdotool key --window "$window" "$1"
     sleep "$SETTLE"
 }
+# Escape pressed only: the app closes its window on the press, so a
+# release sent after it would find no window.
+quit() {
+    xdotool keydown --window "$window" Escape
+}
 press F12
 xdotool mousemove --window "$window" 320 100 mousedown 1 mousemove --window "$window" 320 180 \
     mousemove --window "$window" 320 250 mouseup 1
@@ -51,5 +61,17 @@ press 0
 press F12
 press 2
 press F12
-xdotool key --window "$window" Escape
+quit
+wait "$app"
+# The server may list the closed window a moment longer: the next search
+# must not find it.
+timeout 30 bash -c "while xdotool search --name '^shadows\$' >/dev/null; do sleep 0.2; done"
+
+eval "$program --scene '$scene2' --size 640x360 --verbose >stdout2.txt 2>stderr2.txt &"
+app=$!
+window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
+sleep "$SETTLE"
+press F12
+press Next
+quit
 wait "$app"

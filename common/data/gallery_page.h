@@ -1,4 +1,6 @@
-/* gallery_page: the gallery's index.html, one row per picture: what made
+/* gallery_page: the gallery's index.html: a summary table (a row per
+ * technique, a column per scene: each measured picture's misclassified %
+ * and MAE, linking to its section), then one section per picture: what made
  * it (technique, flags, scene), its figures against the ray-traced
  * reference (shadowdiff's: misclassified %, mean absolute error, pixels
  * compared, then the caller's further figures as text: each class's MAE
@@ -40,8 +42,9 @@ typedef struct gallery_page_key {
  * attributes (the report's page writes with it too). */
 void gallery_page_text(FILE *f, const char *text);
 
-/* Writes DIR/index.html; false after printing why. */
+/* Writes DIR/index.html, the key followed by `heatmap_note` (how the
+ * heat maps are drawn; may be NULL); false after printing why. */
 bool gallery_page_write(const char *dir, const gallery_page_row *rows, int count, const gallery_page_key *key,
-                        int key_count);
+                        int key_count, const char *heatmap_note);
 
 #endif

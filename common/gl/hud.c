@@ -139,13 +139,19 @@ static int hud_add_panel(int quads, float x0, float y0, float x1, float y1) {
     return quads + 1;
 }
 
+int hud_scale_to_fit(const char *text, int width, int height, int scale, int framebuffer_height) {
+    char wrapped[HUD_MAX_TEXT];
+    scale = scale > 0 ? scale : hud_scale_for(framebuffer_height);
+    while (scale > 1 &&
+           (hud_wrap(text, width, scale, wrapped, sizeof wrapped) * HUD_LINE_UNITS + 2 * HUD_MARGIN) * scale > height)
+        scale--;
+    return scale;
+}
+
 void hud_draw(const char *text, int width, int height, int scale) {
     char wrapped[HUD_MAX_TEXT];
-    bool fitted = scale <= 0;
-    scale = fitted ? hud_scale_for(height) : scale;
-    int lines = hud_wrap(text, width, scale, wrapped, sizeof wrapped);
-    while (fitted && scale > 1 && (lines * HUD_LINE_UNITS + 2 * HUD_MARGIN) * scale > height)
-        lines = hud_wrap(text, width, --scale, wrapped, sizeof wrapped);
+    scale = scale > 0 ? scale : hud_scale_to_fit(text, width, height, 0, height);
+    hud_wrap(text, width, scale, wrapped, sizeof wrapped);
     float text_width = (float)hud_text_width(wrapped), text_height = (float)stb_easy_font_height(wrapped);
     int quads = hud_add_panel(0, 0, 0, text_width + 2 * HUD_MARGIN, text_height + HUD_MARGIN + 2);
     unsigned char white[4] = {255, 255, 255, 255};

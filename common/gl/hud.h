@@ -31,14 +31,17 @@ int hud_scale_for(int height);
  * size). Returns the number of lines. */
 int hud_wrap(const char *text, int width, int scale, char *out, size_t size);
 
+/* `scale` (0: hud_scale_for(framebuffer_height)), less where `text`
+ * wrapped at `width` would be taller than `height` pixels (down to 1). */
+int hud_scale_to_fit(const char *text, int width, int height, int scale, int framebuffer_height);
+
 /* The widest line of `text`, in font units. */
 int hud_text_width(const char *text);
 
 bool hud_init(void);
 /* Draws `text` (lines separated by '\n'), wrapped, at the top-left of the
- * bound framebuffer of the given size, `scale` pixels per font unit; 0:
- * hud_scale_for(height), less where the wrapped text would be taller than
- * the framebuffer (down to 1). */
+ * viewport of the given size, `scale` pixels per font unit; 0:
+ * hud_scale_to_fit(text, width, height, 0, height). */
 void hud_draw(const char *text, int width, int height, int scale);
 void hud_destroy(void);
 

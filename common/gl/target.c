@@ -62,14 +62,15 @@ void target_bind(const target *t) {
     glViewport(0, 0, t->width, t->height);
 }
 
-bool target_read_rgba(const target *t, unsigned char *rgba) {
-    size_t row = (size_t)t->width * 4;
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, t->framebuffer);
+/* The bound read framebuffer's width x height pixels, top row first,
+ * opaque. */
+static bool target_read_bound(int width, int height, unsigned char *rgba) {
+    size_t row = (size_t)width * 4;
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     /* Pictures are opaque: alpha is the techniques' scratch (blending
      * passes leave anything there), never part of the image. */
-    for (size_t i = 3; i < row * (size_t)t->height; i += 4)
+    for (size_t i = 3; i < row * (size_t)height; i += 4)
         rgba[i] = 255;
     /* GL's rows start at the bottom. */
     unsigned char *swap = malloc(row);
@@ -77,14 +78,25 @@ bool target_read_rgba(const target *t, unsigned char *rgba) {
         fprintf(stderr, "target: out of memory\n");
         return false;
     }
-    for (int y = 0; y < t->height / 2; y++) {
-        unsigned char *a = rgba + (size_t)y * row, *b = rgba + (size_t)(t->height - 1 - y) * row;
+    for (int y = 0; y < height / 2; y++) {
+        unsigned char *a = rgba + (size_t)y * row, *b = rgba + (size_t)(height - 1 - y) * row;
         memcpy(swap, a, row);
         memcpy(a, b, row);
         memcpy(b, swap, row);
     }
     free(swap);
     return context_gl_ok("target_read_rgba");
+}
+
+bool target_read_rgba(const target *t, unsigned char *rgba) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t->framebuffer);
+    return target_read_bound(t->width, t->height, rgba);
+}
+
+bool target_read_window_rgba(int width, int height, unsigned char *rgba) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    return target_read_bound(width, height, rgba);
 }
 
 void target_blit_to_window(const target *t, int window_width, int window_height) {

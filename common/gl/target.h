@@ -25,6 +25,9 @@ bool target_create(target *t, int width, int height);
 bool target_match_depth(target *t, bool reversed_depth);
 void target_bind(const target *t);
 bool target_read_rgba(const target *t, unsigned char *rgba);
+/* The window's back buffer as target_read_rgba reads a target: what the
+ * frame drew before it is swapped to the screen. */
+bool target_read_window_rgba(int width, int height, unsigned char *rgba);
 /* Copies the colour to the bound window framebuffer of the given size. */
 void target_blit_to_window(const target *t, int window_width, int window_height);
 void target_destroy(target *t);

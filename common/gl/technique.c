@@ -50,6 +50,17 @@ void technique_param_text(const flags_param *p, char *out, size_t size) {
         snprintf(out, size, "%g", flags_number(p));
 }
 
+bool technique_param_changed(const flags_param *p) {
+    switch (p->kind) {
+    case FLAGS_TOGGLE: return *p->disabled;
+    case FLAGS_CHOICE: return *p->index != 0;
+    case FLAGS_NUMBER: return *p->number != 0;
+    case FLAGS_INT: return *p->integer != 0;
+    case FLAGS_SWITCH: return *p->on;
+    default: return false;
+    }
+}
+
 bool technique_press_key(const technique *t, int key) { return flags_press_key(t->params, t->param_count, key); }
 
 bool technique_init(const technique *t, const render_scene *gpu) {

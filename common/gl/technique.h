@@ -322,6 +322,8 @@ bool technique_apply_config_as(const technique *t, const char *config, const cha
 void technique_config_label(const char *config, char *out, size_t size);
 /* "on", "OFF", the choice's name or the number, for the HUD. */
 void technique_param_text(const flags_param *p, char *out, size_t size);
+/* Whether a setting differs from its default (zero). */
+bool technique_param_changed(const flags_param *p);
 /* The window's key press: flips a toggle or steps a choice; false if no
  * parameter has the key. */
 bool technique_press_key(const technique *t, int key);

@@ -3,6 +3,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "camera.h"
@@ -437,5 +438,46 @@ bool shadowdiff_shimmer(const dump_frame *previous_reference, const dump_frame *
     out->problem = SHADOWDIFF_PROBLEM_NONE;
     out->shimmer_percent = shadowdiff_percent(out->shimmered, out->followed);
     out->truth_changed_percent = shadowdiff_percent(out->truth_changed, out->followed);
+    return true;
+}
+
+int shadowdiff_magnify_radius(int height) {
+    int radius = height / SHADOWDIFF_MAGNIFY_LINES_PER_PIXEL;
+    return radius > 1 ? radius : 1;
+}
+
+/* Whether an RGBA pixel has kind k's colour. */
+static bool shadowdiff_is_kind(const unsigned char *rgba, shadowdiff_pixel k) {
+    return memcmp(rgba, shadowdiff_pixel_colors[k], 3) == 0;
+}
+
+bool shadowdiff_heatmap_magnify(unsigned char *rgba, int width, int height, int radius) {
+    static const shadowdiff_pixel errors[] = {SHADOWDIFF_PIXEL_FALSE_SHADOW, SHADOWDIFF_PIXEL_FALSE_LIT};
+    size_t pixels = (size_t)width * (size_t)height;
+    unsigned char *kind = malloc(pixels); /* the error kinds before any disc is drawn */
+    if (!kind) {
+        fprintf(stderr, "shadowdiff: out of memory for a %dx%d heat map's errors\n", width, height);
+        return false;
+    }
+    for (size_t i = 0; i < pixels; i++) {
+        kind[i] = SHADOWDIFF_PIXEL_AGREES;
+        for (int e = 0; e < 2; e++)
+            if (shadowdiff_is_kind(rgba + 4 * i, errors[e]))
+                kind[i] = (unsigned char)errors[e];
+    }
+    for (int e = 0; e < 2; e++)
+        for (int y = 0; y < height; y++)
+            for (int x = 0; x < width; x++) {
+                if (kind[(size_t)y * width + x] != errors[e])
+                    continue;
+                for (int dy = -radius; dy <= radius; dy++)
+                    for (int dx = -radius; dx <= radius; dx++) {
+                        int px = x + dx, py = y + dy;
+                        if (dx * dx + dy * dy > radius * radius || px < 0 || py < 0 || px >= width || py >= height)
+                            continue;
+                        memcpy(rgba + 4 * ((size_t)py * width + px), shadowdiff_pixel_colors[errors[e]], 3);
+                    }
+            }
+    free(kind);
     return true;
 }

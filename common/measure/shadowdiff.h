@@ -183,6 +183,18 @@ typedef struct shadowdiff_result {
 bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, const shadowdiff_settings *settings,
                         shadowdiff_result *out, unsigned char *heatmap_rgba);
 
+/* A heat map for people, not for counting: each false-shadow and
+ * false-lit pixel grown into a disc of `radius` pixels (false lit drawn
+ * last), over whatever it covers, so that errors of a few pixels are seen
+ * in a lecture hall. shadowdiff_magnify_radius(height) is the disc for a
+ * picture `height` pixels tall: one pixel of radius per
+ * SHADOWDIFF_MAGNIFY_LINES_PER_PIXEL lines, at least 1. A caller that
+ * shows the result says how wide the discs are (2 * radius + 1). False,
+ * after one line on stderr, when out of memory. */
+#define SHADOWDIFF_MAGNIFY_LINES_PER_PIXEL 100
+int shadowdiff_magnify_radius(int height);
+bool shadowdiff_heatmap_magnify(unsigned char *rgba, int width, int height, int radius);
+
 /* Adds `frame`'s comparison to `total` as if both were one comparison of
  * all their compared pixels: the counts summed, the percentages and the
  * mean absolute errors (the whole one and each class's) over the sums (the

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "capture.h"
 #include "compare.h"
@@ -51,7 +52,9 @@ static struct {
     int frames;            /* 0: not given, so one frame headless or a window */
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
-    bool hud_compact;      /* --hud-compact, Tab: the first lines only */
+    bool hud_compact;      /* --hud-compact, Tab: the caption, technique and settings only */
+    bool hud_counters;     /* --verbose, F3: the skips' counters on the HUD */
+    bool no_hud;           /* --no-hud: none in the window (F12 then saves a clean picture) */
     bool flags_markdown;   /* --flags-markdown: print the tables, then exit */
     bool compare_on;       /* --compare, A, a tour's step: the technique beside the truth (compare.h) */
     bool compare_given;    /* --compare: every step of a tour too */
@@ -87,7 +90,8 @@ static struct {
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
-    char note[PATH_MAX + 64]; /* the HUD's last line until note_until (glfwGetTime) */
+    char note[PATH_MAX + 64];        /* the HUD's last line until note_until (glfwGetTime) */
+    char screenshot_asked[PATH_MAX]; /* F12's picture, saved before the frame is swapped */
     double note_until;
 } app;
 
@@ -144,7 +148,7 @@ static const flags_param app_flags[] = {
      0, FLAGS_STRING, .text = &app.tour_path, .value_name = "FILE"},
     {"compare",
      "the technique beside the ray-traced truth of the same view\n(traced in the background, progressively) and the heat\n"
-     "map of its errors, with legend and figures: four cells (A);\nheadless, the finished picture",
+     "map of its errors, with legend and figures: four cells under\nthe HUD's caption strip (A); headless, the finished picture",
      0, FLAGS_SWITCH, .on = &app.compare_on},
     {"hud",
      "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time",
@@ -152,10 +156,10 @@ static const flags_param app_flags[] = {
     {"hud-scale",
      "pixels per font unit of the HUD's text (default: one per\n360 lines of the framebuffer, 2 at 720, 3 at 1080, less\nwhere the text would not fit)",
      0, FLAGS_INT, .integer = &app.hud_scale, .min = 1, .max = HUD_MAX_SCALE, .what = "a scale"},
-    {"hud-compact", "the HUD's first lines only: technique, scene, skips (Tab)", 0, FLAGS_SWITCH,
-     .on = &app.hud_compact},
+    {"no-hud", "the window shows no HUD, so that F12 saves the picture alone", 0, FLAGS_SWITCH, .on = &app.no_hud},
+    {"hud-compact", "the HUD's caption, technique and settings only (Tab)", 0, FLAGS_SWITCH, .on = &app.hud_compact},
     {"verbose",
-     "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines (the\nHUD's)",
+     "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines; the\nskips' counters on the HUD too (F3)",
      0, FLAGS_SWITCH, .on = &app.verbose},
     {"flags-markdown", "print every flag and key as the README's markdown tables\n(make readme-flags), then exit", 0,
      FLAGS_SWITCH, .on = &app.flags_markdown},
@@ -180,9 +184,10 @@ static const app_window_key app_window_keys[] = {
     {0, "1-" FLAGS_TEXT(APP_MAX_TECHNIQUES), "the technique of that number in --help's list"},
     {0, "Page Down / Up", "the next / previous scene of the scene's directory"},
     {APP_COMPARE_KEY, NULL, "compare against the ray-traced truth (--compare)"},
-    {0, "Tab", "the HUD's first lines only (--hud-compact)"},
+    {0, "Tab", "the HUD's caption, technique and settings only (--hud-compact)"},
+    {0, "F3", "the skips' counters on the HUD (--verbose)"},
     {GLFW_KEY_H, NULL, "help on the HUD"},
-    {0, "F12", "screenshot (screenshot-TECHNIQUE-N.png, never overwritten)"},
+    {0, "F12", "the window's picture, HUD included (screenshot-TECHNIQUE-N.png, never overwritten)"},
     {0, "Esc", "quit"},
 };
 enum { app_window_key_count = sizeof app_window_keys / sizeof *app_window_keys };
@@ -256,6 +261,7 @@ static int app_parse_flags(int argc, char **argv) {
             params[n++] = app.techniques[i]->params[k];
     int status = flags_parse(app.program, params, count, argc - 1, argv + 1);
     free(params);
+    app.hud_counters = app.verbose;
     if (status == FLAGS_HELP_ASKED)
         app_usage();
     else if (status == 0 && app.flags_markdown)
@@ -598,7 +604,9 @@ static bool app_gallery_measure(const dump_frame *reference, const char *dir, co
     shadowdiff_result r;
     bool ok = heatmap != NULL;
     row->measured = ok && shadowdiff_compare(reference, &dump, NULL, &r, heatmap);
-    if (row->measured) {
+    ok = ok && (!row->measured ||
+                shadowdiff_heatmap_magnify(heatmap, dump.width, dump.height, shadowdiff_magnify_radius(dump.height)));
+    if (row->measured && ok) {
         char path[PATH_MAX];
         snprintf(row->heatmap, sizeof row->heatmap, "%s_heatmap.png", stem);
         snprintf(path, sizeof path, "%s/%s", dir, row->heatmap);
@@ -693,7 +701,9 @@ static bool app_run_gallery(void) {
         key[k] = (gallery_page_key){.name = shadowdiff_pixel_names[kind]};
         memcpy(key[k].rgb, shadowdiff_pixel_colors[kind], sizeof key[k].rgb);
     }
-    ok = ok && gallery_page_write(dir, rows, row_count, key, SHADOWDIFF_PIXEL_KIND_COUNT);
+    char note[64];
+    snprintf(note, sizeof note, "each error drawn %d px wide", 2 * shadowdiff_magnify_radius(app.height) + 1);
+    ok = ok && gallery_page_write(dir, rows, row_count, key, SHADOWDIFF_PIXEL_KIND_COUNT, note);
     free(rows);
     return ok;
 }
@@ -743,65 +753,120 @@ static int app_skips_text(char *out, size_t size) {
 
 /* ---- the window ---- */
 
-/* The HUD over a frame of `width` x `height`: in the window (frame < 0)
- * with the frame time and the help; in a headless picture with the
- * frame's number and time instead, so that the same command gives the
- * same picture. */
-static void app_hud(int width, int height, int frame) {
+/* The technique's settings for the HUD: each one a key changes, and
+ * each other one that is not at its default (a flag's), as "[K] name:
+ * value" (the key where it has one). */
+static int app_settings_text(const technique *t, char *out, size_t size) {
+    int n = 0;
+    out[0] = '\0';
+    for (int k = 0; k < t->param_count && n < (int)size; k++) {
+        const flags_param *p = &t->params[k];
+        if (!p->key && !technique_param_changed(p))
+            continue;
+        char value[32], key[8] = "";
+        technique_param_text(p, value, sizeof value);
+        if (p->key)
+            snprintf(key, sizeof key, "[%c] ", p->key);
+        n += snprintf(out + n, size - (size_t)n, "%s%s%s: %s", n ? "   " : "", key, p->name, value);
+    }
+    return n < (int)size ? n : (int)size - 1;
+}
+
+/* The HUD's text, for a lecture (--verbose prints it at the end): the
+ * tour's caption, the technique and scene, the technique's state line and its
+ * settings; compact (Tab, and compare mode's caption strip) the caption,
+ * the technique and its settings alone. The skips' counters follow with
+ * --verbose or F3. In the window (frame < 0) with the frame time, the
+ * help and the last note (a saved screenshot, a scene that did not load);
+ * in a headless picture with the frame's number and time instead, so
+ * that the same command gives the same picture. */
+static void app_hud_text(char *text, size_t size, int frame) {
     const technique *t = app_technique();
-    char text[4096], timing[64];
+    bool compact = app.hud_compact || app.compare_on;
+    char timing[64], scene_name[PATH_MAX];
     if (frame < 0)
         snprintf(timing, sizeof timing, "%.2f ms/frame (CPU)", app.frame_ms);
     else
         snprintf(timing, sizeof timing, "frame %d at %.3f s", frame, app.time);
-    int n = app.tour_path ? snprintf(text, sizeof text, "step %d/%d   %s\n", app.tour_step + 1, app.tour.step_count,
-                                     app.tour.steps[app.tour_step].caption)
-                          : 0;
-    n += snprintf(text + n, sizeof text - (size_t)n, "%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1,
-                  app.technique_count, t->name, t->title, app.scene_path, app.target.width, app.target.height, timing,
-                  app_motion() ? "   moving: " : "", app_motion() ? motion_names[app_motion()] : "");
-    if (n < (int)sizeof text)
-        n += app_skips_text(text + n, sizeof text - (size_t)n);
-    /* The compact HUD ends at the skips. */
-    if (!app.hud_compact && n < (int)sizeof text)
-        n += snprintf(text + n, sizeof text - (size_t)n, "\n");
-    if (!app.hud_compact && t->describe && n < (int)sizeof text) {
-        t->describe(text + n, sizeof text - (size_t)n);
+    if (!path_stem(app.scene_path, scene_name, sizeof scene_name))
+        snprintf(scene_name, sizeof scene_name, "%s", app.scene_path);
+    int n = 0;
+#define APP_HUD(...) (n += n < (int)size ? snprintf(text + n, size - (size_t)n, __VA_ARGS__) : 0)
+    if (app.tour_path)
+        APP_HUD("step %d/%d   %s\n", app.tour_step + 1, app.tour.step_count, app.tour.steps[app.tour_step].caption);
+    if (compact)
+        APP_HUD("%s on %s   %s\n", t->name, scene_name, timing);
+    else
+        APP_HUD("%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1, app.technique_count, t->name, t->title,
+                scene_name, app.target.width, app.target.height, timing, app_motion() ? "   moving: " : "",
+                app_motion() ? motion_names[app_motion()] : "");
+    if (!compact && t->describe && n < (int)size) {
+        t->describe(text + n, size - (size_t)n);
         n += (int)strlen(text + n);
-        n += snprintf(text + n, sizeof text - (size_t)n, "\n");
+        APP_HUD("\n");
     }
     const scene *s = app.gpu.scene;
-    for (int l = 0; !app.hud_compact && l < s->light_count && n < (int)sizeof text; l++)
+    for (int l = 0; !compact && l < s->light_count; l++)
         if (s->lights[l].radius > 0)
-            n += snprintf(text + n, sizeof text - (size_t)n, "light %d: area light, radius %g%s: %s\n", l,
-                          s->lights[l].radius, s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
-                          technique_area_light_text(t, &s->lights[l]));
-    for (int k = 0; !app.hud_compact && k < t->param_count && n < (int)sizeof text; k++) {
-        const flags_param *p = &t->params[k];
-        char value[32];
-        technique_param_text(p, value, sizeof value);
-        char key[8] = "";
-        if (p->key)
-            snprintf(key, sizeof key, "[%c] ", p->key);
-        n += snprintf(text + n, sizeof text - (size_t)n, "%s%s: %s   ", key, p->name, value);
-        if (k % 4 == 3 && k + 1 < t->param_count && n < (int)sizeof text)
-            n += snprintf(text + n, sizeof text - (size_t)n, "\n");
+            APP_HUD("light %d: area light, radius %g%s: %s\n", l, s->lights[l].radius,
+                    s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
+                    technique_area_light_text(t, &s->lights[l]));
+    if (n < (int)size)
+        n += app_settings_text(t, text + n, size - (size_t)n);
+    if (!compact && app.hud_counters && n < (int)size) {
+        APP_HUD("\n");
+        if (n < (int)size)
+            n += app_skips_text(text + n, size - (size_t)n);
     }
-    if (frame < 0 && n < (int)sizeof text && app.show_help)
-        n += snprintf(
-            text + n, sizeof text - (size_t)n,
-            "\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
-            "1-%d: technique   PgUp/PgDn: scene   0: reset view   A: compare   K U X J: skips   Tab: compact HUD   "
-            "F12: screenshot   H: hide help   Esc: quit",
-            app.technique_count);
-    else if (frame < 0 && n < (int)sizeof text)
-        n += snprintf(text + n, sizeof text - (size_t)n, "\nH: help");
-    if (frame < 0 && n < (int)sizeof text && glfwGetTime() < app.note_until)
-        snprintf(text + n, sizeof text - (size_t)n, "\n%s", app.note);
-    /* In compare mode over the technique's cells, the left half. */
-    int hud_width = app.compare_on ? width / 2 : width;
-    glViewport(0, 0, hud_width, height);
-    hud_draw(text, hud_width, height, app.hud_scale);
+    if (frame < 0 && app.show_help)
+        APP_HUD("\ndrag: orbit (Shift: below too)   scroll: zoom   arrows: move light   space: animate light\n"
+                "1-%d: technique   PgUp/PgDn: scene   0: reset view   A: compare   K U X I J: skips   F3: their "
+                "counters   Tab: compact HUD   F12: screenshot   H: hide help   Esc: quit",
+                app.technique_count);
+    else if (frame < 0)
+        APP_HUD("   H: help");
+    if (frame < 0 && glfwGetTime() < app.note_until)
+        APP_HUD("\n%s", app.note);
+#undef APP_HUD
+}
+
+/* The HUD (app_hud_text) over a frame of `width` x `height`. */
+static void app_hud(int width, int height, int frame) {
+    char text[4096];
+    app_hud_text(text, sizeof text, frame);
+    /* In compare mode in its caption strip, over no cell, at the scale
+     * of the whole picture's HUD where that fits. */
+    int room = app.compare_on ? app.comparing.strip_height * height / app.comparing.picture.height : height;
+    glViewport(0, height - room, width, room);
+    hud_draw(text, width, room, hud_scale_to_fit(text, width, room, app.hud_scale, height));
+}
+
+/* app_load_scene, what it says on stderr also kept: its first line into
+ * `problem` (for the HUD: nobody in a lecture hall sees the terminal),
+ * the whole still on stderr. */
+static bool app_load_scene_saying(const char *path, char *problem, size_t size) {
+    fflush(stderr);
+    FILE *said = tmpfile();
+    int saved = said ? dup(STDERR_FILENO) : -1;
+    bool redirected = saved >= 0 && dup2(fileno(said), STDERR_FILENO) >= 0;
+    bool loaded = app_load_scene(path);
+    fflush(stderr);
+    if (redirected)
+        dup2(saved, STDERR_FILENO);
+    if (saved >= 0)
+        close(saved);
+    snprintf(problem, size, "%s (see stderr)", path);
+    if (!said)
+        return loaded;
+    rewind(said);
+    char line[PATH_MAX + 256];
+    for (bool first = true; fgets(line, sizeof line, said); first = false) {
+        fputs(line, stderr);
+        if (first)
+            snprintf(problem, size, "%.*s", (int)strcspn(line, "\n"), line);
+    }
+    fclose(said);
+    return loaded;
 }
 
 /* Page Down / Up: the next or previous scene of the current one's
@@ -813,12 +878,15 @@ static void app_switch_scene(int step) {
         return;
     technique_host_stop(&app.host);
     app_unload_scene();
-    bool loaded = app_load_scene(path);
+    char problem[sizeof app.note] = "";
+    bool loaded = app_load_scene_saying(path, problem, sizeof problem);
     if (loaded) {
         snprintf(app.paged_scene, sizeof app.paged_scene, "%s", path);
         app.scene_path = app.paged_scene;
+        snprintf(app.note, sizeof app.note, "scene %s", path);
+    } else {
+        snprintf(app.note, sizeof app.note, "did NOT load: %s", problem);
     }
-    snprintf(app.note, sizeof app.note, loaded ? "scene %s" : "scene %s did NOT load (see stderr)", path);
     app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
     app.time = 0;
     if ((!loaded && !app_load_scene(app.scene_path)) || !app_start_technique(app.current))
@@ -872,6 +940,7 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
     case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
+    case GLFW_KEY_F3: app.hud_counters = !app.hud_counters; return;
     case APP_COMPARE_KEY:
         if (!app_set_compare(!app.compare_on))
             glfwSetWindowShouldClose(w, GLFW_TRUE);
@@ -884,14 +953,12 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     case GLFW_KEY_UP: pitch = APP_LIGHT_STEP_RAD; break;
     case GLFW_KEY_DOWN: pitch = -APP_LIGHT_STEP_RAD; break;
     case GLFW_KEY_F12: {
-        char prefix[64], path[PATH_MAX];
+        char prefix[64];
         snprintf(prefix, sizeof prefix, "screenshot-%s", app_technique()->name);
-        bool saved = path_numbered_unused(prefix, "png", path, sizeof path) && app_save_screenshot(path);
-        snprintf(app.note, sizeof app.note, saved ? "saved %s" : "screenshot NOT saved (%s: see stderr)",
-                 saved ? path : prefix);
-        app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
-        if (saved)
-            printf("%s\n", path);
+        if (!path_numbered_unused(prefix, "png", app.screenshot_asked, sizeof app.screenshot_asked)) {
+            snprintf(app.note, sizeof app.note, "screenshot NOT saved (%s: see stderr)", prefix);
+            app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
+        }
         return;
     }
     case APP_RESET_KEY:
@@ -941,6 +1008,22 @@ static void app_on_resize(GLFWwindow *w, int width, int height) {
     app.resized = true;
 }
 
+/* F12's picture: the window as it is about to be shown, HUD included;
+ * its path printed and noted on the HUD, or why not. */
+static void app_save_window(int width, int height) {
+    const char *path = app.screenshot_asked;
+    unsigned char *rgba = malloc((size_t)width * (size_t)height * 4);
+    bool saved = rgba && target_read_window_rgba(width, height, rgba) && image_write_png(path, width, height, rgba);
+    if (!rgba)
+        fprintf(stderr, "%s: out of memory for a %dx%d screenshot\n", path, width, height);
+    free(rgba);
+    snprintf(app.note, sizeof app.note, saved ? "saved %s" : "screenshot %s NOT saved (see stderr)", path);
+    app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
+    if (saved)
+        printf("%s\n", path);
+    app.screenshot_asked[0] = '\0';
+}
+
 /* Interactive when frames <= 0; otherwise that many frames, then exit
  * (how the window is tested under Xvfb). */
 static bool app_run_window(int frames) {
@@ -969,8 +1052,10 @@ static bool app_run_window(int frames) {
             ok = ok && app_hud_in_picture(-1);
         ok = ok && (!app.video.pipe || app_record_frame());
         target_blit_to_window(app_picture(), width, height);
-        if (frames <= 0 && !app.hud_in_pictures)
+        if (frames <= 0 && !app.hud_in_pictures && !app.no_hud)
             app_hud(width, height, -1);
+        if (app.screenshot_asked[0])
+            app_save_window(width, height);
         ok = ok && context_gl_ok("window");
         glfwSwapBuffers(w);
         glfwPollEvents();
@@ -1046,9 +1131,15 @@ static bool app_run(void) {
             fprintf(stderr, "%s: %s\n", app_technique()->name, line);
         }
         if (ok && app.verbose) {
-            char skips[512];
+            char skips[512], hud[4096];
             app_skips_text(skips, sizeof skips);
             fprintf(stderr, "%s\n", skips);
+            bool interactive = app.ctx.window && app.frames <= 0; /* its HUD's as the window's last */
+            app_hud_text(hud, sizeof hud, interactive ? -1 : (app.frames > 0 ? app.frames : 1) - 1);
+            for (char *line = hud, *end; *line; line = end + (*end == '\n')) {
+                end = line + strcspn(line, "\n");
+                fprintf(stderr, "hud: %.*s\n", (int)(end - line), line);
+            }
         }
         technique_host_stop(&app.host);
         app_unload_scene();

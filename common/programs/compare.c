@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "context.h"
+#include "hud.h"
 #include "legend.h"
 #include "scene.h"
 
@@ -17,16 +18,21 @@ enum { COMPARE_TRUTH, COMPARE_HEAT };
 /* Before the truth has a row, and the heat map before it has figures. */
 static const unsigned char compare_empty_grey = 24;
 
-/* The legend's lines at most: two on the cells, the kinds, three of
- * figures and one a class. */
-#define COMPARE_LEGEND_MAX_LINES (2 + SHADOWDIFF_PIXEL_KIND_COUNT + 3 + SHADOWDIFF_CLASS_COUNT)
+/* The legend's lines at most: one on the cells, the kinds, four of
+ * figures (misclassified, MAE, the discs, the truth) and one a class. */
+#define COMPARE_LEGEND_MAX_LINES (1 + SHADOWDIFF_PIXEL_KIND_COUNT + 4 + SHADOWDIFF_CLASS_COUNT)
 /* Decimals of the mean absolute errors, the whole one's and each class's. */
 #define COMPARE_MAE_DECIMALS 5
 
+int compare_strip_height(int height) {
+    return (COMPARE_STRIP_LINES * HUD_LINE_UNITS + 2 * HUD_MARGIN) * hud_scale_for(height);
+}
+
 bool compare_create(compare *c, int width, int height, const raytrace_settings *settings) {
-    *c = (compare){.cell_width = width / 2, .cell_height = height / 2};
+    int strip = compare_strip_height(height);
+    *c = (compare){.strip_height = strip, .cell_width = width / 2, .cell_height = (height - strip) / 2};
     if (c->cell_width < 1 || c->cell_height < 1) {
-        fprintf(stderr, "compare: a %dx%d picture has no room for four cells\n", width, height);
+        fprintf(stderr, "compare: a %dx%d picture has no room for a caption and four cells\n", width, height);
         return false;
     }
     size_t pixels = (size_t)c->cell_width * (size_t)c->cell_height;
@@ -85,16 +91,22 @@ static void compare_fill_truth(compare *c) {
     }
 }
 
-/* The heat map and figures of the decisions against the truth so far. */
-static void compare_measure(compare *c) {
+/* The heat map's error discs' radius. */
+static int compare_error_radius(const compare *c) { return shadowdiff_magnify_radius(c->cell_height); }
+
+/* The heat map and figures of the decisions against the truth so far;
+ * false when out of memory. */
+static bool compare_measure(compare *c) {
     /* Grey until measured, and after a mismatch, which shadowdiff does
      * not paint. */
     memset(c->heat_rgba, compare_empty_grey, (size_t)c->cell_width * (size_t)c->cell_height * 4);
     c->measured = false;
     if (c->decisions_of != c->shown.request || !c->shown.dump.width || !c->decisions.width)
-        return;
+        return true;
     const shadowdiff_settings settings = {.reference_name = "the truth", .test_name = "the technique"};
     c->measured = shadowdiff_compare(&c->shown.dump, &c->decisions, &settings, &c->result, c->heat_rgba);
+    return !c->measured ||
+           shadowdiff_heatmap_magnify(c->heat_rgba, c->cell_width, c->cell_height, compare_error_radius(c));
 }
 
 static void compare_upload(const compare *c, int cell, const unsigned char *rgba) {
@@ -121,7 +133,8 @@ bool compare_update(compare *c, const scene *s, int light, compare_capture captu
     if (!changed)
         return true;
     compare_fill_truth(c);
-    compare_measure(c);
+    if (!compare_measure(c))
+        return false;
     compare_upload(c, COMPARE_TRUTH, c->truth_rgba);
     compare_upload(c, COMPARE_HEAT, c->heat_rgba);
     return context_gl_ok("compare_update");
@@ -182,10 +195,8 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
     const shadowdiff_result *r = &c->result;
     int count = 0;
     char text[LEGEND_TEXT_MAX];
-    if (!brief) {
-        compare_legend_add(lines, &count, 0, NULL, "above: the technique | the ray-traced truth");
-        compare_legend_add(lines, &count, 0, NULL, "left: the heat map of its errors");
-    }
+    if (!brief)
+        compare_legend_add(lines, &count, 0, NULL, "above: technique | truth; left: errors");
     for (int k = 0; k < SHADOWDIFF_PIXEL_KIND_COUNT; k++) { /* each with its swatch */
         shadowdiff_pixel kind = shadowdiff_legend_kinds[k];
         int n = snprintf(text, sizeof text, "%s", shadowdiff_pixel_names[kind]);
@@ -215,9 +226,13 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
         snprintf(text, sizeof text, "mean absolute error %.*f", COMPARE_MAE_DECIMALS, r->mean_abs_error);
         compare_legend_add(lines, &count, 0, NULL, text);
         for (int k = 0; k < SHADOWDIFF_CLASS_COUNT; k++) {
+            if (r->class_pixels[k] == 0) /* a class the view does not hold */
+                continue;
             shadowdiff_class_figures_text(r, (shadowdiff_class)k, COMPARE_MAE_DECIMALS, text, sizeof text);
             compare_legend_add(lines, &count, 0, NULL, text);
         }
+        snprintf(text, sizeof text, "each error drawn %d px wide", 2 * compare_error_radius(c) + 1);
+        compare_legend_add(lines, &count, 0, NULL, text);
         compare_legend_add(lines, &count, 0, NULL, truth);
     } else {
         compare_legend_add(lines, &count, 0, NULL, "no figures yet");
@@ -232,7 +247,7 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
  * where the cell is too small for all of it (smaller still: cut at the
  * cell's edge). */
 static void compare_draw_legend(const compare *c) {
-    int x0 = c->cell_width, y0 = c->cell_height; /* the cell's top-left, from the picture's top */
+    int x0 = c->cell_width, y0 = c->strip_height + c->cell_height; /* the cell's top-left, from the picture's top */
     legend_line lines[COMPARE_LEGEND_MAX_LINES];
     int count = compare_legend_lines(c, false, lines);
     int scale = legend_scale_to_fit(lines, count, c->cell_width, c->cell_height, c->picture.height);
@@ -242,8 +257,10 @@ static void compare_draw_legend(const compare *c) {
     }
     glViewport(0, 0, c->picture.width, c->picture.height);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(x0, c->picture.height - 2 * c->cell_height, c->cell_width, c->cell_height);
     glClearColor(legend_panel_color[0], legend_panel_color[1], legend_panel_color[2], 1);
+    glScissor(x0, c->picture.height - y0 - c->cell_height, c->cell_width, c->cell_height);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glScissor(0, c->picture.height - c->strip_height, c->picture.width, c->strip_height); /* the caption's */
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
     legend_draw(lines, count, x0, y0, scale ? scale : 1);
@@ -264,11 +281,11 @@ bool compare_draw(compare *c, const target *cell) {
     glClear(GL_COLOR_BUFFER_BIT);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, cell->framebuffer);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, c->picture.framebuffer);
-    int top = c->picture.height - c->cell_height;
-    glBlitFramebuffer(0, 0, c->cell_width, c->cell_height, 0, top, c->cell_width, c->picture.height,
+    int top = c->picture.height - c->strip_height;
+    glBlitFramebuffer(0, 0, c->cell_width, c->cell_height, 0, top - c->cell_height, c->cell_width, top,
                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    compare_blit_cell(c, COMPARE_TRUTH, c->cell_width, 0);
-    compare_blit_cell(c, COMPARE_HEAT, 0, c->cell_height);
+    compare_blit_cell(c, COMPARE_TRUTH, c->cell_width, c->strip_height);
+    compare_blit_cell(c, COMPARE_HEAT, 0, c->strip_height + c->cell_height);
     target_bind(&c->picture);
     compare_draw_legend(c);
     return context_gl_ok("compare_draw");

@@ -1,6 +1,8 @@
 /* compare: compare mode (`--compare`, key A), the technique beside the
- * ray-traced truth of the same view. The picture is four cells, each half
- * the picture's width and height:
+ * ray-traced truth of the same view. The picture is a caption strip
+ * across the top, COMPARE_STRIP_LINES of the HUD's lines tall (the app's
+ * HUD goes there, over no cell), and four cells below it, each half the
+ * picture's width and half the rest of its height:
  *   top left      the technique's frame (the app renders it at the cell's
  *                 size);
  *   top right     the truth (truth.h: Embree in a background thread,
@@ -8,12 +10,15 @@
  *                 yet repeats the nearest traced row above it;
  *   bottom left   shadowdiff's heat map of the technique's decisions
  *                 against the truth traced so far (shadowdiff.h; rows not
- *                 traced yet are black, "no surface", and not compared);
+ *                 traced yet are black, "no surface", and not compared),
+ *                 each error grown to a disc (shadowdiff_heatmap_magnify)
+ *                 so that a few wrong pixels show in a hall;
  *   bottom right  the heat map's legend (shadowdiff_pixel_colors and
  *                 names), the figures (misclassified %, false shadow and
  *                 false lit, mean absolute error, compared pixels, and
- *                 each of shadowdiff's classes' MAE and pixels) and how
- *                 far the truth is.
+ *                 the MAE and pixels of each of shadowdiff's classes that
+ *                 has pixels), how wide the error discs are and how far
+ *                 the truth is.
  *
  *   compare c;
  *   compare_create(&c, width, height, &settings);        the picture's size
@@ -50,7 +55,12 @@
  * the cell's size (capture_dump); false after saying why. */
 typedef bool (*compare_capture)(int light, dump_frame *out);
 
+/* The caption strip's height in the HUD's lines (hud.h, at
+ * hud_scale_for(the picture's height)). */
+#define COMPARE_STRIP_LINES 4
+
 typedef struct compare {
+    int strip_height; /* pixels, at the picture's top */
     int cell_width, cell_height;
     target picture; /* the four cells */
     truth truth;
@@ -66,6 +76,8 @@ typedef struct compare {
     bool show_seconds; /* the truth's time in the legend (the window; not in pictures) */
 } compare;
 
+/* The caption strip's height for a picture `height` pixels tall. */
+int compare_strip_height(int height);
 /* False after one line on stderr (nothing to destroy). */
 bool compare_create(compare *c, int width, int height, const raytrace_settings *settings);
 bool compare_update(compare *c, const scene *s, int light, compare_capture capture, bool wait);

@@ -131,6 +131,11 @@ const char *shadow_map_kind_name(shadow_map_kind kind) {
     return names[kind];
 }
 
+void shadow_map_size_text(const shadow_map_settings *settings, const shadow_map *m, char *out, size_t size) {
+    snprintf(out, size, "%s map %s%d", shadow_map_kind_name(m->kind), settings->map_size == 0 ? "auto: " : "",
+             m->size);
+}
+
 unsigned shadow_map_target(shadow_map_kind kind) {
     static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D,
                                      [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,

@@ -659,6 +659,10 @@ unsigned shadow_map_layer_image(shadow_map_kind kind, int layer);
 void shadow_map_texture_filter(unsigned target, int filter);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *shadow_map_kind_name(shadow_map_kind kind);
+/* The map as HUD lines name it: its kind and size as chosen ("2D map
+ * auto: 4096" where --map-size is auto, "cube map 1024" where it is
+ * given). */
+void shadow_map_size_text(const shadow_map_settings *settings, const shadow_map *m, char *out, size_t size);
 
 /* ---- fitting (shadow_map_fit.c) ---- */
 
