@@ -776,7 +776,7 @@ static bool report_write_ruler(FILE *f) {
         {"penumbra_mae", "penumbra MAE", "%.5f"},
         {"penumbra_pixels", "penumbra pixels", "%.0f"},
         {"lit_mae", "lit MAE", "%.6f"},
-        {"mae", "MAE", "%.5f"},
+        {"mean_abs_error", "MAE", "%.5f"},
         {"misclassified_percent", "misclassified %", "%.3f"},
     };
     enum { FIGURE_COUNT = sizeof figures / sizeof *figures };
