@@ -835,12 +835,13 @@ static bool report_write_markdown(const char *path, const report_stamp *s) {
     FILE *f = report_create(path);
     if (!f)
         return false;
-    fprintf(f,
-            "# Shadow techniques: the results\n\n"
-            "Commit %s; %s; machine %s (%s); renderer %s; frame size %s.\n\n"
-            "Written by `make report` from the runs below (`make bench`, `make stress`): every figure here is "
-            "a run's own, none copied by hand.\n\n## Current figures\n\n",
-            s->commit, s->date, s->machine, s->cpu, s->renderers, s->sizes);
+    fprintf(
+        f,
+        "# Shadow techniques: the results\n\n"
+        "Commit %s; %s; machine %s (%s); renderer %s; frame size %s.\n\n"
+        "Written by `make report` from the runs below (`make bench`, `make stress`, `make ruler`): every figure here is "
+        "a run's own, none copied by hand.\n\n## Current figures\n\n",
+        s->commit, s->date, s->machine, s->cpu, s->renderers, s->sizes);
     report_write_compact(f, s);
     for (int t = 0; t < REPORT_TABLE_COUNT; t++)
         report_write_table(f, &report_tables[t]);
