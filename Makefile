@@ -54,7 +54,7 @@ $(BUILD)/glad/gl.o: LAYER_INCLUDES = $(GLAD_INCLUDE)
 $(BUILD)/demos/%.o: LAYER_INCLUDES = $(INCLUDES_demos)
 $(BUILD)/common/programs/%.o: LAYER_INCLUDES = $(INCLUDES_programs)
 $(BUILD)/common/programs/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs) -Idemos
-$(BUILD)/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs)
+$(BUILD)/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs) -Idemos
 $(BUILD)/tests/%.o: LAYER_INCLUDES = -Itests -Idemos -Idemos/lib $(INCLUDES_programs)
 
 COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) common/programs/app.c common/programs/compare.c

@@ -44,11 +44,14 @@ int support_run(const char *command, char *stderr_text, size_t capacity) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/* The helpers' frame size, where `flags` give none. */
+static const char *support_default_size(const char *flags) { return strstr(flags, "--size") ? "" : "--size 640x360"; }
+
 const char *support_verbose_line(const char *program, const char *scene, const char *flags, const char *marker) {
     static char text[16384];
     char command[2048];
-    snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --frames 1 --verbose",
-             support_program(program), scene, flags);
+    snprintf(command, sizeof command, "%s %s --scene %s %s %s --verbose", support_program(program),
+             support_default_size(flags), scene, flags, strstr(flags, "--frames") ? "" : "--frames 1");
     assert_int_equal(support_run(command, text, sizeof text), 0);
     return strstr(text, marker);
 }
@@ -87,8 +90,8 @@ double support_compare_images(const char *golden, const char *actual) {
 int support_dump(const char *program, const char *scene, const char *flags, const char *dir) {
     static char err[16384];
     char command[2048];
-    snprintf(command, sizeof command, "%s --size 640x360 --scene %s %s --dump %s", support_program(program), scene,
-             flags, dir);
+    snprintf(command, sizeof command, "%s %s --scene %s %s --dump %s", support_program(program),
+             support_default_size(flags), scene, flags, dir);
     return support_run(command, err, sizeof err);
 }
 

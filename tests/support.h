@@ -67,13 +67,16 @@ const char *support_xvfb_run(void);
 /* The first of the count files `names` that differs between directories
  * a and b (or is missing from one), or NULL when all are byte-identical. */
 const char *support_first_difference(const char *a, const char *b, const char *const *names, size_t count);
-/* Runs `PROGRAM --size 640x360 --scene SCENE FLAGS --frames 1 --verbose`,
- * fails the running cmocka test unless it exits 0, and returns the first
- * line of its stderr that starts with `marker` (the line goes on to the
- * end of the text), or NULL. The text lives until the next call. */
+/* Runs `PROGRAM --size 640x360 --scene SCENE FLAGS --frames 1 --verbose`
+ * (--size and --frames only where FLAGS do not give them: a flag that
+ * takes a value is given once), fails the running cmocka test unless it
+ * exits 0, and returns the first line of its stderr that starts with
+ * `marker` (the line goes on to the end of the text), or NULL. The text
+ * lives until the next call. */
 const char *support_verbose_line(const char *program, const char *scene, const char *flags, const char *marker);
 /* Runs `program --size 640x360 --scene SCENE FLAGS --dump DIR` (the
- * accuracy tests' size); returns its exit status. */
+ * accuracy tests' size, where FLAGS give no --size); returns its exit
+ * status. */
 int support_dump(const char *program, const char *scene, const char *flags, const char *dir);
 /* The ray-traced reference and PROGRAM's dump of `scene` at `size`
  * ("--size WxH", or "" for 640x360) with `flags`, in

@@ -29,8 +29,10 @@
  * its two timed frames), each the last timed frame of a run of its own. */
 #define DOLLY_FIRST_OUT OUT "-dolly-first"
 #define DOLLY_LAST_OUT OUT "-dolly-last"
-#define DOLLY_RUN SMALL_RUN " --motion dolly --technique shadowmap"
-#define SMALL_RUN "--quick --frames 2 --configs defaults assets/scenes/simple.json"
+#define DOLLY_FLAGS SMALL_SCENE " --motion dolly --technique shadowmap"
+#define DOLLY_RUN "--frames 2 " DOLLY_FLAGS
+#define SMALL_SCENE "--quick --configs defaults assets/scenes/simple.json"
+#define SMALL_RUN "--frames 2 " SMALL_SCENE
 /* An area light's scene, every shadowmap configuration: the penumbra's
  * figures, its plot and its front. */
 #define SOFT_OUT OUT "-soft"
@@ -99,7 +101,7 @@ static int run_bench(void **state) {
         {SELECT_OUT, SMALL_RUN " --technique planar"},
         {LIGHT_OUT, SMALL_RUN " --motion light --skips-compare --scaling --technique volumes"},
         {DOLLY_OUT, DOLLY_RUN},
-        {DOLLY_FIRST_OUT, DOLLY_RUN " --frames 1"},
+        {DOLLY_FIRST_OUT, "--frames 1 " DOLLY_FLAGS},
         {DOLLY_LAST_OUT, DOLLY_RUN " --error-frames 1"},
         {SOFT_OUT, SOFT_RUN},
     };

@@ -38,6 +38,73 @@ static void test_unknown_flag(void **state) {
     expect_failure("--frames 1 --bogus", EXIT_USAGE, "unknown flag", "--bogus");
 }
 
+/* Runs `program args` (args may go on as a shell command list, and send
+ * stdout to stderr) and checks the status and that stderr is one line
+ * containing `expect`. */
+static void expect_line(const char *program, const char *args, int status, const char *expect) {
+    char command[2048];
+    snprintf(command, sizeof command, "{ %s %s; }", support_program(program), args);
+    int got = support_run(command, err, sizeof err);
+    if (got != status || support_count_lines(err) != 1 || !strstr(err, expect))
+        fail_msg("%s %s: exit %d, said \"%s\"; expected exit %d and one line with \"%s\"", program, args, got, err,
+                 status, expect);
+}
+
+/* A flag the program does not have: the nearest of its own when a typo
+ * away, and the other techniques' programs that have it. */
+static void test_unknown_flag_suggestions(void **state) {
+    (void)state;
+    expect_line("planar", "--frame 1", EXIT_USAGE, "planar: unknown flag '--frame', did you mean --frames?");
+    expect_line("planar", "--stencil", EXIT_USAGE, "did you mean --no-stencil?");
+    expect_line("shadows", "--tecnique psm", EXIT_USAGE, "did you mean --technique?");
+    /* Named as this one is run: beside it, in $BUILD. */
+    const char *build = getenv("BUILD") ? getenv("BUILD") : "build";
+    char expected[512];
+    snprintf(expected, sizeof expected,
+             "shadowmap: unknown flag '--warp': %s/psm (or %s/shadows --technique psm) has it", build, build);
+    expect_line("shadowmap", "--warp psm", EXIT_USAGE, expected);
+    snprintf(expected, sizeof expected,
+             "%s/psm (or %s/shadows --technique psm) and %s/cascades (or %s/shadows --technique cascades) have it",
+             build, build, build, build);
+    expect_line("planar", "--filter pcf3", EXIT_USAGE, expected);
+    expect_line("shadows", "--receiver ground", EXIT_USAGE, "shadows: unknown flag '--receiver' (see --help)");
+}
+
+/* A flag that takes a value, given twice (the first value would be
+ * silently lost), whether the app's or a technique's; a toggle or switch
+ * given twice is harmless. */
+static void test_value_flag_given_twice(void **state) {
+    (void)state;
+    expect_line("shadows", "--scene a.json --scene b.json", EXIT_USAGE,
+                "shadows: --scene given twice, 'a.json' then 'b.json'");
+    expect_line("shadows", "--map-size 512 --filter pcf3 --map-size=1024", EXIT_USAGE, "--map-size given twice");
+    expect_line("raytrace", "--size 64x36 --size 32x18", EXIT_USAGE, "--size given twice");
+    expect_line("shadowdiff", "a b --receiver ground --receiver box", EXIT_USAGE, "--receiver given twice");
+    expect_line("planar", "--backend egl --size 64x36 --frames 1 --no-stencil --no-stencil --hud --hud 1>&2", 0,
+                "1 frame of");
+}
+
+/* Pictures are PNG: a path ending otherwise is refused before anything
+ * runs, and nothing is written there. */
+static void test_pictures_must_be_png(void **state) {
+    (void)state;
+    static const char *const cases[][2] = {
+        {"planar", "--backend egl --size 64x36 --screenshot out/test/picture.jpg"},
+        {"shadows", "--backend egl --size 64x36 --screenshot out/test/picture.jpg"},
+        {"raytrace", "--size 64x36 --screenshot out/test/picture.jpg"},
+    };
+    assert_int_equal(system("mkdir -p out/test && rm -f out/test/picture.jpg"), 0);
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        expect_line(cases[i][0], cases[i][1], EXIT_USAGE,
+                    "--screenshot: expected a file name ending in .png, got 'out/test/picture.jpg'");
+        assert_int_equal(system("test -e out/test/picture.jpg"), 256);
+    }
+    expect_line("shadowdiff", "a b --heatmap out/test/heat.gif", EXIT_USAGE,
+                "--heatmap: expected a file name ending");
+    expect_line("planar", "--backend egl --size 64x36 --screenshot out/test/upper_case.PNG && ls out/test/*.PNG 1>&2",
+                0, "out/test/upper_case.PNG");
+}
+
 static void test_malformed_values(void **state) {
     (void)state;
     expect_failure("--size 640by480", EXIT_USAGE, "--size", "640by480");
@@ -267,6 +334,9 @@ static void test_gl_error_in_any_technique_fails(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unknown_flag),
+        cmocka_unit_test(test_unknown_flag_suggestions),
+        cmocka_unit_test(test_value_flag_given_twice),
+        cmocka_unit_test(test_pictures_must_be_png),
         cmocka_unit_test(test_malformed_values),
         cmocka_unit_test(test_bad_technique_parameters),
         cmocka_unit_test(test_missing_scene),

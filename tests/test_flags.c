@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "flags.h"
+#include "support.h"
 
 #define TEST_MAX_ITEMS 3
 
@@ -17,7 +18,7 @@ static struct {
     bool no_stencil, other_no_stencil, verbose;
     int filter, frames, width, height, item_count, rest_count, pick_count;
     float bias;
-    const char *scene;
+    const char *scene, *shot, *warp;
     const char *items[TEST_MAX_ITEMS], *rest[TEST_MAX_ITEMS], *picks[TEST_MAX_ITEMS];
 } v;
 
@@ -38,12 +39,24 @@ static const flags_param params[] = {
      .max = TEST_MAX_ITEMS, .what = "names"},
     {"gallery", "the rest", 0, FLAGS_LIST, .items = v.rest, .count = &v.rest_count, .min = 2, .max = TEST_MAX_ITEMS,
      .what = "DIR then a scene"},
+    {"shot", "a picture", 0, FLAGS_STRING, .text = &v.shot, .extension = ".png", .value_name = "PATH.png"},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 enum { param_count = sizeof params / sizeof *params };
 
-/* Parses a space-separated command line (no program name). */
-static int parse(const char *line) {
+/* Another program's table, for an unknown flag's error. */
+static const flags_param other_params[] = {
+    {"warp", "how the map is placed", 0, FLAGS_STRING, .text = &v.warp},
+};
+static const flags_elsewhere elsewhere[] = {
+    {"build/psm", other_params, 1},
+    {"build/nothing", NULL, 0},
+    {"build/cascades", other_params, 1},
+};
+
+/* Parses a space-separated command line (no program name), with the
+ * first `others` programs of `elsewhere`. */
+static int parse_among(const char *line, int others) {
     static char copy[512];
     char *words[64];
     int n = 0;
@@ -51,8 +64,10 @@ static int parse(const char *line) {
     for (char *rest = copy, *word; (word = strtok_r(rest, " ", &rest));)
         words[n++] = word;
     flags_reset(params, param_count);
-    return flags_parse("test", params, param_count, n, words);
+    return flags_parse_among("test", params, param_count, n, words, elsewhere, others);
 }
+
+static int parse(const char *line) { return parse_among(line, 0); }
 
 static void test_every_kind(void **state) {
     (void)state;
@@ -118,6 +133,62 @@ static void test_bad_command_lines(void **state) {
     assert_int_equal(parse("-h"), FLAGS_HELP_ASKED);
 }
 
+/* Bad command lines whose one line names the problem: a value given
+ * twice (a list collects, a switch or toggle given again says the same
+ * again), a name without the extension, an unknown flag (the nearest of
+ * the table's when few edits away, a toggle as --no-NAME; the first
+ * `others` programs of `elsewhere` that have it). */
+static const struct {
+    const char *line;
+    int others;
+    const char *expected;
+} named_errors[] = {
+    {"a --scene s.json --scene t.json", 0, "test: --scene given twice, 's.json' then 't.json'"},
+    {"a --frames=3 --frames 3", 0, "--frames given twice"},
+    {"a --filter pcf3 --no-stencil --filter none", 0, "--filter given twice"},
+    {"a --size 64x36 --size=64x36", 0, "--size given twice"},
+    {"a --bias 2 --bias 3", 0, "--bias given twice"},
+    {"a --shot x.jpg", 0, "test: --shot: expected a file name ending in .png, got 'x.jpg'"},
+    {"a --shot .png", 0, "ending in .png"},
+    {"a --shot png", 0, "ending in .png"},
+    {"a --frame 3", 0, "test: unknown flag '--frame', did you mean --frames? (see --help)"},
+    {"a --verbsoe", 0, "did you mean --verbose?"},
+    {"a --scne x", 0, "did you mean --scene?"},
+    {"a -scene x", 0, "did you mean --scene?"},
+    {"a --stencil", 0, "unknown flag '--stencil', did you mean --no-stencil?"},
+    {"a --no-filtre", 0, "unknown flag '--no-filtre' (see --help)"},
+    {"a --sz", 0, "unknown flag '--sz' (see --help)"},
+    {"a --bogus", 0, "unknown flag '--bogus' (see --help)"},
+    {"a --warp psm", 1, "test: unknown flag '--warp': build/psm has it (see --help)"},
+    {"a --warp psm", 3, "unknown flag '--warp': build/psm and build/cascades have it (see --help)"},
+    {"a --frame 3", 3, "did you mean --frames? (see --help)"},
+};
+
+static void test_errors_name_the_problem(void **state) {
+    (void)state;
+    for (size_t i = 0; i < sizeof named_errors / sizeof *named_errors; i++) {
+        support_capture_stderr();
+        int status = parse_among(named_errors[i].line, named_errors[i].others);
+        const char *text = support_release_stderr();
+        if (status != FLAGS_EXIT_USAGE || support_count_lines(text) != 1 || !strstr(text, named_errors[i].expected))
+            fail_msg("%s: status %d, said \"%s\", expected one line with \"%s\"", named_errors[i].line, status, text,
+                     named_errors[i].expected);
+    }
+}
+
+/* What the errors above refuse, the good cases of it: switches, toggles
+ * and lists given again; a name with the extension in any case. */
+static void test_repeats_and_extensions_that_pass(void **state) {
+    (void)state;
+    assert_int_equal(parse("a --no-stencil --verbose --no-stencil --verbose --pick x --pick y"), 0);
+    assert_true(v.no_stencil && v.other_no_stencil && v.verbose);
+    assert_int_equal(parse("a --scene s.json b"), 0); /* the reset forgets what was given */
+    assert_int_equal(parse("a --scene s.json b"), 0);
+    assert_int_equal(parse("a --shot out/x.png"), 0);
+    assert_string_equal(v.shot, "out/x.png");
+    assert_int_equal(parse("a --shot X.PNG"), 0);
+}
+
 static void test_help_lists_every_flag(void **state) {
     (void)state;
     char *text = NULL;
@@ -177,6 +248,8 @@ int main(void) {
         cmocka_unit_test(test_list_stops_at_a_flag),
         cmocka_unit_test(test_list_repeats),
         cmocka_unit_test(test_bad_command_lines),
+        cmocka_unit_test(test_errors_name_the_problem),
+        cmocka_unit_test(test_repeats_and_extensions_that_pass),
         cmocka_unit_test(test_help_lists_every_flag),
         cmocka_unit_test(test_markdown_lists_every_flag),
     };

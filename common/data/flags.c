@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #define FLAGS_MAX_SIZE 16384
 #define FLAGS_NAME_MAX 64   /* a flag as typed, before any '=' */
@@ -11,6 +12,9 @@
 /* The widest flag text that keeps its help on its own line in --help;
  * wider ones (long choice lists) put the help on the next. */
 #define FLAGS_HELP_WIDTH 32
+/* A near miss: an unknown flag this many edits or fewer from a known one,
+ * and fewer than half its letters (a short flag is near everything). */
+#define FLAGS_SUGGEST_MAX_EDITS 2
 
 const char *flags_program_name(const char *argv0) {
     const char *slash = strrchr(argv0, '/');
@@ -74,6 +78,12 @@ static bool flags_names(const flags_param *p, const char *flag) {
     return strcmp(p->kind == FLAGS_TOGGLE ? flag + 3 : flag, p->name) == 0;
 }
 
+/* Whether text is a name, then `ending` in any case. */
+static bool flags_ends_with(const char *text, const char *ending) {
+    size_t n = strlen(text), k = strlen(ending);
+    return n > k && strcasecmp(text + n - k, ending) == 0;
+}
+
 static bool flags_takes_value(flags_kind kind) {
     return kind == FLAGS_CHOICE || kind == FLAGS_NUMBER || kind == FLAGS_INT || kind == FLAGS_SIZE ||
            kind == FLAGS_STRING;
@@ -85,7 +95,12 @@ static int flags_set(const char *program, const flags_param *p, const char *valu
     switch (p->kind) {
     case FLAGS_TOGGLE: *p->disabled = true; return 0;
     case FLAGS_SWITCH: *p->on = true; return 0;
-    case FLAGS_STRING: *p->text = value; return 0;
+    case FLAGS_STRING:
+        if (p->extension && !flags_ends_with(value, p->extension))
+            return flags_error(program, "--%s: expected a file name ending in %s, got '%s'", p->name, p->extension,
+                               value);
+        *p->text = value;
+        return 0;
     case FLAGS_CHOICE:
         for (int c = 0; p->choices[c]; c++) {
             if (strcmp(value, p->choices[c]) == 0) {
@@ -148,7 +163,75 @@ static const flags_param *flags_find(const flags_param *params, int count, const
     return NULL;
 }
 
-int flags_parse(const char *program, const flags_param *params, int count, int argc, char *const *argv) {
+/* The optimal string alignment distance: insertions, deletions,
+ * substitutions and swaps of two neighbours, one edit each (up to
+ * FLAGS_NAME_MAX characters of each). */
+static int flags_distance(const char *a, const char *b) {
+    int n = (int)strnlen(a, FLAGS_NAME_MAX), m = (int)strnlen(b, FLAGS_NAME_MAX);
+    int d[FLAGS_NAME_MAX + 1][FLAGS_NAME_MAX + 1];
+    for (int i = 0; i <= n; i++)
+        d[i][0] = i;
+    for (int j = 0; j <= m; j++)
+        d[0][j] = j;
+    for (int i = 1; i <= n; i++) {
+        for (int j = 1; j <= m; j++) {
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            best = d[i - 1][j] + 1 < best ? d[i - 1][j] + 1 : best;
+            best = d[i][j - 1] + 1 < best ? d[i][j - 1] + 1 : best;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    }
+    return d[n][m];
+}
+
+/* The table's flag nearest the unknown `flag`, as it is typed, into out;
+ * false when none is a near miss. A toggle is near as --no-NAME and as
+ * --NAME, what it turns off. */
+static bool flags_suggest(const flags_param *params, int count, const char *flag, char *out, size_t size) {
+    int letters = (int)strlen(flag + strspn(flag, "-")), best = FLAGS_SUGGEST_MAX_EDITS + 1;
+    for (const flags_param *p = params; p < params + count; p++) {
+        if (!p->name)
+            continue;
+        char typed[FLAGS_NAME_MAX], plain[FLAGS_NAME_MAX];
+        snprintf(typed, sizeof typed, "--%s%s", p->kind == FLAGS_TOGGLE ? "no-" : "", p->name);
+        snprintf(plain, sizeof plain, "--%s", p->name);
+        int distance = flags_distance(flag, typed), to_plain = flags_distance(flag, plain);
+        distance = to_plain < distance ? to_plain : distance;
+        if (distance < best && 2 * distance < letters) {
+            best = distance;
+            snprintf(out, size, "%s", typed);
+        }
+    }
+    return best <= FLAGS_SUGGEST_MAX_EDITS;
+}
+
+/* "unknown flag '--warpp', did you mean --warp?", then the other programs
+ * that have it: "; build/psm has it", "; A, B and C have it". */
+static int flags_unknown(const char *program, const flags_param *params, int count, const char *flag,
+                         const flags_elsewhere *elsewhere, int elsewhere_count) {
+    char near[FLAGS_NAME_MAX], suggestion[FLAGS_NAME_MAX + 32] = "", there[FLAGS_LINE_MAX] = "";
+    if (flags_suggest(params, count, flag, near, sizeof near))
+        snprintf(suggestion, sizeof suggestion, ", did you mean %s?", near);
+    int found = 0, n = 0;
+    for (int e = 0; e < elsewhere_count; e++)
+        found += flags_find(elsewhere[e].params, elsewhere[e].count, flag) != NULL;
+    for (int e = 0, k = 0; e < elsewhere_count && n < (int)sizeof there; e++) {
+        if (!flags_find(elsewhere[e].params, elsewhere[e].count, flag))
+            continue;
+        const char *separator = ++k == 1 ? (suggestion[0] ? "; " : ": ") : k == found ? " and " : ", ";
+        n += snprintf(there + n, sizeof there - (size_t)n, "%s%s", separator, elsewhere[e].program);
+    }
+    if (found && n < (int)sizeof there)
+        snprintf(there + n, sizeof there - (size_t)n, " %s it", found == 1 ? "has" : "have");
+    return flags_error(program, "unknown flag '%s'%s%s", flag, suggestion, there);
+}
+
+/* flags_parse_among, with what each entry's flag was first given (NULL:
+ * not yet), for a second to be refused. */
+static int flags_walk(const char *program, const flags_param *params, int count, int argc, char *const *argv,
+                      const flags_elsewhere *elsewhere, int elsewhere_count, const char **given) {
     const flags_param *positional = flags_find(params, count, NULL);
     int status = 0;
     for (int i = 0; i < argc && !status;) {
@@ -163,7 +246,7 @@ int flags_parse(const char *program, const flags_param *params, int count, int a
         snprintf(flag, sizeof flag, "%.*s", eq ? (int)(eq - arg) : (int)strlen(arg), arg);
         const flags_param *first = flags_find(params, count, flag);
         if (!first)
-            return flags_usage_error(program, "unknown flag", flag);
+            return flags_unknown(program, params, count, flag, elsewhere, elsewhere_count);
         if (first->kind == FLAGS_LIST) {
             if (eq)
                 status = flags_add(program, first, eq + 1);
@@ -187,11 +270,29 @@ int flags_parse(const char *program, const flags_param *params, int count, int a
             return flags_usage_error(program, "flag takes no value:", arg);
         if (first->kind == FLAGS_HELP)
             return FLAGS_HELP_ASKED;
+        const char **earlier = &given[first - params];
+        if (value && *earlier)
+            return flags_error(program, "%s given twice, '%s' then '%s': give it once", flag, *earlier, value);
+        *earlier = value;
         for (const flags_param *p = first; p < params + count && !status; p++)
             if (flags_names(p, flag))
                 status = flags_set(program, p, value);
     }
     return status || !positional ? status : flags_check_list(program, positional);
+}
+
+int flags_parse(const char *program, const flags_param *params, int count, int argc, char *const *argv) {
+    return flags_parse_among(program, params, count, argc, argv, NULL, 0);
+}
+
+int flags_parse_among(const char *program, const flags_param *params, int count, int argc, char *const *argv,
+                      const flags_elsewhere *elsewhere, int elsewhere_count) {
+    const char **given = calloc((size_t)count + 1, sizeof *given); /* + 1: a table may be empty */
+    if (!given)
+        return flags_error(program, "out of memory for %d flags", count);
+    int status = flags_walk(program, params, count, argc, argv, elsewhere, elsewhere_count, given);
+    free(given);
+    return status;
 }
 
 void flags_reset(const flags_param *params, int count) {

@@ -13,7 +13,9 @@
  *   FLAGS_INT     --NAME N: *integer, a whole number in [min, max], which
  *                 errors call `what` ("a count");
  *   FLAGS_SIZE    --NAME WxH: *width and *height, each 1..16384;
- *   FLAGS_STRING  --NAME TEXT: *text (a path, a directory, a name);
+ *   FLAGS_STRING  --NAME TEXT: *text (a path, a directory, a name), which
+ *                 must end in `extension` where one is given (".png", in
+ *                 any case: what the program writes there);
  *   FLAGS_LIST    arguments into items, *count of them, at least min and at
  *                 most max, which errors call `what`: with a name, --NAME
  *                 takes the arguments after it up to the next flag
@@ -25,7 +27,15 @@
  *                 program prints its usage.
  * A flag takes its value as "--name=value" or as the next argument. Several
  * entries may have one name (the multi-technique program's --no-offset):
- * the flag sets each of them.
+ * the flag sets each of them. A flag that takes a value is given once: a
+ * second value would silently win over the first, so it is an error;
+ * lists collect what each time gives, and a switch or toggle given twice
+ * says the same thing twice.
+ *
+ * An unknown flag's error names the program's own flag it is closest to,
+ * when few edits away (a typo: "did you mean --size?"), and the other
+ * programs of the suite that have it (flags_elsewhere: "build/psm has
+ * it").
  *
  * Every error is one line on stderr, "program: --flag: expected ..., got
  * 'value' (see --help)", and flags_parse returns FLAGS_EXIT_USAGE, the
@@ -71,6 +81,7 @@ typedef struct flags_param {
     int *integer;               /* INT */
     int *width, *height;        /* SIZE */
     const char **text;          /* STRING */
+    const char *extension;      /* STRING: the value's ending, any case; NULL: any */
     const char **items;         /* LIST: room for max */
     int *count;                 /* LIST */
     bool repeat;                /* LIST: one argument per --NAME, which repeats */
@@ -78,12 +89,24 @@ typedef struct flags_param {
     const char *value_name;     /* --help: "PATH", "K" (default by kind) */
 } flags_param;
 
+/* Another program's flags, for the error of an unknown flag: a flag that
+ * one of them has is named with it ("build/psm has it"). */
+typedef struct flags_elsewhere {
+    const char *program; /* how the error names it: "build/psm" */
+    const flags_param *params;
+    int count;
+} flags_elsewhere;
+
 /* argv[0] without its directory: what errors begin with. */
 const char *flags_program_name(const char *argv0);
 /* Walks the arguments (argv[0] is the first argument, not the program)
  * through the table. Returns 0, FLAGS_HELP_ASKED, or FLAGS_EXIT_USAGE after
  * printing the one-line error. */
 int flags_parse(const char *program, const flags_param *params, int count, int argc, char *const *argv);
+/* The same, an unknown flag's error also naming those of `elsewhere`
+ * (elsewhere_count of them) that have it. */
+int flags_parse_among(const char *program, const flags_param *params, int count, int argc, char *const *argv,
+                      const flags_elsewhere *elsewhere, int elsewhere_count);
 /* Every value back to zero, its default. */
 void flags_reset(const flags_param *params, int count);
 /* A NUMBER's value: its fallback while the field is 0. */

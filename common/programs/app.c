@@ -105,7 +105,7 @@ static const flags_param app_flags[] = {
     {"frames", "render N frames headless (time i/60 s), then exit", 0, FLAGS_INT, .integer = &app.frames, .min = 1,
      .max = APP_MAX_FRAMES, .what = "a count"},
     {"screenshot", "save the last frame (implies headless)", 0, FLAGS_STRING, .text = &app.screenshot,
-     .value_name = "PATH.png"},
+     .extension = ".png", .value_name = "PATH.png"},
     {"record",
      "every frame to a video through ffmpeg, 60 frames a second\n(frame i at i/60 s, in the window too: the same frames\ngive the same video)",
      0, FLAGS_STRING, .text = &app.record_path, .value_name = "PATH.mp4"},
@@ -246,7 +246,7 @@ static bool app_print_markdown(void) {
  * several techniques share (--no-offset) sets each of them. Returns 0 to
  * run, FLAGS_HELP_ASKED after --help or --flags-markdown, or an exit
  * status. */
-static int app_parse_flags(int argc, char **argv) {
+static int app_parse_flags(int argc, char **argv, const flags_elsewhere *elsewhere, int elsewhere_count) {
     int count = app_flag_count;
     for (int i = 0; i < app.technique_count; i++)
         count += app.techniques[i]->param_count;
@@ -259,7 +259,7 @@ static int app_parse_flags(int argc, char **argv) {
     for (int i = 0, n = app_flag_count; i < app.technique_count; i++)
         for (int k = 0; k < app.techniques[i]->param_count; k++)
             params[n++] = app.techniques[i]->params[k];
-    int status = flags_parse(app.program, params, count, argc - 1, argv + 1);
+    int status = flags_parse_among(app.program, params, count, argc - 1, argv + 1, elsewhere, elsewhere_count);
     free(params);
     app.hud_counters = app.verbose;
     if (status == FLAGS_HELP_ASKED)
@@ -555,11 +555,11 @@ static void app_leave_step(void) {
     app.step_technique = app.step_scene = false;
 }
 
-/* "P.png" -> "P-K.png": step k's (from 1) picture. */
+/* "P.png" -> "P-K.png" (--screenshot ends in .png, in any case): step
+ * k's (from 1) picture. */
 static bool app_step_screenshot(int k) {
     char path[PATH_MAX];
-    size_t n = strlen(app.screenshot);
-    int stem = n > 4 && strcmp(app.screenshot + n - 4, ".png") == 0 ? (int)(n - 4) : (int)n;
+    int stem = (int)(strlen(app.screenshot) - strlen(".png"));
     snprintf(path, sizeof path, "%.*s-%d.png", stem, app.screenshot, k + 1);
     if (!app_save_screenshot(path))
         return false;
@@ -1150,7 +1150,8 @@ static bool app_run(void) {
     return ok;
 }
 
-int app_main(int argc, char **argv, const technique *const *techniques, int technique_count) {
+int app_main(int argc, char **argv, const technique *const *techniques, int technique_count,
+             const flags_elsewhere *elsewhere, int elsewhere_count) {
     app.program = flags_program_name(argv[0]);
     if (technique_count > APP_MAX_TECHNIQUES) {
         fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count, APP_MAX_TECHNIQUES);
@@ -1163,7 +1164,7 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     app.width = 1280;
     app.height = 720;
     app.current = -1; /* until --technique says */
-    int status = app_parse_flags(argc, argv);
+    int status = app_parse_flags(argc, argv, elsewhere, elsewhere_count);
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
     app.technique_given = app.current >= 0;

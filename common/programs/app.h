@@ -3,7 +3,7 @@
  * all of them).
  *
  * Common flags: --backend auto|glfw|egl|osmesa, --size WxH (1280x720),
- * --scene PATH (assets/scenes/simple.json), --frames N, --screenshot PATH,
+ * --scene PATH (assets/scenes/simple.json), --frames N, --screenshot PATH.png,
  * --shader-dir DIR, --technique NAME, --motion static|light|camera,
  * --animate, the skips (--no-skip, --no-view-cull, --no-light-reach,
  * --no-caster-cull, --no-cache: technique.h), the HUD (--hud: in headless
@@ -12,7 +12,8 @@
  * --gallery DIR SCENE... (every technique on every scene, to
  * DIR/TECHNIQUE_SCENE.png), --tour FILE (a tour file, tour.h: its steps
  * one by one, stepped by keys in the window, every one headless). Each technique parameter adds its flag
- * (--no-NAME for a toggle); all are one flags_param table (flags.h).
+ * (--no-NAME for a toggle); all are one flags_param table (flags.h). An
+ * unknown flag's error names the programs of `elsewhere` that have it.
  *
  * A run with --frames, --screenshot or --gallery is headless (auto picks
  * EGL, then OSMesa); otherwise auto opens a window when a display is there.
@@ -26,6 +27,7 @@
 
 #include "technique.h"
 
-int app_main(int argc, char **argv, const technique *const *techniques, int technique_count);
+int app_main(int argc, char **argv, const technique *const *techniques, int technique_count,
+             const flags_elsewhere *elsewhere, int elsewhere_count);
 
 #endif

@@ -2,4 +2,6 @@
 #include "app.h"
 #include "registry.h"
 
-int main(int argc, char **argv) { return app_main(argc, argv, registry_techniques, registry_technique_count); }
+int main(int argc, char **argv) {
+    return app_main(argc, argv, registry_techniques, registry_technique_count, NULL, 0);
+}

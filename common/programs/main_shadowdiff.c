@@ -74,7 +74,7 @@ static int main_parse_flags(int argc, char **argv, main_options *o) {
          "picture of the verdicts: red false shadow (lit in\nthe reference, shadowed in the test), blue false lit\n"
          "(the other way round), grey by the reference\nvisibility where they agree, dark grey not compared,\n"
          "black no surface",
-         0, FLAGS_STRING, .text = &o->heatmap_path, .value_name = "PATH.png"},
+         0, FLAGS_STRING, .text = &o->heatmap_path, .extension = ".png", .value_name = "PATH.png"},
         {"json", "one JSON object on stdout instead of text", 0, FLAGS_SWITCH, .on = &o->json},
         {"receiver", "only pixels of that object", 0, FLAGS_STRING, .text = &o->receiver, .value_name = "NAME"},
         {"grazing",
