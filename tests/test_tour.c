@@ -89,6 +89,57 @@ static void test_bad_tours(void **state) {
     }
 }
 
+/* The problems of the file's steps, every one at once, each its line in
+ * the steps' order: the file's own (tour_load), then with build/shadows
+ * also what the program checks (techniques, their flags), each step's
+ * after the file's. */
+#define SEVERAL_ERRORS TOUR_DATA "tour_several_errors.json"
+static const char *const file_errors[] = {
+    SEVERAL_ERRORS ": steps[0]: unknown key \"captoin\" (expected scene, technique, flags, caption, seconds, motion, "
+                   "frame, camera, path or compare)\n",
+    SEVERAL_ERRORS ": steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)\n",
+    SEVERAL_ERRORS ": steps[1].seconds: expected a number, got a string\n",
+    SEVERAL_ERRORS ": steps[2].frame: must be a frame of the step, 0 to 119 (got 999)\n",
+    SEVERAL_ERRORS ": steps[3].scene: missing required field\n",
+};
+static const char *const program_errors[] = {
+    SEVERAL_ERRORS ": steps[1].technique: unknown technique \"shadowvolumes\"",
+    SEVERAL_ERRORS ": steps[2].flags: planar: unknown flag '--no-stencl', did you mean --no-stencil?",
+    SEVERAL_ERRORS ": steps[3].flags: psm: --warp given twice, 'uniform' then 'lispsm'",
+};
+#define FILE_ERRORS (sizeof file_errors / sizeof *file_errors)
+#define PROGRAM_ERRORS (sizeof program_errors / sizeof *program_errors)
+
+static void test_every_problem_at_once(void **state) {
+    (void)state;
+    static tour t;
+    support_capture_stderr();
+    bool loaded = tour_load(&t, SEVERAL_ERRORS);
+    const char *text = support_release_stderr();
+    assert_false(loaded);
+    char expected[2048] = "";
+    for (size_t i = 0; i < FILE_ERRORS; i++)
+        strncat(expected, file_errors[i], sizeof expected - strlen(expected) - 1);
+    assert_string_equal(text, expected);
+    assert_int_equal(t.step_count, 4); /* there for the caller's checks */
+    assert_string_equal(t.steps[1].technique, "shadowvolumes");
+    char command[512];
+    snprintf(command, sizeof command, "%s --tour " SEVERAL_ERRORS " --screenshot out/test/never.png",
+             support_program("shadows"));
+    assert_int_equal(support_run(command, err, sizeof err), 1);
+    assert_int_equal(support_count_lines(err), (int)(FILE_ERRORS + PROGRAM_ERRORS));
+    const char *after = err;
+    for (size_t i = 0; i < FILE_ERRORS; i++)
+        assert_non_null(strstr(err, file_errors[i]));
+    for (size_t i = 0; i < PROGRAM_ERRORS; i++) {
+        const char *at = strstr(err, program_errors[i]);
+        if (!at || at < after)
+            fail_msg("expected \"%s\" after the file's lines and the step before's, in \"%s\"", program_errors[i],
+                     err);
+        after = at;
+    }
+}
+
 static tour_view view(double px, double py, double pz, double tx, double ty, double tz) {
     return (tour_view){.position = {px, py, pz}, .target = {tx, ty, tz}};
 }
@@ -250,6 +301,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_tour),
         cmocka_unit_test(test_bad_tours),
+        cmocka_unit_test(test_every_problem_at_once),
         cmocka_unit_test(test_path_interpolation),
         cmocka_unit_test(test_step_view_and_camera),
         cmocka_unit_test(test_step_views_against_the_scene),

@@ -1,8 +1,9 @@
 /* json: what the JSON file readers share (scene.c, tour.c). Every reader
- * reports the first problem as one line on stderr, "FILE: WHERE.KEY:
- * problem" (WHERE "steps[2]", or "" at the top), and returns false; an
- * optional field that is absent leaves *out as it was (its default). No
- * GL. */
+ * reports its field's first problem as one line on stderr, "FILE:
+ * WHERE.KEY: problem" (WHERE "steps[2]", or "" at the top), and returns
+ * false; an optional field that is absent leaves *out as it was (its
+ * default). A file's reader stops at its first problem (scene.c) or goes
+ * on to say every one (tour.c). No GL. */
 #ifndef JSON_H
 #define JSON_H
 

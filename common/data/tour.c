@@ -27,8 +27,10 @@ static bool tour_read_text(const char *file, const cJSON *object, const char *wh
     const char *text = NULL;
     if (!json_read_string(file, object, where, key, required, &text))
         return false;
-    if (text && snprintf(out, size, "%s", text) >= (int)size)
+    if (text && snprintf(out, size, "%s", text) >= (int)size) {
+        out[0] = '\0'; /* no cut text for the caller to check again */
         return json_fail(file, where, key, "longer than %zu characters", size - 1);
+    }
     return true;
 }
 
@@ -123,32 +125,39 @@ static bool tour_read_views(const char *file, const cJSON *json, const char *whe
     return true;
 }
 
+/* Every key of the step is read, each problem said in its line: a
+ * file's problems all at once. The frame is checked against the seconds
+ * where they were read (a motion that failed stays static, which refuses
+ * no path). */
 static bool tour_read_step(const char *file, const cJSON *json, const char *where, tour_step *s) {
     if (!cJSON_IsObject(json))
         return json_fail(file, where, NULL, "expected an object, got %s", json_kind(json));
     int frame = -1; /* absent: the last */
-    if (!json_check_keys(file, json, where, tour_step_keys) || !tour_read_scene(file, json, where, s) ||
-        !tour_read_text(file, json, where, "technique", true, s->technique, sizeof s->technique) ||
-        !tour_read_text(file, json, where, "flags", false, s->flags, sizeof s->flags) ||
-        !tour_read_text(file, json, where, "caption", false, s->caption, sizeof s->caption) ||
-        !tour_read_seconds(file, json, where, s) || !tour_read_motion(file, json, where, s) ||
-        !json_read_int(file, json, where, "frame", &frame) || !tour_read_views(file, json, where, s) ||
-        !json_read_bool(file, json, where, "compare", &s->compare))
-        return false;
-    if (cJSON_GetObjectItemCaseSensitive(json, "frame") && (frame < 0 || frame >= s->frame_count))
-        return json_fail(file, where, "frame", "must be a frame of the step, 0 to %d (got %d)", s->frame_count - 1,
-                         frame);
+    bool ok = json_check_keys(file, json, where, tour_step_keys);
+    ok = tour_read_scene(file, json, where, s) && ok;
+    ok = tour_read_text(file, json, where, "technique", true, s->technique, sizeof s->technique) && ok;
+    ok = tour_read_text(file, json, where, "flags", false, s->flags, sizeof s->flags) && ok;
+    ok = tour_read_text(file, json, where, "caption", false, s->caption, sizeof s->caption) && ok;
+    bool timed = tour_read_seconds(file, json, where, s);
+    ok = tour_read_motion(file, json, where, s) && ok;
+    bool framed = json_read_int(file, json, where, "frame", &frame);
+    ok = tour_read_views(file, json, where, s) && ok;
+    ok = json_read_bool(file, json, where, "compare", &s->compare) && ok;
+    if (timed && framed && cJSON_GetObjectItemCaseSensitive(json, "frame") && (frame < 0 || frame >= s->frame_count))
+        framed = json_fail(file, where, "frame", "must be a frame of the step, 0 to %d (got %d)", s->frame_count - 1,
+                           frame);
     s->shown_frame = frame >= 0 ? frame : s->frame_count - 1;
-    return true;
+    return ok && timed && framed;
 }
 
+/* Every step is read, a step's problems not hiding the next one's. */
 static bool tour_read_root(const char *file, const cJSON *root, tour *t) {
     if (!cJSON_IsObject(root))
         return json_fail(file, "", NULL, "expected an object, got %s", json_kind(root));
     const cJSON *steps;
-    if (!json_check_keys(file, root, "", tour_keys) ||
-        !tour_read_text(file, root, "", "title", true, t->title, sizeof t->title) ||
-        !json_lookup(file, root, "", "steps", true, &steps))
+    bool ok = json_check_keys(file, root, "", tour_keys);
+    ok = tour_read_text(file, root, "", "title", true, t->title, sizeof t->title) && ok;
+    if (!json_lookup(file, root, "", "steps", true, &steps))
         return false;
     if (!cJSON_IsArray(steps))
         return json_fail(file, "", "steps", "expected an array, got %s", json_kind(steps));
@@ -159,11 +168,10 @@ static bool tour_read_root(const char *file, const cJSON *root, tour *t) {
     cJSON_ArrayForEach(entry, steps) {
         char where[32];
         snprintf(where, sizeof where, "steps[%d]", t->step_count);
-        if (!tour_read_step(file, entry, where, &t->steps[t->step_count]))
-            return false;
+        ok = tour_read_step(file, entry, where, &t->steps[t->step_count]) && ok;
         t->step_count++;
     }
-    return true;
+    return ok;
 }
 
 bool tour_load(tour *t, const char *path) {

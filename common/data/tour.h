@@ -24,9 +24,11 @@
  *                              a motion that moves the camera)
  *                "compare": true  (compare mode, as --compare: the step
  *                                  beside the ray-traced truth) } ]
- * Unknown keys and wrong types are errors, reported as one line
- * "FILE: steps[i].key: problem" (json.h). The technique's name and flags
- * are the caller's to check: this layer does not know the techniques.
+ * Unknown keys and wrong types are errors, each reported as one line
+ * "FILE: steps[i].key: problem" (json.h), every one the file has (a JSON
+ * syntax error, or "steps" not a list of steps, is the only one). The
+ * technique's name and flags are the caller's to check: this layer does
+ * not know the techniques.
  *
  * Numbers must be finite and each view's position must differ from its
  * target; every frame's view (between two views too) is checked against
@@ -80,7 +82,10 @@ typedef struct tour {
     int step_count;
 } tour;
 
-/* False after printing the file's first problem. */
+/* False after printing every problem of the file, each one line. The
+ * steps read are there even then (step_count of them; a field that failed
+ * is empty), so that the caller adds its own checks' lines to the
+ * file's. */
 bool tour_load(tour *t, const char *path);
 
 static inline bool tour_step_has_path(const tour_step *s) { return s->view_count >= TOUR_MIN_PATH_VIEWS; }

@@ -501,28 +501,30 @@ static int app_technique_index(const char *name) {
 
 /* The tour file loaded and every step's technique and flags checked
  * before anything renders, each problem one line "FILE: steps[i].KEY:
- * ..." (flags: the technique's own error). */
+ * ..." (flags: the technique's own error), the file's and these all
+ * said at once. A step whose technique the file did not give has its
+ * line already. */
 static bool app_load_tour(void) {
-    if (!tour_load(&app.tour, app.tour_path))
-        return false;
+    bool ok = tour_load(&app.tour, app.tour_path);
     for (int k = 0; k < app.tour.step_count; k++) {
         const tour_step *s = &app.tour.steps[k];
         int t = app_technique_index(s->technique);
-        if (t < 0) {
+        if (t < 0 && s->technique[0]) {
             char expected[256];
             json_join_names(app.technique_names, expected, sizeof expected);
             fprintf(stderr, "%s: steps[%d].technique: unknown technique \"%s\" (expected %s)\n", app.tour_path, k,
                     s->technique, expected);
-            return false;
+        }
+        if (t < 0) {
+            ok = false;
+            continue;
         }
         char who[PATH_MAX + 64];
         snprintf(who, sizeof who, "%s: steps[%d].flags: %s", app.tour_path, k, s->technique);
-        if (!technique_apply_config_as(app.techniques[t], s->flags, who))
-            return false;
-        if (!technique_apply_config(app.techniques[t], ""))
-            return false;
+        bool configured = technique_apply_config_as(app.techniques[t], s->flags, who);
+        ok = technique_apply_config(app.techniques[t], "") && configured && ok;
     }
-    return true;
+    return ok;
 }
 
 /* Step k's scene loaded, its camera (or its path's start) the one motion
