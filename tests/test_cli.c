@@ -105,6 +105,18 @@ static void test_pictures_must_be_png(void **state) {
                 0, "out/test/upper_case.PNG");
 }
 
+/* --verbose: each model file's object, its triangles and its box in the
+ * scene's world coordinates. */
+static void test_verbose_prints_models(void **state) {
+    (void)state;
+    const char *line = support_verbose_line("unshadowed", "tests/data/scene_model_color.json", "",
+                                            "tests/data/scene_model_color.json: objects[1]");
+    const char *expected = "tests/data/scene_model_color.json: objects[1] \"repainted\": model of 5 triangles, "
+                           "bounds (0, 0, -1) to (5, 1, -1)\n";
+    assert_non_null(line);
+    assert_int_equal(strncmp(line, expected, strlen(expected)), 0);
+}
+
 static void test_malformed_values(void **state) {
     (void)state;
     expect_failure("--size 640by480", EXIT_USAGE, "--size", "640by480");
@@ -337,6 +349,7 @@ int main(void) {
         cmocka_unit_test(test_unknown_flag_suggestions),
         cmocka_unit_test(test_value_flag_given_twice),
         cmocka_unit_test(test_pictures_must_be_png),
+        cmocka_unit_test(test_verbose_prints_models),
         cmocka_unit_test(test_malformed_values),
         cmocka_unit_test(test_bad_technique_parameters),
         cmocka_unit_test(test_missing_scene),

@@ -297,6 +297,10 @@ static void test_generators_reject_bad_sizes(void **state) {
     support_capture_stderr();
     made = mesh_make_cylinder(&m, 1, 1, MESH_MAX_SEGMENTS + 1);
     expect_generator_error(made, &m, support_release_stderr(), "cylinder: ", "segments");
+    support_capture_stderr(); /* only 0 is the default */
+    made = mesh_make_sphere(&m, 1, -1);
+    expect_generator_error(made, &m, support_release_stderr(),
+                           "sphere: ", "segments must be between 3 and 1024 (got -1)");
     support_capture_stderr();
     made = mesh_make_torus(&m, 1, 1, 8);
     expect_generator_error(made, &m, support_release_stderr(), "torus: ", "must be smaller than major_radius");
@@ -436,7 +440,7 @@ static void test_edge_table_of_open_and_non_manifold_meshes(void **state) {
     mesh_edges_free(&e);
 
     mesh teapot;
-    assert_true(mesh_load_file(&teapot, "assets/teapot.obj"));
+    assert_true(mesh_load_file(&teapot, "assets/teapot.obj", NULL));
     build_edges(&teapot, &e);
     assert_false(e.closed);
     assert_uses_match_corners(&teapot, &e);
@@ -500,7 +504,7 @@ static mesh_edge_counts report_edges(const char *path, const mesh *m) {
 static void test_load_bunny(void **state) {
     (void)state;
     mesh m;
-    assert_true(mesh_load_file(&m, "assets/bunny.obj"));
+    assert_true(mesh_load_file(&m, "assets/bunny.obj", NULL));
     mesh_edge_counts edges = report_edges("assets/bunny.obj", &m);
     assert_int_equal(m.index_count / 3, 3674);
     assert_int_equal(edges.boundary, 0);
@@ -513,7 +517,7 @@ static void test_load_bunny(void **state) {
 static void test_load_teapot(void **state) {
     (void)state;
     mesh m;
-    assert_true(mesh_load_file(&m, "assets/teapot.obj"));
+    assert_true(mesh_load_file(&m, "assets/teapot.obj", NULL));
     mesh_edge_counts edges = report_edges("assets/teapot.obj", &m);
     assert_int_equal(m.index_count / 3, 992);
     /* The file repeats 540 vertices bit for bit along its patch seams: over
@@ -531,8 +535,8 @@ static void test_load_teapot(void **state) {
 static void test_load_mirrored_node(void **state) {
     (void)state;
     mesh wedge, pair;
-    assert_true(mesh_load_file(&wedge, "tests/data/mirror_wedge.obj"));
-    assert_true(mesh_load_file(&pair, "tests/data/mirror_node.gltf"));
+    assert_true(mesh_load_file(&wedge, "tests/data/mirror_wedge.obj", NULL));
+    assert_true(mesh_load_file(&pair, "tests/data/mirror_node.gltf", NULL));
     assert_closed(&wedge);
     assert_sane_mesh(&pair);
     assert_int_equal(pair.index_count, 2 * wedge.index_count);
@@ -554,7 +558,7 @@ static void test_load_testmodels(void **state) {
         mesh m;
         /* spider.obj holds zero-area triangles: a warning is expected. */
         support_capture_stderr();
-        bool loaded = mesh_load_file(&m, paths[i]);
+        bool loaded = mesh_load_file(&m, paths[i], NULL);
         print_message("%s", support_release_stderr());
         assert_true(loaded);
         assert_true(m.index_count > 0);
@@ -581,7 +585,7 @@ static int expect_models(const model_case *cases, size_t count) {
         }
         mesh m;
         support_capture_stderr();
-        bool loaded = mesh_load_file(&m, cases[i].path);
+        bool loaded = mesh_load_file(&m, cases[i].path, NULL);
         const char *text = support_release_stderr();
         if (loaded) {
             print_message("%s: loaded, %u triangles\n", cases[i].path, m.index_count / 3);
@@ -612,6 +616,43 @@ static int expect_models(const model_case *cases, size_t count) {
  * capped all the same, so that a regression fails on the message instead
  * of taking the machine's memory (not under ASan, whose shadow memory
  * needs a large address space: there the pre-check alone keeps it out). */
+/* A model's colour: its named materials' base or diffuse colour, the one
+ * that covers the most triangles (materials of one colour together); none
+ * where the file names no material (assimp's stand-in is not the file's
+ * colour). */
+static void test_load_material_colour(void **state) {
+    (void)state;
+    static const struct {
+        const char *path;
+        bool has_color;
+        float color[3];
+    } cases[] = {
+        /* red covers the most of one material, blue of one colour */
+        {"tests/data/mesh_two_colours.obj", true, {0.1f, 0.2f, 0.9f}},
+        /* OBJ from assimp-testmodels: the floor's Kd, of 12 materials */
+        {TESTMODELS_DIR "/OBJ/regr01.obj", true, {0.9f, 0.9f, 0.7f}},
+        /* glTF: baseColorFactor, grey parts most of the engine */
+        {TESTMODELS_DIR "/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", true, {0.85f, 0.85f, 0.85f}},
+        {"assets/bunny.obj", false, {0}},            /* no .mtl */
+        {"tests/data/io_off_cube.off", false, {0}},  /* no materials in OFF */
+        {"tests/data/mirror_node.gltf", false, {0}}, /* a primitive without a material */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        mesh m;
+        mesh_material material = {.has_color = !cases[i].has_color};
+        support_capture_stderr(); /* the engine's degenerate triangles' warning */
+        bool loaded = mesh_load_file(&m, cases[i].path, &material);
+        support_release_stderr();
+        assert_true(loaded);
+        if (material.has_color != cases[i].has_color)
+            fail_msg("%s: has_color %d, expected %d", cases[i].path, material.has_color, cases[i].has_color);
+        for (int k = 0; cases[i].has_color && k < 3; k++)
+            if (material.color[k] != cases[i].color[k])
+                fail_msg("%s: channel %d is %g, expected %g", cases[i].path, k, material.color[k], cases[i].color[k]);
+        mesh_free(&m);
+    }
+}
+
 static void test_load_invalid_models(void **state) {
     (void)state;
     static const model_case cases[] = {
@@ -684,7 +725,7 @@ static void test_load_removes_non_finite_triangles(void **state) {
     (void)state;
     mesh m;
     support_capture_stderr();
-    bool loaded = mesh_load_file(&m, "tests/data/mesh_nan_vertex.obj");
+    bool loaded = mesh_load_file(&m, "tests/data/mesh_nan_vertex.obj", NULL);
     const char *text = support_release_stderr();
     assert_true(loaded);
     assert_one_line_with(
@@ -700,7 +741,7 @@ static void test_load_removes_degenerate_triangles(void **state) {
     (void)state;
     mesh m;
     support_capture_stderr();
-    bool loaded = mesh_load_file(&m, "tests/data/mesh_degenerate_triangles.obj");
+    bool loaded = mesh_load_file(&m, "tests/data/mesh_degenerate_triangles.obj", NULL);
     const char *text = support_release_stderr();
     assert_true(loaded);
     assert_one_line_with(text, "warning: tests/data/mesh_degenerate_triangles.obj: ",
@@ -716,7 +757,7 @@ static void test_load_clean_model_is_quiet(void **state) {
     (void)state;
     mesh m;
     support_capture_stderr();
-    bool loaded = mesh_load_file(&m, "tests/data/mesh_tetrahedron.obj");
+    bool loaded = mesh_load_file(&m, "tests/data/mesh_tetrahedron.obj", NULL);
     const char *text = support_release_stderr();
     assert_true(loaded);
     assert_string_equal(text, "");
@@ -728,7 +769,7 @@ static void test_load_clean_model_is_quiet(void **state) {
 static void expect_load_error(const char *path, const char *problem) {
     mesh m;
     support_capture_stderr();
-    bool loaded = mesh_load_file(&m, path);
+    bool loaded = mesh_load_file(&m, path, NULL);
     const char *text = support_release_stderr();
     assert_false(loaded);
     assert_empty_mesh(&m);
@@ -799,6 +840,7 @@ int main(void) {
         cmocka_unit_test(test_load_teapot),
         cmocka_unit_test(test_load_mirrored_node),
         cmocka_unit_test(test_load_testmodels),
+        cmocka_unit_test(test_load_material_colour),
         cmocka_unit_test(test_load_invalid_models),
         cmocka_unit_test(test_load_checks_header_claims),
         cmocka_unit_test(test_load_testmodels_with_headers),

@@ -229,6 +229,39 @@ static void test_defaults(void **state) {
     scene_free(&s); /* freeing an empty scene is harmless */
 }
 
+/* A model without "color" takes its file's (the material covering the
+ * most triangles: mesh_material), one with it keeps its own, and a model
+ * whose file names no material the default; --verbose's lines give each
+ * model's triangles and world bounds. */
+static void test_model_colour_and_models_printed(void **state) {
+    (void)state;
+    scene s;
+    load_quietly(&s, "tests/data/scene_model_color.json");
+    assert_vec3(find_object(&s, "painted")->color, 0.1f, 0.2f, 0.9f);
+    assert_vec3(find_object(&s, "repainted")->color, 0, 1, 0);
+    assert_vec3(find_object(&s, "plain")->color, 0.8f, 0.8f, 0.8f);
+    support_capture_stderr();
+    scene_print_models(&s, "scene.json");
+    const char *text = support_release_stderr();
+    assert_string_equal(text,
+                        "scene.json: objects[0] \"painted\": model of 5 triangles, bounds (0, 0, 0) to (5, 1, 0)\n"
+                        "scene.json: objects[1] \"repainted\": model of 5 triangles, bounds (0, 0, -1) to (5, 1, "
+                        "-1)\n"
+                        "scene.json: objects[2] \"plain\": model of 4 triangles, bounds (0, 0, -2) to (1, 1, -1)\n");
+    scene_free(&s);
+    /* Rebased on its camera (scene.h, "Large worlds"), a scene's bounds
+     * are still the file's world coordinates. */
+    load_quietly(&s, "tests/data/scene_model_rebased.json");
+    assert_true(s.origin[0] == 1000);
+    support_capture_stderr();
+    scene_print_models(&s, "rebased.json");
+    text = support_release_stderr();
+    scene_free(&s);
+    assert_string_equal(text,
+                        "rebased.json: objects[0] \"tetrahedron\": model of 4 triangles, bounds (1000, 0, 0) to "
+                        "(1001, 1, 1)\n");
+}
+
 /* A light's range: read from the file, and the window it sets (1 at the
  * light, (1 - (d/r)^4)^2 between, exactly 0 from the range on); a light
  * without one reaches everywhere. */
@@ -380,6 +413,10 @@ static const bad_scene bad_scenes[] = {
     {"tests/data/scene_torus_radii.json",
      ": objects[0] \"donut\": torus: minor_radius (2) must be smaller than major_radius (1)"},
     {"tests/data/scene_bad_segments.json", ": objects[0].mesh.segments: expected a whole number"},
+    {"tests/data/scene_negative_segments.json",
+     ": objects[0].mesh.segments: must be 3 to 1024, or 0 for the default (got -4)"},
+    {"tests/data/scene_duplicate_name.json",
+     ": objects[2].name: \"box\" is objects[1]'s name too: each must be one object's"},
     {"tests/data/scene_too_many_lights.json", ": lights: too many entries: 9 (at most 8)"},
     {"tests/data/scene_no_objects.json", ": objects: must not be empty"},
     {"tests/data/scene_spot_outer_below_inner.json",
@@ -425,6 +462,7 @@ int main(void) {
         cmocka_unit_test(test_model_matrix_order),
         cmocka_unit_test(test_world_bounds),
         cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_model_colour_and_models_printed),
         cmocka_unit_test(test_light_range),
         cmocka_unit_test(test_mirrored_objects),
         cmocka_unit_test(test_far_from_origin),

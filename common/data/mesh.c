@@ -119,11 +119,12 @@ static bool mesh_check_size(mesh *m, const char *name, const char *what, float v
 }
 
 static bool mesh_check_segments(mesh *m, const char *name, int *segments) {
-    if (*segments <= 0)
+    if (*segments == 0)
         *segments = MESH_DEFAULT_SEGMENTS;
-    if (*segments >= 3 && *segments <= MESH_MAX_SEGMENTS)
+    if (*segments >= MESH_MIN_SEGMENTS && *segments <= MESH_MAX_SEGMENTS)
         return true;
-    return mesh_fail(m, name, "segments must be between 3 and %d (got %d)", MESH_MAX_SEGMENTS, *segments);
+    return mesh_fail(m, name, "segments must be between %d and %d (got %d)", MESH_MIN_SEGMENTS, MESH_MAX_SEGMENTS,
+                     *segments);
 }
 
 /* Point i of n on the unit circle around Y. It starts at +Z and turns towards
@@ -337,6 +338,55 @@ static unsigned mesh_count_assimp_triangles(const struct aiMesh *am) {
     for (unsigned f = 0; f < am->mNumFaces; f++)
         count += am->mFaces[f].mNumIndices == 3;
     return count;
+}
+
+/* The colour a material of the file gives (see mesh_material): false for
+ * assimp's stand-in and for a colour that is none. */
+static bool mesh_material_color(const struct aiMaterial *material, float color[3]) {
+    struct aiString name;
+    struct aiColor4D c;
+    if (aiGetMaterialString(material, AI_MATKEY_NAME, &name) != AI_SUCCESS || name.length == 0 ||
+        strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0)
+        return false;
+    if (aiGetMaterialColor(material, AI_MATKEY_BASE_COLOR, &c) != AI_SUCCESS &&
+        aiGetMaterialColor(material, AI_MATKEY_COLOR_DIFFUSE, &c) != AI_SUCCESS)
+        return false;
+    const float rgb[3] = {c.r, c.g, c.b};
+    for (int k = 0; k < 3; k++)
+        if (!(isfinite(rgb[k]) && rgb[k] >= 0))
+            return false;
+    memcpy(color, rgb, sizeof rgb);
+    return true;
+}
+
+/* The model's colour: of the materials' colours, the one that covers the
+ * most triangles (mesh_material's rule). */
+static bool mesh_find_material(const char *path, const struct aiScene *scene, mesh_material *out) {
+    unsigned n = scene->mNumMaterials;
+    unsigned long long *triangles = calloc((size_t)n + 1, sizeof *triangles); /* + 1: there may be none */
+    float(*colors)[3] = calloc((size_t)n + 1, sizeof *colors);
+    bool *colored = calloc((size_t)n + 1, sizeof *colored);
+    bool ok = triangles && colors && colored;
+    for (unsigned i = 0; ok && i < scene->mNumMeshes; i++)
+        if (scene->mMeshes[i]->mMaterialIndex < n)
+            triangles[scene->mMeshes[i]->mMaterialIndex] += mesh_count_assimp_triangles(scene->mMeshes[i]);
+    for (unsigned i = 0; ok && i < n; i++)
+        colored[i] = mesh_material_color(scene->mMaterials[i], colors[i]);
+    unsigned long long best = 0;
+    for (unsigned i = 0; ok && i < n; i++) {
+        unsigned long long covered = 0;
+        for (unsigned j = 0; colored[i] && j < n; j++)
+            covered += colored[j] && memcmp(colors[i], colors[j], sizeof colors[i]) == 0 ? triangles[j] : 0;
+        if (covered > best) {
+            best = covered;
+            out->has_color = true;
+            memcpy(out->color, colors[i], sizeof out->color);
+        }
+    }
+    free(triangles);
+    free(colors);
+    free(colored);
+    return ok || mesh_fail(NULL, path, "out of memory for %u materials", n);
 }
 
 /* Merges the triangles of every assimp mesh; points and lines are dropped,
@@ -636,8 +686,10 @@ static const struct aiScene *mesh_import(const char *path, unsigned flags) {
     return scene;
 }
 
-bool mesh_load_file(mesh *m, const char *path) {
+bool mesh_load_file(mesh *m, const char *path, mesh_material *material) {
     *m = (mesh){0};
+    if (material)
+        *material = (mesh_material){0};
     /* assimp reports a directory as an unknown format, or as an empty OBJ:
      * say what it is instead. */
     struct stat info;
@@ -672,7 +724,8 @@ bool mesh_load_file(mesh *m, const char *path) {
         const char *why = aiGetErrorString();
         return mesh_fail(m, path, "%s", why && *why ? why : "assimp could not import it");
     }
-    bool copied = mesh_copy_assimp_triangles(m, path, scene);
+    bool copied =
+        (!material || mesh_find_material(path, scene, material)) && mesh_copy_assimp_triangles(m, path, scene);
     aiReleaseImport(scene);
     return copied && mesh_sanitize(m, path);
 }

@@ -51,10 +51,12 @@ typedef struct mesh_edge_counts {
     uint32_t non_manifold; /* edges used by three or more */
 } mesh_edge_counts;
 
+#define MESH_MIN_SEGMENTS 3
 #define MESH_MAX_SEGMENTS 1024
 
-/* Procedural meshes, centred on the origin, Y up. segments <= 0 means the
- * default (32); otherwise 3..MESH_MAX_SEGMENTS. All are closed 2-manifolds
+/* Procedural meshes, centred on the origin, Y up. segments 0 means the
+ * default (32); otherwise MESH_MIN_SEGMENTS..MESH_MAX_SEGMENTS (a negative
+ * count is an error, as any other outside). All are closed 2-manifolds
  * once welded, except the plane. The torus needs minor < major radius. */
 bool mesh_make_plane(mesh *m, float size_x, float size_z);
 bool mesh_make_box(mesh *m, float size_x, float size_y, float size_z);
@@ -70,16 +72,32 @@ bool mesh_make_cylinder(mesh *m, float radius, float height, int segments);
 #define MESH_MAX_TRIANGLES 50000000
 #define MESH_MAX_VERTICES (3 * MESH_MAX_TRIANGLES)
 
+/* What a model file's materials say of its colour (mesh_load_file). A
+ * material's colour is its base colour (AI_MATKEY_BASE_COLOR: glTF's
+ * baseColorFactor), else its diffuse one (an OBJ's Kd); only a material
+ * the file names counts: a file without materials (OFF, PLY, an OBJ
+ * without its .mtl, a glTF primitive without one) gets assimp's stand-in,
+ * unnamed or AI_DEFAULT_MATERIAL_NAME, whose colour is assimp's, not the
+ * file's. A mesh has one colour, so of several the one that covers the
+ * most triangles is the model's (materials of one colour count together;
+ * a tie goes to the first material). A colour with a negative or
+ * non-finite channel does not count. */
+typedef struct mesh_material {
+    bool has_color; /* false: no material of the file gives one */
+    float color[3]; /* linear RGB, as the file gives it */
+} mesh_material;
+
 /* Loads every triangle of a model file (all its meshes, node transforms
  * applied, the winding reversed under a mirroring one: counter-clockwise
  * from outside) through assimp; generates smooth normals where the file has
- * none.
+ * none. Its colour goes into *material (which may be NULL; see
+ * mesh_material).
  * Files with no triangles, unreadable or malformed files are an error, and
  * so are files over the limits above (checked before they are welded,
  * smoothed or copied) and OFF or PLY files whose header claims more
  * vertices, faces or elements than the file's size can hold (checked before
  * assimp reads them: it allocates what the header claims). */
-bool mesh_load_file(mesh *m, const char *path);
+bool mesh_load_file(mesh *m, const char *path, mesh_material *material);
 
 /* Removes degenerate and non-finite triangles (warning "name: removed ..."),
  * recomputes bounds; an error if no triangle is left. */

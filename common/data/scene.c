@@ -264,15 +264,27 @@ static void scene_report_mesh_error(const char *name, const char *problem, void 
 }
 
 /* Model paths are relative to the scene file's folder, unless absolute. */
-static bool scene_load_model(const char *file, const char *path, mesh *m) {
+static bool scene_load_model(const char *file, const char *path, mesh *m, mesh_material *material) {
     char resolved[PATH_MAX];
     if (!path_beside(file, path, resolved, sizeof resolved))
         return json_fail(file, "", NULL, "model path too long");
-    return mesh_load_file(m, resolved);
+    return mesh_load_file(m, resolved, material);
 }
 
+/* "segments": absent or 0 the default, else MESH_MIN_SEGMENTS..
+ * MESH_MAX_SEGMENTS. */
+static bool scene_read_segments(const char *file, const cJSON *json, const char *where, int *segments) {
+    if (!json_read_int(file, json, where, "segments", segments))
+        return false;
+    if (*segments != 0 && (*segments < MESH_MIN_SEGMENTS || *segments > MESH_MAX_SEGMENTS))
+        return json_fail(file, where, "segments", "must be %d to %d, or 0 for the default (got %d)",
+                         MESH_MIN_SEGMENTS, MESH_MAX_SEGMENTS, *segments);
+    return true;
+}
+
+/* The object's mesh; a model's colour into *material. */
 static bool scene_build_mesh(const char *file, const cJSON *json, const char *where, const char *object_where,
-                             scene_object *o) {
+                             scene_object *o, mesh_material *material) {
     char object[SCENE_NAME_MAX + 64];
     snprintf(object, sizeof object, "%s \"%s\"", object_where, o->name);
     scene_mesh_context context = {file, object};
@@ -292,27 +304,37 @@ static bool scene_build_mesh(const char *file, const cJSON *json, const char *wh
         break;
     case SCENE_MESH_SPHERE:
         built = scene_read_float(file, json, where, "radius", true, SCENE_POSITIVE, &radius) &&
-                json_read_int(file, json, where, "segments", &segments) &&
-                mesh_make_sphere(&o->mesh, radius, segments);
+                scene_read_segments(file, json, where, &segments) && mesh_make_sphere(&o->mesh, radius, segments);
         break;
     case SCENE_MESH_TORUS:
         built = scene_read_float(file, json, where, "major_radius", true, SCENE_POSITIVE, &radius) &&
                 scene_read_float(file, json, where, "minor_radius", true, SCENE_POSITIVE, &minor_radius) &&
-                json_read_int(file, json, where, "segments", &segments) &&
+                scene_read_segments(file, json, where, &segments) &&
                 mesh_make_torus(&o->mesh, radius, minor_radius, segments);
         break;
     case SCENE_MESH_CYLINDER:
         built = scene_read_float(file, json, where, "radius", true, SCENE_POSITIVE, &radius) &&
                 scene_read_float(file, json, where, "height", true, SCENE_POSITIVE, &height) &&
-                json_read_int(file, json, where, "segments", &segments) &&
+                scene_read_segments(file, json, where, &segments) &&
                 mesh_make_cylinder(&o->mesh, radius, height, segments);
         break;
     case SCENE_MESH_MODEL:
-        built = json_read_string(file, json, where, "path", true, &path) && scene_load_model(file, path, &o->mesh);
+        built = json_read_string(file, json, where, "path", true, &path) &&
+                scene_load_model(file, path, &o->mesh, material);
         break;
     }
     mesh_set_error_handler(NULL, NULL);
     return built;
+}
+
+/* Names pick objects (shadowdiff --receiver NAME): each is one object's. */
+static bool scene_check_unique(const char *file, const char *where, const char *name, const scene_object *earlier,
+                               int count) {
+    for (int i = 0; i < count; i++)
+        if (strcmp(earlier[i].name, name) == 0)
+            return json_fail(file, where, "name", "\"%s\" is objects[%d]'s name too: each must be one object's", name,
+                             i);
+    return true;
 }
 
 static bool scene_check_name(const char *file, const char *where, const char *name) {
@@ -354,8 +376,10 @@ static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 s
     memcpy(out, model, sizeof model);
 }
 
+/* Object `count` into objects[count], after the `count` before it. */
 static bool scene_read_object(const char *file, const cJSON *json, const char *where, const double origin[3],
-                              scene_object *o) {
+                              scene_object *objects, int count) {
+    scene_object *o = &objects[count];
     static const char *const keys[] = {"name",  "mesh",  "translate", "rotate", "scale",
                                        "color", "casts", "receives",  NULL};
     vec3 translate = {(float)-origin[0], (float)-origin[1], (float)-origin[2]}, rotate_deg = {0, 0, 0},
@@ -370,7 +394,8 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     const cJSON *mesh_json;
     const scene_variant *kind;
     if (!json_check_keys(file, json, where, keys) || !json_read_string(file, json, where, "name", true, &name) ||
-        !scene_check_name(file, where, name) || !json_read_object(file, json, where, "mesh", &mesh_json) ||
+        !scene_check_name(file, where, name) || !scene_check_unique(file, where, name, objects, count) ||
+        !json_read_object(file, json, where, "mesh", &mesh_json) ||
         !scene_read_variant(file, mesh_json, mesh_where, "kind", "mesh kind", scene_mesh_kinds, &kind) ||
         !scene_read_floats(file, json, where, "translate", false, SCENE_ANY, origin, translate, 3) ||
         !scene_read_floats(file, json, where, "rotate", false, SCENE_ANY, NULL, rotate_deg, 3) ||
@@ -395,8 +420,12 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
         scale[0] = -scale[0];
     scene_model_matrix(translate, rotate_deg, scale, o->model);
     /* Last: loading a model is the slow part, and every cheap check passed. */
-    if (!scene_build_mesh(file, mesh_json, mesh_where, where, o))
+    mesh_material material = {0};
+    if (!scene_build_mesh(file, mesh_json, mesh_where, where, o, &material))
         return false;
+    /* The model's own colour where the object gives none. */
+    if (material.has_color && !cJSON_GetObjectItemCaseSensitive(json, "color"))
+        memcpy(o->color, material.color, sizeof o->color);
     if (mirrored)
         mesh_reflect_x(&o->mesh);
     return true;
@@ -428,7 +457,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     cJSON_ArrayForEach(entry, objects) {
         snprintf(where, sizeof where, "objects[%d]", s->object_count);
         /* A failed object owns nothing: mesh constructors leave it empty. */
-        if (!scene_read_object(file, entry, where, s->origin, &s->objects[s->object_count]))
+        if (!scene_read_object(file, entry, where, s->origin, s->objects, s->object_count))
             return false;
         s->object_count++;
     }
@@ -452,6 +481,19 @@ void scene_free(scene *s) {
         mesh_free(&s->objects[i].mesh);
     free(s->objects);
     *s = (scene){0};
+}
+
+void scene_print_models(const scene *s, const char *file) {
+    for (int i = 0; i < s->object_count; i++) {
+        const scene_object *o = &s->objects[i];
+        float lo[3], hi[3];
+        if (o->mesh_kind != SCENE_MESH_MODEL)
+            continue;
+        scene_object_world_bounds(o, lo, hi);
+        fprintf(stderr, "%s: objects[%d] \"%s\": model of %u triangles, bounds (%g, %g, %g) to (%g, %g, %g)\n", file,
+                i, o->name, o->mesh.index_count / 3, lo[0] + s->origin[0], lo[1] + s->origin[1], lo[2] + s->origin[2],
+                hi[0] + s->origin[0], hi[1] + s->origin[1], hi[2] + s->origin[2]);
+    }
 }
 
 /* Arvo's method: each world axis gathers, per object axis, the smaller and

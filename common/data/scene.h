@@ -21,7 +21,8 @@
  *                  "range": none (point, spot: > 0, how far the light
  *                                 reaches; see scene_light_range_window) } ]
  *   "objects": [ 1..n of
- *                { "name": "ground",                               (required)
+ *                { "name": "ground"   (required; one object's: names pick
+ *                                      objects, as shadowdiff --receiver)
  *                  "mesh": { "kind": "plane", "size": [x,z] }      (required)
  *                          | { "kind": "box", "size": [x,y,z] }
  *                          | { "kind": "sphere", "radius": r, "segments": n }
@@ -31,10 +32,17 @@
  *                              "segments": n }
  *                          | { "kind": "model", "path": "file.obj" }
  *                            (path relative to the scene file, or absolute)
+ *                          ("segments": 0 or absent is the default, 32,
+ *                           else MESH_MIN_SEGMENTS..MESH_MAX_SEGMENTS)
  *                  "translate": [0,0,0], "rotate": [0,0,0] (degrees about
  *                  X, then Y, then Z), "scale": [1,1,1] or a number
  *                  (negative factors mirror; zero is an error),
- *                  "color": [0.8,0.8,0.8],
+ *                  "color": [0.8,0.8,0.8] (a model without it takes
+ *                           its file's colour where the file gives one:
+ *                           the base colour, else the diffuse, of the
+ *                           material that covers the most triangles, the
+ *                           renderer having one colour an object; see
+ *                           mesh_material),
  *                  "casts": true, "receives": true } ]
  * Unknown keys are errors (they are usually typos), as are wrong types,
  * non-finite numbers and out-of-range values.
@@ -146,6 +154,12 @@ typedef struct scene {
  * scene empty (safe to scene_free). */
 bool scene_load(scene *s, const char *path);
 void scene_free(scene *s);
+
+/* --verbose: one line on stderr for each object whose mesh is a model
+ * file, "FILE: objects[i] "NAME": model of N triangles, bounds (x, y, z)
+ * to (x, y, z)", the corners of its box in the file's world coordinates
+ * (the origin added back), for placing and scaling it. */
+void scene_print_models(const scene *s, const char *file);
 
 /* A light's reach: what its contribution at `distance` from its position
  * is multiplied by. With a range r, (1 - (d / r)^4)^2 for d < r and 0

@@ -159,7 +159,7 @@ static const flags_param app_flags[] = {
     {"no-hud", "the window shows no HUD, so that F12 saves the picture alone", 0, FLAGS_SWITCH, .on = &app.no_hud},
     {"hud-compact", "the HUD's caption, technique and settings only (Tab)", 0, FLAGS_SWITCH, .on = &app.hud_compact},
     {"verbose",
-     "print the backend and GL renderer, and at the end\nthe technique's state line and the skips' lines; the\nskips' counters on the HUD too (F3)",
+     "print the backend and GL renderer, each model's triangles\nand bounds, and at the end the technique's state line and\nthe skips' lines; the skips' counters on the HUD too (F3)",
      0, FLAGS_SWITCH, .on = &app.verbose},
     {"flags-markdown", "print every flag and key as the README's markdown tables\n(make readme-flags), then exit", 0,
      FLAGS_SWITCH, .on = &app.flags_markdown},
@@ -283,6 +283,8 @@ static bool app_load_scene(const char *path) {
         scene_free(&app.scene);
         return false;
     }
+    if (app.verbose)
+        scene_print_models(&app.scene, path);
     memcpy(app.base_lights, app.scene.lights, sizeof app.base_lights);
     memcpy(app.loaded_lights, app.scene.lights, sizeof app.loaded_lights);
     app.base_camera = app.loaded_camera = app.scene.camera;

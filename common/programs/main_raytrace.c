@@ -51,8 +51,8 @@ static const flags_param main_flag_table[] = {
      .choices = motion_names},
     {"frames", "trace frame N-1 of the motion (at (N-1)/60 s): the frame\na raster program's --frames N dumps last",
      0, FLAGS_INT, .integer = &main_flags.frames, .min = 1, .max = INT_MAX, .what = "a count"},
-    {"verbose", "print the Embree version, thread count and timings", 0, FLAGS_SWITCH,
-     .on = &main_flags.settings.verbose},
+    {"verbose", "print the Embree version, thread count and timings, and\neach model's triangles and bounds", 0,
+     FLAGS_SWITCH, .on = &main_flags.settings.verbose},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 enum { main_flag_count = sizeof main_flag_table / sizeof *main_flag_table };
@@ -87,6 +87,8 @@ static int main_run(void) {
         scene_free(&s);
         return main_usage_error(message, index);
     }
+    if (main_flags.settings.verbose)
+        scene_print_models(&s, main_flags.scene_path);
     /* The last of --frames N frames, moved as the app moves it. */
     double time = main_flags.frames > 0 ? (main_flags.frames - 1) / MOTION_FRAME_RATE : 0;
     const scene_camera base_camera = s.camera;
