@@ -38,6 +38,13 @@
 #define SOFT_OUT OUT "-soft"
 #define SOFT_SCENE "soft_table"
 #define SOFT_RUN "--quick --frames 2 --technique shadowmap assets/scenes/" SOFT_SCENE ".json"
+/* --light: light 0 and light 2 of a scene of three, planar and the floor;
+ * planar's decisions for a light agree with that light's truth within
+ * this many percent misclassified. */
+#define LAMP_OUT OUT "-lamp"
+#define LAMP2_OUT OUT "-lamp2"
+#define LAMP_RUN "--quick --frames 1 --configs defaults --technique planar tests/data/planar_three_lights.json"
+#define LAMP_MAX_MISCLASSIFIED 1.0
 #define CSV_COLUMNS 25
 #define CSV_MAX_ROWS 512
 /* results.csv's columns the tests read by position. */
@@ -104,6 +111,8 @@ static int run_bench(void **state) {
         {DOLLY_FIRST_OUT, "--frames 1 " DOLLY_FLAGS},
         {DOLLY_LAST_OUT, DOLLY_RUN " --error-frames 1"},
         {SOFT_OUT, SOFT_RUN},
+        {LAMP_OUT, LAMP_RUN},
+        {LAMP2_OUT, LAMP_RUN " --light 2"},
     };
     char strided[512] = "";
     for (size_t i = 0; SCENE_STRIDE > 1 && i < SCENE_COUNT; i += SCENE_STRIDE) {
@@ -397,6 +406,39 @@ static void test_usage_errors(void **state) {
     }
 }
 
+/* --light K: the reference is of light K (its cache says so) and so is
+ * each technique's dump: planar agrees with it, and the floor's error,
+ * the light's shadows, is that light's, not light 0's. A light the scene
+ * does not have is one line naming the scene. */
+static void test_light_picks_the_measured_light(void **state) {
+    (void)state;
+    static csv_row rows[2][CSV_MAX_ROWS];
+    static const char *const outs[] = {LAMP_OUT, LAMP2_OUT};
+    static const int lights[] = {0, 2};
+    for (int i = 0; i < 2; i++) {
+        char name[256], dir[512];
+        assert_int_equal(read_csv(outs[i], rows[i]), 2);
+        reference_name(outs[i], name, sizeof name);
+        assert_true((strstr(name, "_light2") != NULL) == (lights[i] == 2));
+        snprintf(dir, sizeof dir, "%s/reference/%s", outs[i], name);
+        dump_frame reference;
+        assert_true(dump_read(&reference, dir));
+        assert_int_equal(reference.light_index, lights[i]);
+        dump_frame_free(&reference);
+        assert_string_equal(rows[i][0].technique, "planar");
+        assert_true(rows[i][0].misclassified <= LAMP_MAX_MISCLASSIFIED);
+    }
+    assert_true(rows[0][1].misclassified != rows[1][1].misclassified); /* the floor's: two lights' shadows */
+    char *report = read_file(LAMP2_OUT "/report.md");
+    assert_non_null(strstr(report, "Error against the ray-traced reference of light 2 "));
+    char command[512];
+    snprintf(command, sizeof command, "%s --out %s-refused --light 1 %s", support_program("bench"), LAMP_OUT,
+             "--quick --frames 1 --configs defaults --technique planar assets/scenes/simple.json");
+    assert_int_equal(support_run(command, err, sizeof err), 1);
+    assert_int_equal(support_count_lines(err), 1);
+    assert_non_null(strstr(err, "assets/scenes/simple.json: --light 1: the scene has light 0 only"));
+}
+
 /* A row of a scene's table in report.md, as printed. */
 typedef struct report_row {
     char technique[32];
@@ -587,6 +629,7 @@ int main(void) {
         cmocka_unit_test(test_error_frames_pool),
         cmocka_unit_test(test_scaling_plot_is_an_image),
         cmocka_unit_test(test_usage_errors),
+        cmocka_unit_test(test_light_picks_the_measured_light),
     };
     return cmocka_run_group_tests_name("benchmark smoke test", tests, run_bench, NULL);
 }

@@ -483,6 +483,16 @@ void scene_free(scene *s) {
     *s = (scene){0};
 }
 
+bool scene_check_light_flag(const scene *s, const char *file, int light) {
+    if (light < s->light_count)
+        return true;
+    if (s->light_count == 1)
+        fprintf(stderr, "%s: --light %d: the scene has light 0 only\n", file, light);
+    else
+        fprintf(stderr, "%s: --light %d: the scene has lights 0 to %d\n", file, light, s->light_count - 1);
+    return false;
+}
+
 void scene_print_models(const scene *s, const char *file) {
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];

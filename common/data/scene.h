@@ -155,6 +155,11 @@ typedef struct scene {
 bool scene_load(scene *s, const char *path);
 void scene_free(scene *s);
 
+/* Whether the scene loaded from `file` has light `light` (a program's
+ * --light K); false after "FILE: --light K: the scene has lights 0 to
+ * N" (or "light 0 only"). */
+bool scene_check_light_flag(const scene *s, const char *file, int light);
+
 /* --verbose: one line on stderr for each object whose mesh is a model
  * file, "FILE: objects[i] "NAME": model of N triangles, bounds (x, y, z)
  * to (x, y, z)", the corners of its box in the file's world coordinates

@@ -278,8 +278,7 @@ static bool app_load_scene(const char *path) {
         scene_free(&app.scene);
         return false;
     }
-    if (app.light >= app.scene.light_count) {
-        fprintf(stderr, "%s: --light %d: the scene has %d light(s)\n", path, app.light, app.scene.light_count);
+    if (!scene_check_light_flag(&app.scene, path, app.light)) {
         scene_free(&app.scene);
         return false;
     }

@@ -8,7 +8,8 @@
  * its first, ""): warm-up frames, then timed frames (GPU time from
  * GL_TIME_ELAPSED queries, CPU time from the clock around the frame and
  * glFinish), then the technique's own dumps of --error-frames of the timed
- * frames compared with their references (shadowdiff rules), pooled. Each
+ * frames compared with their references (shadowdiff rules), pooled: of
+ * light 0, or of --light K's (the scene must have it). Each
  * frame's time is also a cost-floor frame's, timed in the same moments
  * (bench_time_frames). Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
@@ -124,6 +125,7 @@ static struct {
     int width, height, frames, warmup, light_samples, error_frames;
     int motion;  /* motion_kind */
     int configs; /* bench_configs */
+    int light;   /* --light: the light measured */
     bool quick, verbose, no_skip, skips_compare, scaling;
     const char *scenes[BENCH_MAX_SCENES];
     char scene_names[BENCH_MAX_SCENES][128];
@@ -190,7 +192,13 @@ static const flags_param bench_flags[] = {
     {"scaling", "also OUT/scaling.png: ms per frame against the scenes'\nobject counts", 0, FLAGS_SWITCH,
      .on = &bench.scaling},
     {"shader-dir", "where the GLSL files are", 0, FLAGS_STRING, .text = &bench.shader_dir, .value_name = "DIR"},
-    {"verbose", "print the backend and GL renderer", 0, FLAGS_SWITCH, .on = &bench.verbose},
+    {"light",
+     "the light measured, from 0 (0): the reference's visibility of it\nand each technique's (its --dump --light "
+     "K)",
+     0, FLAGS_INT, .integer = &bench.light, .min = 0, .max = SCENE_MAX_LIGHTS - 1, .what = "a light index",
+     .value_name = "K"},
+    {"verbose", "print the backend and GL renderer, and each model's\ntriangles and bounds", 0, FLAGS_SWITCH,
+     .on = &bench.verbose},
     {"technique", "only this one (and the cost floor); repeat it for more", 0, FLAGS_LIST, .repeat = true,
      .items = bench.techniques, .count = &bench.technique_count, .min = 1, .max = BENCH_MAX_TECHNIQUES,
      .what = "technique names", .value_name = "NAME"},
@@ -407,13 +415,16 @@ static bool bench_newer(const char *path, const char *than) {
  * viewer, and a moving light moves the true shadows. */
 static bool bench_shimmers(void) { return motion_moves_camera((motion_kind)bench.motion); }
 
-/* The reference of light 0 for the frame at `time`, from the cache when
- * it is newer than the scene. A moving run's cache name adds the motion
- * and the time: the reference is of that moved scene. */
+/* The reference of the measured light (--light) for the frame at `time`,
+ * from the cache when it is newer than the scene. A light other than 0
+ * adds its number to the cache's name, and a moving run the motion and
+ * the time: the reference is of that moved scene. */
 static bool bench_reference(const char *scene_path, const char *name, double time, dump_frame *reference) {
     char dir[PATH_MAX], meta[PATH_MAX + 16];
     int n = snprintf(dir, sizeof dir, "%s/reference/%s_%dx%d_%d", bench.out_dir, name, bench.width, bench.height,
                      bench.light_samples);
+    if (bench.light && n > 0 && (size_t)n < sizeof dir)
+        n += snprintf(dir + n, sizeof dir - (size_t)n, "_light%d", bench.light);
     if (bench.motion != MOTION_STATIC && n > 0 && (size_t)n < sizeof dir)
         snprintf(dir + n, sizeof dir - (size_t)n, "_%s_%.3fs", motion_names[bench.motion], time);
     snprintf(meta, sizeof meta, "%s/meta.json", dir);
@@ -424,7 +435,7 @@ static bool bench_reference(const char *scene_path, const char *name, double tim
     }
     fprintf(stderr, "  reference: ray tracing %dx%d ...\n", bench.width, bench.height);
     const raytrace_settings settings = {.light_samples = bench.light_samples};
-    return raytrace_render(&bench.scene, bench.width, bench.height, 0, &settings, reference) &&
+    return raytrace_render(&bench.scene, bench.width, bench.height, bench.light, &settings, reference) &&
            dump_write(reference, dir);
 }
 
@@ -439,12 +450,12 @@ static bool bench_dumps(double time, dump_frame *held, dump_frame *last) {
         motion_camera((motion_kind)bench.motion, time - 1 / BENCH_FRAME_RATE, &bench.base_camera, &camera);
         camera_view_compute(&camera, (float)bench.width / (float)bench.height, &bench.fit_view);
         bench.hold_fit = true;
-        bool held_ok = capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, held);
+        bool held_ok = capture_dump(&bench.gpu, &bench.view, &bench.target, bench.light, bench_render_frame, held);
         bench.hold_fit = false;
         if (!held_ok)
             return false;
     }
-    if (capture_dump(&bench.gpu, &bench.view, &bench.target, 0, bench_render_frame, last))
+    if (capture_dump(&bench.gpu, &bench.view, &bench.target, bench.light, bench_render_frame, last))
         return true;
     dump_frame_free(held);
     return false;
@@ -519,13 +530,17 @@ static const char *bench_skips_text(bool no_skip) { return no_skip ? "off" : "on
 static bool bench_scene(const char *scene_path, int scene_index, int *done, int total) {
     char *name = bench.scene_names[scene_index];
     path_stem(scene_path, name, sizeof bench.scene_names[scene_index]);
-    fprintf(stderr, "[scene %d/%d] %s\n", scene_index + 1, bench.scene_count, name);
     if (!scene_load(&bench.scene, scene_path))
         return false;
-    if (!camera_check_depth(&bench.scene, scene_path, depth_reversed_available())) {
+    if (!camera_check_depth(&bench.scene, scene_path, depth_reversed_available()) ||
+        !scene_check_light_flag(&bench.scene, scene_path, bench.light)) {
         scene_free(&bench.scene);
         return false;
     }
+    /* After the checks: a scene refused says only why. */
+    fprintf(stderr, "[scene %d/%d] %s\n", scene_index + 1, bench.scene_count, name);
+    if (bench.verbose)
+        scene_print_models(&bench.scene, scene_path);
     bench.scene_objects[scene_index] = bench.scene.object_count;
     memcpy(bench.base_lights, bench.scene.lights, sizeof bench.base_lights);
     bench.base_camera = bench.scene.camera;
@@ -742,7 +757,7 @@ static bool bench_write_report(void) {
             "# Shadow techniques: run time against error\n\n"
             "Renderer: %s. Frames %dx%d; %d timed frames per configuration after %d warm-up "
             "frames; times are medians (p90 in brackets) of GPU time (timer queries) and of CPU "
-            "time around each frame and glFinish. Error against the ray-traced reference of light 0 "
+            "time around each frame and glFinish. Error against the ray-traced reference of light %d "
             "(shadowdiff rules; misclassified at visibility threshold 0.5; MAE, the mean absolute "
             "visibility error, also counts how far off each pixel is, so that blur is a cost too; penumbra "
             "MAE and lit MAE are the MAE over the pixels the truth has in penumbra (visibility strictly "
@@ -759,7 +774,8 @@ static bool bench_write_report(void) {
             "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
             "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error figures pool the compared pixels of "
             "%d of the timed frames spread evenly over them, the last at %.3f s). Shimmer %%: %s\n",
-            bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench_time_basis(),
+            bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench.light,
+            bench_time_basis(),
             bench.software ? "This renderer rasterizes on the CPU after the commands are submitted, so its "
                              "timer queries measure little more than the submission; the time around the frame "
                              "and glFinish is its real cost."

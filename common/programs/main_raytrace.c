@@ -71,21 +71,13 @@ static void main_usage(void) {
            RAYTRACE_OFFSET_ULPS);
 }
 
-static int main_usage_error(const char *message, const char *value) {
-    return flags_usage_error(main_flags.program, message, value);
-}
-
 static int main_run(void) {
     scene s;
     if (!scene_load(&s, main_flags.scene_path))
         return MAIN_EXIT_RUNTIME;
-    if (main_flags.light_index >= s.light_count) {
-        char message[PATH_MAX + 64], index[16];
-        snprintf(message, sizeof message, "--light: %s has lights 0..%d, got", main_flags.scene_path,
-                 s.light_count - 1);
-        snprintf(index, sizeof index, "%d", main_flags.light_index);
+    if (!scene_check_light_flag(&s, main_flags.scene_path, main_flags.light_index)) {
         scene_free(&s);
-        return main_usage_error(message, index);
+        return FLAGS_EXIT_USAGE;
     }
     if (main_flags.settings.verbose)
         scene_print_models(&s, main_flags.scene_path);
