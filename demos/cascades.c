@@ -258,16 +258,17 @@ static void cascades_describe(char *out, size_t size) {
     char map[64];
     shadow_map_size_text(&cascades.settings, m, map, sizeof map);
     int n = snprintf(out, size, "light 0: %s", map);
-    if (m->kind != SHADOW_MAP_ARRAY)
-        return;
-    n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,
-                  cascades_schemes[cascades.scheme],
-                  cascades.grazed[0] ? ", stabilized by steps: the light grazes what is seen"
-                                     : cascades_stabilized[cascades.stabilize]);
-    for (int k = 0; k <= m->layer_count && (size_t)n < size; k++)
-        n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
-    if ((size_t)n < size)
-        snprintf(out + n, size - (size_t)n, "; nearest texel %.3g", m->texel_scale);
+    if (m->kind == SHADOW_MAP_ARRAY) {
+        n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,
+                      cascades_schemes[cascades.scheme],
+                      cascades.grazed[0] ? ", stabilized by steps: the light grazes what is seen"
+                                         : cascades_stabilized[cascades.stabilize]);
+        for (int k = 0; k <= m->layer_count && (size_t)n < size; k++)
+            n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
+        if ((size_t)n < size)
+            snprintf(out + n, size - (size_t)n, "; nearest texel %.3g", m->texel_scale);
+    }
+    shadow_map_describe_filter(&cascades.settings, out, size);
 }
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count

@@ -258,19 +258,25 @@ static void planar_render_stencil(const technique_frame *f) {
 }
 
 /* The textbook path the stencil fixes: the lit picture darkened by
- * blending, once per layer of projected triangles. Its shadows spill off
+ * blending, once per layer of projected triangles (a closed caster's
+ * front and back triangles are two layers everywhere; where two casters'
+ * shadows or a caster's own folds overlap, four). Its shadows spill off
  * the receivers onto the whole plane, so every caster draws (no caster
- * culling: it would change that picture). */
+ * culling: it would change that picture), and the counts say so. */
 static void planar_render_blended(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     render_unshadowed(f->gpu, f->view, f->in_view, f->lights);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);
-    for (int i = 0; i < s->object_count; i++)
+    int caster_count = 0;
+    for (int i = 0; i < s->object_count; i++) {
         planar.casters[i] = s->objects[i].casts;
+        caster_count += planar.casters[i];
+    }
     for (int l = 0; l < s->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
+        f->counts->casters_drawn[l] += caster_count;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
         for (int r = 0; r < s->object_count; r++) {

@@ -240,6 +240,7 @@ static void psm_describe(char *out, size_t size) {
     if (n > 0 && (size_t)n < size && isfinite(c->texel_pixels[1]))
         snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px",
                  c->texel_pixels[0] * scale, c->texel_pixels[1] * scale);
+    shadow_map_describe_filter(&psm.settings, out, size);
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the

@@ -30,9 +30,13 @@
  * taps at the centre's depth (--kernel-depth centre) speckle flat and
  * slanted receivers with partial acne, which the lit class's MAE sees and
  * misclassified % does not (assets/scenes/flat_boxes*.json,
- * test_shadowmap's test_receiver_plane_removes_partial_acne).
+ * test_shadowmap's test_receiver_plane_removes_partial_acne). Turning
+ * the constant or the slope-scaled bias off (keys C, L) also reads the
+ * map with one nearest test while the filter is auto, the default, so
+ * that acne shows as stripes rather than averaged away (shadow_map.h,
+ * "The camera pass"); a filter chosen holds.
  *
- * The defaults (poisson, constant 1 texel, slope factor 1.5, no normal
+ * The defaults (poisson, the auto filter with the biases on; constant 1 texel, slope factor 1.5, no normal
  * offset, receiver-plane taps, early-out on) are, in the bench's shadowmap
  * sweep, the setting on the technique's Pareto fronts (misclassified % and
  * lit MAE, every standard scene and the flat boxes) that misclassifies
@@ -103,12 +107,15 @@ static void shadowmap_describe(char *out, size_t size) {
     char map[64];
     shadow_map_size_text(&shadowmap.settings, m, map, sizeof map);
     int n = snprintf(out, size, "light 0: %s, depth range %.3g .. %.3g", map, m->near_plane, m->far_plane);
-    if (shadow_map_filter_moments(shadowmap.settings.filter) != SHADOW_MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
+    if (shadow_map_filter_moments(shadow_map_filter_in_use(&shadowmap.settings)) != SHADOW_MAP_MOMENTS_NONE &&
+        n > 0 && (size_t)n < size)
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
+    shadow_map_describe_filter(&shadowmap.settings, out, size);
 }
 
 /* The sweep: map size x filter x bias (the tents, the early-out off, the
- * moment filters), and two configurations popular tutorials use ("label:
+ * moment filters; the biases off at the default's disc, --filter poisson,
+ * since auto would read them unfiltered), and two configurations popular tutorials use ("label:
  * flags"), so the report shows where our biases stand at the same cost:
  * LearnOpenGL's bias max(0.05 (1 - N.L), 0.005) with 3x3 PCF at 1024
  * (against --map-size 1024 --filter pcf3), and polygon offset (1.25,
@@ -138,8 +145,8 @@ static const char *const shadowmap_bench_configs[] = {
     "--normal-texels 1",
     "hard: --soft off",
     "wide pcf (fake soft): --soft off --filter pcf7",
-    "--no-slope-bias",
-    "--no-constant-bias --no-slope-bias",
+    "--no-slope-bias --filter poisson",
+    "--no-constant-bias --no-slope-bias --filter poisson",
     "textbook depth bias: --map-size 1024 --filter pcf3 --kernel-depth centre --no-constant-bias --no-slope-bias "
     "--depth-bias-slope 0.05 --depth-bias-min 0.005",
     "textbook polygon offset: --map-size 2048 --filter pcf3 --kernel-depth centre --no-constant-bias "

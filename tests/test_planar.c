@@ -259,6 +259,11 @@ static const planar_case planar_cases[] = {
      * box's bottom face, in the plane, is no shadow of the underside. */
     {"below_point", "tests/data/planar_below.json", "", "ground", 0, false},
     {"below_directional", "tests/data/planar_below.json", "", "ground", 1, false},
+    /* The planar tour's stage: a receiver above another, shadows running
+     * off its edge, casters whose shadows overlap; the stencil keeps each
+     * shadow on its own receiver, each pixel darkened once. */
+    {"stage_floor", "assets/scenes/planar_stage.json", "", "floor", 0, false},
+    {"stage_stage", "assets/scenes/planar_stage.json", "", "stage", 0, false},
 };
 enum { PLANAR_CASE_COUNT = sizeof planar_cases / sizeof *planar_cases };
 
@@ -310,6 +315,20 @@ static void test_planar_case(void **state) {
     dump_frame_free(&test);
 }
 
+/* With the stencil off every caster casts for every light (no caster
+ * culling: the blended shadows spill wherever the plane goes), and the
+ * HUD's count says so, as it does with the stencil. */
+static void test_blended_casters_counted(void **state) {
+    (void)state;
+    static const char *const flags[] = {"", "--no-stencil"};
+    for (size_t i = 0; i < sizeof flags / sizeof *flags; i++) {
+        const char *line =
+            support_verbose_line("planar", "assets/scenes/planar_stage.json", flags[i], "[X] caster culling");
+        if (!line || !strstr(line, "casters drawn / culled per light: 0: 4/0"))
+            fail_msg("planar %s: \"%s\"", flags[i], line ? line : "(no caster line)");
+    }
+}
+
 int main(void) {
     static const struct CMUnitTest units[] = {
         cmocka_unit_test(test_point_light_projects_along_rays),
@@ -322,6 +341,7 @@ int main(void) {
         cmocka_unit_test(test_camera_orbit_keeps_distance_and_stops_at_pole),
         cmocka_unit_test(test_camera_orbit_stays_above),
         cmocka_unit_test(test_light_orbit_turns_direction_with_position),
+        cmocka_unit_test(test_blended_casters_counted),
     };
     enum { UNIT_COUNT = sizeof units / sizeof *units };
     static struct CMUnitTest tests[UNIT_COUNT + PLANAR_CASE_COUNT];

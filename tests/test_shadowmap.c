@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "dump.h"
+#include "flags.h"
+#include "shadow_map.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -135,6 +137,64 @@ static void test_acne_without_bias(void **state) {
     shadowdiff_result r =
         measure("out/test/shadowmap/acne_unbiased.json", "--no-constant-bias --no-slope-bias", "acne_unbiased");
     assert_true(r.false_shadow_percent > 1);
+}
+
+/* A bias turned off reads the map with one nearest test while the filter
+ * is auto (the default), so that acne shows unblurred: by the window's
+ * keys (C, L: the flag table's toggles), back to the disc when the bias
+ * is back, and by the flags; a filter chosen (F, --filter) holds, and an
+ * area light is hard meanwhile. Each shadow-map technique's state line
+ * says so. */
+static void test_bias_off_reads_unfiltered(void **state) {
+    (void)state;
+    shadow_map_settings st = {0};
+    const flags_param params[] = {SHADOW_MAP_PARAMS(st)};
+    const int count = (int)(sizeof params / sizeof *params);
+    const scene_light area = {.radius = 0.5f};
+    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_POISSON);
+    assert_true(shadow_map_light_soft(&st, &area));
+    assert_true(flags_press_key(params, count, GLFW_KEY_C));
+    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_NONE);
+    assert_false(shadow_map_light_soft(&st, &area));
+    assert_true(flags_press_key(params, count, GLFW_KEY_C));
+    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_POISSON);
+    assert_true(flags_press_key(params, count, GLFW_KEY_L));
+    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_NONE);
+    assert_true(flags_press_key(params, count, GLFW_KEY_F)); /* auto -> poisson, chosen */
+    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_POISSON);
+    assert_true(shadow_map_light_soft(&st, &area));
+    static const struct {
+        const char *flags;
+        shadow_map_filter filter;
+    } cases[] = {
+        {"--no-slope-bias", SHADOW_MAP_FILTER_NONE},
+        {"--no-constant-bias --filter pcf3", SHADOW_MAP_FILTER_PCF3},
+        {"--no-constant-bias --filter auto", SHADOW_MAP_FILTER_NONE},
+        {"--filter auto", SHADOW_MAP_FILTER_POISSON},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char text[128], *argv[8];
+        snprintf(text, sizeof text, "%s", cases[i].flags);
+        int argc = 0;
+        for (char *word = strtok(text, " "); word && argc < 8; word = strtok(NULL, " "))
+            argv[argc++] = word;
+        flags_reset(params, count);
+        assert_int_equal(flags_parse("test", params, count, argc, argv), 0);
+        if (shadow_map_filter_in_use(&st) != cases[i].filter)
+            fail_msg("%s: filter %d in use, expected %d", cases[i].flags, shadow_map_filter_in_use(&st),
+                     cases[i].filter);
+    }
+    static const char *const programs[] = {"shadowmap", "psm", "cascades"};
+    for (size_t i = 0; i < sizeof programs / sizeof *programs; i++) {
+        char marker[32];
+        snprintf(marker, sizeof marker, "%s: light 0:", programs[i]);
+        const char *line = support_verbose_line(programs[i], "assets/scenes/teapot.json", "--no-slope-bias", marker);
+        if (!line || !strstr(line, ", filter: none (shows acne)\n"))
+            fail_msg("%s --no-slope-bias: state line \"%s\"", programs[i], line ? line : "(none)");
+        line = support_verbose_line(programs[i], "assets/scenes/teapot.json", "", marker);
+        if (!line || strstr(line, "shows acne"))
+            fail_msg("%s: state line \"%s\"", programs[i], line ? line : "(none)");
+    }
 }
 
 /* The two configurations tutorials teach, as in the benchmark's sweep and
@@ -429,6 +489,7 @@ int main(void) {
         cmocka_unit_test(test_stress_extremes_within_bound),
         cmocka_unit_test(test_no_acne_at_any_elevation),
         cmocka_unit_test(test_acne_without_bias),
+        cmocka_unit_test(test_bias_off_reads_unfiltered),
         cmocka_unit_test(test_defaults_and_our_bias_beat_textbook),
         cmocka_unit_test(test_receiver_plane_removes_partial_acne),
         cmocka_unit_test(test_tents_within_bound_and_sharper_than_grids),

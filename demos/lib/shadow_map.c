@@ -11,19 +11,14 @@
 #include "volume_mesh.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
-const char *const shadow_map_filters[] = {[SHADOW_MAP_FILTER_POISSON] = "poisson",
-                                          [SHADOW_MAP_FILTER_NONE] = "none",
-                                          [SHADOW_MAP_FILTER_HW] = "hw",
-                                          [SHADOW_MAP_FILTER_PCF3] = "pcf3",
-                                          [SHADOW_MAP_FILTER_PCF5] = "pcf5",
-                                          [SHADOW_MAP_FILTER_PCF7] = "pcf7",
-                                          [SHADOW_MAP_FILTER_TENT3] = "tent3",
-                                          [SHADOW_MAP_FILTER_TENT5] = "tent5",
-                                          [SHADOW_MAP_FILTER_VSM] = "vsm",
-                                          [SHADOW_MAP_FILTER_EVSM2] = "evsm2",
-                                          [SHADOW_MAP_FILTER_EVSM4] = "evsm4",
-                                          [SHADOW_MAP_FILTER_MSM] = "msm",
-                                          NULL};
+const char *const shadow_map_filters[] = {
+    [SHADOW_MAP_FILTER_AUTO] = "auto",   [SHADOW_MAP_FILTER_POISSON] = "poisson",
+    [SHADOW_MAP_FILTER_NONE] = "none",   [SHADOW_MAP_FILTER_HW] = "hw",
+    [SHADOW_MAP_FILTER_PCF3] = "pcf3",   [SHADOW_MAP_FILTER_PCF5] = "pcf5",
+    [SHADOW_MAP_FILTER_PCF7] = "pcf7",   [SHADOW_MAP_FILTER_TENT3] = "tent3",
+    [SHADOW_MAP_FILTER_TENT5] = "tent5", [SHADOW_MAP_FILTER_VSM] = "vsm",
+    [SHADOW_MAP_FILTER_EVSM2] = "evsm2", [SHADOW_MAP_FILTER_EVSM4] = "evsm4",
+    [SHADOW_MAP_FILTER_MSM] = "msm",     NULL};
 const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
 const char *const shadow_map_kernel_depths[] = {
     [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", [SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
@@ -31,7 +26,8 @@ const char *const shadow_map_softs[] = {[SHADOW_MAP_SOFT_PCSS] = "pcss", [SHADOW
 
 /* What each filter reads: the kernel's shape and its size (N, or the
  * Poisson disc's scale in texels); a moment filter reads its moments once
- * (the single tap's code is the least the program holds). */
+ * (the single tap's code is the least the program holds). Auto reads as
+ * the filter it stands for (shadow_map_filter_in_use). */
 static const struct {
     shadow_map_kernel shape;
     int size;
@@ -175,7 +171,7 @@ static void shadow_map_attach_layer(const shadow_map *m, int layer) {
  * Returns whether it made one (what the layers held is gone). */
 static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
     shadow_map_texture *t = &m->texture;
-    int depth = settings->depth, filter = settings->filter;
+    int depth = settings->depth, filter = shadow_map_filter_in_use(settings);
     if (t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count && t->depth == depth &&
         t->filter == filter)
         return false;
@@ -243,7 +239,7 @@ void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *
                              shadow_map *m) {
     shadow_map_prepare_texture(m, settings);
     shadow_map_depth_begin(r, settings, m);
-    shadow_map_moments moments = shadow_map_filter_moments(settings->filter);
+    shadow_map_moments moments = shadow_map_filter_moments(shadow_map_filter_in_use(settings));
     for (int layer = 0; layer < m->layer_count; layer++)
         shadow_map_depth_layer(r, gpu, m, layer, m->casters, moments != SHADOW_MAP_MOMENTS_NONE);
     glDisable(GL_POLYGON_OFFSET_FILL);
@@ -276,7 +272,7 @@ void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *st
     shadow_map_depth_key key = {.texture = m->texture.id,
                                 .size = m->size,
                                 .depth = st->depth,
-                                .filter = st->filter,
+                                .filter = shadow_map_filter_in_use(st),
                                 .no_slope_bias = st->no_slope_bias,
                                 .slope_factor = st->slope_factor,
                                 .slope_units = st->slope_units};
@@ -284,7 +280,7 @@ void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *st
         shadow_map_forget(c);
     c->key = key;
     shadow_map_plan_casters(r, st, f, l);
-    shadow_map_moments moments = shadow_map_filter_moments(st->filter);
+    shadow_map_moments moments = shadow_map_filter_moments(shadow_map_filter_in_use(st));
     bool begun = false, rendered[SHADOW_MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
         if (shadow_map_layer_cached(r, c, m, layer)) {
@@ -439,16 +435,17 @@ static const shadow_map_camera_program *shadow_map_camera_program_for(shadow_map
 
 /* The key of the settings' kernel and overlays; no light set yet. */
 static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *st) {
+    shadow_map_filter filter = shadow_map_filter_in_use(st);
     return (shadow_map_camera_key){
-        .shape = (unsigned)shadow_map_kernels[st->filter].shape,
-        .kernel = (unsigned)shadow_map_kernels[st->filter].size,
+        .shape = (unsigned)shadow_map_kernels[filter].shape,
+        .kernel = (unsigned)shadow_map_kernels[filter].size,
         .early_out = !st->no_early_out,
         .receiver_plane = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
         .show_texels = st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS,
         .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
         .show_cascades = SHADOW_MAP_SHOWS_CASCADES(st),
         .show_penumbra = st->overlay == SHADOW_MAP_OVERLAY_PENUMBRA,
-        .moments = shadow_map_filter_moments(st->filter),
+        .moments = shadow_map_filter_moments(filter),
     };
 }
 
@@ -787,7 +784,7 @@ static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settin
     bool soft = shadow_map_light_soft(settings, light);
     if (soft && SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
         return true;
-    bool moments = shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE;
+    bool moments = shadow_map_filter_moments(shadow_map_filter_in_use(settings)) != SHADOW_MAP_MOMENTS_NONE;
     if (light->radius > 0 && !moments && !(r->soft_warned >> l & 1u))
         fprintf(stderr, "shadow maps: light %d is an area light (radius %g), drawn hard from its centre: %s\n", l,
                 light->radius, soft ? "this GL has too few texture units for its soft filter" : "--soft off");
@@ -800,7 +797,8 @@ static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settin
  * has; else it takes one bilinear test of its depths, said once on
  * stderr. */
 static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_settings *settings, int l) {
-    if (shadow_map_filter_moments(settings->filter) == SHADOW_MAP_MOMENTS_NONE || r->blur_failed)
+    shadow_map_filter filter = shadow_map_filter_in_use(settings);
+    if (shadow_map_filter_moments(filter) == SHADOW_MAP_MOMENTS_NONE || r->blur_failed)
         return false;
     if (SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
         return true;
@@ -808,7 +806,7 @@ static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_sett
         fprintf(stderr,
                 "shadow maps: light %d: this GL has too few texture units for its moment map (--filter %s): "
                 "one bilinear depth test instead\n",
-                l, shadow_map_filters[settings->filter]);
+                l, shadow_map_filters[filter]);
     r->moments_warned |= 1u << l;
     return false;
 }
@@ -852,6 +850,12 @@ void shadow_map_begin(shadow_map_renderer *r, const technique_frame *f) {
     depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
 }
 
+void shadow_map_describe_filter(const shadow_map_settings *settings, char *out, size_t size) {
+    size_t n = strlen(out);
+    if (shadow_map_shows_acne(settings) && n < size)
+        snprintf(out + n, size - n, ", filter: %s (shows acne)", shadow_map_filters[SHADOW_MAP_FILTER_NONE]);
+}
+
 bool shadow_map_fit_light(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
                           int l, shadow_map_fit_function fit) {
     const scene *s = f->gpu->scene;
@@ -868,7 +872,7 @@ bool shadow_map_fit_light(shadow_map_renderer *r, const shadow_map_settings *set
         int sample_count = shadow_map_light_samples(r, fit_frame, l);
         shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
     }
-    if (shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
+    if (shadow_map_filter_moments(shadow_map_filter_in_use(settings)) != SHADOW_MAP_MOMENTS_NONE)
         shadow_map_moments_fit(s, l, m, !size);
     return true;
 }

@@ -93,7 +93,13 @@
  *   poisson  16 bilinear tests on a Poisson disc rotated per pixel by a
  *            hash of the pixel (frames stay deterministic), of scale
  *            SHADOW_MAP_POISSON_SCALE_TEXELS;
- *   vsm, evsm2, evsm4, msm  the moment maps (below, "Moment shadow maps").
+ *   vsm, evsm2, evsm4, msm  the moment maps (below, "Moment shadow maps");
+ *   auto     (the default) poisson, but none while the constant or the
+ *            slope-scaled bias is off (--no-constant-bias, --no-slope-bias,
+ *            keys C and L), area lights hard too: a kernel or PCSS
+ *            averages acne's stripes into a faint darkening, one nearest
+ *            test shows each stripe. Any other choice holds with the
+ *            biases off (shadow_map_filter_in_use).
  * The early-out (on; --no-early-out, key E): a kernel of more than four
  * taps reads four on its rim first and stops where they agree wholly,
  * outside any penumbra (nearly every pixel): 4 taps instead of 9 to 49.
@@ -108,6 +114,7 @@
  * The choices of the settings, in the order of their names (the default
  * first): shadow_map_filters, shadow_map_depths, shadow_map_kernel_depths. */
 typedef enum shadow_map_filter {
+    SHADOW_MAP_FILTER_AUTO,
     SHADOW_MAP_FILTER_POISSON,
     SHADOW_MAP_FILTER_NONE,
     SHADOW_MAP_FILTER_HW,
@@ -136,7 +143,7 @@ extern const char *const shadow_map_softs[];
 
 typedef struct shadow_map_settings {
     int map_size;     /* choice: shadow_map_sizes */
-    int filter;       /* choice: shadow_map_filter */
+    int filter;       /* choice: shadow_map_filter; read through shadow_map_filter_in_use */
     int depth;        /* choice: shadow_map_depth */
     int kernel_depth; /* choice: shadow_map_kernel_depth */
     int soft;         /* choice: shadow_map_soft, what an area light (radius > 0) gets */
@@ -149,6 +156,15 @@ typedef struct shadow_map_settings {
      * with its own). */
     bool array_overlays;
 } shadow_map_settings;
+
+/* The filter that reads the map: settings->filter, or what auto stands
+ * for (above, "The camera pass"). */
+shadow_map_filter shadow_map_filter_in_use(const shadow_map_settings *settings);
+/* Auto stands for none because a bias is off: acne shows unblurred. */
+bool shadow_map_shows_acne(const shadow_map_settings *settings);
+/* Appends ", filter: none (shows acne)" to a technique's state line (its
+ * describe) while shadow_map_shows_acne; nothing otherwise. */
+void shadow_map_describe_filter(const shadow_map_settings *settings, char *out, size_t size);
 
 /* The texel-size heat map's ends, log2 of a texel's size in pixels: blue
  * at a quarter pixel and below, green at one, red at 32 and more. The
@@ -203,8 +219,12 @@ enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
      FLAGS_CHOICE,                                                                                                                \
      .index = &(s).map_size,                                                                                                      \
      .choices = shadow_map_sizes},                                                                                                \
-        {"filter",     "what reads the map", GLFW_KEY_F,                                                                          \
-         FLAGS_CHOICE, .index = &(s).filter, .choices = shadow_map_filters},                                                      \
+        {"filter",                                                                                                                \
+         "what reads the map; auto: poisson, but none (area lights hard) while a bias is off, so that acne shows",                \
+         GLFW_KEY_F,                                                                                                              \
+         FLAGS_CHOICE,                                                                                                            \
+         .index = &(s).filter,                                                                                                    \
+         .choices = shadow_map_filters},                                                                                          \
         {"depth",                                                                                                                 \
          "depth format: 24-bit or 32-bit float",                                                                                  \
          GLFW_KEY_D,                                                                                                              \
@@ -750,7 +770,8 @@ typedef struct shadow_map_reads {
  * wide blur). */
 float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool area);
 /* Light `light` of the settings' technique gets soft shadows: an area
- * light, with --soft pcss. */
+ * light, with --soft pcss, read by no moment filter, and not while auto
+ * shows acne. */
 bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light);
 /* The technique's area_light words (technique.h) under the settings. */
 const char *shadow_map_area_light_text(const shadow_map_settings *settings, const scene_light *light);

@@ -24,17 +24,28 @@
  * point is at the map's centre of projection, where it sees everything. */
 #define SHADOW_MAP_MIN_W FRUSTUM_FLOAT_TOLERANCE
 
+bool shadow_map_shows_acne(const shadow_map_settings *settings) {
+    return settings->filter == SHADOW_MAP_FILTER_AUTO && (settings->no_constant_bias || settings->no_slope_bias);
+}
+
+shadow_map_filter shadow_map_filter_in_use(const shadow_map_settings *settings) {
+    if (settings->filter != SHADOW_MAP_FILTER_AUTO)
+        return (shadow_map_filter)settings->filter;
+    return shadow_map_shows_acne(settings) ? SHADOW_MAP_FILTER_NONE : SHADOW_MAP_FILTER_POISSON;
+}
+
 bool shadow_map_light_soft(const shadow_map_settings *settings, const scene_light *light) {
-    return light->radius > 0 && settings->soft == SHADOW_MAP_SOFT_PCSS &&
-           shadow_map_filter_moments(settings->filter) == SHADOW_MAP_MOMENTS_NONE;
+    return light->radius > 0 && settings->soft == SHADOW_MAP_SOFT_PCSS && !shadow_map_shows_acne(settings) &&
+           shadow_map_filter_moments(shadow_map_filter_in_use(settings)) == SHADOW_MAP_MOMENTS_NONE;
 }
 
 const char *shadow_map_area_light_text(const shadow_map_settings *settings, const scene_light *light) {
-    if (shadow_map_filter_moments(settings->filter) != SHADOW_MAP_MOMENTS_NONE)
+    if (shadow_map_filter_moments(shadow_map_filter_in_use(settings)) != SHADOW_MAP_MOMENTS_NONE)
         return "soft: its moment map blurred to its casters' mean penumbra, one width (no contact hardening)";
-    return shadow_map_light_soft(settings, light)
-               ? "soft: pcss, a blocker search then a filter of the penumbra's width"
-               : "hard, from its centre: --soft off";
+    if (shadow_map_light_soft(settings, light))
+        return "soft: pcss, a blocker search then a filter of the penumbra's width";
+    return shadow_map_shows_acne(settings) ? "hard, from its centre: a bias is off, and --filter auto shows acne"
+                                           : "hard, from its centre: --soft off";
 }
 
 float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind kind, bool area) {
@@ -43,13 +54,14 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
     bool soft = shadow_map_light_soft(settings, &light);
     /* A soft light's discs (the search's and the filter's) reach at most
      * this far, whatever the filter. */
-    switch (soft ? SHADOW_MAP_FILTER_HW : (shadow_map_filter)settings->filter) {
+    shadow_map_filter filter = shadow_map_filter_in_use(settings);
+    switch (soft ? SHADOW_MAP_FILTER_HW : filter) {
     case SHADOW_MAP_FILTER_NONE: footprint = SHADOW_MAP_NEAREST_TEXELS; break;
     case SHADOW_MAP_FILTER_HW: break;
     case SHADOW_MAP_FILTER_PCF3:
     case SHADOW_MAP_FILTER_PCF5:
     case SHADOW_MAP_FILTER_PCF7:
-        offset = (float)((settings->filter - SHADOW_MAP_FILTER_PCF3) + 1); /* N / 2 for N = 3, 5, 7 */
+        offset = (float)((filter - SHADOW_MAP_FILTER_PCF3) + 1); /* N / 2 for N = 3, 5, 7 */
         break;
     /* A tent N reads the texels whose squares its radius N / 2 overlaps:
      * their centres lie within (N + 1) / 2 texels of the point, as pcfN's
@@ -58,6 +70,8 @@ float shadow_map_read_reach(const shadow_map_settings *settings, shadow_map_kind
      * a cube they are a point's on a texel corner, nearer still. */
     case SHADOW_MAP_FILTER_TENT3: offset = 1; break;
     case SHADOW_MAP_FILTER_TENT5: offset = 2; break;
+    /* Auto is never in use (it stands for poisson or none): the wider. */
+    case SHADOW_MAP_FILTER_AUTO:
     case SHADOW_MAP_FILTER_POISSON: offset = SHADOW_MAP_POISSON_RADIUS * SHADOW_MAP_POISSON_SCALE_TEXELS / 2; break;
     /* A moment map's texel holds its box's depths: one bilinear read
      * reaches the box's radius beyond its footprint (a cube's box stays in
@@ -241,7 +255,7 @@ void shadow_map_plan_casters(shadow_map_renderer *r, const shadow_map_settings *
      * taps do; a moment map's texel holds every depth of its box, a
      * caster's behind the receivers too. */
     bool soft = shadow_map_light_soft(st, &s->lights[l]);
-    bool moments = shadow_map_filter_moments(st->filter) != SHADOW_MAP_MOMENTS_NONE;
+    bool moments = shadow_map_filter_moments(shadow_map_filter_in_use(st)) != SHADOW_MAP_MOMENTS_NONE;
     shadow_map_read_setup setup = {.reach = shadow_map_read_reach(st, m->kind, s->lights[l].radius > 0),
                                    .size = m->size,
                                    .cube = m->kind == SHADOW_MAP_CUBE,
