@@ -776,7 +776,8 @@ static int app_settings_text(const technique *t, char *out, size_t size) {
 }
 
 /* The HUD's text, for a lecture (--verbose prints it at the end): the
- * tour's caption, the technique and scene, the technique's state line and its
+ * tour's caption, the technique (its title outside a tour: the caption
+ * says what it would) and scene, the technique's state line and its
  * settings; compact (Tab, and compare mode's caption strip) the caption,
  * the technique and its settings alone. The skips' counters follow with
  * --verbose or F3. In the window (frame < 0) with the frame time, the
@@ -797,8 +798,8 @@ static void app_hud_text(char *text, size_t size, int frame) {
 #define APP_HUD(...) (n += n < (int)size ? snprintf(text + n, size - (size_t)n, __VA_ARGS__) : 0)
     if (app.tour_path)
         APP_HUD("step %d/%d   %s\n", app.tour_step + 1, app.tour.step_count, app.tour.steps[app.tour_step].caption);
-    if (compact)
-        APP_HUD("%s on %s   %s\n", t->name, scene_name, timing);
+    if (compact || app.tour_path)
+        APP_HUD("%s on %s   %dx%d   %s\n", t->name, scene_name, app.target.width, app.target.height, timing);
     else
         APP_HUD("%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1, app.technique_count, t->name, t->title,
                 scene_name, app.target.width, app.target.height, timing, app_motion() ? "   moving: " : "",
