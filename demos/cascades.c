@@ -37,8 +37,10 @@
  * CASCADES_DEFAULT_SIZE. Spot and point lights get shadowmap's uniform fit
  * (cascades_fit). For lectures (--overlay): shadowmap's overlays, and
  * "cascades": each cascade's receivers tinted in its colour (the blend
- * band mixing two) with every layer as an inset along the bottom (a spot's
- * or point light's map as its inset); the HUD line gives the splits.
+ * band mixing two), a key to the colours with each slice's view depths,
+ * and every layer as an inset along the bottom, fitted to the depths it
+ * holds (a spot's or point light's map as its inset); the HUD line gives
+ * the splits.
  */
 #include <math.h>
 #include <stdio.h>
@@ -103,8 +105,8 @@ static const flags_param cascades_params[] = {
      "2008); off: shadow edges crawl as the camera moves or turns",
      GLFW_KEY_Z, FLAGS_CHOICE, .index = &cascades.stabilize, .choices = cascades_stabilizers},
     SHADOW_MAP_PARAMS(cascades.settings),
-    {"overlay", "for lectures: shadowmap's overlays, and each cascade tinted with its map as an inset", GLFW_KEY_V,
-     FLAGS_CHOICE, .index = &cascades.settings.overlay, .choices = cascades_overlays},
+    {"overlay", "for lectures: shadowmap's overlays, and each cascade tinted, with a key, and its map as an inset",
+     GLFW_KEY_V, FLAGS_CHOICE, .index = &cascades.settings.overlay, .choices = cascades_overlays},
 };
 
 static float cascades_or(float value, float fallback) { return value != 0 ? value : fallback; }

@@ -59,8 +59,8 @@ static struct {
 static const flags_param shadowmap_params[] = {
     SHADOW_MAP_PARAMS(shadowmap.settings),
     {"overlay",
-     "for lectures: texel boundaries on receivers, the light frustum, the map as an inset, texel size on "
-     "screen, the penumbra radius PCSS estimated",
+     "for lectures: texel boundaries on receivers, the light frustum, the map as an inset fitted to the depths "
+     "it holds, texel size on screen, the penumbra radius PCSS estimated",
      GLFW_KEY_V, FLAGS_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
 };
 

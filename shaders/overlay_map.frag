@@ -1,50 +1,49 @@
 #version 330 core
-// Light 0's shadow map shown as linear depth: near black, far white. A 2D
-// map fills the quad; a cube map's six faces lie in two rows of three
-// (+X -X +Y, then -Y +Z -Z); an array map's layer u_layer fills it (one
-// quad per layer). The map is read with a plain sampler, so its compare
-// mode is off while this draws.
+// Light 0's shadow map as an inset (demos/lib/shadow_map_overlay.c), read
+// from its reduction (overlay_reduce.frag): each pixel shows the nearest
+// depth held in its block of texels, so that a caster narrower than a
+// pixel of the inset still shows, as linear depth fitted to what the
+// inset's layer holds: its nearest held depth black, its farthest
+// SHADOW_MAP_INSET_FAR_GREY_PERCENT grey, a block that holds nothing
+// white. A 2D map fills the quad; a cube map's six faces lie in two rows
+// of three (+X -X +Y, then -Y +Z -Z), each as seen from the cube's centre;
+// an array map's layer u_layer fills it (one quad per layer).
 in vec2 v_uv;
 
-uniform sampler2D u_map;
-uniform samplerCube u_cube_map;
-uniform sampler2DArray u_array_map;
-uniform int u_kind; // a shadow_map_kind: SHADOW_MAP_2D (0), SHADOW_MAP_CUBE or SHADOW_MAP_ARRAY
+uniform sampler2DArray u_reduced; // per block, (nearest, farthest) held; a layer per map layer (a cube's face)
+uniform int u_kind;               // a shadow_map_kind: SHADOW_MAP_2D (0), SHADOW_MAP_CUBE or SHADOW_MAP_ARRAY
 uniform int u_layer;
+uniform int u_size;   // the map's texels on a side
+uniform int u_factor; // the map's texels on a side of a block
 uniform bool u_orthographic;
 uniform float u_near;
 uniform float u_far;
+uniform vec2 u_held; // the nearest and the farthest depth held, as stored
 
 out vec4 out_color;
 
-// The direction through face coordinates st (-1..1) of cube face `face`,
-// by the table of the GL specification (cube map face selection); faces are
-// numbered in GL's order, SHADOW_MAP_FACE_* in C.
-vec3 overlay_cube_direction(int face, vec2 st) {
-    if (face == SHADOW_MAP_FACE_POSITIVE_X) return vec3(1.0, -st.y, -st.x);
-    if (face == SHADOW_MAP_FACE_NEGATIVE_X) return vec3(-1.0, -st.y, st.x);
-    if (face == SHADOW_MAP_FACE_POSITIVE_Y) return vec3(st.x, 1.0, st.y);
-    if (face == SHADOW_MAP_FACE_NEGATIVE_Y) return vec3(st.x, -1.0, -st.y);
-    if (face == SHADOW_MAP_FACE_POSITIVE_Z) return vec3(st.x, -st.y, 1.0);
-    return vec3(-st.x, -st.y, -1.0); // SHADOW_MAP_FACE_NEGATIVE_Z
+// A perspective map (and each cube face) stores 1/z: undone, so that
+// depth reads evenly.
+float overlay_linear(float d) {
+    return u_orthographic ? d : 2.0 * u_near * u_far / (u_far + u_near - (d * 2.0 - 1.0) * (u_far - u_near));
 }
 
 void main() {
-    float d;
+    vec2 uv = v_uv;
+    int layer = u_layer;
     if (u_kind == SHADOW_MAP_CUBE) {
         vec2 cell = floor(v_uv * vec2(3.0, 2.0));
-        int face = int(cell.x) + 3 * (1 - int(cell.y));
-        vec2 st = fract(v_uv * vec2(3.0, 2.0)) * 2.0 - 1.0;
-        d = texture(u_cube_map, overlay_cube_direction(face, vec2(st.x, -st.y))).r;
-    } else if (u_kind == SHADOW_MAP_ARRAY) {
-        d = texture(u_array_map, vec3(v_uv, float(u_layer))).r;
-    } else {
-        d = texture(u_map, v_uv).r;
+        layer = int(cell.x) + 3 * (1 - int(cell.y));
+        uv = fract(v_uv * vec2(3.0, 2.0));
+        uv.y = 1.0 - uv.y; // a face's t runs down, seen from the centre
     }
-    // A perspective map (and each cube face) stores 1/z; undo it so depth
-    // reads evenly.
-    float z = u_orthographic ? d
-                             : (2.0 * u_near * u_far / (u_far + u_near - (d * 2.0 - 1.0) * (u_far - u_near)) - u_near) /
-                                   (u_far - u_near);
-    out_color = vec4(vec3(z), 1.0);
+    ivec2 texel = min(ivec2(uv * float(u_size)), ivec2(u_size - 1));
+    float d = texelFetch(u_reduced, ivec3(texel / u_factor, layer), 0).r;
+    if (d >= 1.0) {
+        out_color = vec4(1.0);
+        return;
+    }
+    float nearest = overlay_linear(u_held.x), span = overlay_linear(u_held.y) - nearest;
+    float t = span > 0.0 ? clamp((overlay_linear(d) - nearest) / span, 0.0, 1.0) : 0.0;
+    out_color = vec4(vec3(t * float(SHADOW_MAP_INSET_FAR_GREY_PERCENT) / 100.0), 1.0);
 }

@@ -112,17 +112,15 @@ vec2 shadow_map_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {
 }
 
 // The lecture's cascade overlay: each layer's colour, the blend band
-// mixing two (SHADOW_MAP_MAX_ARRAY_LAYERS of them), laid over light i's
-// share with SHADOW_MAP_CASCADE_TINT of its weight.
-const vec3 shadow_map_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS] = vec3[](
-    vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25), vec3(0.3, 0.45, 1.0), vec3(1.0, 0.9, 0.2),
-    vec3(1.0, 0.3, 1.0), vec3(0.2, 1.0, 1.0), vec3(1.0, 0.6, 0.2), vec3(0.65, 0.4, 1.0));
+// mixing two, laid over light i's share with SHADOW_MAP_CASCADE_TINT of
+// its weight. The colours are C's shadow_map_cascade_colors (the key's
+// too), set when the program is made.
+uniform vec3 u_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS];
 const float SHADOW_MAP_CASCADE_TINT = 0.6;
 
 vec3 shadow_map_cascade_tint(int i, vec3 c) {
     vec2 cascade = shadow_map_cascade_at(i, v_position);
     int k = int(cascade.x);
-    vec3 color = mix(shadow_map_cascade_colors[k],
-                     shadow_map_cascade_colors[min(k + 1, SHADOW_MAP_MAX_ARRAY_LAYERS - 1)], cascade.y);
+    vec3 color = mix(u_cascade_colors[k], u_cascade_colors[min(k + 1, SHADOW_MAP_MAX_ARRAY_LAYERS - 1)], cascade.y);
     return mix(c, c * color, SHADOW_MAP_CASCADE_TINT);
 }

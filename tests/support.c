@@ -13,6 +13,7 @@
 
 #include "image.h"
 #include "path.h"
+#include "shadow_map.h"
 
 const char *support_program(const char *name) {
     static char command[4][2048];
@@ -134,6 +135,117 @@ double support_error_share(const unsigned char *rgba, int stride, int x0, int y0
                       memcmp(p, shadowdiff_pixel_colors[SHADOWDIFF_PIXEL_FALSE_LIT], 3) == 0;
         }
     return (double)errors / ((double)width * height);
+}
+
+unsigned char *support_screenshot(const char *program, const char *scene, const char *flags, const char *name) {
+    static char err[16384];
+    char command[2048], path[512];
+    snprintf(path, sizeof path, "out/test/%s.png", name);
+    snprintf(command, sizeof command, "mkdir -p out/test && %s --size %dx%d --scene %s %s --screenshot %s",
+             support_program(program), SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, scene, flags, path);
+    if (support_run(command, err, sizeof err) != 0)
+        fail_msg("%s failed: %s", command, err);
+    return support_read_png(path, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT);
+}
+
+const unsigned char *support_pixel(const unsigned char *rgba, int width, int height, int x, int y) {
+    return rgba + ((size_t)(height - 1 - y) * (size_t)width + (size_t)x) * 4;
+}
+
+/* rect clipped to the picture: x0, y0, x1, y1 (exclusive). */
+static void support_clip(const int rect[4], int width, int height, int out[4]) {
+    out[0] = rect[0] < 0 ? 0 : rect[0];
+    out[1] = rect[1] < 0 ? 0 : rect[1];
+    out[2] = rect[0] + rect[2] > width ? width : rect[0] + rect[2];
+    out[3] = rect[1] + rect[3] > height ? height : rect[1] + rect[3];
+}
+
+static bool support_same_color(const unsigned char *p, const unsigned char rgb[3]) {
+    for (int c = 0; c < 3; c++)
+        if (abs((int)p[c] - (int)rgb[c]) > 1)
+            return false;
+    return true;
+}
+
+int support_grey_spread(const unsigned char *rgba, int width, int height, const int rect[4], int max_grey,
+                        long *count) {
+    long histogram[256] = {0}, n = 0;
+    int r[4];
+    support_clip(rect, width, height, r);
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2]; x++) {
+            const unsigned char *p = support_pixel(rgba, width, height, x, y);
+            if (p[0] == p[1] && p[1] == p[2] && p[0] <= max_grey) {
+                histogram[p[0]]++;
+                n++;
+            }
+        }
+    *count = n;
+    if (n == 0)
+        return 0;
+    int low = -1, high = 0;
+    long seen = 0;
+    for (int g = 0; g < 256; g++) {
+        seen += histogram[g];
+        if (low < 0 && seen * 20 >= n)
+            low = g;
+        if (seen * 20 < n * 19)
+            high = g + 1;
+    }
+    return high - low > 0 ? high - low : 0;
+}
+
+long support_count_color(const unsigned char *rgba, int width, int height, const int rect[4],
+                         const unsigned char rgb[3]) {
+    long n = 0;
+    int r[4];
+    support_clip(rect, width, height, r);
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2]; x++)
+            n += support_same_color(support_pixel(rgba, width, height, x, y), rgb);
+    return n;
+}
+
+bool support_find_square(const unsigned char *rgba, int width, int height, const int rect[4],
+                         const unsigned char rgb[3], int side) {
+    int r[4];
+    support_clip(rect, width, height, r);
+    for (int y = r[1]; y + side <= r[3]; y++)
+        for (int x = r[0]; x + side <= r[2]; x++) {
+            bool all = true;
+            for (int dy = 0; all && dy < side; dy++)
+                for (int dx = 0; all && dx < side; dx++)
+                    all = support_same_color(support_pixel(rgba, width, height, x + dx, y + dy), rgb);
+            if (all)
+                return true;
+        }
+    return false;
+}
+
+unsigned char *support_expect_insets_fitted(const char *program, const char *scene, const char *flags,
+                                            const char *name, int kind, int layer_count, unsigned empty) {
+    unsigned char *rgba = support_screenshot(program, scene, flags, name);
+    int max_grey = (SHADOW_MAP_INSET_FAR_GREY_PERCENT * 255 + 99) / 100;
+    int insets = shadow_map_inset_count((shadow_map_kind)kind, layer_count);
+    bool ok = true;
+    for (int k = 0; k < insets; k++) {
+        int rect[4];
+        long held;
+        shadow_map_inset_rect((shadow_map_kind)kind, layer_count, k, SUPPORT_SCREENSHOT_WIDTH,
+                              SUPPORT_SCREENSHOT_HEIGHT, rect);
+        int spread =
+            support_grey_spread(rgba, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, rect, max_grey, &held);
+        bool expected_empty = (empty >> k) & 1u;
+        fprintf(stderr, "    %s inset %d: %ld pixels of held depth, grey spread %d (5th to 95th percentile)%s\n",
+                name, k, held, spread, expected_empty ? ", an empty layer" : "");
+        if (!expected_empty)
+            ok = ok && held >= SUPPORT_INSET_MIN_HELD && spread >= SUPPORT_INSET_MIN_SPREAD;
+    }
+    if (!ok) {
+        free(rgba);
+        fail_msg("%s: an inset is blank or flat", name);
+    }
+    return rgba;
 }
 
 bool support_have_command(const char *name) {

@@ -57,6 +57,42 @@ unsigned char *support_read_png(const char *path, int width, int height);
  * picture `stride` pixels wide that has a heat map's error colours
  * (false shadow or false lit). */
 double support_error_share(const unsigned char *rgba, int stride, int x0, int y0, int width, int height);
+/* Runs `PROGRAM --size 640x360 --scene SCENE FLAGS --screenshot
+ * out/test/NAME.png`, fails the running cmocka test unless it exits 0,
+ * and returns the picture's RGBA pixels (640 x 360; the caller frees
+ * them). */
+#define SUPPORT_SCREENSHOT_WIDTH 640
+#define SUPPORT_SCREENSHOT_HEIGHT 360
+unsigned char *support_screenshot(const char *program, const char *scene, const char *flags, const char *name);
+/* Pictures' regions: rect is x, y, width and height in pixels from the
+ * bottom-left corner of an RGBA picture of width x height (rows stored
+ * from the top), clipped to it. The pixels of rect that are grey (r = g =
+ * b) no lighter than max_grey: how many (*count), and the span of their
+ * grey between the 5th and the 95th percentile (0 where there are none). */
+int support_grey_spread(const unsigned char *rgba, int width, int height, const int rect[4], int max_grey,
+                        long *count);
+/* The RGBA pixel at (x, y) from the bottom-left. */
+const unsigned char *support_pixel(const unsigned char *rgba, int width, int height, int x, int y);
+/* The pixels of rect of colour rgb (each channel within 1). */
+long support_count_color(const unsigned char *rgba, int width, int height, const int rect[4],
+                         const unsigned char rgb[3]);
+/* Whether rect holds a square of side x side pixels all of colour rgb
+ * (each channel within 1). */
+bool support_find_square(const unsigned char *rgba, int width, int height, const int rect[4],
+                         const unsigned char rgb[3], int side);
+/* Light 0's map insets (demos/lib/shadow_map.h, "The map inset") in the
+ * screenshot `name` of PROGRAM with FLAGS on SCENE (support_screenshot),
+ * whose light 0 has a map of `kind` with `layer_count` layers: each inset
+ * but those `empty` marks (bit k: inset k holds nothing) shows at least
+ * SUPPORT_INSET_MIN_HELD pixels of held depth (grey, no lighter than the
+ * ramp's farthest), whose grey spans at least SUPPORT_INSET_MIN_SPREAD
+ * levels (of 255) between its 5th and 95th percentiles; prints each
+ * inset's figures, fails the running cmocka test otherwise, and returns
+ * the picture (the caller frees it). */
+#define SUPPORT_INSET_MIN_HELD 8
+#define SUPPORT_INSET_MIN_SPREAD 64
+unsigned char *support_expect_insets_fitted(const char *program, const char *scene, const char *flags,
+                                            const char *name, int kind, int layer_count, unsigned empty);
 bool support_have_command(const char *name);
 /* The command prefix that runs a program in a window under a virtual X
  * server (the server without this process's LD_PRELOAD: support_program

@@ -15,6 +15,9 @@
 
 #include "cascades_fit.h"
 #include "frustum.h"
+#include "hud.h"
+#include "legend.h"
+#include "shadow_map.h"
 #include "support.h"
 
 #define LONG_VIEW "assets/scenes/long_view.json"
@@ -22,6 +25,9 @@
 #define NEAR_PLANE 0.1f
 #define FAR_PLANE 600.0f
 #define MAX_CASCADES 8
+/* The default count of cascades, and the cascades overlay's flags. */
+#define DEFAULT_CASCADES 4
+#define TINT "--overlay cascades"
 /* Float math on split distances up to 600: relative agreement to this. */
 #define RELATIVE 1e-5f
 /* A box corner on the texel grid: within this fraction of a texel of it
@@ -307,6 +313,80 @@ static void test_long_view_walked(void **state) {
     assert_true(pooled[0].misclassified_percent <= pooled[1].misclassified_percent);
 }
 
+/* An sRGB byte of a colour channel 0..1, as the framebuffer stores it. */
+static unsigned char to_byte(float channel) { return (unsigned char)lroundf(channel * 255); }
+
+/* The cascades overlay's key: in the bottom-left corner, left of the
+ * insets, a swatch of each layer's tint colour (the table the camera
+ * pass's tint reads), a letter's height square at the HUD's scale at 360
+ * lines (1). */
+static void test_tint_key(void **state) {
+    (void)state;
+    unsigned char *rgba = support_screenshot("cascades", LONG_VIEW, TINT, "cascades_key");
+    int inset[4], key[4];
+    shadow_map_inset_rect(SHADOW_MAP_ARRAY, DEFAULT_CASCADES, 0, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT,
+                          inset);
+    key[0] = key[1] = 0;
+    key[2] = inset[0];
+    key[3] = SUPPORT_SCREENSHOT_HEIGHT / 2;
+    for (int k = 0; k < DEFAULT_CASCADES; k++) {
+        const float *c = shadow_map_cascade_colors[k];
+        const unsigned char rgb[3] = {to_byte(c[0]), to_byte(c[1]), to_byte(c[2])};
+        bool found = support_find_square(rgba, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, key, rgb,
+                                         HUD_LETTER_UNITS * hud_scale_for(SUPPORT_SCREENSHOT_HEIGHT));
+        fprintf(stderr, "    cascade %d's swatch (%d, %d, %d) in the key: %s\n", k, rgb[0], rgb[1], rgb[2],
+                found ? "found" : "missing");
+        if (!found) {
+            free(rgba);
+            fail_msg("the key has no swatch of cascade %d's colour", k);
+        }
+    }
+    free(rgba);
+}
+
+/* No channel of pixel p lighter than the panel's brightest. */
+static bool is_dark(const unsigned char *p, const unsigned char panel[3]) {
+    int brightest = panel[0] > panel[1] ? panel[0] : panel[1];
+    brightest = panel[2] > brightest ? panel[2] : brightest;
+    return p[0] <= brightest && p[1] <= brightest && p[2] <= brightest;
+}
+
+/* Each inset fitted to what its layer holds: on long_view every cascade's
+ * (the far one's posts too), on simple the spot's one map (shadowmap's
+ * fit), on teapot the first three; teapot's far slice holds nothing, and
+ * its inset is the legend's panel, labelled "empty" (its label as wide as
+ * that word's, with its cascade's swatch). */
+#define EMPTY_PANEL_SHARE 0.95
+static void test_insets_fitted_to_their_layers(void **state) {
+    (void)state;
+    free(support_expect_insets_fitted("cascades", LONG_VIEW, TINT, "cascades_insets_long_view", SHADOW_MAP_ARRAY,
+                                      DEFAULT_CASCADES, 0));
+    free(support_expect_insets_fitted("cascades", "assets/scenes/simple.json", TINT, "cascades_insets_simple",
+                                      SHADOW_MAP_2D, 1, 0));
+    int last = DEFAULT_CASCADES - 1;
+    unsigned char *rgba =
+        support_expect_insets_fitted("cascades", "assets/scenes/teapot.json", TINT, "cascades_insets_teapot",
+                                     SHADOW_MAP_ARRAY, DEFAULT_CASCADES, 1u << last);
+    int rect[4], w = SUPPORT_SCREENSHOT_WIDTH, h = SUPPORT_SCREENSHOT_HEIGHT, scale = hud_scale_for(h);
+    shadow_map_inset_rect(SHADOW_MAP_ARRAY, DEFAULT_CASCADES, last, w, h, rect);
+    const unsigned char panel[3] = {to_byte(legend_panel_color[0]), to_byte(legend_panel_color[1]),
+                                    to_byte(legend_panel_color[2])};
+    long panel_pixels = support_count_color(rgba, w, h, rect, panel);
+    /* The label above the inset, on the dark panels of the legend and
+     * the HUD's text: at its middle row its last column dark, the next
+     * one the picture's (teapot's ground, lit). */
+    legend_line label = {.text = "empty", .swatches = 1};
+    int width = legend_width_units(&label, 1) * scale,
+        middle = rect[1] + rect[3] + legend_height_units(1) * scale / 2;
+    bool last_dark = is_dark(support_pixel(rgba, w, h, rect[0] + width - 1, middle), panel);
+    bool next_dark = is_dark(support_pixel(rgba, w, h, rect[0] + width, middle), panel);
+    fprintf(stderr, "    teapot's empty inset: %.3f of it the panel's colour; its label %d pixels wide: %s\n",
+            (double)panel_pixels / (rect[2] * rect[3]), width, last_dark && !next_dark ? "so" : "not so");
+    free(rgba);
+    assert_true(panel_pixels >= EMPTY_PANEL_SHARE * rect[2] * rect[3]);
+    assert_true(last_dark && !next_dark);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_split_schemes),
@@ -316,6 +396,8 @@ int main(void) {
         cmocka_unit_test(test_standard_scenes_within_bound),
         cmocka_unit_test(test_long_view_splits),
         cmocka_unit_test(test_long_view_walked),
+        cmocka_unit_test(test_tint_key),
+        cmocka_unit_test(test_insets_fitted_to_their_layers),
     };
     return cmocka_run_group_tests_name("cascaded shadow maps", tests, NULL, NULL);
 }

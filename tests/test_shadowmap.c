@@ -482,6 +482,27 @@ static void test_map_size_from_need(void **state) {
     }
 }
 
+/* --overlay map's inset fitted to what the map holds
+ * (support_expect_insets_fitted): long_view's sun (one orthographic map
+ * over 400 units of road, whose posts are a texel or two wide: the inset
+ * shows each block's nearest depth), simple's spot and bunny's point
+ * light (a cube, its six faces one inset). */
+static void test_inset_fitted_to_its_map(void **state) {
+    (void)state;
+    static const struct {
+        const char *scene;
+        shadow_map_kind kind;
+        int layers;
+    } cases[] = {{"long_view", SHADOW_MAP_2D, 1}, {"simple", SHADOW_MAP_2D, 1}, {"bunny", SHADOW_MAP_CUBE, 6}};
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char scene[256], name[64];
+        snprintf(scene, sizeof scene, "assets/scenes/%s.json", cases[i].scene);
+        snprintf(name, sizeof name, "shadowmap_inset_%s", cases[i].scene);
+        free(support_expect_insets_fitted("shadowmap", scene, "--overlay map", name, cases[i].kind, cases[i].layers,
+                                          0));
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_standard_scenes_within_bound),
@@ -497,6 +518,7 @@ int main(void) {
         cmocka_unit_test(test_no_peter_panning_at_contact),
         cmocka_unit_test(test_no_cube_seams),
         cmocka_unit_test(test_map_size_from_need),
+        cmocka_unit_test(test_inset_fitted_to_its_map),
     };
     return cmocka_run_group_tests_name("shadow maps against the reference", tests, NULL, NULL);
 }

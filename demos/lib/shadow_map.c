@@ -298,6 +298,8 @@ void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *st
         memcpy(c->drawn[layer], r->needed[layer], (size_t)r->object_count * sizeof(bool));
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
+    if (l == 0 && begun) /* the map inset's reduction is of the layers before */
+        r->inset_current = false;
     for (int layer = 0; moments != SHADOW_MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
         if (rendered[layer])
             shadow_map_moments_blur(r, m, moments, layer);
@@ -314,6 +316,30 @@ typedef struct shadow_map_uniform {
 static void shadow_map_find_uniforms(unsigned program, const shadow_map_uniform *uniforms, size_t count) {
     for (size_t i = 0; i < count; i++)
         *uniforms[i].location = shader_uniform(program, uniforms[i].name);
+}
+
+bool shadow_map_color_target(unsigned *framebuffer, unsigned texture, unsigned image, int layer,
+                             const char *instead) {
+    if (!*framebuffer)
+        glGenFramebuffers(1, framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
+    if (image == GL_TEXTURE_2D_ARRAY)
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, texture, 0, layer);
+    else
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, image, texture, 0);
+    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE)
+        return true;
+    fprintf(stderr, "shadow maps: this GL cannot draw into a float colour texture (framebuffer status 0x%x): %s\n",
+            status, instead);
+    return false;
+}
+
+void shadow_map_texel_units(unsigned program) {
+    /* A unit per sampler type: two types may not share one. */
+    glUniform1i(shader_uniform(program, "u_source_2d"), SHADOW_MAP_2D);
+    glUniform1i(shader_uniform(program, "u_source_cube"), SHADOW_MAP_CUBE);
+    glUniform1i(shader_uniform(program, "u_source_array"), SHADOW_MAP_ARRAY);
 }
 
 /* The names of the per-light defines: light i's kind, its map's texel
@@ -411,6 +437,7 @@ static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const s
         p->lights[l].near_plane = shadow_map_light_uniform(id, "u_near", l);
         p->lights[l].far_plane = shadow_map_light_uniform(id, "u_far", l);
     }
+    glUniform3fv(shader_uniform(id, "u_cascade_colors"), SHADOW_MAP_MAX_ARRAY_LAYERS, shadow_map_cascade_colors[0]);
     return true;
 }
 
@@ -487,15 +514,8 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
     static const char *const legend_files[] = {"overlay.vert", "overlay_heat_legend.frag"};
-    static const shader_define inset_defines[] = {SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),
-                                                  SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
-                                                  SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),
-                                                  SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
-                                                  SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z),
-                                                  SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Z),
-                                                  SHADER_DEFINE(SHADOW_MAP_CUBE),
-                                                  SHADER_DEFINE(SHADOW_MAP_ARRAY),
-                                                  {NULL, 0}};
+    static const shader_define inset_defines[] = {
+        SHADER_DEFINE(SHADOW_MAP_CUBE), SHADER_DEFINE(SHADOW_MAP_INSET_FAR_GREY_PERCENT), {NULL, 0}};
     if (!render_program_load(&r->lines.program, lines_files, 2, NULL) ||
         !render_program_load(&r->inset.program, inset_files, 2, inset_defines) ||
         !render_program_load(&r->legend.program, legend_files, 2, shadow_map_defines))
@@ -504,9 +524,9 @@ static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
     r->legend.log2_range = shader_uniform(r->legend.program.id, "u_log2_range");
     shadow_map_inset_program *p = &r->inset;
     const shadow_map_uniform uniforms[] = {
-        {&p->map, "u_map"},         {&p->cube_map, "u_cube_map"}, {&p->array_map, "u_array_map"},
-        {&p->kind, "u_kind"},       {&p->layer, "u_layer"},       {&p->orthographic, "u_orthographic"},
-        {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"},
+        {&p->reduced, "u_reduced"}, {&p->kind, "u_kind"},     {&p->layer, "u_layer"},
+        {&p->size, "u_size"},       {&p->factor, "u_factor"}, {&p->orthographic, "u_orthographic"},
+        {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"}, {&p->held, "u_held"},
     };
     shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
     return true;
@@ -591,6 +611,10 @@ void shadow_map_destroy(shadow_map_renderer *r) {
     render_program_destroy(&r->lines.program);
     render_program_destroy(&r->inset.program);
     render_program_destroy(&r->legend.program);
+    for (int kind = 0; kind <= SHADOW_MAP_ARRAY; kind++)
+        render_program_destroy(&r->reduce[kind].program);
+    glDeleteTextures(1, &r->inset_texture);
+    glDeleteFramebuffers(1, &r->inset_framebuffer);
     glDeleteVertexArrays(1, &r->overlay_vao);
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);

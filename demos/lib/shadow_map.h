@@ -186,7 +186,9 @@ void shadow_map_describe_filter(const shadow_map_settings *settings, char *out, 
  *   frustum     each layer's frustum in wireframe (shadow_map_draw_frustum);
  *   map         light 0's map as an inset of linear depth (a cube's faces
  *               in two rows: +X -X +Y, then -Y +Z -Z; an array's layers
- *               in a row);
+ *               in a row, each an inset), each inset fitted to what its
+ *               layer holds and labelled with it (see "The map inset"
+ *               below);
  *   all         texels, frustum and map.
  * A technique's overlay list starts with SHADOW_MAP_OVERLAY_NAMES and may
  * go on with its own (psm's post-perspective view: shadow_map_warp_view). */
@@ -203,8 +205,11 @@ enum {
 };
 /* An array map's technique lists this one next (and sets the settings'
  * array_overlays): light 0's layers' receivers tinted each in its colour
- * (the blend band mixing two), and its map as an inset (an array's layers
- * in a row; a spot's or point light's map as "map" shows it). */
+ * (the blend band mixing two; shadow_map_cascade_colors) with a key in
+ * the bottom-left corner (each layer's colour, number and slice of view
+ * depth: from cascade_split[k] to [k + 1]), and its map as an inset (an
+ * array's layers in a row; a spot's or point light's map as "map" shows
+ * it). */
 #define SHADOW_MAP_ARRAY_OVERLAY_NAMES "cascades"
 enum { SHADOW_MAP_OVERLAY_CASCADES = SHADOW_MAP_OVERLAY_COUNT };
 /* The settings' overlay is that one. */
@@ -513,11 +518,19 @@ typedef struct shadow_map_lines_program {
     int color;
 } shadow_map_lines_program;
 
-/* overlay.vert with overlay_map.frag: a map as an inset of linear depth. */
+/* overlay.vert with overlay_map.frag: a map's reduction as an inset of
+ * linear depth. */
 typedef struct shadow_map_inset_program {
     render_program program;
-    int map, cube_map, array_map, kind, layer, orthographic, near_plane, far_plane;
+    int reduced, kind, layer, size, factor, orthographic, near_plane, far_plane, held;
 } shadow_map_inset_program;
+
+/* overlay.vert with overlay_reduce.frag, for a map of one kind: the
+ * inset's reduction, loaded when an inset first needs it. */
+typedef struct shadow_map_reduce_program {
+    render_program program;
+    int factor, layer;
+} shadow_map_reduce_program;
 
 /* overlay.vert with overlay_heat_legend.frag: the texel-size legend's bar. */
 typedef struct shadow_map_legend_program {
@@ -581,6 +594,18 @@ typedef struct shadow_map_renderer {
      * needed). */
     shadow_map_blur_program blur_depth[SHADOW_MAP_MOMENTS_MSM + 1][SHADOW_MAP_ARRAY + 1], blur_moments;
     unsigned blur_framebuffer, blur_vao;
+    /* The map inset's reduction (shadow_map_overlay.c) of light 0's map:
+     * per kind its program; an RG32F array texture, a layer per map layer
+     * and inset_blocks texels on a side (blocks of inset_factor texels on
+     * a side), and its framebuffer; each layer's nearest and farthest held
+     * depth. Current until the depth pass renders a layer of light 0's
+     * map (made again only then: a cached map is not reduced again);
+     * failed (said once): no inset is drawn. */
+    shadow_map_reduce_program reduce[SHADOW_MAP_ARRAY + 1];
+    unsigned inset_texture, inset_framebuffer;
+    int inset_blocks, inset_layers, inset_factor;
+    float inset_held[SHADOW_MAP_MAX_LAYERS][2];
+    bool inset_current, inset_failed;
     bool blur_failed;        /* said once: moment filters read one bilinear depth test */
     unsigned depth_sampler;  /* a map read as depth: compare mode off, nearest */
     int texture_units;       /* GL_MAX_TEXTURE_IMAGE_UNITS */
@@ -807,16 +832,60 @@ void shadow_map_moments_prepare(shadow_map *m, shadow_map_moments moments);
 bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow_map_moments moments, int layer);
 void shadow_map_moments_destroy(shadow_map_renderer *r);
 
+/* Passes that read a map's depths a texel at a time (the moment blur's
+ * first, the map inset's reduction) include shaders/map_texel.glsl: their
+ * defines go on with SHADOW_MAP_TEXEL_DEFINES, the names it compares
+ * with, and shadow_map_texel_units puts its samplers on their units (the
+ * program in use): a map of kind k is read on unit k. */
+#define SHADOW_MAP_TEXEL_DEFINES                                                                                     \
+    SHADER_DEFINE(SHADOW_MAP_CUBE), SHADER_DEFINE(SHADOW_MAP_ARRAY), SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),      \
+        SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X), SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),                        \
+        SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y), SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z)
+void shadow_map_texel_units(unsigned program);
+/* *framebuffer (made on first use), bound, with `texture`'s image `image`
+ * (GL_TEXTURE_2D, a cube face's, or layer `layer` of GL_TEXTURE_2D_ARRAY)
+ * as its colour: complete, or said on stderr with what is done `instead`,
+ * and false. */
+bool shadow_map_color_target(unsigned *framebuffer, unsigned texture, unsigned image, int layer, const char *instead);
+
 /* ---- overlays (shadow_map_overlay.c) ---- */
 
 /* The 12 edges of the frustum of `frustum` (its clip cube mapped back to
  * world space), drawn through `view_projection`. */
 void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const mat4 view_projection);
 /* Step 5 of the frame: those of settings->overlay drawn after the camera
- * pass, for the lights with a map this frame: frusta, inset, the
- * texel-size and penumbra heat maps' legends (a colour bar with labelled
- * ticks). */
+ * pass, for the lights with a map this frame: frusta, the map inset (see
+ * below), the cascades' key, the texel-size and penumbra heat maps'
+ * legends (a colour bar with labelled ticks). */
 void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f);
+
+/* Each array layer's colour in the cascades overlay, one table for the
+ * camera pass's tint (shaders/shadowmap_array.glsl's u_cascade_colors,
+ * set from it when a camera program is made) and the key's swatches. */
+extern const float shadow_map_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS][3];
+
+/* The map inset. Light 0's map is reduced on the GPU
+ * (shaders/overlay_reduce.frag) to blocks of texels, a block to at most
+ * a pixel of the inset, each holding the nearest and the farthest depth
+ * stored in it among the texels that hold one (below the cleared 1): the
+ * inset shows each block's nearest (a caster narrower than a pixel still
+ * shows), and the reduction, read back (a few hundred blocks on a side at
+ * most), gives each layer's range. Each inset (a cube's one for its six
+ * faces) shows linear depth from its nearest held depth, black, to its
+ * farthest, SHADOW_MAP_INSET_FAR_GREY_PERCENT grey, what holds nothing
+ * white. A label above it gives that range in the light view's units (a
+ * perspective map's distance from the light, an orthographic one's depth
+ * past its near plane) beside its swatch: an array layer's colour, else
+ * the ramp's two ends. A layer that holds nothing is drawn as the
+ * legend's panel, labelled "empty". The reduction is made again only
+ * when the depth pass renders a layer of light 0's map. */
+#define SHADOW_MAP_INSET_FAR_GREY_PERCENT 75
+/* How many insets a map of `kind` with `layer_count` layers has (an
+ * array's layers one each; any other map one), and where inset `inset`
+ * lies in a viewport of width x height pixels: x, y, width and height in
+ * pixels from the viewport's bottom-left corner. */
+int shadow_map_inset_count(shadow_map_kind kind, int layer_count);
+void shadow_map_inset_rect(shadow_map_kind kind, int layer_count, int inset, int width, int height, int rect[4]);
 
 /* A warp's space in a second viewport (psm's post-perspective view): the
  * scene carried into `space` and clipped to its clip cube, the cube's

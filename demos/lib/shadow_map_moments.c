@@ -23,11 +23,6 @@
 /* The least derivative of map coordinates along a world axis: a matrix
  * degenerate there gives an infinite texel, left out of the mean. */
 #define SHADOW_MAP_MOMENTS_MIN_DERIVATIVE 1e-20f
-/* Texture units of the blur's first pass, by the kind of map it reads
- * (the second reads its 2D sums on the first). */
-#define SHADOW_MAP_MOMENTS_UNIT_2D 0
-#define SHADOW_MAP_MOMENTS_UNIT_CUBE 1
-#define SHADOW_MAP_MOMENTS_UNIT_ARRAY 2
 
 shadow_map_moments shadow_map_filter_moments(int filter) {
     switch (filter) {
@@ -203,14 +198,7 @@ static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_mo
                                      SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM4),
                                      SHADER_DEFINE(SHADOW_MAP_MOMENTS_MSM),
                                      SHADER_DEFINE(SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS),
-                                     SHADER_DEFINE(SHADOW_MAP_2D),
-                                     SHADER_DEFINE(SHADOW_MAP_CUBE),
-                                     SHADER_DEFINE(SHADOW_MAP_ARRAY),
-                                     SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_X),
-                                     SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_X),
-                                     SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Y),
-                                     SHADER_DEFINE(SHADOW_MAP_FACE_NEGATIVE_Y),
-                                     SHADER_DEFINE(SHADOW_MAP_FACE_POSITIVE_Z),
+                                     SHADOW_MAP_TEXEL_DEFINES,
                                      {NULL, 0}};
     p->id = shader_load_program(files, 2, defines);
     if (!p->id)
@@ -219,37 +207,22 @@ static bool shadow_map_moments_program(shadow_map_blur_program *p, shadow_map_mo
     p->axis = shader_uniform(p->id, "u_axis");
     p->layer = shader_uniform(p->id, "u_layer");
     glUseProgram(p->id);
-    glUniform1i(shader_uniform(p->id, "u_source_2d"), SHADOW_MAP_MOMENTS_UNIT_2D);
-    glUniform1i(shader_uniform(p->id, "u_source_cube"), SHADOW_MAP_MOMENTS_UNIT_CUBE);
-    glUniform1i(shader_uniform(p->id, "u_source_array"), SHADOW_MAP_MOMENTS_UNIT_ARRAY);
+    shadow_map_texel_units(p->id); /* the second pass reads its 2D sums on the 2D unit */
     return true;
 }
 
-/* The passes' framebuffer with `texture`'s image `image` (GL_TEXTURE_2D,
- * a cube face's; an array's layer `layer`) as its colour: complete, or
- * said once. */
+/* The moments' framebuffer with `texture`'s image `image` as its colour
+ * (shadow_map_color_target). */
 static bool shadow_map_moments_target(shadow_map_renderer *r, unsigned texture, GLenum image, int layer) {
-    if (!r->blur_framebuffer)
-        glGenFramebuffers(1, &r->blur_framebuffer);
-    glBindFramebuffer(GL_FRAMEBUFFER, r->blur_framebuffer);
-    if (image == GL_TEXTURE_2D_ARRAY)
-        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, texture, 0, layer);
-    else
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, image, texture, 0);
-    GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status == GL_FRAMEBUFFER_COMPLETE)
-        return true;
-    fprintf(stderr,
-            "shadow maps: this GL cannot draw into a float colour texture (framebuffer status 0x%x): a moment "
-            "filter reads one bilinear depth test instead; use a kernel (--filter poisson)\n",
-            status);
-    return false;
+    return shadow_map_color_target(&r->blur_framebuffer, texture, image, layer,
+                                   "a moment filter reads one bilinear depth test instead; use a kernel (--filter "
+                                   "poisson)");
 }
 
 /* One box pass along `axis` from the 2D texture `source` into the target
  * bound. */
 static void shadow_map_moments_box(const shadow_map_blur_program *p, unsigned source, float radius, float axis_x) {
-    glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_MOMENTS_UNIT_2D);
+    glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_2D);
     glBindTexture(GL_TEXTURE_2D, source);
     glUseProgram(p->id);
     glUniform1f(p->radius, radius);
@@ -274,10 +247,7 @@ bool shadow_map_moments_blur(shadow_map_renderer *r, const shadow_map *m, shadow
     glDisable(GL_DEPTH_TEST);
     glViewport(0, 0, m->size, m->size);
     glBindVertexArray(r->blur_vao);
-    static const GLuint units[] = {[SHADOW_MAP_2D] = SHADOW_MAP_MOMENTS_UNIT_2D,
-                                   [SHADOW_MAP_CUBE] = SHADOW_MAP_MOMENTS_UNIT_CUBE,
-                                   [SHADOW_MAP_ARRAY] = SHADOW_MAP_MOMENTS_UNIT_ARRAY};
-    GLuint unit = units[m->kind];
+    GLuint unit = (GLuint)m->kind;
     /* The depths as stored: compare mode off, nearest. */
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(shadow_map_target(m->kind), t->id);

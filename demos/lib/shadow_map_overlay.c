@@ -1,6 +1,8 @@
 /* shadow_map: the overlays drawn after the camera pass, for lectures (see
  * shadow_map.h). The texel and texel-size overlays are the camera pass's
- * own (shaders/shadowmap.glsl); the texel-size legend is drawn here. */
+ * own (shaders/shadowmap.glsl); the texel-size legend is drawn here, and
+ * the frusta, the map inset (its reduction, its insets and their labels)
+ * and the cascades' key, whose labels are common/gl/legend.h's. */
 #include <glad/gl.h>
 /* stb_easy_font is all static functions; not every one is used. */
 #pragma GCC diagnostic push
@@ -9,9 +11,15 @@
 #include <stb_easy_font.h>
 #pragma GCC diagnostic pop
 
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "depth.h"
 #include "frustum.h"
 #include "hud.h"
+#include "legend.h"
 #include "shadow_map.h"
 
 /* Frustum edges: a warm yellow that reads on the lit scene and the dark
@@ -63,49 +71,265 @@ void shadow_map_draw_frustum(shadow_map_renderer *r, const mat4 frustum, const m
     shadow_map_draw_solid(r, GL_LINES, (const float(*)[3])lines, n, view_projection, shadow_map_frustum_color);
 }
 
-/* Light 0's map in the bottom-right third of the picture: a 2D map as it
- * is, a cube map as its six faces in two rows of three, an array map's
- * layers in a row along the bottom, nearest cascade first, over at most
- * half the picture's width. */
-static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, const int viewport[4]) {
-    static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D,
-                                     [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
-                                     [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
-    bool cube = m->kind == SHADOW_MAP_CUBE, array = m->kind == SHADOW_MAP_ARRAY;
-    int height = viewport[3] / SHADOW_MAP_INSET_HEIGHT_DIVISOR, width = cube ? height * 3 / 2 : height;
-    if (array)
-        width = height = glm_min(height, viewport[2] / SHADOW_MAP_ARRAY_INSET_WIDTH_DIVISOR / m->layer_count);
-    glDisable(GL_DEPTH_TEST);
-    const shadow_map_inset_program *p = &r->inset;
-    glUseProgram(p->program.id);
+/* ---- the map inset ---- */
+
+const float shadow_map_cascade_colors[SHADOW_MAP_MAX_ARRAY_LAYERS][3] = {
+    {1.0f, 0.25f, 0.25f}, {0.25f, 1.0f, 0.25f}, {0.3f, 0.45f, 1.0f}, {1.0f, 0.9f, 0.2f},
+    {1.0f, 0.3f, 1.0f},   {0.2f, 1.0f, 1.0f},   {1.0f, 0.6f, 0.2f},  {0.65f, 0.4f, 1.0f}};
+/* A quad over the whole viewport, in clip space. */
+static const float shadow_map_overlay_quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0},
+                                                    {-1, -1, 0}, {1, 1, 0},  {-1, 1, 0}};
+/* The unit the inset reads the reduction on (the reduction reads a map of
+ * kind k on unit k: shadow_map_texel_units). */
+#define SHADOW_MAP_INSET_UNIT 0
+/* A reduced block that holds nothing: (nearest, farthest) = (1, 0). */
+#define SHADOW_MAP_INSET_NOTHING 1.0f
+/* The room for a depth in a label: "-1e+38" written whole, and more. */
+#define SHADOW_MAP_DEPTH_TEXT 48
+/* Significant figures of a depth: the key's, and the insets' labels' (an
+ * inset may be narrow). */
+#define SHADOW_MAP_KEY_FIGURES 3
+#define SHADOW_MAP_LABEL_FIGURES 2
+
+int shadow_map_inset_count(shadow_map_kind kind, int layer_count) {
+    return kind == SHADOW_MAP_ARRAY ? layer_count : 1;
+}
+
+/* Along the bottom, flush right: a 2D map a square a third of the
+ * picture's height, a cube map three faces wide and two high in that
+ * height, an array map's layers in a row of squares, nearest cascade
+ * first, over at most half the picture's width. */
+void shadow_map_inset_rect(shadow_map_kind kind, int layer_count, int inset, int width, int height, int rect[4]) {
+    int insets = shadow_map_inset_count(kind, layer_count);
+    int h = height / SHADOW_MAP_INSET_HEIGHT_DIVISOR, w = kind == SHADOW_MAP_CUBE ? h * 3 / 2 : h;
+    if (kind == SHADOW_MAP_ARRAY)
+        w = h = glm_min(h, width / SHADOW_MAP_ARRAY_INSET_WIDTH_DIVISOR / insets);
+    rect[0] = width - (insets - inset) * (w + SHADOW_MAP_INSET_MARGIN_PX);
+    rect[1] = SHADOW_MAP_INSET_MARGIN_PX;
+    rect[2] = w;
+    rect[3] = h;
+}
+
+/* The program that reduces a map of `kind`, loaded now if it was not. */
+static const shadow_map_reduce_program *shadow_map_reduce_program_for(shadow_map_renderer *r, shadow_map_kind kind) {
+    shadow_map_reduce_program *p = &r->reduce[kind];
+    if (p->program.id)
+        return p;
+    static const char *const files[] = {"overlay.vert", "overlay_reduce.frag"};
+    const shader_define defines[] = {{"SHADOW_MAP_REDUCE_KIND", (int)kind}, SHADOW_MAP_TEXEL_DEFINES, {NULL, 0}};
+    if (!render_program_load(&p->program, files, 2, defines))
+        return NULL;
+    unsigned id = p->program.id;
+    p->factor = shader_uniform(id, "u_factor");
+    p->layer = shader_uniform(id, "u_layer");
+    glUseProgram(id);
+    shadow_map_texel_units(id);
     mat4 identity = GLM_MAT4_IDENTITY_INIT;
     glUniformMatrix4fv(p->program.view_projection, 1, GL_FALSE, (const float *)identity);
-    /* A unit per sampler type: two types may not share one. */
-    GLenum texture_target = targets[m->kind];
-    glUniform1i(p->map, SHADOW_MAP_2D);
-    glUniform1i(p->cube_map, SHADOW_MAP_CUBE);
-    glUniform1i(p->array_map, SHADOW_MAP_ARRAY);
-    glUniform1i(p->kind, m->kind);
-    glUniform1i(p->orthographic, m->orthographic);
-    glUniform1f(p->near_plane, m->near_plane);
-    glUniform1f(p->far_plane, m->far_plane);
-    glActiveTexture(GL_TEXTURE0 + (GLenum)m->kind);
-    glBindTexture(texture_target, m->texture.id);
-    glTexParameteri(texture_target, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    glBindVertexArray(r->overlay_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
-    int insets = array ? m->layer_count : 1;
-    for (int layer = 0; layer < insets; layer++) {
-        glViewport(viewport[0] + viewport[2] - (insets - layer) * (width + SHADOW_MAP_INSET_MARGIN_PX),
-                   viewport[1] + SHADOW_MAP_INSET_MARGIN_PX, width, height);
+    return p;
+}
+
+/* The reduction's texture, blocks x blocks x layers, made anew when that
+ * changes (on the inset's unit). */
+static void shadow_map_inset_texture(shadow_map_renderer *r, int blocks, int layers) {
+    if (r->inset_texture && r->inset_blocks == blocks && r->inset_layers == layers)
+        return;
+    glDeleteTextures(1, &r->inset_texture);
+    glGenTextures(1, &r->inset_texture);
+    glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_INSET_UNIT);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, r->inset_texture);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RG32F, blocks, blocks, layers, 0, GL_RG, GL_FLOAT, NULL);
+    shadow_map_texture_filter(GL_TEXTURE_2D_ARRAY, GL_NEAREST);
+    r->inset_blocks = blocks;
+    r->inset_layers = layers;
+}
+
+/* Map m reduced to blocks of `factor` texels on a side, every layer, into
+ * r->inset_texture, and read back: each layer's nearest and farthest held
+ * depth into r->inset_held[layer] (SHADOW_MAP_INSET_NOTHING, 0 where it
+ * holds none). False (said once, r->inset_failed) where it cannot be.
+ * Leaves the target framebuffer bound, and the viewport at r->viewport. */
+static bool shadow_map_inset_reduce(shadow_map_renderer *r, const shadow_map *m, int factor) {
+    float(*held)[2] = r->inset_held;
+    int blocks = (m->size + factor - 1) / factor;
+    const shadow_map_reduce_program *p = shadow_map_reduce_program_for(r, m->kind);
+    size_t count = (size_t)blocks * (size_t)blocks * (size_t)m->layer_count;
+    float(*ranges)[2] = malloc(count * sizeof *ranges);
+    bool ok = p && ranges;
+    if (!ranges)
+        fprintf(stderr, "shadow maps: out of memory for the map inset's %zu blocks\n", count);
+    if (ok) {
+        shadow_map_inset_texture(r, blocks, m->layer_count);
+        glUseProgram(p->program.id);
+        glUniform1i(p->factor, factor);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)m->kind);
+        glBindTexture(shadow_map_target(m->kind), m->texture.id);
+        glBindSampler((GLuint)m->kind, r->depth_sampler); /* the depths as stored */
+        glBindVertexArray(r->overlay_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof shadow_map_overlay_quad, shadow_map_overlay_quad);
+        glViewport(0, 0, blocks, blocks);
+    }
+    for (int layer = 0; ok && layer < m->layer_count; layer++) {
+        ok = shadow_map_color_target(&r->inset_framebuffer, r->inset_texture, GL_TEXTURE_2D_ARRAY, layer,
+                                     "the map inset is not drawn");
+        if (!ok)
+            break;
+        glUseProgram(p->program.id);
         glUniform1i(p->layer, layer);
         glDrawArrays(GL_TRIANGLES, 0, 6);
     }
-    glTexParameteri(texture_target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    if (ok) {
+        glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_INSET_UNIT);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, r->inset_texture);
+        glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RG, GL_FLOAT, ranges);
+        size_t per_layer = (size_t)blocks * (size_t)blocks;
+        for (int layer = 0; layer < m->layer_count; layer++) {
+            held[layer][0] = SHADOW_MAP_INSET_NOTHING;
+            held[layer][1] = 0;
+            for (size_t i = per_layer * (size_t)layer; i < per_layer * (size_t)(layer + 1); i++) {
+                held[layer][0] = fminf(held[layer][0], ranges[i][0]);
+                held[layer][1] = fmaxf(held[layer][1], ranges[i][1]);
+            }
+        }
+    }
+    free(ranges);
+    if (p)
+        glBindSampler((GLuint)m->kind, 0);
+    r->inset_failed = !ok;
+    r->inset_current = ok;
+    r->inset_factor = factor;
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
+    glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
+    return ok;
+}
+
+/* The depth d stored in layer `layer` in the units of the light's view:
+ * a perspective map's distance from the light along its axis, an
+ * orthographic one's from its near plane (its view's origin is arbitrary:
+ * the fit's). */
+static float shadow_map_inset_distance(const shadow_map *m, int layer, float d) {
+    float n = m->near_plane, f = m->far_plane;
+    if (m->kind == SHADOW_MAP_ARRAY) /* glm_ortho's depth scale: -2 / (far - near) */
+        return d * -2 / m->cascade_scale[layer][2];
+    if (m->orthographic)
+        return d * (f - n);
+    return 2 * n * f / (f + n - (2 * d - 1) * (f - n));
+}
+
+/* "A..B", the range a..b, each to `figures` significant figures (whole
+ * units from 10^figures on, where %g would write an exponent), into out. */
+static void shadow_map_format_range(char *out, size_t size, float a, float b, int figures) {
+    const float ends[2] = {a, b};
+    char text[2][SHADOW_MAP_DEPTH_TEXT];
+    for (int k = 0; k < 2; k++) {
+        if (fabsf(ends[k]) < powf(10, (float)figures))
+            snprintf(text[k], sizeof text[k], "%.*g", figures, (double)ends[k]);
+        else
+            snprintf(text[k], sizeof text[k], "%.0f", (double)ends[k]);
+    }
+    snprintf(out, size, "%s..%s", text[0], text[1]);
+}
+
+/* One line of text just above rect (pixels from the viewport's
+ * bottom-left), as large as fits its width (at least the smallest
+ * scale). */
+static void shadow_map_label(const legend_line *line, const int rect[4], const int viewport[4]) {
+    int scale = legend_scale_to_fit(line, 1, rect[2], rect[3], viewport[3]);
+    scale = scale ? scale : 1;
+    legend_draw(line, 1, rect[0], viewport[3] - rect[1] - rect[3] - legend_height_units(1) * scale, scale);
+}
+
+/* Light 0's map m as its insets (shadow_map_inset_rect), each fitted to
+ * what its layer holds and labelled (see "The map inset" in
+ * shadow_map.h). */
+static void shadow_map_draw_inset(shadow_map_renderer *r, const shadow_map *m, const int viewport[4]) {
+    bool cube = m->kind == SHADOW_MAP_CUBE, array = m->kind == SHADOW_MAP_ARRAY;
+    int insets = shadow_map_inset_count(m->kind, m->layer_count), rect[4];
+    shadow_map_inset_rect(m->kind, m->layer_count, 0, viewport[2], viewport[3], rect);
+    /* A block to at most a pixel of the inset (of a cube's face). */
+    int pixels = glm_max(1, cube ? rect[3] / 2 : rect[3]);
+    int factor = glm_max(1, (m->size + pixels - 1) / pixels);
+    bool current = r->inset_current && r->inset_factor == factor && r->inset_layers == m->layer_count;
+    if (r->inset_failed || (!current && !shadow_map_inset_reduce(r, m, factor)))
+        return;
+    float held[SHADOW_MAP_MAX_LAYERS][2];
+    memcpy(held, r->inset_held, sizeof held);
+    if (cube) /* one inset: the six faces' range */
+        for (int face = 1; face < SHADOW_MAP_CUBE_FACES; face++) {
+            held[0][0] = fminf(held[0][0], held[face][0]);
+            held[0][1] = fmaxf(held[0][1], held[face][1]);
+        }
+    glDisable(GL_DEPTH_TEST);
+    const shadow_map_inset_program *p = &r->inset;
+    const float far_grey = SHADOW_MAP_INSET_FAR_GREY_PERCENT / 100.0f;
+    for (int inset = 0; inset < insets; inset++) {
+        shadow_map_inset_rect(m->kind, m->layer_count, inset, viewport[2], viewport[3], rect);
+        /* An array layer's colour; else the ramp's ends. */
+        legend_line label = {.swatches = array ? 1 : 2, .rgb = {{0, 0, 0}, {far_grey, far_grey, far_grey}}};
+        if (array)
+            memcpy(label.rgb[0], shadow_map_cascade_colors[inset], sizeof label.rgb[0]);
+        bool empty = held[inset][0] > held[inset][1];
+        if (empty) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(viewport[0] + rect[0], viewport[1] + rect[1], rect[2], rect[3]);
+            glClearColor(legend_panel_color[0], legend_panel_color[1], legend_panel_color[2], 1);
+            glClear(GL_COLOR_BUFFER_BIT);
+            glDisable(GL_SCISSOR_TEST);
+            snprintf(label.text, sizeof label.text, "empty");
+            label.swatches = array;
+        } else {
+            glUseProgram(p->program.id);
+            mat4 identity = GLM_MAT4_IDENTITY_INIT;
+            glUniformMatrix4fv(p->program.view_projection, 1, GL_FALSE, (const float *)identity);
+            glUniform1i(p->reduced, SHADOW_MAP_INSET_UNIT);
+            glUniform1i(p->kind, m->kind);
+            glUniform1i(p->layer, inset);
+            glUniform1i(p->size, m->size);
+            glUniform1i(p->factor, factor);
+            glUniform1i(p->orthographic, m->orthographic);
+            glUniform1f(p->near_plane, m->near_plane);
+            glUniform1f(p->far_plane, m->far_plane);
+            glUniform2f(p->held, held[inset][0], held[inset][1]);
+            glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_INSET_UNIT);
+            glBindTexture(GL_TEXTURE_2D_ARRAY, r->inset_texture);
+            glBindVertexArray(r->overlay_vao);
+            glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
+            glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof shadow_map_overlay_quad, shadow_map_overlay_quad);
+            glViewport(viewport[0] + rect[0], viewport[1] + rect[1], rect[2], rect[3]);
+            glDrawArrays(GL_TRIANGLES, 0, 6);
+            glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+            shadow_map_format_range(label.text, sizeof label.text,
+                                    shadow_map_inset_distance(m, inset, held[inset][0]),
+                                    shadow_map_inset_distance(m, inset, held[inset][1]), SHADOW_MAP_LABEL_FIGURES);
+        }
+        shadow_map_label(&label, rect, viewport);
+    }
     glActiveTexture(GL_TEXTURE0);
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+}
+
+/* The cascades overlay's key, in the bottom-left corner: a title, then
+ * each layer of light 0's array map m with its colour, its number and its
+ * slice of view depth, then what the insets' labels say. */
+static void shadow_map_draw_cascade_key(const shadow_map *m, const int viewport[4]) {
+    legend_line lines[2 + SHADOW_MAP_MAX_ARRAY_LAYERS] = {{.text = "cascade: view depth"}};
+    for (int k = 0; k < m->layer_count; k++) {
+        legend_line *line = &lines[1 + k];
+        char range[2 * SHADOW_MAP_DEPTH_TEXT];
+        shadow_map_format_range(range, sizeof range, m->cascade_split[k], m->cascade_split[k + 1],
+                                SHADOW_MAP_KEY_FIGURES);
+        snprintf(line->text, sizeof line->text, "%d  %s", k, range);
+        line->swatches = 1;
+        memcpy(line->rgb[0], shadow_map_cascade_colors[k], sizeof line->rgb[0]);
+    }
+    snprintf(lines[1 + m->layer_count].text, sizeof lines[0].text, "insets: light depth held");
+    int count = 2 + m->layer_count, insets[4];
+    /* Left of the insets. */
+    shadow_map_inset_rect(m->kind, m->layer_count, 0, viewport[2], viewport[3], insets);
+    int margin = SHADOW_MAP_INSET_MARGIN_PX, width = insets[0] - 2 * margin, height = viewport[3] - 2 * margin;
+    int scale = legend_scale_to_fit(lines, count, width, height, viewport[3]);
+    scale = scale ? scale : 1;
+    legend_draw(lines, count, margin, viewport[3] - margin - legend_height_units(count) * scale, scale);
 }
 
 /* ---- the heat maps' legends ---- */
@@ -171,7 +395,6 @@ static void shadow_map_legend_rect(shadow_map_legend_mesh *m, float x0, float y0
  * panel. */
 static void shadow_map_draw_legend(shadow_map_renderer *r, const shadow_map_legend_scale *scale,
                                    const int viewport[4]) {
-    static const float quad[6][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     /* Scratch, static for their size (not state: filled anew each frame). */
     static shadow_map_legend_mesh panel, text;
     static char font[SHADOW_MAP_LEGEND_FONT_QUADS * 4 * SHADOW_MAP_LEGEND_FONT_VERTEX_BYTES];
@@ -215,7 +438,7 @@ static void shadow_map_draw_legend(shadow_map_renderer *r, const shadow_map_lege
     glUniform2f(r->legend.log2_range, SHADOW_MAP_HEAT_LOG2_MIN, SHADOW_MAP_HEAT_LOG2_MAX);
     glBindVertexArray(r->overlay_vao);
     glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof shadow_map_overlay_quad, shadow_map_overlay_quad);
     glDrawArrays(GL_TRIANGLES, 0, 6);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
@@ -232,6 +455,8 @@ void shadow_map_draw_overlays(shadow_map_renderer *r, const shadow_map_settings 
         overlay == SHADOW_MAP_OVERLAY_ALL || overlay == SHADOW_MAP_OVERLAY_MAP || SHADOW_MAP_SHOWS_CASCADES(settings);
     if (r->fitted[0] && inset)
         shadow_map_draw_inset(r, &r->maps[0], r->viewport);
+    if (r->fitted[0] && SHADOW_MAP_SHOWS_CASCADES(settings) && r->maps[0].kind == SHADOW_MAP_ARRAY)
+        shadow_map_draw_cascade_key(&r->maps[0], r->viewport);
     if (overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE)
         shadow_map_draw_legend(r, &shadow_map_texel_size_legend, r->viewport);
     if (overlay == SHADOW_MAP_OVERLAY_PENUMBRA)
