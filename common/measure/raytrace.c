@@ -52,7 +52,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RAYTRACE_PI 3.14159265358979323846f
+#include "area_light.h"
+
 /* Below this cosine between a camera ray and the hit triangle's normal the
  * visible point is the barycentric one (see the top): the plane's
  * intersection then loses up to 1e-16 / cosine of the ray's length. */
@@ -67,7 +68,6 @@ typedef struct raytrace_light {
     vec4 position;              /* scene_light_homogeneous, from the eye: w 0 directional */
     float radiance[3];          /* colour times intensity */
     float cos_outer, cos_inner; /* spot */
-    float cap;                  /* directional area light: 1 - cos(angular radius) */
 } raytrace_light;
 
 typedef struct raytrace_object {
@@ -159,61 +159,6 @@ static float raytrace_smoothstep(float edge0, float edge1, float x) {
 
 /* GL's float to 8-bit unsigned normalized conversion: clamp, round. */
 static unsigned char raytrace_unorm8(float c) { return (unsigned char)(fminf(fmaxf(c, 0.0f), 1.0f) * 255.0f + 0.5f); }
-
-/* PCG hash: Jarzynski and Olano, "Hash Functions for GPU Rendering",
- * JCGT 9(3), 2020; good avalanche at the cost of a few multiplies. */
-static uint32_t raytrace_hash(uint32_t v) {
-    uint32_t state = v * 747796405u + 2891336453u;
-    uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-/* [0, 1) from the top 24 bits, exact in float. */
-static float raytrace_unit(uint32_t h) { return (float)(h >> 8) * (1.0f / 16777216.0f); }
-
-/* Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 6(1),
- * 2017: t and b complete the unit vector n without a branch on its axis. */
-static void raytrace_basis(const float n[3], float t[3], float b[3]) {
-    float sign = copysignf(1.0f, n[2]);
-    float a = -1.0f / (sign + n[2]);
-    float c = n[0] * n[1] * a;
-    t[0] = 1.0f + sign * n[0] * n[0] * a;
-    t[1] = sign * c;
-    t[2] = -sign * n[0];
-    b[0] = c;
-    b[1] = sign + n[1] * n[1] * a;
-    b[2] = -n[1];
-}
-
-/* Sample k of n on the unit disk. The unit square is cut into n cells of
- * equal area: floor(sqrt n) rows whose counts differ by at most one, each
- * row as tall as its share of the samples (n a square: the usual
- * sqrt(n) x sqrt(n) grid), so every n stratifies without weighting. The
- * jittered point of cell k goes to the disk by Shirley and Chiu's
- * concentric map ("A Low Distortion Map Between Disk and Square", JGT
- * 2(3), 1997), which keeps equal areas and compact strata. */
-static void raytrace_disk_sample(int k, int n, float jitter_u, float jitter_v, float disk[2]) {
-    int rows = (int)sqrt((double)n);
-    int base = n / rows, extra = n % rows; /* the first `extra` rows hold base + 1 */
-    int long_cells = extra * (base + 1);
-    int row = k < long_cells ? k / (base + 1) : extra + (k - long_cells) / base;
-    int count = row < extra ? base + 1 : base;
-    int first = row < extra ? row * (base + 1) : long_cells + (row - extra) * base;
-    float a = 2.0f * ((float)(k - first) + jitter_u) / (float)count - 1.0f;
-    float b = 2.0f * ((float)first + jitter_v * (float)count) / (float)n - 1.0f;
-    float r, phi;
-    if (a == 0 && b == 0) {
-        r = phi = 0;
-    } else if (fabsf(a) > fabsf(b)) {
-        r = a;
-        phi = RAYTRACE_PI / 4 * (b / a);
-    } else {
-        r = b;
-        phi = RAYTRACE_PI / 2 - RAYTRACE_PI / 4 * (a / b);
-    }
-    disk[0] = r * cosf(phi);
-    disk[1] = r * sinf(phi);
-}
 
 /* ---- building ---- */
 
@@ -350,10 +295,6 @@ static void raytrace_prepare_lights(raytrace_tracer *t) {
         glm_vec3_scale((float *)l->color, l->intensity, r->radiance);
         r->cos_outer = cosf(glm_rad(l->outer_angle_deg));
         r->cos_inner = cosf(glm_rad(l->inner_angle_deg));
-        /* 2 sin^2(a/2), not 1 - cos a, which cancels to 0 for a sun-sized
-         * radius; a radius past 180 degrees would wrap around. */
-        float half_angle = glm_rad(fminf(l->radius, 180.0f)) / 2;
-        r->cap = 2.0f * sinf(half_angle) * sinf(half_angle);
     }
 }
 
@@ -537,8 +478,8 @@ static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *
 }
 
 /* Fraction of light `index` reaching the hit: one ray for a hard light,
- * light_samples for an area light (see raytrace_disk_sample) spread about
- * `to_light`, the unit vector to its centre (0 at the centre itself). */
+ * light_samples for an area light (area_light.h) spread about `to_light`,
+ * the unit vector to its centre (0 at the centre itself). */
 static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *h, int index,
                                  const float to_light[3], uint32_t pixel) {
     const raytrace_tracer *t = c->tracer;
@@ -547,35 +488,17 @@ static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit 
         return 1;
     if (l->light->radius == 0)
         return raytrace_unoccluded(c, h, l->position) ? 1.0f : 0.0f;
-    bool directional = l->position[3] == 0;
-    vec3 axis, tangent, bitangent;
+    vec3 axis;
     glm_vec3_copy((float *)to_light, axis);
     if (raytrace_normalize(axis) == 0) /* at the centre every axis is as good */
         glm_vec3_copy((float *)h->face_normal, axis);
-    raytrace_basis(axis, tangent, bitangent);
-    uint32_t seed = raytrace_hash(pixel ^ raytrace_hash((uint32_t)index));
+    area_light_frame frame;
+    area_light_frame_for(l->light, l->position, axis, &frame);
+    uint32_t seed = area_light_hash(pixel ^ area_light_hash((uint32_t)index));
     int unoccluded = 0;
     for (int k = 0; k < t->light_samples; k++) {
-        uint32_t jitter = raytrace_hash(seed + (uint32_t)k);
-        float disk[2];
-        raytrace_disk_sample(k, t->light_samples, raytrace_unit(jitter), raytrace_unit(raytrace_hash(jitter)), disk);
         vec4 target;
-        if (directional) {
-            /* The disk onto the cap of directions within the angular
-             * radius, keeping equal areas (Lambert's azimuthal map): a
-             * uniform sun disk. */
-            float r2 = disk[0] * disk[0] + disk[1] * disk[1];
-            float one_minus_cos = r2 * l->cap;
-            float sin_over_r = r2 > 0 ? sqrtf(one_minus_cos * (2.0f - one_minus_cos) / r2) : 0.0f;
-            glm_vec3_scale(axis, 1.0f - one_minus_cos, target);
-            glm_vec3_muladds(tangent, disk[0] * sin_over_r, target);
-            glm_vec3_muladds(bitangent, disk[1] * sin_over_r, target);
-            target[3] = 0;
-        } else {
-            glm_vec4_copy((float *)l->position, target);
-            glm_vec3_muladds(tangent, disk[0] * l->light->radius, target);
-            glm_vec3_muladds(bitangent, disk[1] * l->light->radius, target);
-        }
+        area_light_sample(&frame, k, t->light_samples, area_light_hash(seed + (uint32_t)k), target);
         unoccluded += raytrace_unoccluded(c, h, target);
     }
     return (float)unoccluded / (float)t->light_samples;
