@@ -139,7 +139,8 @@ endif
 # count; dense (one view, many triangles) is timed on its own. Last, the
 # shadow maps' whole sweeps (PCSS, the moment filters, the hard kernels) on
 # the area lights' scenes and the flat boxes, still and with the lights
-# moving: the soft ruler's figures (make report's "Soft shadows").
+# moving, with planar's and volumes' sweeps of --light-samples: the soft
+# ruler's figures (make report's "Soft shadows").
 # Then the scenes where what is hidden, not what is outside, is to skip:
 # the city across from its edge with unranged lamps, and the engines.
 # Last, perspective shadow maps' sweep on its hard cases: the light in
@@ -149,6 +150,7 @@ BENCH_HIDDEN := assets/scenes/street.json assets/scenes/engine.json
 BENCH_CITIES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000)
 BENCH_SOFT := $(patsubst %,assets/scenes/%.json,soft_table soft_sun flat_boxes flat_boxes_point)
 BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
+BENCH_SAMPLED := --technique planar --technique volumes
 BENCH_PSM_CASES := $(patsubst %,assets/scenes/%.json,long_view long_view_behind psm_caster_behind psm_point_high \
 	psm_point_low)
 QUICK_FLAG := $(if $(filter 1,$(QUICK)),--quick)
@@ -165,8 +167,8 @@ bench: $(PROGRAMS)
 		assets/scenes/dense.json
 	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion light --out out/bench/dense-light \
 		assets/scenes/dense.json
-	$(BUILD)/bench $(QUICK_FLAG) $(BENCH_MAPS) --motion static --out out/bench/soft $(BENCH_SOFT)
-	$(BUILD)/bench $(QUICK_FLAG) $(BENCH_MAPS) --motion light --out out/bench/soft-light $(BENCH_SOFT)
+	$(BUILD)/bench $(QUICK_FLAG) $(BENCH_MAPS) $(BENCH_SAMPLED) --motion static --out out/bench/soft $(BENCH_SOFT)
+	$(BUILD)/bench $(QUICK_FLAG) $(BENCH_MAPS) $(BENCH_SAMPLED) --motion light --out out/bench/soft-light $(BENCH_SOFT)
 	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion static --out out/bench/hidden \
 		$(BENCH_HIDDEN)
 	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion light --out out/bench/hidden-light \

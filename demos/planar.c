@@ -39,6 +39,10 @@
  *            drop, and darken the receiver's pixels under them, which the
  *            light reaches. Off: a light below the plane or a caster above
  *            the light casts anti-shadows.
+ * An area light (--light-samples N) is N hard lights at its points
+ * (Heckbert & Herf, "Simulating soft shadows with graphics hardware",
+ * 1997): each marks the stencil as above and adds 1/N where it reaches,
+ * and the light is shaded once with that fraction (soft_visibility.h).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -68,7 +72,9 @@ static struct {
     planar_settings settings;
     render_program flatten;
     int shadow, plane, reject;
-    bool *casters; /* per object: it casts for the light at hand (caster culling) */
+    bool *casters;        /* per object: it casts for the light at hand (caster culling) */
+    soft_visibility soft; /* an area light's visibility, sampled */
+    unsigned soft_warned; /* bit l: light l's area said drawn hard */
 } planar;
 
 static const flags_param planar_params[] = {
@@ -78,6 +84,9 @@ static const flags_param planar_params[] = {
      .disabled = &planar.settings.no_offset},
     {"reject", "lights below the plane and casters beyond the light cast anti-shadows", GLFW_KEY_R, FLAGS_TOGGLE,
      .disabled = &planar.settings.no_reject},
+    {"light-samples",
+     "points of each area light, each a hard shadow, averaged (Heckbert & Herf 1997); 1: hard, from its centre",
+     GLFW_KEY_L, FLAGS_CHOICE, .index = &planar.settings.light_samples, .choices = soft_visibility_sample_counts},
 };
 
 void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]) {
@@ -123,10 +132,12 @@ static bool planar_init(const render_scene *gpu) {
         fprintf(stderr, "planar: out of memory\n");
         return false;
     }
-    return true;
+    planar.soft_warned = 0;
+    return soft_visibility_init(&planar.soft);
 }
 
 static void planar_destroy(void) {
+    soft_visibility_destroy(&planar.soft);
     render_program_destroy(&planar.flatten);
     free(planar.casters);
     planar.casters = NULL;
@@ -249,6 +260,15 @@ static void planar_render_stencil(const technique_frame *f) {
          * stencil stays as cleared, since the ambient light, the only
          * one shaded outside its rectangle, marks first. */
         technique_light_pass(f, l);
+        int samples =
+            soft_visibility_samples("planar", planar.settings.light_samples, &s->lights[l], l, &planar.soft_warned);
+        if (samples > 1) {
+            /* An area light: each point's shadows marked as a hard
+             * light's, 1/n added where the point reaches. */
+            if (technique_sample_area_light(f, l, samples, &planar.soft, &planar_lit, planar_mark_shadows))
+                technique_shade_light_soft(f, l, &planar.soft, planar_lit.receivers_only);
+            continue;
+        }
         planar_mark_shadows(f, l, light_h);
         technique_shade_light(f, l, &planar_lit);
         glDisable(GL_STENCIL_TEST);
@@ -288,14 +308,27 @@ static void planar_render_blended(const technique_frame *f) {
     glDisable(GL_BLEND);
 }
 
-/* The fixes cost little; the sweep shows what each one buys in accuracy. */
-static const char *const planar_bench_configs[] = {"", "--no-offset", "--no-stencil", "--no-reject"};
+/* The fixes cost little; the sweep shows what each one buys in accuracy,
+ * and an area light's points their convergence to the truth. */
+static const char *const planar_bench_configs[] = {"",
+                                                   "--no-offset",
+                                                   "--no-stencil",
+                                                   "--no-reject",
+                                                   "--light-samples 4",
+                                                   "--light-samples 16",
+                                                   "--light-samples 64",
+                                                   "--light-samples 256"};
 
 static void planar_render(const technique_frame *f) {
     if (planar.settings.no_stencil)
         planar_render_blended(f);
     else
         planar_render_stencil(f);
+}
+
+static const char *planar_area_light(const scene_light *light) {
+    (void)light;
+    return soft_visibility_area_light_text(planar.settings.light_samples);
 }
 
 const technique planar_technique = {
@@ -308,4 +341,5 @@ const technique planar_technique = {
     .init = planar_init,
     .render = planar_render,
     .destroy = planar_destroy,
+    .area_light = planar_area_light,
 };

@@ -8,9 +8,10 @@
 #include "scene.h"
 
 typedef struct planar_settings {
-    bool no_stencil; /* blend darkening straight into the picture */
-    bool no_offset;  /* no polygon offset: z-fighting */
-    bool no_reject;  /* keep anti-shadows */
+    bool no_stencil;   /* blend darkening straight into the picture */
+    bool no_offset;    /* no polygon offset: z-fighting */
+    bool no_reject;    /* keep anti-shadows */
+    int light_samples; /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
 } planar_settings;
 
 /* S = (P.L) I - L P^T, column-major: S v lies on the plane P, on the line

@@ -37,6 +37,11 @@
  * volumes, silhouette edges or stencil count as colour. How each caster's
  * volume is drawn, kept or streamed, is demos/lib/volume_draw.h's; the
  * skips that leave volumes out (README, "Skips") are volumes_plan_light's.
+ * An area light (--light-samples N) is N hard lights at its points
+ * (Brotman & Badler, "Generating soft shadows with a depth buffer
+ * algorithm", 1984): each counts every caster's volume, built for that
+ * point and not kept, and adds 1/N where its count is 0; the light is
+ * shaded once with that fraction (soft_visibility.h).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -57,6 +62,7 @@ typedef struct volumes_settings {
     int extrude;          /* choice */
     bool no_depth_bounds; /* toggle */
     bool no_exact_depth;  /* toggle */
+    int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
 } volumes_settings;
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL};
@@ -82,6 +88,7 @@ typedef struct volumes_caster_plan {
 /* A light's plan: every decision its count takes before it draws. */
 typedef struct volumes_light_plan {
     int light;
+    int cache;     /* the light whose cache keeps the volumes (volume_draw_caster) */
     vec4 position; /* homogeneous, world; aligned as cglm loads it */
     technique_hull hull;
     volume_bounds bounds;         /* where the light's volumes may count */
@@ -100,6 +107,8 @@ static struct {
     int zpass_count, zfail_count, built_count, reused_count;
     int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
     int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
+    soft_visibility soft;  /* an area light's visibility, sampled */
+    unsigned soft_warned;  /* bit l: light l's area said drawn hard */
 } volumes;
 
 static const flags_param volumes_params[] = {
@@ -119,6 +128,9 @@ static const flags_param volumes_params[] = {
      "volumes counted against the exact depth of receivers huge seen from the eye (else their "
      "shadow edges move)",
      GLFW_KEY_E, FLAGS_TOGGLE, .disabled = &volumes.settings.no_exact_depth},
+    {"light-samples",
+     "points of each area light, each a hard shadow, averaged (Brotman & Badler 1984); 1: hard, from its centre",
+     GLFW_KEY_L, FLAGS_CHOICE, .index = &volumes.settings.light_samples, .choices = soft_visibility_sample_counts},
 };
 
 /* ---- set-up ---- */
@@ -133,10 +145,12 @@ static bool volumes_init(const render_scene *gpu) {
     }
     volumes.trim_kept = -1;
     volumes.has_depth_bounds = GLAD_GL_EXT_depth_bounds_test;
-    return true;
+    volumes.soft_warned = 0;
+    return soft_visibility_init(&volumes.soft);
 }
 
 static void volumes_destroy(void) {
+    soft_visibility_destroy(&volumes.soft);
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
     free(volumes.casters);
@@ -213,7 +227,7 @@ static void volumes_plan_caster(const technique_frame *f, volumes_light_plan *pl
  *   (volumes_trim, volume_draw_reach). */
 static void volumes_plan_light(const technique_frame *f, int l, volumes_light_plan *plan) {
     const scene *s = f->gpu->scene;
-    *plan = (volumes_light_plan){.light = l, .casters = volumes.casters, .reported = l == 0};
+    *plan = (volumes_light_plan){.light = l, .cache = l, .casters = volumes.casters, .reported = l == 0};
     scene_light_homogeneous(&s->lights[l], plan->position);
     technique_light_hull(f, l, &plan->hull);
     volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
@@ -225,12 +239,14 @@ static void volumes_plan_light(const technique_frame *f, int l, volumes_light_pl
         volumes_plan_caster(f, plan, i, (const vec3 *)near_rectangle);
 }
 
-/* Light l's plan with no skip: every caster's volume, each z-pass or
- * z-fail as the mode says, under whatever scissor is on. */
-static void volumes_plan_every_caster(const technique_frame *f, int l, volumes_light_plan *plan) {
+/* Light l's plan with no skip, for a light at `position` (homogeneous,
+ * world): every caster's volume, each z-pass or z-fail as the mode says
+ * there, under whatever scissor is on. */
+static void volumes_plan_every_caster(const technique_frame *f, int l, const float position[4],
+                                      volumes_light_plan *plan) {
     const scene *s = f->gpu->scene;
-    *plan = (volumes_light_plan){.light = l, .casters = volumes.casters};
-    scene_light_homogeneous(&s->lights[l], plan->position);
+    *plan = (volumes_light_plan){.light = l, .cache = l, .casters = volumes.casters};
+    glm_vec4_copy((float *)position, plan->position);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     for (int i = 0; i < s->object_count; i++) {
@@ -294,7 +310,7 @@ static void volumes_count(const technique_frame *f, const volumes_light_plan *pl
         if (c->narrowed)
             volume_bounds_use(&c->bounds);
         if (!c->narrowed || (c->bounds.rect[2] > 0 && c->bounds.rect[3] > 0))
-            volume_draw_caster(&volumes.draw, f, plan->light, i, plan->position,
+            volume_draw_caster(&volumes.draw, f, plan->cache, i, plan->position,
                                volumes.settings.silhouette == VOLUMES_GPU, c->zfail);
         if (c->narrowed)
             volume_bounds_use(&plan->bounds);
@@ -338,6 +354,24 @@ static void volumes_prepass_depth(const technique_frame *f) {
 static const technique_stencil_lit volumes_lit = {
     .lit = GL_EQUAL, .blocked = GL_NOTEQUAL, .ref = 0, .mask = VOLUMES_STENCIL_MASK, .receivers_only = true};
 
+/* ---- area lights ---- */
+
+/* One point of light l's area counted as a hard light there: every
+ * caster, each z-pass or z-fail for that point, over the whole frame,
+ * built for the point and not kept (technique_sample_area_light). */
+static void volumes_count_point(const technique_frame *f, int l, const float point[4]) {
+    volumes_light_plan plan;
+    volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
+    volumes_plan_every_caster(f, l, point, &plan);
+    plan.cache = VOLUME_DRAW_UNKEPT;
+    plan.bounds.rect[2] = f->width;
+    plan.bounds.rect[3] = f->height;
+    volumes_exact_depth(f);
+    volumes_clear_stencil(&plan);
+    volumes_count(f, &plan);
+    volumes_prepass_depth(f);
+}
+
 /* ---- the kept volumes ---- */
 
 /* The CPU volumes are kept per light, built when a caster is first needed
@@ -364,7 +398,9 @@ static void volumes_draw_overlay(const technique_frame *f) {
         return;
     volume_draw_reach(&volumes.draw, &s->lights[0], volumes_trim());
     volumes_light_plan plan;
-    volumes_plan_every_caster(f, 0, &plan);
+    float centre[4];
+    scene_light_homogeneous(&s->lights[0], centre);
+    volumes_plan_every_caster(f, 0, centre, &plan);
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
         glEnable(GL_STENCIL_TEST);
         glClear(GL_STENCIL_BUFFER_BIT);
@@ -392,6 +428,16 @@ static void volumes_render(const technique_frame *f) {
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
+        int samples = soft_visibility_samples("volumes", volumes.settings.light_samples, &f->gpu->scene->lights[l], l,
+                                              &volumes.soft_warned);
+        if (samples > 1) {
+            /* An area light: steps 2 to 4 for each of its points, each
+             * adding 1/n where its count is 0; then step 5 with that. */
+            technique_light_pass(f, l);
+            if (technique_sample_area_light(f, l, samples, &volumes.soft, &volumes_lit, volumes_count_point))
+                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
+            continue;
+        }
         /* 2. Plan: which casters, each z-pass or z-fail, and where their
          *    volumes may count (the skips). */
         volumes_light_plan plan;
@@ -435,10 +481,26 @@ static void volumes_describe(char *out, size_t size) {
     }
 }
 
-/* The sweep: mode x silhouette path, and the trim. */
+/* The sweep: mode x silhouette path, the trim, and an area light's points
+ * (on a hard light the defaults' picture; on the soft scenes the
+ * convergence to the truth). */
 static const char *const volumes_bench_configs[] = {
-    "", "--mode zpass", "--mode zfail", "--silhouette gpu", "--mode zfail --silhouette gpu", "--extrude reach",
+    "",
+    "--mode zpass",
+    "--mode zfail",
+    "--silhouette gpu",
+    "--mode zfail --silhouette gpu",
+    "--extrude reach",
+    "--light-samples 4",
+    "--light-samples 16",
+    "--light-samples 64",
+    "--light-samples 256",
 };
+
+static const char *volumes_area_light(const scene_light *light) {
+    (void)light;
+    return soft_visibility_area_light_text(volumes.settings.light_samples);
+}
 
 const technique volumes_technique = {
     .name = "volumes",
@@ -450,5 +512,6 @@ const technique volumes_technique = {
     .init = volumes_init,
     .render = volumes_render,
     .destroy = volumes_destroy,
+    .area_light = volumes_area_light,
     .describe = volumes_describe,
 };

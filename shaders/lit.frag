@@ -13,6 +13,13 @@ uniform vec3 u_albedo;
 uniform float u_ambient;
 uniform int u_light_count;
 uniform int u_light_list[SCENE_MAX_LIGHTS];
+#ifdef LIT_SOFT_VISIBILITY
+// Light u_soft_light's share scaled by the fraction of its area light
+// that reaches the pixel, accumulated from hard shadows
+// (common/gl/soft_visibility.h); the other lights as they are.
+uniform int u_soft_light;
+uniform sampler2D u_soft_visibility;
+#endif
 
 out vec4 out_color;
 
@@ -20,7 +27,13 @@ void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
     vec3 c = u_ambient * lighting_ambient(u_albedo);
-    for (int k = 0; k < u_light_count; k++)
-        c += lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
+    for (int k = 0; k < u_light_count; k++) {
+        vec3 light = lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
+#ifdef LIT_SOFT_VISIBILITY
+        if (u_light_list[k] == u_soft_light)
+            light *= texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r;
+#endif
+        c += light;
+    }
     out_color = vec4(c, 1.0);
 }

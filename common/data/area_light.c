@@ -84,3 +84,15 @@ void area_light_sample(const area_light_frame *f, int k, int n, uint32_t jitter,
     glm_vec3_muladds((float *)f->tangent, disk[0] * f->radius, out);
     glm_vec3_muladds((float *)f->bitangent, disk[1] * f->radius, out);
 }
+
+void area_light_sample_ball(const area_light_frame *f, int k, int n, uint32_t jitter, float out[4]) {
+    area_light_sample(f, k, n, jitter, out);
+    if (f->centre[3] == 0)
+        return;
+    vec3 offset;
+    glm_vec3_sub(out, (float *)f->centre, offset);
+    float rho = glm_vec3_norm(offset) / f->radius;
+    float w = area_light_unit(area_light_hash(area_light_hash(jitter)));
+    float lift = sqrtf(fmaxf(1.0f - rho * rho, 0.0f)) * sinf(AREA_LIGHT_PI * (w - 0.5f));
+    glm_vec3_muladds((float *)f->axis, lift * f->radius, out);
+}

@@ -56,5 +56,18 @@ void area_light_frame_for(const scene_light *light, const float centre[4], const
  * light the unit direction towards it (w 0); `jitter` a hash of the
  * caller's (area_light_hash), its two units the cell's jitter. */
 void area_light_sample(const area_light_frame *frame, int k, int n, uint32_t jitter, float out[4]);
+/* For techniques that take one set of points for every pixel (a disk
+ * turned towards one pixel is turned away from the others): sample k of
+ * n of a point or spot light lifted off its disk into the ball of its
+ * radius, along the axis by sqrt(1 - rho^2) sin(pi (w - 1/2)), w a third
+ * unit of the jitter, which gives the ball the density 1 / sqrt(1 - r^2)
+ * (r over the radius): the one whose projection along every direction is
+ * the uniform disk (its Abel transform is constant), so that every pixel
+ * sees the reference's disk, turned towards it. Along the axis the points
+ * keep the disk's strata; w is the jitter's hash, unstratified (strata of
+ * w in any fixed order correlate with the disk's rows and measured
+ * worse). A directional light's disk is the same from
+ * every pixel: area_light_sample's. */
+void area_light_sample_ball(const area_light_frame *frame, int k, int n, uint32_t jitter, float out[4]);
 
 #endif

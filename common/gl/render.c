@@ -193,9 +193,7 @@ bool render_scene_create(render_scene *r, const scene *s) {
         render_scene_destroy(r);
         return false;
     }
-    r->lit_ambient = shader_uniform(r->lit.id, "u_ambient");
-    r->lit_light_count = shader_uniform(r->lit.id, "u_light_count");
-    r->lit_light_list = shader_uniform(r->lit.id, "u_light_list");
+    render_lit_uniforms_find(&r->lit, &r->lit_uniforms);
     return context_gl_ok("render_scene_create");
 }
 
@@ -232,16 +230,27 @@ void render_scene_destroy(render_scene *r) {
     *r = (render_scene){0};
 }
 
-void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
-    render_program_use(&r->lit, v);
-    glUniform1f(r->lit_ambient, ambient ? 1.0f : 0.0f);
+void render_lit_uniforms_find(const render_program *p, render_lit_uniforms *u) {
+    u->ambient = shader_uniform(p->id, "u_ambient");
+    u->light_count = shader_uniform(p->id, "u_light_count");
+    u->light_list = shader_uniform(p->id, "u_light_list");
+}
+
+void render_use_lit_program(const render_scene *r, const render_program *p, const render_lit_uniforms *u,
+                            const camera_view *v, unsigned lights, bool ambient) {
+    render_program_use(p, v);
+    glUniform1f(u->ambient, ambient ? 1.0f : 0.0f);
     int list[SCENE_MAX_LIGHTS], count = 0;
     for (int l = 0; l < r->scene->light_count; l++)
         if (lights & RENDER_LIGHT_BIT(l))
             list[count++] = l;
-    glUniform1i(r->lit_light_count, count);
+    glUniform1i(u->light_count, count);
     if (count > 0)
-        glUniform1iv(r->lit_light_list, count, list);
+        glUniform1iv(u->light_list, count, list);
+}
+
+void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
+    render_use_lit_program(r, &r->lit, &r->lit_uniforms, v, lights, ambient);
 }
 
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask) {

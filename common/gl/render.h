@@ -68,6 +68,12 @@ typedef struct render_mesh {
  * long_view's, so none of those is huge. */
 #define RENDER_HUGE_RATIO 1024.0
 
+/* What a program made of lit.vert and lit.frag takes besides a scene
+ * program's uniforms (render_lit_uniforms_find). */
+typedef struct render_lit_uniforms {
+    int ambient, light_count, light_list;
+} render_lit_uniforms;
+
 typedef struct render_scene {
     const scene *scene;
     render_mesh *meshes;            /* one per scene object */
@@ -76,7 +82,7 @@ typedef struct render_scene {
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
     unsigned lights_buffer;
     render_program lit;
-    int lit_ambient, lit_light_count, lit_light_list;
+    render_lit_uniforms lit_uniforms;
     render_program depth; /* lit.vert with depth.frag: render_depth_prepass */
     bool inject_gl_error; /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
@@ -143,6 +149,10 @@ int render_cull_view(render_scene *r, const camera_view *v, const render_skips *
 /* Binds the lit program for the set `lights` (RENDER_LIGHT_BIT), with or
  * without the ambient term. */
 void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
+/* The same for another program built from lit.frag (with other defines). */
+void render_lit_uniforms_find(const render_program *p, render_lit_uniforms *u);
+void render_use_lit_program(const render_scene *r, const render_program *p, const render_lit_uniforms *u,
+                            const camera_view *v, unsigned lights, bool ambient);
 /* The depth of the objects in `mask` (NULL: all), nothing else written:
  * the pre-pass after which every shading pass meets each visible pixel
  * once (GL_EQUAL), so a costly fragment stage (a shadow map's filter) runs

@@ -187,6 +187,61 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
     glDisable(GL_SCISSOR_TEST);
 }
 
+void technique_area_light_frame(const technique_frame *f, int l, area_light_frame *frame) {
+    const scene_light *light = &f->gpu->scene->lights[l];
+    float centre[4], middle[3];
+    vec3 axis;
+    scene_light_homogeneous(light, centre);
+    bool receivers = f->receivers_lo[0] <= f->receivers_hi[0];
+    for (int c = 0; c < 3; c++)
+        middle[c] = receivers ? (f->receivers_lo[c] + f->receivers_hi[c]) / 2 : f->view->eye[c];
+    glm_vec3_copy(centre, axis);
+    if (centre[3] != 0)
+        glm_vec3_sub(centre, middle, axis);
+    if (glm_vec3_norm(axis) == 0) /* the light in the middle: any axis is as good */
+        glm_vec3_copy((vec3){0, 1, 0}, axis);
+    glm_vec3_normalize(axis);
+    area_light_frame_for(light, centre, axis, frame);
+}
+
+bool technique_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
+                                 const technique_stencil_lit *lit, technique_count_point count) {
+    area_light_frame frame;
+    technique_area_light_frame(f, l, &frame);
+    if (!soft_visibility_begin(v))
+        return false;
+    uint32_t seed = area_light_hash((uint32_t)l);
+    for (int k = 0; k < samples; k++) {
+        float point[4];
+        area_light_sample_ball(&frame, k, samples, area_light_hash(seed + (uint32_t)k), point);
+        count(f, l, point);
+        glEnable(GL_STENCIL_TEST);
+        glStencilFunc(lit->lit, lit->ref, lit->mask);
+        soft_visibility_add(v, 1.0f / (float)samples);
+    }
+    glDisable(GL_STENCIL_TEST);
+    return true;
+}
+
+void technique_shade_light_soft(const technique_frame *f, int l, const soft_visibility *v, bool receivers_only) {
+    bool ambient;
+    const bool *objects = technique_shade_begin(f, l, &ambient);
+    const scene *s = f->gpu->scene;
+    glDisable(GL_STENCIL_TEST);
+    soft_visibility_use_lit(v, f->gpu, f->view, l, RENDER_LIGHT_BIT(l), ambient);
+    for (int i = 0; i < s->object_count; i++)
+        if (render_in_mask(objects, i) && (!receivers_only || s->objects[i].receives))
+            render_draw_object(f->gpu, &v->lit, i);
+    if (receivers_only) {
+        render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
+        for (int i = 0; i < s->object_count; i++)
+            if (render_in_mask(objects, i) && !s->objects[i].receives)
+                render_draw_object(f->gpu, &f->gpu->lit, i);
+    }
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+}
+
 /* The bounds of a slab's corners. */
 static void technique_slab_bounds(const float slab[8][3], vec3 lo, vec3 hi) {
     glm_vec3_fill(lo, INFINITY);

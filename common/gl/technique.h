@@ -41,11 +41,13 @@
 #define TECHNIQUE_H
 
 #include <stdbool.h>
+#include "area_light.h"
 #include "camera.h"
 #include "flags.h"
 #include "frustum.h"
 #include "light_mask.h"
 #include "render.h"
+#include "soft_visibility.h"
 #include "target.h"
 #include "visible.h"
 
@@ -226,6 +228,23 @@ typedef struct technique_stencil_lit {
  * ambient light is blocked, the ambient term alone. Leaves the stencil
  * test on, blending and the scissor test off. */
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
+/* Light l's disk (area_light.h) for the techniques that sample it with
+ * one set of points for every pixel: facing the middle of the frame's
+ * visible receivers (the eye where none is). */
+void technique_area_light_frame(const technique_frame *f, int l, area_light_frame *frame);
+/* Light l's visibility from `samples` of its points (area_light_sample_ball
+ * of technique_area_light_frame) into v: for each, `count` leaves the
+ * stencil as for a hard light at that point, and where `lit` passes 1 /
+ * samples is added. False, after one line on stderr, when v cannot be
+ * made for the bound target. Leaves the stencil test off. */
+typedef void (*technique_count_point)(const technique_frame *f, int l, const float point[4]);
+bool technique_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
+                                 const technique_stencil_lit *lit, technique_count_point count);
+/* Light l's shading pass with its visibility accumulated in v
+ * (soft_visibility.h) instead of a stencil: its unshadowed light times
+ * the fraction, on every object but those that take no shadows where
+ * receivers_only. Leaves blending and the scissor test off. */
+void technique_shade_light_soft(const technique_frame *f, int l, const soft_visibility *v, bool receivers_only);
 
 /* The frames the hidden-caster skip sleeps after a frame in which it
  * culled, narrowed and hid nothing: the read-back then costs without

@@ -106,9 +106,15 @@ bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const fl
 }
 
 /* Caster i's CPU part for light l, from the light's cache, kept there
- * first if it is not yet (streamed when it does not fit). */
+ * first if it is not yet (streamed when it does not fit, or unkept). */
 static void volume_draw_kept(volume_draw *d, const technique_frame *f, int l, int i, const float light[4],
                              volume_mesh_parts part) {
+    if (l == VOLUME_DRAW_UNKEPT) {
+        d->built++;
+        if (volume_draw_build(d, f, i, light, part))
+            volume_draw_stream(d, d->geometry.vertices, d->geometry.count, GL_TRIANGLES);
+        return;
+    }
     volume_cache *c = &d->caches[l];
     if (volume_cache_has(c, i, part)) {
         d->reused++;

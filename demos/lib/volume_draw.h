@@ -68,8 +68,14 @@ void volume_draw_forget(volume_draw *d, int l);
  * receiver, clipped to its range) when `trim`, else at infinity. */
 void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim);
 
+/* What volume_draw_caster takes for `l` where the volume is for a point
+ * no cache keeps (an area light's sample): its CPU parts built and
+ * streamed every time. */
+#define VOLUME_DRAW_UNKEPT (-1)
+
 /* Caster i's volume for light l (homogeneous, world): its sides, from the
- * geometry shader when `gpu`, and for z-fail its caps after them. */
+ * geometry shader when `gpu`, and for z-fail its caps after them. l: the
+ * light whose cache keeps its CPU parts, or VOLUME_DRAW_UNKEPT. */
 void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, const float light[4], bool gpu,
                         bool zfail);
 /* Caster i's part for the light into d->geometry, with the CPU program

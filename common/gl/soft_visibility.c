@@ -1,0 +1,134 @@
+#include "soft_visibility.h"
+
+#include <glad/gl.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "context.h"
+#include "shader.h"
+
+const char *const soft_visibility_sample_counts[] = {"1", "4", "16", "64", "256", NULL};
+
+int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l, unsigned *warned) {
+    int samples = atoi(soft_visibility_sample_counts[choice]);
+    if (light->radius > 0 && samples == 1 && !(*warned >> l & 1u))
+        fprintf(stderr, "%s: light %d is an area light (radius %g), drawn hard from its centre: --light-samples\n",
+                technique, l, light->radius);
+    *warned |= light->radius > 0 && samples == 1 ? 1u << l : 0;
+    return light->radius > 0 ? samples : 1;
+}
+
+const char *soft_visibility_area_light_text(int choice) {
+    static char text[64];
+    int samples = atoi(soft_visibility_sample_counts[choice]);
+    if (samples == 1)
+        return "hard, from its centre: --light-samples N samples it";
+    snprintf(text, sizeof text, "sampled at %d points", samples);
+    return text;
+}
+
+bool soft_visibility_init(soft_visibility *v) {
+    *v = (soft_visibility){0};
+    static const char *const accumulate_files[] = {"soft_visibility.vert", "soft_visibility.frag"};
+    static const char *const lit_files[] = {"lit.vert", "lit.frag"};
+    static const shader_define soft[] = {{"LIT_SOFT_VISIBILITY", 1}, {NULL, 0}};
+    v->accumulate = shader_load_program(accumulate_files, 2, NULL);
+    if (!v->accumulate || !render_program_load(&v->lit, lit_files, 2, soft)) {
+        soft_visibility_destroy(v);
+        return false;
+    }
+    v->weight = shader_uniform(v->accumulate, "u_weight");
+    render_lit_uniforms_find(&v->lit, &v->lit_uniforms);
+    v->soft_light = shader_uniform(v->lit.id, "u_soft_light");
+    v->soft_texture = shader_uniform(v->lit.id, "u_soft_visibility");
+    glGenVertexArrays(1, &v->vao);
+    glGenFramebuffers(1, &v->framebuffer);
+    glGenTextures(1, &v->texture);
+    return context_gl_ok("soft_visibility_init");
+}
+
+/* The texture at the bound target's size, with its depth and stencil. */
+static bool soft_visibility_match(soft_visibility *v) {
+    GLint framebuffer, depth_stencil, viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
+                                          GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &depth_stencil);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    if ((unsigned)framebuffer == v->target_framebuffer && (unsigned)depth_stencil == v->depth_stencil &&
+        viewport[2] == v->width && viewport[3] == v->height)
+        return true;
+    v->target_framebuffer = (unsigned)framebuffer;
+    v->depth_stencil = (unsigned)depth_stencil;
+    v->width = viewport[2];
+    v->height = viewport[3];
+    glBindTexture(GL_TEXTURE_2D, v->texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, v->width, v->height, 0, GL_RED, GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, v->texture, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, v->depth_stencil);
+    bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
+    if (!complete) {
+        fprintf(stderr, "soft_visibility: a %dx%d visibility target is incomplete\n", v->width, v->height);
+        v->target_framebuffer = 0;
+    }
+    return complete;
+}
+
+bool soft_visibility_begin(soft_visibility *v) {
+    if (!soft_visibility_match(v))
+        return false;
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (scissor)
+        glEnable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
+    return true;
+}
+
+void soft_visibility_add(soft_visibility *v, float weight) {
+    glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
+    GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST), blend = glIsEnabled(GL_BLEND);
+    GLboolean color_mask[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glUseProgram(v->accumulate);
+    glUniform1f(v->weight, weight);
+    glBindVertexArray(v->vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
+    if (depth_test)
+        glEnable(GL_DEPTH_TEST);
+    if (!blend)
+        glDisable(GL_BLEND);
+    glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
+}
+
+void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,
+                             unsigned lights, bool ambient) {
+    render_use_lit_program(r, &v->lit, &v->lit_uniforms, view, lights, ambient);
+    glUniform1i(v->soft_light, light);
+    glUniform1i(v->soft_texture, SOFT_VISIBILITY_UNIT);
+    glActiveTexture(GL_TEXTURE0 + SOFT_VISIBILITY_UNIT);
+    glBindTexture(GL_TEXTURE_2D, v->texture);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+void soft_visibility_destroy(soft_visibility *v) {
+    shader_delete_program(v->accumulate);
+    render_program_destroy(&v->lit);
+    glDeleteVertexArrays(1, &v->vao);
+    glDeleteFramebuffers(1, &v->framebuffer);
+    glDeleteTextures(1, &v->texture);
+    *v = (soft_visibility){0};
+}

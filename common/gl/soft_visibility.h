@@ -1,0 +1,71 @@
+/* soft_visibility: an area light's visibility accumulated from hard
+ * shadows, for the stencil techniques (Brotman & Badler, "Generating soft
+ * shadows with a depth buffer algorithm", IEEE CG&A 4(10), 1984, for
+ * shadow volumes; Heckbert & Herf, "Simulating soft shadows with graphics
+ * hardware", 1997, for projected shadows).
+ *
+ * The caller counts each of n points of the light (area_light.h, as the
+ * reference takes them) in the stencil buffer as it would for a hard
+ * light at that point, sets the stencil test that passes where the point
+ * reaches the pixel, and soft_visibility_add adds 1/n there, into a float
+ * texture of the frame's size that shares the frame's depth and stencil.
+ * The light is then shaded once (technique_shade_light_soft): its
+ * unshadowed light times that fraction. As n grows it converges to what
+ * the reference computes, up to the one disk all pixels share (the
+ * reference turns the disk towards each pixel).
+ *
+ *   soft_visibility_init(&v)     once
+ *   soft_visibility_begin(&v)    the bound target's size and stencil, all 0
+ *   per point: the stencil as for a hard light, glStencilFunc(lit ...),
+ *     soft_visibility_add(&v, 1.0f / n)
+ *   technique_shade_light_soft(frame, light, &v, receivers_only)
+ *   soft_visibility_destroy(&v)
+ *
+ * Errors: begin is false after one line on stderr (out of memory, an
+ * incomplete framebuffer); the frame's owner checks GL errors.
+ */
+#ifndef SOFT_VISIBILITY_H
+#define SOFT_VISIBILITY_H
+
+#include <stdbool.h>
+
+#include "render.h"
+
+/* The texture unit the soft lit program reads the visibility from. */
+#define SOFT_VISIBILITY_UNIT 15
+
+typedef struct soft_visibility {
+    unsigned accumulate; /* the program that adds one point's share */
+    int weight;          /* its u_weight */
+    unsigned vao;        /* empty: the pass's triangle is made from gl_VertexID */
+    render_program lit;  /* lit.frag with LIT_SOFT_VISIBILITY */
+    render_lit_uniforms lit_uniforms;
+    int soft_light, soft_texture; /* its u_soft_light, u_soft_visibility */
+    unsigned framebuffer, texture;
+    unsigned target_framebuffer, depth_stencil; /* the target the texture is for */
+    int width, height;
+} soft_visibility;
+
+/* --light-samples' choices: how many points of an area light, each a
+ * hard shadow, are averaged; the first (1) draws it hard from its
+ * centre. */
+extern const char *const soft_visibility_sample_counts[];
+/* How many points light l (of `technique`, whose --light-samples is
+ * `choice`) is sampled at: 1 for a hard light, or an area light drawn
+ * hard, which is said once on stderr (bit l of *warned). */
+int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l, unsigned *warned);
+/* How an area light is drawn at `choice`, for the HUD. */
+const char *soft_visibility_area_light_text(int choice);
+
+bool soft_visibility_init(soft_visibility *v);
+bool soft_visibility_begin(soft_visibility *v);
+/* Adds `weight` wherever the stencil test as set passes (inside the
+ * scissor, where it is on); the target stays bound. */
+void soft_visibility_add(soft_visibility *v, float weight);
+/* Binds v's lit program for light `light` (its visibility from v) within
+ * the set `lights`, as render_use_lit does. */
+void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,
+                             unsigned lights, bool ambient);
+void soft_visibility_destroy(soft_visibility *v);
+
+#endif

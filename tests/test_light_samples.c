@@ -1,0 +1,126 @@
+/* Area lights sampled by the stencil techniques (--light-samples N;
+ * common/gl/soft_visibility.h): the average of N hard shadows from the
+ * light's points (area_light.h, as the reference takes them) converges to
+ * the ray-traced truth, by shadowdiff's classes. One table of cases: each
+ * program on each soft scene, its penumbra MAE hard (1 point), then at
+ * CONVERGE_SAMPLES and SAMPLES, over the receiver the technique can
+ * shadow (planar: the ground; volumes: every object), falling, and within
+ * the case's bound at SAMPLES with no light leaking into the umbra. A hard
+ * light is drawn byte for byte as without the flag, and an area light
+ * drawn hard says so once. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shadowdiff.h"
+#include "support.h"
+
+#define CONVERGE_SAMPLES 16
+#define SAMPLES 64
+/* Each step from 1 to CONVERGE_SAMPLES points cuts the penumbra's error
+ * at least this much: a sampled light converges, it does not merely
+ * blur. */
+#define CONVERGE_FACTOR 3.0
+/* Light leaking into the truth's umbra at SAMPLES points. */
+#define MAX_UMBRA_MAE 0.005
+
+static const struct {
+    const char *program, *scene, *receiver; /* receiver NULL: every object */
+    double max_penumbra_mae;                /* at SAMPLES */
+} cases[] = {
+    /* a point light of radius 0.8: every pixel sees the disk turned to
+     * it, the points one ball for all (area_light_sample_ball), so the
+     * error left at SAMPLES is the ball's sampling noise */
+    {"planar", "assets/scenes/soft_table.json", "ground", 0.03},
+    {"volumes", "assets/scenes/soft_table.json", NULL, 0.03},
+    /* a 3-degree sun: the same disk of directions from every pixel */
+    {"planar", "assets/scenes/soft_sun.json", "ground", 0.02},
+    {"volumes", "assets/scenes/soft_sun.json", NULL, 0.025},
+};
+
+static char err[16384];
+
+/* The case's penumbra (and umbra) MAE with `samples` points. */
+static shadowdiff_result measure(size_t c, int samples) {
+    char flags[64], name[128];
+    snprintf(flags, sizeof flags, "--light-samples %d", samples);
+    snprintf(name, sizeof name, "samples_%zu_%d", c, samples);
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result all =
+        support_measure_dumps(cases[c].program, cases[c].scene, "", flags, name, &reference, &test, &heatmap);
+    shadowdiff_result r = all;
+    if (cases[c].receiver) {
+        const shadowdiff_settings on = {.receiver = cases[c].receiver};
+        assert_true(shadowdiff_compare(&reference, &test, &on, &r, NULL));
+    }
+    printf("    %s on %s, %d points: penumbra MAE %.4f, umbra MAE %.4f%s%s\n", cases[c].program, cases[c].scene,
+           samples, r.class_mae[SHADOWDIFF_CLASS_PENUMBRA], r.class_mae[SHADOWDIFF_CLASS_UMBRA],
+           cases[c].receiver ? " on the " : "", cases[c].receiver ? cases[c].receiver : "");
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    assert_true(r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA] > 0);
+    return r;
+}
+
+static void test_sampled_area_lights_converge(void **state) {
+    (void)state;
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c += support_sweep_stride()) {
+        double hard = measure(c, 1).class_mae[SHADOWDIFF_CLASS_PENUMBRA];
+        double some = measure(c, CONVERGE_SAMPLES).class_mae[SHADOWDIFF_CLASS_PENUMBRA];
+        shadowdiff_result many = measure(c, SAMPLES);
+        assert_true(some * CONVERGE_FACTOR <= hard);
+        assert_true(many.class_mae[SHADOWDIFF_CLASS_PENUMBRA] < some);
+        assert_true(many.class_mae[SHADOWDIFF_CLASS_PENUMBRA] <= cases[c].max_penumbra_mae);
+        assert_true(many.class_mae[SHADOWDIFF_CLASS_UMBRA] <= MAX_UMBRA_MAE);
+    }
+}
+
+/* A hard light (simple's spot) with --light-samples: the same dump, byte
+ * for byte, as without. */
+static void test_hard_light_untouched(void **state) {
+    (void)state;
+    static const char *const programs[] = {"planar", "volumes"};
+    static const char *const files[] = {"visibility.pfm", "color.png"};
+    for (size_t p = 0; p < 2; p++) {
+        char plain[128], sampled[128];
+        snprintf(plain, sizeof plain, "out/test/light_samples/%s_plain", programs[p]);
+        snprintf(sampled, sizeof sampled, "out/test/light_samples/%s_sampled", programs[p]);
+        assert_int_equal(support_dump(programs[p], "assets/scenes/simple.json", "", plain), 0);
+        assert_int_equal(support_dump(programs[p], "assets/scenes/simple.json", "--light-samples 64", sampled), 0);
+        assert_null(support_first_difference(plain, sampled, files, 2));
+    }
+}
+
+/* An area light drawn hard (one point) is said once on stderr, however
+ * many frames. */
+static void test_drawn_hard_said_once(void **state) {
+    (void)state;
+    static const char *const programs[] = {"planar", "volumes"};
+    for (size_t p = 0; p < 2; p++) {
+        char command[512];
+        snprintf(command, sizeof command,
+                 "%s --backend egl --scene assets/scenes/soft_table.json --size 320x180 --frames 3 "
+                 "--light-samples 1",
+                 support_program(programs[p]));
+        assert_int_equal(support_run(command, err, sizeof err), 0);
+        const char *said = strstr(err, "drawn hard from its centre: --light-samples");
+        assert_non_null(said);
+        assert_null(strstr(said + 1, "drawn hard from its centre"));
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sampled_area_lights_converge),
+        cmocka_unit_test(test_hard_light_untouched),
+        cmocka_unit_test(test_drawn_hard_said_once),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
