@@ -784,7 +784,7 @@ static int app_settings_text(const technique *t, char *out, size_t size) {
  * help and the last note (a saved screenshot, a scene that did not load);
  * in a headless picture with the frame's number and time instead, so
  * that the same command gives the same picture. */
-static void app_hud_text(char *text, size_t size, int frame) {
+static void app_hud_text(char *text, size_t size, int frame, bool settings) {
     const technique *t = app_technique();
     bool compact = app.hud_compact || app.compare_on;
     char timing[64], scene_name[PATH_MAX];
@@ -815,7 +815,7 @@ static void app_hud_text(char *text, size_t size, int frame) {
             APP_HUD("light %d: area light, radius %g%s: %s\n", l, s->lights[l].radius,
                     s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
                     technique_area_light_text(t, &s->lights[l]));
-    if (n < (int)size)
+    if (settings && n < (int)size)
         n += app_settings_text(t, text + n, size - (size_t)n);
     if (!compact && app.hud_counters && n < (int)size) {
         APP_HUD("\n");
@@ -837,12 +837,16 @@ static void app_hud_text(char *text, size_t size, int frame) {
 /* The HUD (app_hud_text) over a frame of `width` x `height`. */
 static void app_hud(int width, int height, int frame) {
     char text[4096];
-    app_hud_text(text, sizeof text, frame);
+    app_hud_text(text, sizeof text, frame, true);
     /* In compare mode in its caption strip, over no cell, at the scale
-     * of the whole picture's HUD where that fits. */
+     * of the whole picture's HUD: without the settings where they would
+     * not fit, smaller only where the rest would not either. */
     int room = app.compare_on ? app.comparing.strip_height * height / app.comparing.picture.height : height;
+    int full = app.hud_scale ? app.hud_scale : hud_scale_for(height);
+    if (app.compare_on && hud_scale_to_fit(text, width, room, full, height) < full)
+        app_hud_text(text, sizeof text, frame, false);
     glViewport(0, height - room, width, room);
-    hud_draw(text, width, room, hud_scale_to_fit(text, width, room, app.hud_scale, height));
+    hud_draw(text, width, room, hud_scale_to_fit(text, width, room, full, height));
 }
 
 /* app_load_scene, what it says on stderr also kept: its first line into
@@ -1139,7 +1143,7 @@ static bool app_run(void) {
             app_skips_text(skips, sizeof skips);
             fprintf(stderr, "%s\n", skips);
             bool interactive = app.ctx.window && app.frames <= 0; /* its HUD's as the window's last */
-            app_hud_text(hud, sizeof hud, interactive ? -1 : (app.frames > 0 ? app.frames : 1) - 1);
+            app_hud_text(hud, sizeof hud, interactive ? -1 : (app.frames > 0 ? app.frames : 1) - 1, true);
             for (char *line = hud, *end; *line; line = end + (*end == '\n')) {
                 end = line + strcspn(line, "\n");
                 fprintf(stderr, "hud: %.*s\n", (int)(end - line), line);

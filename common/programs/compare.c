@@ -18,9 +18,10 @@ enum { COMPARE_TRUTH, COMPARE_HEAT };
 /* Before the truth has a row, and the heat map before it has figures. */
 static const unsigned char compare_empty_grey = 24;
 
-/* The legend's lines at most: one on the cells, the kinds, four of
- * figures (misclassified, MAE, the discs, the truth) and one a class. */
-#define COMPARE_LEGEND_MAX_LINES (1 + SHADOWDIFF_PIXEL_KIND_COUNT + 4 + SHADOWDIFF_CLASS_COUNT)
+/* The legend's lines at most: one on the cells (and how wide an error is
+ * drawn), the kinds, three of figures (misclassified, MAE, the truth) and
+ * one a class. */
+#define COMPARE_LEGEND_MAX_LINES (1 + SHADOWDIFF_PIXEL_KIND_COUNT + 3 + SHADOWDIFF_CLASS_COUNT)
 /* Decimals of the mean absolute errors, the whole one's and each class's. */
 #define COMPARE_MAE_DECIMALS 5
 
@@ -195,8 +196,11 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
     const shadowdiff_result *r = &c->result;
     int count = 0;
     char text[LEGEND_TEXT_MAX];
-    if (!brief)
-        compare_legend_add(lines, &count, 0, NULL, "above: technique | truth; left: errors");
+    if (!brief) {
+        snprintf(text, sizeof text, "above: technique | truth; left: errors (%d px)",
+                 2 * compare_error_radius(c) + 1);
+        compare_legend_add(lines, &count, 0, NULL, text);
+    }
     for (int k = 0; k < SHADOWDIFF_PIXEL_KIND_COUNT; k++) { /* each with its swatch */
         shadowdiff_pixel kind = shadowdiff_legend_kinds[k];
         int n = snprintf(text, sizeof text, "%s", shadowdiff_pixel_names[kind]);
@@ -231,8 +235,6 @@ static int compare_legend_lines(const compare *c, bool brief, legend_line lines[
             shadowdiff_class_figures_text(r, (shadowdiff_class)k, COMPARE_MAE_DECIMALS, text, sizeof text);
             compare_legend_add(lines, &count, 0, NULL, text);
         }
-        snprintf(text, sizeof text, "each error drawn %d px wide", 2 * compare_error_radius(c) + 1);
-        compare_legend_add(lines, &count, 0, NULL, text);
         compare_legend_add(lines, &count, 0, NULL, truth);
     } else {
         compare_legend_add(lines, &count, 0, NULL, "no figures yet");

@@ -17,8 +17,8 @@
  *                 names), the figures (misclassified %, false shadow and
  *                 false lit, mean absolute error, compared pixels, and
  *                 the MAE and pixels of each of shadowdiff's classes that
- *                 has pixels), how wide the error discs are and how far
- *                 the truth is.
+ *                 has pixels) and how far the truth is; its first line
+ *                 says how wide the error discs are.
  *
  *   compare c;
  *   compare_create(&c, width, height, &settings);        the picture's size
