@@ -28,15 +28,10 @@
  * rectangle, z-fail with caps elsewhere; --mode zpass with the camera
  * inside a shadow visibly fails (shadows inverted).
  *
- * Options (each also a key): --silhouette gpu finds the sides in a
- * geometry shader (demos/lib/volume_silhouette.h); --extrude reach trims
- * the CPU volumes past the light's reach (volumes_trim); --no-depth-bounds
- * and --no-exact-depth turn off the depth bounds (volume_bounds_light)
- * and the exact depth of receivers huge seen from the eye
- * (demos/lib/volume_receivers.h); --overlay, for lectures, shows light 0's
- * volumes, silhouette edges or stencil count as colour. How each caster's
- * volume is drawn, kept or streamed, is demos/lib/volume_draw.h's; the
- * skips that leave volumes out (README, "Skips") are volumes_plan_light's.
+ * The options, each a flag and a key, are volumes_params. How each
+ * caster's volume is drawn, kept or streamed, is demos/lib/volume_draw.h's;
+ * the skips that leave volumes out (README, "Skips") are
+ * volumes_plan_light's.
  * An area light (--light-samples N) is N hard lights at its points
  * (Brotman & Badler, "Generating soft shadows with a depth buffer
  * algorithm", 1984): each counts every caster's volume, built for that
