@@ -31,7 +31,7 @@
  * The options, each a flag and a key, are volumes_params. How each
  * caster's volume is drawn, kept or streamed, is demos/lib/volume_draw.h's;
  * the skips that leave volumes out (README, "Skips") are
- * volumes_plan_light's.
+ * demos/lib/volume_plan.h's.
  * An area light (--light-samples N) is N hard lights at its points
  * (Brotman & Badler, "Generating soft shadows with a depth buffer
  * algorithm", 1984): each counts every caster's volume, built for that
@@ -48,6 +48,7 @@
 #include "volume_bounds.h"
 #include "volume_draw.h"
 #include "volume_overlay.h"
+#include "volume_plan.h"
 #include "volume_receivers.h"
 
 typedef struct volumes_settings {
@@ -60,11 +61,10 @@ typedef struct volumes_settings {
     int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
 } volumes_settings;
 
-static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL};
+static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL}; /* volume_plan_mode's order */
 static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
-enum { VOLUMES_AUTO, VOLUMES_ZPASS, VOLUMES_ZFAIL };
 enum { VOLUMES_CPU, VOLUMES_GPU };
 enum { VOLUMES_EXTRUDE_INFINITY, VOLUMES_EXTRUDE_REACH };
 enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTES, VOLUMES_OVERLAY_COUNTS };
@@ -72,32 +72,13 @@ enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTE
 /* Every bit of the 8-bit stencil: counts wrap at 256 (see top). */
 #define VOLUMES_STENCIL_MASK 0xff
 
-/* How caster i's volume counts for the light at hand. */
-typedef struct volumes_caster_plan {
-    bool needed;   /* it casts a volume for the light */
-    bool zfail;    /* counted behind the surface, with caps; else in front */
-    bool narrowed; /* within `bounds`, not the light's */
-    volume_bounds bounds;
-} volumes_caster_plan;
-
-/* A light's plan: every decision its count takes before it draws. */
-typedef struct volumes_light_plan {
-    int light;
-    int cache;     /* the light whose cache keeps the volumes (volume_draw_caster) */
-    vec4 position; /* homogeneous, world; aligned as cglm loads it */
-    technique_hull hull;
-    volume_bounds bounds;         /* where the light's volumes may count */
-    volumes_caster_plan *casters; /* per object (volumes.casters) */
-    bool reported;                /* the HUD's figures are this count's */
-} volumes_light_plan;
-
 static struct {
     volumes_settings settings;
     volume_draw draw;
     volume_receivers receivers;
-    volumes_caster_plan *casters; /* per object: the plan of the light at hand */
-    int trim_kept;                /* whether the kept volumes are trimmed; -1: none kept yet */
-    bool has_depth_bounds;        /* GL_EXT_depth_bounds_test */
+    volume_plan_caster *casters; /* per object: the plan of the light at hand */
+    int trim_kept;               /* whether the kept volumes are trimmed; -1: none kept yet */
+    bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
     int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
@@ -152,7 +133,7 @@ static void volumes_destroy(void) {
     volumes.casters = NULL;
 }
 
-/* ---- the plan: every skip ---- */
+/* ---- the plan: every skip (volume_plan.h) ---- */
 
 /* Whether volumes end past their light's reach (--extrude reach, key T;
  * volume_mesh_trim_for): the CPU volumes are trimmed past every receiver
@@ -163,96 +144,16 @@ static void volumes_destroy(void) {
  * Not for forced z-pass, whose count from an eye inside a volume (wrong,
  * for lectures) a trim could change. */
 static bool volumes_trim(void) {
-    return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUMES_ZPASS;
+    return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUME_PLAN_ZPASS;
 }
 
-/* Whether a caster takes z-fail, with caps (see top), given whether
- * z-pass is safe for it (volume_mesh_zpass_safe). */
-static bool volumes_use_zfail(bool zpass_safe) {
-    if (volumes.settings.mode != VOLUMES_AUTO)
-        return volumes.settings.mode == VOLUMES_ZFAIL;
-    return !zpass_safe;
-}
-
-/* Caster i's part of the plan. Leaving its volume out is exact when its
- * count is 0 on every visible receiver. A volume that misses the view has
- * no fragment (counted as culled). A point inside a caster's volume lies
- * beyond the caster on a segment from the light, so outside the hull of
- * the light and the visible receivers' bounds (convex) it contains no
- * visible receiver point (technique_caster_needed): z-fail counts there
- * exactly that, 0, and so does z-pass where it starts from 0, which auto
- * takes z-pass only where volume_mesh_zpass_safe says; forced z-pass keeps
- * casters that may shadow the eye (they count there), and as it counts
- * them on pixels outside them too, they keep the light's bounds. */
-static void volumes_plan_caster(const technique_frame *f, volumes_light_plan *plan, int i,
-                                const vec3 near_rectangle[4]) {
-    const scene_object *o = &f->gpu->scene->objects[i];
-    volumes_caster_plan *c = &plan->casters[i];
-    *c = (volumes_caster_plan){0};
-    if (!o->casts)
-        return;
-    float lo[3], hi[3];
-    scene_object_world_bounds(o, lo, hi);
-    if (f->cull_casters && volume_mesh_misses_view(lo, hi, plan->position, f->view->view_projection)) {
-        f->counts->casters_culled[plan->light]++;
-        return;
-    }
-    bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, near_rectangle);
-    c->zfail = volumes_use_zfail(zpass_safe);
-    if (volumes.settings.mode == VOLUMES_ZPASS && !zpass_safe) {
-        f->counts->casters_drawn[plan->light]++;
-        c->needed = true;
-        return;
-    }
-    c->needed = technique_caster_needed(f, &plan->hull, i);
-    c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
-}
-
-/* Light l's plan. Skips (README, "Skips"), none of which changes a count
- * on a visible receiver, the only pixels the stencil decides:
- * - casters whose shadow cannot reach a visible receiver, and volumes that
- *   miss the view, draw no volume (volumes_plan_caster);
- * - the light's volumes count only in the screen rectangle of every
- *   receiver's box and, with the depth bounds (unless --no-depth-bounds),
- *   between the depths of the visible receivers within its range
- *   (volume_bounds_light): the other pixels keep the cleared count;
- * - after technique_see, a volume counts only in the pixels and depths
- *   where what its shadow may fall on was seen (volume_bounds_caster);
- * - with --extrude reach the CPU volumes end past the light's reach
- *   (volumes_trim, volume_draw_reach). */
-static void volumes_plan_light(const technique_frame *f, int l, volumes_light_plan *plan) {
-    const scene *s = f->gpu->scene;
-    *plan = (volumes_light_plan){.light = l, .cache = l, .casters = volumes.casters, .reported = l == 0};
-    scene_light_homogeneous(&s->lights[l], plan->position);
-    technique_light_hull(f, l, &plan->hull);
-    volume_draw_reach(&volumes.draw, &s->lights[l], volumes_trim());
-    volume_bounds_light(f, &plan->hull, volumes.receivers_rect,
-                        volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, &plan->bounds);
-    vec3 near_rectangle[4];
-    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
-    for (int i = 0; i < s->object_count; i++)
-        volumes_plan_caster(f, plan, i, (const vec3 *)near_rectangle);
-}
-
-/* Light l's plan with no skip, for a light at `position` (homogeneous,
- * world): every caster's volume, each z-pass or z-fail as the mode says
- * there, under whatever scissor is on. */
-static void volumes_plan_every_caster(const technique_frame *f, int l, const float position[4],
-                                      volumes_light_plan *plan) {
-    const scene *s = f->gpu->scene;
-    *plan = (volumes_light_plan){.light = l, .cache = l, .casters = volumes.casters};
-    glm_vec4_copy((float *)position, plan->position);
-    vec3 near_rectangle[4];
-    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
-    for (int i = 0; i < s->object_count; i++) {
-        plan->casters[i] = (volumes_caster_plan){.needed = s->objects[i].casts};
-        if (!plan->casters[i].needed)
-            continue;
-        float lo[3], hi[3];
-        scene_object_world_bounds(&s->objects[i], lo, hi);
-        plan->casters[i].zfail =
-            volumes_use_zfail(volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle));
-    }
+/* Light l's plan (volume_plan.h), its CPU volumes built to the reach
+ * volumes_trim says. */
+static void volumes_plan_light(const technique_frame *f, int l, volume_plan *plan) {
+    volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
+    volume_plan_light(f, l, (volume_plan_mode)volumes.settings.mode, volumes.receivers_rect,
+                      volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, volumes.casters, plan);
+    plan->reported = l == 0;
 }
 
 /* ---- counting ---- */
@@ -270,7 +171,7 @@ static void volumes_stencil_ops(bool zfail) {
 }
 
 /* Stencil 0 in the plan's rectangle, stencil test on. */
-static void volumes_clear_stencil(const volumes_light_plan *plan) {
+static void volumes_clear_stencil(const volume_plan *plan) {
     const int *rect = plan->bounds.rect;
     glEnable(GL_SCISSOR_TEST);
     glScissor(rect[0], rect[1], rect[2], rect[3]);
@@ -280,7 +181,7 @@ static void volumes_clear_stencil(const volumes_light_plan *plan) {
 
 /* Stencil = number of volumes of the plan's light around each visible
  * pixel, of the casters it needs, each within its bounds. */
-static void volumes_count(const technique_frame *f, const volumes_light_plan *plan) {
+static void volumes_count(const technique_frame *f, const volume_plan *plan) {
     const scene *s = f->gpu->scene;
     int zpass = 0, zfail = 0;
     volumes.draw.built = volumes.draw.reused = 0;
@@ -296,7 +197,7 @@ static void volumes_count(const technique_frame *f, const volumes_light_plan *pl
     glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
     /* Not only casters in view: one outside may cast a volume across it. */
     for (int i = 0; i < s->object_count; i++) {
-        const volumes_caster_plan *c = &plan->casters[i];
+        const volume_plan_caster *c = &plan->casters[i];
         if (!c->needed)
             continue;
         zfail += c->zfail;
@@ -355,9 +256,9 @@ static const technique_stencil_lit volumes_lit = {
  * caster, each z-pass or z-fail for that point, over the whole frame,
  * built for the point and not kept (technique_sample_area_light). */
 static void volumes_count_point(const technique_frame *f, int l, const float point[4]) {
-    volumes_light_plan plan;
+    volume_plan plan;
     volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
-    volumes_plan_every_caster(f, l, point, &plan);
+    volume_plan_every_caster(f, l, point, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
     plan.cache = VOLUME_DRAW_UNKEPT;
     plan.bounds.rect[2] = f->width;
     plan.bounds.rect[3] = f->height;
@@ -392,10 +293,10 @@ static void volumes_draw_overlay(const technique_frame *f) {
     if (volumes.settings.overlay == VOLUMES_OVERLAY_NONE || s->light_count == 0)
         return;
     volume_draw_reach(&volumes.draw, &s->lights[0], volumes_trim());
-    volumes_light_plan plan;
+    volume_plan plan;
     float centre[4];
     scene_light_homogeneous(&s->lights[0], centre);
-    volumes_plan_every_caster(f, 0, centre, &plan);
+    volume_plan_every_caster(f, 0, centre, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
         glEnable(GL_STENCIL_TEST);
         glClear(GL_STENCIL_BUFFER_BIT);
@@ -435,7 +336,7 @@ static void volumes_render(const technique_frame *f) {
         }
         /* 2. Plan: which casters, each z-pass or z-fail, and where their
          *    volumes may count (the skips). */
-        volumes_light_plan plan;
+        volume_plan plan;
         volumes_plan_light(f, l, &plan);
         volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
         /* 3. Clear the stencil in the plan's rectangle. */

@@ -1,0 +1,67 @@
+#include "volume_plan.h"
+
+#include <cglm/cglm.h>
+
+#include "volume_mesh.h"
+
+bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe) {
+    if (mode != VOLUME_PLAN_AUTO)
+        return mode == VOLUME_PLAN_ZFAIL;
+    return !zpass_safe;
+}
+
+/* Caster i's part of the plan (see top). */
+static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mode, volume_plan *plan, int i,
+                                   const vec3 near_rectangle[4]) {
+    const scene_object *o = &f->gpu->scene->objects[i];
+    volume_plan_caster *c = &plan->casters[i];
+    *c = (volume_plan_caster){0};
+    if (!o->casts)
+        return;
+    float lo[3], hi[3];
+    scene_object_world_bounds(o, lo, hi);
+    if (f->cull_casters && volume_mesh_misses_view(lo, hi, plan->position, f->view->view_projection)) {
+        f->counts->casters_culled[plan->light]++;
+        return;
+    }
+    bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, near_rectangle);
+    c->zfail = volume_plan_zfail(mode, zpass_safe);
+    if (mode == VOLUME_PLAN_ZPASS && !zpass_safe) {
+        f->counts->casters_drawn[plan->light]++;
+        c->needed = true;
+        return;
+    }
+    c->needed = technique_caster_needed(f, &plan->hull, i);
+    c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
+}
+
+void volume_plan_light(const technique_frame *f, int l, volume_plan_mode mode, const int receivers_rect[4],
+                       bool depth_bounds, volume_plan_caster *casters, volume_plan *plan) {
+    const scene *s = f->gpu->scene;
+    *plan = (volume_plan){.light = l, .cache = l, .casters = casters};
+    scene_light_homogeneous(&s->lights[l], plan->position);
+    technique_light_hull(f, l, &plan->hull);
+    volume_bounds_light(f, &plan->hull, receivers_rect, depth_bounds, &plan->bounds);
+    vec3 near_rectangle[4];
+    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
+    for (int i = 0; i < s->object_count; i++)
+        volume_plan_caster_for(f, mode, plan, i, (const vec3 *)near_rectangle);
+}
+
+void volume_plan_every_caster(const technique_frame *f, int l, const float position[4], volume_plan_mode mode,
+                              volume_plan_caster *casters, volume_plan *plan) {
+    const scene *s = f->gpu->scene;
+    *plan = (volume_plan){.light = l, .cache = l, .casters = casters};
+    glm_vec4_copy((float *)position, plan->position);
+    vec3 near_rectangle[4];
+    volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
+    for (int i = 0; i < s->object_count; i++) {
+        plan->casters[i] = (volume_plan_caster){.needed = s->objects[i].casts};
+        if (!plan->casters[i].needed)
+            continue;
+        float lo[3], hi[3];
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        plan->casters[i].zfail =
+            volume_plan_zfail(mode, volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle));
+    }
+}
