@@ -147,10 +147,8 @@ static bool volumes_trim(void) {
     return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUME_PLAN_ZPASS;
 }
 
-/* Light l's plan (volume_plan.h), its CPU volumes built to the reach
- * volumes_trim says. */
+/* Light l's plan (volume_plan.h). */
 static void volumes_plan_light(const technique_frame *f, int l, volume_plan *plan) {
-    volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
     volume_plan_light(f, l, (volume_plan_mode)volumes.settings.mode, volumes.receivers_rect,
                       volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, volumes.casters, plan);
     plan->reported = l == 0;
@@ -257,7 +255,6 @@ static const technique_stencil_lit volumes_lit = {
  * built for the point and not kept (technique_sample_area_light). */
 static void volumes_count_point(const technique_frame *f, int l, const float point[4]) {
     volume_plan plan;
-    volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
     volume_plan_every_caster(f, l, point, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
     plan.cache = VOLUME_DRAW_UNKEPT;
     plan.bounds.rect[2] = f->width;
@@ -324,6 +321,9 @@ static void volumes_render(const technique_frame *f) {
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
         if (!technique_light_on(f, l))
             continue;
+        /* The CPU volumes built for this light, or its points, reach as
+         * far as volumes_trim says. */
+        volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
         int samples = soft_visibility_samples("volumes", volumes.settings.light_samples, &f->gpu->scene->lights[l], l,
                                               &volumes.soft_warned);
         if (samples > 1) {

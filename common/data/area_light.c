@@ -64,9 +64,9 @@ void area_light_frame_for(const scene_light *light, const float centre[4], const
     frame->cap = 2.0f * sinf(half_angle) * sinf(half_angle);
 }
 
-void area_light_sample(const area_light_frame *f, int k, int n, uint32_t jitter, float out[4]) {
-    float disk[2];
-    area_light_disk_sample(k, n, area_light_unit(jitter), area_light_unit(area_light_hash(jitter)), disk);
+/* Disk point `disk` of the frame as a homogeneous point, or a direction
+ * towards a directional light (w 0). */
+static void area_light_point(const area_light_frame *f, const float disk[2], float out[4]) {
     if (f->centre[3] == 0) {
         /* The disk onto the cap of directions within the angular radius,
          * keeping equal areas (Lambert's azimuthal map): a uniform sun
@@ -85,14 +85,25 @@ void area_light_sample(const area_light_frame *f, int k, int n, uint32_t jitter,
     glm_vec3_muladds((float *)f->bitangent, disk[1] * f->radius, out);
 }
 
+/* Sample k of n on the unit disk, its cell's jitter from `jitter`. */
+static void area_light_jittered_disk(int k, int n, uint32_t jitter, float disk[2]) {
+    area_light_disk_sample(k, n, area_light_unit(jitter), area_light_unit(area_light_hash(jitter)), disk);
+}
+
+void area_light_sample(const area_light_frame *f, int k, int n, uint32_t jitter, float out[4]) {
+    float disk[2];
+    area_light_jittered_disk(k, n, jitter, disk);
+    area_light_point(f, disk, out);
+}
+
 void area_light_sample_ball(const area_light_frame *f, int k, int n, uint32_t jitter, float out[4]) {
-    area_light_sample(f, k, n, jitter, out);
+    float disk[2];
+    area_light_jittered_disk(k, n, jitter, disk);
+    area_light_point(f, disk, out);
     if (f->centre[3] == 0)
         return;
-    vec3 offset;
-    glm_vec3_sub(out, (float *)f->centre, offset);
-    float rho = glm_vec3_norm(offset) / f->radius;
+    float rho2 = disk[0] * disk[0] + disk[1] * disk[1];
     float w = area_light_unit(area_light_hash(area_light_hash(jitter)));
-    float lift = sqrtf(fmaxf(1.0f - rho * rho, 0.0f)) * sinf(AREA_LIGHT_PI * (w - 0.5f));
+    float lift = sqrtf(fmaxf(1.0f - rho2, 0.0f)) * sinf(AREA_LIGHT_PI * (w - 0.5f));
     glm_vec3_muladds((float *)f->axis, lift * f->radius, out);
 }
