@@ -227,7 +227,8 @@ static bool cascades_init(const render_scene *gpu) {
 
 static void cascades_destroy(void) { shadow_map_destroy(&cascades.maps); }
 
-static const char *cascades_area_light(const scene_light *light) {
+static const char *cascades_area_light(const scene_light *light, int l) {
+    (void)l;
     return shadow_map_area_light_text(&cascades.settings, light);
 }
 

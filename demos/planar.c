@@ -41,8 +41,10 @@
  *            the light casts anti-shadows.
  * An area light (--light-samples N) is N hard lights at its points
  * (Heckbert & Herf, "Simulating soft shadows with graphics hardware",
- * 1997): each marks the stencil as above and adds 1/N where it reaches,
- * and the light is shaded once with that fraction (soft_visibility.h).
+ * 1997): each marks the stencil as above and adds one to the light's sum
+ * where it reaches, and the light is shaded once with the sum over N
+ * (soft_visibility.h), in the window over frames
+ * (technique_sample_area_light).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -208,12 +210,16 @@ static void planar_stencil_receiver(const technique_frame *f, int r, GLenum func
  * cleared, so that only the next receiver's pixels are 1 when casters are
  * flattened onto its plane: they are not depth-tested, and would shadow
  * any pixel left at 1 that their projection covers. */
-static void planar_mark_shadows(const technique_frame *f, int light, const float light_h[4]) {
+static void planar_mark_shadows(const technique_frame *f, int light, int k, const float light_h[4]) {
     const scene *s = f->gpu->scene;
     /* Stencil marks only the visible receivers' pixels, so a caster whose
-     * shadow reaches none of them marks nothing: culling it is exact. */
+     * shadow reaches none of them marks nothing: culling it is exact (by
+     * the hull of the point at hand, for a point of an area light). */
     technique_hull hull;
-    technique_light_hull(f, light, &hull);
+    if (k == TECHNIQUE_LIGHT_CENTRE)
+        technique_light_hull(f, light, &hull);
+    else
+        technique_point_hull(f, light, light_h, &hull);
     for (int i = 0; i < s->object_count; i++)
         planar.casters[i] = technique_caster_needed(f, &hull, i);
     glClear(GL_STENCIL_BUFFER_BIT);
@@ -264,12 +270,12 @@ static void planar_render_stencil(const technique_frame *f) {
             soft_visibility_samples("planar", planar.settings.light_samples, &s->lights[l], l, &planar.soft_warned);
         if (samples > 1) {
             /* An area light: each point's shadows marked as a hard
-             * light's, 1/n added where the point reaches. */
+             * light's, one added to its sum where the point reaches. */
             if (technique_sample_area_light(f, l, samples, &planar.soft, &planar_lit, planar_mark_shadows))
                 technique_shade_light_soft(f, l, &planar.soft, planar_lit.receivers_only);
             continue;
         }
-        planar_mark_shadows(f, l, light_h);
+        planar_mark_shadows(f, l, TECHNIQUE_LIGHT_CENTRE, light_h);
         technique_shade_light(f, l, &planar_lit);
         glDisable(GL_STENCIL_TEST);
     }
@@ -326,9 +332,9 @@ static void planar_render(const technique_frame *f) {
         planar_render_stencil(f);
 }
 
-static const char *planar_area_light(const scene_light *light) {
+static const char *planar_area_light(const scene_light *light, int l) {
     (void)light;
-    return soft_visibility_area_light_text(planar.settings.light_samples);
+    return soft_visibility_area_light_text(&planar.soft, planar.settings.light_samples, l);
 }
 
 const technique planar_technique = {

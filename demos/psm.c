@@ -187,7 +187,8 @@ static void psm_destroy(void) {
     }
 }
 
-static const char *psm_area_light(const scene_light *light) {
+static const char *psm_area_light(const scene_light *light, int l) {
+    (void)l;
     return shadow_map_area_light_text(&psm.settings, light);
 }
 

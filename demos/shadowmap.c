@@ -77,7 +77,8 @@ static bool shadowmap_init(const render_scene *gpu) {
 
 static void shadowmap_destroy(void) { shadow_map_destroy(&shadowmap.maps); }
 
-static const char *shadowmap_area_light(const scene_light *light) {
+static const char *shadowmap_area_light(const scene_light *light, int l) {
+    (void)l;
     return shadow_map_area_light_text(&shadowmap.settings, light);
 }
 

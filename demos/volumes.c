@@ -34,14 +34,16 @@
  * demos/lib/volume_plan.h's.
  * An area light (--light-samples N) is N hard lights at its points
  * (Brotman & Badler, "Generating soft shadows with a depth buffer
- * algorithm", 1984): each counts every caster's volume, built for that
- * point and not kept, and adds 1/N where its count is 0; the light is
- * shaded once with that fraction (soft_visibility.h).
+ * algorithm", 1984): each counts with its own plan and kept volumes and
+ * adds one to the light's sum where its count is 0; the light is shaded
+ * once with the sum over N (soft_visibility.h), in the window over
+ * frames (technique_sample_area_light).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "depth.h"
 #include "technique.h"
@@ -81,10 +83,12 @@ static struct {
     bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
-    int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
-    int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
-    soft_visibility soft;  /* an area light's visibility, sampled */
-    unsigned soft_warned;  /* bit l: light l's area said drawn hard */
+    int huge_count;                /* objects counted against their exact depth (volume_receivers.h) */
+    int receivers_rect[4];         /* this frame's: every receiver's box on screen, for every light */
+    soft_visibility soft;          /* an area light's visibility, sampled */
+    unsigned soft_warned;          /* bit l: light l's area said drawn hard */
+    int samples[SCENE_MAX_LIGHTS]; /* this frame's points of light l: 1 drawn hard */
+    bool point_reported;           /* the HUD's counts are of this frame's first point */
 } volumes;
 
 static const flags_param volumes_params[] = {
@@ -122,6 +126,7 @@ static bool volumes_init(const render_scene *gpu) {
     volumes.trim_kept = -1;
     volumes.has_depth_bounds = GLAD_GL_EXT_depth_bounds_test;
     volumes.soft_warned = 0;
+    memset(volumes.samples, 0, sizeof volumes.samples);
     return soft_visibility_init(&volumes.soft);
 }
 
@@ -147,10 +152,12 @@ static bool volumes_trim(void) {
     return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUME_PLAN_ZPASS;
 }
 
-/* Light l's plan (volume_plan.h). */
-static void volumes_plan_light(const technique_frame *f, int l, volume_plan *plan) {
-    volume_plan_light(f, l, (volume_plan_mode)volumes.settings.mode, volumes.receivers_rect,
+/* Light l's plan (volume_plan.h), for its centre (point NULL), or for
+ * point k of its area, whose volumes are kept apart. */
+static void volumes_plan_light(const technique_frame *f, int l, int k, const float point[4], volume_plan *plan) {
+    volume_plan_light(f, l, point, (volume_plan_mode)volumes.settings.mode, volumes.receivers_rect,
                       volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, volumes.casters, plan);
+    plan->cache = volume_draw_cache(l, k);
     plan->reported = l == 0;
 }
 
@@ -182,7 +189,6 @@ static void volumes_clear_stencil(const volume_plan *plan) {
 static void volumes_count(const technique_frame *f, const volume_plan *plan) {
     const scene *s = f->gpu->scene;
     int zpass = 0, zfail = 0;
-    volumes.draw.built = volumes.draw.reused = 0;
     if (plan->bounds.bounded) {
         glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
         glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
@@ -216,9 +222,17 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
     if (plan->reported) {
         volumes.zpass_count = zpass;
         volumes.zfail_count = zfail;
-        volumes.built_count = volumes.draw.built;
-        volumes.reused_count = volumes.draw.reused;
     }
+}
+
+/* The HUD's figures of the volumes light 0 drew, from the light's first
+ * count (volumes_count_begin) to its last (volumes_count_end). */
+static void volumes_count_begin(void) { volumes.draw.built = volumes.draw.reused = 0; }
+static void volumes_count_end(int l) {
+    if (l != 0)
+        return;
+    volumes.built_count = volumes.draw.built;
+    volumes.reused_count = volumes.draw.reused;
 }
 
 /* ---- the depth counted against ---- */
@@ -250,33 +264,43 @@ static const technique_stencil_lit volumes_lit = {
 
 /* ---- area lights ---- */
 
-/* One point of light l's area counted as a hard light there: every
- * caster, each z-pass or z-fail for that point, over the whole frame,
- * built for the point and not kept (technique_sample_area_light). */
-static void volumes_count_point(const technique_frame *f, int l, const float point[4]) {
+/* Point k of light l's area counted as a hard light there (steps 2 to 4
+ * with the point's own plan and kept volumes). The casters' counts for
+ * the HUD are the first point's. */
+static void volumes_count_point(const technique_frame *f, int l, int k, const float point[4]) {
+    technique_counts counts = *f->counts;
     volume_plan plan;
-    volume_plan_every_caster(f, l, point, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
-    plan.cache = VOLUME_DRAW_UNKEPT;
-    plan.bounds.rect[2] = f->width;
-    plan.bounds.rect[3] = f->height;
+    volumes_plan_light(f, l, k, point, &plan);
+    plan.reported = plan.reported && !volumes.point_reported;
     volumes_exact_depth(f);
     volumes_clear_stencil(&plan);
     volumes_count(f, &plan);
     volumes_prepass_depth(f);
+    if (volumes.point_reported)
+        *f->counts = counts;
+    volumes.point_reported = true;
 }
 
 /* ---- the kept volumes ---- */
 
-/* The CPU volumes are kept per light, built when a caster is first needed
- * after the light moved and drawn from there until it moves again
- * (objects never move; volume_draw.h): forgets those of the lights that
- * moved, or all where the trim changed. */
+/* The CPU volumes are kept per light and per point of its area, built
+ * when a caster is first needed after the light moved and drawn from
+ * there until it moves again (objects never move; volume_draw.h):
+ * forgets those of the lights that moved, or all where the trim changed,
+ * and frees a light's points' where it is sampled at other points. */
 static void volumes_forget_moved(const technique_frame *f) {
+    const scene *s = f->gpu->scene;
     bool trim_changed = volumes.trim_kept != (int)volumes_trim();
     volumes.trim_kept = volumes_trim();
-    for (int l = 0; l < f->gpu->scene->light_count; l++)
+    for (int l = 0; l < s->light_count; l++) {
         if (f->changed.scene || trim_changed || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             volume_draw_forget(&volumes.draw, l);
+        int samples = soft_visibility_samples("volumes", volumes.settings.light_samples, &s->lights[l], l,
+                                              &volumes.soft_warned);
+        if (samples != volumes.samples[l])
+            volume_draw_free_points(&volumes.draw, l);
+        volumes.samples[l] = samples;
+    }
 }
 
 /* ---- overlays ---- */
@@ -294,6 +318,7 @@ static void volumes_draw_overlay(const technique_frame *f) {
     float centre[4];
     scene_light_homogeneous(&s->lights[0], centre);
     volume_plan_every_caster(f, 0, centre, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
+    plan.cache = volume_draw_cache(0, TECHNIQUE_LIGHT_CENTRE);
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
         glEnable(GL_STENCIL_TEST);
         glClear(GL_STENCIL_BUFFER_BIT);
@@ -324,20 +349,24 @@ static void volumes_render(const technique_frame *f) {
         /* The CPU volumes built for this light, or its points, reach as
          * far as volumes_trim says. */
         volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
-        int samples = soft_visibility_samples("volumes", volumes.settings.light_samples, &f->gpu->scene->lights[l], l,
-                                              &volumes.soft_warned);
-        if (samples > 1) {
-            /* An area light: steps 2 to 4 for each of its points, each
-             * adding 1/n where its count is 0; then step 5 with that. */
+        volumes_count_begin();
+        if (volumes.samples[l] > 1) {
+            /* An area light: steps 2 to 4 for each of its points not yet
+             * in its sum, each adding one where its count is 0; then step
+             * 5 with the sum. */
             technique_light_pass(f, l);
-            if (technique_sample_area_light(f, l, samples, &volumes.soft, &volumes_lit, volumes_count_point))
+            volumes.point_reported = false;
+            bool summed = technique_sample_area_light(f, l, volumes.samples[l], &volumes.soft, &volumes_lit,
+                                                      volumes_count_point);
+            volumes_count_end(l);
+            if (summed)
                 technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
             continue;
         }
         /* 2. Plan: which casters, each z-pass or z-fail, and where their
          *    volumes may count (the skips). */
         volume_plan plan;
-        volumes_plan_light(f, l, &plan);
+        volumes_plan_light(f, l, TECHNIQUE_LIGHT_CENTRE, NULL, &plan);
         volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
         /* 3. Clear the stencil in the plan's rectangle. */
         volumes_clear_stencil(&plan);
@@ -345,6 +374,7 @@ static void volumes_render(const technique_frame *f) {
          *    front of the surface (z-pass) or behind it (z-fail), +1 or -1
          *    by their facing. */
         volumes_count(f, &plan);
+        volumes_count_end(l);
         volumes_prepass_depth(f); /* back to the depth the shading is equal to */
         /* 5. Shade the light where the count is 0, in its own scissor
          *    (objects that take no shadows may lie outside the plan's);
@@ -393,9 +423,9 @@ static const char *const volumes_bench_configs[] = {
     "--light-samples 256",
 };
 
-static const char *volumes_area_light(const scene_light *light) {
+static const char *volumes_area_light(const scene_light *light, int l) {
     (void)light;
-    return soft_visibility_area_light_text(volumes.settings.light_samples);
+    return soft_visibility_area_light_text(&volumes.soft, volumes.settings.light_samples, l);
 }
 
 const technique volumes_technique = {

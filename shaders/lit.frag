@@ -15,10 +15,12 @@ uniform int u_light_count;
 uniform int u_light_list[SCENE_MAX_LIGHTS];
 #ifdef LIT_SOFT_VISIBILITY
 // Light u_soft_light's share scaled by the fraction of its area light
-// that reaches the pixel, accumulated from hard shadows
-// (common/gl/soft_visibility.h); the other lights as they are.
+// that reaches the pixel: the sum of the points that reach it, accumulated
+// from hard shadows, over the number of points (u_soft_scale, its
+// inverse; common/gl/soft_visibility.h); the other lights as they are.
 uniform int u_soft_light;
 uniform sampler2D u_soft_visibility;
+uniform float u_soft_scale;
 #endif
 
 out vec4 out_color;
@@ -31,7 +33,7 @@ void main() {
         vec3 light = lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
 #ifdef LIT_SOFT_VISIBILITY
         if (u_light_list[k] == u_soft_light)
-            light *= texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r;
+            light *= texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r * u_soft_scale;
 #endif
         c += light;
     }

@@ -1,11 +1,9 @@
 #version 330 core
-// One sample's share of an area light's visibility, added (blending)
-// wherever the caller's stencil test says the sample's point reaches the
-// pixel: common/gl/soft_visibility.h.
-uniform float u_weight;
-
+// One point of an area light, added (blending) to its sum wherever the
+// caller's stencil test says the point reaches the pixel:
+// common/gl/soft_visibility.h.
 out vec4 out_visibility;
 
 void main() {
-    out_visibility = vec4(u_weight, 0.0, 0.0, 0.0);
+    out_visibility = vec4(1.0, 0.0, 0.0, 0.0);
 }

@@ -7,7 +7,10 @@
  * shadow (planar: the ground; volumes: every object), falling, and within
  * the case's bound at SAMPLES with no light leaking into the umbra. A hard
  * light is drawn byte for byte as without the flag, and an area light
- * drawn hard says so once. */
+ * drawn hard says so once. In the window the points are added over
+ * frames (progressive): after as many frames as points, the same picture
+ * as headless; before, a partial one whose HUD says how far it is; and
+ * the order they are added in spreads every partial sum over the disk. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -17,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "area_light.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -116,10 +120,80 @@ static void test_drawn_hard_said_once(void **state) {
     }
 }
 
+/* area_light_progressive_index: a permutation of every count's points,
+ * each first 4^i of them one per cell of the 2^i x 2^i grid (the points'
+ * rows and columns of the square, sample k's k / m and k % m). */
+static void test_progressive_order_spreads(void **state) {
+    (void)state;
+    static const int counts[] = {4, 16, 64, 256}; /* --light-samples' */
+    for (size_t c = 0; c < sizeof counts / sizeof *counts; c++) {
+        int n = counts[c], m = 1;
+        while (m * m < n)
+            m++;
+        bool taken[256] = {0};
+        for (int j = 0; j < n; j++) {
+            int k = area_light_progressive_index(j, n);
+            assert_in_range(k, 0, n - 1);
+            assert_false(taken[k]);
+            taken[k] = true;
+        }
+        for (int cells = 2; cells * cells <= n; cells *= 2) {
+            bool cell_taken[256] = {0};
+            for (int j = 0; j < cells * cells; j++) {
+                int k = area_light_progressive_index(j, n);
+                int cell = k / m * cells / m * cells + k % m * cells / m;
+                assert_false(cell_taken[cell]);
+                cell_taken[cell] = true;
+            }
+        }
+    }
+    assert_int_equal(area_light_progressive_index(5, 9), 5); /* not a power of 4: in order */
+}
+
+#define PROGRESSIVE_SAMPLES 64
+#define PROGRESSIVE_PARTIAL 8
+
+/* The window's picture (Xvfb) of volumes on soft_table after `frames`
+ * frames at PROGRESSIVE_SAMPLES points, its HUD's last text in err. */
+static void window_picture(int frames, const char *path, const char *hud) {
+    char command[1024];
+    snprintf(command, sizeof command,
+             "timeout 240 %s %s --backend glfw --scene assets/scenes/soft_table.json --size 320x180 --frames %d "
+             "--light-samples %d %s --screenshot %s",
+             support_xvfb_run(), support_program("volumes"), frames, PROGRESSIVE_SAMPLES, hud, path);
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+}
+
+static void test_progressive_in_the_window(void **state) {
+    (void)state;
+    assert_int_equal(system("mkdir -p out/test/light_samples"), 0);
+    const char *full = "out/test/light_samples/window_full.png",
+               *partial = "out/test/light_samples/window_partial.png";
+    const char *headless = "out/test/light_samples/headless.png";
+    window_picture(PROGRESSIVE_SAMPLES, full, "--no-hud");
+    char command[1024];
+    snprintf(command, sizeof command,
+             "%s --backend egl --scene assets/scenes/soft_table.json --size 320x180 --frames 1 --light-samples %d "
+             "--no-hud --screenshot %s",
+             support_program("volumes"), PROGRESSIVE_SAMPLES, headless);
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    assert_int_equal(system("cmp -s out/test/light_samples/window_full.png out/test/light_samples/headless.png"), 0);
+    window_picture(PROGRESSIVE_PARTIAL, partial, "--no-hud");
+    assert_int_not_equal(
+        system("cmp -s out/test/light_samples/window_partial.png out/test/light_samples/headless.png"), 0);
+    window_picture(PROGRESSIVE_PARTIAL, partial, "--verbose");
+    char said[64];
+    snprintf(said, sizeof said, "sampled at %d points, %d so far", PROGRESSIVE_SAMPLES, PROGRESSIVE_PARTIAL);
+    if (!strstr(err, said))
+        fail_msg("the HUD does not say \"%s\":\n%s", said, err);
+    printf("    window: %d frames the headless picture, %d frames partial (\"%s\")\n", PROGRESSIVE_SAMPLES,
+           PROGRESSIVE_PARTIAL, said);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sampled_area_lights_converge),
-        cmocka_unit_test(test_hard_light_untouched),
+        cmocka_unit_test(test_progressive_order_spreads),    cmocka_unit_test(test_progressive_in_the_window),
+        cmocka_unit_test(test_sampled_area_lights_converge), cmocka_unit_test(test_hard_light_untouched),
         cmocka_unit_test(test_drawn_hard_said_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

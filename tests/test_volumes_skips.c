@@ -3,8 +3,10 @@
  * --no-skip, the last of three frames dumps the same bytes (visibility,
  * depth, the picture), on the city with the light moving (so that kept
  * volumes are dropped when the light moves) in every counting mode and
- * silhouette path, and on bunny and teapot (tests/test_skip.c has the
- * defaults on the other scenes and motions). And the skips do skip: on the
+ * silhouette path, on bunny and teapot (tests/test_skip.c has the
+ * defaults on the other scenes and motions), and for every point of an
+ * area light (each with its own plan and kept volumes, kept while the
+ * camera moves and dropped when the light does). And the skips do skip: on the
  * city every light in reach counts each caster once, and culls most. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -78,6 +80,19 @@ static void test_bunny_and_teapot(void **state) {
     }
 }
 
+static void test_area_light_points(void **state) {
+    (void)state;
+    static const char *const motions[] = {"camera", "light"};
+    for (size_t m = 0; m < sizeof motions / sizeof *motions; m++) {
+        char name[64];
+        snprintf(name, sizeof name, "soft_table_%s", motions[m]);
+        assert_same_with_and_without("assets/scenes/soft_table.json", motions[m], "--light-samples 16", "--no-skip",
+                                     name);
+    }
+    assert_same_with_and_without("assets/scenes/soft_sun.json", "camera", "--light-samples 16 --mode zfail",
+                                 "--no-skip", "soft_sun_zfail");
+}
+
 static void test_city_casters_culled(void **state) {
     (void)state;
     const char *line = support_verbose_line("volumes", CITY, "", "[X] caster culling: ");
@@ -103,10 +118,9 @@ static void test_city_casters_culled(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_city_casters_culled),
-        cmocka_unit_test(test_depth_bounds),
-        cmocka_unit_test(test_city_every_mode),
-        cmocka_unit_test(test_bunny_and_teapot),
+        cmocka_unit_test(test_city_casters_culled), cmocka_unit_test(test_depth_bounds),
+        cmocka_unit_test(test_city_every_mode),     cmocka_unit_test(test_bunny_and_teapot),
+        cmocka_unit_test(test_area_light_points),
     };
     return cmocka_run_group_tests_name("shadow volumes' skips", tests, NULL, NULL);
 }

@@ -107,3 +107,18 @@ void area_light_sample_ball(const area_light_frame *f, int k, int n, uint32_t ji
     float lift = sqrtf(fmaxf(1.0f - rho2, 0.0f)) * sinf(AREA_LIGHT_PI * (w - 0.5f));
     glm_vec3_muladds((float *)f->axis, lift * f->radius, out);
 }
+
+int area_light_progressive_index(int j, int n) {
+    int bits = 0; /* per axis: n = 4^bits */
+    while (1 << (2 * bits) < n)
+        bits++;
+    if (1 << (2 * bits) != n)
+        return j;
+    int row = 0, column = 0;
+    for (int b = 0; b < bits; b++) {
+        /* bit b of each half of j's Morton code, to bit bits-1-b */
+        column |= (j >> (2 * b) & 1) << (bits - 1 - b);
+        row |= (j >> (2 * b + 1) & 1) << (bits - 1 - b);
+    }
+    return row * (1 << bits) + column;
+}

@@ -70,4 +70,12 @@ void area_light_sample(const area_light_frame *frame, int k, int n, uint32_t jit
  * every pixel: area_light_sample's. */
 void area_light_sample_ball(const area_light_frame *frame, int k, int n, uint32_t jitter, float out[4]);
 
+/* The sample taken j-th of n by a technique that adds them over frames:
+ * a permutation of 0..n-1 whose every first 4^i samples fall one in each
+ * cell of a 2^i x 2^i grid over the square, so that a partial sum is
+ * already spread over the whole disk (n a power of 4, a square of cells:
+ * each cell's row and column are the bit-reversed halves of j's Morton
+ * code; any other n: j itself). */
+int area_light_progressive_index(int j, int n);
+
 #endif

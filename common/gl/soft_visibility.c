@@ -18,12 +18,15 @@ int soft_visibility_samples(const char *technique, int choice, const scene_light
     return light->radius > 0 ? samples : 1;
 }
 
-const char *soft_visibility_area_light_text(int choice) {
+const char *soft_visibility_area_light_text(const soft_visibility *v, int choice, int l) {
     static char text[64];
     int samples = atoi(soft_visibility_sample_counts[choice]);
+    const soft_visibility_light *sum = &v->lights[l];
     if (samples == 1)
         return "hard, from its centre: --light-samples N samples it";
-    snprintf(text, sizeof text, "sampled at %d points", samples);
+    int n = snprintf(text, sizeof text, "sampled at %d points", samples);
+    if (sum->samples == samples && sum->points < samples)
+        snprintf(text + n, sizeof text - (size_t)n, ", %d so far", sum->points);
     return text;
 }
 
@@ -37,17 +40,37 @@ bool soft_visibility_init(soft_visibility *v) {
         soft_visibility_destroy(v);
         return false;
     }
-    v->weight = shader_uniform(v->accumulate, "u_weight");
     render_lit_uniforms_find(&v->lit, &v->lit_uniforms);
     v->soft_light = shader_uniform(v->lit.id, "u_soft_light");
     v->soft_texture = shader_uniform(v->lit.id, "u_soft_visibility");
+    v->soft_scale = shader_uniform(v->lit.id, "u_soft_scale");
     glGenVertexArrays(1, &v->vao);
-    glGenFramebuffers(1, &v->framebuffer);
-    glGenTextures(1, &v->texture);
     return context_gl_ok("soft_visibility_init");
 }
 
-/* The texture at the bound target's size, with its depth and stencil. */
+/* Light l's texture at the size of v's target, with the target's depth
+ * and stencil; false after one line on stderr. */
+static bool soft_visibility_make(soft_visibility *v, soft_visibility_light *light) {
+    if (!light->texture) {
+        glGenFramebuffers(1, &light->framebuffer);
+        glGenTextures(1, &light->texture);
+    }
+    glBindTexture(GL_TEXTURE_2D, light->texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, v->width, v->height, 0, GL_RED, GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, light->framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, light->texture, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, v->depth_stencil);
+    bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
+    if (!complete)
+        fprintf(stderr, "soft_visibility: a %dx%d visibility target is incomplete\n", v->width, v->height);
+    return complete;
+}
+
+/* Whether v is for the bound target (its size and stencil); if not, it
+ * is now, every light's sum forgotten. */
 static bool soft_visibility_match(soft_visibility *v) {
     GLint framebuffer, depth_stencil, viewport[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
@@ -61,27 +84,26 @@ static bool soft_visibility_match(soft_visibility *v) {
     v->depth_stencil = (unsigned)depth_stencil;
     v->width = viewport[2];
     v->height = viewport[3];
-    glBindTexture(GL_TEXTURE_2D, v->texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, v->width, v->height, 0, GL_RED, GL_FLOAT, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, v->texture, 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, v->depth_stencil);
-    bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
-    if (!complete) {
-        fprintf(stderr, "soft_visibility: a %dx%d visibility target is incomplete\n", v->width, v->height);
-        v->target_framebuffer = 0;
-    }
-    return complete;
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        v->lights[l].samples = 0; /* remade on its next begin */
+    return false;
 }
 
-bool soft_visibility_begin(soft_visibility *v) {
-    if (!soft_visibility_match(v))
-        return false;
+bool soft_visibility_begin(soft_visibility *v, int l, int samples, bool restart) {
+    soft_visibility_light *light = &v->lights[l];
+    if (!soft_visibility_match(v) || light->samples == 0) {
+        if (!soft_visibility_make(v, light)) {
+            light->samples = 0;
+            return false;
+        }
+        restart = true;
+    }
+    if (!restart && light->samples == samples)
+        return true;
+    light->samples = samples;
+    light->points = 0;
     GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, light->framebuffer);
     glDisable(GL_SCISSOR_TEST);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
@@ -91,8 +113,9 @@ bool soft_visibility_begin(soft_visibility *v) {
     return true;
 }
 
-void soft_visibility_add(soft_visibility *v, float weight) {
-    glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
+void soft_visibility_add(soft_visibility *v, int l) {
+    soft_visibility_light *light = &v->lights[l];
+    glBindFramebuffer(GL_FRAMEBUFFER, light->framebuffer);
     GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST), blend = glIsEnabled(GL_BLEND);
     GLboolean color_mask[4];
     glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
@@ -102,7 +125,6 @@ void soft_visibility_add(soft_visibility *v, float weight) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glUseProgram(v->accumulate);
-    glUniform1f(v->weight, weight);
     glBindVertexArray(v->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
@@ -112,15 +134,18 @@ void soft_visibility_add(soft_visibility *v, float weight) {
     if (!blend)
         glDisable(GL_BLEND);
     glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
+    light->points++;
 }
 
 void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,
                              unsigned lights, bool ambient) {
     render_use_lit_program(r, &v->lit, &v->lit_uniforms, view, lights, ambient);
+    const soft_visibility_light *sum = &v->lights[light];
     glUniform1i(v->soft_light, light);
     glUniform1i(v->soft_texture, SOFT_VISIBILITY_UNIT);
+    glUniform1f(v->soft_scale, 1.0f / (float)(sum->points > 0 ? sum->points : 1));
     glActiveTexture(GL_TEXTURE0 + SOFT_VISIBILITY_UNIT);
-    glBindTexture(GL_TEXTURE_2D, v->texture);
+    glBindTexture(GL_TEXTURE_2D, sum->texture);
     glActiveTexture(GL_TEXTURE0);
 }
 
@@ -128,7 +153,9 @@ void soft_visibility_destroy(soft_visibility *v) {
     shader_delete_program(v->accumulate);
     render_program_destroy(&v->lit);
     glDeleteVertexArrays(1, &v->vao);
-    glDeleteFramebuffers(1, &v->framebuffer);
-    glDeleteTextures(1, &v->texture);
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        glDeleteFramebuffers(1, &v->lights[l].framebuffer);
+        glDeleteTextures(1, &v->lights[l].texture);
+    }
     *v = (soft_visibility){0};
 }

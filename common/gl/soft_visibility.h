@@ -7,18 +7,21 @@
  * The caller counts each of n points of the light (area_light.h, as the
  * reference takes them) in the stencil buffer as it would for a hard
  * light at that point, sets the stencil test that passes where the point
- * reaches the pixel, and soft_visibility_add adds 1/n there, into a float
- * texture of the frame's size that shares the frame's depth and stencil.
- * The light is then shaded once (technique_shade_light_soft): its
- * unshadowed light times that fraction. As n grows it converges to what
- * the reference computes, up to the one disk all pixels share (the
- * reference turns the disk towards each pixel).
+ * reaches the pixel, and soft_visibility_add adds one there, into a float
+ * texture of the frame's size, one per light, that shares the frame's
+ * depth and stencil. The light is then shaded once
+ * (technique_shade_light_soft): its unshadowed light times the sum over
+ * the points added so far. As n grows it converges to what the reference
+ * computes, up to the one disk all pixels share (the reference turns the
+ * disk towards each pixel). A light's sum is kept from frame to frame, so
+ * that points may be added over several (progressive, the window's) while
+ * nothing moves.
  *
- *   soft_visibility_init(&v)     once
- *   soft_visibility_begin(&v)    the bound target's size and stencil, all 0
- *   per point: the stencil as for a hard light, glStencilFunc(lit ...),
- *     soft_visibility_add(&v, 1.0f / n)
- *   technique_shade_light_soft(frame, light, &v, receivers_only)
+ *   soft_visibility_init(&v)                   once
+ *   soft_visibility_begin(&v, l, n, restart)   light l's sum, of n points
+ *   per point not yet added (v.lights[l].points of n): the stencil as for
+ *     a hard light, glStencilFunc(lit ...), soft_visibility_add(&v, l)
+ *   technique_shade_light_soft(frame, l, &v, receivers_only)
  *   soft_visibility_destroy(&v)
  *
  * Errors: begin is false after one line on stderr (out of memory, an
@@ -34,15 +37,25 @@
 /* The texture unit the soft lit program reads the visibility from. */
 #define SOFT_VISIBILITY_UNIT 15
 
+/* The most points --light-samples takes (the last of
+ * soft_visibility_sample_counts). */
+#define SOFT_VISIBILITY_MAX_SAMPLES 256
+
+/* One light's sum: its texture made on the light's first begin. */
+typedef struct soft_visibility_light {
+    unsigned framebuffer, texture;
+    int samples; /* the points the sum is of; 0: none begun */
+    int points;  /* of them, those added so far */
+} soft_visibility_light;
+
 typedef struct soft_visibility {
-    unsigned accumulate; /* the program that adds one point's share */
-    int weight;          /* its u_weight */
+    unsigned accumulate; /* the program that adds one point */
     unsigned vao;        /* empty: the pass's triangle is made from gl_VertexID */
     render_program lit;  /* lit.frag with LIT_SOFT_VISIBILITY */
     render_lit_uniforms lit_uniforms;
-    int soft_light, soft_texture; /* its u_soft_light, u_soft_visibility */
-    unsigned framebuffer, texture;
-    unsigned target_framebuffer, depth_stencil; /* the target the texture is for */
+    int soft_light, soft_texture, soft_scale; /* its u_soft_light, u_soft_visibility, u_soft_scale */
+    soft_visibility_light lights[SCENE_MAX_LIGHTS];
+    unsigned target_framebuffer, depth_stencil; /* the target the textures are for */
     int width, height;
 } soft_visibility;
 
@@ -54,16 +67,22 @@ extern const char *const soft_visibility_sample_counts[];
  * `choice`) is sampled at: 1 for a hard light, or an area light drawn
  * hard, which is said once on stderr (bit l of *warned). */
 int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l, unsigned *warned);
-/* How an area light is drawn at `choice`, for the HUD. */
-const char *soft_visibility_area_light_text(int choice);
+/* How area light l is drawn at `choice`, for the HUD: with the points in
+ * its sum so far while they are fewer than it takes (progressive). */
+const char *soft_visibility_area_light_text(const soft_visibility *v, int choice, int l);
 
 bool soft_visibility_init(soft_visibility *v);
-bool soft_visibility_begin(soft_visibility *v);
-/* Adds `weight` wherever the stencil test as set passes (inside the
- * scissor, where it is on); the target stays bound. */
-void soft_visibility_add(soft_visibility *v, float weight);
-/* Binds v's lit program for light `light` (its visibility from v) within
- * the set `lights`, as render_use_lit does. */
+/* Light l's sum, of `samples` points, for the bound target's size and
+ * stencil: kept as the frames before left it, unless `restart`, the
+ * target changed or the sum is of another count, when it starts again
+ * from no point. */
+bool soft_visibility_begin(soft_visibility *v, int l, int samples, bool restart);
+/* Adds one point to light l's sum wherever the stencil test as set
+ * passes (inside the scissor, where it is on); the target stays bound. */
+void soft_visibility_add(soft_visibility *v, int l);
+/* Binds v's lit program for light `light` (its visibility the mean of its
+ * points added so far, at least one) within the set `lights`, as
+ * render_use_lit does. */
 void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,
                              unsigned lights, bool ambient);
 void soft_visibility_destroy(soft_visibility *v);

@@ -188,13 +188,23 @@ void technique_shade_light(const technique_frame *f, int l, const technique_sten
 }
 
 void technique_area_light_frame(const technique_frame *f, int l, area_light_frame *frame) {
-    const scene_light *light = &f->gpu->scene->lights[l];
-    float centre[4], middle[3];
-    vec3 axis;
+    const scene *s = f->gpu->scene;
+    const scene_light *light = &s->lights[l];
+    float centre[4];
+    vec3 axis, lo, hi, middle = {0, 0, 0};
+    glm_vec3_fill(lo, INFINITY);
+    glm_vec3_fill(hi, -INFINITY);
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 object_lo, object_hi;
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], object_lo, object_hi);
+        glm_vec3_minv(lo, object_lo, lo);
+        glm_vec3_maxv(hi, object_hi, hi);
+    }
+    if (lo[0] <= hi[0])
+        glm_vec3_center(lo, hi, middle);
     scene_light_homogeneous(light, centre);
-    bool receivers = f->receivers_lo[0] <= f->receivers_hi[0];
-    for (int c = 0; c < 3; c++)
-        middle[c] = receivers ? (f->receivers_lo[c] + f->receivers_hi[c]) / 2 : f->view->eye[c];
     glm_vec3_copy(centre, axis);
     if (centre[3] != 0)
         glm_vec3_sub(centre, middle, axis);
@@ -206,18 +216,23 @@ void technique_area_light_frame(const technique_frame *f, int l, area_light_fram
 
 bool technique_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
                                  const technique_stencil_lit *lit, technique_count_point count) {
+    bool restart = f->light_points == 0 || f->changed.scene || f->changed.camera || f->changed.settings ||
+                   (f->changed.lights & RENDER_LIGHT_BIT(l));
+    if (!soft_visibility_begin(v, l, samples, restart))
+        return false;
     area_light_frame frame;
     technique_area_light_frame(f, l, &frame);
-    if (!soft_visibility_begin(v))
-        return false;
     uint32_t seed = area_light_hash((uint32_t)l);
-    for (int k = 0; k < samples; k++) {
+    const soft_visibility_light *sum = &v->lights[l];
+    for (int budget = f->light_points > 0 ? f->light_points : samples; budget > 0 && sum->points < samples;
+         budget--) {
+        int k = area_light_progressive_index(sum->points, samples);
         float point[4];
         area_light_sample_ball(&frame, k, samples, area_light_hash(seed + (uint32_t)k), point);
-        count(f, l, point);
+        count(f, l, k, point);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(lit->lit, lit->ref, lit->mask);
-        soft_visibility_add(v, 1.0f / (float)samples);
+        soft_visibility_add(v, l);
     }
     glDisable(GL_STENCIL_TEST);
     return true;
@@ -375,7 +390,7 @@ static void technique_light_masks(technique_seen *seen, const scene_light *light
     seen->masks_made |= RENDER_LIGHT_BIT(l);
 }
 
-void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
+void technique_point_hull(const technique_frame *f, int light, const float position[4], technique_hull *out) {
     const scene_light *l = &f->gpu->scene->lights[light];
     *out = (technique_hull){.light = light};
     float *lo = out->lo, *hi = out->hi;
@@ -388,21 +403,28 @@ void technique_light_hull(const technique_frame *f, int light, technique_hull *o
     float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]), reach = 0;
     for (int k = 0; k < 3; k++)
         reach = fmaxf(reach, fmaxf(fabsf(lo[k]), fabsf(hi[k])));
-    if (l->type != SCENE_LIGHT_DIRECTIONAL)
+    if (position[3] != 0)
         for (int k = 0; k < 3; k++)
-            size = fmaxf(size, fabsf(l->position[k] - 0.5f * (lo[k] + hi[k])));
+            size = fmaxf(size, fabsf(position[k] / position[3] - 0.5f * (lo[k] + hi[k])));
     out->margin = FRUSTUM_BOX_TOLERANCE * size + FRUSTUM_FLOAT_TOLERANCE * reach;
+    out->plane_count = frustum_light_hull(position, lo, hi, out->planes);
+}
+
+void technique_light_hull(const technique_frame *f, int light, technique_hull *out) {
+    const scene_light *l = &f->gpu->scene->lights[light];
     float homogeneous[4];
     scene_light_homogeneous(l, homogeneous);
-    out->plane_count = frustum_light_hull(homogeneous, lo, hi, out->planes);
+    technique_point_hull(f, light, homogeneous, out);
+    if (out->empty)
+        return;
     technique_seen *seen = f->seen;
     if (!f->cull_casters || !seen || !seen->read)
         return;
     if (!(seen->masks_made & RENDER_LIGHT_BIT(light))) {
         /* The slabs' own rounding stays inside the hull's margin. */
         vec3 grown_lo, grown_hi;
-        glm_vec3_subs(lo, out->margin, grown_lo);
-        glm_vec3_adds(hi, out->margin, grown_hi);
+        glm_vec3_subs(out->lo, out->margin, grown_lo);
+        glm_vec3_adds(out->hi, out->margin, grown_hi);
         technique_light_masks(seen, l, light, grown_lo, grown_hi);
     }
     out->masks = seen->masks[light];
@@ -460,8 +482,8 @@ bool technique_caster_seen(const technique_frame *f, const technique_hull *hull,
 
 /* ---- the host ---- */
 
-const char *technique_area_light_text(const technique *t, const scene_light *light) {
-    return t->area_light ? t->area_light(light) : "hard, from its centre: this technique draws no soft shadows";
+const char *technique_area_light_text(const technique *t, const scene_light *light, int l) {
+    return t->area_light ? t->area_light(light, l) : "hard, from its centre: this technique draws no soft shadows";
 }
 
 bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips) {
@@ -477,8 +499,11 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
     h->skips = skips;
     h->started = false;
     h->hidden_idle = 0;
+    h->settings_changed = false;
     return technique_init(t, gpu);
 }
+
+void technique_host_settings_changed(technique_host *h) { h->settings_changed = true; }
 
 void technique_host_stop(technique_host *h) {
     h->technique->destroy();
@@ -495,7 +520,8 @@ static bool technique_light_moved(const scene_light *a, const scene_light *b) {
 static technique_changes technique_host_changes(technique_host *h, const camera_view *view) {
     const scene *s = h->gpu->scene;
     bool everything = !h->started || !render_skip_on(h->skips, h->skips->no_cache);
-    technique_changes c = {.scene = everything, .camera = everything};
+    technique_changes c = {.scene = everything, .camera = everything, .settings = everything || h->settings_changed};
+    h->settings_changed = false;
     if (everything)
         c.lights = RENDER_ALL_LIGHTS(s->light_count);
     if (!everything && memcmp(h->last_view_projection, view->view_projection, sizeof(mat4)) != 0)
@@ -685,7 +711,8 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
                          .counts = &h->counts,
                          .width = target->width,
                          .height = target->height,
-                         .time = time};
+                         .time = time,
+                         .light_points = visibility_of < 0 ? h->light_points : 0};
     technique_host_visible(h, view, &f);
     technique_host_light_passes(h, view, &f);
     for (int l = 0; l < s->light_count; l++)

@@ -58,6 +58,7 @@ typedef struct technique_changes {
     bool scene;      /* first frame: nothing is cached yet */
     bool camera;     /* the view moved (camera, zoom, frame size) */
     unsigned lights; /* RENDER_LIGHT_BIT(l): light l moved, turned or changed reach */
+    bool settings;   /* a setting of the technique changed (technique_host_settings_changed) */
 } technique_changes;
 
 /* What the skips saved this frame, for the HUD and --verbose: the host
@@ -151,6 +152,11 @@ typedef struct technique_frame {
     technique_counts *counts;
     int width, height;
     double time; /* seconds */
+    /* An area light's points a technique that samples it adds this frame
+     * to the sum the frames before left (progressive, the window's;
+     * technique_sample_area_light); 0: every point, from none, so that
+     * the same command gives the same picture (headless, the benchmark). */
+    int light_points;
     /* The frame the shadow maps are fitted to: NULL, this one. Else the
      * same scene and lights seen from another camera, whose view and
      * receivers (and nothing else) a fit takes, while everything is still
@@ -229,15 +235,22 @@ typedef struct technique_stencil_lit {
  * test on, blending and the scissor test off. */
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
 /* Light l's disk (area_light.h) for the techniques that sample it with
- * one set of points for every pixel: facing the middle of the frame's
- * visible receivers (the eye where none is). */
+ * one set of points for every pixel: facing the middle of the scene's
+ * receivers (the origin where none is), so that the points stay where
+ * they are while the light does, whatever the camera. */
 void technique_area_light_frame(const technique_frame *f, int l, area_light_frame *frame);
 /* Light l's visibility from `samples` of its points (area_light_sample_ball
- * of technique_area_light_frame) into v: for each, `count` leaves the
- * stencil as for a hard light at that point, and where `lit` passes 1 /
- * samples is added. False, after one line on stderr, when v cannot be
+ * of technique_area_light_frame) into v's sum: for each point k not yet
+ * in it, `count` leaves the stencil as for a hard light at that point,
+ * and the point is added where `lit` passes. In the order
+ * area_light_progressive_index gives; f->light_points of them per frame,
+ * the sum kept while neither the camera, the light, the scene nor a
+ * setting changes (else from none), or with f->light_points 0 every
+ * point from none. False, after one line on stderr, when v cannot be
  * made for the bound target. Leaves the stencil test off. */
-typedef void (*technique_count_point)(const technique_frame *f, int l, const float point[4]);
+typedef void (*technique_count_point)(const technique_frame *f, int l, int k, const float point[4]);
+/* The k a technique's count takes for the light's centre (a hard light). */
+#define TECHNIQUE_LIGHT_CENTRE (-1)
 bool technique_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
                                  const technique_stencil_lit *lit, technique_count_point count);
 /* Light l's shading pass with its visibility accumulated in v
@@ -286,6 +299,10 @@ typedef struct technique_hull {
     int mask_count;
 } technique_hull;
 void technique_light_hull(const technique_frame *f, int light, technique_hull *out);
+/* The hull of one point of light l's area (homogeneous, world) and the
+ * visible receivers the light reaches; without masks (those are of what
+ * the centre sees). */
+void technique_point_hull(const technique_frame *f, int light, const float point[4], technique_hull *out);
 /* Object i casts and its shadow may reach a visible receiver for the
  * hull's light (always, when f->cull_casters is off); counts it, drawn or
  * culled (and hidden, where only the masks culled it), in f->counts. */
@@ -321,13 +338,14 @@ typedef struct technique {
      * scene light with radius > 0): a few words for the HUD ("soft: pcss").
      * NULL: it cannot draw soft shadows and draws every light hard from its
      * centre, which technique_host_start says once on stderr and the HUD
-     * says for each area light (technique_area_light_text). */
-    const char *(*area_light)(const scene_light *light);
+     * says for each area light (technique_area_light_text); l is the
+     * light's index in the scene. */
+    const char *(*area_light)(const scene_light *light, int l);
 } technique;
 
-/* What the HUD says of area light `light` under t: t's own words, or that
- * it is drawn hard. */
-const char *technique_area_light_text(const technique *t, const scene_light *light);
+/* What the HUD says of area light `light`, the scene's light l, under t:
+ * t's own words, or that it is drawn hard. */
+const char *technique_area_light_text(const technique *t, const scene_light *light, int l);
 
 /* Back to defaults, then the flags of `config` ("--filter pcf5
  * --no-offset"), through the command line's parser; prints and returns
@@ -378,12 +396,26 @@ typedef struct technique_host {
     /* Frames left in which technique_see reads nothing: the last read
      * saved nothing (TECHNIQUE_HIDDEN_RETRY_FRAMES). */
     int hidden_idle;
+    /* The frames' light_points (technique_frame): the window's
+     * TECHNIQUE_PROGRESSIVE_POINTS, else 0; a frame of one light's
+     * visibility (visibility_of) takes every point. */
+    int light_points;
+    bool settings_changed; /* since the last frame (technique_host_settings_changed) */
 } technique_host;
+
+/* The area light's points a stencil technique adds per frame in the
+ * window: a hard light's cost, so that sampling one never slows a frame
+ * below the hard technique's; the picture converges over as many frames
+ * as the light has points while nothing moves. */
+#define TECHNIQUE_PROGRESSIVE_POINTS 1
 
 /* technique_init of t on gpu, under skips; the next frame is its first. */
 bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips);
 /* The technique's destroy; frees what the host kept. */
 void technique_host_stop(technique_host *h);
+/* One of the technique's settings changed (its key in the window): the
+ * next frame says so (technique_changes.settings). */
+void technique_host_settings_changed(technique_host *h);
 /* One frame: the view culled (render_cull_view), the lights that reach it,
  * the receivers it sees, what changed since the last frame, then
  * technique_render_frame. The caller has set gpu->scene's lights.

@@ -814,7 +814,7 @@ static void app_hud_text(char *text, size_t size, int frame, bool settings) {
         if (s->lights[l].radius > 0)
             APP_HUD("light %d: area light, radius %g%s: %s\n", l, s->lights[l].radius,
                     s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
-                    technique_area_light_text(t, &s->lights[l]));
+                    technique_area_light_text(t, &s->lights[l], l));
     if (settings && n < (int)size)
         n += app_settings_text(t, text + n, size - (size_t)n);
     if (!compact && app.hud_counters && n < (int)size) {
@@ -979,8 +979,9 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
             app_switch_technique(key - GLFW_KEY_1);
             return;
         }
-        if (action == GLFW_PRESS && !flags_press_key(app_flags, app_flag_count, key))
-            technique_press_key(app_technique(), key);
+        if (action == GLFW_PRESS && !flags_press_key(app_flags, app_flag_count, key) &&
+            technique_press_key(app_technique(), key))
+            technique_host_settings_changed(&app.host);
         return;
     }
     for (int i = 0; i < app.scene.light_count; i++)
@@ -1100,6 +1101,7 @@ static bool app_run(void) {
     };
     if (!context_create(&app.ctx, &settings))
         return false;
+    app.host.light_points = app.ctx.window ? TECHNIQUE_PROGRESSIVE_POINTS : 0;
     int width = app.width, height = app.height;
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);

@@ -29,9 +29,11 @@ bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
         return false;
     }
     d->object_count = s->object_count;
-    for (int l = 0; l < s->light_count; l++)
-        if (!volume_cache_init(&d->caches[l], s->object_count))
-            return false;
+    d->caches = calloc((size_t)SCENE_MAX_LIGHTS * VOLUME_DRAW_CACHES, sizeof *d->caches);
+    if (!d->caches) {
+        fprintf(stderr, "volumes: out of memory\n");
+        return false;
+    }
     glm_vec3_fill(d->receivers_lo, INFINITY);
     glm_vec3_fill(d->receivers_hi, -INFINITY);
     for (int i = 0; i < s->object_count; i++) {
@@ -57,8 +59,9 @@ void volume_draw_destroy(volume_draw *d) {
         mesh_edges_free(&d->edges[i]);
         volume_silhouette_mesh_free(&d->adjacency[i]);
     }
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        volume_cache_free(&d->caches[l]);
+    for (int c = 0; d->caches && c < SCENE_MAX_LIGHTS * VOLUME_DRAW_CACHES; c++)
+        volume_cache_free(&d->caches[c]);
+    free(d->caches);
     free(d->edges);
     free(d->adjacency);
     volume_mesh_free(&d->geometry);
@@ -67,7 +70,21 @@ void volume_draw_destroy(volume_draw *d) {
     *d = (volume_draw){0};
 }
 
-void volume_draw_forget(volume_draw *d, int l) { volume_cache_forget(&d->caches[l]); }
+int volume_draw_cache(int l, int k) { return l * VOLUME_DRAW_CACHES + 1 + k; }
+
+void volume_draw_forget(volume_draw *d, int l) {
+    for (int k = TECHNIQUE_LIGHT_CENTRE; k < SOFT_VISIBILITY_MAX_SAMPLES; k++)
+        if (d->caches[volume_draw_cache(l, k)].ranges)
+            volume_cache_forget(&d->caches[volume_draw_cache(l, k)]);
+}
+
+void volume_draw_free_points(volume_draw *d, int l) {
+    for (int k = 0; k < SOFT_VISIBILITY_MAX_SAMPLES; k++) {
+        volume_cache *c = &d->caches[volume_draw_cache(l, k)];
+        d->cache_bytes -= c->capacity * VOLUME_CACHE_VERTEX_BYTES;
+        volume_cache_free(c);
+    }
+}
 
 void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim) {
     glm_vec3_copy(d->receivers_lo, d->reach_lo);
@@ -105,17 +122,17 @@ bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const fl
     return false;
 }
 
-/* Caster i's CPU part for light l, from the light's cache, kept there
- * first if it is not yet (streamed when it does not fit, or unkept). */
-static void volume_draw_kept(volume_draw *d, const technique_frame *f, int l, int i, const float light[4],
+/* Caster i's CPU part, from `cache`, kept there first if it is not yet
+ * (streamed when it does not fit, or the cache cannot be made). */
+static void volume_draw_kept(volume_draw *d, const technique_frame *f, int cache, int i, const float light[4],
                              volume_mesh_parts part) {
-    if (l == VOLUME_DRAW_UNKEPT) {
+    volume_cache *c = &d->caches[cache];
+    if (!c->ranges && !volume_cache_init(c, d->object_count)) {
         d->built++;
         if (volume_draw_build(d, f, i, light, part))
             volume_draw_stream(d, d->geometry.vertices, d->geometry.count, GL_TRIANGLES);
         return;
     }
-    volume_cache *c = &d->caches[l];
     if (volume_cache_has(c, i, part)) {
         d->reused++;
         render_program_use(&d->cpu, f->view);
@@ -133,7 +150,7 @@ static void volume_draw_kept(volume_draw *d, const technique_frame *f, int l, in
     volume_cache_draw(c, i, part);
 }
 
-void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, const float light[4], bool gpu,
+void volume_draw_caster(volume_draw *d, const technique_frame *f, int cache, int i, const float light[4], bool gpu,
                         bool zfail) {
     if (gpu) {
         const scene_object *o = &f->gpu->scene->objects[i];
@@ -142,8 +159,8 @@ void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, 
         volume_silhouette_draw(&d->gpu, &d->adjacency[i], f->view, (const float *)o->model, object_light,
                                volume_mesh_closed_rule(&o->mesh, &d->edges[i], object_light));
     } else {
-        volume_draw_kept(d, f, l, i, light, VOLUME_MESH_SIDES);
+        volume_draw_kept(d, f, cache, i, light, VOLUME_MESH_SIDES);
     }
     if (zfail)
-        volume_draw_kept(d, f, l, i, light, VOLUME_MESH_CAPS);
+        volume_draw_kept(d, f, cache, i, light, VOLUME_MESH_CAPS);
 }

@@ -8,10 +8,11 @@
  * geometry shader (--silhouette gpu) or from the CPU; its caps, which
  * z-fail needs, always from the CPU (see volume_silhouette.h for why).
  *
- * The CPU volumes are kept, one GPU buffer per light (volume_cache), each
- * caster's sides and caps apart (the camera picks z-pass or z-fail each
- * frame), built when a caster is first drawn after volume_draw_forget (the
- * light moved) and drawn from there until the next; past
+ * The CPU volumes are kept, one GPU buffer per light and one per point of
+ * an area light's that is sampled (volume_cache), each caster's sides and
+ * caps apart (the camera picks z-pass or z-fail each frame), built when a
+ * caster is first drawn after volume_draw_forget (the light moved) and
+ * drawn from there until the next; past
  * VOLUME_DRAW_CACHE_MAX_BYTES in all, the rest is built every time and
  * streamed. They are swept to infinity, or trimmed past a reach
  * (volume_draw_reach; volume_mesh_trim_for): the scene's receivers, not
@@ -50,7 +51,9 @@ typedef struct volume_draw {
     unsigned stream_vao, stream_buffer; /* what is not kept */
     size_t stream_capacity;
     volume_mesh geometry; /* the caster at hand's CPU volume */
-    volume_cache caches[SCENE_MAX_LIGHTS];
+    /* VOLUME_DRAW_CACHES per light (volume_draw_cache), each made when
+     * first kept in */
+    volume_cache *caches;
     size_t cache_bytes;                     /* all caches' buffers */
     float receivers_lo[3], receivers_hi[3]; /* every receiver's box together; empty when none */
     /* The reach of the volumes built next, when they are trimmed. */
@@ -62,21 +65,26 @@ typedef struct volume_draw {
 /* False after printing why. */
 bool volume_draw_init(volume_draw *d, const render_scene *gpu);
 void volume_draw_destroy(volume_draw *d);
-/* Drops light l's kept volumes. */
+/* Drops light l's kept volumes, from its centre and its points. */
 void volume_draw_forget(volume_draw *d, int l);
+/* Frees the volumes kept for light l's points, and their buffers (its
+ * area is sampled at other points now). */
+void volume_draw_free_points(volume_draw *d, int l);
 /* The volumes built from now on end past the light's reach (every
  * receiver, clipped to its range) when `trim`, else at infinity. */
 void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim);
 
-/* What volume_draw_caster takes for `l` where the volume is for a point
- * no cache keeps (an area light's sample): its CPU parts built and
- * streamed every time. */
-#define VOLUME_DRAW_UNKEPT (-1)
+/* The caches of one light: its centre's, then one per point of its area
+ * (technique_sample_area_light's k). */
+#define VOLUME_DRAW_CACHES (1 + SOFT_VISIBILITY_MAX_SAMPLES)
+/* The cache that keeps light l's volumes from its centre
+ * (TECHNIQUE_LIGHT_CENTRE) or from point k of its area. */
+int volume_draw_cache(int l, int k);
 
-/* Caster i's volume for light l (homogeneous, world): its sides, from the
- * geometry shader when `gpu`, and for z-fail its caps after them. l: the
- * light whose cache keeps its CPU parts, or VOLUME_DRAW_UNKEPT. */
-void volume_draw_caster(volume_draw *d, const technique_frame *f, int l, int i, const float light[4], bool gpu,
+/* Caster i's volume for a light at `light` (homogeneous, world): its
+ * sides, from the geometry shader when `gpu`, and for z-fail its caps
+ * after them; `cache` (volume_draw_cache) keeps its CPU parts. */
+void volume_draw_caster(volume_draw *d, const technique_frame *f, int cache, int i, const float light[4], bool gpu,
                         bool zfail);
 /* Caster i's part for the light into d->geometry, with the CPU program
  * bound for it and the object's model matrix set; false after printing

@@ -35,12 +35,18 @@ static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mo
     c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
 }
 
-void volume_plan_light(const technique_frame *f, int l, volume_plan_mode mode, const int receivers_rect[4],
-                       bool depth_bounds, volume_plan_caster *casters, volume_plan *plan) {
+void volume_plan_light(const technique_frame *f, int l, const float point[4], volume_plan_mode mode,
+                       const int receivers_rect[4], bool depth_bounds, volume_plan_caster *casters,
+                       volume_plan *plan) {
     const scene *s = f->gpu->scene;
-    *plan = (volume_plan){.light = l, .cache = l, .casters = casters};
-    scene_light_homogeneous(&s->lights[l], plan->position);
-    technique_light_hull(f, l, &plan->hull);
+    *plan = (volume_plan){.light = l, .casters = casters};
+    if (point) {
+        glm_vec4_copy((float *)point, plan->position);
+        technique_point_hull(f, l, point, &plan->hull);
+    } else {
+        scene_light_homogeneous(&s->lights[l], plan->position);
+        technique_light_hull(f, l, &plan->hull);
+    }
     volume_bounds_light(f, &plan->hull, receivers_rect, depth_bounds, &plan->bounds);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
@@ -51,7 +57,7 @@ void volume_plan_light(const technique_frame *f, int l, volume_plan_mode mode, c
 void volume_plan_every_caster(const technique_frame *f, int l, const float position[4], volume_plan_mode mode,
                               volume_plan_caster *casters, volume_plan *plan) {
     const scene *s = f->gpu->scene;
-    *plan = (volume_plan){.light = l, .cache = l, .casters = casters};
+    *plan = (volume_plan){.light = l, .casters = casters};
     glm_vec4_copy((float *)position, plan->position);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);

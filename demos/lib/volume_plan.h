@@ -41,7 +41,7 @@ typedef struct volume_plan_caster {
 /* A light's plan. */
 typedef struct volume_plan {
     int light;
-    int cache;     /* the light whose cache keeps the volumes (volume_draw_caster) */
+    int cache;     /* the cache that keeps the volumes (volume_draw_cache): the caller's */
     vec4 position; /* homogeneous, world; aligned as cglm loads it */
     technique_hull hull;
     volume_bounds bounds;        /* where the light's volumes may count */
@@ -52,11 +52,15 @@ typedef struct volume_plan {
 /* Whether a caster takes z-fail, with caps, given whether z-pass is safe
  * for it (volume_mesh_zpass_safe). */
 bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe);
-/* Light l's plan with every skip; `receivers_rect`: every receiver's box
- * on screen (volume_mesh_receivers_scissor); `depth_bounds`: the GL has
- * them and they are on. */
-void volume_plan_light(const technique_frame *f, int l, volume_plan_mode mode, const int receivers_rect[4],
-                       bool depth_bounds, volume_plan_caster *casters, volume_plan *plan);
+/* Light l's plan with every skip, for its centre (point NULL) or one
+ * point of its area (homogeneous, world; the masks of what is seen are
+ * the centre's, so a point's plan culls by its hull alone);
+ * `receivers_rect`: every receiver's box on screen
+ * (volume_mesh_receivers_scissor); `depth_bounds`: the GL has them and
+ * they are on. */
+void volume_plan_light(const technique_frame *f, int l, const float point[4], volume_plan_mode mode,
+                       const int receivers_rect[4], bool depth_bounds, volume_plan_caster *casters,
+                       volume_plan *plan);
 /* Light l's plan with no skip, for a light at `position` (homogeneous,
  * world): every caster's volume, each z-pass or z-fail as the mode says
  * there, under whatever scissor is on. */
