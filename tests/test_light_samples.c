@@ -8,9 +8,10 @@
  * the case's bound at SAMPLES with no light leaking into the umbra. A hard
  * light is drawn byte for byte as without the flag, and an area light
  * drawn hard says so once. In the window the points are added over
- * frames (progressive): after as many frames as points, the same picture
- * as headless; before, a partial one whose HUD says how far it is; and
- * the order they are added in spreads every partial sum over the disk. */
+ * frames (progressive): once they are all in, the same picture as
+ * headless; before, a partial one whose HUD says how far it is; while the
+ * camera moves, the hard one; and the order they are added in spreads
+ * every partial sum over the disk. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -152,42 +153,58 @@ static void test_progressive_order_spreads(void **state) {
 
 #define PROGRESSIVE_SAMPLES 64
 #define PROGRESSIVE_PARTIAL 8
+#define PROGRESSIVE_DIR "out/test/light_samples"
 
 /* The window's picture (Xvfb) of volumes on soft_table after `frames`
- * frames at PROGRESSIVE_SAMPLES points, its HUD's last text in err. */
-static void window_picture(int frames, const char *path, const char *hud) {
+ * frames at `samples` points with `flags`, its HUD's last text in err. */
+static void window_picture(int frames, int samples, const char *flags, const char *path) {
     char command[1024];
     snprintf(command, sizeof command,
              "timeout 240 %s %s --backend glfw --scene assets/scenes/soft_table.json --size 320x180 --frames %d "
-             "--light-samples %d %s --screenshot %s",
-             support_xvfb_run(), support_program("volumes"), frames, PROGRESSIVE_SAMPLES, hud, path);
+             "--light-samples %d %s --screenshot " PROGRESSIVE_DIR "/%s",
+             support_xvfb_run(), support_program("volumes"), frames, samples, flags, path);
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
+static bool same_picture(const char *a, const char *b) {
+    char command[512];
+    snprintf(command, sizeof command, "cmp -s " PROGRESSIVE_DIR "/%s " PROGRESSIVE_DIR "/%s", a, b);
+    return system(command) == 0;
+}
+
+static void assert_hud_says(const char *said) {
+    if (!strstr(err, said))
+        fail_msg("the HUD does not say \"%s\":\n%s", said, err);
+}
+
+/* The first frame (the technique's first: everything changed) is the
+ * centre's; each one after adds a point. While the camera moves, every
+ * frame is the hard technique's picture. */
 static void test_progressive_in_the_window(void **state) {
     (void)state;
-    assert_int_equal(system("mkdir -p out/test/light_samples"), 0);
-    const char *full = "out/test/light_samples/window_full.png",
-               *partial = "out/test/light_samples/window_partial.png";
-    const char *headless = "out/test/light_samples/headless.png";
-    window_picture(PROGRESSIVE_SAMPLES, full, "--no-hud");
+    assert_int_equal(system("mkdir -p " PROGRESSIVE_DIR), 0);
     char command[1024];
     snprintf(command, sizeof command,
              "%s --backend egl --scene assets/scenes/soft_table.json --size 320x180 --frames 1 --light-samples %d "
-             "--no-hud --screenshot %s",
-             support_program("volumes"), PROGRESSIVE_SAMPLES, headless);
+             "--no-hud --screenshot " PROGRESSIVE_DIR "/headless.png",
+             support_program("volumes"), PROGRESSIVE_SAMPLES);
     assert_int_equal(support_run(command, err, sizeof err), 0);
-    assert_int_equal(system("cmp -s out/test/light_samples/window_full.png out/test/light_samples/headless.png"), 0);
-    window_picture(PROGRESSIVE_PARTIAL, partial, "--no-hud");
-    assert_int_not_equal(
-        system("cmp -s out/test/light_samples/window_partial.png out/test/light_samples/headless.png"), 0);
-    window_picture(PROGRESSIVE_PARTIAL, partial, "--verbose");
+    window_picture(1 + PROGRESSIVE_SAMPLES, PROGRESSIVE_SAMPLES, "--no-hud", "window_full.png");
+    assert_true(same_picture("window_full.png", "headless.png"));
+    window_picture(1 + PROGRESSIVE_PARTIAL, PROGRESSIVE_SAMPLES, "--no-hud", "window_partial.png");
+    assert_false(same_picture("window_partial.png", "headless.png"));
+    window_picture(1 + PROGRESSIVE_PARTIAL, PROGRESSIVE_SAMPLES, "--verbose", "window_partial_hud.png");
     char said[64];
     snprintf(said, sizeof said, "sampled at %d points, %d so far", PROGRESSIVE_SAMPLES, PROGRESSIVE_PARTIAL);
-    if (!strstr(err, said))
-        fail_msg("the HUD does not say \"%s\":\n%s", said, err);
-    printf("    window: %d frames the headless picture, %d frames partial (\"%s\")\n", PROGRESSIVE_SAMPLES,
-           PROGRESSIVE_PARTIAL, said);
+    assert_hud_says(said);
+    window_picture(PROGRESSIVE_PARTIAL, PROGRESSIVE_SAMPLES, "--motion camera --no-hud", "window_moving.png");
+    window_picture(PROGRESSIVE_PARTIAL, 1, "--motion camera --no-hud", "window_moving_hard.png");
+    assert_true(same_picture("window_moving.png", "window_moving_hard.png"));
+    window_picture(PROGRESSIVE_PARTIAL, PROGRESSIVE_SAMPLES, "--motion camera --verbose", "window_moving_hud.png");
+    assert_hud_says("while nothing moves (now hard, from its centre)");
+    printf("    window: the headless picture after %d frames, partial after %d (\"%s\"), the hard one while the "
+           "camera moves\n",
+           1 + PROGRESSIVE_SAMPLES, 1 + PROGRESSIVE_PARTIAL, said);
 }
 
 int main(void) {

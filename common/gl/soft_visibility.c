@@ -19,13 +19,15 @@ int soft_visibility_samples(const char *technique, int choice, const scene_light
 }
 
 const char *soft_visibility_area_light_text(const soft_visibility *v, int choice, int l) {
-    static char text[64];
+    static char text[96];
     int samples = atoi(soft_visibility_sample_counts[choice]);
     const soft_visibility_light *sum = &v->lights[l];
     if (samples == 1)
         return "hard, from its centre: --light-samples N samples it";
     int n = snprintf(text, sizeof text, "sampled at %d points", samples);
-    if (sum->samples == samples && sum->points < samples)
+    if (sum->samples == 1)
+        snprintf(text + n, sizeof text - (size_t)n, ", while nothing moves (now hard, from its centre)");
+    else if (sum->samples == samples && sum->points < samples)
         snprintf(text + n, sizeof text - (size_t)n, ", %d so far", sum->points);
     return text;
 }

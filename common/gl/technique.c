@@ -216,19 +216,24 @@ void technique_area_light_frame(const technique_frame *f, int l, area_light_fram
 
 bool technique_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
                                  const technique_stencil_lit *lit, technique_count_point count) {
-    bool restart = f->light_points == 0 || f->changed.scene || f->changed.camera || f->changed.settings ||
-                   (f->changed.lights & RENDER_LIGHT_BIT(l));
-    if (!soft_visibility_begin(v, l, samples, restart))
+    bool moved =
+        f->changed.scene || f->changed.camera || f->changed.settings || (f->changed.lights & RENDER_LIGHT_BIT(l));
+    /* A window's frame in which anything moved: the centre alone. */
+    bool centre = f->light_points > 0 && moved;
+    if (!soft_visibility_begin(v, l, centre ? 1 : samples, f->light_points == 0 || moved))
         return false;
     area_light_frame frame;
     technique_area_light_frame(f, l, &frame);
     uint32_t seed = area_light_hash((uint32_t)l);
     const soft_visibility_light *sum = &v->lights[l];
-    for (int budget = f->light_points > 0 ? f->light_points : samples; budget > 0 && sum->points < samples;
+    for (int budget = f->light_points > 0 ? f->light_points : samples; budget > 0 && sum->points < sum->samples;
          budget--) {
-        int k = area_light_progressive_index(sum->points, samples);
+        int k = centre ? TECHNIQUE_LIGHT_CENTRE : area_light_progressive_index(sum->points, samples);
         float point[4];
-        area_light_sample_ball(&frame, k, samples, area_light_hash(seed + (uint32_t)k), point);
+        if (centre)
+            glm_vec4_copy(frame.centre, point);
+        else
+            area_light_sample_ball(&frame, k, samples, area_light_hash(seed + (uint32_t)k), point);
         count(f, l, k, point);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(lit->lit, lit->ref, lit->mask);

@@ -245,9 +245,13 @@ void technique_area_light_frame(const technique_frame *f, int l, area_light_fram
  * and the point is added where `lit` passes. In the order
  * area_light_progressive_index gives; f->light_points of them per frame,
  * the sum kept while neither the camera, the light, the scene nor a
- * setting changes (else from none), or with f->light_points 0 every
- * point from none. False, after one line on stderr, when v cannot be
- * made for the bound target. Leaves the stencil test off. */
+ * setting changes, or with f->light_points 0 every point from none. A
+ * frame with f->light_points in which any of those changed counts the
+ * light's centre alone (k TECHNIQUE_LIGHT_CENTRE), the hard technique's
+ * picture, so that a moving view shows the hard shadow, not one point's;
+ * the sum starts from none on the next. False, after one line on stderr,
+ * when v cannot be made for the bound target. Leaves the stencil test
+ * off. */
 typedef void (*technique_count_point)(const technique_frame *f, int l, int k, const float point[4]);
 /* The k a technique's count takes for the light's centre (a hard light). */
 #define TECHNIQUE_LIGHT_CENTRE (-1)
