@@ -36,7 +36,10 @@
  * (Brotman & Badler, "Generating soft shadows with a depth buffer
  * algorithm", 1984): each counts every caster's volume, built for that
  * point and not kept, and adds 1/N where its count is 0; the light is
- * shaded once with that fraction (soft_visibility.h).
+ * shaded once with that fraction (soft_visibility.h). Or (--soft wedges)
+ * the centre's hard shadow, softened by penumbra wedges round every
+ * silhouette edge (Assarsson & Akenine-Moller 2003;
+ * demos/lib/volume_wedges.h).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -50,6 +53,7 @@
 #include "volume_overlay.h"
 #include "volume_plan.h"
 #include "volume_receivers.h"
+#include "volume_wedges.h"
 
 typedef struct volumes_settings {
     int mode;             /* choice */
@@ -59,12 +63,15 @@ typedef struct volumes_settings {
     bool no_depth_bounds; /* toggle */
     bool no_exact_depth;  /* toggle */
     int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
+    int soft;             /* choice: volumes_softs */
 } volumes_settings;
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL}; /* volume_plan_mode's order */
 static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
+static const char *const volumes_softs[] = {"samples", "wedges", NULL};
+enum { VOLUMES_SOFT_SAMPLES, VOLUMES_SOFT_WEDGES };
 enum { VOLUMES_CPU, VOLUMES_GPU };
 enum { VOLUMES_EXTRUDE_INFINITY, VOLUMES_EXTRUDE_REACH };
 enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTES, VOLUMES_OVERLAY_COUNTS };
@@ -83,8 +90,9 @@ static struct {
     int zpass_count, zfail_count, built_count, reused_count;
     int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
     int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
-    soft_visibility soft;  /* an area light's visibility, sampled */
-    unsigned soft_warned;  /* bit l: light l's area said drawn hard */
+    soft_visibility soft;  /* an area light's visibility, sampled or from wedges */
+    volume_wedges wedges;
+    unsigned soft_warned; /* bit l: light l's area said drawn hard */
 } volumes;
 
 static const flags_param volumes_params[] = {
@@ -107,6 +115,10 @@ static const flags_param volumes_params[] = {
     {"light-samples",
      "points of each area light, each a hard shadow, averaged (Brotman & Badler 1984); 1: hard, from its centre",
      GLFW_KEY_L, FLAGS_CHOICE, .index = &volumes.settings.light_samples, .choices = soft_visibility_sample_counts},
+    {"soft",
+     "area lights: sampled at --light-samples points; or wedges, the centre's hard shadow softened by penumbra "
+     "wedges round its silhouette (Assarsson & Akenine-Moller 2003)",
+     GLFW_KEY_W, FLAGS_CHOICE, .index = &volumes.settings.soft, .choices = volumes_softs},
 };
 
 /* ---- set-up ---- */
@@ -122,11 +134,12 @@ static bool volumes_init(const render_scene *gpu) {
     volumes.trim_kept = -1;
     volumes.has_depth_bounds = GLAD_GL_EXT_depth_bounds_test;
     volumes.soft_warned = 0;
-    return soft_visibility_init(&volumes.soft);
+    return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges);
 }
 
 static void volumes_destroy(void) {
     soft_visibility_destroy(&volumes.soft);
+    volume_wedges_destroy(&volumes.wedges);
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
     free(volumes.casters);
@@ -324,8 +337,10 @@ static void volumes_render(const technique_frame *f) {
         /* The CPU volumes built for this light, or its points, reach as
          * far as volumes_trim says. */
         volume_draw_reach(&volumes.draw, &f->gpu->scene->lights[l], volumes_trim());
-        int samples = soft_visibility_samples("volumes", volumes.settings.light_samples, &f->gpu->scene->lights[l], l,
-                                              &volumes.soft_warned);
+        bool wedges = volumes.settings.soft == VOLUMES_SOFT_WEDGES && f->gpu->scene->lights[l].radius > 0;
+        int samples = wedges ? 1
+                             : soft_visibility_samples("volumes", volumes.settings.light_samples,
+                                                       &f->gpu->scene->lights[l], l, &volumes.soft_warned);
         if (samples > 1) {
             /* An area light: steps 2 to 4 for each of its points, each
              * adding 1/n where its count is 0; then step 5 with that. */
@@ -346,6 +361,16 @@ static void volumes_render(const technique_frame *f) {
          *    by their facing. */
         volumes_count(f, &plan);
         volumes_prepass_depth(f); /* back to the depth the shading is equal to */
+        /* 4b. An area light by wedges (volume_wedges.h): the visibility
+         *     1 - count, each silhouette edge's wedge adding the share of
+         *     the light's disk it uncovers there; then step 5 with that. */
+        if (wedges) {
+            if (volume_wedges_begin(&volumes.wedges, &volumes.soft, VOLUMES_STENCIL_MASK)) {
+                volume_wedges_draw(&volumes.wedges, f, l, volumes.draw.edges, &volumes.soft);
+                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
+            }
+            continue;
+        }
         /* 5. Shade the light where the count is 0, in its own scissor
          *    (objects that take no shadows may lie outside the plan's);
          *    the first light's pass adds the ambient term. */
@@ -371,10 +396,13 @@ static void volumes_describe(char *out, size_t size) {
                                                          : "on");
     if (n > 0 && (size_t)n < size) {
         if (volumes.settings.no_exact_depth)
-            snprintf(out + n, size - (size_t)n, "; exact depth OFF");
+            n += snprintf(out + n, size - (size_t)n, "; exact depth OFF");
         else
-            snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
+            n += snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
     }
+    if (n > 0 && (size_t)n < size && volumes.settings.soft == VOLUMES_SOFT_WEDGES)
+        snprintf(out + n, size - (size_t)n, "; wedges %d, %d edges left out", volumes.wedges.wedge_count,
+                 volumes.wedges.skipped_count);
 }
 
 /* The sweep: mode x silhouette path, the trim, and an area light's points
@@ -391,10 +419,13 @@ static const char *const volumes_bench_configs[] = {
     "--light-samples 16",
     "--light-samples 64",
     "--light-samples 256",
+    "--soft wedges",
 };
 
 static const char *volumes_area_light(const scene_light *light) {
     (void)light;
+    if (volumes.settings.soft == VOLUMES_SOFT_WEDGES)
+        return "penumbra wedges round the centre's silhouette";
     return soft_visibility_area_light_text(volumes.settings.light_samples);
 }
 

@@ -16,7 +16,9 @@ uniform int u_light_list[SCENE_MAX_LIGHTS];
 #ifdef LIT_SOFT_VISIBILITY
 // Light u_soft_light's share scaled by the fraction of its area light
 // that reaches the pixel, accumulated from hard shadows
-// (common/gl/soft_visibility.h); the other lights as they are.
+// (common/gl/soft_visibility.h), or from penumbra wedges
+// (demos/lib/volume_wedges.h), which may overshoot [0, 1] and are
+// clamped to it; the other lights as they are.
 uniform int u_soft_light;
 uniform sampler2D u_soft_visibility;
 #endif
@@ -31,7 +33,7 @@ void main() {
         vec3 light = lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
 #ifdef LIT_SOFT_VISIBILITY
         if (u_light_list[k] == u_soft_light)
-            light *= texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r;
+            light *= clamp(texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r, 0.0, 1.0);
 #endif
         c += light;
     }

@@ -7,24 +7,34 @@ const float WEDGE_AREA_PI = 3.14159265358979;
 
 float wedge_area_beyond(vec2 a, vec2 b) {
     vec2 d = b - a;
-    float qa = dot(d, d), qb = dot(a, d), qc = dot(a, a) - 1.0;
-    float disc = qb * qb - qa * qc;
-    if (qa <= 0.0 || disc <= 0.0)
+    float len = length(d);
+    if (len <= 0.0)
         return 0.0;
-    float root = sqrt(disc);
-    float t1 = max((-qb - root) / qa, 0.0), t2 = min((-qb + root) / qa, 1.0);
-    if (t1 >= t2)
+    d /= len;
+    // On the line: u along it, v (constant) across it, from the centre.
+    float v = d.x * a.y - d.y * a.x;
+    if (v * v >= 1.0)
         return 0.0;
-    vec2 p1 = a + t1 * d, p2 = a + t2 * d;
-    float cross = p1.x * p2.y - p1.y * p2.x;
-    float angle = atan(cross, dot(p1, p2));
-    return (angle - cross) / (2.0 * WEDGE_AREA_PI);
+    float half_chord = sqrt(1.0 - v * v);
+    float u1 = max(dot(a, d), -half_chord), u2 = min(dot(b, d), half_chord);
+    if (u1 >= u2)
+        return 0.0;
+    float cross = v * (u1 - u2);
+    return (atan(cross, u1 * u2 + v * v) - cross) / (2.0 * WEDGE_AREA_PI);
+}
+
+// The light's unit axis from p, and its distance (1 for a directional
+// light).
+float wedge_area_axis(vec3 p, vec4 light, out vec3 axis) {
+    axis = light.w != 0.0 ? light.xyz - p : light.xyz;
+    float distance = light.w != 0.0 ? length(axis) : 1.0;
+    axis = normalize(axis);
+    return distance;
 }
 
 float wedge_area_edge(vec3 p, vec4 light, float size, vec3 a, vec3 b) {
-    vec3 axis = light.w != 0.0 ? light.xyz - p : light.xyz;
-    float distance = light.w != 0.0 ? length(axis) : 1.0;
-    axis = normalize(axis);
+    vec3 axis;
+    float distance = wedge_area_axis(p, light, axis);
     vec3 t = normalize(cross(axis, abs(axis.x) < 0.5 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
     vec3 bt = cross(axis, t);
     vec3 ra = a - p, rb = b - p;

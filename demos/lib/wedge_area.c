@@ -6,22 +6,25 @@
 
 float wedge_area_beyond(const float a[2], const float b[2]) {
     float d[2] = {b[0] - a[0], b[1] - a[1]};
-    float qa = d[0] * d[0] + d[1] * d[1], qb = a[0] * d[0] + a[1] * d[1], qc = a[0] * a[0] + a[1] * a[1] - 1;
-    float disc = qb * qb - qa * qc;
-    if (qa <= 0 || disc <= 0)
+    float length = sqrtf(d[0] * d[0] + d[1] * d[1]);
+    if (length <= 0)
         return 0;
-    float root = sqrtf(disc);
-    float t1 = fmaxf((-qb - root) / qa, 0), t2 = fminf((-qb + root) / qa, 1);
-    if (t1 >= t2)
+    d[0] /= length, d[1] /= length;
+    /* On the line: u along it, v (constant) across it, from the centre. */
+    float v = d[0] * a[1] - d[1] * a[0];
+    if (v * v >= 1)
         return 0;
-    float p1[2] = {a[0] + t1 * d[0], a[1] + t1 * d[1]}, p2[2] = {a[0] + t2 * d[0], a[1] + t2 * d[1]};
-    float cross = p1[0] * p2[1] - p1[1] * p2[0];
-    float angle = atan2f(cross, p1[0] * p2[0] + p1[1] * p2[1]);
-    return (angle - cross) / (2 * GLM_PIf);
+    float half = sqrtf(1 - v * v);
+    float u1 = fmaxf(a[0] * d[0] + a[1] * d[1], -half), u2 = fminf(b[0] * d[0] + b[1] * d[1], half);
+    if (u1 >= u2)
+        return 0;
+    float cross = v * (u1 - u2);
+    return (atan2f(cross, u1 * u2 + v * v) - cross) / (2 * GLM_PIf);
 }
 
-float wedge_area_edge(const float p[3], const float light[4], float size, const float a[3], const float b[3]) {
-    vec3 axis, t, bt, ra, rb;
+/* The light's unit axis from p and its distance (1 for a directional
+ * light). */
+static float wedge_area_axis(const float p[3], const float light[4], vec3 axis) {
     float distance = 1;
     if (light[3] != 0) {
         glm_vec3_sub((float *)light, (float *)p, axis);
@@ -30,6 +33,12 @@ float wedge_area_edge(const float p[3], const float light[4], float size, const 
         glm_vec3_copy((float *)light, axis);
     }
     glm_vec3_normalize(axis);
+    return distance;
+}
+
+float wedge_area_edge(const float p[3], const float light[4], float size, const float a[3], const float b[3]) {
+    vec3 axis, t, bt, ra, rb;
+    float distance = wedge_area_axis(p, light, axis);
     /* Any axis across: t, then bt = axis x t, so that t x bt = axis. */
     glm_vec3_cross(axis, fabsf(axis[0]) < 0.5f ? (vec3){1, 0, 0} : (vec3){0, 1, 0}, t);
     glm_vec3_normalize(t);

@@ -23,7 +23,9 @@
  * m the edge's multiplicity (volume_mesh.h), beyond the signed area of the
  * disk within the sector a -> b and past the line ab: a circular segment
  * between the points where the edge enters and leaves the disk, or 0 when
- * the edge misses it. Exact where P sees the silhouette the centre sees
+ * the edge misses it; computed from the line's distance from the centre
+ * and the ends' places along it, never from the ends themselves, which
+ * lie far off the disk for an edge near the lit point. Exact where P sees the silhouette the centre sees
  * and every edge lies between P and the light.
  *
  * Orientation: an edge runs as a light-facing triangle (wound

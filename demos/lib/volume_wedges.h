@@ -1,0 +1,115 @@
+/* volume_wedges: penumbra wedges, the soft shadow volumes of Assarsson &
+ * Akenine-Moller ("A geometry-based soft shadow volume algorithm using
+ * graphics hardware", SIGGRAPH 2003) and Assarsson, Dougherty, Mounier &
+ * Akenine-Moller ("An optimized soft shadow volume algorithm with
+ * real-time performance", Graphics Hardware 2003), for demos/volumes.c's
+ * --soft wedges.
+ *
+ * An area light's visibility starts from its centre's hard shadow, the
+ * stencil count n of the ordinary volumes: 1 - n (a caster's edges give
+ * back what it covers of the disk, so where two casters cover the centre
+ * the sum starts from -1), n counted up to VOLUME_WEDGES_DEEPEST; then every
+ * silhouette edge, found from the centre in the CPU edge table with its
+ * multiplicity (volume_mesh.h, open and non-manifold meshes too), adds the
+ * share of the light's disk it uncovers or covers at each pixel
+ * (wedge_area.h) wherever that can be non-zero: inside the edge's wedge,
+ * a convex polyhedron bounding every point from which the edge crosses
+ * the light's ball (a directional light's cone of directions). Its faces:
+ * the front and back planes through the edge tangent to the ball, and at
+ * each end a side plane through the end, tilted out by the angle the ball
+ * spans there, so that the cone from the ball through the end stays
+ * inside; the far vertices at infinity (w = 0). Drawn back faces only,
+ * depth test off and depth clamp on, it covers each pixel of it once,
+ * wherever the eye is; the fragment reconstructs the pixel's point from
+ * a copy of the depth buffer and adds the edge's term, blended, into the
+ * visibility target (soft_visibility.h), which the shading clamps to
+ * [0, 1]. An edge whose line or end comes within the ball has no such
+ * wedge and is left out (counted for the HUD).
+ *
+ * What it gets wrong, by construction: the silhouette is the centre's,
+ * not each point's of the light; and edges of different casters
+ * overlapping on the disk each subtract their own share, so that
+ * overlapping penumbrae darken twice (the umbra overestimated).
+ *
+ *   volume_wedges_init(&w)                          once
+ *   per area light, its centre's count in the stencil:
+ *     volume_wedges_begin(&w, &visibility, stencil_mask)
+ *     volume_wedges_draw(&w, f, l, edges, &visibility)
+ *     technique_shade_light_soft(...)
+ *   volume_wedges_destroy(&w)
+ */
+#ifndef VOLUME_WEDGES_H
+#define VOLUME_WEDGES_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "soft_visibility.h"
+#include "technique.h"
+#include "volume_mesh.h"
+
+/* One edge's wedge: front and back faces two triangles each, the ends'
+ * sides one each, the far face at infinity two. */
+#define VOLUME_WEDGES_EDGE_VERTICES 24
+/* The ball (or cone) the wedge is built round is the light's grown by
+ * this, relative, so that rounding keeps it conservative. */
+#define VOLUME_WEDGES_GROWTH 1.01f
+/* The least cosine between an edge and its ends' side planes' normals:
+ * below, the edge points nearly at the light and has no wedge. */
+#define VOLUME_WEDGES_MIN_SIDE 0.001f
+
+/* Each pixel's point is lifted towards the light by its distance from
+ * the eye over this before the edges are projected from it: the depth
+ * buffer's point lies a rounding off the surface, and a surface's own
+ * silhouette edges beside it would project across the whole disk. An
+ * int: the shader gets it as a define. */
+#define VOLUME_WEDGES_LIFT_RECIPROCAL 1000
+
+/* The deepest centre count the visibility starts from (deeper counts as
+ * this). */
+#define VOLUME_WEDGES_DEEPEST 3
+
+/* A wedge's vertex: homogeneous position (world), and the edge's ends
+ * (world), the first with the edge's multiplicity as w. */
+typedef struct volume_wedges_vertex {
+    float position[4], a[4], b[4];
+} volume_wedges_vertex;
+
+/* One of the passes' programs and its uniforms. */
+typedef struct volume_wedges_program {
+    unsigned id;
+    int view_projection, inverse_view_projection, depth_to_ndc, far_depth, light, size, depth, eye;
+} volume_wedges_program;
+
+typedef struct volume_wedges {
+    volume_wedges_program wedge;
+    unsigned vao, buffer;
+    size_t buffer_capacity;
+    volume_wedges_vertex *vertices; /* the light at hand's wedges */
+    size_t count, capacity;
+    volume_mesh edges; /* the caster at hand's silhouette edges */
+    unsigned depth_framebuffer, depth_texture;
+    int width, height, depth_format;
+    int wedge_count, skipped_count; /* light 0, last frame */
+} volume_wedges;
+
+bool volume_wedges_init(volume_wedges *w);
+void volume_wedges_destroy(volume_wedges *w);
+/* Begins v (soft_visibility_begin) as 1 - n, n the centre's count the
+ * bound target's stencil holds (its bits: stencil_mask), within the
+ * scissor as set, and copies the target's depth for the wedges; false
+ * after one line on stderr. */
+bool volume_wedges_begin(volume_wedges *w, soft_visibility *v, unsigned stencil_mask);
+/* The wedge of edge a -> b (world) for the light (homogeneous, world; a
+ * direction unit) whose ball has radius `reach` (a directional light's
+ * cone: the sine of its angular radius) as triangles, each face towards
+ * the outside counter-clockwise: VOLUME_WEDGES_EDGE_VERTICES homogeneous
+ * points into out, or 0 when it has none (see top). No GL. */
+int volume_wedges_edge(const float a[3], const float b[3], const float light[4], float reach,
+                       float out[VOLUME_WEDGES_EDGE_VERTICES][4]);
+/* Light l's wedges of every caster (edges: per object, the casters'
+ * tables), added into v's target; the caller's scissor stays. */
+void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const mesh_edges *edges,
+                        soft_visibility *v);
+
+#endif
