@@ -4,7 +4,9 @@
  * light's disk, here counted by Monte Carlo: a half-plane's edge through
  * the centre, a polygon covering the disk, squares of known overlap on
  * the plane, and occluders in 3D under a point light and the sun (which
- * fixes the edges' orientation). */
+ * fixes the edges' orientation). And the wedges of demos/lib/volume_wedges.c
+ * are conservative: every point where an edge's term is not 0 lies inside
+ * its wedge, at infinity or cut off past a box. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,6 +18,7 @@
 #include <cmocka.h>
 
 #include "area_light.h"
+#include "volume_wedges.h"
 #include "wedge_area.h"
 
 /* Monte Carlo points over the disk, and the error allowed against them
@@ -167,12 +170,85 @@ static void test_occluders_in_space(void **state) {
     }
 }
 
+/* Points of the cube [-CUBE, CUBE]^3 tried against each wedge, along
+ * each axis, and the term below which an edge counts as missing. */
+#define CUBE 4.0f
+#define CUBE_STEPS 24
+#define TERM_EPSILON 1e-5f
+/* det[p0; p1; p2; q] of homogeneous rows, relative to the rows' sizes,
+ * below which q counts as on the face. */
+#define DET_EPSILON 1e-4
+
+static double det4(const float *r0, const float *r1, const float *r2, const float *r3) {
+    const float *rows[4] = {r0, r1, r2, r3};
+    double det = 0;
+    for (int p = 0; p < 24; p++) { /* Leibniz, over the permutations */
+        int perm[4] = {0, 1, 2, 3}, k = p, sign = 1;
+        for (int i = 0; i < 4; i++) {
+            int j = i + k % (4 - i);
+            k /= 4 - i;
+            if (j != i) {
+                int t = perm[i];
+                perm[i] = perm[j], perm[j] = t;
+                sign = -sign;
+            }
+        }
+        double term = sign;
+        for (int i = 0; i < 4; i++)
+            term *= rows[i][perm[i]];
+        det += term;
+    }
+    return det;
+}
+
+static double row_size(const float *r) { return sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]); }
+
+/* Every point of the cube's grid with a non-zero term lies inside the
+ * wedge: on the inner side of each face (det > 0 faces away). */
+static void check_conservative(const float a[3], const float b[3], const float light[4], float reach, float size,
+                               const float *lo, const float *hi) {
+    float wedge[VOLUME_WEDGES_EDGE_VERTICES][4];
+    assert_int_equal(volume_wedges_edge(a, b, light, reach, lo, hi, wedge), VOLUME_WEDGES_EDGE_VERTICES);
+    int checked = 0;
+    for (int i = 0; i <= CUBE_STEPS; i++)
+        for (int j = 0; j <= CUBE_STEPS; j++)
+            for (int k = 0; k <= CUBE_STEPS; k++) {
+                float step = 2 * CUBE / CUBE_STEPS;
+                float p[4] = {-CUBE + i * step, -CUBE + j * step, -CUBE + k * step, 1};
+                bool in_box = !lo || (p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
+                                      p[2] >= lo[2] && p[2] <= hi[2]);
+                if (!in_box || fabsf(wedge_area_edge(p, light, size, a, b)) <= TERM_EPSILON)
+                    continue;
+                checked++;
+                for (int t = 0; t < VOLUME_WEDGES_EDGE_VERTICES; t += 3) {
+                    double scale = row_size(wedge[t]) * row_size(wedge[t + 1]) * row_size(wedge[t + 2]) * row_size(p);
+                    assert_true(det4(wedge[t], wedge[t + 1], wedge[t + 2], p) >= -DET_EPSILON * scale);
+                }
+            }
+    printf("    edge (%g %g %g) -> (%g %g %g), light w %g%s: %d points in its penumbra, all inside\n", a[0], a[1],
+           a[2], b[0], b[1], b[2], light[3], lo ? ", cut off" : "", checked);
+    assert_true(checked > 0);
+}
+
+static void test_wedges_conservative(void **state) {
+    (void)state;
+    const float point[4] = {0.5f, 5, 0.3f, 1}, sun[4] = {0.36f, 0.8f, 0.48f, 0};
+    const float sun_angle = 0.15f;
+    const float edges[][2][3] = {{{-1, 1.5f, 0}, {1, 1.6f, 0.2f}}, {{0.2f, 2, -1}, {-0.3f, 1.2f, 1}}};
+    const float lo[3] = {-CUBE, -CUBE, -CUBE}, hi[3] = {CUBE, 0.5f, CUBE};
+    for (size_t e = 0; e < sizeof edges / sizeof *edges; e++) {
+        check_conservative(edges[e][0], edges[e][1], point, 1.0f, 1.0f, NULL, NULL);
+        check_conservative(edges[e][0], edges[e][1], point, 1.0f, 1.0f, lo, hi);
+        check_conservative(edges[e][0], edges[e][1], sun, sinf(sun_angle), tanf(sun_angle), NULL, NULL);
+        check_conservative(edges[e][0], edges[e][1], sun, sinf(sun_angle), tanf(sun_angle), lo, hi);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_half_plane_through_centre),
-        cmocka_unit_test(test_polygon_covering_disk),
-        cmocka_unit_test(test_squares_of_known_overlap),
-        cmocka_unit_test(test_occluders_in_space),
+        cmocka_unit_test(test_half_plane_through_centre), cmocka_unit_test(test_polygon_covering_disk),
+        cmocka_unit_test(test_squares_of_known_overlap),  cmocka_unit_test(test_occluders_in_space),
+        cmocka_unit_test(test_wedges_conservative),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -104,8 +104,47 @@ static bool volume_wedges_far(const vec3 n, const vec3 m, const vec3 away, float
     return true;
 }
 
-int volume_wedges_edge(const float a[3], const float b[3], const float light[4], float reach,
-                       float out[VOLUME_WEDGES_EDGE_VERTICES][4]) {
+/* The far corners (directions from the ends: 2 and 3 from a, 4 and 5
+ * from b) moved onto the plane of the face of the box [lo, hi], grown,
+ * through which all four leave it soonest, where the ends lie inside
+ * that face's half-space: the wedge within it, which holds every point of
+ * the box it held. Untouched where no face serves. */
+static void volume_wedges_trim(float corners[6][4], const float lo[3], const float hi[3]) {
+    float grow = VOLUME_WEDGES_TRIM_MARGIN * glm_vec3_distance((float *)lo, (float *)hi);
+    float best = INFINITY, best_t[4];
+    for (int face = 0; face < 6; face++) {
+        int c = face / 2;
+        float sign = face % 2 ? 1.0f : -1.0f;
+        float limit = face % 2 ? hi[c] + grow : -(lo[c] - grow); /* inside: sign * x[c] <= limit */
+        if (sign * corners[0][c] > limit || sign * corners[1][c] > limit)
+            continue;
+        float t[4], worst = 0;
+        bool leaves = true;
+        for (int k = 0; k < 4; k++) {
+            const float *from = corners[k < 2 ? 0 : 1], *d = corners[2 + k];
+            float along = sign * d[c];
+            leaves = leaves && along >= VOLUME_WEDGES_MIN_SIDE;
+            t[k] = leaves ? (limit - sign * from[c]) / along : INFINITY;
+            worst = fmaxf(worst, t[k]);
+        }
+        if (leaves && worst < best) {
+            best = worst;
+            memcpy(best_t, t, sizeof t);
+        }
+    }
+    if (best == INFINITY)
+        return;
+    for (int k = 0; k < 4; k++) {
+        float *d = corners[2 + k];
+        const float *from = corners[k < 2 ? 0 : 1];
+        for (int c = 0; c < 3; c++)
+            d[c] = from[c] + d[c] * best_t[k];
+        d[3] = 1;
+    }
+}
+
+int volume_wedges_edge(const float a[3], const float b[3], const float light[4], float reach, const float *box_lo,
+                       const float *box_hi, float out[VOLUME_WEDGES_EDGE_VERTICES][4]) {
     vec3 along, back, away_a, away_b, side_a, side_b;
     float sine_a, sine_b;
     glm_vec3_sub((float *)b, (float *)a, along);
@@ -139,11 +178,14 @@ int volume_wedges_edge(const float a[3], const float b[3], const float light[4],
         !volume_wedges_far(side_a, rear, away_a, corners[3]) ||
         !volume_wedges_far(side_b, front, away_b, corners[4]) || !volume_wedges_far(side_b, rear, away_b, corners[5]))
         return 0;
-    /* A point inside: the edge's middle moved along every far direction. */
+    if (box_lo)
+        volume_wedges_trim(corners, box_lo, box_hi);
+    /* A point inside: the edge's middle moved along every far direction
+     * (to a far corner, a share of the way). */
     float inside[4] = {(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2, 1};
     for (int k = 2; k < 6; k++)
         for (int c = 0; c < 3; c++)
-            inside[c] += corners[k][c] * length;
+            inside[c] += corners[k][3] != 0 ? (corners[k][c] - inside[c]) / 8 : corners[k][c] * length;
     for (int t = 0; t < VOLUME_WEDGES_EDGE_VERTICES; t += 3) {
         const float *p0 = corners[volume_wedges_faces[t]], *p1 = corners[volume_wedges_faces[t + 1]],
                     *p2 = corners[volume_wedges_faces[t + 2]];
@@ -282,7 +324,7 @@ bool volume_wedges_begin(volume_wedges *w, soft_visibility *v, unsigned stencil_
 static bool volume_wedges_add(volume_wedges *w, const float a[3], const float b[3], float m, const float light[4],
                               float reach) {
     float corners[VOLUME_WEDGES_EDGE_VERTICES][4];
-    if (!volume_wedges_edge(a, b, light, reach, corners))
+    if (!volume_wedges_edge(a, b, light, reach, w->box_lo, w->box_hi, corners))
         return false;
     if (w->count + VOLUME_WEDGES_EDGE_VERTICES > w->capacity) {
         size_t capacity = w->capacity ? w->capacity * 2 : VOLUME_WEDGES_EDGE_VERTICES * 256;
@@ -394,13 +436,26 @@ void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const
         reach = sinf(angle);
         size = tanf(angle);
     }
+    /* Every wedge ends past the visible receivers; none without them. */
+    if (f->receivers_lo[0] > f->receivers_hi[0])
+        return;
+    w->box_lo = f->receivers_lo;
+    w->box_hi = f->receivers_hi;
     volume_wedges_build(w, f, edges, centre, reach, l == 0);
     GLboolean cull = glIsEnabled(GL_CULL_FACE), depth_test = glIsEnabled(GL_DEPTH_TEST),
               blend = glIsEnabled(GL_BLEND);
-    GLint cull_mode;
+    GLint cull_mode, depth_func_was;
+    GLboolean depth_mask;
     glGetIntegerv(GL_CULL_FACE_MODE, &cull_mode);
+    glGetIntegerv(GL_DEPTH_FUNC, &depth_func_was);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
     glBindFramebuffer(GL_FRAMEBUFFER, v->framebuffer);
-    glDisable(GL_DEPTH_TEST);
+    /* A pixel whose point lies in a wedge sees the wedge's back face at
+     * or behind it: the rest are left out by the frame's depth (which v's
+     * target shares). */
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(depth_func(f->view, GL_GEQUAL));
+    glDepthMask(GL_FALSE);
     glDisable(GL_STENCIL_TEST);
     glEnable(GL_DEPTH_CLAMP);
     glEnable(GL_BLEND);
@@ -414,7 +469,9 @@ void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const
     glCullFace((GLenum)cull_mode);
     if (cull)
         glEnable(GL_CULL_FACE);
-    if (depth_test)
-        glEnable(GL_DEPTH_TEST);
+    glDepthFunc((GLenum)depth_func_was);
+    glDepthMask(depth_mask);
+    if (!depth_test)
+        glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
 }

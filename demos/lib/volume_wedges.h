@@ -18,9 +18,14 @@
  * the front and back planes through the edge tangent to the ball, and at
  * each end a side plane through the end, tilted out by the angle the ball
  * spans there, so that the cone from the ball through the end stays
- * inside; the far vertices at infinity (w = 0). Drawn back faces only,
- * depth test off and depth clamp on, it covers each pixel of it once,
- * wherever the eye is; the fragment reconstructs the pixel's point from
+ * inside; the far vertices at infinity (w = 0), or cut off past the box
+ * of the frame's visible receivers, on the plane of the box's face that
+ * all four far edges leave through soonest (the wedge's part beyond holds
+ * no receiver, and seen from the eye it would cover the screen up to the
+ * light's vanishing point). Drawn back faces only,
+ * depth clamp on, it covers each pixel of it once, wherever the eye is,
+ * and a depth test keeps the pixels whose point is not beyond its back
+ * face; the fragment reconstructs the pixel's point from
  * a copy of the depth buffer and adds the edge's term, blended, into the
  * visibility target (soft_visibility.h), which the shading clamps to
  * [0, 1]. An edge whose line or end comes within the ball has no such
@@ -51,6 +56,9 @@
 /* One edge's wedge: front and back faces two triangles each, the ends'
  * sides one each, the far face at infinity two. */
 #define VOLUME_WEDGES_EDGE_VERTICES 24
+/* How far beyond the visible receivers' box a wedge ends, relative to
+ * the box's diagonal: rounding's margin. */
+#define VOLUME_WEDGES_TRIM_MARGIN 0.01f
 /* The ball (or cone) the wedge is built round is the light's grown by
  * this, relative, so that rounding keeps it conservative. */
 #define VOLUME_WEDGES_GROWTH 1.01f
@@ -87,7 +95,8 @@ typedef struct volume_wedges {
     size_t buffer_capacity;
     volume_wedges_vertex *vertices; /* the light at hand's wedges */
     size_t count, capacity;
-    volume_mesh edges; /* the caster at hand's silhouette edges */
+    volume_mesh edges;            /* the caster at hand's silhouette edges */
+    const float *box_lo, *box_hi; /* where the wedges end: past the frame's visible receivers */
     unsigned depth_framebuffer, depth_texture;
     int width, height, depth_format;
     int wedge_count, skipped_count; /* light 0, last frame */
@@ -103,10 +112,11 @@ bool volume_wedges_begin(volume_wedges *w, soft_visibility *v, unsigned stencil_
 /* The wedge of edge a -> b (world) for the light (homogeneous, world; a
  * direction unit) whose ball has radius `reach` (a directional light's
  * cone: the sine of its angular radius) as triangles, each face towards
- * the outside counter-clockwise: VOLUME_WEDGES_EDGE_VERTICES homogeneous
- * points into out, or 0 when it has none (see top). No GL. */
-int volume_wedges_edge(const float a[3], const float b[3], const float light[4], float reach,
-                       float out[VOLUME_WEDGES_EDGE_VERTICES][4]);
+ * the outside counter-clockwise, cut off past the box [box_lo, box_hi]
+ * (NULL: at infinity): VOLUME_WEDGES_EDGE_VERTICES homogeneous points
+ * into out, or 0 when it has none (see top). No GL. */
+int volume_wedges_edge(const float a[3], const float b[3], const float light[4], float reach, const float *box_lo,
+                       const float *box_hi, float out[VOLUME_WEDGES_EDGE_VERTICES][4]);
 /* Light l's wedges of every caster (edges: per object, the casters'
  * tables), added into v's target; the caller's scissor stays. */
 void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const mesh_edges *edges,
