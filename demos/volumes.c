@@ -84,6 +84,7 @@ static struct {
     volume_draw draw;
     volume_receivers receivers;
     volume_plan_caster *casters; /* per object: the plan of the light at hand */
+    volume_plan_caster *group;   /* per object: the wedges' casters of one rule (volume_wedges.h) */
     int trim_kept;               /* whether the kept volumes are trimmed; -1: none kept yet */
     bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
@@ -127,7 +128,8 @@ static bool volumes_init(const render_scene *gpu) {
     if (!volume_draw_init(&volumes.draw, gpu) || !volume_receivers_init(&volumes.receivers, gpu))
         return false;
     volumes.casters = calloc((size_t)gpu->scene->object_count, sizeof *volumes.casters);
-    if (!volumes.casters) {
+    volumes.group = calloc((size_t)gpu->scene->object_count, sizeof *volumes.group);
+    if (!volumes.casters || !volumes.group) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
@@ -143,7 +145,8 @@ static void volumes_destroy(void) {
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
     free(volumes.casters);
-    volumes.casters = NULL;
+    free(volumes.group);
+    volumes.casters = volumes.group = NULL;
 }
 
 /* ---- the plan: every skip (volume_plan.h) ---- */
@@ -263,6 +266,14 @@ static const technique_stencil_lit volumes_lit = {
 
 /* ---- area lights ---- */
 
+/* Steps 3 and 4 for a plan, against the exact depth where it counts. */
+static void volumes_count_plan(const technique_frame *f, const volume_plan *plan) {
+    volumes_exact_depth(f);
+    volumes_clear_stencil(plan);
+    volumes_count(f, plan);
+    volumes_prepass_depth(f);
+}
+
 /* One point of light l's area counted as a hard light there: every
  * caster, each z-pass or z-fail for that point, over the whole frame,
  * built for the point and not kept (technique_sample_area_light). */
@@ -272,10 +283,7 @@ static void volumes_count_point(const technique_frame *f, int l, const float poi
     plan.cache = VOLUME_DRAW_UNKEPT;
     plan.bounds.rect[2] = f->width;
     plan.bounds.rect[3] = f->height;
-    volumes_exact_depth(f);
-    volumes_clear_stencil(&plan);
-    volumes_count(f, &plan);
-    volumes_prepass_depth(f);
+    volumes_count_plan(f, &plan);
 }
 
 /* ---- the kept volumes ---- */
@@ -353,6 +361,16 @@ static void volumes_render(const technique_frame *f) {
          *    volumes may count (the skips). */
         volume_plan plan;
         volumes_plan_light(f, l, &plan);
+        /* 2b. An area light by wedges: steps 3 and 4 for the plan's
+         *     casters of each rule apart, the visibility from their counts
+         *     (1 - count), each silhouette edge's wedge adding the share
+         *     of the light's disk it uncovers; then step 5 with that. */
+        if (wedges) {
+            if (volume_wedges_light(&volumes.wedges, f, l, &plan, volumes.group, volumes.draw.edges, &volumes.soft,
+                                    VOLUMES_STENCIL_MASK, volumes_count_plan))
+                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
+            continue;
+        }
         volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
         /* 3. Clear the stencil in the plan's rectangle. */
         volumes_clear_stencil(&plan);
@@ -361,16 +379,6 @@ static void volumes_render(const technique_frame *f) {
          *    by their facing. */
         volumes_count(f, &plan);
         volumes_prepass_depth(f); /* back to the depth the shading is equal to */
-        /* 4b. An area light by wedges (volume_wedges.h): the visibility
-         *     1 - count, each silhouette edge's wedge adding the share of
-         *     the light's disk it uncovers there; then step 5 with that. */
-        if (wedges) {
-            if (volume_wedges_begin(&volumes.wedges, &volumes.soft, VOLUMES_STENCIL_MASK)) {
-                volume_wedges_draw(&volumes.wedges, f, l, volumes.draw.edges, &volumes.soft);
-                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
-            }
-            continue;
-        }
         /* 5. Shade the light where the count is 0, in its own scissor
          *    (objects that take no shadows may lie outside the plan's);
          *    the first light's pass adds the ambient term. */

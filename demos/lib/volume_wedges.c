@@ -306,17 +306,31 @@ static bool volume_wedges_copy_depth(volume_wedges *w) {
     return true;
 }
 
-bool volume_wedges_begin(volume_wedges *w, soft_visibility *v, unsigned stencil_mask) {
-    if (!soft_visibility_begin(v) || !volume_wedges_copy_depth(w))
-        return false;
+/* Adds the centre's share where the bound target's stencil (its bits:
+ * stencil_mask) holds the count n of the casters that take the closed
+ * rule, 1 - n, or (open) of those that take the open rule, -1 where n is
+ * not 0; within the scissor as set. */
+static void volume_wedges_add_centre(soft_visibility *v, unsigned stencil_mask, bool open) {
     glEnable(GL_STENCIL_TEST);
-    for (int n = 0; n <= VOLUME_WEDGES_DEEPEST; n++) {
+    if (open) {
+        glStencilFunc(GL_NOTEQUAL, 0, stencil_mask);
+        soft_visibility_add(v, -1);
+    }
+    for (int n = 0; !open && n <= VOLUME_WEDGES_DEEPEST; n++) {
         glStencilFunc(n < VOLUME_WEDGES_DEEPEST ? GL_EQUAL : GL_LEQUAL, n, stencil_mask);
         if (n != 1) /* 1 - 1 adds nothing */
             soft_visibility_add(v, (float)(1 - n));
     }
     glDisable(GL_STENCIL_TEST);
-    return true;
+}
+
+/* Whether caster i takes the open rule for the light (homogeneous,
+ * world): volume_mesh_closed_rule's "no". */
+static bool volume_wedges_open(const technique_frame *f, int i, const mesh_edges *edges, const float light[4]) {
+    const scene_object *o = &f->gpu->scene->objects[i];
+    float object_light[4];
+    volume_mesh_object_light(o->model, light, object_light);
+    return !volume_mesh_closed_rule(&o->mesh, &edges[i], object_light);
 }
 
 /* Appends the wedge of edge a -> b (multiplicity m) to w's vertices;
@@ -368,11 +382,15 @@ static void volume_wedges_build(volume_wedges *w, const technique_frame *f, cons
         mat3 linear;
         glm_mat4_pick3((vec4 *)o->model, linear);
         float mirror = glm_mat3_det(linear) < 0 ? -1.0f : 1.0f;
+        bool open = !volume_mesh_closed_rule(&o->mesh, &edges[i], object_light);
         for (size_t k = 0; k + 1 < w->edges.count; k += 2) {
             vec3 a, b;
             glm_mat4_mulv3((vec4 *)o->model, w->edges.vertices[k], 1, a);
             glm_mat4_mulv3((vec4 *)o->model, w->edges.vertices[k + 1], 1, b);
-            if (volume_wedges_add(w, a, b, w->edges.vertices[k][3] * mirror, centre, reach))
+            float m = w->edges.vertices[k][3];
+            if (open) /* a fold's two layers count once */
+                m = copysignf(ceilf(fabsf(m) / 2), m);
+            if (volume_wedges_add(w, a, b, m * mirror, centre, reach))
                 wedges++;
             else
                 skipped++;
@@ -423,8 +441,10 @@ static void volume_wedges_draw_wedges(volume_wedges *w, const technique_frame *f
     glDisable(GL_CULL_FACE);
 }
 
-void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const mesh_edges *edges,
-                        soft_visibility *v) {
+/* Light l's wedges of every caster (edges: per object, the casters'
+ * tables), added into v's target; the caller's scissor stays. */
+static void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const mesh_edges *edges,
+                               soft_visibility *v) {
     const scene_light *light = &f->gpu->scene->lights[l];
     float centre[4], reach, size;
     scene_light_homogeneous(light, centre);
@@ -474,4 +494,28 @@ void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const
     if (!depth_test)
         glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
+}
+
+bool volume_wedges_light(volume_wedges *w, const technique_frame *f, int l, const volume_plan *plan,
+                         volume_plan_caster *group, const mesh_edges *edges, soft_visibility *v,
+                         unsigned stencil_mask, volume_wedges_count count) {
+    if (!soft_visibility_begin(v) || !volume_wedges_copy_depth(w))
+        return false;
+    for (int open = 0; open <= 1; open++) {
+        volume_plan part = *plan;
+        part.casters = group;
+        part.reported = plan->reported && !open;
+        bool any = false;
+        for (int i = 0; i < f->gpu->scene->object_count; i++) {
+            group[i] = plan->casters[i];
+            group[i].needed = group[i].needed && volume_wedges_open(f, i, edges, plan->position) == (bool)open;
+            any = any || group[i].needed;
+        }
+        if (open && !any)
+            break;
+        count(f, &part);
+        volume_wedges_add_centre(v, stencil_mask, open);
+    }
+    volume_wedges_draw(w, f, l, edges, v);
+    return true;
 }

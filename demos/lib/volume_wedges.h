@@ -6,9 +6,14 @@
  * --soft wedges.
  *
  * An area light's visibility starts from its centre's hard shadow, the
- * stencil count n of the ordinary volumes: 1 - n (a caster's edges give
- * back what it covers of the disk, so where two casters cover the centre
- * the sum starts from -1), n counted up to VOLUME_WEDGES_DEEPEST; then every
+ * stencil count n of the ordinary volumes of the casters that take the
+ * closed rule: 1 - n (a caster's edges give back what it covers of the
+ * disk, so where two casters cover the centre the sum starts from -1), n
+ * counted up to VOLUME_WEDGES_DEEPEST. The open rule counts every layer
+ * of a mesh (a ray through an open teapot crosses two), which would
+ * subtract the disk twice: those casters are counted apart and take off
+ * 1 where they cover the centre, and their silhouette edges count a fold
+ * (multiplicity 2, both layers) once. Then every
  * silhouette edge, found from the centre in the CPU edge table with its
  * multiplicity (volume_mesh.h, open and non-manifold meshes too), adds the
  * share of the light's disk it uncovers or covers at each pixel
@@ -34,12 +39,16 @@
  * What it gets wrong, by construction: the silhouette is the centre's,
  * not each point's of the light; and edges of different casters
  * overlapping on the disk each subtract their own share, so that
- * overlapping penumbrae darken twice (the umbra overestimated).
+ * overlapping penumbrae darken twice (the umbra overestimated); an open
+ * mesh's layers beyond a fold's two (a spout before a body) are counted
+ * by their edges but taken off once at the centre, and light leaks into
+ * the umbra there.
  *
  *   volume_wedges_init(&w)                          once
- *   per area light, its centre's count in the stencil:
- *     volume_wedges_begin(&w, &visibility, stencil_mask)
- *     volume_wedges_draw(&w, f, l, edges, &visibility)
+ *   per area light, after its plan:
+ *     volume_wedges_light(&w, f, l, &plan, group, edges, &visibility,
+ *                         stencil_mask, count)
+ *       (its counts from the centre, then every silhouette edge's wedge)
  *     technique_shade_light_soft(...)
  *   volume_wedges_destroy(&w)
  */
@@ -52,6 +61,7 @@
 #include "soft_visibility.h"
 #include "technique.h"
 #include "volume_mesh.h"
+#include "volume_plan.h"
 
 /* One edge's wedge: front and back faces two triangles each, the ends'
  * sides one each, the far face at infinity two. */
@@ -104,11 +114,17 @@ typedef struct volume_wedges {
 
 bool volume_wedges_init(volume_wedges *w);
 void volume_wedges_destroy(volume_wedges *w);
-/* Begins v (soft_visibility_begin) as 1 - n, n the centre's count the
- * bound target's stencil holds (its bits: stencil_mask), within the
- * scissor as set, and copies the target's depth for the wedges; false
+/* The caller's count of a plan's volumes into the bound target's stencil
+ * (cleared in its rectangle first), with the stencil test on after it. */
+typedef void (*volume_wedges_count)(const technique_frame *f, const volume_plan *plan);
+/* Light l's visibility into v by wedges, from its plan (volume_plan.h):
+ * the plan's casters of each rule counted apart (`group`: per object, the
+ * caller's scratch) and the centre's share added from each count
+ * (stencil_mask: the stencil's bits), then every wedge. False
  * after one line on stderr. */
-bool volume_wedges_begin(volume_wedges *w, soft_visibility *v, unsigned stencil_mask);
+bool volume_wedges_light(volume_wedges *w, const technique_frame *f, int l, const volume_plan *plan,
+                         volume_plan_caster *group, const mesh_edges *edges, soft_visibility *v,
+                         unsigned stencil_mask, volume_wedges_count count);
 /* The wedge of edge a -> b (world) for the light (homogeneous, world; a
  * direction unit) whose ball has radius `reach` (a directional light's
  * cone: the sine of its angular radius) as triangles, each face towards
@@ -117,9 +133,5 @@ bool volume_wedges_begin(volume_wedges *w, soft_visibility *v, unsigned stencil_
  * into out, or 0 when it has none (see top). No GL. */
 int volume_wedges_edge(const float a[3], const float b[3], const float light[4], float reach, const float *box_lo,
                        const float *box_hi, float out[VOLUME_WEDGES_EDGE_VERTICES][4]);
-/* Light l's wedges of every caster (edges: per object, the casters'
- * tables), added into v's target; the caller's scissor stays. */
-void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l, const mesh_edges *edges,
-                        soft_visibility *v);
 
 #endif
