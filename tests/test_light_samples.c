@@ -52,14 +52,16 @@ static const struct {
 static const struct {
     const char *scene;
     double max_penumbra_mae, max_umbra_mae;
+    double factor; /* the hard shadow's penumbra error over the wedges', at least */
 } wedge_cases[] = {
-    {"assets/scenes/soft_table.json", 0.03, 0.005},
+    {"assets/scenes/soft_table.json", 0.03, 0.005, 3},
     /* the bunny's terminator under a small sun: its own surface hides the
      * disk's lower part, which no edge from the centre knows */
-    {"assets/scenes/soft_sun.json", 0.075, 0.02},
+    {"assets/scenes/soft_sun.json", 0.075, 0.02, 3},
+    /* an open mesh (the open rule, every layer counted) under the sun: the
+     * spout's layers before the body leak into the umbra */
+    {"tests/data/soft_teapot.json", 0.1, 0.06, 2},
 };
-/* Wedges cut the hard shadow's penumbra error at least this much. */
-#define WEDGES_FACTOR 3.0
 
 static char err[16384];
 
@@ -112,7 +114,7 @@ static void test_wedges_near_truth(void **state) {
         const char *scene = wedge_cases[c].scene;
         double hard = measure_flags("volumes", scene, NULL, "", "wedges_hard").class_mae[SHADOWDIFF_CLASS_PENUMBRA];
         shadowdiff_result r = measure_flags("volumes", scene, NULL, "--soft wedges", "wedges");
-        assert_true(r.class_mae[SHADOWDIFF_CLASS_PENUMBRA] * WEDGES_FACTOR <= hard);
+        assert_true(r.class_mae[SHADOWDIFF_CLASS_PENUMBRA] * wedge_cases[c].factor <= hard);
         assert_true(r.class_mae[SHADOWDIFF_CLASS_PENUMBRA] <= wedge_cases[c].max_penumbra_mae);
         assert_true(r.class_mae[SHADOWDIFF_CLASS_UMBRA] <= wedge_cases[c].max_umbra_mae);
     }
