@@ -9,40 +9,41 @@
  * stencil count n of the ordinary volumes of the casters that take the
  * closed rule: 1 - n (a caster's edges give back what it covers of the
  * disk, so where two casters cover the centre the sum starts from -1), n
- * counted up to VOLUME_WEDGES_DEEPEST. The open rule counts every layer
- * of a mesh (a ray through an open teapot crosses two), which would
- * subtract the disk twice: those casters are counted apart and take off
- * 1 where they cover the centre, and their silhouette edges count a fold
- * (multiplicity 2, both layers) once. Then every
- * silhouette edge, found from the centre in the CPU edge table with its
- * multiplicity (volume_mesh.h, open and non-manifold meshes too), adds the
- * share of the light's disk it uncovers or covers at each pixel
- * (wedge_area.h) wherever that can be non-zero: inside the edge's wedge,
- * a convex polyhedron bounding every point from which the edge crosses
- * the light's ball (a directional light's cone of directions). Its faces:
- * the front and back planes through the edge tangent to the ball, and at
- * each end a side plane through the end, tilted out by the angle the ball
- * spans there, so that the cone from the ball through the end stays
- * inside; the far vertices at infinity (w = 0), or cut off past the box
- * of the frame's visible receivers, on the plane of the box's face that
- * all four far edges leave through soonest (the wedge's part beyond holds
- * no receiver, and seen from the eye it would cover the screen up to the
- * light's vanishing point). Drawn back faces only,
- * depth clamp on, it covers each pixel of it once, wherever the eye is,
- * and a depth test keeps the pixels whose point is not beyond its back
- * face; the fragment reconstructs the pixel's point from
- * a copy of the depth buffer and adds the edge's term, blended, into the
- * visibility target (soft_visibility.h), which the shading clamps to
+ * counted up to VOLUME_WEDGES_DEEPEST. The open rule counts every layer of
+ * a mesh (a ray through an open teapot crosses two), which would subtract
+ * the disk twice: those casters are counted apart and take off 1 where
+ * they cover the centre, and their silhouette edges count a fold
+ * (multiplicity 2, both layers) once.
+ *
+ * Then every silhouette edge, found from the centre in the CPU edge table
+ * with its multiplicity (volume_mesh.h, open and non-manifold meshes too),
+ * adds the share of the light's disk it uncovers or covers at each pixel
+ * (wedge_area.h) wherever that can be non-zero: inside the edge's wedge, a
+ * convex polyhedron bounding every point from which the edge crosses the
+ * light's ball (a directional light's cone of directions). Its faces: the
+ * front and back planes through the edge tangent to the ball, and at each
+ * end a side plane through the end, tilted out by the angle the ball spans
+ * there, so that the cone from the ball through the end stays inside; the
+ * far vertices at infinity (w = 0), or cut off past the box of the frame's
+ * visible receivers, on the plane of the box's face that all four far
+ * edges leave through soonest (the wedge's part beyond holds no receiver,
+ * and seen from the eye it would cover the screen up to the light's
+ * vanishing point).
+ *
+ * Drawn back faces only, depth clamp on, it covers each pixel of it once,
+ * wherever the eye is, and a depth test keeps the pixels whose point is
+ * not beyond its back face; the fragment reconstructs the pixel's point
+ * from a copy of the depth buffer and adds the edge's term, blended, into
+ * the visibility target (soft_visibility.h), which the shading clamps to
  * [0, 1]. An edge whose line or end comes within the ball has no such
  * wedge and is left out (counted for the HUD).
  *
- * What it gets wrong, by construction: the silhouette is the centre's,
- * not each point's of the light; and edges of different casters
- * overlapping on the disk each subtract their own share, so that
- * overlapping penumbrae darken twice (the umbra overestimated); an open
- * mesh's layers beyond a fold's two (a spout before a body) are counted
- * by their edges but taken off once at the centre, and light leaks into
- * the umbra there.
+ * What it gets wrong, by construction: the silhouette is the centre's, not
+ * each point's of the light; and edges of different casters overlapping on
+ * the disk each subtract their own share, so that overlapping penumbrae
+ * darken twice (the umbra overestimated); an open mesh's layers beyond a
+ * fold's two (a spout before a body) are counted by their edges but taken
+ * off once at the centre, and light leaks into the umbra there.
  *
  *   volume_wedges_init(&w)                          once
  *   per area light, after its plan:
