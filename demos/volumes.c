@@ -37,7 +37,9 @@
  * algorithm", 1984): each counts with its own plan and kept volumes and
  * adds one to the light's sum where its count is 0; the light is shaded
  * once with the sum over N (soft_visibility.h), in the window over
- * frames (technique_sample_area_light).
+ * frames (technique_sample_area_light). Or (--soft wedges) the centre's
+ * hard shadow, softened by penumbra wedges round every silhouette edge
+ * (Assarsson & Akenine-Moller 2003; demos/lib/volume_wedges.h).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -52,6 +54,7 @@
 #include "volume_overlay.h"
 #include "volume_plan.h"
 #include "volume_receivers.h"
+#include "volume_wedges.h"
 
 typedef struct volumes_settings {
     int mode;             /* choice */
@@ -61,12 +64,15 @@ typedef struct volumes_settings {
     bool no_depth_bounds; /* toggle */
     bool no_exact_depth;  /* toggle */
     int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
+    int soft;             /* choice: volumes_softs */
 } volumes_settings;
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL}; /* volume_plan_mode's order */
 static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
+static const char *const volumes_softs[] = {"samples", "wedges", NULL};
+enum { VOLUMES_SOFT_SAMPLES, VOLUMES_SOFT_WEDGES };
 enum { VOLUMES_CPU, VOLUMES_GPU };
 enum { VOLUMES_EXTRUDE_INFINITY, VOLUMES_EXTRUDE_REACH };
 enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTES, VOLUMES_OVERLAY_COUNTS };
@@ -79,13 +85,15 @@ static struct {
     volume_draw draw;
     volume_receivers receivers;
     volume_plan_caster *casters; /* per object: the plan of the light at hand */
+    volume_plan_caster *group;   /* per object: the wedges' casters of one rule (volume_wedges.h) */
     int trim_kept;               /* whether the kept volumes are trimmed; -1: none kept yet */
     bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
-    int huge_count;                /* objects counted against their exact depth (volume_receivers.h) */
-    int receivers_rect[4];         /* this frame's: every receiver's box on screen, for every light */
-    soft_visibility soft;          /* an area light's visibility, sampled */
+    int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
+    int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
+    soft_visibility soft;  /* an area light's visibility, sampled or from wedges */
+    volume_wedges wedges;
     unsigned soft_warned;          /* bit l: light l's area said drawn hard */
     int samples[SCENE_MAX_LIGHTS]; /* this frame's points of light l: 1 drawn hard */
     bool point_reported;           /* the HUD's counts are of this frame's first point */
@@ -111,6 +119,10 @@ static const flags_param volumes_params[] = {
     {"light-samples",
      "points of each area light, each a hard shadow, averaged (Brotman & Badler 1984); 1: hard, from its centre",
      GLFW_KEY_L, FLAGS_CHOICE, .index = &volumes.settings.light_samples, .choices = soft_visibility_sample_counts},
+    {"soft",
+     "area lights: sampled at --light-samples points; or wedges, the centre's hard shadow softened by penumbra "
+     "wedges round its silhouette (Assarsson & Akenine-Moller 2003)",
+     GLFW_KEY_W, FLAGS_CHOICE, .index = &volumes.settings.soft, .choices = volumes_softs},
 };
 
 /* ---- set-up ---- */
@@ -119,7 +131,8 @@ static bool volumes_init(const render_scene *gpu) {
     if (!volume_draw_init(&volumes.draw, gpu) || !volume_receivers_init(&volumes.receivers, gpu))
         return false;
     volumes.casters = calloc((size_t)gpu->scene->object_count, sizeof *volumes.casters);
-    if (!volumes.casters) {
+    volumes.group = calloc((size_t)gpu->scene->object_count, sizeof *volumes.group);
+    if (!volumes.casters || !volumes.group) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
@@ -127,15 +140,17 @@ static bool volumes_init(const render_scene *gpu) {
     volumes.has_depth_bounds = GLAD_GL_EXT_depth_bounds_test;
     volumes.soft_warned = 0;
     memset(volumes.samples, 0, sizeof volumes.samples);
-    return soft_visibility_init(&volumes.soft);
+    return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges);
 }
 
 static void volumes_destroy(void) {
     soft_visibility_destroy(&volumes.soft);
+    volume_wedges_destroy(&volumes.wedges);
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
     free(volumes.casters);
-    volumes.casters = NULL;
+    free(volumes.group);
+    volumes.casters = volumes.group = NULL;
 }
 
 /* ---- the plan: every skip (volume_plan.h) ---- */
@@ -264,6 +279,19 @@ static const technique_stencil_lit volumes_lit = {
 
 /* ---- area lights ---- */
 
+/* Whether a light is drawn by wedges (--soft wedges, an area light). */
+static bool volumes_by_wedges(const scene_light *light) {
+    return volumes.settings.soft == VOLUMES_SOFT_WEDGES && light->radius > 0;
+}
+
+/* Steps 3 and 4 for a plan, against the exact depth where it counts. */
+static void volumes_count_plan(const technique_frame *f, const volume_plan *plan) {
+    volumes_exact_depth(f);
+    volumes_clear_stencil(plan);
+    volumes_count(f, plan);
+    volumes_prepass_depth(f);
+}
+
 /* Point k of light l's area counted as a hard light there (steps 2 to 4
  * with the point's own plan and kept volumes). The casters' counts for
  * the HUD are the first point's. */
@@ -272,10 +300,7 @@ static void volumes_count_point(const technique_frame *f, int l, int k, const fl
     volume_plan plan;
     volumes_plan_light(f, l, k, point, &plan);
     plan.reported = plan.reported && !volumes.point_reported;
-    volumes_exact_depth(f);
-    volumes_clear_stencil(&plan);
-    volumes_count(f, &plan);
-    volumes_prepass_depth(f);
+    volumes_count_plan(f, &plan);
     if (volumes.point_reported)
         *f->counts = counts;
     volumes.point_reported = true;
@@ -295,8 +320,10 @@ static void volumes_forget_moved(const technique_frame *f) {
     for (int l = 0; l < s->light_count; l++) {
         if (f->changed.scene || trim_changed || (f->changed.lights & RENDER_LIGHT_BIT(l)))
             volume_draw_forget(&volumes.draw, l);
-        int samples = soft_visibility_samples("volumes", volumes.settings.light_samples, &s->lights[l], l,
-                                              &volumes.soft_warned);
+        int samples = volumes_by_wedges(&s->lights[l])
+                          ? 1
+                          : soft_visibility_samples("volumes", volumes.settings.light_samples, &s->lights[l], l,
+                                                    &volumes.soft_warned);
         if (samples != volumes.samples[l])
             volume_draw_free_points(&volumes.draw, l);
         volumes.samples[l] = samples;
@@ -367,6 +394,17 @@ static void volumes_render(const technique_frame *f) {
          *    volumes may count (the skips). */
         volume_plan plan;
         volumes_plan_light(f, l, TECHNIQUE_LIGHT_CENTRE, NULL, &plan);
+        /* 2b. An area light by wedges: steps 3 and 4 for the plan's
+         *     casters of each rule apart, the visibility from their counts
+         *     (1 - count), each silhouette edge's wedge adding the share
+         *     of the light's disk it uncovers; then step 5 with that. */
+        if (volumes_by_wedges(&f->gpu->scene->lights[l])) {
+            if (volume_wedges_light(&volumes.wedges, f, l, &plan, volumes.group, volumes.draw.edges, &volumes.soft,
+                                    VOLUMES_STENCIL_MASK, volumes_count_plan))
+                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
+            volumes_count_end(l);
+            continue;
+        }
         volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
         /* 3. Clear the stencil in the plan's rectangle. */
         volumes_clear_stencil(&plan);
@@ -401,10 +439,13 @@ static void volumes_describe(char *out, size_t size) {
                                                          : "on");
     if (n > 0 && (size_t)n < size) {
         if (volumes.settings.no_exact_depth)
-            snprintf(out + n, size - (size_t)n, "; exact depth OFF");
+            n += snprintf(out + n, size - (size_t)n, "; exact depth OFF");
         else
-            snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
+            n += snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
     }
+    if (n > 0 && (size_t)n < size && volumes.settings.soft == VOLUMES_SOFT_WEDGES)
+        snprintf(out + n, size - (size_t)n, "; wedges %d, %d edges left out", volumes.wedges.wedge_count,
+                 volumes.wedges.skipped_count);
 }
 
 /* The sweep: mode x silhouette path, the trim, and an area light's points
@@ -421,10 +462,13 @@ static const char *const volumes_bench_configs[] = {
     "--light-samples 16",
     "--light-samples 64",
     "--light-samples 256",
+    "--soft wedges",
 };
 
 static const char *volumes_area_light(const scene_light *light, int l) {
     (void)light;
+    if (volumes.settings.soft == VOLUMES_SOFT_WEDGES)
+        return "penumbra wedges round the centre's silhouette";
     return soft_visibility_area_light_text(&volumes.soft, volumes.settings.light_samples, l);
 }
 

@@ -15,9 +15,11 @@ uniform int u_light_count;
 uniform int u_light_list[SCENE_MAX_LIGHTS];
 #ifdef LIT_SOFT_VISIBILITY
 // Light u_soft_light's share scaled by the fraction of its area light
-// that reaches the pixel: the sum of the points that reach it, accumulated
-// from hard shadows, over the number of points (u_soft_scale, its
-// inverse; common/gl/soft_visibility.h); the other lights as they are.
+// that reaches the pixel, u_soft_scale times the sum accumulated from
+// hard shadows at its points (u_soft_scale the inverse of their number;
+// common/gl/soft_visibility.h), or from penumbra wedges
+// (demos/lib/volume_wedges.h), which may overshoot [0, 1] and are clamped
+// to it; the other lights as they are.
 uniform int u_soft_light;
 uniform sampler2D u_soft_visibility;
 uniform float u_soft_scale;
@@ -33,7 +35,7 @@ void main() {
         vec3 light = lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
 #ifdef LIT_SOFT_VISIBILITY
         if (u_light_list[k] == u_soft_light)
-            light *= texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r * u_soft_scale;
+            light *= clamp(texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r * u_soft_scale, 0.0, 1.0);
 #endif
         c += light;
     }

@@ -1,9 +1,11 @@
 #version 330 core
-// One point of an area light, added (blending) to its sum wherever the
-// caller's stencil test says the point reaches the pixel:
+// A weight (one point of an area light: one) added (blending) to the
+// light's sum wherever the caller's stencil test passes:
 // common/gl/soft_visibility.h.
+uniform float u_weight;
+
 out vec4 out_visibility;
 
 void main() {
-    out_visibility = vec4(1.0, 0.0, 0.0, 0.0);
+    out_visibility = vec4(u_weight, 0.0, 0.0, 0.0);
 }

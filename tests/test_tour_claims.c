@@ -155,6 +155,17 @@ static const claim claims[] = {
      "four points: a penumbra past the hard edge"},
     {"soft", 11, STEP, {NULL, "--light-samples 4"}, CLAIM_LIGHTER, 2000, "sixteen points: the penumbra filling in"},
     {"soft", 12, STEP, STEP, CLAIM_MISCLASSIFIED, 200, "sixty-four points: the truth's penumbra"},
+    {"soft", 13, STEP, STEP, CLAIM_MISCLASSIFIED, 120, "wedges beside the truth: smooth"},
+    {"soft", 14, STEP, STEP, CLAIM_MISCLASSIFIED, 200, "wedges under the sun beside the truth"},
+    /* the picture with sixty-four points, its "fix" the wedges: theirs the
+     * more false shadow */
+    {"soft",
+     14,
+     {NULL, "--light-samples 64"},
+     STEP,
+     CLAIM_LESS_FALSE_SHADOW,
+     2,
+     "wedges: the rim darker than sixty-four points'"},
     /* volumes */
     {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_DARKER, 100, "a map's texels show along the edge: out"},
     {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_LIGHTER, 200, "a map's texels show along the edge: in"},

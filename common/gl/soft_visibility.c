@@ -42,6 +42,7 @@ bool soft_visibility_init(soft_visibility *v) {
         soft_visibility_destroy(v);
         return false;
     }
+    v->weight = shader_uniform(v->accumulate, "u_weight");
     render_lit_uniforms_find(&v->lit, &v->lit_uniforms);
     v->soft_light = shader_uniform(v->lit.id, "u_soft_light");
     v->soft_texture = shader_uniform(v->lit.id, "u_soft_visibility");
@@ -115,7 +116,7 @@ bool soft_visibility_begin(soft_visibility *v, int l, int samples, bool restart)
     return true;
 }
 
-void soft_visibility_add(soft_visibility *v, int l) {
+void soft_visibility_add(soft_visibility *v, int l, float weight) {
     soft_visibility_light *light = &v->lights[l];
     glBindFramebuffer(GL_FRAMEBUFFER, light->framebuffer);
     GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST), blend = glIsEnabled(GL_BLEND);
@@ -127,6 +128,7 @@ void soft_visibility_add(soft_visibility *v, int l) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glUseProgram(v->accumulate);
+    glUniform1f(v->weight, weight);
     glBindVertexArray(v->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
@@ -136,7 +138,6 @@ void soft_visibility_add(soft_visibility *v, int l) {
     if (!blend)
         glDisable(GL_BLEND);
     glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
-    light->points++;
 }
 
 void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,

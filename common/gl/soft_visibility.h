@@ -20,7 +20,8 @@
  *   soft_visibility_init(&v)                   once
  *   soft_visibility_begin(&v, l, n, restart)   light l's sum, of n points
  *   per point not yet added (v.lights[l].points of n): the stencil as for
- *     a hard light, glStencilFunc(lit ...), soft_visibility_add(&v, l)
+ *     a hard light, glStencilFunc(lit ...), soft_visibility_add(&v, l, 1),
+ *     v.lights[l].points++
  *   technique_shade_light_soft(frame, l, &v, receivers_only)
  *   soft_visibility_destroy(&v)
  *
@@ -45,11 +46,12 @@
 typedef struct soft_visibility_light {
     unsigned framebuffer, texture;
     int samples; /* the points the sum is of; 0: none begun */
-    int points;  /* of them, those added so far */
+    int points;  /* of them, those added so far: the caller's count, which the lit program divides by (0 as 1) */
 } soft_visibility_light;
 
 typedef struct soft_visibility {
-    unsigned accumulate; /* the program that adds one point */
+    unsigned accumulate; /* the program that adds a weight */
+    int weight;          /* its u_weight */
     unsigned vao;        /* empty: the pass's triangle is made from gl_VertexID */
     render_program lit;  /* lit.frag with LIT_SOFT_VISIBILITY */
     render_lit_uniforms lit_uniforms;
@@ -77,9 +79,10 @@ bool soft_visibility_init(soft_visibility *v);
  * target changed or the sum is of another count, when it starts again
  * from no point. */
 bool soft_visibility_begin(soft_visibility *v, int l, int samples, bool restart);
-/* Adds one point to light l's sum wherever the stencil test as set
- * passes (inside the scissor, where it is on); the target stays bound. */
-void soft_visibility_add(soft_visibility *v, int l);
+/* Adds `weight` (a point: one) to light l's sum wherever the stencil test
+ * as set passes (inside the scissor, where it is on); the target stays
+ * bound. */
+void soft_visibility_add(soft_visibility *v, int l, float weight);
 /* Binds v's lit program for light `light` (its visibility the mean of its
  * points added so far, at least one) within the set `lights`, as
  * render_use_lit does. */

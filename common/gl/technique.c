@@ -225,7 +225,7 @@ bool technique_sample_area_light(const technique_frame *f, int l, int samples, s
     area_light_frame frame;
     technique_area_light_frame(f, l, &frame);
     uint32_t seed = area_light_hash((uint32_t)l);
-    const soft_visibility_light *sum = &v->lights[l];
+    soft_visibility_light *sum = &v->lights[l];
     for (int budget = f->light_points > 0 ? f->light_points : samples; budget > 0 && sum->points < sum->samples;
          budget--) {
         int k = centre ? TECHNIQUE_LIGHT_CENTRE : area_light_progressive_index(sum->points, samples);
@@ -237,7 +237,8 @@ bool technique_sample_area_light(const technique_frame *f, int l, int samples, s
         count(f, l, k, point);
         glEnable(GL_STENCIL_TEST);
         glStencilFunc(lit->lit, lit->ref, lit->mask);
-        soft_visibility_add(v, l);
+        soft_visibility_add(v, l, 1.0f);
+        sum->points++;
     }
     glDisable(GL_STENCIL_TEST);
     return true;

@@ -145,6 +145,13 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
             volume_mesh_emit(v, b, 1);
             continue;
         }
+        if (parts == VOLUME_MESH_SILHOUETTE_EDGES) {
+            if (multiplicity != 0) {
+                volume_mesh_emit(v, a, (float)multiplicity);
+                volume_mesh_emit(v, b, (float)multiplicity);
+            }
+            continue;
+        }
         for (int k = 0; k < abs(multiplicity); k++)
             volume_mesh_emit_side(v, a, b, light, trim, multiplicity);
     }

@@ -52,16 +52,20 @@
  * caps: every triangle of non-zero weight near (wound the other way round
  * for weight -1, so that its prism still faces out), and its image at
  * infinity, far (none for a directional light: a point). The silhouette
- * lines are the edges of non-zero multiplicity, each once, for overlays.
+ * lines are the edges of non-zero multiplicity, each once, for overlays;
+ * the silhouette edges the same pairs of ends, each edge's as its table
+ * has them (a -> b, as its uses' directions count), with its signed
+ * multiplicity as both ends' w, for penumbra wedges (volume_wedges.h).
  *
  * What volume_mesh_build emits: the sides (triangles; all z-pass needs),
  * the caps (triangles; z-fail draws them after the sides), or the
- * silhouette edges (lines). Sides and caps apart, so that a volume kept
+ * silhouette edges (lines, or pairs with their multiplicity). Sides and caps apart, so that a volume kept
  * for a light serves either mode, which the camera picks each frame. */
 typedef enum volume_mesh_parts {
     VOLUME_MESH_SIDES,
     VOLUME_MESH_CAPS,
     VOLUME_MESH_SILHOUETTE_LINES,
+    VOLUME_MESH_SILHOUETTE_EDGES,
 } volume_mesh_parts;
 
 /* One caster's volume, rebuilt per light and kept for its storage: zero
