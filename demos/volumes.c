@@ -13,8 +13,10 @@
  * ones lie at infinity (w = 0), kept from the far plane by depth clamp.
  * The volumes are built by demos/lib/volume_mesh.h, whose comments are
  * their manual (every triangle its own occluder, Aldridge & Woods 2004).
- * Counts wrap at 256: wrong only behind an exact multiple of 256 triangles
- * (closed meshes: casters).
+ * Counts wrap at 256: wrong behind a non-zero multiple of 256 volumes, so
+ * where a light's volumes could stack that deep over a pixel (the bound
+ * of demos/lib/volume_count_bound.h) they count in a float target instead
+ * (demos/lib/volume_wide.h); --no-wide-count shows the wrap.
  *
  * After a depth pre-pass, per light (up to 8): plan which casters count
  * where (volumes_plan_light); clear the stencil in the plan's rectangle;
@@ -55,6 +57,7 @@
 #include "volume_plan.h"
 #include "volume_receivers.h"
 #include "volume_wedges.h"
+#include "volume_wide.h"
 
 typedef struct volumes_settings {
     int mode;             /* choice */
@@ -65,6 +68,7 @@ typedef struct volumes_settings {
     bool no_exact_depth;  /* toggle */
     int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
     int soft;             /* choice: volumes_softs */
+    bool no_wide_count;   /* toggle */
 } volumes_settings;
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL}; /* volume_plan_mode's order */
@@ -94,6 +98,10 @@ static struct {
     int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
     soft_visibility soft;  /* an area light's visibility, sampled or from wedges */
     volume_wedges wedges;
+    volume_wide wide;
+    bool counting_wide;            /* the count at hand is volume_wide's */
+    int count_bound;               /* light 0's bound, last frame (volume_wide_bound) */
+    bool count_bound_wide;         /* and whether it counted wide */
     unsigned soft_warned;          /* bit l: light l's area said drawn hard */
     int samples[SCENE_MAX_LIGHTS]; /* this frame's points of light l: 1 drawn hard */
     bool point_reported;           /* the HUD's counts are of this frame's first point */
@@ -123,6 +131,10 @@ static const flags_param volumes_params[] = {
      "area lights: sampled at --light-samples points; or wedges, the centre's hard shadow softened by penumbra "
      "wedges round its silhouette (Assarsson & Akenine-Moller 2003)",
      GLFW_KEY_W, FLAGS_CHOICE, .index = &volumes.settings.soft, .choices = volumes_softs},
+    {"wide-count",
+     "where volumes could stack 256 deep over a pixel, counted in a float target (off: the 8-bit stencil wraps, "
+     "and a pixel behind 256 volumes reads lit)",
+     GLFW_KEY_C, FLAGS_TOGGLE, .disabled = &volumes.settings.no_wide_count},
 };
 
 /* ---- set-up ---- */
@@ -140,12 +152,14 @@ static bool volumes_init(const render_scene *gpu) {
     volumes.has_depth_bounds = GLAD_GL_EXT_depth_bounds_test;
     volumes.soft_warned = 0;
     memset(volumes.samples, 0, sizeof volumes.samples);
-    return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges);
+    return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges) &&
+           volume_wide_init(&volumes.wide, gpu->scene->object_count);
 }
 
 static void volumes_destroy(void) {
     soft_visibility_destroy(&volumes.soft);
     volume_wedges_destroy(&volumes.wedges);
+    volume_wide_destroy(&volumes.wide);
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
     free(volumes.casters);
@@ -190,6 +204,14 @@ static void volumes_stencil_ops(bool zfail) {
     }
 }
 
+/* The stencil ops, or the wide count's depth test and sign, of a caster
+ * counted z-fail or z-pass. */
+static void volumes_caster_ops(const technique_frame *f, bool zfail) {
+    volumes_stencil_ops(zfail);
+    if (volumes.counting_wide)
+        volume_wide_caster(&volumes.wide, &volumes.draw, f->view, zfail);
+}
+
 /* Stencil 0 in the plan's rectangle, stencil test on. */
 static void volumes_clear_stencil(const volume_plan *plan) {
     const int *rect = plan->bounds.rect;
@@ -210,7 +232,7 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
     }
     glEnable(GL_DEPTH_CLAMP); /* far caps at infinity stay in */
     glDisable(GL_CULL_FACE);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glColorMask(volumes.counting_wide, GL_FALSE, GL_FALSE, GL_FALSE); /* the wide count's red */
     glDepthMask(GL_FALSE);
     glDepthFunc(depth_func(f->view, GL_LESS)); /* a surface's own cap, at its depth, counts as behind it */
     glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
@@ -221,7 +243,7 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
             continue;
         zfail += c->zfail;
         zpass += !c->zfail;
-        volumes_stencil_ops(c->zfail);
+        volumes_caster_ops(f, c->zfail);
         if (c->narrowed)
             volume_bounds_use(&c->bounds);
         if (!c->narrowed || (c->bounds.rect[2] > 0 && c->bounds.rect[3] > 0))
@@ -238,6 +260,29 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
         volumes.zpass_count = zpass;
         volumes.zfail_count = zfail;
     }
+}
+
+/* ---- the counter: 8 bits where they hold every count ---- */
+
+/* Whether the plan's volumes count wide (volume_wide.h): their bound
+ * passes what the stencil holds, and --wide-count is on. From here the
+ * count is the wide one's, until volumes_counter_end. */
+static void volumes_counter_begin(const technique_frame *f, const volume_plan *plan) {
+    int bound =
+        volume_wide_bound(&volumes.wide, f, plan, volumes.draw.edges, volumes.settings.mode == VOLUME_PLAN_ZPASS);
+    volumes.counting_wide = bound > VOLUME_COUNT_BOUND_STENCIL_MAX && !volumes.settings.no_wide_count &&
+                            volume_wide_begin(&volumes.wide, &volumes.draw);
+    if (plan->reported) {
+        volumes.count_bound = bound;
+        volumes.count_bound_wide = volumes.counting_wide;
+    }
+}
+
+/* The wide count written back into the stencil (0, 1, 2 or more). */
+static void volumes_counter_end(const technique_frame *f) {
+    if (volumes.counting_wide)
+        volume_wide_end(&volumes.wide, &volumes.draw, f->view);
+    volumes.counting_wide = false;
 }
 
 /* The HUD's figures of the volumes light 0 drew, from the light's first
@@ -288,7 +333,9 @@ static bool volumes_by_wedges(const scene_light *light) {
 static void volumes_count_plan(const technique_frame *f, const volume_plan *plan) {
     volumes_exact_depth(f);
     volumes_clear_stencil(plan);
+    volumes_counter_begin(f, plan);
     volumes_count(f, plan);
+    volumes_counter_end(f);
     volumes_prepass_depth(f);
 }
 
@@ -349,8 +396,16 @@ static void volumes_draw_overlay(const technique_frame *f) {
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
         glEnable(GL_STENCIL_TEST);
         glClear(GL_STENCIL_BUFFER_BIT);
+        plan.reported = false;
+        volumes_counter_begin(f, &plan);
+        bool wide = volumes.counting_wide;
         volumes_count(f, &plan);
-        volume_overlay_counts(&volumes.draw, VOLUMES_STENCIL_MASK);
+        if (wide) {
+            volumes_counter_end(f);
+            volume_overlay_wide_counts(&volumes.wide);
+        } else {
+            volume_overlay_counts(&volumes.draw, VOLUMES_STENCIL_MASK);
+        }
     } else {
         volume_overlay_shapes(&volumes.draw, f, plan.position, volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES);
     }
@@ -410,8 +465,12 @@ static void volumes_render(const technique_frame *f) {
         volumes_clear_stencil(&plan);
         /* 4. Count the volumes into the stencil, per caster the faces in
          *    front of the surface (z-pass) or behind it (z-fail), +1 or -1
-         *    by their facing. */
+         *    by their facing; where they could stack 256 deep (the
+         *    bound), into a float target, written back into the stencil
+         *    after. */
+        volumes_counter_begin(f, &plan);
         volumes_count(f, &plan);
+        volumes_counter_end(f);
         volumes_count_end(l);
         volumes_prepass_depth(f); /* back to the depth the shading is equal to */
         /* 5. Shade the light where the count is 0, in its own scissor
@@ -425,6 +484,17 @@ static void volumes_render(const technique_frame *f) {
         technique_shade_ambient(f);
     /* 7. For lectures, the overlays. */
     volumes_draw_overlay(f);
+}
+
+/* Which counter counted light 0, and its bound. */
+static int volumes_describe_counter(char *out, size_t size) {
+    if (volumes.count_bound_wide)
+        return snprintf(out, size, "; count: wide, float (bound %d > %d)", volumes.count_bound,
+                        VOLUME_COUNT_BOUND_STENCIL_MAX);
+    if (volumes.count_bound <= VOLUME_COUNT_BOUND_STENCIL_MAX)
+        return snprintf(out, size, "; stencil: 8-bit exact (bound %d)", volumes.count_bound);
+    return snprintf(out, size, "; stencil: 8-bit, may WRAP (bound %d > %d%s)", volumes.count_bound,
+                    VOLUME_COUNT_BOUND_STENCIL_MAX, volumes.settings.no_wide_count ? ", wide count OFF" : "");
 }
 
 static void volumes_describe(char *out, size_t size) {
@@ -443,6 +513,8 @@ static void volumes_describe(char *out, size_t size) {
         else
             n += snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
     }
+    if (n > 0 && (size_t)n < size)
+        n += volumes_describe_counter(out + n, size - (size_t)n);
     if (n > 0 && (size_t)n < size && volumes.settings.soft == VOLUMES_SOFT_WEDGES)
         snprintf(out + n, size - (size_t)n, "; wedges %d, %d edges left out", volumes.wedges.wedge_count,
                  volumes.wedges.skipped_count);
@@ -463,6 +535,7 @@ static const char *const volumes_bench_configs[] = {
     "--light-samples 64",
     "--light-samples 256",
     "--soft wedges",
+    "--no-wide-count",
 };
 
 static const char *volumes_area_light(const scene_light *light, int l) {

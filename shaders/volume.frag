@@ -1,10 +1,17 @@
 #version 330 core
 // Volumes only count in the stencil (colour writes off); the lecture
-// overlays draw them in u_color.
+// overlays draw them in u_color. With VOLUME_WIDE_COUNT they count in a
+// float target instead (demos/lib/volume_wide.h), added by blending: a
+// front face adds u_color, a back face takes it away (u_color.r: 1 for
+// z-pass, -1 for z-fail, whose faces count behind the surface).
 uniform vec4 u_color;
 
 out vec4 out_color;
 
 void main() {
+#ifdef VOLUME_WIDE_COUNT
+    out_color = gl_FrontFacing ? u_color : -u_color;
+#else
     out_color = u_color;
+#endif
 }

@@ -16,10 +16,14 @@ static bool volume_draw_init_caster(volume_draw *d, const render_scene *gpu, int
 
 bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
     static const char *const cpu_files[] = {"volume.vert", "volume.frag"};
-    if (!render_program_load(&d->cpu, cpu_files, (int)(sizeof cpu_files / sizeof *cpu_files), NULL) ||
-        !volume_silhouette_load(&d->gpu))
+    static const shader_define wide[] = {{VOLUME_SILHOUETTE_WIDE_DEFINE, 1}, {NULL, 0}};
+    int cpu_file_count = (int)(sizeof cpu_files / sizeof *cpu_files);
+    if (!render_program_load(&d->cpu, cpu_files, cpu_file_count, NULL) || !volume_silhouette_load(&d->gpu, false) ||
+        !render_program_load(&d->cpu_wide, cpu_files, cpu_file_count, wide) ||
+        !volume_silhouette_load(&d->gpu_wide, true))
         return false;
     d->cpu_color = shader_uniform(d->cpu.id, "u_color");
+    d->cpu_wide_color = shader_uniform(d->cpu_wide.id, "u_color");
     const scene *s = gpu->scene;
     size_t objects = (size_t)s->object_count;
     d->edges = calloc(objects, sizeof *d->edges);
@@ -55,6 +59,8 @@ bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
 void volume_draw_destroy(volume_draw *d) {
     render_program_destroy(&d->cpu);
     volume_silhouette_destroy(&d->gpu);
+    render_program_destroy(&d->cpu_wide);
+    volume_silhouette_destroy(&d->gpu_wide);
     for (int i = 0; i < d->object_count; i++) {
         mesh_edges_free(&d->edges[i]);
         volume_silhouette_mesh_free(&d->adjacency[i]);
@@ -94,6 +100,19 @@ void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim) {
 
 /* ---- drawing ---- */
 
+/* The program the CPU volumes count with. */
+static const render_program *volume_draw_cpu(const volume_draw *d) { return d->wide ? &d->cpu_wide : &d->cpu; }
+
+void volume_draw_wide_sign(volume_draw *d, float sign) {
+    if (sign == d->wide_sign)
+        return;
+    d->wide_sign = sign;
+    glUseProgram(d->cpu_wide.id);
+    glUniform4f(d->cpu_wide_color, sign, 0, 0, 0);
+    glUseProgram(d->gpu_wide.program.id);
+    glUniform4f(d->gpu_wide.color, sign, 0, 0, 0);
+}
+
 void volume_draw_stream(volume_draw *d, const float (*vertices)[4], size_t count, unsigned primitive) {
     glBindVertexArray(d->stream_vao);
     glBindBuffer(GL_ARRAY_BUFFER, d->stream_buffer);
@@ -114,8 +133,9 @@ bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const fl
     volume_mesh_trim trim = {0};
     if (d->reach_on)
         volume_mesh_trim_for(o->model, object_light, &o->mesh, d->reach_lo, d->reach_hi, &trim);
-    render_program_use(&d->cpu, f->view);
-    glUniformMatrix4fv(d->cpu.model, 1, GL_FALSE, (const float *)o->model);
+    const render_program *p = volume_draw_cpu(d);
+    render_program_use(p, f->view);
+    glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
     if (volume_mesh_build(&d->geometry, &o->mesh, &d->edges[i], object_light, &trim, part))
         return true;
     fprintf(stderr, "volumes: %s: out of memory building its volume\n", o->name);
@@ -135,8 +155,9 @@ static void volume_draw_kept(volume_draw *d, const technique_frame *f, int cache
     }
     if (volume_cache_has(c, i, part)) {
         d->reused++;
-        render_program_use(&d->cpu, f->view);
-        glUniformMatrix4fv(d->cpu.model, 1, GL_FALSE, (const float *)f->gpu->scene->objects[i].model);
+        const render_program *p = volume_draw_cpu(d);
+        render_program_use(p, f->view);
+        glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)f->gpu->scene->objects[i].model);
     } else {
         d->built++;
         if (!volume_draw_build(d, f, i, light, part))
@@ -156,8 +177,8 @@ void volume_draw_caster(volume_draw *d, const technique_frame *f, int cache, int
         const scene_object *o = &f->gpu->scene->objects[i];
         float object_light[4];
         volume_mesh_object_light(o->model, light, object_light);
-        volume_silhouette_draw(&d->gpu, &d->adjacency[i], f->view, (const float *)o->model, object_light,
-                               volume_mesh_closed_rule(&o->mesh, &d->edges[i], object_light));
+        volume_silhouette_draw(d->wide ? &d->gpu_wide : &d->gpu, &d->adjacency[i], f->view, (const float *)o->model,
+                               object_light, volume_mesh_closed_rule(&o->mesh, &d->edges[i], object_light));
     } else {
         volume_draw_kept(d, f, cache, i, light, VOLUME_MESH_SIDES);
     }

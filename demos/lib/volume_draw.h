@@ -20,7 +20,10 @@
  *
  * Every CPU volume is drawn by one program (volume.vert, volume.frag: the
  * depth pre-pass's vertex path; colour u_color for the overlays), whose
- * vertices are homogeneous, in the object's space.
+ * vertices are homogeneous, in the object's space. While `wide` is set
+ * (volume_wide.h) the count draws with the CPU and GPU programs' wide
+ * twins instead, which add a face's sign (volume_draw_wide_sign) to a
+ * float target.
  */
 #ifndef VOLUME_DRAW_H
 #define VOLUME_DRAW_H
@@ -45,6 +48,11 @@ typedef struct volume_draw {
     render_program cpu; /* the CPU volumes, and the overlays */
     int cpu_color;      /* its u_color */
     volume_silhouette gpu;
+    render_program cpu_wide; /* the twins that count into a float target */
+    int cpu_wide_color;
+    volume_silhouette gpu_wide;
+    bool wide;                         /* the count draws with the twins */
+    float wide_sign;                   /* the twins' u_color.r as last set */
     mesh_edges *edges;                 /* per object; casters only */
     volume_silhouette_mesh *adjacency; /* per object; casters only */
     int object_count;
@@ -80,6 +88,10 @@ void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim);
 /* The cache that keeps light l's volumes from its centre
  * (TECHNIQUE_LIGHT_CENTRE) or from point k of its area. */
 int volume_draw_cache(int l, int k);
+
+/* The sign a front face adds while `wide` (1: z-pass; -1: z-fail, whose
+ * faces count behind the surface), a back face the opposite. */
+void volume_draw_wide_sign(volume_draw *d, float sign);
 
 /* Caster i's volume for a light at `light` (homogeneous, world): its
  * sides, from the geometry shader when `gpu`, and for z-fail its caps

@@ -16,6 +16,14 @@ static const float volume_overlay_silhouette[4] = {1.0f, 0.3f, 0.2f, 1.0f};
 /* The counts' legend: a title line, then a line per step. */
 static const char *const volume_overlay_count_names[VOLUME_OVERLAY_COUNT_STEPS] = {"1", "2", "3", "4+"};
 #define VOLUME_OVERLAY_LEGEND_LINES (1 + VOLUME_OVERLAY_COUNT_STEPS)
+/* The wide count's class past the stencil's reach, and the legend's
+ * names of the two classes that differ from the stencil's. */
+static const float volume_overlay_count_beyond[3] = {0.9f, 0.2f, 0.9f};
+static const char *const volume_overlay_wide_many = "4 to 255";
+#define VOLUME_OVERLAY_WIDE_BEYOND_TEXT "%d and more"
+#define VOLUME_OVERLAY_WIDE_TITLE "count, largest %d"
+#define VOLUME_OVERLAY_WIDE_LEGEND_LINES (1 + VOLUME_WIDE_OVERLAY_STEPS)
+_Static_assert(VOLUME_WIDE_OVERLAY_STEPS == VOLUME_OVERLAY_COUNT_STEPS + 1, "the wide ramp adds one class");
 /* The whole screen in clip space (two triangles), for the counts. */
 static const float volume_overlay_screen[6][4] = {{-1, -1, 0, 1}, {1, -1, 0, 1}, {1, 1, 0, 1},
                                                   {-1, -1, 0, 1}, {1, 1, 0, 1},  {-1, 1, 0, 1}};
@@ -48,6 +56,29 @@ void volume_overlay_counts(volume_draw *d, unsigned stencil_mask) {
     }
     legend_draw_corner(legend, VOLUME_OVERLAY_LEGEND_LINES);
     glEnable(GL_DEPTH_TEST);
+}
+
+void volume_overlay_wide_counts(volume_wide *w) {
+    float ramp[VOLUME_WIDE_OVERLAY_STEPS][3];
+    memcpy(ramp, volume_overlay_count_ramp, sizeof volume_overlay_count_ramp);
+    memcpy(ramp[VOLUME_OVERLAY_COUNT_STEPS], volume_overlay_count_beyond, sizeof ramp[0]);
+    int largest = 0;
+    volume_wide_overlay(w, (const float(*)[3])ramp, VOLUME_OVERLAY_COUNT_ALPHA, &largest);
+    legend_line legend[VOLUME_OVERLAY_WIDE_LEGEND_LINES] = {{.swatches = 0}};
+    snprintf(legend[0].text, sizeof legend[0].text, VOLUME_OVERLAY_WIDE_TITLE, largest);
+    for (int k = 0; k < VOLUME_WIDE_OVERLAY_STEPS; k++) {
+        legend_line *line = &legend[1 + k];
+        if (k < VOLUME_OVERLAY_COUNT_STEPS - 1)
+            snprintf(line->text, sizeof line->text, "%s", volume_overlay_count_names[k]);
+        else if (k == VOLUME_OVERLAY_COUNT_STEPS - 1)
+            snprintf(line->text, sizeof line->text, "%s", volume_overlay_wide_many);
+        else
+            snprintf(line->text, sizeof line->text, VOLUME_OVERLAY_WIDE_BEYOND_TEXT,
+                     VOLUME_COUNT_BOUND_STENCIL_MAX + 1);
+        line->swatches = 1;
+        memcpy(line->rgb[0], ramp[k], sizeof line->rgb[0]);
+    }
+    legend_draw_corner(legend, VOLUME_OVERLAY_WIDE_LEGEND_LINES);
 }
 
 void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float light[4], bool faces) {

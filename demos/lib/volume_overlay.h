@@ -7,7 +7,9 @@
  * - counts: the stencil count at each pixel as colour, 1, 2, 3 and "this
  *   many or more" by a ramp from blue to red, translucent so the picture
  *   shows through, with a legend of the ramp; the caller counts the
- *   light into the stencil first.
+ *   light into the stencil first; or, where the stencil could wrap
+ *   (volume_wide.h), from the wide count, with a class for 256 and more
+ *   and the largest count in the legend.
  * All with volume_draw's CPU program and stream, at the volumes' reach
  * (volume_draw_reach).
  */
@@ -17,6 +19,7 @@
 #include <stdbool.h>
 
 #include "volume_draw.h"
+#include "volume_wide.h"
 
 /* The counts' ramp: counts 1 .. VOLUME_OVERLAY_COUNT_STEPS - 1 each their
  * colour, the last step for that many and more; the overlay draws it
@@ -30,5 +33,9 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
 /* The stencil's counts as colour over the whole screen, stencil test on;
  * leaves it off. */
 void volume_overlay_counts(volume_draw *d, unsigned stencil_mask);
+/* The wide count's classes as colour over the whole screen (the caller
+ * counted the light wide), with their legend; leaves the stencil test
+ * off. */
+void volume_overlay_wide_counts(volume_wide *w);
 
 #endif

@@ -26,14 +26,17 @@ void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *o
     }
 }
 
-bool volume_silhouette_load(volume_silhouette *s) {
+bool volume_silhouette_load(volume_silhouette *s, bool wide) {
     static const char *const files[] = {"volume_adjacency.vert", "volume_silhouette.geom", "volume.frag"};
-    static const shader_define defines[] = {SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED),
-                                            SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN),
-                                            SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL),
-                                            {NULL, 0}};
+    /* The wide count's define last, where it ends the list when not wide. */
+    const shader_define defines[] = {SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED),
+                                     SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN),
+                                     SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL),
+                                     {wide ? VOLUME_SILHOUETTE_WIDE_DEFINE : NULL, 1},
+                                     {NULL, 0}};
     if (!render_program_load(&s->program, files, (int)(sizeof files / sizeof *files), defines))
         return false;
+    s->color = shader_uniform(s->program.id, "u_color");
     s->light = shader_uniform(s->program.id, "u_light");
     s->topology = shader_uniform(s->program.id, "u_topology");
     return true;

@@ -77,11 +77,15 @@ typedef struct volume_silhouette_mesh {
 /* The program, for every caster. Zero is unloaded. */
 typedef struct volume_silhouette {
     render_program program;
-    int light, topology; /* uniform locations */
+    int light, topology, color; /* uniform locations */
 } volume_silhouette;
 
-/* False after printing why. */
-bool volume_silhouette_load(volume_silhouette *s);
+/* The define that makes volume.frag count into a float target
+ * (demos/lib/volume_wide.h). */
+#define VOLUME_SILHOUETTE_WIDE_DEFINE "VOLUME_WIDE_COUNT"
+/* False after printing why; `wide`: the program that counts into a
+ * float target (volume.frag's VOLUME_WIDE_COUNT), else into the stencil. */
+bool volume_silhouette_load(volume_silhouette *s, bool wide);
 void volume_silhouette_destroy(volume_silhouette *s);
 /* Mesh m (edge table e) over its vertex buffer `vertex_buffer` (of
  * mesh_vertex, as render_scene uploads it); false after printing why. */
