@@ -91,7 +91,7 @@ help:
 	@echo "make ruler          out/ruler/: the reference's own noise under area lights"
 	@echo "make report         make bench, make stress, make ruler, then make readme-report (QUICK=1: short runs)"
 	@echo "make readme-report  out/report/ and README.md's current figures from the runs already in out/"
-	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json)"
+	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json, stacked_*)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
 	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"

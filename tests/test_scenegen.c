@@ -29,8 +29,8 @@
 #define MIN_LIMITED_LIGHTS 3
 #define MIN_DENSE_TRIANGLES 100000
 
-static const char *const files[] = {"city_100.json", "city_300.json", "city_1000.json", "city_3000.json",
-                                    "dense.json"};
+static const char *const files[] = {"city_100.json", "city_300.json",    "city_1000.json",     "city_3000.json",
+                                    "dense.json",    "stacked_300.json", "stacked_10000.json", "stacked_10000.obj"};
 static const int city_counts[] = {100, 300, 1000, 3000};
 
 static char err[16384];

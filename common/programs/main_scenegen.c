@@ -10,7 +10,16 @@
  *                without a range, so that nothing is culled for being out
  *                of view or out of reach and only what is hidden can be;
  *   dense.json   a field of high-segment spheres and tori on a ground slab,
- *                every mesh closed, over 100k triangles, one light.
+ *                every mesh closed, over 100k triangles, one light;
+ *   stacked_300.json  300 thin slabs stacked under a sun, 256 wide ones
+ *                and 44 half as wide above: the ground beside the narrow
+ *                ones' shadow lies in exactly 256 shadow volumes, which
+ *                the 8-bit stencil counts as 0 (demos/lib/volume_wide.h);
+ *   stacked_10000.json  one open mesh (stacked_10000.obj) of 10,000
+ *                stacked triangles, 256 of each size, smaller up the
+ *                stack: every triangle its own occluder, so the ground
+ *                lies in up to 10,000 volumes, in bands of multiples of
+ *                256.
  *
  * Deterministic: one seeded PRNG (splitmix64), no clock, numbers rounded
  * to a few decimals, so the files are byte for byte the same on every run
@@ -101,6 +110,21 @@
 #define DENSE_HEIGHT 1.8      /* shapes' centres above the ground */
 #define DENSE_SLAB 40.0       /* the ground is a closed box, not a plane */
 #define DENSE_SLAB_THICKNESS 1.0
+
+/* ---- the stacked scenes ---- */
+#define STACKED_SLABS 300
+#define STACKED_SLABS_WIDE 256 /* the lower ones; the rest half as wide */
+#define STACKED_SLAB 3.0
+#define STACKED_SLAB_THICKNESS 0.002
+#define STACKED_PITCH 0.004 /* from a slab to the next */
+#define STACKED_BASE 3.0    /* the lowest slab's height: the eye sees under it */
+#define STACKED_LAYERS 10000
+#define STACKED_GROUP 256 /* layers of one size */
+#define STACKED_LAYER_PITCH 0.0001
+#define STACKED_RADIUS 3.0 /* the lowest group's triangles' corners from the axis */
+#define STACKED_SHRINK 0.8 /* of the radius, lost up to the last group */
+#define STACKED_OBJ_DECIMALS 5
+#define STACKED_GROUND 20.0 /* the ground plane's side */
 
 /* Out of memory anywhere while building a tree sets this: one check at
  * the end instead of one per cJSON call. */
@@ -422,6 +446,86 @@ static cJSON *scenegen_dense(void) {
     return root;
 }
 
+/* ---- the stacked scenes ---- */
+
+/* Their ground, sun and camera (low, looking under the stack). */
+static cJSON *scenegen_stacked_setting(cJSON **objects) {
+    cJSON *root = cJSON_CreateObject();
+    const double eye[3] = {5.5, 3.2, 6.5}, target[3] = {0.6, 1.2, 0.4};
+    scenegen_camera(root, eye, target, 45, 0.1, 100);
+    scenegen_vec3(root, "ambient", 0.15, 0.15, 0.17, SCENEGEN_DECIMALS);
+    cJSON *lights = cJSON_CreateArray();
+    scenegen_put(root, "lights", lights);
+    cJSON *sun = scenegen_light(lights, "directional", 0.9);
+    scenegen_unit(sun, "direction", 0.4, -1.0, 0.25);
+    *objects = cJSON_CreateArray();
+    scenegen_put(root, "objects", *objects);
+    cJSON *mesh, *ground = scenegen_object(*objects, "ground", "plane", &mesh);
+    cJSON *size = cJSON_CreateArray();
+    scenegen_append(size, cJSON_CreateNumber(STACKED_GROUND));
+    scenegen_append(size, cJSON_CreateNumber(STACKED_GROUND));
+    scenegen_put(mesh, "size", size);
+    scenegen_vec3(ground, "color", 0.8, 0.8, 0.78, SCENEGEN_DECIMALS);
+    scenegen_put(ground, "casts", cJSON_CreateFalse());
+    return root;
+}
+
+static cJSON *scenegen_stacked_slabs(void) {
+    cJSON *objects, *mesh, *root = scenegen_stacked_setting(&objects);
+    for (int i = 0; i < STACKED_SLABS; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "slab_%03d", i);
+        cJSON *o = scenegen_object(objects, name, "box", &mesh);
+        double side = i < STACKED_SLABS_WIDE ? STACKED_SLAB : STACKED_SLAB / 2;
+        scenegen_vec3(mesh, "size", side, STACKED_SLAB_THICKNESS, side, SCENEGEN_DIRECTION_DECIMALS);
+        scenegen_vec3(o, "translate", 0, STACKED_BASE + i * STACKED_PITCH, 0, SCENEGEN_DIRECTION_DECIMALS);
+        scenegen_vec3(o, "color", 0.3 + 0.4 * i / STACKED_SLABS, 0.45, 0.7 - 0.4 * i / STACKED_SLABS,
+                      SCENEGEN_DECIMALS);
+        scenegen_put(o, "receives", cJSON_CreateFalse());
+    }
+    return root;
+}
+
+/* The 10,000 triangles as an OBJ beside the scene: layer i a triangle
+ * round the axis at its height, its group's radius. */
+static bool scenegen_stacked_obj(const char *dir, const char *name) {
+    char path[SCENEGEN_PATH_MAX];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        perror(path);
+        return false;
+    }
+    bool ok =
+        fprintf(f, "# %d stacked triangles, %d of each size (build/scenegen)\n", STACKED_LAYERS, STACKED_GROUP) >= 0;
+    int groups = (STACKED_LAYERS + STACKED_GROUP - 1) / STACKED_GROUP;
+    for (int i = 0; ok && i < STACKED_LAYERS; i++) {
+        double radius = STACKED_RADIUS * (1 - STACKED_SHRINK * (i / STACKED_GROUP) / (groups - 1));
+        double y = STACKED_BASE + i * STACKED_LAYER_PITCH;
+        for (int k = 0; ok && k < 3; k++) {
+            double angle = (90.0 + 120.0 * k) * M_PI / 180.0;
+            ok = fprintf(f, "v %.*f %.*f %.*f\n", STACKED_OBJ_DECIMALS, radius * cos(angle), STACKED_OBJ_DECIMALS, y,
+                         STACKED_OBJ_DECIMALS, -radius * sin(angle)) >= 0;
+        }
+    }
+    for (int i = 0; ok && i < STACKED_LAYERS; i++)
+        ok = fprintf(f, "f %d %d %d\n", 3 * i + 1, 3 * i + 2, 3 * i + 3) >= 0;
+    if (fclose(f) != 0 || !ok) {
+        fprintf(stderr, "%s: cannot write\n", path);
+        return false;
+    }
+    return true;
+}
+
+static cJSON *scenegen_stacked_mesh(const char *obj) {
+    cJSON *objects, *mesh, *root = scenegen_stacked_setting(&objects);
+    cJSON *o = scenegen_object(objects, "stack", "model", &mesh);
+    scenegen_put(mesh, "path", cJSON_CreateString(obj));
+    scenegen_vec3(o, "color", 0.35, 0.5, 0.75, SCENEGEN_DECIMALS);
+    scenegen_put(o, "receives", cJSON_CreateFalse());
+    return root;
+}
+
 /* ---- main ---- */
 
 static const int scenegen_city_counts[] = {100, 300, 1000, 3000};
@@ -443,7 +547,10 @@ static bool scenegen_run(const char *dir) {
         ok = scenegen_emit(scenegen_city(scenegen_city_counts[i], scenegen_city_setting), dir, name);
     }
     return ok && scenegen_emit(scenegen_city(STREET_COUNT, scenegen_street_setting), dir, "street.json") &&
-           scenegen_emit(scenegen_dense(), dir, "dense.json");
+           scenegen_emit(scenegen_dense(), dir, "dense.json") &&
+           scenegen_emit(scenegen_stacked_slabs(), dir, "stacked_300.json") &&
+           scenegen_stacked_obj(dir, "stacked_10000.obj") &&
+           scenegen_emit(scenegen_stacked_mesh("stacked_10000.obj"), dir, "stacked_10000.json");
 }
 
 int main(int argc, char **argv) {
@@ -459,7 +566,8 @@ int main(int argc, char **argv) {
         printf("usage: %s [flags]\n"
                "Writes the generated scenes, the same bytes on every run: city_100, city_300,\n"
                "city_1000 and city_3000.json (that many objects plus the ground), street.json\n"
-               "(city_1000 seen to the far side, unranged lamps) and dense.json.\n",
+               "(city_1000 seen to the far side, unranged lamps), dense.json, and stacked_300.json\n"
+               "and stacked_10000.json (with its .obj), deeper than the 8-bit stencil counts.\n",
                program);
         flags_print_help(stdout, params, count, 2, 0);
         return 0;
