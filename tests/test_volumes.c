@@ -17,6 +17,10 @@
 #define CAMERA_IN_SHADOW "tests/data/volumes_camera_in_shadow.json"
 #define HUGE_GROUND "tests/data/vol_huge_ground.json"
 #define LIGHT_ABOVE_GROUND "tests/data/vol_light_above_ground.json"
+#define STACKED_SLABS "assets/scenes/stacked_300.json"
+#define STACKED_MESH "assets/scenes/stacked_10000.json"
+/* Of the compared pixels, what the wrapped count reads lit at least. */
+#define WRAPPED_MIN_FALSE_LIT_PERCENT 1.0
 
 static shadowdiff_result measure(const char *scene, const char *flags, const char *name) {
     return support_measure("volumes", scene, "", flags, name);
@@ -188,6 +192,26 @@ static void test_300_overlapping_casters(void **state) {
     assert_within_bound("tests/data/volumes_300_casters.json", "--mode zfail", "casters_300_zfail");
 }
 
+/* Volumes deeper than the 8-bit stencil (demos/lib/volume_wide.h): 256
+ * wide slabs under 44 narrow ones (the ground round the narrow ones'
+ * shadow in exactly 256 volumes), and one open mesh of 10,000 stacked
+ * triangles (bands of multiples of 256, up to 10,000 deep), counted wide
+ * within the bound in every mode; with --no-wide-count the wrapped
+ * stencil reads those bands lit, far past the bound, which shows the test
+ * can fail. */
+static void test_deeper_than_stencil(void **state) {
+    (void)state;
+    assert_within_bound(STACKED_SLABS, "", "stacked_300_auto");
+    assert_within_bound(STACKED_SLABS, "--mode zfail", "stacked_300_zfail");
+    assert_within_bound(STACKED_SLABS, "--silhouette gpu", "stacked_300_gpu");
+    assert_within_bound(STACKED_MESH, "", "stacked_10000_auto");
+    assert_within_bound(STACKED_MESH, "--mode zfail --silhouette gpu", "stacked_10000_zfail_gpu");
+    shadowdiff_result slabs = measure(STACKED_SLABS, "--no-wide-count", "stacked_300_wrapped");
+    shadowdiff_result layers = measure(STACKED_MESH, "--no-wide-count", "stacked_10000_wrapped");
+    assert_true(slabs.false_lit_percent > WRAPPED_MIN_FALSE_LIT_PERCENT);
+    assert_true(layers.false_lit_percent > WRAPPED_MIN_FALSE_LIT_PERCENT);
+}
+
 /* A ground 1e5 across, two triangles, seen from 10 units away (the stress
  * case huge_ground_1e5_spot): against the depth the rasterizer
  * interpolates from corners 5e4 away, the shadow edges on it moved by a
@@ -239,6 +263,7 @@ int main(void) {
         cmocka_unit_test(test_welded_sliver),
         cmocka_unit_test(test_city_within_bound),
         cmocka_unit_test(test_300_overlapping_casters),
+        cmocka_unit_test(test_deeper_than_stencil),
         cmocka_unit_test(test_huge_ground),
         cmocka_unit_test(test_light_above_ground),
         cmocka_unit_test(test_bad_triangles_skipped),

@@ -93,6 +93,42 @@ static void test_area_light_points(void **state) {
                                  "--no-skip", "soft_sun_zfail");
 }
 
+/* The wide count (demos/lib/volume_wide.h) decides as the 8-bit stencil
+ * wherever that cannot wrap: on the standard scenes the bound keeps the
+ * stencil (the HUD: "stencil: 8-bit exact"); where a bound passes 255 but
+ * no pixel's count reaches 256 (the engine's many parts under z-pass and
+ * z-fail, 300 staggered casters) the dumps are the same with and without
+ * it. On stacked_300, whose ground lies in exactly 256 volumes, they
+ * differ: the comparison can fail. */
+static void test_wide_count_decides_the_same(void **state) {
+    (void)state;
+    static const char *const standard[] = {"simple", "bunny", "teapot", "long_view"};
+    for (size_t s = 0; s < sizeof standard / sizeof *standard; s++) {
+        char path[256];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", standard[s]);
+        const char *line = support_verbose_line("volumes", path, "", "volumes: light 0: ");
+        assert_non_null(line);
+        const char *counter = strstr(line, "; stencil: 8-bit exact (bound ");
+        if (!counter || counter > line + strcspn(line, "\n"))
+            fail_msg("%s: the count left the 8-bit stencil: %.*s", standard[s], (int)strcspn(line, "\n"), line);
+        printf("    %-9s: %.*s\n", standard[s], (int)strcspn(counter + 2, ";\n"), counter + 2);
+    }
+    const char *line = support_verbose_line("volumes", "assets/scenes/engine.json", "", "volumes: light 0: ");
+    assert_non_null(line);
+    assert_non_null(strstr(line, "; count: wide"));
+    assert_same_with_and_without("assets/scenes/engine.json", "static", "", "--no-wide-count", "engine_wide");
+    assert_same_with_and_without("assets/scenes/engine.json", "static", "--mode zfail", "--no-wide-count",
+                                 "engine_wide_zfail");
+    assert_same_with_and_without("tests/data/volumes_300_casters.json", "light", "", "--no-wide-count",
+                                 "casters_300_wide");
+    char on[256], off[256];
+    snprintf(on, sizeof on, OUT "/stacked_wide");
+    snprintf(off, sizeof off, OUT "/stacked_wrapped");
+    assert_int_equal(support_dump("volumes", "assets/scenes/stacked_300.json", "", on), 0);
+    assert_int_equal(support_dump("volumes", "assets/scenes/stacked_300.json", "--no-wide-count", off), 0);
+    assert_non_null(support_first_difference(on, off, dump_files, 1));
+}
+
 static void test_city_casters_culled(void **state) {
     (void)state;
     const char *line = support_verbose_line("volumes", CITY, "", "[X] caster culling: ");
@@ -120,7 +156,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_city_casters_culled), cmocka_unit_test(test_depth_bounds),
         cmocka_unit_test(test_city_every_mode),     cmocka_unit_test(test_bunny_and_teapot),
-        cmocka_unit_test(test_area_light_points),
+        cmocka_unit_test(test_area_light_points),   cmocka_unit_test(test_wide_count_decides_the_same),
     };
     return cmocka_run_group_tests_name("shadow volumes' skips", tests, NULL, NULL);
 }
