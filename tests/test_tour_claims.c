@@ -171,6 +171,7 @@ static const claim claims[] = {
     {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_LIGHTER, 200, "a map's texels show along the edge: in"},
     {"volumes", 2, STEP, UNSHADOWED, CLAIM_DARKER, 1000, "the fix: volumes counted in the stencil"},
     {"volumes", 6, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "against the truth: exact"},
+    {"volumes", 7, STEP, {"volumes", ""}, CLAIM_LIGHTER_ON_SHADOW, 3000, "8 bits wrap: under 256 slabs, lit"},
 };
 enum { CLAIM_COUNT = sizeof claims / sizeof *claims };
 
