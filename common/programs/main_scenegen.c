@@ -406,17 +406,24 @@ static cJSON *scenegen_city(int count, void (*setting)(cJSON *root)) {
 
 /* ---- the dense scene ---- */
 
-static cJSON *scenegen_dense(void) {
+/* A scene under one sun (travelling along `sun`): its camera, a grey
+ * ambient, the sun, and its empty list of objects in *objects. */
+static cJSON *scenegen_sun_scene(const double eye[3], const double target[3], double near, const double sun[3],
+                                 cJSON **objects) {
     cJSON *root = cJSON_CreateObject();
-    const double eye[3] = {0, 17, 25}, target[3] = {0, 0, 1};
-    scenegen_camera(root, eye, target, 45, 0.5, 100);
+    scenegen_camera(root, eye, target, 45, near, 100);
     scenegen_vec3(root, "ambient", 0.15, 0.15, 0.17, SCENEGEN_DECIMALS);
     cJSON *lights = cJSON_CreateArray();
     scenegen_put(root, "lights", lights);
-    cJSON *sun = scenegen_light(lights, "directional", 0.9);
-    scenegen_unit(sun, "direction", -0.6, -0.7, -0.4);
-    cJSON *objects = cJSON_CreateArray();
-    scenegen_put(root, "objects", objects);
+    scenegen_unit(scenegen_light(lights, "directional", 0.9), "direction", sun[0], sun[1], sun[2]);
+    *objects = cJSON_CreateArray();
+    scenegen_put(root, "objects", *objects);
+    return root;
+}
+
+static cJSON *scenegen_dense(void) {
+    const double eye[3] = {0, 17, 25}, target[3] = {0, 0, 1}, sun[3] = {-0.6, -0.7, -0.4};
+    cJSON *objects, *root = scenegen_sun_scene(eye, target, 0.5, sun, &objects);
     cJSON *mesh, *slab = scenegen_object(objects, "ground", "box", &mesh);
     scenegen_vec3(mesh, "size", DENSE_SLAB, DENSE_SLAB_THICKNESS, DENSE_SLAB, SCENEGEN_DECIMALS);
     scenegen_vec3(slab, "translate", 0, -DENSE_SLAB_THICKNESS / 2, 0, SCENEGEN_DECIMALS);
@@ -450,21 +457,11 @@ static cJSON *scenegen_dense(void) {
 
 /* Their ground, sun and camera (low, looking under the stack). */
 static cJSON *scenegen_stacked_setting(cJSON **objects) {
-    cJSON *root = cJSON_CreateObject();
-    const double eye[3] = {5.5, 3.2, 6.5}, target[3] = {0.6, 1.2, 0.4};
-    scenegen_camera(root, eye, target, 45, 0.1, 100);
-    scenegen_vec3(root, "ambient", 0.15, 0.15, 0.17, SCENEGEN_DECIMALS);
-    cJSON *lights = cJSON_CreateArray();
-    scenegen_put(root, "lights", lights);
-    cJSON *sun = scenegen_light(lights, "directional", 0.9);
-    scenegen_unit(sun, "direction", 0.4, -1.0, 0.25);
-    *objects = cJSON_CreateArray();
-    scenegen_put(root, "objects", *objects);
+    const double eye[3] = {5.5, 3.2, 6.5}, target[3] = {0.6, 1.2, 0.4}, sun[3] = {0.4, -1.0, 0.25};
+    const double size[2] = {STACKED_GROUND, STACKED_GROUND};
+    cJSON *root = scenegen_sun_scene(eye, target, 0.1, sun, objects);
     cJSON *mesh, *ground = scenegen_object(*objects, "ground", "plane", &mesh);
-    cJSON *size = cJSON_CreateArray();
-    scenegen_append(size, cJSON_CreateNumber(STACKED_GROUND));
-    scenegen_append(size, cJSON_CreateNumber(STACKED_GROUND));
-    scenegen_put(mesh, "size", size);
+    scenegen_put(mesh, "size", cJSON_CreateDoubleArray(size, 2));
     scenegen_vec3(ground, "color", 0.8, 0.8, 0.78, SCENEGEN_DECIMALS);
     scenegen_put(ground, "casts", cJSON_CreateFalse());
     return root;
