@@ -396,7 +396,6 @@ static void volumes_draw_overlay(const technique_frame *f) {
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
         glEnable(GL_STENCIL_TEST);
         glClear(GL_STENCIL_BUFFER_BIT);
-        plan.reported = false;
         volumes_counter_begin(f, &plan);
         bool wide = volumes.counting_wide;
         volumes_count(f, &plan);
