@@ -62,50 +62,19 @@ static const projective_case projective_cases[] = {
 };
 enum { PROJECTIVE_CASE_COUNT = sizeof projective_cases / sizeof *projective_cases };
 
-static int projective_object_index(const dump_frame *d, const char *name) {
-    for (int i = 0; i < d->object_count; i++)
-        if (strcmp(d->object_names[i], name) == 0)
-            return i;
-    return -1;
-}
-
 static void test_projective_case(void **state) {
     const projective_case *c = *state;
-    char reference_dir[256], test_dir[256], heatmap_path[300];
-    snprintf(reference_dir, sizeof reference_dir, "out/test/projective/%s_reference", c->name);
-    snprintf(test_dir, sizeof test_dir, "out/test/projective/%s", c->name);
-    assert_int_equal(support_dump("raytrace", c->scene, "", reference_dir), 0);
-    assert_int_equal(support_dump("projective", c->scene, c->flags, test_dir), 0);
-    dump_frame reference, test;
-    assert_true(dump_read(&reference, reference_dir));
-    assert_true(dump_read(&test, test_dir));
-    unsigned char *heatmap = malloc((size_t)reference.width * reference.height * 4);
-    assert_non_null(heatmap);
-    const shadowdiff_settings settings = {.receiver = c->receiver};
-    shadowdiff_result r;
-    assert_true(shadowdiff_compare(&reference, &test, &settings, &r, heatmap));
-    snprintf(heatmap_path, sizeof heatmap_path, "%s_heatmap.png", test_dir);
-    assert_true(image_write_png(heatmap_path, reference.width, reference.height, heatmap));
+    long receiver_pixels;
+    shadowdiff_result r = support_measure_receiver("projective", "projective", c->name, c->scene, "", c->flags,
+                                                   c->receiver, &receiver_pixels);
     /* Most of the receiver is compared, so that a picture that lost it
      * cannot pass. */
-    long receiver_pixels = 0;
-    int receiver = c->receiver ? projective_object_index(&reference, c->receiver) : -1;
-    for (long i = 0; i < (long)reference.width * reference.height; i++)
-        receiver_pixels += c->receiver ? reference.ids[i] == receiver : reference.ids[i] >= 0;
-    fprintf(stderr,
-            "    %-20s %-38s on %s: %ld compared of %ld; false-shadow %.4f %%, false-lit %.4f %%, "
-            "misclassified %.4f %%\n",
-            c->name, c->flags, c->receiver ? c->receiver : "every object", r.compared, receiver_pixels,
-            r.false_shadow_percent, r.false_lit_percent, r.misclassified_percent);
     assert_true(receiver_pixels > 0);
     assert_true(r.compared * 2 > receiver_pixels);
     if (c->exceeds)
         assert_true(r.misclassified_percent > PROJECTIVE_MAX_MISCLASSIFIED_PERCENT);
     else
         assert_true(r.misclassified_percent <= PROJECTIVE_MAX_MISCLASSIFIED_PERCENT);
-    free(heatmap);
-    dump_frame_free(&reference);
-    dump_frame_free(&test);
 }
 
 /* Receivers out of the image: simple's objects all receive, so nothing
