@@ -94,6 +94,7 @@ static struct {
     unsigned framebuffer;
     projective_light lights[SCENE_MAX_LIGHTS];
     bool *wanted;            /* per object: a caster the lookups may read, this light, this frame */
+    float (*corners)[3];     /* the casters' box corners, 8 per object, for the fit */
     float (*boxes)[2][3];    /* the visible receivers' boxes, for caster culling */
     unsigned clamped_warned; /* bit l: light l's clamped frustum said */
 } projective;
@@ -229,11 +230,11 @@ static void projective_plan_casters(const technique_frame *f, int l, const proje
     }
 }
 
-/* Light l's texture of t->size, white beyond its border; false after a
- * line on stderr. */
-static bool projective_prepare_texture(projective_light *t, int size) {
+/* Light l's texture of `size` texels on a side, white beyond its
+ * border; made again (and its casters with it) when the size changes. */
+static void projective_prepare_texture(projective_light *t, int size) {
     if (t->texture && t->size == size)
-        return true;
+        return;
     if (!t->texture)
         glGenTextures(1, &t->texture);
     glBindTexture(GL_TEXTURE_2D, t->texture);
@@ -247,7 +248,6 @@ static bool projective_prepare_texture(projective_light *t, int size) {
     glBindTexture(GL_TEXTURE_2D, 0);
     t->size = size;
     t->drawn_valid = false;
-    return true;
 }
 
 /* The casters of projective.wanted black on white into light l's
@@ -346,7 +346,8 @@ static bool projective_init(const render_scene *gpu) {
     int n = gpu->scene->object_count;
     projective.wanted = calloc((size_t)n + 1, sizeof *projective.wanted);
     projective.boxes = calloc((size_t)n + 1, sizeof *projective.boxes);
-    bool ok = projective.wanted && projective.boxes;
+    projective.corners = calloc((size_t)n * 8 + 1, sizeof *projective.corners);
+    bool ok = projective.wanted && projective.boxes && projective.corners;
     for (int l = 0; l < SCENE_MAX_LIGHTS && ok; l++) {
         projective.lights[l] = (projective_light){0};
         projective.lights[l].drawn = calloc((size_t)n + 1, sizeof *projective.lights[l].drawn);
@@ -370,8 +371,10 @@ static void projective_destroy(void) {
     }
     free(projective.wanted);
     free(projective.boxes);
+    free(projective.corners);
     projective.wanted = NULL;
     projective.boxes = NULL;
+    projective.corners = NULL;
 }
 
 /* The frame: the casters' image from each light, projected onto the
@@ -379,11 +382,6 @@ static void projective_destroy(void) {
 static void projective_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     int size = atoi(projective_sizes[projective.settings.texture_size]);
-    float(*corners)[3] = malloc((size_t)s->object_count * 8 * sizeof *corners + 1);
-    if (!corners) {
-        fprintf(stderr, "projective: out of memory\n");
-        return;
-    }
     /* 1. The camera's depth pre-pass: what is seen. */
     render_depth_prepass(f->gpu, f->view, f->in_view);
     technique_see(f);
@@ -393,7 +391,7 @@ static void projective_render(const technique_frame *f) {
         projective_light *t = &projective.lights[l];
         /* 2. A frustum from the light fitted to its casters: a cone round
          * their bounding sphere, or a box along a directional light. */
-        projective_fit(s, l, t, corners);
+        projective_fit(s, l, t, projective.corners);
         if (t->clamped && !(projective.clamped_warned >> l & 1u))
             fprintf(stderr,
                     "projective: light %d lies among its casters: a %g-degree frustum, casters beyond it cast "
@@ -404,7 +402,8 @@ static void projective_render(const technique_frame *f) {
          * the visible receivers' lookups may read; kept while nothing
          * moves). */
         bool drawn = false;
-        if (t->fitted && projective_prepare_texture(t, size)) {
+        if (t->fitted) {
+            projective_prepare_texture(t, size);
             projective_plan_casters(f, l, t);
             drawn = projective_draw_texture(f, l, t);
         }
@@ -423,7 +422,6 @@ static void projective_render(const technique_frame *f) {
     }
     if (technique_ambient_light(f) < 0)
         technique_shade_ambient(f);
-    free(corners);
 }
 
 static void projective_describe(char *out, size_t size) {
