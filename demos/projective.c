@@ -103,8 +103,8 @@ static const flags_param projective_params[] = {
     {"near-cut", "back-projection: receivers nearer the light than every caster, or behind it, take the shadow too",
      GLFW_KEY_N, FLAGS_TOGGLE, .disabled = &projective.settings.no_near_cut},
     {"self-shadow",
-     "objects that cast and receive: off, they take no texture and show no shadow at all; on, they take it and "
-     "their own silhouette darkens their lit side",
+     "objects that cast and receive (while receivers cast): off, they take no texture and show no shadow at all; "
+     "on, they take it and their own silhouette darkens their lit side",
      GLFW_KEY_C, FLAGS_CHOICE, .index = &projective.settings.self_shadow, .choices = projective_self_shadows},
     {"receivers-cast",
      "receivers leave the texture (only what casts alone is an obstacle): a receiver behind another takes the "
@@ -426,7 +426,8 @@ static void projective_render(const technique_frame *f) {
 
 static void projective_describe(char *out, size_t size) {
     const projective_light *t = &projective.lights[0];
-    const char *self = projective.settings.self_shadow == PROJECTIVE_SELF_SHADOW_ON
+    const char *self = projective.settings.no_receivers_cast ? "receivers cast nothing"
+                       : projective.settings.self_shadow == PROJECTIVE_SELF_SHADOW_ON
                            ? "casters darken their own lit side"
                            : "casters show no shadow";
     if (!t->fitted)

@@ -53,8 +53,8 @@ static const projective_case projective_cases[] = {
      * table's. */
     {"limits_table", LIMITS, "", "table", true},
     {"limits_table_self", LIMITS, "--self-shadow on", "table", true},
-    {"limits_table_split", LIMITS, "--self-shadow on --no-receivers-cast", "table", false},
-    {"limits_floor_split", LIMITS, "--self-shadow on --no-receivers-cast", "floor", true},
+    {"limits_table_split", LIMITS, "--no-receivers-cast", "table", false},
+    {"limits_floor_split", LIMITS, "--no-receivers-cast", "floor", true},
     /* The stage lies between the sun and its base, a caster: the base's
      * image lands on it. */
     {"stage_floor", "assets/scenes/planar_stage.json", "", "floor", false},
@@ -96,7 +96,8 @@ static void test_casters_counted(void **state) {
     }
 }
 
-/* The HUD's state line says what self-shadowing does as set. */
+/* The HUD's state line says what becomes of casters that receive, as
+ * set. */
 static void test_self_shadow_said(void **state) {
     (void)state;
     static const struct {
@@ -104,6 +105,7 @@ static void test_self_shadow_said(void **state) {
     } cases[] = {
         {"", "casters show no shadow"},
         {"--self-shadow on", "casters darken their own lit side"},
+        {"--no-receivers-cast", "receivers cast nothing"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         const char *line = support_verbose_line("projective", LIMITS, cases[i].flags, "light 0: ");
