@@ -54,11 +54,11 @@
 /* The near plane at least this fraction of the far one (a caster touching
  * the light would put it at 0). */
 #define PROJECTIVE_NEAR_RATIO 1e-3f
-/* A pixel is shadowed where the bilinear lookup reads below this percent
- * of white: half-way across a silhouette edge. */
+/* A pixel is shadowed where its texel is below this percent of white
+ * (the casters' black, 0). */
 #define PROJECTIVE_LIT_PERCENT 50
 /* How far from its point a lookup reads, in texels, for caster culling:
- * the bilinear footprint and a texel of safety. */
+ * the nearest texel's half and more than a texel of safety. */
 #define PROJECTIVE_READ_REACH_TEXELS 2.0f
 
 typedef enum projective_self_shadow { PROJECTIVE_SELF_SHADOW_OFF, PROJECTIVE_SELF_SHADOW_ON } projective_self_shadow;
@@ -90,7 +90,7 @@ static const char *const projective_self_shadows[] = {"off", "on", NULL};
 static struct {
     projective_settings settings;
     render_program caster, receiver;
-    int light_view_projection, projected, depth_plane, nearest, cut;
+    int light_texture, projected, depth_plane, nearest, cut;
     unsigned framebuffer;
     projective_light lights[SCENE_MAX_LIGHTS];
     bool *wanted;            /* per object: a caster the lookups may read, this light, this frame */
@@ -230,8 +230,10 @@ static void projective_plan_casters(const technique_frame *f, int l, const proje
     }
 }
 
-/* Light l's texture of `size` texels on a side, white beyond its
- * border; made again (and its casters with it) when the size changes. */
+/* Light l's texture of `size` texels on a side, read a texel at a time
+ * (texelFetch: the nearest, the cheapest lookup on a CPU rasterizer),
+ * white beyond its border (the receiver shader's test); made again (and
+ * its casters with it) when the size changes. */
 static void projective_prepare_texture(projective_light *t, int size) {
     if (t->texture && t->size == size)
         return;
@@ -239,12 +241,8 @@ static void projective_prepare_texture(projective_light *t, int size) {
         glGenTextures(1, &t->texture);
     glBindTexture(GL_TEXTURE_2D, t->texture);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, size, size, 0, GL_RED, GL_UNSIGNED_BYTE, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    static const float white[4] = {1, 1, 1, 1};
-    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, white);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glBindTexture(GL_TEXTURE_2D, 0);
     t->size = size;
     t->drawn_valid = false;
@@ -299,6 +297,11 @@ static bool projective_draw_texture(const technique_frame *f, int l, projective_
     return complete;
 }
 
+/* The light's clip space's x and y, -1 to 1, to the texture's 0 to 1,
+ * before the division by w (column-major): the texture matrix of
+ * eye-linear texture coordinates. */
+static const mat4 projective_clip_to_texture = {{0.5f, 0, 0, 0}, {0, 0.5f, 0, 0}, {0, 0, 1, 0}, {0.5f, 0.5f, 0, 1}};
+
 /* Stencil 1 on the textured receivers' visible pixels (depth equal to the
  * pre-pass's) where the projected image is black: `objects` are those
  * light l reaches. */
@@ -312,7 +315,9 @@ static void projective_mark(const technique_frame *f, const projective_light *t,
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
     render_program_use(&projective.receiver, f->view);
-    glUniformMatrix4fv(projective.light_view_projection, 1, GL_FALSE, (const float *)t->view_projection);
+    mat4 texture;
+    glm_mat4_mul((vec4 *)projective_clip_to_texture, (vec4 *)t->view_projection, texture);
+    glUniformMatrix4fv(projective.light_texture, 1, GL_FALSE, (const float *)texture);
     glUniform4fv(projective.depth_plane, 1, t->depth_plane);
     glUniform1f(projective.nearest, t->nearest);
     glUniform1i(projective.cut, !projective.settings.no_near_cut);
@@ -333,12 +338,12 @@ static const technique_stencil_lit projective_lit = {
 static bool projective_init(const render_scene *gpu) {
     static const char *const caster_files[] = {"shadow_depth.vert", "projective_caster.frag"};
     static const char *const receiver_files[] = {"lit.vert", "projective_receiver.frag"};
-    static const shader_define defines[] = {SHADER_DEFINE(PROJECTIVE_LIT_PERCENT), {NULL, 0}};
+    static const shader_define defines[] = {{"LIT_PROJECTED", 1}, SHADER_DEFINE(PROJECTIVE_LIT_PERCENT), {NULL, 0}};
     if (!render_program_load(&projective.caster, caster_files, 2, NULL) ||
         !render_program_load(&projective.receiver, receiver_files, 2, defines))
         return false;
     unsigned id = projective.receiver.id;
-    projective.light_view_projection = shader_uniform(id, "u_light_view_projection");
+    projective.light_texture = shader_uniform(id, "u_light_texture");
     projective.projected = shader_uniform(id, "u_projected");
     projective.depth_plane = shader_uniform(id, "u_depth_plane");
     projective.nearest = shader_uniform(id, "u_nearest");
