@@ -10,9 +10,9 @@
  * its bounding sphere, eye-linear texture coordinates on a separate
  * receiver subgraph). It is a shadow map without depth: the texture says
  * that a caster lies on the ray, never where, so
- *   - no self-shadowing: an object that casts and receives (self-shadow,
- *     off by default) darkens its own lit side with its own silhouette;
- *     off, it takes no texture and shows no shadow at all;
+ *   - no self-shadowing: an object that casts and receives, textured
+ *     (--self-shadow on), darkens its own lit side with its own
+ *     silhouette; by default it takes no texture and shows no shadow;
  *   - back-projection: a receiver nearer the light than the obstacle (or
  *     behind the light) takes its shadow cast backward. The fix (near
  *     cut, on by default) shadows only points beyond the casters' nearest
@@ -35,7 +35,6 @@
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
