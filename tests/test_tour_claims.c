@@ -105,9 +105,10 @@ static const claim claims[] = {
     /* overview */
     {"overview", 1, STEP, PLANAR, CLAIM_LIGHTER, 3000, "without shadows: planar's shadows missing"},
     {"overview", 2, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "planar shadows on the ground"},
-    {"overview", 3, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "shadow maps' shadows"},
-    {"overview", 4, {NULL, "--warp uniform"}, STEP, CLAIM_DARKER_ON_LIT, 300, "psm sharp, where uniform smears"},
-    {"overview", 5, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "shadow volumes' shadows"},
+    {"overview", 3, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "projective shadows on the ground"},
+    {"overview", 4, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "shadow maps' shadows"},
+    {"overview", 5, {NULL, "--warp uniform"}, STEP, CLAIM_DARKER_ON_LIT, 300, "psm sharp, where uniform smears"},
+    {"overview", 6, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "shadow volumes' shadows"},
     /* planar */
     {"planar", 1, STEP, PLANAR, CLAIM_LIGHTER, 3000, "without shadows: planar's shadows missing"},
     {"planar", 2, STEP, UNSHADOWED, CLAIM_DARKER, 1000, "each caster flattened onto the ground, dark"},
@@ -115,6 +116,16 @@ static const claim claims[] = {
     {"planar", 4, STEP, {NULL, ""}, CLAIM_DARKER_ON_LIT, 500, "stencil off: shadows spill off the stage"},
     {"planar", 5, STEP, {NULL, ""}, CLAIM_LIGHTER, 500, "offset off: casters z-fight with the ground"},
     {"planar", 6, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "against the truth: exact to a few pixels"},
+    /* projective */
+    {"projective", 1, STEP, UNSHADOWED, CLAIM_DARKER, 1000, "the casters' image projected onto the ground"},
+    {"projective", 2, STEP, {"shadowmap", NULL}, CLAIM_LIGHTER_ON_SHADOW, 1000, "the table shows no shadow"},
+    {"projective", 3, STEP, {NULL, ""}, CLAIM_DARKER_ON_LIT, 2000, "self-shadowing: the table's lit top blackened"},
+    {"projective", 4, STEP, {NULL, ""}, CLAIM_DARKER, 800, "receivers out: the ball's shadow on the table"},
+    {"projective", 4, STEP, {NULL, ""}, CLAIM_LIGHTER_ON_SHADOW, 2000, "receivers out: the table casts none"},
+    {"projective", 5, STEP, {NULL, ""}, CLAIM_DARKER_ON_LIT, 200, "near cut off: the shelf shadowed backward"},
+    {"projective", 6, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "against the truth: exact to a few pixels"},
+    {"projective", 7, STEP, {"projective", NULL}, CLAIM_DARKER, 1000, "a shadow map: the table's shadow of the ball"},
+    {"projective", 7, STEP, {"projective", "--no-near-cut"}, CLAIM_LIGHTER, 400, "a shadow map: the shelf lit"},
     /* shadowmap */
     {"shadowmap", 1, STEP, {"shadowmap", NULL}, CLAIM_LIGHTER, 3000, "the problem: no shadows"},
     {"shadowmap", 1, PLANAR, {"shadowmap", NULL}, CLAIM_LIGHTER, 500, "a curved receiver no plane flattens onto"},
