@@ -28,7 +28,12 @@
  * --mode auto (default) takes z-pass, without caps, where
  * volume_mesh_zpass_safe says the volume cannot reach the near-plane
  * rectangle, z-fail with caps elsewhere; --mode zpass with the camera
- * inside a shadow visibly fails (shadows inverted).
+ * inside a shadow visibly fails (shadows inverted); --mode eye-count
+ * starts z-pass from the number of volumes that hold the eye, counted on
+ * the CPU (volume_mesh_count_at): exact while depth clamp counts the
+ * faces before the near plane at its depth, wrong without it
+ * (--no-depth-clamp) where the near plane cuts a volume the eye is
+ * outside of.
  *
  * The options, each a flag and a key, are volumes_params. How each
  * caster's volume is drawn, kept or streamed, is demos/lib/volume_draw.h's;
@@ -66,12 +71,13 @@ typedef struct volumes_settings {
     int extrude;          /* choice */
     bool no_depth_bounds; /* toggle */
     bool no_exact_depth;  /* toggle */
+    bool no_depth_clamp;  /* toggle */
     int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
     int soft;             /* choice: volumes_softs */
     bool no_wide_count;   /* toggle */
 } volumes_settings;
 
-static const char *const volumes_modes[] = {"auto", "zpass", "zfail", NULL}; /* volume_plan_mode's order */
+static const char *const volumes_modes[] = {"auto", "zpass", "zfail", "eye-count", NULL}; /* volume_plan_mode's */
 static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
@@ -94,12 +100,14 @@ static struct {
     bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
     int zpass_count, zfail_count, built_count, reused_count;
+    int eye_count;         /* --mode eye-count: the volumes that hold the eye */
     int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
     int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
     soft_visibility soft;  /* an area light's visibility, sampled or from wedges */
     volume_wedges wedges;
     volume_wide wide;
     bool counting_wide;            /* the count at hand is volume_wide's */
+    int start_count;               /* the count at hand's start (volumes_clear_stencil) */
     int count_bound;               /* light 0's bound, last frame (volume_wide_bound) */
     bool count_bound_wide;         /* and whether it counted wide */
     unsigned soft_warned;          /* bit l: light l's area said drawn hard */
@@ -108,8 +116,10 @@ static struct {
 } volumes;
 
 static const flags_param volumes_params[] = {
-    {"mode", "z-pass (no caps) where safe, else z-fail (caps); or force one", GLFW_KEY_Z, FLAGS_CHOICE,
-     .index = &volumes.settings.mode, .choices = volumes_modes},
+    {"mode",
+     "z-pass (no caps) where safe, else z-fail (caps); or force one; or z-pass from the count of the volumes that "
+     "hold the eye, found on the CPU",
+     GLFW_KEY_Z, FLAGS_CHOICE, .index = &volumes.settings.mode, .choices = volumes_modes},
     {"silhouette", "where silhouettes are found: the CPU edge table or a geometry shader", GLFW_KEY_G, FLAGS_CHOICE,
      .index = &volumes.settings.silhouette, .choices = volumes_silhouettes},
     {"overlay", "for lectures: the volumes, the silhouette edges, or the stencil count as colour", GLFW_KEY_V,
@@ -124,6 +134,10 @@ static const flags_param volumes_params[] = {
      "volumes counted against the exact depth of receivers huge seen from the eye (else their "
      "shadow edges move)",
      GLFW_KEY_E, FLAGS_TOGGLE, .disabled = &volumes.settings.no_exact_depth},
+    {"depth-clamp",
+     "volumes clamped to the depth range while they count; off: clipped by the near and far planes, as without "
+     "depth clamp (the near plane cuts volumes before the eye, z-fail's caps at infinity are lost)",
+     GLFW_KEY_C, FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_clamp},
     {"light-samples",
      "points of each area light, each a hard shadow, averaged (Brotman & Badler 1984); 1: hard, from its centre",
      GLFW_KEY_L, FLAGS_CHOICE, .index = &volumes.settings.light_samples, .choices = soft_visibility_sample_counts},
@@ -134,7 +148,7 @@ static const flags_param volumes_params[] = {
     {"wide-count",
      "where volumes could stack 256 deep over a pixel, counted in a float target (off: the 8-bit stencil wraps, "
      "and a pixel behind 256 volumes reads lit)",
-     GLFW_KEY_C, FLAGS_TOGGLE, .disabled = &volumes.settings.no_wide_count},
+     GLFW_KEY_N, FLAGS_TOGGLE, .disabled = &volumes.settings.no_wide_count},
 };
 
 /* ---- set-up ---- */
@@ -178,7 +192,8 @@ static void volumes_destroy(void) {
  * Not for forced z-pass, whose count from an eye inside a volume (wrong,
  * for lectures) a trim could change. */
 static bool volumes_trim(void) {
-    return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH && volumes.settings.mode != VOLUME_PLAN_ZPASS;
+    return volumes.settings.extrude == VOLUMES_EXTRUDE_REACH &&
+           !volume_plan_forced_zpass((volume_plan_mode)volumes.settings.mode);
 }
 
 /* Light l's plan (volume_plan.h), for its centre (point NULL), or for
@@ -213,11 +228,20 @@ static void volumes_caster_ops(const technique_frame *f, bool zfail) {
 }
 
 /* Stencil 0 in the plan's rectangle, stencil test on. */
-static void volumes_clear_stencil(const volume_plan *plan) {
+/* The stencil in the plan's rectangle set to the count z-pass starts
+ * from (0; --mode eye-count: the eye's), stencil test on. */
+static void volumes_clear_stencil(const technique_frame *f, const volume_plan *plan) {
     const int *rect = plan->bounds.rect;
     glEnable(GL_SCISSOR_TEST);
     glScissor(rect[0], rect[1], rect[2], rect[3]);
+    int eye_count =
+        volumes.settings.mode == VOLUME_PLAN_EYE_COUNT ? volume_plan_eye_count(f, plan, volumes.draw.edges) : 0;
+    if (plan->reported)
+        volumes.eye_count = eye_count;
+    volumes.start_count = eye_count;
+    glClearStencil(eye_count & VOLUMES_STENCIL_MASK);
     glClear(GL_STENCIL_BUFFER_BIT);
+    glClearStencil(0);
     glEnable(GL_STENCIL_TEST);
 }
 
@@ -230,7 +254,10 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
         glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
         glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
     }
-    glEnable(GL_DEPTH_CLAMP); /* far caps at infinity stay in */
+    /* Far caps at infinity stay in, and faces before the near plane
+     * count (at its depth); off, the planes clip them (--no-depth-clamp). */
+    if (!volumes.settings.no_depth_clamp)
+        glEnable(GL_DEPTH_CLAMP);
     glDisable(GL_CULL_FACE);
     glColorMask(volumes.counting_wide, GL_FALSE, GL_FALSE, GL_FALSE); /* the wide count's red */
     glDepthMask(GL_FALSE);
@@ -268,10 +295,10 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
  * passes what the stencil holds, and --wide-count is on. From here the
  * count is the wide one's, until volumes_counter_end. */
 static void volumes_counter_begin(const technique_frame *f, const volume_plan *plan) {
-    int bound =
-        volume_wide_bound(&volumes.wide, f, plan, volumes.draw.edges, volumes.settings.mode == VOLUME_PLAN_ZPASS);
+    int bound = volume_wide_bound(&volumes.wide, f, plan, volumes.draw.edges,
+                                  volume_plan_forced_zpass((volume_plan_mode)volumes.settings.mode));
     volumes.counting_wide = bound > VOLUME_COUNT_BOUND_STENCIL_MAX && !volumes.settings.no_wide_count &&
-                            volume_wide_begin(&volumes.wide, &volumes.draw);
+                            volume_wide_begin(&volumes.wide, &volumes.draw, volumes.start_count);
     if (plan->reported) {
         volumes.count_bound = bound;
         volumes.count_bound_wide = volumes.counting_wide;
@@ -332,7 +359,7 @@ static bool volumes_by_wedges(const scene_light *light) {
 /* Steps 3 and 4 for a plan, against the exact depth where it counts. */
 static void volumes_count_plan(const technique_frame *f, const volume_plan *plan) {
     volumes_exact_depth(f);
-    volumes_clear_stencil(plan);
+    volumes_clear_stencil(f, plan);
     volumes_counter_begin(f, plan);
     volumes_count(f, plan);
     volumes_counter_end(f);
@@ -394,8 +421,10 @@ static void volumes_draw_overlay(const technique_frame *f) {
     volume_plan_every_caster(f, 0, centre, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
     plan.cache = volume_draw_cache(0, TECHNIQUE_LIGHT_CENTRE);
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
-        glEnable(GL_STENCIL_TEST);
-        glClear(GL_STENCIL_BUFFER_BIT);
+        plan.bounds.rect[2] = f->width;
+        plan.bounds.rect[3] = f->height;
+        volumes_clear_stencil(f, &plan);
+        glDisable(GL_SCISSOR_TEST);
         volumes_counter_begin(f, &plan);
         bool wide = volumes.counting_wide;
         volumes_count(f, &plan);
@@ -460,8 +489,9 @@ static void volumes_render(const technique_frame *f) {
             continue;
         }
         volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
-        /* 3. Clear the stencil in the plan's rectangle. */
-        volumes_clear_stencil(&plan);
+        /* 3. Clear the stencil in the plan's rectangle (--mode eye-count:
+         *    to the number of volumes that hold the eye). */
+        volumes_clear_stencil(f, &plan);
         /* 4. Count the volumes into the stencil, per caster the faces in
          *    front of the surface (z-pass) or behind it (z-fail), +1 or -1
          *    by their facing; where they could stack 256 deep (the
@@ -498,6 +528,8 @@ static int volumes_describe_counter(char *out, size_t size) {
 
 static void volumes_describe(char *out, size_t size) {
     int n = snprintf(out, size, "light 0: %d casters z-pass, %d z-fail", volumes.zpass_count, volumes.zfail_count);
+    if (n > 0 && (size_t)n < size && volumes.settings.mode == VOLUME_PLAN_EYE_COUNT)
+        n += snprintf(out + n, size - (size_t)n, ", from the eye inside %d", volumes.eye_count);
     if (n > 0 && (size_t)n < size)
         n += snprintf(out + n, size - (size_t)n, "; volumes built %d, kept %d; all lights' kept %.1f MiB",
                       volumes.built_count, volumes.reused_count, (double)volumes.draw.cache_bytes / VOLUME_DRAW_MIB);

@@ -350,6 +350,42 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
     return r;
 }
 
+shadowdiff_result support_measure_receiver(const char *program, const char *group, const char *name,
+                                           const char *scene, const char *reference_flags, const char *flags,
+                                           const char *receiver, long *receiver_pixels) {
+    char reference_dir[256], test_dir[256], heatmap_path[300];
+    snprintf(reference_dir, sizeof reference_dir, "out/test/%s/%s_reference", group, name);
+    snprintf(test_dir, sizeof test_dir, "out/test/%s/%s", group, name);
+    assert_int_equal(support_dump("raytrace", scene, reference_flags, reference_dir), 0);
+    assert_int_equal(support_dump(program, scene, flags, test_dir), 0);
+    dump_frame reference, test;
+    assert_true(dump_read(&reference, reference_dir));
+    assert_true(dump_read(&test, test_dir));
+    unsigned char *heatmap = malloc((size_t)reference.width * reference.height * 4);
+    assert_non_null(heatmap);
+    const shadowdiff_settings settings = {.receiver = receiver};
+    shadowdiff_result r;
+    assert_true(shadowdiff_compare(&reference, &test, &settings, &r, heatmap));
+    snprintf(heatmap_path, sizeof heatmap_path, "%s_heatmap.png", test_dir);
+    assert_true(image_write_png(heatmap_path, reference.width, reference.height, heatmap));
+    int id = -1;
+    for (int i = 0; receiver && i < reference.object_count; i++)
+        if (strcmp(reference.object_names[i], receiver) == 0)
+            id = i;
+    *receiver_pixels = 0;
+    for (long i = 0; i < (long)reference.width * reference.height; i++)
+        *receiver_pixels += receiver ? reference.ids[i] == id : reference.ids[i] >= 0;
+    fprintf(stderr,
+            "    %-24s %-12s on %s: %ld compared of %ld; false-shadow %.4f %% (%ld), false-lit %.4f %% (%ld), "
+            "misclassified %.4f %%\n",
+            name, flags, receiver ? receiver : "every object", r.compared, *receiver_pixels, r.false_shadow_percent,
+            r.false_shadow, r.false_lit_percent, r.false_lit, r.misclassified_percent);
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    return r;
+}
+
 cJSON *support_read_json(const char *path) {
     char *text = path_read_text(path, SUPPORT_MAX_SCENE_BYTES, NULL);
     assert_non_null(text);

@@ -127,6 +127,16 @@ shadowdiff_result support_measure_dumps(const char *program, const char *scene, 
                                         unsigned char **heatmap);
 shadowdiff_result support_measure(const char *program, const char *scene, const char *size, const char *flags,
                                   const char *name);
+/* PROGRAM's dump of `scene` with `flags` against the reference's with
+ * `reference_flags`, at 640x360 (support_dump), in out/test/GROUP/NAME and
+ * out/test/GROUP/NAME_reference, compared with shadowdiff's rules on the
+ * object `receiver` (NULL: every object), the heat map written beside as
+ * NAME_heatmap.png; prints the figures and sets *receiver_pixels to the
+ * reference's pixels of the receiver (of any object, for NULL). Fails the
+ * running cmocka test when a program fails. */
+shadowdiff_result support_measure_receiver(const char *program, const char *group, const char *name,
+                                           const char *scene, const char *reference_flags, const char *flags,
+                                           const char *receiver, long *receiver_pixels);
 /* PROGRAM's defaults on each standard scene (a spot, a point and a
  * directional light) at 640x360: most receiver pixels compared
  * (SUPPORT_STANDARD_MIN_COMPARED of 230400), at most max_percent

@@ -85,6 +85,9 @@ static const golden_case golden_extra_cases[] = {
      * lecture's tint of each cascade with the layers' insets. */
     {"cascades", "long_view", "", "cascades_long_view", false, NULL},
     {"cascades", "long_view", "--overlay cascades", "cascades-lecture_long_view", true, NULL},
+    /* Projective textures' limits: a receiver between the light and the
+     * ball, a table that casts and receives over the floor. */
+    {"projective", "projective_limits", "", "projective_projective_limits", false, NULL},
 };
 
 /* Every tour in assets/tours/ is a golden per step, tour-NAME-K.png (K

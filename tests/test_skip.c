@@ -4,9 +4,9 @@
  * holds what would be made again. So with skips on and with --no-skip
  * every technique's dump (visibility, depth, object ids, the picture) is
  * the same byte for byte, on the standard scenes, long_view, the
- * 1000-object city, the dense scene, the street city and the engines,
- * static and over frames in which the light or the camera moves. And the
- * skips do skip: most of the city lies outside its street-level view and
+ * 1000-object city, the dense scene, the street city, the engines and
+ * projective textures' limits, static and over frames in which the light
+ * or the camera moves. And the skips do skip: most of the city lies outside its street-level view and
  * most of its lights out of reach of it; most of the street city's
  * casters and objects are hidden; nothing of simple is culled. Each switch turns its
  * skip off.
@@ -72,6 +72,12 @@ static const struct {
     {STREET, "--frames 3 --motion light"},
     {STREET, "--frames 3 --motion camera"},
     {ENGINE, "--frames 2 --motion light"},
+    /* A receiver between the light and a caster, one that casts and
+     * receives over another (projective textures' limits), the camera
+     * moving or the light: what culling leaves out of an image may not
+     * be read. */
+    {"projective_limits", "--frames 3 --motion camera"},
+    {"projective_limits", "--frames 3 --motion light"},
 };
 SUPPORT_SWEEPABLE(sizeof cases / sizeof *cases); /* test_dumps_identical_with_and_without_skips */
 /* What a dump holds that a technique or the capture decides. */
@@ -364,7 +370,7 @@ static void test_hidden_objects_left_out(void **state) {
  * the frame's rectangle with --no-hidden-cull. */
 static void test_lights_narrowed(void **state) {
     (void)state;
-    static const char *const techniques[] = {"planar", "shadowmap", "psm", "cascades", "volumes"};
+    static const char *const techniques[] = {"planar", "projective", "shadowmap", "psm", "cascades", "volumes"};
     for (size_t i = 0; i < sizeof techniques / sizeof *techniques; i++) {
         const char *line = verbose_line(techniques[i], STREET, "", "[X] caster culling: ");
         const char *narrowed = line ? strstr(line, "lights narrowed ") : NULL;

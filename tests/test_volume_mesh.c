@@ -378,6 +378,25 @@ static void test_zpass_safe_only_beyond_the_light(void **state) {
     assert_false(zpass_safe((const float[3]){0, 0, -5}, towards_camera));
 }
 
+/* The count a unit box's volume holds at a point: beyond it from a point
+ * light, one under the closed rule (its near face) and two under the
+ * open one (both faces' prisms); before it, none; to the side, none; and
+ * under a directional light along the ray towards it. */
+static void test_count_at_a_point(void **state) {
+    (void)state;
+    mesh box;
+    assert_true(mesh_make_box(&box, 1, 1, 1));
+    const float light[4] = {0, 10, 0, 1}, sun[4] = {0, 1, 0, 0};
+    const float below[3] = {0, -3, 0}, above[3] = {0, 3, 0}, aside[3] = {3, -3, 0};
+    assert_int_equal(volume_mesh_count_at(&box, true, light, below), 1);
+    assert_int_equal(volume_mesh_count_at(&box, false, light, below), 2);
+    assert_int_equal(volume_mesh_count_at(&box, true, light, above), 0);
+    assert_int_equal(volume_mesh_count_at(&box, true, light, aside), 0);
+    assert_int_equal(volume_mesh_count_at(&box, true, sun, below), 1);
+    assert_int_equal(volume_mesh_count_at(&box, false, sun, aside), 0);
+    mesh_free(&box);
+}
+
 static bool misses_view(const float centre[3], const float light[4]) {
     mat4 view_projection;
     camera(view_projection);
@@ -638,6 +657,7 @@ int main(void) {
         cmocka_unit_test(test_trim_off_near_the_light),
         cmocka_unit_test(test_near_rectangle_goes_round),
         cmocka_unit_test(test_zpass_safe_only_beyond_the_light),
+        cmocka_unit_test(test_count_at_a_point),
         cmocka_unit_test(test_misses_view_only_when_the_sweep_does),
         cmocka_unit_test(test_missed_volumes_have_no_point_in_view),
         cmocka_unit_test(test_receivers_ndc),

@@ -14,7 +14,8 @@
 #include "support.h"
 
 #define VOLUMES_MAX_MISCLASSIFIED_PERCENT 0.01
-#define CAMERA_IN_SHADOW "tests/data/volumes_camera_in_shadow.json"
+#define CAMERA_IN_SHADOW "assets/scenes/eye_in_shadow.json"
+#define NEAR_PLANE_CUT "assets/scenes/eye_near_shadow.json" /* the eye just outside a volume its near plane cuts */
 #define HUGE_GROUND "tests/data/vol_huge_ground.json"
 #define LIGHT_ABOVE_GROUND "tests/data/vol_light_above_ground.json"
 #define STACKED_SLABS "assets/scenes/stacked_300.json"
@@ -126,6 +127,28 @@ static void test_camera_in_shadow(void **state) {
     assert_within_bound(CAMERA_IN_SHADOW, "--silhouette gpu", "camera_in_shadow_gpu");
     shadowdiff_result zpass = measure(CAMERA_IN_SHADOW, "--mode zpass", "camera_in_shadow_zpass");
     assert_true(zpass.misclassified_percent > 10 * VOLUMES_MAX_MISCLASSIFIED_PERCENT);
+}
+
+/* --mode eye-count: z-pass from the number of volumes that hold the eye,
+ * counted on the CPU. Exact with the eye in a shadow; where the eye is
+ * just outside a volume that the near plane cuts, exact while depth clamp
+ * counts the faces before the near plane, and wrong on part of the screen
+ * without it (--no-depth-clamp), where z-fail stays exact: the lecture's
+ * reason for z-fail. And it is z-pass where the eye is in no shadow. */
+static void test_eye_count(void **state) {
+    (void)state;
+    assert_within_bound(CAMERA_IN_SHADOW, "--mode eye-count", "eye_count_in_shadow");
+    assert_within_bound(CAMERA_IN_SHADOW, "--mode eye-count --no-depth-clamp", "eye_count_in_shadow_clipped");
+    assert_within_bound(NEAR_PLANE_CUT, "--mode eye-count", "eye_count_near");
+    assert_within_bound(NEAR_PLANE_CUT, "--mode zfail --no-depth-clamp", "zfail_near_clipped");
+    shadowdiff_result cut = measure(NEAR_PLANE_CUT, "--mode eye-count --no-depth-clamp", "eye_count_near_clipped");
+    assert_true(cut.misclassified_percent > 10 * VOLUMES_MAX_MISCLASSIFIED_PERCENT);
+    assert_within_bound("assets/scenes/teapot.json", "--mode eye-count", "eye_count_teapot");
+    const char *line = support_verbose_line("volumes", CAMERA_IN_SHADOW, "--mode eye-count", "volumes: light 0:");
+    assert_non_null(line);
+    assert_non_null(strstr(line, "from the eye inside 1;"));
+    printf("    eye in a shadow: exact; near plane cutting a volume, depth clamp off: %.1f %% misclassified\n",
+           cut.misclassified_percent);
 }
 
 /* A point light inside a closed caster, or in one of its faces: the
@@ -264,6 +287,7 @@ int main(void) {
         cmocka_unit_test(test_city_within_bound),
         cmocka_unit_test(test_300_overlapping_casters),
         cmocka_unit_test(test_deeper_than_stencil),
+        cmocka_unit_test(test_eye_count),
         cmocka_unit_test(test_huge_ground),
         cmocka_unit_test(test_light_above_ground),
         cmocka_unit_test(test_bad_triangles_skipped),

@@ -61,13 +61,17 @@ static void test_depth_bounds(void **state) {
     assert_same_with_and_without("assets/scenes/dense.json", "static", "", "--no-depth-bounds", "dense_bounds");
 }
 
-/* Forced z-fail (caps kept and reused), forced z-pass and the geometry
+/* Forced z-fail (caps kept and reused), forced z-pass, the eye's count
+ * (also with the eye in a shadow and the camera moving) and the geometry
  * shader's silhouettes, the light moving. */
 static void test_city_every_mode(void **state) {
     (void)state;
     assert_same_with_and_without(CITY, "light", "--mode zfail", "--no-skip", "city_zfail");
     assert_same_with_and_without(CITY, "light", "--mode zpass", "--no-skip", "city_zpass");
     assert_same_with_and_without(CITY, "light", "--silhouette gpu", "--no-skip", "city_gpu");
+    assert_same_with_and_without(CITY, "light", "--mode eye-count", "--no-skip", "city_eye_count");
+    assert_same_with_and_without("assets/scenes/eye_in_shadow.json", "camera", "--mode eye-count", "--no-skip",
+                                 "eye_in_shadow");
 }
 
 static void test_bunny_and_teapot(void **state) {

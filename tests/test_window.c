@@ -3,7 +3,7 @@
  * (tests/window_input.sh is the script; its top comment lists the steps).
  * What they must do: F12 writes a numbered picture that never overwrites
  * and prints its path; a drag orbits the camera; 0 puts camera and light
- * back exactly as loaded; 2 switches to the second technique; Escape
+ * back exactly as loaded; 3 switches to the third technique; Escape
  * closes the window with exit 0. Without --no-hud, F12's picture is the
  * window's with its HUD (the rows below the HUD as without it), and a
  * scene that does not load (Page Down) says why on the HUD. */

@@ -7,7 +7,7 @@
 #   F12                 screenshot-planar-3.png
 #   0                   camera and light reset
 #   F12                 screenshot-planar-4.png (the same picture as -2)
-#   2                   the second technique, shadowmap
+#   3                   the third technique, shadowmap
 #   F12                 screenshot-shadowmap-1.png
 #   Escape              the window closes, exit 0
 # all with --no-hud (clean pictures to compare); then, with the HUD, on
@@ -59,7 +59,7 @@ sleep "$SETTLE"
 press F12
 press 0
 press F12
-press 2
+press 3
 press F12
 quit
 wait "$app"

@@ -159,6 +159,19 @@ bool volume_mesh_light_inside(const mesh *m, const float light[4]);
  * triangles weigh 0): a closed edge table e and the light outside. */
 bool volume_mesh_closed_rule(const mesh *m, const mesh_edges *e, const float light[4]);
 
+/* The count m's volume for the light (homogeneous, m's space) holds at
+ * point p (m's space), under the closed rule or not
+ * (volume_mesh_closed_rule): every triangle's prism counts one inside,
+ * the back-facing ones' none under the closed rule, so it is the number
+ * of such triangles the segment from p to a point light crosses (to a
+ * directional one, the ray from p towards it), edge-on ones none. What
+ * z-pass must start from where the eye is inside volumes. The point is
+ * first nudged by VOLUME_MESH_COUNT_NUDGE of the mesh's size along a skew
+ * direction, so that a segment through an edge two triangles share (a
+ * box face's diagonal) crosses one of them, not both or neither. */
+#define VOLUME_MESH_COUNT_NUDGE 1e-4f
+int volume_mesh_count_at(const mesh *m, bool closed, const float light[4], const float p[3]);
+
 /* The welded edge table of m (mesh_weld, mesh_edges_build) that volumes
  * are built from; false after printing why. The weld pairs vertices
  * within a tolerance, so two triangles may meet at an edge whose ends

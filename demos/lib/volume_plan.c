@@ -4,6 +4,10 @@
 
 #include "volume_mesh.h"
 
+bool volume_plan_forced_zpass(volume_plan_mode mode) {
+    return mode == VOLUME_PLAN_ZPASS || mode == VOLUME_PLAN_EYE_COUNT;
+}
+
 bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe) {
     if (mode != VOLUME_PLAN_AUTO)
         return mode == VOLUME_PLAN_ZFAIL;
@@ -26,7 +30,7 @@ static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mo
     }
     bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, near_rectangle);
     c->zfail = volume_plan_zfail(mode, zpass_safe);
-    if (mode == VOLUME_PLAN_ZPASS && !zpass_safe) {
+    if (volume_plan_forced_zpass(mode) && !zpass_safe) {
         f->counts->casters_drawn[plan->light]++;
         c->needed = true;
         return;
@@ -70,4 +74,22 @@ void volume_plan_every_caster(const technique_frame *f, int l, const float posit
         plan->casters[i].zfail =
             volume_plan_zfail(mode, volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle));
     }
+}
+
+int volume_plan_eye_count(const technique_frame *f, const volume_plan *plan, const mesh_edges *edges) {
+    const scene *s = f->gpu->scene;
+    int count = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        if (!plan->casters[i].needed)
+            continue;
+        const scene_object *o = &s->objects[i];
+        float light[4];
+        vec3 eye;
+        mat4 world_to_object;
+        volume_mesh_object_light(o->model, plan->position, light);
+        glm_mat4_inv((vec4 *)o->model, world_to_object);
+        glm_mat4_mulv3(world_to_object, (float *)f->view->eye, 1, eye);
+        count += volume_mesh_count_at(&o->mesh, volume_mesh_closed_rule(&o->mesh, &edges[i], light), light, eye);
+    }
+    return count;
 }

@@ -27,8 +27,18 @@
 #include "technique.h"
 #include "volume_bounds.h"
 
-/* --mode: z-pass (no caps) where safe, else z-fail (caps); or one forced. */
-typedef enum volume_plan_mode { VOLUME_PLAN_AUTO, VOLUME_PLAN_ZPASS, VOLUME_PLAN_ZFAIL } volume_plan_mode;
+/* --mode: z-pass (no caps) where safe, else z-fail (caps); or one forced;
+ * or z-pass from the count of the volumes that hold the eye (the
+ * lecture's first answer to an eye in shadow, wrong where the near plane
+ * cuts a volume the eye is outside of). */
+typedef enum volume_plan_mode {
+    VOLUME_PLAN_AUTO,
+    VOLUME_PLAN_ZPASS,
+    VOLUME_PLAN_ZFAIL,
+    VOLUME_PLAN_EYE_COUNT
+} volume_plan_mode;
+/* Whether the mode counts every caster z-pass, whatever the eye sees. */
+bool volume_plan_forced_zpass(volume_plan_mode mode);
 
 /* How caster i's volume counts for the light at hand. */
 typedef struct volume_plan_caster {
@@ -61,6 +71,11 @@ bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe);
 void volume_plan_light(const technique_frame *f, int l, const float point[4], volume_plan_mode mode,
                        const int receivers_rect[4], bool depth_bounds, volume_plan_caster *casters,
                        volume_plan *plan);
+/* The number of the plan's casters' volumes that hold the eye, tested on
+ * the CPU against each (volume_mesh_count_at; edges: per object, the
+ * casters' tables, for the rule each takes): what --mode eye-count starts
+ * z-pass from. */
+int volume_plan_eye_count(const technique_frame *f, const volume_plan *plan, const mesh_edges *edges);
 /* Light l's plan with no skip, for a light at `position` (homogeneous,
  * world): every caster's volume, each z-pass or z-fail as the mode says
  * there, under whatever scissor is on. */

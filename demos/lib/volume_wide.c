@@ -140,10 +140,16 @@ int volume_wide_bound(volume_wide *w, const technique_frame *f, const volume_pla
 
 /* ---- counting ---- */
 
-bool volume_wide_begin(volume_wide *w, volume_draw *d) {
+bool volume_wide_begin(volume_wide *w, volume_draw *d, int start) {
     if (!soft_visibility_begin(&w->target, VOLUME_WIDE_TARGET_LIGHT, 1, true))
         return false;
     glBindFramebuffer(GL_FRAMEBUFFER, w->target.lights[VOLUME_WIDE_TARGET_LIGHT].framebuffer);
+    glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
+    if (start != 0) {
+        glClearColor((float)start, 0, 0, 0);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glClearColor(0, 0, 0, 0);
+    }
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
@@ -180,6 +186,7 @@ void volume_wide_end(volume_wide *w, volume_draw *d, const camera_view *view) {
     GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST);
     glDisable(GL_DEPTH_TEST);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glClear(GL_STENCIL_BUFFER_BIT); /* 0 where the count is, whatever the stencil started from */
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
     for (int value = 1; value <= VOLUME_WIDE_OTHER; value++) {

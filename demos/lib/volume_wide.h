@@ -20,7 +20,7 @@
  *
  *   volume_wide_init(&w, objects)          once
  *   per count: volume_wide_bound(...) > VOLUME_COUNT_BOUND_STENCIL_MAX?
- *     volume_wide_begin(&w, &draw) after the stencil's clear, each caster
+ *     volume_wide_begin(&w, &draw, start) after the stencil's clear, each caster
  *     volume_wide_caster(&w, &draw, view, zfail) before it is drawn,
  *     volume_wide_end(&w, &draw, view) after
  *   volume_wide_destroy(&w)
@@ -68,14 +68,16 @@ typedef struct volume_wide {
 bool volume_wide_init(volume_wide *w, int object_count);
 void volume_wide_destroy(volume_wide *w);
 /* The most the plan's volumes can count at a pixel (see
- * volume_count_bound.h), from its needed casters; twice that for forced
- * z-pass (`forced_zpass`). Casters' bounds are kept per plan->cache until
+ * volume_count_bound.h), from its needed casters; twice that where every
+ * caster counts z-pass whatever the eye sees (`forced_zpass`: its count
+ * may be the difference of two). Casters' bounds are kept per plan->cache until
  * the light moves. */
 int volume_wide_bound(volume_wide *w, const technique_frame *f, const volume_plan *plan, const mesh_edges *edges,
                       bool forced_zpass);
-/* Counting into the float target from here (its whole frame 0), stencil
+/* Counting into the float target from here (its whole frame 0, `start`
+ * within the scissor as set: the count z-pass starts from), stencil
  * writes off; false after one line on stderr. */
-bool volume_wide_begin(volume_wide *w, volume_draw *d);
+bool volume_wide_begin(volume_wide *w, volume_draw *d, int start);
 /* The depth test and sign of the caster about to be drawn. */
 void volume_wide_caster(volume_wide *w, volume_draw *d, const camera_view *view, bool zfail);
 /* Back to the frame's target, the count written into its stencil within

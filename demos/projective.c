@@ -1,0 +1,469 @@
+/* projective: fake shadows with projective textures.
+ *
+ * The bridge from planar shadows to shadow maps: the obstacles are drawn
+ * black into a white-bordered texture from the light, through a frustum
+ * fitted to them, and that image is projected onto each receiver as a
+ * texture (Segal, Korobkin, van Widenfelt, Foran & Haeberli, "Fast shadows
+ * and lighting effects using texture mapping", SIGGRAPH 1992;
+ * OpenSceneGraph's osgshadowtexture example: the occluder drawn black
+ * into a texture cleared white with a white border, a frustum fitted to
+ * its bounding sphere, eye-linear texture coordinates on a separate
+ * receiver subgraph). It is a shadow map without depth: the texture says
+ * that a caster lies on the ray, never where, so
+ *   - no self-shadowing: an object that casts and receives, textured
+ *     (--self-shadow on), darkens its own lit side with its own
+ *     silhouette; by default it takes no texture and shows no shadow;
+ *   - back-projection: a receiver nearer the light than the obstacle (or
+ *     behind the light) takes its shadow cast backward. The fix (near
+ *     cut, on by default) shadows only points beyond the casters' nearest
+ *     depth from the light: exact where no receiver lies between the
+ *     light and a caster;
+ *   - a receiver behind another: the image lands on every receiver along
+ *     its rays. The split of obstacles and receivers is the
+ *     application's: here casters are the objects that cast, receivers
+ *     those that receive; --no-receivers-cast takes the receivers out of
+ *     the texture (only what casts alone is an obstacle), and a receiver
+ *     hidden behind another then takes the obstacles' shadow through it
+ *     and none of the other's.
+ * A point or spot light gets a perspective frustum round the bounding
+ * sphere of its casters, a directional light an orthographic box round
+ * them; a light inside that sphere gets the widest frustum allowed,
+ * aimed at its centre, and loses what lies outside. Each pixel's
+ * decision is a stencil mark, shaded as planar's: the light added where
+ * the receiver pass left no mark. Area lights are drawn hard, from their
+ * centre.
+ */
+#include <GLFW/glfw3.h>
+#include <glad/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "frustum.h"
+#include "shadow_map.h"
+#include "technique.h"
+
+/* The frustum is this fraction wider than the casters' sphere or box, so
+ * that their silhouette's edge texels and the lookup's bilinear taps stay
+ * inside the texture. */
+#define PROJECTIVE_FIT_MARGIN 0.02f
+/* A positional light's frustum is at most this wide each side: a
+ * perspective texture's texels grow without bound towards 90 degrees. */
+#define PROJECTIVE_MAX_HALF_ANGLE_DEG 80.0f
+/* The near plane at least this fraction of the far one (a caster touching
+ * the light would put it at 0). */
+#define PROJECTIVE_NEAR_RATIO 1e-3f
+/* A pixel is shadowed where its texel is below this percent of white
+ * (the casters' black, 0). */
+#define PROJECTIVE_LIT_PERCENT 50
+/* How far from its point a lookup reads, in texels, for caster culling:
+ * the nearest texel's half and more than a texel of safety. */
+#define PROJECTIVE_READ_REACH_TEXELS 2.0f
+
+typedef enum projective_self_shadow { PROJECTIVE_SELF_SHADOW_OFF, PROJECTIVE_SELF_SHADOW_ON } projective_self_shadow;
+
+typedef struct projective_settings {
+    int texture_size; /* choice: projective_sizes */
+    int self_shadow;  /* choice: projective_self_shadow */
+    bool no_near_cut, no_receivers_cast;
+} projective_settings;
+
+/* One light's texture and the frustum it was drawn through. */
+typedef struct projective_light {
+    unsigned texture;
+    int size;         /* of the texture as made; 0: none yet */
+    bool fitted;      /* the light has casters: the frustum below holds */
+    bool drawn_valid; /* `drawn` is what the texture holds */
+    bool clamped;     /* the light lies inside the casters' sphere, or it is wider than the limit */
+    bool orthographic;
+    float half_angle_deg; /* positional */
+    mat4 view_projection;
+    float depth_plane[4]; /* depth from the light along its axis */
+    float nearest;        /* the casters' nearest depth */
+    bool *drawn;          /* per object: drawn into the texture */
+} projective_light;
+
+static const char *const projective_sizes[] = {"2048", "256", "512", "1024", "4096", NULL};
+static const char *const projective_self_shadows[] = {"off", "on", NULL};
+
+static struct {
+    projective_settings settings;
+    render_program caster, receiver;
+    int light_texture, projected, depth_plane, nearest, cut;
+    unsigned framebuffer;
+    projective_light lights[SCENE_MAX_LIGHTS];
+    bool *wanted;            /* per object: a caster the lookups may read, this light, this frame */
+    float (*corners)[3];     /* the casters' box corners, 8 per object, for the fit */
+    float (*boxes)[2][3];    /* the visible receivers' boxes, for caster culling */
+    unsigned clamped_warned; /* bit l: light l's clamped frustum said */
+} projective;
+
+static const flags_param projective_params[] = {
+    {"near-cut", "back-projection: receivers nearer the light than every caster, or behind it, take the shadow too",
+     GLFW_KEY_N, FLAGS_TOGGLE, .disabled = &projective.settings.no_near_cut},
+    {"self-shadow",
+     "objects that cast and receive (while receivers cast): off, they take no texture and show no shadow at all; "
+     "on, they take it and their own silhouette darkens their lit side",
+     GLFW_KEY_C, FLAGS_CHOICE, .index = &projective.settings.self_shadow, .choices = projective_self_shadows},
+    {"receivers-cast",
+     "receivers leave the texture (only what casts alone is an obstacle): a receiver behind another takes the "
+     "obstacles' shadow through it, and none of the other's",
+     GLFW_KEY_B, FLAGS_TOGGLE, .disabled = &projective.settings.no_receivers_cast},
+    {"texture-size", "texels on a side of each light's projected texture", GLFW_KEY_M, FLAGS_CHOICE,
+     .index = &projective.settings.texture_size, .choices = projective_sizes},
+};
+
+/* Object i is drawn into the texture: it casts (and, with receivers out
+ * of it, receives nothing). */
+static bool projective_is_caster(const scene_object *o) {
+    return o->casts && (!o->receives || !projective.settings.no_receivers_cast);
+}
+
+/* Object i takes the projected texture. */
+static bool projective_is_textured(const scene_object *o) {
+    return o->receives && (!projective_is_caster(o) || projective.settings.self_shadow == PROJECTIVE_SELF_SHADOW_ON);
+}
+
+/* The casters' corners and bounds that light l can reach, into corners
+ * (8 per caster); returns how many corners. */
+static int projective_caster_corners(const scene *s, const scene_light *light, float (*corners)[3], vec3 lo,
+                                     vec3 hi) {
+    int n = 0;
+    glm_vec3_fill(lo, INFINITY);
+    glm_vec3_fill(hi, -INFINITY);
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 blo, bhi;
+        if (!projective_is_caster(&s->objects[i]))
+            continue;
+        scene_object_world_bounds(&s->objects[i], blo, bhi);
+        if (!scene_light_reaches_box(light, blo, bhi))
+            continue;
+        frustum_box_corners(blo, bhi, &corners[n]);
+        n += 8;
+        glm_vec3_minv(lo, blo, lo);
+        glm_vec3_maxv(hi, bhi, hi);
+    }
+    return n;
+}
+
+/* Light l's frustum fitted to its casters (the scene's alone, whatever
+ * the camera sees, so that the texture is the same with every skip). */
+static void projective_fit(const scene *s, int l, projective_light *t, float (*corners)[3]) {
+    const scene_light *light = &s->lights[l];
+    vec3 lo, hi, centre, axis, eye;
+    int n = projective_caster_corners(s, light, corners, lo, hi);
+    t->fitted = n > 0;
+    t->clamped = false;
+    if (!t->fitted)
+        return;
+    glm_vec3_center(lo, hi, centre);
+    float radius = glm_vec3_distance(lo, hi) / 2;
+    mat4 view, projection;
+    t->orthographic = light->type == SCENE_LIGHT_DIRECTIONAL;
+    if (t->orthographic) {
+        glm_vec3_normalize_to((float *)light->direction, axis);
+        glm_vec3_copy(centre, eye);
+        frustum_look_along(eye, axis, view);
+        vec3 vlo, vhi;
+        frustum_view_bounds(view, (const float(*)[3])corners, n, vlo, vhi);
+        float grow = PROJECTIVE_FIT_MARGIN * fmaxf(vhi[0] - vlo[0], vhi[1] - vlo[1]);
+        float near_plane, far_plane;
+        shadow_map_depth_range(-vhi[2], -vlo[2], &near_plane, &far_plane);
+        glm_ortho(vlo[0] - grow, vhi[0] + grow, vlo[1] - grow, vhi[1] + grow, near_plane, far_plane, projection);
+    } else {
+        glm_vec3_copy((float *)light->position, eye);
+        glm_vec3_sub(centre, eye, axis);
+        float distance = glm_vec3_norm(axis);
+        if (distance > 0)
+            glm_vec3_scale(axis, 1 / distance, axis);
+        else
+            glm_vec3_copy(light->type == SCENE_LIGHT_SPOT ? (float *)light->direction : (vec3){0, -1, 0}, axis);
+        float max_half = glm_rad(PROJECTIVE_MAX_HALF_ANGLE_DEG);
+        float half = max_half;
+        if (distance > radius * (1 + PROJECTIVE_FIT_MARGIN))
+            half = fminf(asinf(radius / distance) * (1 + PROJECTIVE_FIT_MARGIN), max_half);
+        t->clamped = half >= max_half;
+        t->half_angle_deg = glm_deg(half);
+        float far_plane = distance + radius;
+        float near_plane = fmaxf(distance - radius, far_plane * PROJECTIVE_NEAR_RATIO);
+        shadow_map_depth_range(near_plane, far_plane, &near_plane, &far_plane);
+        near_plane = fmaxf(near_plane, far_plane * PROJECTIVE_NEAR_RATIO);
+        frustum_look_along(eye, axis, view);
+        glm_perspective(2 * half, 1, near_plane, far_plane, projection);
+    }
+    glm_mat4_mul(projection, view, t->view_projection);
+    /* Depth from the light along its axis: for a point light, a blocker
+     * on the segment from it to a receiver point is nearer along any axis
+     * the point lies ahead on; for a directional light, along its rays. */
+    glm_vec4((float *)axis, -glm_vec3_dot(axis, eye), t->depth_plane);
+    t->nearest = INFINITY;
+    for (int c = 0; c < n; c++)
+        t->nearest = fminf(t->nearest, glm_vec3_dot(axis, corners[c]) + t->depth_plane[3]);
+}
+
+/* The casters light l's lookups may read this frame, into
+ * projective.wanted: every caster, or with caster culling those whose
+ * texture rectangle meets where the visible receivers read it (the
+ * shadow maps' reads, shadow_map_layer_reads: exact, since a lookup reads
+ * only its own texels, whatever their depth). Counted in f->counts. */
+static void projective_plan_casters(const technique_frame *f, int l, const projective_light *t) {
+    const scene *s = f->gpu->scene;
+    shadow_map_reads reads;
+    if (f->cull_casters) {
+        shadow_map_read_setup setup = {.reach = PROJECTIVE_READ_REACH_TEXELS, .size = t->size, .any_depth = true};
+        int boxes = shadow_map_light_receivers(f, l, projective.boxes);
+        shadow_map_layer_reads(t->view_projection, &setup, f->receivers, f->receiver_count,
+                               (const float(*)[2][3])projective.boxes, boxes, &reads);
+    }
+    for (int i = 0; i < s->object_count; i++) {
+        vec3 lo, hi;
+        projective.wanted[i] = false;
+        if (!projective_is_caster(&s->objects[i]))
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        projective.wanted[i] = !f->cull_casters || shadow_map_caster_read(&reads, t->view_projection, lo, hi);
+        if (projective.wanted[i])
+            f->counts->casters_drawn[l]++;
+        else
+            f->counts->casters_culled[l]++;
+    }
+}
+
+/* Light l's texture of `size` texels on a side, read a texel at a time
+ * (texelFetch: the nearest, the cheapest lookup on a CPU rasterizer),
+ * white beyond its border (the receiver shader's test); made again (and
+ * its casters with it) when the size changes. */
+static void projective_prepare_texture(projective_light *t, int size) {
+    if (t->texture && t->size == size)
+        return;
+    if (!t->texture)
+        glGenTextures(1, &t->texture);
+    glBindTexture(GL_TEXTURE_2D, t->texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, size, size, 0, GL_RED, GL_UNSIGNED_BYTE, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    t->size = size;
+    t->drawn_valid = false;
+}
+
+/* The casters of projective.wanted black on white into light l's
+ * texture, unless it already holds them: nothing it depends on changed
+ * (the light, the scene, the settings) and the same casters are wanted.
+ * Restores the target and its viewport; false (said on stderr) where the
+ * framebuffer is incomplete. */
+static bool projective_draw_texture(const technique_frame *f, int l, projective_light *t) {
+    const scene *s = f->gpu->scene;
+    bool same =
+        t->drawn_valid && !f->changed.scene && !f->changed.settings && !(f->changed.lights & RENDER_LIGHT_BIT(l));
+    for (int i = 0; same && i < s->object_count; i++)
+        same = t->drawn[i] == projective.wanted[i];
+    if (same) {
+        f->counts->layers_reused++;
+        return true;
+    }
+    GLint target, viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    if (!projective.framebuffer)
+        glGenFramebuffers(1, &projective.framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, projective.framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->texture, 0);
+    bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    if (complete) {
+        glViewport(0, 0, t->size, t->size);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_STENCIL_TEST);
+        glClearColor(1, 1, 1, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glUseProgram(projective.caster.id);
+        glUniformMatrix4fv(projective.caster.view_projection, 1, GL_FALSE, (const float *)t->view_projection);
+        for (int i = 0; i < s->object_count; i++)
+            if (projective.wanted[i])
+                render_draw_object(f->gpu, &projective.caster, i);
+        glEnable(GL_DEPTH_TEST);
+        f->counts->layers_rendered++;
+        for (int i = 0; i < s->object_count; i++)
+            t->drawn[i] = projective.wanted[i];
+    } else {
+        fprintf(stderr, "projective: light %d's %dx%d texture target is incomplete: the light unshadowed\n", l,
+                t->size, t->size);
+    }
+    t->drawn_valid = complete;
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    return complete;
+}
+
+/* The light's clip space's x and y, -1 to 1, to the texture's 0 to 1,
+ * before the division by w (column-major): the texture matrix of
+ * eye-linear texture coordinates. */
+static const mat4 projective_clip_to_texture = {{0.5f, 0, 0, 0}, {0, 0.5f, 0, 0}, {0, 0, 1, 0}, {0.5f, 0.5f, 0, 1}};
+
+/* Stencil 1 on the textured receivers' visible pixels (depth equal to the
+ * pre-pass's) where the projected image is black: `objects` are those
+ * light l reaches. */
+static void projective_mark(const technique_frame *f, const projective_light *t, const bool *objects) {
+    const scene *s = f->gpu->scene;
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 1, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_EQUAL);
+    render_program_use(&projective.receiver, f->view);
+    mat4 texture;
+    glm_mat4_mul((vec4 *)projective_clip_to_texture, (vec4 *)t->view_projection, texture);
+    glUniformMatrix4fv(projective.light_texture, 1, GL_FALSE, (const float *)texture);
+    glUniform4fv(projective.depth_plane, 1, t->depth_plane);
+    glUniform1f(projective.nearest, t->nearest);
+    glUniform1i(projective.cut, !projective.settings.no_near_cut);
+    glUniform1i(projective.projected, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, t->texture);
+    for (int i = 0; i < s->object_count; i++)
+        if (render_in_mask(objects, i) && projective_is_textured(&s->objects[i]))
+            render_draw_object(f->gpu, &projective.receiver, i);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+/* Light l is blocked where the receiver pass marked 1. */
+static const technique_stencil_lit projective_lit = {
+    .lit = GL_NOTEQUAL, .blocked = GL_EQUAL, .ref = 1, .mask = 0xff, .receivers_only = false};
+
+static bool projective_init(const render_scene *gpu) {
+    static const char *const caster_files[] = {"shadow_depth.vert", "projective_caster.frag"};
+    static const char *const receiver_files[] = {"lit.vert", "projective_receiver.frag"};
+    static const shader_define defines[] = {{"LIT_PROJECTED", 1}, SHADER_DEFINE(PROJECTIVE_LIT_PERCENT), {NULL, 0}};
+    if (!render_program_load(&projective.caster, caster_files, 2, NULL) ||
+        !render_program_load(&projective.receiver, receiver_files, 2, defines))
+        return false;
+    unsigned id = projective.receiver.id;
+    projective.light_texture = shader_uniform(id, "u_light_texture");
+    projective.projected = shader_uniform(id, "u_projected");
+    projective.depth_plane = shader_uniform(id, "u_depth_plane");
+    projective.nearest = shader_uniform(id, "u_nearest");
+    projective.cut = shader_uniform(id, "u_cut");
+    int n = gpu->scene->object_count;
+    projective.wanted = calloc((size_t)n + 1, sizeof *projective.wanted);
+    projective.boxes = calloc((size_t)n + 1, sizeof *projective.boxes);
+    projective.corners = calloc((size_t)n * 8 + 1, sizeof *projective.corners);
+    bool ok = projective.wanted && projective.boxes && projective.corners;
+    for (int l = 0; l < SCENE_MAX_LIGHTS && ok; l++) {
+        projective.lights[l] = (projective_light){0};
+        projective.lights[l].drawn = calloc((size_t)n + 1, sizeof *projective.lights[l].drawn);
+        ok = projective.lights[l].drawn != NULL;
+    }
+    if (!ok)
+        fprintf(stderr, "projective: out of memory\n");
+    projective.clamped_warned = 0;
+    return ok;
+}
+
+static void projective_destroy(void) {
+    render_program_destroy(&projective.caster);
+    render_program_destroy(&projective.receiver);
+    glDeleteFramebuffers(1, &projective.framebuffer);
+    projective.framebuffer = 0;
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        glDeleteTextures(1, &projective.lights[l].texture);
+        free(projective.lights[l].drawn);
+        projective.lights[l] = (projective_light){0};
+    }
+    free(projective.wanted);
+    free(projective.boxes);
+    free(projective.corners);
+    projective.wanted = NULL;
+    projective.boxes = NULL;
+    projective.corners = NULL;
+}
+
+/* The frame: the casters' image from each light, projected onto the
+ * receivers, then the light shaded where it was not black. */
+static void projective_render(const technique_frame *f) {
+    const scene *s = f->gpu->scene;
+    int size = atoi(projective_sizes[projective.settings.texture_size]);
+    /* 1. The camera's depth pre-pass: what is seen. */
+    render_depth_prepass(f->gpu, f->view, f->in_view);
+    technique_see(f);
+    for (int l = 0; l < s->light_count; l++) {
+        if (!technique_light_on(f, l))
+            continue;
+        projective_light *t = &projective.lights[l];
+        /* 2. A frustum from the light fitted to its casters: a cone round
+         * their bounding sphere, or a box along a directional light. */
+        projective_fit(s, l, t, projective.corners);
+        if (t->clamped && !(projective.clamped_warned >> l & 1u))
+            fprintf(stderr,
+                    "projective: light %d lies among its casters: a %g-degree frustum, casters beyond it cast "
+                    "nothing\n",
+                    l, (double)PROJECTIVE_MAX_HALF_ANGLE_DEG * 2);
+        projective.clamped_warned |= t->clamped ? 1u << l : 0;
+        /* 3. The casters black on white into the light's texture (those
+         * the visible receivers' lookups may read; kept while nothing
+         * moves). */
+        bool drawn = false;
+        if (t->fitted) {
+            projective_prepare_texture(t, size);
+            projective_plan_casters(f, l, t);
+            drawn = projective_draw_texture(f, l, t);
+        }
+        /* 4. The texture projected onto the receivers the light reaches:
+         * stencil 1 where it is black (and, with the near cut, beyond the
+         * casters' nearest depth). */
+        const bool *objects = technique_light_pass(f, l);
+        if (drawn)
+            projective_mark(f, t, objects);
+        else
+            glClear(GL_STENCIL_BUFFER_BIT);
+        /* 5. The light shaded where nothing was marked, the first with
+         * the ambient term. */
+        technique_shade_light(f, l, &projective_lit);
+        glDisable(GL_STENCIL_TEST);
+    }
+    if (technique_ambient_light(f) < 0)
+        technique_shade_ambient(f);
+}
+
+static void projective_describe(char *out, size_t size) {
+    const projective_light *t = &projective.lights[0];
+    const char *self = projective.settings.no_receivers_cast ? "receivers cast nothing"
+                       : projective.settings.self_shadow == PROJECTIVE_SELF_SHADOW_ON
+                           ? "casters darken their own lit side"
+                           : "casters show no shadow";
+    if (!t->fitted)
+        snprintf(out, size, "light 0: no caster; %s", self);
+    else if (t->orthographic)
+        snprintf(out, size, "light 0: %d texture, a box round the casters; %s", t->size, self);
+    else
+        snprintf(out, size, "light 0: %d texture, a %.3g-degree cone round the casters%s; %s", t->size,
+                 (double)t->half_angle_deg * 2, t->clamped ? " (light among them: clamped)" : "", self);
+}
+
+/* The fixes and limits each as the lecture shows it, and the texture's
+ * size against its cost. */
+static const char *const projective_bench_configs[] = {
+    "",
+    "--no-near-cut",
+    "--self-shadow on",
+    "--no-receivers-cast",
+    "--texture-size 512",
+    "--texture-size 1024",
+    "--texture-size 4096",
+};
+
+const technique projective_technique = {
+    .name = "projective",
+    .title = "projective-texture shadows (Segal et al. 1992): the casters' image projected onto receivers",
+    .params = projective_params,
+    .param_count = (int)(sizeof projective_params / sizeof *projective_params),
+    .bench_configs = projective_bench_configs,
+    .bench_config_count = (int)(sizeof projective_bench_configs / sizeof *projective_bench_configs),
+    .init = projective_init,
+    .render = projective_render,
+    .destroy = projective_destroy,
+    .describe = projective_describe,
+};
