@@ -16,7 +16,8 @@
  * Counts wrap at 256: wrong behind a non-zero multiple of 256 volumes, so
  * where a light's volumes could stack that deep over a pixel (the bound
  * of demos/lib/volume_count_bound.h) they count in a float target instead
- * (demos/lib/volume_wide.h); --no-wide-count shows the wrap.
+ * (demos/lib/volume_wide.h); --counter stencil shows the wrap, --counter
+ * float counts there everywhere.
  *
  * After a depth pre-pass, per light (up to 8): plan which casters count
  * where (volumes_plan_light); clear the stencil in the plan's rectangle;
@@ -74,7 +75,7 @@ typedef struct volumes_settings {
     bool no_depth_clamp;  /* toggle */
     int light_samples;    /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
     int soft;             /* choice: volumes_softs */
-    bool no_wide_count;   /* toggle */
+    int counter;          /* choice: volumes_counters */
 } volumes_settings;
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", "eye-count", NULL}; /* volume_plan_mode's */
@@ -82,6 +83,8 @@ static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
 static const char *const volumes_softs[] = {"samples", "wedges", NULL};
+static const char *const volumes_counters[] = {"auto", "stencil", "float", NULL};
+enum { VOLUMES_COUNTER_AUTO, VOLUMES_COUNTER_STENCIL, VOLUMES_COUNTER_FLOAT };
 enum { VOLUMES_SOFT_SAMPLES, VOLUMES_SOFT_WEDGES };
 enum { VOLUMES_CPU, VOLUMES_GPU };
 enum { VOLUMES_EXTRUDE_INFINITY, VOLUMES_EXTRUDE_REACH };
@@ -145,10 +148,10 @@ static const flags_param volumes_params[] = {
      "area lights: sampled at --light-samples points; or wedges, the centre's hard shadow softened by penumbra "
      "wedges round its silhouette (Assarsson & Akenine-Moller 2003)",
      GLFW_KEY_W, FLAGS_CHOICE, .index = &volumes.settings.soft, .choices = volumes_softs},
-    {"wide-count",
-     "where volumes could stack 256 deep over a pixel, counted in a float target (off: the 8-bit stencil wraps, "
-     "and a pixel behind 256 volumes reads lit)",
-     GLFW_KEY_N, FLAGS_TOGGLE, .disabled = &volumes.settings.no_wide_count},
+    {"counter",
+     "what volumes count in: the 8-bit stencil where a bound says no pixel's count reaches 256, else a float target "
+     "(auto); the stencil always (it wraps: a pixel behind 256 volumes reads lit); or the float target always",
+     GLFW_KEY_N, FLAGS_CHOICE, .index = &volumes.settings.counter, .choices = volumes_counters},
 };
 
 /* ---- set-up ---- */
@@ -292,13 +295,14 @@ static void volumes_count(const technique_frame *f, const volume_plan *plan) {
 /* ---- the counter: 8 bits where they hold every count ---- */
 
 /* Whether the plan's volumes count wide (volume_wide.h): their bound
- * passes what the stencil holds, and --wide-count is on. From here the
- * count is the wide one's, until volumes_counter_end. */
+ * passes what the stencil holds (--counter auto), or always (float).
+ * From here the count is the wide one's, until volumes_counter_end. */
 static void volumes_counter_begin(const technique_frame *f, const volume_plan *plan) {
     int bound = volume_wide_bound(&volumes.wide, f, plan, volumes.draw.edges,
                                   volume_plan_forced_zpass((volume_plan_mode)volumes.settings.mode));
-    volumes.counting_wide = bound > VOLUME_COUNT_BOUND_STENCIL_MAX && !volumes.settings.no_wide_count &&
-                            volume_wide_begin(&volumes.wide, &volumes.draw, volumes.start_count);
+    bool wide = volumes.settings.counter == VOLUMES_COUNTER_FLOAT ||
+                (volumes.settings.counter == VOLUMES_COUNTER_AUTO && bound > VOLUME_COUNT_BOUND_STENCIL_MAX);
+    volumes.counting_wide = wide && volume_wide_begin(&volumes.wide, &volumes.draw, volumes.start_count);
     if (plan->reported) {
         volumes.count_bound = bound;
         volumes.count_bound_wide = volumes.counting_wide;
@@ -517,13 +521,15 @@ static void volumes_render(const technique_frame *f) {
 
 /* Which counter counted light 0, and its bound. */
 static int volumes_describe_counter(char *out, size_t size) {
+    bool deep = volumes.count_bound > VOLUME_COUNT_BOUND_STENCIL_MAX;
     if (volumes.count_bound_wide)
-        return snprintf(out, size, "; count: wide, float (bound %d > %d)", volumes.count_bound,
-                        VOLUME_COUNT_BOUND_STENCIL_MAX);
-    if (volumes.count_bound <= VOLUME_COUNT_BOUND_STENCIL_MAX)
+        return snprintf(out, size, "; count: float (bound %d%s)", volumes.count_bound,
+                        deep ? " past the stencil's" : ", --counter float");
+    if (!deep)
         return snprintf(out, size, "; stencil: 8-bit exact (bound %d)", volumes.count_bound);
     return snprintf(out, size, "; stencil: 8-bit, may WRAP (bound %d > %d%s)", volumes.count_bound,
-                    VOLUME_COUNT_BOUND_STENCIL_MAX, volumes.settings.no_wide_count ? ", wide count OFF" : "");
+                    VOLUME_COUNT_BOUND_STENCIL_MAX,
+                    volumes.settings.counter == VOLUMES_COUNTER_STENCIL ? ", --counter stencil" : "");
 }
 
 static void volumes_describe(char *out, size_t size) {
@@ -566,7 +572,8 @@ static const char *const volumes_bench_configs[] = {
     "--light-samples 64",
     "--light-samples 256",
     "--soft wedges",
-    "--no-wide-count",
+    "--counter stencil",
+    "--counter float",
 };
 
 static const char *volumes_area_light(const scene_light *light, int l) {

@@ -219,7 +219,7 @@ static void test_300_overlapping_casters(void **state) {
  * wide slabs under 44 narrow ones (the ground round the narrow ones'
  * shadow in exactly 256 volumes), and one open mesh of 10,000 stacked
  * triangles (bands of multiples of 256, up to 10,000 deep), counted wide
- * within the bound in every mode; with --no-wide-count the wrapped
+ * within the bound in every mode; with --counter stencil the wrapped
  * stencil reads those bands lit, far past the bound, which shows the test
  * can fail. */
 static void test_deeper_than_stencil(void **state) {
@@ -229,8 +229,8 @@ static void test_deeper_than_stencil(void **state) {
     assert_within_bound(STACKED_SLABS, "--silhouette gpu", "stacked_300_gpu");
     assert_within_bound(STACKED_MESH, "", "stacked_10000_auto");
     assert_within_bound(STACKED_MESH, "--mode zfail --silhouette gpu", "stacked_10000_zfail_gpu");
-    shadowdiff_result slabs = measure(STACKED_SLABS, "--no-wide-count", "stacked_300_wrapped");
-    shadowdiff_result layers = measure(STACKED_MESH, "--no-wide-count", "stacked_10000_wrapped");
+    shadowdiff_result slabs = measure(STACKED_SLABS, "--counter stencil", "stacked_300_wrapped");
+    shadowdiff_result layers = measure(STACKED_MESH, "--counter stencil", "stacked_10000_wrapped");
     assert_true(slabs.false_lit_percent > WRAPPED_MIN_FALSE_LIT_PERCENT);
     assert_true(layers.false_lit_percent > WRAPPED_MIN_FALSE_LIT_PERCENT);
 }

@@ -99,13 +99,16 @@ static void test_area_light_points(void **state) {
 
 /* The wide count (demos/lib/volume_wide.h) decides as the 8-bit stencil
  * wherever that cannot wrap: on the standard scenes the bound keeps the
- * stencil (the HUD: "stencil: 8-bit exact"); where a bound passes 255 but
- * no pixel's count reaches 256 (the engine's many parts under z-pass and
- * z-fail, 300 staggered casters) the dumps are the same with and without
- * it. On stacked_300, whose ground lies in exactly 256 volumes, they
- * differ: the comparison can fail. Counted wide, the skips change no
- * decision either (the light moving: each caster's bound is found again
- * for the light's new position). */
+ * stencil (the HUD: "stencil: 8-bit exact"), and counting them in the
+ * float target anyway (--counter float) gives the same dumps, in every
+ * way of counting (z-pass, z-fail, the eye's count, GPU silhouettes, an
+ * area light's points, wedges); where a bound passes 255 but no pixel's
+ * count reaches 256 (the engine's many parts under z-pass and z-fail, 300
+ * staggered casters) the dumps are the same in the stencil
+ * (--counter stencil). On stacked_300, whose ground lies in exactly 256
+ * volumes, they differ: the comparison can fail. Counted wide, the skips
+ * change no decision either (the light moving: each caster's bound is
+ * found again for the light's new position). */
 static void test_wide_count_decides_the_same(void **state) {
     (void)state;
     static const char *const standard[] = {"simple", "bunny", "teapot", "long_view"};
@@ -121,11 +124,23 @@ static void test_wide_count_decides_the_same(void **state) {
     }
     const char *line = support_verbose_line("volumes", "assets/scenes/engine.json", "", "volumes: light 0: ");
     assert_non_null(line);
-    assert_non_null(strstr(line, "; count: wide"));
-    assert_same_with_and_without("assets/scenes/engine.json", "static", "", "--no-wide-count", "engine_wide");
-    assert_same_with_and_without("assets/scenes/engine.json", "static", "--mode zfail", "--no-wide-count",
+    assert_non_null(strstr(line, "; count: float"));
+    static const struct {
+        const char *scene, *motion, *flags, *name;
+    } forced[] = {
+        {"assets/scenes/teapot.json", "light", "", "teapot_float"},
+        {"assets/scenes/bunny.json", "static", "--mode zfail --silhouette gpu", "bunny_float_zfail_gpu"},
+        {"assets/scenes/eye_in_shadow.json", "static", "--mode eye-count", "eye_count_float"},
+        {"assets/scenes/soft_table.json", "static", "--light-samples 16", "soft_table_float"},
+        {"assets/scenes/soft_sun.json", "static", "--soft wedges", "soft_sun_wedges_float"},
+    };
+    for (size_t i = 0; i < sizeof forced / sizeof *forced; i++)
+        assert_same_with_and_without(forced[i].scene, forced[i].motion, forced[i].flags, "--counter float",
+                                     forced[i].name);
+    assert_same_with_and_without("assets/scenes/engine.json", "static", "", "--counter stencil", "engine_wide");
+    assert_same_with_and_without("assets/scenes/engine.json", "static", "--mode zfail", "--counter stencil",
                                  "engine_wide_zfail");
-    assert_same_with_and_without("tests/data/volumes_300_casters.json", "light", "", "--no-wide-count",
+    assert_same_with_and_without("tests/data/volumes_300_casters.json", "light", "", "--counter stencil",
                                  "casters_300_wide");
     assert_same_with_and_without("assets/scenes/stacked_300.json", "light", "", "--no-skip", "stacked_300_skips");
     assert_same_with_and_without("assets/scenes/stacked_10000.json", "light", "--mode zfail", "--no-skip",
@@ -134,7 +149,7 @@ static void test_wide_count_decides_the_same(void **state) {
     snprintf(on, sizeof on, OUT "/stacked_wide");
     snprintf(off, sizeof off, OUT "/stacked_wrapped");
     assert_int_equal(support_dump("volumes", "assets/scenes/stacked_300.json", "", on), 0);
-    assert_int_equal(support_dump("volumes", "assets/scenes/stacked_300.json", "--no-wide-count", off), 0);
+    assert_int_equal(support_dump("volumes", "assets/scenes/stacked_300.json", "--counter stencil", off), 0);
     assert_non_null(support_first_difference(on, off, dump_files, 1));
 }
 
