@@ -214,8 +214,10 @@ static void scenegen_camera(cJSON *root, const double eye[3], const double targe
     scenegen_number(c, "far", far);
 }
 
-/* Pretty enough to diff: one line per light and per object. */
-static bool scenegen_write(const cJSON *root, const char *dir, const char *name) {
+/* Writes DIR/NAME with `body` (false where a write failed); false after
+ * one line on stderr. */
+static bool scenegen_write_file(const char *dir, const char *name, bool (*body)(FILE *f, const void *what),
+                                const void *what) {
     char path[SCENEGEN_PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, name);
     FILE *f = fopen(path, "w");
@@ -223,6 +225,17 @@ static bool scenegen_write(const cJSON *root, const char *dir, const char *name)
         perror(path);
         return false;
     }
+    bool ok = body(f, what);
+    if (fclose(f) != 0 || !ok) {
+        fprintf(stderr, "%s: cannot write\n", path);
+        return false;
+    }
+    return true;
+}
+
+/* Pretty enough to diff: one line per light and per object. */
+static bool scenegen_json_body(FILE *f, const void *what) {
+    const cJSON *root = what;
     bool ok = fputs("{\n", f) >= 0;
     for (const cJSON *item = root->child; ok && item; item = item->next) {
         bool list = cJSON_IsArray(item) && cJSON_IsObject(item->child);
@@ -234,12 +247,11 @@ static bool scenegen_write(const cJSON *root, const char *dir, const char *name)
         }
         ok = ok && fprintf(f, "%s%s", list ? "\n  ]" : "", item->next ? ",\n" : "\n") >= 0;
     }
-    ok = ok && fputs("}\n", f) >= 0;
-    if (fclose(f) != 0 || !ok) {
-        fprintf(stderr, "%s: cannot write\n", path);
-        return false;
-    }
-    return true;
+    return ok && fputs("}\n", f) >= 0;
+}
+
+static bool scenegen_write(const cJSON *root, const char *dir, const char *name) {
+    return scenegen_write_file(dir, name, scenegen_json_body, root);
 }
 
 /* ---- the city ---- */
@@ -485,14 +497,8 @@ static cJSON *scenegen_stacked_slabs(void) {
 
 /* The 10,000 triangles as an OBJ beside the scene: layer i a triangle
  * round the axis at its height, its group's radius. */
-static bool scenegen_stacked_obj(const char *dir, const char *name) {
-    char path[SCENEGEN_PATH_MAX];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        perror(path);
-        return false;
-    }
+static bool scenegen_stacked_obj_body(FILE *f, const void *what) {
+    (void)what;
     bool ok =
         fprintf(f, "# %d stacked triangles, %d of each size (build/scenegen)\n", STACKED_LAYERS, STACKED_GROUP) >= 0;
     int groups = (STACKED_LAYERS + STACKED_GROUP - 1) / STACKED_GROUP;
@@ -507,11 +513,7 @@ static bool scenegen_stacked_obj(const char *dir, const char *name) {
     }
     for (int i = 0; ok && i < STACKED_LAYERS; i++)
         ok = fprintf(f, "f %d %d %d\n", 3 * i + 1, 3 * i + 2, 3 * i + 3) >= 0;
-    if (fclose(f) != 0 || !ok) {
-        fprintf(stderr, "%s: cannot write\n", path);
-        return false;
-    }
-    return true;
+    return ok;
 }
 
 static cJSON *scenegen_stacked_mesh(const char *obj) {
@@ -546,7 +548,7 @@ static bool scenegen_run(const char *dir) {
     return ok && scenegen_emit(scenegen_city(STREET_COUNT, scenegen_street_setting), dir, "street.json") &&
            scenegen_emit(scenegen_dense(), dir, "dense.json") &&
            scenegen_emit(scenegen_stacked_slabs(), dir, "stacked_300.json") &&
-           scenegen_stacked_obj(dir, "stacked_10000.obj") &&
+           scenegen_write_file(dir, "stacked_10000.obj", scenegen_stacked_obj_body, NULL) &&
            scenegen_emit(scenegen_stacked_mesh("stacked_10000.obj"), dir, "stacked_10000.json");
 }
 
