@@ -230,7 +230,6 @@ static void volumes_caster_ops(const technique_frame *f, bool zfail) {
         volume_wide_caster(&volumes.wide, &volumes.draw, f->view, zfail);
 }
 
-/* Stencil 0 in the plan's rectangle, stencil test on. */
 /* The stencil in the plan's rectangle set to the count z-pass starts
  * from (0; --mode eye-count: the eye's), stencil test on. */
 static void volumes_clear_stencil(const technique_frame *f, const volume_plan *plan) {
