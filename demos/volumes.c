@@ -17,7 +17,7 @@
  * where a light's volumes could stack that deep over a pixel (the bound
  * of demos/lib/volume_count_bound.h) they count in a float target instead
  * (demos/lib/volume_wide.h); --counter stencil shows the wrap, --counter
- * float counts there everywhere.
+ * float counts there everywhere (demos/lib/volume_counter.h counts).
  *
  * After a depth pre-pass, per light (up to 8): plan which casters count
  * where (volumes_plan_light); clear the stencil in the plan's rectangle;
@@ -57,13 +57,12 @@
 
 #include "depth.h"
 #include "technique.h"
-#include "volume_bounds.h"
 #include "volume_draw.h"
 #include "volume_overlay.h"
 #include "volume_plan.h"
 #include "volume_receivers.h"
 #include "volume_wedges.h"
-#include "volume_wide.h"
+#include "volume_counter.h"
 
 typedef struct volumes_settings {
     int mode;             /* choice */
@@ -83,15 +82,11 @@ static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
 static const char *const volumes_softs[] = {"samples", "wedges", NULL};
-static const char *const volumes_counters[] = {"auto", "stencil", "float", NULL};
-enum { VOLUMES_COUNTER_AUTO, VOLUMES_COUNTER_STENCIL, VOLUMES_COUNTER_FLOAT };
+static const char *const volumes_counters[] = {"auto", "stencil", "float", NULL}; /* volume_counter_kind's */
 enum { VOLUMES_SOFT_SAMPLES, VOLUMES_SOFT_WEDGES };
 enum { VOLUMES_CPU, VOLUMES_GPU };
 enum { VOLUMES_EXTRUDE_INFINITY, VOLUMES_EXTRUDE_REACH };
 enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTES, VOLUMES_OVERLAY_COUNTS };
-
-/* Every bit of the 8-bit stencil: counts wrap at 256 (see top). */
-#define VOLUMES_STENCIL_MASK 0xff
 
 static struct {
     volumes_settings settings;
@@ -102,17 +97,12 @@ static struct {
     int trim_kept;               /* whether the kept volumes are trimmed; -1: none kept yet */
     bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
     /* Light 0, last frame: */
-    int zpass_count, zfail_count, built_count, reused_count;
-    int eye_count;         /* --mode eye-count: the volumes that hold the eye */
+    int built_count, reused_count;
     int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
     int receivers_rect[4]; /* this frame's: every receiver's box on screen, for every light */
     soft_visibility soft;  /* an area light's visibility, sampled or from wedges */
     volume_wedges wedges;
-    volume_wide wide;
-    bool counting_wide;            /* the count at hand is volume_wide's */
-    int start_count;               /* the count at hand's start (volumes_clear_stencil) */
-    int count_bound;               /* light 0's bound, last frame (volume_wide_bound) */
-    bool count_bound_wide;         /* and whether it counted wide */
+    volume_counter counter;        /* the stencil's counts (volume_counter.h) */
     unsigned soft_warned;          /* bit l: light l's area said drawn hard */
     int samples[SCENE_MAX_LIGHTS]; /* this frame's points of light l: 1 drawn hard */
     bool point_reported;           /* the HUD's counts are of this frame's first point */
@@ -170,13 +160,13 @@ static bool volumes_init(const render_scene *gpu) {
     volumes.soft_warned = 0;
     memset(volumes.samples, 0, sizeof volumes.samples);
     return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges) &&
-           volume_wide_init(&volumes.wide, gpu->scene->object_count);
+           volume_counter_init(&volumes.counter, &volumes.draw, gpu->scene->object_count);
 }
 
 static void volumes_destroy(void) {
     soft_visibility_destroy(&volumes.soft);
     volume_wedges_destroy(&volumes.wedges);
-    volume_wide_destroy(&volumes.wide);
+    volume_counter_destroy(&volumes.counter);
     volume_draw_destroy(&volumes.draw);
     volume_receivers_destroy(&volumes.receivers);
     free(volumes.casters);
@@ -206,113 +196,6 @@ static void volumes_plan_light(const technique_frame *f, int l, int k, const flo
                       volumes.has_depth_bounds && !volumes.settings.no_depth_bounds, volumes.casters, plan);
     plan->cache = volume_draw_cache(l, k);
     plan->reported = l == 0;
-}
-
-/* ---- counting ---- */
-
-/* Counting ops for both faces in one pass, wrapping so that more than 255
- * overlapping volumes still sum right. */
-static void volumes_stencil_ops(bool zfail) {
-    if (zfail) {
-        glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
-        glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
-    } else {
-        glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
-        glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
-    }
-}
-
-/* The stencil ops, or the wide count's depth test and sign, of a caster
- * counted z-fail or z-pass. */
-static void volumes_caster_ops(const technique_frame *f, bool zfail) {
-    volumes_stencil_ops(zfail);
-    if (volumes.counting_wide)
-        volume_wide_caster(&volumes.wide, &volumes.draw, f->view, zfail);
-}
-
-/* The stencil in the plan's rectangle set to the count z-pass starts
- * from (0; --mode eye-count: the eye's), stencil test on. */
-static void volumes_clear_stencil(const technique_frame *f, const volume_plan *plan) {
-    const int *rect = plan->bounds.rect;
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(rect[0], rect[1], rect[2], rect[3]);
-    int eye_count =
-        volumes.settings.mode == VOLUME_PLAN_EYE_COUNT ? volume_plan_eye_count(f, plan, volumes.draw.edges) : 0;
-    if (plan->reported)
-        volumes.eye_count = eye_count;
-    volumes.start_count = eye_count;
-    glClearStencil(eye_count & VOLUMES_STENCIL_MASK);
-    glClear(GL_STENCIL_BUFFER_BIT);
-    glClearStencil(0);
-    glEnable(GL_STENCIL_TEST);
-}
-
-/* Stencil = number of volumes of the plan's light around each visible
- * pixel, of the casters it needs, each within its bounds. */
-static void volumes_count(const technique_frame *f, const volume_plan *plan) {
-    const scene *s = f->gpu->scene;
-    int zpass = 0, zfail = 0;
-    if (plan->bounds.bounded) {
-        glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-        glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
-    }
-    /* Far caps at infinity stay in, and faces before the near plane
-     * count (at its depth); off, the planes clip them (--no-depth-clamp). */
-    if (!volumes.settings.no_depth_clamp)
-        glEnable(GL_DEPTH_CLAMP);
-    glDisable(GL_CULL_FACE);
-    glColorMask(volumes.counting_wide, GL_FALSE, GL_FALSE, GL_FALSE); /* the wide count's red */
-    glDepthMask(GL_FALSE);
-    glDepthFunc(depth_func(f->view, GL_LESS)); /* a surface's own cap, at its depth, counts as behind it */
-    glStencilFunc(GL_ALWAYS, 0, VOLUMES_STENCIL_MASK);
-    /* Not only casters in view: one outside may cast a volume across it. */
-    for (int i = 0; i < s->object_count; i++) {
-        const volume_plan_caster *c = &plan->casters[i];
-        if (!c->needed)
-            continue;
-        zfail += c->zfail;
-        zpass += !c->zfail;
-        volumes_caster_ops(f, c->zfail);
-        if (c->narrowed)
-            volume_bounds_use(&c->bounds);
-        if (!c->narrowed || (c->bounds.rect[2] > 0 && c->bounds.rect[3] > 0))
-            volume_draw_caster(&volumes.draw, f, plan->cache, i, plan->position,
-                               volumes.settings.silhouette == VOLUMES_GPU, c->zfail);
-        if (c->narrowed)
-            volume_bounds_use(&plan->bounds);
-    }
-    glDisable(GL_DEPTH_CLAMP);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    if (plan->bounds.bounded)
-        glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
-    if (plan->reported) {
-        volumes.zpass_count = zpass;
-        volumes.zfail_count = zfail;
-    }
-}
-
-/* ---- the counter: 8 bits where they hold every count ---- */
-
-/* Whether the plan's volumes count wide (volume_wide.h): their bound
- * passes what the stencil holds (--counter auto), or always (float).
- * From here the count is the wide one's, until volumes_counter_end. */
-static void volumes_counter_begin(const technique_frame *f, const volume_plan *plan) {
-    int bound = volume_wide_bound(&volumes.wide, f, plan, volumes.draw.edges,
-                                  volume_plan_forced_zpass((volume_plan_mode)volumes.settings.mode));
-    bool wide = volumes.settings.counter == VOLUMES_COUNTER_FLOAT ||
-                (volumes.settings.counter == VOLUMES_COUNTER_AUTO && bound > VOLUME_COUNT_BOUND_STENCIL_MAX);
-    volumes.counting_wide = wide && volume_wide_begin(&volumes.wide, &volumes.draw, volumes.start_count);
-    if (plan->reported) {
-        volumes.count_bound = bound;
-        volumes.count_bound_wide = volumes.counting_wide;
-    }
-}
-
-/* The wide count written back into the stencil (0, 1, 2 or more). */
-static void volumes_counter_end(const technique_frame *f) {
-    if (volumes.counting_wide)
-        volume_wide_end(&volumes.wide, &volumes.draw, f->view);
-    volumes.counting_wide = false;
 }
 
 /* The HUD's figures of the volumes light 0 drew, from the light's first
@@ -350,7 +233,7 @@ static void volumes_prepass_depth(const technique_frame *f) {
 /* Light l is blocked on receivers where a volume counts; the rest take no
  * shadows and are lit everywhere. */
 static const technique_stencil_lit volumes_lit = {
-    .lit = GL_EQUAL, .blocked = GL_NOTEQUAL, .ref = 0, .mask = VOLUMES_STENCIL_MASK, .receivers_only = true};
+    .lit = GL_EQUAL, .blocked = GL_NOTEQUAL, .ref = 0, .mask = VOLUME_COUNTER_STENCIL_MASK, .receivers_only = true};
 
 /* ---- area lights ---- */
 
@@ -362,10 +245,10 @@ static bool volumes_by_wedges(const scene_light *light) {
 /* Steps 3 and 4 for a plan, against the exact depth where it counts. */
 static void volumes_count_plan(const technique_frame *f, const volume_plan *plan) {
     volumes_exact_depth(f);
-    volumes_clear_stencil(f, plan);
-    volumes_counter_begin(f, plan);
-    volumes_count(f, plan);
-    volumes_counter_end(f);
+    volume_counter_clear(&volumes.counter, f, plan);
+    volume_counter_begin(&volumes.counter, f, plan);
+    volume_counter_draw(&volumes.counter, f, plan);
+    volume_counter_end(&volumes.counter, f);
     volumes_prepass_depth(f);
 }
 
@@ -426,16 +309,16 @@ static void volumes_draw_overlay(const technique_frame *f) {
     if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
         plan.bounds.rect[2] = f->width;
         plan.bounds.rect[3] = f->height;
-        volumes_clear_stencil(f, &plan);
+        volume_counter_clear(&volumes.counter, f, &plan);
         glDisable(GL_SCISSOR_TEST);
-        volumes_counter_begin(f, &plan);
-        bool wide = volumes.counting_wide;
-        volumes_count(f, &plan);
+        volume_counter_begin(&volumes.counter, f, &plan);
+        bool wide = volumes.counter.counting_wide;
+        volume_counter_draw(&volumes.counter, f, &plan);
         if (wide) {
-            volumes_counter_end(f);
-            volume_overlay_wide_counts(&volumes.wide);
+            volume_counter_end(&volumes.counter, f);
+            volume_overlay_wide_counts(&volumes.counter.wide);
         } else {
-            volume_overlay_counts(&volumes.draw, VOLUMES_STENCIL_MASK);
+            volume_overlay_counts(&volumes.draw, VOLUME_COUNTER_STENCIL_MASK);
         }
     } else {
         volume_overlay_shapes(&volumes.draw, f, plan.position, volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES);
@@ -446,6 +329,12 @@ static void volumes_draw_overlay(const technique_frame *f) {
 
 static void volumes_render(const technique_frame *f) {
     volumes_forget_moved(f);
+    volumes.counter.settings = (volume_counter_settings){
+        .mode = (volume_plan_mode)volumes.settings.mode,
+        .kind = (volume_counter_kind)volumes.settings.counter,
+        .gpu_silhouettes = volumes.settings.silhouette == VOLUMES_GPU,
+        .no_depth_clamp = volumes.settings.no_depth_clamp,
+    };
     /* 1. Depth pre-pass: the depth every pass tests against; what it
      *    shows (technique_see) is read from the depth the volumes are
      *    counted against. */
@@ -486,7 +375,7 @@ static void volumes_render(const technique_frame *f) {
          *     of the light's disk it uncovers; then step 5 with that. */
         if (volumes_by_wedges(&f->gpu->scene->lights[l])) {
             if (volume_wedges_light(&volumes.wedges, f, l, &plan, volumes.group, volumes.draw.edges, &volumes.soft,
-                                    VOLUMES_STENCIL_MASK, volumes_count_plan))
+                                    VOLUME_COUNTER_STENCIL_MASK, volumes_count_plan))
                 technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
             volumes_count_end(l);
             continue;
@@ -494,15 +383,15 @@ static void volumes_render(const technique_frame *f) {
         volumes_exact_depth(f); /* huge receivers' exact depth, counted against */
         /* 3. Clear the stencil in the plan's rectangle (--mode eye-count:
          *    to the number of volumes that hold the eye). */
-        volumes_clear_stencil(f, &plan);
+        volume_counter_clear(&volumes.counter, f, &plan);
         /* 4. Count the volumes into the stencil, per caster the faces in
          *    front of the surface (z-pass) or behind it (z-fail), +1 or -1
          *    by their facing; where they could stack 256 deep (the
          *    bound), into a float target, written back into the stencil
          *    after. */
-        volumes_counter_begin(f, &plan);
-        volumes_count(f, &plan);
-        volumes_counter_end(f);
+        volume_counter_begin(&volumes.counter, f, &plan);
+        volume_counter_draw(&volumes.counter, f, &plan);
+        volume_counter_end(&volumes.counter, f);
         volumes_count_end(l);
         volumes_prepass_depth(f); /* back to the depth the shading is equal to */
         /* 5. Shade the light where the count is 0, in its own scissor
@@ -518,23 +407,11 @@ static void volumes_render(const technique_frame *f) {
     volumes_draw_overlay(f);
 }
 
-/* Which counter counted light 0, and its bound. */
-static int volumes_describe_counter(char *out, size_t size) {
-    bool deep = volumes.count_bound > VOLUME_COUNT_BOUND_STENCIL_MAX;
-    if (volumes.count_bound_wide)
-        return snprintf(out, size, "; count: float (bound %d%s)", volumes.count_bound,
-                        deep ? " past the stencil's" : ", --counter float");
-    if (!deep)
-        return snprintf(out, size, "; stencil: 8-bit exact (bound %d)", volumes.count_bound);
-    return snprintf(out, size, "; stencil: 8-bit, may WRAP (bound %d > %d%s)", volumes.count_bound,
-                    VOLUME_COUNT_BOUND_STENCIL_MAX,
-                    volumes.settings.counter == VOLUMES_COUNTER_STENCIL ? ", --counter stencil" : "");
-}
-
 static void volumes_describe(char *out, size_t size) {
-    int n = snprintf(out, size, "light 0: %d casters z-pass, %d z-fail", volumes.zpass_count, volumes.zfail_count);
+    const volume_counter *c = &volumes.counter;
+    int n = snprintf(out, size, "light 0: %d casters z-pass, %d z-fail", c->zpass, c->zfail);
     if (n > 0 && (size_t)n < size && volumes.settings.mode == VOLUME_PLAN_EYE_COUNT)
-        n += snprintf(out + n, size - (size_t)n, ", from the eye inside %d", volumes.eye_count);
+        n += snprintf(out + n, size - (size_t)n, ", from the eye inside %d", c->eye);
     if (n > 0 && (size_t)n < size)
         n += snprintf(out + n, size - (size_t)n, "; volumes built %d, kept %d; all lights' kept %.1f MiB",
                       volumes.built_count, volumes.reused_count, (double)volumes.draw.cache_bytes / VOLUME_DRAW_MIB);
@@ -550,7 +427,7 @@ static void volumes_describe(char *out, size_t size) {
             n += snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);
     }
     if (n > 0 && (size_t)n < size)
-        n += volumes_describe_counter(out + n, size - (size_t)n);
+        n += volume_counter_describe(c, out + n, size - (size_t)n);
     if (n > 0 && (size_t)n < size && volumes.settings.soft == VOLUMES_SOFT_WEDGES)
         snprintf(out + n, size - (size_t)n, "; wedges %d, %d edges left out", volumes.wedges.wedge_count,
                  volumes.wedges.skipped_count);
