@@ -521,6 +521,23 @@ void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]
     }
 }
 
+void scene_receivers_bounds(const scene *s, float min[3], float max[3]) {
+    for (int k = 0; k < 3; k++) {
+        min[k] = INFINITY;
+        max[k] = -INFINITY;
+    }
+    for (int i = 0; i < s->object_count; i++) {
+        float lo[3], hi[3];
+        if (!s->objects[i].receives)
+            continue;
+        scene_object_world_bounds(&s->objects[i], lo, hi);
+        for (int k = 0; k < 3; k++) {
+            min[k] = fminf(min[k], lo[k]);
+            max[k] = fmaxf(max[k], hi[k]);
+        }
+    }
+}
+
 float scene_light_range_window(const scene_light *l, float distance) {
     if (!(l->range > 0))
         return 1;

@@ -203,5 +203,8 @@ void scene_object_normal_matrix(const scene_object *o, float out[3][3]);
 
 /* World-space bounds of one object's mesh under its model matrix. */
 void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]);
+/* The box of every receiving object's world bounds; empty (min > max)
+ * when none receives. */
+void scene_receivers_bounds(const scene *s, float min[3], float max[3]);
 
 #endif

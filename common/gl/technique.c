@@ -192,16 +192,7 @@ void technique_area_light_frame(const technique_frame *f, int l, area_light_fram
     const scene_light *light = &s->lights[l];
     float centre[4];
     vec3 axis, lo, hi, middle = {0, 0, 0};
-    glm_vec3_fill(lo, INFINITY);
-    glm_vec3_fill(hi, -INFINITY);
-    for (int i = 0; i < s->object_count; i++) {
-        vec3 object_lo, object_hi;
-        if (!s->objects[i].receives)
-            continue;
-        scene_object_world_bounds(&s->objects[i], object_lo, object_hi);
-        glm_vec3_minv(lo, object_lo, lo);
-        glm_vec3_maxv(hi, object_hi, hi);
-    }
+    scene_receivers_bounds(s, lo, hi);
     if (lo[0] <= hi[0])
         glm_vec3_center(lo, hi, middle);
     scene_light_homogeneous(light, centre);
@@ -222,10 +213,13 @@ bool technique_sample_area_light(const technique_frame *f, int l, int samples, s
     bool centre = f->light_points > 0 && moved;
     if (!soft_visibility_begin(v, l, centre ? 1 : samples, f->light_points == 0 || moved))
         return false;
+    soft_visibility_light *sum = &v->lights[l];
+    glDisable(GL_STENCIL_TEST);
+    if (sum->points == sum->samples) /* the frames before added every point */
+        return true;
     area_light_frame frame;
     technique_area_light_frame(f, l, &frame);
     uint32_t seed = area_light_hash((uint32_t)l);
-    soft_visibility_light *sum = &v->lights[l];
     for (int budget = f->light_points > 0 ? f->light_points : samples; budget > 0 && sum->points < sum->samples;
          budget--) {
         int k = centre ? TECHNIQUE_LIGHT_CENTRE : area_light_progressive_index(sum->points, samples);

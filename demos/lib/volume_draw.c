@@ -38,18 +38,10 @@ bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
-    glm_vec3_fill(d->receivers_lo, INFINITY);
-    glm_vec3_fill(d->receivers_hi, -INFINITY);
-    for (int i = 0; i < s->object_count; i++) {
+    scene_receivers_bounds(s, d->receivers_lo, d->receivers_hi);
+    for (int i = 0; i < s->object_count; i++)
         if (s->objects[i].casts && !volume_draw_init_caster(d, gpu, i))
             return false;
-        float lo[3], hi[3];
-        scene_object_world_bounds(&s->objects[i], lo, hi);
-        if (s->objects[i].receives) {
-            glm_vec3_minv(d->receivers_lo, lo, d->receivers_lo);
-            glm_vec3_maxv(d->receivers_hi, hi, d->receivers_hi);
-        }
-    }
     glGenVertexArrays(1, &d->stream_vao);
     glGenBuffers(1, &d->stream_buffer);
     volume_cache_vertex_array(d->stream_vao, d->stream_buffer);
