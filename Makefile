@@ -70,9 +70,10 @@ LIB := $(BUILD)/libshadows.a
 LIB_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(COMMON_SRC) $(DEMO_SRC) $(wildcard demos/lib/*.c) demos/registry.c) \
 	$(BUILD)/glad/gl.o
 # Programs whose main is common/programs/main_NAME.c (the reference, the
-# metrics, the benchmark, the scene generator, the stress suite); the
+# metrics, the benchmark, the scene generator, the stress suite, the
+# web build's model baker); the
 # demos' main is common/programs/main_single.c.
-TOOLS := raytrace shadowdiff bench scenegen stress report
+TOOLS := raytrace shadowdiff bench scenegen stress report bake
 PROGRAMS := $(BUILD)/shadows $(addprefix $(BUILD)/,$(DEMOS) $(TOOLS))
 STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/scenes/teapot.json
 # Scenes with area lights: their truth has penumbrae.

@@ -16,6 +16,7 @@
 #include "support.h"
 
 #include "mesh.h"
+#include "mesh_pack.h"
 
 #define TESTMODELS_DIR "/usr/share/assimp/models"
 #define PI 3.14159265358979323846
@@ -791,6 +792,53 @@ static void test_load_errors(void **state) {
     expect_load_error("tests/data/scene_good.json", ""); /* assimp has no reader for it */
 }
 
+/* A mesh pack (mesh_pack.h, the web build's models) reads back the mesh
+ * and colour mesh_load_file made, bit for bit; a file that is no pack, or
+ * a truncated one, is one line naming it. */
+#define PACK_DIR "out/test/mesh_pack"
+static void test_pack_round_trip(void **state) {
+    (void)state;
+    static const char *const models[] = {"assets/bunny.obj", "tests/data/mesh_two_colours.obj"};
+    assert_int_equal(system("mkdir -p " PACK_DIR), 0);
+    for (size_t i = 0; i < sizeof models / sizeof *models; i++) {
+        mesh loaded, read;
+        mesh_material loaded_material, read_material;
+        assert_true(mesh_load_file(&loaded, models[i], &loaded_material));
+        assert_true(mesh_pack_write(PACK_DIR "/model.pack", &loaded, &loaded_material));
+        assert_true(mesh_pack_read(&read, PACK_DIR "/model.pack", &read_material));
+        assert_int_equal(read.vertex_count, loaded.vertex_count);
+        assert_int_equal(read.index_count, loaded.index_count);
+        assert_memory_equal(read.vertices, loaded.vertices, loaded.vertex_count * sizeof *loaded.vertices);
+        assert_memory_equal(read.indices, loaded.indices, loaded.index_count * sizeof *loaded.indices);
+        assert_memory_equal(read.bounds_min, loaded.bounds_min, sizeof loaded.bounds_min);
+        assert_memory_equal(read.bounds_max, loaded.bounds_max, sizeof loaded.bounds_max);
+        assert_int_equal(read_material.has_color, loaded_material.has_color);
+        assert_memory_equal(read_material.color, loaded_material.color, sizeof loaded_material.color);
+        mesh_free(&loaded);
+        mesh_free(&read);
+    }
+    /* The pack cut short, then a file that is no pack. */
+    assert_int_equal(system("head -c 100 " PACK_DIR "/model.pack > " PACK_DIR "/short.pack"), 0);
+    static const struct {
+        const char *path, *problem;
+    } bad[] = {
+        {PACK_DIR "/short.pack", "truncated"},
+        {"assets/bunny.obj", "not a mesh pack"},
+        {PACK_DIR "/none.pack", "cannot open"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        mesh m;
+        support_capture_stderr();
+        bool read = mesh_pack_read(&m, bad[i].path, NULL);
+        const char *text = support_release_stderr();
+        assert_false(read);
+        assert_empty_mesh(&m);
+        char expected[256];
+        snprintf(expected, sizeof expected, "%s: %s", bad[i].path, bad[i].problem);
+        assert_one_line_with(text, expected, NULL);
+    }
+}
+
 typedef struct reported_error {
     char name[256];
     char problem[256];
@@ -849,6 +897,7 @@ int main(void) {
         cmocka_unit_test(test_load_clean_model_is_quiet),
         cmocka_unit_test(test_load_errors),
         cmocka_unit_test(test_error_handler_replaces_stderr),
+        cmocka_unit_test(test_pack_round_trip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
