@@ -79,7 +79,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test bench stress ruler report readme-report scenes update-golden readme-flags format clean help
+.PHONY: all deps demo gallery test web bench stress ruler report readme-report scenes update-golden readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -96,12 +96,13 @@ help:
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
 	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"
+	@echo "make web            out/web/: every technique in a web page (Emscripten, WebGL 2)"
 	@echo "make clean          remove build/, build-san/ and out/"
 
 DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \
 	libegl-mesa0 libgl1-mesa-dri libosmesa6 libcglm-dev libstb-dev libassimp-dev \
 	assimp-testmodels libcjson-dev libembree-dev libcmocka-dev gnuplot-nox xvfb xauth xdotool ffmpeg chromium \
-	clang-format
+	clang-format emscripten node-acorn
 deps:
 	@if [ "$$(id -u)" = 0 ]; then SUDO=; elif command -v sudo >/dev/null; then SUDO=sudo; \
 	else echo "make deps: not root and no sudo; run as root:"; \
@@ -117,13 +118,18 @@ gallery: $(PROGRAMS)
 
 # First the C files' format (.clang-format) and the comments' check
 # (tests/check_comments.sh: no measured figure or tracker number in a
-# comment), itself checked first; then the suite,
+# comment), itself checked first; the web page where emcc is installed
+# (test_web runs it in headless Chromium) and its JSON reader against
+# Debian's cJSON (tests/web/check_json.sh); then the suite,
 # twice, plain and built with ASan+UBSan (build-san/), both at once
 # (tests/run.sh).
 # `make test SANITIZE=1` runs only the sanitizer pass.
 test: $(PROGRAMS) $(TESTS)
 	@clang-format --dry-run --Werror $(C_FILES) || { echo "make test: C files not in .clang-format's style: run make format"; exit 1; }
 	@tests/check_comments.sh --self-test && tests/check_comments.sh
+	@$(if $(WEB_HAVE_EMCC),$(MAKE) --no-print-directory web,echo "make test: no emcc, so no web page: test_web \
+		skips (make deps installs Debian's emscripten)")
+	@tests/web/check_json.sh
 ifeq ($(SANITIZE),1)
 	@tests/run.sh $(BUILD)
 else
@@ -246,7 +252,9 @@ readme-flags: $(BUILD)/shadows
 	mv $(BUILD)/README.md.new README.md
 
 clean:
-	rm -rf build build-san out
+	rm -rf build build-san build-web out
+
+include common/web/web.mk
 
 # The extension list, rewritten only when it changes, so that a build
 # made before an extension was added regenerates the loader.

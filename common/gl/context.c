@@ -7,8 +7,19 @@
 
 #include "shader.h"
 
+/* The browser is a choice in the web build only. */
+#ifdef __EMSCRIPTEN__
+#define CONTEXT_BROWSER_NAME "browser"
+#else
+#define CONTEXT_BROWSER_NAME NULL
+#endif
 const char *const context_backend_names[] = {
-    [CONTEXT_AUTO] = "auto", [CONTEXT_GLFW] = "glfw", [CONTEXT_EGL] = "egl", [CONTEXT_OSMESA] = "osmesa", NULL,
+    [CONTEXT_AUTO] = "auto",
+    [CONTEXT_GLFW] = "glfw",
+    [CONTEXT_EGL] = "egl",
+    [CONTEXT_OSMESA] = "osmesa",
+    [CONTEXT_BROWSER] = CONTEXT_BROWSER_NAME,
+    NULL,
 };
 
 /* Errors seen by the KHR_debug callback since the last context_gl_ok. */
@@ -63,16 +74,46 @@ bool context_software_renderer(const char *renderer) {
     return strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe");
 }
 
+/* The backends a build has: the native ones, or the web build's browser. */
+#ifdef __EMSCRIPTEN__
+#define CONTEXT_ONLY_BROWSER 1
+static context_loader context_create_backend(context *c, const context_settings *s, context_backend b) {
+    c->backend = CONTEXT_BROWSER;
+    if (b == CONTEXT_BROWSER || b == CONTEXT_AUTO)
+        return context_browser_create(c, s);
+    fprintf(stderr, "context: %s: not in the web build, whose only context is the page's canvas\n",
+            context_backend_name(b));
+    return NULL;
+}
+
+static void context_destroy_backend(context *c) {
+    if (c->backend == CONTEXT_BROWSER)
+        context_browser_destroy(c);
+}
+#else
+#define CONTEXT_ONLY_BROWSER 0
 static context_loader context_create_backend(context *c, const context_settings *s, context_backend b) {
     c->backend = b;
     switch (b) {
     case CONTEXT_GLFW: return context_glfw_create(c, s);
     case CONTEXT_EGL: return context_egl_create(c, s);
     case CONTEXT_OSMESA: return context_osmesa_create(c, s);
+    case CONTEXT_BROWSER:
     case CONTEXT_AUTO: break;
     }
     return NULL;
 }
+
+static void context_destroy_backend(context *c) {
+    switch (c->backend) {
+    case CONTEXT_GLFW: context_glfw_destroy(c); break;
+    case CONTEXT_EGL: context_egl_destroy(c); break;
+    case CONTEXT_OSMESA: context_osmesa_destroy(c); break;
+    case CONTEXT_BROWSER:
+    case CONTEXT_AUTO: break;
+    }
+}
+#endif
 
 static bool context_display_available(void) {
     const char *x11 = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
@@ -83,7 +124,7 @@ bool context_create(context *c, const context_settings *s) {
     *c = (context){0};
     context_verbose = s->verbose;
     context_loader loader = NULL;
-    if (s->backend != CONTEXT_AUTO) {
+    if (s->backend != CONTEXT_AUTO || CONTEXT_ONLY_BROWSER) {
         loader = context_create_backend(c, s, s->backend);
     } else {
         /* Each failed attempt has already said why on stderr. */
@@ -118,11 +159,6 @@ bool context_create(context *c, const context_settings *s) {
 }
 
 void context_destroy(context *c) {
-    switch (c->backend) {
-    case CONTEXT_GLFW: context_glfw_destroy(c); break;
-    case CONTEXT_EGL: context_egl_destroy(c); break;
-    case CONTEXT_OSMESA: context_osmesa_destroy(c); break;
-    case CONTEXT_AUTO: break;
-    }
+    context_destroy_backend(c);
     *c = (context){0};
 }

@@ -7,8 +7,10 @@
  *   CONTEXT_OSMESA  headless: libOSMesa, loaded at run time with dlopen
  *                   because recent Mesa releases no longer ship it, so the
  *                   programs build and run where it is missing;
+ *   CONTEXT_BROWSER the web build's only one (make web): the page's
+ *                   canvas with WebGL 2 (common/web/context_browser.c);
  *   CONTEXT_AUTO    a window when asked for one and a display is there,
- *                   else EGL, else OSMesa.
+ *                   else EGL, else OSMesa; in the web build, the browser.
  *
  * context_create also loads the GL entry points (glad, through the
  * backend's get-proc-address: no GL symbol is linked directly) and turns on
@@ -29,6 +31,7 @@ typedef enum context_backend {
     CONTEXT_GLFW,
     CONTEXT_EGL,
     CONTEXT_OSMESA,
+    CONTEXT_BROWSER,
 } context_backend;
 
 typedef struct context_settings {
@@ -68,5 +71,7 @@ context_loader context_osmesa_create(context *c, const context_settings *s);
 void context_glfw_destroy(context *c);
 void context_egl_destroy(context *c);
 void context_osmesa_destroy(context *c);
+context_loader context_browser_create(context *c, const context_settings *s);
+void context_browser_destroy(context *c);
 
 #endif

@@ -2,6 +2,9 @@
 
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
+#ifdef __EMSCRIPTEN__
+#include <emscripten/emscripten.h>
+#endif
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -90,6 +93,7 @@ static struct {
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
+    double last_frame;               /* glfwGetTime at the last frame's end */
     char note[PATH_MAX + 64];        /* the HUD's last line until note_until (glfwGetTime) */
     char screenshot_asked[PATH_MAX]; /* F12's picture, saved before the frame is swapped */
     double note_until;
@@ -1033,8 +1037,58 @@ static void app_save_window(int width, int height) {
     app.screenshot_asked[0] = '\0';
 }
 
+/* Window frame `frame` of `frames` (interactive when frames <= 0). */
+static bool app_window_frame(int frame, int frames) {
+    GLFWwindow *w = app.ctx.window;
+    bool ok = true;
+    int width, height;
+    glfwGetFramebufferSize(w, &width, &height);
+    if (app.resized && width > 0 && height > 0 && !app.video.pipe) { /* a video keeps its size */
+        app_destroy_targets();
+        ok = app_create_targets(width, height);
+        app.resized = false;
+    }
+    if (frames > 0)
+        app.time = frame / APP_HEADLESS_FPS;
+    ok = ok && app_render_picture(frames > 0); /* --frames: a script, which waits for the truth */
+    /* --hud: into the picture, so that screenshots and the video
+     * carry it; else over the window only. */
+    if (frames <= 0 && app.hud_in_pictures)
+        ok = ok && app_hud_in_picture(-1);
+    ok = ok && (!app.video.pipe || app_record_frame());
+    target_blit_to_window(app_picture(), width, height);
+    if (frames <= 0 && !app.hud_in_pictures && !app.no_hud)
+        app_hud(width, height, -1);
+    if (app.screenshot_asked[0])
+        app_save_window(width, height);
+    ok = ok && context_gl_ok("window");
+    glfwSwapBuffers(w);
+    glfwPollEvents();
+    double now = glfwGetTime();
+    /* The clock lives here, not in techniques: it only advances the
+     * animation and smooths the HUD's frame time. */
+    if (frames <= 0 && (app_motion() || app_step_path()))
+        app.time += app.video.pipe ? 1.0 / VIDEO_FPS : now - app.last_frame; /* a video keeps its own clock */
+    app.frame_ms += ((now - app.last_frame) * 1000.0 - app.frame_ms) * 0.1;
+    app.last_frame = now;
+    return ok;
+}
+
+#ifdef __EMSCRIPTEN__
+/* The page's frame, called by the browser for each frame it shows; a
+ * frame that fails stops the page's loop (its line is on the console). */
+static void app_browser_frame(void) {
+    static int frame;
+    if (glfwWindowShouldClose(app.ctx.window) || app.tour_failed || !app_window_frame(frame++, 0)) {
+        fprintf(stderr, "%s: stopped\n", app.program);
+        emscripten_cancel_main_loop();
+    }
+}
+#endif
+
 /* Interactive when frames <= 0; otherwise that many frames, then exit
- * (how the window is tested under Xvfb). */
+ * (how the window is tested under Xvfb). In the page, the browser calls
+ * the interactive window's frames and this never returns. */
 static bool app_run_window(int frames) {
     GLFWwindow *w = app.ctx.window;
     glfwSetKeyCallback(w, app_on_key);
@@ -1042,40 +1096,14 @@ static bool app_run_window(int frames) {
     glfwSetCursorPosCallback(w, app_on_cursor);
     glfwSetScrollCallback(w, app_on_scroll);
     glfwSetFramebufferSizeCallback(w, app_on_resize);
+    app.last_frame = glfwGetTime();
+#ifdef __EMSCRIPTEN__
+    if (frames <= 0)
+        emscripten_set_main_loop(app_browser_frame, 0, true);
+#endif
     bool ok = true;
-    double last = glfwGetTime();
-    for (int frame = 0; ok && !glfwWindowShouldClose(w) && (frames <= 0 || frame < frames); frame++) {
-        int width, height;
-        glfwGetFramebufferSize(w, &width, &height);
-        if (app.resized && width > 0 && height > 0 && !app.video.pipe) { /* a video keeps its size */
-            app_destroy_targets();
-            ok = app_create_targets(width, height);
-            app.resized = false;
-        }
-        if (frames > 0)
-            app.time = frame / APP_HEADLESS_FPS;
-        ok = ok && app_render_picture(frames > 0); /* --frames: a script, which waits for the truth */
-        /* --hud: into the picture, so that screenshots and the video
-         * carry it; else over the window only. */
-        if (frames <= 0 && app.hud_in_pictures)
-            ok = ok && app_hud_in_picture(-1);
-        ok = ok && (!app.video.pipe || app_record_frame());
-        target_blit_to_window(app_picture(), width, height);
-        if (frames <= 0 && !app.hud_in_pictures && !app.no_hud)
-            app_hud(width, height, -1);
-        if (app.screenshot_asked[0])
-            app_save_window(width, height);
-        ok = ok && context_gl_ok("window");
-        glfwSwapBuffers(w);
-        glfwPollEvents();
-        double now = glfwGetTime();
-        /* The clock lives here, not in techniques: it only advances the
-         * animation and smooths the HUD's frame time. */
-        if (frames <= 0 && (app_motion() || app_step_path()))
-            app.time += app.video.pipe ? 1.0 / VIDEO_FPS : now - last; /* a video keeps its own clock */
-        app.frame_ms += ((now - last) * 1000.0 - app.frame_ms) * 0.1;
-        last = now;
-    }
+    for (int frame = 0; ok && !glfwWindowShouldClose(w) && (frames <= 0 || frame < frames); frame++)
+        ok = app_window_frame(frame, frames);
     return ok;
 }
 

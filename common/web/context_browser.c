@@ -1,0 +1,118 @@
+/* Browser backend: the page's canvas as a GLFW window (Emscripten's GLFW,
+ * which also delivers the keys and the mouse) with a WebGL 2 context.
+ *
+ * WebGL 2 is OpenGL ES 3.0. The suite is written against GL 3.3 core and
+ * loads its entry points with glad's GL loader, so this backend's loader
+ * answers for GL 3.3: GL_VERSION reads as 3.3, so that glad asks for every
+ * 3.3 entry point; those WebGL 2 has (samplers, uniform blocks, buffer
+ * copies) come back, those it lacks stay NULL, and context_features says
+ * what is missing. A few desktop names are answered by their ES spelling
+ * (glClearDepth by glClearDepthf) or by a WebGL extension's function
+ * (glClipControl: EXT_clip_control; glPolygonMode: WEBGL_polygon_mode),
+ * and the extensions the suite uses are enabled here, where the browser
+ * has them.
+ *
+ * A run that is not interactive (--frames, --screenshot, --dump: what the
+ * browser tests run) gets the canvas's context without a window, so the
+ * program runs it as native programs run EGL: headless. */
+#include <GLFW/glfw3.h>
+#include <emscripten/emscripten.h>
+#include <emscripten/html5_webgl.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "context.h"
+
+/* The suite's GL constants, as GL 3.3 and the WebGL extensions share them. */
+#define CONTEXT_BROWSER_GL_VERSION 0x1F02
+
+/* What WebGL 2 offers only as extensions, enabled where the browser has
+ * them: float colour targets and their blending (the soft sums, the float
+ * counter), and what context_features names. */
+static const char *const context_browser_extensions[] = {
+    "EXT_color_buffer_float", "EXT_float_blend",    "EXT_depth_clamp",
+    "EXT_clip_control",       "WEBGL_polygon_mode", "WEBGL_clip_cull_distance",
+};
+enum { context_browser_extension_count = sizeof context_browser_extensions / sizeof *context_browser_extensions };
+static bool context_browser_enabled[context_browser_extension_count];
+
+static bool context_browser_has(const char *extension) {
+    for (int i = 0; i < context_browser_extension_count; i++)
+        if (strcmp(context_browser_extensions[i], extension) == 0)
+            return context_browser_enabled[i];
+    return false;
+}
+
+EM_JS(void, context_browser_clip_control, (unsigned origin, unsigned depth),
+      { GLctx.getExtension('EXT_clip_control').clipControlEXT(origin, depth); });
+EM_JS(void, context_browser_polygon_mode, (unsigned face, unsigned mode),
+      { GLctx.getExtension('WEBGL_polygon_mode').polygonModeWEBGL(face, mode); });
+
+typedef const unsigned char *(*context_browser_get_string_fn)(unsigned name);
+static context_browser_get_string_fn context_browser_webgl_get_string;
+typedef void (*context_browser_clear_depthf_fn)(float depth);
+static context_browser_clear_depthf_fn context_browser_webgl_clear_depthf;
+
+static const unsigned char *context_browser_get_string(unsigned name) {
+    if (name == CONTEXT_BROWSER_GL_VERSION)
+        return (const unsigned char *)"3.3 (WebGL 2.0, loaded as GL 3.3 core: what it lacks stays NULL)";
+    return context_browser_webgl_get_string(name);
+}
+
+static void context_browser_clear_depth(double depth) { context_browser_webgl_clear_depthf((float)depth); }
+
+static context_proc context_browser_proc(const char *name) {
+    if (strcmp(name, "glGetString") == 0)
+        return (context_proc)context_browser_get_string;
+    if (strcmp(name, "glClearDepth") == 0)
+        return (context_proc)context_browser_clear_depth;
+    if (strcmp(name, "glClipControl") == 0)
+        return context_browser_has("EXT_clip_control") ? (context_proc)context_browser_clip_control : NULL;
+    if (strcmp(name, "glPolygonMode") == 0)
+        return context_browser_has("WEBGL_polygon_mode") ? (context_proc)context_browser_polygon_mode : NULL;
+    return (context_proc)emscripten_webgl_get_proc_address(name);
+}
+
+static void context_browser_error(int code, const char *description) {
+    fprintf(stderr, "GLFW error 0x%x: %s\n", code, description);
+}
+
+context_loader context_browser_create(context *c, const context_settings *s) {
+    glfwSetErrorCallback(context_browser_error);
+    if (!glfwInit()) {
+        fprintf(stderr, "context: browser: GLFW cannot initialize\n");
+        return NULL;
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+    /* Techniques draw into the off-screen target; the canvas only shows it. */
+    glfwWindowHint(GLFW_DEPTH_BITS, 0);
+    glfwWindowHint(GLFW_STENCIL_BITS, 0);
+    GLFWwindow *window = glfwCreateWindow(s->width, s->height, s->title, NULL, NULL);
+    if (!window) {
+        fprintf(stderr, "context: browser: no WebGL 2 context on the canvas (does the browser have WebGL 2?)\n");
+        glfwTerminate();
+        return NULL;
+    }
+    glfwMakeContextCurrent(window);
+    if (s->want_window)
+        c->window = window;
+    else
+        c->impl = window;
+    EMSCRIPTEN_WEBGL_CONTEXT_HANDLE gl = emscripten_webgl_get_current_context();
+    for (int i = 0; i < context_browser_extension_count; i++)
+        context_browser_enabled[i] = emscripten_webgl_enable_extension(gl, context_browser_extensions[i]);
+    context_browser_webgl_get_string =
+        (context_browser_get_string_fn)emscripten_webgl_get_proc_address("glGetString");
+    context_browser_webgl_clear_depthf =
+        (context_browser_clear_depthf_fn)emscripten_webgl_get_proc_address("glClearDepthf");
+    snprintf(c->platform, sizeof c->platform, "browser canvas (WebGL 2)");
+    return context_browser_proc;
+}
+
+void context_browser_destroy(context *c) {
+    glfwDestroyWindow(c->window ? c->window : c->impl);
+    glfwTerminate();
+}

@@ -1,0 +1,92 @@
+# The web page (make web, included by the Makefile): every technique of
+# build/shadows compiled with Debian's Emscripten for WebGL 2, in
+# out/web/index.html and out/web/shadows.js (the wasm, the shaders, the
+# page's scenes and their models embedded, so that the page works from
+# file:// as from any static server).
+#
+# The same sources as the native programs, except the platform's:
+# the browser's context (common/web/context_browser.c) instead of GLFW's
+# window, EGL and OSMesa; model files as mesh packs written natively by
+# build/bake (common/web/mesh_file_web.c) instead of assimp; no ray
+# tracer (Embree is native only: common/web/raytrace_web.c); cJSON's API
+# over the browser's JSON (common/web/cjson_browser.c).
+
+WEB_BUILD := build-web
+WEB_OUT := out/web
+# emcc runs under Debian's own python3 (the first python3 on PATH may be
+# another, under which it fails) and finds Debian's node-acorn.
+EMCC := env PATH=/usr/bin:$$PATH NODE_PATH=/usr/share/nodejs emcc
+WEB_HAVE_EMCC := $(shell command -v emcc >/dev/null 2>&1 && echo yes)
+
+# What the page shows: the tours, the scenes they step through, the
+# standard and soft scenes, and the models these use.
+WEB_TOURS := $(wildcard assets/tours/*.json)
+WEB_TOUR_SCENES := $(patsubst ../scenes/%,assets/scenes/%,$(shell sed -n 's/.*"scene": *"\([^"]*\)".*/\1/p' $(WEB_TOURS)))
+WEB_SCENES := $(sort $(STANDARD_SCENES) $(SOFT_SCENES) $(WEB_TOUR_SCENES))
+WEB_MODELS := assets/bunny.obj assets/teapot.obj
+
+# Native sources the page has no use for or cannot link; common/web/ has
+# the browser's versions of what it needs of them.
+WEB_NATIVE_ONLY := common/gl/context_glfw.c common/gl/context_egl.c common/gl/context_osmesa.c \
+	common/data/mesh_file.c common/measure/raytrace.c
+WEB_SRC := $(filter-out $(WEB_NATIVE_ONLY),$(COMMON_SRC)) $(DEMO_SRC) $(wildcard demos/lib/*.c) demos/registry.c \
+	$(wildcard common/web/*.c) common/programs/main_registry.c
+WEB_OBJ := $(patsubst %.c,$(WEB_BUILD)/%.o,$(WEB_SRC)) $(WEB_BUILD)/glad/gl.o
+WEB_GLAD_C := $(WEB_BUILD)/glad/src/gl.c
+WEB_GLAD_H := $(WEB_BUILD)/glad/include/glad/gl.h
+# The header-only and header libraries' headers, without the rest of
+# /usr/include (which would shadow Emscripten's own C library).
+WEB_INCLUDE := $(WEB_BUILD)/include
+WEB_HEADERS := $(WEB_INCLUDE)/cglm $(WEB_INCLUDE)/cjson $(WEB_INCLUDE)/stb
+# -Wno-align-mismatch: scene_object's model matrices are _Alignas(16), as
+# cglm's mat4 parameters want, but a decayed array's type cannot say so
+# (clang warns, gcc does not).
+WEB_CFLAGS := -std=c11 -O2 -Wall -Wextra -Werror -Wno-align-mismatch -D_XOPEN_SOURCE=700 -DGLFW_INCLUDE_NONE \
+	-I$(WEB_INCLUDE) \
+	-I$(WEB_INCLUDE)/cjson -I$(WEB_INCLUDE)/stb \
+	-I$(WEB_BUILD)/glad/include -Icommon/data -Icommon/measure -Icommon/gl -Icommon/programs -Idemos -Idemos/lib
+WEB_LDFLAGS := -O2 -sUSE_GLFW=3 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sALLOW_MEMORY_GROWTH=1 \
+	-sSINGLE_FILE=1 -sINVOKE_RUN=0 -sEXPORTED_RUNTIME_METHODS=callMain,FS
+# Embedded at the paths the programs look for (path_in_project: /shaders,
+# /assets/scenes; a tour's scenes relative to it); the models as packs at
+# the models' own paths.
+WEB_EMBED := --embed-file shaders@/shaders $(foreach f,$(WEB_TOURS) $(WEB_SCENES),--embed-file $(f)@/$(f)) \
+	$(foreach m,$(WEB_MODELS),--embed-file $(WEB_BUILD)/$(m)@/$(m))
+
+.PHONY: web
+ifeq ($(WEB_HAVE_EMCC),yes)
+web: $(WEB_OUT)/index.html $(WEB_OUT)/shadows.js
+else
+web:
+	@echo "make web: emcc not found: make deps installs Debian's emscripten"; exit 1
+endif
+
+$(WEB_OUT)/index.html: common/web/index.html
+	@mkdir -p $(dir $@)
+	cp $< $@
+
+$(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_MODELS)) $(wildcard shaders/*) $(WEB_TOURS) \
+		$(WEB_SCENES)
+	@mkdir -p $(dir $@)
+	$(EMCC) $(WEB_LDFLAGS) $(WEB_OBJ) $(WEB_EMBED) -o $@
+
+$(WEB_BUILD)/assets/%.obj: assets/%.obj $(BUILD)/bake
+	@mkdir -p $(dir $@)
+	$(BUILD)/bake $< $@
+
+$(WEB_HEADERS):
+	@mkdir -p $(WEB_INCLUDE)
+	ln -sfn /usr/include/$(notdir $@) $@
+
+$(WEB_GLAD_C) $(WEB_GLAD_H) &: $(GLAD_EXTENSIONS_FILE)
+	@mkdir -p $(WEB_BUILD)/glad
+	glad --quiet --reproducible --api gl:core=3.3 --extensions $(GL_EXTENSIONS) --out-path $(WEB_BUILD)/glad c
+
+$(WEB_BUILD)/glad/gl.o: $(WEB_GLAD_C)
+	@echo "emcc $<" && $(EMCC) $(WEB_CFLAGS) -c $< -o $@
+
+$(WEB_BUILD)/%.o: %.c $(WEB_GLAD_H) | $(WEB_HEADERS)
+	@mkdir -p $(dir $@)
+	@echo "emcc $<" && $(EMCC) $(WEB_CFLAGS) -MMD -MP -c $< -o $@
+
+-include $(shell find $(WEB_BUILD) -name '*.d' 2>/dev/null)

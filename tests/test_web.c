@@ -1,0 +1,297 @@
+/* The web page (make web, out/web/) in headless Chromium against the
+ * native programs: each technique on each standard scene at 640x360, the
+ * page's picture and decisions (its own --dump, run in the browser on
+ * WebGL 2) against native EGL's. At most WEB_MAX_DIFFERING of the pixels
+ * may differ by more than SUPPORT_TOLERANCE, and at most WEB_MAX_DECISIONS
+ * of the visibility decisions (no surface, lit, shadowed) may differ. A
+ * page that fails fails the test with the browser console's lines.
+ *
+ * Skipped where the page is not built (make test builds it where Debian's
+ * emscripten is installed) or Chromium is missing, and in the sanitizer
+ * pass: the page is one build either way. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "dump.h"
+#include "registry.h"
+#include "support.h"
+
+#define OUT "out/test/web"
+#define WEB_PAGE "out/web/index.html"
+#define WEB_SIZE "640x360"
+/* The browser's rasterizer (SwiftShader under ANGLE) is not Mesa's: a
+ * two-hundredth of the pixels may round an edge differently. */
+#define WEB_MAX_DIFFERING 0.005
+#define WEB_MAX_DECISIONS 0.0005
+/* Headless Chromium on SwiftShader, as the issue's checks were made; the
+ * virtual time budget only bounds a page that never finishes. */
+#define WEB_CHROMIUM                                                                                                 \
+    "chromium --headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "                          \
+    "--virtual-time-budget=120000 --dump-dom"
+#define WEB_MAX_DOM (64 << 20)
+
+static const char *const web_scenes[] = {"simple", "bunny", "teapot"};
+enum { web_scene_count = sizeof web_scenes / sizeof *web_scenes };
+
+/* Whether the page can be tested here; says why not. */
+static bool web_available(void) {
+    if (getenv("TEST_SANITIZER"))
+        return false;
+    if (access(WEB_PAGE, R_OK) != 0) {
+        printf("web: %s not built (make web needs Debian's emscripten: make deps)\n", WEB_PAGE);
+        return false;
+    }
+    if (!support_have_command("chromium")) {
+        printf("web: chromium not installed (make deps)\n");
+        return false;
+    }
+    return true;
+}
+
+/* `text` with every byte but [A-Za-z0-9-_.,/] as %XX. */
+static void web_url_encode(const char *text, char *out, size_t size) {
+    size_t n = 0;
+    for (const unsigned char *c = (const unsigned char *)text; *c && n + 4 < size; c++) {
+        if ((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || strchr("-_.,/", *c))
+            out[n++] = (char)*c;
+        else
+            n += (size_t)snprintf(out + n, size - n, "%%%02X", *c);
+    }
+    out[n] = '\0';
+}
+
+static char *web_read_file(const char *path, size_t max) {
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *text = malloc(max + 1);
+    size_t n = text ? fread(text, 1, max, f) : 0;
+    fclose(f);
+    if (text)
+        text[n] = '\0';
+    return text;
+}
+
+/* The text of <pre id="ID"...> up to its </pre>, in place (the DOM is
+ * changed); "" when absent. */
+static const char *web_element(char *dom, const char *id) {
+    char open[64];
+    snprintf(open, sizeof open, "<pre id=\"%s\"", id);
+    char *start = strstr(dom, open);
+    if (!start || !(start = strchr(start, '>')))
+        return "";
+    start++;
+    char *end = strstr(start, "</pre>");
+    if (end)
+        *end = '\0';
+    return start;
+}
+
+static int web_base64_value(char c) {
+    const char *alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const char *at = c ? strchr(alphabet, c) : NULL;
+    return at ? (int)(at - alphabet) : -1;
+}
+
+/* Decodes `length` characters of base64 into `path`. */
+static bool web_write_base64(const char *text, size_t length, const char *path) {
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return false;
+    unsigned bits = 0;
+    int count = 0;
+    for (size_t i = 0; i < length; i++) {
+        int v = web_base64_value(text[i]);
+        if (v < 0)
+            continue; /* padding */
+        bits = bits << 6 | (unsigned)v;
+        count += 6;
+        if (count >= 8) {
+            count -= 8;
+            fputc((int)(bits >> count & 0xff), f);
+        }
+    }
+    return fclose(f) == 0;
+}
+
+/* Runs the page with the program's `args` and the page's `query` (keys,
+ * frames: index.html) in headless Chromium; the files it wrote under /out/
+ * (of the names in `exported`) into dir. Fails the running test, with the
+ * page's console, unless its status starts with `expected`. */
+static void web_run_page(const char *args, const char *query, const char *exported, const char *expected,
+                         const char *dir) {
+    char page[PATH_MAX], encoded[2048], dom_path[PATH_MAX + 16], command[4 * PATH_MAX + 4096];
+    assert_non_null(realpath(WEB_PAGE, page));
+    web_url_encode(args, encoded, sizeof encoded);
+    snprintf(dom_path, sizeof dom_path, "%s/page.html", dir);
+    snprintf(command, sizeof command,
+             "mkdir -p %s && " WEB_CHROMIUM " --user-data-dir=%s/profile 'file://%s?args=%s&export=%s%s' > %s", dir,
+             dir, page, encoded, exported, query, dom_path);
+    char errors[4096];
+    int status = support_run(command, errors, sizeof errors);
+    char *dom = web_read_file(dom_path, WEB_MAX_DOM);
+    assert_non_null(dom);
+    const char *exit_line = web_element(dom, "status");
+    if (status != 0 || strncmp(exit_line, expected, strlen(expected)) != 0) {
+        printf("web: %s: chromium %d, page: \"%s\"\n%s\n", args, status, exit_line, web_element(dom, "console"));
+        free(dom);
+        fail();
+    }
+    printf("web: %s: %s\n", args, exit_line);
+    for (char *line = (char *)web_element(dom, "files"), *next; *line; line = next) {
+        next = line + strcspn(line, "\n");
+        if (*next)
+            *next++ = '\0';
+        char *space = strchr(line, ' ');
+        if (!space)
+            continue;
+        *space = '\0';
+        const char *name = strrchr(line, '/') ? strrchr(line, '/') + 1 : line;
+        char path[2 * PATH_MAX];
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        assert_true(web_write_base64(space + 1, strlen(space + 1), path));
+    }
+    free(dom);
+}
+
+/* A headless run of the program in the page, which must exit 0. */
+static void web_run(const char *args, const char *exported, const char *dir) {
+    web_run_page(args, "", exported, "exit 0 ", dir);
+}
+
+/* The share of pixels whose decision (no surface, lit, shadowed at half
+ * the light) differs between two visibility.pfm files. */
+static double web_decisions_differing(const char *a_dir, const char *b_dir) {
+    char a_path[PATH_MAX + 16], b_path[PATH_MAX + 16];
+    snprintf(a_path, sizeof a_path, "%s/visibility.pfm", a_dir);
+    snprintf(b_path, sizeof b_path, "%s/visibility.pfm", b_dir);
+    int aw, ah, bw, bh;
+    float *a = dump_read_pfm(a_path, &aw, &ah, 1), *b = dump_read_pfm(b_path, &bw, &bh, 1);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(aw == bw && ah == bh);
+    long differing = 0;
+    for (long i = 0; i < (long)aw * ah; i++) {
+        int da = a[i] < 0 ? 0 : a[i] >= 0.5f ? 1 : 2, db = b[i] < 0 ? 0 : b[i] >= 0.5f ? 1 : 2;
+        differing += da != db;
+    }
+    free(a);
+    free(b);
+    return (double)differing / ((double)aw * ah);
+}
+
+/* Every technique on every standard scene: the page against native EGL. */
+static void web_matches_native(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    for (int t = 0; t < registry_technique_count; t++) {
+        for (int s = 0; s < web_scene_count; s++) {
+            const char *technique = registry_techniques[t]->name;
+            char scene[128], flags[256], native_dir[PATH_MAX], web_dir[PATH_MAX], args[512];
+            snprintf(scene, sizeof scene, "assets/scenes/%s.json", web_scenes[s]);
+            snprintf(native_dir, sizeof native_dir, OUT "/%s_%s_native", technique, web_scenes[s]);
+            snprintf(web_dir, sizeof web_dir, OUT "/%s_%s_web", technique, web_scenes[s]);
+            snprintf(flags, sizeof flags, "--backend egl --technique %s", technique);
+            assert_int_equal(support_dump(support_program("shadows"), scene, flags, native_dir), 0);
+            snprintf(args, sizeof args, "--technique %s --scene /%s --size " WEB_SIZE " --dump /out/dump", technique,
+                     scene);
+            web_run(args, "color.png,visibility.pfm", web_dir);
+            char native_png[PATH_MAX + 16], web_png[PATH_MAX + 16];
+            snprintf(native_png, sizeof native_png, "%s/color.png", native_dir);
+            snprintf(web_png, sizeof web_png, "%s/color.png", web_dir);
+            double pixels = support_compare_images(native_png, web_png);
+            double decisions = web_decisions_differing(native_dir, web_dir);
+            printf("web: %s on %s: %.3f %% of the pixels differ, %.4f %% of the decisions\n", technique,
+                   web_scenes[s], 100 * pixels, 100 * decisions);
+            assert_true(pixels >= 0 && pixels <= WEB_MAX_DIFFERING);
+            assert_true(decisions <= WEB_MAX_DECISIONS);
+        }
+    }
+}
+
+/* The window's keys in the page (each a GLFW key through Emscripten's
+ * GLFW, as a keyboard's): 3 picks the shadow maps, F12 saves the window's
+ * picture, C and L turn the biases off, which must change it; each
+ * picture is the native program's with the same technique and flags. */
+static void web_keys_switch_and_toggle(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    const char *dir = OUT "/keys";
+    web_run_page("--no-hud --size " WEB_SIZE " --scene /assets/scenes/simple.json",
+                 "&keys=2:3,4:F12,5:C,5:L,7:F12&frames=8", "screenshot-shadowmap-1.png,screenshot-shadowmap-2.png",
+                 "frames 8", dir);
+    static const struct {
+        const char *web, *flags;
+    } pictures[] = {
+        {"screenshot-shadowmap-1.png", ""},
+        {"screenshot-shadowmap-2.png", "--no-constant-bias --no-slope-bias"},
+    };
+    for (size_t i = 0; i < sizeof pictures / sizeof *pictures; i++) {
+        char name[64], flags[256], native[PATH_MAX], web[PATH_MAX];
+        snprintf(name, sizeof name, "web/keys_native_%zu", i);
+        snprintf(flags, sizeof flags, "--backend egl --technique shadowmap %s", pictures[i].flags);
+        free(support_screenshot(support_program("shadows"), "assets/scenes/simple.json", flags, name));
+        snprintf(native, sizeof native, "out/test/%s.png", name);
+        snprintf(web, sizeof web, "%s/%s", dir, pictures[i].web);
+        double differing = support_compare_images(native, web);
+        printf("web: keys: %s: %.3f %% of the pixels differ from native %s\n", pictures[i].web, 100 * differing,
+               flags);
+        assert_true(differing >= 0 && differing <= WEB_MAX_DIFFERING);
+    }
+    char before[PATH_MAX], after[PATH_MAX];
+    snprintf(before, sizeof before, "%s/%s", dir, pictures[0].web);
+    snprintf(after, sizeof after, "%s/%s", dir, pictures[1].web);
+    assert_true(support_compare_images(before, after) > WEB_MAX_DIFFERING);
+}
+
+/* A tour in the page: Space steps it, and the step shown is the native
+ * headless tour's picture of that step. */
+#define WEB_TOUR "shadowmap"
+#define WEB_TOUR_STEP 4 /* from 1: a step whose light and camera stay put */
+static void web_tour_steps(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    const char *dir = OUT "/tour";
+    web_run_page("--no-hud --size " WEB_SIZE " --tour /assets/tours/" WEB_TOUR ".json",
+                 "&keys=2:Space,3:Space,4:Space,6:F12&frames=7", "", "frames 7", dir);
+    char command[512], errors[4096];
+    snprintf(command, sizeof command,
+             "%s --backend egl --size " WEB_SIZE " --tour assets/tours/" WEB_TOUR ".json --screenshot " OUT
+             "/tour_native.png > /dev/null",
+             support_program("shadows"));
+    assert_int_equal(support_run(command, errors, sizeof errors), 0);
+    char native[PATH_MAX], web[PATH_MAX];
+    snprintf(native, sizeof native, OUT "/tour_native-%d.png", WEB_TOUR_STEP);
+    char pattern[PATH_MAX + 64];
+    snprintf(pattern, sizeof pattern, "ls %s/screenshot-*.png | head -n 1", dir);
+    FILE *ls = popen(pattern, "r");
+    assert_non_null(ls);
+    assert_non_null(fgets(web, sizeof web, ls));
+    pclose(ls);
+    web[strcspn(web, "\n")] = '\0';
+    double differing = support_compare_images(native, web);
+    printf("web: tour " WEB_TOUR " step %d: %.3f %% of the pixels differ from native\n", WEB_TOUR_STEP,
+           100 * differing);
+    assert_true(differing >= 0 && differing <= WEB_MAX_DIFFERING);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(web_matches_native),
+        cmocka_unit_test(web_keys_switch_and_toggle),
+        cmocka_unit_test(web_tour_steps),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
