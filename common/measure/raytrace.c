@@ -674,3 +674,5 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
         dump_frame_free(out);
     return ok;
 }
+
+bool raytrace_available(void) { return true; }

@@ -93,6 +93,9 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
  * releases the tracer (not the dump) and returns false after printing
  * Embree's error, if it reported one. */
 typedef struct raytrace_tracer raytrace_tracer;
+/* Whether this build traces: false in the web build, whose raytrace_*
+ * functions each fail with one line (Embree is native only). */
+bool raytrace_available(void);
 raytrace_tracer *raytrace_begin(const scene *s, int width, int height, int light_index,
                                 const raytrace_settings *settings, dump_frame *out);
 void raytrace_rows(raytrace_tracer *t, const int *rows, int count, dump_frame *out);

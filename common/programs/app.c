@@ -61,6 +61,7 @@ static struct {
     bool flags_markdown;   /* --flags-markdown: print the tables, then exit */
     bool compare_on;       /* --compare, A, a tour's step: the technique beside the truth (compare.h) */
     bool compare_given;    /* --compare: every step of a tour too */
+    bool compare_refused;  /* compare mode was asked for where there is no ray tracer, and said so */
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     bool hold_fit;         /* --hold-fit: the maps fitted to the frame before's camera */
@@ -407,10 +408,26 @@ static void app_destroy_targets(void) {
     target_destroy(&app.target);
 }
 
+/* Whether compare mode can be had; where the build cannot trace (the
+ * page), says so once, and on the HUD, and the technique shows alone. */
+static bool app_compare_available(void) {
+    if (raytrace_available())
+        return true;
+    if (!app.compare_refused)
+        fprintf(stderr,
+                "%s: compare mode: this build cannot trace the truth (Embree is native only), so the "
+                "technique shows alone\n",
+                app.program);
+    app.compare_refused = true;
+    snprintf(app.note, sizeof app.note, "compare mode: no ray tracer in this build");
+    app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
+    return false;
+}
+
 /* Compare mode on or off (the A key, a tour's step), the picture's size
  * kept. */
 static bool app_set_compare(bool on) {
-    if (on == app.compare_on)
+    if (on == app.compare_on || (on && !app_compare_available()))
         return true;
     int width = app_picture()->width, height = app_picture()->height;
     app_destroy_targets();
@@ -1206,6 +1223,7 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
     app.technique_given = app.current >= 0;
+    app.compare_on = app.compare_on && app_compare_available();
     app.compare_given = app.compare_on;
     if (!app.technique_given)
         app.current = 0;

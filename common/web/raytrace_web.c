@@ -5,6 +5,8 @@
 
 #include "raytrace.h"
 
+bool raytrace_available(void) { return false; }
+
 static void raytrace_web_refuse(const raytrace_settings *settings) {
     fprintf(stderr, "raytrace: %s: the page has no ray tracer (Embree is native only)\n",
             settings && settings->scene_name ? settings->scene_name : "scene");
