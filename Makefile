@@ -79,7 +79,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test web bench stress ruler report readme-report scenes update-golden readme-flags format clean help
+.PHONY: all deps demo gallery test web web-bench bench stress ruler report readme-report scenes update-golden readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -97,6 +97,7 @@ help:
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
 	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"
 	@echo "make web            out/web/: every technique in a web page (Emscripten, WebGL 2)"
+	@echo "make web-bench      the page's frame time in headless Chromium: out/web/bench.md"
 	@echo "make clean          remove build/, build-san/ and out/"
 
 DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \

@@ -46,14 +46,15 @@ WEB_CFLAGS := -std=c11 -O2 -Wall -Wextra -Werror -Wno-align-mismatch -D_XOPEN_SO
 	-I$(WEB_INCLUDE)/cjson -I$(WEB_INCLUDE)/stb \
 	-I$(WEB_BUILD)/glad/include -Icommon/data -Icommon/measure -Icommon/gl -Icommon/programs -Idemos -Idemos/lib
 WEB_LDFLAGS := -O2 -sUSE_GLFW=3 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sALLOW_MEMORY_GROWTH=1 \
-	-sSINGLE_FILE=1 -sINVOKE_RUN=0 -sEXPORTED_RUNTIME_METHODS=callMain,FS
+	-sSINGLE_FILE=1 -sINVOKE_RUN=0 -sEXPORTED_RUNTIME_METHODS=callMain,FS \
+	-sEXPORTED_FUNCTIONS=_main,_emscripten_set_main_loop_timing
 # Embedded at the paths the programs look for (path_in_project: /shaders,
 # /assets/scenes; a tour's scenes relative to it); the models as packs at
 # the models' own paths.
 WEB_EMBED := --embed-file shaders@/shaders $(foreach f,$(WEB_TOURS) $(WEB_SCENES),--embed-file $(f)@/$(f)) \
 	$(foreach m,$(WEB_MODELS),--embed-file $(WEB_BUILD)/$(m)@/$(m))
 
-.PHONY: web
+.PHONY: web web-bench
 ifeq ($(WEB_HAVE_EMCC),yes)
 web: $(WEB_OUT)/index.html $(WEB_OUT)/shadows.js
 else
@@ -61,11 +62,15 @@ web:
 	@echo "make web: emcc not found: make deps installs Debian's emscripten"; exit 1
 endif
 
+# The page's frame time in headless Chromium: out/web/bench.md.
+web-bench: web $(BUILD)/shadows
+	common/web/page_bench.sh
+
 $(WEB_OUT)/index.html: common/web/index.html
 	@mkdir -p $(dir $@)
 	cp $< $@
 
-$(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_MODELS)) $(wildcard shaders/*) $(WEB_TOURS) \
+$(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_MODELS)) $(wildcard shaders/*) $(WEB_TOURS) common/web/web.mk \
 		$(WEB_SCENES)
 	@mkdir -p $(dir $@)
 	$(EMCC) $(WEB_LDFLAGS) $(WEB_OBJ) $(WEB_EMBED) -o $@
