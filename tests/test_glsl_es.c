@@ -1,7 +1,7 @@
 /* The browser's dialect and subset, natively: every technique's shaders
  * compiled as GLSL ES 3.00 (--glsl-es) draw the same pictures and dumps,
  * byte for byte, as desktop GLSL; what needs a geometry shader refuses in
- * one line; with nothing beyond WebGL 2's core (--webgl2) every technique
+ * one line; a line only ES rejects is named by file and line; with nothing beyond WebGL 2's core (--webgl2) every technique
  * still draws, its fallbacks within the golden tolerance. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -126,6 +126,33 @@ static void test_geometry_shader_refused(void **state) {
     assert_non_null(strstr(err, "geometry shader"));
 }
 
+/* GLSL ES is stricter than GLSL 3.30 (no implicit int to float): a line
+ * that only ES rejects, in a file an included file includes, is named by
+ * file and line under --glsl-es, and compiles without it. */
+#define BROKEN_SHADERS OUT "/broken_shaders"
+#define BROKEN_FILE "shadowmap_2d.glsl"
+#define BROKEN_LINE "5"
+static void test_es_errors_name_file_and_line(void **state) {
+    (void)state;
+    char command[1024], err[16384];
+    assert_int_equal(support_run("rm -rf " BROKEN_SHADERS " && cp -RL shaders " BROKEN_SHADERS
+                                 " && sed -i '" BROKEN_LINE "s/$/ float broken = 1;/' " BROKEN_SHADERS
+                                 "/" BROKEN_FILE,
+                                 err, sizeof err),
+                     0);
+    snprintf(command, sizeof command,
+             "%s --backend egl " SETTINGS_SIZE " --shader-dir " BROKEN_SHADERS " --screenshot " OUT "/broken.png",
+             support_program("shadowmap"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    snprintf(command, sizeof command,
+             "%s --backend egl " SETTINGS_SIZE " --shader-dir " BROKEN_SHADERS " " ES " --screenshot " OUT
+             "/broken.png",
+             support_program("shadowmap"));
+    assert_int_not_equal(support_run(command, err, sizeof err), 0);
+    if (!strstr(err, BROKEN_SHADERS "/" BROKEN_FILE ":" BROKEN_LINE ": "))
+        fail_msg("the error does not name " BROKEN_FILE ":" BROKEN_LINE ":\n%s", err);
+}
+
 /* Nothing beyond WebGL 2's core: every technique draws every scene,
  * within the golden tolerance of its desktop picture (the fallbacks:
  * discarded fragments for clip distances, no depth clamp, no exact depth
@@ -167,9 +194,8 @@ static int make_directories(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_geometry_shader_refused),
-        cmocka_unit_test(test_dumps_identical),
-        cmocka_unit_test(test_settings_identical),
+        cmocka_unit_test(test_geometry_shader_refused), cmocka_unit_test(test_es_errors_name_file_and_line),
+        cmocka_unit_test(test_dumps_identical),         cmocka_unit_test(test_settings_identical),
         cmocka_unit_test(test_webgl2_subset),
     };
     return cmocka_run_group_tests(tests, make_directories, NULL);
