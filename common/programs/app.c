@@ -160,7 +160,7 @@ static const flags_param app_flags[] = {
     {"no-hud", "the window shows no HUD, so that F12 saves the picture alone", 0, FLAGS_SWITCH, .on = &app.no_hud},
     {"hud-compact", "the HUD's caption, technique and settings only (Tab)", 0, FLAGS_SWITCH, .on = &app.hud_compact},
     {"glsl-es",
-     "compile every shader as GLSL ES 3.00, the browser's dialect\n(Mesa's desktop contexts take it); no geometry shaders",
+     "compile every shader as GLSL ES 3.00, the browser's dialect\n(Mesa's desktop contexts take it); no technique has a\ngeometry shader (a dump's own pass keeps its desktop one)",
      0, FLAGS_SWITCH, .on = &app.glsl_es},
     {"webgl2",
      "--glsl-es, and nothing beyond WebGL 2's core: what it has\nonly as extensions (clip distances, depth clamp, polygon\nmode, clip control) off, so the browser's fallbacks run",
