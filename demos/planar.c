@@ -53,6 +53,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "context.h"
 #include "depth.h"
 #include "frustum.h"
 #include "planar.h"
@@ -157,8 +158,12 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     glUniformMatrix4fv(planar.shadow, 1, GL_FALSE, (const float *)shadow);
     glUniform4fv(planar.plane, 1, plane);
     glUniform1i(planar.reject, !planar.settings.no_reject);
-    glEnable(GL_CLIP_DISTANCE0);
-    glEnable(GL_CLIP_DISTANCE1);
+    /* Without clip distances the shaders discard instead (shader.h). */
+    bool clip = context_current_features()->clip_distances;
+    if (clip) {
+        glEnable(GL_CLIP_DISTANCE0);
+        glEnable(GL_CLIP_DISTANCE1);
+    }
     if (planar.settings.no_offset) {
         glDepthFunc(depth_func(f->view, GL_LESS)); /* the artifact: a coin toss against the receiver */
     } else if (stenciled) {
@@ -174,8 +179,10 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
         if (i != receiver && planar.casters[i] &&
             (planar.settings.no_reject || !planar_casts_nothing(&s->objects[i], plane)))
             render_draw_object(f->gpu, &planar.flatten, i);
-    glDisable(GL_CLIP_DISTANCE0);
-    glDisable(GL_CLIP_DISTANCE1);
+    if (clip) {
+        glDisable(GL_CLIP_DISTANCE0);
+        glDisable(GL_CLIP_DISTANCE1);
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthFunc(depth_func(f->view, GL_LESS));
 }

@@ -55,6 +55,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "context.h"
 #include "depth.h"
 #include "technique.h"
 #include "volume_draw.h"
@@ -146,7 +147,16 @@ static const flags_param volumes_params[] = {
 
 /* ---- set-up ---- */
 
+/* What GPU silhouettes say where the context has no geometry shaders. */
+#define VOLUMES_NO_GEOMETRY_SHADERS                                                                                  \
+    "volumes: --silhouette gpu needs a geometry shader, which this context lacks (GLSL ES 3.00 and WebGL 2 have "    \
+    "none): use --silhouette cpu"
+
 static bool volumes_init(const render_scene *gpu) {
+    if (volumes.settings.silhouette == VOLUMES_GPU && !context_current_features()->geometry_shaders) {
+        fprintf(stderr, "%s\n", VOLUMES_NO_GEOMETRY_SHADERS);
+        return false;
+    }
     if (!volume_draw_init(&volumes.draw, gpu) || !volume_receivers_init(&volumes.receivers, gpu))
         return false;
     volumes.casters = calloc((size_t)gpu->scene->object_count, sizeof *volumes.casters);
@@ -156,7 +166,7 @@ static bool volumes_init(const render_scene *gpu) {
         return false;
     }
     volumes.trim_kept = -1;
-    volumes.has_depth_bounds = GLAD_GL_EXT_depth_bounds_test;
+    volumes.has_depth_bounds = context_current_features()->depth_bounds;
     volumes.soft_warned = 0;
     memset(volumes.samples, 0, sizeof volumes.samples);
     return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges) &&
@@ -329,6 +339,11 @@ static void volumes_draw_overlay(const technique_frame *f) {
 
 static void volumes_render(const technique_frame *f) {
     volumes_forget_moved(f);
+    /* Key G in the window: the CPU's silhouettes stay. */
+    if (volumes.settings.silhouette == VOLUMES_GPU && !context_current_features()->geometry_shaders) {
+        fprintf(stderr, "%s\n", VOLUMES_NO_GEOMETRY_SHADERS);
+        volumes.settings.silhouette = VOLUMES_CPU;
+    }
     volumes.counter.settings = (volume_counter_settings){
         .mode = (volume_plan_mode)volumes.settings.mode,
         .kind = (volume_counter_kind)volumes.settings.counter,

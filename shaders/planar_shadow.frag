@@ -2,7 +2,14 @@
 // Only the naive path (stencil off) writes colour: it multiplies what is
 // there by one half per layer, which is what makes overlaps double-dark.
 out vec4 out_color;
+#ifdef SHADER_NO_CLIP_DISTANCES
+in vec2 v_clip_distances; // planar_shadow.vert's, where no plane clips
+#endif
 
 void main() {
+#ifdef SHADER_NO_CLIP_DISTANCES
+    if (any(lessThan(v_clip_distances, vec2(0.0))))
+        discard;
+#endif
     out_color = vec4(0.5);
 }

@@ -5,6 +5,8 @@
 // beyond the light would project onto the plane as an "anti-shadow".
 // The switch is a uniform rather than glDisable(GL_CLIP_DISTANCEi), which
 // some drivers (Mesa 22's llvmpipe) ignore once the shader writes them.
+// Without clip distances (common/gl/shader.h) the fragment stage discards
+// what they would clip.
 layout(location = 0) in vec3 in_position;
 
 uniform mat4 u_model;
@@ -13,12 +15,22 @@ uniform mat4 u_shadow; // world point -> its shadow on the plane (homogeneous)
 uniform vec4 u_plane;  // receiver plane, unit normal, oriented towards the light
 uniform bool u_reject; // false: keep anti-shadows, for the lecture
 
+#ifdef SHADER_NO_CLIP_DISTANCES
+out vec2 v_clip_distances;
+#else
 out float gl_ClipDistance[2];
+#endif
 
 void main() {
     vec4 world = u_model * vec4(in_position, 1.0);
     vec4 flattened = u_shadow * world;
-    gl_ClipDistance[0] = u_reject ? dot(u_plane, world) : 1.0; // above the plane
-    gl_ClipDistance[1] = u_reject ? flattened.w : 1.0;         // nearer the plane than the light
+    // Above the plane, nearer the plane than the light.
+    vec2 clip_distances = u_reject ? vec2(dot(u_plane, world), flattened.w) : vec2(1.0);
+#ifdef SHADER_NO_CLIP_DISTANCES
+    v_clip_distances = clip_distances;
+#else
+    gl_ClipDistance[0] = clip_distances.x;
+    gl_ClipDistance[1] = clip_distances.y;
+#endif
     gl_Position = u_view_projection * flattened;
 }

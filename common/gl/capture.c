@@ -49,6 +49,11 @@ static void capture_read_floats(GLenum attachment, int width, int height, float 
 }
 
 static bool capture_geometry(const render_scene *gpu, const camera_view *view, dump_frame *out) {
+    /* Desktop GLSL, whatever the dialect: shader.h. */
+    if (!context_current_features()->desktop_gl) {
+        fprintf(stderr, "capture: dumps need a geometry shader (each triangle's own normal), which this GL lacks\n");
+        return false;
+    }
     static const char *const files[] = {"geometry.vert", "geometry.geom", "geometry.frag"};
     render_program program = {0};
     capture_buffers b = {0};

@@ -22,6 +22,32 @@ const char *const context_backend_names[] = {
     NULL,
 };
 
+static context_features context_features_now;
+static bool context_features_given; /* by the backend (context_set_features) */
+
+const context_features *context_current_features(void) { return &context_features_now; }
+void context_set_features(const context_features *f) {
+    context_features_now = *f;
+    context_features_given = true;
+}
+
+/* A desktop GL 3.3 core context's features, less those s turns off. */
+static context_features context_desktop_features(const context_settings *s) {
+    bool webgl2 = s->webgl2;
+    return (context_features){
+        .glsl_es = s->glsl_es || webgl2,
+        .desktop_gl = true,
+        .geometry_shaders = !s->glsl_es && !webgl2,
+        .primitive_id = !s->glsl_es && !webgl2,
+        .polygon_mode = !webgl2,
+        .clip_distances = !webgl2,
+        .depth_clamp = !webgl2,
+        .clip_control = !webgl2 && GLAD_GL_ARB_clip_control,
+        .depth_bounds = !webgl2 && GLAD_GL_EXT_depth_bounds_test,
+        .depth_readback = !webgl2,
+    };
+}
+
 /* Errors seen by the KHR_debug callback since the last context_gl_ok. */
 static int context_debug_errors;
 static bool context_verbose;
@@ -122,6 +148,7 @@ static bool context_display_available(void) {
 
 bool context_create(context *c, const context_settings *s) {
     *c = (context){0};
+    context_features_given = false;
     context_verbose = s->verbose;
     context_loader loader = NULL;
     if (s->backend != CONTEXT_AUTO || CONTEXT_ONLY_BROWSER) {
@@ -147,6 +174,8 @@ bool context_create(context *c, const context_settings *s) {
         return false;
     }
     snprintf(c->renderer, sizeof c->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    if (!context_features_given)
+        context_features_now = context_desktop_features(s);
     if (GLAD_GL_KHR_debug) {
         glEnable(GL_DEBUG_OUTPUT);
         glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
@@ -161,4 +190,6 @@ bool context_create(context *c, const context_settings *s) {
 void context_destroy(context *c) {
     context_destroy_backend(c);
     *c = (context){0};
+    context_features_now = (context_features){0};
+    context_features_given = false;
 }

@@ -20,6 +20,14 @@
  * naming `where`, and returns false.
  *
  * Rendering never targets the window's framebuffer directly: see target.h.
+ *
+ * context_current_features says what the context has beyond WebGL 2's
+ * core (OpenGL ES 3.0), the browser's: the one place a pass asks before
+ * a call, capability or shader stage that WebGL 2 lacks or has only as an
+ * extension. context_create fills it for a desktop GL 3.3 core context
+ * (all of it, the ES dialect off); context_settings.glsl_es and .webgl2
+ * turn off what WebGL 2 lacks, so that the browser's paths run natively; a
+ * backend whose context is WebGL's gives its own (context_set_features).
  */
 #ifndef CONTEXT_H
 #define CONTEXT_H
@@ -40,7 +48,26 @@ typedef struct context_settings {
     int width, height; /* window size (headless: unused) */
     const char *title;
     bool verbose; /* print backend, platform and GL renderer */
+    /* Shaders in GLSL ES 3.00, the browser's dialect, which has no
+     * geometry stage (Mesa's desktop contexts take it). */
+    bool glsl_es;
+    /* That, and nothing beyond WebGL 2's core: its extensions' features
+     * off too. */
+    bool webgl2;
 } context_settings;
+
+typedef struct context_features {
+    bool glsl_es;          /* shaders compile as GLSL ES 3.00 (shader.h) */
+    bool desktop_gl;       /* desktop GL: desktop GLSL compiles, GL_TEXTURE_CUBE_MAP_SEAMLESS is a switch */
+    bool geometry_shaders; /* the techniques' programs may have a geometry stage */
+    bool primitive_id;     /* gl_PrimitiveID in a fragment shader: desktop GLSL's, not ES 3.00's */
+    bool polygon_mode;     /* glPolygonMode (WEBGL_polygon_mode) */
+    bool clip_distances;   /* gl_ClipDistance, GL_CLIP_DISTANCEi (WEBGL_clip_cull_distance) */
+    bool depth_clamp;      /* GL_DEPTH_CLAMP (EXT_depth_clamp) */
+    bool clip_control;     /* glClipControl (ARB_clip_control, EXT_clip_control) */
+    bool depth_bounds;     /* glDepthBoundsEXT (EXT_depth_bounds_test) */
+    bool depth_readback;   /* glReadPixels of GL_DEPTH_COMPONENT: desktop GL's, not ES's */
+} context_features;
 
 typedef struct context {
     context_backend backend;   /* the one in use, never AUTO */
@@ -57,6 +84,12 @@ extern const char *const context_backend_names[];
 bool context_create(context *c, const context_settings *s);
 void context_destroy(context *c);
 bool context_gl_ok(const char *where);
+/* The current context's features (all false before context_create). */
+const context_features *context_current_features(void);
+/* A backend's own features, for the context its create function makes
+ * current: context_create then keeps them (the settings' glsl_es and
+ * webgl2 unused). */
+void context_set_features(const context_features *f);
 /* Whether GL_RENDERER names one of Mesa's software rasterizers, whose
  * timer queries see only the submission: time is then the CPU's. */
 bool context_software_renderer(const char *renderer);

@@ -2,10 +2,21 @@
 
 #include <glad/gl.h>
 
+#include "context.h"
+
 /* The standard convention's far end; the reversed one's is 0. */
 #define DEPTH_STANDARD_FAR 1.0f
 
-bool depth_reversed_available(void) { return GLAD_GL_ARB_clip_control != 0; }
+bool depth_reversed_available(void) { return context_current_features()->clip_control; }
+
+void depth_clamp(bool on) {
+    if (!context_current_features()->depth_clamp)
+        return;
+    if (on)
+        glEnable(GL_DEPTH_CLAMP);
+    else
+        glDisable(GL_DEPTH_CLAMP);
+}
 
 unsigned depth_func(const camera_view *v, unsigned standard) {
     if (!v->reversed_depth)

@@ -17,9 +17,9 @@
  * depth every function here leaves GL as it is, so its pictures are
  * exactly those of a build without reversed depth.
  *
- * Reversed depth needs ARB_clip_control (core in GL 4.5; glad loads
- * glClipControl through the extension, which 4.5 drivers list too); a
- * context without it refuses the scenes that need it at load (one line,
+ * Reversed depth needs clip control (context.h's clip_control: desktop
+ * GL's ARB_clip_control, core in 4.5, whose glClipControl glad loads
+ * through the extension, which 4.5 drivers list too); a context without it refuses the scenes that need it at load (one line,
  * camera_check_depth).
  */
 #ifndef DEPTH_H
@@ -30,6 +30,10 @@
 
 /* The context can draw reversed depth (after context_create). */
 bool depth_reversed_available(void);
+/* GL_DEPTH_CLAMP on or off where the context has it (context.h's
+ * depth_clamp); elsewhere nothing: primitives are clipped by the near and
+ * far planes. */
+void depth_clamp(bool on);
 /* The depth test `standard` (GL_LESS, GL_LEQUAL, GL_GREATER, GL_GEQUAL, or
  * one the convention does not change) in v's convention. */
 unsigned depth_func(const camera_view *v, unsigned standard);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "context.h"
 #include "path.h"
 #include "scene.h"
 
@@ -23,6 +24,28 @@ static char shader_dir[4096] = "shaders";
 
 /* What every program sees (the lights block's size, shaders/lighting.glsl). */
 static const shader_define shader_common_defines[] = {SHADER_DEFINE(SCENE_MAX_LIGHTS), {NULL, 0}};
+
+/* GLSL ES 3.00's first lines, in place of a source's "#version 330 core":
+ * a default precision for every type that has none or a lower one in
+ * some stage (highp: what desktop GLSL computes in), then the source's
+ * own #line. */
+static const char shader_es_version[] = "#version 300 es\n";
+static const char shader_es_precisions[] =
+    "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp samplerCube;\n"
+    "precision highp sampler3D;\nprecision highp sampler2DArray;\nprecision highp sampler2DShadow;\n"
+    "precision highp samplerCubeShadow;\nprecision highp sampler2DArrayShadow;\nprecision highp isampler2D;\n"
+    "precision highp isampler3D;\nprecision highp isamplerCube;\nprecision highp isampler2DArray;\n"
+    "precision highp usampler2D;\nprecision highp usampler3D;\nprecision highp usamplerCube;\n"
+    "precision highp usampler2DArray;\n";
+/* What ES has only as an extension: a source that uses `word` enables
+ * each extension named for it (WebGL's under its browsers' names too; a
+ * compiler that knows none of them only warns). */
+static const struct {
+    const char *word, *extensions;
+} shader_es_extensions[] = {
+    {"gl_ClipDistance",
+     "#extension GL_EXT_clip_cull_distance : enable\n#extension GL_ANGLE_clip_cull_distance : enable\n"},
+};
 
 void shader_set_directory(const char *dir) { snprintf(shader_dir, sizeof shader_dir, "%s", dir); }
 const char *shader_directory(void) { return shader_dir; }
@@ -69,6 +92,12 @@ static bool shader_append_defines(shader_source *s, const shader_define *defines
     return ok;
 }
 
+/* What a source may test with #ifdef about the context (shader.h). */
+static bool shader_append_features(shader_source *s) {
+    static const char no_clip[] = "#define SHADER_NO_CLIP_DISTANCES 1\n";
+    return context_current_features()->clip_distances || shader_append(s, no_clip, sizeof no_clip - 1);
+}
+
 /* Appends `name` with its includes expanded. #version must stay the first
  * line of a stage, so the defines and the first #line directive go after
  * it. */
@@ -112,7 +141,7 @@ static bool shader_expand(shader_source *s, const char *name, int depth, const s
             joined = false;
             if (ok && depth == 0 && line == 1)
                 ok = shader_append_defines(s, shader_common_defines) && shader_append_defines(s, defines) &&
-                     shader_append_line_directive(s, 2, file);
+                     shader_append_features(s) && shader_append_line_directive(s, 2, file);
         }
         p += n;
     }
@@ -183,7 +212,35 @@ static bool shader_keep_text(char **all, const char *text) {
     return true;
 }
 
-static GLuint shader_compile(const char *file, const shader_define *defines, char **all) {
+/* The desktop source's first line, which the ES dialect replaces. */
+static const char shader_desktop_version[] = "#version 330 core\n";
+
+/* s's text in GLSL ES 3.00: its #version line replaced by ES's, the
+ * extensions it needs and the precisions (the defines and the #line after
+ * it stay, so every line keeps its number). */
+static bool shader_to_es(shader_source *s) {
+    size_t skip = sizeof shader_desktop_version - 1;
+    if (strncmp(s->text, shader_desktop_version, skip) != 0) {
+        fprintf(stderr, "%s/%s: the GLSL ES dialect needs \"%.*s\" as the first line\n", shader_dir, s->files[0],
+                (int)skip - 1, shader_desktop_version);
+        return false;
+    }
+    char *desktop = s->text;
+    size_t length = s->length;
+    s->text = NULL;
+    s->length = s->capacity = 0;
+    bool ok = shader_append(s, shader_es_version, sizeof shader_es_version - 1);
+    for (size_t i = 0; ok && i < sizeof shader_es_extensions / sizeof *shader_es_extensions; i++)
+        if (strstr(desktop, shader_es_extensions[i].word))
+            ok = shader_append(s, shader_es_extensions[i].extensions, strlen(shader_es_extensions[i].extensions));
+    ok = ok && shader_append(s, shader_es_precisions, sizeof shader_es_precisions - 1) &&
+         shader_append(s, desktop + skip, length - skip);
+    free(desktop);
+    return ok;
+}
+
+/* es: in GLSL ES 3.00 (shader_to_es). */
+static GLuint shader_compile(const char *file, bool es, const shader_define *defines, char **all) {
     GLenum stage = shader_stage(file);
     if (!stage) {
         fprintf(stderr, "%s/%s: unknown shader stage (expected .vert, .geom or .frag)\n", shader_dir, file);
@@ -191,7 +248,7 @@ static GLuint shader_compile(const char *file, const shader_define *defines, cha
     }
     shader_source s = {0};
     GLuint shader = 0;
-    if (shader_expand(&s, file, 0, defines)) {
+    if (shader_expand(&s, file, 0, defines) && (!es || shader_to_es(&s))) {
         shader = glCreateShader(stage);
         const char *text = s.text;
         glShaderSource(shader, 1, &text, NULL);
@@ -229,11 +286,16 @@ static bool shader_keep_program(unsigned program, const char *name, char *text) 
 }
 
 unsigned shader_load_program(const char *const *files, int count, const shader_define *defines) {
+    /* GLSL ES has no geometry stage: a program with one is desktop GLSL
+     * whole, which only a desktop context takes. */
+    bool es = context_current_features()->glsl_es;
+    for (int i = 0; i < count; i++)
+        es = es && shader_stage(files[i]) != GL_GEOMETRY_SHADER;
     GLuint program = glCreateProgram();
     bool ok = true;
     char *text = NULL;
     for (int i = 0; i < count && ok; i++) {
-        GLuint shader = shader_compile(files[i], defines, &text);
+        GLuint shader = shader_compile(files[i], es, defines, &text);
         ok = shader != 0;
         if (ok) {
             glAttachShader(program, shader);

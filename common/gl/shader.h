@@ -10,6 +10,19 @@
  * a compile or link error the log is printed with each "source:line"
  * rewritten as "FILE:LINE", and 0 is returned.
  *
+ * Every source is desktop GLSL 3.30 ("#version 330 core" first) that is
+ * also GLSL ES 3.00, WebGL 2's dialect, once its first line says so: where
+ * the context's features say glsl_es (context.h), the loader compiles the
+ * vertex and fragment stages as ES, with highp as every type's default
+ * precision and the #extension lines of what ES has only as an extension
+ * (gl_ClipDistance). A program with a geometry stage, which ES lacks,
+ * stays desktop GLSL.
+ *
+ * Where the context has no clip distances (context.h), every source has
+ * SHADER_NO_CLIP_DISTANCES defined: one that would write gl_ClipDistance
+ * passes the distances on and its fragment stage discards where one is
+ * negative instead.
+ *
  * A uniform block named "Lights" is bound to SHADER_LIGHTS_BINDING, where
  * render.c keeps the scene's lights (see shaders/lighting.glsl).
  *

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "context.h"
 #include "depth.h"
 #include "frustum.h"
 
@@ -132,7 +133,7 @@ static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int 
 }
 
 bool visible_read(visible *v, const camera_view *view, int width, int height) {
-    if (!visible_reserve(v, width, height))
+    if (!context_current_features()->depth_readback || !visible_reserve(v, width, height))
         return false;
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     /* A failed read raises a GL error, which the frame's owner reports. */

@@ -44,7 +44,9 @@ typedef struct visible {
 } visible;
 
 /* Reads the bound framebuffer's depth (width x height, drawn through
- * view) into v's slabs; false after printing why (out of memory). */
+ * view) into v's slabs; false after printing why (out of memory), or
+ * where the GL reads no depth (context.h's depth_readback): the frame
+ * then hides nothing, the same picture at the full cost. */
 bool visible_read(visible *v, const camera_view *view, int width, int height);
 void visible_destroy(visible *v);
 /* Whether every point of the box lo..hi lies behind what v saw there: its

@@ -65,6 +65,7 @@ static struct {
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     bool hold_fit;         /* --hold-fit: the maps fitted to the frame before's camera */
+    bool glsl_es, webgl2;  /* --glsl-es, --webgl2: context_settings' */
     render_skips skips;
     const char *scene_path, *screenshot, *dump_dir, *shader_dir, *record_path;
     int light;
@@ -163,6 +164,12 @@ static const flags_param app_flags[] = {
      0, FLAGS_INT, .integer = &app.hud_scale, .min = 1, .max = HUD_MAX_SCALE, .what = "a scale"},
     {"no-hud", "the window shows no HUD, so that F12 saves the picture alone", 0, FLAGS_SWITCH, .on = &app.no_hud},
     {"hud-compact", "the HUD's caption, technique and settings only (Tab)", 0, FLAGS_SWITCH, .on = &app.hud_compact},
+    {"glsl-es",
+     "compile every shader as GLSL ES 3.00, the browser's dialect\n(Mesa's desktop contexts take it); no technique has a\ngeometry shader (a dump's own pass keeps its desktop one)",
+     0, FLAGS_SWITCH, .on = &app.glsl_es},
+    {"webgl2",
+     "--glsl-es, and nothing beyond WebGL 2's core: what it has\nonly as extensions (clip distances, depth clamp, polygon\nmode, clip control) off, so the browser's fallbacks run",
+     0, FLAGS_SWITCH, .on = &app.webgl2},
     {"verbose",
      "print the backend and GL renderer, each model's triangles\nand bounds, and at the end the technique's state line and\nthe skips' lines; the skips' counters on the HUD too (F3)",
      0, FLAGS_SWITCH, .on = &app.verbose},
@@ -1143,6 +1150,8 @@ static bool app_run(void) {
         .height = app.height,
         .title = "shadows",
         .verbose = app.verbose,
+        .glsl_es = app.glsl_es,
+        .webgl2 = app.webgl2,
     };
     if (!context_create(&app.ctx, &settings))
         return false;

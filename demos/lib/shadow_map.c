@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "context.h"
 #include "depth.h"
 #include "shadow_map.h"
 #include "volume_mesh.h"
@@ -597,10 +598,13 @@ bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings
     glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &r->texture_units);
     glGenFramebuffers(1, &r->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
-    glDrawBuffer(GL_NONE);
+    static const GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
     glReadBuffer(GL_NONE);
-    /* Kernels that cross a cube face read on into the next face. */
-    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    /* Kernels that cross a cube face read on into the next face: a switch
+     * in desktop GL, always so in ES. */
+    if (context_current_features()->desktop_gl)
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     return true;
 }
 

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "context.h"
 #include "depth.h"
 #include "frustum.h"
 #include "hud.h"
@@ -153,8 +154,8 @@ static bool shadow_map_inset_reduce(shadow_map_renderer *r, const shadow_map *m,
     float(*held)[2] = r->inset_held;
     int blocks = (m->size + factor - 1) / factor;
     const shadow_map_reduce_program *p = shadow_map_reduce_program_for(r, m->kind);
-    size_t count = (size_t)blocks * (size_t)blocks * (size_t)m->layer_count;
-    float(*ranges)[2] = malloc(count * sizeof *ranges);
+    size_t per_layer = (size_t)blocks * (size_t)blocks, count = per_layer * (size_t)m->layer_count;
+    float(*ranges)[4] = malloc(count * sizeof *ranges); /* read as RGBA: (nearest, farthest, 0, 1) */
     bool ok = p && ranges;
     if (!ranges)
         fprintf(stderr, "shadow maps: out of memory for the map inset's %zu blocks\n", count);
@@ -178,12 +179,13 @@ static bool shadow_map_inset_reduce(shadow_map_renderer *r, const shadow_map *m,
         glUseProgram(p->program.id);
         glUniform1i(p->layer, layer);
         glDrawArrays(GL_TRIANGLES, 0, 6);
+        /* Through the framebuffer, in the one format every GL reads a
+         * float colour buffer in (ES has no glGetTexImage). */
+        glReadPixels(0, 0, blocks, blocks, GL_RGBA, GL_FLOAT, ranges + per_layer * (size_t)layer);
     }
     if (ok) {
         glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_INSET_UNIT);
         glBindTexture(GL_TEXTURE_2D_ARRAY, r->inset_texture);
-        glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RG, GL_FLOAT, ranges);
-        size_t per_layer = (size_t)blocks * (size_t)blocks;
         for (int layer = 0; layer < m->layer_count; layer++) {
             held[layer][0] = SHADOW_MAP_INSET_NOTHING;
             held[layer][1] = 0;
@@ -501,11 +503,13 @@ void shadow_map_warp_view_draw(const shadow_map_warp_view *w, shadow_map_rendere
     glUseProgram(w->program.id);
     glUniformMatrix4fv(w->space, 1, GL_FALSE, (const float *)space);
     glUniformMatrix4fv(w->program.view_projection, 1, GL_FALSE, (const float *)observer);
-    for (int k = 0; k < SHADOW_MAP_CLIP_PLANES; k++)
+    /* Without clip distances the shaders discard instead (shader.h). */
+    int planes = context_current_features()->clip_distances ? SHADOW_MAP_CLIP_PLANES : 0;
+    for (int k = 0; k < planes; k++)
         glEnable(GL_CLIP_DISTANCE0 + (unsigned)k);
     for (int i = 0; i < f->gpu->scene->object_count; i++)
         render_draw_object(f->gpu, &w->program, i);
-    for (int k = 0; k < SHADOW_MAP_CLIP_PLANES; k++)
+    for (int k = 0; k < planes; k++)
         glDisable(GL_CLIP_DISTANCE0 + (unsigned)k);
     mat4 identity = GLM_MAT4_IDENTITY_INIT, map_in_space, space_inverse;
     shadow_map_draw_frustum(r, identity, observer); /* the clip cube of the warp space */

@@ -62,8 +62,7 @@ void volume_counter_draw(volume_counter *c, const technique_frame *f, const volu
         glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
         glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
     }
-    if (!c->settings.no_depth_clamp)
-        glEnable(GL_DEPTH_CLAMP);
+    depth_clamp(!c->settings.no_depth_clamp);
     glDisable(GL_CULL_FACE);
     glColorMask(c->counting_wide, GL_FALSE, GL_FALSE, GL_FALSE); /* the float count's red */
     glDepthMask(GL_FALSE);
@@ -84,7 +83,7 @@ void volume_counter_draw(volume_counter *c, const technique_frame *f, const volu
         if (k->narrowed)
             volume_bounds_use(&plan->bounds);
     }
-    glDisable(GL_DEPTH_CLAMP);
+    depth_clamp(false);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     if (plan->bounds.bounded)
         glDisable(GL_DEPTH_BOUNDS_TEST_EXT);

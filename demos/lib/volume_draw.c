@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "context.h"
+
 /* ---- set-up ---- */
 
 /* Object i's edge table and adjacency on the GPU. */
@@ -18,9 +20,11 @@ bool volume_draw_init(volume_draw *d, const render_scene *gpu) {
     static const char *const cpu_files[] = {"volume.vert", "volume.frag"};
     static const shader_define wide[] = {{VOLUME_SILHOUETTE_WIDE_DEFINE, 1}, {NULL, 0}};
     int cpu_file_count = (int)(sizeof cpu_files / sizeof *cpu_files);
-    if (!render_program_load(&d->cpu, cpu_files, cpu_file_count, NULL) || !volume_silhouette_load(&d->gpu, false) ||
+    /* The GPU's silhouettes are a geometry shader's: none without one. */
+    bool geometry = context_current_features()->geometry_shaders;
+    if (!render_program_load(&d->cpu, cpu_files, cpu_file_count, NULL) ||
         !render_program_load(&d->cpu_wide, cpu_files, cpu_file_count, wide) ||
-        !volume_silhouette_load(&d->gpu_wide, true))
+        (geometry && (!volume_silhouette_load(&d->gpu, false) || !volume_silhouette_load(&d->gpu_wide, true))))
         return false;
     d->cpu_color = shader_uniform(d->cpu.id, "u_color");
     d->cpu_wide_color = shader_uniform(d->cpu_wide.id, "u_color");
@@ -101,8 +105,10 @@ void volume_draw_wide_sign(volume_draw *d, float sign) {
     d->wide_sign = sign;
     glUseProgram(d->cpu_wide.id);
     glUniform4f(d->cpu_wide_color, sign, 0, 0, 0);
-    glUseProgram(d->gpu_wide.program.id);
-    glUniform4f(d->gpu_wide.color, sign, 0, 0, 0);
+    if (d->gpu_wide.program.id) {
+        glUseProgram(d->gpu_wide.program.id);
+        glUniform4f(d->gpu_wide.color, sign, 0, 0, 0);
+    }
 }
 
 void volume_draw_stream(volume_draw *d, const float (*vertices)[4], size_t count, unsigned primitive) {

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "context.h"
 #include "depth.h"
 #include "legend.h"
 
@@ -81,6 +82,17 @@ void volume_overlay_wide_counts(volume_wide *w) {
     legend_draw_corner(legend, VOLUME_OVERLAY_WIDE_LEGEND_LINES);
 }
 
+/* Whether the volumes' faces get their wire edges: they need
+ * glPolygonMode, which is said once where the context lacks it. */
+static bool volume_overlay_wires(void) {
+    static bool said;
+    bool wires = context_current_features()->polygon_mode;
+    if (!wires && !said)
+        fprintf(stderr, "volumes: --overlay volumes: no wire edges, the context has no glPolygonMode\n");
+    said = said || !wires;
+    return wires;
+}
+
 void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float light[4], bool faces) {
     const scene *s = f->gpu->scene;
     glDisable(GL_STENCIL_TEST);
@@ -88,7 +100,7 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
     glDepthFunc(depth_func(f->view, GL_LEQUAL));
-    glEnable(GL_DEPTH_CLAMP);
+    depth_clamp(true);
     for (int i = 0; i < s->object_count; i++) {
         if (!s->objects[i].casts ||
             !volume_draw_build(d, f, i, light, faces ? VOLUME_MESH_SIDES : VOLUME_MESH_SILHOUETTE_LINES))
@@ -97,10 +109,12 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
         if (faces) {
             glUniform4fv(d->cpu_color, 1, volume_overlay_faces);
             volume_draw_stream(d, v->vertices, v->count, GL_TRIANGLES);
-            glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-            glUniform4fv(d->cpu_color, 1, volume_overlay_edges);
-            volume_draw_stream(d, v->vertices, v->count, GL_TRIANGLES);
-            glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+            if (volume_overlay_wires()) {
+                glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+                glUniform4fv(d->cpu_color, 1, volume_overlay_edges);
+                volume_draw_stream(d, v->vertices, v->count, GL_TRIANGLES);
+                glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+            }
         } else {
             glUniform4fv(d->cpu_color, 1, volume_overlay_silhouette);
             glDepthFunc(GL_ALWAYS);
@@ -108,6 +122,6 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
             glDepthFunc(depth_func(f->view, GL_LEQUAL));
         }
     }
-    glDisable(GL_DEPTH_CLAMP);
+    depth_clamp(false);
     glDisable(GL_BLEND);
 }

@@ -6,65 +6,96 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Floats per triangle in the planes' texture buffer (GL_RGBA32F): the
- * unit normal, then the eye's distance along it. */
+#include "context.h"
+
+/* Floats per triangle, a texel of the planes' texture (GL_RGBA32F): the
+ * unit normal, then the eye's distance along it. Triangle t is texel
+ * (t % width, t / width), rows as wide as the GL allows. */
 #define VOLUME_RECEIVERS_PLANE_FLOATS 4
 /* The texture unit the planes are read from, during this pass only. */
 #define VOLUME_RECEIVERS_UNIT 0
 
+/* The planes' texture of `triangles` in rows of at most `row` texels:
+ * its width and height. */
+static void volume_receivers_size(uint32_t triangles, int row, int *width, int *height) {
+    *height = (int)((triangles + (uint32_t)row - 1) / (uint32_t)row);
+    *width = *height > 1 ? row : (int)triangles;
+}
+
+/* The active unit and the planes' unit's 2D texture, as a pass found
+ * them: it leaves them so. */
+typedef struct volume_receivers_binding {
+    GLint active, texture;
+} volume_receivers_binding;
+
+/* Binds `texture` on the planes' unit, made the active one. */
+static volume_receivers_binding volume_receivers_bind(unsigned texture) {
+    volume_receivers_binding was = {0};
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &was.active);
+    glActiveTexture(GL_TEXTURE0 + VOLUME_RECEIVERS_UNIT);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &was.texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    return was;
+}
+
+static void volume_receivers_unbind(volume_receivers_binding was) {
+    glBindTexture(GL_TEXTURE_2D, (GLuint)was.texture);
+    glActiveTexture((GLenum)was.active);
+}
+
 bool volume_receivers_init(volume_receivers *r, const render_scene *gpu) {
+    const scene *s = gpu->scene;
+    size_t objects = (size_t)s->object_count;
+    r->object_count = s->object_count;
+    r->textures = calloc(objects, sizeof *r->textures);
+    r->huge = calloc(objects, sizeof *r->huge);
+    if (!r->textures || !r->huge) {
+        fprintf(stderr, "volumes: out of memory\n");
+        return false;
+    }
+    /* Without the fragment's triangle (gl_PrimitiveID) no object is ever
+     * huge: all keep the rasterized depth. */
+    if (!context_current_features()->primitive_id)
+        return true;
     static const char *const files[] = {"lit.vert", "volume_receiver_depth.frag"};
     if (!render_program_load(&r->program, files, (int)(sizeof files / sizeof *files), NULL))
         return false;
     r->projection = shader_uniform(r->program.id, "u_projection");
     r->zero_to_one = shader_uniform(r->program.id, "u_zero_to_one");
     r->planes = shader_uniform(r->program.id, "u_planes");
-    const scene *s = gpu->scene;
-    size_t objects = (size_t)s->object_count;
-    r->object_count = s->object_count;
-    r->buffers = calloc(objects, sizeof *r->buffers);
-    r->textures = calloc(objects, sizeof *r->textures);
-    r->huge = calloc(objects, sizeof *r->huge);
-    if (!r->buffers || !r->textures || !r->huge) {
-        fprintf(stderr, "volumes: out of memory\n");
-        return false;
-    }
-    GLint max_texels = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-    uint32_t most = 0;
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    r->width = max_size;
+    size_t most = 0; /* texels */
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
         uint32_t triangles = o->mesh.index_count / 3;
         /* Never huge: even at the near plane no edge is long enough. */
-        if (gpu->meshes[i].longest_edge <= RENDER_HUGE_RATIO * s->camera.near_plane ||
-            triangles > (uint32_t)max_texels)
+        int width, rows;
+        volume_receivers_size(triangles, r->width, &width, &rows);
+        if (gpu->meshes[i].longest_edge <= RENDER_HUGE_RATIO * s->camera.near_plane || rows > max_size)
             continue;
-        glGenBuffers(1, &r->buffers[i]);
-        glBindBuffer(GL_TEXTURE_BUFFER, r->buffers[i]);
-        glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)(triangles * VOLUME_RECEIVERS_PLANE_FLOATS * sizeof(float)), NULL,
-                     GL_DYNAMIC_DRAW);
         glGenTextures(1, &r->textures[i]);
-        glBindTexture(GL_TEXTURE_BUFFER, r->textures[i]);
-        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r->buffers[i]);
-        most = triangles > most ? triangles : most;
+        volume_receivers_binding was = volume_receivers_bind(r->textures[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, rows, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        volume_receivers_unbind(was);
+        size_t texels = (size_t)width * (size_t)rows;
+        most = texels > most ? texels : most;
     }
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
-    glBindBuffer(GL_TEXTURE_BUFFER, 0);
-    r->scratch = most ? malloc((size_t)most * VOLUME_RECEIVERS_PLANE_FLOATS * sizeof *r->scratch) : NULL;
+    r->scratch = most ? calloc(most * VOLUME_RECEIVERS_PLANE_FLOATS, sizeof *r->scratch) : NULL;
     if (most && !r->scratch) {
         fprintf(stderr, "volumes: out of memory\n");
         return false;
     }
-    return true;
+    return context_gl_ok("volume_receivers_init");
 }
 
 void volume_receivers_destroy(volume_receivers *r) {
-    for (int i = 0; r->buffers && r->textures && i < r->object_count; i++) {
-        glDeleteBuffers(1, &r->buffers[i]);
+    for (int i = 0; r->textures && i < r->object_count; i++)
         glDeleteTextures(1, &r->textures[i]);
-    }
     render_program_destroy(&r->program);
-    free(r->buffers);
     free(r->textures);
     free(r->huge);
     free(r->scratch);
@@ -97,10 +128,11 @@ static void volume_receivers_planes(const volume_receivers *r, const scene_objec
         }
         plane[3] = (float)offset;
     }
-    glBindBuffer(GL_TEXTURE_BUFFER, r->buffers[i]);
-    glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)(triangles * VOLUME_RECEIVERS_PLANE_FLOATS * sizeof(float)),
-                    r->scratch);
-    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    int width, rows;
+    volume_receivers_size(triangles, r->width, &width, &rows);
+    volume_receivers_binding was = volume_receivers_bind(r->textures[i]);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, rows, GL_RGBA, GL_FLOAT, r->scratch);
+    volume_receivers_unbind(was);
 }
 
 int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
@@ -110,10 +142,10 @@ int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
     int count = 0;
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
-        r->huge[i] = r->buffers[i] && render_in_mask(f->in_view, i) && render_object_huge(f->gpu, i, f->view->eye);
+        r->huge[i] = r->textures[i] && render_in_mask(f->in_view, i) && render_object_huge(f->gpu, i, f->view->eye);
         count += r->huge[i];
         /* Every candidate's, so that one huge only later has its planes. */
-        if (r->buffers[i] && moved)
+        if (r->textures[i] && moved)
             volume_receivers_planes(r, o, i, eye);
     }
     memcpy(r->planes_eye, f->view->eye, sizeof r->planes_eye);
@@ -149,14 +181,14 @@ void volume_receivers_depth(const volume_receivers *r, const technique_frame *f,
         if (render_in_mask(f->in_view, i) && !r->huge[i])
             render_draw_object(f->gpu, depth, i);
     volume_receivers_use(r, f);
-    glActiveTexture(GL_TEXTURE0 + VOLUME_RECEIVERS_UNIT);
+    volume_receivers_binding was = volume_receivers_bind(0);
     for (int i = 0; i < r->object_count; i++) {
         if (!r->huge[i])
             continue;
-        glBindTexture(GL_TEXTURE_BUFFER, r->textures[i]);
+        glBindTexture(GL_TEXTURE_2D, r->textures[i]);
         render_draw_object(f->gpu, &r->program, i);
     }
-    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    volume_receivers_unbind(was);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);

@@ -26,9 +26,10 @@
  *
  * Where no object is huge (every standard scene: none comes near
  * render_object_huge's ratio) the caller takes neither pass: nothing
- * changes there. A mesh with more triangles than the GL's texture buffer
- * holds (GL_MAX_TEXTURE_BUFFER_SIZE, at least 65536) is never huge: it
- * keeps the rasterized depth.
+ * changes there. A mesh with more triangles than a 2D texture holds
+ * (GL_MAX_TEXTURE_SIZE squared) is never huge: it keeps the rasterized
+ * depth; so does every object where the shader cannot know its triangle
+ * (GLSL ES has no gl_PrimitiveID: context.h's primitive_id).
  */
 #ifndef VOLUME_RECEIVERS_H
 #define VOLUME_RECEIVERS_H
@@ -42,10 +43,11 @@ typedef struct volume_receivers {
     render_program program;              /* lit.vert, volume_receiver_depth.frag */
     int projection, zero_to_one, planes; /* its own uniforms (and eye_ray.glsl's) */
     int object_count;
-    unsigned *buffers, *textures; /* per object: its planes; 0 where it can never be huge */
-    bool *huge;                   /* per object, this frame */
-    float *scratch;               /* the planes of the largest candidate, 4 floats a triangle */
-    float planes_eye[3];          /* the eye the planes are relative to */
+    unsigned *textures;  /* per object: its planes; 0 where it can never be huge */
+    int width;           /* the planes' rows' texels (GL_MAX_TEXTURE_SIZE) */
+    bool *huge;          /* per object, this frame */
+    float *scratch;      /* the planes of the largest candidate, 4 floats a texel */
+    float planes_eye[3]; /* the eye the planes are relative to */
     bool planes_made;
 } volume_receivers;
 

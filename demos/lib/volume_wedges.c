@@ -278,7 +278,8 @@ static bool volume_wedges_match(volume_wedges *w, int target) {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     glBindFramebuffer(GL_FRAMEBUFFER, w->depth_framebuffer);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, w->depth_texture, 0);
-    glDrawBuffer(GL_NONE);
+    static const GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
     glReadBuffer(GL_NONE);
     bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)target);
@@ -477,7 +478,7 @@ static void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l
     glDepthFunc(depth_func(f->view, GL_GEQUAL));
     glDepthMask(GL_FALSE);
     glDisable(GL_STENCIL_TEST);
-    glEnable(GL_DEPTH_CLAMP);
+    depth_clamp(true);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -485,7 +486,7 @@ static void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l
     glBindVertexArray(0);
     if (!blend)
         glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_CLAMP);
+    depth_clamp(false);
     glCullFace((GLenum)cull_mode);
     if (cull)
         glEnable(GL_CULL_FACE);

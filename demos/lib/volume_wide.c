@@ -205,14 +205,16 @@ void volume_wide_end(volume_wide *w, volume_draw *d, const camera_view *view) {
 void volume_wide_overlay(volume_wide *w, const float (*ramp)[3], float alpha, int *largest) {
     soft_visibility_light *counter = &w->target.lights[VOLUME_WIDE_TARGET_LIGHT];
     size_t pixels = (size_t)w->target.width * (size_t)w->target.height;
-    float *counts = malloc((pixels ? pixels : 1) * sizeof *counts);
+    /* Read as RGBA, the one format every GL reads a float colour buffer
+     * in (ES: not GL_RED); the count is red. */
+    float(*counts)[4] = malloc((pixels ? pixels : 1) * sizeof *counts);
     *largest = 0;
     if (counts) {
         glBindFramebuffer(GL_READ_FRAMEBUFFER, counter->framebuffer);
-        glReadPixels(0, 0, w->target.width, w->target.height, GL_RED, GL_FLOAT, counts);
+        glReadPixels(0, 0, w->target.width, w->target.height, GL_RGBA, GL_FLOAT, counts);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, w->target.target_framebuffer);
         for (size_t p = 0; p < pixels; p++)
-            *largest = fabsf(counts[p]) > (float)*largest ? (int)fabsf(counts[p]) : *largest;
+            *largest = fabsf(counts[p][0]) > (float)*largest ? (int)fabsf(counts[p][0]) : *largest;
         free(counts);
     } else {
         fprintf(stderr, "volumes: out of memory reading the wide count back\n");
