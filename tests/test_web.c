@@ -42,12 +42,21 @@
 static const char *const web_scenes[] = {"simple", "bunny", "teapot"};
 enum { web_scene_count = sizeof web_scenes / sizeof *web_scenes };
 
+/* The page, which make web writes into the repository's out/ (a test runs
+ * in a directory of its own whose entries link to the repository's, all
+ * but out/: tests/run.sh). */
+static char web_page[PATH_MAX];
+
 /* Whether the page can be tested here; says why not. */
 static bool web_available(void) {
     if (getenv("TEST_SANITIZER"))
         return false;
-    if (access(WEB_PAGE, R_OK) != 0) {
-        printf("web: %s not built (make web needs Debian's emscripten: make deps)\n", WEB_PAGE);
+    char root[PATH_MAX];
+    assert_non_null(realpath("Makefile", root));
+    *strrchr(root, '/') = '\0';
+    snprintf(web_page, sizeof web_page, "%.*s/" WEB_PAGE, (int)(sizeof web_page - sizeof WEB_PAGE - 1), root);
+    if (access(web_page, R_OK) != 0) {
+        printf("web: %s not built (make web needs Debian's emscripten: make deps)\n", web_page);
         return false;
     }
     if (!support_have_command("chromium")) {
@@ -81,19 +90,18 @@ static char *web_read_file(const char *path, size_t max) {
     return text;
 }
 
-/* The text of <pre id="ID"...> up to its </pre>, in place (the DOM is
- * changed); "" when absent. */
-static const char *web_element(char *dom, const char *id) {
+/* A copy of the text of <pre id="ID"...> up to its </pre> ("" when
+ * absent); the caller frees it. */
+static char *web_element(const char *dom, const char *id) {
     char open[64];
     snprintf(open, sizeof open, "<pre id=\"%s\"", id);
-    char *start = strstr(dom, open);
-    if (!start || !(start = strchr(start, '>')))
-        return "";
+    const char *start = strstr(dom, open);
+    start = start ? strchr(start, '>') : NULL;
+    if (!start)
+        return strdup("");
     start++;
-    char *end = strstr(start, "</pre>");
-    if (end)
-        *end = '\0';
-    return start;
+    const char *end = strstr(start, "</pre>");
+    return strndup(start, end ? (size_t)(end - start) : strlen(start));
 }
 
 static int web_base64_value(char c) {
@@ -129,25 +137,29 @@ static bool web_write_base64(const char *text, size_t length, const char *path) 
  * page's console, unless its status starts with `expected`. */
 static void web_run_page(const char *args, const char *query, const char *exported, const char *expected,
                          const char *dir) {
-    char page[PATH_MAX], encoded[2048], dom_path[PATH_MAX + 16], command[4 * PATH_MAX + 4096];
-    assert_non_null(realpath(WEB_PAGE, page));
+    char encoded[2048], dom_path[PATH_MAX + 16], command[4 * PATH_MAX + 4096];
     web_url_encode(args, encoded, sizeof encoded);
     snprintf(dom_path, sizeof dom_path, "%s/page.html", dir);
-    snprintf(command, sizeof command,
-             "mkdir -p %s && " WEB_CHROMIUM " --user-data-dir=%s/profile 'file://%s?args=%s&export=%s%s' > %s", dir,
-             dir, page, encoded, exported, query, dom_path);
+    /* The DOM to a file, and Chromium's own log (its sandbox and bus
+     * notes) to another: support_run redirects the command's outputs. */
+    snprintf(
+        command, sizeof command,
+        "{ mkdir -p %s && " WEB_CHROMIUM
+        " --user-data-dir=\"$PWD/%s/profile\" 'file://%s?args=%s&export=%s%s' > %s 2> %s/chromium.log; rm -rf %s/profile; }",
+        dir, dir, web_page, encoded, exported, query, dom_path, dir, dir);
     char errors[4096];
     int status = support_run(command, errors, sizeof errors);
     char *dom = web_read_file(dom_path, WEB_MAX_DOM);
     assert_non_null(dom);
-    const char *exit_line = web_element(dom, "status");
-    if (status != 0 || strncmp(exit_line, expected, strlen(expected)) != 0) {
-        printf("web: %s: chromium %d, page: \"%s\"\n%s\n", args, status, exit_line, web_element(dom, "console"));
-        free(dom);
-        fail();
-    }
-    printf("web: %s: %s\n", args, exit_line);
-    for (char *line = (char *)web_element(dom, "files"), *next; *line; line = next) {
+    char *exit_line = web_element(dom, "status"), *console = web_element(dom, "console");
+    char *files = web_element(dom, "files");
+    free(dom);
+    bool ok = status == 0 && strncmp(exit_line, expected, strlen(expected)) == 0;
+    if (!ok)
+        printf("web: %s: chromium %d, page: \"%s\"\n%s\n", args, status, exit_line, console);
+    else
+        printf("web: %s: %s\n", args, exit_line);
+    for (char *line = files, *next; ok && *line; line = next) {
         next = line + strcspn(line, "\n");
         if (*next)
             *next++ = '\0';
@@ -158,9 +170,12 @@ static void web_run_page(const char *args, const char *query, const char *export
         const char *name = strrchr(line, '/') ? strrchr(line, '/') + 1 : line;
         char path[2 * PATH_MAX];
         snprintf(path, sizeof path, "%s/%s", dir, name);
-        assert_true(web_write_base64(space + 1, strlen(space + 1), path));
+        ok = web_write_base64(space + 1, strlen(space + 1), path);
     }
-    free(dom);
+    free(exit_line);
+    free(console);
+    free(files);
+    assert_true(ok);
 }
 
 /* A headless run of the program in the page, which must exit 0. */
@@ -202,7 +217,7 @@ static void web_matches_native(void **state) {
             snprintf(native_dir, sizeof native_dir, OUT "/%s_%s_native", technique, web_scenes[s]);
             snprintf(web_dir, sizeof web_dir, OUT "/%s_%s_web", technique, web_scenes[s]);
             snprintf(flags, sizeof flags, "--backend egl --technique %s", technique);
-            assert_int_equal(support_dump(support_program("shadows"), scene, flags, native_dir), 0);
+            assert_int_equal(support_dump("shadows", scene, flags, native_dir), 0);
             snprintf(args, sizeof args, "--technique %s --scene /%s --size " WEB_SIZE " --dump /out/dump", technique,
                      scene);
             web_run(args, "color.png,visibility.pfm", web_dir);
@@ -241,7 +256,7 @@ static void web_keys_switch_and_toggle(void **state) {
         char name[64], flags[256], native[PATH_MAX], web[PATH_MAX];
         snprintf(name, sizeof name, "web/keys_native_%zu", i);
         snprintf(flags, sizeof flags, "--backend egl --technique shadowmap %s", pictures[i].flags);
-        free(support_screenshot(support_program("shadows"), "assets/scenes/simple.json", flags, name));
+        free(support_screenshot("shadows", "assets/scenes/simple.json", flags, name));
         snprintf(native, sizeof native, "out/test/%s.png", name);
         snprintf(web, sizeof web, "%s/%s", dir, pictures[i].web);
         double differing = support_compare_images(native, web);

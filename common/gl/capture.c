@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "context.h"
 #include "depth.h"
@@ -48,18 +49,59 @@ static void capture_read_floats(GLenum attachment, int width, int height, float 
     glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba);
 }
 
-static bool capture_geometry(const render_scene *gpu, const camera_view *view, dump_frame *out) {
-    /* Desktop GLSL, whatever the dialect: shader.h. */
-    if (!context_current_features()->desktop_gl) {
-        fprintf(stderr, "capture: dumps need a geometry shader (each triangle's own normal), which this GL lacks\n");
+/* Object i's triangles unshared, each vertex with its own position and the
+ * triangle's three corners (shaders/geometry_faces.vert), drawn with p:
+ * the geometry pass where there are no geometry shaders. */
+enum { capture_face_floats = 12 };
+static bool capture_draw_faces(const render_scene *gpu, const render_program *p, int i) {
+    const scene_object *o = &gpu->scene->objects[i];
+    const mesh *m = &o->mesh;
+    float *vertices = malloc((size_t)m->index_count * capture_face_floats * sizeof(float));
+    if (!vertices) {
+        fprintf(stderr, "capture: out of memory for %u corners of \"%s\"\n", m->index_count, o->name);
         return false;
     }
-    static const char *const files[] = {"geometry.vert", "geometry.geom", "geometry.frag"};
+    for (uint32_t c = 0; c < m->index_count; c++) {
+        float *v = vertices + (size_t)c * capture_face_floats;
+        uint32_t first = c - c % 3;
+        memcpy(v, m->vertices[m->indices[c]].position, 3 * sizeof(float));
+        for (int k = 0; k < 3; k++)
+            memcpy(v + 3 * (k + 1), m->vertices[m->indices[first + k]].position, 3 * sizeof(float));
+    }
+    unsigned vao, buffer;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)m->index_count * capture_face_floats * sizeof(float)),
+                 vertices, GL_STREAM_DRAW);
+    free(vertices);
+    for (unsigned a = 0; a < 4; a++) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, capture_face_floats * sizeof(float),
+                              (const void *)(a * 3 * sizeof(float)));
+    }
+    glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
+    glDrawArrays(GL_TRIANGLES, 0, (GLsizei)m->index_count);
+    glBindVertexArray(0);
+    glDeleteBuffers(1, &buffer);
+    glDeleteVertexArrays(1, &vao);
+    return true;
+}
+
+static bool capture_geometry(const render_scene *gpu, const camera_view *view, dump_frame *out) {
+    /* Each face's normal from a geometry shader: desktop GLSL on desktop
+     * GL, whatever the dialect (shader.h). Where GL has none (WebGL 2),
+     * every vertex of the unshared triangle makes it. */
+    bool geometry_stage = context_current_features()->desktop_gl;
+    static const char *const staged[] = {"geometry.vert", "geometry.geom", "geometry.frag"};
+    static const char *const unshared[] = {"geometry_faces.vert", "geometry.frag"};
     render_program program = {0};
     capture_buffers b = {0};
     size_t n = (size_t)out->width * (size_t)out->height;
     float *normal_distance = malloc(n * 4 * sizeof(float)), *position_id = malloc(n * 4 * sizeof(float));
-    bool ok = normal_distance && position_id && render_program_load(&program, files, 3, NULL);
+    bool ok = normal_distance && position_id &&
+              render_program_load(&program, geometry_stage ? staged : unshared, geometry_stage ? 3 : 2, NULL);
     if (ok && (ok = capture_buffers_create(&b, out->width, out->height, view->reversed_depth))) {
         static const float none[4] = {0, 0, 0, -1};
         glViewport(0, 0, out->width, out->height);
@@ -75,10 +117,13 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
         int object = shader_uniform(program.id, "u_object"), exact = shader_uniform(program.id, "u_exact");
         /* Every object, never the frame's culling: the dump's geometry is
          * the scene's, the ground truth that culling is checked against. */
-        for (int i = 0; i < gpu->scene->object_count; i++) {
+        for (int i = 0; ok && i < gpu->scene->object_count; i++) {
             glUniform1f(object, (float)i);
             glUniform1i(exact, render_object_huge(gpu, i, view->eye));
-            render_draw_object(gpu, &program, i);
+            if (geometry_stage)
+                render_draw_object(gpu, &program, i);
+            else
+                ok = capture_draw_faces(gpu, &program, i);
         }
         capture_read_floats(GL_COLOR_ATTACHMENT0, out->width, out->height, normal_distance);
         capture_read_floats(GL_COLOR_ATTACHMENT1, out->width, out->height, position_id);
@@ -94,7 +139,7 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
             }
         }
         depth_use_standard(view);
-        ok = context_gl_ok("capture_geometry");
+        ok = context_gl_ok("capture_geometry") && ok;
     }
     if (!normal_distance || !position_id)
         fprintf(stderr, "capture: out of memory for a %dx%d frame\n", out->width, out->height);

@@ -5,8 +5,8 @@
  * loads its entry points with glad's GL loader, so this backend's loader
  * answers for GL 3.3: GL_VERSION reads as 3.3, so that glad asks for every
  * 3.3 entry point; those WebGL 2 has (samplers, uniform blocks, buffer
- * copies) come back, those it lacks stay NULL, and context_features says
- * what is missing. A few desktop names are answered by their ES spelling
+ * copies) come back, those it lacks stay NULL, and the context's features
+ * (context_set_features) say what is missing. A few desktop names are answered by their ES spelling
  * (glClearDepth by glClearDepthf) or by a WebGL extension's function
  * (glClipControl: EXT_clip_control; glPolygonMode: WEBGL_polygon_mode),
  * and the extensions the suite uses are enabled here, where the browser
@@ -108,6 +108,14 @@ context_loader context_browser_create(context *c, const context_settings *s) {
         (context_browser_get_string_fn)emscripten_webgl_get_proc_address("glGetString");
     context_browser_webgl_clear_depthf =
         (context_browser_clear_depthf_fn)emscripten_webgl_get_proc_address("glClearDepthf");
+    /* WebGL 2's core has none of the rest (context.h). */
+    context_set_features(&(context_features){
+        .glsl_es = true,
+        .polygon_mode = context_browser_has("WEBGL_polygon_mode"),
+        .clip_distances = context_browser_has("WEBGL_clip_cull_distance"),
+        .depth_clamp = context_browser_has("EXT_depth_clamp"),
+        .clip_control = context_browser_has("EXT_clip_control"),
+    });
     snprintf(c->platform, sizeof c->platform, "browser canvas (WebGL 2)");
     return context_browser_proc;
 }
