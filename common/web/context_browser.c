@@ -5,12 +5,12 @@
  * loads its entry points with glad's GL loader, so this backend's loader
  * answers for GL 3.3: GL_VERSION reads as 3.3, so that glad asks for every
  * 3.3 entry point; those WebGL 2 has (samplers, uniform blocks, buffer
- * copies) come back, those it lacks stay NULL, and the context's features
- * (context_set_features) say what is missing. A few desktop names are answered by their ES spelling
- * (glClearDepth by glClearDepthf) or by a WebGL extension's function
- * (glClipControl: EXT_clip_control; glPolygonMode: WEBGL_polygon_mode),
- * and the extensions the suite uses are enabled here, where the browser
- * has them.
+ * copies) come back, those it lacks stay NULL, and the context's
+ * features (context_set_features) say what is missing. A few desktop
+ * names are answered by their ES spelling (glClearDepth by glClearDepthf)
+ * or by a WebGL extension's function (glClipControl: EXT_clip_control;
+ * glPolygonMode: WEBGL_polygon_mode), and the extensions the suite uses
+ * are enabled here, where the browser has them.
  *
  * A run that is not interactive (--frames, --screenshot, --dump: what the
  * browser tests run) gets the canvas's context without a window, so the
@@ -24,14 +24,15 @@
 
 #include "context.h"
 
-/* The suite's GL constants, as GL 3.3 and the WebGL extensions share them. */
+/* GL_VERSION: this file includes no GL header. */
 #define CONTEXT_BROWSER_GL_VERSION 0x1F02
 
 /* What WebGL 2 offers only as extensions, enabled where the browser has
- * them: float colour targets and their blending (the soft sums, the float
- * counter), and what context_features names. */
+ * them: float colour targets, their blending and linear filtering (the
+ * soft sums, the float counter, the moment maps), and what
+ * context_features names. */
 static const char *const context_browser_extensions[] = {
-    "EXT_color_buffer_float", "EXT_float_blend",    "EXT_depth_clamp",
+    "EXT_color_buffer_float", "EXT_float_blend",    "OES_texture_float_linear", "EXT_depth_clamp",
     "EXT_clip_control",       "WEBGL_polygon_mode", "WEBGL_clip_cull_distance",
 };
 enum { context_browser_extension_count = sizeof context_browser_extensions / sizeof *context_browser_extensions };
