@@ -73,7 +73,7 @@ $(WEB_OUT)/index.html: common/web/index.html
 $(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_MODELS)) $(wildcard shaders/*) $(WEB_TOURS) common/web/web.mk \
 		$(WEB_SCENES)
 	@mkdir -p $(dir $@)
-	$(EMCC) $(WEB_LDFLAGS) $(WEB_OBJ) $(WEB_EMBED) -o $@
+	@echo "emcc -o $@" && $(EMCC) $(WEB_LDFLAGS) $(WEB_OBJ) $(WEB_EMBED) -o $@
 
 $(WEB_BUILD)/assets/%.obj: assets/%.obj $(BUILD)/bake
 	@mkdir -p $(dir $@)

@@ -149,13 +149,16 @@ void shadow_map_moments_blur_texels(const scene *s, int l, const shadow_map *m, 
 
 /* ---- the textures ---- */
 
+/* format: GL_RG32F or GL_RGBA32F; the pixel format named with it is the
+ * one ES (WebGL 2) accepts for it, as desktop GL does. */
 static void shadow_map_moments_image(GLenum target, shadow_map_kind kind, int size, int layers, GLenum format,
                                      GLint filter) {
+    GLenum pixels = format == GL_RG32F ? GL_RG : GL_RGBA;
     if (kind == SHADOW_MAP_ARRAY)
-        glTexImage3D(target, 0, (GLint)format, size, size, layers, 0, GL_RGBA, GL_FLOAT, NULL);
+        glTexImage3D(target, 0, (GLint)format, size, size, layers, 0, pixels, GL_FLOAT, NULL);
     else
         for (int layer = 0; layer < layers; layer++)
-            glTexImage2D(shadow_map_layer_image(kind, layer), 0, (GLint)format, size, size, 0, GL_RGBA, GL_FLOAT,
+            glTexImage2D(shadow_map_layer_image(kind, layer), 0, (GLint)format, size, size, 0, pixels, GL_FLOAT,
                          NULL);
     shadow_map_texture_filter(target, filter);
 }
