@@ -16,13 +16,14 @@
 
 static struct {
     bool no_stencil, other_no_stencil, verbose;
-    int filter, frames, width, height, item_count, rest_count, pick_count;
+    int filter, other_filter, frames, width, height, item_count, rest_count, pick_count;
     float bias;
     const char *scene, *shot, *warp;
     const char *items[TEST_MAX_ITEMS], *rest[TEST_MAX_ITEMS], *picks[TEST_MAX_ITEMS];
 } v;
 
 static const char *const filters[] = {"poisson", "none", "pcf3", NULL};
+static const char *const other_filters[] = {"none", "tent", NULL};
 
 static const flags_param params[] = {
     {NULL, NULL, 0, FLAGS_LIST, .items = v.items, .count = &v.item_count, .min = 1, .max = TEST_MAX_ITEMS,
@@ -30,6 +31,8 @@ static const flags_param params[] = {
     {"stencil", "shadows blend twice", 'S', FLAGS_TOGGLE, .disabled = &v.no_stencil},
     {"stencil", "the same flag in a second technique", 0, FLAGS_TOGGLE, .disabled = &v.other_no_stencil},
     {"filter", "what reads the map", 'F', FLAGS_CHOICE, .index = &v.filter, .choices = filters},
+    {"filter", "a second technique's, with other values", 0, FLAGS_CHOICE, .index = &v.other_filter,
+     .choices = other_filters},
     {"bias", "constant bias", 0, FLAGS_NUMBER, .number = &v.bias, .fallback = 1.5f, .min = 0.01f, .max = 64},
     {"frames", "frames", 0, FLAGS_INT, .integer = &v.frames, .min = 1, .max = 100, .what = "a count"},
     {"size", "size", 0, FLAGS_SIZE, .width = &v.width, .height = &v.height},
@@ -76,7 +79,7 @@ static void test_every_kind(void **state) {
                      0);
     assert_true(v.no_stencil && v.other_no_stencil && v.verbose);
     assert_int_equal(v.filter, 2);
-    assert_true(v.bias == 2.5f && flags_number(&params[4]) == 2.5f);
+    assert_true(v.bias == 2.5f && flags_number(&params[5]) == 2.5f);
     assert_int_equal(v.frames, 7);
     assert_int_equal(v.width, 64);
     assert_int_equal(v.height, 36);
@@ -85,12 +88,31 @@ static void test_every_kind(void **state) {
     assert_string_equal(v.items[1], "b");
 }
 
+/* A choice two tables share sets each that has the value, leaving the
+ * other as it was; a value neither has names both's. */
+static void test_shared_choice(void **state) {
+    (void)state;
+    assert_int_equal(parse("a --filter none"), 0);
+    assert_int_equal(v.filter, 1);
+    assert_int_equal(v.other_filter, 0);
+    assert_int_equal(parse("a --filter tent"), 0);
+    assert_int_equal(v.filter, 0);
+    assert_int_equal(v.other_filter, 1);
+    assert_int_equal(parse("a --filter pcf3"), 0);
+    assert_int_equal(v.filter, 2);
+    support_capture_stderr();
+    int status = parse("a --filter box");
+    const char *text = support_release_stderr();
+    assert_int_equal(status, FLAGS_EXIT_USAGE);
+    assert_non_null(strstr(text, "unknown filter 'box', expected one of poisson, none, pcf3, tent"));
+}
+
 static void test_reset_gives_defaults(void **state) {
     (void)state;
     assert_int_equal(parse("a"), 0);
     assert_false(v.no_stencil || v.verbose);
     assert_int_equal(v.filter, 0);
-    assert_true(flags_number(&params[4]) == 1.5f);
+    assert_true(flags_number(&params[5]) == 1.5f);
     assert_null(v.scene);
 }
 
@@ -244,6 +266,7 @@ static void test_markdown_lists_every_flag(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_kind),
+        cmocka_unit_test(test_shared_choice),
         cmocka_unit_test(test_reset_gives_defaults),
         cmocka_unit_test(test_list_stops_at_a_flag),
         cmocka_unit_test(test_list_repeats),

@@ -230,6 +230,43 @@ static int flags_unknown(const char *program, const flags_param *params, int cou
 
 /* flags_parse_among, with what each entry's flag was first given (NULL:
  * not yet), for a second to be refused. */
+/* The index of `value` among p's choices, or -1. */
+static int flags_choice_index(const flags_param *p, const char *value) {
+    for (int c = 0; p->choices[c]; c++)
+        if (strcmp(value, p->choices[c]) == 0)
+            return c;
+    return -1;
+}
+
+/* A choice that several tables share (build/shadows' --overlay, each
+ * technique's own) sets each of them that has the value, and is an error
+ * only where none has it, which names every value any of them takes. */
+static int flags_set_shared_choice(const char *program, const flags_param *first, const flags_param *end,
+                                   const char *flag, const char *value) {
+    bool taken = false;
+    char list[FLAGS_LINE_MAX] = "";
+    size_t used = 0;
+    for (const flags_param *p = first; p < end; p++) {
+        if (!flags_names(p, flag))
+            continue;
+        int index = flags_choice_index(p, value);
+        if (index >= 0) {
+            *p->index = index;
+            taken = true;
+        }
+        for (int c = 0; p->choices[c]; c++) {
+            bool listed = false;
+            for (const flags_param *q = first; q < p && !listed; q++)
+                listed = flags_names(q, flag) && flags_choice_index(q, p->choices[c]) >= 0;
+            if (!listed && used < sizeof list)
+                used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", used ? ", " : "", p->choices[c]);
+        }
+    }
+    return taken ? 0
+                 : flags_error(program, "--%s: unknown %s '%s', expected one of %s", first->name, first->name, value,
+                               list);
+}
+
 static int flags_walk(const char *program, const flags_param *params, int count, int argc, char *const *argv,
                       const flags_elsewhere *elsewhere, int elsewhere_count, const char **given) {
     const flags_param *positional = flags_find(params, count, NULL);
@@ -274,6 +311,10 @@ static int flags_walk(const char *program, const flags_param *params, int count,
         if (value && *earlier)
             return flags_error(program, "%s given twice, '%s' then '%s': give it once", flag, *earlier, value);
         *earlier = value;
+        if (first->kind == FLAGS_CHOICE) {
+            status = flags_set_shared_choice(program, first, params + count, flag, value);
+            continue;
+        }
         for (const flags_param *p = first; p < params + count && !status; p++)
             if (flags_names(p, flag))
                 status = flags_set(program, p, value);
