@@ -302,11 +302,51 @@ static void web_tour_steps(void **state) {
     assert_true(differing >= 0 && differing <= WEB_MAX_DIFFERING);
 }
 
+/* Every tour, every step headless in the page, against the native
+ * tour's pictures: within WEB_MAX_TOUR_DIFFERING, the lecture's
+ * artifacts (z-fighting, acne) being each rasterizer's own coin tosses;
+ * a compare step shows the technique alone in the page (it cannot
+ * trace), so only that it is there is checked. */
+#define WEB_MAX_TOUR_DIFFERING 0.02
+static const char *const web_tours[] = {"overview", "planar", "projective", "shadowmap", "psm", "soft", "volumes"};
+static void web_tours_match_native(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    for (size_t t = 0; t < sizeof web_tours / sizeof *web_tours; t++) {
+        char tour[256], dir[256], args[512], command[1024], errors[4096];
+        snprintf(tour, sizeof tour, "assets/tours/%s.json", web_tours[t]);
+        snprintf(dir, sizeof dir, OUT "/tour_%s", web_tours[t]);
+        snprintf(args, sizeof args, "--size " WEB_SIZE " --tour /%s --screenshot /out/web.png", tour);
+        web_run(args, "", dir);
+        snprintf(command, sizeof command,
+                 "%s --backend egl --size " WEB_SIZE " --tour %s --screenshot %s/native.png > /dev/null",
+                 support_program("shadows"), tour, dir);
+        assert_int_equal(support_run(command, errors, sizeof errors), 0);
+        cJSON *json = support_read_json(tour);
+        const cJSON *steps = cJSON_GetObjectItemCaseSensitive(json, "steps");
+        for (int k = 0; k < cJSON_GetArraySize(steps); k++) {
+            char native[512], web[512];
+            snprintf(native, sizeof native, "%s/native-%d.png", dir, k + 1);
+            snprintf(web, sizeof web, "%s/web-%d.png", dir, k + 1);
+            assert_int_equal(access(web, R_OK), 0);
+            if (cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(steps, k), "compare")))
+                continue;
+            double differing = support_compare_images(native, web);
+            printf("web: tour %s step %d: %.3f %% of the pixels differ from native\n", web_tours[t], k + 1,
+                   100 * differing);
+            assert_true(differing >= 0 && differing <= WEB_MAX_TOUR_DIFFERING);
+        }
+        cJSON_Delete(json);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(web_matches_native),
         cmocka_unit_test(web_keys_switch_and_toggle),
         cmocka_unit_test(web_tour_steps),
+        cmocka_unit_test(web_tours_match_native),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
