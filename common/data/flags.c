@@ -91,7 +91,7 @@ static bool flags_takes_value(flags_kind kind) {
 
 /* Sets a flag that takes no value or one value; 0 or the usage error. */
 static int flags_set(const char *program, const flags_param *p, const char *value) {
-    char list[FLAGS_LINE_MAX], *end;
+    char *end;
     switch (p->kind) {
     case FLAGS_TOGGLE: *p->disabled = true; return 0;
     case FLAGS_SWITCH: *p->on = true; return 0;
@@ -101,15 +101,6 @@ static int flags_set(const char *program, const flags_param *p, const char *valu
                                value);
         *p->text = value;
         return 0;
-    case FLAGS_CHOICE:
-        for (int c = 0; p->choices[c]; c++) {
-            if (strcmp(value, p->choices[c]) == 0) {
-                *p->index = c;
-                return 0;
-            }
-        }
-        flags_join(p->choices, ", ", list, sizeof list);
-        return flags_error(program, "--%s: unknown %s '%s', expected one of %s", p->name, p->name, value, list);
     case FLAGS_NUMBER: {
         float v = strtof(value, &end);
         if (end != value && *end == '\0' && v >= p->min && v <= p->max) {
@@ -127,7 +118,8 @@ static int flags_set(const char *program, const flags_param *p, const char *valu
         if (flags_parse_size(value, p->width, p->height))
             return 0;
         return flags_error(program, "--%s: expected WxH, each 1..%d, got '%s'", p->name, FLAGS_MAX_SIZE, value);
-    case FLAGS_LIST: /* flags_parse fills lists itself */
+    case FLAGS_CHOICE: /* flags_set_choice, which sees every table's */
+    case FLAGS_LIST:   /* flags_parse fills lists itself */
     case FLAGS_HELP: break;
     }
     return 0;
@@ -228,8 +220,6 @@ static int flags_unknown(const char *program, const flags_param *params, int cou
     return flags_error(program, "unknown flag '%s'%s%s", flag, suggestion, there);
 }
 
-/* flags_parse_among, with what each entry's flag was first given (NULL:
- * not yet), for a second to be refused. */
 /* The index of `value` among p's choices, or -1. */
 static int flags_choice_index(const flags_param *p, const char *value) {
     for (int c = 0; p->choices[c]; c++)
@@ -238,11 +228,12 @@ static int flags_choice_index(const flags_param *p, const char *value) {
     return -1;
 }
 
-/* A choice that several tables share (build/shadows' --overlay, each
- * technique's own) sets each of them that has the value, and is an error
- * only where none has it, which names every value any of them takes. */
-static int flags_set_shared_choice(const char *program, const flags_param *first, const flags_param *end,
-                                   const char *flag, const char *value) {
+/* Sets the choice `flag` in every table from `first` on that has it. One
+ * that several tables share (build/shadows' --overlay, each technique's
+ * own) sets each of them that has the value, and is an error only where
+ * none has it, which names every value any of them takes. */
+static int flags_set_choice(const char *program, const flags_param *first, const flags_param *end, const char *flag,
+                            const char *value) {
     bool taken = false;
     char list[FLAGS_LINE_MAX] = "";
     size_t used = 0;
@@ -267,6 +258,8 @@ static int flags_set_shared_choice(const char *program, const flags_param *first
                                list);
 }
 
+/* flags_parse_among, with what each entry's flag was first given (NULL:
+ * not yet), for a second to be refused. */
 static int flags_walk(const char *program, const flags_param *params, int count, int argc, char *const *argv,
                       const flags_elsewhere *elsewhere, int elsewhere_count, const char **given) {
     const flags_param *positional = flags_find(params, count, NULL);
@@ -312,7 +305,7 @@ static int flags_walk(const char *program, const flags_param *params, int count,
             return flags_error(program, "%s given twice, '%s' then '%s': give it once", flag, *earlier, value);
         *earlier = value;
         if (first->kind == FLAGS_CHOICE) {
-            status = flags_set_shared_choice(program, first, params + count, flag, value);
+            status = flags_set_choice(program, first, params + count, flag, value);
             continue;
         }
         for (const flags_param *p = first; p < params + count && !status; p++)
