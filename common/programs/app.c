@@ -1061,7 +1061,8 @@ static void app_save_window(int width, int height) {
     app.screenshot_asked[0] = '\0';
 }
 
-/* Window frame `frame` of `frames` (interactive when frames <= 0). */
+/* Window frame `frame` of `frames`; interactive when frames <= 0, and
+ * then `frame` is not used (the clock gives the time). */
 static bool app_window_frame(int frame, int frames) {
     GLFWwindow *w = app.ctx.window;
     bool ok = true;
@@ -1102,8 +1103,7 @@ static bool app_window_frame(int frame, int frames) {
 /* The page's frame, called by the browser for each frame it shows; a
  * frame that fails stops the page's loop (its line is on the console). */
 static void app_browser_frame(void) {
-    static int frame;
-    if (glfwWindowShouldClose(app.ctx.window) || app.tour_failed || !app_window_frame(frame++, 0)) {
+    if (glfwWindowShouldClose(app.ctx.window) || app.tour_failed || !app_window_frame(0, 0)) {
         fprintf(stderr, "%s: stopped\n", app.program);
         emscripten_cancel_main_loop();
     }
