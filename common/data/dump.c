@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "image.h"
+#include "json.h"
 #include "path.h"
 
 #define DUMP_MAX_META_SIZE (1 << 20)
@@ -120,15 +121,7 @@ static bool dump_write_meta(const dump_frame *d, const char *path) {
     cJSON_AddNumberToObject(camera, "fov", c->fov_deg);
     cJSON_AddNumberToObject(camera, "near", c->near_plane);
     cJSON_AddNumberToObject(camera, "far", c->far_plane);
-    char *text = cJSON_Print(root);
-    cJSON_Delete(root);
-    FILE *f = text ? fopen(path, "w") : NULL;
-    bool ok = f && fputs(text, f) >= 0;
-    ok = (f && fclose(f) == 0) && ok;
-    if (!ok)
-        fprintf(stderr, "%s: cannot write: %s\n", path, text ? strerror(errno) : "out of memory");
-    free(text);
-    return ok;
+    return json_save(root, path);
 }
 
 bool dump_write(const dump_frame *d, const char *dir) {

@@ -2,6 +2,7 @@
 #include "json.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -170,6 +171,18 @@ static cJSON *json_parse(const char *file, const char *text, size_t length) {
         fprintf(stderr, "%s:%d: JSON syntax error near byte 0x%02x\n", file, line, (unsigned char)*error);
     }
     return NULL;
+}
+
+bool json_save(cJSON *root, const char *path) {
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    FILE *f = text ? fopen(path, "w") : NULL;
+    bool ok = f && fputs(text, f) >= 0;
+    ok = (f && fclose(f) == 0) && ok;
+    if (!ok)
+        fprintf(stderr, "%s: cannot write: %s\n", path, text ? strerror(errno) : "out of memory");
+    free(text);
+    return ok;
 }
 
 cJSON *json_load(const char *path, size_t max_size) {

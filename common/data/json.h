@@ -1,4 +1,5 @@
-/* json: what the JSON file readers share (scene.c, tour.c). Every reader
+/* json: what the JSON file readers share (scene.c, tour.c), and the
+ * writing of a tree to a file. Every reader
  * reports its field's first problem as one line on stderr, "FILE:
  * WHERE.KEY: problem" (WHERE "steps[2]", or "" at the top), and returns
  * false; an optional field that is absent leaves *out as it was (its
@@ -15,6 +16,9 @@
 /* The file parsed, or NULL after "PATH:LINE: JSON syntax error near 'c'"
  * or path_read_text's line (a file over max_size is not read). */
 cJSON *json_load(const char *path, size_t max_size);
+/* Writes `root` (then deleted) to `path` as cJSON_Print's text; false
+ * after "PATH: cannot write: reason". */
+bool json_save(cJSON *root, const char *path);
 
 /* Prints "FILE: WHERE.KEY: problem"; where may be "" and key NULL.
  * Returns false. */
