@@ -325,7 +325,7 @@ static void test_frame_loop_never_waits(void **state) {
     assert_true(hud_init());
     assert_true(scene_load(&progress_scene, PROGRESS_SCENE));
     progress_scene.lights[0].radius = PROGRESS_LIGHT_RADIUS;
-    assert_true(compare_create(&c, WIDTH, HEIGHT, &progress_settings));
+    assert_true(compare_create(&c, WIDTH, HEIGHT, &progress_settings, NULL));
     assert_true(target_create(&cell, c.cell_width, c.cell_height));
 
     /* The first frame comes back before the truth is there. */

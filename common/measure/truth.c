@@ -11,6 +11,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "truth_bake.h"
+
 void truth_row_order(int height, int *order) {
     int n = 0;
     for (int pass = 0; pass < TRUTH_PASSES; pass++) {
@@ -98,8 +100,27 @@ static int truth_thread(void *argument) {
     return 0;
 }
 
-bool truth_start(truth *t, int width, int height, const raytrace_settings *settings) {
-    *t = (truth){.width = width, .height = height, .settings = *settings};
+/* The baked truth of the latest request as the thread's finished frame,
+ * or a failed one; called with the lock held. */
+static void truth_find_baked(truth *t) {
+    dump_frame_free(&t->traced);
+    t->tracing = t->request_count;
+    t->job = t->requested;
+    truth_bake_found found =
+        truth_bake_find(t->baked_dir, &t->job, t->width, t->height, t->requested_light, &t->settings, &t->traced);
+    t->traced_rows = found == TRUTH_BAKE_FOUND ? t->height : 0;
+    t->trace_failed = found != TRUTH_BAKE_FOUND;
+    if (found == TRUTH_BAKE_NONE && !t->said_unbaked)
+        fprintf(stderr,
+                "truth: %s: no truth is baked in %s for this view (light %d, %dx%d): baked are the views tour "
+                "steps show in compare mode\n",
+                t->settings.scene_name ? t->settings.scene_name : "the scene", t->baked_dir, t->requested_light,
+                t->width, t->height);
+    t->said_unbaked = t->said_unbaked || found == TRUTH_BAKE_NONE;
+}
+
+bool truth_start(truth *t, int width, int height, const raytrace_settings *settings, const char *baked_dir) {
+    *t = (truth){.width = width, .height = height, .settings = *settings, .baked_dir = baked_dir};
     t->row_order = malloc((size_t)height * sizeof *t->row_order);
     if (!t->row_order) {
         fprintf(stderr, "truth: out of memory for %d rows\n", height);
@@ -107,7 +128,7 @@ bool truth_start(truth *t, int width, int height, const raytrace_settings *setti
     }
     truth_row_order(height, t->row_order);
     if (mtx_init(&t->lock, mtx_plain) != thrd_success || cnd_init(&t->changed) != thrd_success ||
-        thrd_create(&t->thread, truth_thread, t) != thrd_success) {
+        (!baked_dir && thrd_create(&t->thread, truth_thread, t) != thrd_success)) {
         fprintf(stderr, "truth: cannot start the reference's thread\n");
         free(t->row_order);
         return false;
@@ -123,6 +144,8 @@ void truth_request(truth *t, const scene *s, int light_index) {
         t->requested_light = light_index;
         t->has_request = true;
         t->request_count++;
+        if (t->baked_dir)
+            truth_find_baked(t);
         cnd_broadcast(&t->changed);
     }
     mtx_unlock(&t->lock);
@@ -182,6 +205,11 @@ void truth_forget(truth *t) {
     mtx_lock(&t->lock);
     t->has_request = false;
     t->request_count++;
+    if (t->baked_dir) {
+        dump_frame_free(&t->traced);
+        t->traced_rows = 0;
+        t->tracing = t->request_count;
+    }
     cnd_broadcast(&t->changed);
     while (t->busy || t->tracing != t->request_count)
         cnd_wait(&t->changed, &t->lock);
@@ -195,7 +223,8 @@ void truth_stop(truth *t) {
     t->quit = true;
     cnd_broadcast(&t->changed);
     mtx_unlock(&t->lock);
-    thrd_join(t->thread, NULL);
+    if (!t->baked_dir)
+        thrd_join(t->thread, NULL);
     cnd_destroy(&t->changed);
     mtx_destroy(&t->lock);
     dump_frame_free(&t->traced);

@@ -28,6 +28,11 @@
  * The thread traces with OpenMP like raytrace_render, so it shares the CPU
  * with the frame loop; on a failure (Embree, memory) raytrace prints its
  * line and the frame is `failed` until the next new request.
+ *
+ * Baked (a build that cannot trace: the web page): started with a folder
+ * of baked truths (truth_bake.h), there is no thread; each new request is
+ * answered at once with the truth baked for its view, complete, or with a
+ * failed frame where none is (said once per truth_start).
  */
 #ifndef TRUTH_H
 #define TRUTH_H
@@ -64,6 +69,8 @@ typedef struct truth {
     mtx_t lock;
     cnd_t changed; /* a request or quit, for the thread; rows, for truth_wait */
     bool running;
+    const char *baked_dir; /* baked: the truths' folder; NULL: traced */
+    bool said_unbaked;     /* a view without a baked truth was said */
     /* under lock */
     bool quit;
     bool has_request; /* false at first and after truth_forget */
@@ -85,9 +92,10 @@ typedef struct truth {
 void truth_row_order(int height, int *order);
 
 /* Starts the thread for frames of width x height (settings as
- * raytrace_render's; scene_name is kept as a pointer). False after one
- * line on stderr. */
-bool truth_start(truth *t, int width, int height, const raytrace_settings *settings);
+ * raytrace_render's; scene_name is kept as a pointer), or with
+ * `baked_dir` (kept as a pointer) no thread: the truths baked there.
+ * False after one line on stderr. */
+bool truth_start(truth *t, int width, int height, const raytrace_settings *settings, const char *baked_dir);
 void truth_request(truth *t, const scene *s, int light_index);
 /* Copies into `shown` (zero it before the first call; truth_frame_free
  * at the end) what is new since its last take: returns whether anything

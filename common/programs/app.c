@@ -39,6 +39,9 @@
 #define APP_TECHNIQUE_FLAG_WIDTH 26 /* one column for every technique in --help */
 #define APP_LIGHT_STEP_RAD 0.05f
 #define APP_ORBIT_RAD_PER_PIXEL 0.008f
+/* Where a build that cannot trace (the page) finds its baked truths, in
+ * the project's folder (truth_bake.h; make web bakes them). */
+#define APP_BAKED_TRUTHS "truths"
 #define APP_NOTE_SECONDS 4.0 /* how long the HUD shows "saved PATH" */
 #define APP_RESET_KEY GLFW_KEY_0
 #define APP_COMPARE_KEY GLFW_KEY_A /* "against the truth": C is the constant bias */
@@ -61,7 +64,6 @@ static struct {
     bool flags_markdown;   /* --flags-markdown: print the tables, then exit */
     bool compare_on;       /* --compare, A, a tour's step: the technique beside the truth (compare.h) */
     bool compare_given;    /* --compare: every step of a tour too */
-    bool compare_refused;  /* compare mode was asked for where there is no ray tracer, and said so */
     int hud_scale;         /* --hud-scale: 0, from the framebuffer's height */
     int motion;            /* motion_kind */
     bool hold_fit;         /* --hold-fit: the maps fitted to the frame before's camera */
@@ -72,8 +74,10 @@ static struct {
     const char *gallery[1 + APP_MAX_GALLERY_SCENES]; /* DIR SCENE... */
     int gallery_count;
     char default_shader_dir[PATH_MAX], default_scene[PATH_MAX];
-    char paged_scene[PATH_MAX]; /* Page Up/Down's: the scene_path then */
-    const char *tour_path;      /* --tour */
+    char baked_truths[PATH_MAX]; /* APP_BAKED_TRUTHS, in the project */
+    const char *bake_truths_dir; /* --bake-truths */
+    char paged_scene[PATH_MAX];  /* Page Up/Down's: the scene_path then */
+    const char *tour_path;       /* --tour */
     tour tour;
     int tour_step;                   /* the step shown */
     bool step_scene, step_technique; /* what the step has loaded and started, for leaving it */
@@ -156,6 +160,9 @@ static const flags_param app_flags[] = {
      "the technique beside the ray-traced truth of the same view\n(traced in the background, progressively) and the heat\n"
      "map of its errors, with legend and figures: four cells under\nthe HUD's caption strip (A); headless, the finished picture",
      0, FLAGS_SWITCH, .on = &app.compare_on},
+    {"bake-truths",
+     "in compare mode, also bake each finished truth into DIR\n(what compare mode shows where the build cannot trace:\nmake web bakes the tours' into the page)",
+     0, FLAGS_STRING, .text = &app.bake_truths_dir, .value_name = "DIR"},
     {"hud",
      "headless pictures (--screenshot, --gallery) carry the HUD\ntoo, frame time replaced by the frame's number and time",
      0, FLAGS_SWITCH, .on = &app.hud_in_pictures},
@@ -397,8 +404,9 @@ static bool app_create_targets(int width, int height) {
     if (!app.compare_on)
         return target_create(&app.target, width, height);
     const raytrace_settings settings = {.scene_name = app.scene_path};
-    if (!compare_create(&app.comparing, width, height, &settings))
+    if (!compare_create(&app.comparing, width, height, &settings, raytrace_available() ? NULL : app.baked_truths))
         return false;
+    app.comparing.bake_into = app.bake_truths_dir;
     /* Only the interactive window shows how long the truth took: pictures
      * (headless, or the window's scripted --frames) stay the same bytes. */
     app.comparing.show_seconds = app.ctx.window && app.frames <= 0;
@@ -415,26 +423,10 @@ static void app_destroy_targets(void) {
     target_destroy(&app.target);
 }
 
-/* Whether compare mode can be had; where the build cannot trace (the
- * page), says so once, and on the HUD, and the technique shows alone. */
-static bool app_compare_available(void) {
-    if (raytrace_available())
-        return true;
-    if (!app.compare_refused)
-        fprintf(stderr,
-                "%s: compare mode: this build cannot trace the truth (Embree is native only), so the "
-                "technique shows alone\n",
-                app.program);
-    app.compare_refused = true;
-    snprintf(app.note, sizeof app.note, "compare mode: no ray tracer in this build");
-    app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
-    return false;
-}
-
 /* Compare mode on or off (the A key, a tour's step), the picture's size
  * kept. */
 static bool app_set_compare(bool on) {
-    if (on == app.compare_on || (on && !app_compare_available()))
+    if (on == app.compare_on)
         return true;
     int width = app_picture()->width, height = app_picture()->height;
     app_destroy_targets();
@@ -1232,11 +1224,11 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
     app.technique_given = app.current >= 0;
-    app.compare_on = app.compare_on && app_compare_available();
     app.compare_given = app.compare_on;
     if (!app.technique_given)
         app.current = 0;
     path_in_project("shaders", app.default_shader_dir, sizeof app.default_shader_dir);
+    path_in_project(APP_BAKED_TRUTHS, app.baked_truths, sizeof app.baked_truths);
     path_in_project("assets/scenes/simple.json", app.default_scene, sizeof app.default_scene);
     shader_set_directory(app.shader_dir ? app.shader_dir : app.default_shader_dir);
     if (!app.scene_path)

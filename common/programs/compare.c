@@ -13,6 +13,7 @@
 #include "hud.h"
 #include "legend.h"
 #include "scene.h"
+#include "truth_bake.h"
 
 enum { COMPARE_TRUTH, COMPARE_HEAT };
 /* Before the truth has a row, and the heat map before it has figures. */
@@ -29,7 +30,7 @@ int compare_strip_height(int height) {
     return (COMPARE_STRIP_LINES * HUD_LINE_UNITS + 2 * HUD_MARGIN) * hud_scale_for(height);
 }
 
-bool compare_create(compare *c, int width, int height, const raytrace_settings *settings) {
+bool compare_create(compare *c, int width, int height, const raytrace_settings *settings, const char *baked_dir) {
     int strip = compare_strip_height(height);
     *c = (compare){.strip_height = strip, .cell_width = width / 2, .cell_height = (height - strip) / 2};
     if (c->cell_width < 1 || c->cell_height < 1) {
@@ -66,7 +67,8 @@ bool compare_create(compare *c, int width, int height, const raytrace_settings *
     }
     memset(c->truth_rgba, compare_empty_grey, 4 * pixels);
     memset(c->heat_rgba, compare_empty_grey, 4 * pixels);
-    if (!context_gl_ok("compare_create") || !truth_start(&c->truth, c->cell_width, c->cell_height, settings)) {
+    if (!context_gl_ok("compare_create") ||
+        !truth_start(&c->truth, c->cell_width, c->cell_height, settings, baked_dir)) {
         compare_destroy(c);
         return false;
     }
@@ -121,6 +123,11 @@ bool compare_update(compare *c, const scene *s, int light, compare_capture captu
     if (wait)
         truth_wait(&c->truth);
     bool changed = truth_take(&c->truth, &c->shown);
+    if (c->bake_into && c->shown.complete && c->baked_of != c->shown.request) {
+        if (!truth_bake_write(c->bake_into, &c->shown.dump, s, &c->truth.settings))
+            return false;
+        c->baked_of = c->shown.request;
+    }
     /* The decisions are captured for the view the truth is of, so only
      * once the truth is of the current one. */
     if (c->shown.current && c->shown.rows > 0 && (c->decisions_of != c->shown.request || c->decisions_stale)) {
@@ -166,8 +173,12 @@ void compare_figures_text(const compare *c, char *text, size_t size) {
 /* The truth's state, the legend's last line. */
 static void compare_truth_text(const compare *c, char *text, size_t size) {
     const truth_frame *f = &c->shown;
-    if (f->failed)
+    if (f->failed && c->truth.baked_dir)
+        snprintf(text, size, "truth: none baked for this view (0: the loaded view)");
+    else if (f->failed)
         snprintf(text, size, "truth: the trace FAILED (see stderr)");
+    else if (f->complete && c->truth.baked_dir)
+        snprintf(text, size, "truth: Embree, baked for this view");
     else if (f->complete && c->show_seconds)
         snprintf(text, size, "truth: Embree, traced in %.2f s", f->seconds);
     else if (f->complete)

@@ -6,8 +6,9 @@
  *   top left      the technique's frame (the app renders it at the cell's
  *                 size);
  *   top right     the truth (truth.h: Embree in a background thread,
- *                 progressive), as far as it is traced: a row not traced
- *                 yet repeats the nearest traced row above it;
+ *                 progressive; or baked, where the build cannot trace),
+ *                 as far as it is traced: a row not traced yet repeats
+ *                 the nearest traced row above it;
  *   bottom left   shadowdiff's heat map of the technique's decisions
  *                 against the truth traced so far (shadowdiff.h; rows not
  *                 traced yet are black, "no surface", and not compared),
@@ -21,7 +22,9 @@
  *                 says how wide the error discs are.
  *
  *   compare c;
- *   compare_create(&c, width, height, &settings);        the picture's size
+ *   compare_create(&c, width, height, &settings, NULL);  the picture's size;
+ *                                 a folder of baked truths instead of NULL
+ *                                 where the build cannot trace
  *   each frame:
  *     compare_update(&c, &scene, light, capture, wait)   before the frame
  *     ... the technique's frame into a target of c.cell_width x c.cell_height ...
@@ -73,13 +76,15 @@ typedef struct compare {
     bool decisions_stale;
     bool measured; /* result holds figures of decisions against shown */
     shadowdiff_result result;
-    bool show_seconds; /* the truth's time in the legend (the window; not in pictures) */
+    bool show_seconds;     /* the truth's time in the legend (the window; not in pictures) */
+    const char *bake_into; /* each complete truth also baked there (truth_bake.h); NULL: not */
+    long baked_of;         /* the request last baked */
 } compare;
 
 /* The caption strip's height for a picture `height` pixels tall. */
 int compare_strip_height(int height);
 /* False after one line on stderr (nothing to destroy). */
-bool compare_create(compare *c, int width, int height, const raytrace_settings *settings);
+bool compare_create(compare *c, int width, int height, const raytrace_settings *settings, const char *baked_dir);
 bool compare_update(compare *c, const scene *s, int light, compare_capture capture, bool wait);
 bool compare_draw(compare *c, const target *cell);
 void compare_decisions_changed(compare *c);
