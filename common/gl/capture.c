@@ -115,11 +115,12 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
         glUniform3fv(shader_uniform(program.id, "u_eye"), 1, view->eye);
         render_eye_ray_uniforms(program.id, view, out->width, out->height);
         int object = shader_uniform(program.id, "u_object"), exact = shader_uniform(program.id, "u_exact");
+        bool every_exact = !context_current_features()->close_interpolation;
         /* Every object, never the frame's culling: the dump's geometry is
          * the scene's, the ground truth that culling is checked against. */
         for (int i = 0; ok && i < gpu->scene->object_count; i++) {
             glUniform1f(object, (float)i);
-            glUniform1i(exact, render_object_huge(gpu, i, view->eye));
+            glUniform1i(exact, every_exact || render_object_huge(gpu, i, view->eye));
             if (geometry_stage)
                 render_draw_object(gpu, &program, i);
             else

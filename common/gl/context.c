@@ -45,6 +45,7 @@ static context_features context_desktop_features(const context_settings *s) {
         .clip_control = !webgl2 && GLAD_GL_ARB_clip_control,
         .depth_bounds = !webgl2 && GLAD_GL_EXT_depth_bounds_test,
         .depth_readback = !webgl2,
+        .close_interpolation = true,
     };
 }
 

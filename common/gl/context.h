@@ -67,6 +67,11 @@ typedef struct context_features {
     bool clip_control;     /* glClipControl (ARB_clip_control, EXT_clip_control) */
     bool depth_bounds;     /* glDepthBoundsEXT (EXT_depth_bounds_test) */
     bool depth_readback;   /* glReadPixels of GL_DEPTH_COMPONENT: desktop GL's, not ES's */
+    /* Attributes interpolate across a large triangle as closely as the
+     * dumps need (Mesa's do, short of render.h's huge objects); where not
+     * known to (the browser's), a dump takes every surface where the
+     * pixel's eye ray meets its triangle's plane (capture.c). */
+    bool close_interpolation;
 } context_features;
 
 typedef struct context {
