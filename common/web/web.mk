@@ -8,8 +8,9 @@
 # the browser's context (common/web/context_browser.c) instead of GLFW's
 # window, EGL and OSMesa; model files as mesh packs written natively by
 # build/bake (common/web/mesh_file_web.c) instead of assimp; no ray
-# tracer (Embree is native only: common/web/raytrace_web.c); cJSON's API
-# over the browser's JSON (common/web/cjson_browser.c).
+# tracer (Embree is native only: common/web/raytrace_web.c), so compare
+# mode shows truths baked natively (common/measure/truth_bake.h); cJSON's
+# API over the browser's JSON (common/web/cjson_browser.c).
 
 WEB_BUILD := build-web
 WEB_OUT := out/web
@@ -24,6 +25,16 @@ WEB_TOURS := $(wildcard assets/tours/*.json)
 WEB_TOUR_SCENES := $(patsubst ../scenes/%,assets/scenes/%,$(shell sed -n 's/.*"scene": *"\([^"]*\)".*/\1/p' $(WEB_TOURS)))
 WEB_SCENES := $(sort $(STANDARD_SCENES) $(SOFT_SCENES) $(WEB_TOUR_SCENES))
 WEB_MODELS := assets/bunny.obj assets/teapot.obj
+# The truths compare mode shows in the page: every tour, and each
+# standard and soft scene in compare mode, run natively (EGL) at
+# build/shadows' default size, the page's canvas, baking the truths of its
+# compare steps into WEB_BAKING/RUN/truths/ beside its pictures and
+# compare figures (figures.txt), which test_web holds the page's to; then
+# all of them in WEB_TRUTHS.
+WEB_TRUTHS := $(WEB_BUILD)/truths
+WEB_BAKING := $(WEB_BUILD)/baking
+WEB_BAKED := $(patsubst assets/tours/%.json,$(WEB_BAKING)/tours/%/done,$(WEB_TOURS)) \
+	$(patsubst assets/scenes/%.json,$(WEB_BAKING)/scenes/%/done,$(STANDARD_SCENES) $(SOFT_SCENES))
 
 # Native sources the page has no use for or cannot link; common/web/ has
 # the browser's versions of what it needs of them.
@@ -52,7 +63,7 @@ WEB_LDFLAGS := -O2 -sUSE_GLFW=3 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sAL
 # /assets/scenes; a tour's scenes relative to it); the models as packs at
 # the models' own paths.
 WEB_EMBED := --embed-file shaders@/shaders $(foreach f,$(WEB_TOURS) $(WEB_SCENES),--embed-file $(f)@/$(f)) \
-	$(foreach m,$(WEB_MODELS),--embed-file $(WEB_BUILD)/$(m)@/$(m))
+	$(foreach m,$(WEB_MODELS),--embed-file $(WEB_BUILD)/$(m)@/$(m)) --embed-file $(WEB_TRUTHS)@/truths
 
 .PHONY: web web-bench
 ifeq ($(WEB_HAVE_EMCC),yes)
@@ -71,9 +82,25 @@ $(WEB_OUT)/index.html: common/web/index.html
 	cp $< $@
 
 $(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_MODELS)) $(wildcard shaders/*) $(WEB_TOURS) common/web/web.mk \
-		$(WEB_SCENES)
+		$(WEB_SCENES) $(WEB_BAKING)/done
 	@mkdir -p $(dir $@)
 	@echo "emcc -o $@" && $(EMCC) $(WEB_LDFLAGS) $(WEB_OBJ) $(WEB_EMBED) -o $@
+
+# One run's truths, pictures and figures (the folder's name says which).
+WEB_BAKE = rm -rf $(dir $@) && mkdir -p $(dir $@)truths && \
+	$(BUILD)/shadows --backend egl $(1) --bake-truths $(dir $@)truths --screenshot $(dir $@)$(2) > $(dir $@)figures.txt && \
+	touch $@
+
+$(WEB_BAKING)/tours/%/done: assets/tours/%.json $(BUILD)/shadows $(WEB_SCENES) $(WEB_MODELS)
+	$(call WEB_BAKE,--tour $<,step.png)
+
+$(WEB_BAKING)/scenes/%/done: assets/scenes/%.json $(BUILD)/shadows $(WEB_MODELS)
+	$(call WEB_BAKE,--scene $< --compare,compare.png)
+
+$(WEB_BAKING)/done: $(WEB_BAKED)
+	rm -rf $(WEB_TRUTHS) && mkdir -p $(WEB_TRUTHS)
+	for run in $(WEB_BAKED:/done=/truths); do cp -R $$run/. $(WEB_TRUTHS); done
+	touch $@
 
 $(WEB_BUILD)/assets/%.obj: assets/%.obj $(BUILD)/bake
 	@mkdir -p $(dir $@)
