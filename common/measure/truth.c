@@ -112,8 +112,8 @@ static void truth_find_baked(truth *t) {
     t->trace_failed = found != TRUTH_BAKE_FOUND;
     if (found == TRUTH_BAKE_NONE && !t->said_unbaked)
         fprintf(stderr,
-                "truth: %s: no truth is baked in %s for this view (light %d, %dx%d): baked are the views tour "
-                "steps show in compare mode\n",
+                "truth: %s: no truth is baked in %s for this view (light %d, %dx%d): only loaded views are "
+                "baked\n",
                 t->settings.scene_name ? t->settings.scene_name : "the scene", t->baked_dir, t->requested_light,
                 t->width, t->height);
     t->said_unbaked = t->said_unbaked || found == TRUTH_BAKE_NONE;
