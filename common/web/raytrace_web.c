@@ -1,6 +1,6 @@
 /* The web build's reference: the page cannot trace (Embree is native
- * only), so every trace fails with one line, and compare mode and the
- * gallery say so. */
+ * only), so every trace fails with one line and the gallery says so;
+ * compare mode shows truths baked natively instead (truth_bake.h). */
 #include <stdio.h>
 
 #include "raytrace.h"
