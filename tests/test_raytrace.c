@@ -7,7 +7,12 @@
  * seen from straight above and to the side of the shadow. The square's
  * shadow is the square scaled by H / (H - h) about the point below the
  * light; with a light of radius r its edges blur over
- * w = 2 r h / (H - h) (similar triangles through the occluder's edge). */
+ * w = 2 r h / (H - h) (similar triangles through the occluder's edge).
+ *
+ * tests/data/raytrace_grazing.json: a box on a ground plane at y = 0 under a
+ * sun that the test lowers to a few hundredths of a degree, its shadow
+ * seen along its length from street level; each ground pixel's visibility
+ * against a shadow ray traced in double from the surface itself. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -23,6 +28,7 @@
 
 #define SQUARE_SCENE "tests/data/raytrace_square.json"
 #define SPOT_SCENE "tests/data/raytrace_spot.json"
+#define GRAZING_SCENE "tests/data/raytrace_grazing.json"
 #define SIZE 200
 #define GROUND 0
 #define OCCLUDER 1
@@ -265,6 +271,105 @@ static void test_spot_cone_respected(void **state) {
     scene_free(&s);
 }
 
+/* The sun of the grazing scene, `degrees` above the ground, travelling
+ * horizontally along GRAZING_TRAVEL. */
+static const double grazing_travel[2] = {0.8, -0.6}; /* x, z; unit */
+static const double grazing_degrees[] = {0.05, 0.1, 0.25, 0.5, 1};
+/* A crossing nearer the start than this, in world units, is the start's
+ * own plane (the ground under the box's bottom face). */
+#define GRAZING_MIN_DISTANCE 1e-9
+
+/* Möller and Trumbore's ray-triangle test in double: the distance along the
+ * unit `direction` from `origin` to triangle (a, b, c), or INFINITY. */
+static double ray_triangle(const double origin[3], const double direction[3], const double a[3], const double b[3],
+                           const double c[3]) {
+    double e1[3], e2[3], p[3], q[3], s[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = b[k] - a[k];
+        e2[k] = c[k] - a[k];
+        s[k] = origin[k] - a[k];
+    }
+    p[0] = direction[1] * e2[2] - direction[2] * e2[1];
+    p[1] = direction[2] * e2[0] - direction[0] * e2[2];
+    p[2] = direction[0] * e2[1] - direction[1] * e2[0];
+    double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+    if (det == 0)
+        return INFINITY;
+    double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+    q[0] = s[1] * e1[2] - s[2] * e1[1];
+    q[1] = s[2] * e1[0] - s[0] * e1[2];
+    q[2] = s[0] * e1[1] - s[1] * e1[0];
+    double v = (direction[0] * q[0] + direction[1] * q[1] + direction[2] * q[2]) / det;
+    double t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+    return u >= 0 && v >= 0 && u + v <= 1 && t > GRAZING_MIN_DISTANCE ? t : INFINITY;
+}
+
+/* Whether the ray from `origin` along `to_light` misses every triangle of
+ * `caster`, in world units and double. */
+static bool grazing_misses(const scene_object *caster, const double origin[3], const double to_light[3]) {
+    const mesh *m = &caster->mesh;
+    for (uint32_t i = 0; i < m->index_count; i += 3) {
+        double corner[3][3];
+        for (int c = 0; c < 3; c++) {
+            const float *p = m->vertices[m->indices[i + (uint32_t)c]].position;
+            for (int k = 0; k < 3; k++)
+                corner[c][k] = (double)caster->model[3][k] + (double)caster->model[0][k] * p[0] +
+                               (double)caster->model[1][k] * p[1] + (double)caster->model[2][k] * p[2];
+        }
+        if (ray_triangle(origin, to_light, corner[0], corner[1], corner[2]) < INFINITY)
+            return false;
+    }
+    return true;
+}
+
+/* Whether the ray from `origin` towards the light (against the sun's
+ * `travel`) misses every object that casts. */
+static bool grazing_unoccluded(const scene *s, const double origin[3], const double travel[3]) {
+    const double to_light[3] = {-travel[0], -travel[1], -travel[2]};
+    for (int o = 0; o < s->object_count; o++)
+        if (s->objects[o].casts && !grazing_misses(&s->objects[o], origin, to_light))
+            return false;
+    return true;
+}
+
+/* With the sun from 0.05 to 1 degree above the ground, every ground pixel's
+ * visibility is that of a ray traced in double from its point on the plane
+ * y = 0 (the dump's position, its height put back on the plane): a shadow
+ * ray lifted off the surface would move the shadow's edge by its lift over
+ * the tangent of the sun's elevation. */
+static void test_grazing_sun_matches_double_trace(void **state) {
+    (void)state;
+    scene s;
+    load(&s, GRAZING_SCENE);
+    long differing = 0;
+    for (size_t a = 0; a < sizeof grazing_degrees / sizeof *grazing_degrees; a++) {
+        double radians = grazing_degrees[a] * M_PI / 180;
+        const double travel[3] = {grazing_travel[0] * cos(radians), -sin(radians), grazing_travel[1] * cos(radians)};
+        for (int k = 0; k < 3; k++)
+            s.lights[0].direction[k] = (float)travel[k];
+        const double exact[3] = {s.lights[0].direction[0], s.lights[0].direction[1], s.lights[0].direction[2]};
+        dump_frame f;
+        render(&s, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, 1, &f);
+        long compared = 0, shadowed = 0, mismatches = 0;
+        for (size_t i = 0; i < (size_t)f.width * (size_t)f.height; i++) {
+            if (f.ids[i] != GROUND)
+                continue;
+            const double point[3] = {f.position[3 * i], 0, f.position[3 * i + 2]};
+            float expected = grazing_unoccluded(&s, point, exact) ? 1.0f : 0.0f;
+            compared++;
+            shadowed += expected == 0;
+            mismatches += f.visibility[i] != expected;
+        }
+        printf("    sun %.2f degrees up: %ld ground pixels, %ld in shadow, %ld differ from the double trace\n",
+               grazing_degrees[a], compared, shadowed, mismatches);
+        assert_true(shadowed > 0 && compared - shadowed > 0);
+        differing += mismatches;
+        dump_frame_free(&f);
+    }
+    assert_int_equal(differing, 0);
+    scene_free(&s);
+}
+
 static void test_render_is_deterministic(void **state) {
     (void)state;
     scene s;
@@ -322,6 +427,7 @@ int main(void) {
         cmocka_unit_test(test_area_light_penumbra_width),
         cmocka_unit_test(test_area_light_rays_converge),
         cmocka_unit_test(test_spot_cone_respected),
+        cmocka_unit_test(test_grazing_sun_matches_double_trace),
         cmocka_unit_test(test_render_is_deterministic),
         cmocka_unit_test(test_standard_scenes_are_sane),
     };

@@ -19,27 +19,30 @@
  * triangle Embree found, in double (the barycentric point where the ray
  * runs almost in that plane, which leaves the intersection ill-conditioned).
  *
- * Shadow rays. Embree's float test places the crossing of a ray with a
- * triangle's plane to within a few ulps of the triangle's coordinates
- * relative to the ray's start: on a large triangle (a 1e5 ground, 7e4 from
- * the point it holds) that is far more than an offset which keeps contact
- * shadows. Each hit Embree reports on a shadow ray is therefore confirmed
- * by an occlusion filter in double: the ray, as the floats handed to Embree,
- * must cross the plane of the triangle (its float vertices, exact in
- * double) after its start and before its end. Embree's robust, watertight
- * test still decides the edges, so no ray slips between two triangles.
- * Left to the offset is the rounding of the ray's start to float, at most
- * sqrt(3)/2 ulps of its largest coordinate along the normal, and the double
- * test's own rounding: a shadow ray starts RAYTRACE_OFFSET_ULPS times
- * (FLT_EPSILON times the largest coordinate of the hit point from the eye,
- * plus DBL_EPSILON times the hit triangle's extent about it) off the
- * surface, along the face normal on the light's side, and ends as many
- * float ulps of the light's coordinates and of the ray's length short of a
- * point light, so that a light on a surface is not shadowed by it (the
- * direction's rounding moves the ray's end by about an ulp of its length).
- * Nothing depends on the scene's size: a huge ground or a sky sphere
- * elsewhere changes no offset, and the offset is about 1e-6 of the distance
- * from the eye (1e-5 in the standard scenes) on any triangle. */
+ * Shadow rays. Each starts at the visible point itself, exact in double,
+ * and goes along the line from it to the light: no offset moves the line,
+ * which at grazing light would move the shadow's edge by the offset over
+ * the tangent of the light's elevation. Embree's float test places the
+ * crossing of a ray with a triangle's plane to within a few ulps of the
+ * triangle's coordinates relative to the ray's start: on a large triangle
+ * (a 1e5 ground, 7e4 from the point it holds) that is far more than the
+ * distances of contact shadows. Each hit Embree reports on a shadow ray is
+ * therefore confirmed by an occlusion filter in double, on the exact line:
+ * the line must cross the plane of the triangle (its float vertices, exact
+ * in double) after its start and before its end, and the start must lie
+ * off that plane by more than RAYTRACE_SURFACE_ULPS times (FLT_EPSILON
+ * times the largest coordinate of the point from the eye, plus DBL_EPSILON
+ * times the hit triangle's extent about it). A ray never crosses a plane
+ * through its own start after it, so a plane within that rounding of the
+ * start is the surface the ray leaves (its own triangle, and a neighbour
+ * that the vertices' rounding tilts by an ulp), never an occluder, at any
+ * angle to the light. Embree's robust, watertight test still decides the
+ * edges, so no ray slips between two triangles. A ray to a point light
+ * ends as many float ulps of the light's coordinates and of the ray's
+ * length short of it, so that a light on a surface is not shadowed by it
+ * (the direction's rounding moves the ray's end by about an ulp of its
+ * length). Nothing depends on the scene's size: a huge ground or a sky
+ * sphere elsewhere changes no tolerance. */
 #include "raytrace.h"
 
 #include <cglm/cglm.h>
@@ -103,14 +106,18 @@ typedef struct raytrace_hit {
     float face_normal[3];    /* unit, towards the eye */
     float shading_normal[3]; /* lit.frag's n */
     double distance;         /* from the eye */
-    double offset;           /* how far shadow rays start off the surface */
+    double surface_tolerance; /* a plane nearer the point than this holds it (see the top) */
 } raytrace_hit;
 
-/* A shadow ray's intersect context, handed to the occlusion filter. */
+/* A shadow ray's intersect context, handed to the occlusion filter: the
+ * exact line, of which Embree traces the floats. */
 typedef struct raytrace_shadow_context {
     struct RTCIntersectContext embree; /* first: the filter gets its address */
     const raytrace_tracer *tracer;
-    float end; /* the ray's tfar: the filter sees the hit's distance there */
+    double origin[3];         /* the visible point, from the eye */
+    double direction[3];      /* towards the light; unit for a point light */
+    double end;               /* the ray's length along `direction` (infinite to a direction) */
+    double surface_tolerance; /* the hit's (raytrace_hit) */
 } raytrace_shadow_context;
 
 static float raytrace_dot(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -184,33 +191,34 @@ static void raytrace_plane_normal(const double v[3][3], double normal[3]) {
     raytrace_cross_d(edge1, edge2, normal);
 }
 
-/* Whether the ray from `origin` along `direction` crosses the plane of the
- * triangle after its start and no later than t = end, in double (see the
- * top); a ray parallel to the plane does not cross it. */
-static bool raytrace_crosses_plane(const raytrace_object *o, unsigned triangle, const double origin[3],
-                                   const double direction[3], double end) {
+/* Whether the shadow ray of `c` crosses the plane of the triangle after its
+ * start and no later than its end, in double, from a start off that plane
+ * by more than the surface tolerance (see the top); a ray parallel to the
+ * plane does not cross it. */
+static bool raytrace_crosses_plane(const raytrace_shadow_context *c, const raytrace_object *o, unsigned triangle) {
     double v[3][3], normal[3], to_plane[3];
     raytrace_corners(o, triangle, v);
     raytrace_plane_normal(v, normal);
+    double area = raytrace_normalize_d(normal);
     for (int k = 0; k < 3; k++)
-        to_plane[k] = v[0][k] - origin[k];
-    double approach = raytrace_dot_d(direction, normal);
-    double t = raytrace_dot_d(to_plane, normal) / approach;
-    return approach != 0 && t > 0 && t <= end;
+        to_plane[k] = v[0][k] - c->origin[k];
+    double height = raytrace_dot_d(to_plane, normal);
+    double approach = raytrace_dot_d(c->direction, normal);
+    if (area == 0 || approach == 0 || !(fabs(height) > c->surface_tolerance))
+        return false;
+    double t = height / approach;
+    return t > 0 && t <= c->end;
 }
 
 /* The occlusion filter of every shadow ray: objects with "casts": false
  * block nothing, and every other hit is confirmed in double (see the top).
- * Shadow rays go through rtcOccluded1, so N is 1 and the ray and the hit
- * are a plain RTCRay and RTCHit. */
+ * Shadow rays go through rtcOccluded1, so N is 1 and the hit is a plain
+ * RTCHit. */
 static void raytrace_confirm_occlusion(const struct RTCFilterFunctionNArguments *args) {
     const raytrace_shadow_context *c = (const raytrace_shadow_context *)args->context;
-    const struct RTCRay *ray = (const struct RTCRay *)args->ray;
     const struct RTCHit *hit = (const struct RTCHit *)args->hit;
     const raytrace_object *o = &c->tracer->objects[hit->geomID];
-    const double origin[3] = {ray->org_x, ray->org_y, ray->org_z};
-    const double direction[3] = {ray->dir_x, ray->dir_y, ray->dir_z};
-    if (!o->casts || !raytrace_crosses_plane(o, hit->primID, origin, direction, c->end))
+    if (!o->casts || !raytrace_crosses_plane(c, o, hit->primID))
         args->valid[0] = 0;
 }
 
@@ -417,7 +425,8 @@ static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *r
     for (int c = 0; c < 3; c++)
         for (int k = 0; k < 3; k++)
             extent = fmax(extent, fabs(v[c][k] - h->position[k]));
-    h->offset = RAYTRACE_OFFSET_ULPS * (FLT_EPSILON * raytrace_max_abs(h->position) + DBL_EPSILON * extent);
+    h->surface_tolerance =
+        RAYTRACE_SURFACE_ULPS * (FLT_EPSILON * raytrace_max_abs(h->position) + DBL_EPSILON * extent);
     h->object = object;
     for (int k = 0; k < 3; k++)
         to_eye[k] = -h->position[k];
@@ -441,35 +450,29 @@ static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *r
 
 /* Whether nothing that casts lies between the hit and `target`, a point
  * (w 1) or a direction to infinity (w 0), from the eye. A ray Embree would
- * refuse (the light nearer the surface than the margins, or beyond Embree's
+ * refuse (the light nearer the surface than the margin, or beyond Embree's
  * range) is not traced: nothing is taken to block it. */
 static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *h, const float target[4]) {
     bool directional = target[3] == 0;
-    double towards[3], direction[3];
-    for (int k = 0; k < 3; k++)
-        towards[k] = directional ? target[k] : target[k] - h->position[k];
-    const double face_normal[3] = {h->face_normal[0], h->face_normal[1], h->face_normal[2]};
-    double side = raytrace_dot_d(face_normal, towards) >= 0 ? h->offset : -h->offset;
-    float origin[3];
     for (int k = 0; k < 3; k++) {
-        origin[k] = (float)(h->position[k] + side * face_normal[k]);
-        direction[k] = directional ? target[k] : target[k] - (double)origin[k];
+        c->origin[k] = h->position[k];
+        c->direction[k] = directional ? target[k] : target[k] - h->position[k];
     }
-    double end = INFINITY;
+    c->end = INFINITY;
     if (!directional) {
         const double light[3] = {target[0], target[1], target[2]};
-        double length = raytrace_normalize_d(direction);
-        end = length - RAYTRACE_OFFSET_ULPS * FLT_EPSILON * (raytrace_max_abs(light) + length);
+        double length = raytrace_normalize_d(c->direction);
+        c->end = length - RAYTRACE_SURFACE_ULPS * FLT_EPSILON * (raytrace_max_abs(light) + length);
     }
-    c->end = (float)end;
-    struct RTCRay ray = {.org_x = origin[0],
-                         .org_y = origin[1],
-                         .org_z = origin[2],
+    c->surface_tolerance = h->surface_tolerance;
+    struct RTCRay ray = {.org_x = (float)c->origin[0],
+                         .org_y = (float)c->origin[1],
+                         .org_z = (float)c->origin[2],
                          .tnear = 0,
-                         .dir_x = (float)direction[0],
-                         .dir_y = (float)direction[1],
-                         .dir_z = (float)direction[2],
-                         .tfar = c->end,
+                         .dir_x = (float)c->direction[0],
+                         .dir_y = (float)c->direction[1],
+                         .dir_z = (float)c->direction[2],
+                         .tfar = (float)c->end,
                          .mask = UINT32_MAX};
     if (!raytrace_ray_valid(&ray))
         return true;

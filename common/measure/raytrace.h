@@ -21,9 +21,10 @@
 
 #define RAYTRACE_DEFAULT_LIGHT_SAMPLES 256
 #define RAYTRACE_MAX_LIGHT_SAMPLES 65536
-/* Shadow-ray offset, in float ulps of the hit point's coordinates from the
- * eye (see raytrace.c). */
-#define RAYTRACE_OFFSET_ULPS 8.0
+/* How near a plane must pass to a shadow ray's start to be the surface it
+ * leaves, in float ulps of the start's coordinates from the eye (see
+ * raytrace.c). */
+#define RAYTRACE_SURFACE_ULPS 8.0
 
 typedef struct raytrace_settings {
     int light_samples; /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
@@ -66,11 +67,13 @@ typedef struct raytrace_settings {
  *             "casts": false block no light; those with "receives": false
  *             are never in shadow.
  *
- * Shadow rays start off the surface by RAYTRACE_OFFSET_ULPS float ulps of
- * the hit point's coordinates (from the eye), along the face normal on the
- * light's side, and stop as many ulps of the light's short of it; every
- * hit Embree finds on them is confirmed in double. Nothing depends on the
- * scene's size (a huge ground or sky sphere): see raytrace.c.
+ * Shadow rays start at the visible point itself, with no offset, so that
+ * the shadow's edge is exact at any angle of the light; a plane within
+ * RAYTRACE_SURFACE_ULPS float ulps of the point's coordinates (from the
+ * eye) is the surface the ray leaves, never an occluder. A ray stops as
+ * many ulps of the light's short of it; every hit Embree finds on it is
+ * confirmed in double. Nothing depends on the scene's size (a huge ground
+ * or sky sphere): see raytrace.c.
  *
  * Rows are traced in parallel with OpenMP. raytrace_render creates the
  * dump (dump_frame_create) and returns true; on failure (an invalid camera,

@@ -64,11 +64,12 @@ static void main_usage(void) {
     flags_print_help(stdout, main_flag_table, main_flag_count, 2, 0);
     printf("Camera rays are built in double and the scene is traced relative to the eye, so\n"
            "any near/far ratio works and a scene far from the origin keeps its precision.\n"
-           "Shadow rays start %g float ulps of the hit point's coordinates (from the eye) off\n"
-           "the surface, along its normal on the light's side, and every hit they meet is\n"
-           "confirmed in double: nothing depends on the scene's size.\n"
+           "Shadow rays start at the hit point itself, so a shadow's edge is exact at any\n"
+           "angle of the light; a plane within %g float ulps of the point's coordinates (from\n"
+           "the eye) is the surface the ray leaves, and every hit they meet is confirmed in\n"
+           "double: nothing depends on the scene's size.\n"
            "Threads: OMP_NUM_THREADS (default: every core).\n",
-           RAYTRACE_OFFSET_ULPS);
+           RAYTRACE_SURFACE_ULPS);
 }
 
 static int main_run(void) {
