@@ -102,10 +102,10 @@ struct raytrace_tracer {
 /* The visible surface at a pixel. */
 typedef struct raytrace_hit {
     int object;
-    double position[3];      /* from the eye */
-    float face_normal[3];    /* unit, towards the eye */
-    float shading_normal[3]; /* lit.frag's n */
-    double distance;         /* from the eye */
+    double position[3];       /* from the eye */
+    float face_normal[3];     /* unit, towards the eye */
+    float shading_normal[3];  /* lit.frag's n */
+    double distance;          /* from the eye */
     double surface_tolerance; /* a plane nearer the point than this holds it (see the top) */
 } raytrace_hit;
 
