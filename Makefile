@@ -79,18 +79,19 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test web web-bench bench stress ruler report readme-report scenes update-golden readme-flags format clean help
+.PHONY: all deps demo gallery test test-all web web-bench bench stress ruler report readme-report scenes update-golden readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
 	@echo "make deps           install the Debian packages (apt-get; sudo when not root)"
 	@echo "make demo           build, then the interactive window (with a display) or the gallery"
 	@echo "make gallery        render every technique on each standard and soft scene to out/gallery/"
-	@echo "make test           build and run every test, plain and under ASan+UBSan"
+	@echo "make test           build and run the quick tier of the tests, plain and under ASan+UBSan"
+	@echo "make test-all       the whole matrix of the tests (make report runs it)"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
 	@echo "make stress         adversarial scenes through every technique against the reference: out/stress/"
 	@echo "make ruler          out/ruler/: the reference's own noise under area lights"
-	@echo "make report         make bench, make stress, make ruler, then make readme-report (QUICK=1: short runs)"
+	@echo "make report         make test-all, make bench, make stress, make ruler, then make readme-report (QUICK=1: short runs)"
 	@echo "make readme-report  out/report/ and README.md's current figures from the runs already in out/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json, stacked_*)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
@@ -117,17 +118,23 @@ demo: $(PROGRAMS)
 gallery: $(PROGRAMS)
 	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json $(SOFT_SCENES)
 
-# First the C files' format (.clang-format) and the comments' check
+# First the C files' format (.clang-format), the comments' check
 # (tests/check_comments.sh: no measured figure or tracker number in a
-# comment), itself checked first; the web page where emcc is installed
+# comment) and the README's links' (tests/check_links.sh), each itself
+# checked first; the web page where emcc is installed
 # (test_web runs it in headless Chromium) and its JSON reader against
 # Debian's cJSON (tests/web/check_json.sh); then the suite,
 # twice, plain and built with ASan+UBSan (build-san/), both at once
 # (tests/run.sh).
-# `make test SANITIZE=1` runs only the sanitizer pass.
+# `make test SANITIZE=1` runs only the sanitizer pass. make test is the
+# quick tier (within CI's 15 minutes: sweeps strided, the sanitizer pass a
+# subset), make test-all the whole matrix (tests/run.sh's TEST_TIER).
+test-all: export TEST_TIER = all
+test-all: test
 test: $(PROGRAMS) $(TESTS)
 	@clang-format --dry-run --Werror $(C_FILES) || { echo "make test: C files not in .clang-format's style: run make format"; exit 1; }
 	@tests/check_comments.sh --self-test && tests/check_comments.sh
+	@tests/check_links.sh --self-test && tests/check_links.sh
 	@$(if $(WEB_HAVE_EMCC),$(MAKE) --no-print-directory web,echo "make test: no emcc, so no web page: test_web \
 		skips (make deps installs Debian's emscripten)")
 	@tests/web/check_json.sh
@@ -205,9 +212,11 @@ ruler: $(BUILD)/raytrace $(BUILD)/shadowdiff
 		echo "out/ruler/$$s.json"; \
 	done
 
-# The runs, one after the other so that none is timed under another's
-# load, then the pages and the README's figures from them.
+# The whole matrix of the tests, then the runs, one after the other so
+# that none is timed under another's load, then the pages and the README's
+# figures from them.
 report: $(PROGRAMS)
+	@$(MAKE) --no-print-directory test-all
 	@$(MAKE) --no-print-directory bench
 	@$(MAKE) --no-print-directory stress
 	@$(MAKE) --no-print-directory ruler

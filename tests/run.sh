@@ -6,6 +6,16 @@
 # ONLY="test_NAME ..." runs those programs alone. TEST_JOBS=N runs N at
 # once (the processors by default).
 #
+# Two tiers. TEST_TIER=all (make test-all) is the whole matrix: every
+# program of each build, sweeps whole in the plain pass. Otherwise (make
+# test) the quick tier: the plain pass takes every fourth case of each
+# sweep (support_sweep_stride), and the sanitizer pass runs SANITIZER_QUICK
+# alone: the tests without GL and a representative subset of the render
+# tests (each technique against the reference, bad input, tours).
+#
+# References are traced once a run, under out/run/references
+# (TEST_REFERENCES; support_measure), whichever program needs one first.
+#
 # Every (build, program) pair is a job, run by a pool of TEST_JOBS workers
 # (CI has two cores; much of a test's time is one thread's: starting
 # programs, compiling shaders, building the reference's BVH, writing
@@ -18,10 +28,12 @@ set -u
 cd "$(dirname "$0")/.."
 
 # One job: `run.sh --job BUILD PROGRAM`, from the repository root; writes
-# out/run/BUILD/PROGRAM.log and, as its last line, "passed failed skipped".
+# out/run/BUILD/PROGRAM.log and, as its last line, "passed failed skipped
+# seconds".
 if [ "${1:-}" = --job ]; then
     build=$2 name=$3
     root=out/run/$build/$name
+    export TEST_REFERENCES=$PWD/out/run/references
     rm -rf "$root" && mkdir -p "$root"
     for entry in *; do
         [ "$entry" = out ] || ln -s "$PWD/$entry" "$root/$entry"
@@ -73,10 +85,19 @@ if [ "${1:-}" = --job ]; then
         fi
         # Its time, for keeping make test within CI's budget (README, "Tests").
         echo "== $t: $((SECONDS - started)) s"
-        echo "${p:-0} ${f:-0} ${s:-0}"
+        echo "${p:-0} ${f:-0} ${s:-0} $((SECONDS - started))"
     } >"../$name.log"
     exit 0
 fi
+
+# The quick tier's sanitizer pass: every test without a GL context, then
+# the render tests that reach each technique (test_accuracy), the flags'
+# and files' errors (test_cli) and the tours (test_tour, test_mirror).
+SANITIZER_QUICK="test_flags test_path test_scene test_mesh test_motion test_shadowdiff test_warp \
+    test_volume_mesh test_volume_count_bound test_wedge_area test_raytrace test_raytrace_invariance \
+    test_truth test_report test_scenegen test_shadow_map test_hud \
+    test_accuracy test_cli test_tour test_mirror"
+export TEST_TIER=${TEST_TIER:-quick}
 
 # The jobs: the sanitizer builds' programs first, then the others'.
 jobs=()
@@ -86,6 +107,9 @@ for build in $(printf '%s\n' "$@" | grep san) $(printf '%s\n' "$@" | grep -v san
         name=$(basename "$t")
         # ONLY="test_a test_b": those programs alone (a quick check).
         [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $name "* ]] || continue
+        if [[ $build == *san* && $TEST_TIER != all && -z "${ONLY:-}" ]]; then
+            [[ " $(echo $SANITIZER_QUICK) " == *" $name "* ]] || continue
+        fi
         jobs+=("$build $name")
     done
 done
@@ -93,9 +117,11 @@ for build in "$@"; do
     mkdir -p "out/run/$build"
     rm -f "out/run/$build"/test_*.log
 done
+rm -rf out/run/references
 printf '%s\n' "${jobs[@]}" | xargs -P "${TEST_JOBS:-$(nproc)}" -L 1 bash tests/run.sh --job
 
 passed=0 failed=0 skipped=0
+times=()
 for build in "$@"; do
     for job in "${jobs[@]}"; do
         read -r job_build name <<<"$job"
@@ -107,10 +133,15 @@ for build in "$@"; do
             continue
         fi
         sed '$d' "$log"
-        read -r p f s < <(tail -n 1 "$log")
+        read -r p f s seconds < <(tail -n 1 "$log")
         passed=$((passed + p)) failed=$((failed + f)) skipped=$((skipped + s))
+        times+=("$seconds $build/tests/$name")
     done
 done
+echo "== each test's time (tier $TEST_TIER), in seconds:"
+printf '%s\n' "${times[@]}" | awk '{ printf "%6d %s\n", $1, $2 }'
+echo "== the slowest ten:"
+printf '%s\n' "${times[@]}" | sort -rn | head -n 10 | awk '{ printf "%6d %s\n", $1, $2 }'
 if [ "$skipped" -gt 0 ]; then
     echo "$passed passed, $failed failed, $skipped skipped"
 else

@@ -4,10 +4,14 @@
 #include <stdarg.h>
 #include <cmocka.h>
 
+#include <fcntl.h>
+#include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -25,7 +29,20 @@ const char *support_program(const char *name) {
     return out;
 }
 
-int support_sweep_stride(void) { return getenv("TEST_SANITIZER") ? SUPPORT_SANITIZER_STRIDE : 1; }
+static bool support_whole_matrix(void) {
+    const char *tier = getenv("TEST_TIER");
+    return tier && strcmp(tier, "all") == 0;
+}
+
+int support_sweep_stride(void) {
+    if (getenv("TEST_SANITIZER"))
+        return SUPPORT_SANITIZER_STRIDE;
+    return support_whole_matrix() ? 1 : SUPPORT_QUICK_STRIDE;
+}
+
+bool support_sweep_takes(int setting, int scene, int scene_count) {
+    return support_whole_matrix() || scene == setting % scene_count;
+}
 
 int support_run(const char *command, char *stderr_text, size_t capacity) {
     /* One file per test process: two test programs may run at once. */
@@ -296,9 +313,9 @@ const char *support_release_stderr(void) {
     return captured;
 }
 
-/* A test process traces each reference once: the references it traced,
- * by what decides them (the scene file's text, which a test may rewrite
- * under one path, and the size), FNV-1a hashed. */
+/* A run traces each reference once: the references, by what decides them
+ * (the scene file's text, which a test may rewrite under one path, the
+ * size and the build), FNV-1a hashed. */
 #define SUPPORT_MAX_REFERENCES 256
 #define SUPPORT_FNV_OFFSET 14695981039346656037ull
 #define SUPPORT_FNV_PRIME 1099511628211ull
@@ -309,21 +326,46 @@ static uint64_t support_hash(uint64_t hash, const char *bytes, size_t length) {
     return hash;
 }
 
-/* out/test/reference/HASH: the reference of `scene` at `size`, traced
- * unless this process traced it before. */
+/* The folder of references: $TEST_REFERENCES, shared by a run's
+ * processes, or this process's out/test/reference. */
+static const char *support_references(void) {
+    const char *shared = getenv("TEST_REFERENCES");
+    return shared && *shared ? shared : "out/test/reference";
+}
+
+/* DIR/HASH: the reference of `scene` at `size`, traced unless this process
+ * or another of the run traced it before. Under an exclusive lock on
+ * DIR/HASH.lock the first process traces it, the others wait, and each
+ * finds DIR/HASH/done after it. */
 static void support_reference(const char *scene, const char *size, char *dir, size_t capacity) {
     static uint64_t traced[SUPPORT_MAX_REFERENCES];
     static int traced_count;
     size_t length;
     char *text = path_read_text(scene, SUPPORT_MAX_SCENE_BYTES, &length);
     assert_non_null(text);
+    const char *build = getenv("BUILD") ? getenv("BUILD") : "build";
     uint64_t key = support_hash(support_hash(SUPPORT_FNV_OFFSET, text, length), size, strlen(size) + 1);
+    key = support_hash(key, build, strlen(build) + 1);
     free(text);
-    snprintf(dir, capacity, "out/test/reference/%016llx", (unsigned long long)key);
+    const char *folder = support_references();
+    snprintf(dir, capacity, "%s/%016llx", folder, (unsigned long long)key);
     for (int i = 0; i < traced_count; i++)
         if (traced[i] == key)
             return;
-    assert_int_equal(support_dump("raytrace", scene, size, dir), 0);
+    char lock_path[PATH_MAX], done_path[PATH_MAX];
+    snprintf(lock_path, sizeof lock_path, "%s.lock", dir);
+    snprintf(done_path, sizeof done_path, "%s/done", dir);
+    assert_true(path_make_directories(folder));
+    int lock = open(lock_path, O_CREAT | O_RDWR, 0644);
+    assert_true(lock >= 0);
+    assert_int_equal(flock(lock, LOCK_EX), 0);
+    if (access(done_path, F_OK) != 0) {
+        assert_int_equal(support_dump("raytrace", scene, size, dir), 0);
+        FILE *done = fopen(done_path, "w");
+        assert_non_null(done);
+        assert_int_equal(fclose(done), 0);
+    }
+    close(lock);
     if (traced_count < SUPPORT_MAX_REFERENCES)
         traced[traced_count++] = key;
 }

@@ -24,16 +24,24 @@
 /* "$BUILD/NAME", behind `env LD_PRELOAD=...` when run.sh asks for it
  * (the sanitizer run; see run.sh). */
 const char *support_program(const char *name);
-/* The sweeps' stride: 1, or SUPPORT_SANITIZER_STRIDE in the sanitizer
- * pass (run.sh sets TEST_SANITIZER). A sweep repeats one code path with
- * other numbers (light directions, cases of a table); the plain pass takes
- * every case, the sanitizer pass, which runs every program 2 to 3 times
- * slower, every Nth, starting with the first: the paths are the same, and
- * make test stays within CI's budget. A power of two: a table of odd
- * length swept by pairs is then reached everywhere. */
+/* The sweeps' stride. A sweep repeats one code path with other numbers
+ * (light directions, cases of a table). Two tiers (run.sh's TEST_TIER):
+ * make test-all's whole matrix takes every case in the plain pass, and
+ * every SUPPORT_SANITIZER_STRIDE-th in the sanitizer pass, which runs
+ * every program 2 to 3 times slower; make test's quick tier takes every
+ * SUPPORT_QUICK_STRIDE-th in the plain pass and runs only run.sh's
+ * sanitizer subset, at the sanitizer stride. Cases start with the first:
+ * the paths are the same, and make test stays within CI's budget. Powers
+ * of two: a table of odd length swept by pairs is then reached everywhere. */
 #define SUPPORT_SANITIZER_STRIDE 8
+#define SUPPORT_QUICK_STRIDE 4
 _Static_assert((SUPPORT_SANITIZER_STRIDE & (SUPPORT_SANITIZER_STRIDE - 1)) == 0, "a power of two");
+_Static_assert((SUPPORT_QUICK_STRIDE & (SUPPORT_QUICK_STRIDE - 1)) == 0, "a power of two");
 int support_sweep_stride(void);
+/* Whether a sweep of settings over `scene_count` scenes takes `setting` on
+ * `scene`: every pair in the whole matrix, each setting on one scene in
+ * turn otherwise (setting modulo scene_count). */
+bool support_sweep_takes(int setting, int scene, int scene_count);
 /* A sweep over pairs (i, k), k the faster of `count`: flat index i * count
  * + k in steps of the stride. An odd count is prime to the stride, which
  * then reaches every i and every k. */
@@ -116,8 +124,10 @@ const char *support_verbose_line(const char *program, const char *scene, const c
 int support_dump(const char *program, const char *scene, const char *flags, const char *dir);
 /* The ray-traced reference and PROGRAM's dump of `scene` at `size`
  * ("--size WxH", or "" for 640x360) with `flags`, in
- * out/test/reference/HASH (traced once a process for each scene text and
- * size) and out/test/PROGRAM/NAME, compared with
+ * $TEST_REFERENCES/HASH (out/test/reference/HASH where run.sh does not set
+ * it), traced once a run for each scene text, size and build (a lock file
+ * beside it lets one of the processes that need it trace it while the
+ * others wait), and out/test/PROGRAM/NAME, compared with
  * shadowdiff's rules over every object; prints the figures. Fails the
  * running cmocka test when a program fails. support_measure_dumps hands
  * back the dumps and the heat map (red false shadow, blue false lit) for

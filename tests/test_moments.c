@@ -78,10 +78,14 @@ static const struct {
      {1, 1, 1, 1}},
 };
 
+/* Every case with every filter (in make test's quick tier each case with
+ * one filter in turn: support_sweep_takes). */
 static void test_filters_against_reference(void **state) {
     (void)state;
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         for (int k = 0; k < FILTER_COUNT; k++) {
+            if (!support_sweep_takes((int)i, k, FILTER_COUNT))
+                continue;
             char name[64], flags[64];
             snprintf(name, sizeof name, "moments_%s_%zu", filters[k], i);
             snprintf(flags, sizeof flags, "--filter %s", filters[k]);

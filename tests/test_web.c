@@ -200,13 +200,16 @@ static double web_decisions_differing(const char *a_dir, const char *b_dir) {
     return (double)differing / ((double)aw * ah);
 }
 
-/* Every technique on every standard scene: the page against native EGL. */
+/* Every technique on every standard scene (in make test's quick tier, each
+ * technique on one scene in turn): the page against native EGL. */
 static void web_matches_native(void **state) {
     (void)state;
     if (!web_available())
         skip();
     for (int t = 0; t < registry_technique_count; t++) {
         for (int s = 0; s < web_scene_count; s++) {
+            if (!support_sweep_takes(t, s, web_scene_count))
+                continue;
             const char *technique = registry_techniques[t]->name;
             char scene[128], flags[256], native_dir[PATH_MAX], web_dir[PATH_MAX], args[512];
             snprintf(scene, sizeof scene, "assets/scenes/%s.json", web_scenes[s]);
@@ -305,7 +308,8 @@ static void web_tour_steps(void **state) {
  * pixels misclassified, and of pixels compared. Where the page's technique
  * itself decides otherwise than native's, its run says by how much more
  * the misclassified share may differ. (The standard scenes simple and
- * teapot and the soft scene soft_table are the tours' compare steps.) */
+ * teapot and the soft scene soft_table are the tours' compare steps.)
+ * The quick tier takes every support_sweep_stride()th run. */
 #define WEB_MAX_TOUR_DIFFERING 0.02
 #define WEB_BAKING "build-web/baking"
 #define WEB_MAX_COMPARED 16
@@ -357,7 +361,7 @@ static void web_baked_runs_match_native(void **state) {
     (void)state;
     if (!web_available())
         skip();
-    for (size_t r = 0; r < sizeof web_baked_runs / sizeof *web_baked_runs; r++) {
+    for (size_t r = 0; r < sizeof web_baked_runs / sizeof *web_baked_runs; r += (size_t)support_sweep_stride()) {
         char native_dir[2 * PATH_MAX], dir[256], native[3 * PATH_MAX], web[3 * PATH_MAX];
         snprintf(native_dir, sizeof native_dir, "%s/" WEB_BAKING "/%s", web_root, web_baked_runs[r].baked);
         snprintf(dir, sizeof dir, OUT "/%s", web_baked_runs[r].baked);
