@@ -108,7 +108,7 @@ for build in $(printf '%s\n' "$@" | grep san) $(printf '%s\n' "$@" | grep -v san
         # ONLY="test_a test_b": those programs alone (a quick check).
         [ -z "${ONLY:-}" ] || [[ " $ONLY " == *" $name "* ]] || continue
         if [[ $build == *san* && $TEST_TIER != all && -z "${ONLY:-}" ]]; then
-            [[ " $(echo $SANITIZER_QUICK) " == *" $name "* ]] || continue
+            [[ " $SANITIZER_QUICK " == *" $name "* ]] || continue
         fi
         jobs+=("$build $name")
     done

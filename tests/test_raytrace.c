@@ -9,10 +9,11 @@
  * light; with a light of radius r its edges blur over
  * w = 2 r h / (H - h) (similar triangles through the occluder's edge).
  *
- * tests/data/raytrace_grazing.json: a box on a ground plane at y = 0 under a
- * sun that the test lowers to a few hundredths of a degree, its shadow
- * seen along its length from street level; each ground pixel's visibility
- * against a shadow ray traced in double from the surface itself. */
+ * tests/data/raytrace_grazing.json: a box and a sphere on a ground plane at
+ * y = 0 under a sun that the test lowers to a few hundredths of a degree,
+ * their shadows seen from two units above the ground; each ground pixel's
+ * visibility against a shadow ray traced in double from the surface
+ * itself. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -271,8 +272,8 @@ static void test_spot_cone_respected(void **state) {
     scene_free(&s);
 }
 
-/* The sun of the grazing scene, `degrees` above the ground, travelling
- * horizontally along GRAZING_TRAVEL. */
+/* The sun of the grazing scene: each of grazing_degrees above the ground,
+ * travelling horizontally along grazing_travel. */
 static const double grazing_travel[2] = {0.8, -0.6}; /* x, z; unit */
 static const double grazing_degrees[] = {0.05, 0.1, 0.25, 0.5, 1};
 /* A crossing nearer the start than this, in world units, is the start's
