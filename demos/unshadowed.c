@@ -5,6 +5,8 @@
  * a lecture, the picture that shows what shadows add (a number key in the
  * window, after the shadow techniques).
  */
+#include <glad/gl.h>
+
 #include "technique.h"
 
 static bool unshadowed_init(const render_scene *gpu) {
@@ -12,14 +14,31 @@ static bool unshadowed_init(const render_scene *gpu) {
     return true;
 }
 
-/* As the techniques' camera passes draw: a depth pre-pass, then one lit
- * pass tested GL_EQUAL against it (where two objects tie for a pixel the
- * later one drawn shows, as in every technique's picture), of the objects
- * the pre-pass does not show hidden (technique_see). */
+/* The shading every technique shares, with visibility 1: the same depth
+ * pre-pass and skips (view culling, light reach, light rectangles), the
+ * lighting code with each light compiled in (render_use_lit), and the
+ * shadow maps' split of the shading (technique_split_lights), whose pixels
+ * are bit for bit those of one pass, so that no skip changes the floor's
+ * picture (additive passes would round each light's share apart). No
+ * technique pays less than the floor for what it shares with it, and a
+ * ratio to it measures shadows alone. */
 static void unshadowed_render(const technique_frame *f) {
+    /* 1. The depth pre-pass; what it shows (technique_see). */
     render_depth_prepass(f->gpu, f->view, f->in_view);
     technique_see(f);
-    render_unshadowed(f->gpu, f->view, f->in_view, f->lights);
+
+    /* 2. One shading pass of every object in view, with the ambient term
+     *    and the lights not split from it. */
+    unsigned split = technique_split_lights(f);
+    const bool *objects = technique_shade_all_begin(f);
+    render_unshadowed(f->gpu, f->view, objects, f->lights & ~split);
+
+    /* 3. Each split light's own pass: what it reaches in its rectangle,
+     *    shaded again with every light. */
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        if (split & RENDER_LIGHT_BIT(l))
+            render_unshadowed(f->gpu, f->view, technique_light_pass(f, l), f->lights);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 static void unshadowed_destroy(void) {}

@@ -1,18 +1,18 @@
 #version 330 core
 #include "lighting.glsl"
-// The lights of a set (u_light_count of them, their indices in
-// u_light_list, from render_use_lit's RENDER_LIGHT_BIT set in
-// common/gl/render.h) fully visible, plus ambient when u_ambient is 1: the
-// unshadowed picture, or one light's share of it. A list rather than a
-// test of each light's bit: llvmpipe would run every light's code, masked,
-// for each pass of one light.
+// The lights of the set LIT_LIGHTS (bit i: light i, render_use_lit's
+// RENDER_LIGHT_BIT set in common/gl/render.h), fully visible, plus ambient
+// when u_ambient is 1: the unshadowed picture, or one light's share of it.
+// C compiles one program per set on its first use (render_lit_load), so
+// that each light's code is there only when it is in the set and reads
+// its block entries at constant indices, as the shadow maps' camera pass
+// does (shadowmap.frag): read from a list in uniforms, llvmpipe would run
+// the loop's every access as a gather, for every pixel.
 in vec3 v_position;
 in vec3 v_normal;
 
 uniform vec3 u_albedo;
 uniform float u_ambient;
-uniform int u_light_count;
-uniform int u_light_list[SCENE_MAX_LIGHTS];
 #ifdef LIT_SOFT_VISIBILITY
 // Light u_soft_light's share scaled by the fraction of its area light
 // that reaches the pixel, u_soft_scale times the sum accumulated from
@@ -27,17 +27,35 @@ uniform float u_soft_scale;
 
 out vec4 out_color;
 
+// Light i's share at this fragment, whose normal (towards the eye) is n.
+vec3 lit_light(int i, vec3 n) {
+    vec3 light = lighting_unshadowed(i, v_position, n, u_albedo);
+#ifdef LIT_SOFT_VISIBILITY
+    if (i == u_soft_light)
+        light *= clamp(texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r * u_soft_scale, 0.0, 1.0);
+#endif
+    return light;
+}
+
+#if SCENE_MAX_LIGHTS != 8
+#error "lit.frag lists SCENE_MAX_LIGHTS lights one by one: one LIT_LIGHT line each"
+#endif
+// Light i's share where it is in the set (a constant: else no code).
+#define LIT_LIGHT(i) \
+    if (((LIT_LIGHTS >> i) & 1) != 0) \
+        c += lit_light(i, n)
+
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
     vec3 c = u_ambient * lighting_ambient(u_albedo);
-    for (int k = 0; k < u_light_count; k++) {
-        vec3 light = lighting_unshadowed(u_light_list[k], v_position, n, u_albedo);
-#ifdef LIT_SOFT_VISIBILITY
-        if (u_light_list[k] == u_soft_light)
-            light *= clamp(texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r * u_soft_scale, 0.0, 1.0);
-#endif
-        c += light;
-    }
+    LIT_LIGHT(0);
+    LIT_LIGHT(1);
+    LIT_LIGHT(2);
+    LIT_LIGHT(3);
+    LIT_LIGHT(4);
+    LIT_LIGHT(5);
+    LIT_LIGHT(6);
+    LIT_LIGHT(7);
     out_color = vec4(c, 1.0);
 }

@@ -1,8 +1,10 @@
 /* Smoke test of the benchmark (make bench QUICK=1): it runs end to end and
  * its outputs exist and are well formed; the selections (--technique,
  * --configs), --motion, --skips-compare and --scaling give the rows and
- * files they say; each row's ratio is to its own interleaved floor frames
- * (floor_ms_median), the floor's own row 1; the report's fronts, one per
+ * files they say; each row's ratio is to its own interleaved floor frames,
+ * with an interval about it where it has the frames for one, the floor's
+ * own row against a twin of itself, and the report's floor check says
+ * so; the report's fronts, one per
  * error figure, agree with its own table; the error of several frames
  * pools theirs (--error-frames). Nothing about speed is asserted:
  * speed is for `make bench` to show, not for a test to guess. */
@@ -45,7 +47,14 @@
 #define LAMP2_OUT OUT "-lamp2"
 #define LAMP_RUN "--quick --frames 1 --configs defaults --technique planar tests/data/planar_three_lights.json"
 #define LAMP_MAX_MISCLASSIFIED 1.0
-#define CSV_COLUMNS 25
+/* A run with the fewest timed frames whose ratios have an interval
+ * (median_interval_min_samples at RESULTS_CSV_RATIO_CONFIDENCE). */
+#define INTERVAL_OUT OUT "-interval"
+#define INTERVAL_FRAMES 11
+#define TEXT(x) #x
+#define TEXT_OF(x) TEXT(x)
+#define INTERVAL_FRAMES_TEXT TEXT_OF(INTERVAL_FRAMES)
+#define CSV_COLUMNS 27
 #define CSV_MAX_ROWS 512
 /* results.csv's columns the tests read by position. */
 #define CSV_GPU_MEDIAN 3
@@ -58,17 +67,18 @@
 #define CSV_MOTION 14
 #define CSV_SKIPS 15
 #define CSV_FLOOR_MS 16
-#define CSV_SHIMMER 17
+#define CSV_RATIO_LOW 17
+#define CSV_RATIO_HIGH 18
+#define CSV_SHIMMER 19
 /* Then per shadowdiff class (umbra, penumbra, lit) its pixels and MAE,
  * then the frame size. */
-#define CSV_CLASS_PIXELS(c) (18 + 2 * (c))
-#define CSV_CLASS_MAE(c) (19 + 2 * (c))
-#define CSV_FRAME_SIZE 24
+#define CSV_CLASS_PIXELS(c) (20 + 2 * (c))
+#define CSV_CLASS_MAE(c) (21 + 2 * (c))
+#define CSV_FRAME_SIZE 26
 /* --quick's frame size. */
 #define QUICK_SIZE "320x180"
-/* The CSV's rounding: the ratio is printed to 3 decimals, the times and
- * percentages to 4, the MAE to 6. */
-#define CSV_RATIO_ROUNDING 0.0005
+/* The CSV's rounding: the times and percentages are printed to 4
+ * decimals, the MAE to 6. */
 #define CSV_MS_ROUNDING 0.00005
 #define CSV_PERCENT_ROUNDING 0.00005
 #define CSV_MAE_ROUNDING 0.0000005
@@ -113,6 +123,7 @@ static int run_bench(void **state) {
         {SOFT_OUT, SOFT_RUN},
         {LAMP_OUT, LAMP_RUN},
         {LAMP2_OUT, LAMP_RUN " --light 2"},
+        {INTERVAL_OUT, SMALL_SCENE " --technique planar --frames " INTERVAL_FRAMES_TEXT},
     };
     char strided[512] = "";
     for (size_t i = 0; SCENE_STRIDE > 1 && i < SCENE_COUNT; i += SCENE_STRIDE) {
@@ -162,24 +173,25 @@ typedef struct csv_row {
     long compared;
     long class_pixels[3];
     double class_mae[3]; /* -1: "none" */
+    bool interval;       /* the ratio has one */
 } csv_row;
 
-/* A row's ratio is its median (CPU time on a software rasterizer, as the
- * bench's basis, else GPU time) over the median of its own interleaved
- * floor frames, within the CSV's rounding (how far rounding both times by
- * up to CSV_MS_ROUNDING moves their quotient, and the ratio's own); the
- * floor's own row is 1. */
-static void check_ratio(char **fields) {
-    const char *renderer = fields[CSV_RENDERER];
-    bool software = strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe");
-    double ms = atof(fields[software ? CSV_CPU_MEDIAN : CSV_GPU_MEDIAN]), floor_ms = atof(fields[CSV_FLOOR_MS]);
-    double ratio = atof(fields[CSV_RATIO]);
+/* A row's ratio is the median of its frames' ratios to the floor frames
+ * paired with them (the floor's own row too: against a twin), so it lies
+ * between the ratios of the medians' extremes: at least the fastest own
+ * frame's over the slowest floor frame's, which the medians bound (a
+ * positive number, with the floor's median timed). Its interval: "-" for
+ * both ends (too few frames, test_interval_needs_the_frames), or two
+ * numbers about the ratio. Returns whether it has one. */
+static bool check_ratio(char **fields) {
+    double ratio = atof(fields[CSV_RATIO]), floor_ms = atof(fields[CSV_FLOOR_MS]);
     assert_true(floor_ms > CSV_MS_ROUNDING);
-    double bound =
-        CSV_RATIO_ROUNDING + (1 + ratio + CSV_RATIO_ROUNDING) * CSV_MS_ROUNDING / (floor_ms - CSV_MS_ROUNDING);
-    assert_true(fabs(ratio - ms / floor_ms) <= bound);
-    if (strcmp(fields[1], "unshadowed") == 0)
-        assert_string_equal(fields[CSV_RATIO], "1.000");
+    assert_true(ratio > 0);
+    bool none = strcmp(fields[CSV_RATIO_LOW], "-") == 0;
+    assert_int_equal(none, strcmp(fields[CSV_RATIO_HIGH], "-") == 0);
+    double low = atof(fields[CSV_RATIO_LOW]), high = atof(fields[CSV_RATIO_HIGH]);
+    assert_true(none || (0 < low && low <= ratio && ratio <= high));
+    return !none;
 }
 
 /* Reads results.csv under `dir` into rows (room for CSV_MAX_ROWS), checking
@@ -191,7 +203,8 @@ static int read_csv(const char *dir, csv_row *rows) {
     char *rest = text, *line = strtok_r(rest, "\n", &rest);
     assert_string_equal(line, "scene,technique,parameters,gpu_ms_median,gpu_ms_p90,cpu_ms_median,cpu_ms_p90,"
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
-                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median,shimmer_percent,"
+                              "mae,compared_pixels,renderer,motion,skips,floor_ms_median,ratio_low,ratio_high,"
+                              "shimmer_percent,"
                               "umbra_pixels,umbra_mae,penumbra_pixels,penumbra_mae,lit_pixels,lit_mae,frame_size");
     int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
@@ -202,9 +215,11 @@ static int read_csv(const char *dir, csv_row *rows) {
             assert_string_equal(fields[CSV_SHIMMER], "-");
         for (int c = CSV_GPU_MEDIAN; c < CSV_COLUMNS; c++) {
             /* shimmer: "-" where the camera stands still (checked below);
-             * a class's MAE "none" where it has no pixel (checked below) */
+             * a class's MAE "none" where it has no pixel (checked below);
+             * the ratio's interval "-" without one (check_ratio) */
+            bool interval_none = (c == CSV_RATIO_LOW || c == CSV_RATIO_HIGH) && strcmp(fields[c], "-") == 0;
             if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS || (c == CSV_SHIMMER && !moving) ||
-                c == CSV_FRAME_SIZE || strcmp(fields[c], "none") == 0)
+                c == CSV_FRAME_SIZE || strcmp(fields[c], "none") == 0 || interval_none)
                 continue;
             char *end;
             double v = strtod(fields[c], &end);
@@ -213,9 +228,10 @@ static int read_csv(const char *dir, csv_row *rows) {
         assert_string_equal(fields[CSV_FRAME_SIZE], QUICK_SIZE); /* every run here is --quick */
         assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);           /* a frame takes time */
         assert_true(atol(fields[CSV_COMPARED]) > 1000);          /* pixels were compared */
-        check_ratio(fields);
+        bool interval = check_ratio(fields);
         assert_true(n < CSV_MAX_ROWS);
         csv_row *r = &rows[n++];
+        r->interval = interval;
         snprintf(r->technique, sizeof r->technique, "%s", fields[1]);
         snprintf(r->parameters, sizeof r->parameters, "%s", fields[2]);
         snprintf(r->motion, sizeof r->motion, "%s", fields[CSV_MOTION]);
@@ -293,6 +309,31 @@ static void test_selection_keeps_the_floor(void **state) {
         assert_string_equal(rows[i].parameters, "\"\"");
         assert_string_equal(rows[i].motion, "static");
     }
+}
+
+/* A ratio's interval needs the frames for one: the --quick run's rows
+ * (its five timed frames) have none, and its report says the floor check
+ * was not made; a run of INTERVAL_FRAMES has one in every row, the
+ * floor's own row included, and its report's floor check names that row
+ * as the noise. */
+static void test_interval_needs_the_frames(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(OUT, rows);
+    for (int i = 0; i < n; i++)
+        assert_false(rows[i].interval);
+    char *report = read_file(OUT "/report.md");
+    assert_non_null(strstr(
+        report, "\n## The floor check\n\nNot made: 5 timed frames give no interval (at least " INTERVAL_FRAMES_TEXT
+                " do).\n"));
+    n = read_csv(INTERVAL_OUT, rows);
+    assert_int_equal(n, 2);
+    for (int i = 0; i < n; i++)
+        assert_true(rows[i].interval);
+    report = read_file(INTERVAL_OUT "/report.md");
+    char *check = strstr(report, "\n## The floor check\n\n");
+    assert_non_null(check);
+    assert_non_null(strstr(check, "The noise: the unshadowed frame against itself: simple (skips on) "));
 }
 
 /* --motion light --skips-compare: each configuration skips on then off,
@@ -624,6 +665,7 @@ int main(void) {
         cmocka_unit_test(test_plots_are_images),
         cmocka_unit_test(test_soft_scene_measures_the_penumbra),
         cmocka_unit_test(test_selection_keeps_the_floor),
+        cmocka_unit_test(test_interval_needs_the_frames),
         cmocka_unit_test(test_light_motion_and_skips_compare),
         cmocka_unit_test(test_dolly_measures_shimmer),
         cmocka_unit_test(test_error_frames_pool),

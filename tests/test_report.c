@@ -65,7 +65,9 @@ static void test_stamp(void **state) {
 
 /* The compact table's shadowmap row: its defaults' CPU ms (the renderer is
  * a software one), ratio, misclassified % and MAE on each scene, and the
- * hidden run's speed-up, its skips-off ms over its skips-on ms. */
+ * hidden run's speed-up, its skips-off ms over its skips-on ms; under the
+ * table, the noise: the floor's row on each scene, with its interval where
+ * the run had one. */
 static void test_figures_land_in_their_rows(void **state) {
     (void)state;
     assert_int_equal(run_report(RUN_FLAGS), 0);
@@ -76,6 +78,9 @@ static void test_figures_land_in_their_rows(void **state) {
     find_line(compact, "| technique |", line, sizeof line);
     assert_non_null(strstr(line, "ms (simple / teapot)"));
     assert_non_null(strstr(line, "skips speed-up, hidden (street)"));
+    find_line(compact, "The noise: the unshadowed frame timed against a second copy of itself", line, sizeof line);
+    assert_non_null(strstr(line, "confidence where the run had the frames for one): simple 1.000 [0.970, 1.030]; "
+                                 "teapot 1.000. A technique is below the floor"));
     char *index = read_text(OUT "/index.md");
     find_line(index, "| simple | --filter pcf5 |", line, sizeof line);
     assert_string_equal(line, "| simple | --filter pcf5 | 20.0000 | 4.000 | 0.0080 | 0.000900 | 0.000300 |");

@@ -60,6 +60,8 @@ void render_program_use(const render_program *p, const camera_view *v) {
 }
 
 void render_draw_object(const render_scene *r, const render_program *p, int object) {
+    if (!p)
+        return;
     const scene_object *o = &r->scene->objects[object];
     const render_mesh *m = &r->meshes[object];
     glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
@@ -187,13 +189,14 @@ bool render_scene_create(render_scene *r, const scene *s) {
     glBufferData(GL_UNIFORM_BUFFER, sizeof(render_lights_block), NULL, GL_DYNAMIC_DRAW);
     glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffer);
     render_scene_update_lights(r, -1);
-    static const char *const lit_files[] = {"lit.vert", "lit.frag"};
     static const char *const depth_files[] = {"lit.vert", "depth.frag"};
-    if (!render_program_load(&r->lit, lit_files, 2, NULL) || !render_program_load(&r->depth, depth_files, 2, NULL)) {
+    r->lit = calloc(1, sizeof *r->lit);
+    if (!r->lit || !render_program_load(&r->depth, depth_files, 2, NULL)) {
+        if (!r->lit)
+            fprintf(stderr, "render: out of memory\n");
         render_scene_destroy(r);
         return false;
     }
-    render_lit_uniforms_find(&r->lit, &r->lit_uniforms);
     return context_gl_ok("render_scene_create");
 }
 
@@ -225,32 +228,46 @@ void render_scene_destroy(render_scene *r) {
     free(r->meshes);
     free(r->in_view);
     glDeleteBuffers(1, &r->lights_buffer);
-    render_program_destroy(&r->lit);
+    for (int v = 0; r->lit && v < RENDER_LIT_VARIANTS; v++)
+        for (unsigned set = 0; set < RENDER_LIGHT_SETS; set++)
+            render_program_destroy(&r->lit->programs[v][set].program);
+    free(r->lit);
     render_program_destroy(&r->depth);
     *r = (render_scene){0};
 }
 
-void render_lit_uniforms_find(const render_program *p, render_lit_uniforms *u) {
-    u->ambient = shader_uniform(p->id, "u_ambient");
-    u->light_count = shader_uniform(p->id, "u_light_count");
-    u->light_list = shader_uniform(p->id, "u_light_list");
+/* Loads the lit program of `variant` for `set`; false after one line on
+ * stderr (the shader loader's own before it). */
+static bool render_lit_load(render_lit_programs *lit, render_lit_variant variant, unsigned set) {
+    static const char *const lit_files[] = {"lit.vert", "lit.frag"};
+    /* The plain variant's list ends after LIT_LIGHTS (a NULL name ends it). */
+    const shader_define defines[] = {{"LIT_LIGHTS", (int)set},
+                                     {variant == RENDER_LIT_SOFT_VISIBILITY ? "LIT_SOFT_VISIBILITY" : NULL, 1},
+                                     {NULL, 0}};
+    render_lit_program *p = &lit->programs[variant][set];
+    if (!render_program_load(&p->program, lit_files, 2, defines)) {
+        fprintf(stderr, "render: the lit program of lights 0x%x does not compile\n", set);
+        lit->failed = true;
+        return false;
+    }
+    p->ambient = shader_uniform(p->program.id, "u_ambient");
+    p->loaded = true;
+    return true;
 }
 
-void render_use_lit_program(const render_scene *r, const render_program *p, const render_lit_uniforms *u,
-                            const camera_view *v, unsigned lights, bool ambient) {
-    render_program_use(p, v);
-    glUniform1f(u->ambient, ambient ? 1.0f : 0.0f);
-    int list[SCENE_MAX_LIGHTS], count = 0;
-    for (int l = 0; l < r->scene->light_count; l++)
-        if (lights & RENDER_LIGHT_BIT(l))
-            list[count++] = l;
-    glUniform1i(u->light_count, count);
-    if (count > 0)
-        glUniform1iv(u->light_list, count, list);
+const render_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant, const camera_view *v,
+                                             unsigned lights, bool ambient) {
+    unsigned set = lights & RENDER_ALL_LIGHTS(r->scene->light_count);
+    render_lit_program *p = &r->lit->programs[variant][set];
+    if (!p->loaded && (r->lit->failed || !render_lit_load(r->lit, variant, set)))
+        return NULL;
+    render_program_use(&p->program, v);
+    glUniform1f(p->ambient, ambient ? 1.0f : 0.0f);
+    return &p->program;
 }
 
-void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
-    render_use_lit_program(r, &r->lit, &r->lit_uniforms, v, lights, ambient);
+const render_program *render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
+    return render_use_lit_variant(r, RENDER_LIT_PLAIN, v, lights, ambient);
 }
 
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask) {
@@ -263,8 +280,7 @@ void render_depth_prepass(const render_scene *r, const camera_view *v, const boo
 }
 
 void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights) {
-    render_use_lit(r, v, lights, true);
-    render_draw_objects(r, &r->lit, mask);
+    render_draw_objects(r, render_use_lit(r, v, lights, true), mask);
 }
 
 void render_reset_state(void) {

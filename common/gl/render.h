@@ -2,9 +2,10 @@
  *
  * render_scene_create uploads each object's mesh (one VAO each: attribute
  * 0 position, 1 normal), creates the uniform block of lights that
- * shaders/lighting.glsl reads, and loads the "lit" program (lit.vert,
- * lit.frag): Lambert plus ambient with no shadows, restricted to a range
- * of lights. render_scene_update_lights copies the scene's lights into the
+ * shaders/lighting.glsl reads, and loads the depth pre-pass's program;
+ * the "lit" programs (lit.vert, lit.frag: Lambert plus ambient with no
+ * shadows, of a set of lights) are compiled per set on first use
+ * (render_use_lit). render_scene_update_lights copies the scene's lights into the
  * block; the app calls it each frame, since the user can move lights.
  * With visibility_of = K >= 0 the block is in visibility mode for light K
  * (see lighting.glsl): the frame then shows the technique's visibility.
@@ -68,11 +69,38 @@ typedef struct render_mesh {
  * long_view's, so none of those is huge. */
 #define RENDER_HUGE_RATIO 1024.0
 
-/* What a program made of lit.vert and lit.frag takes besides a scene
- * program's uniforms (render_lit_uniforms_find). */
-typedef struct render_lit_uniforms {
-    int ambient, light_count, light_list;
-} render_lit_uniforms;
+/* A set of lights as bits: bit l is light l (render_use_lit). */
+#define RENDER_LIGHT_BIT(l) (1u << (l))
+#define RENDER_ALL_LIGHTS(count) ((count) >= 32 ? ~0u : RENDER_LIGHT_BIT(count) - 1u)
+_Static_assert(SCENE_MAX_LIGHTS <= 32, "a light set is 32 bits");
+/* Every set of the scene's lights. */
+#define RENDER_LIGHT_SETS (1u << SCENE_MAX_LIGHTS)
+
+/* lit.frag's variants: plain, and with one light scaled by a soft
+ * visibility sum (LIT_SOFT_VISIBILITY, soft_visibility.h). */
+typedef enum render_lit_variant {
+    RENDER_LIT_PLAIN,
+    RENDER_LIT_SOFT_VISIBILITY,
+    RENDER_LIT_VARIANTS
+} render_lit_variant;
+
+/* One lit program: a variant compiled for one set of lights. */
+typedef struct render_lit_program {
+    render_program program;
+    int ambient; /* its u_ambient */
+    bool loaded;
+} render_lit_program;
+
+/* The lit programs, each compiled on its first use. Each holds the lights
+ * of its set fixed when it is compiled (LIT_LIGHTS), as the shadow maps'
+ * camera pass does, rather than reading a list from uniforms: llvmpipe
+ * then runs only those lights' code, with constant indices into the
+ * lights' block, so the cost floor costs what the techniques' shading
+ * costs with visibility 1. */
+typedef struct render_lit_programs {
+    render_lit_program programs[RENDER_LIT_VARIANTS][RENDER_LIGHT_SETS];
+    bool failed; /* one failed to compile (said once): the frame fails (technique_render_frame) */
+} render_lit_programs;
 
 typedef struct render_scene {
     const scene *scene;
@@ -81,10 +109,9 @@ typedef struct render_scene {
     bool *in_frustum;               /* one per scene object: its box meets the view, whatever the skips */
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
     unsigned lights_buffer;
-    render_program lit;
-    render_lit_uniforms lit_uniforms;
-    render_program depth; /* lit.vert with depth.frag: render_depth_prepass */
-    bool inject_gl_error; /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
+    render_lit_programs *lit; /* compiled on use, through a const render_scene too */
+    render_program depth;     /* lit.vert with depth.frag: render_depth_prepass */
+    bool inject_gl_error;     /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
 
 /* A test-only hook: with this variable set in the environment, every
@@ -105,11 +132,6 @@ typedef struct render_skips {
     bool no_cache;       /* --no-cache: maps and volumes are made again every frame */
 } render_skips;
 
-/* A set of lights as bits: bit l is light l (render_use_lit). */
-#define RENDER_LIGHT_BIT(l) (1u << (l))
-#define RENDER_ALL_LIGHTS(count) ((count) >= 32 ? ~0u : RENDER_LIGHT_BIT(count) - 1u)
-_Static_assert(SCENE_MAX_LIGHTS <= 32, "a light set is 32 bits");
-
 bool render_object_huge(const render_scene *r, int object, const float eye[3]);
 /* Corner k (0..2) of triangle t of object o, in world space, in double:
  * what needs a huge triangle's true extent or plane. */
@@ -127,6 +149,7 @@ void render_scene_destroy(render_scene *r);
 bool render_program_load(render_program *p, const char *const *files, int count, const shader_define *defines);
 void render_program_destroy(render_program *p);
 void render_program_use(const render_program *p, const camera_view *v);
+/* p NULL (a lit program that failed to compile, said once): nothing. */
 void render_draw_object(const render_scene *r, const render_program *p, int object);
 /* Object i where mask is NULL or mask[i] holds. */
 bool render_in_mask(const bool *mask, int object);
@@ -146,13 +169,13 @@ bool render_skip_on(const render_skips *skips, bool own_off);
  * culling is off. Returns how many objects are in the view mask. */
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips);
 
-/* Binds the lit program for the set `lights` (RENDER_LIGHT_BIT), with or
- * without the ambient term. */
-void render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
-/* The same for another program built from lit.frag (with other defines). */
-void render_lit_uniforms_find(const render_program *p, render_lit_uniforms *u);
-void render_use_lit_program(const render_scene *r, const render_program *p, const render_lit_uniforms *u,
-                            const camera_view *v, unsigned lights, bool ambient);
+/* Binds the lit program of `variant` for the set `lights`
+ * (RENDER_LIGHT_BIT; those the scene has), with or without the ambient
+ * term, and returns it to draw with; NULL where it failed to compile. */
+const render_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant, const camera_view *v,
+                                             unsigned lights, bool ambient);
+/* The plain one. */
+const render_program *render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
 /* The depth of the objects in `mask` (NULL: all), nothing else written:
  * the pre-pass after which every shading pass meets each visible pixel
  * once (GL_EQUAL), so a costly fragment stage (a shadow map's filter) runs

@@ -191,7 +191,7 @@ static GLenum shader_stage(const char *file) {
 
 /* Each program's expanded sources, every stage's one after another, kept
  * from its link to its deletion for shader_uniform's check. */
-#define SHADER_MAX_PROGRAMS 256
+#define SHADER_MAX_PROGRAMS 1024
 static struct {
     unsigned program; /* 0: a free slot */
     char *text;

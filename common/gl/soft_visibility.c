@@ -35,18 +35,12 @@ const char *soft_visibility_area_light_text(const soft_visibility *v, int choice
 bool soft_visibility_init(soft_visibility *v) {
     *v = (soft_visibility){0};
     static const char *const accumulate_files[] = {"soft_visibility.vert", "soft_visibility.frag"};
-    static const char *const lit_files[] = {"lit.vert", "lit.frag"};
-    static const shader_define soft[] = {{"LIT_SOFT_VISIBILITY", 1}, {NULL, 0}};
     v->accumulate = shader_load_program(accumulate_files, 2, NULL);
-    if (!v->accumulate || !render_program_load(&v->lit, lit_files, 2, soft)) {
+    if (!v->accumulate) {
         soft_visibility_destroy(v);
         return false;
     }
     v->weight = shader_uniform(v->accumulate, "u_weight");
-    render_lit_uniforms_find(&v->lit, &v->lit_uniforms);
-    v->soft_light = shader_uniform(v->lit.id, "u_soft_light");
-    v->soft_texture = shader_uniform(v->lit.id, "u_soft_visibility");
-    v->soft_scale = shader_uniform(v->lit.id, "u_soft_scale");
     glGenVertexArrays(1, &v->vao);
     return context_gl_ok("soft_visibility_init");
 }
@@ -140,21 +134,23 @@ void soft_visibility_add(soft_visibility *v, int l, float weight) {
     glBindFramebuffer(GL_FRAMEBUFFER, v->target_framebuffer);
 }
 
-void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,
-                             unsigned lights, bool ambient) {
-    render_use_lit_program(r, &v->lit, &v->lit_uniforms, view, lights, ambient);
+const render_program *soft_visibility_use_lit(const soft_visibility *v, const render_scene *r,
+                                              const camera_view *view, int light, unsigned lights, bool ambient) {
+    const render_program *p = render_use_lit_variant(r, RENDER_LIT_SOFT_VISIBILITY, view, lights, ambient);
+    if (!p)
+        return NULL;
     const soft_visibility_light *sum = &v->lights[light];
-    glUniform1i(v->soft_light, light);
-    glUniform1i(v->soft_texture, SOFT_VISIBILITY_UNIT);
-    glUniform1f(v->soft_scale, 1.0f / (float)(sum->points > 0 ? sum->points : 1));
+    glUniform1i(shader_uniform(p->id, "u_soft_light"), light);
+    glUniform1i(shader_uniform(p->id, "u_soft_visibility"), SOFT_VISIBILITY_UNIT);
+    glUniform1f(shader_uniform(p->id, "u_soft_scale"), 1.0f / (float)(sum->points > 0 ? sum->points : 1));
     glActiveTexture(GL_TEXTURE0 + SOFT_VISIBILITY_UNIT);
     glBindTexture(GL_TEXTURE_2D, sum->texture);
     glActiveTexture(GL_TEXTURE0);
+    return p;
 }
 
 void soft_visibility_destroy(soft_visibility *v) {
     shader_delete_program(v->accumulate);
-    render_program_destroy(&v->lit);
     glDeleteVertexArrays(1, &v->vao);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteFramebuffers(1, &v->lights[l].framebuffer);

@@ -53,9 +53,6 @@ typedef struct soft_visibility {
     unsigned accumulate; /* the program that adds a weight */
     int weight;          /* its u_weight */
     unsigned vao;        /* empty: the pass's triangle is made from gl_VertexID */
-    render_program lit;  /* lit.frag with LIT_SOFT_VISIBILITY */
-    render_lit_uniforms lit_uniforms;
-    int soft_light, soft_texture, soft_scale; /* its u_soft_light, u_soft_visibility, u_soft_scale */
     soft_visibility_light lights[SCENE_MAX_LIGHTS];
     unsigned target_framebuffer, depth_stencil; /* the target the textures are for */
     int width, height;
@@ -83,11 +80,12 @@ bool soft_visibility_begin(soft_visibility *v, int l, int samples, bool restart)
  * as set passes (inside the scissor, where it is on); the target stays
  * bound. */
 void soft_visibility_add(soft_visibility *v, int l, float weight);
-/* Binds v's lit program for light `light` (its visibility the mean of its
- * points added so far, at least one) within the set `lights`, as
- * render_use_lit does. */
-void soft_visibility_use_lit(const soft_visibility *v, const render_scene *r, const camera_view *view, int light,
-                             unsigned lights, bool ambient);
+/* Binds the lit program that scales light `light` by its sum (its
+ * visibility the mean of its points added so far, at least one), for the
+ * set `lights`, as render_use_lit does, and returns it (NULL where it
+ * failed to compile). */
+const render_program *soft_visibility_use_lit(const soft_visibility *v, const render_scene *r,
+                                              const camera_view *view, int light, unsigned lights, bool ambient);
 void soft_visibility_destroy(soft_visibility *v);
 
 #endif

@@ -82,7 +82,7 @@ bool technique_render_frame(const technique *t, const technique_frame *f, target
     t->render(f);
     render_reset_state();
     depth_use_standard(f->view); /* what comes between frames expects GL's */
-    return context_gl_ok(t->name);
+    return context_gl_ok(t->name) && !f->gpu->lit->failed;
 }
 
 /* ---- skips ---- */
@@ -156,8 +156,7 @@ unsigned technique_split_lights(const technique_frame *f) {
 
 void technique_shade_ambient(const technique_frame *f) {
     technique_shade_depth();
-    render_use_lit(f->gpu, f->view, 0, true);
-    render_draw_objects(f->gpu, &f->gpu->lit, f->in_view);
+    render_draw_objects(f->gpu, render_use_lit(f->gpu, f->view, 0, true), f->in_view);
 }
 
 /* Light l's share on the objects of `objects` the stencil tests (or on
@@ -166,11 +165,11 @@ void technique_shade_ambient(const technique_frame *f) {
 static void technique_shade_objects(const technique_frame *f, const bool *objects, unsigned lights, bool ambient,
                                     const technique_stencil_lit *stencil, unsigned func, bool tested) {
     const scene *s = f->gpu->scene;
-    render_use_lit(f->gpu, f->view, lights, ambient);
+    const render_program *p = render_use_lit(f->gpu, f->view, lights, ambient);
     glStencilFunc(tested ? func : GL_ALWAYS, stencil->ref, stencil->mask);
     for (int i = 0; i < s->object_count; i++)
         if (render_in_mask(objects, i) && (!stencil->receivers_only || s->objects[i].receives) == tested)
-            render_draw_object(f->gpu, &f->gpu->lit, i);
+            render_draw_object(f->gpu, p, i);
 }
 
 void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil) {
@@ -243,15 +242,15 @@ void technique_shade_light_soft(const technique_frame *f, int l, const soft_visi
     const bool *objects = technique_shade_begin(f, l, &ambient);
     const scene *s = f->gpu->scene;
     glDisable(GL_STENCIL_TEST);
-    soft_visibility_use_lit(v, f->gpu, f->view, l, RENDER_LIGHT_BIT(l), ambient);
+    const render_program *p = soft_visibility_use_lit(v, f->gpu, f->view, l, RENDER_LIGHT_BIT(l), ambient);
     for (int i = 0; i < s->object_count; i++)
         if (render_in_mask(objects, i) && (!receivers_only || s->objects[i].receives))
-            render_draw_object(f->gpu, &v->lit, i);
+            render_draw_object(f->gpu, p, i);
     if (receivers_only) {
-        render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
+        p = render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
         for (int i = 0; i < s->object_count; i++)
             if (render_in_mask(objects, i) && !s->objects[i].receives)
-                render_draw_object(f->gpu, &f->gpu->lit, i);
+                render_draw_object(f->gpu, p, i);
     }
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);

@@ -22,6 +22,8 @@ static const char *const results_csv_fixed_names[RESULTS_CSV_CLASSES] = {
     [RESULTS_CSV_MOTION] = "motion",
     [RESULTS_CSV_SKIPS] = "skips",
     [RESULTS_CSV_FLOOR_MS] = "floor_ms_median",
+    [RESULTS_CSV_RATIO_LOW] = "ratio_low",
+    [RESULTS_CSV_RATIO_HIGH] = "ratio_high",
     [RESULTS_CSV_SHIMMER] = "shimmer_percent",
 };
 

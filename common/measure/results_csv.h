@@ -12,6 +12,13 @@
 
 #include "shadowdiff.h"
 
+/* The confidence of ratio_low and ratio_high, the interval of a row's
+ * ratio (median_interval.h), two-sided. A run has hundreds of rows, and a
+ * technique with nothing to draw costs the floor's frame by design, so
+ * bench's floor check (a row fails when its whole interval is under 1)
+ * may fire on noise in at most one such row in 1 / (1 - confidence). */
+#define RESULTS_CSV_RATIO_CONFIDENCE 0.999
+
 typedef enum results_csv_column {
     RESULTS_CSV_SCENE,
     RESULTS_CSV_TECHNIQUE,
@@ -30,6 +37,8 @@ typedef enum results_csv_column {
     RESULTS_CSV_MOTION,
     RESULTS_CSV_SKIPS,
     RESULTS_CSV_FLOOR_MS,
+    RESULTS_CSV_RATIO_LOW,  /* the ratio's interval (RESULTS_CSV_RATIO_CONFIDENCE): */
+    RESULTS_CSV_RATIO_HIGH, /* "-" where the row has too few frames for one */
     RESULTS_CSV_SHIMMER,
     RESULTS_CSV_CLASSES, /* class c's pixels: + 2c; its MAE: + 2c + 1 */
     RESULTS_CSV_FRAME_SIZE = RESULTS_CSV_CLASSES + 2 * SHADOWDIFF_CLASS_COUNT,

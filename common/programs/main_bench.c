@@ -11,9 +11,12 @@
  * frames compared with their references (shadowdiff rules), pooled: of
  * light 0, or of --light K's (the scene must have it). Each
  * frame's time is also a cost-floor frame's, timed in the same moments
- * (bench_time_frames). Writes
+ * (bench_time_frames); a row whose ratio to the floor lies below 1 beyond
+ * its interval fails the run, after everything is written (the floor
+ * check, bench_write_floor_check). Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
- *                           (floor_ms_median: the row's floor; the last,
+ *                           (floor_ms_median: the row's floor; ratio_low and
+ *                           ratio_high: its ratio's interval; the last,
  *                           frame_size: WxH)
  *   OUT/report.md           a table per scene, its Pareto fronts (one per
  *                           error figure), and each technique's defaults
@@ -36,6 +39,7 @@
 #include <glad/gl.h>
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,6 +51,7 @@
 #include "depth.h"
 #include "flags.h"
 #include "hud.h"
+#include "median_interval.h"
 #include "motion.h"
 #include "path.h"
 #include "raytrace.h"
@@ -112,8 +117,12 @@ typedef struct bench_row {
     bool no_skip; /* ran under --no-skip */
     double gpu_median, gpu_p90, cpu_median, cpu_p90;
     double frame_ms; /* what the ratio, the front and the plot use */
-    double floor_ms; /* the median of the floor frames interleaved with the row's (the floor's row: frame_ms) */
-    double ratio;    /* frame_ms / floor_ms */
+    double floor_ms; /* the median of the floor frames interleaved with the row's */
+    /* The median of the frames' ratios to the floor frames paired with
+     * them, and the interval that holds it with RESULTS_CSV_RATIO_CONFIDENCE
+     * (median_interval.h; none with too few frames). */
+    double ratio, ratio_low, ratio_high;
+    bool ratio_interval;
     shadowdiff_result error;  /* pooled over the error frames (shadowdiff_result_add) */
     bool shimmer_measured;    /* under a motion that moves the camera */
     long followed, shimmered; /* summed over the error frames: shimmer % is their ratio */
@@ -355,43 +364,77 @@ static double bench_sort_series(bench_series *s) {
     return bench_percentile(bench.software ? s->cpu : s->gpu, bench.frames, 0.5);
 }
 
-/* Warms up and times the current technique (bench.host); with a floor
- * host, each frame k is the floor's then the technique's, so that the
- * row's floor_ms is of the same moments as its frames.
+/* A row's ratio for the report: with its interval where it has one. */
+static const char *bench_ratio_text(const bench_row *r) {
+    static char text[64];
+    if (r->ratio_interval)
+        snprintf(text, sizeof text, "%.2f [%.2f, %.2f]", r->ratio, r->ratio_low, r->ratio_high);
+    else
+        snprintf(text, sizeof text, "%.2f", r->ratio);
+    return text;
+}
+
+/* A row below the floor: its whole interval under 1. */
+static bool bench_below_floor(const bench_row *r) { return r->ratio_interval && r->ratio_high < 1; }
+
+/* One frame of the row and one of the floor, in an order that alternates
+ * with i: whichever goes second meets what the first left (caches, the
+ * rasterizer's threads), so each goes second half the time. */
+static bool bench_frame_pair(technique_host *floor_host, int i, bench_series *own, bench_series *floor_series) {
+    bool floor_first = i % 2 == 0;
+    if (floor_first && !bench_timed_frame(floor_host, floor_series, i))
+        return false;
+    if (!bench_timed_frame(&bench.host, own, i))
+        return false;
+    return floor_first || bench_timed_frame(floor_host, floor_series, i);
+}
+
+/* Warms up and times the current technique (bench.host) against the
+ * floor's frames (floor_host).
  *
  * The ratio to the cost floor is measured in the same moments as the
  * configuration: the machine is shared, and a floor timed once per scene,
- * minutes away, would be timed under another load. So every frame k
- * of a configuration, warm-up included, is a floor frame then the
+ * minutes away, would be timed under another load. So every frame k of a
+ * configuration, warm-up included, is a pair of a floor frame and the
  * configuration's frame, both at time k and under the row's skips, each
  * timed on its own (two technique hosts at once: the floor's and the
- * configuration's); the row's ratio is its median over the median of its
- * own floor frames (results.csv's floor_ms_median). The floor's own row is
- * timed alone, ratio 1. The configuration's frames and its dump are those
- * it renders alone: the floor frames between them share no state with it
- * that a frame does not set afresh. */
+ * configuration's), the one first in turn (bench_frame_pair). The row's
+ * ratio is the median of its pairs' ratios, with its interval
+ * (median_interval.h); results.csv's floor_ms_median is the floor
+ * frames' own median. The floor's own row is timed against a second host
+ * of the floor in the same way (it keeps no state of its own, so the two
+ * share nothing): its ratio and interval are the noise of the rule. The
+ * configuration's frames and its dump are those it renders alone: the
+ * floor frames between them share no state with it that a frame does not
+ * set afresh. */
 static bool bench_time_frames(bench_row *row, technique_host *floor_host) {
     static bench_series own, floor_series;
+    static double ratios[BENCH_MAX_FRAMES];
     int frame = 0;
     for (; frame < bench.warmup; frame++) {
         bench_move(frame / BENCH_FRAME_RATE);
-        if ((floor_host && !bench_host_frame(floor_host, -1)) || !bench_render_frame(-1))
+        if (!bench_host_frame(floor_host, -1) || !bench_render_frame(-1))
             return false;
     }
     glFinish();
     for (int i = 0; i < bench.frames; i++, frame++) {
         bench_move(frame / BENCH_FRAME_RATE);
-        bool ok = !floor_host || bench_timed_frame(floor_host, &floor_series, i);
-        if (!ok || !bench_timed_frame(&bench.host, &own, i))
+        if (!bench_frame_pair(floor_host, i, &own, &floor_series))
             return false;
+        double floor_ms = bench.software ? floor_series.cpu[i] : floor_series.gpu[i];
+        ratios[i] = floor_ms > 0 ? (bench.software ? own.cpu[i] : own.gpu[i]) / floor_ms : 0;
     }
+    median_interval ratio = median_interval_of(ratios, bench.frames, RESULTS_CSV_RATIO_CONFIDENCE);
+    row->ratio = ratio.median;
+    row->ratio_low = ratio.low;
+    row->ratio_high = ratio.high;
+    row->ratio_interval = ratio.bounded;
     row->frame_ms = bench_sort_series(&own);
     row->gpu_median = bench_percentile(own.gpu, bench.frames, 0.5);
     row->gpu_p90 = bench_percentile(own.gpu, bench.frames, 0.9);
     row->cpu_median = bench_percentile(own.cpu, bench.frames, 0.5);
     row->cpu_p90 = bench_percentile(own.cpu, bench.frames, 0.9);
-    row->floor_ms = floor_host ? bench_sort_series(&floor_series) : row->frame_ms;
-    row->ratio = row->floor_ms > 0 ? row->frame_ms / row->floor_ms : 0;
+    row->floor_ms = bench_sort_series(&floor_series);
     return true;
 }
 
@@ -495,8 +538,7 @@ static bool bench_error_frames(bench_row *row, const dump_frame *references) {
 }
 
 /* Times and measures one configuration of the current technique under the
- * skips setting no_skip, interleaved with the floor's frames unless it is
- * the floor. */
+ * skips setting no_skip, interleaved with the floor's frames. */
 
 static bool bench_configuration(const char *scene_name, const char *config, bool no_skip,
                                 const dump_frame *references) {
@@ -507,14 +549,13 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     bench_row *row = &bench.rows[bench.row_count];
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config, .no_skip = no_skip};
     bench.skips = (render_skips){.no_skip = no_skip};
-    technique_host *floor_host = bench.current->cost_floor ? NULL : &bench.floor_host;
+    technique_host *floor_host = &bench.floor_host;
     /* A host whose start was tried is stopped: destroy follows even a
      * failed init. The floor runs at its defaults. */
-    bool configured =
-        technique_apply_config(bench.current, config) && (!floor_host || technique_apply_config(bench.floor, ""));
+    bool configured = technique_apply_config(bench.current, config) && technique_apply_config(bench.floor, "");
     bool ok = configured && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips);
-    bool floor_tried = ok && floor_host;
-    ok = ok && (!floor_host || technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips)) &&
+    bool floor_tried = ok;
+    ok = ok && technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips) &&
          bench_time_frames(row, floor_host) && bench_error_frames(row, references);
     if (floor_tried)
         technique_host_stop(floor_host);
@@ -664,11 +705,16 @@ static bool bench_write_csv(void) {
     results_csv_write_header(f); /* the row below writes its columns in the same order */
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
-        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s", r->scene,
-                r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
+        char low[32] = "-", high[32] = "-";
+        if (r->ratio_interval) {
+            snprintf(low, sizeof low, "%.3f", r->ratio_low);
+            snprintf(high, sizeof high, "%.3f", r->ratio_high);
+        }
+        fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s,%s,%s",
+                r->scene, r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
                 r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
                 r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, motion_names[bench.motion],
-                bench_skips_text(r->no_skip), r->floor_ms, bench_shimmer_text(r));
+                bench_skips_text(r->no_skip), r->floor_ms, low, high, bench_shimmer_text(r));
         for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
             char mae[32];
             fprintf(f, ",%ld,%s", r->error.class_pixels[c],
@@ -748,6 +794,56 @@ static const char *bench_skips_summary(void) {
     return bench.skips_compare ? "on and off (every configuration twice)" : bench_skips_text(bench.no_skip);
 }
 
+/* The floor check: the rows whose whole interval lies under 1 (no
+ * technique's frame costs less than the floor's beyond the noise), and
+ * the noise itself: the floor's rows against their twin and the widest
+ * interval of any row. */
+static void bench_write_floor_check(FILE *f) {
+    int below = 0;
+    double widest = 0;
+    for (int i = 0; i < bench.row_count; i++) {
+        const bench_row *r = &bench.rows[i];
+        below += bench_below_floor(r);
+        if (r->ratio_interval && r->ratio > 0)
+            widest = fmax(widest, fmax(r->ratio_high / r->ratio - 1, 1 - r->ratio_low / r->ratio));
+    }
+    fprintf(f, "\n## The floor check\n\n");
+    if (median_interval_min_samples(RESULTS_CSV_RATIO_CONFIDENCE) > bench.frames) {
+        fprintf(f, "Not made: %d timed frames give no interval (at least %d do).\n", bench.frames,
+                median_interval_min_samples(RESULTS_CSV_RATIO_CONFIDENCE));
+        return;
+    }
+    fprintf(f, "%s. The noise: the unshadowed frame against itself",
+            below ? "**Rows below the floor**" : "No row is below the floor");
+    for (int i = 0, n = 0; i < bench.row_count; i++)
+        if (strcmp(bench.rows[i].technique, bench.floor->name) == 0)
+            fprintf(f, "%s %s (skips %s) %s", n++ ? ";" : ":", bench.rows[i].scene,
+                    bench_skips_text(bench.rows[i].no_skip), bench_ratio_text(&bench.rows[i]));
+    fprintf(f, "; the widest interval of any row reaches %.1f %% from its median.\n", 100 * widest);
+    for (int i = 0; i < bench.row_count; i++)
+        if (bench_below_floor(&bench.rows[i]))
+            fprintf(f, "\n- %s, %s %s (skips %s): %s", bench.rows[i].scene, bench.rows[i].technique,
+                    bench_config_label(bench.rows[i].config), bench_skips_text(bench.rows[i].no_skip),
+                    bench_ratio_text(&bench.rows[i]));
+    if (below)
+        fprintf(f, "\n");
+}
+
+/* Says each row below the floor on stderr; returns how many. */
+static int bench_floor_failures(void) {
+    int below = 0;
+    for (int i = 0; i < bench.row_count; i++) {
+        const bench_row *r = &bench.rows[i];
+        if (!bench_below_floor(r))
+            continue;
+        fprintf(
+            stderr, "bench: %s, %s %s (skips %s): x%s of the unshadowed frame, below the floor beyond the noise\n",
+            r->scene, r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), bench_ratio_text(r));
+        below++;
+    }
+    return below;
+}
+
 static bool bench_write_report(void) {
     char path[PATH_MAX];
     FILE *f = bench_open("report.md", path, sizeof path);
@@ -769,10 +865,13 @@ static bool bench_write_report(void) {
             "In the comparisons of the defaults with the named configurations, more accurate means no "
             "worse by any figure both have and better by one.\n\n"
             "The ratio, the fronts and the plots use **%s time**. %s A row's ratio (x unshadowed) is "
-            "its median over the median of the unshadowed frames interleaved with its own (frame k of "
-            "the floor, then frame k of the row, at the same time and under the same skips; floor ms), so "
-            "that both are timed under the same load of a shared machine; the unshadowed row is timed alone, "
-            "ratio 1. Skips: %s. Motion: %s (frame k at k/%g s; the error figures pool the compared pixels of "
+            "the median of its frames' ratios to the unshadowed frames paired with them (frame k of the "
+            "floor and frame k of the row, at the same time and under the same skips, each first in turn; "
+            "floor ms is the floor frames' median), so that both are timed under the same load of a shared "
+            "machine; in brackets, the interval that holds that median with %g %% confidence, from the "
+            "pairs alone (the binomial interval of a median; none with fewer than %d frames). The "
+            "unshadowed row is the floor against a second copy of itself: its interval is the noise. "
+            "Skips: %s. Motion: %s (frame k at k/%g s; the error figures pool the compared pixels of "
             "%d of the timed frames spread evenly over them, the last at %.3f s). Shimmer %%: %s\n",
             bench.ctx.renderer, bench.width, bench.height, bench.frames, bench.warmup, bench.light,
             bench_time_basis(),
@@ -781,6 +880,7 @@ static bool bench_write_report(void) {
                              "and glFinish is its real cost."
                            : "GPU time is what the frame costs the GPU; CPU time adds submission and the wait "
                              "in glFinish.",
+            100 * RESULTS_CSV_RATIO_CONFIDENCE, median_interval_min_samples(RESULTS_CSV_RATIO_CONFIDENCE),
             bench_skips_summary(), motion_names[bench.motion], BENCH_FRAME_RATE, bench.error_frames,
             bench_error_time(bench.error_frames - 1),
             bench_shimmers() ? "of the compared pixels of those frames, those whose decision changes when "
@@ -813,9 +913,9 @@ static bool bench_write_report(void) {
             char penumbra[32], lit[32];
             fprintf(
                 f,
-                "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %.2f | %.3f | %.4f | %.4f | %.4f | %.5f | %s | %s | %s |",
+                "| %s | %s | %s | %.3f (%.3f) | %.3f (%.3f) | %s | %.3f | %.4f | %.4f | %.4f | %.5f | %s | %s | %s |",
                 r->technique, bench_config_label(r->config), bench_skips_text(r->no_skip), r->gpu_median, r->gpu_p90,
-                r->cpu_median, r->cpu_p90, r->ratio, r->floor_ms, r->error.false_shadow_percent,
+                r->cpu_median, r->cpu_p90, bench_ratio_text(r), r->floor_ms, r->error.false_shadow_percent,
                 r->error.false_lit_percent, r->error.misclassified_percent, r->error.mean_abs_error,
                 shadowdiff_class_mae_text(&r->error, SHADOWDIFF_CLASS_PENUMBRA, BENCH_REPORT_MAE_DECIMALS, penumbra,
                                           sizeof penumbra),
@@ -831,6 +931,7 @@ static bool bench_write_report(void) {
         if (bench.skips_compare)
             bench_write_skips_comparison(f, scene);
     }
+    bench_write_floor_check(f);
     return bench_close(f, path);
 }
 
@@ -1032,5 +1133,6 @@ int main(int argc, char **argv) {
         printf("%s/results.csv\n%s/report.md\n", bench.out_dir, bench.out_dir);
     if (ok && bench.scaling)
         printf("%s/scaling.png\n", bench.out_dir);
-    return ok ? 0 : 1;
+    /* After every output is written: a run below the floor fails. */
+    return ok && bench_floor_failures() == 0 ? 0 : 1;
 }

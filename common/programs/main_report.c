@@ -39,6 +39,7 @@
 #include "json.h"
 #include "path.h"
 #include "raytrace.h"
+#include "registry.h"
 #include "results_csv.h"
 
 #define REPORT_MAX_SCENES 16
@@ -59,6 +60,8 @@ typedef enum report_csv {
     REPORT_CSV_CPU_MS,
     REPORT_CSV_RATIO,
     REPORT_CSV_FLOOR_MS,
+    REPORT_CSV_RATIO_LOW,
+    REPORT_CSV_RATIO_HIGH,
     REPORT_CSV_MISCLASSIFIED,
     REPORT_CSV_MAE,
     REPORT_CSV_UMBRA_MAE,
@@ -83,6 +86,8 @@ static const struct {
     [REPORT_CSV_CPU_MS] = {RESULTS_CSV_CPU_MS, true, NULL},
     [REPORT_CSV_RATIO] = {RESULTS_CSV_RATIO, true, NULL},
     [REPORT_CSV_FLOOR_MS] = {RESULTS_CSV_FLOOR_MS, true, NULL},
+    [REPORT_CSV_RATIO_LOW] = {RESULTS_CSV_RATIO_LOW, true, "-"},
+    [REPORT_CSV_RATIO_HIGH] = {RESULTS_CSV_RATIO_HIGH, true, "-"},
     [REPORT_CSV_MISCLASSIFIED] = {RESULTS_CSV_MISCLASSIFIED, true, NULL},
     [REPORT_CSV_MAE] = {RESULTS_CSV_MAE, true, NULL},
     [REPORT_CSV_UMBRA_MAE] = {RESULTS_CSV_CLASS_MAE(SHADOWDIFF_CLASS_UMBRA), true, "none"},
@@ -541,19 +546,24 @@ static void report_make_stamp(report_stamp *s) {
     report_distinct(REPORT_CSV_FRAME_SIZE, s->sizes, sizeof s->sizes);
 }
 
+/* The row of `technique`'s defaults on `scene` with skips on; -1: none. */
+static int report_defaults_row(const report_run *run, const char *technique, const char *scene) {
+    for (int row = 0; row < run->table.rows; row++)
+        if (strcmp(report_cell(run, row, REPORT_CSV_SCENE), scene) == 0 &&
+            strcmp(report_cell(run, row, REPORT_CSV_TECHNIQUE), technique) == 0 &&
+            !*report_cell(run, row, REPORT_CSV_PARAMETERS) &&
+            strcmp(report_cell(run, row, REPORT_CSV_SKIPS), "on") == 0)
+            return row;
+    return -1;
+}
+
 /* Each value of one defaults' figure on the run's scenes, " / " between,
  * "-" where a scene has no such row. */
 static void report_compact_cell(const report_run *run, const char *technique, const char *const *scenes,
                                 int scene_count, report_figure figure, char *out, size_t size) {
     out[0] = '\0';
     for (int s = 0; s < scene_count; s++) {
-        int found = -1;
-        for (int row = 0; row < run->table.rows && found < 0; row++)
-            if (strcmp(report_cell(run, row, REPORT_CSV_SCENE), scenes[s]) == 0 &&
-                strcmp(report_cell(run, row, REPORT_CSV_TECHNIQUE), technique) == 0 &&
-                !*report_cell(run, row, REPORT_CSV_PARAMETERS) &&
-                strcmp(report_cell(run, row, REPORT_CSV_SKIPS), "on") == 0)
-                found = row;
+        int found = report_defaults_row(run, technique, scenes[s]);
         char text[64] = "-";
         if (found >= 0 && figure == REPORT_MS)
             snprintf(text, sizeof text, "%.2f", report_ms(run, found));
@@ -568,6 +578,28 @@ static void report_compact_cell(const report_run *run, const char *technique, co
         size_t used = strlen(out);
         snprintf(out + used, size - used, "%s%s", s ? " / " : "", text);
     }
+}
+
+/* The noise under the compact table: on each scene, the cost floor's row,
+ * timed against a second copy of itself, with its ratio's interval. */
+static void report_write_noise(FILE *f, const report_run *run, const char *const *scenes, int scene_count) {
+    const char *floor = NULL;
+    for (int t = 0; t < registry_technique_count; t++)
+        if (registry_techniques[t]->cost_floor)
+            floor = registry_techniques[t]->name;
+    fprintf(f,
+            "\nThe noise: the %s frame timed against a second copy of itself (x %s, with the interval that "
+            "holds its median at %g %% confidence where the run had the frames for one):",
+            floor, floor, 100 * RESULTS_CSV_RATIO_CONFIDENCE);
+    for (int i = 0; i < scene_count; i++) {
+        int row = report_defaults_row(run, floor, scenes[i]);
+        const char *low = row >= 0 ? report_cell(run, row, REPORT_CSV_RATIO_LOW) : "-";
+        fprintf(f, "%s %s %s", i ? ";" : "", scenes[i], row >= 0 ? report_cell(run, row, REPORT_CSV_RATIO) : "-");
+        if (strcmp(low, "-") != 0)
+            fprintf(f, " [%s, %s]", low, report_cell(run, row, REPORT_CSV_RATIO_HIGH));
+    }
+    fprintf(f, ". A technique is below the floor only where its ratio's whole interval is under 1, which fails "
+               "`build/bench`.\n");
 }
 
 /* The distinct values of `column` of the run, in order of first row. */
@@ -640,6 +672,7 @@ static void report_write_compact(FILE *f, const report_stamp *s) {
         }
     }
     fputs("\n", f);
+    report_write_noise(f, run, scenes, scene_count);
 }
 
 static bool report_close(FILE *f, const char *path) {

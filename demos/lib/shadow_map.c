@@ -794,11 +794,11 @@ static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_set
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (k->soft_lights >> l & 1u)
             glBindSampler(SHADOW_MAP_DEPTH_UNITS + (GLuint)l, 0);
-    render_use_lit(f->gpu, f->view, f->lights, true);
+    const render_program *lit = render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
     for (int i = 0; i < f->gpu->scene->object_count; i++)
         if (render_in_mask(objects, i) && (!mapped || !f->gpu->scene->objects[i].receives))
-            render_draw_object(f->gpu, &f->gpu->lit, i);
+            render_draw_object(f->gpu, lit, i);
 }
 
 /* ---- the frame ---- */
