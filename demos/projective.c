@@ -25,10 +25,9 @@
  *     the texture (only what casts alone is an obstacle), and a receiver
  *     hidden behind another then takes the obstacles' shadow through it
  *     and none of the other's.
- * A point or spot light gets a perspective frustum round the bounding
- * sphere of its casters, a directional light an orthographic box round
- * them; a light inside that sphere gets the widest frustum allowed,
- * aimed at its centre, and loses what lies outside. Each pixel's
+ * Each light's frustum is fitted to its casters (demos/lib/projective_fit.h:
+ * a cone round a positional light's, a box along a directional one's).
+ * Each pixel's
  * decision is a stencil mark, shaded as planar's: the light added where
  * the receiver pass left no mark. Area lights are drawn hard, from their
  * centre.
@@ -39,20 +38,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "frustum.h"
+#include "projective_fit.h"
 #include "shadow_map.h"
 #include "technique.h"
 
-/* The frustum is this fraction wider than the casters' sphere or box, so
- * that their silhouette's edge texels and the lookup's bilinear taps stay
- * inside the texture. */
-#define PROJECTIVE_FIT_MARGIN 0.02f
-/* A positional light's frustum is at most this wide each side: a
- * perspective texture's texels grow without bound towards 90 degrees. */
-#define PROJECTIVE_MAX_HALF_ANGLE_DEG 80.0f
-/* The near plane at least this fraction of the far one (a caster touching
- * the light would put it at 0). */
-#define PROJECTIVE_NEAR_RATIO 1e-3f
 /* A pixel is shadowed where its texel is below this percent of white
  * (the casters' black, 0). */
 #define PROJECTIVE_LIT_PERCENT 50
@@ -72,15 +61,9 @@ typedef struct projective_settings {
 typedef struct projective_light {
     unsigned texture;
     int size;         /* of the texture as made; 0: none yet */
-    bool fitted;      /* the light has casters: the frustum below holds */
     bool drawn_valid; /* `drawn` is what the texture holds */
-    bool clamped;     /* the light lies inside the casters' sphere, or it is wider than the limit */
-    bool orthographic;
-    float half_angle_deg; /* positional */
-    mat4 view_projection;
-    float depth_plane[4]; /* depth from the light along its axis */
-    float nearest;        /* the casters' nearest depth */
-    bool *drawn;          /* per object: drawn into the texture */
+    projective_frustum frustum;
+    bool *drawn; /* per object: drawn into the texture */
 } projective_light;
 
 static const char *const projective_sizes[] = {"2048", "256", "512", "1024", "4096", NULL};
@@ -113,92 +96,14 @@ static const flags_param projective_params[] = {
      .index = &projective.settings.texture_size, .choices = projective_sizes},
 };
 
-/* Object i is drawn into the texture: it casts (and, with receivers out
- * of it, receives nothing). */
+/* Object i is drawn into the texture (projective_fit_casts). */
 static bool projective_is_caster(const scene_object *o) {
-    return o->casts && (!o->receives || !projective.settings.no_receivers_cast);
+    return projective_fit_casts(o, !projective.settings.no_receivers_cast);
 }
 
 /* Object i takes the projected texture. */
 static bool projective_is_textured(const scene_object *o) {
     return o->receives && (!projective_is_caster(o) || projective.settings.self_shadow == PROJECTIVE_SELF_SHADOW_ON);
-}
-
-/* The casters' corners and bounds that light l can reach, into corners
- * (8 per caster); returns how many corners. */
-static int projective_caster_corners(const scene *s, const scene_light *light, float (*corners)[3], vec3 lo,
-                                     vec3 hi) {
-    int n = 0;
-    glm_vec3_fill(lo, INFINITY);
-    glm_vec3_fill(hi, -INFINITY);
-    for (int i = 0; i < s->object_count; i++) {
-        vec3 blo, bhi;
-        if (!projective_is_caster(&s->objects[i]))
-            continue;
-        scene_object_world_bounds(&s->objects[i], blo, bhi);
-        if (!scene_light_reaches_box(light, blo, bhi))
-            continue;
-        frustum_box_corners(blo, bhi, &corners[n]);
-        n += 8;
-        glm_vec3_minv(lo, blo, lo);
-        glm_vec3_maxv(hi, bhi, hi);
-    }
-    return n;
-}
-
-/* Light l's frustum fitted to its casters (the scene's alone, whatever
- * the camera sees, so that the texture is the same with every skip). */
-static void projective_fit(const scene *s, int l, projective_light *t, float (*corners)[3]) {
-    const scene_light *light = &s->lights[l];
-    vec3 lo, hi, centre, axis, eye;
-    int n = projective_caster_corners(s, light, corners, lo, hi);
-    t->fitted = n > 0;
-    t->clamped = false;
-    if (!t->fitted)
-        return;
-    glm_vec3_center(lo, hi, centre);
-    float radius = glm_vec3_distance(lo, hi) / 2;
-    mat4 view, projection;
-    t->orthographic = light->type == SCENE_LIGHT_DIRECTIONAL;
-    if (t->orthographic) {
-        glm_vec3_normalize_to((float *)light->direction, axis);
-        glm_vec3_copy(centre, eye);
-        frustum_look_along(eye, axis, view);
-        vec3 vlo, vhi;
-        frustum_view_bounds(view, (const float(*)[3])corners, n, vlo, vhi);
-        float grow = PROJECTIVE_FIT_MARGIN * fmaxf(vhi[0] - vlo[0], vhi[1] - vlo[1]);
-        float near_plane, far_plane;
-        shadow_map_depth_range(-vhi[2], -vlo[2], &near_plane, &far_plane);
-        glm_ortho(vlo[0] - grow, vhi[0] + grow, vlo[1] - grow, vhi[1] + grow, near_plane, far_plane, projection);
-    } else {
-        glm_vec3_copy((float *)light->position, eye);
-        glm_vec3_sub(centre, eye, axis);
-        float distance = glm_vec3_norm(axis);
-        if (distance > 0)
-            glm_vec3_scale(axis, 1 / distance, axis);
-        else
-            glm_vec3_copy(light->type == SCENE_LIGHT_SPOT ? (float *)light->direction : (vec3){0, -1, 0}, axis);
-        float max_half = glm_rad(PROJECTIVE_MAX_HALF_ANGLE_DEG);
-        float half = max_half;
-        if (distance > radius * (1 + PROJECTIVE_FIT_MARGIN))
-            half = fminf(asinf(radius / distance) * (1 + PROJECTIVE_FIT_MARGIN), max_half);
-        t->clamped = half >= max_half;
-        t->half_angle_deg = glm_deg(half);
-        float far_plane = distance + radius;
-        float near_plane = fmaxf(distance - radius, far_plane * PROJECTIVE_NEAR_RATIO);
-        shadow_map_depth_range(near_plane, far_plane, &near_plane, &far_plane);
-        near_plane = fmaxf(near_plane, far_plane * PROJECTIVE_NEAR_RATIO);
-        frustum_look_along(eye, axis, view);
-        glm_perspective(2 * half, 1, near_plane, far_plane, projection);
-    }
-    glm_mat4_mul(projection, view, t->view_projection);
-    /* Depth from the light along its axis: for a point light, a blocker
-     * on the segment from it to a receiver point is nearer along any axis
-     * the point lies ahead on; for a directional light, along its rays. */
-    glm_vec4((float *)axis, -glm_vec3_dot(axis, eye), t->depth_plane);
-    t->nearest = INFINITY;
-    for (int c = 0; c < n; c++)
-        t->nearest = fminf(t->nearest, glm_vec3_dot(axis, corners[c]) + t->depth_plane[3]);
 }
 
 /* The casters light l's lookups may read this frame, into
@@ -212,7 +117,7 @@ static void projective_plan_casters(const technique_frame *f, int l, const proje
     if (f->cull_casters) {
         shadow_map_read_setup setup = {.reach = PROJECTIVE_READ_REACH_TEXELS, .size = t->size, .any_depth = true};
         int boxes = shadow_map_light_receivers(f, l, projective.boxes);
-        shadow_map_layer_reads(t->view_projection, &setup, f->receivers, f->receiver_count,
+        shadow_map_layer_reads(t->frustum.view_projection, &setup, f->receivers, f->receiver_count,
                                (const float(*)[2][3])projective.boxes, boxes, &reads);
     }
     for (int i = 0; i < s->object_count; i++) {
@@ -221,7 +126,7 @@ static void projective_plan_casters(const technique_frame *f, int l, const proje
         if (!projective_is_caster(&s->objects[i]))
             continue;
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        projective.wanted[i] = !f->cull_casters || shadow_map_caster_read(&reads, t->view_projection, lo, hi);
+        projective.wanted[i] = !f->cull_casters || shadow_map_caster_read(&reads, t->frustum.view_projection, lo, hi);
         if (projective.wanted[i])
             f->counts->casters_drawn[l]++;
         else
@@ -278,7 +183,7 @@ static bool projective_draw_texture(const technique_frame *f, int l, projective_
         glClearColor(1, 1, 1, 1);
         glClear(GL_COLOR_BUFFER_BIT);
         glUseProgram(projective.caster.id);
-        glUniformMatrix4fv(projective.caster.view_projection, 1, GL_FALSE, (const float *)t->view_projection);
+        glUniformMatrix4fv(projective.caster.view_projection, 1, GL_FALSE, (const float *)t->frustum.view_projection);
         for (int i = 0; i < s->object_count; i++)
             if (projective.wanted[i])
                 render_draw_object(f->gpu, &projective.caster, i);
@@ -315,10 +220,10 @@ static void projective_mark(const technique_frame *f, const projective_light *t,
     glDepthFunc(GL_EQUAL);
     render_program_use(&projective.receiver, f->view);
     mat4 texture;
-    glm_mat4_mul((vec4 *)projective_clip_to_texture, (vec4 *)t->view_projection, texture);
+    glm_mat4_mul((vec4 *)projective_clip_to_texture, (vec4 *)t->frustum.view_projection, texture);
     glUniformMatrix4fv(projective.light_texture, 1, GL_FALSE, (const float *)texture);
-    glUniform4fv(projective.depth_plane, 1, t->depth_plane);
-    glUniform1f(projective.nearest, t->nearest);
+    glUniform4fv(projective.depth_plane, 1, t->frustum.depth_plane);
+    glUniform1f(projective.nearest, t->frustum.nearest);
     glUniform1i(projective.cut, !projective.settings.no_near_cut);
     glUniform1i(projective.projected, 0);
     glActiveTexture(GL_TEXTURE0);
@@ -395,18 +300,18 @@ static void projective_render(const technique_frame *f) {
         projective_light *t = &projective.lights[l];
         /* 2. A frustum from the light fitted to its casters: a cone round
          * their bounding sphere, or a box along a directional light. */
-        projective_fit(s, l, t, projective.corners);
-        if (t->clamped && !(projective.clamped_warned >> l & 1u))
+        projective_fit(s, &s->lights[l], !projective.settings.no_receivers_cast, projective.corners, &t->frustum);
+        if (t->frustum.clamped && !(projective.clamped_warned >> l & 1u))
             fprintf(stderr,
                     "projective: light %d lies among its casters: a %g-degree frustum, casters beyond it cast "
                     "nothing\n",
-                    l, (double)PROJECTIVE_MAX_HALF_ANGLE_DEG * 2);
-        projective.clamped_warned |= t->clamped ? 1u << l : 0;
+                    l, (double)PROJECTIVE_FIT_MAX_HALF_ANGLE_DEG * 2);
+        projective.clamped_warned |= t->frustum.clamped ? 1u << l : 0;
         /* 3. The casters black on white into the light's texture (those
          * the visible receivers' lookups may read; kept while nothing
          * moves). */
         bool drawn = false;
-        if (t->fitted) {
+        if (t->frustum.fitted) {
             projective_prepare_texture(t, size);
             projective_plan_casters(f, l, t);
             drawn = projective_draw_texture(f, l, t);
@@ -434,13 +339,14 @@ static void projective_describe(char *out, size_t size) {
                        : projective.settings.self_shadow == PROJECTIVE_SELF_SHADOW_ON
                            ? "casters darken their own lit side"
                            : "casters show no shadow";
-    if (!t->fitted)
+    if (!t->frustum.fitted)
         snprintf(out, size, "light 0: no caster; %s", self);
-    else if (t->orthographic)
+    else if (t->frustum.orthographic)
         snprintf(out, size, "light 0: %d texture, a box round the casters; %s", t->size, self);
     else
         snprintf(out, size, "light 0: %d texture, a %.3g-degree cone round the casters%s; %s", t->size,
-                 (double)t->half_angle_deg * 2, t->clamped ? " (light among them: clamped)" : "", self);
+                 (double)t->frustum.half_angle_deg * 2, t->frustum.clamped ? " (light among them: clamped)" : "",
+                 self);
 }
 
 /* The fixes and limits each as the lecture shows it, and the texture's

@@ -26,15 +26,10 @@
  * stencil is 0 (everywhere on objects that receive no shadows), the first
  * light's pass with the ambient term (technique_shade_light), so that one
  * light costs one shading pass.
- * --mode auto (default) takes z-pass, without caps, where
- * volume_mesh_zpass_safe says the volume cannot reach the near-plane
- * rectangle, z-fail with caps elsewhere; --mode zpass with the camera
- * inside a shadow visibly fails (shadows inverted); --mode eye-count
- * starts z-pass from the number of volumes that hold the eye, counted on
- * the CPU (volume_mesh_count_at): exact while depth clamp counts the
- * faces before the near plane at its depth, wrong without it
- * (--no-depth-clamp) where the near plane cuts a volume the eye is
- * outside of.
+ * --mode auto (default) takes z-pass where volume_mesh_zpass_safe says a
+ * volume cannot reach the near-plane rectangle, z-fail elsewhere;
+ * eye-count starts z-pass from the volumes that hold the eye
+ * (volume_mesh_count_at), exact only under depth clamp.
  *
  * The options, each a flag and a key, are volumes_params. How each
  * caster's volume is drawn, kept or streamed, is demos/lib/volume_draw.h's;
@@ -80,14 +75,14 @@ typedef struct volumes_settings {
 
 static const char *const volumes_modes[] = {"auto", "zpass", "zfail", "eye-count", NULL}; /* volume_plan_mode's */
 static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
-static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts", NULL};
+static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts",
+                                               NULL}; /* volume_overlay_kind's */
 static const char *const volumes_extrusions[] = {"infinity", "reach", NULL};
 static const char *const volumes_softs[] = {"samples", "wedges", NULL};
 static const char *const volumes_counters[] = {"auto", "stencil", "float", NULL}; /* volume_counter_kind's */
 enum { VOLUMES_SOFT_SAMPLES, VOLUMES_SOFT_WEDGES };
 enum { VOLUMES_CPU, VOLUMES_GPU };
 enum { VOLUMES_EXTRUDE_INFINITY, VOLUMES_EXTRUDE_REACH };
-enum { VOLUMES_OVERLAY_NONE, VOLUMES_OVERLAY_VOLUMES, VOLUMES_OVERLAY_SILHOUETTES, VOLUMES_OVERLAY_COUNTS };
 
 static struct {
     volumes_settings settings;
@@ -300,41 +295,6 @@ static void volumes_forget_moved(const technique_frame *f) {
     }
 }
 
-/* ---- overlays ---- */
-
-/* For lectures, over the finished picture: light 0's volumes, silhouette
- * edges, or stencil counts. The stencil still holds the last light's
- * counts: the counts recount light 0 with every volume (the overlay
- * colours every pixel). */
-static void volumes_draw_overlay(const technique_frame *f) {
-    const scene *s = f->gpu->scene;
-    if (volumes.settings.overlay == VOLUMES_OVERLAY_NONE || s->light_count == 0)
-        return;
-    volume_draw_reach(&volumes.draw, &s->lights[0], volumes_trim());
-    volume_plan plan;
-    float centre[4];
-    scene_light_homogeneous(&s->lights[0], centre);
-    volume_plan_every_caster(f, 0, centre, (volume_plan_mode)volumes.settings.mode, volumes.casters, &plan);
-    plan.cache = volume_draw_cache(0, TECHNIQUE_LIGHT_CENTRE);
-    if (volumes.settings.overlay == VOLUMES_OVERLAY_COUNTS) {
-        plan.bounds.rect[2] = f->width;
-        plan.bounds.rect[3] = f->height;
-        volume_counter_clear(&volumes.counter, f, &plan);
-        glDisable(GL_SCISSOR_TEST);
-        volume_counter_begin(&volumes.counter, f, &plan);
-        bool wide = volumes.counter.counting_wide;
-        volume_counter_draw(&volumes.counter, f, &plan);
-        if (wide) {
-            volume_counter_end(&volumes.counter, f);
-            volume_overlay_wide_counts(&volumes.counter.wide);
-        } else {
-            volume_overlay_counts(&volumes.draw, VOLUME_COUNTER_STENCIL_MASK);
-        }
-    } else {
-        volume_overlay_shapes(&volumes.draw, f, plan.position, volumes.settings.overlay == VOLUMES_OVERLAY_VOLUMES);
-    }
-}
-
 /* ---- the frame ---- */
 
 static void volumes_render(const technique_frame *f) {
@@ -419,7 +379,8 @@ static void volumes_render(const technique_frame *f) {
     if (technique_ambient_light(f) < 0)
         technique_shade_ambient(f);
     /* 7. For lectures, the overlays. */
-    volumes_draw_overlay(f);
+    volume_overlay_draw((volume_overlay_kind)volumes.settings.overlay, f, &volumes.counter, volumes.casters,
+                        volumes_trim());
 }
 
 static void volumes_describe(char *out, size_t size) {

@@ -125,3 +125,33 @@ void volume_overlay_shapes(volume_draw *d, const technique_frame *f, const float
     depth_clamp(false);
     glDisable(GL_BLEND);
 }
+
+void volume_overlay_draw(volume_overlay_kind kind, const technique_frame *f, volume_counter *c,
+                         volume_plan_caster *casters, bool trim) {
+    const scene *s = f->gpu->scene;
+    if (kind == VOLUME_OVERLAY_NONE || s->light_count == 0)
+        return;
+    volume_draw_reach(c->draw, &s->lights[0], trim);
+    volume_plan plan;
+    float centre[4];
+    scene_light_homogeneous(&s->lights[0], centre);
+    volume_plan_every_caster(f, 0, centre, c->settings.mode, casters, &plan);
+    plan.cache = volume_draw_cache(0, TECHNIQUE_LIGHT_CENTRE);
+    if (kind != VOLUME_OVERLAY_COUNTS) {
+        volume_overlay_shapes(c->draw, f, plan.position, kind == VOLUME_OVERLAY_VOLUMES);
+        return;
+    }
+    plan.bounds.rect[2] = f->width;
+    plan.bounds.rect[3] = f->height;
+    volume_counter_clear(c, f, &plan);
+    glDisable(GL_SCISSOR_TEST);
+    volume_counter_begin(c, f, &plan);
+    bool wide = c->counting_wide;
+    volume_counter_draw(c, f, &plan);
+    if (wide) {
+        volume_counter_end(c, f);
+        volume_overlay_wide_counts(&c->wide);
+    } else {
+        volume_overlay_counts(c->draw, VOLUME_COUNTER_STENCIL_MASK);
+    }
+}
