@@ -39,7 +39,8 @@ GLAD_H := $(BUILD)/glad/include/glad/gl.h
 #   common/gl        contexts, target, shaders, HUD, the lit scene, capture,
 #                    the technique interface: data and the GL loader
 #   demos/           the techniques (demos/lib: what several share): gl, data
-#   common/programs  the frame loop and every main: all of common; only the
+#   common/programs  the frame loop, the frame's host (technique_host) and
+#                    every main: all of common; only the
 #                    main files see demos/ (for the registry)
 GLAD_INCLUDE = -I$(BUILD)/glad/include
 INCLUDES_data = -Icommon/data
@@ -57,7 +58,8 @@ $(BUILD)/common/programs/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs) -Idemos
 $(BUILD)/main_%.o: LAYER_INCLUDES = $(INCLUDES_programs) -Idemos
 $(BUILD)/tests/%.o: LAYER_INCLUDES = -Itests -Idemos -Idemos/lib $(INCLUDES_programs)
 
-COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) common/programs/app.c common/programs/compare.c
+COMMON_SRC := $(wildcard common/data/*.c common/measure/*.c common/gl/*.c) common/programs/app.c common/programs/compare.c \
+	common/programs/technique_host.c
 DEMO_SRC := $(filter-out demos/registry.c,$(wildcard demos/*.c))
 DEMOS := $(patsubst demos/%.c,%,$(DEMO_SRC))
 TEST_SRC := $(wildcard tests/test_*.c)

@@ -20,6 +20,7 @@
 #include "scene.h"
 #include "shader.h"
 #include "shadow_map.h"
+#include "technique_host.h"
 
 #define SCENE_PATH "assets/scenes/simple.json" /* a spot light: a 2D uniform fit */
 #define VIEW_ASPECT (16.0f / 9.0f)
@@ -55,7 +56,8 @@ static int gl_setup(void **state) {
         return -1;
     camera_view view;
     camera_view_compute(&gl.scene.camera, VIEW_ASPECT, &view);
-    int receiver_count = technique_receiver_points(&gl.scene, &view, gl.receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
+    int receiver_count =
+        technique_host_receiver_points(&gl.scene, &view, gl.receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
     gl.fitted.size = MAP_SIZE;
     if (receiver_count == 0 ||
         !shadow_map_fit_uniform(&gl.scene, 0, &gl.fitted, (const float(*)[3])gl.receivers, receiver_count) ||

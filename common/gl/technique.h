@@ -85,9 +85,6 @@ typedef struct technique_counts {
 /* The most corners of one box's part inside a frustum: its 8 and the
  * frustum's 8, and where each one's 12 edges cross the other's 6 faces. */
 #define TECHNIQUE_MAX_PART_POINTS (8 + 8 + 2 * 12 * 6)
-/* A light's pixel rectangle is grown by this many pixels each side: the
- * rasterizer's pixel centres and float rounding at its edge. */
-#define TECHNIQUE_RECT_MARGIN_PIXELS 1
 
 /* What the camera's depth pre-pass shows (technique_see): the visible
  * pixels' slabs and, made on a light's first technique_light_hull, the
@@ -107,7 +104,7 @@ typedef struct technique_seen {
     light_mask masks[SCENE_MAX_LIGHTS][LIGHT_MASK_MAX_LAYERS];
 } technique_seen;
 
-/* Skips. The frame's owner (technique_host, below: the app and the
+/* Skips. The frame's owner (technique_host.h: the app and the
  * benchmark) works out per frame what a technique need not do, and hands
  * it over in the frame; none may change a pixel. in_view: the objects the
  * camera passes draw (view culling); lights, lit_by and light_rect: the
@@ -144,7 +141,7 @@ typedef struct technique_frame {
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
     bool cull_casters;                      /* technique_caster_needed culls (--no-caster-cull: never) */
     /* Without --no-hidden-cull, unless the skip sleeps
-     * (TECHNIQUE_HIDDEN_RETRY_FRAMES): where technique_see keeps what the
+     * (technique_host.h): where technique_see keeps what the
      * pre-pass shows (its masks cull casters only with cull_casters);
      * else NULL. */
     technique_seen *seen;
@@ -165,11 +162,6 @@ typedef struct technique_frame {
      * view differ only by how the fit moved (the benchmark's shimmer). */
     const struct technique_frame *fit;
 } technique_frame;
-
-/* The corners of the part of every receiver's box of `s` inside the
- * frustum of `view`, at most max_points; returns how many (the frame's
- * receivers). */
-int technique_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points);
 
 /* Light l reaches the view this frame. */
 bool technique_light_on(const technique_frame *f, int l);
@@ -262,13 +254,6 @@ bool technique_sample_area_light(const technique_frame *f, int l, int samples, s
  * the fraction, on every object but those that take no shadows where
  * receivers_only. Leaves blending and the scissor test off. */
 void technique_shade_light_soft(const technique_frame *f, int l, const soft_visibility *v, bool receivers_only);
-
-/* The frames the hidden-caster skip sleeps after a frame in which it
- * culled, narrowed and hid nothing: the read-back then costs without
- * saving (a scene of a few casters and objects, all in view and in
- * light, under a map). It never changes a decision, so it may sleep and
- * wake as it likes. */
-#define TECHNIQUE_HIDDEN_RETRY_FRAMES 30
 
 /* Hidden casters and objects. A technique calls this after its depth
  * pre-pass (the framebuffer bound, the camera's depth written): the
@@ -381,51 +366,5 @@ bool technique_init(const technique *t, const render_scene *gpu);
  * any GL error reported.
  * The caller has set f->gpu->scene's lights for this frame. */
 bool technique_render_frame(const technique *t, const technique_frame *f, target *target, int visibility_of);
-
-/* The frame's owner (the app, the benchmark): one technique on one scene,
- * the skips it runs under, and what the last frame saw, so that each frame
- * tells the technique what changed. */
-typedef struct technique_host {
-    const technique *technique;
-    render_scene *gpu;
-    const render_skips *skips;
-    technique_counts counts; /* the last frame's */
-    int objects_in_view;     /* the last frame's, from render_cull_view */
-    bool started;            /* a frame was rendered since technique_host_start */
-    mat4 last_view_projection;
-    scene_light last_lights[SCENE_MAX_LIGHTS];
-    float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
-    float fit_receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3]; /* fit_view's */
-    technique_seen seen;
-    /* Frames left in which technique_see reads nothing: the last read
-     * saved nothing (TECHNIQUE_HIDDEN_RETRY_FRAMES). */
-    int hidden_idle;
-    /* The frames' light_points (technique_frame): the window's
-     * TECHNIQUE_PROGRESSIVE_POINTS, else 0; a frame of one light's
-     * visibility (visibility_of) takes every point. */
-    int light_points;
-    bool settings_changed; /* since the last frame (technique_host_settings_changed) */
-} technique_host;
-
-/* The area light's points a stencil technique adds per frame in the
- * window: a hard light's cost, so that sampling one never slows a frame
- * below the hard technique's; the picture converges over as many frames
- * as the light has points while nothing moves. */
-#define TECHNIQUE_PROGRESSIVE_POINTS 1
-
-/* technique_init of t on gpu, under skips; the next frame is its first. */
-bool technique_host_start(technique_host *h, const technique *t, render_scene *gpu, const render_skips *skips);
-/* The technique's destroy; frees what the host kept. */
-void technique_host_stop(technique_host *h);
-/* One of the technique's settings changed (its key in the window): the
- * next frame says so (technique_changes.settings). */
-void technique_host_settings_changed(technique_host *h);
-/* One frame: the view culled (render_cull_view), the lights that reach it,
- * the receivers it sees, what changed since the last frame, then
- * technique_render_frame. The caller has set gpu->scene's lights.
- * fit_view: NULL, or the camera the shadow maps are fitted to instead
- * (technique_frame.fit). */
-bool technique_host_frame(technique_host *h, const camera_view *view, const camera_view *fit_view, target *target,
-                          double time, int visibility_of);
 
 #endif

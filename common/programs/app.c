@@ -27,6 +27,7 @@
 #include "shader.h"
 #include "shadowdiff.h"
 #include "target.h"
+#include "technique_host.h"
 #include "tour.h"
 #include "video.h"
 
@@ -1147,7 +1148,7 @@ static bool app_run(void) {
     };
     if (!context_create(&app.ctx, &settings))
         return false;
-    app.host.light_points = app.ctx.window ? TECHNIQUE_PROGRESSIVE_POINTS : 0;
+    app.host.light_points = app.ctx.window ? TECHNIQUE_HOST_PROGRESSIVE_POINTS : 0;
     int width = app.width, height = app.height;
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);

@@ -59,6 +59,7 @@
 #include "results_csv.h"
 #include "shader.h"
 #include "shadowdiff.h"
+#include "technique_host.h"
 
 #define BENCH_MAX_ROWS 512
 #define BENCH_MAX_FRAMES 1000
