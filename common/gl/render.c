@@ -250,24 +250,30 @@ static bool render_lit_load(render_lit_programs *lit, render_lit_variant variant
         lit->failed = true;
         return false;
     }
-    p->ambient = shader_uniform(p->program.id, "u_ambient");
+    unsigned id = p->program.id;
+    bool soft = variant == RENDER_LIT_SOFT_VISIBILITY;
+    p->ambient = shader_uniform(id, "u_ambient");
+    p->soft_light = soft ? shader_uniform(id, "u_soft_light") : -1;
+    p->soft_visibility = soft ? shader_uniform(id, "u_soft_visibility") : -1;
+    p->soft_scale = soft ? shader_uniform(id, "u_soft_scale") : -1;
     p->loaded = true;
     return true;
 }
 
-const render_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant, const camera_view *v,
-                                             unsigned lights, bool ambient) {
+const render_lit_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant,
+                                                 const camera_view *v, unsigned lights, bool ambient) {
     unsigned set = lights & RENDER_ALL_LIGHTS(r->scene->light_count);
     render_lit_program *p = &r->lit->programs[variant][set];
     if (!p->loaded && (r->lit->failed || !render_lit_load(r->lit, variant, set)))
         return NULL;
     render_program_use(&p->program, v);
     glUniform1f(p->ambient, ambient ? 1.0f : 0.0f);
-    return &p->program;
+    return p;
 }
 
 const render_program *render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
-    return render_use_lit_variant(r, RENDER_LIT_PLAIN, v, lights, ambient);
+    const render_lit_program *p = render_use_lit_variant(r, RENDER_LIT_PLAIN, v, lights, ambient);
+    return p ? &p->program : NULL;
 }
 
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask) {

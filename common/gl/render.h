@@ -88,6 +88,9 @@ typedef enum render_lit_variant {
 typedef struct render_lit_program {
     render_program program;
     int ambient; /* its u_ambient */
+    /* RENDER_LIT_SOFT_VISIBILITY's u_soft_light, u_soft_visibility and
+     * u_soft_scale (soft_visibility_use_lit); -1 in the plain one. */
+    int soft_light, soft_visibility, soft_scale;
     bool loaded;
 } render_lit_program;
 
@@ -171,10 +174,11 @@ int render_cull_view(render_scene *r, const camera_view *v, const render_skips *
 
 /* Binds the lit program of `variant` for the set `lights`
  * (RENDER_LIGHT_BIT; those the scene has), with or without the ambient
- * term, and returns it to draw with; NULL where it failed to compile. */
-const render_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant, const camera_view *v,
-                                             unsigned lights, bool ambient);
-/* The plain one. */
+ * term, and returns it (its program to draw with); NULL where it failed
+ * to compile. */
+const render_lit_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant,
+                                                 const camera_view *v, unsigned lights, bool ambient);
+/* The plain one's program. */
 const render_program *render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
 /* The depth of the objects in `mask` (NULL: all), nothing else written:
  * the pre-pass after which every shading pass meets each visible pixel

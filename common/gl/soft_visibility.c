@@ -136,17 +136,17 @@ void soft_visibility_add(soft_visibility *v, int l, float weight) {
 
 const render_program *soft_visibility_use_lit(const soft_visibility *v, const render_scene *r,
                                               const camera_view *view, int light, unsigned lights, bool ambient) {
-    const render_program *p = render_use_lit_variant(r, RENDER_LIT_SOFT_VISIBILITY, view, lights, ambient);
+    const render_lit_program *p = render_use_lit_variant(r, RENDER_LIT_SOFT_VISIBILITY, view, lights, ambient);
     if (!p)
         return NULL;
     const soft_visibility_light *sum = &v->lights[light];
-    glUniform1i(shader_uniform(p->id, "u_soft_light"), light);
-    glUniform1i(shader_uniform(p->id, "u_soft_visibility"), SOFT_VISIBILITY_UNIT);
-    glUniform1f(shader_uniform(p->id, "u_soft_scale"), 1.0f / (float)(sum->points > 0 ? sum->points : 1));
+    glUniform1i(p->soft_light, light);
+    glUniform1i(p->soft_visibility, SOFT_VISIBILITY_UNIT);
+    glUniform1f(p->soft_scale, 1.0f / (float)(sum->points > 0 ? sum->points : 1));
     glActiveTexture(GL_TEXTURE0 + SOFT_VISIBILITY_UNIT);
     glBindTexture(GL_TEXTURE_2D, sum->texture);
     glActiveTexture(GL_TEXTURE0);
-    return p;
+    return &p->program;
 }
 
 void soft_visibility_destroy(soft_visibility *v) {
