@@ -19,14 +19,14 @@ vec3 volume_to_light(vec3 p) {
     return u_light.xyz - u_light.w * p;
 }
 
-// The CPU's weight (volume_mesh_facing, and the rule's weight of a
+// The CPU's weight (mesh_point_facing, and the rule's weight of a
 // back-facing triangle): 1 facing the light, -1 facing away (0 on a closed
 // mesh), 0 edge-on.
 int volume_weight(vec3 a, vec3 b, vec3 c) {
     vec3 n = cross(b - a, c - a);
     float along = dot(n, volume_to_light(a));
     float reach = length(volume_to_light(a)) + length(volume_to_light(b)) + length(volume_to_light(c));
-    if (abs(along) <= length(n) * reach / float(VOLUME_MESH_EDGE_ON_RECIPROCAL))
+    if (abs(along) <= length(n) * reach / float(MESH_POINT_EDGE_ON_RECIPROCAL))
         return 0;
     return along > 0.0 ? 1 : u_topology == VOLUME_SILHOUETTE_CLOSED ? 0 : -1;
 }

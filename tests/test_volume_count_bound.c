@@ -65,7 +65,7 @@ static int deepest_sampled(const mesh *m, bool closed_rule, const float light[4]
             const float *a = m->vertices[m->indices[3 * t]].position,
                         *b = m->vertices[m->indices[3 * t + 1]].position,
                         *c = m->vertices[m->indices[3 * t + 2]].position;
-            int facing = volume_mesh_facing(a, b, c, light);
+            int facing = mesh_point_facing(a, b, c, light);
             if ((closed_rule ? facing > 0 : facing != 0) && crosses(origin, d, a, b, c))
                 count++;
         }

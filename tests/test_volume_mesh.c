@@ -89,7 +89,7 @@ static void assert_caps_face_out_of_prisms(const volume_mesh *v, const float lig
 
 static void build(volume_mesh *v, const mesh *m, const float light[4], volume_mesh_parts parts) {
     mesh_edges e;
-    assert_true(volume_mesh_edges_build(m, &e));
+    assert_true(mesh_edges_build_welded(m, &e));
     assert_true(volume_mesh_build(v, m, &e, light, NULL, parts));
     mesh_edges_free(&e);
 }
@@ -150,13 +150,12 @@ static void test_light_inside_closed_box(void **state) {
     mesh m;
     assert_true(mesh_make_box(&m, 2, 2, 2));
     mesh_edges e;
-    assert_true(volume_mesh_edges_build(&m, &e));
+    assert_true(mesh_edges_build_welded(&m, &e));
     assert_true(e.closed);
     const float centre[4] = {0.1f, 0.2f, -0.3f, 1}, on_top[4] = {0.3f, 1, -0.2f, 1};
     const float above[4] = {0.3f, 1.001f, -0.2f, 1}, beside[4] = {3, 1, 0, 1}, sun[4] = {0.1f, 1, 0.2f, 0};
-    assert_true(volume_mesh_light_inside(&m, centre) && volume_mesh_light_inside(&m, on_top));
-    assert_false(volume_mesh_light_inside(&m, above) || volume_mesh_light_inside(&m, beside) ||
-                 volume_mesh_light_inside(&m, sun));
+    assert_true(mesh_point_inside(&m, centre) && mesh_point_inside(&m, on_top));
+    assert_false(mesh_point_inside(&m, above) || mesh_point_inside(&m, beside) || mesh_point_inside(&m, sun));
     assert_false(volume_mesh_closed_rule(&m, &e, centre) || volume_mesh_closed_rule(&m, &e, on_top));
     assert_true(volume_mesh_closed_rule(&m, &e, above) && volume_mesh_closed_rule(&m, &e, beside));
     enum { TRIANGLES = 12, TOP_TRIANGLES = 2, TOP_EDGES = 4 };
@@ -176,7 +175,7 @@ static void test_light_inside_closed_box(void **state) {
     mesh_free(&m);
 }
 
-/* volume_mesh_facing: +1 and -1 either side of a triangle's plane, 0
+/* mesh_point_facing: +1 and -1 either side of a triangle's plane, 0
  * within the edge-on tolerance of it, for point and directional lights,
  * whichever corner the triangle starts from. */
 static void test_facing_edge_on(void **state) {
@@ -188,9 +187,9 @@ static void test_facing_edge_on(void **state) {
         {0, 1, 0, 0},           {1, within, 0, 0}};
     const int expected[] = {1, -1, 0, 0, 1, 0};
     for (size_t i = 0; i < sizeof expected / sizeof *expected; i++) {
-        assert_int_equal(volume_mesh_facing(a, b, c, lights[i]), expected[i]);
-        assert_int_equal(volume_mesh_facing(b, c, a, lights[i]), expected[i]);
-        assert_int_equal(volume_mesh_facing(a, c, b, lights[i]), -expected[i]);
+        assert_int_equal(mesh_point_facing(a, b, c, lights[i]), expected[i]);
+        assert_int_equal(mesh_point_facing(b, c, a, lights[i]), expected[i]);
+        assert_int_equal(mesh_point_facing(a, c, b, lights[i]), -expected[i]);
     }
 }
 
@@ -205,7 +204,7 @@ static void assert_trimmed_closed_beyond_reach(const float light[4], const float
     mesh m;
     assert_true(mesh_make_box(&m, 1, 1, 1));
     mesh_edges e;
-    assert_true(volume_mesh_edges_build(&m, &e));
+    assert_true(mesh_edges_build_welded(&m, &e));
     mat4 identity = GLM_MAT4_IDENTITY_INIT;
     const float reach_lo[3] = {-REACH_HALF, -REACH_HALF, -REACH_HALF};
     const float reach_hi[3] = {REACH_HALF, REACH_HALF, REACH_HALF};
@@ -574,7 +573,7 @@ static int border_marks(const mesh *m, const uint32_t *indices) {
     return marks;
 }
 
-/* Welded but not at one position (volume_mesh_edges_build): a box (one
+/* Welded but not at one position (mesh_edges_build_welded): a box (one
  * vertex per face corner) with one face's copy of a corner one ulp off
  * still welds into the closed edge table, but counts as open, and the
  * adjacency pairs nothing across the two box edges from that copy to
@@ -591,7 +590,7 @@ static void test_welded_apart_is_open(void **state) {
     for (int nudged = 0; nudged < 2; nudged++) {
         if (nudged)
             box.vertices[0].position[0] = nextafterf(box.vertices[0].position[0], 0);
-        assert_true(volume_mesh_edges_build(&box, &e));
+        assert_true(mesh_edges_build_welded(&box, &e));
         mesh_topology t;
         assert_true(mesh_weld(&box, &t));
         assert_int_equal(mesh_topology_count_edges(&box, &t).manifold, box.index_count / 2);
@@ -617,7 +616,7 @@ static void test_adjacency_marks_borders(void **state) {
     mesh box;
     mesh_edges e;
     assert_true(mesh_make_box(&box, 1, 2, 3));
-    assert_true(volume_mesh_edges_build(&box, &e));
+    assert_true(mesh_edges_build_welded(&box, &e));
     size_t count = (size_t)box.index_count / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE;
     uint32_t *ours = malloc(count * sizeof *ours), *closed = malloc(count * sizeof *closed);
     assert_true(ours && closed);
@@ -640,7 +639,7 @@ static void test_adjacency_marks_borders(void **state) {
                                         0, 4, 1, 0, 4, 1, /* page: spine, border, border */
                                         2, 0, 1, 2, 5, 1 /* across 1-2, border, border */};
     uint32_t adjacency[sizeof expected / sizeof *expected];
-    assert_true(volume_mesh_edges_build(&book, &e));
+    assert_true(mesh_edges_build_welded(&book, &e));
     assert_false(e.closed);
     volume_silhouette_adjacency(&book, &e, adjacency);
     assert_memory_equal(adjacency, expected, sizeof expected);

@@ -180,7 +180,7 @@ static void test_light_inside_caster(void **state) {
  * wide: the weld pairs the edge, but the geometry shader judged the
  * sliver from the face's ends and found it facing away from the low
  * light, an unmatched side, where the CPU path is exact. Such a mesh
- * counts as open (volume_mesh_edges_build), so every path is exact. */
+ * counts as open (mesh_edges_build_welded), so every path is exact. */
 static void test_welded_sliver(void **state) {
     (void)state;
     static const char *const configs[] = {"", "--silhouette gpu", "--mode zfail --silhouette gpu"};

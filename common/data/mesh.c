@@ -670,3 +670,30 @@ bool mesh_sanitize(mesh *m, const char *name) {
     }
     return true;
 }
+
+static bool mesh_same_position(const mesh *m, uint32_t corner_a, uint32_t corner_b) {
+    return memcmp(m->vertices[m->indices[corner_a]].position, m->vertices[m->indices[corner_b]].position,
+                  sizeof m->vertices[0].position) == 0;
+}
+
+bool mesh_edge_uses_meet(const mesh *m, const mesh_edge_use *u, const mesh_edge_use *v) {
+    uint32_t u_end = mesh_next_corner(u->corner), v_end = mesh_next_corner(v->corner);
+    if (u->direction == v->direction)
+        return mesh_same_position(m, u->corner, v->corner) && mesh_same_position(m, u_end, v_end);
+    return mesh_same_position(m, u->corner, v_end) && mesh_same_position(m, u_end, v->corner);
+}
+
+bool mesh_edges_build_welded(const mesh *m, mesh_edges *e) {
+    mesh_topology t;
+    if (!mesh_weld(m, &t))
+        return false;
+    bool ok = mesh_edges_build(m, &t, e);
+    mesh_topology_free(&t);
+    /* Closed only where every edge's two triangles meet at one position
+     * (see the header). */
+    for (uint32_t i = 0; ok && e->closed && i < e->edge_count; i++) {
+        const mesh_edge_use *u = &e->uses[e->edges[i].first_use];
+        e->closed = mesh_edge_uses_meet(m, &u[0], &u[1]);
+    }
+    return ok;
+}

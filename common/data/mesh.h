@@ -150,6 +150,23 @@ typedef struct mesh_edges {
 
 bool mesh_edges_build(const mesh *m, const mesh_topology *t, mesh_edges *e);
 void mesh_edges_free(mesh_edges *e);
+/* The welded edge table of m (mesh_weld, mesh_edges_build) that shadow
+ * volumes are built from and the shadow maps ask closedness of; false
+ * after printing why. The weld pairs vertices within a tolerance, so two
+ * triangles may meet at an edge whose ends they hold at positions a few
+ * ulps apart; a mesh counts as closed here only where every edge's two
+ * triangles meet at one position, bit for bit (mesh_edge_uses_meet),
+ * since the volumes' geometry shader judges a neighbour from the
+ * triangle's own ends of the edge and its neighbour's third vertex: from
+ * other positions a needle or sliver neighbour's facing comes out at
+ * random, and an unmatched side draws streaks of false shadow
+ * (tests/data/vol_welded_sliver.json, test_volumes' test_welded_sliver;
+ * the CPU path is exact there either way). Such a mesh takes the volumes'
+ * open rule, which is exact for any mesh. */
+bool mesh_edges_build_welded(const mesh *m, mesh_edges *e);
+/* Whether edge uses u and v (of one edge of m's table) run between the
+ * same two positions, bit for bit. */
+bool mesh_edge_uses_meet(const mesh *m, const mesh_edge_use *u, const mesh_edge_use *v);
 
 /* Index buffer for GL_TRIANGLES_ADJACENCY (6 per triangle: each corner, then
  * the vertex across the edge it starts). Only a closed mesh has one: false

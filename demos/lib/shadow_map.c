@@ -9,7 +9,7 @@
 #include "context.h"
 #include "depth.h"
 #include "shadow_map.h"
-#include "volume_mesh.h"
+#include "mesh_point.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
 const char *const shadow_map_filters[] = {
@@ -562,7 +562,7 @@ static bool shadow_map_find_closed(shadow_map_renderer *r, const scene *s) {
         mesh_edges e;
         if (!s->objects[i].casts)
             continue;
-        if (!volume_mesh_edges_build(&s->objects[i].mesh, &e))
+        if (!mesh_edges_build_welded(&s->objects[i].mesh, &e))
             return false;
         r->closed[i] = e.closed;
         mesh_edges_free(&e);
@@ -652,8 +652,8 @@ static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const te
     float object_eye[4];
     if (!r->closed[i])
         return 0;
-    volume_mesh_object_light(s->objects[i].model, eye, object_eye);
-    if (!volume_mesh_light_inside(&s->objects[i].mesh, object_eye))
+    mesh_point_to_object(s->objects[i].model, eye, object_eye);
+    if (!mesh_point_inside(&s->objects[i].mesh, object_eye))
         return 0;
     unsigned lights = 0;
     for (int l = 0; l < s->light_count; l++) {
@@ -661,8 +661,8 @@ static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const te
         if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
             continue;
         scene_light_homogeneous(&s->lights[l], light);
-        volume_mesh_object_light(s->objects[i].model, light, object_light);
-        if (!volume_mesh_light_inside(&s->objects[i].mesh, object_light))
+        mesh_point_to_object(s->objects[i].model, light, object_light);
+        if (!mesh_point_inside(&s->objects[i].mesh, object_light))
             lights |= 1u << l;
     }
     return lights;

@@ -245,7 +245,7 @@ static bool volume_count_bound_weighs(const mesh *m, size_t t, bool closed_rule,
                                       float out[3][3]) {
     for (int k = 0; k < 3; k++)
         memcpy(out[k], m->vertices[m->indices[3 * t + (size_t)k]].position, sizeof out[k]);
-    int facing = volume_mesh_facing(out[0], out[1], out[2], light);
+    int facing = mesh_point_facing(out[0], out[1], out[2], light);
     return closed_rule ? facing > 0 : facing != 0;
 }
 

@@ -12,7 +12,7 @@
 /* Object i's edge table and adjacency on the GPU. */
 static bool volume_draw_init_caster(volume_draw *d, const render_scene *gpu, int i) {
     const mesh *m = &gpu->scene->objects[i].mesh;
-    return volume_mesh_edges_build(m, &d->edges[i]) &&
+    return mesh_edges_build_welded(m, &d->edges[i]) &&
            volume_silhouette_mesh_init(&d->adjacency[i], m, &d->edges[i], gpu->meshes[i].vertex_buffer);
 }
 
@@ -127,7 +127,7 @@ bool volume_draw_build(volume_draw *d, const technique_frame *f, int i, const fl
                        volume_mesh_parts part) {
     const scene_object *o = &f->gpu->scene->objects[i];
     float object_light[4];
-    volume_mesh_object_light(o->model, light, object_light);
+    mesh_point_to_object(o->model, light, object_light);
     volume_mesh_trim trim = {0};
     if (d->reach_on)
         volume_mesh_trim_for(o->model, object_light, &o->mesh, d->reach_lo, d->reach_hi, &trim);
@@ -174,7 +174,7 @@ void volume_draw_caster(volume_draw *d, const technique_frame *f, int cache, int
     if (gpu) {
         const scene_object *o = &f->gpu->scene->objects[i];
         float object_light[4];
-        volume_mesh_object_light(o->model, light, object_light);
+        mesh_point_to_object(o->model, light, object_light);
         volume_silhouette_draw(d->wide ? &d->gpu_wide : &d->gpu, &d->adjacency[i], f->view, (const float *)o->model,
                                object_light, volume_mesh_closed_rule(&o->mesh, &d->edges[i], object_light));
     } else {

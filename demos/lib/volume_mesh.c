@@ -85,8 +85,8 @@ static void volume_mesh_emit_side(volume_mesh *v, const float *a, const float *b
  * (see the header). */
 static int volume_mesh_weight(const mesh *m, uint32_t triangle, const float light[4], bool closed) {
     const uint32_t *corner = &m->indices[triangle * 3];
-    int facing = volume_mesh_facing(m->vertices[corner[0]].position, m->vertices[corner[1]].position,
-                                    m->vertices[corner[2]].position, light);
+    int facing = mesh_point_facing(m->vertices[corner[0]].position, m->vertices[corner[1]].position,
+                                   m->vertices[corner[2]].position, light);
     return facing < 0 && closed ? 0 : facing;
 }
 
@@ -168,12 +168,6 @@ void volume_mesh_free(volume_mesh *v) {
     free(v->vertices);
     free(v->weights);
     *v = (volume_mesh){0};
-}
-
-void volume_mesh_object_light(const mat4 model, const float light[4], float out[4]) {
-    mat4 inverse;
-    glm_mat4_inv((vec4 *)model, inverse);
-    glm_mat4_mulv(inverse, (float *)light, out);
 }
 
 /* ---- trimmed to the light's reach ---- */

@@ -44,6 +44,7 @@
 #include <stddef.h>
 
 #include "mesh.h"
+#include "mesh_point.h"
 #include "scene.h"
 
 /* Parts: the sides alone close the volume for z-pass counting (Heidmann
@@ -113,25 +114,13 @@ typedef struct volume_mesh_trim {
 #define VOLUME_MESH_TRIM_MARGIN 0.01f
 
 /* A triangle edge-on to the light (the light in its plane, within
- * VOLUME_MESH_EDGE_ON_RECIPROCAL) weighs 0 in either rule: its prism is
- * flat, no space, and its far cap would be ill-posed (a light in the
- * triangle sends its corners to directions all round, whose cap covers
- * the screen by rounding). The sides still close: an edge's multiplicity
- * sums its triangles' weights, whatever they are.
+ * MESH_POINT_EDGE_ON_RECIPROCAL; mesh_point_facing) weighs 0 in either
+ * rule: its prism is flat, no space, and its far cap would be ill-posed (a
+ * light in the triangle sends its corners to directions all round, whose
+ * cap covers the screen by rounding). The sides still close: an edge's
+ * multiplicity sums its triangles' weights, whatever they are.
  *
- * A triangle is edge-on to a light whose distance from its plane is at
- * most the sum of its corners' distances from the light over this (for
- * a directional light: the sine of its angle to the plane, over 3): far
- * above float rounding of positions moved into an object's space, and
- * symmetric in the corners, so that a neighbour's test from other corners
- * (the geometry shader's) differs only by rounding. An int: the
- * silhouette shader gets it as a define. */
-#define VOLUME_MESH_EDGE_ON_RECIPROCAL 100000
-/* +1 when triangle (a, b, c) (positions in the light's space, as it is
- * wound) faces the light (homogeneous), -1 when it faces away, 0 when it
- * is edge-on to it (see above). */
-int volume_mesh_facing(const float *a, const float *b, const float *c, const float light[4]);
-/* The closed rule counts the light-facing triangles a ray from the light
+ * The closed rule counts the light-facing triangles a ray from the light
  * crosses: right from outside (it enters before it leaves), but from a
  * light inside a mesh wound outwards every ray leaves first, so that
  * inside a box nothing faces the light and no volume is cast although
@@ -140,21 +129,8 @@ int volume_mesh_facing(const float *a, const float *b, const float *c, const flo
  * face). For such a light, or one on the surface (in a face: its
  * triangles edge-on, the others facing away, also nothing cast), the
  * mesh is weighed as an open one (volume_mesh_closed_rule): every prism,
- * each counting +1, sums right from anywhere. Inside: the
- * generalized winding number (the triangles' signed solid angles over
- * 4 pi, Jacobson et al. 2013) above VOLUME_MESH_INSIDE_WINDING: 1 inside,
- * 0 outside, 1/2 on the surface, where the triangle holding the light is
- * edge-on and counts 0, whichever side of it rounding put the light.
- * Only for a light within the mesh's bounds (and a margin for that
- * rounding): elsewhere the test costs nothing. A directional light is
- * outside every mesh.
- *
- * The winding number above which a light is inside a closed mesh, or on
- * it (1/2). */
-#define VOLUME_MESH_INSIDE_WINDING 0.25
-/* Whether the light (homogeneous, m's space) lies inside mesh m (closed,
- * wound outwards) or on its surface (see "The closed rule" above). */
-bool volume_mesh_light_inside(const mesh *m, const float light[4]);
+ * each counting +1, sums right from anywhere. Inside or on it:
+ * mesh_point_inside. */
 /* Whether m's volume for the light takes the closed rule (back-facing
  * triangles weigh 0): a closed edge table e and the light outside. */
 bool volume_mesh_closed_rule(const mesh *m, const mesh_edges *e, const float light[4]);
@@ -172,23 +148,6 @@ bool volume_mesh_closed_rule(const mesh *m, const mesh_edges *e, const float lig
 #define VOLUME_MESH_COUNT_NUDGE 1e-4f
 int volume_mesh_count_at(const mesh *m, bool closed, const float light[4], const float p[3]);
 
-/* The welded edge table of m (mesh_weld, mesh_edges_build) that volumes
- * are built from; false after printing why. The weld pairs vertices
- * within a tolerance, so two triangles may meet at an edge whose ends
- * they hold at positions a few ulps apart; a mesh counts as closed here
- * only where every edge's two triangles meet at one position, bit for
- * bit (volume_mesh_uses_meet), since the geometry shader judges a
- * neighbour from the triangle's own ends of the edge and its neighbour's
- * third vertex: from other positions a needle or sliver neighbour's
- * facing comes out at random, and an unmatched side draws streaks of
- * false shadow (tests/data/vol_welded_sliver.json, test_volumes'
- * test_welded_sliver; the CPU path is exact there either way). Such a
- * mesh takes the open rule, which is exact for any mesh; the CPU path's
- * multiplicities are the same sums over the welded edges. */
-bool volume_mesh_edges_build(const mesh *m, mesh_edges *e);
-/* Whether edge uses u and v (of one edge of m's table) run between the
- * same two positions, bit for bit. */
-bool volume_mesh_uses_meet(const mesh *m, const mesh_edge_use *u, const mesh_edge_use *v);
 /* Replaces v's contents with the volume of mesh m (edge table e) for the
  * light (homogeneous, m's space), trimmed by `trim` (NULL: to infinity);
  * false when out of memory (v then holds part of it). */
@@ -200,10 +159,6 @@ bool volume_mesh_build(volume_mesh *v, const mesh *m, const mesh_edges *e, const
 void volume_mesh_trim_for(const mat4 model, const float light[4], const mesh *m, const float reach_lo[3],
                           const float reach_hi[3], volume_mesh_trim *out);
 void volume_mesh_free(volume_mesh *v);
-
-/* The light (homogeneous, world) in the space of an object whose model
- * matrix is `model`: the space its volume is built in. */
-void volume_mesh_object_light(const mat4 model, const float light[4], float out[4]);
 
 /* The corners of the near-plane rectangle of `view_projection`, in world
  * space, in order round the rectangle (NDC x, y: -1 -1, 1 -1, 1 1, -1 1). */

@@ -86,7 +86,7 @@ int volume_plan_eye_count(const technique_frame *f, const volume_plan *plan, con
         float light[4];
         vec3 eye;
         mat4 world_to_object;
-        volume_mesh_object_light(o->model, plan->position, light);
+        mesh_point_to_object(o->model, plan->position, light);
         glm_mat4_inv((vec4 *)o->model, world_to_object);
         glm_mat4_mulv3(world_to_object, (float *)f->view->eye, 1, eye);
         count += volume_mesh_count_at(&o->mesh, volume_mesh_closed_rule(&o->mesh, &edges[i], light), light, eye);

@@ -18,7 +18,7 @@ void volume_silhouette_adjacency(const mesh *m, const mesh_edges *e, uint32_t *o
             /* Across: the one other triangle, where it holds the edge's
              * ends at the same positions, or on a border this one. */
             uint32_t corner = u[k].corner;
-            uint32_t across = uses == 2 && volume_mesh_uses_meet(m, &u[0], &u[1]) ? u[1 - k].corner : corner;
+            uint32_t across = uses == 2 && mesh_edge_uses_meet(m, &u[0], &u[1]) ? u[1 - k].corner : corner;
             uint32_t *slot = &out[corner / 3 * VOLUME_SILHOUETTE_INDICES_PER_TRIANGLE + corner % 3 * 2];
             slot[0] = m->indices[corner];
             slot[1] = m->indices[volume_silhouette_third(across)];
@@ -31,7 +31,7 @@ bool volume_silhouette_load(volume_silhouette *s, bool wide) {
     /* The wide count's define last, where it ends the list when not wide. */
     const shader_define defines[] = {SHADER_DEFINE(VOLUME_SILHOUETTE_CLOSED),
                                      SHADER_DEFINE(VOLUME_SILHOUETTE_OPEN),
-                                     SHADER_DEFINE(VOLUME_MESH_EDGE_ON_RECIPROCAL),
+                                     SHADER_DEFINE(MESH_POINT_EDGE_ON_RECIPROCAL),
                                      {wide ? VOLUME_SILHOUETTE_WIDE_DEFINE : NULL, 1},
                                      {NULL, 0}};
     if (!render_program_load(&s->program, files, (int)(sizeof files / sizeof *files), defines))

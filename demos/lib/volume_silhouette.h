@@ -27,7 +27,7 @@
  * rule for a light inside it or on it (volume_mesh_closed_rule, decided
  * on the CPU per caster and light: u_topology), as on the CPU; the
  * shader's test is then "the weight of (a, across, b) differs from mine",
- * weights -1, 0 and 1 as volume_mesh_facing and the rule give them.
+ * weights -1, 0 and 1 as mesh_point_facing and the rule give them.
  * The shader emits the sides alone: z-fail's caps come from the CPU
  * (volume_silhouette_draw says why).
  */
@@ -51,11 +51,11 @@ enum { VOLUME_SILHOUETTE_CLOSED, VOLUME_SILHOUETTE_OPEN };
  * across the edge it starts (the third vertex of the triangle on the
  * other side). An edge of the welded edge table with exactly two uses has
  * that one triangle across, whichever way it runs, where the two hold the
- * edge's ends at the same positions (volume_mesh_uses_meet: the weld's
+ * edge's ends at the same positions (mesh_edge_uses_meet: the weld's
  * tolerance may pair positions a few ulps apart, and the neighbour is
  * judged from this triangle's ends). A border has none across (an open
  * edge: one use; two uses at other positions, which makes the mesh open,
- * volume_mesh_edges_build) or no single one (a non-manifold edge: three
+ * mesh_edges_build_welded) or no single one (a non-manifold edge: three
  * or more); its index across is then the triangle's own third
  * vertex, the mark the shader reads (same index, so the same position, bit
  * for bit). A closed mesh has no border: its indices are those of

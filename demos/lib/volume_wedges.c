@@ -330,7 +330,7 @@ static void volume_wedges_add_centre(soft_visibility *v, int l, unsigned stencil
 static bool volume_wedges_open(const technique_frame *f, int i, const mesh_edges *edges, const float light[4]) {
     const scene_object *o = &f->gpu->scene->objects[i];
     float object_light[4];
-    volume_mesh_object_light(o->model, light, object_light);
+    mesh_point_to_object(o->model, light, object_light);
     return !volume_mesh_closed_rule(&o->mesh, &edges[i], object_light);
 }
 
@@ -374,7 +374,7 @@ static void volume_wedges_build(volume_wedges *w, const technique_frame *f, cons
         if (!o->casts)
             continue;
         float object_light[4];
-        volume_mesh_object_light(o->model, centre, object_light);
+        mesh_point_to_object(o->model, centre, object_light);
         if (!volume_mesh_build(&w->edges, &o->mesh, &edges[i], object_light, NULL, VOLUME_MESH_SILHOUETTE_EDGES)) {
             fprintf(stderr, "volumes: %s: out of memory finding its silhouette\n", o->name);
             continue;

@@ -88,7 +88,7 @@ static int volume_wide_caster_bound(volume_wide *w, const scene_object *o, const
     if (kept->bound >= 0 && memcmp(kept->light, light, sizeof kept->light) == 0)
         return kept->bound;
     float object_light[4];
-    volume_mesh_object_light(o->model, light, object_light);
+    mesh_point_to_object(o->model, light, object_light);
     bool closed_rule = volume_mesh_closed_rule(&o->mesh, e, object_light);
     if (closed_rule && w->convex[i] < 0)
         w->convex[i] = (signed char)volume_count_bound_convex(&o->mesh);
