@@ -44,7 +44,7 @@
  * 1997): each marks the stencil as above and adds one to the light's sum
  * where it reaches, and the light is shaded once with the sum over N
  * (soft_visibility.h), in the window over frames
- * (technique_sample_area_light).
+ * (shading_sample_area_light).
  */
 #include <GLFW/glfw3.h>
 #include <glad/gl.h>
@@ -57,6 +57,7 @@
 #include "depth.h"
 #include "frustum.h"
 #include "planar.h"
+#include "shading.h"
 #include "technique.h"
 
 /* Factor (slope) and units (depth-buffer steps) towards the eye: one step
@@ -223,7 +224,7 @@ static void planar_mark_shadows(const technique_frame *f, int light, int k, cons
      * shadow reaches none of them marks nothing: culling it is exact (by
      * the hull of the point at hand, for a point of an area light). */
     technique_hull hull;
-    if (k == TECHNIQUE_LIGHT_CENTRE)
+    if (k == SHADING_LIGHT_CENTRE)
         technique_light_hull(f, light, &hull);
     else
         technique_point_hull(f, light, light_h, &hull);
@@ -249,11 +250,11 @@ static void planar_mark_shadows(const technique_frame *f, int light, int k, cons
 
 /* Light l is blocked where its stencil is 2, on any object (only
  * receivers are ever marked). */
-static const technique_stencil_lit planar_lit = {
+static const shading_stencil planar_lit = {
     .lit = GL_NOTEQUAL, .blocked = GL_EQUAL, .ref = 2, .mask = 0xff, .receivers_only = false};
 
 /* After a depth pre-pass, each light shaded where the stencil does not
- * mark it blocked, the first with the ambient term (technique_shade_light).
+ * mark it blocked, the first with the ambient term (shading_light).
  * Adding non-negative terms clamps to the same 8-bit value in any order,
  * so a shadowed pixel is exactly the picture without that light, however
  * bright the other lights make it. */
@@ -272,22 +273,22 @@ static void planar_render_stencil(const technique_frame *f) {
         /* Marks only where the light reaches: outside its rectangle the
          * stencil stays as cleared, since the ambient light, the only
          * one shaded outside its rectangle, marks first. */
-        technique_light_pass(f, l);
+        shading_light_pass(f, l);
         int samples =
             soft_visibility_samples("planar", planar.settings.light_samples, &s->lights[l], l, &planar.soft_warned);
         if (samples > 1) {
             /* An area light: each point's shadows marked as a hard
              * light's, one added to its sum where the point reaches. */
-            if (technique_sample_area_light(f, l, samples, &planar.soft, &planar_lit, planar_mark_shadows))
-                technique_shade_light_soft(f, l, &planar.soft, planar_lit.receivers_only);
+            if (shading_sample_area_light(f, l, samples, &planar.soft, &planar_lit, planar_mark_shadows))
+                shading_light_soft(f, l, &planar.soft, planar_lit.receivers_only);
             continue;
         }
-        planar_mark_shadows(f, l, TECHNIQUE_LIGHT_CENTRE, light_h);
-        technique_shade_light(f, l, &planar_lit);
+        planar_mark_shadows(f, l, SHADING_LIGHT_CENTRE, light_h);
+        shading_light(f, l, &planar_lit);
         glDisable(GL_STENCIL_TEST);
     }
-    if (technique_ambient_light(f) < 0)
-        technique_shade_ambient(f);
+    if (shading_ambient_light(f) < 0)
+        shading_ambient(f);
 }
 
 /* The textbook path the stencil fixes: the lit picture darkened by

@@ -39,6 +39,7 @@
 #include <stdlib.h>
 
 #include "projective_fit.h"
+#include "shading.h"
 #include "shadow_map.h"
 #include "technique.h"
 
@@ -236,7 +237,7 @@ static void projective_mark(const technique_frame *f, const projective_light *t,
 }
 
 /* Light l is blocked where the receiver pass marked 1. */
-static const technique_stencil_lit projective_lit = {
+static const shading_stencil projective_lit = {
     .lit = GL_NOTEQUAL, .blocked = GL_EQUAL, .ref = 1, .mask = 0xff, .receivers_only = false};
 
 static bool projective_init(const render_scene *gpu) {
@@ -319,18 +320,18 @@ static void projective_render(const technique_frame *f) {
         /* 4. The texture projected onto the receivers the light reaches:
          * stencil 1 where it is black (and, with the near cut, beyond the
          * casters' nearest depth). */
-        const bool *objects = technique_light_pass(f, l);
+        const bool *objects = shading_light_pass(f, l);
         if (drawn)
             projective_mark(f, t, objects);
         else
             glClear(GL_STENCIL_BUFFER_BIT);
         /* 5. The light shaded where nothing was marked, the first with
          * the ambient term. */
-        technique_shade_light(f, l, &projective_lit);
+        shading_light(f, l, &projective_lit);
         glDisable(GL_STENCIL_TEST);
     }
-    if (technique_ambient_light(f) < 0)
-        technique_shade_ambient(f);
+    if (shading_ambient_light(f) < 0)
+        shading_ambient(f);
 }
 
 static void projective_describe(char *out, size_t size) {

@@ -7,6 +7,7 @@
  */
 #include <glad/gl.h>
 
+#include "shading.h"
 #include "technique.h"
 
 static bool unshadowed_init(const render_scene *gpu) {
@@ -17,7 +18,7 @@ static bool unshadowed_init(const render_scene *gpu) {
 /* The shading every technique shares, with visibility 1: the same depth
  * pre-pass and skips (view culling, light reach, light rectangles), the
  * lighting code with each light compiled in (render_use_lit), and the
- * shadow maps' split of the shading (technique_split_lights), whose pixels
+ * shadow maps' split of the shading (shading_split_lights), whose pixels
  * are bit for bit those of one pass, so that no skip changes the floor's
  * picture (additive passes would round each light's share apart). No
  * technique pays less than the floor for what it shares with it, and a
@@ -29,15 +30,15 @@ static void unshadowed_render(const technique_frame *f) {
 
     /* 2. One shading pass of every object in view, with the ambient term
      *    and the lights not split from it. */
-    unsigned split = technique_split_lights(f);
-    const bool *objects = technique_shade_all_begin(f);
+    unsigned split = shading_split_lights(f);
+    const bool *objects = shading_all_begin(f);
     render_unshadowed(f->gpu, f->view, objects, f->lights & ~split);
 
     /* 3. Each split light's own pass: what it reaches in its rectangle,
      *    shaded again with every light. */
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (split & RENDER_LIGHT_BIT(l))
-            render_unshadowed(f->gpu, f->view, technique_light_pass(f, l), f->lights);
+            render_unshadowed(f->gpu, f->view, shading_light_pass(f, l), f->lights);
     glDisable(GL_SCISSOR_TEST);
 }
 

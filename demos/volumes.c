@@ -24,7 +24,7 @@
  * draw their volumes with colour and depth writes off, both faces counted
  * in one pass (glStencilOpSeparate, wrapping); shade the light where the
  * stencil is 0 (everywhere on objects that receive no shadows), the first
- * light's pass with the ambient term (technique_shade_light), so that one
+ * light's pass with the ambient term (shading_light), so that one
  * light costs one shading pass.
  * --mode auto (default) takes z-pass where volume_mesh_zpass_safe says a
  * volume cannot reach the near-plane rectangle, z-fail elsewhere;
@@ -40,7 +40,7 @@
  * algorithm", 1984): each counts with its own plan and kept volumes and
  * adds one to the light's sum where its count is 0; the light is shaded
  * once with the sum over N (soft_visibility.h), in the window over
- * frames (technique_sample_area_light). Or (--soft wedges) the centre's
+ * frames (shading_sample_area_light). Or (--soft wedges) the centre's
  * hard shadow, softened by penumbra wedges round every silhouette edge
  * (Assarsson & Akenine-Moller 2003; demos/lib/volume_wedges.h).
  */
@@ -52,6 +52,7 @@
 
 #include "context.h"
 #include "depth.h"
+#include "shading.h"
 #include "technique.h"
 #include "volume_draw.h"
 #include "volume_overlay.h"
@@ -237,7 +238,7 @@ static void volumes_prepass_depth(const technique_frame *f) {
 
 /* Light l is blocked on receivers where a volume counts; the rest take no
  * shadows and are lit everywhere. */
-static const technique_stencil_lit volumes_lit = {
+static const shading_stencil volumes_lit = {
     .lit = GL_EQUAL, .blocked = GL_NOTEQUAL, .ref = 0, .mask = VOLUME_COUNTER_STENCIL_MASK, .receivers_only = true};
 
 /* ---- area lights ---- */
@@ -331,19 +332,19 @@ static void volumes_render(const technique_frame *f) {
             /* An area light: steps 2 to 4 for each of its points not yet
              * in its sum, each adding one where its count is 0; then step
              * 5 with the sum. */
-            technique_light_pass(f, l);
+            shading_light_pass(f, l);
             volumes.point_reported = false;
-            bool summed = technique_sample_area_light(f, l, volumes.samples[l], &volumes.soft, &volumes_lit,
-                                                      volumes_count_point);
+            bool summed =
+                shading_sample_area_light(f, l, volumes.samples[l], &volumes.soft, &volumes_lit, volumes_count_point);
             volumes_count_end(l);
             if (summed)
-                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
+                shading_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
             continue;
         }
         /* 2. Plan: which casters, each z-pass or z-fail, and where their
          *    volumes may count (the skips). */
         volume_plan plan;
-        volumes_plan_light(f, l, TECHNIQUE_LIGHT_CENTRE, NULL, &plan);
+        volumes_plan_light(f, l, SHADING_LIGHT_CENTRE, NULL, &plan);
         /* 2b. An area light by wedges: steps 3 and 4 for the plan's
          *     casters of each rule apart, the visibility from their counts
          *     (1 - count), each silhouette edge's wedge adding the share
@@ -351,7 +352,7 @@ static void volumes_render(const technique_frame *f) {
         if (volumes_by_wedges(&f->gpu->scene->lights[l])) {
             if (volume_wedges_light(&volumes.wedges, f, l, &plan, volumes.group, volumes.draw.edges, &volumes.soft,
                                     VOLUME_COUNTER_STENCIL_MASK, volumes_count_plan))
-                technique_shade_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
+                shading_light_soft(f, l, &volumes.soft, volumes_lit.receivers_only);
             volumes_count_end(l);
             continue;
         }
@@ -372,12 +373,12 @@ static void volumes_render(const technique_frame *f) {
         /* 5. Shade the light where the count is 0, in its own scissor
          *    (objects that take no shadows may lie outside the plan's);
          *    the first light's pass adds the ambient term. */
-        technique_shade_light(f, l, &volumes_lit);
+        shading_light(f, l, &volumes_lit);
         glDisable(GL_STENCIL_TEST);
     }
     /* 6. Ambient alone where no light is on. */
-    if (technique_ambient_light(f) < 0)
-        technique_shade_ambient(f);
+    if (shading_ambient_light(f) < 0)
+        shading_ambient(f);
     /* 7. For lectures, the overlays. */
     volume_overlay_draw((volume_overlay_kind)volumes.settings.overlay, f, &volumes.counter, volumes.casters,
                         volumes_trim());

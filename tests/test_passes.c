@@ -12,7 +12,7 @@
  * whose small range lights only the ball (an ambient pass cut to its
  * rectangle would show), a point light with a range, a directional light and an object that takes
  * no shadows. With no light in reach (tests/data/passes_unlit.json) the
- * ambient term alone (technique_shade_ambient) must be the floor's too;
+ * ambient term alone (shading_ambient) must be the floor's too;
  * with --no-skip every light is shaded, the one out of reach first. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -25,6 +25,7 @@
 
 #include "image.h"
 #include "registry.h"
+#include "shading.h"
 #include "support.h"
 
 #define OUT "out/test/passes"

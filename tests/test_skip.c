@@ -366,7 +366,7 @@ static void test_hidden_objects_left_out(void **state) {
 
 /* Along the street each lamp lights a few tiles of what is seen: every
  * technique draws it in its rectangle narrowed to them (the shadow maps
- * then shade it in a pass of its own, technique_split_lights), and in
+ * then shade it in a pass of its own, shading_split_lights), and in
  * the frame's rectangle with --no-hidden-cull. */
 static void test_lights_narrowed(void **state) {
     (void)state;

@@ -10,7 +10,7 @@
  * reaches the pixel, and soft_visibility_add adds one there, into a float
  * texture of the frame's size, one per light, that shares the frame's
  * depth and stencil. The light is then shaded once
- * (technique_shade_light_soft): its unshadowed light times the sum over
+ * (shading_light_soft): its unshadowed light times the sum over
  * the points added so far. As n grows it converges to what the reference
  * computes, up to the one disk all pixels share (the reference turns the
  * disk towards each pixel). A light's sum is kept from frame to frame, so
@@ -22,7 +22,7 @@
  *   per point not yet added (v.lights[l].points of n): the stencil as for
  *     a hard light, glStencilFunc(lit ...), soft_visibility_add(&v, l, 1),
  *     v.lights[l].points++
- *   technique_shade_light_soft(frame, l, &v, receivers_only)
+ *   shading_light_soft(frame, l, &v, receivers_only)
  *   soft_visibility_destroy(&v)
  *
  * Errors: begin is false after one line on stderr (out of memory, an

@@ -41,13 +41,11 @@
 #define TECHNIQUE_H
 
 #include <stdbool.h>
-#include "area_light.h"
 #include "camera.h"
 #include "flags.h"
 #include "frustum.h"
 #include "light_mask.h"
 #include "render.h"
-#include "soft_visibility.h"
 #include "target.h"
 #include "visible.h"
 
@@ -73,8 +71,8 @@ typedef struct technique_counts {
     int casters_hidden[SCENE_MAX_LIGHTS], casters_narrowed[SCENE_MAX_LIGHTS];
     int objects_hidden; /* in view, behind what the pre-pass shows (technique_see) */
     /* RENDER_LIGHT_BIT(l): a pass of light l drew in its rectangle as
-     * technique_see narrowed it to TECHNIQUE_NARROW_LIGHT_SHARE of the
-     * frame or less (technique_light_pass). */
+     * technique_see narrowed it to SHADING_NARROW_LIGHT_SHARE of the
+     * frame or less (shading_light_pass). */
     unsigned lights_narrowed;
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
 } technique_counts;
@@ -110,7 +108,7 @@ typedef struct technique_seen {
  * camera passes draw (view culling); lights, lit_by and light_rect: the
  * lights that reach anything visible, and per light the objects and
  * pixels its lighting pass needs (light reach; technique_light_on,
- * technique_light_pass); receivers: the visible receivers' points, for
+ * shading_light_pass); receivers: the visible receivers' points, for
  * fitting and for caster culling (technique_light_hull,
  * technique_caster_needed, when cull_casters), and what the depth
  * pre-pass shows (technique_see: hidden casters and objects); changed:
@@ -133,7 +131,7 @@ typedef struct technique_frame {
      * the skip), and the pixel rectangle (x, y, width, height) outside of
      * which it adds 0 (its range's screen bounds; the whole frame without
      * a range or the skip). Its lighting pass needs no more
-     * (technique_light_pass). */
+     * (shading_light_pass). */
     const bool *lit_by[SCENE_MAX_LIGHTS];
     int light_rect[SCENE_MAX_LIGHTS][4];
     const float (*receivers)[3];
@@ -151,7 +149,7 @@ typedef struct technique_frame {
     double time; /* seconds */
     /* An area light's points a technique that samples it adds this frame
      * to the sum the frames before left (progressive, the window's;
-     * technique_sample_area_light); 0: every point, from none, so that
+     * shading_sample_area_light); 0: every point, from none, so that
      * the same command gives the same picture (headless, the benchmark). */
     int light_points;
     /* The frame the shadow maps are fitted to: NULL, this one. Else the
@@ -165,95 +163,11 @@ typedef struct technique_frame {
 
 /* Light l reaches the view this frame. */
 bool technique_light_on(const technique_frame *f, int l);
-/* A light whose rectangle covers at most this share of the frame is
- * narrowed enough to pay for the read-back of technique_see, and split
- * from the one shading pass (technique_split_lights). */
-#define TECHNIQUE_NARROW_LIGHT_SHARE 0.25
 /* Light l's pixel rectangle (x, y, width, height), outside of which it
  * adds exactly 0: f->light_rect[l], narrowed after technique_see to the
  * tiles whose slabs the light reaches (its range, a spot's cone): every
  * visible point lies in a slab of its own tile. */
 const int *technique_light_rect(const technique_frame *f, int l);
-/* Scissors to light l's rectangle (technique_light_rect; scissor test
- * on) and returns the objects its lighting pass draws: what it reaches. */
-const bool *technique_light_pass(const technique_frame *f, int l);
-
-/* The shading passes, after render_depth_prepass of f->in_view (depth
- * test GL_EQUAL, depth writes off), two ways. A technique that can shade
- * every light at once (the shadow maps) draws one pass of every object in
- * view, unscissored and unblended (technique_shade_all_begin). The
- * stencil techniques shade one light per pass (technique_shade_light):
- * every visible pixel is shaded once per light that reaches it, and the
- * ambient term rides on the first light's pass (technique_ambient_light)
- * rather than a pass of its own, so a one-light scene is shaded once. That
- * pass draws every object in view, unscissored (a light adds exactly 0
- * beyond its range, outside a spot's cone and outside its rectangle),
- * without blending; the others add their light (GL_ONE, GL_ONE) on what
- * they reach, in their rectangle. Sums are quantized to the target's 8
- * bits once per pass, so a pixel's colour may differ by one step from a
- * single-pass picture of the same lights; decisions do not. */
-/* The light whose shading pass also draws the ambient term: the first that
- * is on; -1 when none is (technique_shade_ambient). */
-int technique_ambient_light(const technique_frame *f);
-/* The one shading pass's state; returns the objects it draws: every one
- * in view. */
-const bool *technique_shade_all_begin(const technique_frame *f);
-/* The lights on whose rectangle covers at most TECHNIQUE_NARROW_LIGHT_SHARE
- * of the frame, which the one shading pass leaves to passes of their own,
- * for a shader that pays for every light it holds on every pixel (one
- * whose lights are fixed when it is compiled: llvmpipe runs both sides of
- * a branch). The one pass then shades every object in view with the other
- * lights; light l's own pass (technique_light_pass), with every light,
- * shades again what it reaches in its rectangle. A light adds exactly 0
- * outside its rectangle, so each pixel's sum is the one pass's with every
- * light, bit for bit. None with the skips off (every rectangle the whole
- * frame). */
-unsigned technique_split_lights(const technique_frame *f);
-/* The frame's only shading pass when no light is on: the ambient term on
- * every object in view. */
-void technique_shade_ambient(const technique_frame *f);
-/* Where a stencil says a light is blocked: a pixel is lit where the test
- * `lit` (GL_EQUAL, GL_NOTEQUAL) of (stencil & mask) against ref passes,
- * blocked where `blocked` (its complement) does. receivers_only: objects
- * that take no shadows ("receives": false) are lit whatever the stencil. */
-typedef struct technique_stencil_lit {
-    unsigned lit, blocked;
-    int ref;
-    unsigned mask;
-    bool receivers_only;
-} technique_stencil_lit;
-/* Light l's shading pass through such a stencil (see above); where the
- * ambient light is blocked, the ambient term alone. Leaves the stencil
- * test on, blending and the scissor test off. */
-void technique_shade_light(const technique_frame *f, int l, const technique_stencil_lit *stencil);
-/* Light l's disk (area_light.h) for the techniques that sample it with
- * one set of points for every pixel: facing the middle of the scene's
- * receivers (the origin where none is), so that the points stay where
- * they are while the light does, whatever the camera. */
-void technique_area_light_frame(const technique_frame *f, int l, area_light_frame *frame);
-/* Light l's visibility from `samples` of its points (area_light_sample_ball
- * of technique_area_light_frame) into v's sum: for each point k not yet
- * in it, `count` leaves the stencil as for a hard light at that point,
- * and the point is added where `lit` passes. In the order
- * area_light_progressive_index gives; f->light_points of them per frame,
- * the sum kept while neither the camera, the light, the scene nor a
- * setting changes, or with f->light_points 0 every point from none. A
- * frame with f->light_points in which any of those changed counts the
- * light's centre alone (k TECHNIQUE_LIGHT_CENTRE), the hard technique's
- * picture, so that a moving view shows the hard shadow, not one point's;
- * the sum starts from none on the next. False, after one line on stderr,
- * when v cannot be made for the bound target. Leaves the stencil test
- * off. */
-typedef void (*technique_count_point)(const technique_frame *f, int l, int k, const float point[4]);
-/* The k a technique's count takes for the light's centre (a hard light). */
-#define TECHNIQUE_LIGHT_CENTRE (-1)
-bool technique_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
-                                 const technique_stencil_lit *lit, technique_count_point count);
-/* Light l's shading pass with its visibility accumulated in v
- * (soft_visibility.h) instead of a stencil: its unshadowed light times
- * the fraction, on every object but those that take no shadows where
- * receivers_only. Leaves blending and the scissor test off. */
-void technique_shade_light_soft(const technique_frame *f, int l, const soft_visibility *v, bool receivers_only);
 
 /* Hidden casters and objects. A technique calls this after its depth
  * pre-pass (the framebuffer bound, the camera's depth written): the

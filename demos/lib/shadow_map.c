@@ -10,6 +10,7 @@
 #include "depth.h"
 #include "shadow_map.h"
 #include "mesh_point.h"
+#include "shading.h"
 
 const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
 const char *const shadow_map_filters[] = {
@@ -769,15 +770,15 @@ static void shadow_map_draw_receivers(const shadow_map_renderer *r, const techni
 }
 
 /* Every light on, by its kind in key k, and the ambient term: the one
- * shading pass, with the lights technique_split_lights leaves out shaded
+ * shading pass, with the lights shading_split_lights leaves out shaded
  * again each in its own rectangle. Only receivers read maps (the caster
  * culling is for them too); the others take every light unshadowed, as in
  * the reference. */
 static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
                                     const shadow_map_camera_key *k) {
-    unsigned split = technique_split_lights(f);
+    unsigned split = shading_split_lights(f);
     shadow_map_camera_key first_key = shadow_map_key_without(*k, split);
-    const bool *objects = technique_shade_all_begin(f);
+    const bool *objects = shading_all_begin(f);
     const shadow_map_camera_program *first = shadow_map_camera_program_for(r, &first_key);
     const shadow_map_camera_program *p = split ? shadow_map_camera_program_for(r, k) : first;
     bool mapped = first && p;
@@ -788,7 +789,7 @@ static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_set
             shadow_map_camera_use(r, st, f, p);
         for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
             if (split & RENDER_LIGHT_BIT(l))
-                shadow_map_draw_receivers(r, f, p, technique_light_pass(f, l));
+                shadow_map_draw_receivers(r, f, p, shading_light_pass(f, l));
         glDisable(GL_SCISSOR_TEST);
     }
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
@@ -929,5 +930,5 @@ void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *setting
     if (f->lights)
         shadow_map_shade_lights(r, settings, f, &key);
     else
-        technique_shade_ambient(f);
+        shading_ambient(f);
 }

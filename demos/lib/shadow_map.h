@@ -33,7 +33,7 @@
  *      adds to it (beyond a light's range, outside its cone or facing away
  *      the filter is skipped), and a light that lights a small part of the
  *      frame is shaded in a pass of its own over it
- *      (technique_split_lights);
+ *      (shading_split_lights);
  *   5. shadow_map_draw_overlays: those of settings->overlay.
  */
 #ifndef SHADOW_MAP_H

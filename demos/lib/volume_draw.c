@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "context.h"
+#include "shading.h"
 
 /* ---- set-up ---- */
 
@@ -75,7 +76,7 @@ void volume_draw_destroy(volume_draw *d) {
 int volume_draw_cache(int l, int k) { return l * VOLUME_DRAW_CACHES + 1 + k; }
 
 void volume_draw_forget(volume_draw *d, int l) {
-    for (int k = TECHNIQUE_LIGHT_CENTRE; k < SOFT_VISIBILITY_MAX_SAMPLES; k++)
+    for (int k = SHADING_LIGHT_CENTRE; k < SOFT_VISIBILITY_MAX_SAMPLES; k++)
         if (d->caches[volume_draw_cache(l, k)].ranges)
             volume_cache_forget(&d->caches[volume_draw_cache(l, k)]);
 }

@@ -83,10 +83,10 @@ void volume_draw_free_points(volume_draw *d, int l);
 void volume_draw_reach(volume_draw *d, const scene_light *light, bool trim);
 
 /* The caches of one light: its centre's, then one per point of its area
- * (technique_sample_area_light's k). */
+ * (shading_sample_area_light's k). */
 #define VOLUME_DRAW_CACHES (1 + SOFT_VISIBILITY_MAX_SAMPLES)
 /* The cache that keeps light l's volumes from its centre
- * (TECHNIQUE_LIGHT_CENTRE) or from point k of its area. */
+ * (SHADING_LIGHT_CENTRE) or from point k of its area. */
 int volume_draw_cache(int l, int k);
 
 /* The sign a front face adds while `wide` (1: z-pass; -1: z-fail, whose

@@ -7,6 +7,7 @@
 #include "context.h"
 #include "depth.h"
 #include "legend.h"
+#include "shading.h"
 
 #define VOLUME_OVERLAY_COUNT_ALPHA 0.45f
 const float volume_overlay_count_ramp[VOLUME_OVERLAY_COUNT_STEPS][3] = {
@@ -136,7 +137,7 @@ void volume_overlay_draw(volume_overlay_kind kind, const technique_frame *f, vol
     float centre[4];
     scene_light_homogeneous(&s->lights[0], centre);
     volume_plan_every_caster(f, 0, centre, c->settings.mode, casters, &plan);
-    plan.cache = volume_draw_cache(0, TECHNIQUE_LIGHT_CENTRE);
+    plan.cache = volume_draw_cache(0, SHADING_LIGHT_CENTRE);
     if (kind != VOLUME_OVERLAY_COUNTS) {
         volume_overlay_shapes(c->draw, f, plan.position, kind == VOLUME_OVERLAY_VOLUMES);
         return;

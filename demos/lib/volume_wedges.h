@@ -50,7 +50,7 @@
  *     volume_wedges_light(&w, f, l, &plan, group, edges, &visibility,
  *                         stencil_mask, count)
  *       (its counts from the centre, then every silhouette edge's wedge)
- *     technique_shade_light_soft(...)
+ *     shading_light_soft(...)
  *   volume_wedges_destroy(&w)
  */
 #ifndef VOLUME_WEDGES_H
