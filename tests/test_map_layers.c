@@ -1,4 +1,5 @@
-/* Tests of demos/lib/shadow_map.c's storage and depth pass, in-process on a
+/* test_map_layers: demos/lib/shadow_map.c's storage and depth pass (the
+ * technique that uses them whole is test_shadowmap's), in-process on a
  * real headless GL context (EGL: a GPU's, else Mesa's llvmpipe, as in CI).
  * An array map (the cascades' storage) must hold in each layer exactly
  * what a 2D map rendered from that layer's matrix holds, through the
