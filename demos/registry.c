@@ -15,3 +15,10 @@ const technique *const registry_techniques[] = {
     &cascades_technique, &volumes_technique,    &unshadowed_technique,
 };
 const int registry_technique_count = (int)(sizeof registry_techniques / sizeof *registry_techniques);
+
+const technique *registry_cost_floor(void) {
+    for (int t = 0; t < registry_technique_count; t++)
+        if (registry_techniques[t]->cost_floor)
+            return registry_techniques[t];
+    return NULL;
+}

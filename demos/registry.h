@@ -8,5 +8,8 @@
 
 extern const technique *const registry_techniques[];
 extern const int registry_technique_count;
+/* The technique marked cost_floor: the benchmark's floor, every ratio's
+ * denominator. */
+const technique *registry_cost_floor(void);
 
 #endif

@@ -121,9 +121,8 @@ typedef struct bench_row {
     double floor_ms; /* the median of the floor frames interleaved with the row's */
     /* The median of the frames' ratios to the floor frames paired with
      * them, and the interval that holds it with RESULTS_CSV_RATIO_CONFIDENCE
-     * (median_interval.h; none with too few frames). */
-    double ratio, ratio_low, ratio_high;
-    bool ratio_interval;
+     * (none with too few frames). */
+    median_interval ratio;
     shadowdiff_result error;  /* pooled over the error frames (shadowdiff_result_add) */
     bool shimmer_measured;    /* under a motion that moves the camera */
     long followed, shimmered; /* summed over the error frames: shimmer % is their ratio */
@@ -357,41 +356,44 @@ static bool bench_timed_frame(technique_host *h, bench_series *s, int i) {
     return ok;
 }
 
+/* The series' samples in the time the ratio uses (bench_time_basis). */
+static const double *bench_basis(const bench_series *s) { return bench.software ? s->cpu : s->gpu; }
+
 /* Sorts the series' samples; returns its median in the time the ratio
- * uses (bench_time_basis). */
+ * uses. */
 static double bench_sort_series(bench_series *s) {
     qsort(s->gpu, (size_t)bench.frames, sizeof *s->gpu, bench_compare_doubles);
     qsort(s->cpu, (size_t)bench.frames, sizeof *s->cpu, bench_compare_doubles);
-    return bench_percentile(bench.software ? s->cpu : s->gpu, bench.frames, 0.5);
+    return bench_percentile(bench_basis(s), bench.frames, 0.5);
 }
 
 /* A row's ratio for the report: with its interval where it has one. */
 static const char *bench_ratio_text(const bench_row *r) {
     static char text[64];
-    if (r->ratio_interval)
-        snprintf(text, sizeof text, "%.2f [%.2f, %.2f]", r->ratio, r->ratio_low, r->ratio_high);
+    if (r->ratio.bounded)
+        snprintf(text, sizeof text, "%.2f [%.2f, %.2f]", r->ratio.median, r->ratio.low, r->ratio.high);
     else
-        snprintf(text, sizeof text, "%.2f", r->ratio);
+        snprintf(text, sizeof text, "%.2f", r->ratio.median);
     return text;
 }
 
 /* A row below the floor: its whole interval under 1. */
-static bool bench_below_floor(const bench_row *r) { return r->ratio_interval && r->ratio_high < 1; }
+static bool bench_below_floor(const bench_row *r) { return r->ratio.bounded && r->ratio.high < 1; }
 
 /* One frame of the row and one of the floor, in an order that alternates
  * with i: whichever goes second meets what the first left (caches, the
  * rasterizer's threads), so each goes second half the time. */
-static bool bench_frame_pair(technique_host *floor_host, int i, bench_series *own, bench_series *floor_series) {
+static bool bench_frame_pair(int i, bench_series *own, bench_series *floor_series) {
     bool floor_first = i % 2 == 0;
-    if (floor_first && !bench_timed_frame(floor_host, floor_series, i))
+    if (floor_first && !bench_timed_frame(&bench.floor_host, floor_series, i))
         return false;
     if (!bench_timed_frame(&bench.host, own, i))
         return false;
-    return floor_first || bench_timed_frame(floor_host, floor_series, i);
+    return floor_first || bench_timed_frame(&bench.floor_host, floor_series, i);
 }
 
 /* Warms up and times the current technique (bench.host) against the
- * floor's frames (floor_host).
+ * floor's frames (bench.floor_host).
  *
  * The ratio to the cost floor is measured in the same moments as the
  * configuration: the machine is shared, and a floor timed once per scene,
@@ -408,28 +410,24 @@ static bool bench_frame_pair(technique_host *floor_host, int i, bench_series *ow
  * configuration's frames and its dump are those it renders alone: the
  * floor frames between them share no state with it that a frame does not
  * set afresh. */
-static bool bench_time_frames(bench_row *row, technique_host *floor_host) {
+static bool bench_time_frames(bench_row *row) {
     static bench_series own, floor_series;
     static double ratios[BENCH_MAX_FRAMES];
     int frame = 0;
     for (; frame < bench.warmup; frame++) {
         bench_move(frame / BENCH_FRAME_RATE);
-        if (!bench_host_frame(floor_host, -1) || !bench_render_frame(-1))
+        if (!bench_host_frame(&bench.floor_host, -1) || !bench_render_frame(-1))
             return false;
     }
     glFinish();
     for (int i = 0; i < bench.frames; i++, frame++) {
         bench_move(frame / BENCH_FRAME_RATE);
-        if (!bench_frame_pair(floor_host, i, &own, &floor_series))
+        if (!bench_frame_pair(i, &own, &floor_series))
             return false;
-        double floor_ms = bench.software ? floor_series.cpu[i] : floor_series.gpu[i];
-        ratios[i] = floor_ms > 0 ? (bench.software ? own.cpu[i] : own.gpu[i]) / floor_ms : 0;
+        double floor_ms = bench_basis(&floor_series)[i];
+        ratios[i] = floor_ms > 0 ? bench_basis(&own)[i] / floor_ms : 0;
     }
-    median_interval ratio = median_interval_of(ratios, bench.frames, RESULTS_CSV_RATIO_CONFIDENCE);
-    row->ratio = ratio.median;
-    row->ratio_low = ratio.low;
-    row->ratio_high = ratio.high;
-    row->ratio_interval = ratio.bounded;
+    row->ratio = median_interval_of(ratios, bench.frames, RESULTS_CSV_RATIO_CONFIDENCE);
     row->frame_ms = bench_sort_series(&own);
     row->gpu_median = bench_percentile(own.gpu, bench.frames, 0.5);
     row->gpu_p90 = bench_percentile(own.gpu, bench.frames, 0.9);
@@ -550,16 +548,15 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     bench_row *row = &bench.rows[bench.row_count];
     *row = (bench_row){.scene = scene_name, .technique = bench.current->name, .config = config, .no_skip = no_skip};
     bench.skips = (render_skips){.no_skip = no_skip};
-    technique_host *floor_host = &bench.floor_host;
     /* A host whose start was tried is stopped: destroy follows even a
      * failed init. The floor runs at its defaults. */
     bool configured = technique_apply_config(bench.current, config) && technique_apply_config(bench.floor, "");
     bool ok = configured && technique_host_start(&bench.host, bench.current, &bench.gpu, &bench.skips);
     bool floor_tried = ok;
-    ok = ok && technique_host_start(floor_host, bench.floor, &bench.gpu, &bench.skips) &&
-         bench_time_frames(row, floor_host) && bench_error_frames(row, references);
+    ok = ok && technique_host_start(&bench.floor_host, bench.floor, &bench.gpu, &bench.skips) &&
+         bench_time_frames(row) && bench_error_frames(row, references);
     if (floor_tried)
-        technique_host_stop(floor_host);
+        technique_host_stop(&bench.floor_host);
     if (configured)
         technique_host_stop(&bench.host);
     bench.row_count += ok;
@@ -707,15 +704,16 @@ static bool bench_write_csv(void) {
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
         char low[32] = "-", high[32] = "-";
-        if (r->ratio_interval) {
-            snprintf(low, sizeof low, "%.3f", r->ratio_low);
-            snprintf(high, sizeof high, "%.3f", r->ratio_high);
+        if (r->ratio.bounded) {
+            snprintf(low, sizeof low, "%.3f", r->ratio.low);
+            snprintf(high, sizeof high, "%.3f", r->ratio.high);
         }
         fprintf(f, "%s,%s,\"%s\",%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.4f,%.4f,%.6f,%ld,\"%s\",%s,%s,%.4f,%s,%s,%s",
-                r->scene, r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90, r->ratio,
-                r->error.false_shadow_percent, r->error.false_lit_percent, r->error.misclassified_percent,
-                r->error.mean_abs_error, r->error.compared, bench.ctx.renderer, motion_names[bench.motion],
-                bench_skips_text(r->no_skip), r->floor_ms, low, high, bench_shimmer_text(r));
+                r->scene, r->technique, r->config, r->gpu_median, r->gpu_p90, r->cpu_median, r->cpu_p90,
+                r->ratio.median, r->error.false_shadow_percent, r->error.false_lit_percent,
+                r->error.misclassified_percent, r->error.mean_abs_error, r->error.compared, bench.ctx.renderer,
+                motion_names[bench.motion], bench_skips_text(r->no_skip), r->floor_ms, low, high,
+                bench_shimmer_text(r));
         for (int c = 0; c < SHADOWDIFF_CLASS_COUNT; c++) {
             char mae[32];
             fprintf(f, ",%ld,%s", r->error.class_pixels[c],
@@ -805,8 +803,9 @@ static void bench_write_floor_check(FILE *f) {
     for (int i = 0; i < bench.row_count; i++) {
         const bench_row *r = &bench.rows[i];
         below += bench_below_floor(r);
-        if (r->ratio_interval && r->ratio > 0)
-            widest = fmax(widest, fmax(r->ratio_high / r->ratio - 1, 1 - r->ratio_low / r->ratio));
+        const median_interval *m = &r->ratio;
+        if (m->bounded && m->median > 0)
+            widest = fmax(widest, fmax(m->high / m->median - 1, 1 - m->low / m->median));
     }
     fprintf(f, "\n## The floor check\n\n");
     if (median_interval_min_samples(RESULTS_CSV_RATIO_CONFIDENCE) > bench.frames) {
@@ -1106,10 +1105,7 @@ int main(int argc, char **argv) {
     if (!context_create(&bench.ctx, &settings))
         return 1;
     bench.software = context_software_renderer(bench.ctx.renderer);
-    /* The registry marks one technique the cost floor (registry.c). */
-    for (int t = 0; t < registry_technique_count; t++)
-        if (registry_techniques[t]->cost_floor)
-            bench.floor = registry_techniques[t];
+    bench.floor = registry_cost_floor();
     int total = 0, done = 0;
     for (int t = 0; t < registry_technique_count; t++)
         if (bench_selected(registry_techniques[t]))

@@ -583,10 +583,7 @@ static void report_compact_cell(const report_run *run, const char *technique, co
 /* The noise under the compact table: on each scene, the cost floor's row,
  * timed against a second copy of itself, with its ratio's interval. */
 static void report_write_noise(FILE *f, const report_run *run, const char *const *scenes, int scene_count) {
-    const char *floor = NULL;
-    for (int t = 0; t < registry_technique_count; t++)
-        if (registry_techniques[t]->cost_floor)
-            floor = registry_techniques[t]->name;
+    const char *floor = registry_cost_floor()->name;
     fprintf(f,
             "\nThe noise: the %s frame timed against a second copy of itself (x %s, with the interval that "
             "holds its median at %g %% confidence where the run had the frames for one):",
