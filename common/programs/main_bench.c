@@ -241,6 +241,8 @@ static int bench_parse_flags(int argc, char **argv) {
         printf("usage: bench [flags] [SCENE.json...]\n"
                "Times every technique over its parameter sweep and measures its error against the\n"
                "ray-traced reference, on each scene (default: the standard scenes and long_view).\n"
+               "Exits 1, after writing everything, where a configuration costs less than the\n"
+               "unshadowed floor beyond the noise (its ratio's whole interval under 1).\n"
                "Techniques:");
         for (int t = 0; t < registry_technique_count; t++)
             printf(" %s%s", registry_techniques[t]->name, registry_techniques[t]->cost_floor ? " (cost floor)" : "");
