@@ -4,7 +4,7 @@
  * viewer a texel covers many pixels, far away many texels share a pixel
  * (perspective aliasing). Cascades cut the view frustum into slices by
  * depth and give each slice its own orthographic map, layer k of one
- * SHADOW_MAP_ARRAY (demos/lib/shadow_map.h, "Array maps"), so near slices
+ * MAP_ARRAY (demos/lib/map.h, "Array maps"), so near slices
  * get small texels (Engel, "Cascaded shadow maps", ShaderX5 2006; Dimitrov,
  * "Cascaded shadow maps", NVIDIA 2007). The camera pass reads the layer
  * whose slice holds the fragment's view depth and, over the last --blend
@@ -47,7 +47,7 @@
 #include <stdlib.h>
 
 #include "cascades_fit.h"
-#include "shadow_map.h"
+#include "map.h"
 
 /* --map-size auto: each cascade's size. Four cascades of 1024 hold the
  * texels of one 2048 map, the size shadowmap's auto gives the standard
@@ -76,15 +76,15 @@ enum { CASCADES_SDSM, CASCADES_PRACTICAL, CASCADES_UNIFORM, CASCADES_LOG };
 /* In cascades_stabilize's order (cascades_fit.h), and what the HUD says of each. */
 static const char *const cascades_stabilizers[] = {"steps", "sphere", "off", NULL};
 static const char *const cascades_stabilized[] = {", stabilized by steps", ", stabilized by the sphere", ""};
-static const char *const cascades_overlays[] = {SHADOW_MAP_OVERLAY_NAMES, SHADOW_MAP_ARRAY_OVERLAY_NAMES, NULL};
+static const char *const cascades_overlays[] = {MAP_OVERLAY_NAMES, MAP_ARRAY_OVERLAY_NAMES, NULL};
 
 static struct {
-    shadow_map_settings settings;
+    map_settings settings;
     int count, scheme, stabilize; /* choices: cascades_counts, cascades_schemes, cascades_stabilizers */
     float lambda, blend;          /* 0: the defaults */
     bool no_blend;
     bool grazed[SCENE_MAX_LIGHTS]; /* the last fit's: the light grazed what is seen (cascades_grazing) */
-    shadow_map_renderer maps;
+    map_renderer *maps;
 } cascades = {.settings.array_overlays = true};
 
 static const flags_param cascades_params[] = {
@@ -104,7 +104,7 @@ static const flags_param cascades_params[] = {
      "steps: tight boxes whose grid, size and heading change in steps; sphere: the slice's sphere (Valient "
      "2008); off: shadow edges crawl as the camera moves or turns",
      GLFW_KEY_Z, FLAGS_CHOICE, .index = &cascades.stabilize, .choices = cascades_stabilizers},
-    SHADOW_MAP_PARAMS(cascades.settings),
+    MAP_PARAMS(cascades.settings),
     {"overlay", "for lectures: shadowmap's overlays, and each cascade tinted, with a key, and its map as an inset",
      GLFW_KEY_V, FLAGS_CHOICE, .index = &cascades.settings.overlay, .choices = cascades_overlays},
 };
@@ -114,7 +114,7 @@ static float cascades_or(float value, float fallback) { return value != 0 ? valu
 /* ---- the fit ---- */
 
 /* Whether light `light` grazes what the view sees: more of the library's
- * samples of the receivers (shadow_map_light_samples) left out as edge-on
+ * samples of the receivers (map_light_samples) left out as edge-on
  * to it than measured, the rule by which --map-size auto gives a grazing
  * sun its largest map. Seen from such a light the ground is a thin
  * sliver, which a box the size of the slice's sphere gives one row of
@@ -122,8 +122,8 @@ static float cascades_or(float value, float fallback) { return value != 0 ? valu
  * grazing_0.1_directional and grazing_0.5_directional), so it gets the
  * steps' boxes, fitted to the receivers, instead. */
 static bool cascades_grazing(const technique_frame *f, int light) {
-    int measured = shadow_map_light_samples(&cascades.maps, f, light);
-    return cascades.maps.grazing_count > measured;
+    map_samples measured = map_light_samples(cascades.maps, f, light);
+    return measured.grazing > measured.count;
 }
 
 /* The directional light's cascades: the splits, then each layer's box.
@@ -141,7 +141,7 @@ static bool cascades_grazing(const technique_frame *f, int light) {
  * only its fourth root. make report's "Cascades against one map and the
  * warps, on one ruler" compares the schemes over the frames of a walk and
  * a yaw: the comparison that makes sdsm the default. */
-static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *m) {
+static bool cascades_fit_array(const technique_frame *f, int light, map_light *m) {
     const scene_light *l = &f->gpu->scene->lights[light];
     const scene_camera *camera = &f->gpu->scene->camera;
     /* Only the sphere's boxes need the grazing check (WARP_SAMPLE_COUNT rays a frame). */
@@ -168,18 +168,18 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
         near_plane = seen_near;
         far_plane = seen_far;
     }
-    int size = shadow_map_settings_size(&cascades.settings);
+    int size = map_settings_size(&cascades.settings);
     m->size = size ? size : CASCADES_DEFAULT_SIZE;
-    m->kind = SHADOW_MAP_ARRAY;
+    m->kind = MAP_ARRAY;
     m->layer_count = count;
     m->casters = NULL;
     m->orthographic = true;
-    m->texel_kind = SHADOW_MAP_TEXEL_ORTHOGRAPHIC;
+    m->texel_kind = MAP_TEXEL_ORTHOGRAPHIC;
     m->cascade_blend = cascades.no_blend ? 0 : cascades_or(cascades.blend, CASCADES_DEFAULT_BLEND);
     cascades_splits(count, lambda, near_plane, far_plane, m->cascade_split);
     cascades_light_view(l->direction, f->view, stabilize, m->cascade_view);
-    float margin = shadow_map_read_reach(&cascades.settings, SHADOW_MAP_ARRAY, l->radius > 0) +
-                   cascades.settings.normal_texels + CASCADES_SNAP_TEXELS;
+    float margin = map_read_reach(&cascades.settings, MAP_ARRAY, l->radius > 0) + cascades.settings.normal_texels +
+                   CASCADES_SNAP_TEXELS;
     for (int k = 0; k < count; k++) {
         const float *split = m->cascade_split;
         /* From where the slice before starts blending into this one. */
@@ -193,10 +193,10 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
         cascades_slice_box(f->view, m->cascade_view, start, split[k + 1], m->size, margin, stabilize, receivers_lo,
                            receivers_hi, lo, hi);
         float near_depth, far_depth;
-        shadow_map_depth_range(-shadow_map_nearest_caster(f->gpu->scene, m->cascade_view, lo, hi, true), -lo[2],
-                               &near_depth, &far_depth);
+        map_depth_range(-map_nearest_caster(f->gpu->scene, m->cascade_view, lo, hi, true), -lo[2], &near_depth,
+                        &far_depth);
         glm_ortho(lo[0], hi[0], lo[1], hi[1], near_depth, far_depth, projection);
-        shadow_map_cascade_layer(m, k, projection);
+        map_cascade_layer(m, k, projection);
         if (k == 0) {
             m->near_plane = near_depth;
             m->texel_scale = fmaxf(hi[0] - lo[0], hi[1] - lo[1]) / (float)m->size;
@@ -212,56 +212,60 @@ static bool cascades_fit_array(const technique_frame *f, int light, shadow_map *
  * point light's perspective already puts its texels near the light, where
  * its shadows are sharpest; slicing it by the camera's depth would not
  * follow where its texels go. */
-static bool cascades_fit(const technique_frame *f, int light, shadow_map *m, const float (*receivers)[3],
+static bool cascades_fit(const technique_frame *f, int light, map_light *m, const float (*receivers)[3],
                          int receiver_count) {
     if (f->gpu->scene->lights[light].type != SCENE_LIGHT_DIRECTIONAL)
-        return shadow_map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
+        return map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
     return cascades_fit_array(f, light, m);
 }
 
 /* ---- the technique ---- */
 
 static bool cascades_init(const render_scene *gpu) {
-    return shadow_map_init(&cascades.maps, &cascades.settings, gpu);
+    cascades.maps = map_create(&cascades.settings, gpu);
+    return cascades.maps != NULL;
 }
 
-static void cascades_destroy(void) { shadow_map_destroy(&cascades.maps); }
+static void cascades_destroy(void) {
+    map_destroy(cascades.maps);
+    cascades.maps = NULL;
+}
 
 static const char *cascades_area_light(const scene_light *light, int l) {
     (void)l;
-    return shadow_map_area_light_text(&cascades.settings, light);
+    return map_area_light_text(&cascades.settings, light);
 }
 
 /* The frame: shadowmap.c's passes, a directional light's map an array
  * of cascades, one layer a slice of the view. */
 static void cascades_render(const technique_frame *f) {
-    shadow_map_renderer *r = &cascades.maps;
-    const shadow_map_settings *settings = &cascades.settings;
+    map_renderer *r = cascades.maps;
+    const map_settings *settings = &cascades.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
-    shadow_map_begin(r, f);
+    map_begin(r, f);
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
         /* 2. The splits, then each cascade's box around its slice and the
          * receivers in it (cascades_fit_array). */
-        if (!shadow_map_fit_light(r, settings, f, l, cascades_fit))
+        if (!map_fit_light(r, settings, f, l, cascades_fit))
             continue;
         /* 3. Depth from the light into each layer. */
-        shadow_map_draw_depth(r, settings, f, l);
+        map_draw_depth(r, settings, f, l);
     }
     /* 4. Shading: each pixel reads the layer of its view depth, blended
      * into the next over the last part of a slice. */
-    shadow_map_shade(r, settings, f);
+    map_shade(r, settings, f);
     /* 5. The lecture's overlays. */
-    shadow_map_draw_overlays(r, settings, f);
+    map_draw_overlays(r, settings, f);
 }
 
 /* Light 0's map, and for cascades the split distances and the world size
  * of the nearest cascade's texel. */
 static void cascades_describe(char *out, size_t size) {
-    const shadow_map *m = &cascades.maps.maps[0];
+    const map_light *m = map_of_light(cascades.maps, 0);
     char map[64];
-    shadow_map_size_text(&cascades.settings, m, map, sizeof map);
+    map_size_text(&cascades.settings, m, map, sizeof map);
     int n = snprintf(out, size, "light 0: %s", map);
-    if (m->kind == SHADOW_MAP_ARRAY) {
+    if (m->kind == MAP_ARRAY) {
         n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,
                       cascades_schemes[cascades.scheme],
                       cascades.grazed[0] ? ", stabilized by steps: the light grazes what is seen"
@@ -271,7 +275,7 @@ static void cascades_describe(char *out, size_t size) {
         if ((size_t)n < size)
             snprintf(out + n, size - (size_t)n, "; nearest texel %.3g", m->texel_scale);
     }
-    shadow_map_describe_filter(&cascades.settings, out, size);
+    map_describe_filter(&cascades.settings, out, size);
 }
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count

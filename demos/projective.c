@@ -40,7 +40,7 @@
 
 #include "projective_fit.h"
 #include "shading.h"
-#include "shadow_map.h"
+#include "map.h"
 #include "technique.h"
 
 /* A pixel is shadowed where its texel is below this percent of white
@@ -110,16 +110,16 @@ static bool projective_is_textured(const scene_object *o) {
 /* The casters light l's lookups may read this frame, into
  * projective.wanted: every caster, or with caster culling those whose
  * texture rectangle meets where the visible receivers read it (the
- * shadow maps' reads, shadow_map_layer_reads: exact, since a lookup reads
+ * shadow maps' reads, map_layer_reads: exact, since a lookup reads
  * only its own texels, whatever their depth). Counted in f->counts. */
 static void projective_plan_casters(const technique_frame *f, int l, const projective_light *t) {
     const scene *s = f->gpu->scene;
-    shadow_map_reads reads;
+    map_reads reads;
     if (f->cull_casters) {
-        shadow_map_read_setup setup = {.reach = PROJECTIVE_READ_REACH_TEXELS, .size = t->size, .any_depth = true};
-        int boxes = shadow_map_light_receivers(f, l, projective.boxes);
-        shadow_map_layer_reads(t->frustum.view_projection, &setup, f->receivers, f->receiver_count,
-                               (const float(*)[2][3])projective.boxes, boxes, &reads);
+        map_read_setup setup = {.reach = PROJECTIVE_READ_REACH_TEXELS, .size = t->size, .any_depth = true};
+        int boxes = map_light_receivers(f, l, projective.boxes);
+        map_layer_reads(t->frustum.view_projection, &setup, f->receivers, f->receiver_count,
+                        (const float(*)[2][3])projective.boxes, boxes, &reads);
     }
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
@@ -127,7 +127,7 @@ static void projective_plan_casters(const technique_frame *f, int l, const proje
         if (!projective_is_caster(&s->objects[i]))
             continue;
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        projective.wanted[i] = !f->cull_casters || shadow_map_caster_read(&reads, t->frustum.view_projection, lo, hi);
+        projective.wanted[i] = !f->cull_casters || map_caster_read(&reads, t->frustum.view_projection, lo, hi);
         if (projective.wanted[i])
             f->counts->casters_drawn[l]++;
         else

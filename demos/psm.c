@@ -34,7 +34,7 @@
  *
  * The warps' math is demos/lib/warp.h (no GL, unit-tested in
  * tests/test_warp.c); the maps, passes and overlays are
- * demos/lib/shadow_map.h. This file chooses between them each frame.
+ * demos/lib/map.h. This file chooses between them each frame.
  *
  * For lectures (--overlay): shadowmap.c's overlays, among them
  * "texel-size" (the dp/ds heat map: compare the warps on long_view), and
@@ -47,7 +47,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "shadow_map.h"
+#include "map.h"
 #include "warp.h"
 
 /* Room for the receivers' corners, then 256 casters' box corners. */
@@ -59,8 +59,8 @@
 
 static const char *const psm_warps[] = {"psm", "uniform", "lispsm", NULL};
 enum { PSM_WARP_PSM, PSM_WARP_UNIFORM, PSM_WARP_LISPSM };
-static const char *const psm_overlays[] = {SHADOW_MAP_OVERLAY_NAMES, "post-perspective", NULL};
-enum { PSM_OVERLAY_POST_PERSPECTIVE = SHADOW_MAP_OVERLAY_COUNT };
+static const char *const psm_overlays[] = {MAP_OVERLAY_NAMES, "post-perspective", NULL};
+enum { PSM_OVERLAY_POST_PERSPECTIVE = MAP_OVERLAY_COUNT };
 
 /* What a frame chose for one light, for the HUD, the tests and the
  * post-perspective view. */
@@ -72,10 +72,10 @@ typedef struct psm_choice {
 } psm_choice;
 
 static struct {
-    shadow_map_settings settings;
+    map_settings settings;
     int warp;
-    shadow_map_renderer maps;
-    shadow_map_warp_view warp_view;  /* the post-perspective overlay */
+    map_renderer *maps;
+    map_warp_view warp_view;         /* the post-perspective overlay */
     bool *casters[SCENE_MAX_LIGHTS]; /* per light: the casters that can shadow what is seen */
     psm_choice choice[SCENE_MAX_LIGHTS];
     /* Scratch space of a fit: */
@@ -86,7 +86,7 @@ static struct {
 static const flags_param psm_params[] = {
     {"warp", "how the map is placed: post-perspective, light-space perspective, or uniform", GLFW_KEY_W, FLAGS_CHOICE,
      .index = &psm.warp, .choices = psm_warps},
-    SHADOW_MAP_PARAMS(psm.settings),
+    MAP_PARAMS(psm.settings),
     {"overlay", "for lectures: shadowmap's overlays, texel size on screen, the post-perspective view", GLFW_KEY_V,
      FLAGS_CHOICE, .index = &psm.settings.overlay, .choices = psm_overlays},
 };
@@ -125,8 +125,8 @@ static bool psm_place_warp(const technique_frame *f, int light, const float (*re
  * fifth smaller (PSM_WARP_GAIN). Either way the constant and
  * normal-offset biases move the point in world units, one texel of the
  * map in use there (found from the matrix's derivatives,
- * SHADOW_MAP_TEXEL_PROJECTIVE), since the warp distorts depth. */
-static bool psm_fit(const technique_frame *f, int light, shadow_map *m, const float (*receivers)[3],
+ * MAP_TEXEL_PROJECTIVE), since the warp distorts depth. */
+static bool psm_fit(const technique_frame *f, int light, map_light *m, const float (*receivers)[3],
                     int receiver_count) {
     const scene_light *l = &f->gpu->scene->lights[light];
     psm_choice *choice = &psm.choice[light];
@@ -136,26 +136,25 @@ static bool psm_fit(const technique_frame *f, int light, shadow_map *m, const fl
     w->psm_case = WARP_PSM_NONE;
     choice->texel_pixels[0] = choice->texel_pixels[1] = INFINITY;
     snprintf(w->why, sizeof w->why, "as asked");
-    if (!shadow_map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count))
+    if (!map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count))
         return false;
     if (psm.warp == PSM_WARP_UNIFORM || !psm_place_warp(f, light, receivers, receiver_count, w))
         return true;
-    shadow_map warped = *m;
-    warped.kind = SHADOW_MAP_2D;
+    map_light warped = *m;
+    warped.kind = MAP_2D;
     warped.layer_count = 1;
     warped.casters = psm.casters[light];
-    warped.texel_kind = SHADOW_MAP_TEXEL_PROJECTIVE;
+    warped.texel_kind = MAP_TEXEL_PROJECTIVE;
     glm_mat4_copy(w->view_projection, warped.layer_view_projection[0]);
     warped.near_plane = w->near_plane;
     warped.far_plane = w->far_plane;
     warped.orthographic = w->orthographic;
-    int sample_count = shadow_map_light_samples(&psm.maps, f, light);
-    const warp_sample *samples = psm.maps.samples;
+    map_samples measured = map_light_samples(psm.maps, f, light);
     choice->measured_size = m->size;
-    choice->texel_pixels[0] =
-        warp_texel_pixels(warped.layer_view_projection, 1, warped.size, l->position, samples, sample_count);
-    choice->texel_pixels[1] =
-        warp_texel_pixels(m->layer_view_projection, m->layer_count, m->size, l->position, samples, sample_count);
+    choice->texel_pixels[0] = warp_texel_pixels(warped.layer_view_projection, 1, warped.size, l->position,
+                                                measured.samples, measured.count);
+    choice->texel_pixels[1] = warp_texel_pixels(m->layer_view_projection, m->layer_count, m->size, l->position,
+                                                measured.samples, measured.count);
     if (!(choice->texel_pixels[0] < PSM_WARP_GAIN * choice->texel_pixels[1])) {
         snprintf(w->why + strlen(w->why), sizeof w->why - strlen(w->why), "; the warp does not pay here");
         return true;
@@ -175,12 +174,14 @@ static bool psm_init(const render_scene *gpu) {
             return false;
         }
     }
-    return shadow_map_init(&psm.maps, &psm.settings, gpu) && shadow_map_warp_view_init(&psm.warp_view);
+    psm.maps = map_create(&psm.settings, gpu);
+    return psm.maps && map_warp_view_init(&psm.warp_view);
 }
 
 static void psm_destroy(void) {
-    shadow_map_destroy(&psm.maps);
-    shadow_map_warp_view_destroy(&psm.warp_view);
+    map_destroy(psm.maps);
+    psm.maps = NULL;
+    map_warp_view_destroy(&psm.warp_view);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         free(psm.casters[l]);
         psm.casters[l] = NULL;
@@ -189,7 +190,7 @@ static void psm_destroy(void) {
 
 static const char *psm_area_light(const scene_light *light, int l) {
     (void)l;
-    return shadow_map_area_light_text(&psm.settings, light);
+    return map_area_light_text(&psm.settings, light);
 }
 
 /* Light 0's warp space, with the map in use placed in it; where the
@@ -199,54 +200,53 @@ static const char *psm_area_light(const scene_light *light, int l) {
  * nothing is drawn. */
 static void psm_draw_warp_view(const technique_frame *f) {
     const warp_result *w = &psm.choice[0].result;
-    const shadow_map *m = &psm.maps.maps[0];
+    const map_light *m = map_of_light(psm.maps, 0);
     if (w->has_space)
-        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, w->space, m->layer_view_projection[0]);
-    else if (m->kind == SHADOW_MAP_2D)
-        shadow_map_warp_view_draw(&psm.warp_view, &psm.maps, f, m->layer_view_projection[0],
-                                  m->layer_view_projection[0]);
+        map_warp_view_draw(&psm.warp_view, psm.maps, f, w->space, m->layer_view_projection[0]);
+    else if (m->kind == MAP_2D)
+        map_warp_view_draw(&psm.warp_view, psm.maps, f, m->layer_view_projection[0], m->layer_view_projection[0]);
 }
 
 /* The frame: shadowmap.c's passes, with each light's map placed by
  * psm_fit, warped where the warp pays. */
 static void psm_render(const technique_frame *f) {
-    shadow_map_renderer *r = &psm.maps;
-    const shadow_map_settings *settings = &psm.settings;
+    map_renderer *r = psm.maps;
+    const map_settings *settings = &psm.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
-    shadow_map_begin(r, f);
+    map_begin(r, f);
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
         /* 2. The warp (or the uniform map where it does not pay), fitted
          * to the visible receivers and the casters that shadow them. */
-        if (!shadow_map_fit_light(r, settings, f, l, psm_fit))
+        if (!map_fit_light(r, settings, f, l, psm_fit))
             continue;
         /* 3. Depth from the light through the warp. */
-        shadow_map_draw_depth(r, settings, f, l);
+        map_draw_depth(r, settings, f, l);
     }
     /* 4. Shading: each pixel compared in the map's warped space. */
-    shadow_map_shade(r, settings, f);
+    map_shade(r, settings, f);
     /* 5. The lecture's overlays, then light 0's warp space. */
-    shadow_map_draw_overlays(r, settings, f);
+    map_draw_overlays(r, settings, f);
     if (settings->overlay == PSM_OVERLAY_POST_PERSPECTIVE)
         psm_draw_warp_view(f);
 }
 
 static void psm_describe(char *out, size_t size) {
     const psm_choice *c = &psm.choice[0];
-    const shadow_map *m = &psm.maps.maps[0];
+    const map_light *m = map_of_light(psm.maps, 0);
     char map[64];
-    shadow_map_size_text(&psm.settings, m, map, sizeof map);
+    map_size_text(&psm.settings, m, map, sizeof map);
     int n = snprintf(out, size, "light 0: %s %s (%s)", c->warp, map, c->result.why);
     /* A texel's size on screen scales as 1 / size. */
     float scale = (float)c->measured_size / (float)m->size;
     if (n > 0 && (size_t)n < size && isfinite(c->texel_pixels[1]))
         snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px",
                  c->texel_pixels[0] * scale, c->texel_pixels[1] * scale);
-    shadow_map_describe_filter(&psm.settings, out, size);
+    map_describe_filter(&psm.settings, out, size);
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the
  * filters' early-out off, the tents and two moment filters at the
- * defaults (shadow_map.h, "The camera pass", "Moment shadow maps"). */
+ * defaults (map.h, "The camera pass", "Moment shadow maps"). */
 static const char *const psm_bench_configs[] = {
     "",
     "--map-size 1024",

@@ -15,7 +15,7 @@
  * Each frame the map is fitted to the visible receivers and the casters
  * whose shadow can reach them, even outside the view (the HUD shows its
  * depth range). The machinery, shared with demos/psm.c and
- * demos/cascades.c, is demos/lib/shadow_map.h ("The camera pass": the
+ * demos/cascades.c, is demos/lib/map.h ("The camera pass": the
  * filters, --filter, and the early-out, --no-early-out, key E; "Moment
  * shadow maps"); this file is the uniform placement and the settings.
  *
@@ -33,7 +33,7 @@
  * test_shadowmap's test_receiver_plane_removes_partial_acne). Turning
  * the constant or the slope-scaled bias off (keys C, L) also reads the
  * map with one nearest test while the filter is auto, the default, so
- * that acne shows as stripes rather than averaged away (shadow_map.h,
+ * that acne shows as stripes rather than averaged away (map.h,
  * "The camera pass"); a filter chosen holds.
  *
  * The defaults (poisson, the auto filter with the biases on; constant 1 texel, slope factor 1.5, no normal
@@ -47,17 +47,17 @@
  */
 #include <stdio.h>
 
-#include "shadow_map.h"
+#include "map.h"
 
-static const char *const shadowmap_overlays[] = {SHADOW_MAP_OVERLAY_NAMES, NULL};
+static const char *const shadowmap_overlays[] = {MAP_OVERLAY_NAMES, NULL};
 
 static struct {
-    shadow_map_settings settings;
-    shadow_map_renderer maps;
+    map_settings settings;
+    map_renderer *maps;
 } shadowmap;
 
 static const flags_param shadowmap_params[] = {
-    SHADOW_MAP_PARAMS(shadowmap.settings),
+    MAP_PARAMS(shadowmap.settings),
     {"overlay",
      "for lectures: texel boundaries on receivers, the light frustum, the map as an inset fitted to the depths "
      "it holds, texel size on screen, the penumbra radius PCSS estimated",
@@ -66,52 +66,55 @@ static const flags_param shadowmap_params[] = {
 
 /* The uniform placement: the light's own perspective (a spot), its
  * direction (an orthographic map), or a cube map (a point light). */
-static bool shadowmap_fit(const technique_frame *f, int light, shadow_map *m, const float (*receivers)[3],
+static bool shadowmap_fit(const technique_frame *f, int light, map_light *m, const float (*receivers)[3],
                           int receiver_count) {
-    return shadow_map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
+    return map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
 }
 
 static bool shadowmap_init(const render_scene *gpu) {
-    return shadow_map_init(&shadowmap.maps, &shadowmap.settings, gpu);
+    shadowmap.maps = map_create(&shadowmap.settings, gpu);
+    return shadowmap.maps != NULL;
 }
 
-static void shadowmap_destroy(void) { shadow_map_destroy(&shadowmap.maps); }
+static void shadowmap_destroy(void) {
+    map_destroy(shadowmap.maps);
+    shadowmap.maps = NULL;
+}
 
 static const char *shadowmap_area_light(const scene_light *light, int l) {
     (void)l;
-    return shadow_map_area_light_text(&shadowmap.settings, light);
+    return map_area_light_text(&shadowmap.settings, light);
 }
 
 /* The frame: Williams's two passes, the depth pass per light, then the
  * camera pass comparing each pixel's depth in the light with the map. */
 static void shadowmap_render(const technique_frame *f) {
-    shadow_map_renderer *r = &shadowmap.maps;
-    const shadow_map_settings *settings = &shadowmap.settings;
+    map_renderer *r = shadowmap.maps;
+    const map_settings *settings = &shadowmap.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
-    shadow_map_begin(r, f);
+    map_begin(r, f);
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
         /* 2. The light's map fitted to the visible receivers. */
-        if (!shadow_map_fit_light(r, settings, f, l, shadowmap_fit))
+        if (!map_fit_light(r, settings, f, l, shadowmap_fit))
             continue;
         /* 3. Depth from the light (layers the cache holds are kept). */
-        shadow_map_draw_depth(r, settings, f, l);
+        map_draw_depth(r, settings, f, l);
     }
     /* 4. Shading: each pixel's depth in the light against the map, the
      * tests filtered over the kernel. */
-    shadow_map_shade(r, settings, f);
+    map_shade(r, settings, f);
     /* 5. The lecture's overlays. */
-    shadow_map_draw_overlays(r, settings, f);
+    map_draw_overlays(r, settings, f);
 }
 
 static void shadowmap_describe(char *out, size_t size) {
-    const shadow_map *m = &shadowmap.maps.maps[0];
+    const map_light *m = map_of_light(shadowmap.maps, 0);
     char map[64];
-    shadow_map_size_text(&shadowmap.settings, m, map, sizeof map);
+    map_size_text(&shadowmap.settings, m, map, sizeof map);
     int n = snprintf(out, size, "light 0: %s, depth range %.3g .. %.3g", map, m->near_plane, m->far_plane);
-    if (shadow_map_filter_moments(shadow_map_filter_in_use(&shadowmap.settings)) != SHADOW_MAP_MOMENTS_NONE &&
-        n > 0 && (size_t)n < size)
+    if (map_filter_moments(map_filter_in_use(&shadowmap.settings)) != MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
-    shadow_map_describe_filter(&shadowmap.settings, out, size);
+    map_describe_filter(&shadowmap.settings, out, size);
 }
 
 /* The sweep: map size x filter x bias (the tents, the early-out off, the

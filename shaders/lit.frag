@@ -6,7 +6,7 @@
 // C compiles one program per set on its first use (render_lit_load), so
 // that each light's code is there only when it is in the set and reads
 // its block entries at constant indices, as the shadow maps' camera pass
-// does (shadowmap.frag): read from a list in uniforms, llvmpipe would run
+// does (map.frag): read from a list in uniforms, llvmpipe would run
 // the loop's every access as a gather, for every pixel.
 in vec3 v_position;
 in vec3 v_normal;

@@ -1,8 +1,8 @@
 // Moment shadow maps: what a texel stores for a depth and what a filtered
-// texel says of a point's visibility, for SHADOW_MAP_PASS_MOMENTS (a
-// shadow_map_moments from C). Shared by the blur's first pass
+// texel says of a point's visibility, for MAP_PASS_MOMENTS (a
+// map_moments from C). Shared by the blur's first pass
 // (shadow_moments.frag, which writes moments_of) and the camera pass
-// (shadowmap.frag, which reads moments_visibility). Depths are the map's
+// (map.frag, which reads moments_visibility). Depths are the map's
 // as stored, 0..1 (a perspective map's too: its range is spent near the
 // light, where the casters are).
 //   vsm    Donnelly & Lauritzen, "Variance shadow maps", I3D 2006: the mean
@@ -47,9 +47,9 @@ vec2 moments_evsm_warp(float depth) {
 
 // What a texel of this depth stores (its unused channels 0).
 vec4 moments_of(float depth) {
-    if (SHADOW_MAP_PASS_MOMENTS == SHADOW_MAP_MOMENTS_VSM)
+    if (MAP_PASS_MOMENTS == MAP_MOMENTS_VSM)
         return vec4(depth, depth * depth, 0.0, 0.0);
-    if (SHADOW_MAP_PASS_MOMENTS == SHADOW_MAP_MOMENTS_MSM) {
+    if (MAP_PASS_MOMENTS == MAP_MOMENTS_MSM) {
         float d = moments_signed_depth(depth), d2 = d * d;
         return vec4(d, d2, d2 * d, d2 * d2);
     }
@@ -107,15 +107,15 @@ float moments_msm_visibility(vec4 b, float z) {
 // The visibility at the stored depth `depth` of a point, from its
 // filtered moments m.
 float moments_visibility(vec4 m, float depth) {
-    if (SHADOW_MAP_PASS_MOMENTS == SHADOW_MAP_MOMENTS_VSM) {
+    if (MAP_PASS_MOMENTS == MAP_MOMENTS_VSM) {
         float p = moments_chebyshev(m.xy, depth, MOMENTS_VSM_MIN_VARIANCE);
         return clamp((p - MOMENTS_VSM_BLEEDING) / (1.0 - MOMENTS_VSM_BLEEDING), 0.0, 1.0);
     }
-    if (SHADOW_MAP_PASS_MOMENTS == SHADOW_MAP_MOMENTS_MSM)
+    if (MAP_PASS_MOMENTS == MAP_MOMENTS_MSM)
         return moments_msm_visibility(m, moments_signed_depth(depth));
     vec2 w = moments_evsm_warp(depth);
     float positive = moments_chebyshev(m.xy, w.x, moments_evsm_min_variance(w.x, MOMENTS_EVSM_POSITIVE));
-    if (SHADOW_MAP_PASS_MOMENTS == SHADOW_MAP_MOMENTS_EVSM2)
+    if (MAP_PASS_MOMENTS == MAP_MOMENTS_EVSM2)
         return positive;
     return min(positive, moments_chebyshev(m.zw, w.y, moments_evsm_min_variance(-w.y, MOMENTS_EVSM_NEGATIVE)));
 }

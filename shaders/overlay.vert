@@ -1,5 +1,5 @@
 #version 330 core
-// Lines and quads drawn over the picture for lectures (demos/lib/shadow_map_overlay.c):
+// Lines and quads drawn over the picture for lectures (demos/lib/map_overlay.c):
 // world-space lines (u_view_projection) or a screen quad (identity).
 layout(location = 0) in vec3 in_position;
 

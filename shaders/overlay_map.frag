@@ -1,17 +1,17 @@
 #version 330 core
-// Light 0's shadow map as an inset (demos/lib/shadow_map_overlay.c), read
+// Light 0's shadow map as an inset (demos/lib/map_overlay.c), read
 // from its reduction (overlay_reduce.frag): each pixel shows the nearest
 // depth held in its block of texels, so that a caster narrower than a
 // pixel of the inset still shows, as linear depth fitted to what the
 // inset's layer holds: its nearest held depth black, its farthest
-// SHADOW_MAP_INSET_FAR_GREY_PERCENT grey, a block that holds nothing
+// MAP_INSET_FAR_GREY_PERCENT grey, a block that holds nothing
 // white. A 2D map fills the quad; a cube map's six faces lie in two rows
 // of three (+X -X +Y, then -Y +Z -Z), each as seen from the cube's centre;
 // an array map's layer u_layer fills it (one quad per layer).
 in vec2 v_uv;
 
 uniform sampler2DArray u_reduced; // per block, (nearest, farthest) held; a layer per map layer (a cube's face)
-uniform int u_kind;               // a shadow_map_kind: SHADOW_MAP_2D (0), SHADOW_MAP_CUBE or SHADOW_MAP_ARRAY
+uniform int u_kind;               // a map_kind: MAP_2D (0), MAP_CUBE or MAP_ARRAY
 uniform int u_layer;
 uniform int u_size;   // the map's texels on a side
 uniform int u_factor; // the map's texels on a side of a block
@@ -31,7 +31,7 @@ float overlay_linear(float d) {
 void main() {
     vec2 uv = v_uv;
     int layer = u_layer;
-    if (u_kind == SHADOW_MAP_CUBE) {
+    if (u_kind == MAP_CUBE) {
         vec2 cell = floor(v_uv * vec2(3.0, 2.0));
         layer = int(cell.x) + 3 * (1 - int(cell.y));
         uv = fract(v_uv * vec2(3.0, 2.0));
@@ -45,5 +45,5 @@ void main() {
     }
     float nearest = overlay_linear(u_held.x), span = overlay_linear(u_held.y) - nearest;
     float t = span > 0.0 ? clamp((overlay_linear(d) - nearest) / span, 0.0, 1.0) : 0.0;
-    out_color = vec4(vec3(t * float(SHADOW_MAP_INSET_FAR_GREY_PERCENT) / 100.0), 1.0);
+    out_color = vec4(vec3(t * float(MAP_INSET_FAR_GREY_PERCENT) / 100.0), 1.0);
 }

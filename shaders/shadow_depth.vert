@@ -1,5 +1,5 @@
 #version 330 core
-// Depth from the light (demos/lib/shadow_map.c): only the depth buffer is
+// Depth from the light (demos/lib/map.c): only the depth buffer is
 // written, so the fragment stage is empty.
 layout(location = 0) in vec3 in_position;
 

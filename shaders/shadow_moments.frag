@@ -1,7 +1,7 @@
 #version 330 core
-// The moment maps' passes (demos/lib/shadow_map_moments.c) over one layer
-// of a map. SHADOW_MAP_BLUR_FROM_DEPTH: the layer's depths (a map of kind
-// SHADOW_MAP_BLUR_KIND) as moments (moments.glsl), a texel each. Else a
+// The moment maps' passes (demos/lib/map_moments.c) over one layer
+// of a map. MAP_BLUR_FROM_DEPTH: the layer's depths (a map of kind
+// MAP_BLUR_KIND) as moments (moments.glsl), a texel each. Else a
 // separable box along u_axis over a 2D texture of moments: 2 u_radius + 1
 // texels across, its two end texels weighted by the radius's fraction,
 // reads past the edge clamped to it. The box's texels are read in pairs,
@@ -18,7 +18,7 @@ uniform int u_layer;                   // the depths' layer (a cube's face)
 out vec4 out_moments;
 
 // The box's most texels past the centre (C clamps the radius below it).
-const int MOMENTS_BLUR_MAX_TEXELS = SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS + 1;
+const int MOMENTS_BLUR_MAX_TEXELS = MAP_MOMENTS_MAX_BLUR_TEXELS + 1;
 
 // Texel k's weight in the box (k texels from the centre, k >= 1).
 float moments_box_weight(int k) {
@@ -28,8 +28,8 @@ float moments_box_weight(int k) {
 
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
-#if SHADOW_MAP_BLUR_FROM_DEPTH
-    out_moments = moments_of(map_texel_depth(SHADOW_MAP_BLUR_KIND, texel, u_layer));
+#if MAP_BLUR_FROM_DEPTH
+    out_moments = moments_of(map_texel_depth(MAP_BLUR_KIND, texel, u_layer));
 #else
     vec2 size = vec2(textureSize(u_source_2d, 0));
     vec2 centre = (vec2(texel) + 0.5) / size, step = u_axis / size;

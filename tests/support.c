@@ -16,7 +16,7 @@
 
 #include "image.h"
 #include "path.h"
-#include "shadow_map.h"
+#include "map_internal.h"
 
 const char *support_program(const char *name) {
     static char command[4][2048];
@@ -241,14 +241,13 @@ bool support_find_square(const unsigned char *rgba, int width, int height, const
 unsigned char *support_expect_insets_fitted(const char *program, const char *scene, const char *flags,
                                             const char *name, int kind, int layer_count, unsigned empty) {
     unsigned char *rgba = support_screenshot(program, scene, flags, name);
-    int max_grey = (SHADOW_MAP_INSET_FAR_GREY_PERCENT * 255 + 99) / 100;
-    int insets = shadow_map_inset_count((shadow_map_kind)kind, layer_count);
+    int max_grey = (MAP_INSET_FAR_GREY_PERCENT * 255 + 99) / 100;
+    int insets = map_inset_count((map_kind)kind, layer_count);
     bool ok = true;
     for (int k = 0; k < insets; k++) {
         int rect[4];
         long held;
-        shadow_map_inset_rect((shadow_map_kind)kind, layer_count, k, SUPPORT_SCREENSHOT_WIDTH,
-                              SUPPORT_SCREENSHOT_HEIGHT, rect);
+        map_inset_rect((map_kind)kind, layer_count, k, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, rect);
         int spread =
             support_grey_spread(rgba, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, rect, max_grey, &held);
         bool expected_empty = (empty >> k) & 1u;

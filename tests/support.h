@@ -88,7 +88,7 @@ long support_count_color(const unsigned char *rgba, int width, int height, const
  * (each channel within 1). */
 bool support_find_square(const unsigned char *rgba, int width, int height, const int rect[4],
                          const unsigned char rgb[3], int side);
-/* Light 0's map insets (demos/lib/shadow_map.h, "The map inset") in the
+/* Light 0's map insets (demos/lib/map.h, "The map inset") in the
  * screenshot `name` of PROGRAM with FLAGS on SCENE (support_screenshot),
  * whose light 0 has a map of `kind` with `layer_count` layers: each inset
  * but those `empty` marks (bit k: inset k holds nothing) shows at least

@@ -17,7 +17,7 @@
 #include "frustum.h"
 #include "hud.h"
 #include "legend.h"
-#include "shadow_map.h"
+#include "map_internal.h"
 #include "support.h"
 
 #define LONG_VIEW "assets/scenes/long_view.json"
@@ -324,13 +324,12 @@ static void test_tint_key(void **state) {
     (void)state;
     unsigned char *rgba = support_screenshot("cascades", LONG_VIEW, TINT, "cascades_key");
     int inset[4], key[4];
-    shadow_map_inset_rect(SHADOW_MAP_ARRAY, DEFAULT_CASCADES, 0, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT,
-                          inset);
+    map_inset_rect(MAP_ARRAY, DEFAULT_CASCADES, 0, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, inset);
     key[0] = key[1] = 0;
     key[2] = inset[0];
     key[3] = SUPPORT_SCREENSHOT_HEIGHT / 2;
     for (int k = 0; k < DEFAULT_CASCADES; k++) {
-        const float *c = shadow_map_cascade_colors[k];
+        const float *c = map_cascade_colors[k];
         const unsigned char rgb[3] = {to_byte(c[0]), to_byte(c[1]), to_byte(c[2])};
         bool found = support_find_square(rgba, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, key, rgb,
                                          HUD_LETTER_UNITS * hud_scale_for(SUPPORT_SCREENSHOT_HEIGHT));
@@ -359,16 +358,16 @@ static bool is_dark(const unsigned char *p, const unsigned char panel[3]) {
 #define EMPTY_PANEL_SHARE 0.95
 static void test_insets_fitted_to_their_layers(void **state) {
     (void)state;
-    free(support_expect_insets_fitted("cascades", LONG_VIEW, TINT, "cascades_insets_long_view", SHADOW_MAP_ARRAY,
+    free(support_expect_insets_fitted("cascades", LONG_VIEW, TINT, "cascades_insets_long_view", MAP_ARRAY,
                                       DEFAULT_CASCADES, 0));
-    free(support_expect_insets_fitted("cascades", "assets/scenes/simple.json", TINT, "cascades_insets_simple",
-                                      SHADOW_MAP_2D, 1, 0));
+    free(support_expect_insets_fitted("cascades", "assets/scenes/simple.json", TINT, "cascades_insets_simple", MAP_2D,
+                                      1, 0));
     int last = DEFAULT_CASCADES - 1;
     unsigned char *rgba =
         support_expect_insets_fitted("cascades", "assets/scenes/teapot.json", TINT, "cascades_insets_teapot",
-                                     SHADOW_MAP_ARRAY, DEFAULT_CASCADES, 1u << last);
+                                     MAP_ARRAY, DEFAULT_CASCADES, 1u << last);
     int rect[4], w = SUPPORT_SCREENSHOT_WIDTH, h = SUPPORT_SCREENSHOT_HEIGHT, scale = hud_scale_for(h);
-    shadow_map_inset_rect(SHADOW_MAP_ARRAY, DEFAULT_CASCADES, last, w, h, rect);
+    map_inset_rect(MAP_ARRAY, DEFAULT_CASCADES, last, w, h, rect);
     const unsigned char panel[3] = {to_byte(legend_panel_color[0]), to_byte(legend_panel_color[1]),
                                     to_byte(legend_panel_color[2])};
     long panel_pixels = support_count_color(rgba, w, h, rect, panel);

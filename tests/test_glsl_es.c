@@ -142,7 +142,7 @@ static void test_geometry_shader_refused(void **state) {
  * that only ES rejects, in a file an included file includes, is named by
  * file and line under --glsl-es, and compiles without it. */
 #define BROKEN_SHADERS OUT "/broken_shaders"
-#define BROKEN_FILE "shadowmap_2d.glsl"
+#define BROKEN_FILE "map_2d.glsl"
 #define BROKEN_LINE "5"
 static void test_es_errors_name_file_and_line(void **state) {
     (void)state;

@@ -1,10 +1,10 @@
-/* test_map_layers: demos/lib/shadow_map.c's storage and depth pass (the
+/* test_map_layers: demos/lib/map.c's storage and depth pass (the
  * technique that uses them whole is test_shadowmap's), in-process on a
  * real headless GL context (EGL: a GPU's, else Mesa's llvmpipe, as in CI).
  * An array map (the cascades' storage) must hold in each layer exactly
  * what a 2D map rendered from that layer's matrix holds, through the
- * library's own depth pass (shadow_map_render_depth, whose layer passes
- * the frame's shadow_map_draw_depth runs too). The shader loader's check of
+ * library's own depth pass (map_render_depth, whose layer passes
+ * the frame's map_draw_depth runs too). The shader loader's check of
  * uniform names needs a context too, and is tested here. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -20,7 +20,7 @@
 #include "render.h"
 #include "scene.h"
 #include "shader.h"
-#include "shadow_map.h"
+#include "map_internal.h"
 #include "technique_host.h"
 
 #define SCENE_PATH "assets/scenes/simple.json" /* a spot light: a 2D uniform fit */
@@ -38,8 +38,8 @@ static struct {
     context ctx;
     scene scene;
     render_scene gpu;
-    shadow_map_renderer maps;
-    shadow_map fitted; /* light 0's uniform fit */
+    map_renderer *maps;
+    map_light fitted; /* light 0's uniform fit */
     float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
     unsigned readback; /* a framebuffer to read a layer's depth from */
     /* MAP_SIZE^2 depths each: the 2D map's, the array layer's, the 2D map of layer 0's */
@@ -53,7 +53,7 @@ static int gl_setup(void **state) {
     shader_set_directory("shaders");
     const context_settings settings = {.backend = CONTEXT_EGL};
     if (!context_create(&gl.ctx, &settings) || !scene_load(&gl.scene, SCENE_PATH) ||
-        !render_scene_create(&gl.gpu, &gl.scene) || !shadow_map_init(&gl.maps, &(shadow_map_settings){0}, &gl.gpu))
+        !render_scene_create(&gl.gpu, &gl.scene) || !(gl.maps = map_create(&(map_settings){0}, &gl.gpu)))
         return -1;
     camera_view view;
     camera_view_compute(&gl.scene.camera, VIEW_ASPECT, &view);
@@ -61,8 +61,8 @@ static int gl_setup(void **state) {
         technique_host_receiver_points(&gl.scene, &view, gl.receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
     gl.fitted.size = MAP_SIZE;
     if (receiver_count == 0 ||
-        !shadow_map_fit_uniform(&gl.scene, 0, &gl.fitted, (const float(*)[3])gl.receivers, receiver_count) ||
-        gl.fitted.kind != SHADOW_MAP_2D)
+        !map_fit_uniform(&gl.scene, 0, &gl.fitted, (const float(*)[3])gl.receivers, receiver_count) ||
+        gl.fitted.kind != MAP_2D)
         return -1;
     glGenFramebuffers(1, &gl.readback);
     glBindFramebuffer(GL_FRAMEBUFFER, gl.readback);
@@ -80,7 +80,7 @@ static int gl_teardown(void **state) {
     free(gl.actual);
     free(gl.layer0);
     glDeleteFramebuffers(1, &gl.readback);
-    shadow_map_destroy(&gl.maps);
+    map_destroy(gl.maps);
     render_scene_destroy(&gl.gpu);
     scene_free(&gl.scene);
     context_destroy(&gl.ctx);
@@ -90,11 +90,11 @@ static int gl_teardown(void **state) {
 /* A map of `kind` with `layer_count` layers, light 0's uniform fit but
  * seen through the windows of layers first .. first + layer_count - 1,
  * with no texture yet. */
-static shadow_map test_map(shadow_map_kind kind, int first, int layer_count) {
-    shadow_map m = gl.fitted;
+static map_light test_map(map_kind kind, int first, int layer_count) {
+    map_light m = gl.fitted;
     m.kind = kind;
     m.layer_count = layer_count;
-    m.texture = (shadow_map_texture){0};
+    m.texture = (map_texture){0};
     for (int layer = 0; layer < layer_count; layer++) {
         mat4 window = GLM_MAT4_IDENTITY_INIT;
         window[0][0] = window[1][1] = layer_zoom[first + layer];
@@ -106,9 +106,9 @@ static shadow_map test_map(shadow_map_kind kind, int first, int layer_count) {
 }
 
 /* Layer `layer` of m's texture into `depth`, as floats. */
-static void read_layer(const shadow_map *m, int layer, float *depth) {
+static void read_layer(const map_light *m, int layer, float *depth) {
     glBindFramebuffer(GL_FRAMEBUFFER, gl.readback);
-    if (m->kind == SHADOW_MAP_ARRAY)
+    if (m->kind == MAP_ARRAY)
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, m->texture.id, 0, layer);
     else
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m->texture.id, 0);
@@ -125,7 +125,7 @@ static bool depth_has_caster(const float *depth) {
     return false;
 }
 
-static int array_texture_layers(const shadow_map *m) {
+static int array_texture_layers(const map_light *m) {
     GLint layers = 0;
     glBindTexture(GL_TEXTURE_2D_ARRAY, m->texture.id);
     glGetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_DEPTH, &layers);
@@ -139,20 +139,20 @@ static int array_texture_layers(const shadow_map *m) {
 static void test_array_layers_match_2d_maps(void **state) {
     (void)state;
     static const int layer_counts[] = {2, TEST_MAX_LAYERS};
-    static const shadow_map_depth depths[] = {SHADOW_MAP_DEPTH_24, SHADOW_MAP_DEPTH_32F};
+    static const map_depth depths[] = {MAP_DEPTH_24, MAP_DEPTH_32F};
     render_reset_state(); /* what a frame starts with (the depth test on) */
     for (size_t d = 0; d < sizeof depths / sizeof *depths; d++) {
-        shadow_map_settings settings = {.depth = depths[d]};
-        shadow_map array = {0};
+        map_settings settings = {.depth = depths[d]};
+        map_light array = {0};
         for (size_t c = 0; c < sizeof layer_counts / sizeof *layer_counts; c++) {
-            shadow_map_texture kept = array.texture;
-            array = test_map(SHADOW_MAP_ARRAY, 0, layer_counts[c]);
+            map_texture kept = array.texture;
+            array = test_map(MAP_ARRAY, 0, layer_counts[c]);
             array.texture = kept;
-            shadow_map_render_depth(&gl.maps, &settings, &gl.gpu, &array);
+            map_render_depth(gl.maps, &settings, &gl.gpu, &array);
             assert_int_equal(array_texture_layers(&array), layer_counts[c]);
             for (int layer = 0; layer < array.layer_count; layer++) {
-                shadow_map flat = test_map(SHADOW_MAP_2D, layer, 1);
-                shadow_map_render_depth(&gl.maps, &settings, &gl.gpu, &flat);
+                map_light flat = test_map(MAP_2D, layer, 1);
+                map_render_depth(gl.maps, &settings, &gl.gpu, &flat);
                 read_layer(&flat, 0, gl.expected);
                 assert_true(depth_has_caster(gl.expected));
                 if (layer == 0)
@@ -173,15 +173,15 @@ static void test_array_layers_match_2d_maps(void **state) {
  * array of the map's layer count. */
 static void test_array_texture_kept(void **state) {
     (void)state;
-    const shadow_map_settings settings = {0};
+    const map_settings settings = {0};
     render_reset_state();
-    shadow_map array = test_map(SHADOW_MAP_ARRAY, 0, 2);
-    shadow_map_render_depth(&gl.maps, &settings, &gl.gpu, &array);
+    map_light array = test_map(MAP_ARRAY, 0, 2);
+    map_render_depth(gl.maps, &settings, &gl.gpu, &array);
     unsigned first = array.texture.id;
-    shadow_map_render_depth(&gl.maps, &settings, &gl.gpu, &array);
+    map_render_depth(gl.maps, &settings, &gl.gpu, &array);
     assert_int_equal(array.texture.id, first);
     assert_int_equal(array_texture_layers(&array), 2);
-    assert_string_equal(shadow_map_kind_name(array.kind), "array");
+    assert_string_equal(map_kind_name(array.kind), "array");
     glDeleteTextures(1, &array.texture.id);
     assert_true(context_gl_ok("array texture"));
 }

@@ -1,4 +1,4 @@
-/* Moment shadow maps (--filter vsm, evsm2, evsm4, msm; shadow_map.h,
+/* Moment shadow maps (--filter vsm, evsm2, evsm4, msm; map.h,
  * "Moment shadow maps") against the ray-traced reference, by shadowdiff's
  * classes: on an area point light (a cube map), an area sun (a 2D map and
  * cascades' array map) and a hard spot light, each filter draws the umbra
@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "shadow_map.h"
+#include "map.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -152,11 +152,11 @@ static void test_area_lights_take_the_blur(void **state) {
         assert_int_equal(support_count_lines(text), 0);
     }
     const scene_light area = {.type = SCENE_LIGHT_POINT, .radius = 1};
-    const shadow_map_settings moments = {.filter = SHADOW_MAP_FILTER_MSM, .soft = SHADOW_MAP_SOFT_OFF};
-    const shadow_map_settings kernel = {.filter = SHADOW_MAP_FILTER_PCF3, .soft = SHADOW_MAP_SOFT_OFF};
-    assert_non_null(strstr(shadow_map_area_light_text(&moments, &area), "moment map"));
-    assert_null(strstr(shadow_map_area_light_text(&kernel, &area), "moment map"));
-    assert_false(shadow_map_light_soft(&moments, &area));
+    const map_settings moments = {.filter = MAP_FILTER_MSM, .soft = MAP_SOFT_OFF};
+    const map_settings kernel = {.filter = MAP_FILTER_PCF3, .soft = MAP_SOFT_OFF};
+    assert_non_null(strstr(map_area_light_text(&moments, &area), "moment map"));
+    assert_null(strstr(map_area_light_text(&kernel, &area), "moment map"));
+    assert_false(map_light_soft(&moments, &area));
 }
 
 int main(void) {

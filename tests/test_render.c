@@ -387,7 +387,7 @@ static void test_each_fix_shows_when_off(void **state) {
 
 /* The texel overlay at a 2048 map, a third of a pixel a texel on simple:
  * a line at every texel would darken nearly every lit pixel (moire); the
- * lines every 2^k texels, at least SHADOW_MAP_TEXEL_LINE_MIN_PIXELS (4)
+ * lines every 2^k texels, at least MAP_TEXEL_LINE_MIN_PIXELS (4)
  * apart, darken a share of them, between these fractions of the
  * picture's pixels (the test prints the share); a line at every texel
  * would darken more than the upper one, every lit pixel. */
@@ -459,7 +459,7 @@ static void test_psm_texel_size_shows(void **state) {
 }
 
 /* The texel-size heat map has its legend: at 640x360 (font unit 1) its
- * bar runs from x 468 to 628 on rows 325 to 333 (shadow_map_overlay.c's
+ * bar runs from x 468 to 628 on rows 325 to 333 (map_overlay.c's
  * sizes), blue at a quarter pixel, red at 32, on a dark panel. */
 enum { LEGEND_ROW = 329, LEGEND_BLUE_X = 470, LEGEND_RED_X = 625, LEGEND_PANEL_X = 550, LEGEND_PANEL_ROW = 323 };
 #define LEGEND_DARK 40            /* the panel's channels at most */

@@ -12,7 +12,7 @@
 
 #include "dump.h"
 #include "flags.h"
-#include "shadow_map.h"
+#include "map.h"
 #include "shadowdiff.h"
 #include "support.h"
 
@@ -73,8 +73,8 @@ static void test_extreme_lights_within_bound(void **state) {
  * sun 0.1 degrees above the ground, whose map sized on the casters' sides
  * alone would be small, gets the most texels; with the camera inside a
  * box, a face turned from the light gets the closed mesh's own shadow,
- * not false light along its corner (shadowmap.frag,
- * shadow_map_through_closed). */
+ * not false light along its corner (map.frag,
+ * map_through_closed). */
 static void test_stress_extremes_within_bound(void **state) {
     (void)state;
     static const char *const scenes[] = {"shadowmap_far_spot", "shadowmap_grazing_sun", "shadowmap_camera_inside"};
@@ -147,30 +147,30 @@ static void test_acne_without_bias(void **state) {
  * says so. */
 static void test_bias_off_reads_unfiltered(void **state) {
     (void)state;
-    shadow_map_settings st = {0};
-    const flags_param params[] = {SHADOW_MAP_PARAMS(st)};
+    map_settings st = {0};
+    const flags_param params[] = {MAP_PARAMS(st)};
     const int count = (int)(sizeof params / sizeof *params);
     const scene_light area = {.radius = 0.5f};
-    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_POISSON);
-    assert_true(shadow_map_light_soft(&st, &area));
+    assert_int_equal(map_filter_in_use(&st), MAP_FILTER_POISSON);
+    assert_true(map_light_soft(&st, &area));
     assert_true(flags_press_key(params, count, GLFW_KEY_C));
-    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_NONE);
-    assert_false(shadow_map_light_soft(&st, &area));
+    assert_int_equal(map_filter_in_use(&st), MAP_FILTER_NONE);
+    assert_false(map_light_soft(&st, &area));
     assert_true(flags_press_key(params, count, GLFW_KEY_C));
-    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_POISSON);
+    assert_int_equal(map_filter_in_use(&st), MAP_FILTER_POISSON);
     assert_true(flags_press_key(params, count, GLFW_KEY_L));
-    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_NONE);
+    assert_int_equal(map_filter_in_use(&st), MAP_FILTER_NONE);
     assert_true(flags_press_key(params, count, GLFW_KEY_F)); /* auto -> poisson, chosen */
-    assert_int_equal(shadow_map_filter_in_use(&st), SHADOW_MAP_FILTER_POISSON);
-    assert_true(shadow_map_light_soft(&st, &area));
+    assert_int_equal(map_filter_in_use(&st), MAP_FILTER_POISSON);
+    assert_true(map_light_soft(&st, &area));
     static const struct {
         const char *flags;
-        shadow_map_filter filter;
+        map_filter filter;
     } cases[] = {
-        {"--no-slope-bias", SHADOW_MAP_FILTER_NONE},
-        {"--no-constant-bias --filter pcf3", SHADOW_MAP_FILTER_PCF3},
-        {"--no-constant-bias --filter auto", SHADOW_MAP_FILTER_NONE},
-        {"--filter auto", SHADOW_MAP_FILTER_POISSON},
+        {"--no-slope-bias", MAP_FILTER_NONE},
+        {"--no-constant-bias --filter pcf3", MAP_FILTER_PCF3},
+        {"--no-constant-bias --filter auto", MAP_FILTER_NONE},
+        {"--filter auto", MAP_FILTER_POISSON},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char text[128], *argv[8];
@@ -180,9 +180,8 @@ static void test_bias_off_reads_unfiltered(void **state) {
             argv[argc++] = word;
         flags_reset(params, count);
         assert_int_equal(flags_parse("test", params, count, argc, argv), 0);
-        if (shadow_map_filter_in_use(&st) != cases[i].filter)
-            fail_msg("%s: filter %d in use, expected %d", cases[i].flags, shadow_map_filter_in_use(&st),
-                     cases[i].filter);
+        if (map_filter_in_use(&st) != cases[i].filter)
+            fail_msg("%s: filter %d in use, expected %d", cases[i].flags, map_filter_in_use(&st), cases[i].filter);
     }
     static const char *const programs[] = {"shadowmap", "psm", "cascades"};
     for (size_t i = 0; i < sizeof programs / sizeof *programs; i++) {
@@ -288,7 +287,7 @@ static void test_receiver_plane_removes_partial_acne(void **state) {
     }
 }
 
-/* The tents (tent3, tent5: 4 and 9 bilinear taps, shadowmap.glsl) on the
+/* The tents (tent3, tent5: 4 and 9 bilinear taps, map.glsl) on the
  * standard scenes: within the same bound as the defaults, and blurring
  * less than the N x N grid of as many texels (pcfN, N^2 taps: its weights
  * reach a texel farther): a lower mean error (the test prints both). */
@@ -328,7 +327,7 @@ static long decisions_differing(const dump_frame *a, const dump_frame *b, long *
     return differing;
 }
 
-/* The early-out (four rim taps first, shadowmap.glsl) answers alone only
+/* The early-out (four rim taps first, map.glsl) answers alone only
  * where those agree wholly; a feature thinner than the kernel between them
  * would change that answer. On the standard scenes and long_view it
  * changes no decision with any kernel it applies to (it only snaps
@@ -491,9 +490,9 @@ static void test_inset_fitted_to_its_map(void **state) {
     (void)state;
     static const struct {
         const char *scene;
-        shadow_map_kind kind;
+        map_kind kind;
         int layers;
-    } cases[] = {{"long_view", SHADOW_MAP_2D, 1}, {"simple", SHADOW_MAP_2D, 1}, {"bunny", SHADOW_MAP_CUBE, 6}};
+    } cases[] = {{"long_view", MAP_2D, 1}, {"simple", MAP_2D, 1}, {"bunny", MAP_CUBE, 6}};
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char scene[256], name[64];
         snprintf(scene, sizeof scene, "assets/scenes/%s.json", cases[i].scene);

@@ -1,4 +1,4 @@
-/* Tests of demos/lib/warp.c (and the uniform fit of shadow_map_fit.c): the
+/* Tests of demos/lib/warp.c (and the uniform fit of map_fit.c): the
  * math of warped shadow maps on hand-made views, points and lights. No GL
  * context is created: this is pure math. */
 #include <math.h>
@@ -13,7 +13,7 @@
 
 #include "camera.h"
 #include "frustum.h"
-#include "shadow_map.h"
+#include "map.h"
 #include "warp.h"
 
 #define PI 3.14159265358979323846
@@ -222,9 +222,9 @@ static void test_uniform_fit_contains_receivers(void **state) {
                                 .outer_angle_deg = 70,
                                 .inner_angle_deg = 60};
     for (int l = 0; l < s.light_count; l++) {
-        shadow_map m = {.size = 1024};
-        assert_true(shadow_map_fit_uniform(&s, l, &m, (const float(*)[3])street_points, RECEIVERS));
-        assert_int_equal(m.kind, SHADOW_MAP_2D);
+        map_light m = {.size = 1024};
+        assert_true(map_fit_uniform(&s, l, &m, (const float(*)[3])street_points, RECEIVERS));
+        assert_int_equal(m.kind, MAP_2D);
         assert_int_equal(m.layer_count, 1);
         assert_true(finite_matrix(m.layer_view_projection[0]));
         assert_inside_clip_cube(m.layer_view_projection[0], (const float(*)[3])street_points, RECEIVERS);

@@ -174,7 +174,7 @@ void cascades_slice_receivers(const scene *s, const camera_view *view, const mat
  * aligned with the view direction as the light sees it
  * (cascades_light_view: a slice is long along it; the sphere's box is
  * not). The caller deepens it towards the light to every caster that
- * overlaps it (shadow_map_nearest_caster: casters outside the view still
+ * overlaps it (map_nearest_caster: casters outside the view still
  * cast); the library's caster culling then draws into each layer only the
  * casters a read of that layer can meet. Biases are the library's, in
  * texels of world size: each layer's texel is known to the shader (its

@@ -3,7 +3,7 @@
 #include <math.h>
 
 #include "frustum.h"
-#include "shadow_map.h"
+#include "map.h"
 
 /* The frustum is this fraction wider than the casters' sphere or box, so
  * that their silhouette's edge texels and the lookup's bilinear taps stay
@@ -59,7 +59,7 @@ void projective_fit(const scene *s, const scene_light *light, bool receivers_cas
         frustum_view_bounds(view, (const float(*)[3])corners, n, vlo, vhi);
         float grow = PROJECTIVE_FIT_MARGIN * fmaxf(vhi[0] - vlo[0], vhi[1] - vlo[1]);
         float near_plane, far_plane;
-        shadow_map_depth_range(-vhi[2], -vlo[2], &near_plane, &far_plane);
+        map_depth_range(-vhi[2], -vlo[2], &near_plane, &far_plane);
         glm_ortho(vlo[0] - grow, vhi[0] + grow, vlo[1] - grow, vhi[1] + grow, near_plane, far_plane, projection);
     } else {
         glm_vec3_copy((float *)light->position, eye);
@@ -77,7 +77,7 @@ void projective_fit(const scene *s, const scene_light *light, bool receivers_cas
         t->half_angle_deg = glm_deg(half);
         float far_plane = distance + radius;
         float near_plane = fmaxf(distance - radius, far_plane * PROJECTIVE_FIT_NEAR_RATIO);
-        shadow_map_depth_range(near_plane, far_plane, &near_plane, &far_plane);
+        map_depth_range(near_plane, far_plane, &near_plane, &far_plane);
         near_plane = fmaxf(near_plane, far_plane * PROJECTIVE_FIT_NEAR_RATIO);
         frustum_look_along(eye, axis, view);
         glm_perspective(2 * half, 1, near_plane, far_plane, projection);

@@ -1,4 +1,4 @@
-/* The shadow maps' skips (demos/lib/shadow_map.h, "Caster culling" and
+/* The shadow maps' skips (demos/lib/map.h, "Caster culling" and
  * "Caching"): the culling test in process on hand-made layers, then the
  * programs. A caster between the light and the receivers is needed; one
  * beside the map, behind the light or behind the receivers is not; the
@@ -19,10 +19,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "shadow_map.h"
+#include "map.h"
 #include "support.h"
 
-#define OUT "out/test/shadow_map_skip"
+#define OUT "out/test/map_skip"
 #define CITY "assets/scenes/city_1000.json"
 #define CITY_LIGHTS 7
 #define CITY_CASTERS 1000
@@ -51,18 +51,18 @@ static void spot_layer(mat4 out) {
 }
 
 /* Where the patch's receivers read the spot's layer under `settings`. */
-static void patch_reads(const mat4 layer, const shadow_map_settings *settings, shadow_map_reads *reads) {
+static void patch_reads(const mat4 layer, const map_settings *settings, map_reads *reads) {
     const float box[1][2][3] = {{{-PATCH, 0, -PATCH}, {PATCH, 0, PATCH}}};
     float points[8][3];
     frustum_box_corners(box[0][0], box[0][1], (vec3 *)points);
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(settings, SHADOW_MAP_2D, false),
-                                   .size = MAP_SIZE,
-                                   .any_depth = settings->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
-    shadow_map_layer_reads(layer, &setup, (const float(*)[3])points, 8, box, 1, reads);
+    map_read_setup setup = {.reach = map_read_reach(settings, MAP_2D, false),
+                            .size = MAP_SIZE,
+                            .any_depth = settings->kernel_depth == MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+    map_layer_reads(layer, &setup, (const float(*)[3])points, 8, box, 1, reads);
 }
 
-static bool caster_needed(const mat4 layer, const shadow_map_reads *reads, vec3 lo, vec3 hi) {
-    return shadow_map_caster_read(reads, layer, lo, hi);
+static bool caster_needed(const mat4 layer, const map_reads *reads, vec3 lo, vec3 hi) {
+    return map_caster_read(reads, layer, lo, hi);
 }
 
 static void test_caster_cases(void **state) {
@@ -70,8 +70,8 @@ static void test_caster_cases(void **state) {
     mat4 layer;
     spot_layer(layer);
     /* poisson with centre depths: a read's depth bounds what it compares */
-    const shadow_map_settings settings = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE};
-    shadow_map_reads reads;
+    const map_settings settings = {.kernel_depth = MAP_KERNEL_DEPTH_CENTRE};
+    map_reads reads;
     patch_reads(layer, &settings, &reads);
     assert_false(reads.empty);
     static const struct {
@@ -89,9 +89,9 @@ static void test_caster_cases(void **state) {
     };
     /* The same from the boxes alone (a receiver list too long to trust). */
     const float box[1][2][3] = {{{-PATCH, 0, -PATCH}, {PATCH, 0, PATCH}}};
-    shadow_map_reads by_boxes;
-    shadow_map_read_setup setup = {.reach = shadow_map_read_reach(&settings, SHADOW_MAP_2D, false), .size = MAP_SIZE};
-    shadow_map_layer_reads(layer, &setup, NULL, 0, box, 1, &by_boxes);
+    map_reads by_boxes;
+    map_read_setup setup = {.reach = map_read_reach(&settings, MAP_2D, false), .size = MAP_SIZE};
+    map_layer_reads(layer, &setup, NULL, 0, box, 1, &by_boxes);
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         if (caster_needed(layer, &reads, (float *)cases[i].lo, (float *)cases[i].hi) != cases[i].needed)
             fail_msg("caster %s: expected %s", cases[i].what, cases[i].needed ? "needed" : "culled");
@@ -109,49 +109,44 @@ static void test_kernel_margin(void **state) {
     const float low = 0.4f, high = 0.5f, gap_texels = 2.5f;
     float patch_edge = PATCH / LIGHT_Y, texel = 2.0f / MAP_SIZE;
     vec3 lo = {(patch_edge + gap_texels * texel) * (LIGHT_Y - low), low, -PATCH}, hi = {lo[0] + 0.5f, high, PATCH};
-    shadow_map_reads reads;
-    const shadow_map_settings poisson = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE},
-                              nearest = {.filter = SHADOW_MAP_FILTER_NONE,
-                                         .kernel_depth = SHADOW_MAP_KERNEL_DEPTH_CENTRE};
+    map_reads reads;
+    const map_settings poisson = {.kernel_depth = MAP_KERNEL_DEPTH_CENTRE},
+                       nearest = {.filter = MAP_FILTER_NONE, .kernel_depth = MAP_KERNEL_DEPTH_CENTRE};
     patch_reads(layer, &poisson, &reads);
     assert_true(caster_needed(layer, &reads, lo, hi));
     patch_reads(layer, &nearest, &reads);
     assert_false(caster_needed(layer, &reads, lo, hi));
     /* Wider kernels reach farther. */
-    static const shadow_map_filter order[] = {SHADOW_MAP_FILTER_NONE, SHADOW_MAP_FILTER_HW,
-                                              SHADOW_MAP_FILTER_PCF3, SHADOW_MAP_FILTER_POISSON,
-                                              SHADOW_MAP_FILTER_PCF5, SHADOW_MAP_FILTER_PCF7};
+    static const map_filter order[] = {MAP_FILTER_NONE,    MAP_FILTER_HW,   MAP_FILTER_PCF3,
+                                       MAP_FILTER_POISSON, MAP_FILTER_PCF5, MAP_FILTER_PCF7};
     for (size_t i = 1; i < sizeof order / sizeof *order; i++) {
-        shadow_map_settings a = {.filter = order[i - 1]}, b = {.filter = order[i]};
-        assert_true(shadow_map_read_reach(&a, SHADOW_MAP_2D, false) <
-                    shadow_map_read_reach(&b, SHADOW_MAP_2D, false));
+        map_settings a = {.filter = order[i - 1]}, b = {.filter = order[i]};
+        assert_true(map_read_reach(&a, MAP_2D, false) < map_read_reach(&b, MAP_2D, false));
     }
     /* A tent N reads the texels pcfN does (centres within (N + 1) / 2
      * texels), from nearer taps: the same reach, not less. */
-    static const shadow_map_filter tents[][2] = {{SHADOW_MAP_FILTER_TENT3, SHADOW_MAP_FILTER_PCF3},
-                                                 {SHADOW_MAP_FILTER_TENT5, SHADOW_MAP_FILTER_PCF5}};
+    static const map_filter tents[][2] = {{MAP_FILTER_TENT3, MAP_FILTER_PCF3}, {MAP_FILTER_TENT5, MAP_FILTER_PCF5}};
     for (size_t i = 0; i < sizeof tents / sizeof *tents; i++)
-        for (shadow_map_kind kind = SHADOW_MAP_2D; kind <= SHADOW_MAP_CUBE; kind++) {
-            shadow_map_settings tent = {.filter = tents[i][0]}, grid = {.filter = tents[i][1]};
-            assert_true(shadow_map_read_reach(&tent, kind, false) >= shadow_map_read_reach(&grid, kind, false));
+        for (map_kind kind = MAP_2D; kind <= MAP_CUBE; kind++) {
+            map_settings tent = {.filter = tents[i][0]}, grid = {.filter = tents[i][1]};
+            assert_true(map_read_reach(&tent, kind, false) >= map_read_reach(&grid, kind, false));
         }
     /* A moment map's texel holds its blur's box: a read reaches its
      * radius past the bilinear footprint, an area light's the widest. */
-    static const shadow_map_filter moment_filters[] = {SHADOW_MAP_FILTER_VSM, SHADOW_MAP_FILTER_EVSM2,
-                                                       SHADOW_MAP_FILTER_EVSM4, SHADOW_MAP_FILTER_MSM};
-    const shadow_map_settings hw = {.filter = SHADOW_MAP_FILTER_HW};
+    static const map_filter moment_filters[] = {MAP_FILTER_VSM, MAP_FILTER_EVSM2, MAP_FILTER_EVSM4, MAP_FILTER_MSM};
+    const map_settings hw = {.filter = MAP_FILTER_HW};
     for (size_t i = 0; i < sizeof moment_filters / sizeof *moment_filters; i++) {
-        shadow_map_settings moments = {.filter = moment_filters[i]};
-        assert_true(shadow_map_read_reach(&moments, SHADOW_MAP_2D, false) >=
-                    shadow_map_read_reach(&hw, SHADOW_MAP_2D, false) + SHADOW_MAP_MOMENTS_HARD_BLUR_TEXELS);
-        assert_true(shadow_map_read_reach(&moments, SHADOW_MAP_2D, true) >=
-                    shadow_map_read_reach(&hw, SHADOW_MAP_2D, false) + SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);
+        map_settings moments = {.filter = moment_filters[i]};
+        assert_true(map_read_reach(&moments, MAP_2D, false) >=
+                    map_read_reach(&hw, MAP_2D, false) + MAP_MOMENTS_HARD_BLUR_TEXELS);
+        assert_true(map_read_reach(&moments, MAP_2D, true) >=
+                    map_read_reach(&hw, MAP_2D, false) + MAP_MOMENTS_MAX_BLUR_TEXELS);
         patch_reads(layer, &moments, &reads);
         assert_true(caster_needed(layer, &reads, lo, hi));
     }
     /* Receiver-plane taps compare depths beyond the receivers': a caster
      * behind them is needed then, and culled with centre depths. */
-    const shadow_map_settings plane = {.kernel_depth = SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE};
+    const map_settings plane = {.kernel_depth = MAP_KERNEL_DEPTH_RECEIVER_PLANE};
     vec3 below_lo = {-0.5f, -3, -0.5f}, below_hi = {0.5f, -2, 0.5f};
     patch_reads(layer, &plane, &reads);
     assert_true(caster_needed(layer, &reads, below_lo, below_hi));
@@ -167,15 +162,14 @@ static void test_cube_face(void **state) {
     glm_lookat((vec3){0, 0, 0}, (vec3){1, 0, 0}, (vec3){0, -1, 0}, view); /* +X */
     glm_perspective(glm_rad(FOV_DEG), 1, NEAR, FAR, projection);
     glm_mat4_mul(projection, view, face);
-    const shadow_map_settings settings = {0};
-    shadow_map_read_setup setup = {
-        .reach = shadow_map_read_reach(&settings, SHADOW_MAP_CUBE, false), .size = MAP_SIZE, .cube = true};
+    const map_settings settings = {0};
+    map_read_setup setup = {.reach = map_read_reach(&settings, MAP_CUBE, false), .size = MAP_SIZE, .cube = true};
     /* A ground patch below the light, on the +X side, beyond 45 degrees. */
     const float box[1][2][3] = {{{2, -3, -1}, {8, -3, 1}}};
-    shadow_map_reads reads;
+    map_reads reads;
     float points[8][3];
     frustum_box_corners(box[0][0], box[0][1], (vec3 *)points);
-    shadow_map_layer_reads(face, &setup, (const float(*)[3])points, 8, box, 1, &reads);
+    map_layer_reads(face, &setup, (const float(*)[3])points, 8, box, 1, &reads);
     assert_false(reads.empty);
     assert_true(caster_needed(face, &reads, (vec3){4, -2, -0.5f}, (vec3){5, -1, 0.5f}));    /* between */
     assert_false(caster_needed(face, &reads, (vec3){-5, -2, -0.5f}, (vec3){-4, -1, 0.5f})); /* the -X side */

@@ -1,22 +1,22 @@
-// One light's share in the camera pass (shaders/shadowmap.frag), for maps
-// of the sampler type SHADOW_MAP_SAMPLER (and SHADOW_MAP_RAW_SAMPLER, the
+// One light's share in the camera pass (shaders/map.frag), for maps
+// of the sampler type MAP_SAMPLER (and MAP_RAW_SAMPLER, the
 // same map read as depth, for soft lights, or its moment map, for moment
 // filters): included once by each kind's
-// file (shadowmap_2d.glsl: sampler2DShadow, shadowmap_cube.glsl:
-// samplerCubeShadow, shadowmap_array.glsl: sampler2DArrayShadow), which
+// file (map_2d.glsl: sampler2DShadow, map_cube.glsl:
+// samplerCubeShadow, map_array.glsl: sampler2DArrayShadow), which
 // defines for its type, before this file,
-//   shadow_map_kernel_read(map, offset)  one tap (a kernel tap's offset, in
+//   map_kernel_read(map, offset)  one tap (a kernel tap's offset, in
 //                                        the unit the kind filters in) about
 //                                        the point its visibility set up;
 // and after it
-//   shadow_map_texel_world(map, i, k, p) world size of a texel of light i's
+//   map_texel_world(map, i, k, p) world size of a texel of light i's
 //                                        map at p (k: the texel's kind, a
-//                                        SHADOW_MAP_TEXEL_*, for 2D maps);
-//   shadow_map_visibility(map, raw, i, p, b, soft, moments, texel, needed)
+//                                        MAP_TEXEL_*, for 2D maps);
+//   map_visibility(map, raw, i, p, b, soft, moments, texel, needed)
 //                                        the filtered comparison at p, its
 //                                        map depth lowered by b first, by
 //                                        the settings' kernel or, soft, by
-//                                        shadowmap_soft.glsl's, or with
+//                                        map_soft.glsl's, or with
 //                                        `moments` from raw's moments
 //                                        (moments.glsl) (texel: a
 //                                        texel's world size there; the
@@ -24,96 +24,96 @@
 //                                        first, in uniform control flow;
 //                                        needed false then reads no map: the
 //                                        share is 0 there whatever it says);
-//   shadow_map_texel_coord(map, i, p)    p's position in the map, in texels
+//   map_texel_coord(map, i, p)    p's position in the map, in texels
 //                                        (the lecture's texel overlays).
 // GLSL picks each by the sampler's type: the same names for both kinds.
 
-float shadow_map_texel_world(SHADOW_MAP_SAMPLER map, int i, int texel_kind, vec3 p);
-float shadow_map_visibility(SHADOW_MAP_SAMPLER map, SHADOW_MAP_RAW_SAMPLER raw, int i, vec3 p, float depth_bias,
+float map_texel_world(MAP_SAMPLER map, int i, int texel_kind, vec3 p);
+float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, vec3 p, float depth_bias,
                             bool soft, bool moments, float texel, bool needed);
-vec2 shadow_map_texel_coord(SHADOW_MAP_SAMPLER map, int i, vec3 p);
+vec2 map_texel_coord(MAP_SAMPLER map, int i, vec3 p);
 
 // The kernel's visibility: the early-out's rim, then where it disagrees
 // (or without the early-out) the weighted sum of every tap.
-float shadow_map_kernel_filter(SHADOW_MAP_SAMPLER map, vec2 fraction, float unit) {
-    mat2 rotation = shadow_map_kernel_rotation();
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_TENT)
-        shadow_map_tent_place(fraction);
+float map_kernel_filter(MAP_SAMPLER map, vec2 fraction, float unit) {
+    mat2 rotation = map_kernel_rotation();
+    if (map_shape == MAP_KERNEL_TENT)
+        map_tent_place(fraction);
     vec4 rim;
-    if (shadow_map_kernel_early_out()) {
-        for (int k = 0; k < SHADOW_MAP_RIM_TAPS; k++)
-            rim[k] = shadow_map_kernel_read(map, shadow_map_kernel_tap(shadow_map_kernel_rim(k), rotation, unit).xy);
-        float agreed = shadow_map_rim_agreement(rim);
+    if (map_kernel_early_out()) {
+        for (int k = 0; k < MAP_RIM_TAPS; k++)
+            rim[k] = map_kernel_read(map, map_kernel_tap(map_kernel_rim(k), rotation, unit).xy);
+        float agreed = map_rim_agreement(rim);
         if (agreed >= 0.0)
             return agreed;
     }
     // The rim's taps are not read twice: the sum takes them in their
     // place in the list, so that it is the one without the early-out.
     float sum = 0.0;
-    for (int i = 0; i < shadow_map_kernel_taps(); i++) {
-        vec3 tap = shadow_map_kernel_tap(i, rotation, unit);
-        int k = shadow_map_kernel_early_out() ? shadow_map_kernel_rim_index(i) : -1;
-        sum += tap.z * (k >= 0 ? rim[k] : shadow_map_kernel_read(map, tap.xy));
+    for (int i = 0; i < map_kernel_taps(); i++) {
+        vec3 tap = map_kernel_tap(i, rotation, unit);
+        int k = map_kernel_early_out() ? map_kernel_rim_index(i) : -1;
+        sum += tap.z * (k >= 0 ? rim[k] : map_kernel_read(map, tap.xy));
     }
-    return sum / shadow_map_kernel_norm();
+    return sum / map_kernel_norm();
 }
 
 // Light i's share at this fragment (normal n) where its map (texels of
 // kind texel_kind) lets it through, filtered as a soft light's where
-// `soft` (an area light: shadowmap_soft.glsl), from its moment map where
+// `soft` (an area light: map_soft.glsl), from its moment map where
 // `moments`, with the lecture's overlays. Where the light adds nothing
 // unshadowed (beyond its range, outside a spot's cone, facing away) or
-// reaches only through a closed caster (shadow_map_through_closed) the
+// reaches only through a closed caster (map_through_closed) the
 // filter is skipped: the share is 0 whatever it would say.
-vec3 shadow_map_share(SHADOW_MAP_SAMPLER map, SHADOW_MAP_RAW_SAMPLER raw, int i, int texel_kind, bool soft,
+vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, int texel_kind, bool soft,
                       bool moments, vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
     // Both biases move the point where the map is read, in world units
     // scaled by the map's texel there, so they hold at any map size,
     // distance and scene scale. The normal offset grows with the slope
     // (sin of the angle to the light), where a texel spans most depth.
-    float texel = shadow_map_texel_world(map, i, texel_kind, v_position);
+    float texel = map_texel_world(map, i, texel_kind, v_position);
     float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
     float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
     vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
     vec3 unshadowed =
-        shadow_map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
-    bool needed = unshadowed != vec3(0.0) || shadow_map_show_texel_size;
-    shadow_map_penumbra_estimate = SHADOW_MAP_NO_PENUMBRA;
-    float visibility = shadow_map_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
+        map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
+    bool needed = unshadowed != vec3(0.0) || map_show_texel_size;
+    map_penumbra_estimate = MAP_NO_PENUMBRA;
+    float visibility = map_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
                                              soft, moments, texel, needed);
     if (soft)
-        visibility *= shadow_map_horizon_share(i, normalize(shadow_map_face_normal), to_light, v_position);
+        visibility *= map_horizon_share(i, normalize(map_face_normal), to_light, v_position);
     vec3 c = visibility * unshadowed;
     // Lines one pixel wide where texels meet: how big a texel is on screen
     // is what aliasing is made of. A grid finer than two pixels a line is
     // above the picture's Nyquist limit: it shows moire, not texels (a
     // 2048 map on simple: a third of a pixel a texel). So the lines run
     // every 2^k texels, k the least (per pixel, from the screen derivative)
-    // that puts them SHADOW_MAP_TEXEL_LINE_MIN_PIXELS apart or more: every
+    // that puts them MAP_TEXEL_LINE_MIN_PIXELS apart or more: every
     // texel where texels are that big, else blocks of 2, 4, 8... texels.
-    vec2 map_texel = shadow_map_texel_coord(map, i, v_position);
-    vec2 texels_per_pixel = max(fwidth(map_texel), vec2(SHADOW_MAP_MIN_TEXEL_FWIDTH));
+    vec2 map_texel = map_texel_coord(map, i, v_position);
+    vec2 texels_per_pixel = max(fwidth(map_texel), vec2(MAP_MIN_TEXEL_FWIDTH));
     float block = exp2(max(ceil(log2(max(texels_per_pixel.x, texels_per_pixel.y) *
-                                     SHADOW_MAP_TEXEL_LINE_MIN_PIXELS)), 0.0));
+                                     MAP_TEXEL_LINE_MIN_PIXELS)), 0.0));
     vec2 distance_to_edge = abs(fract(map_texel / block - 0.5) - 0.5) * block / texels_per_pixel;
     float edge = 1.0 - min(min(distance_to_edge.x, distance_to_edge.y), 1.0);
-    if (shadow_map_show_texels)
-        c *= 1.0 - SHADOW_MAP_TEXEL_LINE_DARKENING * edge;
+    if (map_show_texels)
+        c *= 1.0 - MAP_TEXEL_LINE_DARKENING * edge;
     // The aliasing measure of the perspective shadow map papers (dp/ds):
     // a texel's size in pixels, the square root of the pixel area it
     // covers. Blue: a quarter pixel or less, green: one, red: 32 or more.
-    if (shadow_map_show_texel_size) {
+    if (map_show_texel_size) {
         vec2 dx = dFdx(map_texel), dy = dFdy(map_texel);
-        float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), SHADOW_MAP_HEAT_MIN_AREA));
+        float texel_pixels = inversesqrt(max(abs(dx.x * dy.y - dx.y * dy.x), MAP_HEAT_MIN_AREA));
         c = texel_heat_shade(texel_heat_color(log2(texel_pixels)), c);
     }
     // PCSS's estimate of the penumbra's radius in world units, on the
-    // texel-size ramp moved to the penumbra overlay's ends (shadow_map.h);
+    // texel-size ramp moved to the penumbra overlay's ends (map.h);
     // left as it is where the blocker search found nothing.
-    if (shadow_map_show_penumbra && shadow_map_penumbra_estimate != SHADOW_MAP_NO_PENUMBRA)
-        c = texel_heat_shade(texel_heat_color(log2(max(shadow_map_penumbra_estimate, SHADOW_MAP_MIN_PENUMBRA)) -
-                                              float(SHADOW_MAP_PENUMBRA_LOG2_MIN - SHADOW_MAP_HEAT_LOG2_MIN)),
+    if (map_show_penumbra && map_penumbra_estimate != MAP_NO_PENUMBRA)
+        c = texel_heat_shade(texel_heat_color(log2(max(map_penumbra_estimate, MAP_MIN_PENUMBRA)) -
+                                              float(MAP_PENUMBRA_LOG2_MIN - MAP_HEAT_LOG2_MIN)),
                              c);
     return c;
 }

@@ -1,42 +1,42 @@
-// The camera pass's kernels (shaders/shadowmap.frag), for both kinds of
+// The camera pass's kernels (shaders/map.frag), for both kinds of
 // map: which taps a filter reads, where and with what weights. The kernel
-// is fixed per program (C defines SHADOW_MAP_PASS_*, below, and the
-// SHADOW_MAP_KERNEL_* of its enum shadow_map_kernel before this file): a
+// is fixed per program (C defines MAP_PASS_*, below, and the
+// MAP_KERNEL_* of its enum map_kernel before this file): a
 // uniform would cost every pixel every kernel's code on llvmpipe, which
-// runs both sides of a branch. How a tap reads a map is the map kind's (shadowmap_2d.glsl,
-// shadowmap_cube.glsl); the filter over the taps is shadowmap_light.glsl's.
+// runs both sides of a branch. How a tap reads a map is the map kind's (map_2d.glsl,
+// map_cube.glsl); the filter over the taps is map_light.glsl's.
 
 // The pixel hash: two primes, so that neighbouring pixels start far apart,
 // then MurmurHash2's multiplier between two xor-shifts to mix the bits.
-const uint SHADOW_MAP_HASH_PRIME_X = 1973u;
-const uint SHADOW_MAP_HASH_PRIME_Y = 9277u;
-const uint SHADOW_MAP_HASH_MULTIPLIER = 0x5bd1e995u;
-const int SHADOW_MAP_HASH_SHIFT_BEFORE = 13;
-const int SHADOW_MAP_HASH_SHIFT_AFTER = 15;
+const uint MAP_HASH_PRIME_X = 1973u;
+const uint MAP_HASH_PRIME_Y = 9277u;
+const uint MAP_HASH_MULTIPLIER = 0x5bd1e995u;
+const int MAP_HASH_SHIFT_BEFORE = 13;
+const int MAP_HASH_SHIFT_AFTER = 15;
 // The hash's 2^32 values onto one turn (2 pi radians), and onto 0..1.
-const float SHADOW_MAP_HASH_TO_ANGLE = 6.2831853 / 4294967296.0;
-const float SHADOW_MAP_HASH_TO_FRACTION = 1.0 / 4294967296.0;
+const float MAP_HASH_TO_ANGLE = 6.2831853 / 4294967296.0;
+const float MAP_HASH_TO_FRACTION = 1.0 / 4294967296.0;
 
 // A hash of the pixel, so the same frame gives the same picture (no noise
 // texture, no clock).
-uint shadow_map_pixel_hash() {
+uint map_pixel_hash() {
     uvec2 q = uvec2(gl_FragCoord.xy);
-    uint h = q.x * SHADOW_MAP_HASH_PRIME_X + q.y * SHADOW_MAP_HASH_PRIME_Y;
-    h = (h ^ (h >> SHADOW_MAP_HASH_SHIFT_BEFORE)) * SHADOW_MAP_HASH_MULTIPLIER;
-    return h ^ (h >> SHADOW_MAP_HASH_SHIFT_AFTER);
+    uint h = q.x * MAP_HASH_PRIME_X + q.y * MAP_HASH_PRIME_Y;
+    h = (h ^ (h >> MAP_HASH_SHIFT_BEFORE)) * MAP_HASH_MULTIPLIER;
+    return h ^ (h >> MAP_HASH_SHIFT_AFTER);
 }
 
 // Per-pixel rotation of the Poisson disc.
-float shadow_map_pixel_angle() { return float(shadow_map_pixel_hash()) * SHADOW_MAP_HASH_TO_ANGLE; }
+float map_pixel_angle() { return float(map_pixel_hash()) * MAP_HASH_TO_ANGLE; }
 
 // 16 points of a Poisson disc (minimum distance 0.35), scaled by half of
-// shadow_map_kernel_size texels (SHADOW_MAP_POISSON_SCALE_TEXELS: 3). They
+// map_kernel_size texels (MAP_POISSON_SCALE_TEXELS: 3). They
 // are not all in the unit circle: eight lie outside it, the farthest at radius 1.234, so
 // the taps span 3.7 texels across, not 3. The points are kept as they are:
 // the defaults (the biases, the kernel's size) were chosen with them, on
 // the bench's sweeps and test_shadowmap's bounds.
-const int SHADOW_MAP_POISSON_TAPS = 16;
-const vec2 shadow_map_poisson[SHADOW_MAP_POISSON_TAPS] = vec2[](
+const int MAP_POISSON_TAPS = 16;
+const vec2 map_poisson[MAP_POISSON_TAPS] = vec2[](
     vec2(-0.94201624, -0.39906216), vec2(0.94558609, -0.76890725), vec2(-0.09418410, -0.92938870),
     vec2(0.34495938, 0.29387760), vec2(-0.91588581, 0.45771432), vec2(-0.81544232, -0.87912464),
     vec2(-0.38277543, 0.27676845), vec2(0.97484398, 0.75648379), vec2(0.44323325, -0.97511554),
@@ -45,28 +45,28 @@ const vec2 shadow_map_poisson[SHADOW_MAP_POISSON_TAPS] = vec2[](
     vec2(0.14383161, -0.14100790));
 // The early-out's rim: four of the outermost points, about a quarter turn
 // apart (at 203, 321, 38 and 132 degrees before the rotation).
-const int SHADOW_MAP_POISSON_RIM[4] = int[](0, 1, 7, 13);
+const int MAP_POISSON_RIM[4] = int[](0, 1, 7, 13);
 
 // The kernel, the same for both kinds of map.
-// SHADOW_MAP_KERNEL_*: one tap, N x N grid, Poisson disc, N x N tent.
-const int shadow_map_shape = SHADOW_MAP_PASS_SHAPE;
-const int shadow_map_kernel_size = SHADOW_MAP_PASS_KERNEL; // N, or the disc's scale in texels
+// MAP_KERNEL_*: one tap, N x N grid, Poisson disc, N x N tent.
+const int map_shape = MAP_PASS_SHAPE;
+const int map_kernel_size = MAP_PASS_KERNEL; // N, or the disc's scale in texels
 // Wide kernels: four rim taps first, the rest only where they disagree.
-const bool shadow_map_early_out = SHADOW_MAP_PASS_EARLY_OUT != 0;
+const bool map_early_out = MAP_PASS_EARLY_OUT != 0;
 // Each tap compares the receiver plane's depth there, not the centre's.
-const bool shadow_map_receiver_plane = SHADOW_MAP_PASS_RECEIVER_PLANE != 0;
+const bool map_receiver_plane = MAP_PASS_RECEIVER_PLANE != 0;
 uniform float u_map_size[SCENE_MAX_LIGHTS]; // light i's map: texels on a side
 
 // A flat map's (2D, or an array's layer) point the kernel reads about (map
 // coordinates and depth) and its depth gradient: set by
-// shadow_map_flat_filter (shadowmap_flat.glsl) for shadow_map_kernel_read.
-vec3 shadow_map_point;
-vec2 shadow_map_gradient;
+// map_flat_filter (map_flat.glsl) for map_kernel_read.
+vec3 map_point;
+vec2 map_gradient;
 
 // Below this the screen -> map Jacobian is singular (the receiver seen
 // edge-on, or no change across the pixel): no plane to follow, so every
 // tap compares the centre's depth.
-const float SHADOW_MAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
+const float MAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
 
 // Receiver-plane depth bias (Isidoro, "Shadow mapping: GPU-based tips and
 // techniques", GDC 2006): how the receiver's map depth changes per unit of
@@ -74,10 +74,10 @@ const float SHADOW_MAP_MIN_SCREEN_TO_MAP_DETERMINANT = 1e-14;
 // that each tap of a wide kernel compares the receiver's own depth there,
 // not the centre's, which would shadow a slanted receiver with partial acne.
 // A soft light's taps always follow the plane: its kernels are wide.
-vec2 shadow_map_depth_gradient(vec3 dx, vec3 dy, bool soft) {
+vec2 map_depth_gradient(vec3 dx, vec3 dy, bool soft) {
     mat2 screen_to_map = mat2(dx.xy, dy.xy);
-    if (!(shadow_map_receiver_plane || soft) ||
-        abs(determinant(screen_to_map)) < SHADOW_MAP_MIN_SCREEN_TO_MAP_DETERMINANT)
+    if (!(map_receiver_plane || soft) ||
+        abs(determinant(screen_to_map)) < MAP_MIN_SCREEN_TO_MAP_DETERMINANT)
         return vec2(0.0);
     return inverse(transpose(screen_to_map)) * vec2(dx.z, dy.z);
 }
@@ -86,11 +86,11 @@ vec2 shadow_map_depth_gradient(vec3 dx, vec3 dy, bool soft) {
 // the point, in texels (a 2D map's grid; the plane across the direction of
 // a cube map) divided by `unit` (the map's size, for offsets in map
 // coordinates; 1 for texels), and its weight. The weighted sum over every
-// tap divided by shadow_map_kernel_norm() is the visibility. `fraction` is
+// tap divided by map_kernel_norm() is the visibility. `fraction` is
 // the point's place from its nearest texel corner, -0.5..0.5 texels on
 // each axis, which the tent places its taps by.
 //
-// The tent (SHADOW_MAP_KERNEL_TENT, shadow_map_kernel_size N = 3 or 5) is
+// The tent (MAP_KERNEL_TENT, map_kernel_size N = 3 or 5) is
 // percentage-closer filtering weighted by a tent of radius N / 2 texels centred on
 // the point, each texel's comparison counted as the square it covers:
 // a texel weighs the tent's area over its square. Such weights sum to 1
@@ -107,7 +107,7 @@ vec2 shadow_map_depth_gradient(vec3 dx, vec3 dy, bool soft) {
 
 // The tent's area left of x (x from its centre), for a tent of area 1;
 // both axes at once.
-vec2 shadow_map_tent_below(vec2 x, float radius) {
+vec2 map_tent_below(vec2 x, float radius) {
     vec2 outside = max(radius - abs(x), 0.0);
     vec2 tail = outside * outside / (2.0 * radius * radius);
     return mix(1.0 - tail, tail, lessThan(x, vec2(0.0)));
@@ -115,70 +115,70 @@ vec2 shadow_map_tent_below(vec2 x, float radius) {
 
 // The tent's taps on each axis (x and y at once), for the pixel's point:
 // pair p's offset and weight, the tent's area over its two squares.
-const int SHADOW_MAP_TENT_MAX_PAIRS = 3; /* tent5's */
-vec2 shadow_map_tent_offset[SHADOW_MAP_TENT_MAX_PAIRS], shadow_map_tent_weight[SHADOW_MAP_TENT_MAX_PAIRS];
+const int MAP_TENT_MAX_PAIRS = 3; /* tent5's */
+vec2 map_tent_offset[MAP_TENT_MAX_PAIRS], map_tent_weight[MAP_TENT_MAX_PAIRS];
 
-int shadow_map_tent_pairs() { return (shadow_map_kernel_size + 1) / 2; }
+int map_tent_pairs() { return (map_kernel_size + 1) / 2; }
 
 // Pair p's squares run from corner to corner + 2 (texels from the point):
 // the first pair's corner lies (N + 1)/2 texels before the point's
 // nearest corner, each next one 2 on; a pair's upper area is the next
 // one's lower.
-void shadow_map_tent_place(vec2 fraction) {
-    float radius = 0.5 * float(shadow_map_kernel_size);
-    vec2 corner = -fraction - float(shadow_map_tent_pairs());
-    vec2 below = shadow_map_tent_below(corner, radius);
-    for (int p = 0; p < shadow_map_tent_pairs(); p++) {
-        vec2 middle = shadow_map_tent_below(corner + 1.0, radius);
-        vec2 above = shadow_map_tent_below(corner + 2.0, radius);
+void map_tent_place(vec2 fraction) {
+    float radius = 0.5 * float(map_kernel_size);
+    vec2 corner = -fraction - float(map_tent_pairs());
+    vec2 below = map_tent_below(corner, radius);
+    for (int p = 0; p < map_tent_pairs(); p++) {
+        vec2 middle = map_tent_below(corner + 1.0, radius);
+        vec2 above = map_tent_below(corner + 2.0, radius);
         // Never 0: every pair overlaps the tent by half a texel or more.
-        shadow_map_tent_weight[p] = above - below;
+        map_tent_weight[p] = above - below;
         // From the first texel's centre (corner + 0.5) towards the second's.
-        shadow_map_tent_offset[p] = corner + 0.5 + (above - middle) / shadow_map_tent_weight[p];
+        map_tent_offset[p] = corner + 0.5 + (above - middle) / map_tent_weight[p];
         below = above;
         corner += 2.0;
     }
 }
 
-int shadow_map_kernel_taps() {
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_POISSON)
-        return SHADOW_MAP_POISSON_TAPS;
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_TENT)
-        return shadow_map_tent_pairs() * shadow_map_tent_pairs();
-    return shadow_map_kernel_size * shadow_map_kernel_size;
+int map_kernel_taps() {
+    if (map_shape == MAP_KERNEL_POISSON)
+        return MAP_POISSON_TAPS;
+    if (map_shape == MAP_KERNEL_TENT)
+        return map_tent_pairs() * map_tent_pairs();
+    return map_kernel_size * map_kernel_size;
 }
 
 // The grid and the disc weigh every tap 1 and divide by the count (their
 // sums are the ones before the tents, bit for bit); the tent's weights
 // already sum to 1.
-float shadow_map_kernel_norm() {
-    return shadow_map_shape == SHADOW_MAP_KERNEL_TENT ? 1.0 : float(shadow_map_kernel_taps());
+float map_kernel_norm() {
+    return map_shape == MAP_KERNEL_TENT ? 1.0 : float(map_kernel_taps());
 }
 
 // The disc's rotation for this pixel; the identity for the other kernels.
-mat2 shadow_map_kernel_rotation() {
-    if (shadow_map_shape != SHADOW_MAP_KERNEL_POISSON)
+mat2 map_kernel_rotation() {
+    if (map_shape != MAP_KERNEL_POISSON)
         return mat2(1.0);
-    float a = shadow_map_pixel_angle();
+    float a = map_pixel_angle();
     return mat2(cos(a), sin(a), -sin(a), cos(a));
 }
 
-// Tap i of the kernel (the tent's placed by shadow_map_tent_place).
-vec3 shadow_map_kernel_tap(int i, mat2 rotation, float unit) {
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_POISSON)
-        return vec3(rotation * shadow_map_poisson[i] * (0.5 * float(shadow_map_kernel_size) / unit), 1.0);
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_TENT) {
-        int x = i % shadow_map_tent_pairs(), y = i / shadow_map_tent_pairs();
-        return vec3(vec2(shadow_map_tent_offset[x].x, shadow_map_tent_offset[y].y) / unit,
-                    shadow_map_tent_weight[x].x * shadow_map_tent_weight[y].y);
+// Tap i of the kernel (the tent's placed by map_tent_place).
+vec3 map_kernel_tap(int i, mat2 rotation, float unit) {
+    if (map_shape == MAP_KERNEL_POISSON)
+        return vec3(rotation * map_poisson[i] * (0.5 * float(map_kernel_size) / unit), 1.0);
+    if (map_shape == MAP_KERNEL_TENT) {
+        int x = i % map_tent_pairs(), y = i / map_tent_pairs();
+        return vec3(vec2(map_tent_offset[x].x, map_tent_offset[y].y) / unit,
+                    map_tent_weight[x].x * map_tent_weight[y].y);
     }
-    int half_kernel = shadow_map_kernel_size / 2;
-    return vec3(vec2(i % shadow_map_kernel_size - half_kernel, i / shadow_map_kernel_size - half_kernel) / unit, 1.0);
+    int half_kernel = map_kernel_size / 2;
+    return vec3(vec2(i % map_kernel_size - half_kernel, i / map_kernel_size - half_kernel) / unit, 1.0);
 }
 
-// The early-out (shadow_map_early_out, for kernels of more than four taps): four
+// The early-out (map_early_out, for kernels of more than four taps): four
 // taps on the kernel's rim first, the middles of the sides of the grid of
-// taps (pcfN's, the tent's pairs) or the disc's SHADOW_MAP_POISSON_RIM.
+// taps (pcfN's, the tent's pairs) or the disc's MAP_POISSON_RIM.
 // Where all four are wholly lit or wholly shadowed the point is taken to
 // be outside any penumbra (nearly every pixel is) and that is the answer;
 // elsewhere the whole kernel decides, rim included, so that its sum is the
@@ -188,35 +188,35 @@ vec3 shadow_map_kernel_tap(int i, mat2 rotation, float unit) {
 // thin shadows slip through tent5; the middles change no decision on any
 // standard scene or long_view, with any kernel: test_shadowmap's
 // test_early_out_changes_no_decision).
-const int SHADOW_MAP_RIM_TAPS = 4;
+const int MAP_RIM_TAPS = 4;
 
-bool shadow_map_kernel_early_out() { return shadow_map_early_out && shadow_map_kernel_taps() > SHADOW_MAP_RIM_TAPS; }
+bool map_kernel_early_out() { return map_early_out && map_kernel_taps() > MAP_RIM_TAPS; }
 
 // Rim tap k's index, k = 0..3: the middles of the sides of the side x side
 // grid of taps (side odd), in the order the taps are listed.
-int shadow_map_kernel_rim(int k) {
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_POISSON)
-        return SHADOW_MAP_POISSON_RIM[k];
-    int side = shadow_map_shape == SHADOW_MAP_KERNEL_TENT ? shadow_map_tent_pairs() : shadow_map_kernel_size;
+int map_kernel_rim(int k) {
+    if (map_shape == MAP_KERNEL_POISSON)
+        return MAP_POISSON_RIM[k];
+    int side = map_shape == MAP_KERNEL_TENT ? map_tent_pairs() : map_kernel_size;
     int middle = side / 2;
     return k == 0 ? middle : k == 1 ? middle * side : k == 2 ? middle * side + side - 1 : (side - 1) * side + middle;
 }
 
 // Which rim tap (0..3) tap i is, or -1.
-int shadow_map_kernel_rim_index(int i) {
-    for (int k = 0; k < SHADOW_MAP_RIM_TAPS; k++)
-        if (shadow_map_kernel_rim(k) == i)
+int map_kernel_rim_index(int i) {
+    for (int k = 0; k < MAP_RIM_TAPS; k++)
+        if (map_kernel_rim(k) == i)
             return k;
     return -1;
 }
 
 // What four rim taps agree on: 0 or 1 where they are all that, else -1.
-float shadow_map_rim_agreement(vec4 rim) {
+float map_rim_agreement(vec4 rim) {
     return rim == vec4(0.0) || rim == vec4(1.0) ? rim.x : -1.0;
 }
 
 // Soft shadows' pieces that do not depend on the kind of map (the
-// filter itself, per kind: shadowmap_soft.glsl).
+// filter itself, per kind: map_soft.glsl).
 
 // Light i's disc: its radius (world units) for a point or spot light, the
 // tangent of its angular radius for a directional one.
@@ -225,15 +225,15 @@ uniform float u_light_size[SCENE_MAX_LIGHTS];
 // The radius in world units on the receiver of the penumbra that a
 // blocker at distance d_b casts from light i on a receiver at d_r.
 // (A blocker at the light itself would cast an unbounded one.)
-const float SHADOW_MAP_MIN_BLOCKER_DISTANCE = 1e-6;
-float shadow_map_penumbra_world(int i, float d_r, float d_b) {
+const float MAP_MIN_BLOCKER_DISTANCE = 1e-6;
+float map_penumbra_world(int i, float d_r, float d_b) {
     float depth = max(d_r - d_b, 0.0);
     return lights_position[i].w == 0.0 ? u_light_size[i] * depth
-                                       : u_light_size[i] * depth / max(d_b, SHADOW_MAP_MIN_BLOCKER_DISTANCE);
+                                       : u_light_size[i] * depth / max(d_b, MAP_MIN_BLOCKER_DISTANCE);
 }
 
-float shadow_map_soft_texels(float world, float texel_world) {
-    return clamp(world / texel_world, 0.5 * float(SHADOW_MAP_POISSON_SCALE_TEXELS), float(SHADOW_MAP_SOFT_MAX_TEXELS));
+float map_soft_texels(float world, float texel_world) {
+    return clamp(world / texel_world, 0.5 * float(MAP_POISSON_SCALE_TEXELS), float(MAP_SOFT_MAX_TEXELS));
 }
 
 // The share of light i's disc above the receiver's own horizon (its
@@ -243,31 +243,31 @@ float shadow_map_soft_texels(float world, float texel_world) {
 // terminator of a curved receiver the light sets behind the surface
 // itself, as the reference's rays see it; a map has no such depth to
 // compare. 1 wherever the whole disc is above the plane.
-const float SHADOW_MAP_PI = 3.14159265;
-float shadow_map_horizon_share(int i, vec3 n, vec3 to_light, vec3 p) {
+const float MAP_PI = 3.14159265;
+float map_horizon_share(int i, vec3 n, vec3 to_light, vec3 p) {
     float sin_a = lights_position[i].w == 0.0 ? u_light_size[i] * inversesqrt(1.0 + u_light_size[i] * u_light_size[i])
                                               : min(u_light_size[i] / distance(lights_position[i].xyz, p), 1.0);
     float x = clamp(dot(n, to_light) / sin_a, -1.0, 1.0);
-    return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / SHADOW_MAP_PI;
+    return 1.0 - (acos(x) - x * sqrt(1.0 - x * x)) / MAP_PI;
 }
 
 // Tap k of n on the unit disc (Vogel 1979): radius sqrt((k + 0.5) / n),
 // each a golden angle on from the one before, turned by `rotation`.
-const float SHADOW_MAP_GOLDEN_ANGLE = 2.39996323;
-vec2 shadow_map_vogel_tap(int k, int n, mat2 rotation) {
-    float a = float(k) * SHADOW_MAP_GOLDEN_ANGLE;
+const float MAP_GOLDEN_ANGLE = 2.39996323;
+vec2 map_vogel_tap(int k, int n, mat2 rotation) {
+    float a = float(k) * MAP_GOLDEN_ANGLE;
     return rotation * (vec2(cos(a), sin(a)) * sqrt((float(k) + 0.5) / float(n)));
 }
 
 // The texel overlay: a floor on the screen derivative of the map position
 // (where it does not change across a pixel there are no edges to find, and
 // no division by zero), and how much a texel boundary darkens the picture.
-const float SHADOW_MAP_MIN_TEXEL_FWIDTH = 1e-6;
-const float SHADOW_MAP_TEXEL_LINE_DARKENING = 0.6;
+const float MAP_MIN_TEXEL_FWIDTH = 1e-6;
+const float MAP_TEXEL_LINE_DARKENING = 0.6;
 // The least spacing of the texel overlay's lines, in pixels: well above
 // the two pixels a line of Nyquist's limit, so the grid reads as squares.
-const float SHADOW_MAP_TEXEL_LINE_MIN_PIXELS = 4.0;
+const float MAP_TEXEL_LINE_MIN_PIXELS = 4.0;
 // The penumbra overlay's floor on the radius (a blocker at the receiver's
 // own depth casts none), so that its log2 is finite.
-const float SHADOW_MAP_MIN_PENUMBRA = 1e-6;
+const float MAP_MIN_PENUMBRA = 1e-6;
 #include "texel_heat.glsl"

@@ -1,4 +1,4 @@
-// The camera pass's cube maps (shaders/shadowmap.frag): a point light's
+// The camera pass's cube maps (shaders/map.frag): a point light's
 // six 90-degree faces, read by direction with seamless filtering across
 // face edges. Light i's map is u_maps_cube[i] and the uniforms of index i.
 
@@ -9,23 +9,23 @@ uniform float u_far[SCENE_MAX_LIGHTS];
 
 // A tap ray this close to parallel with the receiver's plane would slide
 // far along it onto the plane: such taps keep their own point.
-const float SHADOW_MAP_MIN_PLANE_FACING = 0.05;
+const float MAP_MIN_PLANE_FACING = 0.05;
 // The kernel's plane is built across the direction from the up axis, or
 // from the x axis when the direction is this close to up (where the cross
 // product with up vanishes).
-const float SHADOW_MAP_NEAR_UP = 0.9;
+const float MAP_NEAR_UP = 0.9;
 
 // The point's direction from the light, the receiver's normal, the depth
 // bias, the plane across the direction (two unit axes), a texel's size
-// there and the light's depth range: set by shadow_map_visibility for
-// shadow_map_kernel_read.
-vec3 shadow_map_direction, shadow_map_receiver_normal, shadow_map_across_u, shadow_map_across_v;
-float shadow_map_depth_bias, shadow_map_step;
-vec2 shadow_map_cube_depth_range;
+// there and the light's depth range: set by map_visibility for
+// map_kernel_read.
+vec3 map_direction, map_receiver_normal, map_across_u, map_across_v;
+float map_depth_bias, map_step;
+vec2 map_cube_depth_range;
 
 // The depth a face's projection stores for a point at this direction:
 // the perspective depth of its distance along the face's axis.
-float shadow_map_face_depth(vec3 d, vec2 range) {
+float map_face_depth(vec3 d, vec2 range) {
     float near = range.x, far = range.y;
     vec3 a = abs(d);
     float z = max(a.x, max(a.y, a.z));
@@ -34,8 +34,8 @@ float shadow_map_face_depth(vec3 d, vec2 range) {
 }
 
 // A tap's direction, offset (in texels) across the point's.
-vec3 shadow_map_tap_direction(vec2 offset) {
-    return shadow_map_direction + (shadow_map_across_u * offset.x + shadow_map_across_v * offset.y) * shadow_map_step;
+vec3 map_tap_direction(vec2 offset) {
+    return map_direction + (map_across_u * offset.x + map_across_v * offset.y) * map_step;
 }
 
 // The depth a tap compares. With the receiver-plane bias (and for soft
@@ -43,40 +43,40 @@ vec3 shadow_map_tap_direction(vec2 offset) {
 // plane, and compares that point's own depth (as Isidoro's receiver-plane
 // bias does for 2D maps), so a slanted receiver does not shadow its own
 // kernel.
-bool shadow_map_plane_taps;
-float shadow_map_tap_depth(vec2 offset) {
-    vec3 t = shadow_map_tap_direction(offset), w = t - shadow_map_direction;
-    float facing = dot(normalize(t), shadow_map_receiver_normal);
-    if (shadow_map_plane_taps && abs(facing) > SHADOW_MAP_MIN_PLANE_FACING)
-        t -= normalize(t) * (dot(w, shadow_map_receiver_normal) / facing);
-    return shadow_map_face_depth(t, shadow_map_cube_depth_range) - shadow_map_depth_bias;
+bool map_plane_taps;
+float map_tap_depth(vec2 offset) {
+    vec3 t = map_tap_direction(offset), w = t - map_direction;
+    float facing = dot(normalize(t), map_receiver_normal);
+    if (map_plane_taps && abs(facing) > MAP_MIN_PLANE_FACING)
+        t -= normalize(t) * (dot(w, map_receiver_normal) / facing);
+    return map_face_depth(t, map_cube_depth_range) - map_depth_bias;
 }
 
-float shadow_map_kernel_read(samplerCubeShadow map, vec2 offset) {
-    return texture(map, vec4(shadow_map_tap_direction(offset), shadow_map_tap_depth(offset)));
+float map_kernel_read(samplerCubeShadow map, vec2 offset) {
+    return texture(map, vec4(map_tap_direction(offset), map_tap_depth(offset)));
 }
 
-// A soft light's reads (shadowmap_soft.glsl).
-float shadow_map_reference_depth(samplerCube raw, vec2 offset) { return shadow_map_tap_depth(offset); }
+// A soft light's reads (map_soft.glsl).
+float map_reference_depth(samplerCube raw, vec2 offset) { return map_tap_depth(offset); }
 
 // The raw map's texel an offset away: a depth (.r), or moments.
-vec4 shadow_map_raw_read(samplerCube raw, vec2 offset) { return texture(raw, shadow_map_tap_direction(offset)); }
+vec4 map_raw_read(samplerCube raw, vec2 offset) { return texture(raw, map_tap_direction(offset)); }
 
 // A stored depth back to its distance along the face's axis.
-float shadow_map_soft_distance(samplerCube raw, int i, float depth) {
+float map_soft_distance(samplerCube raw, int i, float depth) {
     float near = u_near[i], far = u_far[i], ndc = depth * 2.0 - 1.0;
     return 2.0 * far * near / ((far + near) - ndc * (far - near));
 }
 
-#define SHADOW_MAP_SAMPLER samplerCubeShadow
-#define SHADOW_MAP_RAW_SAMPLER samplerCube
-#include "shadowmap_light.glsl"
-#include "shadowmap_soft.glsl"
-#undef SHADOW_MAP_RAW_SAMPLER
-#undef SHADOW_MAP_SAMPLER
+#define MAP_SAMPLER samplerCubeShadow
+#define MAP_RAW_SAMPLER samplerCube
+#include "map_light.glsl"
+#include "map_soft.glsl"
+#undef MAP_RAW_SAMPLER
+#undef MAP_SAMPLER
 
 // A 90-degree face spans 2 |major axis| over the map's size.
-float shadow_map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
+float map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
     vec3 d = abs(p - lights_position[i].xyz);
     return 2.0 * max(d.x, max(d.y, d.z)) / u_map_size[i];
 }
@@ -86,7 +86,7 @@ float shadow_map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 
 // tents take the taps and weights of a point on a texel corner (fraction
 // 0): symmetric about the point, the same tap count and footprint as on a
 // 2D map, but not following where the point lies in its texel.
-float shadow_map_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
+float map_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
                             bool moments, float texel, bool needed) {
     vec3 d = p - lights_position[i].xyz;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
@@ -94,27 +94,27 @@ float shadow_map_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 
         return 1.0;
     vec2 range = vec2(u_near[i], u_far[i]);
     if (moments)
-        return moments_visibility(texture(raw, d), shadow_map_face_depth(d, range) - depth_bias);
-    if (shadow_map_shape == SHADOW_MAP_KERNEL_SINGLE && !soft)
-        return texture(map, vec4(d, shadow_map_face_depth(d, range) - depth_bias));
+        return moments_visibility(texture(raw, d), map_face_depth(d, range) - depth_bias);
+    if (map_shape == MAP_KERNEL_SINGLE && !soft)
+        return texture(map, vec4(d, map_face_depth(d, range) - depth_bias));
     vec3 axis = normalize(d);
-    vec3 u = normalize(cross(abs(axis.y) < SHADOW_MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
-    shadow_map_direction = d;
-    shadow_map_receiver_normal = receiver_normal;
-    shadow_map_depth_bias = depth_bias;
-    shadow_map_cube_depth_range = range;
-    shadow_map_across_u = u;
-    shadow_map_across_v = cross(axis, u);
-    shadow_map_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
-    shadow_map_plane_taps = shadow_map_receiver_plane || soft;
+    vec3 u = normalize(cross(abs(axis.y) < MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
+    map_direction = d;
+    map_receiver_normal = receiver_normal;
+    map_depth_bias = depth_bias;
+    map_cube_depth_range = range;
+    map_across_u = u;
+    map_across_v = cross(axis, u);
+    map_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    map_plane_taps = map_receiver_plane || soft;
     if (soft)
-        return shadow_map_soft_filter(map, raw, i, shadow_map_step, 1.0);
-    return shadow_map_kernel_filter(map, vec2(0.0), 1.0);
+        return map_soft_filter(map, raw, i, map_step, 1.0);
+    return map_kernel_filter(map, vec2(0.0), 1.0);
 }
 
 // On the face the direction falls on: the two other components over the
 // major one span -1..1 across the face.
-vec2 shadow_map_texel_coord(samplerCubeShadow map, int i, vec3 p) {
+vec2 map_texel_coord(samplerCubeShadow map, int i, vec3 p) {
     vec3 d = p - lights_position[i].xyz, a = abs(d);
     vec2 face = a.x >= a.y && a.x >= a.z ? d.yz / a.x : a.y >= a.z ? d.xz / a.y : d.xy / a.z;
     return (face * 0.5 + 0.5) * u_map_size[i];

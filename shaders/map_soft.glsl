@@ -1,17 +1,17 @@
 // Percentage-closer soft shadows (Fernando, "Percentage-closer soft
 // shadows", SIGGRAPH 2005 sketch) for an area light (scene "radius" > 0),
-// in the camera pass (shaders/shadowmap.frag): included once by each kind
-// of map's file, after shadowmap_light.glsl, for its SHADOW_MAP_SAMPLER
-// (comparisons) and SHADOW_MAP_RAW_SAMPLER (the same texture read as depth,
+// in the camera pass (shaders/map.frag): included once by each kind
+// of map's file, after map_light.glsl, for its MAP_SAMPLER
+// (comparisons) and MAP_RAW_SAMPLER (the same texture read as depth,
 // on a unit of its own). That file defines, before this one,
-//   shadow_map_raw_read(raw, offset)        the stored texel a tap's offset
+//   map_raw_read(raw, offset)        the stored texel a tap's offset
 //                                           (in the kernel's unit) away (its
 //                                           depth: .r);
-//   shadow_map_reference_depth(raw, offset) the receiver's own depth there
+//   map_reference_depth(raw, offset) the receiver's own depth there
 //                                           (its plane, as receiver-plane
 //                                           taps follow it), biased as its
 //                                           comparisons are;
-//   shadow_map_soft_distance(raw, i, depth) how far from light i (along its
+//   map_soft_distance(raw, i, depth) how far from light i (along its
 //                                           rays; a directional light: along
 //                                           its direction, up to a constant)
 //                                           a stored depth at the point lies.
@@ -34,27 +34,27 @@
 //   3. percentage-closer filtering over a disc of that radius.
 // Both discs are Vogel's golden-angle spirals, rotated per pixel by the
 // pixel's hash (no noise over time: frames stay deterministic), clamped
-// to the hard default's disc (SHADOW_MAP_POISSON_SCALE_TEXELS / 2: a
+// to the hard default's disc (MAP_POISSON_SCALE_TEXELS / 2: a
 // penumbra narrower than that is filtered as a hard shadow is) and
-// SHADOW_MAP_SOFT_MAX_TEXELS (C culls casters with that reach).
+// MAP_SOFT_MAX_TEXELS (C culls casters with that reach).
 
 // Light i's visibility at the point its kind's visibility set up; the
 // texel's world size there (texel_world) and the unit of the kind's tap
 // offsets per texel (unit: the map's size for map coordinates, 1 for
 // texels).
-float shadow_map_soft_filter(SHADOW_MAP_SAMPLER map, SHADOW_MAP_RAW_SAMPLER raw, int i, float texel_world, float unit) {
-    float a = shadow_map_pixel_angle();
+float map_soft_filter(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, float texel_world, float unit) {
+    float a = map_pixel_angle();
     mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
-    float d_r = shadow_map_soft_distance(raw, i, shadow_map_reference_depth(raw, vec2(0.0)));
+    float d_r = map_soft_distance(raw, i, map_reference_depth(raw, vec2(0.0)));
     // 1. The blocker search, over the light's cone cut at the near plane.
-    float search = shadow_map_soft_texels(shadow_map_penumbra_world(i, d_r, shadow_map_soft_distance(raw, i, 0.0)),
+    float search = map_soft_texels(map_penumbra_world(i, d_r, map_soft_distance(raw, i, 0.0)),
                                           texel_world) / unit;
     float blocker_distance = 0.0, blocker_weight = 0.0;
-    for (int k = 0; k < SHADOW_MAP_SOFT_SEARCH_TAPS; k++) {
-        vec2 offset = shadow_map_vogel_tap(k, SHADOW_MAP_SOFT_SEARCH_TAPS, rotation) * search;
-        float depth = shadow_map_raw_read(raw, offset).r;
-        if (depth < shadow_map_reference_depth(raw, offset)) {
-            float distance = shadow_map_soft_distance(raw, i, depth);
+    for (int k = 0; k < MAP_SOFT_SEARCH_TAPS; k++) {
+        vec2 offset = map_vogel_tap(k, MAP_SOFT_SEARCH_TAPS, rotation) * search;
+        float depth = map_raw_read(raw, offset).r;
+        if (depth < map_reference_depth(raw, offset)) {
+            float distance = map_soft_distance(raw, i, depth);
             float weight = 1.0 / max(d_r - distance, texel_world);
             blocker_distance += weight * distance;
             blocker_weight += weight;
@@ -64,13 +64,13 @@ float shadow_map_soft_filter(SHADOW_MAP_SAMPLER map, SHADOW_MAP_RAW_SAMPLER raw,
         return 1.0;
     // 2. The penumbra's radius from the blockers' weighted distance.
     float d_b = blocker_distance / blocker_weight;
-    float world = shadow_map_penumbra_world(i, d_r, d_b);
-    if (shadow_map_show_penumbra)
-        shadow_map_penumbra_estimate = world;
-    float radius = shadow_map_soft_texels(world, texel_world) / unit;
+    float world = map_penumbra_world(i, d_r, d_b);
+    if (map_show_penumbra)
+        map_penumbra_estimate = world;
+    float radius = map_soft_texels(world, texel_world) / unit;
     // 3. Percentage-closer filtering over it.
     float sum = 0.0;
-    for (int k = 0; k < SHADOW_MAP_SOFT_FILTER_TAPS; k++)
-        sum += shadow_map_kernel_read(map, shadow_map_vogel_tap(k, SHADOW_MAP_SOFT_FILTER_TAPS, rotation) * radius);
-    return sum / float(SHADOW_MAP_SOFT_FILTER_TAPS);
+    for (int k = 0; k < MAP_SOFT_FILTER_TAPS; k++)
+        sum += map_kernel_read(map, map_vogel_tap(k, MAP_SOFT_FILTER_TAPS, rotation) * radius);
+    return sum / float(MAP_SOFT_FILTER_TAPS);
 }

@@ -1,4 +1,4 @@
-// The camera pass's 2D maps (shaders/shadowmap.frag): a spot or
+// The camera pass's 2D maps (shaders/map.frag): a spot or
 // directional light's (demos/shadowmap.c, and demos/cascades.c's spot
 // lights), or any light's warped map (demos/psm.c). Light i's map is
 // u_maps_2d[i] and the uniforms of index i.
@@ -11,66 +11,66 @@ uniform mat4 u_light_inverse[SCENE_MAX_LIGHTS];      // a soft light's clip spac
 
 // A matrix whose map coordinates hardly change with p (degenerate there)
 // gives a huge texel rather than a division by zero.
-const float SHADOW_MAP_MIN_MAP_DERIVATIVE = 1e-20;
+const float MAP_MIN_MAP_DERIVATIVE = 1e-20;
 
 // offset: in map coordinates.
-float shadow_map_kernel_read(sampler2DShadow map, vec2 offset) {
-    return texture(map, vec3(shadow_map_point.xy + offset, shadow_map_point.z + dot(shadow_map_gradient, offset)));
+float map_kernel_read(sampler2DShadow map, vec2 offset) {
+    return texture(map, vec3(map_point.xy + offset, map_point.z + dot(map_gradient, offset)));
 }
 
 // The raw map's texel an offset away: a depth (.r), or moments.
-vec4 shadow_map_raw_read(sampler2D raw, vec2 offset) { return texture(raw, shadow_map_point.xy + offset); }
+vec4 map_raw_read(sampler2D raw, vec2 offset) { return texture(raw, map_point.xy + offset); }
 
 // Un-projected at the point's place in the map: any projective map's
 // depth (a warp's is not distance) back to the world.
-float shadow_map_soft_distance(sampler2D raw, int i, float depth) {
-    vec4 world = u_light_inverse[i] * vec4(shadow_map_point.xy * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+float map_soft_distance(sampler2D raw, int i, float depth) {
+    vec4 world = u_light_inverse[i] * vec4(map_point.xy * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 b = world.xyz / world.w;
     return lights_position[i].w == 0.0 ? dot(b, lights_direction[i].xyz) : distance(b, lights_position[i].xyz);
 }
 
-#define SHADOW_MAP_SAMPLER sampler2DShadow
-#define SHADOW_MAP_RAW_SAMPLER sampler2D
-#include "shadowmap_light.glsl"
-#include "shadowmap_flat.glsl"
-#include "shadowmap_soft.glsl"
-#undef SHADOW_MAP_RAW_SAMPLER
-#undef SHADOW_MAP_SAMPLER
+#define MAP_SAMPLER sampler2DShadow
+#define MAP_RAW_SAMPLER sampler2D
+#include "map_light.glsl"
+#include "map_flat.glsl"
+#include "map_soft.glsl"
+#undef MAP_RAW_SAMPLER
+#undef MAP_SAMPLER
 
 // A warped map's texel size changes across the map, and its depth is not
 // distance: the texel is how far p moves for its map coordinates to
 // change by one texel, from the matrix's derivatives at p. (Along the light
 // ray through p they do not change at all, so this measures across it.)
-float shadow_map_projective_texel(int i, vec3 p) {
+float map_projective_texel(int i, vec3 p) {
     mat4 m = u_light_matrix[i];
     vec4 clip = m * vec4(p, 1.0);
     vec3 w_row = vec3(m[0][3], m[1][3], m[2][3]);
     vec3 du = (vec3(m[0][0], m[1][0], m[2][0]) - clip.x / clip.w * w_row) / clip.w;
     vec3 dv = (vec3(m[0][1], m[1][1], m[2][1]) - clip.y / clip.w * w_row) / clip.w;
-    return 2.0 / (u_map_size[i] * max(min(length(du), length(dv)), SHADOW_MAP_MIN_MAP_DERIVATIVE));
+    return 2.0 / (u_map_size[i] * max(min(length(du), length(dv)), MAP_MIN_MAP_DERIVATIVE));
 }
 
 // By the kind of map: orthographic, perspective (looking along the
 // light's direction from its position) or any projective map (a warp).
-float shadow_map_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) {
-    if (texel_kind == SHADOW_MAP_TEXEL_ORTHOGRAPHIC)
+float map_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) {
+    if (texel_kind == MAP_TEXEL_ORTHOGRAPHIC)
         return u_texel_scale[i];
-    if (texel_kind == SHADOW_MAP_TEXEL_PERSPECTIVE)
+    if (texel_kind == MAP_TEXEL_PERSPECTIVE)
         return u_texel_scale[i] * max(dot(p - lights_position[i].xyz, lights_direction[i].xyz), 0.0);
-    return shadow_map_projective_texel(i, p);
+    return map_projective_texel(i, p);
 }
 
-float shadow_map_visibility(sampler2DShadow map, sampler2D raw, int i, vec3 p, float depth_bias, bool soft,
+float map_visibility(sampler2DShadow map, sampler2D raw, int i, vec3 p, float depth_bias, bool soft,
                             bool moments, float texel, bool needed) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
-    vec2 gradient = shadow_map_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
+    vec2 gradient = map_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
     if (!needed || clip.w <= 0.0)
         return 1.0;
-    return shadow_map_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, moments, texel);
+    return map_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, moments, texel);
 }
 
-vec2 shadow_map_texel_coord(sampler2DShadow map, int i, vec3 p) {
+vec2 map_texel_coord(sampler2DShadow map, int i, vec3 p) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     return (clip.xy / clip.w * 0.5 + 0.5) * u_map_size[i];
 }

@@ -1,5 +1,5 @@
-/* shadow_map: storage, the depth pass, the camera pass and the frame (see
- * shadow_map.h). */
+/* map: storage, the depth pass, the camera pass and the frame (see
+ * map.h). */
 #include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -8,81 +8,77 @@
 
 #include "context.h"
 #include "depth.h"
-#include "shadow_map.h"
+#include "map_internal.h"
 #include "mesh_point.h"
 #include "shading.h"
 
-const char *const shadow_map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
-const char *const shadow_map_filters[] = {
-    [SHADOW_MAP_FILTER_AUTO] = "auto",   [SHADOW_MAP_FILTER_POISSON] = "poisson",
-    [SHADOW_MAP_FILTER_NONE] = "none",   [SHADOW_MAP_FILTER_HW] = "hw",
-    [SHADOW_MAP_FILTER_PCF3] = "pcf3",   [SHADOW_MAP_FILTER_PCF5] = "pcf5",
-    [SHADOW_MAP_FILTER_PCF7] = "pcf7",   [SHADOW_MAP_FILTER_TENT3] = "tent3",
-    [SHADOW_MAP_FILTER_TENT5] = "tent5", [SHADOW_MAP_FILTER_VSM] = "vsm",
-    [SHADOW_MAP_FILTER_EVSM2] = "evsm2", [SHADOW_MAP_FILTER_EVSM4] = "evsm4",
-    [SHADOW_MAP_FILTER_MSM] = "msm",     NULL};
-const char *const shadow_map_depths[] = {[SHADOW_MAP_DEPTH_24] = "24", [SHADOW_MAP_DEPTH_32F] = "32f", NULL};
-const char *const shadow_map_kernel_depths[] = {
-    [SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", [SHADOW_MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
-const char *const shadow_map_softs[] = {[SHADOW_MAP_SOFT_PCSS] = "pcss", [SHADOW_MAP_SOFT_OFF] = "off", NULL};
+const char *const map_sizes[] = {"auto", "256", "512", "1024", "2048", "4096", NULL};
+const char *const map_filters[] = {[MAP_FILTER_AUTO] = "auto",   [MAP_FILTER_POISSON] = "poisson",
+                                   [MAP_FILTER_NONE] = "none",   [MAP_FILTER_HW] = "hw",
+                                   [MAP_FILTER_PCF3] = "pcf3",   [MAP_FILTER_PCF5] = "pcf5",
+                                   [MAP_FILTER_PCF7] = "pcf7",   [MAP_FILTER_TENT3] = "tent3",
+                                   [MAP_FILTER_TENT5] = "tent5", [MAP_FILTER_VSM] = "vsm",
+                                   [MAP_FILTER_EVSM2] = "evsm2", [MAP_FILTER_EVSM4] = "evsm4",
+                                   [MAP_FILTER_MSM] = "msm",     NULL};
+const char *const map_depths[] = {[MAP_DEPTH_24] = "24", [MAP_DEPTH_32F] = "32f", NULL};
+const char *const map_kernel_depths[] = {
+    [MAP_KERNEL_DEPTH_RECEIVER_PLANE] = "receiver-plane", [MAP_KERNEL_DEPTH_CENTRE] = "centre", NULL};
+const char *const map_softs[] = {[MAP_SOFT_PCSS] = "pcss", [MAP_SOFT_OFF] = "off", NULL};
 
 /* What each filter reads: the kernel's shape and its size (N, or the
  * Poisson disc's scale in texels); a moment filter reads its moments once
  * (the single tap's code is the least the program holds). Auto reads as
- * the filter it stands for (shadow_map_filter_in_use). */
+ * the filter it stands for (map_filter_in_use). */
 static const struct {
-    shadow_map_kernel shape;
+    map_kernel shape;
     int size;
-} shadow_map_kernels[] = {
-    [SHADOW_MAP_FILTER_POISSON] = {SHADOW_MAP_KERNEL_POISSON, SHADOW_MAP_POISSON_SCALE_TEXELS},
-    [SHADOW_MAP_FILTER_NONE] = {SHADOW_MAP_KERNEL_SINGLE, 0},
-    [SHADOW_MAP_FILTER_HW] = {SHADOW_MAP_KERNEL_SINGLE, 0},
-    [SHADOW_MAP_FILTER_PCF3] = {SHADOW_MAP_KERNEL_GRID, 3},
-    [SHADOW_MAP_FILTER_PCF5] = {SHADOW_MAP_KERNEL_GRID, 5},
-    [SHADOW_MAP_FILTER_PCF7] = {SHADOW_MAP_KERNEL_GRID, 7},
-    [SHADOW_MAP_FILTER_TENT3] = {SHADOW_MAP_KERNEL_TENT, 3},
-    [SHADOW_MAP_FILTER_TENT5] = {SHADOW_MAP_KERNEL_TENT, 5},
-    [SHADOW_MAP_FILTER_VSM] = {SHADOW_MAP_KERNEL_SINGLE, 0},
-    [SHADOW_MAP_FILTER_EVSM2] = {SHADOW_MAP_KERNEL_SINGLE, 0},
-    [SHADOW_MAP_FILTER_EVSM4] = {SHADOW_MAP_KERNEL_SINGLE, 0},
-    [SHADOW_MAP_FILTER_MSM] = {SHADOW_MAP_KERNEL_SINGLE, 0},
+} map_kernels[] = {
+    [MAP_FILTER_POISSON] = {MAP_KERNEL_POISSON, MAP_POISSON_SCALE_TEXELS},
+    [MAP_FILTER_NONE] = {MAP_KERNEL_SINGLE, 0},
+    [MAP_FILTER_HW] = {MAP_KERNEL_SINGLE, 0},
+    [MAP_FILTER_PCF3] = {MAP_KERNEL_GRID, 3},
+    [MAP_FILTER_PCF5] = {MAP_KERNEL_GRID, 5},
+    [MAP_FILTER_PCF7] = {MAP_KERNEL_GRID, 7},
+    [MAP_FILTER_TENT3] = {MAP_KERNEL_TENT, 3},
+    [MAP_FILTER_TENT5] = {MAP_KERNEL_TENT, 5},
+    [MAP_FILTER_VSM] = {MAP_KERNEL_SINGLE, 0},
+    [MAP_FILTER_EVSM2] = {MAP_KERNEL_SINGLE, 0},
+    [MAP_FILTER_EVSM4] = {MAP_KERNEL_SINGLE, 0},
+    [MAP_FILTER_MSM] = {MAP_KERNEL_SINGLE, 0},
 };
 
 /* The C constants the camera pass compares with (and the legend's
  * colours, the heat map's ends). */
-static const shader_define shadow_map_defines[] = {
-    SHADER_DEFINE(SHADOW_MAP_KERNEL_SINGLE),     SHADER_DEFINE(SHADOW_MAP_KERNEL_GRID),
-    SHADER_DEFINE(SHADOW_MAP_KERNEL_POISSON),    SHADER_DEFINE(SHADOW_MAP_TEXEL_ORTHOGRAPHIC),
-    SHADER_DEFINE(SHADOW_MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(SHADOW_MAP_TEXEL_PROJECTIVE),
-    SHADER_DEFINE(SHADOW_MAP_KERNEL_TENT),       SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MIN),
-    SHADER_DEFINE(SHADOW_MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(SHADOW_MAP_MAX_ARRAY_LAYERS),
-    SHADER_DEFINE(SHADOW_MAP_SOFT_SEARCH_TAPS),  SHADER_DEFINE(SHADOW_MAP_SOFT_FILTER_TAPS),
-    SHADER_DEFINE(SHADOW_MAP_SOFT_MAX_TEXELS),   SHADER_DEFINE(SHADOW_MAP_POISSON_SCALE_TEXELS),
-    SHADER_DEFINE(SHADOW_MAP_PENUMBRA_LOG2_MIN), SHADER_DEFINE(SHADOW_MAP_MOMENTS_VSM),
-    SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM2),     SHADER_DEFINE(SHADOW_MAP_MOMENTS_EVSM4),
-    SHADER_DEFINE(SHADOW_MAP_MOMENTS_MSM),       {NULL, 0}};
+static const shader_define map_defines[] = {
+    SHADER_DEFINE(MAP_KERNEL_SINGLE),     SHADER_DEFINE(MAP_KERNEL_GRID),
+    SHADER_DEFINE(MAP_KERNEL_POISSON),    SHADER_DEFINE(MAP_TEXEL_ORTHOGRAPHIC),
+    SHADER_DEFINE(MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(MAP_TEXEL_PROJECTIVE),
+    SHADER_DEFINE(MAP_KERNEL_TENT),       SHADER_DEFINE(MAP_HEAT_LOG2_MIN),
+    SHADER_DEFINE(MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(MAP_MAX_ARRAY_LAYERS),
+    SHADER_DEFINE(MAP_SOFT_SEARCH_TAPS),  SHADER_DEFINE(MAP_SOFT_FILTER_TAPS),
+    SHADER_DEFINE(MAP_SOFT_MAX_TEXELS),   SHADER_DEFINE(MAP_POISSON_SCALE_TEXELS),
+    SHADER_DEFINE(MAP_PENUMBRA_LOG2_MIN), SHADER_DEFINE(MAP_MOMENTS_VSM),
+    SHADER_DEFINE(MAP_MOMENTS_EVSM2),     SHADER_DEFINE(MAP_MOMENTS_EVSM4),
+    SHADER_DEFINE(MAP_MOMENTS_MSM),       {NULL, 0}};
 
 /* The camera pass's sampler arrays, by the kind of map they read: its
  * comparisons', and a soft light's depths'. */
 static const struct {
     const char *name, *depths;
-    shadow_map_light_kind kind;
-} shadow_map_samplers[SHADOW_MAP_SAMPLER_TYPES] = {
-    {"u_maps_2d", "u_depths_2d", SHADOW_MAP_LIGHT_2D},
-    {"u_maps_cube", "u_depths_cube", SHADOW_MAP_LIGHT_CUBE},
-    {"u_maps_array", "u_depths_array", SHADOW_MAP_LIGHT_ARRAY},
+    map_light_kind kind;
+} map_samplers[MAP_SAMPLER_TYPES] = {
+    {"u_maps_2d", "u_depths_2d", MAP_LIGHT_2D},
+    {"u_maps_cube", "u_depths_cube", MAP_LIGHT_CUBE},
+    {"u_maps_array", "u_depths_array", MAP_LIGHT_ARRAY},
 };
 
-static float shadow_map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
+static float map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
 
-int shadow_map_settings_size(const shadow_map_settings *settings) {
-    return atoi(shadow_map_sizes[settings->map_size]);
-}
+int map_settings_size(const map_settings *settings) { return atoi(map_sizes[settings->map_size]); }
 
-int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const warp_sample *samples, int n,
-                         int grazing) {
+int map_auto_size(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int grazing) {
     if (grazing > n)
-        return SHADOW_MAP_AUTO_MAX_SIZE;
+        return MAP_AUTO_MAX_SIZE;
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
@@ -97,15 +93,15 @@ int shadow_map_auto_size(const shadow_map *m, const scene_light *light, const wa
         }
     }
     if (measured == 0)
-        return SHADOW_MAP_AUTO_FALLBACK_SIZE;
-    double needed = m->size * (sum / measured) / SHADOW_MAP_AUTO_TEXEL_PIXELS;
-    int size = SHADOW_MAP_AUTO_MIN_SIZE;
-    while (size < SHADOW_MAP_AUTO_MAX_SIZE && size < needed)
+        return MAP_AUTO_FALLBACK_SIZE;
+    double needed = m->size * (sum / measured) / MAP_AUTO_TEXEL_PIXELS;
+    int size = MAP_AUTO_MIN_SIZE;
+    while (size < MAP_AUTO_MAX_SIZE && size < needed)
         size *= 2;
     return size;
 }
 
-int shadow_map_light_samples(shadow_map_renderer *r, const technique_frame *f, int l) {
+map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l) {
     const scene *s = f->gpu->scene;
     if (r->hit_count < 0)
         r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
@@ -113,40 +109,37 @@ int shadow_map_light_samples(shadow_map_renderer *r, const technique_frame *f, i
         r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples, &r->grazing_count);
         r->sample_light = l;
     }
-    return r->sample_count;
+    return (map_samples){r->samples, r->sample_count, r->grazing_count};
 }
 
 /* The fitted map m at another size: only the texel's world size follows
  * (as 1 / size); the matrices and the depth range do not depend on it. */
-static void shadow_map_resize(shadow_map *m, int size) {
+static void map_resize(map_light *m, int size) {
     m->texel_scale *= (float)m->size / (float)size;
     m->size = size;
 }
 
-const char *shadow_map_kind_name(shadow_map_kind kind) {
-    static const char *const names[] = {
-        [SHADOW_MAP_2D] = "2D", [SHADOW_MAP_CUBE] = "cube", [SHADOW_MAP_ARRAY] = "array"};
+const char *map_kind_name(map_kind kind) {
+    static const char *const names[] = {[MAP_2D] = "2D", [MAP_CUBE] = "cube", [MAP_ARRAY] = "array"};
     return names[kind];
 }
 
-void shadow_map_size_text(const shadow_map_settings *settings, const shadow_map *m, char *out, size_t size) {
-    snprintf(out, size, "%s map %s%d", shadow_map_kind_name(m->kind), settings->map_size == 0 ? "auto: " : "",
-             m->size);
+void map_size_text(const map_settings *settings, const map_light *m, char *out, size_t size) {
+    snprintf(out, size, "%s map %s%d", map_kind_name(m->kind), settings->map_size == 0 ? "auto: " : "", m->size);
 }
 
-unsigned shadow_map_target(shadow_map_kind kind) {
-    static const GLenum targets[] = {[SHADOW_MAP_2D] = GL_TEXTURE_2D,
-                                     [SHADOW_MAP_CUBE] = GL_TEXTURE_CUBE_MAP,
-                                     [SHADOW_MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
+unsigned map_target(map_kind kind) {
+    static const GLenum targets[] = {
+        [MAP_2D] = GL_TEXTURE_2D, [MAP_CUBE] = GL_TEXTURE_CUBE_MAP, [MAP_ARRAY] = GL_TEXTURE_2D_ARRAY};
     return targets[kind];
 }
 
 /* The texture image a 2D or cube map's layer is stored in. */
-unsigned shadow_map_layer_image(shadow_map_kind kind, int layer) {
-    return kind == SHADOW_MAP_CUBE ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)layer : GL_TEXTURE_2D;
+unsigned map_layer_image(map_kind kind, int layer) {
+    return kind == MAP_CUBE ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + (GLenum)layer : GL_TEXTURE_2D;
 }
 
-void shadow_map_texture_filter(unsigned target, int filter) {
+void map_texture_filter(unsigned target, int filter) {
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, filter);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, filter);
     glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -156,12 +149,12 @@ void shadow_map_texture_filter(unsigned target, int filter) {
 
 /* Makes a layer of a map the depth pass's depth attachment: an array's
  * layer by its index, a 2D map's or a cube face's by its image. */
-static void shadow_map_attach_layer(const shadow_map *m, int layer) {
-    if (m->kind == SHADOW_MAP_ARRAY)
+static void map_attach_layer(const map_light *m, int layer) {
+    if (m->kind == MAP_ARRAY)
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, m->texture.id, 0, layer);
     else
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_map_layer_image(m->kind, layer),
-                               m->texture.id, 0);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, map_layer_image(m->kind, layer), m->texture.id,
+                               0);
 }
 
 /* ---- storage ---- */
@@ -171,26 +164,26 @@ static void shadow_map_attach_layer(const shadow_map *m, int layer) {
  * test; outside the map reads are clamped (the shader calls them lit).
  * A moment filter's textures are made with it.
  * Returns whether it made one (what the layers held is gone). */
-static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings *settings) {
-    shadow_map_texture *t = &m->texture;
-    int depth = settings->depth, filter = shadow_map_filter_in_use(settings);
+static bool map_prepare_texture(map_light *m, const map_settings *settings) {
+    map_texture *t = &m->texture;
+    int depth = settings->depth, filter = map_filter_in_use(settings);
     if (t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count && t->depth == depth &&
         t->filter == filter)
         return false;
     glDeleteTextures(1, &t->id);
-    GLenum target = shadow_map_target(m->kind);
-    GLenum format = depth == SHADOW_MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
-    GLenum type = depth == SHADOW_MAP_DEPTH_24 ? GL_UNSIGNED_INT : GL_FLOAT;
-    GLint texel_filter = filter == SHADOW_MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
+    GLenum target = map_target(m->kind);
+    GLenum format = depth == MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
+    GLenum type = depth == MAP_DEPTH_24 ? GL_UNSIGNED_INT : GL_FLOAT;
+    GLint texel_filter = filter == MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
     glGenTextures(1, &t->id);
     glBindTexture(target, t->id);
-    if (m->kind == SHADOW_MAP_ARRAY)
+    if (m->kind == MAP_ARRAY)
         glTexImage3D(target, 0, (GLint)format, m->size, m->size, m->layer_count, 0, GL_DEPTH_COMPONENT, type, NULL);
     else
         for (int layer = 0; layer < m->layer_count; layer++)
-            glTexImage2D(shadow_map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0,
-                         GL_DEPTH_COMPONENT, type, NULL);
-    shadow_map_texture_filter(target, texel_filter);
+            glTexImage2D(map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0, GL_DEPTH_COMPONENT,
+                         type, NULL);
+    map_texture_filter(target, texel_filter);
     glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     t->kind = m->kind;
@@ -198,14 +191,14 @@ static bool shadow_map_prepare_texture(shadow_map *m, const shadow_map_settings 
     t->layer_count = m->layer_count;
     t->depth = depth;
     t->filter = filter;
-    shadow_map_moments_prepare(m, shadow_map_filter_moments(filter));
+    map_moments_prepare(m, map_filter_moments(filter));
     return true;
 }
 
 /* ---- the depth pass ---- */
 
 /* The depth pass's state: its framebuffer, viewport, slope bias, program. */
-static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_settings *settings, const shadow_map *m) {
+static void map_depth_begin(map_renderer *r, const map_settings *settings, const map_light *m) {
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     glViewport(0, 0, m->size, m->size);
     glDepthFunc(GL_LESS); /* after the camera's pre-pass */
@@ -214,8 +207,8 @@ static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_sett
         glDisable(GL_POLYGON_OFFSET_FILL);
     } else {
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(shadow_map_setting(settings->slope_factor, SHADOW_MAP_SLOPE_FACTOR),
-                        shadow_map_setting(settings->slope_units, SHADOW_MAP_SLOPE_UNITS));
+        glPolygonOffset(map_setting(settings->slope_factor, MAP_SLOPE_FACTOR),
+                        map_setting(settings->slope_units, MAP_SLOPE_UNITS));
     }
     glUseProgram(r->depth.id);
 }
@@ -226,10 +219,10 @@ static void shadow_map_depth_begin(shadow_map_renderer *r, const shadow_map_sett
  * its box (where it holds the empty far plane instead, the bounds read
  * the receiver as nearer than most of it: lit). Not the frame's in_view:
  * the light sees casters the camera does not. */
-static void shadow_map_depth_layer(shadow_map_renderer *r, const render_scene *gpu, const shadow_map *m, int layer,
-                                   const bool *casters, bool receivers) {
+static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_light *m, int layer,
+                            const bool *casters, bool receivers) {
     const scene *s = gpu->scene;
-    shadow_map_attach_layer(m, layer);
+    map_attach_layer(m, layer);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
     for (int i = 0; i < s->object_count; i++)
@@ -237,25 +230,23 @@ static void shadow_map_depth_layer(shadow_map_renderer *r, const render_scene *g
             render_draw_object(gpu, &r->depth, i);
 }
 
-void shadow_map_render_depth(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu,
-                             shadow_map *m) {
-    shadow_map_prepare_texture(m, settings);
-    shadow_map_depth_begin(r, settings, m);
-    shadow_map_moments moments = shadow_map_filter_moments(shadow_map_filter_in_use(settings));
+void map_render_depth(map_renderer *r, const map_settings *settings, const render_scene *gpu, map_light *m) {
+    map_prepare_texture(m, settings);
+    map_depth_begin(r, settings, m);
+    map_moments moments = map_filter_moments(map_filter_in_use(settings));
     for (int layer = 0; layer < m->layer_count; layer++)
-        shadow_map_depth_layer(r, gpu, m, layer, m->casters, moments != SHADOW_MAP_MOMENTS_NONE);
+        map_depth_layer(r, gpu, m, layer, m->casters, moments != MAP_MOMENTS_NONE);
     glDisable(GL_POLYGON_OFFSET_FILL);
-    for (int layer = 0; moments != SHADOW_MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
-        shadow_map_moments_blur(r, m, moments, layer);
+    for (int layer = 0; moments != MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
+        map_moments_blur(r, m, moments, layer);
 }
 
 /* ---- caster culling and the cache ---- */
 
-static void shadow_map_forget(shadow_map_cache *c) { memset(c->valid, 0, sizeof c->valid); }
+static void map_forget(map_cache *c) { memset(c->valid, 0, sizeof c->valid); }
 
 /* The layer holds what it would be rendered with now. */
-static bool shadow_map_layer_cached(const shadow_map_renderer *r, const shadow_map_cache *c, const shadow_map *m,
-                                    int layer) {
+static bool map_layer_cached(const map_renderer *r, const map_cache *c, const map_light *m, int layer) {
     if (!c->valid[layer] || c->blur_texels[layer] != m->blur_texels[layer] ||
         memcmp(c->layer_view_projection[layer], m->layer_view_projection[layer], sizeof(mat4)) != 0)
         return false;
@@ -265,34 +256,34 @@ static bool shadow_map_layer_cached(const shadow_map_renderer *r, const shadow_m
     return true;
 }
 
-void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f, int l) {
-    shadow_map *m = &r->maps[l];
-    shadow_map_cache *c = &r->caches[l];
+void map_draw_depth(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
+    map_light *m = &r->maps[l];
+    map_cache *c = &r->caches[l];
     if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
-        shadow_map_forget(c);
-    bool remade = shadow_map_prepare_texture(m, st);
-    shadow_map_depth_key key = {.texture = m->texture.id,
-                                .size = m->size,
-                                .depth = st->depth,
-                                .filter = shadow_map_filter_in_use(st),
-                                .no_slope_bias = st->no_slope_bias,
-                                .slope_factor = st->slope_factor,
-                                .slope_units = st->slope_units};
+        map_forget(c);
+    bool remade = map_prepare_texture(m, st);
+    map_depth_key key = {.texture = m->texture.id,
+                         .size = m->size,
+                         .depth = st->depth,
+                         .filter = map_filter_in_use(st),
+                         .no_slope_bias = st->no_slope_bias,
+                         .slope_factor = st->slope_factor,
+                         .slope_units = st->slope_units};
     if (remade || memcmp(&key, &c->key, sizeof key) != 0)
-        shadow_map_forget(c);
+        map_forget(c);
     c->key = key;
-    shadow_map_plan_casters(r, st, f, l);
-    shadow_map_moments moments = shadow_map_filter_moments(shadow_map_filter_in_use(st));
-    bool begun = false, rendered[SHADOW_MAP_MAX_LAYERS] = {false};
+    map_plan_casters(r, st, f, l);
+    map_moments moments = map_filter_moments(map_filter_in_use(st));
+    bool begun = false, rendered[MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
-        if (shadow_map_layer_cached(r, c, m, layer)) {
+        if (map_layer_cached(r, c, m, layer)) {
             f->counts->layers_reused++;
             continue;
         }
         if (!begun)
-            shadow_map_depth_begin(r, st, m);
+            map_depth_begin(r, st, m);
         begun = true;
-        shadow_map_depth_layer(r, f->gpu, m, layer, r->needed[layer], moments != SHADOW_MAP_MOMENTS_NONE);
+        map_depth_layer(r, f->gpu, m, layer, r->needed[layer], moments != MAP_MOMENTS_NONE);
         f->counts->layers_rendered++;
         rendered[layer] = c->valid[layer] = true;
         c->blur_texels[layer] = m->blur_texels[layer];
@@ -302,26 +293,25 @@ void shadow_map_draw_depth(shadow_map_renderer *r, const shadow_map_settings *st
     glDisable(GL_POLYGON_OFFSET_FILL);
     if (l == 0 && begun) /* the map inset's reduction is of the layers before */
         r->inset_current = false;
-    for (int layer = 0; moments != SHADOW_MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
+    for (int layer = 0; moments != MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
         if (rendered[layer])
-            shadow_map_moments_blur(r, m, moments, layer);
+            map_moments_blur(r, m, moments, layer);
 }
 
 /* ---- programs ---- */
 
 /* A uniform of a program: its name, and where its location is kept. */
-typedef struct shadow_map_uniform {
+typedef struct map_uniform {
     int *location;
     const char *name;
-} shadow_map_uniform;
+} map_uniform;
 
-static void shadow_map_find_uniforms(unsigned program, const shadow_map_uniform *uniforms, size_t count) {
+static void map_find_uniforms(unsigned program, const map_uniform *uniforms, size_t count) {
     for (size_t i = 0; i < count; i++)
         *uniforms[i].location = shader_uniform(program, uniforms[i].name);
 }
 
-bool shadow_map_color_target(unsigned *framebuffer, unsigned texture, unsigned image, int layer,
-                             const char *instead) {
+bool map_color_target(unsigned *framebuffer, unsigned texture, unsigned image, int layer, const char *instead) {
     if (!*framebuffer)
         glGenFramebuffers(1, framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, *framebuffer);
@@ -337,207 +327,198 @@ bool shadow_map_color_target(unsigned *framebuffer, unsigned texture, unsigned i
     return false;
 }
 
-void shadow_map_texel_units(unsigned program) {
+void map_texel_units(unsigned program) {
     /* A unit per sampler type: two types may not share one. */
-    glUniform1i(shader_uniform(program, "u_source_2d"), SHADOW_MAP_2D);
-    glUniform1i(shader_uniform(program, "u_source_cube"), SHADOW_MAP_CUBE);
-    glUniform1i(shader_uniform(program, "u_source_array"), SHADOW_MAP_ARRAY);
+    glUniform1i(shader_uniform(program, "u_source_2d"), MAP_2D);
+    glUniform1i(shader_uniform(program, "u_source_cube"), MAP_CUBE);
+    glUniform1i(shader_uniform(program, "u_source_array"), MAP_ARRAY);
 }
 
 /* The names of the per-light defines: light i's kind, its map's texel
  * kind. */
-static char shadow_map_kind_names[SCENE_MAX_LIGHTS][sizeof "SHADOW_MAP_LIGHT_KIND_" + 3];
-static char shadow_map_texel_kind_names[SCENE_MAX_LIGHTS][sizeof "SHADOW_MAP_TEXEL_KIND_" + 3];
+static char map_kind_names[SCENE_MAX_LIGHTS][sizeof "MAP_LIGHT_KIND_" + 3];
+static char map_texel_kind_names[SCENE_MAX_LIGHTS][sizeof "MAP_TEXEL_KIND_" + 3];
 
 /* Light `light`'s field of a key's kinds or texel_kinds. */
-static unsigned shadow_map_light_bits(int light, unsigned value) {
-    return value << (SHADOW_MAP_LIGHT_KIND_BITS * light);
-}
+static unsigned map_light_bits(int light, unsigned value) { return value << (MAP_LIGHT_KIND_BITS * light); }
 
-static unsigned shadow_map_light_field(unsigned bits, int light) {
-    return (bits >> (SHADOW_MAP_LIGHT_KIND_BITS * light)) & ((1u << SHADOW_MAP_LIGHT_KIND_BITS) - 1);
+static unsigned map_light_field(unsigned bits, int light) {
+    return (bits >> (MAP_LIGHT_KIND_BITS * light)) & ((1u << MAP_LIGHT_KIND_BITS) - 1);
 }
 
 /* Light i's uniform `name`[i], or -1 where its kind has none. */
-static int shadow_map_light_uniform(unsigned program, const char *name, int light) {
+static int map_light_uniform(unsigned program, const char *name, int light) {
     char element[64];
     snprintf(element, sizeof element, "%s[%d]", name, light);
     return shader_uniform(program, element);
 }
 
 /* The camera program of key k. */
-static bool shadow_map_camera_program_load(shadow_map_camera_program *p, const shadow_map_camera_key *k) {
+static bool map_camera_program_load(map_camera_program *p, const map_camera_key *k) {
     const shader_define pass[] = {
-        SHADER_DEFINE(SHADOW_MAP_LIGHT_OFF),
-        SHADER_DEFINE(SHADOW_MAP_LIGHT_UNSHADOWED),
-        SHADER_DEFINE(SHADOW_MAP_LIGHT_2D),
-        SHADER_DEFINE(SHADOW_MAP_LIGHT_CUBE),
-        SHADER_DEFINE(SHADOW_MAP_LIGHT_ARRAY),
-        {"SHADOW_MAP_PASS_SHAPE", (int)k->shape},
-        {"SHADOW_MAP_PASS_KERNEL", (int)k->kernel},
-        {"SHADOW_MAP_PASS_EARLY_OUT", (int)k->early_out},
-        {"SHADOW_MAP_PASS_RECEIVER_PLANE", (int)k->receiver_plane},
-        {"SHADOW_MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
-        {"SHADOW_MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
-        {"SHADOW_MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
-        {"SHADOW_MAP_PASS_SHOW_PENUMBRA", (int)k->show_penumbra},
-        {"SHADOW_MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
-        {"SHADOW_MAP_PASS_MOMENTS", (int)k->moments},
-        {"SHADOW_MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
+        SHADER_DEFINE(MAP_LIGHT_OFF),
+        SHADER_DEFINE(MAP_LIGHT_UNSHADOWED),
+        SHADER_DEFINE(MAP_LIGHT_2D),
+        SHADER_DEFINE(MAP_LIGHT_CUBE),
+        SHADER_DEFINE(MAP_LIGHT_ARRAY),
+        {"MAP_PASS_SHAPE", (int)k->shape},
+        {"MAP_PASS_KERNEL", (int)k->kernel},
+        {"MAP_PASS_EARLY_OUT", (int)k->early_out},
+        {"MAP_PASS_RECEIVER_PLANE", (int)k->receiver_plane},
+        {"MAP_PASS_SHOW_TEXELS", (int)k->show_texels},
+        {"MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
+        {"MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
+        {"MAP_PASS_SHOW_PENUMBRA", (int)k->show_penumbra},
+        {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
+        {"MAP_PASS_MOMENTS", (int)k->moments},
+        {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's two, then the list's end ({NULL}, zeroed). */
-    enum { PASS = sizeof pass / sizeof *pass, COMMON = sizeof shadow_map_defines / sizeof *shadow_map_defines - 1 };
+    enum { PASS = sizeof pass / sizeof *pass, COMMON = sizeof map_defines / sizeof *map_defines - 1 };
     shader_define defines[PASS + COMMON + 2 * SCENE_MAX_LIGHTS + 1] = {{NULL, 0}};
     memcpy(defines, pass, sizeof pass);
-    memcpy(defines + PASS, shadow_map_defines, COMMON * sizeof *defines);
+    memcpy(defines + PASS, map_defines, COMMON * sizeof *defines);
     shader_define *light_defines = defines + PASS + COMMON;
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        snprintf(shadow_map_kind_names[l], sizeof shadow_map_kind_names[l], "SHADOW_MAP_LIGHT_KIND_%d", l);
-        snprintf(shadow_map_texel_kind_names[l], sizeof shadow_map_texel_kind_names[l], "SHADOW_MAP_TEXEL_KIND_%d",
-                 l);
-        light_defines[2 * l] = (shader_define){shadow_map_kind_names[l], (int)shadow_map_light_field(k->kinds, l)};
-        light_defines[2 * l + 1] =
-            (shader_define){shadow_map_texel_kind_names[l], (int)shadow_map_light_field(k->texel_kinds, l)};
+        snprintf(map_kind_names[l], sizeof map_kind_names[l], "MAP_LIGHT_KIND_%d", l);
+        snprintf(map_texel_kind_names[l], sizeof map_texel_kind_names[l], "MAP_TEXEL_KIND_%d", l);
+        light_defines[2 * l] = (shader_define){map_kind_names[l], (int)map_light_field(k->kinds, l)};
+        light_defines[2 * l + 1] = (shader_define){map_texel_kind_names[l], (int)map_light_field(k->texel_kinds, l)};
     }
-    static const char *const files[] = {"lit.vert", "shadowmap.frag"};
+    static const char *const files[] = {"lit.vert", "map.frag"};
     if (!render_program_load(&p->program, files, 2, defines))
         return false;
     unsigned id = p->program.id;
-    const shadow_map_uniform uniforms[] = {
+    const map_uniform uniforms[] = {
         {&p->constant_bias, "u_constant_bias"}, {&p->normal_offset, "u_normal_offset"},
         {&p->depth_bias, "u_depth_bias"},       {&p->closed_outside, "u_closed_outside"},
         {&p->view_depth, "u_view_depth"},       {&p->cascade_blend, "u_cascade_blend"},
     };
-    shadow_map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
+    map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on a unit, those of lights without a map too: an
      * array's elements below the last one used stay active, and two types
      * on one unit (unit 0, the default) would fail every draw. Light l's
      * own on unit l (a soft light's depths, a moment light's moments, on
-     * SHADOW_MAP_DEPTH_UNITS + l),
-     * the others idle (SHADOW_MAP_IDLE_UNITS, the comparisons' types, then
+     * MAP_DEPTH_UNITS + l),
+     * the others idle (MAP_IDLE_UNITS, the comparisons' types, then
      * the depths'). */
     glUseProgram(id);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        for (int t = 0; t < SHADOW_MAP_SAMPLER_TYPES; t++) {
-            bool own = shadow_map_light_field(k->kinds, l) == (unsigned)shadow_map_samplers[t].kind;
+        for (int t = 0; t < MAP_SAMPLER_TYPES; t++) {
+            bool own = map_light_field(k->kinds, l) == (unsigned)map_samplers[t].kind;
             bool soft = own && ((k->soft_lights | k->moment_lights) >> l & 1u);
-            glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].name, l),
-                        own ? l : SHADOW_MAP_IDLE_UNITS + t);
-            glUniform1i(shadow_map_light_uniform(id, shadow_map_samplers[t].depths, l),
-                        soft ? SHADOW_MAP_DEPTH_UNITS + l : SHADOW_MAP_IDLE_UNITS + SHADOW_MAP_SAMPLER_TYPES + t);
+            glUniform1i(map_light_uniform(id, map_samplers[t].name, l), own ? l : MAP_IDLE_UNITS + t);
+            glUniform1i(map_light_uniform(id, map_samplers[t].depths, l),
+                        soft ? MAP_DEPTH_UNITS + l : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
         }
-        p->lights[l].cascade_count = shadow_map_light_uniform(id, "u_cascade_count", l);
-        p->lights[l].cascade_scale = shadow_map_light_uniform(id, "u_cascade_scale", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
-        p->lights[l].cascade_offset =
-            shadow_map_light_uniform(id, "u_cascade_offset", l * SHADOW_MAP_MAX_ARRAY_LAYERS);
-        p->lights[l].map_size = shadow_map_light_uniform(id, "u_map_size", l);
-        p->lights[l].light_matrix = shadow_map_light_uniform(id, "u_light_matrix", l);
-        p->lights[l].light_inverse = shadow_map_light_uniform(id, "u_light_inverse", l);
-        p->lights[l].light_size = shadow_map_light_uniform(id, "u_light_size", l);
-        p->lights[l].texel_scale = shadow_map_light_uniform(id, "u_texel_scale", l);
-        p->lights[l].near_plane = shadow_map_light_uniform(id, "u_near", l);
-        p->lights[l].far_plane = shadow_map_light_uniform(id, "u_far", l);
+        p->lights[l].cascade_count = map_light_uniform(id, "u_cascade_count", l);
+        p->lights[l].cascade_scale = map_light_uniform(id, "u_cascade_scale", l * MAP_MAX_ARRAY_LAYERS);
+        p->lights[l].cascade_offset = map_light_uniform(id, "u_cascade_offset", l * MAP_MAX_ARRAY_LAYERS);
+        p->lights[l].map_size = map_light_uniform(id, "u_map_size", l);
+        p->lights[l].light_matrix = map_light_uniform(id, "u_light_matrix", l);
+        p->lights[l].light_inverse = map_light_uniform(id, "u_light_inverse", l);
+        p->lights[l].light_size = map_light_uniform(id, "u_light_size", l);
+        p->lights[l].texel_scale = map_light_uniform(id, "u_texel_scale", l);
+        p->lights[l].near_plane = map_light_uniform(id, "u_near", l);
+        p->lights[l].far_plane = map_light_uniform(id, "u_far", l);
     }
-    glUniform3fv(shader_uniform(id, "u_cascade_colors"), SHADOW_MAP_MAX_ARRAY_LAYERS, shadow_map_cascade_colors[0]);
+    glUniform3fv(shader_uniform(id, "u_cascade_colors"), MAP_MAX_ARRAY_LAYERS, map_cascade_colors[0]);
     return true;
 }
 
 /* The camera program of key k: one compiled before, or compiled now in
  * place of the oldest. NULL where it does not compile (said on stderr,
  * once: the failure is kept). */
-static const shadow_map_camera_program *shadow_map_camera_program_for(shadow_map_renderer *r,
-                                                                      const shadow_map_camera_key *k) {
+static const map_camera_program *map_camera_program_for(map_renderer *r, const map_camera_key *k) {
     for (int i = 0; i < r->camera_count; i++)
         if (memcmp(&r->camera[i].key, k, sizeof *k) == 0)
             return r->camera[i].program.id ? &r->camera[i] : NULL;
     int slot = r->camera_oldest;
-    if (r->camera_count < SHADOW_MAP_CAMERA_PROGRAMS)
+    if (r->camera_count < MAP_CAMERA_PROGRAMS)
         slot = r->camera_count++;
     else
-        r->camera_oldest = (slot + 1) % SHADOW_MAP_CAMERA_PROGRAMS;
-    shadow_map_camera_program *p = &r->camera[slot];
+        r->camera_oldest = (slot + 1) % MAP_CAMERA_PROGRAMS;
+    map_camera_program *p = &r->camera[slot];
     render_program_destroy(&p->program);
-    *p = (shadow_map_camera_program){.key = *k};
-    return shadow_map_camera_program_load(p, k) ? p : NULL;
+    *p = (map_camera_program){.key = *k};
+    return map_camera_program_load(p, k) ? p : NULL;
 }
 
 /* The key of the settings' kernel and overlays; no light set yet. */
-static shadow_map_camera_key shadow_map_settings_key(const shadow_map_settings *st) {
-    shadow_map_filter filter = shadow_map_filter_in_use(st);
-    return (shadow_map_camera_key){
-        .shape = (unsigned)shadow_map_kernels[filter].shape,
-        .kernel = (unsigned)shadow_map_kernels[filter].size,
+static map_camera_key map_settings_key(const map_settings *st) {
+    map_filter filter = map_filter_in_use(st);
+    return (map_camera_key){
+        .shape = (unsigned)map_kernels[filter].shape,
+        .kernel = (unsigned)map_kernels[filter].size,
         .early_out = !st->no_early_out,
-        .receiver_plane = st->kernel_depth == SHADOW_MAP_KERNEL_DEPTH_RECEIVER_PLANE,
-        .show_texels = st->overlay == SHADOW_MAP_OVERLAY_ALL || st->overlay == SHADOW_MAP_OVERLAY_TEXELS,
-        .show_texel_size = st->overlay == SHADOW_MAP_OVERLAY_TEXEL_SIZE,
-        .show_cascades = SHADOW_MAP_SHOWS_CASCADES(st),
-        .show_penumbra = st->overlay == SHADOW_MAP_OVERLAY_PENUMBRA,
-        .moments = shadow_map_filter_moments(filter),
+        .receiver_plane = st->kernel_depth == MAP_KERNEL_DEPTH_RECEIVER_PLANE,
+        .show_texels = st->overlay == MAP_OVERLAY_ALL || st->overlay == MAP_OVERLAY_TEXELS,
+        .show_texel_size = st->overlay == MAP_OVERLAY_TEXEL_SIZE,
+        .show_cascades = MAP_SHOWS_CASCADES(st),
+        .show_penumbra = st->overlay == MAP_OVERLAY_PENUMBRA,
+        .moments = map_filter_moments(filter),
     };
 }
 
 /* The camera pass's kind of light for a map's kind. */
-static shadow_map_light_kind shadow_map_light_kind_of(shadow_map_kind kind) {
-    static const shadow_map_light_kind kinds[] = {[SHADOW_MAP_2D] = SHADOW_MAP_LIGHT_2D,
-                                                  [SHADOW_MAP_CUBE] = SHADOW_MAP_LIGHT_CUBE,
-                                                  [SHADOW_MAP_ARRAY] = SHADOW_MAP_LIGHT_ARRAY};
+static map_light_kind map_light_kind_of(map_kind kind) {
+    static const map_light_kind kinds[] = {
+        [MAP_2D] = MAP_LIGHT_2D, [MAP_CUBE] = MAP_LIGHT_CUBE, [MAP_ARRAY] = MAP_LIGHT_ARRAY};
     return kinds[kind];
 }
 
 /* A light with a map, of any kind. */
-static bool shadow_map_light_mapped(unsigned kind) {
-    return kind == SHADOW_MAP_LIGHT_2D || kind == SHADOW_MAP_LIGHT_CUBE || kind == SHADOW_MAP_LIGHT_ARRAY;
+static bool map_light_mapped(unsigned kind) {
+    return kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE || kind == MAP_LIGHT_ARRAY;
 }
 
 /* Light l in key k, with a map of that kind and texel kind. */
-static void shadow_map_key_light(shadow_map_camera_key *k, int l, shadow_map_kind kind, shadow_map_texel_kind texel) {
-    k->kinds |= shadow_map_light_bits(l, shadow_map_light_kind_of(kind));
-    k->texel_kinds |= shadow_map_light_bits(l, texel);
+static void map_key_light(map_camera_key *k, int l, map_kind kind, map_texel_kind texel) {
+    k->kinds |= map_light_bits(l, map_light_kind_of(kind));
+    k->texel_kinds |= map_light_bits(l, texel);
 }
 
 /* Every light of the scene with its uniform map (a cube for a point light,
  * a perspective map for a spot, an orthographic one for the sun), with
  * the settings' kernel: the first frame's program, most often. */
-static shadow_map_camera_key shadow_map_scene_key(const scene *s, const shadow_map_settings *st) {
-    shadow_map_camera_key k = shadow_map_settings_key(st);
+static map_camera_key map_scene_key(const scene *s, const map_settings *st) {
+    map_camera_key k = map_settings_key(st);
     for (int l = 0; l < s->light_count; l++) {
         scene_light_type type = s->lights[l].type;
-        shadow_map_key_light(&k, l, type == SCENE_LIGHT_POINT ? SHADOW_MAP_CUBE : SHADOW_MAP_2D,
-                             type == SCENE_LIGHT_DIRECTIONAL ? SHADOW_MAP_TEXEL_ORTHOGRAPHIC
-                                                             : SHADOW_MAP_TEXEL_PERSPECTIVE);
-        k.moment_lights |= k.moments != SHADOW_MAP_MOMENTS_NONE ? 1u << l : 0;
+        map_key_light(&k, l, type == SCENE_LIGHT_POINT ? MAP_CUBE : MAP_2D,
+                      type == SCENE_LIGHT_DIRECTIONAL ? MAP_TEXEL_ORTHOGRAPHIC : MAP_TEXEL_PERSPECTIVE);
+        k.moment_lights |= k.moments != MAP_MOMENTS_NONE ? 1u << l : 0;
     }
     return k;
 }
 
-static bool shadow_map_overlay_programs_load(shadow_map_renderer *r) {
+static bool map_overlay_programs_load(map_renderer *r) {
     static const char *const lines_files[] = {"overlay.vert", "overlay_lines.frag"};
     static const char *const inset_files[] = {"overlay.vert", "overlay_map.frag"};
     static const char *const legend_files[] = {"overlay.vert", "overlay_heat_legend.frag"};
     static const shader_define inset_defines[] = {
-        SHADER_DEFINE(SHADOW_MAP_CUBE), SHADER_DEFINE(SHADOW_MAP_INSET_FAR_GREY_PERCENT), {NULL, 0}};
+        SHADER_DEFINE(MAP_CUBE), SHADER_DEFINE(MAP_INSET_FAR_GREY_PERCENT), {NULL, 0}};
     if (!render_program_load(&r->lines.program, lines_files, 2, NULL) ||
         !render_program_load(&r->inset.program, inset_files, 2, inset_defines) ||
-        !render_program_load(&r->legend.program, legend_files, 2, shadow_map_defines))
+        !render_program_load(&r->legend.program, legend_files, 2, map_defines))
         return false;
     r->lines.color = shader_uniform(r->lines.program.id, "u_color");
     r->legend.log2_range = shader_uniform(r->legend.program.id, "u_log2_range");
-    shadow_map_inset_program *p = &r->inset;
-    const shadow_map_uniform uniforms[] = {
+    map_inset_program *p = &r->inset;
+    const map_uniform uniforms[] = {
         {&p->reduced, "u_reduced"}, {&p->kind, "u_kind"},     {&p->layer, "u_layer"},
         {&p->size, "u_size"},       {&p->factor, "u_factor"}, {&p->orthographic, "u_orthographic"},
         {&p->near_plane, "u_near"}, {&p->far_plane, "u_far"}, {&p->held, "u_held"},
     };
-    shadow_map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
+    map_find_uniforms(p->program.id, uniforms, sizeof uniforms / sizeof *uniforms);
     return true;
 }
 
 /* The caster sets: each light's drawn per layer, then one light's needed
  * per layer; and the receivers' boxes. */
-static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
-    size_t n = (size_t)object_count, layers = SHADOW_MAP_MAX_LAYERS;
+static bool map_alloc_sets(map_renderer *r, int object_count) {
+    size_t n = (size_t)object_count, layers = MAP_MAX_LAYERS;
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
     r->closed = calloc(n + 1, sizeof *r->closed);
@@ -558,7 +539,7 @@ static bool shadow_map_alloc_sets(shadow_map_renderer *r, int object_count) {
 
 /* r->closed: which casters are closed meshes (their welded edge table,
  * as the volumes weigh them). */
-static bool shadow_map_find_closed(shadow_map_renderer *r, const scene *s) {
+static bool map_find_closed(map_renderer *r, const scene *s) {
     for (int i = 0; i < s->object_count; i++) {
         mesh_edges e;
         if (!s->objects[i].casts)
@@ -571,20 +552,21 @@ static bool shadow_map_find_closed(shadow_map_renderer *r, const scene *s) {
     return true;
 }
 
-bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings, const render_scene *gpu) {
-    shadow_map_camera_key scene_key = shadow_map_scene_key(gpu->scene, settings);
+/* The GL objects of a zeroed r; false after printing why. */
+static bool map_init(map_renderer *r, const map_settings *settings, const render_scene *gpu) {
+    map_camera_key scene_key = map_scene_key(gpu->scene, settings);
     static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
-    if (!shadow_map_alloc_sets(r, gpu->scene->object_count) || !shadow_map_find_closed(r, gpu->scene) ||
+    if (!map_alloc_sets(r, gpu->scene->object_count) || !map_find_closed(r, gpu->scene) ||
         !render_program_load(&r->depth, depth_files, 2, NULL) ||
         /* The scene's own combination now, so that a shader that does not
          * compile fails init; the others as frames need them. */
-        !shadow_map_camera_program_for(r, &scene_key) || !shadow_map_overlay_programs_load(r))
+        !map_camera_program_for(r, &scene_key) || !map_overlay_programs_load(r))
         return false;
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);
     glGenBuffers(1, &r->overlay_buffer);
     glBindBuffer(GL_ARRAY_BUFFER, r->overlay_buffer);
-    glBufferData(GL_ARRAY_BUFFER, SHADOW_MAP_LEGEND_VERTICES * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, MAP_LEGEND_VERTICES * 3 * sizeof(float), NULL, GL_STREAM_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
     glBindVertexArray(0);
@@ -609,14 +591,30 @@ bool shadow_map_init(shadow_map_renderer *r, const shadow_map_settings *settings
     return true;
 }
 
-void shadow_map_destroy(shadow_map_renderer *r) {
+map_renderer *map_create(const map_settings *settings, const render_scene *gpu) {
+    map_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        fprintf(stderr, "shadow maps: out of memory\n");
+        return NULL;
+    }
+    if (map_init(r, settings, gpu))
+        return r;
+    map_destroy(r);
+    return NULL;
+}
+
+const map_light *map_of_light(const map_renderer *r, int l) { return &r->maps[l]; }
+
+void map_destroy(map_renderer *r) {
+    if (!r)
+        return;
     render_program_destroy(&r->depth);
     for (int i = 0; i < r->camera_count; i++)
         render_program_destroy(&r->camera[i].program);
     render_program_destroy(&r->lines.program);
     render_program_destroy(&r->inset.program);
     render_program_destroy(&r->legend.program);
-    for (int kind = 0; kind <= SHADOW_MAP_ARRAY; kind++)
+    for (int kind = 0; kind <= MAP_ARRAY; kind++)
         render_program_destroy(&r->reduce[kind].program);
     glDeleteTextures(1, &r->inset_texture);
     glDeleteFramebuffers(1, &r->inset_framebuffer);
@@ -624,30 +622,29 @@ void shadow_map_destroy(shadow_map_renderer *r) {
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);
     glDeleteSamplers(1, &r->depth_sampler);
-    shadow_map_moments_destroy(r);
+    map_moments_destroy(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteTextures(1, &r->maps[l].texture.id);
-        shadow_map_moments_prepare(&r->maps[l], SHADOW_MAP_MOMENTS_NONE);
+        map_moments_prepare(&r->maps[l], MAP_MOMENTS_NONE);
     }
     free(r->needed[0]);
     free(r->receiver_boxes);
     free(r->closed);
     free(r->masks);
-    memset(r, 0, sizeof *r);
+    free(r);
 }
 
 /* ---- the camera pass ---- */
 
 /* Where the eye is inside object i, a closed caster, the lights with a
  * map in key k that are outside it (bit l: light l), for
- * shaders/shadowmap.frag's u_closed_outside: a face that such a light
+ * shaders/map.frag's u_closed_outside: a face that such a light
  * reaches on the eye's side is in the mesh's shadow. Only with the eye
  * inside: from outside, a triangle whose back the eye sees wins the
  * depth test at a few silhouette pixels, and the reference may see the
  * lit front there (long_view_behind and test_psm's low point light would
  * read shadowed there). */
-static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const technique_frame *f,
-                                          const shadow_map_camera_key *k, int i) {
+static unsigned map_closed_outside(const map_renderer *r, const technique_frame *f, const map_camera_key *k, int i) {
     const scene *s = f->gpu->scene;
     const float eye[4] = {f->view->eye[0], f->view->eye[1], f->view->eye[2], 1};
     float object_eye[4];
@@ -659,7 +656,7 @@ static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const te
     unsigned lights = 0;
     for (int l = 0; l < s->light_count; l++) {
         float light[4], object_light[4];
-        if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
+        if (!map_light_mapped(map_light_field(k->kinds, l)))
             continue;
         scene_light_homogeneous(&s->lights[l], light);
         mesh_point_to_object(s->objects[i].model, light, object_light);
@@ -673,13 +670,12 @@ static unsigned shadow_map_closed_outside(const shadow_map_renderer *r, const te
  * sampler, and its disc: a radius, or a sun's tangent of its angular
  * radius (degrees in the scene); a 2D map's inverse, for its depths'
  * distances. */
-static void shadow_map_bind_soft(const shadow_map_renderer *r, const shadow_map_camera_program *p, const scene *s,
-                                 int l) {
-    const shadow_map *m = &r->maps[l];
+static void map_bind_soft(const map_renderer *r, const map_camera_program *p, const scene *s, int l) {
+    const map_light *m = &r->maps[l];
     const scene_light *light = &s->lights[l];
-    GLuint unit = SHADOW_MAP_DEPTH_UNITS + (GLuint)l;
+    GLuint unit = MAP_DEPTH_UNITS + (GLuint)l;
     glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(shadow_map_target(m->kind), m->texture.id);
+    glBindTexture(map_target(m->kind), m->texture.id);
     glBindSampler(unit, r->depth_sampler);
     glUniform1f(p->lights[l].light_size,
                 light->type == SCENE_LIGHT_DIRECTIONAL ? tanf(glm_rad(light->radius)) : light->radius);
@@ -689,9 +685,9 @@ static void shadow_map_bind_soft(const shadow_map_renderer *r, const shadow_map_
 }
 
 /* Key k without the lights of `lights` (RENDER_LIGHT_BIT). */
-static shadow_map_camera_key shadow_map_key_without(shadow_map_camera_key k, unsigned lights) {
+static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        unsigned field = shadow_map_light_bits(l, (1u << SHADOW_MAP_LIGHT_KIND_BITS) - 1);
+        unsigned field = map_light_bits(l, (1u << MAP_LIGHT_KIND_BITS) - 1);
         if (lights & RENDER_LIGHT_BIT(l)) {
             k.kinds &= ~field;
             k.texel_kinds &= ~field;
@@ -704,41 +700,40 @@ static shadow_map_camera_key shadow_map_key_without(shadow_map_camera_key k, uns
 
 /* Camera program p in use, with every light of its key's map, matrices
  * and settings. */
-static void shadow_map_camera_use(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                                  const shadow_map_camera_program *p) {
-    const shadow_map_camera_key *k = &p->key;
+static void map_camera_use(map_renderer *r, const map_settings *st, const technique_frame *f,
+                           const map_camera_program *p) {
+    const map_camera_key *k = &p->key;
     render_program_use(&p->program, f->view);
-    glUniform1f(p->constant_bias,
-                st->no_constant_bias ? 0 : shadow_map_setting(st->constant_texels, SHADOW_MAP_CONSTANT_TEXELS));
+    glUniform1f(p->constant_bias, st->no_constant_bias ? 0 : map_setting(st->constant_texels, MAP_CONSTANT_TEXELS));
     glUniform1f(p->normal_offset, st->normal_texels);
     glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
     /* The camera's view depth of a world point: minus its view-space
      * z, as the fit measured the cascades' splits. */
-    const mat4 *view = &shadow_map_fit_frame(f)->view->view;
+    const mat4 *view = &map_fit_frame(f)->view->view;
     glUniform4f(p->view_depth, -(*view)[0][2], -(*view)[1][2], -(*view)[2][2], -(*view)[3][2]);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        if (!shadow_map_light_mapped(shadow_map_light_field(k->kinds, l)))
+        if (!map_light_mapped(map_light_field(k->kinds, l)))
             continue;
-        const shadow_map *m = &r->maps[l];
+        const map_light *m = &r->maps[l];
         glActiveTexture(GL_TEXTURE0 + (GLenum)l);
-        glBindTexture(shadow_map_target(m->kind), m->texture.id);
+        glBindTexture(map_target(m->kind), m->texture.id);
         glUniform1f(p->lights[l].map_size, (float)m->size);
         glUniform1f(p->lights[l].texel_scale, m->texel_scale);
         glUniform1f(p->lights[l].near_plane, m->near_plane);
         glUniform1f(p->lights[l].far_plane, m->far_plane);
         if (k->soft_lights >> l & 1u)
-            shadow_map_bind_soft(r, p, f->gpu->scene, l);
+            map_bind_soft(r, p, f->gpu->scene, l);
         if (k->moment_lights >> l & 1u) {
             /* Its moments, bilinear (the texture's own filter). */
-            glActiveTexture(GL_TEXTURE0 + SHADOW_MAP_DEPTH_UNITS + (GLenum)l);
-            glBindTexture(shadow_map_target(m->kind), m->texture.moments);
+            glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)l);
+            glBindTexture(map_target(m->kind), m->texture.moments);
         }
-        if (m->kind != SHADOW_MAP_ARRAY) {
+        if (m->kind != MAP_ARRAY) {
             glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
             continue;
         }
         /* Layer k's scale and offset, w its slice's far and near ends. */
-        float scale[SHADOW_MAP_MAX_ARRAY_LAYERS][4], offset[SHADOW_MAP_MAX_ARRAY_LAYERS][4];
+        float scale[MAP_MAX_ARRAY_LAYERS][4], offset[MAP_MAX_ARRAY_LAYERS][4];
         for (int layer = 0; layer < m->layer_count; layer++) {
             memcpy(scale[layer], m->cascade_scale[layer], sizeof m->cascade_scale[layer]);
             memcpy(offset[layer], m->cascade_offset[layer], sizeof m->cascade_offset[layer]);
@@ -757,14 +752,14 @@ static void shadow_map_camera_use(shadow_map_renderer *r, const shadow_map_setti
 /* The receivers of `objects` through camera program p, in use: every light
  * of its key by its kind (shadowed where its map lets it through, or
  * unshadowed), and the ambient term. */
-static void shadow_map_draw_receivers(const shadow_map_renderer *r, const technique_frame *f,
-                                      const shadow_map_camera_program *p, const bool *objects) {
-    const shadow_map_camera_key *k = &p->key;
+static void map_draw_receivers(const map_renderer *r, const technique_frame *f, const map_camera_program *p,
+                               const bool *objects) {
+    const map_camera_key *k = &p->key;
     const scene *s = f->gpu->scene;
     for (int i = 0; i < s->object_count; i++) {
         if (!render_in_mask(objects, i) || !s->objects[i].receives)
             continue;
-        glUniform1i(p->closed_outside, (GLint)shadow_map_closed_outside(r, f, k, i));
+        glUniform1i(p->closed_outside, (GLint)map_closed_outside(r, f, k, i));
         render_draw_object(f->gpu, &p->program, i);
     }
 }
@@ -774,27 +769,27 @@ static void shadow_map_draw_receivers(const shadow_map_renderer *r, const techni
  * again each in its own rectangle. Only receivers read maps (the caster
  * culling is for them too); the others take every light unshadowed, as in
  * the reference. */
-static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_settings *st, const technique_frame *f,
-                                    const shadow_map_camera_key *k) {
+static void map_shade_lights(map_renderer *r, const map_settings *st, const technique_frame *f,
+                             const map_camera_key *k) {
     unsigned split = shading_split_lights(f);
-    shadow_map_camera_key first_key = shadow_map_key_without(*k, split);
+    map_camera_key first_key = map_key_without(*k, split);
     const bool *objects = shading_all_begin(f);
-    const shadow_map_camera_program *first = shadow_map_camera_program_for(r, &first_key);
-    const shadow_map_camera_program *p = split ? shadow_map_camera_program_for(r, k) : first;
+    const map_camera_program *first = map_camera_program_for(r, &first_key);
+    const map_camera_program *p = split ? map_camera_program_for(r, k) : first;
     bool mapped = first && p;
     if (mapped) {
-        shadow_map_camera_use(r, st, f, first);
-        shadow_map_draw_receivers(r, f, first, objects);
+        map_camera_use(r, st, f, first);
+        map_draw_receivers(r, f, first, objects);
         if (split)
-            shadow_map_camera_use(r, st, f, p);
+            map_camera_use(r, st, f, p);
         for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
             if (split & RENDER_LIGHT_BIT(l))
-                shadow_map_draw_receivers(r, f, p, shading_light_pass(f, l));
+                map_draw_receivers(r, f, p, shading_light_pass(f, l));
         glDisable(GL_SCISSOR_TEST);
     }
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (k->soft_lights >> l & 1u)
-            glBindSampler(SHADOW_MAP_DEPTH_UNITS + (GLuint)l, 0);
+            glBindSampler(MAP_DEPTH_UNITS + (GLuint)l, 0);
     const render_program *lit = render_use_lit(f->gpu, f->view, f->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
     for (int i = 0; i < f->gpu->scene->object_count; i++)
@@ -804,16 +799,15 @@ static void shadow_map_shade_lights(shadow_map_renderer *r, const shadow_map_set
 
 /* ---- the frame ---- */
 
-const technique_frame *shadow_map_fit_frame(const technique_frame *f) { return f->fit ? f->fit : f; }
+const technique_frame *map_fit_frame(const technique_frame *f) { return f->fit ? f->fit : f; }
 
 /* Light l is drawn soft: an area light with --soft pcss, whose depth unit
  * the GL has. An area light drawn hard is said once on stderr. */
-static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settings *settings,
-                                 const scene_light *light, int l) {
-    bool soft = shadow_map_light_soft(settings, light);
-    if (soft && SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
+static bool map_soft_unit(map_renderer *r, const map_settings *settings, const scene_light *light, int l) {
+    bool soft = map_light_soft(settings, light);
+    if (soft && MAP_DEPTH_UNITS + l < r->texture_units)
         return true;
-    bool moments = shadow_map_filter_moments(shadow_map_filter_in_use(settings)) != SHADOW_MAP_MOMENTS_NONE;
+    bool moments = map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE;
     if (light->radius > 0 && !moments && !(r->soft_warned >> l & 1u))
         fprintf(stderr, "shadow maps: light %d is an area light (radius %g), drawn hard from its centre: %s\n", l,
                 light->radius, soft ? "this GL has too few texture units for its soft filter" : "--soft off");
@@ -825,48 +819,48 @@ static bool shadow_map_soft_unit(shadow_map_renderer *r, const shadow_map_settin
  * said once by the blur), and its depth unit (the moments' unit) the GL
  * has; else it takes one bilinear test of its depths, said once on
  * stderr. */
-static bool shadow_map_moment_unit(shadow_map_renderer *r, const shadow_map_settings *settings, int l) {
-    shadow_map_filter filter = shadow_map_filter_in_use(settings);
-    if (shadow_map_filter_moments(filter) == SHADOW_MAP_MOMENTS_NONE || r->blur_failed)
+static bool map_moment_unit(map_renderer *r, const map_settings *settings, int l) {
+    map_filter filter = map_filter_in_use(settings);
+    if (map_filter_moments(filter) == MAP_MOMENTS_NONE || r->blur_failed)
         return false;
-    if (SHADOW_MAP_DEPTH_UNITS + l < r->texture_units)
+    if (MAP_DEPTH_UNITS + l < r->texture_units)
         return true;
     if (!(r->moments_warned >> l & 1u))
         fprintf(stderr,
                 "shadow maps: light %d: this GL has too few texture units for its moment map (--filter %s): "
                 "one bilinear depth test instead\n",
-                l, shadow_map_filters[filter]);
+                l, map_filters[filter]);
     r->moments_warned |= 1u << l;
     return false;
 }
 
-/* Light l's moment blur per layer (shadow_map_moments_blur_texels), a
+/* Light l's moment blur per layer (map_moments_blur_texels), a
  * moment filter's: an auto-sized map (not an array's) halves while an
- * area light's would be wider than SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS (a
+ * area light's would be wider than MAP_MOMENTS_MAX_BLUR_TEXELS (a
  * texel's width is its share of the penumbra: the blur's cost grows with
  * its width, and a blurred map needs no more texels than its blur shows),
  * then any wider one is clamped to it. */
-static void shadow_map_moments_fit(const scene *s, int l, shadow_map *m, bool auto_size) {
-    float widest = 0, blur[SHADOW_MAP_MAX_LAYERS];
-    shadow_map_moments_blur_texels(s, l, m, blur);
+static void map_moments_fit(const scene *s, int l, map_light *m, bool auto_size) {
+    float widest = 0, blur[MAP_MAX_LAYERS];
+    map_moments_blur_texels(s, l, m, blur);
     for (int layer = 0; layer < m->layer_count; layer++)
         widest = fmaxf(widest, blur[layer]);
     int size = m->size;
     /* A texel's world size goes as 1 / size: so does the blur in texels. */
-    while (auto_size && m->kind != SHADOW_MAP_ARRAY && s->lights[l].radius > 0 &&
-           widest > SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS && size > SHADOW_MAP_AUTO_MIN_SIZE) {
+    while (auto_size && m->kind != MAP_ARRAY && s->lights[l].radius > 0 && widest > MAP_MOMENTS_MAX_BLUR_TEXELS &&
+           size > MAP_AUTO_MIN_SIZE) {
         size /= 2;
         widest /= 2;
     }
     if (size != m->size) {
-        shadow_map_resize(m, size);
-        shadow_map_moments_blur_texels(s, l, m, blur);
+        map_resize(m, size);
+        map_moments_blur_texels(s, l, m, blur);
     }
     for (int layer = 0; layer < m->layer_count; layer++)
-        m->blur_texels[layer] = fminf(blur[layer], SHADOW_MAP_MOMENTS_MAX_BLUR_TEXELS);
+        m->blur_texels[layer] = fminf(blur[layer], MAP_MOMENTS_MAX_BLUR_TEXELS);
 }
 
-void shadow_map_begin(shadow_map_renderer *r, const technique_frame *f) {
+void map_begin(map_renderer *r, const technique_frame *f) {
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &r->target_framebuffer);
     glGetIntegerv(GL_VIEWPORT, r->viewport);
     memset(r->fitted, 0, sizeof r->fitted);
@@ -879,56 +873,56 @@ void shadow_map_begin(shadow_map_renderer *r, const technique_frame *f) {
     depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
 }
 
-void shadow_map_describe_filter(const shadow_map_settings *settings, char *out, size_t size) {
+void map_describe_filter(const map_settings *settings, char *out, size_t size) {
     size_t n = strlen(out);
-    if (shadow_map_shows_acne(settings) && n < size)
-        snprintf(out + n, size - n, ", filter: %s (shows acne)", shadow_map_filters[SHADOW_MAP_FILTER_NONE]);
+    if (map_shows_acne(settings) && n < size)
+        snprintf(out + n, size - n, ", filter: %s (shows acne)", map_filters[MAP_FILTER_NONE]);
 }
 
-bool shadow_map_fit_light(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f,
-                          int l, shadow_map_fit_function fit) {
+bool map_fit_light(map_renderer *r, const map_settings *settings, const technique_frame *f, int l,
+                   map_fit_function fit) {
     const scene *s = f->gpu->scene;
-    const technique_frame *fit_frame = shadow_map_fit_frame(f);
+    const technique_frame *fit_frame = map_fit_frame(f);
     if (fit_frame->receiver_count == 0 || !technique_light_on(f, l))
         return false;
-    shadow_map *m = &r->maps[l];
-    int size = shadow_map_settings_size(settings);
-    m->size = size ? size : SHADOW_MAP_AUTO_MAX_SIZE;
+    map_light *m = &r->maps[l];
+    int size = map_settings_size(settings);
+    m->size = size ? size : MAP_AUTO_MAX_SIZE;
     r->fitted[l] = fit(fit_frame, l, m, fit_frame->receivers, fit_frame->receiver_count);
     if (!r->fitted[l])
         return false;
-    if (!size && m->kind != SHADOW_MAP_ARRAY) {
-        int sample_count = shadow_map_light_samples(r, fit_frame, l);
-        shadow_map_resize(m, shadow_map_auto_size(m, &s->lights[l], r->samples, sample_count, r->grazing_count));
+    if (!size && m->kind != MAP_ARRAY) {
+        map_samples samples = map_light_samples(r, fit_frame, l);
+        map_resize(m, map_auto_size(m, &s->lights[l], samples.samples, samples.count, samples.grazing));
     }
-    if (shadow_map_filter_moments(shadow_map_filter_in_use(settings)) != SHADOW_MAP_MOMENTS_NONE)
-        shadow_map_moments_fit(s, l, m, !size);
+    if (map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE)
+        map_moments_fit(s, l, m, !size);
     return true;
 }
 
-void shadow_map_shade(shadow_map_renderer *r, const shadow_map_settings *settings, const technique_frame *f) {
+void map_shade(map_renderer *r, const map_settings *settings, const technique_frame *f) {
     const scene *s = f->gpu->scene;
     /* A light without a map this frame may change unseen before the next. */
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (!r->fitted[l])
-            shadow_map_forget(&r->caches[l]);
+            map_forget(&r->caches[l]);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
     glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     depth_use_camera(f->view);
-    shadow_map_camera_key key = shadow_map_settings_key(settings);
+    map_camera_key key = map_settings_key(settings);
     for (int l = 0; l < s->light_count; l++) {
         bool fitted = r->fitted[l];
-        if (fitted && shadow_map_soft_unit(r, settings, &s->lights[l], l))
+        if (fitted && map_soft_unit(r, settings, &s->lights[l], l))
             key.soft_lights |= 1u << l;
-        if (fitted && shadow_map_moment_unit(r, settings, l))
+        if (fitted && map_moment_unit(r, settings, l))
             key.moment_lights |= 1u << l;
         if (fitted)
-            shadow_map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
+            map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
         else if (technique_light_on(f, l)) /* nothing visible receives: no map needed, nothing shadowed */
-            key.kinds |= shadow_map_light_bits(l, SHADOW_MAP_LIGHT_UNSHADOWED);
+            key.kinds |= map_light_bits(l, MAP_LIGHT_UNSHADOWED);
     }
     if (f->lights)
-        shadow_map_shade_lights(r, settings, f, &key);
+        map_shade_lights(r, settings, f, &key);
     else
         shading_ambient(f);
 }

@@ -1,0 +1,317 @@
+/* map_internal: what the files of the shadow-map library (map.c,
+ * map_cull.c, map_fit.c, map_moments.c, map_overlay.c) share beyond the
+ * public map.h: the renderer's programs and caches, the constants the
+ * shaders take as defines, and the helpers between its passes. The tests
+ * include it to check those parts on their own.
+ */
+#ifndef MAP_INTERNAL_H
+#define MAP_INTERNAL_H
+
+#include "map.h"
+
+/* The texel-size heat map's ends, log2 of a texel's size in pixels: blue
+ * at a quarter pixel and below, green at one, red at 32 and more. The
+ * shaders (texel_heat.glsl) and the legend take them from here. */
+#define MAP_HEAT_LOG2_MIN (-2)
+#define MAP_HEAT_LOG2_MAX 5
+/* The penumbra overlay's ends, log2 of the penumbra radius PCSS estimated
+ * (world units): the texel-size ramp moved to start at 1/64 unit (blue),
+ * green at 1/16, red at 2 and more. */
+#define MAP_PENUMBRA_LOG2_MIN (-6)
+#define MAP_PENUMBRA_LOG2_MAX (MAP_PENUMBRA_LOG2_MIN + MAP_HEAT_LOG2_MAX - MAP_HEAT_LOG2_MIN)
+
+/* The shape of the camera pass's kernel (the shaders' u_filter). The
+ * C/GLSL contract: the kernel shapes, texel kinds and cube faces are C
+ * enums passed to the shaders as defines (common/gl/shader.h); the shaders
+ * compare with their names. */
+typedef enum map_kernel {
+    MAP_KERNEL_SINGLE,  /* one test: nearest or bilinear by the texture's filter */
+    MAP_KERNEL_GRID,    /* N x N bilinear tests a texel apart (u_kernel: N) */
+    MAP_KERNEL_POISSON, /* the rotated Poisson disc (u_kernel: its scale in texels) */
+    MAP_KERNEL_TENT,    /* an N x N tent from ((N + 1)/2)^2 bilinear tests (u_kernel: N) */
+} map_kernel;
+/* The Poisson disc's scale: its unit circle is this many texels across,
+ * the scale that misclassifies least on the standard scenes. Its points
+ * reach radius 1.234 of that circle, so the taps span 3.7 texels (see
+ * shaders/map.glsl). */
+#define MAP_POISSON_SCALE_TEXELS 3
+
+/* Soft shadows. An area light (radius > 0) with --soft pcss, the default,
+ * is filtered by percentage-closer soft shadows instead of the kernel
+ * (shaders/map_soft.glsl: a blocker search, the penumbra by similar
+ * triangles, a filter of its width), its taps on the receiver's plane; the
+ * blocker search reads the map's depths on unit MAP_DEPTH_UNITS +
+ * light through r->depth_sampler (compare mode off). Its bit of the key's
+ * soft_lights compiles that code in: a light of radius 0 runs the code it
+ * always did. The blocker search's and the filter's taps, and the most
+ * radius of either disc in texels, which caster culling allows for
+ * (map_read_reach); the least is the hard default's disc's,
+ * MAP_POISSON_SCALE_TEXELS / 2. */
+#define MAP_SOFT_SEARCH_TAPS 16
+#define MAP_SOFT_FILTER_TAPS 32
+#define MAP_SOFT_MAX_TEXELS 48
+
+/* What light i is in the camera pass (the shaders'
+ * MAP_LIGHT_KIND_<i>): off, on without a map (nothing it reaches
+ * receives: added unshadowed), with a 2D map, a cube map or an array map. */
+typedef enum map_light_kind {
+    MAP_LIGHT_OFF,
+    MAP_LIGHT_UNSHADOWED,
+    MAP_LIGHT_2D,
+    MAP_LIGHT_CUBE,
+    MAP_LIGHT_ARRAY
+} map_light_kind;
+/* Light i's kind, and its map's map_texel_kind, in bits
+ * MAP_LIGHT_KIND_BITS i and up of a key's kinds and texel_kinds. */
+#define MAP_LIGHT_KIND_BITS 3
+_Static_assert(SCENE_MAX_LIGHTS *MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
+/* The camera programs kept: the keys a run goes through (lights coming
+ * into reach, a point light's warp falling back to a cube, the kernels a
+ * lecturer or the benchmark tries) are compiled once each, the oldest
+ * dropped beyond this many. */
+#define MAP_CAMERA_PROGRAMS 16
+/* Texture units: light i's map, of any kind, on unit i; the samplers a
+ * program holds but does not read (an array's elements below the last one
+ * used stay active) on one unit per sampler type after those, the
+ * comparisons' at MAP_IDLE_UNITS + t, the depths' at
+ * MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t: samplers of two
+ * types on one unit would fail every draw. */
+#define MAP_IDLE_UNITS SCENE_MAX_LIGHTS
+/* A soft light's map is also read as depth (compare mode off, by
+ * r->depth_sampler): light i's on unit MAP_DEPTH_UNITS + i, after
+ * the idle units of the comparison and the depth samplers' types; a
+ * moment filter's light reads its moments there (the same sampler
+ * types). GL 3.3 promises 16 units, which hold the depth units of the
+ * first lights only: a light whose depth unit the GL lacks
+ * (r->texture_units) is drawn hard (a moment filter's with one bilinear
+ * test), and says so. */
+#define MAP_SAMPLER_TYPES 3
+#define MAP_DEPTH_UNITS (MAP_IDLE_UNITS + 2 * MAP_SAMPLER_TYPES)
+
+/* What a camera program is compiled for (shaders/map.frag's
+ * MAP_LIGHT_KIND_<i>, MAP_TEXEL_KIND_<i> and
+ * MAP_PASS_*): whatever chooses code rather than a number, so
+ * that a program holds only the code it runs. As uniforms every pixel
+ * would run every choice's code: llvmpipe runs both sides of a branch,
+ * masked. All unsigned: keys compare with memcmp. */
+typedef struct map_camera_key {
+    unsigned kinds, texel_kinds; /* per light (MAP_LIGHT_KIND_BITS) */
+    unsigned shape, kernel;      /* map_kernel, N or the disc's scale */
+    unsigned soft_lights;        /* bit i: light i is soft (map_soft.glsl) */
+    unsigned moments;            /* map_moments of the filter */
+    unsigned moment_lights;      /* bit i: light i reads its moment map */
+    unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
+} map_camera_key;
+
+/* The camera pass's program (lit.vert with map.frag) for one key,
+ * and its uniforms: the pass's, then each light's (-1 where its kind has
+ * none). */
+typedef struct map_camera_program {
+    render_program program;
+    map_camera_key key;
+    int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend;
+    struct {
+        int map_size, light_matrix, light_inverse, light_size, texel_scale, near_plane, far_plane, cascade_count;
+        int cascade_scale, cascade_offset; /* the light's first layer's element */
+    } lights[SCENE_MAX_LIGHTS];
+} map_camera_program;
+
+/* overlay.vert with overlay_lines.frag: world-space lines in one colour. */
+typedef struct map_lines_program {
+    render_program program;
+    int color;
+} map_lines_program;
+
+/* overlay.vert with overlay_map.frag: a map's reduction as an inset of
+ * linear depth. */
+typedef struct map_inset_program {
+    render_program program;
+    int reduced, kind, layer, size, factor, orthographic, near_plane, far_plane, held;
+} map_inset_program;
+
+/* overlay.vert with overlay_reduce.frag, for a map of one kind: the
+ * inset's reduction, loaded when an inset first needs it. */
+typedef struct map_reduce_program {
+    render_program program;
+    int factor, layer;
+} map_reduce_program;
+
+/* overlay.vert with overlay_heat_legend.frag: the texel-size legend's bar. */
+typedef struct map_legend_program {
+    render_program program;
+    int log2_range;
+} map_legend_program;
+
+/* Vertices in the overlay buffer: a frustum's 12 edges take 24 line
+ * ends; the legend's panel, ticks and labels, two triangles a rectangle
+ * (its three labels: about 70 of stb_easy_font's quads); the buffer holds
+ * the larger. */
+#define MAP_OVERLAY_VERTICES 24
+#define MAP_LEGEND_VERTICES 1200
+
+/* A moment blur pass (shaders/shadow_moments.frag) and its uniforms. */
+typedef struct map_blur_program {
+    unsigned id;
+    int radius, axis, layer;
+} map_blur_program;
+
+/* What a light's map was rendered with (the cache's key): all ints, so
+ * that it compares with memcmp. */
+typedef struct map_depth_key {
+    unsigned texture;
+    int size, depth, filter, no_slope_bias;
+    float slope_factor, slope_units;
+} map_depth_key;
+
+/* What each layer of a light's map holds (map.h, "Caching"). */
+typedef struct map_cache {
+    map_depth_key key;
+    bool valid[MAP_MAX_LAYERS];
+    mat4 layer_view_projection[MAP_MAX_LAYERS];
+    float blur_texels[MAP_MAX_LAYERS];
+    bool *drawn[MAP_MAX_LAYERS]; /* per object: drawn into the layer */
+} map_cache;
+
+/* A technique's maps and their GL objects. */
+struct map_renderer {
+    render_program depth;
+    map_camera_program camera[MAP_CAMERA_PROGRAMS];
+    int camera_count, camera_oldest;
+    map_lines_program lines;
+    map_inset_program inset;
+    map_legend_program legend;
+    unsigned framebuffer, overlay_vao, overlay_buffer;
+    /* The moment maps' passes: per moment kind the depths' moments from
+     * each kind of map, and the box along an axis; their framebuffer and
+     * the empty vertex array of their full-screen triangle (loaded as
+     * needed). */
+    map_blur_program blur_depth[MAP_MOMENTS_MSM + 1][MAP_ARRAY + 1], blur_moments;
+    unsigned blur_framebuffer, blur_vao;
+    /* The map inset's reduction (map_overlay.c) of light 0's map:
+     * per kind its program; an RG32F array texture, a layer per map layer
+     * and inset_blocks texels on a side (blocks of inset_factor texels on
+     * a side), and its framebuffer; each layer's nearest and farthest held
+     * depth. Current until the depth pass renders a layer of light 0's
+     * map (made again only then: a cached map is not reduced again);
+     * failed (said once): no inset is drawn. */
+    map_reduce_program reduce[MAP_ARRAY + 1];
+    unsigned inset_texture, inset_framebuffer;
+    int inset_blocks, inset_layers, inset_factor;
+    float inset_held[MAP_MAX_LAYERS][2];
+    bool inset_current, inset_failed;
+    bool blur_failed;        /* said once: moment filters read one bilinear depth test */
+    unsigned depth_sampler;  /* a map read as depth: compare mode off, nearest */
+    int texture_units;       /* GL_MAX_TEXTURE_IMAGE_UNITS */
+    unsigned soft_warned;    /* bit i: light i's treatment said on stderr */
+    unsigned moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
+    map_light maps[SCENE_MAX_LIGHTS];
+    map_cache caches[SCENE_MAX_LIGHTS];
+    int object_count;              /* the scene's, at init: the sets' size */
+    bool *needed[MAP_MAX_LAYERS];  /* this frame's casters of each layer of one light */
+    float (*receiver_boxes)[2][3]; /* one light's visible receivers' boxes within its range */
+    light_mask *masks;             /* one light's layers' masks of the visible pixels */
+    bool *closed;                  /* per object: a caster whose mesh is closed */
+    /* Where the camera sees receivers (warp_samples; -1: not cast yet this
+     * frame), and those light sample_light is measured at
+     * (warp_samples_lit): map_light_samples. */
+    warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
+    int hit_count, sample_count, sample_light;
+    int grazing_count; /* of sample_light's: the hits left out as edge-on to it */
+    /* This frame's, from map_begin on: the target the camera pass
+     * draws into, and which lights have a map. */
+    int target_framebuffer, viewport[4];
+    bool fitted[SCENE_MAX_LIGHTS];
+};
+
+/* The depth pass of a fitted map of any kind, uncached (the tests'):
+ * (re)makes its texture when needed, then renders every layer from its matrix, with glPolygonOffset
+ * as the slope-scaled bias (unless --no-slope-bias; an array map's layers
+ * attached one at a time, glFramebufferTextureLayer), and a moment
+ * filter's blurs each. Leaves r->framebuffer (or the blur's) bound and
+ * the viewport at the map's size: the caller binds its target again. */
+void map_render_depth(map_renderer *r, const map_settings *settings, const render_scene *gpu, map_light *m);
+
+/* --map-size auto's size for the fitted map m of the light at
+ * light_position, from the samples the light is measured at (see
+ * MAP_AUTO_*): a texel's size on screen scales as 1 / size, so the
+ * mean at m->size gives the size at which it is TEXEL_PIXELS, rounded up
+ * to a power of two. Samples beyond the light's range (it lights nothing
+ * there) and outside the map are not measured. Where more of the samples
+ * were left out as edge-on to the light (`grazing`, warp_samples_lit)
+ * than measured, the faces measured are not where its shadows are seen:
+ * on those faces every texel is unboundedly long and only its width
+ * across the light can shrink, so the map takes the most texels, MAX
+ * (else a sun a fraction of a degree above the ground, measured on the
+ * casters' sides alone, gets a small map and every long shadow edge on
+ * the ground follows one texel's rounding: test_shadowmap's stress
+ * extremes, tests/data/shadowmap_grazing_sun.json). */
+int map_auto_size(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int grazing);
+/* A kind's GL texture target, and the image of a 2D map's or a cube
+ * face's layer (GLenums). */
+unsigned map_target(map_kind kind);
+unsigned map_layer_image(map_kind kind, int layer);
+/* The bound texture of `target` filtered by `filter` (GL_NEAREST or
+ * GL_LINEAR), its reads clamped to its edges. */
+void map_texture_filter(unsigned target, int filter);
+/* "2D", "cube" or "array", for HUD lines. */
+const char *map_kind_name(map_kind kind);
+
+/* r->needed[layer]: the casters each layer of light l's fitted map needs
+ * (every candidate where it does not cull); counts them in f->counts. */
+void map_plan_casters(map_renderer *r, const map_settings *settings, const technique_frame *f, int l);
+
+/* ---- moment maps (map_moments.c) ---- */
+
+/* The box radius of a moment filter's blur, in texels of each layer of
+ * light l's fitted map m, into blur (see map_moments.c): a hard
+ * light's MAP_MOMENTS_HARD_BLUR_TEXELS, an area light's the mean
+ * penumbra its casters cast at their feet, unclamped; each caster's
+ * shadow is traced once for every layer. */
+void map_moments_blur_texels(const scene *s, int l, const map_light *m, float blur[MAP_MAX_LAYERS]);
+/* (Re)makes a moment filter's textures beside m's depth texture (or
+ * deletes them for the kernels). */
+void map_moments_prepare(map_light *m, map_moments moments);
+/* The depths of layer `layer` as blurred moments (their moments, then
+ * the box along x and along y); false (said
+ * once, r->blur_failed) where a pass cannot run. Leaves its framebuffer
+ * bound. */
+bool map_moments_blur(map_renderer *r, const map_light *m, map_moments moments, int layer);
+void map_moments_destroy(map_renderer *r);
+
+/* Passes that read a map's depths a texel at a time (the moment blur's
+ * first, the map inset's reduction) include shaders/map_texel.glsl: their
+ * defines go on with MAP_TEXEL_DEFINES, the names it compares
+ * with, and map_texel_units puts its samplers on their units (the
+ * program in use): a map of kind k is read on unit k. */
+#define MAP_TEXEL_DEFINES                                                                                            \
+    SHADER_DEFINE(MAP_CUBE), SHADER_DEFINE(MAP_ARRAY), SHADER_DEFINE(MAP_FACE_POSITIVE_X),                           \
+        SHADER_DEFINE(MAP_FACE_NEGATIVE_X), SHADER_DEFINE(MAP_FACE_POSITIVE_Y), SHADER_DEFINE(MAP_FACE_NEGATIVE_Y),  \
+        SHADER_DEFINE(MAP_FACE_POSITIVE_Z)
+void map_texel_units(unsigned program);
+/* *framebuffer (made on first use), bound, with `texture`'s image `image`
+ * (GL_TEXTURE_2D, a cube face's, or layer `layer` of GL_TEXTURE_2D_ARRAY)
+ * as its colour: complete, or said on stderr with what is done `instead`,
+ * and false. */
+bool map_color_target(unsigned *framebuffer, unsigned texture, unsigned image, int layer, const char *instead);
+
+/* ---- overlays (map_overlay.c) ---- */
+
+/* The 12 edges of the frustum of `frustum` (its clip cube mapped back to
+ * world space), drawn through `view_projection`. */
+void map_draw_frustum(map_renderer *r, const mat4 frustum, const mat4 view_projection);
+
+/* Each array layer's colour in the cascades overlay, one table for the
+ * camera pass's tint (shaders/map_array.glsl's u_cascade_colors,
+ * set from it when a camera program is made) and the key's swatches. */
+extern const float map_cascade_colors[MAP_MAX_ARRAY_LAYERS][3];
+
+/* The grey of an inset's farthest held depth (map.h, "The map inset"). */
+#define MAP_INSET_FAR_GREY_PERCENT 75
+/* How many insets a map of `kind` with `layer_count` layers has (an
+ * array's layers one each; any other map one), and where inset `inset`
+ * lies in a viewport of width x height pixels: x, y, width and height in
+ * pixels from the viewport's bottom-left corner. */
+int map_inset_count(map_kind kind, int layer_count);
+void map_inset_rect(map_kind kind, int layer_count, int inset, int width, int height, int rect[4]);
+
+#endif

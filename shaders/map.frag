@@ -1,0 +1,125 @@
+#version 330 core
+// The camera pass of the shadow maps (demos/lib/map.c, for
+// demos/shadowmap.c, demos/psm.c and demos/cascades.c): every light in one
+// pass over the visible receivers, after a depth pre-pass, so that each
+// visible pixel is shaded once and filtered once per light that reaches
+// it. main, at the end, is the whole pass: the ambient term, then each
+// light's share by its kind (map_share, map_light.glsl).
+//
+// C compiles one program per combination of the defines below
+// (map_camera_program_load), in which each light's code is there
+// only for its kind and the kernel's only for its shape: read from
+// uniforms, every pixel would run every kind's code (llvmpipe runs both
+// sides of a branch, masked). Samplers can be indexed only by constant
+// expressions in GLSL 3.30, so the lights are listed one by one. The
+// permutation's axes, and where each is read:
+//   MAP_LIGHT_KIND_<i>   light i: off, on without a map (nothing it
+//       reaches receives: added unshadowed), or with a 2D, cube or array
+//       map (a map_light_kind): here, MAP_LIGHT;
+//   MAP_TEXEL_KIND_<i>   how light i's 2D map's texel is measured
+//       (a map_texel_kind): map_2d.glsl, map_texel_world;
+//   MAP_PASS_SHAPE, MAP_PASS_KERNEL   the kernel's shape and
+//       size: map.glsl (map_shape, map_kernel_size);
+//   MAP_PASS_EARLY_OUT   the rim's taps first: map.glsl
+//       (map_early_out), for map_light.glsl's kernel filter;
+//   MAP_PASS_RECEIVER_PLANE   taps at the receiver plane's depth:
+//       map.glsl (map_receiver_plane), and map_cube.glsl;
+//   MAP_PASS_SOFT_LIGHTS, MAP_PASS_MOMENT_LIGHTS   bit i:
+//       light i is soft (map_soft.glsl's filter), or reads its
+//       moment map: here, MAP_SOFT and MAP_MOMENTS;
+//   MAP_PASS_MOMENTS   which moments: moments.glsl;
+//   MAP_PASS_SHOW_*   the lecture's overlays: here (map_show_*),
+//       for map_light.glsl's map_share, map_soft.glsl
+//       (the penumbra) and main (the cascades' tint).
+// The other MAP_* names are the C constants these are compared with
+// (map.c, map_defines).
+#include "lighting.glsl"
+
+in vec3 v_position;
+in vec3 v_normal;
+
+uniform vec3 u_albedo;
+uniform float u_constant_bias;   // texels of world distance, towards the light
+uniform float u_normal_offset;   // texels, along the normal, times the slope
+uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
+uniform int u_closed_outside;    // bit i: a closed caster with the eye inside it and light i outside
+
+// The triangle's own (flat) normal, on the side the eye sees: set first in
+// main, where derivatives are defined, for map_share.
+vec3 map_face_normal;
+
+// Light i reaches this fragment's face from the inside of a closed caster
+// (the eye is inside the mesh and sees the triangle's back, the light is
+// outside the mesh and on the eye's side of the face): it can only have
+// come through the mesh, which shadows it, as the reference's ray says.
+// The map cannot tell where such a face meets one that faces the light:
+// the depth between the two goes to zero at their edge and the
+// slope-scaled bias of the steeper is thicker than the mesh there (seen
+// from inside a box, a column of false light along the corner: the stress
+// suite's camera_inside cases). With the eye outside, every fragment is
+// as it was.
+bool map_through_closed(int i, vec3 to_light) {
+    return !gl_FrontFacing && (u_closed_outside & (1 << i)) != 0 && dot(map_face_normal, to_light) > 0.0;
+}
+
+out vec4 out_color;
+
+// The lecture's overlays, fixed per program like the kernel.
+const bool map_show_texels = MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
+const bool map_show_texel_size = MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
+const bool map_show_cascades = MAP_PASS_SHOW_CASCADES != 0;     // tint by light 0's cascade
+const bool map_show_penumbra = MAP_PASS_SHOW_PENUMBRA != 0;     // colour by PCSS's penumbra estimate
+// With the penumbra overlay: the penumbra radius (world units) that the
+// last soft filter estimated, or MAP_NO_PENUMBRA where its blocker
+// search found no blocker (or no filter ran).
+const float MAP_NO_PENUMBRA = -1.0;
+float map_penumbra_estimate = MAP_NO_PENUMBRA;
+
+#include "moments.glsl"
+#include "map.glsl"
+#include "map_2d.glsl"
+#include "map_cube.glsl"
+#include "map_array.glsl"
+
+#if SCENE_MAX_LIGHTS != 8
+#error "map.frag lists SCENE_MAX_LIGHTS lights one by one: one MAP_LIGHT line each"
+#endif
+// Light i's share by its kind (a constant: the other kinds' code is dropped).
+// Light i is soft (an area light, filtered by map_soft.glsl) where
+// its bit of MAP_PASS_SOFT_LIGHTS is set.
+// Light i reads its moment map (moments.glsl; in its depths' sampler)
+// where its bit of MAP_PASS_MOMENT_LIGHTS is set.
+#define MAP_SOFT(i) (((MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
+#define MAP_MOMENTS(i) (((MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
+#define MAP_LIGHT(i, kind, texel_kind) \
+    if (kind == MAP_LIGHT_UNSHADOWED) \
+        c += lighting_unshadowed(i, v_position, n, u_albedo); \
+    else if (kind == MAP_LIGHT_2D) \
+        c += map_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, MAP_SOFT(i), \
+                              MAP_MOMENTS(i), n); \
+    else if (kind == MAP_LIGHT_CUBE) \
+        c += map_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, MAP_SOFT(i), \
+                              MAP_MOMENTS(i), n); \
+    else if (kind == MAP_LIGHT_ARRAY) \
+        c += map_share(u_maps_array[i], u_depths_array[i], i, texel_kind, MAP_SOFT(i), \
+                              MAP_MOMENTS(i), n)
+
+void main() {
+    // Two-sided: open meshes (the teapot) show their inside.
+    vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
+    map_face_normal = cross(dFdx(v_position), dFdy(v_position));
+    if (dot(map_face_normal, n) < 0.0)
+        map_face_normal = -map_face_normal;
+    vec3 c = lighting_ambient(u_albedo);
+    MAP_LIGHT(0, MAP_LIGHT_KIND_0, MAP_TEXEL_KIND_0);
+    MAP_LIGHT(1, MAP_LIGHT_KIND_1, MAP_TEXEL_KIND_1);
+    MAP_LIGHT(2, MAP_LIGHT_KIND_2, MAP_TEXEL_KIND_2);
+    MAP_LIGHT(3, MAP_LIGHT_KIND_3, MAP_TEXEL_KIND_3);
+    MAP_LIGHT(4, MAP_LIGHT_KIND_4, MAP_TEXEL_KIND_4);
+    MAP_LIGHT(5, MAP_LIGHT_KIND_5, MAP_TEXEL_KIND_5);
+    MAP_LIGHT(6, MAP_LIGHT_KIND_6, MAP_TEXEL_KIND_6);
+    MAP_LIGHT(7, MAP_LIGHT_KIND_7, MAP_TEXEL_KIND_7);
+    if (map_show_cascades && MAP_LIGHT_KIND_0 == MAP_LIGHT_ARRAY)
+        c = map_cascade_tint(0, c);
+    out_color = vec4(c, 1.0);
+}
