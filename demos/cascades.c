@@ -157,8 +157,8 @@ static bool cascades_fit_array(const technique_frame *f, int light, map_light *m
                                                            : 1;
     if (cascades.scheme == CASCADES_SDSM) {
         float seen_near, seen_far;
-        if (!cascades_seen_depths(f->view, f->receivers, f->receiver_count, near_plane, far_plane, &seen_near,
-                                  &seen_far))
+        if (!cascades_seen_depths(f->view, f->skips->receivers, f->skips->receiver_count, near_plane, far_plane,
+                                  &seen_near, &seen_far))
             return false;
         if (stabilize != CASCADES_STABILIZE_OFF) {
             /* Stabilised, the seen range too changes only in steps. */

@@ -223,13 +223,13 @@ static void planar_mark_shadows(const technique_frame *f, int light, int k, cons
     /* Stencil marks only the visible receivers' pixels, so a caster whose
      * shadow reaches none of them marks nothing: culling it is exact (by
      * the hull of the point at hand, for a point of an area light). */
-    technique_hull hull;
+    skips_hull hull;
     if (k == SHADING_LIGHT_CENTRE)
-        technique_light_hull(f, light, &hull);
+        skips_light_hull(f->skips, light, &hull);
     else
-        technique_point_hull(f, light, light_h, &hull);
+        skips_point_hull(f->skips, light, light_h, &hull);
     for (int i = 0; i < s->object_count; i++)
-        planar.casters[i] = technique_caster_needed(f, &hull, i);
+        planar.casters[i] = skips_caster_needed(f->skips, &hull, i);
     glClear(GL_STENCIL_BUFFER_BIT);
     glEnable(GL_STENCIL_TEST);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -260,13 +260,13 @@ static const shading_stencil planar_lit = {
  * bright the other lights make it. */
 static void planar_render_stencil(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_depth_prepass(f->gpu, f->view, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->skips->in_view);
     /* A caster's anti-shadow (reject off) lies nearer the light than the
      * caster: the masks of what is seen bound true shadows only. */
     if (!planar.settings.no_reject)
         technique_see(f);
     for (int l = 0; l < s->light_count; l++) {
-        if (!technique_light_on(f, l))
+        if (!skips_light_on(f->skips, l))
             continue;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
@@ -299,7 +299,7 @@ static void planar_render_stencil(const technique_frame *f) {
  * culling: it would change that picture), and the counts say so. */
 static void planar_render_blended(const technique_frame *f) {
     const scene *s = f->gpu->scene;
-    render_unshadowed(f->gpu, f->view, f->in_view, f->lights);
+    render_unshadowed(f->gpu, f->view, f->skips->in_view, f->skips->lights);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);
     int caster_count = 0;
@@ -308,9 +308,9 @@ static void planar_render_blended(const technique_frame *f) {
         caster_count += planar.casters[i];
     }
     for (int l = 0; l < s->light_count; l++) {
-        if (!technique_light_on(f, l))
+        if (!skips_light_on(f->skips, l))
             continue;
-        f->counts->casters_drawn[l] += caster_count;
+        f->skips->counts->casters_drawn[l] += caster_count;
         float light_h[4];
         scene_light_homogeneous(&s->lights[l], light_h);
         for (int r = 0; r < s->object_count; r++) {

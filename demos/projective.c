@@ -111,14 +111,14 @@ static bool projective_is_textured(const scene_object *o) {
  * projective.wanted: every caster, or with caster culling those whose
  * texture rectangle meets where the visible receivers read it (the
  * shadow maps' reads, map_layer_reads: exact, since a lookup reads
- * only its own texels, whatever their depth). Counted in f->counts. */
+ * only its own texels, whatever their depth). Counted in f->skips->counts. */
 static void projective_plan_casters(const technique_frame *f, int l, const projective_light *t) {
     const scene *s = f->gpu->scene;
     map_reads reads;
-    if (f->cull_casters) {
+    if (f->skips->cull_casters) {
         map_read_setup setup = {.reach = PROJECTIVE_READ_REACH_TEXELS, .size = t->size, .any_depth = true};
         int boxes = map_light_receivers(f, l, projective.boxes);
-        map_layer_reads(t->frustum.view_projection, &setup, f->receivers, f->receiver_count,
+        map_layer_reads(t->frustum.view_projection, &setup, f->skips->receivers, f->skips->receiver_count,
                         (const float(*)[2][3])projective.boxes, boxes, &reads);
     }
     for (int i = 0; i < s->object_count; i++) {
@@ -127,11 +127,11 @@ static void projective_plan_casters(const technique_frame *f, int l, const proje
         if (!projective_is_caster(&s->objects[i]))
             continue;
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        projective.wanted[i] = !f->cull_casters || map_caster_read(&reads, t->frustum.view_projection, lo, hi);
+        projective.wanted[i] = !f->skips->cull_casters || map_caster_read(&reads, t->frustum.view_projection, lo, hi);
         if (projective.wanted[i])
-            f->counts->casters_drawn[l]++;
+            f->skips->counts->casters_drawn[l]++;
         else
-            f->counts->casters_culled[l]++;
+            f->skips->counts->casters_culled[l]++;
     }
 }
 
@@ -161,11 +161,11 @@ static void projective_prepare_texture(projective_light *t, int size) {
 static bool projective_draw_texture(const technique_frame *f, int l, projective_light *t) {
     const scene *s = f->gpu->scene;
     bool same =
-        t->drawn_valid && !f->changed.scene && !f->changed.settings && !(f->changed.lights & RENDER_LIGHT_BIT(l));
+        t->drawn_valid && !f->changed.scene && !f->changed.settings && !(f->changed.lights & SCENE_LIGHT_BIT(l));
     for (int i = 0; same && i < s->object_count; i++)
         same = t->drawn[i] == projective.wanted[i];
     if (same) {
-        f->counts->layers_reused++;
+        f->skips->counts->layers_reused++;
         return true;
     }
     GLint target, viewport[4];
@@ -189,7 +189,7 @@ static bool projective_draw_texture(const technique_frame *f, int l, projective_
             if (projective.wanted[i])
                 render_draw_object(f->gpu, &projective.caster, i);
         glEnable(GL_DEPTH_TEST);
-        f->counts->layers_rendered++;
+        f->skips->counts->layers_rendered++;
         for (int i = 0; i < s->object_count; i++)
             t->drawn[i] = projective.wanted[i];
     } else {
@@ -293,10 +293,10 @@ static void projective_render(const technique_frame *f) {
     const scene *s = f->gpu->scene;
     int size = atoi(projective_sizes[projective.settings.texture_size]);
     /* 1. The camera's depth pre-pass: what is seen. */
-    render_depth_prepass(f->gpu, f->view, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->skips->in_view);
     technique_see(f);
     for (int l = 0; l < s->light_count; l++) {
-        if (!technique_light_on(f, l))
+        if (!skips_light_on(f->skips, l))
             continue;
         projective_light *t = &projective.lights[l];
         /* 2. A frustum from the light fitted to its casters: a cone round

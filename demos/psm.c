@@ -51,7 +51,7 @@
 #include "warp.h"
 
 /* Room for the receivers' corners, then 256 casters' box corners. */
-#define PSM_MAX_POINTS (TECHNIQUE_MAX_RECEIVER_POINTS + 8 * 256)
+#define PSM_MAX_POINTS (SKIPS_MAX_RECEIVER_POINTS + 8 * 256)
 /* A warp is kept where it shrinks the mean texel by at least a fifth: the
  * measure is taken on the receivers' boxes, not their surfaces, so near
  * ties go to the map whose texels do not depend on the warp's aim. */

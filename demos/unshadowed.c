@@ -25,20 +25,20 @@ static bool unshadowed_init(const render_scene *gpu) {
  * ratio to it measures shadows alone. */
 static void unshadowed_render(const technique_frame *f) {
     /* 1. The depth pre-pass; what it shows (technique_see). */
-    render_depth_prepass(f->gpu, f->view, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->skips->in_view);
     technique_see(f);
 
     /* 2. One shading pass of every object in view, with the ambient term
      *    and the lights not split from it. */
     unsigned split = shading_split_lights(f);
     const bool *objects = shading_all_begin(f);
-    render_unshadowed(f->gpu, f->view, objects, f->lights & ~split);
+    render_unshadowed(f->gpu, f->view, objects, f->skips->lights & ~split);
 
     /* 3. Each split light's own pass: what it reaches in its rectangle,
      *    shaded again with every light. */
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        if (split & RENDER_LIGHT_BIT(l))
-            render_unshadowed(f->gpu, f->view, shading_light_pass(f, l), f->lights);
+        if (split & SCENE_LIGHT_BIT(l))
+            render_unshadowed(f->gpu, f->view, shading_light_pass(f, l), f->skips->lights);
     glDisable(GL_SCISSOR_TEST);
 }
 

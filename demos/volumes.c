@@ -262,13 +262,13 @@ static void volumes_count_plan(const technique_frame *f, const volume_plan *plan
  * with the point's own plan and kept volumes). The casters' counts for
  * the HUD are the first point's. */
 static void volumes_count_point(const technique_frame *f, int l, int k, const float point[4]) {
-    technique_counts counts = *f->counts;
+    skips_counts counts = *f->skips->counts;
     volume_plan plan;
     volumes_plan_light(f, l, k, point, &plan);
     plan.reported = plan.reported && !volumes.point_reported;
     volumes_count_plan(f, &plan);
     if (volumes.point_reported)
-        *f->counts = counts;
+        *f->skips->counts = counts;
     volumes.point_reported = true;
 }
 
@@ -284,7 +284,7 @@ static void volumes_forget_moved(const technique_frame *f) {
     bool trim_changed = volumes.trim_kept != (int)volumes_trim();
     volumes.trim_kept = volumes_trim();
     for (int l = 0; l < s->light_count; l++) {
-        if (f->changed.scene || trim_changed || (f->changed.lights & RENDER_LIGHT_BIT(l)))
+        if (f->changed.scene || trim_changed || (f->changed.lights & SCENE_LIGHT_BIT(l)))
             volume_draw_forget(&volumes.draw, l);
         int samples = volumes_by_wedges(&s->lights[l])
                           ? 1
@@ -314,15 +314,15 @@ static void volumes_render(const technique_frame *f) {
     /* 1. Depth pre-pass: the depth every pass tests against; what it
      *    shows (technique_see) is read from the depth the volumes are
      *    counted against. */
-    render_depth_prepass(f->gpu, f->view, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->skips->in_view);
     volume_mesh_receivers_scissor(f->gpu->scene, f->view->view_projection, f->width, f->height,
                                   volumes.receivers_rect);
     volumes.huge_count = volumes.settings.no_exact_depth ? 0 : volume_receivers_update(&volumes.receivers, f);
-    if (f->seen)
+    if (f->skips->seen)
         volumes_exact_depth(f);
     technique_see(f);
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
-        if (!technique_light_on(f, l))
+        if (!skips_light_on(f->skips, l))
             continue;
         /* The CPU volumes built for this light, or its points, reach as
          * far as volumes_trim says. */

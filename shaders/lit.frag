@@ -1,7 +1,7 @@
 #version 330 core
 #include "lighting.glsl"
 // The lights of the set LIT_LIGHTS (bit i: light i, render_use_lit's
-// RENDER_LIGHT_BIT set in common/gl/render.h), fully visible, plus ambient
+// SCENE_LIGHT_BIT set, common/data/scene.h), fully visible, plus ambient
 // when u_ambient is 1: the unshadowed picture, or one light's share of it.
 // C compiles one program per set on its first use (render_lit_load), so
 // that each light's code is there only when it is in the set and reads

@@ -40,7 +40,7 @@ static struct {
     render_scene gpu;
     map_renderer *maps;
     map_light fitted; /* light 0's uniform fit */
-    float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
+    float receivers[SKIPS_MAX_RECEIVER_POINTS][3];
     unsigned readback; /* a framebuffer to read a layer's depth from */
     /* MAP_SIZE^2 depths each: the 2D map's, the array layer's, the 2D map of layer 0's */
     float *expected, *actual, *layer0;
@@ -57,8 +57,7 @@ static int gl_setup(void **state) {
         return -1;
     camera_view view;
     camera_view_compute(&gl.scene.camera, VIEW_ASPECT, &view);
-    int receiver_count =
-        technique_host_receiver_points(&gl.scene, &view, gl.receivers, TECHNIQUE_MAX_RECEIVER_POINTS);
+    int receiver_count = technique_host_receiver_points(&gl.scene, &view, gl.receivers, SKIPS_MAX_RECEIVER_POINTS);
     gl.fitted.size = MAP_SIZE;
     if (receiver_count == 0 ||
         !map_fit_uniform(&gl.scene, 0, &gl.fitted, (const float(*)[3])gl.receivers, receiver_count) ||

@@ -57,6 +57,10 @@
 #include "mesh.h"
 
 #define SCENE_MAX_LIGHTS 8
+/* A set of lights as bits: bit l is light l (render_use_lit, the skips). */
+#define SCENE_LIGHT_BIT(l) (1u << (l))
+#define SCENE_ALL_LIGHTS(count) ((count) >= 32 ? ~0u : SCENE_LIGHT_BIT(count) - 1u)
+_Static_assert(SCENE_MAX_LIGHTS <= 32, "a light set is 32 bits");
 #define SCENE_NAME_MAX 64
 /* What every picture shows where no object is: the rasterizer clears to
  * it, the reference paints it. */

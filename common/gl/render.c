@@ -262,7 +262,7 @@ static bool render_lit_load(render_lit_programs *lit, render_lit_variant variant
 
 const render_lit_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant,
                                                  const camera_view *v, unsigned lights, bool ambient) {
-    unsigned set = lights & RENDER_ALL_LIGHTS(r->scene->light_count);
+    unsigned set = lights & SCENE_ALL_LIGHTS(r->scene->light_count);
     render_lit_program *p = &r->lit->programs[variant][set];
     if (!p->loaded && (r->lit->failed || !render_lit_load(r->lit, variant, set)))
         return NULL;

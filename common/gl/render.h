@@ -69,10 +69,6 @@ typedef struct render_mesh {
  * long_view's, so none of those is huge. */
 #define RENDER_HUGE_RATIO 1024.0
 
-/* A set of lights as bits: bit l is light l (render_use_lit). */
-#define RENDER_LIGHT_BIT(l) (1u << (l))
-#define RENDER_ALL_LIGHTS(count) ((count) >= 32 ? ~0u : RENDER_LIGHT_BIT(count) - 1u)
-_Static_assert(SCENE_MAX_LIGHTS <= 32, "a light set is 32 bits");
 /* Every set of the scene's lights. */
 #define RENDER_LIGHT_SETS (1u << SCENE_MAX_LIGHTS)
 
@@ -173,7 +169,7 @@ bool render_skip_on(const render_skips *skips, bool own_off);
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips);
 
 /* Binds the lit program of `variant` for the set `lights`
- * (RENDER_LIGHT_BIT; those the scene has), with or without the ambient
+ * (SCENE_LIGHT_BIT; those the scene has), with or without the ambient
  * term, and returns it (its program to draw with); NULL where it failed
  * to compile. */
 const render_lit_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant,

@@ -5,22 +5,22 @@
 
 /* Light l's rectangle covers at most SHADING_NARROW_LIGHT_SHARE of the frame. */
 static bool shading_light_narrow(const technique_frame *f, int l) {
-    const int *rect = technique_light_rect(f, l);
+    const int *rect = skips_light_rect(f->skips, l);
     return (double)rect[2] * (double)rect[3] <= SHADING_NARROW_LIGHT_SHARE * (double)f->width * (double)f->height;
 }
 
 const bool *shading_light_pass(const technique_frame *f, int l) {
-    const int *rect = technique_light_rect(f, l);
-    if (shading_light_narrow(f, l) && memcmp(rect, f->light_rect[l], sizeof f->light_rect[l]) != 0)
-        f->counts->lights_narrowed |= RENDER_LIGHT_BIT(l);
+    const int *rect = skips_light_rect(f->skips, l);
+    if (shading_light_narrow(f, l) && memcmp(rect, f->skips->light_rect[l], sizeof f->skips->light_rect[l]) != 0)
+        f->skips->counts->lights_narrowed |= SCENE_LIGHT_BIT(l);
     glEnable(GL_SCISSOR_TEST);
     glScissor(rect[0], rect[1], rect[2], rect[3]);
-    return f->lit_by[l];
+    return f->skips->lit_by[l];
 }
 
 int shading_ambient_light(const technique_frame *f) {
     for (int l = 0; l < f->gpu->scene->light_count; l++)
-        if (technique_light_on(f, l))
+        if (skips_light_on(f->skips, l))
             return l;
     return -1;
 }
@@ -42,7 +42,7 @@ static const bool *shading_begin(const technique_frame *f, int l, bool *ambient)
     if (*ambient) {
         glDisable(GL_SCISSOR_TEST);
         glDisable(GL_BLEND);
-        return f->in_view;
+        return f->skips->in_view;
     }
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
@@ -53,20 +53,20 @@ const bool *shading_all_begin(const technique_frame *f) {
     shading_depth();
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_BLEND);
-    return f->in_view;
+    return f->skips->in_view;
 }
 
 unsigned shading_split_lights(const technique_frame *f) {
     unsigned split = 0;
     for (int l = 0; l < f->gpu->scene->light_count; l++)
-        if (technique_light_on(f, l) && shading_light_narrow(f, l))
-            split |= RENDER_LIGHT_BIT(l);
+        if (skips_light_on(f->skips, l) && shading_light_narrow(f, l))
+            split |= SCENE_LIGHT_BIT(l);
     return split;
 }
 
 void shading_ambient(const technique_frame *f) {
     shading_depth();
-    render_draw_objects(f->gpu, render_use_lit(f->gpu, f->view, 0, true), f->in_view);
+    render_draw_objects(f->gpu, render_use_lit(f->gpu, f->view, 0, true), f->skips->in_view);
 }
 
 /* Light l's share on the objects of `objects` the stencil tests (or on
@@ -87,9 +87,9 @@ void shading_light(const technique_frame *f, int l, const shading_stencil *stenc
     const bool *objects = shading_begin(f, l, &ambient);
     glEnable(GL_STENCIL_TEST);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    shading_objects(f, objects, RENDER_LIGHT_BIT(l), ambient, stencil, stencil->lit, true);
+    shading_objects(f, objects, SCENE_LIGHT_BIT(l), ambient, stencil, stencil->lit, true);
     if (stencil->receivers_only)
-        shading_objects(f, objects, RENDER_LIGHT_BIT(l), ambient, stencil, stencil->lit, false);
+        shading_objects(f, objects, SCENE_LIGHT_BIT(l), ambient, stencil, stencil->lit, false);
     if (ambient)
         shading_objects(f, objects, 0, true, stencil, stencil->blocked, true);
     glDisable(GL_BLEND);
@@ -117,7 +117,7 @@ void shading_area_light_frame(const technique_frame *f, int l, area_light_frame 
 bool shading_sample_area_light(const technique_frame *f, int l, int samples, soft_visibility *v,
                                const shading_stencil *lit, shading_count_point count) {
     bool moved =
-        f->changed.scene || f->changed.camera || f->changed.settings || (f->changed.lights & RENDER_LIGHT_BIT(l));
+        f->changed.scene || f->changed.camera || f->changed.settings || (f->changed.lights & SCENE_LIGHT_BIT(l));
     /* A window's frame in which anything moved: the centre alone. */
     bool centre = f->light_points > 0 && moved;
     if (!soft_visibility_begin(v, l, centre ? 1 : samples, f->light_points == 0 || moved))
@@ -152,12 +152,12 @@ void shading_light_soft(const technique_frame *f, int l, const soft_visibility *
     const bool *objects = shading_begin(f, l, &ambient);
     const scene *s = f->gpu->scene;
     glDisable(GL_STENCIL_TEST);
-    const render_program *p = soft_visibility_use_lit(v, f->gpu, f->view, l, RENDER_LIGHT_BIT(l), ambient);
+    const render_program *p = soft_visibility_use_lit(v, f->gpu, f->view, l, SCENE_LIGHT_BIT(l), ambient);
     for (int i = 0; i < s->object_count; i++)
         if (render_in_mask(objects, i) && (!receivers_only || s->objects[i].receives))
             render_draw_object(f->gpu, p, i);
     if (receivers_only) {
-        p = render_use_lit(f->gpu, f->view, RENDER_LIGHT_BIT(l), ambient);
+        p = render_use_lit(f->gpu, f->view, SCENE_LIGHT_BIT(l), ambient);
         for (int i = 0; i < s->object_count; i++)
             if (render_in_mask(objects, i) && !s->objects[i].receives)
                 render_draw_object(f->gpu, p, i);

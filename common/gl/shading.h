@@ -1,7 +1,7 @@
 /* shading: the passes that light what a technique's depth pre-pass
  * shows, after render_depth_prepass of the frame's in_view (depth test
  * GL_EQUAL, depth writes off), each light only on what it reaches and in
- * its rectangle (technique_frame's lit_by, technique_light_rect), two
+ * its rectangle (skips.h's lit_by, skips_light_rect), two
  * ways. A technique that can shade every light at once (the shadow maps)
  * draws one pass of every object in view, unscissored and unblended
  * (shading_all_begin). The stencil techniques shade one light per pass
@@ -28,7 +28,7 @@
  * narrowed enough to pay for the read-back of technique_see, and split
  * from the one shading pass (shading_split_lights). */
 #define SHADING_NARROW_LIGHT_SHARE 0.25
-/* Scissors to light l's rectangle (technique_light_rect; scissor test
+/* Scissors to light l's rectangle (skips_light_rect; scissor test
  * on) and returns the objects its lighting pass draws: what it reaches. */
 const bool *shading_light_pass(const technique_frame *f, int l);
 

@@ -736,7 +736,7 @@ static bool app_run_gallery(void) {
  * is on, and what it saved in the last frame. */
 static int app_skips_text(char *out, size_t size) {
     const render_skips *k = &app.skips;
-    const technique_counts *c = &app.host.counts;
+    const skips_counts *c = &app.host.counts;
     const char *off = "OFF";
     int n = snprintf(out, size, "skips%s   [K] view culling: ", k->no_skip ? " (--no-skip: all OFF)" : "");
 #define APP_TEXT(...) (n += n < (int)size ? snprintf(out + n, size - (size_t)n, __VA_ARGS__) : 0)

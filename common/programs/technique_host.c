@@ -45,12 +45,12 @@ static technique_changes technique_host_changes(technique_host *h, const camera_
     technique_changes c = {.scene = everything, .camera = everything, .settings = everything || h->settings_changed};
     h->settings_changed = false;
     if (everything)
-        c.lights = RENDER_ALL_LIGHTS(s->light_count);
+        c.lights = SCENE_ALL_LIGHTS(s->light_count);
     if (!everything && memcmp(h->last_view_projection, view->view_projection, sizeof(mat4)) != 0)
         c.camera = true;
     for (int l = 0; !everything && l < s->light_count; l++)
         if (technique_host_light_moved(&h->last_lights[l], &s->lights[l]))
-            c.lights |= RENDER_LIGHT_BIT(l);
+            c.lights |= SCENE_LIGHT_BIT(l);
     h->started = true;
     memcpy(h->last_view_projection, view->view_projection, sizeof(mat4));
     memcpy(h->last_lights, s->lights, sizeof h->last_lights);
@@ -58,15 +58,14 @@ static technique_changes technique_host_changes(technique_host *h, const camera_
 }
 
 /* The part of o's box inside the view's frustum (by the view's corners,
- * camera.h): its corners at out, at most TECHNIQUE_MAX_PART_POINTS. The
+ * camera.h): its corners at out, at most SKIPS_MAX_PART_POINTS. The
  * caller skips boxes outside the frustum first, by the test view culling
  * uses, applied whatever the skips, so that what follows never depends on
  * them. */
 static int technique_host_visible_part(const scene_object *o, const camera_view *view, float (*out)[3]) {
     vec3 lo, hi;
     scene_object_world_bounds(o, lo, hi);
-    return frustum_box_part(view->view_projection, (const vec3 *)view->corners, lo, hi, out,
-                            TECHNIQUE_MAX_PART_POINTS);
+    return frustum_box_part(view->view_projection, (const vec3 *)view->corners, lo, hi, out, SKIPS_MAX_PART_POINTS);
 }
 
 /* Appends a part's points to points[*n], as far as max_points allows. */
@@ -82,7 +81,7 @@ static void technique_host_append_points(float (*points)[3], int *n, int max_poi
 }
 
 int technique_host_receiver_points(const scene *s, const camera_view *view, float (*points)[3], int max_points) {
-    float part[TECHNIQUE_MAX_PART_POINTS][3];
+    float part[SKIPS_MAX_PART_POINTS][3];
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         vec3 lo, hi;
@@ -103,20 +102,20 @@ static unsigned technique_host_lights_near_view(const scene *s, const camera_vie
         bool bounded = light->type != SCENE_LIGHT_DIRECTIONAL && light->range > 0;
         if (!bounded || !frustum_sphere_outside(view->view_projection, light->position,
                                                 light->range * (1 + SCENE_REACH_RANGE_MARGIN)))
-            lights |= RENDER_LIGHT_BIT(l);
+            lights |= SCENE_LIGHT_BIT(l);
     }
     return lights;
 }
 
 /* The frame's receiver points and their bounds. */
-static void technique_host_set_receivers(technique_frame *f, const float (*points)[3], int count) {
-    f->receivers = points;
-    f->receiver_count = count;
-    glm_vec3_fill(f->receivers_lo, INFINITY);
-    glm_vec3_fill(f->receivers_hi, -INFINITY);
+static void technique_host_set_receivers(skips *k, const float (*points)[3], int count) {
+    k->receivers = points;
+    k->receiver_count = count;
+    glm_vec3_fill(k->receivers_lo, INFINITY);
+    glm_vec3_fill(k->receivers_hi, -INFINITY);
     for (int i = 0; i < count; i++) {
-        glm_vec3_minv(f->receivers_lo, (float *)points[i], f->receivers_lo);
-        glm_vec3_maxv(f->receivers_hi, (float *)points[i], f->receivers_hi);
+        glm_vec3_minv(k->receivers_lo, (float *)points[i], k->receivers_lo);
+        glm_vec3_maxv(k->receivers_hi, (float *)points[i], k->receivers_hi);
     }
 }
 
@@ -125,12 +124,12 @@ static void technique_host_set_receivers(technique_frame *f, const float (*point
  * the lights that reach something visible (scene_light_reaches_box on the
  * part's bounds: a light reaching the ground's box somewhere out of view
  * reaches nothing on screen). */
-static void technique_host_visible(technique_host *h, const camera_view *view, technique_frame *f) {
+static void technique_host_visible(technique_host *h, const camera_view *view, skips *k) {
     const scene *s = h->gpu->scene;
-    unsigned all = RENDER_ALL_LIGHTS(s->light_count);
+    unsigned all = SCENE_ALL_LIGHTS(s->light_count);
     bool reach_skip = render_skip_on(h->skips, h->skips->no_light_reach);
     unsigned candidates = reach_skip ? technique_host_lights_near_view(s, view) : 0, reached = 0;
-    float part[TECHNIQUE_MAX_PART_POINTS][3];
+    float part[SKIPS_MAX_PART_POINTS][3];
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {
         int count = h->gpu->in_frustum[i] ? technique_host_visible_part(&s->objects[i], view, part) : 0;
@@ -143,15 +142,14 @@ static void technique_host_visible(technique_host *h, const camera_view *view, t
                 glm_vec3_maxv(hi, part[k], hi);
             }
             for (int l = 0; l < s->light_count; l++)
-                if ((candidates & ~reached & RENDER_LIGHT_BIT(l)) && scene_light_reaches_box(&s->lights[l], lo, hi))
-                    reached |= RENDER_LIGHT_BIT(l);
+                if ((candidates & ~reached & SCENE_LIGHT_BIT(l)) && scene_light_reaches_box(&s->lights[l], lo, hi))
+                    reached |= SCENE_LIGHT_BIT(l);
         }
         if (s->objects[i].receives)
-            technique_host_append_points(h->receivers, &n, TECHNIQUE_MAX_RECEIVER_POINTS, (const float(*)[3])part,
-                                         count);
+            technique_host_append_points(h->receivers, &n, SKIPS_MAX_RECEIVER_POINTS, (const float(*)[3])part, count);
     }
-    f->lights = reach_skip ? reached : all;
-    technique_host_set_receivers(f, (const float(*)[3])h->receivers, n);
+    k->lights = reach_skip ? reached : all;
+    technique_host_set_receivers(k, (const float(*)[3])h->receivers, n);
 }
 
 /* NDC -> the pixel at or beyond it, on an axis of `size` pixels. */
@@ -200,17 +198,18 @@ static void technique_host_range_rect(const scene_light *l, const camera_view *v
     rect[3] = glm_max(y1 - y0, 0);
 }
 
-/* Each light's objects and pixels (technique_frame.lit_by, light_rect). */
-static void technique_host_light_passes(technique_host *h, const camera_view *view, technique_frame *f) {
+/* Each light's objects and pixels (skips.lit_by, light_rect) in a frame
+ * of width x height pixels. */
+static void technique_host_light_passes(technique_host *h, const camera_view *view, int width, int height, skips *k) {
     const scene *s = h->gpu->scene;
     bool reach_skip = render_skip_on(h->skips, h->skips->no_light_reach);
     for (int l = 0; l < s->light_count; l++) {
         bool *lit = h->gpu->lit_by[l];
-        f->lit_by[l] = lit;
-        technique_host_range_rect(&s->lights[l], view, f->width, f->height, reach_skip, f->light_rect[l]);
+        k->lit_by[l] = lit;
+        technique_host_range_rect(&s->lights[l], view, width, height, reach_skip, k->light_rect[l]);
         for (int i = 0; i < s->object_count; i++) {
             lit[i] = h->gpu->in_view[i];
-            if (lit[i] && reach_skip && technique_light_on(f, l)) {
+            if (lit[i] && reach_skip && skips_light_on(k, l)) {
                 vec3 lo, hi;
                 scene_object_world_bounds(&s->objects[i], lo, hi);
                 lit[i] = scene_light_reaches_box(&s->lights[l], lo, hi);
@@ -222,33 +221,36 @@ static void technique_host_light_passes(technique_host *h, const camera_view *vi
 bool technique_host_frame(technique_host *h, const camera_view *view, const camera_view *fit_view, target *target,
                           double time, int visibility_of) {
     const scene *s = h->gpu->scene;
-    h->counts = (technique_counts){0};
+    h->counts = (skips_counts){0};
     h->seen.read = false; /* until the technique's technique_see */
     h->seen.in_view = h->gpu->in_view;
     memcpy(h->seen.lit_by, h->gpu->lit_by, sizeof h->seen.lit_by);
     h->objects_in_view = render_cull_view(h->gpu, view, h->skips);
+    skips k = {.scene = s,
+               .in_view = h->gpu->in_view,
+               .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
+               .seen = render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0 ? &h->seen : NULL,
+               .counts = &h->counts};
     technique_frame f = {.gpu = h->gpu,
                          .view = view,
-                         .in_view = h->gpu->in_view,
-                         .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
-                         .seen = render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0 ? &h->seen
-                                                                                                           : NULL,
-                         .changed = technique_host_changes(h, view),
-                         .counts = &h->counts,
                          .width = target->width,
                          .height = target->height,
                          .time = time,
+                         .changed = technique_host_changes(h, view),
+                         .skips = &k,
                          .light_points = visibility_of < 0 ? h->light_points : 0};
-    technique_host_visible(h, view, &f);
-    technique_host_light_passes(h, view, &f);
+    technique_host_visible(h, view, &k);
+    technique_host_light_passes(h, view, f.width, f.height, &k);
     for (int l = 0; l < s->light_count; l++)
-        h->counts.lights_skipped += !technique_light_on(&f, l);
+        h->counts.lights_skipped += !skips_light_on(&k, l);
     technique_frame fit = f;
+    skips fit_skips = k;
     if (fit_view) {
         fit.view = fit_view;
         technique_host_set_receivers(
-            &fit, (const float(*)[3])h->fit_receivers,
-            technique_host_receiver_points(s, fit_view, h->fit_receivers, TECHNIQUE_MAX_RECEIVER_POINTS));
+            &fit_skips, (const float(*)[3])h->fit_receivers,
+            technique_host_receiver_points(s, fit_view, h->fit_receivers, SKIPS_MAX_RECEIVER_POINTS));
+        fit.skips = &fit_skips;
         f.fit = &fit;
     }
     h->hidden_idle -= h->hidden_idle > 0;

@@ -1,7 +1,7 @@
 /* technique_host: the frame's owner (the app, the benchmark), which runs
  * one technique on one scene under the skips and works out, for each
  * frame, what the technique need not do and what changed since its last
- * frame (technique.h's technique_frame).
+ * frame (technique.h's technique_frame, skips.h's skips).
  */
 #ifndef TECHNIQUE_HOST_H
 #define TECHNIQUE_HOST_H
@@ -27,14 +27,14 @@ typedef struct technique_host {
     const technique *technique;
     render_scene *gpu;
     const render_skips *skips;
-    technique_counts counts; /* the last frame's */
-    int objects_in_view;     /* the last frame's, from render_cull_view */
-    bool started;            /* a frame was rendered since technique_host_start */
+    skips_counts counts; /* the last frame's */
+    int objects_in_view; /* the last frame's, from render_cull_view */
+    bool started;        /* a frame was rendered since technique_host_start */
     mat4 last_view_projection;
     scene_light last_lights[SCENE_MAX_LIGHTS];
-    float receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3];
-    float fit_receivers[TECHNIQUE_MAX_RECEIVER_POINTS][3]; /* fit_view's */
-    technique_seen seen;
+    float receivers[SKIPS_MAX_RECEIVER_POINTS][3];
+    float fit_receivers[SKIPS_MAX_RECEIVER_POINTS][3]; /* fit_view's */
+    skips_seen seen;
     /* Frames left in which technique_see reads nothing: the last read
      * saved nothing (TECHNIQUE_HOST_HIDDEN_RETRY_FRAMES). */
     int hidden_idle;

@@ -150,15 +150,14 @@ void cascades_slice_receivers(const scene *s, const camera_view *view, const mat
                               vec3 lo, vec3 hi) {
     vec3 corners[8];
     mat4 view_projection;
-    float part[TECHNIQUE_MAX_PART_POINTS][3];
+    float part[SKIPS_MAX_PART_POINTS][3];
     cascades_slice_frustum(view, a, b, corners, view_projection);
     for (int i = 0; i < s->object_count; i++) {
         vec3 box_lo, box_hi, part_lo, part_hi;
         if (!s->objects[i].receives)
             continue;
         scene_object_world_bounds(&s->objects[i], box_lo, box_hi);
-        int n =
-            frustum_box_part(view_projection, (const vec3 *)corners, box_lo, box_hi, part, TECHNIQUE_MAX_PART_POINTS);
+        int n = frustum_box_part(view_projection, (const vec3 *)corners, box_lo, box_hi, part, SKIPS_MAX_PART_POINTS);
         if (n == 0)
             continue;
         frustum_view_bounds(light_view, (const float(*)[3])part, n, part_lo, part_hi);

@@ -259,7 +259,7 @@ static bool map_layer_cached(const map_renderer *r, const map_cache *c, const ma
 void map_draw_depth(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     map_light *m = &r->maps[l];
     map_cache *c = &r->caches[l];
-    if (f->changed.scene || (f->changed.lights & RENDER_LIGHT_BIT(l)))
+    if (f->changed.scene || (f->changed.lights & SCENE_LIGHT_BIT(l)))
         map_forget(c);
     bool remade = map_prepare_texture(m, st);
     map_depth_key key = {.texture = m->texture.id,
@@ -277,14 +277,14 @@ void map_draw_depth(map_renderer *r, const map_settings *st, const technique_fra
     bool begun = false, rendered[MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
         if (map_layer_cached(r, c, m, layer)) {
-            f->counts->layers_reused++;
+            f->skips->counts->layers_reused++;
             continue;
         }
         if (!begun)
             map_depth_begin(r, st, m);
         begun = true;
         map_depth_layer(r, f->gpu, m, layer, r->needed[layer], moments != MAP_MOMENTS_NONE);
-        f->counts->layers_rendered++;
+        f->skips->counts->layers_rendered++;
         rendered[layer] = c->valid[layer] = true;
         c->blur_texels[layer] = m->blur_texels[layer];
         glm_mat4_copy(m->layer_view_projection[layer], c->layer_view_projection[layer]);
@@ -684,11 +684,11 @@ static void map_bind_soft(const map_renderer *r, const map_camera_program *p, co
     glUniformMatrix4fv(p->lights[l].light_inverse, 1, GL_FALSE, (const float *)inverse);
 }
 
-/* Key k without the lights of `lights` (RENDER_LIGHT_BIT). */
+/* Key k without the lights of `lights` (SCENE_LIGHT_BIT). */
 static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         unsigned field = map_light_bits(l, (1u << MAP_LIGHT_KIND_BITS) - 1);
-        if (lights & RENDER_LIGHT_BIT(l)) {
+        if (lights & SCENE_LIGHT_BIT(l)) {
             k.kinds &= ~field;
             k.texel_kinds &= ~field;
         }
@@ -783,14 +783,14 @@ static void map_shade_lights(map_renderer *r, const map_settings *st, const tech
         if (split)
             map_camera_use(r, st, f, p);
         for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-            if (split & RENDER_LIGHT_BIT(l))
+            if (split & SCENE_LIGHT_BIT(l))
                 map_draw_receivers(r, f, p, shading_light_pass(f, l));
         glDisable(GL_SCISSOR_TEST);
     }
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (k->soft_lights >> l & 1u)
             glBindSampler(MAP_DEPTH_UNITS + (GLuint)l, 0);
-    const render_program *lit = render_use_lit(f->gpu, f->view, f->lights, true);
+    const render_program *lit = render_use_lit(f->gpu, f->view, f->skips->lights, true);
     /* Without a program (said once on stderr) receivers are lit too. */
     for (int i = 0; i < f->gpu->scene->object_count; i++)
         if (render_in_mask(objects, i) && (!mapped || !f->gpu->scene->objects[i].receives))
@@ -868,7 +868,7 @@ void map_begin(map_renderer *r, const technique_frame *f) {
     /* The camera's depth first: the shading pass tests against it (each
      * visible pixel filtered once), and the maps cull the casters it
      * shows hidden (technique_see). */
-    render_depth_prepass(f->gpu, f->view, f->in_view);
+    render_depth_prepass(f->gpu, f->view, f->skips->in_view);
     technique_see(f);
     depth_use_standard(f->view); /* the maps' depth is the lights', never the camera's */
 }
@@ -883,12 +883,12 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
                    map_fit_function fit) {
     const scene *s = f->gpu->scene;
     const technique_frame *fit_frame = map_fit_frame(f);
-    if (fit_frame->receiver_count == 0 || !technique_light_on(f, l))
+    if (fit_frame->skips->receiver_count == 0 || !skips_light_on(f->skips, l))
         return false;
     map_light *m = &r->maps[l];
     int size = map_settings_size(settings);
     m->size = size ? size : MAP_AUTO_MAX_SIZE;
-    r->fitted[l] = fit(fit_frame, l, m, fit_frame->receivers, fit_frame->receiver_count);
+    r->fitted[l] = fit(fit_frame, l, m, fit_frame->skips->receivers, fit_frame->skips->receiver_count);
     if (!r->fitted[l])
         return false;
     if (!size && m->kind != MAP_ARRAY) {
@@ -918,10 +918,10 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
             key.moment_lights |= 1u << l;
         if (fitted)
             map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
-        else if (technique_light_on(f, l)) /* nothing visible receives: no map needed, nothing shadowed */
+        else if (skips_light_on(f->skips, l)) /* nothing visible receives: no map needed, nothing shadowed */
             key.kinds |= map_light_bits(l, MAP_LIGHT_UNSHADOWED);
     }
-    if (f->lights)
+    if (f->skips->lights)
         map_shade_lights(r, settings, f, &key);
     else
         shading_ambient(f);

@@ -440,7 +440,7 @@ typedef bool (*map_fit_function)(const technique_frame *f, int light, map_light 
  * it needs are among those drawn: a layer with more casters than needed
  * decides every read as one with exactly those. A remade texture, a frame
  * with the light skipped or unfitted, or any change empties the light's
- * cache. Counted in f->counts (casters per light: drawn into any layer, or
+ * cache. Counted in f->skips->counts (casters per light: drawn into any layer, or
  * culled; layers rendered and reused).
  *
  * A technique's maps and their GL objects (map_internal.h). */
@@ -537,7 +537,7 @@ void map_cascade_layer(map_light *m, int layer, const mat4 projection);
 
 /* ---- caster culling (map_cull.c) ---- */
 
-/* Caster culling (map_cull.c, no GL; with f->cull_casters). Each
+/* Caster culling (map_cull.c, no GL; with f->skips->cull_casters). Each
  * layer (a cube's faces each on its own) draws only the casters that can
  * shadow a visible receiver through it. Where receivers read a layer, in
  * its clip space: the NDC rectangle and deepest depth of both the frame's

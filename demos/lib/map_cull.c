@@ -238,7 +238,7 @@ static void map_layer_mask(light_mask *mask, const mat4 layer, const map_read_se
 static bool map_culls(const map_settings *st, const technique_frame *f, int l) {
     bool inset =
         l == 0 && (st->overlay == MAP_OVERLAY_ALL || st->overlay == MAP_OVERLAY_MAP || MAP_SHOWS_CASCADES(st));
-    return f->cull_casters && !inset && st->normal_texels == 0;
+    return f->skips->cull_casters && !inset && st->normal_texels == 0;
 }
 
 void map_plan_casters(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
@@ -258,11 +258,11 @@ void map_plan_casters(map_renderer *r, const map_settings *st, const technique_f
     map_reads reads[MAP_MAX_LAYERS];
     int box_count = cull ? map_light_receivers(f, l, r->receiver_boxes) : 0;
     /* A full list may have left receivers out: then only the boxes bound the reads. */
-    const float(*points)[3] = f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS ? f->receivers : NULL;
+    const float(*points)[3] = f->skips->receiver_count < SKIPS_MAX_RECEIVER_POINTS ? f->skips->receivers : NULL;
     for (int layer = 0; cull && layer < m->layer_count; layer++)
-        map_layer_reads(m->layer_view_projection[layer], &setup, points, f->receiver_count,
+        map_layer_reads(m->layer_view_projection[layer], &setup, points, f->skips->receiver_count,
                         (const float(*)[2][3])r->receiver_boxes, box_count, &reads[layer]);
-    const visible *seen = cull ? technique_seen_pixels(f) : NULL;
+    const visible *seen = cull ? skips_seen_pixels(f->skips) : NULL;
     for (int layer = 0; seen && layer < m->layer_count; layer++)
         map_layer_mask(&r->masks[layer], m->layer_view_projection[layer], &setup, seen);
     for (int i = 0; i < s->object_count; i++) {
@@ -279,9 +279,9 @@ void map_plan_casters(map_renderer *r, const map_settings *st, const technique_f
             drawn = drawn || r->needed[layer][i];
         }
         if (candidate && drawn)
-            f->counts->casters_drawn[l]++;
+            f->skips->counts->casters_drawn[l]++;
         else if (candidate)
-            f->counts->casters_culled[l]++;
-        f->counts->casters_hidden[l] += read && !drawn;
+            f->skips->counts->casters_culled[l]++;
+        f->skips->counts->casters_hidden[l] += read && !drawn;
     }
 }

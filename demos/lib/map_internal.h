@@ -257,7 +257,7 @@ void map_texture_filter(unsigned target, int filter);
 const char *map_kind_name(map_kind kind);
 
 /* r->needed[layer]: the casters each layer of light l's fitted map needs
- * (every candidate where it does not cull); counts them in f->counts. */
+ * (every candidate where it does not cull); counts them in f->skips->counts. */
 void map_plan_casters(map_renderer *r, const map_settings *settings, const technique_frame *f, int l);
 
 /* ---- moment maps (map_moments.c) ---- */

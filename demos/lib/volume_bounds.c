@@ -6,20 +6,20 @@
 
 #include "volume_mesh.h"
 
-void volume_bounds_light(const technique_frame *f, const technique_hull *hull, const int receivers_rect[4],
+void volume_bounds_light(const technique_frame *f, const skips_hull *hull, const int receivers_rect[4],
                          bool depth_bounds, volume_bounds *out) {
     *out = (volume_bounds){0};
     memcpy(out->rect, receivers_rect, sizeof out->rect);
-    out->bounded = depth_bounds && !f->view->reversed_depth && f->receiver_count < TECHNIQUE_MAX_RECEIVER_POINTS &&
+    out->bounded = depth_bounds && !f->view->reversed_depth && f->skips->receiver_count < SKIPS_MAX_RECEIVER_POINTS &&
                    !hull->empty &&
-                   volume_mesh_depth_bounds(f->view->view_projection, f->receivers, f->receiver_count, hull->lo,
-                                            hull->hi, out->depth);
+                   volume_mesh_depth_bounds(f->view->view_projection, f->skips->receivers, f->skips->receiver_count,
+                                            hull->lo, hull->hi, out->depth);
 }
 
-bool volume_bounds_caster(const technique_frame *f, const technique_hull *hull, int i, const volume_bounds *light,
+bool volume_bounds_caster(const technique_frame *f, const skips_hull *hull, int i, const volume_bounds *light,
                           volume_bounds *out) {
     light_mask_seen seen;
-    if (!technique_caster_seen(f, hull, i, &seen))
+    if (!skips_caster_seen(f->skips, hull, i, &seen))
         return false;
     *out = *light;
     /* Clamped to the light's rectangle before they become pixels: "seen
@@ -32,7 +32,7 @@ bool volume_bounds_caster(const technique_frame *f, const technique_hull *hull, 
     }
     out->depth[0] = fmaxf(light->depth[0], seen.lo[2]);
     out->depth[1] = fminf(light->depth[1], seen.hi[2]);
-    f->counts->casters_narrowed[hull->light] +=
+    f->skips->counts->casters_narrowed[hull->light] +=
         (int64_t)out->rect[2] * out->rect[3] < (int64_t)light->rect[2] * light->rect[3];
     return true;
 }

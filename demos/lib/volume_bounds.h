@@ -3,7 +3,7 @@
  * (volume_mesh_receivers_scissor) and the depth bounds of the visible
  * ones within the light's range (volume_mesh_depth_bounds), and a
  * caster's part of those where what its shadow may fall on was seen
- * (technique_caster_seen). Outside them a volume adds 0 to every visible
+ * (skips_caster_seen). Outside them a volume adds 0 to every visible
  * receiver's count, so a pixel there keeps the cleared stencil. */
 #ifndef VOLUME_BOUNDS_H
 #define VOLUME_BOUNDS_H
@@ -26,12 +26,12 @@ typedef struct volume_bounds {
  * and the frame's receivers are all there (not cut short). The bounds are
  * window depths of GL's standard convention: with reversed depth they are
  * left off (they only save fill). */
-void volume_bounds_light(const technique_frame *f, const technique_hull *hull, const int receivers_rect[4],
+void volume_bounds_light(const technique_frame *f, const skips_hull *hull, const int receivers_rect[4],
                          bool depth_bounds, volume_bounds *out);
 /* Caster i's part of the light's bounds (an empty rectangle where none);
  * false: no masks this frame, the light's unchanged. Counts the caster
- * as narrowed in f->counts where its rectangle is the smaller. */
-bool volume_bounds_caster(const technique_frame *f, const technique_hull *hull, int i, const volume_bounds *light,
+ * as narrowed in f->skips->counts where its rectangle is the smaller. */
+bool volume_bounds_caster(const technique_frame *f, const skips_hull *hull, int i, const volume_bounds *light,
                           volume_bounds *out);
 /* Scissors to b and, where bounded, sets its depth bounds. */
 void volume_bounds_use(const volume_bounds *b);

@@ -24,18 +24,18 @@ static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mo
         return;
     float lo[3], hi[3];
     scene_object_world_bounds(o, lo, hi);
-    if (f->cull_casters && volume_mesh_misses_view(lo, hi, plan->position, f->view->view_projection)) {
-        f->counts->casters_culled[plan->light]++;
+    if (f->skips->cull_casters && volume_mesh_misses_view(lo, hi, plan->position, f->view->view_projection)) {
+        f->skips->counts->casters_culled[plan->light]++;
         return;
     }
     bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, near_rectangle);
     c->zfail = volume_plan_zfail(mode, zpass_safe);
     if (volume_plan_forced_zpass(mode) && !zpass_safe) {
-        f->counts->casters_drawn[plan->light]++;
+        f->skips->counts->casters_drawn[plan->light]++;
         c->needed = true;
         return;
     }
-    c->needed = technique_caster_needed(f, &plan->hull, i);
+    c->needed = skips_caster_needed(f->skips, &plan->hull, i);
     c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
 }
 
@@ -46,10 +46,10 @@ void volume_plan_light(const technique_frame *f, int l, const float point[4], vo
     *plan = (volume_plan){.light = l, .casters = casters};
     if (point) {
         glm_vec4_copy((float *)point, plan->position);
-        technique_point_hull(f, l, point, &plan->hull);
+        skips_point_hull(f->skips, l, point, &plan->hull);
     } else {
         scene_light_homogeneous(&s->lights[l], plan->position);
-        technique_light_hull(f, l, &plan->hull);
+        skips_light_hull(f->skips, l, &plan->hull);
     }
     volume_bounds_light(f, &plan->hull, receivers_rect, depth_bounds, &plan->bounds);
     vec3 near_rectangle[4];

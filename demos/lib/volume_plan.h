@@ -8,7 +8,7 @@
  * culled). A point inside a caster's volume lies beyond the caster on a
  * segment from the light, so outside the hull of the light and the
  * visible receivers' bounds (convex) it contains no visible receiver point
- * (technique_caster_needed): z-fail counts there exactly that, 0, and so
+ * (skips_caster_needed): z-fail counts there exactly that, 0, and so
  * does z-pass where it starts from 0, which auto takes only where
  * volume_mesh_zpass_safe says; forced z-pass keeps casters that may shadow
  * the eye (they count there), and as it counts them on pixels outside them
@@ -53,7 +53,7 @@ typedef struct volume_plan {
     int light;
     int cache;     /* the cache that keeps the volumes (volume_draw_cache): the caller's */
     vec4 position; /* homogeneous, world; aligned as cglm loads it */
-    technique_hull hull;
+    skips_hull hull;
     volume_bounds bounds;        /* where the light's volumes may count */
     volume_plan_caster *casters; /* per object, the caller's */
     bool reported;               /* the HUD's figures are this count's */

@@ -142,7 +142,8 @@ int volume_receivers_update(volume_receivers *r, const technique_frame *f) {
     int count = 0;
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
-        r->huge[i] = r->textures[i] && render_in_mask(f->in_view, i) && render_object_huge(f->gpu, i, f->view->eye);
+        r->huge[i] =
+            r->textures[i] && render_in_mask(f->skips->in_view, i) && render_object_huge(f->gpu, i, f->view->eye);
         count += r->huge[i];
         /* Every candidate's, so that one huge only later has its planes. */
         if (r->textures[i] && moved)
@@ -171,14 +172,14 @@ void volume_receivers_depth(const volume_receivers *r, const technique_frame *f,
     glDepthFunc(GL_LESS);
     glClear(GL_DEPTH_BUFFER_BIT);
     if (!exact) {
-        render_depth_prepass(f->gpu, f->view, f->in_view);
+        render_depth_prepass(f->gpu, f->view, f->skips->in_view);
         return;
     }
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     const render_program *depth = &f->gpu->depth;
     render_program_use(depth, f->view);
     for (int i = 0; i < r->object_count; i++)
-        if (render_in_mask(f->in_view, i) && !r->huge[i])
+        if (render_in_mask(f->skips->in_view, i) && !r->huge[i])
             render_draw_object(f->gpu, depth, i);
     volume_receivers_use(r, f);
     volume_receivers_binding was = volume_receivers_bind(0);

@@ -458,10 +458,10 @@ static void volume_wedges_draw(volume_wedges *w, const technique_frame *f, int l
         size = tanf(angle);
     }
     /* Every wedge ends past the visible receivers; none without them. */
-    if (f->receivers_lo[0] > f->receivers_hi[0])
+    if (f->skips->receivers_lo[0] > f->skips->receivers_hi[0])
         return;
-    w->box_lo = f->receivers_lo;
-    w->box_hi = f->receivers_hi;
+    w->box_lo = f->skips->receivers_lo;
+    w->box_hi = f->skips->receivers_hi;
     volume_wedges_build(w, f, edges, centre, reach, l == 0);
     GLboolean cull = glIsEnabled(GL_CULL_FACE), depth_test = glIsEnabled(GL_DEPTH_TEST),
               blend = glIsEnabled(GL_BLEND);

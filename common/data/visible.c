@@ -1,12 +1,9 @@
 #include "visible.h"
 
-#include <glad/gl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "context.h"
-#include "depth.h"
 #include "frustum.h"
 
 /* The 24-bit buffer's step; a float buffer's at depth d is at most d
@@ -85,8 +82,7 @@ static void visible_slab(visible *v, const camera_view *view, int x0, int y0, in
 }
 
 /* The slabs of the tile x0..x1, y0..y1 (pixels), appended to v's. */
-static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int y0, int x1, int y1) {
-    float clear = depth_far(view);
+static void visible_tile_slabs(visible *v, const camera_view *view, float clear, int x0, int y0, int x1, int y1) {
     double lo = INFINITY, hi = -INFINITY;
     bool sky = false;
     for (int y = y0; y < y1; y++)
@@ -132,18 +128,17 @@ static void visible_tile_slabs(visible *v, const camera_view *view, int x0, int 
             visible_slab(v, view, x0, y0, x1, y1, bin_lo[b], bin_hi[b]);
 }
 
-bool visible_read(visible *v, const camera_view *view, int width, int height) {
-    if (!context_current_features()->depth_readback || !visible_reserve(v, width, height))
-        return false;
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    /* A failed read raises a GL error, which the frame's owner reports. */
-    glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, v->depth);
+float *visible_depth_buffer(visible *v, int width, int height) {
+    return visible_reserve(v, width, height) ? v->depth : NULL;
+}
+
+void visible_build(visible *v, const camera_view *view, float clear) {
     v->count = 0;
-    for (int y0 = 0; y0 < height; y0 += VISIBLE_TILE_PIXELS)
-        for (int x0 = 0; x0 < width; x0 += VISIBLE_TILE_PIXELS)
-            visible_tile_slabs(v, view, x0, y0, x0 + VISIBLE_TILE_PIXELS < width ? x0 + VISIBLE_TILE_PIXELS : width,
-                               y0 + VISIBLE_TILE_PIXELS < height ? y0 + VISIBLE_TILE_PIXELS : height);
-    return true;
+    for (int y0 = 0; y0 < v->height; y0 += VISIBLE_TILE_PIXELS)
+        for (int x0 = 0; x0 < v->width; x0 += VISIBLE_TILE_PIXELS)
+            visible_tile_slabs(v, view, clear, x0, y0,
+                               x0 + VISIBLE_TILE_PIXELS < v->width ? x0 + VISIBLE_TILE_PIXELS : v->width,
+                               y0 + VISIBLE_TILE_PIXELS < v->height ? y0 + VISIBLE_TILE_PIXELS : v->height);
 }
 
 bool visible_box_hidden(const visible *v, const camera_view *view, const vec3 lo, const vec3 hi) {

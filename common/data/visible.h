@@ -16,8 +16,10 @@
  * drawn of the sky lies in none. Each tile also keeps its farthest depth,
  * against which a box is hidden (visible_box_hidden).
  *
- * One glReadPixels of the depth a frame: on a GPU it waits for the
- * pre-pass, the price of skipping what the pre-pass shows hidden.
+ * No GL here: the frame's owner reads the depth into
+ * visible_depth_buffer (technique_see: one glReadPixels a frame, which on
+ * a GPU waits for the pre-pass, the price of skipping what the pre-pass
+ * shows hidden), then visible_build makes the slabs.
  */
 #ifndef VISIBLE_H
 #define VISIBLE_H
@@ -43,11 +45,12 @@ typedef struct visible {
     int width, height;
 } visible;
 
-/* Reads the bound framebuffer's depth (width x height, drawn through
- * view) into v's slabs; false after printing why (out of memory), or
- * where the GL reads no depth (context.h's depth_readback): the frame
- * then hides nothing, the same picture at the full cost. */
-bool visible_read(visible *v, const camera_view *view, int width, int height);
+/* Where a frame's depth (width x height window depths, bottom row first)
+ * is to be read; NULL after printing why (out of memory). */
+float *visible_depth_buffer(visible *v, int width, int height);
+/* v's slabs from the depth read into its buffer, drawn through view;
+ * `clear` is the buffer's clear value, the depth of the sky. */
+void visible_build(visible *v, const camera_view *view, float clear);
 void visible_destroy(visible *v);
 /* Whether every point of the box lo..hi lies behind what v saw there: its
  * nearest window depth (its corners', all beyond the near plane) more
