@@ -1,0 +1,313 @@
+#include "bvh.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Ize's gamma(3): the relative error of three rounded operations, by
+ * which a box's far distance is widened. */
+#define BVH_FAR_WIDENING (1.0f + 2.0f * 3.0f * 0x1.0p-24f / (1.0f - 3.0f * 0x1.0p-24f))
+/* A direction's zero component is taken as this, of its sign, so that its
+ * reciprocal is finite and a box's slab test never multiplies 0 by it. */
+#define BVH_TINY_DIRECTION 1e-30f
+
+/* The build's view of one triangle. */
+typedef struct bvh_triangle {
+    float vertices[3][3];
+    float lo[3], hi[3], centroid[3];
+} bvh_triangle;
+
+/* A triangle's centroid along the median split's axis. */
+typedef struct bvh_key {
+    float centroid;
+    int triangle;
+} bvh_key;
+
+typedef struct bvh_builder {
+    bvh_triangle *triangles;
+    int *order;    /* triangle indices, partitioned in place */
+    bvh_key *keys; /* the median split's sort */
+    bvh *out;
+} bvh_builder;
+
+typedef struct bvh_box {
+    float lo[3], hi[3];
+} bvh_box;
+
+static bvh_box bvh_box_empty(void) {
+    return (bvh_box){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+}
+
+static void bvh_box_grow(bvh_box *b, const float lo[3], const float hi[3]) {
+    for (int k = 0; k < 3; k++) {
+        b->lo[k] = fminf(b->lo[k], lo[k]);
+        b->hi[k] = fmaxf(b->hi[k], hi[k]);
+    }
+}
+
+/* Half the surface area (the heuristic compares, so the factor 2 goes). */
+static float bvh_box_area(const bvh_box *b) {
+    float d[3];
+    for (int k = 0; k < 3; k++)
+        d[k] = fmaxf(b->hi[k] - b->lo[k], 0.0f);
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+}
+
+/* The split of order[begin..end) with the least SAH cost over BVH_BINS
+ * bins of the centroids along each axis: its axis, and the bin its right
+ * side starts at; false where every centroid is in one bin on every axis. */
+static bool bvh_best_split(const bvh_builder *b, int begin, int end, const bvh_box *centroids, int *axis_out,
+                           int *bin_out) {
+    float best = INFINITY;
+    for (int axis = 0; axis < 3; axis++) {
+        float lo = centroids->lo[axis], extent = centroids->hi[axis] - lo;
+        if (!(extent > 0))
+            continue;
+        bvh_box bins[BVH_BINS];
+        int counts[BVH_BINS] = {0};
+        for (int i = 0; i < BVH_BINS; i++)
+            bins[i] = bvh_box_empty();
+        for (int i = begin; i < end; i++) {
+            const bvh_triangle *t = &b->triangles[b->order[i]];
+            int bin = (int)((t->centroid[axis] - lo) * (BVH_BINS / extent));
+            bin = bin < BVH_BINS ? bin : BVH_BINS - 1;
+            counts[bin]++;
+            bvh_box_grow(&bins[bin], t->lo, t->hi);
+        }
+        float right_area[BVH_BINS];
+        int right_count[BVH_BINS];
+        bvh_box right = bvh_box_empty();
+        int count = 0;
+        for (int i = BVH_BINS - 1; i > 0; i--) {
+            bvh_box_grow(&right, bins[i].lo, bins[i].hi);
+            count += counts[i];
+            right_area[i] = bvh_box_area(&right);
+            right_count[i] = count;
+        }
+        bvh_box left = bvh_box_empty();
+        count = 0;
+        for (int i = 1; i < BVH_BINS; i++) {
+            bvh_box_grow(&left, bins[i - 1].lo, bins[i - 1].hi);
+            count += counts[i - 1];
+            if (count == 0 || right_count[i] == 0)
+                continue;
+            float cost = bvh_box_area(&left) * (float)count + right_area[i] * (float)right_count[i];
+            if (cost < best) {
+                best = cost;
+                *axis_out = axis;
+                *bin_out = i;
+            }
+        }
+    }
+    return best < INFINITY;
+}
+
+/* By centroid, ties by index, so that the build is the same on every run. */
+static int bvh_compare_keys(const void *a, const void *b) {
+    const bvh_key *i = a, *j = b;
+    return i->centroid < j->centroid   ? -1
+           : i->centroid > j->centroid ? 1
+                                       : (i->triangle > j->triangle) - (i->triangle < j->triangle);
+}
+
+/* order[begin..end) sorted by centroid along `axis`. */
+static void bvh_sort(bvh_builder *b, int begin, int end, int axis) {
+    for (int i = begin; i < end; i++)
+        b->keys[i - begin] = (bvh_key){b->triangles[b->order[i]].centroid[axis], b->order[i]};
+    qsort(b->keys, (size_t)(end - begin), sizeof *b->keys, bvh_compare_keys);
+    for (int i = begin; i < end; i++)
+        b->order[i] = b->keys[i - begin].triangle;
+}
+
+/* Node `node` over order[begin..end) and its subtree after it; returns
+ * the index after the subtree. */
+static int bvh_build_node(bvh_builder *b, int node, int begin, int end, int depth) {
+    bvh_box box = bvh_box_empty(), centroids = bvh_box_empty();
+    for (int i = begin; i < end; i++) {
+        const bvh_triangle *t = &b->triangles[b->order[i]];
+        bvh_box_grow(&box, t->lo, t->hi);
+        bvh_box_grow(&centroids, t->centroid, t->centroid);
+    }
+    float(*n)[4] = b->out->nodes[node];
+    memcpy(n[0], box.lo, sizeof box.lo);
+    memcpy(n[1], box.hi, sizeof box.hi);
+    b->out->depth = depth > b->out->depth ? depth : b->out->depth;
+    if (end - begin <= BVH_LEAF_TRIANGLES) {
+        n[0][3] = (float)begin;
+        n[1][3] = (float)(end - begin);
+        return node + 1;
+    }
+    int axis = 0, bin = 0, middle = begin;
+    if (depth < BVH_SAH_DEPTH && bvh_best_split(b, begin, end, &centroids, &axis, &bin)) {
+        float lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
+        for (int i = begin; i < end; i++) {
+            int t = b->order[i];
+            int in = (int)((b->triangles[t].centroid[axis] - lo) * (BVH_BINS / extent));
+            if ((in < BVH_BINS ? in : BVH_BINS - 1) < bin) {
+                b->order[i] = b->order[middle];
+                b->order[middle++] = t;
+            }
+        }
+    } else {
+        for (int k = 1; k < 3; k++)
+            if (centroids.hi[k] - centroids.lo[k] > centroids.hi[axis] - centroids.lo[axis])
+                axis = k;
+        bvh_sort(b, begin, end, axis);
+        middle = begin + (end - begin) / 2;
+    }
+    int right = bvh_build_node(b, node + 1, begin, middle, depth + 1);
+    n[0][3] = (float)right;
+    n[1][3] = 0;
+    return bvh_build_node(b, right, middle, end, depth + 1);
+}
+
+static void bvh_builder_free(bvh_builder *b) {
+    free(b->triangles);
+    free(b->order);
+    free(b->keys);
+}
+
+bool bvh_build(const scene *s, const char *who, bvh *out) {
+    *out = (bvh){0};
+    long long count = 0;
+    for (int i = 0; i < s->object_count; i++)
+        count += s->objects[i].casts ? s->objects[i].mesh.index_count / 3 : 0;
+    if (count == 0)
+        return true;
+    if (count >= BVH_MAX_INDEX / 2) {
+        fprintf(stderr, "%s: %lld casting triangles, more than the ray hierarchy holds (%d)\n", who, count,
+                BVH_MAX_INDEX / 2 - 1);
+        return false;
+    }
+    int n = (int)count;
+    bvh_builder b = {malloc((size_t)n * sizeof *b.triangles), malloc((size_t)n * sizeof *b.order),
+                     malloc((size_t)n * sizeof *b.keys), out};
+    out->nodes = malloc((size_t)(2 * n) * sizeof *out->nodes);
+    out->triangles = malloc((size_t)n * sizeof *out->triangles);
+    if (!b.triangles || !b.order || !b.keys || !out->nodes || !out->triangles) {
+        fprintf(stderr, "%s: out of memory for the ray hierarchy of %d triangles\n", who, n);
+        bvh_builder_free(&b);
+        bvh_free(out);
+        return false;
+    }
+    int t = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        const scene_object *o = &s->objects[i];
+        for (uint32_t k = 0; o->casts && k < o->mesh.index_count; k += 3, t++) {
+            bvh_triangle *tri = &b.triangles[t];
+            for (int v = 0; v < 3; v++) {
+                const float *p = o->mesh.vertices[o->mesh.indices[k + (uint32_t)v]].position;
+                for (int row = 0; row < 3; row++)
+                    tri->vertices[v][row] = o->model[0][row] * p[0] + o->model[1][row] * p[1] +
+                                            o->model[2][row] * p[2] + o->model[3][row];
+            }
+            for (int row = 0; row < 3; row++) {
+                tri->lo[row] = fminf(fminf(tri->vertices[0][row], tri->vertices[1][row]), tri->vertices[2][row]);
+                tri->hi[row] = fmaxf(fmaxf(tri->vertices[0][row], tri->vertices[1][row]), tri->vertices[2][row]);
+                tri->centroid[row] = 0.5f * (tri->lo[row] + tri->hi[row]);
+            }
+            b.order[t] = t;
+        }
+    }
+    out->triangle_count = n;
+    out->node_count = bvh_build_node(&b, 0, 0, n, 1);
+    for (int i = 0; i < n; i++)
+        for (int v = 0; v < 3; v++) {
+            memcpy(out->triangles[i][v], b.triangles[b.order[i]].vertices[v], 3 * sizeof(float));
+            out->triangles[i][v][3] = 0;
+        }
+    bvh_builder_free(&b);
+    return true;
+}
+
+void bvh_free(bvh *b) {
+    free(b->nodes);
+    free(b->triangles);
+    *b = (bvh){0};
+}
+
+/* The ray's shear into the frame where it runs along +z (Woop et al.):
+ * kz its largest axis, kx and ky the others, swapped to keep the winding. */
+typedef struct bvh_ray {
+    float origin[3], inverse[3], t_max;
+    int kx, ky, kz;
+    float shear[3];
+} bvh_ray;
+
+static bvh_ray bvh_ray_make(const float origin[3], const float dir[3], float t_max) {
+    bvh_ray r = {.t_max = t_max};
+    for (int k = 0; k < 3; k++) {
+        r.origin[k] = origin[k];
+        float d = fabsf(dir[k]) < BVH_TINY_DIRECTION ? copysignf(BVH_TINY_DIRECTION, dir[k]) : dir[k];
+        r.inverse[k] = 1.0f / d;
+    }
+    r.kz = fabsf(dir[0]) > fabsf(dir[1]) ? (fabsf(dir[0]) > fabsf(dir[2]) ? 0 : 2)
+                                         : (fabsf(dir[1]) > fabsf(dir[2]) ? 1 : 2);
+    r.kx = (r.kz + 1) % 3;
+    r.ky = (r.kx + 1) % 3;
+    if (dir[r.kz] < 0) {
+        int swap = r.kx;
+        r.kx = r.ky;
+        r.ky = swap;
+    }
+    r.shear[0] = dir[r.kx] / dir[r.kz];
+    r.shear[1] = dir[r.ky] / dir[r.kz];
+    r.shear[2] = 1.0f / dir[r.kz];
+    return r;
+}
+
+static bool bvh_ray_box(const bvh_ray *r, const float lo[4], const float hi[4]) {
+    float near = 0, far = r->t_max;
+    for (int k = 0; k < 3; k++) {
+        float t0 = (lo[k] - r->origin[k]) * r->inverse[k], t1 = (hi[k] - r->origin[k]) * r->inverse[k];
+        near = fmaxf(near, fminf(t0, t1));
+        far = fminf(far, fmaxf(t0, t1) * BVH_FAR_WIDENING);
+    }
+    return near <= far;
+}
+
+static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4]) {
+    float a[3], b[3], c[3];
+    for (int k = 0; k < 3; k++) {
+        a[k] = v[0][k] - r->origin[k];
+        b[k] = v[1][k] - r->origin[k];
+        c[k] = v[2][k] - r->origin[k];
+    }
+    float ax = a[r->kx] - r->shear[0] * a[r->kz], ay = a[r->ky] - r->shear[1] * a[r->kz];
+    float bx = b[r->kx] - r->shear[0] * b[r->kz], by = b[r->ky] - r->shear[1] * b[r->kz];
+    float cx = c[r->kx] - r->shear[0] * c[r->kz], cy = c[r->ky] - r->shear[1] * c[r->kz];
+    float u = cx * by - cy * bx, v_ = ax * cy - ay * cx, w = bx * ay - by * ax;
+    if ((u < 0 || v_ < 0 || w < 0) && (u > 0 || v_ > 0 || w > 0))
+        return false;
+    float det = u + v_ + w;
+    if (det == 0)
+        return false;
+    float t = r->shear[2] * (u * a[r->kz] + v_ * b[r->kz] + w * c[r->kz]);
+    /* t / det in (0, t_max), without the division: the signs agree. */
+    return det > 0 ? t > 0 && t < r->t_max * det : t < 0 && t > r->t_max * det;
+}
+
+bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max) {
+    if (b->node_count == 0)
+        return false;
+    bvh_ray r = bvh_ray_make(origin, dir, t_max);
+    int stack[BVH_MAX_DEPTH], top = 0, node = 0;
+    for (;;) {
+        const float(*n)[4] = b->nodes[node];
+        if (bvh_ray_box(&r, n[0], n[1])) {
+            if (n[1][3] > 0) {
+                for (int i = (int)n[0][3], end = i + (int)n[1][3]; i < end; i++)
+                    if (bvh_ray_triangle(&r, (const float(*)[4])b->triangles[i]))
+                        return true;
+            } else {
+                stack[top++] = (int)n[0][3];
+                node++;
+                continue;
+            }
+        }
+        if (top == 0)
+            return false;
+        node = stack[--top];
+    }
+}

@@ -1,0 +1,64 @@
+/* bvh: a bounding volume hierarchy over the triangles of a scene's
+ * casters, in world space, for shadow rays that only ask whether anything
+ * lies between a point and a light. No GL: the GPU reads the same arrays
+ * from textures (shaders/bvh_trace.glsl), the tests from here.
+ *
+ * Built once per scene on the CPU, top down, each node split where the
+ * surface area heuristic, evaluated at BVH_BINS bins of the triangles'
+ * centroids along each axis, costs least (Wald, "On fast Construction of
+ * SAH-based Bounding Volume Hierarchies", IEEE RT 2007); a node of at most
+ * BVH_LEAF_TRIANGLES triangles is a leaf.
+ * Below BVH_SAH_DEPTH levels a node is split at the median of its
+ * centroids along its widest axis instead, which halves it: no path is
+ * longer than BVH_MAX_DEPTH nodes, the GPU's traversal stack.
+ *
+ * Written here rather than taken from Embree (which the reference traces
+ * with): the web build has no Embree, and its hierarchy is not ours to
+ * read, while the page runs the same technique from the same arrays.
+ *
+ * Layout, depth first, node 0 the root: a node is two vec4, (lo, a) and
+ * (hi, b); an inner node's first child follows it and a is its second
+ * child's index, b 0; a leaf has a its first triangle and b (> 0) its
+ * triangle count. A triangle is three vec4, its vertices, w unused.
+ * Indices are stored as floats, exact below BVH_MAX_INDEX.
+ *
+ * A ray meets a triangle by Woop, Benthin and Wald's watertight test
+ * ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013): no ray slips
+ * between two triangles that share an edge, which a shadow ray along a
+ * silhouette would otherwise do; and a box by the slab test with its far
+ * end widened by Ize's bound ("Robust BVH Ray Traversal", JCGT 2(2),
+ * 2013), so that rounding never culls a box the ray meets. */
+#ifndef BVH_H
+#define BVH_H
+
+#include <stdbool.h>
+
+#include "scene.h"
+
+#define BVH_BINS 16
+#define BVH_LEAF_TRIANGLES 4
+#define BVH_SAH_DEPTH 40
+#define BVH_MAX_DEPTH 64
+/* Floats hold integers exactly up to 2^24. */
+#define BVH_MAX_INDEX (1 << 24)
+
+typedef struct bvh {
+    float (*nodes)[2][4];     /* node_count */
+    float (*triangles)[3][4]; /* triangle_count, in leaf order */
+    int node_count, triangle_count;
+    int depth; /* the longest path, in nodes */
+} bvh;
+
+/* The hierarchy of every triangle of the objects of `s` that cast; false
+ * after printing one line naming `who` and the problem (out of memory,
+ * more triangles than BVH_MAX_INDEX), with nothing to free. A scene
+ * without casters has an empty one (no nodes): every ray gets through. */
+bool bvh_build(const scene *s, const char *who, bvh *out);
+void bvh_free(bvh *b);
+
+/* Whether a triangle meets the segment origin + t dir, 0 < t < t_max
+ * (dir need not be unit; t_max INFINITY for a directional light). The
+ * same tests, in the same order of operations, as the shader's. */
+bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max);
+
+#endif

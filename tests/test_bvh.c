@@ -1,0 +1,218 @@
+/* The ray hierarchy (common/data/bvh.h): on real models every ray gets
+ * the answer of the same triangle test run on every triangle (the
+ * hierarchy only skips), no ray slips through the shared diagonal of a
+ * box's face (the test is watertight), paths stay within the GPU's stack
+ * on a degenerate pile, and a scene without casters blocks nothing. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include <cglm/cglm.h>
+#include <cmocka.h>
+
+#include "area_light.h"
+#include "bvh.h"
+#include "scene.h"
+
+/* Random rays per scene, against the flat list. */
+#define TEST_BVH_RAYS 20000
+/* Points along each face diagonal aimed at, and origins per point. */
+#define TEST_BVH_DIAGONAL_POINTS 64
+#define TEST_BVH_ORIGINS 4
+/* Triangles in the degenerate pile: all in one place. */
+#define TEST_BVH_PILE 5000
+
+/* A hierarchy of one leaf holding every triangle of b: the triangle test
+ * run on each of them, with nothing skipped. */
+static bvh test_bvh_flat(const bvh *b, float (*root)[4]) {
+    for (int k = 0; k < 3; k++) {
+        root[0][k] = INFINITY;
+        root[1][k] = -INFINITY;
+    }
+    for (int i = 0; i < b->triangle_count; i++)
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++) {
+                root[0][k] = fminf(root[0][k], b->triangles[i][v][k]);
+                root[1][k] = fmaxf(root[1][k], b->triangles[i][v][k]);
+            }
+    root[0][3] = 0;
+    root[1][3] = (float)b->triangle_count;
+    return (bvh){.nodes = (float(*)[2][4])root,
+                 .triangles = b->triangles,
+                 .node_count = 1,
+                 .triangle_count = b->triangle_count};
+}
+
+/* A unit in [0, 1) from the hash of a counter. */
+static float test_bvh_unit(uint32_t *counter) { return area_light_unit(area_light_hash((*counter)++)); }
+
+static void test_bvh_agrees_with_flat(const char *path) {
+    scene s;
+    assert_true(scene_load(&s, path));
+    bvh b;
+    assert_true(bvh_build(&s, path, &b));
+    assert_true(b.node_count > 1);
+    assert_true(b.depth <= BVH_MAX_DEPTH);
+    float root[2][4];
+    bvh flat = test_bvh_flat(&b, root);
+    /* Origins in a box twice the casters' size about their centre. */
+    float lo[3], hi[3];
+    for (int k = 0; k < 3; k++) {
+        float centre = 0.5f * (root[0][k] + root[1][k]), half = root[1][k] - root[0][k];
+        lo[k] = centre - half;
+        hi[k] = centre + half;
+    }
+    uint32_t counter = 1;
+    int occluded = 0;
+    for (int r = 0; r < TEST_BVH_RAYS; r++) {
+        float origin[3], dir[3];
+        for (int k = 0; k < 3; k++) {
+            origin[k] = lo[k] + (hi[k] - lo[k]) * test_bvh_unit(&counter);
+            dir[k] = 2 * test_bvh_unit(&counter) - 1;
+        }
+        /* Every fourth ray unbounded (a sun), the others segments. */
+        float t_max = r % 4 == 0 ? INFINITY : 2 * test_bvh_unit(&counter);
+        bool hit = bvh_occluded(&b, origin, dir, t_max);
+        assert_int_equal(hit, bvh_occluded(&flat, origin, dir, t_max));
+        occluded += hit;
+    }
+    /* Both answers occur: the rays test something. */
+    assert_true(occluded > TEST_BVH_RAYS / 20 && occluded < TEST_BVH_RAYS - TEST_BVH_RAYS / 20);
+    bvh_free(&b);
+    scene_free(&s);
+}
+
+static void test_bunny_agrees_with_every_triangle(void **state) {
+    (void)state;
+    test_bvh_agrees_with_flat("assets/scenes/bunny.json");
+}
+
+static void test_teapot_agrees_with_every_triangle(void **state) {
+    (void)state;
+    test_bvh_agrees_with_flat("assets/scenes/teapot.json");
+}
+
+/* The world position of vertex v of object o. */
+static void test_bvh_world(const scene_object *o, uint32_t v, float out[3]) {
+    const float *p = o->mesh.vertices[v].position;
+    for (int row = 0; row < 3; row++)
+        out[row] = o->model[0][row] * p[0] + o->model[1][row] * p[1] + o->model[2][row] * p[2] + o->model[3][row];
+}
+
+/* Rays aimed at points of the diagonal that a box face's two triangles
+ * share, from outside that face (along its normal, and across it by up
+ * to the box's size): the segment meets the box only at its end, so it
+ * is blocked there exactly when no ray slips between the two triangles,
+ * and not before. */
+static void test_face_diagonals_block(void **state) {
+    (void)state;
+    scene s;
+    assert_true(scene_load(&s, "assets/scenes/flat_boxes.json"));
+    uint32_t counter = 7;
+    int rays = 0;
+    for (int i = 0; i < s.object_count; i++) {
+        const scene_object *o = &s.objects[i];
+        if (!o->casts)
+            continue;
+        /* The box alone: nothing else lies on the rays. */
+        scene alone = {.objects = &s.objects[i], .object_count = 1};
+        bvh b;
+        assert_true(bvh_build(&alone, "flat_boxes", &b));
+        float lo[3], hi[3];
+        scene_object_world_bounds(o, lo, hi);
+        float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+        /* mesh_make_box: a face is two triangles in a row, sharing two
+         * vertices. */
+        for (uint32_t k = 0; k + 6 <= o->mesh.index_count; k += 6) {
+            const uint32_t *first = &o->mesh.indices[k], *second = &o->mesh.indices[k + 3];
+            uint32_t shared[2];
+            int found = 0;
+            for (int u = 0; u < 3; u++)
+                for (int v = 0; v < 3; v++)
+                    if (first[u] == second[v] && found < 2)
+                        shared[found++] = first[u];
+            assert_int_equal(found, 2);
+            float corner[3][3], p0[3], p1[3], e1[3], e2[3], normal[3];
+            for (int v = 0; v < 3; v++)
+                test_bvh_world(o, first[v], corner[v]);
+            test_bvh_world(o, shared[0], p0);
+            test_bvh_world(o, shared[1], p1);
+            glm_vec3_sub(corner[1], corner[0], e1);
+            glm_vec3_sub(corner[2], corner[0], e2);
+            glm_vec3_cross(e1, e2, normal);
+            glm_vec3_normalize(normal);
+            for (int j = 1; j < TEST_BVH_DIAGONAL_POINTS; j++) {
+                float f = (float)j / TEST_BVH_DIAGONAL_POINTS, target[3];
+                glm_vec3_lerp(p0, p1, f, target);
+                for (int n = 0; n < TEST_BVH_ORIGINS; n++) {
+                    float origin[3], dir[3];
+                    for (int row = 0; row < 3; row++)
+                        origin[row] = target[row] + size * (normal[row] + (2 * test_bvh_unit(&counter) - 1));
+                    /* Keep the origin on the face's outer side. */
+                    float out = glm_vec3_dot(
+                        normal, (float[]){origin[0] - target[0], origin[1] - target[1], origin[2] - target[2]});
+                    if (out < 0.25f * size)
+                        glm_vec3_muladds(normal, 0.25f * size - out, origin);
+                    glm_vec3_sub(target, origin, dir);
+                    assert_true(bvh_occluded(&b, origin, dir, 1.5f));
+                    assert_false(bvh_occluded(&b, origin, dir, 0.5f));
+                    rays++;
+                }
+            }
+        }
+        bvh_free(&b);
+    }
+    assert_true(rays > 0);
+    scene_free(&s);
+}
+
+/* A pile of equal triangles has no centroid to split by: the median
+ * split halves it, and the paths stay within BVH_MAX_DEPTH. */
+static void test_pile_stays_within_the_stack(void **state) {
+    (void)state;
+    mesh_vertex vertices[3] = {{{0, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}};
+    uint32_t *indices = malloc(3 * TEST_BVH_PILE * sizeof *indices);
+    assert_non_null(indices);
+    for (int i = 0; i < 3 * TEST_BVH_PILE; i++)
+        indices[i] = (uint32_t)(i % 3);
+    scene_object pile = {.mesh = {vertices, indices, 3, 3 * TEST_BVH_PILE}, .casts = true};
+    glm_mat4_identity(pile.model);
+    scene s = {.objects = &pile, .object_count = 1};
+    bvh b;
+    assert_true(bvh_build(&s, "pile", &b));
+    assert_int_equal(b.triangle_count, TEST_BVH_PILE);
+    assert_true(b.depth <= BVH_MAX_DEPTH);
+    assert_true(bvh_occluded(&b, (float[]){0.25f, 0.25f, 1}, (float[]){0, 0, -1}, 2));
+    assert_false(bvh_occluded(&b, (float[]){0.25f, 0.25f, 1}, (float[]){0, 0, -1}, 0.5f));
+    assert_false(bvh_occluded(&b, (float[]){0.75f, 0.75f, 1}, (float[]){0, 0, -1}, INFINITY));
+    bvh_free(&b);
+    free(indices);
+}
+
+static void test_no_casters_block_nothing(void **state) {
+    (void)state;
+    scene s;
+    assert_true(scene_load(&s, "assets/scenes/bunny.json"));
+    for (int i = 0; i < s.object_count; i++)
+        s.objects[i].casts = false;
+    bvh b;
+    assert_true(bvh_build(&s, "bunny", &b));
+    assert_int_equal(b.node_count, 0);
+    assert_false(bvh_occluded(&b, (float[]){0, 1, 0}, (float[]){0, -1, 0}, INFINITY));
+    bvh_free(&b);
+    scene_free(&s);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bunny_agrees_with_every_triangle),
+        cmocka_unit_test(test_teapot_agrees_with_every_triangle),
+        cmocka_unit_test(test_face_diagonals_block),
+        cmocka_unit_test(test_pile_stays_within_the_stack),
+        cmocka_unit_test(test_no_casters_block_nothing),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
