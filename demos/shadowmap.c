@@ -64,13 +64,6 @@ static const flags_param shadowmap_params[] = {
      GLFW_KEY_V, FLAGS_CHOICE, .index = &shadowmap.settings.overlay, .choices = shadowmap_overlays},
 };
 
-/* The uniform placement: the light's own perspective (a spot), its
- * direction (an orthographic map), or a cube map (a point light). */
-static bool shadowmap_fit(const technique_frame *f, int light, map_light *m, const float (*receivers)[3],
-                          int receiver_count) {
-    return map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
-}
-
 static bool shadowmap_init(const render_scene *gpu) {
     shadowmap.maps = map_create(&shadowmap.settings, gpu);
     return shadowmap.maps != NULL;
@@ -94,8 +87,10 @@ static void shadowmap_render(const technique_frame *f) {
     /* 1. The camera's depth pre-pass: what is seen. */
     map_begin(r, f);
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
-        /* 2. The light's map fitted to the visible receivers. */
-        if (!map_fit_light(r, settings, f, l, shadowmap_fit))
+        /* 2. The light's map fitted to the visible receivers: the light's
+         * own perspective (a spot), its direction (an orthographic map),
+         * or a cube map (a point light). */
+        if (!map_fit_light(r, settings, f, l, map_fit_uniform_light))
             continue;
         /* 3. Depth from the light (layers the cache holds are kept). */
         map_draw_depth(r, settings, f, l);

@@ -30,7 +30,10 @@
 //   MAP_PASS_MOMENTS   which moments: moments.glsl;
 //   MAP_PASS_SHOW_*   the lecture's overlays: here (map_show_*),
 //       for map_light.glsl's map_share, map_soft.glsl
-//       (the penumbra) and main (the cascades' tint).
+//       (the penumbra) and main (the cascades' tint);
+//   MAP_PASS_RAYS   shadow rays where the map is unsure, everywhere or
+//       nowhere (a map_rays): map_light.glsl's map_share, with
+//       map_ray_visibility here.
 // The other MAP_* names are the C constants these are compared with
 // (map.c, map_defines).
 #include "lighting.glsl"
@@ -69,11 +72,31 @@ const bool map_show_texels = MAP_PASS_SHOW_TEXELS != 0;         // darken the ma
 const bool map_show_texel_size = MAP_PASS_SHOW_TEXEL_SIZE != 0; // colour by a texel's size on screen
 const bool map_show_cascades = MAP_PASS_SHOW_CASCADES != 0;     // tint by light 0's cascade
 const bool map_show_penumbra = MAP_PASS_SHOW_PENUMBRA != 0;     // colour by PCSS's penumbra estimate
+const bool map_show_unsure = MAP_PASS_SHOW_UNSURE != 0;         // tint where the map is unsure
+const int map_rays = MAP_PASS_RAYS;
 // With the penumbra overlay: the penumbra radius (world units) that the
 // last soft filter estimated, or MAP_NO_PENUMBRA where its blocker
 // search found no blocker (or no filter ran).
 const float MAP_NO_PENUMBRA = -1.0;
 float map_penumbra_estimate = MAP_NO_PENUMBRA;
+
+#include "bvh_trace.glsl"
+
+// Light i at this fragment by one shadow ray from the visible point
+// itself (bvh_occluded leaves its surface): 1 lit, 0 shadowed. A ray to a
+// point ends as many ulps of the light's coordinates and of its length
+// short of it as the reference's, so that a light on a surface is not
+// shadowed by it; a sun's ray runs past every caster.
+float map_ray_visibility(int i) {
+    vec4 l = lights_position[i];
+    if (l.w == 0.0)
+        return bvh_occluded(v_position, -lights_direction[i].xyz * (length(v_position) + u_bvh_reach), 1.0) ? 0.0
+                                                                                                             : 1.0;
+    vec3 dir = l.xyz - v_position, a = abs(l.xyz);
+    float len = length(dir);
+    float t_max = 1.0 - float(BVH_SURFACE_ULPS) * BVH_FLOAT_EPSILON * (max(max(a.x, a.y), a.z) + len) / len;
+    return bvh_occluded(v_position, dir, t_max) ? 0.0 : 1.0;
+}
 
 #include "moments.glsl"
 #include "map.glsl"

@@ -270,4 +270,8 @@ const float MAP_TEXEL_LINE_MIN_PIXELS = 4.0;
 // The penumbra overlay's floor on the radius (a blocker at the receiver's
 // own depth casts none), so that its log2 is finite.
 const float MAP_MIN_PENUMBRA = 1e-6;
+// The unsure overlay: magenta, over half of the pixel's colour, so that
+// the shading still shows through.
+const vec3 MAP_UNSURE_TINT = vec3(1.0, 0.0, 1.0);
+const float MAP_UNSURE_TINT_SHARE = 0.5;
 #include "texel_heat.glsl"

@@ -80,11 +80,20 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, int texel_kind, bool
         map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
     bool needed = unshadowed != vec3(0.0) || map_show_texel_size;
     map_penumbra_estimate = MAP_NO_PENUMBRA;
+    // Rays (map.h, "Rays"): a hard light where the kernel's taps disagree,
+    // or at every pixel without reading the map, gets one shadow ray.
+    bool lit = unshadowed != vec3(0.0);
     float visibility = map_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
-                                             soft, moments, texel, needed);
+                                             soft, moments, texel, needed && map_rays != MAP_RAYS_ALL);
+    bool unsure = !soft && lit && visibility > 0.0 && visibility < 1.0;
+    bool traced = !soft && lit && (map_rays == MAP_RAYS_ALL || (map_rays == MAP_RAYS_UNSURE && unsure));
+    if (traced)
+        visibility = map_ray_visibility(i);
     if (soft)
         visibility *= map_horizon_share(i, normalize(map_face_normal), to_light, v_position);
     vec3 c = visibility * unshadowed;
+    if (map_show_unsure && (unsure || traced))
+        c = mix(c, MAP_UNSURE_TINT, MAP_UNSURE_TINT_SHARE);
     // Lines one pixel wide where texels meet: how big a texel is on screen
     // is what aliasing is made of. A grid finer than two pixels a line is
     // above the picture's Nyquist limit: it shows moire, not texels (a

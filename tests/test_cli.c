@@ -64,8 +64,9 @@ static void test_unknown_flag_suggestions(void **state) {
              "shadowmap: unknown flag '--warp': %s/psm (or %s/shadows --technique psm) has it", build, build);
     expect_line("shadowmap", "--warp psm", EXIT_USAGE, expected);
     snprintf(expected, sizeof expected,
-             "%s/psm (or %s/shadows --technique psm) and %s/cascades (or %s/shadows --technique cascades) have it",
-             build, build, build, build);
+             "%s/psm (or %s/shadows --technique psm), %s/cascades (or %s/shadows --technique cascades) and "
+             "%s/hybrid (or %s/shadows --technique hybrid) have it",
+             build, build, build, build, build, build);
     expect_line("planar", "--filter pcf3", EXIT_USAGE, expected);
     expect_line("shadows", "--receiver ground", EXIT_USAGE, "shadows: unknown flag '--receiver' (see --help)");
 }

@@ -88,6 +88,11 @@ static const golden_case golden_extra_cases[] = {
     /* Projective textures' limits: a receiver between the light and the
      * ball, a table that casts and receives over the floor. */
     {"projective", "projective_limits", "", "projective_projective_limits", false, NULL},
+    /* The hybrid where a map alone misclassifies most, long_view, and its
+     * lecture picture: the pixels where the map is unsure, which rays
+     * decide. */
+    {"hybrid", "long_view", "", "hybrid_long_view", false, NULL},
+    {"hybrid", "bunny", "--overlay unsure", "hybrid-lecture_bunny", true, NULL},
 };
 
 /* Every tour in assets/tours/ is a golden per step, tour-NAME-K.png (K

@@ -1,13 +1,15 @@
 #include "bvh.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Ize's gamma(3): the relative error of three rounded operations, by
- * which a box's far distance is widened. */
-#define BVH_FAR_WIDENING (1.0f + 2.0f * 3.0f * 0x1.0p-24f / (1.0f - 3.0f * 0x1.0p-24f))
+/* 1 + 2 gamma(3), gamma(n) = n u / (1 - n u) with u = FLT_EPSILON / 2
+ * (Ize): a box's far distance widened by the error of three rounded
+ * operations. */
+#define BVH_FAR_WIDENING (1.0f + 3.0f * FLT_EPSILON / (1.0f - 1.5f * FLT_EPSILON))
 /* A direction's zero component is taken as this, of its sign, so that its
  * reciprocal is finite and a box's slab test never multiplies 0 by it. */
 #define BVH_TINY_DIRECTION 1e-30f
@@ -231,6 +233,7 @@ void bvh_free(bvh *b) {
  * kz its largest axis, kx and ky the others, swapped to keep the winding. */
 typedef struct bvh_ray {
     float origin[3], inverse[3], t_max;
+    float surface; /* a plane this near the origin is the surface it leaves */
     int kx, ky, kz;
     float shear[3];
 } bvh_ray;
@@ -239,6 +242,7 @@ static bvh_ray bvh_ray_make(const float origin[3], const float dir[3], float t_m
     bvh_ray r = {.t_max = t_max};
     for (int k = 0; k < 3; k++) {
         r.origin[k] = origin[k];
+        r.surface = fmaxf(r.surface, (float)BVH_SURFACE_ULPS * FLT_EPSILON * fabsf(origin[k]));
         float d = fabsf(dir[k]) < BVH_TINY_DIRECTION ? copysignf(BVH_TINY_DIRECTION, dir[k]) : dir[k];
         r.inverse[k] = 1.0f / d;
     }
@@ -282,6 +286,12 @@ static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4]) {
         return false;
     float det = u + v_ + w;
     if (det == 0)
+        return false;
+    float normal[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                       (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                       (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
+    float length = sqrtf(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    if (fabsf(normal[0] * a[0] + normal[1] * a[1] + normal[2] * a[2]) <= r->surface * length)
         return false;
     float t = r->shear[2] * (u * a[r->kz] + v_ * b[r->kz] + w * c[r->kz]);
     /* t / det in (0, t_max), without the division: the signs agree. */

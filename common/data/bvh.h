@@ -39,6 +39,12 @@
 #define BVH_LEAF_TRIANGLES 4
 #define BVH_SAH_DEPTH 40
 #define BVH_MAX_DEPTH 64
+/* A ray leaves its surface: a triangle whose plane passes within this
+ * many float ulps of the largest coordinate of the ray's origin is that
+ * surface (its own triangle, a neighbour its rounding tilts), never an
+ * occluder, as the reference's RAYTRACE_SURFACE_ULPS; wider, for the
+ * rasterizer's interpolated positions. */
+#define BVH_SURFACE_ULPS 64
 /* Floats hold integers exactly up to 2^24. */
 #define BVH_MAX_INDEX (1 << 24)
 
@@ -57,8 +63,9 @@ bool bvh_build(const scene *s, const char *who, bvh *out);
 void bvh_free(bvh *b);
 
 /* Whether a triangle meets the segment origin + t dir, 0 < t < t_max
- * (dir need not be unit; t_max INFINITY for a directional light). The
- * same tests, in the same order of operations, as the shader's. */
+ * (dir need not be unit; t_max INFINITY for a directional light), other
+ * than the surface the ray leaves (BVH_SURFACE_ULPS). The same tests, in
+ * the same order of operations, as the shader's. */
 bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max);
 
 #endif

@@ -12,7 +12,7 @@
 #include "path.h"
 #include "scene.h"
 
-#define SHADER_MAX_SOURCES 16 /* files, includes counted, in one stage */
+#define SHADER_MAX_SOURCES 32 /* files, includes counted, in one stage */
 #define SHADER_MAX_DEPTH 8
 #define SHADER_MAX_FILE_SIZE (1 << 20)
 /* Some drivers (Mesa 22) report errors inside functions with source number

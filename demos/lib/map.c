@@ -49,17 +49,30 @@ static const struct {
 
 /* The C constants the camera pass compares with (and the legend's
  * colours, the heat map's ends). */
-static const shader_define map_defines[] = {
-    SHADER_DEFINE(MAP_KERNEL_SINGLE),     SHADER_DEFINE(MAP_KERNEL_GRID),
-    SHADER_DEFINE(MAP_KERNEL_POISSON),    SHADER_DEFINE(MAP_TEXEL_ORTHOGRAPHIC),
-    SHADER_DEFINE(MAP_TEXEL_PERSPECTIVE), SHADER_DEFINE(MAP_TEXEL_PROJECTIVE),
-    SHADER_DEFINE(MAP_KERNEL_TENT),       SHADER_DEFINE(MAP_HEAT_LOG2_MIN),
-    SHADER_DEFINE(MAP_HEAT_LOG2_MAX),     SHADER_DEFINE(MAP_MAX_ARRAY_LAYERS),
-    SHADER_DEFINE(MAP_SOFT_SEARCH_TAPS),  SHADER_DEFINE(MAP_SOFT_FILTER_TAPS),
-    SHADER_DEFINE(MAP_SOFT_MAX_TEXELS),   SHADER_DEFINE(MAP_POISSON_SCALE_TEXELS),
-    SHADER_DEFINE(MAP_PENUMBRA_LOG2_MIN), SHADER_DEFINE(MAP_MOMENTS_VSM),
-    SHADER_DEFINE(MAP_MOMENTS_EVSM2),     SHADER_DEFINE(MAP_MOMENTS_EVSM4),
-    SHADER_DEFINE(MAP_MOMENTS_MSM),       {NULL, 0}};
+static const shader_define map_defines[] = {SHADER_DEFINE(MAP_KERNEL_SINGLE),
+                                            SHADER_DEFINE(MAP_KERNEL_GRID),
+                                            SHADER_DEFINE(MAP_KERNEL_POISSON),
+                                            SHADER_DEFINE(MAP_TEXEL_ORTHOGRAPHIC),
+                                            SHADER_DEFINE(MAP_TEXEL_PERSPECTIVE),
+                                            SHADER_DEFINE(MAP_TEXEL_PROJECTIVE),
+                                            SHADER_DEFINE(MAP_KERNEL_TENT),
+                                            SHADER_DEFINE(MAP_HEAT_LOG2_MIN),
+                                            SHADER_DEFINE(MAP_HEAT_LOG2_MAX),
+                                            SHADER_DEFINE(MAP_MAX_ARRAY_LAYERS),
+                                            SHADER_DEFINE(MAP_SOFT_SEARCH_TAPS),
+                                            SHADER_DEFINE(MAP_SOFT_FILTER_TAPS),
+                                            SHADER_DEFINE(MAP_SOFT_MAX_TEXELS),
+                                            SHADER_DEFINE(MAP_POISSON_SCALE_TEXELS),
+                                            SHADER_DEFINE(MAP_PENUMBRA_LOG2_MIN),
+                                            SHADER_DEFINE(MAP_MOMENTS_VSM),
+                                            SHADER_DEFINE(MAP_MOMENTS_EVSM2),
+                                            SHADER_DEFINE(MAP_MOMENTS_EVSM4),
+                                            SHADER_DEFINE(MAP_MOMENTS_MSM),
+                                            SHADER_DEFINE(MAP_RAYS_OFF),
+                                            SHADER_DEFINE(MAP_RAYS_UNSURE),
+                                            SHADER_DEFINE(MAP_RAYS_ALL),
+                                            BVH_GPU_DEFINES,
+                                            {NULL, 0}};
 
 /* The camera pass's sampler arrays, by the kind of map they read: its
  * comparisons', and a soft light's depths'. */
@@ -369,6 +382,8 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_SHOW_TEXEL_SIZE", (int)k->show_texel_size},
         {"MAP_PASS_SHOW_CASCADES", (int)k->show_cascades},
         {"MAP_PASS_SHOW_PENUMBRA", (int)k->show_penumbra},
+        {"MAP_PASS_RAYS", (int)k->rays},
+        {"MAP_PASS_SHOW_UNSURE", (int)k->show_unsure},
         {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
@@ -424,6 +439,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         p->lights[l].far_plane = map_light_uniform(id, "u_far", l);
     }
     glUniform3fv(shader_uniform(id, "u_cascade_colors"), MAP_MAX_ARRAY_LAYERS, map_cascade_colors[0]);
+    glUniform1i(shader_uniform_optional(id, "u_bvh"), MAP_RAY_UNIT);
     return true;
 }
 
@@ -451,13 +467,15 @@ static map_camera_key map_settings_key(const map_settings *st) {
     return (map_camera_key){
         .shape = (unsigned)map_kernels[filter].shape,
         .kernel = (unsigned)map_kernels[filter].size,
-        .early_out = !st->no_early_out,
+        .early_out = !st->no_early_out && st->rays == MAP_RAYS_OFF,
         .receiver_plane = st->kernel_depth == MAP_KERNEL_DEPTH_RECEIVER_PLANE,
         .show_texels = st->overlay == MAP_OVERLAY_ALL || st->overlay == MAP_OVERLAY_TEXELS,
         .show_texel_size = st->overlay == MAP_OVERLAY_TEXEL_SIZE,
         .show_cascades = MAP_SHOWS_CASCADES(st),
         .show_penumbra = st->overlay == MAP_OVERLAY_PENUMBRA,
         .moments = map_filter_moments(filter),
+        .rays = (unsigned)st->rays,
+        .show_unsure = MAP_SHOWS_UNSURE(st),
     };
 }
 
@@ -605,6 +623,8 @@ map_renderer *map_create(const map_settings *settings, const render_scene *gpu) 
 
 const map_light *map_of_light(const map_renderer *r, int l) { return &r->maps[l]; }
 
+void map_trace_with(map_renderer *r, const bvh_gpu *casters) { r->casters = casters; }
+
 void map_destroy(map_renderer *r) {
     if (!r)
         return;
@@ -704,6 +724,8 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
                            const map_camera_program *p) {
     const map_camera_key *k = &p->key;
     render_program_use(&p->program, f->view);
+    if (k->rays != MAP_RAYS_OFF)
+        bvh_gpu_bind(r->casters, p->program.id, MAP_RAY_UNIT);
     glUniform1f(p->constant_bias, st->no_constant_bias ? 0 : map_setting(st->constant_texels, MAP_CONSTANT_TEXELS));
     glUniform1f(p->normal_offset, st->normal_texels);
     glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);
@@ -910,6 +932,8 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
     glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     depth_use_camera(f->view);
     map_camera_key key = map_settings_key(settings);
+    if (!r->casters)
+        key.rays = MAP_RAYS_OFF;
     for (int l = 0; l < s->light_count; l++) {
         bool fitted = r->fitted[l];
         if (fitted && map_soft_unit(r, settings, &s->lights[l], l))

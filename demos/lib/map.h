@@ -47,6 +47,7 @@
 #include <GLFW/glfw3.h>
 #include <stdbool.h>
 
+#include "bvh_gpu.h"
 #include "technique.h"
 #include "warp.h"
 
@@ -160,6 +161,10 @@ typedef struct map_settings {
      * MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on
      * with its own). */
     bool array_overlays;
+    /* Not flags: the shadow rays (see "Rays" below; demos/hybrid.c sets
+     * them), and its overlay list goes on with MAP_RAYS_OVERLAY_NAMES. */
+    int rays; /* map_rays */
+    bool ray_overlays;
 } map_settings;
 
 /* The filter that reads the map: settings->filter, or what auto stands
@@ -208,6 +213,27 @@ enum {
 enum { MAP_OVERLAY_CASCADES = MAP_OVERLAY_COUNT };
 /* The settings' overlay is that one. */
 #define MAP_SHOWS_CASCADES(st) ((st)->array_overlays && (st)->overlay == MAP_OVERLAY_CASCADES)
+/* A technique with rays lists this one next (and sets the settings'
+ * ray_overlays): the pixels where the map is unsure tinted
+ * (MAP_UNSURE_TINT in shaders/map_light.glsl), traced or not. */
+#define MAP_RAYS_OVERLAY_NAMES "unsure"
+enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
+#define MAP_SHOWS_UNSURE(st) ((st)->ray_overlays && (st)->overlay == MAP_OVERLAY_UNSURE)
+
+/* Rays (demos/hybrid.c). With rays, the camera pass decides a hard light
+ * at a pixel by one shadow ray from the visible point itself to the light
+ * (shaders/bvh_trace.glsl, against the casters' triangles that
+ * map_trace_with gave: a triangle whose plane passes within
+ * BVH_SURFACE_ULPS of the point is the surface it leaves), exact as the
+ * reference's: at every pixel (MAP_RAYS_ALL, a plain ray tracer), or only
+ * where the map is unsure (MAP_RAYS_UNSURE), where the kernel's taps
+ * disagree (its visibility strictly between 0 and 1: a shadow's edge,
+ * within the kernel's reach). Where every tap agrees the map decides: with
+ * rays the kernel reads every tap, as if with --no-early-out (four rim
+ * taps agreeing prove nothing of the rest: on a real model such pixels
+ * were wrong). Area lights keep the map's soft filter. MAP_RAYS_OFF is
+ * the map alone, early-out and all. */
+typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
 
 /* The map inset. Light 0's map is reduced on the GPU
  * (shaders/overlay_reduce.frag) to blocks of texels, a block to at most
@@ -453,6 +479,9 @@ map_renderer *map_create(const map_settings *settings, const render_scene *gpu);
 void map_destroy(map_renderer *r);
 /* Light l's map as this frame's fit left it. */
 const map_light *map_of_light(const map_renderer *r, int l);
+/* The casters' hierarchy the camera pass's rays trace against (kept, not
+ * copied: it outlives r's frames); NULL: no rays, whatever the settings. */
+void map_trace_with(map_renderer *r, const bvh_gpu *casters);
 /* The frame's steps (see the top of this file), in their order. Step 1:
  * the camera's depth pre-pass; notes the target the camera pass will draw
  * into (the framebuffer and viewport bound now) and forgets the last
@@ -520,6 +549,10 @@ void map_size_text(const map_settings *settings, const map_light *m, char *out, 
 
 /* The uniform placement of light `light` of `s` (see "Fitting" above). */
 bool map_fit_uniform(const scene *s, int light, map_light *m, const float (*receivers)[3], int receiver_count);
+/* The same as a map_fit_function, for map_fit_light: the fit of
+ * demos/shadowmap.c and demos/hybrid.c. */
+bool map_fit_uniform_light(const technique_frame *f, int light, map_light *m, const float (*receivers)[3],
+                           int receiver_count);
 /* The depth (view space, along -z) of the nearest caster that can shadow
  * the receivers in lo..hi seen through `view`: of a directional light
  * (orthographic) every caster whose box overlaps lo..hi across the view,

@@ -206,3 +206,8 @@ bool map_fit_uniform(const scene *s, int light, map_light *m, const float (*rece
     m->layer_count = MAP_CUBE_FACES;
     return map_fit_cube(s, l, m, receivers, receiver_count);
 }
+
+bool map_fit_uniform_light(const technique_frame *f, int light, map_light *m, const float (*receivers)[3],
+                           int receiver_count) {
+    return map_fit_uniform(f->gpu->scene, light, m, receivers, receiver_count);
+}

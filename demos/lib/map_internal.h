@@ -87,6 +87,10 @@ _Static_assert(SCENE_MAX_LIGHTS *MAP_LIGHT_KIND_BITS <= 32, "a combination of ki
  * test), and says so. */
 #define MAP_SAMPLER_TYPES 3
 #define MAP_DEPTH_UNITS (MAP_IDLE_UNITS + 2 * MAP_SAMPLER_TYPES)
+/* The casters' hierarchy for the rays (a sampler2D) shares the idle unit
+ * of the 2D maps' depths (sampler2D too, never read there): no unit
+ * beyond GL 3.3's 16 is needed. */
+#define MAP_RAY_UNIT (MAP_IDLE_UNITS + MAP_SAMPLER_TYPES)
 
 /* What a camera program is compiled for (shaders/map.frag's
  * MAP_LIGHT_KIND_<i>, MAP_TEXEL_KIND_<i> and
@@ -101,6 +105,7 @@ typedef struct map_camera_key {
     unsigned moments;            /* map_moments of the filter */
     unsigned moment_lights;      /* bit i: light i reads its moment map */
     unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
+    unsigned rays, show_unsure; /* map_rays; the unsure overlay */
 } map_camera_key;
 
 /* The camera pass's program (lit.vert with map.frag) for one key,
@@ -221,6 +226,7 @@ struct map_renderer {
      * draws into, and which lights have a map. */
     int target_framebuffer, viewport[4];
     bool fitted[SCENE_MAX_LIGHTS];
+    const bvh_gpu *casters; /* map_trace_with's; NULL: no rays */
 };
 
 /* The depth pass of a fitted map of any kind, uncached (the tests'):

@@ -1,0 +1,40 @@
+/* bvh_gpu: a ray hierarchy (bvh.h) in one RGBA32F texture, for
+ * shaders/bvh_trace.glsl: its nodes from texel 0, two a node, then its
+ * triangles from texel 2 x node_count, three a triangle, in rows of
+ * BVH_GPU_TEXTURE_WIDTH texels (read with texelFetch, so one path serves
+ * GL 3.3 and WebGL 2, which has no texture buffers).
+ *
+ *   bvh_gpu g = {0};
+ *   bvh_gpu_upload(&g, &hierarchy, "hybrid");   once per scene
+ *   bvh_gpu_bind(&g, program, unit);            the program in use
+ *   bvh_gpu_destroy(&g);
+ *
+ * A program that includes bvh_trace.glsl is given BVH_GPU_DEFINES. */
+#ifndef BVH_GPU_H
+#define BVH_GPU_H
+
+#include <stdbool.h>
+
+#include "bvh.h"
+#include "shader.h"
+
+/* Texels a row: GL 3.3 promises 1024-texel textures. */
+#define BVH_GPU_TEXTURE_WIDTH 1024
+#define BVH_GPU_DEFINES                                                                                              \
+    SHADER_DEFINE(BVH_GPU_TEXTURE_WIDTH), SHADER_DEFINE(BVH_MAX_DEPTH), SHADER_DEFINE(BVH_SURFACE_ULPS)
+
+typedef struct bvh_gpu {
+    unsigned texture;
+    int node_count; /* 0: no casters, every ray gets through */
+    float reach;    /* the farthest corner of the casters' box from the origin */
+} bvh_gpu;
+
+/* b's arrays into g's texture (made, or made again); false after
+ * printing one line naming `who` where the GL's largest texture cannot
+ * hold them. */
+bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who);
+/* The texture on texture unit `unit` and the uniforms of `program`, in use. */
+void bvh_gpu_bind(const bvh_gpu *g, unsigned program, int unit);
+void bvh_gpu_destroy(bvh_gpu *g);
+
+#endif

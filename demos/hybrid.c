@@ -1,0 +1,121 @@
+/* hybrid: a shadow map, with shadow rays where the map is unsure.
+ *
+ * "Shadows in production: often use shadow maps, ray casting as fallback
+ * in case of robustness issues." The map decides where it is sure; a
+ * ray decides the rest (as Hertel, Hormann & Westermann, "A Hybrid GPU
+ * Rendering Pipeline for Alias-Free Hard Shadows", Eurographics 2009
+ * Areas Papers, which bound the rays with a conservative map).
+ *
+ * Each frame is shadowmap's (its uniform fit, filter and biases: the
+ * same flags), with one change in the camera pass (demos/lib/map.h,
+ * "Rays"): at a hard light, a pixel whose kernel taps disagree is
+ * unsure, and one shadow ray from the visible point to the light,
+ * against the casters' triangles (common/data/bvh.h, in a texture on
+ * the GPU), decides it exactly. Everywhere else the map's answer stands.
+ * Every tap of the kernel is read (the early-out applies to --rays off
+ * alone, the map by itself). --rays all traces every pixel, the plain
+ * ray tracer whose cost the map spares. The overlay "unsure" tints the
+ * pixels the map could not decide.
+ *
+ * The casters' hierarchy is built once, at init: objects do not move.
+ */
+#include <stdio.h>
+
+#include "map.h"
+
+static const char *const hybrid_overlays[] = {MAP_OVERLAY_NAMES, MAP_RAYS_OVERLAY_NAMES, NULL};
+/* --rays, the default first, and what each is in map_rays. */
+static const char *const hybrid_rays[] = {"unsure", "off", "all", NULL};
+static const map_rays hybrid_ray_modes[] = {MAP_RAYS_UNSURE, MAP_RAYS_OFF, MAP_RAYS_ALL};
+
+static struct {
+    map_settings settings;
+    int rays; /* choice: hybrid_rays */
+    map_renderer *maps;
+    bvh casters;         /* every casting triangle, for the rays */
+    bvh_gpu casters_gpu; /* the same, in a texture */
+} hybrid = {.settings.ray_overlays = true};
+
+static const flags_param hybrid_params[] = {
+    MAP_PARAMS(hybrid.settings),
+    {"rays", "shadow rays: where the map is unsure, off (the map alone), or at every pixel (a ray tracer)",
+     GLFW_KEY_R, FLAGS_CHOICE, .index = &hybrid.rays, .choices = hybrid_rays},
+    {"overlay",
+     "for lectures: the map's overlays (see shadowmap), and the pixels where the map is unsure, which rays decide",
+     GLFW_KEY_V, FLAGS_CHOICE, .index = &hybrid.settings.overlay, .choices = hybrid_overlays},
+};
+
+static bool hybrid_init(const render_scene *gpu) {
+    hybrid.settings.rays = hybrid_ray_modes[hybrid.rays];
+    hybrid.maps = map_create(&hybrid.settings, gpu);
+    if (!hybrid.maps || !bvh_build(gpu->scene, "hybrid", &hybrid.casters) ||
+        !bvh_gpu_upload(&hybrid.casters_gpu, &hybrid.casters, "hybrid"))
+        return false;
+    map_trace_with(hybrid.maps, &hybrid.casters_gpu);
+    return true;
+}
+
+static void hybrid_destroy(void) {
+    map_destroy(hybrid.maps);
+    hybrid.maps = NULL;
+    bvh_gpu_destroy(&hybrid.casters_gpu);
+    bvh_free(&hybrid.casters);
+}
+
+static const char *hybrid_area_light(const scene_light *light, int l) {
+    (void)l;
+    return map_area_light_text(&hybrid.settings, light);
+}
+
+/* The frame: shadowmap's passes, the camera pass tracing where the map
+ * is unsure. */
+static void hybrid_render(const technique_frame *f) {
+    map_renderer *r = hybrid.maps;
+    map_settings *settings = &hybrid.settings;
+    /* 1. The camera's depth pre-pass: what is seen. */
+    map_begin(r, f);
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+        /* 2. The light's map fitted to the visible receivers, as
+         * shadowmap's. */
+        if (!map_fit_light(r, settings, f, l, map_fit_uniform_light))
+            continue;
+        /* 3. Depth from the light. */
+        map_draw_depth(r, settings, f, l);
+    }
+    /* 4. Shading: the map where its kernel's taps agree, a shadow ray
+     * where they do not. */
+    settings->rays = hybrid_ray_modes[hybrid.rays];
+    map_shade(r, settings, f);
+    /* 5. The lecture's overlays. */
+    map_draw_overlays(r, settings, f);
+}
+
+static void hybrid_describe(char *out, size_t size) {
+    const map_light *m = map_of_light(hybrid.maps, 0);
+    char map[64];
+    map_size_text(&hybrid.settings, m, map, sizeof map);
+    snprintf(out, size, "light 0: %s; rays %s, %d casting triangles", map, hybrid_rays[hybrid.rays],
+             hybrid.casters.triangle_count);
+    map_describe_filter(&hybrid.settings, out, size);
+}
+
+/* The sweep: the map alone, the hybrid at three map sizes, and the ray
+ * tracer the map spares. */
+static const char *const hybrid_bench_configs[] = {
+    "", "--map-size 1024", "--map-size 4096", "map alone: --rays off", "every pixel: --rays all",
+};
+
+const technique hybrid_technique = {
+    .name = "hybrid",
+    .title = "shadow maps with shadow rays where the map is unsure (Hertel et al. 2009)",
+    .params = hybrid_params,
+    .param_count = (int)(sizeof hybrid_params / sizeof *hybrid_params),
+    .bench_configs = hybrid_bench_configs,
+    .bench_config_count = (int)(sizeof hybrid_bench_configs / sizeof *hybrid_bench_configs),
+    .init = hybrid_init,
+    .render = hybrid_render,
+    .destroy = hybrid_destroy,
+    .area_light = hybrid_area_light,
+    .describe = hybrid_describe,
+    .gallery_config = "--overlay unsure",
+};

@@ -1,0 +1,88 @@
+// Shadow rays against the casters' hierarchy (common/data/bvh.h: its
+// layout, and the same tests in the same order as bvh_occluded), read from
+// one RGBA32F texture BVH_GPU_TEXTURE_WIDTH texels wide
+// (common/gl/bvh_gpu.h): the nodes, two texels each, then the triangles,
+// three each. u_bvh_node_count 0: no casters, every ray gets through.
+// u_bvh_reach: the farthest corner of the casters' box from the origin.
+uniform sampler2D u_bvh;
+uniform int u_bvh_node_count;
+uniform float u_bvh_reach;
+
+// A direction's zero component is taken as this, of its sign.
+const float BVH_TINY_DIRECTION = 1e-30;
+// A float's ulp at 1 (C's FLT_EPSILON, 2^-23), and Ize's gamma(3) from
+// the unit roundoff, half of it: a box's far distance is widened by it.
+const float BVH_FLOAT_EPSILON = 1.1920929e-7;
+const float BVH_FAR_WIDENING = 1.0 + 3.0 * BVH_FLOAT_EPSILON / (1.0 - 1.5 * BVH_FLOAT_EPSILON);
+
+vec4 bvh_texel(int k) { return texelFetch(u_bvh, ivec2(k % BVH_GPU_TEXTURE_WIDTH, k / BVH_GPU_TEXTURE_WIDTH), 0); }
+
+// One component of v by index (GLSL ES indexes vectors by constants only
+// in some drivers' eyes; a select is safe everywhere).
+float bvh_component(vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+
+// Whether a caster's triangle other than the surface the ray leaves
+// (BVH_SURFACE_ULPS) meets origin + t dir, 0 < t < t_max.
+bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {
+    if (u_bvh_node_count == 0)
+        return false;
+    vec3 tiny = BVH_TINY_DIRECTION * mix(vec3(1.0), sign(dir), notEqual(dir, vec3(0.0)));
+    vec3 inverse = 1.0 / mix(dir, tiny, lessThan(abs(dir), vec3(BVH_TINY_DIRECTION)));
+    // Woop et al.'s shear: kz the largest axis, kx and ky the others,
+    // swapped where dir[kz] < 0 to keep the winding.
+    vec3 a = abs(dir);
+    int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    float dz = bvh_component(dir, kz);
+    if (dz < 0.0) {
+        int swap = kx;
+        kx = ky;
+        ky = swap;
+    }
+    vec3 o = abs(origin);
+    float surface = float(BVH_SURFACE_ULPS) * BVH_FLOAT_EPSILON * max(max(o.x, o.y), o.z);
+    vec3 shear = vec3(bvh_component(dir, kx) / dz, bvh_component(dir, ky) / dz, 1.0 / dz);
+    int stack[BVH_MAX_DEPTH];
+    int top = 0, node = 0;
+    for (;;) {
+        vec4 lo = bvh_texel(2 * node), hi = bvh_texel(2 * node + 1);
+        vec3 t0 = (lo.xyz - origin) * inverse, t1 = (hi.xyz - origin) * inverse;
+        vec3 near3 = min(t0, t1), far3 = max(t0, t1) * BVH_FAR_WIDENING;
+        float near = max(max(near3.x, near3.y), max(near3.z, 0.0));
+        float far = min(min(far3.x, far3.y), min(far3.z, t_max));
+        if (near <= far) {
+            if (hi.w > 0.0) {
+                int first = 2 * u_bvh_node_count + 3 * int(lo.w), end = first + 3 * int(hi.w);
+                for (int k = first; k < end; k += 3) {
+                    vec3 pa = bvh_texel(k).xyz - origin;
+                    vec3 pb = bvh_texel(k + 1).xyz - origin;
+                    vec3 pc = bvh_texel(k + 2).xyz - origin;
+                    float az = bvh_component(pa, kz), bz = bvh_component(pb, kz), cz = bvh_component(pc, kz);
+                    float ax = bvh_component(pa, kx) - shear.x * az, ay = bvh_component(pa, ky) - shear.y * az;
+                    float bx = bvh_component(pb, kx) - shear.x * bz, by = bvh_component(pb, ky) - shear.y * bz;
+                    float cx = bvh_component(pc, kx) - shear.x * cz, cy = bvh_component(pc, ky) - shear.y * cz;
+                    float u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+                    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0))
+                        continue;
+                    float det = u + v + w;
+                    if (det == 0.0)
+                        continue;
+                    vec3 normal = cross(pb - pa, pc - pa);
+                    if (abs(dot(normal, pa)) <= surface * length(normal))
+                        continue;
+                    float t = shear.z * (u * az + v * bz + w * cz);
+                    if (det > 0.0 ? (t > 0.0 && t < t_max * det) : (t < 0.0 && t > t_max * det))
+                        return true;
+                }
+            } else {
+                stack[top++] = int(lo.w);
+                node++;
+                continue;
+            }
+        }
+        if (top == 0)
+            return false;
+        node = stack[--top];
+    }
+    return false;
+}

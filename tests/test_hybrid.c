@@ -1,0 +1,103 @@
+/* The hybrid (demos/hybrid.c) against the ray-traced reference, on the
+ * standard scenes, long_view, the street and a real model's: the map's
+ * sure pixels are right (no pixel it decides alone disagrees with the
+ * reference), the rays make the picture exact where the map alone is not,
+ * and --rays all, every pixel traced, is the reference's picture. Each
+ * case prints its figures. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "support.h"
+
+/* The goals: at most this share of the compared pixels misclassified,
+ * with rays where the map is unsure, and with a ray at every pixel (the
+ * few pixels where the rasterizer's surface and the reference's round
+ * apart). */
+#define HYBRID_MAX_PERCENT 0.01
+#define HYBRID_ALL_MAX_PERCENT 0.002
+
+/* Hard lights of every kind, and scenes no setting was tuned on. */
+static const char *const hybrid_scenes[] = {"simple", "bunny", "teapot", "long_view", "street", "wuson"};
+#define HYBRID_SCENE_COUNT (sizeof hybrid_scenes / sizeof *hybrid_scenes)
+
+static shadowdiff_result hybrid_measure(const char *scene, const char *flags, const char *name, dump_frame *reference,
+                                        dump_frame *test) {
+    char path[256];
+    snprintf(path, sizeof path, "assets/scenes/%s.json", scene);
+    unsigned char *heatmap;
+    shadowdiff_result r = support_measure_dumps("hybrid", path, "", flags, name, reference, test, &heatmap);
+    free(heatmap);
+    return r;
+}
+
+/* With the rays off and every tap read, as the rays read them, the
+ * camera pass leaves the map's own visibility: strictly between 0 and 1
+ * exactly where it is unsure (the pixels the rays would take). Those
+ * take the reference's value, so that only the sure pixels are judged:
+ * none may be misclassified. */
+static void test_sure_pixels_agree_with_the_reference(void **state) {
+    (void)state;
+    for (size_t s = 0; s < HYBRID_SCENE_COUNT; s++) {
+        char name[64];
+        snprintf(name, sizeof name, "sure_%s", hybrid_scenes[s]);
+        dump_frame reference, test;
+        hybrid_measure(hybrid_scenes[s], "--rays off --no-early-out", name, &reference, &test);
+        long unsure = 0, sure = 0;
+        for (long i = 0; i < (long)test.width * test.height; i++) {
+            float v = test.visibility[i];
+            if (test.ids[i] < 0)
+                continue;
+            if (v > 0 && v < 1) {
+                test.visibility[i] = reference.visibility[i];
+                unsure++;
+            } else {
+                sure++;
+            }
+        }
+        shadowdiff_result r;
+        assert_true(shadowdiff_compare(&reference, &test, NULL, &r, NULL));
+        fprintf(stderr, "    %-12s unsure %.2f %% of %ld pixels; sure ones misclassified: %ld\n", hybrid_scenes[s],
+                100.0 * (double)unsure / (double)(unsure + sure), unsure + sure, r.false_shadow + r.false_lit);
+        assert_true(sure > 0);
+        assert_int_equal(r.false_shadow + r.false_lit, 0);
+        dump_frame_free(&reference);
+        dump_frame_free(&test);
+    }
+}
+
+static void hybrid_expect_within(const char *flags, const char *prefix, double max_percent) {
+    for (size_t s = 0; s < HYBRID_SCENE_COUNT; s++) {
+        char name[64];
+        snprintf(name, sizeof name, "%s_%s", prefix, hybrid_scenes[s]);
+        dump_frame reference, test;
+        shadowdiff_result r = hybrid_measure(hybrid_scenes[s], flags, name, &reference, &test);
+        assert_true(r.compared > SUPPORT_STANDARD_MIN_COMPARED);
+        assert_true(r.misclassified_percent <= max_percent);
+        dump_frame_free(&reference);
+        dump_frame_free(&test);
+    }
+}
+
+static void test_rays_where_unsure_are_exact(void **state) {
+    (void)state;
+    hybrid_expect_within("", "unsure", HYBRID_MAX_PERCENT);
+}
+
+static void test_rays_everywhere_are_the_reference(void **state) {
+    (void)state;
+    hybrid_expect_within("--rays all", "all", HYBRID_ALL_MAX_PERCENT);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sure_pixels_agree_with_the_reference),
+        cmocka_unit_test(test_rays_where_unsure_are_exact),
+        cmocka_unit_test(test_rays_everywhere_are_the_reference),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
