@@ -6,20 +6,27 @@
  * Rendering Pipeline for Alias-Free Hard Shadows", Eurographics 2009
  * Areas Papers, which bound the rays with a conservative map).
  *
- * Each frame is shadowmap's (its uniform fit, filter and biases: the
- * same flags), with one change in the camera pass (demos/lib/map.h,
- * "Rays"): at a hard light, a pixel whose kernel taps disagree is
- * unsure, and one shadow ray from the visible point to the light,
- * against the casters' triangles (common/data/bvh.h, in a texture on
- * the GPU), decides it exactly. Everywhere else the map's answer stands.
- * Every tap of the kernel is read (the early-out applies to --rays off
- * alone, the map by itself). --rays all traces every pixel, the plain
- * ray tracer whose cost the map spares. The overlay "unsure" tints the
- * pixels the map could not decide.
+ * Each frame is shadowmap's (its uniform fit, filter, biases and PCSS:
+ * the same flags), with one change in the camera pass (demos/lib/map.h,
+ * "Rays"): a pixel is unsure where the map's filter is neither 0 nor 1
+ * (a hard light's kernel taps disagree; PCSS found a blocker but not an
+ * umbra), and, under an area light, where PCSS found no blocker but a
+ * caster's box is near the cone from the pixel to the light's disk (its
+ * search taps miss thin casters). Shadow rays from the visible point,
+ * against the casters' triangles (common/data/bvh.h, in a texture on the
+ * GPU), decide the unsure pixels: one to a hard light, exact; an area
+ * light's samples as the reference takes them for that pixel (the same
+ * points, --ray-samples of them), stopping early where the first ones
+ * agree. Everywhere else the map's answer stands. Every tap of the kernel
+ * is read (the early-out applies to --rays off alone, the map by
+ * itself). --rays all traces every pixel, the plain ray tracer whose
+ * cost the map spares. The overlay "unsure" tints the pixels the map
+ * could not decide.
  *
  * The casters' hierarchy is built once, at init: objects do not move.
  */
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "map.h"
 
@@ -27,10 +34,13 @@ static const char *const hybrid_overlays[] = {MAP_OVERLAY_NAMES, MAP_RAYS_OVERLA
 /* --rays, the default first, and what each is in map_rays. */
 static const char *const hybrid_rays[] = {"unsure", "off", "all", NULL};
 static const map_rays hybrid_ray_modes[] = {MAP_RAYS_UNSURE, MAP_RAYS_OFF, MAP_RAYS_ALL};
+/* --ray-samples, the default (the reference's count) first: powers of 4. */
+static const char *const hybrid_ray_samples[] = {"256", "64", "1024", NULL};
 
 static struct {
     map_settings settings;
-    int rays; /* choice: hybrid_rays */
+    int rays;        /* choice: hybrid_rays */
+    int ray_samples; /* choice: hybrid_ray_samples */
     map_renderer *maps;
     bvh casters;         /* every casting triangle, for the rays */
     bvh_gpu casters_gpu; /* the same, in a texture */
@@ -40,6 +50,10 @@ static const flags_param hybrid_params[] = {
     MAP_PARAMS(hybrid.settings),
     {"rays", "shadow rays: where the map is unsure, off (the map alone), or at every pixel (a ray tracer)",
      GLFW_KEY_R, FLAGS_CHOICE, .index = &hybrid.rays, .choices = hybrid_rays},
+    {"ray-samples",
+     "an area light's rays at an unsure pixel, the reference's points for it (256, its count, by default); a pixel "
+     "stops after 16 where they all agree",
+     GLFW_KEY_N, FLAGS_CHOICE, .index = &hybrid.ray_samples, .choices = hybrid_ray_samples},
     {"overlay",
      "for lectures: the map's overlays (see shadowmap), and the pixels where the map is unsure, which rays decide",
      GLFW_KEY_V, FLAGS_CHOICE, .index = &hybrid.settings.overlay, .choices = hybrid_overlays},
@@ -85,6 +99,7 @@ static void hybrid_render(const technique_frame *f) {
     /* 4. Shading: the map where its kernel's taps agree, a shadow ray
      * where they do not. */
     settings->rays = hybrid_ray_modes[hybrid.rays];
+    settings->ray_samples = atoi(hybrid_ray_samples[hybrid.ray_samples]);
     map_shade(r, settings, f);
     /* 5. The lecture's overlays. */
     map_draw_overlays(r, settings, f);

@@ -21,6 +21,46 @@ vec4 bvh_texel(int k) { return texelFetch(u_bvh, ivec2(k % BVH_GPU_TEXTURE_WIDTH
 // in some drivers' eyes; a select is safe everywhere).
 float bvh_component(vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
 
+// Whether the segment meets the box lo..hi grown by the cone's radius
+// where the segment crosses it (common/data/bvh.c's bvh_cone_box).
+bool bvh_cone_box(vec3 origin, vec3 inverse, float t_max, vec3 lo, vec3 hi, float end_radius) {
+    float near = 0.0, far = t_max;
+    for (int pass = 0; pass < 2 && near <= far; pass++) {
+        float grow = pass == 0 ? end_radius : end_radius * min(far / t_max, 1.0);
+        vec3 t0 = (lo - vec3(grow) - origin) * inverse, t1 = (hi + vec3(grow) - origin) * inverse;
+        vec3 near3 = min(t0, t1), far3 = max(t0, t1) * BVH_FAR_WIDENING;
+        near = max(max(near3.x, near3.y), max(near3.z, 0.0));
+        far = min(min(far3.x, far3.y), min(far3.z, t_max));
+    }
+    return near <= far;
+}
+
+// Whether no caster can meet the cone along origin + t dir, 0 < t < t_max,
+// of radius growing from 0 to end_radius at t_max (bvh.h's
+// bvh_cone_clear): conservative, false where a leaf's grown box is near.
+bool bvh_cone_clear(vec3 origin, vec3 dir, float t_max, float end_radius) {
+    if (u_bvh_node_count == 0)
+        return true;
+    vec3 tiny = BVH_TINY_DIRECTION * mix(vec3(1.0), sign(dir), notEqual(dir, vec3(0.0)));
+    vec3 inverse = 1.0 / mix(dir, tiny, lessThan(abs(dir), vec3(BVH_TINY_DIRECTION)));
+    int stack[BVH_MAX_DEPTH];
+    int top = 0, node = 0;
+    for (;;) {
+        vec4 lo = bvh_texel(2 * node), hi = bvh_texel(2 * node + 1);
+        if (bvh_cone_box(origin, inverse, t_max, lo.xyz, hi.xyz, end_radius)) {
+            if (hi.w > 0.0)
+                return false;
+            stack[top++] = int(lo.w);
+            node++;
+            continue;
+        }
+        if (top == 0)
+            return true;
+        node = stack[--top];
+    }
+    return true;
+}
+
 // Whether a caster's triangle other than the surface the ray leaves
 // (BVH_SURFACE_ULPS) meets origin + t dir, 0 < t < t_max.
 bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {

@@ -81,25 +81,75 @@ const float MAP_NO_PENUMBRA = -1.0;
 float map_penumbra_estimate = MAP_NO_PENUMBRA;
 
 #include "bvh_trace.glsl"
+#include "area_light.glsl"
 
-// Light i at this fragment by one shadow ray from the visible point
-// itself (bvh_occluded leaves its surface): 1 lit, 0 shadowed. A ray to a
-// point ends as many ulps of the light's coordinates and of its length
-// short of it as the reference's, so that a light on a surface is not
-// shadowed by it; a sun's ray runs past every caster.
-float map_ray_visibility(int i) {
-    vec4 l = lights_position[i];
-    if (l.w == 0.0)
-        return bvh_occluded(v_position, -lights_direction[i].xyz * (length(v_position) + u_bvh_reach), 1.0) ? 0.0
-                                                                                                             : 1.0;
-    vec3 dir = l.xyz - v_position, a = abs(l.xyz);
+// Rays (map.h, "Rays"): an area light's samples per pixel (the reference's
+// count: every sample is the reference's), the frame's rectangle in the
+// target (x, y, width, height: the reference numbers pixels from the top
+// row), and per light its disk's radius and a sun's cap (1 - cos of its
+// angular radius).
+uniform int u_ray_samples;
+uniform ivec4 u_frame;
+uniform vec2 u_light_area[SCENE_MAX_LIGHTS];
+
+// Whether nothing casts between the visible point itself and `target`, a
+// point (w 1) or a direction towards a sun (w 0); bvh_occluded leaves the
+// point's surface. A ray to a point ends as many ulps of the target's
+// coordinates and of its length short of it as the reference's, so that a
+// light on a surface is not shadowed by it; a sun's ray runs past every
+// caster.
+bool map_ray_reaches(vec4 target) {
+    if (target.w == 0.0)
+        return !bvh_occluded(v_position, target.xyz * (length(v_position) + u_bvh_reach), 1.0);
+    vec3 dir = target.xyz - v_position, a = abs(target.xyz);
     float len = length(dir);
     float t_max = 1.0 - float(BVH_SURFACE_ULPS) * BVH_FLOAT_EPSILON * (max(max(a.x, a.y), a.z) + len) / len;
-    return bvh_occluded(v_position, dir, t_max) ? 0.0 : 1.0;
+    return !bvh_occluded(v_position, dir, t_max);
+}
+
+// Light i at this fragment by shadow rays: one to a hard light's centre
+// (1 lit, 0 shadowed); an area light's share of the reference's samples
+// for this pixel (the same points: its seed from the pixel and the light),
+// taken in area_light_progressive_index's order and stopped after
+// MAP_RAY_FIRST_SAMPLES where those all agree.
+float map_ray_visibility(int i, bool soft) {
+    vec4 centre = lights_position[i];
+    vec4 towards = centre.w == 0.0 ? vec4(-lights_direction[i].xyz, 0.0) : centre;
+    if (!soft)
+        return map_ray_reaches(towards) ? 1.0 : 0.0;
+    ivec2 q = ivec2(gl_FragCoord.xy) - u_frame.xy;
+    uint pixel = uint((u_frame.w - 1 - q.y) * u_frame.z + q.x);
+    uint seed = area_light_hash(pixel ^ area_light_hash(uint(i)));
+    vec3 axis = lighting_to_light(i, v_position);
+    int lit = 0, traced = 0;
+    for (int j = 0; j < u_ray_samples; j++) {
+        int k = area_light_progressive_index(j, u_ray_samples);
+        vec4 target = area_light_sample(centre.w == 0.0 ? vec4(axis, 0.0) : centre, axis, u_light_area[i].x,
+                                        u_light_area[i].y, k, u_ray_samples, area_light_hash(seed + uint(k)));
+        lit += map_ray_reaches(target) ? 1 : 0;
+        traced++;
+        if (traced == MAP_RAY_FIRST_SAMPLES && (lit == 0 || lit == traced))
+            break;
+    }
+    return float(lit) / float(traced);
 }
 
 #include "moments.glsl"
 #include "map.glsl"
+
+// Whether no caster can stand between this fragment and area light i's
+// disk: the cone from the point to the disk, which holds all of its rays,
+// meets no leaf's box of the casters' hierarchy (a sun's disk as seen at
+// the ray's end, its tangent of angular radius u_light_size).
+bool map_light_cone_clear(int i) {
+    vec4 centre = lights_position[i];
+    if (centre.w == 0.0) {
+        float reach = length(v_position) + u_bvh_reach;
+        return bvh_cone_clear(v_position, -lights_direction[i].xyz * reach, 1.0, reach * u_light_size[i]);
+    }
+    return bvh_cone_clear(v_position, centre.xyz - v_position, 1.0, u_light_area[i].x);
+}
+
 #include "map_2d.glsl"
 #include "map_cube.glsl"
 #include "map_array.glsl"

@@ -80,16 +80,21 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, int texel_kind, bool
         map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
     bool needed = unshadowed != vec3(0.0) || map_show_texel_size;
     map_penumbra_estimate = MAP_NO_PENUMBRA;
-    // Rays (map.h, "Rays"): a hard light where the kernel's taps disagree,
-    // or at every pixel without reading the map, gets one shadow ray.
+    // Rays (map.h, "Rays"): where the map's filter is unsure (strictly
+    // between 0 and 1), or at every pixel without reading the map, shadow
+    // rays decide, as the reference's (which needs no horizon's share).
     bool lit = unshadowed != vec3(0.0);
     float visibility = map_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
                                              soft, moments, texel, needed && map_rays != MAP_RAYS_ALL);
-    bool unsure = !soft && lit && visibility > 0.0 && visibility < 1.0;
-    bool traced = !soft && lit && (map_rays == MAP_RAYS_ALL || (map_rays == MAP_RAYS_UNSURE && unsure));
+    // PCSS's search taps can miss a thin caster: an area light's pixel
+    // it calls lit is sure only where no caster's box is near its cone.
+    bool unsure = lit && visibility > 0.0 && visibility < 1.0;
+    if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
+        unsure = !map_light_cone_clear(i);
+    bool traced = lit && (map_rays == MAP_RAYS_ALL || (map_rays == MAP_RAYS_UNSURE && unsure));
     if (traced)
-        visibility = map_ray_visibility(i);
-    if (soft)
+        visibility = map_ray_visibility(i, soft);
+    else if (soft)
         visibility *= map_horizon_share(i, normalize(map_face_normal), to_light, v_position);
     vec3 c = visibility * unshadowed;
     if (map_show_unsure && (unsure || traced))

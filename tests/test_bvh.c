@@ -1,8 +1,10 @@
 /* The ray hierarchy (common/data/bvh.h): on real models every ray gets
  * the answer of the same triangle test run on every triangle (the
- * hierarchy only skips), no ray slips through the shared diagonal of a
- * box's face (the test is watertight), paths stay within the GPU's stack
- * on a degenerate pile, and a scene without casters blocks nothing. */
+ * hierarchy only skips), a cone called clear lets every ray inside it
+ * through (the test is conservative), no ray slips through the shared
+ * diagonal of a box's face (the test is watertight), paths stay within
+ * the GPU's stack on a degenerate pile, and a scene without casters
+ * blocks nothing. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,6 +21,10 @@
 
 /* Random rays per scene, against the flat list. */
 #define TEST_BVH_RAYS 20000
+/* Random cones on the bunny, and rays checked inside each one called
+ * clear. */
+#define TEST_BVH_CONES 2000
+#define TEST_BVH_CONE_RAYS 64
 /* Points along each face diagonal aimed at, and origins per point. */
 #define TEST_BVH_DIAGONAL_POINTS 64
 #define TEST_BVH_ORIGINS 4
@@ -93,6 +99,50 @@ static void test_bunny_agrees_with_every_triangle(void **state) {
 static void test_teapot_agrees_with_every_triangle(void **state) {
     (void)state;
     test_bvh_agrees_with_flat("assets/scenes/teapot.json");
+}
+
+/* A cone called clear has no caster on any ray from its apex to its end
+ * disk (any point within end_radius of the segment's end, here points of
+ * the ball of that radius about it, which hold the disk); and the test
+ * calls some cones clear and some not. */
+static void test_clear_cones_let_every_ray_through(void **state) {
+    (void)state;
+    scene s;
+    assert_true(scene_load(&s, "assets/scenes/bunny.json"));
+    bvh b;
+    assert_true(bvh_build(&s, "bunny", &b));
+    float lo[3], hi[3], size = 0;
+    for (int k = 0; k < 3; k++) {
+        lo[k] = b.nodes[0][0][k];
+        hi[k] = b.nodes[0][1][k];
+        size = fmaxf(size, hi[k] - lo[k]);
+    }
+    uint32_t counter = 11;
+    int clear = 0;
+    for (int c = 0; c < TEST_BVH_CONES; c++) {
+        float origin[3], end[3], dir[3];
+        for (int k = 0; k < 3; k++) {
+            float centre = 0.5f * (lo[k] + hi[k]);
+            origin[k] = centre + size * (2 * test_bvh_unit(&counter) - 1);
+            end[k] = centre + 2 * size * (2 * test_bvh_unit(&counter) - 1);
+            dir[k] = end[k] - origin[k];
+        }
+        float radius = 0.2f * size * test_bvh_unit(&counter);
+        if (!bvh_cone_clear(&b, origin, dir, 1, radius))
+            continue;
+        clear++;
+        for (int r = 0; r < TEST_BVH_CONE_RAYS; r++) {
+            float target[3], to[3];
+            for (int k = 0; k < 3; k++) {
+                target[k] = end[k] + radius * (2 * test_bvh_unit(&counter) - 1) / sqrtf(3.0f);
+                to[k] = target[k] - origin[k];
+            }
+            assert_false(bvh_occluded(&b, origin, to, 1));
+        }
+    }
+    assert_true(clear > TEST_BVH_CONES / 20 && clear < TEST_BVH_CONES - TEST_BVH_CONES / 20);
+    bvh_free(&b);
+    scene_free(&s);
 }
 
 /* The world position of vertex v of object o. */
@@ -210,6 +260,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bunny_agrees_with_every_triangle),
         cmocka_unit_test(test_teapot_agrees_with_every_triangle),
+        cmocka_unit_test(test_clear_cones_let_every_ray_through),
         cmocka_unit_test(test_face_diagonals_block),
         cmocka_unit_test(test_pile_stays_within_the_stack),
         cmocka_unit_test(test_no_casters_block_nothing),

@@ -1,9 +1,12 @@
-/* The hybrid (demos/hybrid.c) against the ray-traced reference, on the
- * standard scenes, long_view, the street and a real model's: the map's
- * sure pixels are right (no pixel it decides alone disagrees with the
- * reference), the rays make the picture exact where the map alone is not,
- * and --rays all, every pixel traced, is the reference's picture. Each
- * case prints its figures. */
+/* The hybrid (demos/hybrid.c) against the ray-traced reference. Hard
+ * lights, on the standard scenes, long_view, the street and a real
+ * model's: the map's sure pixels are right (no pixel it decides alone
+ * disagrees with the reference), the rays make the picture exact where the
+ * map alone is not, and --rays all, every pixel traced, is the reference's
+ * picture. Area lights, on the soft scenes and two real models under a
+ * point light and a sun (tests/data/hybrid_soft_*.json): each class of
+ * pixels within the goals, the rays taking the reference's own samples.
+ * Each case prints its figures. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,7 +15,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "map.h"
+#include "raytrace.h"
 #include "support.h"
+
+_Static_assert(MAP_RAY_DEFAULT_SAMPLES == RAYTRACE_DEFAULT_LIGHT_SAMPLES,
+               "the hybrid's area-light rays are the reference's samples");
 
 /* The goals: at most this share of the compared pixels misclassified,
  * with rays where the map is unsure, and with a ray at every pixel (the
@@ -20,6 +28,16 @@
  * apart). */
 #define HYBRID_MAX_PERCENT 0.01
 #define HYBRID_ALL_MAX_PERCENT 0.002
+
+/* The area lights' goals: the mean |error| of the penumbra's pixels, and
+ * of the umbra's and the lit ones' (the reference's own noise is about
+ * half the first). */
+#define HYBRID_MAX_PENUMBRA_MAE 0.01
+#define HYBRID_MAX_UMBRA_LIT_MAE 0.002
+
+static const char *const hybrid_soft_scenes[] = {"assets/scenes/soft_table.json", "assets/scenes/soft_sun.json",
+                                                 "tests/data/hybrid_soft_wuson.json",
+                                                 "tests/data/hybrid_soft_spider.json"};
 
 /* Hard lights of every kind, and scenes no setting was tuned on. */
 static const char *const hybrid_scenes[] = {"simple", "bunny", "teapot", "long_view", "street", "wuson"};
@@ -93,8 +111,31 @@ static void test_rays_everywhere_are_the_reference(void **state) {
     hybrid_expect_within("--rays all", "all", HYBRID_ALL_MAX_PERCENT);
 }
 
+static void test_area_lights_within_the_goals(void **state) {
+    (void)state;
+    for (size_t s = 0; s < sizeof hybrid_soft_scenes / sizeof *hybrid_soft_scenes; s++) {
+        char name[64];
+        snprintf(name, sizeof name, "soft_%zu", s);
+        dump_frame reference, test;
+        unsigned char *heatmap;
+        shadowdiff_result r =
+            support_measure_dumps("hybrid", hybrid_soft_scenes[s], "", "", name, &reference, &test, &heatmap);
+        free(heatmap);
+        fprintf(stderr, "    %-36s penumbra MAE %.4f (%ld pixels), umbra %.4f, lit %.4f\n", hybrid_soft_scenes[s],
+                r.class_mae[SHADOWDIFF_CLASS_PENUMBRA], r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA],
+                r.class_mae[SHADOWDIFF_CLASS_UMBRA], r.class_mae[SHADOWDIFF_CLASS_LIT]);
+        assert_true(r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA] > 0);
+        assert_true(r.class_mae[SHADOWDIFF_CLASS_PENUMBRA] <= HYBRID_MAX_PENUMBRA_MAE);
+        assert_true(r.class_mae[SHADOWDIFF_CLASS_UMBRA] <= HYBRID_MAX_UMBRA_LIT_MAE);
+        assert_true(r.class_mae[SHADOWDIFF_CLASS_LIT] <= HYBRID_MAX_UMBRA_LIT_MAE);
+        dump_frame_free(&reference);
+        dump_frame_free(&test);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_area_lights_within_the_goals),
         cmocka_unit_test(test_sure_pixels_agree_with_the_reference),
         cmocka_unit_test(test_rays_where_unsure_are_exact),
         cmocka_unit_test(test_rays_everywhere_are_the_reference),

@@ -298,6 +298,46 @@ static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4]) {
     return det > 0 ? t > 0 && t < r->t_max * det : t < 0 && t > r->t_max * det;
 }
 
+/* Whether the segment meets the box lo..hi grown by the cone's radius
+ * where the segment crosses it: first grown by its widest, end_radius,
+ * which bounds where it may cross; then by the radius at the far end of
+ * that crossing, which bounds the cone's over it. */
+static bool bvh_cone_box(const bvh_ray *r, const float lo[4], const float hi[4], float end_radius) {
+    float near = 0, far = r->t_max;
+    for (int pass = 0; pass < 2 && near <= far; pass++) {
+        float grow = pass == 0 ? end_radius : end_radius * fminf(far / r->t_max, 1.0f);
+        near = 0;
+        far = r->t_max;
+        for (int k = 0; k < 3; k++) {
+            float t0 = (lo[k] - grow - r->origin[k]) * r->inverse[k],
+                  t1 = (hi[k] + grow - r->origin[k]) * r->inverse[k];
+            near = fmaxf(near, fminf(t0, t1));
+            far = fminf(far, fmaxf(t0, t1) * BVH_FAR_WIDENING);
+        }
+    }
+    return near <= far;
+}
+
+bool bvh_cone_clear(const bvh *b, const float origin[3], const float dir[3], float t_max, float end_radius) {
+    if (b->node_count == 0)
+        return true;
+    bvh_ray r = bvh_ray_make(origin, dir, t_max);
+    int stack[BVH_MAX_DEPTH], top = 0, node = 0;
+    for (;;) {
+        const float(*n)[4] = b->nodes[node];
+        if (bvh_cone_box(&r, n[0], n[1], end_radius)) {
+            if (n[1][3] > 0)
+                return false;
+            stack[top++] = (int)n[0][3];
+            node++;
+            continue;
+        }
+        if (top == 0)
+            return true;
+        node = stack[--top];
+    }
+}
+
 bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max) {
     if (b->node_count == 0)
         return false;

@@ -67,5 +67,12 @@ void bvh_free(bvh *b);
  * than the surface the ray leaves (BVH_SURFACE_ULPS). The same tests, in
  * the same order of operations, as the shader's. */
 bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max);
+/* Whether no caster can meet the cone from origin along the segment
+ * origin + t dir, 0 < t < t_max, whose radius grows linearly from 0 to
+ * end_radius at t_max (every ray from a point to an area light's disk
+ * facing it lies in it): no leaf's box, grown by the cone's radius where
+ * the segment crosses it, meets the segment. Conservative: false where a
+ * box is merely near. The same tests as the shader's. */
+bool bvh_cone_clear(const bvh *b, const float origin[3], const float dir[3], float t_max, float end_radius);
 
 #endif

@@ -8,6 +8,7 @@
 
 #include "context.h"
 #include "depth.h"
+#include "area_light.h"
 #include "map_internal.h"
 #include "mesh_point.h"
 #include "shading.h"
@@ -71,6 +72,7 @@ static const shader_define map_defines[] = {SHADER_DEFINE(MAP_KERNEL_SINGLE),
                                             SHADER_DEFINE(MAP_RAYS_OFF),
                                             SHADER_DEFINE(MAP_RAYS_UNSURE),
                                             SHADER_DEFINE(MAP_RAYS_ALL),
+                                            SHADER_DEFINE(MAP_RAY_FIRST_SAMPLES),
                                             BVH_GPU_DEFINES,
                                             {NULL, 0}};
 
@@ -409,6 +411,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {&p->constant_bias, "u_constant_bias"}, {&p->normal_offset, "u_normal_offset"},
         {&p->depth_bias, "u_depth_bias"},       {&p->closed_outside, "u_closed_outside"},
         {&p->view_depth, "u_view_depth"},       {&p->cascade_blend, "u_cascade_blend"},
+        {&p->ray_samples, "u_ray_samples"},     {&p->frame, "u_frame"},
     };
     map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on a unit, those of lights without a map too: an
@@ -434,6 +437,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         p->lights[l].light_matrix = map_light_uniform(id, "u_light_matrix", l);
         p->lights[l].light_inverse = map_light_uniform(id, "u_light_inverse", l);
         p->lights[l].light_size = map_light_uniform(id, "u_light_size", l);
+        p->lights[l].light_area = map_light_uniform(id, "u_light_area", l);
         p->lights[l].texel_scale = map_light_uniform(id, "u_texel_scale", l);
         p->lights[l].near_plane = map_light_uniform(id, "u_near", l);
         p->lights[l].far_plane = map_light_uniform(id, "u_far", l);
@@ -702,6 +706,10 @@ static void map_bind_soft(const map_renderer *r, const map_camera_program *p, co
     mat4 inverse;
     glm_mat4_inv((vec4 *)m->layer_view_projection[0], inverse);
     glUniformMatrix4fv(p->lights[l].light_inverse, 1, GL_FALSE, (const float *)inverse);
+    /* The rays' disk: area_light.h's radius and a sun's cap. */
+    area_light_frame disk;
+    area_light_frame_for(light, (const float[4]){0, 0, 0, 1}, (const float[3]){0, 0, 1}, &disk);
+    glUniform2f(p->lights[l].light_area, disk.radius, disk.cap);
 }
 
 /* Key k without the lights of `lights` (SCENE_LIGHT_BIT). */
@@ -724,8 +732,11 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
                            const map_camera_program *p) {
     const map_camera_key *k = &p->key;
     render_program_use(&p->program, f->view);
-    if (k->rays != MAP_RAYS_OFF)
+    if (k->rays != MAP_RAYS_OFF) {
         bvh_gpu_bind(r->casters, p->program.id, MAP_RAY_UNIT);
+        glUniform1i(p->ray_samples, st->ray_samples ? st->ray_samples : MAP_RAY_DEFAULT_SAMPLES);
+        glUniform4i(p->frame, r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
+    }
     glUniform1f(p->constant_bias, st->no_constant_bias ? 0 : map_setting(st->constant_texels, MAP_CONSTANT_TEXELS));
     glUniform1f(p->normal_offset, st->normal_texels);
     glUniform2f(p->depth_bias, st->depth_bias_slope, st->depth_bias_min);

@@ -163,7 +163,8 @@ typedef struct map_settings {
     bool array_overlays;
     /* Not flags: the shadow rays (see "Rays" below; demos/hybrid.c sets
      * them), and its overlay list goes on with MAP_RAYS_OVERLAY_NAMES. */
-    int rays; /* map_rays */
+    int rays;        /* map_rays */
+    int ray_samples; /* an area light's rays per pixel; 0: MAP_RAY_DEFAULT_SAMPLES */
     bool ray_overlays;
 } map_settings;
 
@@ -220,20 +221,32 @@ enum { MAP_OVERLAY_CASCADES = MAP_OVERLAY_COUNT };
 enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
 #define MAP_SHOWS_UNSURE(st) ((st)->ray_overlays && (st)->overlay == MAP_OVERLAY_UNSURE)
 
-/* Rays (demos/hybrid.c). With rays, the camera pass decides a hard light
- * at a pixel by one shadow ray from the visible point itself to the light
- * (shaders/bvh_trace.glsl, against the casters' triangles that
+/* Rays (demos/hybrid.c). With rays, the camera pass decides a light at a
+ * pixel by shadow rays from the visible point itself (shaders/map.frag's
+ * map_ray_visibility, bvh_trace.glsl, against the casters' triangles that
  * map_trace_with gave: a triangle whose plane passes within
- * BVH_SURFACE_ULPS of the point is the surface it leaves), exact as the
- * reference's: at every pixel (MAP_RAYS_ALL, a plain ray tracer), or only
- * where the map is unsure (MAP_RAYS_UNSURE), where the kernel's taps
- * disagree (its visibility strictly between 0 and 1: a shadow's edge,
- * within the kernel's reach). Where every tap agrees the map decides: with
- * rays the kernel reads every tap, as if with --no-early-out (four rim
- * taps agreeing prove nothing of the rest: on a real model such pixels
- * were wrong). Area lights keep the map's soft filter. MAP_RAYS_OFF is
- * the map alone, early-out and all. */
+ * BVH_SURFACE_ULPS of the point is the surface it leaves), as the
+ * reference does: a hard light by one ray to its centre, exact; an area
+ * light by the reference's own samples for that pixel
+ * (shaders/area_light.glsl, area_light.h's points: ray_samples of them,
+ * the reference's count by default), in area_light_progressive_index's
+ * order, stopped after MAP_RAY_FIRST_SAMPLES where those all agree (the
+ * pixel is then taken as wholly lit or in umbra). At every pixel
+ * (MAP_RAYS_ALL, a plain ray tracer), or only where the map is unsure
+ * (MAP_RAYS_UNSURE): where its filter, the kernel or PCSS, gives a
+ * visibility strictly between 0 and 1 (a shadow's edge within the
+ * kernel's reach; a blocker found but the light not wholly hidden).
+ * Where the filter says 0 or 1 the map decides: with rays the kernel reads
+ * every tap, as if with --no-early-out (four rim taps agreeing prove
+ * nothing of the rest: on a real model such pixels were wrong).
+ * MAP_RAYS_OFF is the map alone, early-out and all. */
 typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
+/* The reference's samples of an area light per pixel
+ * (RAYTRACE_DEFAULT_LIGHT_SAMPLES: test_hybrid checks they agree), a
+ * power of 4, so that every first 4^i samples cover the disk evenly; and
+ * the samples after which a pixel whose rays all agree stops. */
+#define MAP_RAY_DEFAULT_SAMPLES 256
+#define MAP_RAY_FIRST_SAMPLES 64
 
 /* The map inset. Light 0's map is reduced on the GPU
  * (shaders/overlay_reduce.frag) to blocks of texels, a block to at most

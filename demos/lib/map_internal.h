@@ -114,9 +114,10 @@ typedef struct map_camera_key {
 typedef struct map_camera_program {
     render_program program;
     map_camera_key key;
-    int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend;
+    int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend, ray_samples, frame;
     struct {
-        int map_size, light_matrix, light_inverse, light_size, texel_scale, near_plane, far_plane, cascade_count;
+        int map_size, light_matrix, light_inverse, light_size, light_area, texel_scale, near_plane, far_plane,
+            cascade_count;
         int cascade_scale, cascade_offset; /* the light's first layer's element */
     } lights[SCENE_MAX_LIGHTS];
 } map_camera_program;
