@@ -238,7 +238,8 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * kernel's reach; a blocker found but the light not wholly hidden).
  * Where the filter says 0 or 1 the map decides: with rays the kernel reads
  * every tap, as if with --no-early-out (four rim taps agreeing prove
- * nothing of the rest: on a real model such pixels were wrong).
+ * nothing of the rest: test_hybrid's sure pixels on wuson need all of
+ * them).
  * MAP_RAYS_OFF is the map alone, early-out and all. */
 typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
 /* The reference's samples of an area light per pixel
