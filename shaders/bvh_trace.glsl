@@ -21,6 +21,12 @@ vec4 bvh_texel(int k) { return texelFetch(u_bvh, ivec2(k % BVH_GPU_TEXTURE_WIDTH
 // in some drivers' eyes; a select is safe everywhere).
 float bvh_component(vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
 
+// 1 / dir, a zero component taken as BVH_TINY_DIRECTION of its sign.
+vec3 bvh_inverse(vec3 dir) {
+    vec3 tiny = BVH_TINY_DIRECTION * mix(vec3(1.0), sign(dir), notEqual(dir, vec3(0.0)));
+    return 1.0 / mix(dir, tiny, lessThan(abs(dir), vec3(BVH_TINY_DIRECTION)));
+}
+
 // Whether the segment meets the box lo..hi grown by the cone's radius
 // where the segment crosses it (common/data/bvh.c's bvh_cone_box).
 bool bvh_cone_box(vec3 origin, vec3 inverse, float t_max, vec3 lo, vec3 hi, float end_radius) {
@@ -41,8 +47,7 @@ bool bvh_cone_box(vec3 origin, vec3 inverse, float t_max, vec3 lo, vec3 hi, floa
 bool bvh_cone_clear(vec3 origin, vec3 dir, float t_max, float end_radius) {
     if (u_bvh_node_count == 0)
         return true;
-    vec3 tiny = BVH_TINY_DIRECTION * mix(vec3(1.0), sign(dir), notEqual(dir, vec3(0.0)));
-    vec3 inverse = 1.0 / mix(dir, tiny, lessThan(abs(dir), vec3(BVH_TINY_DIRECTION)));
+    vec3 inverse = bvh_inverse(dir);
     int stack[BVH_MAX_DEPTH];
     int top = 0, node = 0;
     for (;;) {
@@ -66,8 +71,7 @@ bool bvh_cone_clear(vec3 origin, vec3 dir, float t_max, float end_radius) {
 bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {
     if (u_bvh_node_count == 0)
         return false;
-    vec3 tiny = BVH_TINY_DIRECTION * mix(vec3(1.0), sign(dir), notEqual(dir, vec3(0.0)));
-    vec3 inverse = 1.0 / mix(dir, tiny, lessThan(abs(dir), vec3(BVH_TINY_DIRECTION)));
+    vec3 inverse = bvh_inverse(dir);
     // Woop et al.'s shear: kz the largest axis, kx and ky the others,
     // swapped where dir[kz] < 0 to keep the winding.
     vec3 a = abs(dir);
