@@ -21,8 +21,10 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
         fprintf(stderr, "%s: out of memory for the ray texture of %d triangles\n", who, b->triangle_count);
         return false;
     }
-    memcpy(data, b->nodes, (size_t)b->node_count * sizeof *b->nodes);
-    memcpy(data + 2 * b->node_count, b->triangles, (size_t)b->triangle_count * sizeof *b->triangles);
+    if (b->node_count > 0) { /* a scene without casters has no arrays */
+        memcpy(data, b->nodes, (size_t)b->node_count * sizeof *b->nodes);
+        memcpy(data + 2 * b->node_count, b->triangles, (size_t)b->triangle_count * sizeof *b->triangles);
+    }
     if (!g->texture)
         glGenTextures(1, &g->texture);
     glBindTexture(GL_TEXTURE_2D, g->texture);
