@@ -145,11 +145,13 @@ static void test_clear_cones_let_every_ray_through(void **state) {
     scene_free(&s);
 }
 
-/* The world position of vertex v of object o. */
-static void test_bvh_world(const scene_object *o, uint32_t v, float out[3]) {
-    const float *p = o->mesh.vertices[v].position;
+/* Corner k of triangle t of object o in world space, as the hierarchy
+ * rounds it. */
+static void test_bvh_world(const scene_object *o, uint32_t t, int k, float out[3]) {
+    double corner[3];
+    scene_object_world_corner(o, t, k, corner);
     for (int row = 0; row < 3; row++)
-        out[row] = o->model[0][row] * p[0] + o->model[1][row] * p[1] + o->model[2][row] * p[2] + o->model[3][row];
+        out[row] = (float)corner[row];
 }
 
 /* Rays aimed at points of the diagonal that a box face's two triangles
@@ -178,18 +180,18 @@ static void test_face_diagonals_block(void **state) {
          * vertices. */
         for (uint32_t k = 0; k + 6 <= o->mesh.index_count; k += 6) {
             const uint32_t *first = &o->mesh.indices[k], *second = &o->mesh.indices[k + 3];
-            uint32_t shared[2];
+            int shared[2]; /* corners of the first triangle */
             int found = 0;
             for (int u = 0; u < 3; u++)
                 for (int v = 0; v < 3; v++)
                     if (first[u] == second[v] && found < 2)
-                        shared[found++] = first[u];
+                        shared[found++] = u;
             assert_int_equal(found, 2);
             float corner[3][3], p0[3], p1[3], e1[3], e2[3], normal[3];
             for (int v = 0; v < 3; v++)
-                test_bvh_world(o, first[v], corner[v]);
-            test_bvh_world(o, shared[0], p0);
-            test_bvh_world(o, shared[1], p1);
+                test_bvh_world(o, k / 3, v, corner[v]);
+            glm_vec3_copy(corner[shared[0]], p0);
+            glm_vec3_copy(corner[shared[1]], p1);
             glm_vec3_sub(corner[1], corner[0], e1);
             glm_vec3_sub(corner[2], corner[0], e2);
             glm_vec3_cross(e1, e2, normal);

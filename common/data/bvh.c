@@ -196,13 +196,13 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
     int t = 0;
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
-        for (uint32_t k = 0; o->casts && k < o->mesh.index_count; k += 3, t++) {
+        for (uint32_t k = 0; o->casts && k < o->mesh.index_count / 3; k++, t++) {
             bvh_triangle *tri = &b.triangles[t];
             for (int v = 0; v < 3; v++) {
-                const float *p = o->mesh.vertices[o->mesh.indices[k + (uint32_t)v]].position;
+                double corner[3];
+                scene_object_world_corner(o, k, v, corner);
                 for (int row = 0; row < 3; row++)
-                    tri->vertices[v][row] = o->model[0][row] * p[0] + o->model[1][row] * p[1] +
-                                            o->model[2][row] * p[2] + o->model[3][row];
+                    tri->vertices[v][row] = (float)corner[row];
             }
             for (int row = 0; row < 3; row++) {
                 tri->lo[row] = fminf(fminf(tri->vertices[0][row], tri->vertices[1][row]), tri->vertices[2][row]);

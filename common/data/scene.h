@@ -205,6 +205,10 @@ void scene_light_homogeneous(const scene_light *l, float out[4]);
  * keeps them perpendicular to the surface. Column-major (cglm mat3). */
 void scene_object_normal_matrix(const scene_object *o, float out[3][3]);
 
+/* Corner k (0..2) of triangle t of object o, in world space, in double:
+ * what needs a huge triangle's true extent or plane, or its float
+ * vertices rounded once (the ray hierarchy's). */
+void scene_object_world_corner(const scene_object *o, uint32_t t, int k, double out[3]);
 /* World-space bounds of one object's mesh under its model matrix. */
 void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]);
 /* The box of every receiving object's world bounds; empty (min > max)

@@ -102,19 +102,12 @@ int render_cull_view(render_scene *r, const camera_view *v, const render_skips *
     return count;
 }
 
-void render_world_corner(const scene_object *o, uint32_t t, int k, double out[3]) {
-    const float *p = o->mesh.vertices[o->mesh.indices[3 * t + (uint32_t)k]].position;
-    for (int row = 0; row < 3; row++)
-        out[row] = (double)o->model[0][row] * p[0] + (double)o->model[1][row] * p[1] +
-                   (double)o->model[2][row] * p[2] + (double)o->model[3][row];
-}
-
 static float render_longest_edge(const scene_object *o) {
     double longest = 0;
     for (uint32_t t = 0; t < o->mesh.index_count / 3; t++) {
         double v[3][3];
         for (int k = 0; k < 3; k++)
-            render_world_corner(o, t, k, v[k]);
+            scene_object_world_corner(o, t, k, v[k]);
         for (int k = 0; k < 3; k++) {
             const double *a = v[k], *b = v[(k + 1) % 3];
             longest = fmax(longest, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +

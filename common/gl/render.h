@@ -132,9 +132,6 @@ typedef struct render_skips {
 } render_skips;
 
 bool render_object_huge(const render_scene *r, int object, const float eye[3]);
-/* Corner k (0..2) of triangle t of object o, in world space, in double:
- * what needs a huge triangle's true extent or plane. */
-void render_world_corner(const scene_object *o, uint32_t t, int k, double out[3]);
 /* The uniforms of shaders/eye_ray.glsl in `program` (in use) for view v
  * and a framebuffer of width x height. */
 void render_eye_ray_uniforms(unsigned program, const camera_view *v, int width, int height);

@@ -110,7 +110,7 @@ static void volume_receivers_planes(const volume_receivers *r, const scene_objec
     for (uint32_t t = 0; t < triangles; t++) {
         double v[3][3], e1[3], e2[3], n[3];
         for (int k = 0; k < 3; k++)
-            render_world_corner(o, t, k, v[k]);
+            scene_object_world_corner(o, t, k, v[k]);
         for (int c = 0; c < 3; c++) {
             e1[c] = v[1][c] - v[0][c];
             e2[c] = v[2][c] - v[0][c];
