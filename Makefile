@@ -160,6 +160,9 @@ endif
 # ruler's figures (make report's "Soft shadows").
 # Then the scenes where what is hidden, not what is outside, is to skip:
 # the city across from its edge with unranged lamps, and the engines.
+# Then volumes' sweep with the eye in a shadow (z-fail's caps against ZP+'s
+# near-plane count): a slab's shadow with the light behind the eye and
+# ahead of it, a closed model's, an open one's under a sun.
 # Last, perspective shadow maps' sweep on its hard cases: the light in
 # front of the viewer and behind it, a caster behind the camera, a point
 # light far above the view and one among the receivers.
@@ -170,6 +173,8 @@ BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
 BENCH_SAMPLED := --technique planar --technique volumes
 BENCH_PSM_CASES := $(patsubst %,assets/scenes/%.json,long_view long_view_behind psm_caster_behind psm_point_high \
 	psm_point_low)
+BENCH_EYE_IN_SHADOW := assets/scenes/eye_in_shadow.json $(patsubst %,tests/data/vol_eye_in_%.json,shadow_light_ahead \
+	bunny_shadow wuson_shadow)
 QUICK_FLAG := $(if $(filter 1,$(QUICK)),--quick)
 bench: $(PROGRAMS)
 	$(BUILD)/bench $(QUICK_FLAG) --motion static --out out/bench/static
@@ -190,6 +195,8 @@ bench: $(PROGRAMS)
 		$(BENCH_HIDDEN)
 	$(BUILD)/bench $(QUICK_FLAG) --configs defaults --skips-compare --motion light --out out/bench/hidden-light \
 		$(BENCH_HIDDEN)
+	$(BUILD)/bench $(QUICK_FLAG) --technique volumes --motion static --out out/bench/eye-in-shadow \
+		$(BENCH_EYE_IN_SHADOW)
 	$(BUILD)/bench $(QUICK_FLAG) --technique psm --motion static --out out/bench/psm-cases $(BENCH_PSM_CASES)
 
 # Every case of build/stress's table, every technique configuration

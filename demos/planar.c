@@ -93,13 +93,6 @@ static const flags_param planar_params[] = {
      GLFW_KEY_L, FLAGS_CHOICE, .index = &planar.settings.light_samples, .choices = soft_visibility_sample_counts},
 };
 
-void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]) {
-    float d = glm_vec4_dot((float *)plane, (float *)light);
-    for (int col = 0; col < 4; col++)
-        for (int row = 0; row < 4; row++)
-            out[col][row] = (row == col ? d : 0.0f) - light[row] * plane[col];
-}
-
 void planar_receiver_plane(const scene_object *o, float plane[4]) {
     vec3 normal = {0, 1, 0}, origin;
     mat3 normal_matrix;
@@ -154,7 +147,7 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
                                 bool stenciled) {
     const scene *s = f->gpu->scene;
     mat4 shadow;
-    planar_shadow_matrix(plane, light, shadow);
+    frustum_plane_projection(plane, light, shadow);
     render_program_use(&planar.flatten, f->view);
     glUniformMatrix4fv(planar.shadow, 1, GL_FALSE, (const float *)shadow);
     glUniform4fv(planar.plane, 1, plane);

@@ -1,6 +1,6 @@
 /* planar: planar projected shadows (see planar.c). Exposed for its tests:
- * the shadow matrix, the receiver's plane equation and which casters cast
- * nothing on it. */
+ * the receiver's plane equation and which casters cast nothing on it (the
+ * shadow matrix is frustum_plane_projection). */
 #ifndef PLANAR_H
 #define PLANAR_H
 
@@ -14,9 +14,6 @@ typedef struct planar_settings {
     int light_samples; /* choice: soft_visibility_sample_counts; the first (1) draws an area light hard */
 } planar_settings;
 
-/* S = (P.L) I - L P^T, column-major: S v lies on the plane P, on the line
- * through v and the homogeneous light L. */
-void planar_shadow_matrix(const float plane[4], const float light[4], float out[4][4]);
 /* World plane (unit normal, d) of a "plane" mesh object: its local +Y. */
 void planar_receiver_plane(const scene_object *o, float plane[4]);
 /* No part of object o lies on the light's side of the plane (oriented

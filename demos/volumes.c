@@ -29,7 +29,10 @@
  * --mode auto (default) takes z-pass where volume_mesh_zpass_safe says a
  * volume cannot reach the near-plane rectangle, z-fail elsewhere;
  * eye-count starts z-pass from the volumes that hold the eye
- * (volume_mesh_count_at), exact only under depth clamp.
+ * (volume_mesh_count_at), exact only under depth clamp; zp-plus (ZP+,
+ * Hornus et al. 2005) from each pixel's count on the near plane, the
+ * casters drawn onto it from the light (demos/lib/volume_near.h), exact
+ * with the volumes clipped there.
  *
  * The options, each a flag and a key, are volumes_params. How each
  * caster's volume is drawn, kept or streamed, is demos/lib/volume_draw.h's;
@@ -74,7 +77,8 @@ typedef struct volumes_settings {
     int counter;          /* choice: volumes_counters */
 } volumes_settings;
 
-static const char *const volumes_modes[] = {"auto", "zpass", "zfail", "eye-count", NULL}; /* volume_plan_mode's */
+/* volume_plan_mode's */
+static const char *const volumes_modes[] = {"auto", "zpass", "zfail", "eye-count", "zp-plus", NULL};
 static const char *const volumes_silhouettes[] = {"cpu", "gpu", NULL};
 static const char *const volumes_overlays[] = {"none", "volumes", "silhouettes", "counts",
                                                NULL}; /* volume_overlay_kind's */
@@ -108,7 +112,8 @@ static struct {
 static const flags_param volumes_params[] = {
     {"mode",
      "z-pass (no caps) where safe, else z-fail (caps); or force one; or z-pass from the count of the volumes that "
-     "hold the eye, found on the CPU",
+     "hold the eye, found on the CPU; or ZP+: z-pass from each pixel's count on the near plane, drawn from the "
+     "light (depth clamp off)",
      GLFW_KEY_Z, FLAGS_CHOICE, .index = &volumes.settings.mode, .choices = volumes_modes},
     {"silhouette", "where silhouettes are found: the CPU edge table or a geometry shader", GLFW_KEY_G, FLAGS_CHOICE,
      .index = &volumes.settings.silhouette, .choices = volumes_silhouettes},
@@ -389,6 +394,8 @@ static void volumes_describe(char *out, size_t size) {
     int n = snprintf(out, size, "light 0: %d casters z-pass, %d z-fail", c->zpass, c->zfail);
     if (n > 0 && (size_t)n < size && volumes.settings.mode == VOLUME_PLAN_EYE_COUNT)
         n += snprintf(out + n, size - (size_t)n, ", from the eye inside %d", c->eye);
+    if (n > 0 && (size_t)n < size && volumes.settings.mode == VOLUME_PLAN_ZP_PLUS)
+        n += snprintf(out + n, size - (size_t)n, ", %d from the near plane's count", c->near_counted);
     if (n > 0 && (size_t)n < size)
         n += snprintf(out + n, size - (size_t)n, "; volumes built %d, kept %d; all lights' kept %.1f MiB",
                       volumes.built_count, volumes.reused_count, (double)volumes.draw.cache_bytes / VOLUME_DRAW_MIB);
@@ -417,6 +424,7 @@ static const char *const volumes_bench_configs[] = {
     "",
     "--mode zpass",
     "--mode zfail",
+    "--mode zp-plus",
     "--silhouette gpu",
     "--mode zfail --silhouette gpu",
     "--extrude reach",

@@ -13,6 +13,7 @@
 #include <cglm/cglm.h>
 #include "camera.h"
 #include "dump.h"
+#include "frustum.h"
 #include "image.h"
 #include "planar.h"
 #include "shadowdiff.h"
@@ -24,7 +25,7 @@
 static void shadow_point(const float plane[4], const float light[4], const float v[3], float out[3]) {
     mat4 s;
     vec4 p = {v[0], v[1], v[2], 1}, q;
-    planar_shadow_matrix(plane, light, s);
+    frustum_plane_projection(plane, light, s);
     glm_mat4_mulv(s, p, q);
     assert_true(fabsf(q[3]) > 1e-6f);
     glm_vec3_scale(q, 1.0f / q[3], out);

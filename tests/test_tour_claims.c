@@ -206,8 +206,9 @@ static const claim claims[] = {
      CLAIM_LIGHTER_ON_SHADOW,
      10000,
      "and shadow lost"},
-    {"volumes", 10, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "z-fail: exact"},
-    {"volumes", 11, STEP, {"volumes", ""}, CLAIM_LIGHTER_ON_SHADOW, 3000, "8 bits wrap: under 256 slabs, lit"},
+    {"volumes", 10, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "ZP+: exact"},
+    {"volumes", 11, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "z-fail: exact"},
+    {"volumes", 12, STEP, {"volumes", ""}, CLAIM_LIGHTER_ON_SHADOW, 3000, "8 bits wrap: under 256 slabs, lit"},
 };
 enum { CLAIM_COUNT = sizeof claims / sizeof *claims };
 

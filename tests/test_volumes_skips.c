@@ -62,8 +62,9 @@ static void test_depth_bounds(void **state) {
 }
 
 /* Forced z-fail (caps kept and reused), forced z-pass, the eye's count
- * (also with the eye in a shadow and the camera moving) and the geometry
- * shader's silhouettes, the light moving. */
+ * and ZP+'s near-plane count (each also with the eye in a shadow and the
+ * camera moving) and the geometry shader's silhouettes, the light
+ * moving. */
 static void test_city_every_mode(void **state) {
     (void)state;
     assert_same_with_and_without(CITY, "light", "--mode zfail", "--no-skip", "city_zfail");
@@ -72,6 +73,9 @@ static void test_city_every_mode(void **state) {
     assert_same_with_and_without(CITY, "light", "--mode eye-count", "--no-skip", "city_eye_count");
     assert_same_with_and_without("assets/scenes/eye_in_shadow.json", "camera", "--mode eye-count", "--no-skip",
                                  "eye_in_shadow");
+    assert_same_with_and_without(CITY, "light", "--mode zp-plus", "--no-skip", "city_zp_plus");
+    assert_same_with_and_without("assets/scenes/eye_in_shadow.json", "camera", "--mode zp-plus", "--no-skip",
+                                 "eye_in_shadow_zp_plus");
 }
 
 static void test_bunny_and_teapot(void **state) {

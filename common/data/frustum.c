@@ -2,6 +2,18 @@
 
 #include <math.h>
 
+void frustum_plane_projection(const float plane[4], const float point[4], float out[4][4]) {
+    float d = glm_vec4_dot((float *)plane, (float *)point);
+    for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++)
+            out[col][row] = (row == col ? d : 0.0f) - point[row] * plane[col];
+}
+
+void frustum_near_plane(const mat4 view_projection, float out[4]) {
+    for (int k = 0; k < 4; k++)
+        out[k] = view_projection[k][2] + view_projection[k][3];
+}
+
 void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]) {
     for (int c = 0; c < 8; c++)
         glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, out[c]);

@@ -23,6 +23,17 @@
 /* |direction.y| above this: "up" for a view along it is +x instead of +y. */
 #define FRUSTUM_NEARLY_VERTICAL 0.99f
 
+/* The central projection from `point` (homogeneous; w = 0: a direction,
+ * a parallel projection) onto `plane` (a x + b y + c z + d = 0), as a
+ * matrix, column-major: S = (plane . point) I - point plane^T. S v lies on
+ * the plane and on the line through v and the point; its w, (plane .
+ * point) v.w - point.w (plane . v), has the sign of (plane . point) while
+ * v lies nearer the plane than the point, on the point's side or beyond
+ * the plane. Blinn's planar shadows (1988), and ZP+'s near-plane count. */
+void frustum_plane_projection(const float plane[4], const float point[4], float out[4][4]);
+/* The camera's near plane of `view_projection` (world; GL's clip z >= -w),
+ * positive in front of it: the plane row 2 + row 3, not normalised. */
+void frustum_near_plane(const mat4 view_projection, float out[4]);
 /* Corners of the box lo..hi. */
 void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]);
 /* Corners of the frustum of `view_projection`. A camera's are in its

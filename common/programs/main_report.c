@@ -122,6 +122,7 @@ static report_run report_runs[] = {
     {.name = "hidden", .dir = "hidden"},
     {.name = "hidden-light", .dir = "hidden-light"},
     {.name = "psm-cases", .dir = "psm-cases"},
+    {.name = "eye-in-shadow", .dir = "eye-in-shadow"},
 };
 #define REPORT_RUN_COUNT ((int)(sizeof report_runs / sizeof *report_runs))
 
@@ -209,6 +210,13 @@ static const report_table report_tables[] = {
      NULL,
      {"--warp uniform", "", "--warp lispsm"},
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_ERRORS, REPORT_RATIO}},
+    {"Volumes with the eye in a shadow: z-fail's caps against ZP+'s near-plane count",
+     "eye-in-shadow",
+     NULL,
+     {"volumes"},
+     NULL,
+     {"", "--mode zfail", "--mode zp-plus", "--mode eye-count"},
+     {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
     {"Cascaded shadow maps",
      "static",
      NULL,

@@ -5,13 +5,17 @@
 
 #include "depth.h"
 #include "volume_bounds.h"
+#include "volume_mesh.h"
 
 bool volume_counter_init(volume_counter *c, volume_draw *draw, int object_count) {
     *c = (volume_counter){.draw = draw};
-    return volume_wide_init(&c->wide, object_count);
+    return volume_wide_init(&c->wide, object_count) && volume_near_init(&c->near);
 }
 
-void volume_counter_destroy(volume_counter *c) { volume_wide_destroy(&c->wide); }
+void volume_counter_destroy(volume_counter *c) {
+    volume_wide_destroy(&c->wide);
+    volume_near_destroy(&c->near);
+}
 
 void volume_counter_clear(volume_counter *c, const technique_frame *f, const volume_plan *plan) {
     const int *rect = plan->bounds.rect;
@@ -55,6 +59,38 @@ static void volume_counter_caster_ops(volume_counter *c, const technique_frame *
         volume_wide_caster(&c->wide, c->draw, f->view, zfail);
 }
 
+/* Caster k's own bounds on, where narrowed: whether they are not empty
+ * (the caller sets the plan's back after). */
+static bool volume_counter_narrow(const volume_plan_caster *k) {
+    if (!k->narrowed)
+        return true;
+    volume_bounds_use(&k->bounds);
+    return k->bounds.rect[2] > 0 && k->bounds.rect[3] > 0;
+}
+
+/* ZP+: the count on the near plane of the casters that take it
+ * (volume_near.h), each within its bounds. */
+static int volume_counter_near(volume_counter *c, const technique_frame *f, const volume_plan *plan) {
+    const scene *s = f->gpu->scene;
+    int near = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        const volume_plan_caster *k = &plan->casters[i];
+        if (!k->needed || !k->near)
+            continue;
+        near++;
+        if (volume_counter_narrow(k)) {
+            const scene_object *o = &s->objects[i];
+            float light[4];
+            mesh_point_to_object(o->model, plan->position, light);
+            bool closed = volume_mesh_closed_rule(&o->mesh, &c->draw->edges[i], light);
+            volume_near_caster(&c->near, f, i, plan->position, plan->near_plane, closed, c->counting_wide);
+        }
+        if (k->narrowed)
+            volume_bounds_use(&plan->bounds);
+    }
+    return near;
+}
+
 void volume_counter_draw(volume_counter *c, const technique_frame *f, const volume_plan *plan) {
     const scene *s = f->gpu->scene;
     int zpass = 0, zfail = 0;
@@ -62,12 +98,14 @@ void volume_counter_draw(volume_counter *c, const technique_frame *f, const volu
         glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
         glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
     }
-    depth_clamp(!c->settings.no_depth_clamp);
-    glDisable(GL_CULL_FACE);
+    /* ZP+ counts from the near plane: the faces before it are clipped. */
+    depth_clamp(!c->settings.no_depth_clamp && c->settings.mode != VOLUME_PLAN_ZP_PLUS);
     glColorMask(c->counting_wide, GL_FALSE, GL_FALSE, GL_FALSE); /* the float count's red */
     glDepthMask(GL_FALSE);
-    glDepthFunc(depth_func(f->view, GL_LESS)); /* a surface's own cap, at its depth, counts as behind it */
     glStencilFunc(GL_ALWAYS, 0, VOLUME_COUNTER_STENCIL_MASK);
+    int near = volume_counter_near(c, f, plan);
+    glDisable(GL_CULL_FACE);
+    glDepthFunc(depth_func(f->view, GL_LESS)); /* a surface's own cap, at its depth, counts as behind it */
     /* Not only casters in view: one outside may cast a volume across it. */
     for (int i = 0; i < s->object_count; i++) {
         const volume_plan_caster *k = &plan->casters[i];
@@ -76,9 +114,7 @@ void volume_counter_draw(volume_counter *c, const technique_frame *f, const volu
         zfail += k->zfail;
         zpass += !k->zfail;
         volume_counter_caster_ops(c, f, k->zfail);
-        if (k->narrowed)
-            volume_bounds_use(&k->bounds);
-        if (!k->narrowed || (k->bounds.rect[2] > 0 && k->bounds.rect[3] > 0))
+        if (volume_counter_narrow(k))
             volume_draw_caster(c->draw, f, plan->cache, i, plan->position, c->settings.gpu_silhouettes, k->zfail);
         if (k->narrowed)
             volume_bounds_use(&plan->bounds);
@@ -90,6 +126,7 @@ void volume_counter_draw(volume_counter *c, const technique_frame *f, const volu
     if (plan->reported) {
         c->zpass = zpass;
         c->zfail = zfail;
+        c->near_counted = near;
     }
 }
 

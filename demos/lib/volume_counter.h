@@ -3,7 +3,8 @@
  *
  * The stencil in the plan's rectangle starts from 0, or from the number
  * of the plan's volumes that hold the eye (--mode eye-count,
- * volume_plan_eye_count). Each needed caster's volume (volume_draw.h) is
+ * volume_plan_eye_count), or (ZP+) from 0 plus each pixel's count on the
+ * near plane (volume_near.h), drawn first, without depth clamp. Each needed caster's volume (volume_draw.h) is
  * drawn with colour and depth writes off, both faces in one pass, +1 for
  * front faces and -1 for back faces, in front of the surface (z-pass) or
  * behind it (z-fail), within its bounds. Into the 8-bit stencil, whose
@@ -28,6 +29,7 @@
 #include <stdbool.h>
 
 #include "volume_draw.h"
+#include "volume_near.h"
 #include "volume_plan.h"
 #include "volume_wide.h"
 
@@ -52,11 +54,13 @@ typedef struct volume_counter_settings {
 typedef struct volume_counter {
     volume_draw *draw;
     volume_wide wide;
+    volume_near near;                 /* ZP+'s count on the near plane */
     volume_counter_settings settings; /* the caller's, set before each frame's counts */
     bool counting_wide;               /* the count at hand is the float target's */
     int start;                        /* the count at hand's start */
     /* Of the last count whose plan is reported (light 0), for the HUD: */
     int zpass, zfail; /* casters counted each way */
+    int near_counted; /* ZP+: of the z-pass ones, those counted from the near plane */
     int eye;          /* --mode eye-count: the volumes that hold the eye */
     int bound;        /* volume_wide_bound */
     bool bound_wide;  /* counted in the float target */

@@ -1,7 +1,9 @@
 #include "volume_plan.h"
 
 #include <cglm/cglm.h>
+#include <math.h>
 
+#include "frustum.h"
 #include "volume_mesh.h"
 
 bool volume_plan_forced_zpass(volume_plan_mode mode) {
@@ -12,6 +14,23 @@ bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe) {
     if (mode != VOLUME_PLAN_AUTO)
         return mode == VOLUME_PLAN_ZFAIL;
     return !zpass_safe;
+}
+
+/* The mode the plan's casters take: ZP+ only where the light lies off the
+ * near plane's plane (see volume_plan_mode), which it then holds,
+ * oriented towards the light. */
+static volume_plan_mode volume_plan_casters_mode(const technique_frame *f, volume_plan_mode mode, volume_plan *plan) {
+    if (mode != VOLUME_PLAN_ZP_PLUS)
+        return mode;
+    float *n = plan->near_plane, *l = plan->position;
+    frustum_near_plane(f->view->view_projection, n);
+    float d = glm_vec4_dot(n, l);
+    float size = fabsf(n[0] * l[0]) + fabsf(n[1] * l[1]) + fabsf(n[2] * l[2]) + fabsf(n[3] * l[3]);
+    if (fabsf(d) <= VOLUME_PLAN_NEAR_TOLERANCE * size)
+        return VOLUME_PLAN_AUTO;
+    if (d < 0)
+        glm_vec4_negate(n);
+    return mode;
 }
 
 /* Caster i's part of the plan (see top). */
@@ -37,6 +56,7 @@ static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mo
     }
     c->needed = skips_caster_needed(f->skips, &plan->hull, i);
     c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
+    c->near = c->needed && mode == VOLUME_PLAN_ZP_PLUS && !zpass_safe;
 }
 
 void volume_plan_light(const technique_frame *f, int l, const float point[4], volume_plan_mode mode,
@@ -52,6 +72,7 @@ void volume_plan_light(const technique_frame *f, int l, const float point[4], vo
         skips_light_hull(f->skips, l, &plan->hull);
     }
     volume_bounds_light(f, &plan->hull, receivers_rect, depth_bounds, &plan->bounds);
+    mode = volume_plan_casters_mode(f, mode, plan);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     for (int i = 0; i < s->object_count; i++)
@@ -63,16 +84,19 @@ void volume_plan_every_caster(const technique_frame *f, int l, const float posit
     const scene *s = f->gpu->scene;
     *plan = (volume_plan){.light = l, .casters = casters};
     glm_vec4_copy((float *)position, plan->position);
+    mode = volume_plan_casters_mode(f, mode, plan);
     vec3 near_rectangle[4];
     volume_mesh_near_rectangle(f->view->view_projection, near_rectangle);
     for (int i = 0; i < s->object_count; i++) {
-        plan->casters[i] = (volume_plan_caster){.needed = s->objects[i].casts};
-        if (!plan->casters[i].needed)
+        volume_plan_caster *c = &plan->casters[i];
+        *c = (volume_plan_caster){.needed = s->objects[i].casts};
+        if (!c->needed)
             continue;
         float lo[3], hi[3];
         scene_object_world_bounds(&s->objects[i], lo, hi);
-        plan->casters[i].zfail =
-            volume_plan_zfail(mode, volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle));
+        bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle);
+        c->zfail = volume_plan_zfail(mode, zpass_safe);
+        c->near = mode == VOLUME_PLAN_ZP_PLUS && !zpass_safe;
     }
 }
 

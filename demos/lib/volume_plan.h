@@ -30,13 +30,20 @@
 /* --mode: z-pass (no caps) where safe, else z-fail (caps); or one forced;
  * or z-pass from the count of the volumes that hold the eye (the
  * lecture's first answer to an eye in shadow, wrong where the near plane
- * cuts a volume the eye is outside of). */
+ * cuts a volume the eye is outside of); or ZP+, z-pass from each pixel's
+ * count on the near plane, drawn from the light (volume_near.h), for the
+ * casters that are not safe. ZP+ projects onto the near plane from the
+ * light, so where the light lies in that plane (within
+ * VOLUME_PLAN_NEAR_TOLERANCE of the terms of its equation) the light
+ * counts as auto does. */
 typedef enum volume_plan_mode {
     VOLUME_PLAN_AUTO,
     VOLUME_PLAN_ZPASS,
     VOLUME_PLAN_ZFAIL,
-    VOLUME_PLAN_EYE_COUNT
+    VOLUME_PLAN_EYE_COUNT,
+    VOLUME_PLAN_ZP_PLUS
 } volume_plan_mode;
+#define VOLUME_PLAN_NEAR_TOLERANCE 1e-4f
 /* Whether the mode counts every caster z-pass, whatever the eye sees. */
 bool volume_plan_forced_zpass(volume_plan_mode mode);
 
@@ -44,6 +51,7 @@ bool volume_plan_forced_zpass(volume_plan_mode mode);
 typedef struct volume_plan_caster {
     bool needed;   /* it casts a volume for the light */
     bool zfail;    /* counted behind the surface, with caps; else in front */
+    bool near;     /* ZP+: counted in front from its count on the near plane */
     bool narrowed; /* within `bounds`, not the light's */
     volume_bounds bounds;
 } volume_plan_caster;
@@ -51,8 +59,9 @@ typedef struct volume_plan_caster {
 /* A light's plan. */
 typedef struct volume_plan {
     int light;
-    int cache;     /* the cache that keeps the volumes (volume_draw_cache): the caller's */
-    vec4 position; /* homogeneous, world; aligned as cglm loads it */
+    int cache;       /* the cache that keeps the volumes (volume_draw_cache): the caller's */
+    vec4 position;   /* homogeneous, world; aligned as cglm loads it */
+    vec4 near_plane; /* ZP+: the near plane, world, oriented towards the light */
     skips_hull hull;
     volume_bounds bounds;        /* where the light's volumes may count */
     volume_plan_caster *casters; /* per object, the caller's */
