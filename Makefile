@@ -169,7 +169,7 @@ endif
 BENCH_HIDDEN := assets/scenes/street.json assets/scenes/engine.json
 BENCH_CITIES := $(patsubst %,assets/scenes/city_%.json,100 300 1000 3000)
 BENCH_SOFT := $(patsubst %,assets/scenes/%.json,soft_table soft_sun flat_boxes flat_boxes_point)
-BENCH_MAPS := --technique shadowmap --technique psm --technique cascades
+BENCH_MAPS := --technique shadowmap --technique psm --technique cascades --technique hybrid
 BENCH_SAMPLED := --technique planar --technique volumes
 BENCH_PSM_CASES := $(patsubst %,assets/scenes/%.json,long_view long_view_behind psm_caster_behind psm_point_high \
 	psm_point_low)

@@ -105,11 +105,19 @@ static void hybrid_render(const technique_frame *f) {
     map_draw_overlays(r, settings, f);
 }
 
+static bool hybrid_counted_rays(technique_rays *out) { return map_rays_counted(hybrid.maps, out); }
+
+/* The HUD: the map, the rays' mode, and with the counters (F3,
+ * --verbose) the share of the pixels traced and the rays. */
 static void hybrid_describe(char *out, size_t size) {
     const map_light *m = map_of_light(hybrid.maps, 0);
-    char map[64];
+    char map[64], counted[128] = "counted with F3 or --verbose";
     map_size_text(&hybrid.settings, m, map, sizeof map);
-    snprintf(out, size, "light 0: %s; rays %s, %d casting triangles", map, hybrid_rays[hybrid.rays],
+    technique_rays rays;
+    if (hybrid_counted_rays(&rays) && rays.pixels > 0)
+        snprintf(counted, sizeof counted, "%ld of %ld pixels traced (%.2f %%), %ld rays", rays.traced, rays.pixels,
+                 100.0 * (double)rays.traced / (double)rays.pixels, rays.rays);
+    snprintf(out, size, "light 0: %s; rays %s (%s), %d casting triangles", map, hybrid_rays[hybrid.rays], counted,
              hybrid.casters.triangle_count);
     map_describe_filter(&hybrid.settings, out, size);
 }
@@ -132,5 +140,6 @@ const technique hybrid_technique = {
     .destroy = hybrid_destroy,
     .area_light = hybrid_area_light,
     .describe = hybrid_describe,
+    .rays = hybrid_counted_rays,
     .gallery_config = "--overlay unsure",
 };

@@ -33,7 +33,9 @@
 //       (the penumbra) and main (the cascades' tint);
 //   MAP_PASS_RAYS   shadow rays where the map is unsure, everywhere or
 //       nowhere (a map_rays): map_light.glsl's map_share, with
-//       map_ray_visibility here.
+//       map_ray_visibility here;
+//   MAP_PASS_RAY_COUNTS   the rays counted: each pixel's rays and
+//       traced lights into a second target (out_ray_counts).
 // The other MAP_* names are the C constants these are compared with
 // (map.c, map_defines).
 #include "lighting.glsl"
@@ -66,6 +68,11 @@ bool map_through_closed(int i, vec3 to_light) {
 }
 
 out vec4 out_color;
+#if MAP_PASS_RAY_COUNTS
+layout(location = 1) out vec4 out_ray_counts; // the pixel's rays, its lights traced
+#endif
+// This fragment's shadow rays and the lights they were cast to.
+int map_rays_cast = 0, map_lights_traced = 0;
 
 // The lecture's overlays, fixed per program like the kernel.
 const bool map_show_texels = MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
@@ -115,8 +122,11 @@ bool map_ray_reaches(vec4 target) {
 float map_ray_visibility(int i, bool soft) {
     vec4 centre = lights_position[i];
     vec4 towards = centre.w == 0.0 ? vec4(-lights_direction[i].xyz, 0.0) : centre;
-    if (!soft)
+    map_lights_traced++;
+    if (!soft) {
+        map_rays_cast++;
         return map_ray_reaches(towards) ? 1.0 : 0.0;
+    }
     ivec2 q = ivec2(gl_FragCoord.xy) - u_frame.xy;
     uint pixel = uint((u_frame.w - 1 - q.y) * u_frame.z + q.x);
     uint seed = area_light_hash(pixel ^ area_light_hash(uint(i)));
@@ -131,6 +141,7 @@ float map_ray_visibility(int i, bool soft) {
         if (traced == MAP_RAY_FIRST_SAMPLES && (lit == 0 || lit == traced))
             break;
     }
+    map_rays_cast += traced;
     return float(lit) / float(traced);
 }
 
@@ -195,4 +206,7 @@ void main() {
     if (map_show_cascades && MAP_LIGHT_KIND_0 == MAP_LIGHT_ARRAY)
         c = map_cascade_tint(0, c);
     out_color = vec4(c, 1.0);
+#if MAP_PASS_RAY_COUNTS
+    out_ray_counts = vec4(float(map_rays_cast), float(map_lights_traced), 0.0, 0.0);
+#endif
 }

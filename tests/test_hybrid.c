@@ -114,6 +114,50 @@ static void test_rays_everywhere_are_the_reference(void **state) {
     hybrid_expect_within("--rays all", "all", HYBRID_ALL_MAX_PERCENT);
 }
 
+/* The rays counted (the HUD's with F3 or --verbose; technique.rays), hard
+ * lights: on the standard scenes and long_view rays at most
+ * HYBRID_MAX_TRACED_PERCENT of the pixels, one ray each; --rays all
+ * traces more; and counting changes no decision: the dumps, counted and
+ * not, are identical. */
+#define HYBRID_MAX_TRACED_PERCENT 10.0
+static const char *const hybrid_dump_files[] = {"visibility.pfm", "depth.pfm", "ids.pfm", "color.png"};
+
+/* The counts the verbose HUD line gives with --rays `mode`. */
+static void hybrid_counted(const char *path, const char *mode, long *traced, long *pixels, long *rays) {
+    char flags[64], marker[64];
+    snprintf(flags, sizeof flags, "--rays %s", mode);
+    int length = snprintf(marker, sizeof marker, "rays %s (", mode);
+    const char *line = support_verbose_line("hybrid", path, flags, marker);
+    assert_non_null(line);
+    double percent;
+    assert_int_equal(
+        sscanf(line + length, "%ld of %ld pixels traced (%lf %%), %ld rays", traced, pixels, &percent, rays), 4);
+}
+
+static void test_rays_counted(void **state) {
+    (void)state;
+    for (size_t i = 0; i < 4; i++) {
+        char path[256], on[256], off[256];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", hybrid_scenes[i]);
+        long traced, pixels, rays, all_traced, all_pixels, all_rays;
+        hybrid_counted(path, "unsure", &traced, &pixels, &rays);
+        hybrid_counted(path, "all", &all_traced, &all_pixels, &all_rays);
+        double percent = 100.0 * (double)traced / (double)pixels;
+        fprintf(stderr, "    %-10s %ld of %ld pixels traced (%.2f %%), %ld rays; every pixel: %ld traced\n",
+                hybrid_scenes[i], traced, pixels, percent, rays, all_traced);
+        assert_true(traced > 0 && percent <= HYBRID_MAX_TRACED_PERCENT);
+        assert_true(rays == traced && all_rays == all_traced && all_traced > traced);
+        snprintf(on, sizeof on, "out/test/hybrid/counted_%zu", i);
+        snprintf(off, sizeof off, "out/test/hybrid/uncounted_%zu", i);
+        assert_int_equal(support_dump("hybrid", path, "--verbose", on), 0);
+        assert_int_equal(support_dump("hybrid", path, "", off), 0);
+        const char *differs = support_first_difference(on, off, hybrid_dump_files,
+                                                       sizeof hybrid_dump_files / sizeof *hybrid_dump_files);
+        if (differs)
+            fail_msg("%s: %s differs, counted and not", hybrid_scenes[i], differs);
+    }
+}
+
 static void test_area_lights_within_the_goals(void **state) {
     (void)state;
     size_t count = sizeof hybrid_soft_scenes / sizeof *hybrid_soft_scenes;
@@ -145,6 +189,7 @@ int main(void) {
         cmocka_unit_test(test_sure_pixels_agree_with_the_reference),
         cmocka_unit_test(test_rays_where_unsure_are_exact),
         cmocka_unit_test(test_rays_everywhere_are_the_reference),
+        cmocka_unit_test(test_rays_counted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

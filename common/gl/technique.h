@@ -73,6 +73,10 @@ typedef struct technique_frame {
      * shading_sample_area_light); 0: every point, from none, so that
      * the same command gives the same picture (headless, the benchmark). */
     int light_points;
+    /* The HUD shows its counters (--verbose, F3) or the benchmark measures
+     * the frame: a technique also counts what costs a read-back, its
+     * shadow rays (technique.rays). Never a decision. */
+    bool counters;
     /* The frame the shadow maps are fitted to: NULL, this one. Else the
      * same scene and lights seen from another camera, whose view and
      * receivers (its skips' receivers; nothing else) a fit takes, while
@@ -97,6 +101,13 @@ typedef struct technique_frame {
  * seen from the eye, whose rasterized depth may stray). Nothing without
  * f->skips->seen. */
 void technique_see(const technique_frame *f);
+
+/* The shadow rays of one frame, per pixel of its target: pixels, the
+ * lights traced at them (a pixel traced to two lights counts two) and
+ * the rays cast. */
+typedef struct technique_rays {
+    long pixels, traced, rays;
+} technique_rays;
 
 typedef struct technique {
     const char *name;  /* "planar": its binary, its registry key */
@@ -124,6 +135,10 @@ typedef struct technique {
      * says for each area light (technique_area_light_text); l is the
      * light's index in the scene. */
     const char *(*area_light)(const scene_light *light, int l);
+    /* Optional: a technique that casts shadow rays, those of its last
+     * frame that counted them (technique_frame.counters); false where none
+     * has since init. */
+    bool (*rays)(technique_rays *out);
 } technique;
 
 /* What the HUD says of area light `light`, the scene's light l, under t:

@@ -33,6 +33,10 @@ const char *results_csv_name(results_csv_column column) {
         return results_csv_fixed_names[column];
     if (column == RESULTS_CSV_FRAME_SIZE)
         return "frame_size";
+    if (column == RESULTS_CSV_TRACED_PERCENT)
+        return "traced_percent";
+    if (column == RESULTS_CSV_RAYS)
+        return "rays_per_frame";
     int i = column - RESULTS_CSV_CLASSES;
     snprintf(class_names[i], sizeof class_names[i], "%s_%s", shadowdiff_class_names[i / 2], i % 2 ? "mae" : "pixels");
     return class_names[i];

@@ -3,7 +3,8 @@
  *
  * A row holds the columns in this enum's order: the fixed ones, then each
  * shadowdiff class's pixel count and MAE ("umbra_pixels", "umbra_mae", ...,
- * in shadowdiff_class order), then frame_size.
+ * in shadowdiff_class order), then frame_size, traced_percent and
+ * rays_per_frame.
  */
 #ifndef RESULTS_CSV_H
 #define RESULTS_CSV_H
@@ -42,6 +43,11 @@ typedef enum results_csv_column {
     RESULTS_CSV_SHIMMER,
     RESULTS_CSV_CLASSES, /* class c's pixels: + 2c; its MAE: + 2c + 1 */
     RESULTS_CSV_FRAME_SIZE = RESULTS_CSV_CLASSES + 2 * SHADOWDIFF_CLASS_COUNT,
+    /* A technique that casts shadow rays (technique.rays), over the error
+     * frames: the lights traced per pixel (percent), the rays per frame;
+     * "-" for the others. */
+    RESULTS_CSV_TRACED_PERCENT,
+    RESULTS_CSV_RAYS,
     RESULTS_CSV_COUNT
 } results_csv_column;
 /* Class c's (shadowdiff_class) MAE column. */

@@ -354,6 +354,7 @@ static bool app_render_frame(int visibility_of) {
     scene_camera held;
     if (app.hold_fit)
         app_camera_at(app.time - 1 / APP_HEADLESS_FPS, &held, &fit_view);
+    app.host.counters = app.hud_counters;
     return technique_host_frame(&app.host, &view, app.hold_fit ? &fit_view : NULL, &app.target, app.time,
                                 visibility_of);
 }

@@ -126,7 +126,16 @@ typedef struct bench_row {
     shadowdiff_result error;  /* pooled over the error frames (shadowdiff_result_add) */
     bool shimmer_measured;    /* under a motion that moves the camera */
     long followed, shimmered; /* summed over the error frames: shimmer % is their ratio */
+    technique_rays rays;      /* summed over the error frames that counted them */
+    int rays_frames;          /* those frames */
 } bench_row;
+
+static void bench_row_add_rays(bench_row *row, const technique_rays *rays) {
+    row->rays.pixels += rays->pixels;
+    row->rays.traced += rays->traced;
+    row->rays.rays += rays->rays;
+    row->rays_frames++;
+}
 
 static struct {
     /* flags (zero: the default, which --quick makes small) */
@@ -526,6 +535,7 @@ static bool bench_measure(bench_row *row, const dump_frame *reference, const dum
  * its reference (references[k]: error frame k's). */
 static bool bench_error_frames(bench_row *row, const dump_frame *references) {
     bool ok = true;
+    bench.host.counters = true; /* untimed: the rays counted (technique.rays) */
     for (int k = 0; ok && k < bench.error_frames; k++) {
         dump_frame held, dump;
         ok = bench_dumps(bench_error_time(k), &held, &dump);
@@ -534,7 +544,11 @@ static bool bench_error_frames(bench_row *row, const dump_frame *references) {
         ok = bench_measure(row, &references[k], &held, &dump, k == 0);
         dump_frame_free(&held);
         dump_frame_free(&dump);
+        technique_rays rays;
+        if (ok && bench.current->rays && bench.current->rays(&rays))
+            bench_row_add_rays(row, &rays);
     }
+    bench.host.counters = false;
     return ok;
 }
 
@@ -721,7 +735,12 @@ static bool bench_write_csv(void) {
             fprintf(f, ",%ld,%s", r->error.class_pixels[c],
                     shadowdiff_class_mae_text(&r->error, (shadowdiff_class)c, BENCH_MAE_DECIMALS, mae, sizeof mae));
         }
-        fprintf(f, ",%dx%d\n", bench.width, bench.height);
+        fprintf(f, ",%dx%d", bench.width, bench.height);
+        if (r->rays_frames > 0 && r->rays.pixels > 0)
+            fprintf(f, ",%.4f,%.0f\n", 100.0 * (double)r->rays.traced / (double)r->rays.pixels,
+                    (double)r->rays.rays / r->rays_frames);
+        else
+            fprintf(f, ",-,-\n");
     }
     return bench_close(f, path);
 }

@@ -72,6 +72,8 @@ typedef enum report_csv {
     REPORT_CSV_MOTION,
     REPORT_CSV_SKIPS,
     REPORT_CSV_FRAME_SIZE,
+    REPORT_CSV_TRACED,
+    REPORT_CSV_RAYS,
     REPORT_CSV_COUNT
 } report_csv;
 static const struct {
@@ -98,6 +100,8 @@ static const struct {
     [REPORT_CSV_MOTION] = {RESULTS_CSV_MOTION, false, NULL},
     [REPORT_CSV_SKIPS] = {RESULTS_CSV_SKIPS, false, NULL},
     [REPORT_CSV_FRAME_SIZE] = {RESULTS_CSV_FRAME_SIZE, false, NULL},
+    [REPORT_CSV_TRACED] = {RESULTS_CSV_TRACED_PERCENT, true, "-"},
+    [REPORT_CSV_RAYS] = {RESULTS_CSV_RAYS, true, "-"},
 };
 
 /* One run of `make bench`: OUT/NAME/ holds its copied report and plots. */
@@ -142,6 +146,8 @@ typedef enum report_figure {
     REPORT_PENUMBRA_MAE,
     REPORT_LIT_MAE,
     REPORT_SHIMMER,
+    REPORT_TRACED,
+    REPORT_RAYS,
     REPORT_MS_SKIPS_OFF,   /* the same row's with every skip off */
     REPORT_SKIPS_SPEED_UP, /* ms skips off over ms skips on */
     REPORT_FIGURE_COUNT
@@ -162,6 +168,8 @@ static const struct {
     [REPORT_PENUMBRA_MAE] = {"penumbra MAE", REPORT_CSV_PENUMBRA_MAE},
     [REPORT_LIT_MAE] = {"lit MAE", REPORT_CSV_LIT_MAE},
     [REPORT_SHIMMER] = {"shimmer %", REPORT_CSV_SHIMMER},
+    [REPORT_TRACED] = {"traced %", REPORT_CSV_TRACED},
+    [REPORT_RAYS] = {"rays/frame", REPORT_CSV_RAYS},
     [REPORT_MS_SKIPS_OFF] = {"ms skips off", -1},
     [REPORT_SKIPS_SPEED_UP] = {"skips speed-up", -1},
 };
@@ -217,6 +225,14 @@ static const report_table report_tables[] = {
      NULL,
      {"", "--mode zfail", "--mode zp-plus", "--mode eye-count"},
      {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS}},
+    {"Shadow maps with rays where they are unsure (hybrid): the pixels traced and the rays, against the map alone "
+     "(--rays off) and every pixel traced (--rays all)",
+     "static",
+     NULL,
+     {"hybrid"},
+     NULL,
+     {NULL},
+     {REPORT_SCENE, REPORT_PARAMETERS, REPORT_MS, REPORT_RATIO, REPORT_ERRORS, REPORT_TRACED, REPORT_RAYS}},
     {"Cascaded shadow maps",
      "static",
      NULL,

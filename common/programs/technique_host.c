@@ -238,7 +238,8 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
                          .time = time,
                          .changed = technique_host_changes(h, view),
                          .skips = &k,
-                         .light_points = visibility_of < 0 ? h->light_points : 0};
+                         .light_points = visibility_of < 0 ? h->light_points : 0,
+                         .counters = h->counters};
     technique_host_visible(h, view, &k);
     technique_host_light_passes(h, view, f.width, f.height, &k);
     for (int l = 0; l < s->light_count; l++)

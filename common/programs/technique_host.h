@@ -42,6 +42,7 @@ typedef struct technique_host {
      * TECHNIQUE_HOST_PROGRESSIVE_POINTS, else 0; a frame of one light's
      * visibility (visibility_of) takes every point. */
     int light_points;
+    bool counters;         /* the frames' counters (technique_frame): the caller's */
     bool settings_changed; /* since the last frame (technique_host_settings_changed) */
 } technique_host;
 

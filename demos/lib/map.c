@@ -386,6 +386,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_SHOW_PENUMBRA", (int)k->show_penumbra},
         {"MAP_PASS_RAYS", (int)k->rays},
         {"MAP_PASS_SHOW_UNSURE", (int)k->show_unsure},
+        {"MAP_PASS_RAY_COUNTS", (int)k->ray_counts},
         {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
@@ -647,6 +648,7 @@ void map_destroy(map_renderer *r) {
     glDeleteFramebuffers(1, &r->framebuffer);
     glDeleteSamplers(1, &r->depth_sampler);
     map_moments_destroy(r);
+    map_ray_counts_destroy(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteTextures(1, &r->maps[l].texture.id);
         map_moments_prepare(&r->maps[l], MAP_MOMENTS_NONE);
@@ -820,6 +822,8 @@ static void map_shade_lights(map_renderer *r, const map_settings *st, const tech
                 map_draw_receivers(r, f, p, shading_light_pass(f, l));
         glDisable(GL_SCISSOR_TEST);
     }
+    if (k->ray_counts)
+        map_ray_counts_end(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (k->soft_lights >> l & 1u)
             glBindSampler(MAP_DEPTH_UNITS + (GLuint)l, 0);
@@ -956,6 +960,8 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
         else if (skips_light_on(f->skips, l)) /* nothing visible receives: no map needed, nothing shadowed */
             key.kinds |= map_light_bits(l, MAP_LIGHT_UNSHADOWED);
     }
+    /* The rays counted where the frame asks: the receivers' passes only. */
+    key.ray_counts = f->counters && key.rays != MAP_RAYS_OFF && f->skips->lights && map_ray_counts_begin(r);
     if (f->skips->lights)
         map_shade_lights(r, settings, f, &key);
     else

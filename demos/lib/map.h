@@ -519,6 +519,13 @@ void map_draw_depth(map_renderer *r, const map_settings *settings, const techniq
  * (shaders/map.frag, map_through_closed). */
 void map_shade(map_renderer *r, const map_settings *settings, const technique_frame *f);
 
+/* The camera pass's rays (see "Rays") of the last frame that counted
+ * them (technique_frame.counters), the pixels those that draw the
+ * picture took (a light shaded again in its own rectangle counts there
+ * once); false where none has, or the GL cannot count them (said once
+ * on stderr). */
+bool map_rays_counted(const map_renderer *r, technique_rays *out);
+
 /* The samples light l's map is measured at this frame: where the camera
  * sees receivers, those the light can light (warp_samples_lit), and how
  * many it left out as edge-on to the light. The rays are cast once a

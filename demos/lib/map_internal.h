@@ -106,6 +106,7 @@ typedef struct map_camera_key {
     unsigned moment_lights;      /* bit i: light i reads its moment map */
     unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
     unsigned rays, show_unsure; /* map_rays; the unsure overlay */
+    unsigned ray_counts;        /* each pixel's rays into the counts' target */
 } map_camera_key;
 
 /* The camera pass's program (lit.vert with map.frag) for one key,
@@ -228,7 +229,23 @@ struct map_renderer {
     int target_framebuffer, viewport[4];
     bool fitted[SCENE_MAX_LIGHTS];
     const bvh_gpu *casters; /* map_trace_with's; NULL: no rays */
+    /* The rays' counts (map_ray_counts.c): an RGBA32F texture of the
+     * target's size, its framebuffer for the read-back; the last frame's
+     * sums; failed (said once): none counted. */
+    unsigned counts_texture, counts_framebuffer;
+    int counts_size[2];
+    technique_rays counted;
+    bool has_counted, counts_failed;
 };
+
+/* While the camera pass draws the receivers, each pixel's rays and
+ * traced lights go to a second target (shaders/map.frag,
+ * MAP_PASS_RAY_COUNTS) attached beside the frame's colour: begin attaches
+ * and clears it (false: this frame cannot count), end detaches it and sums
+ * it into r->counted. Both leave the target framebuffer bound. */
+bool map_ray_counts_begin(map_renderer *r);
+void map_ray_counts_end(map_renderer *r);
+void map_ray_counts_destroy(map_renderer *r);
 
 /* The depth pass of a fitted map of any kind, uncached (the tests'):
  * (re)makes its texture when needed, then renders every layer from its matrix, with glPolygonOffset
