@@ -89,6 +89,29 @@ float map_penumbra_estimate = MAP_NO_PENUMBRA;
 
 #include "bvh_trace.glsl"
 #include "area_light.glsl"
+#include "eye_ray.glsl"
+
+// Where this fragment's shadow rays start, set first in main: its
+// interpolated position, or where the pixel's eye ray meets its
+// triangle's plane (u_exact_surface: an object huge seen from the eye, or
+// any object where the GL's interpolation is not known to be close;
+// common/gl/render.h, "Huge receivers"), the point the reference traces
+// from. The plane is the one the interpolated positions lie in, which
+// their rounding leaves within the triangle's plane where it moves them
+// along it.
+uniform vec3 u_eye;
+uniform bool u_exact_surface;
+vec3 map_ray_origin;
+
+void map_set_ray_origin() {
+    map_ray_origin = v_position;
+    if (!u_exact_surface)
+        return;
+    vec3 ray = eye_ray_world(), n = map_face_normal;
+    float t = dot(n, v_position - u_eye) / dot(n, ray);
+    if (t > 0.0 && !isinf(t)) // else edge-on: the interpolated one
+        map_ray_origin = u_eye + t * ray;
+}
 
 // Rays (map.h, "Rays"): an area light's samples per pixel (the reference's
 // count: every sample is the reference's), the frame's rectangle in the
@@ -106,12 +129,13 @@ uniform vec2 u_light_area[SCENE_MAX_LIGHTS];
 // light on a surface is not shadowed by it; a sun's ray runs past every
 // caster.
 bool map_ray_reaches(vec4 target) {
+    vec3 o = map_ray_origin;
     if (target.w == 0.0)
-        return !bvh_occluded(v_position, target.xyz * (length(v_position) + u_bvh_reach), 1.0);
-    vec3 dir = target.xyz - v_position, a = abs(target.xyz);
+        return !bvh_occluded(o, target.xyz * (length(o) + u_bvh_reach), 1.0);
+    vec3 dir = target.xyz - o, a = abs(target.xyz);
     float len = length(dir);
     float t_max = 1.0 - float(BVH_SURFACE_ULPS) * BVH_FLOAT_EPSILON * (max(max(a.x, a.y), a.z) + len) / len;
-    return !bvh_occluded(v_position, dir, t_max);
+    return !bvh_occluded(o, dir, t_max);
 }
 
 // Light i at this fragment by shadow rays: one to a hard light's centre
@@ -130,7 +154,7 @@ float map_ray_visibility(int i, bool soft) {
     ivec2 q = ivec2(gl_FragCoord.xy) - u_frame.xy;
     uint pixel = uint((u_frame.w - 1 - q.y) * u_frame.z + q.x);
     uint seed = area_light_hash(pixel ^ area_light_hash(uint(i)));
-    vec3 axis = lighting_to_light(i, v_position);
+    vec3 axis = lighting_to_light(i, map_ray_origin);
     int lit = 0, traced = 0;
     for (int j = 0; j < u_ray_samples; j++) {
         int k = area_light_progressive_index(j, u_ray_samples);
@@ -154,11 +178,12 @@ float map_ray_visibility(int i, bool soft) {
 // the ray's end, its tangent of angular radius u_light_size).
 bool map_light_cone_clear(int i) {
     vec4 centre = lights_position[i];
+    vec3 o = map_ray_origin;
     if (centre.w == 0.0) {
-        float reach = length(v_position) + u_bvh_reach;
-        return bvh_cone_clear(v_position, -lights_direction[i].xyz * reach, 1.0, reach * u_light_size[i]);
+        float reach = length(o) + u_bvh_reach;
+        return bvh_cone_clear(o, -lights_direction[i].xyz * reach, 1.0, reach * u_light_size[i]);
     }
-    return bvh_cone_clear(v_position, centre.xyz - v_position, 1.0, u_light_area[i].x);
+    return bvh_cone_clear(o, centre.xyz - o, 1.0, u_light_area[i].x);
 }
 
 #include "map_2d.glsl"
@@ -194,6 +219,8 @@ void main() {
     map_face_normal = cross(dFdx(v_position), dFdy(v_position));
     if (dot(map_face_normal, n) < 0.0)
         map_face_normal = -map_face_normal;
+    if (map_rays != MAP_RAYS_OFF)
+        map_set_ray_origin();
     vec3 c = lighting_ambient(u_albedo);
     MAP_LIGHT(0, MAP_LIGHT_KIND_0, MAP_TEXEL_KIND_0);
     MAP_LIGHT(1, MAP_LIGHT_KIND_1, MAP_TEXEL_KIND_1);

@@ -109,6 +109,7 @@ static const claim claims[] = {
     {"overview", 4, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "shadow maps' shadows"},
     {"overview", 5, {NULL, "--warp uniform"}, STEP, CLAIM_DARKER_ON_LIT, 300, "psm sharp, where uniform smears"},
     {"overview", 6, STEP, UNSHADOWED, CLAIM_DARKER, 3000, "shadow volumes' shadows"},
+    {"overview", 7, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "the hybrid against the truth: exact to a few pixels"},
     /* planar */
     {"planar", 1, STEP, PLANAR, CLAIM_LIGHTER, 3000, "without shadows: planar's shadows missing"},
     {"planar", 2, STEP, UNSHADOWED, CLAIM_DARKER, 1000, "each caster flattened onto the ground, dark"},

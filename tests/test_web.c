@@ -307,8 +307,8 @@ static void web_tour_steps(void **state) {
  * WEB_MAX_DECISIONS of native's against the traced one: the share of
  * pixels misclassified, and of pixels compared. Where the page's technique
  * itself decides otherwise than native's, its run says by how much more
- * the misclassified share may differ. (The standard scenes simple and
- * teapot and the soft scene soft_table are the tours' compare steps.)
+ * the misclassified share may differ. (The scenes simple, teapot,
+ * long_view and soft_table are the tours' compare steps.)
  * The quick tier takes every support_sweep_stride()th run. */
 #define WEB_MAX_TOUR_DIFFERING 0.02
 #define WEB_BAKING "build-web/baking"

@@ -409,10 +409,16 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         return false;
     unsigned id = p->program.id;
     const map_uniform uniforms[] = {
-        {&p->constant_bias, "u_constant_bias"}, {&p->normal_offset, "u_normal_offset"},
-        {&p->depth_bias, "u_depth_bias"},       {&p->closed_outside, "u_closed_outside"},
-        {&p->view_depth, "u_view_depth"},       {&p->cascade_blend, "u_cascade_blend"},
-        {&p->ray_samples, "u_ray_samples"},     {&p->frame, "u_frame"},
+        {&p->constant_bias, "u_constant_bias"},
+        {&p->normal_offset, "u_normal_offset"},
+        {&p->depth_bias, "u_depth_bias"},
+        {&p->closed_outside, "u_closed_outside"},
+        {&p->view_depth, "u_view_depth"},
+        {&p->cascade_blend, "u_cascade_blend"},
+        {&p->ray_samples, "u_ray_samples"},
+        {&p->frame, "u_frame"},
+        {&p->eye, "u_eye"},
+        {&p->exact_surface, "u_exact_surface"},
     };
     map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on a unit, those of lights without a map too: an
@@ -738,6 +744,8 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
         bvh_gpu_bind(r->casters, p->program.id, MAP_RAY_UNIT);
         glUniform1i(p->ray_samples, st->ray_samples ? st->ray_samples : MAP_RAY_DEFAULT_SAMPLES);
         glUniform4i(p->frame, r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
+        glUniform3fv(p->eye, 1, f->view->eye);
+        render_eye_ray_uniforms(p->program.id, f->view, f->width, f->height);
     }
     glUniform1f(p->constant_bias, st->no_constant_bias ? 0 : map_setting(st->constant_texels, MAP_CONSTANT_TEXELS));
     glUniform1f(p->normal_offset, st->normal_texels);
@@ -795,6 +803,9 @@ static void map_draw_receivers(const map_renderer *r, const technique_frame *f, 
         if (!render_in_mask(objects, i) || !s->objects[i].receives)
             continue;
         glUniform1i(p->closed_outside, (GLint)map_closed_outside(r, f, k, i));
+        if (k->rays != MAP_RAYS_OFF)
+            glUniform1i(p->exact_surface, !context_current_features()->close_interpolation ||
+                                              render_object_huge(f->gpu, i, f->view->eye));
         render_draw_object(f->gpu, &p->program, i);
     }
 }

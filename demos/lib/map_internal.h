@@ -116,6 +116,7 @@ typedef struct map_camera_program {
     render_program program;
     map_camera_key key;
     int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend, ray_samples, frame;
+    int eye, exact_surface; /* the rays' start (shaders/map.frag, map_ray_origin) */
     struct {
         int map_size, light_matrix, light_inverse, light_size, light_area, texel_scale, near_plane, far_plane,
             cascade_count;
