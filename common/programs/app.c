@@ -60,7 +60,7 @@ static struct {
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
     bool hud_compact;      /* --hud-compact, Tab: the caption, technique and settings only */
-    bool hud_counters;     /* --verbose, F3: the skips' counters on the HUD */
+    bool hud_counters;     /* --verbose, F3: the skips' counters and the hybrid's rays on the HUD */
     bool no_hud;           /* --no-hud: none in the window (F12 then saves a clean picture) */
     bool flags_markdown;   /* --flags-markdown: print the tables, then exit */
     bool compare_on;       /* --compare, A, a tour's step: the technique beside the truth (compare.h) */
@@ -179,7 +179,7 @@ static const flags_param app_flags[] = {
      "--glsl-es, and nothing beyond WebGL 2's core: what it has\nonly as extensions (clip distances, depth clamp, polygon\nmode, clip control) off, so the browser's fallbacks run",
      0, FLAGS_SWITCH, .on = &app.webgl2},
     {"verbose",
-     "print the backend and GL renderer, each model's triangles\nand bounds, and at the end the technique's state line and\nthe skips' lines; the skips' counters on the HUD too (F3)",
+     "print the backend and GL renderer, each model's triangles\nand bounds, and at the end the technique's state line and\nthe skips' lines; the skips' counters and the rays a\ntechnique casts on the HUD too (F3)",
      0, FLAGS_SWITCH, .on = &app.verbose},
     {"flags-markdown", "print every flag and key as the README's markdown tables\n(make readme-flags), then exit", 0,
      FLAGS_SWITCH, .on = &app.flags_markdown},
@@ -205,7 +205,7 @@ static const app_window_key app_window_keys[] = {
     {0, "Page Down / Up", "the next / previous scene of the scene's directory"},
     {APP_COMPARE_KEY, NULL, "compare against the ray-traced truth (--compare)"},
     {0, "Tab", "the HUD's caption, technique and settings only (--hud-compact)"},
-    {0, "F3", "the skips' counters on the HUD (--verbose)"},
+    {0, "F3", "the skips' counters and the rays cast on the HUD (--verbose)"},
     {GLFW_KEY_H, NULL, "help on the HUD"},
     {0, "F12", "the window's picture, HUD included (screenshot-TECHNIQUE-N.png, never overwritten)"},
     {0, "Esc", "quit"},
