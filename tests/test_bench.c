@@ -54,7 +54,7 @@
 #define TEXT(x) #x
 #define TEXT_OF(x) TEXT(x)
 #define INTERVAL_FRAMES_TEXT TEXT_OF(INTERVAL_FRAMES)
-#define CSV_COLUMNS 27
+#define CSV_COLUMNS 29
 #define CSV_MAX_ROWS 512
 /* results.csv's columns the tests read by position. */
 #define CSV_GPU_MEDIAN 3
@@ -71,10 +71,13 @@
 #define CSV_RATIO_HIGH 18
 #define CSV_SHIMMER 19
 /* Then per shadowdiff class (umbra, penumbra, lit) its pixels and MAE,
- * then the frame size. */
+ * then the frame size, then the rays (technique.rays: "-" for a technique
+ * without them). */
 #define CSV_CLASS_PIXELS(c) (20 + 2 * (c))
 #define CSV_CLASS_MAE(c) (21 + 2 * (c))
 #define CSV_FRAME_SIZE 26
+#define CSV_TRACED 27
+#define CSV_RAYS 28
 /* --quick's frame size. */
 #define QUICK_SIZE "320x180"
 /* The CSV's rounding: the times and percentages are printed to 4
@@ -205,7 +208,8 @@ static int read_csv(const char *dir, csv_row *rows) {
                               "ratio_to_unshadowed,false_shadow_percent,false_lit_percent,misclassified_percent,"
                               "mae,compared_pixels,renderer,motion,skips,floor_ms_median,ratio_low,ratio_high,"
                               "shimmer_percent,"
-                              "umbra_pixels,umbra_mae,penumbra_pixels,penumbra_mae,lit_pixels,lit_mae,frame_size");
+                              "umbra_pixels,umbra_mae,penumbra_pixels,penumbra_mae,lit_pixels,lit_mae,frame_size,"
+                              "traced_percent,rays_per_frame");
     int n = 0;
     while ((line = strtok_r(rest, "\n", &rest))) {
         char *fields[CSV_COLUMNS + 1];
@@ -218,16 +222,22 @@ static int read_csv(const char *dir, csv_row *rows) {
              * a class's MAE "none" where it has no pixel (checked below);
              * the ratio's interval "-" without one (check_ratio) */
             bool interval_none = (c == CSV_RATIO_LOW || c == CSV_RATIO_HIGH) && strcmp(fields[c], "-") == 0;
+            bool no_rays = (c == CSV_TRACED || c == CSV_RAYS) && strcmp(fields[c], "-") == 0;
             if (c == CSV_RENDERER || c == CSV_MOTION || c == CSV_SKIPS || (c == CSV_SHIMMER && !moving) ||
-                c == CSV_FRAME_SIZE || strcmp(fields[c], "none") == 0 || interval_none)
+                c == CSV_FRAME_SIZE || strcmp(fields[c], "none") == 0 || interval_none || no_rays)
                 continue;
             char *end;
             double v = strtod(fields[c], &end);
             assert_true(end != fields[c] && *end == '\0' && isfinite(v) && v >= 0);
         }
         assert_string_equal(fields[CSV_FRAME_SIZE], QUICK_SIZE); /* every run here is --quick */
-        assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);           /* a frame takes time */
-        assert_true(atol(fields[CSV_COMPARED]) > 1000);          /* pixels were compared */
+        /* The rays: the hybrid's counted where it casts them, none for the
+         * others. */
+        bool casts = strcmp(fields[1], "hybrid") == 0 && !strstr(fields[2], "--rays off");
+        assert_int_equal(strcmp(fields[CSV_TRACED], "-") != 0, casts);
+        assert_int_equal(strcmp(fields[CSV_RAYS], "-") != 0, casts);
+        assert_true(atof(fields[CSV_GPU_MEDIAN]) > 0);  /* a frame takes time */
+        assert_true(atol(fields[CSV_COMPARED]) > 1000); /* pixels were compared */
         bool interval = check_ratio(fields);
         assert_true(n < CSV_MAX_ROWS);
         csv_row *r = &rows[n++];
