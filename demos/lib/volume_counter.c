@@ -98,12 +98,14 @@ void volume_counter_draw(volume_counter *c, const technique_frame *f, const volu
         glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
         glDepthBoundsEXT(plan->bounds.depth[0], plan->bounds.depth[1]);
     }
-    /* ZP+ counts from the near plane: the faces before it are clipped. */
-    depth_clamp(!c->settings.no_depth_clamp && c->settings.mode != VOLUME_PLAN_ZP_PLUS);
     glColorMask(c->counting_wide, GL_FALSE, GL_FALSE, GL_FALSE); /* the float count's red */
     glDepthMask(GL_FALSE);
     glStencilFunc(GL_ALWAYS, 0, VOLUME_COUNTER_STENCIL_MASK);
     int near = volume_counter_near(c, f, plan);
+    /* Counted from the near plane (ZP+), the faces before it are clipped;
+     * a plan without such a caster (ZP+'s light in the near plane's plane
+     * counts as auto) keeps z-fail's caps at infinity. */
+    depth_clamp(!c->settings.no_depth_clamp && near == 0);
     glDisable(GL_CULL_FACE);
     glDepthFunc(depth_func(f->view, GL_LESS)); /* a surface's own cap, at its depth, counts as behind it */
     /* Not only casters in view: one outside may cast a volume across it. */
