@@ -54,8 +54,8 @@ bool map_ray_counts_begin(map_renderer *r) {
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, r->counts_texture, 0);
     glDrawBuffers(2, both);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        map_ray_counts_end(r);
         map_ray_counts_fail(r, "the frame's target takes no second colour target");
+        map_ray_counts_end(r); /* detaches it; failed, it reads nothing back */
         return false;
     }
     static const float none[MAP_COUNTS_CHANNELS] = {0};
