@@ -52,7 +52,7 @@ static const flags_param hybrid_params[] = {
      GLFW_KEY_R, FLAGS_CHOICE, .index = &hybrid.rays, .choices = hybrid_rays},
     {"ray-samples",
      "an area light's rays at an unsure pixel, the reference's points for it (256, its count, by default); a pixel "
-     "stops after " MAP_TEXT(MAP_RAY_FIRST_SAMPLES) " where they all agree",
+     "stops after " FLAGS_TEXT(MAP_RAY_FIRST_SAMPLES) " where they all agree",
      GLFW_KEY_N, FLAGS_CHOICE, .index = &hybrid.ray_samples, .choices = hybrid_ray_samples},
     {"overlay",
      "for lectures: the map's overlays (see shadowmap), and the pixels where the map is unsure, which rays decide",

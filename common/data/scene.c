@@ -506,9 +506,6 @@ void scene_print_models(const scene *s, const char *file) {
     }
 }
 
-/* Arvo's method: each world axis gathers, per object axis, the smaller and
- * larger of that column's contribution at the two bounds. Exact for the
- * transformed box, without transforming its 8 corners. */
 void scene_object_world_corner(const scene_object *o, uint32_t t, int k, double out[3]) {
     const float *p = o->mesh.vertices[o->mesh.indices[3 * t + (uint32_t)k]].position;
     for (int row = 0; row < 3; row++)
@@ -516,6 +513,9 @@ void scene_object_world_corner(const scene_object *o, uint32_t t, int k, double 
                    (double)o->model[2][row] * p[2] + (double)o->model[3][row];
 }
 
+/* Arvo's method: each world axis gathers, per object axis, the smaller and
+ * larger of that column's contribution at the two bounds. Exact for the
+ * transformed box, without transforming its 8 corners. */
 void scene_object_world_bounds(const scene_object *o, float min[3], float max[3]) {
     for (int row = 0; row < 3; row++) {
         min[row] = max[row] = o->model[3][row];

@@ -248,9 +248,6 @@ typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
  * the samples after which a pixel whose rays all agree stops. */
 #define MAP_RAY_DEFAULT_SAMPLES 256
 #define MAP_RAY_FIRST_SAMPLES 64
-/* A constant's value as a string literal, for help texts. */
-#define MAP_TEXT(x) MAP_TEXT_OF(x)
-#define MAP_TEXT_OF(x) #x
 
 /* The map inset. Light 0's map is reduced on the GPU
  * (shaders/overlay_reduce.frag) to blocks of texels, a block to at most

@@ -42,12 +42,14 @@ void volume_near_caster(volume_near *n, const technique_frame *f, int i, const f
     glm_mat4_mul((vec4 *)f->view->raster_view_projection, onto_plane, projection);
     /* 2. A closed mesh's triangles that face away from the light culled:
      *    as the GL sees them after the projection (see top), the front
-     *    ones where the light lies in front of the near plane. */
+     *    ones where the light lies in front of the near plane, that is
+     *    where the eye, behind that plane, lies on the side of `plane`
+     *    away from the light. */
     if (closed) {
-        float raw[4];
-        frustum_near_plane(f->view->view_projection, raw);
+        const float *eye = f->view->eye;
+        float eye_side = plane[0] * eye[0] + plane[1] * eye[1] + plane[2] * eye[2] + plane[3];
         glEnable(GL_CULL_FACE);
-        glCullFace(glm_vec4_dot(raw, (float *)light) > 0 ? GL_FRONT : GL_BACK);
+        glCullFace(eye_side < 0 ? GL_FRONT : GL_BACK);
     } else {
         glDisable(GL_CULL_FACE);
     }
