@@ -35,7 +35,10 @@
 //       nowhere (a map_rays): map_light.glsl's map_share, with
 //       map_ray_visibility here;
 //   MAP_PASS_RAY_COUNTS   the rays counted: each pixel's rays and
-//       traced lights into a second target (out_ray_counts).
+//       traced lights into a second target (out_ray_counts);
+//   MAP_PASS_MARK_RAYS   the pixels that rays would decide are marked in
+//       a second target (out_rays_marked) and not traced: the pass
+//       before the one that traces them alone (map.h, "Rays").
 // The other MAP_* names are the C constants these are compared with
 // (map.c, map_defines).
 #include "lighting.glsl"
@@ -68,11 +71,17 @@ bool map_through_closed(int i, vec3 to_light) {
 }
 
 out vec4 out_color;
-#if MAP_PASS_RAY_COUNTS
+#if MAP_PASS_RAY_COUNTS && MAP_PASS_MARK_RAYS
+#error "the rays' counts and marks are each the camera pass's second target"
+#elif MAP_PASS_RAY_COUNTS
 layout(location = 1) out vec4 out_ray_counts; // the pixel's rays, its lights traced
+#elif MAP_PASS_MARK_RAYS
+layout(location = 1) out vec4 out_rays_marked; // 1 where a light would be traced
 #endif
-// This fragment's shadow rays and the lights they were cast to.
+// This fragment's shadow rays and the lights they were cast to; with
+// MAP_PASS_MARK_RAYS, whether any light would have been traced.
 int map_rays_cast = 0, map_lights_traced = 0;
+bool map_rays_marked = false;
 
 // The lecture's overlays, fixed per program like the kernel.
 const bool map_show_texels = MAP_PASS_SHOW_TEXELS != 0;         // darken the map's texel boundaries
@@ -81,6 +90,7 @@ const bool map_show_cascades = MAP_PASS_SHOW_CASCADES != 0;     // tint by light
 const bool map_show_penumbra = MAP_PASS_SHOW_PENUMBRA != 0;     // colour by PCSS's penumbra estimate
 const bool map_show_unsure = MAP_PASS_SHOW_UNSURE != 0;         // tint where the map is unsure
 const int map_rays = MAP_PASS_RAYS;
+const bool map_mark_rays = MAP_PASS_MARK_RAYS != 0;
 // With the penumbra overlay: the penumbra radius (world units) that the
 // last soft filter estimated, or MAP_NO_PENUMBRA where its blocker
 // search found no blocker (or no filter ran).
@@ -235,5 +245,7 @@ void main() {
     out_color = vec4(c, 1.0);
 #if MAP_PASS_RAY_COUNTS
     out_ray_counts = vec4(float(map_rays_cast), float(map_lights_traced), 0.0, 0.0);
+#elif MAP_PASS_MARK_RAYS
+    out_rays_marked = vec4(map_rays_marked ? 1.0 : 0.0);
 #endif
 }

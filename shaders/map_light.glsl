@@ -92,6 +92,10 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, int texel_kind, bool
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
         unsure = !map_light_cone_clear(i);
     bool traced = lit && (map_rays == MAP_RAYS_ALL || (map_rays == MAP_RAYS_UNSURE && unsure));
+    // A marking pass leaves the pixel to the tracing pass after it, which
+    // draws it again whole: what it shades here is drawn over.
+    map_rays_marked = map_rays_marked || (map_mark_rays && traced);
+    traced = traced && !map_mark_rays;
     if (traced)
         visibility = map_ray_visibility(i, soft);
     else if (soft)

@@ -158,6 +158,33 @@ static void test_rays_counted(void **state) {
     }
 }
 
+/* The marked pass (skips.h, marked_pass: the unsure pixels marked by a
+ * first pass, then traced in a pass of their own) changes no decision:
+ * the dumps with it and with --no-marked-pass are identical, on every
+ * hard scene, on the city (ranged lights, each shaded again in its own
+ * rectangle) and under an area light. */
+static void test_marked_pass_changes_no_decision(void **state) {
+    (void)state;
+    static const char *const scenes[] = {"simple", "bunny", "teapot", "long_view", "street", "wuson", "city_1000"};
+    for (size_t i = 0; i <= sizeof scenes / sizeof *scenes; i++) {
+        bool soft = i == sizeof scenes / sizeof *scenes;
+        char path[256], on[256], off[256];
+        snprintf(path, sizeof path, "assets/scenes/%s.json", soft ? "soft_table" : scenes[i]);
+        const char *flags = soft ? "--ray-samples 64" : "";
+        char off_flags[64];
+        snprintf(off_flags, sizeof off_flags, "%s --no-marked-pass", flags);
+        snprintf(on, sizeof on, "out/test/hybrid/marked_%zu", i);
+        snprintf(off, sizeof off, "out/test/hybrid/unmarked_%zu", i);
+        assert_int_equal(support_dump("hybrid", path, flags, on), 0);
+        assert_int_equal(support_dump("hybrid", path, off_flags, off), 0);
+        const char *differs = support_first_difference(on, off, hybrid_dump_files,
+                                                       sizeof hybrid_dump_files / sizeof *hybrid_dump_files);
+        if (differs)
+            fail_msg("%s: %s differs with and without the marked pass", path, differs);
+        fprintf(stderr, "    %-30s identical with and without --no-marked-pass\n", path);
+    }
+}
+
 static void test_area_lights_within_the_goals(void **state) {
     (void)state;
     size_t count = sizeof hybrid_soft_scenes / sizeof *hybrid_soft_scenes;
@@ -190,6 +217,7 @@ int main(void) {
         cmocka_unit_test(test_rays_where_unsure_are_exact),
         cmocka_unit_test(test_rays_everywhere_are_the_reference),
         cmocka_unit_test(test_rays_counted),
+        cmocka_unit_test(test_marked_pass_changes_no_decision),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

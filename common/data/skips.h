@@ -55,6 +55,7 @@ typedef struct skips_counts {
      * (shading_light_pass). */
     unsigned lights_narrowed;
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
+    int marked_passes;                  /* passes over marked pixels alone (skips.marked_pass) */
 } skips_counts;
 
 /* What the camera's depth pre-pass shows (technique_see): the visible
@@ -98,6 +99,10 @@ typedef struct skips {
     int receiver_count;
     float receivers_lo[3], receivers_hi[3]; /* their bounds; empty (lo > hi) when none */
     bool cull_casters;                      /* skips_caster_needed culls (--no-caster-cull: never) */
+    /* A technique may shade its costly pixels (a hybrid's rays) in a pass
+     * of their own, over the pixels a first pass marked, so that the
+     * others run none of that code (--no-marked-pass: one pass). */
+    bool marked_pass;
     /* Without --no-hidden-cull, unless the skip sleeps
      * (technique_host.h): where technique_see keeps what the pre-pass
      * shows (its masks cull casters only with cull_casters); else NULL. */

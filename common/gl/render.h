@@ -129,6 +129,7 @@ typedef struct render_skips {
     bool no_caster_cull; /* --no-caster-cull: every caster casts for every light */
     bool no_hidden_cull; /* --no-hidden-cull: casters and objects hidden behind the pre-pass's depth drawn */
     bool no_cache;       /* --no-cache: maps and volumes are made again every frame */
+    bool no_marked_pass; /* --no-marked-pass: costly pixels shaded in the one pass with the others */
 } render_skips;
 
 bool render_object_huge(const render_scene *r, int object, const float eye[3]);

@@ -34,7 +34,7 @@ const char *soft_visibility_area_light_text(const soft_visibility *v, int choice
 
 bool soft_visibility_init(soft_visibility *v) {
     *v = (soft_visibility){0};
-    static const char *const accumulate_files[] = {"soft_visibility.vert", "soft_visibility.frag"};
+    static const char *const accumulate_files[] = {"viewport_triangle.vert", "soft_visibility.frag"};
     v->accumulate = shader_load_program(accumulate_files, 2, NULL);
     if (!v->accumulate) {
         soft_visibility_destroy(v);

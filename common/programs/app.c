@@ -150,6 +150,9 @@ static const flags_param app_flags[] = {
      FLAGS_TOGGLE, .disabled = &app.skips.no_hidden_cull},
     {"cache", "shadow maps and volumes made again every frame", GLFW_KEY_J, FLAGS_TOGGLE,
      .disabled = &app.skips.no_cache},
+    {"marked-pass",
+     "costly pixels (hybrid's rays) shaded in the one pass\nwith the others, not marked for a pass of their own",
+     GLFW_KEY_Q, FLAGS_TOGGLE, .disabled = &app.skips.no_marked_pass},
     {"gallery", "every technique (or --technique's) on every scene, to\nDIR/TECH_SCENE.png", 0, FLAGS_LIST,
      .items = app.gallery, .count = &app.gallery_count, .min = 2, .max = 1 + APP_MAX_GALLERY_SCENES,
      .what = "DIR then at least one scene file", .value_name = "DIR SCENE..."},
@@ -770,6 +773,11 @@ static int app_skips_text(char *out, size_t size) {
     APP_TEXT("   [J] caching: ");
     if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);
+    else
+        APP_TEXT("%s", off);
+    APP_TEXT("   [Q] marked pass: ");
+    if (render_skip_on(k, k->no_marked_pass))
+        APP_TEXT("passes %d", c->marked_passes);
     else
         APP_TEXT("%s", off);
 #undef APP_TEXT

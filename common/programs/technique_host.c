@@ -229,6 +229,7 @@ bool technique_host_frame(technique_host *h, const camera_view *view, const came
     skips k = {.scene = s,
                .in_view = h->gpu->in_view,
                .cull_casters = render_skip_on(h->skips, h->skips->no_caster_cull),
+               .marked_pass = render_skip_on(h->skips, h->skips->no_marked_pass),
                .seen = render_skip_on(h->skips, h->skips->no_hidden_cull) && h->hidden_idle == 0 ? &h->seen : NULL,
                .counts = &h->counts};
     technique_frame f = {.gpu = h->gpu,

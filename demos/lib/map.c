@@ -387,6 +387,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_RAYS", (int)k->rays},
         {"MAP_PASS_SHOW_UNSURE", (int)k->show_unsure},
         {"MAP_PASS_RAY_COUNTS", (int)k->ray_counts},
+        {"MAP_PASS_MARK_RAYS", (int)k->mark_rays},
         {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
@@ -591,6 +592,7 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
          * compile fails init; the others as frames need them. */
         !map_camera_program_for(r, &scene_key) || !map_overlay_programs_load(r))
         return false;
+    glGenVertexArrays(1, &r->screen_vao);
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);
     glGenBuffers(1, &r->overlay_buffer);
@@ -650,11 +652,12 @@ void map_destroy(map_renderer *r) {
     glDeleteTextures(1, &r->inset_texture);
     glDeleteFramebuffers(1, &r->inset_framebuffer);
     glDeleteVertexArrays(1, &r->overlay_vao);
+    glDeleteVertexArrays(1, &r->screen_vao);
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);
     glDeleteSamplers(1, &r->depth_sampler);
     map_moments_destroy(r);
-    map_ray_counts_destroy(r);
+    map_rays_destroy(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteTextures(1, &r->maps[l].texture.id);
         map_moments_prepare(&r->maps[l], MAP_MOMENTS_NONE);
@@ -810,29 +813,47 @@ static void map_draw_receivers(const map_renderer *r, const technique_frame *f, 
     }
 }
 
-/* Every light on, by its kind in key k, and the ambient term: the one
- * shading pass, with the lights shading_split_lights leaves out shaded
- * again each in its own rectangle. Only receivers read maps (the caster
- * culling is for them too); the others take every light unshadowed, as in
- * the reference. */
-static void map_shade_lights(map_renderer *r, const map_settings *st, const technique_frame *f,
-                             const map_camera_key *k) {
+/* Every light on, by its kind in key k, and the ambient term, on
+ * `objects`' receivers: the one shading pass, with the lights
+ * shading_split_lights leaves out shaded again each in its own rectangle.
+ * False where a program failed (said once on stderr). */
+static bool map_shade_receivers(map_renderer *r, const map_settings *st, const technique_frame *f,
+                                const map_camera_key *k, const bool *objects) {
     unsigned split = shading_split_lights(f);
     map_camera_key first_key = map_key_without(*k, split);
-    const bool *objects = shading_all_begin(f);
     const map_camera_program *first = map_camera_program_for(r, &first_key);
     const map_camera_program *p = split ? map_camera_program_for(r, k) : first;
-    bool mapped = first && p;
-    if (mapped) {
-        map_camera_use(r, st, f, first);
-        map_draw_receivers(r, f, first, objects);
-        if (split)
-            map_camera_use(r, st, f, p);
-        for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-            if (split & SCENE_LIGHT_BIT(l))
-                map_draw_receivers(r, f, p, shading_light_pass(f, l));
-        glDisable(GL_SCISSOR_TEST);
+    if (!first || !p)
+        return false;
+    map_camera_use(r, st, f, first);
+    map_draw_receivers(r, f, first, objects);
+    if (split)
+        map_camera_use(r, st, f, p);
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
+        if (split & SCENE_LIGHT_BIT(l))
+            map_draw_receivers(r, f, p, shading_light_pass(f, l));
+    glDisable(GL_SCISSOR_TEST);
+    return true;
+}
+
+/* The camera pass by key k: the receivers (where rays decide only the
+ * unsure pixels, marked first, then traced alone: map.h, "Rays"), then
+ * the objects that take no shadows, every light unshadowed as in the
+ * reference. Only receivers read maps (the caster culling is for them
+ * too). */
+static void map_shade_lights(map_renderer *r, const map_settings *st, const technique_frame *f, map_camera_key *k) {
+    const bool *objects = shading_all_begin(f);
+    bool mapped = true;
+    if (k->rays == MAP_RAYS_UNSURE && f->skips->marked_pass && map_ray_marks_begin(r)) {
+        f->skips->counts->marked_passes++;
+        map_camera_key marking = *k;
+        marking.mark_rays = true;
+        mapped = map_shade_receivers(r, st, f, &marking, objects);
+        map_ray_marks_end(r);
     }
+    k->ray_counts = f->counters && k->rays != MAP_RAYS_OFF && map_ray_counts_begin(r);
+    mapped = mapped && map_shade_receivers(r, st, f, k, objects);
+    glDisable(GL_STENCIL_TEST);
     if (k->ray_counts)
         map_ray_counts_end(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
@@ -971,8 +992,6 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
         else if (skips_light_on(f->skips, l)) /* nothing visible receives: no map needed, nothing shadowed */
             key.kinds |= map_light_bits(l, MAP_LIGHT_UNSHADOWED);
     }
-    /* The rays counted where the frame asks: the receivers' passes only. */
-    key.ray_counts = f->counters && key.rays != MAP_RAYS_OFF && f->skips->lights && map_ray_counts_begin(r);
     if (f->skips->lights)
         map_shade_lights(r, settings, f, &key);
     else

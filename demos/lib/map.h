@@ -240,7 +240,11 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * every tap, as if with --no-early-out (four rim taps agreeing prove
  * nothing of the rest: test_hybrid's sure pixels on wuson need all of
  * them).
- * MAP_RAYS_OFF is the map alone, early-out and all. */
+ * MAP_RAYS_OFF is the map alone, early-out and all.
+ * With the frame's marked pass (skips.h, marked_pass), MAP_RAYS_UNSURE
+ * draws the receivers twice: the first pass shades from the map and marks
+ * the pixels rays would decide, the second shades only those, tracing
+ * (map_rays.c). The same pixels come out of one pass without it. */
 typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
 /* The reference's samples of an area light per pixel
  * (RAYTRACE_DEFAULT_LIGHT_SAMPLES: test_hybrid checks they agree), a

@@ -107,7 +107,16 @@ typedef struct map_camera_key {
     unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
     unsigned rays, show_unsure; /* map_rays; the unsure overlay */
     unsigned ray_counts;        /* each pixel's rays into the counts' target */
+    unsigned mark_rays;         /* the pixels rays decide marked, not traced */
 } map_camera_key;
+
+/* A texture the frame's size, attached beside its colour for the
+ * receivers' passes (map_rays.c); failed (said once): never again. */
+typedef struct map_second_target {
+    unsigned texture;
+    int size[2];
+    bool failed;
+} map_second_target;
 
 /* The camera pass's program (lit.vert with map.frag) for one key,
  * and its uniforms: the pass's, then each light's (-1 where its kind has
@@ -190,11 +199,13 @@ struct map_renderer {
     map_legend_program legend;
     unsigned framebuffer, overlay_vao, overlay_buffer;
     /* The moment maps' passes: per moment kind the depths' moments from
-     * each kind of map, and the box along an axis; their framebuffer and
-     * the empty vertex array of their full-screen triangle (loaded as
-     * needed). */
+     * each kind of map, and the box along an axis; their framebuffer
+     * (loaded as needed). */
     map_blur_program blur_depth[MAP_MOMENTS_MSM + 1][MAP_ARRAY + 1], blur_moments;
-    unsigned blur_framebuffer, blur_vao;
+    unsigned blur_framebuffer;
+    /* The empty vertex array of viewport_triangle.vert's passes: the
+     * moments' blur, the rays' marks. */
+    unsigned screen_vao;
     /* The map inset's reduction (map_overlay.c) of light 0's map:
      * per kind its program; an RG32F array texture, a layer per map layer
      * and inset_blocks texels on a side (blocks of inset_factor texels on
@@ -230,23 +241,32 @@ struct map_renderer {
     int target_framebuffer, viewport[4];
     bool fitted[SCENE_MAX_LIGHTS];
     const bvh_gpu *casters; /* map_trace_with's; NULL: no rays */
-    /* The rays' counts (map_ray_counts.c): an RGBA32F texture of the
-     * target's size, its framebuffer for the read-back; the last frame's
-     * sums; failed (said once): none counted. */
-    unsigned counts_texture, counts_framebuffer;
-    int counts_size[2];
+    /* The camera pass's second targets (map_rays.c): the rays' marks,
+     * R8, and the program that makes them the stencil; the rays' counts,
+     * RGBA32F, their framebuffer for the read-back, the last frame's sums. */
+    map_second_target marks, counts;
+    unsigned marks_program, counts_framebuffer;
     technique_rays counted;
-    bool has_counted, counts_failed;
+    bool has_counted;
 };
 
+/* Where a light of the frame's takes rays only where the map is unsure,
+ * the receivers are drawn twice (map.h, "Rays"): first marking the pixels
+ * that rays would decide (shaders/map.frag, MAP_PASS_MARK_RAYS) into a
+ * second target beside the frame's colour, then again, tracing, where the
+ * stencil lets through only those. Begin attaches and clears the marks
+ * (false: this frame traces in one pass); end detaches them and leaves the
+ * stencil test on, passing only the marked pixels. */
+bool map_ray_marks_begin(map_renderer *r);
+void map_ray_marks_end(map_renderer *r);
 /* While the camera pass draws the receivers, each pixel's rays and
  * traced lights go to a second target (shaders/map.frag,
  * MAP_PASS_RAY_COUNTS) attached beside the frame's colour: begin attaches
  * and clears it (false: this frame cannot count), end detaches it and sums
- * it into r->counted. Both leave the target framebuffer bound. */
+ * it into r->counted. All four leave the target framebuffer bound. */
 bool map_ray_counts_begin(map_renderer *r);
 void map_ray_counts_end(map_renderer *r);
-void map_ray_counts_destroy(map_renderer *r);
+void map_rays_destroy(map_renderer *r);
 
 /* The depth pass of a fitted map of any kind, uncached (the tests'):
  * (re)makes its texture when needed, then renders every layer from its matrix, with glPolygonOffset

@@ -189,7 +189,7 @@ void map_moments_prepare(map_light *m, map_moments moments) {
 static bool map_moments_program(map_blur_program *p, map_moments moments, bool from_depth, map_kind kind) {
     if (p->id)
         return true;
-    static const char *const files[] = {"shadow_moments.vert", "shadow_moments.frag"};
+    static const char *const files[] = {"viewport_triangle.vert", "shadow_moments.frag"};
     const shader_define defines[] = {{"MAP_PASS_MOMENTS", (int)moments},
                                      {"MAP_BLUR_FROM_DEPTH", from_depth},
                                      {"MAP_BLUR_KIND", (int)kind},
@@ -240,12 +240,10 @@ bool map_moments_blur(map_renderer *r, const map_light *m, map_moments moments, 
         r->blur_failed = true;
         return false;
     }
-    if (!r->blur_vao)
-        glGenVertexArrays(1, &r->blur_vao);
     GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST);
     glDisable(GL_DEPTH_TEST);
     glViewport(0, 0, m->size, m->size);
-    glBindVertexArray(r->blur_vao);
+    glBindVertexArray(r->screen_vao);
     GLuint unit = (GLuint)m->kind;
     /* The depths as stored: compare mode off, nearest. */
     glActiveTexture(GL_TEXTURE0 + unit);
@@ -275,5 +273,4 @@ void map_moments_destroy(map_renderer *r) {
             shader_delete_program(r->blur_depth[k][kind].id);
     shader_delete_program(r->blur_moments.id);
     glDeleteFramebuffers(1, &r->blur_framebuffer);
-    glDeleteVertexArrays(1, &r->blur_vao);
 }

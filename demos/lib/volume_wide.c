@@ -20,10 +20,10 @@
 /* The counter is soft_visibility's first light's sum. */
 #define VOLUME_WIDE_TARGET_LIGHT 0
 
-/* A program of volume_wide.frag over soft_visibility.vert's triangle;
+/* A program of volume_wide.frag over viewport_triangle.vert's triangle;
  * `overlay`: the overlay's. */
 static unsigned volume_wide_program(bool overlay) {
-    static const char *const files[] = {"soft_visibility.vert", "volume_wide.frag"};
+    static const char *const files[] = {"viewport_triangle.vert", "volume_wide.frag"};
     const shader_define defines[] = {SHADER_DEFINE(VOLUME_COUNT_BOUND_STENCIL_MAX),
                                      SHADER_DEFINE(VOLUME_WIDE_OTHER),
                                      SHADER_DEFINE(VOLUME_WIDE_OVERLAY_STEPS),
@@ -164,7 +164,7 @@ void volume_wide_caster(volume_wide *w, volume_draw *d, const camera_view *view,
     volume_draw_wide_sign(d, zfail ? -1.0f : 1.0f);
 }
 
-/* Draws soft_visibility.vert's triangle over the viewport with `program`,
+/* Draws viewport_triangle.vert's triangle over the viewport with `program`,
  * the counter bound to its sampler `count`. */
 static void volume_wide_screen(volume_wide *w, unsigned program, int count) {
     glUseProgram(program);
