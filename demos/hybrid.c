@@ -115,8 +115,8 @@ static void hybrid_describe(char *out, size_t size) {
     map_size_text(&hybrid.settings, m, map, sizeof map);
     technique_rays rays;
     if (hybrid_counted_rays(&rays) && rays.pixels > 0)
-        snprintf(counted, sizeof counted, "%ld of %ld pixels traced (%.2f %%), %ld rays", rays.traced, rays.pixels,
-                 100.0 * (double)rays.traced / (double)rays.pixels, rays.rays);
+        snprintf(counted, sizeof counted, "%ld of %ld pixels traced (%.2f %%), %ld rays, %ld marked", rays.traced,
+                 rays.pixels, 100.0 * (double)rays.traced / (double)rays.pixels, rays.rays, rays.marked);
     snprintf(out, size, "light 0: %s; rays %s (%s), %d casting triangles", map, hybrid_rays[hybrid.rays], counted,
              hybrid.casters.triangle_count);
     map_describe_filter(&hybrid.settings, out, size);

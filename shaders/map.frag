@@ -38,7 +38,9 @@
 //       traced lights into a second target (out_ray_counts);
 //   MAP_PASS_MARK_RAYS   the pixels that rays would decide are marked in
 //       a second target (out_rays_marked) and not traced: the pass
-//       before the one that traces them alone (map.h, "Rays").
+//       before the one that traces them alone (map.h, "Rays");
+//   MAP_PASS_BOUNDS_LIGHTS   bit i: light i's 2D map is read by its depth
+//       bounds, not its kernel (a marking pass's): map_2d.glsl.
 // The other MAP_* names are the C constants these are compared with
 // (map.c, map_defines).
 #include "lighting.glsl"

@@ -43,6 +43,8 @@ const vec2 map_poisson[MAP_POISSON_TAPS] = vec2[](
     vec2(0.53742981, -0.47373420), vec2(-0.26496911, -0.41893023), vec2(0.79197514, 0.19090188),
     vec2(-0.24188840, 0.99706507), vec2(-0.81409955, 0.91437590), vec2(0.19984126, 0.78641367),
     vec2(0.14383161, -0.14100790));
+// The farthest point's radius (of (0.9748, 0.7565)), rounded up.
+const float MAP_POISSON_REACH = 1.234;
 // The early-out's rim: four of the outermost points, about a quarter turn
 // apart (at 203, 321, 38 and 132 degrees before the rotation).
 const int MAP_POISSON_RIM[4] = int[](0, 1, 7, 13);
@@ -174,6 +176,18 @@ vec3 map_kernel_tap(int i, mat2 rotation, float unit) {
     }
     int half_kernel = map_kernel_size / 2;
     return vec3(vec2(i % map_kernel_size - half_kernel, i / map_kernel_size - half_kernel) / unit, 1.0);
+}
+
+// How far (texels, on either axis) any tap of the kernel lies from the
+// point: the disc's farthest point; pcfN's N / 2 (integer offsets); the
+// tent's (N + 1) / 2 pairs, whose offsets lie within
+// map_tent_pairs() texels of the point wherever it is in its texel.
+float map_kernel_reach() {
+    if (map_shape == MAP_KERNEL_POISSON)
+        return 0.5 * float(map_kernel_size) * MAP_POISSON_REACH;
+    if (map_shape == MAP_KERNEL_TENT)
+        return float(map_tent_pairs());
+    return float(map_kernel_size / 2);
 }
 
 // The early-out (map_early_out, for kernels of more than four taps): four

@@ -103,10 +103,11 @@ typedef struct technique_frame {
 void technique_see(const technique_frame *f);
 
 /* The shadow rays of one frame, per pixel of its target: pixels, the
- * lights traced at them (a pixel traced to two lights counts two) and
- * the rays cast. */
+ * lights traced at them (a pixel traced to two lights counts two), the
+ * rays cast, and the pixels a first pass marked for the pass that traces
+ * (skips.h, marked_pass; 0 without one). */
 typedef struct technique_rays {
-    long pixels, traced, rays;
+    long pixels, traced, rays, marked;
 } technique_rays;
 
 typedef struct technique {

@@ -73,6 +73,7 @@ static const shader_define map_defines[] = {SHADER_DEFINE(MAP_KERNEL_SINGLE),
                                             SHADER_DEFINE(MAP_RAYS_UNSURE),
                                             SHADER_DEFINE(MAP_RAYS_ALL),
                                             SHADER_DEFINE(MAP_RAY_FIRST_SAMPLES),
+                                            SHADER_DEFINE(MAP_BOUNDS_CELL_TEXELS),
                                             BVH_GPU_DEFINES,
                                             {NULL, 0}};
 
@@ -186,6 +187,9 @@ static bool map_prepare_texture(map_light *m, const map_settings *settings) {
         t->filter == filter)
         return false;
     glDeleteTextures(1, &t->id);
+    glDeleteTextures(1, &t->bounds);
+    t->bounds = 0;
+    t->bounds_current = false;
     GLenum target = map_target(m->kind);
     GLenum format = depth == MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
     GLenum type = depth == MAP_DEPTH_24 ? GL_UNSIGNED_INT : GL_FLOAT;
@@ -301,6 +305,7 @@ void map_draw_depth(map_renderer *r, const map_settings *st, const technique_fra
         map_depth_layer(r, f->gpu, m, layer, r->needed[layer], moments != MAP_MOMENTS_NONE);
         f->skips->counts->layers_rendered++;
         rendered[layer] = c->valid[layer] = true;
+        m->texture.bounds_current = false;
         c->blur_texels[layer] = m->blur_texels[layer];
         glm_mat4_copy(m->layer_view_projection[layer], c->layer_view_projection[layer]);
         memcpy(c->drawn[layer], r->needed[layer], (size_t)r->object_count * sizeof(bool));
@@ -388,6 +393,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_SHOW_UNSURE", (int)k->show_unsure},
         {"MAP_PASS_RAY_COUNTS", (int)k->ray_counts},
         {"MAP_PASS_MARK_RAYS", (int)k->mark_rays},
+        {"MAP_PASS_BOUNDS_LIGHTS", (int)k->bounds_lights},
         {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
@@ -433,7 +439,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         for (int t = 0; t < MAP_SAMPLER_TYPES; t++) {
             bool own = map_light_field(k->kinds, l) == (unsigned)map_samplers[t].kind;
-            bool soft = own && ((k->soft_lights | k->moment_lights) >> l & 1u);
+            bool soft = own && ((k->soft_lights | k->moment_lights | k->bounds_lights) >> l & 1u);
             glUniform1i(map_light_uniform(id, map_samplers[t].name, l), own ? l : MAP_IDLE_UNITS + t);
             glUniform1i(map_light_uniform(id, map_samplers[t].depths, l),
                         soft ? MAP_DEPTH_UNITS + l : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
@@ -658,8 +664,10 @@ void map_destroy(map_renderer *r) {
     glDeleteSamplers(1, &r->depth_sampler);
     map_moments_destroy(r);
     map_rays_destroy(r);
+    map_bounds_destroy(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteTextures(1, &r->maps[l].texture.id);
+        glDeleteTextures(1, &r->maps[l].texture.bounds);
         map_moments_prepare(&r->maps[l], MAP_MOMENTS_NONE);
     }
     free(r->needed[0]);
@@ -774,6 +782,10 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
             glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)l);
             glBindTexture(map_target(m->kind), m->texture.moments);
         }
+        if (k->bounds_lights >> l & 1u) {
+            glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)l);
+            glBindTexture(GL_TEXTURE_2D, m->texture.bounds);
+        }
         if (m->kind != MAP_ARRAY) {
             glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
             continue;
@@ -836,6 +848,21 @@ static bool map_shade_receivers(map_renderer *r, const map_settings *st, const t
     return true;
 }
 
+/* The lights of key k whose marking pass reads their depth bounds for
+ * their kernel (map_bounds_update): a 2D map's, filtered by a kernel of
+ * more than one tap, hard (neither soft nor by its moments), where the GL
+ * has its depth unit (the bounds take it). */
+static unsigned map_bounds_lights(map_renderer *r, const map_camera_key *k) {
+    unsigned lights = 0;
+    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+        bool hard = !((k->soft_lights | k->moment_lights) >> l & 1u);
+        if (map_light_field(k->kinds, l) == MAP_LIGHT_2D && hard && k->shape != MAP_KERNEL_SINGLE &&
+            MAP_DEPTH_UNITS + l < r->texture_units && map_bounds_update(r, &r->maps[l]))
+            lights |= 1u << l;
+    }
+    return lights;
+}
+
 /* The camera pass by key k: the receivers (where rays decide only the
  * unsure pixels, marked first, then traced alone: map.h, "Rays"), then
  * the objects that take no shadows, every light unshadowed as in the
@@ -848,8 +875,9 @@ static void map_shade_lights(map_renderer *r, const map_settings *st, const tech
         f->skips->counts->marked_passes++;
         map_camera_key marking = *k;
         marking.mark_rays = true;
+        marking.bounds_lights = map_bounds_lights(r, k);
         mapped = map_shade_receivers(r, st, f, &marking, objects);
-        map_ray_marks_end(r);
+        map_ray_marks_end(r, f->counters);
     }
     k->ray_counts = f->counters && k->rays != MAP_RAYS_OFF && map_ray_counts_begin(r);
     mapped = mapped && map_shade_receivers(r, st, f, k, objects);

@@ -108,12 +108,13 @@ typedef struct map_camera_key {
     unsigned rays, show_unsure; /* map_rays; the unsure overlay */
     unsigned ray_counts;        /* each pixel's rays into the counts' target */
     unsigned mark_rays;         /* the pixels rays decide marked, not traced */
+    unsigned bounds_lights;     /* bit i: light i read by its depth bounds (a marking pass) */
 } map_camera_key;
 
 /* A texture the frame's size, attached beside its colour for the
  * receivers' passes (map_rays.c); failed (said once): never again. */
 typedef struct map_second_target {
-    unsigned texture;
+    unsigned texture, framebuffer; /* the framebuffer: the read-back's */
     int size[2];
     bool failed;
 } map_second_target;
@@ -242,12 +243,18 @@ struct map_renderer {
     bool fitted[SCENE_MAX_LIGHTS];
     const bvh_gpu *casters; /* map_trace_with's; NULL: no rays */
     /* The camera pass's second targets (map_rays.c): the rays' marks,
-     * R8, and the program that makes them the stencil; the rays' counts,
-     * RGBA32F, their framebuffer for the read-back, the last frame's sums. */
+     * R8, the program that makes them the stencil, and the marked pixels
+     * where the frame counts; the rays' counts, RGBA32F; the last
+     * counted frame's sums. */
     map_second_target marks, counts;
-    unsigned marks_program, counts_framebuffer;
+    unsigned marks_program;
+    long marked_pixels;
     technique_rays counted;
     bool has_counted;
+    /* The maps' depth bounds (map_bounds.c): their program and
+     * framebuffer; failed (said once): the kernel everywhere. */
+    unsigned bounds_program, bounds_framebuffer;
+    bool bounds_failed;
 };
 
 /* Where a light of the frame's takes rays only where the map is unsure,
@@ -255,10 +262,11 @@ struct map_renderer {
  * that rays would decide (shaders/map.frag, MAP_PASS_MARK_RAYS) into a
  * second target beside the frame's colour, then again, tracing, where the
  * stencil lets through only those. Begin attaches and clears the marks
- * (false: this frame traces in one pass); end detaches them and leaves the
+ * (false: this frame traces in one pass); end (`count`: into
+ * r->marked_pixels, for the counts' sums) detaches them and leaves the
  * stencil test on, passing only the marked pixels. */
 bool map_ray_marks_begin(map_renderer *r);
-void map_ray_marks_end(map_renderer *r);
+void map_ray_marks_end(map_renderer *r, bool count);
 /* While the camera pass draws the receivers, each pixel's rays and
  * traced lights go to a second target (shaders/map.frag,
  * MAP_PASS_RAY_COUNTS) attached beside the frame's colour: begin attaches
@@ -267,6 +275,16 @@ void map_ray_marks_end(map_renderer *r);
 bool map_ray_counts_begin(map_renderer *r);
 void map_ray_counts_end(map_renderer *r);
 void map_rays_destroy(map_renderer *r);
+
+/* The depth bounds' cell: texels on a side whose least and greatest depth
+ * one texel of a 2D map's bounds holds (shaders/map_bounds.frag). A
+ * kernel whose reads span at most this many texels reads 2 x 2 cells. */
+#define MAP_BOUNDS_CELL_TEXELS 8
+/* 2D map m's depth bounds, made again where its layer was drawn since
+ * (false: not a 2D map, or this GL cannot draw them, said once). Leaves
+ * the target framebuffer bound, at the frame's viewport. */
+bool map_bounds_update(map_renderer *r, map_light *m);
+void map_bounds_destroy(map_renderer *r);
 
 /* The depth pass of a fitted map of any kind, uncached (the tests'):
  * (re)makes its texture when needed, then renders every layer from its matrix, with glPolygonOffset

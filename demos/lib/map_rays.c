@@ -11,8 +11,8 @@
 #include "map_internal.h"
 #include "shader.h"
 
-/* Read back as RGBA floats, the format every GL reads a float target in. */
-#define MAP_COUNTS_CHANNELS 4
+/* Read back as RGBA, the format every GL reads its targets in. */
+#define MAP_SECOND_CHANNELS 4
 /* The stencil value of a marked pixel, and the bits it takes. */
 #define MAP_MARKED_STENCIL 1
 #define MAP_MARKED_STENCIL_BITS 0xffu
@@ -23,11 +23,14 @@
 /* ---- the second target ---- */
 
 /* t's texture at the target's size (its viewport's far corner), in
- * `format` (an internal format drawable as colour, read as `pixel`s). */
-static void map_second_texture(const map_renderer *r, map_second_target *t, GLenum format, GLenum pixel) {
+ * `format` (an internal format drawable as colour, given as `pixel`s),
+ * and its framebuffer for the read-back (false: this GL cannot draw into
+ * that format, said once with `what`). */
+static bool map_second_texture(const map_renderer *r, map_second_target *t, GLenum format, GLenum pixel,
+                               const char *what) {
     int width = r->viewport[0] + r->viewport[2], height = r->viewport[1] + r->viewport[3];
     if (t->texture && t->size[0] == width && t->size[1] == height)
-        return;
+        return true;
     if (!t->texture)
         glGenTextures(1, &t->texture);
     glBindTexture(GL_TEXTURE_2D, t->texture);
@@ -38,6 +41,16 @@ static void map_second_texture(const map_renderer *r, map_second_target *t, GLen
     glBindTexture(GL_TEXTURE_2D, 0);
     t->size[0] = width;
     t->size[1] = height;
+    if (!t->framebuffer) {
+        glGenFramebuffers(1, &t->framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, t->framebuffer);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->texture, 0);
+        t->failed = glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
+        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
+        if (t->failed)
+            fprintf(stderr, "shadow maps: %s: this GL cannot draw into the texture\n", what);
+    }
+    return !t->failed;
 }
 
 /* The target framebuffer's colour alone again. */
@@ -67,29 +80,53 @@ static bool map_second_attach(map_renderer *r, map_second_target *t, const char 
         map_second_detach();
         return false;
     }
-    static const float none[MAP_COUNTS_CHANNELS] = {0};
+    static const float none[MAP_SECOND_CHANNELS] = {0};
     glDisable(GL_SCISSOR_TEST);
     glClearBufferfv(GL_COLOR, 1, none);
     return true;
 }
 
+/* t's viewport pixels, RGBA of `type` (GL_FLOAT or GL_UNSIGNED_BYTE,
+ * formats every GL reads its kind of target in), malloc'd (NULL: out of
+ * memory, said with `what`). */
+static void *map_second_read(const map_renderer *r, const map_second_target *t, GLenum type, const char *what) {
+    size_t pixels = (size_t)r->viewport[2] * (size_t)r->viewport[3];
+    void *data = malloc(pixels * MAP_SECOND_CHANNELS * (type == GL_FLOAT ? sizeof(float) : 1));
+    if (!data) {
+        fprintf(stderr, "shadow maps: %s: out of memory\n", what);
+        return NULL;
+    }
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t->framebuffer);
+    glReadPixels(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3], GL_RGBA, type, data);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)r->target_framebuffer);
+    return data;
+}
+
 /* ---- the marks ---- */
+
+#define MAP_MARKS_WHAT "unsure pixels are not traced in a pass of their own"
 
 bool map_ray_marks_begin(map_renderer *r) {
     map_second_target *t = &r->marks;
+    r->marked_pixels = 0;
     if (!t->failed && !r->marks_program) {
         static const char *const files[] = {"viewport_triangle.vert", "map_marks.frag"};
         r->marks_program = shader_load_program(files, 2, NULL);
         t->failed = !r->marks_program; /* the loader said why */
     }
-    if (t->failed)
-        return false;
-    map_second_texture(r, t, GL_R8, GL_UNSIGNED_BYTE);
-    return map_second_attach(r, t, "unsure pixels are not traced in a pass of their own");
+    return !t->failed && map_second_texture(r, t, GL_R8, GL_UNSIGNED_BYTE, MAP_MARKS_WHAT) &&
+           map_second_attach(r, t, MAP_MARKS_WHAT);
 }
 
-void map_ray_marks_end(map_renderer *r) {
+void map_ray_marks_end(map_renderer *r, bool count) {
     map_second_detach();
+    unsigned char *marks =
+        count ? map_second_read(r, &r->marks, GL_UNSIGNED_BYTE, "the marks are not counted") : NULL;
+    size_t pixels = (size_t)r->viewport[2] * (size_t)r->viewport[3];
+    for (size_t i = 0; marks && i < pixels; i++)
+        r->marked_pixels += marks[i * MAP_SECOND_CHANNELS] != 0;
+    free(marks);
     GLboolean depth_test = glIsEnabled(GL_DEPTH_TEST);
     glDisable(GL_DEPTH_TEST);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -115,42 +152,27 @@ void map_ray_marks_end(map_renderer *r) {
 
 /* ---- the counts ---- */
 
+#define MAP_COUNTS_WHAT "the rays are not counted"
+
 bool map_ray_counts_begin(map_renderer *r) {
     map_second_target *t = &r->counts;
-    if (t->failed)
-        return false;
-    map_second_texture(r, t, GL_RGBA32F, GL_FLOAT);
-    if (!r->counts_framebuffer) {
-        glGenFramebuffers(1, &r->counts_framebuffer);
-        glBindFramebuffer(GL_FRAMEBUFFER, r->counts_framebuffer);
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->texture, 0);
-        t->failed = glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
-        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
-        if (t->failed) {
-            fprintf(stderr, "shadow maps: the rays are not counted: this GL cannot draw into an RGBA32F texture\n");
-            return false;
-        }
-    }
-    return map_second_attach(r, t, "the rays are not counted");
+    return !t->failed && map_second_texture(r, t, GL_RGBA32F, GL_FLOAT, MAP_COUNTS_WHAT) &&
+           map_second_attach(r, t, MAP_COUNTS_WHAT);
 }
 
 void map_ray_counts_end(map_renderer *r) {
     map_second_detach();
-    /* The viewport's pixels: R the rays, G the lights traced. */
-    size_t pixels = (size_t)r->viewport[2] * (size_t)r->viewport[3];
-    float *counts = malloc(pixels * MAP_COUNTS_CHANNELS * sizeof *counts);
+    float *counts = map_second_read(r, &r->counts, GL_FLOAT, MAP_COUNTS_WHAT);
     if (!counts) {
-        fprintf(stderr, "shadow maps: the rays are not counted: out of memory\n");
         r->counts.failed = true;
         return;
     }
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, r->counts_framebuffer);
-    glReadPixels(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3], GL_RGBA, GL_FLOAT, counts);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)r->target_framebuffer);
-    technique_rays sums = {.pixels = (long)pixels};
+    /* The viewport's pixels: R the rays, G the lights traced. */
+    size_t pixels = (size_t)r->viewport[2] * (size_t)r->viewport[3];
+    technique_rays sums = {.pixels = (long)pixels, .marked = r->marked_pixels};
     for (size_t i = 0; i < pixels; i++) {
-        sums.rays += (long)counts[i * MAP_COUNTS_CHANNELS];
-        sums.traced += (long)counts[i * MAP_COUNTS_CHANNELS + 1];
+        sums.rays += (long)counts[i * MAP_SECOND_CHANNELS];
+        sums.traced += (long)counts[i * MAP_SECOND_CHANNELS + 1];
     }
     free(counts);
     r->counted = sums;
@@ -158,9 +180,11 @@ void map_ray_counts_end(map_renderer *r) {
 }
 
 void map_rays_destroy(map_renderer *r) {
-    glDeleteTextures(1, &r->counts.texture);
-    glDeleteTextures(1, &r->marks.texture);
-    glDeleteFramebuffers(1, &r->counts_framebuffer);
+    map_second_target *targets[] = {&r->counts, &r->marks};
+    for (size_t i = 0; i < sizeof targets / sizeof *targets; i++) {
+        glDeleteTextures(1, &targets[i]->texture);
+        glDeleteFramebuffers(1, &targets[i]->framebuffer);
+    }
     shader_delete_program(r->marks_program);
 }
 
