@@ -216,13 +216,13 @@ bool map_light_cone_clear(int i) {
     if (kind == MAP_LIGHT_UNSHADOWED) \
         c += lighting_unshadowed(i, v_position, n, u_albedo); \
     else if (kind == MAP_LIGHT_2D) \
-        c += map_share(u_maps_2d[i], u_depths_2d[i], i, texel_kind, MAP_SOFT(i), \
+        c += map_share(u_maps_2d[i], u_depths_2d[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
                               MAP_MOMENTS(i), n); \
     else if (kind == MAP_LIGHT_CUBE) \
-        c += map_share(u_maps_cube[i], u_depths_cube[i], i, texel_kind, MAP_SOFT(i), \
+        c += map_share(u_maps_cube[i], u_depths_cube[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
                               MAP_MOMENTS(i), n); \
     else if (kind == MAP_LIGHT_ARRAY) \
-        c += map_share(u_maps_array[i], u_depths_array[i], i, texel_kind, MAP_SOFT(i), \
+        c += map_share(u_maps_array[i], u_depths_array[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
                               MAP_MOMENTS(i), n)
 
 void main() {

@@ -58,6 +58,7 @@ const bool map_early_out = MAP_PASS_EARLY_OUT != 0;
 // Each tap compares the receiver plane's depth there, not the centre's.
 const bool map_receiver_plane = MAP_PASS_RECEIVER_PLANE != 0;
 uniform float u_map_size[SCENE_MAX_LIGHTS]; // light i's map: texels on a side
+uniform sampler2D u_bounds[SCENE_MAX_LIGHTS]; // light i's depth bounds, in a marking pass (below)
 
 // A flat map's (2D, or an array's layer) point the kernel reads about (map
 // coordinates and depth) and its depth gradient: set by
@@ -188,6 +189,52 @@ float map_kernel_reach() {
     if (map_shape == MAP_KERNEL_TENT)
         return float(map_tent_pairs());
     return float(map_kernel_size / 2);
+}
+
+// Depth bounds (demos/lib/map_bounds.c): a marking pass's answer for a
+// hard light of MAP_PASS_BOUNDS_LIGHTS, instead of its kernel: what the
+// kernel would say where that is sure, without reading the map. A map's
+// bounds hold per cell of MAP_BOUNDS_CELL_TEXELS texels on a side the
+// least (r) and greatest (g) depth (a cube's six faces side by side).
+// The answer is 1 where every tap's depth lies at or before the least of
+// the cells the taps read, 0 where all lie past the greatest, and
+// MAP_BOUNDS_UNSURE (strictly between: the pixel is marked for the kernel
+// and the rays) elsewhere, and where the reads span more than
+// MAP_BOUNDS_SPAN_CELLS cells on an axis (a cell of 8 texels holds the
+// default kernel's reads in 2). MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose
+// depth rounds to a texel's out of both.
+const float MAP_BOUNDS_UNSURE = 0.5;
+const float MAP_BOUNDS_DEPTH_MARGIN = 1e-6;
+const int MAP_BOUNDS_ROUNDING_TEXELS = 1;
+const int MAP_BOUNDS_SPAN_CELLS = 2;
+
+bool map_bounds_light(int i) { return ((MAP_PASS_BOUNDS_LIGHTS >> i) & 1) != 0; }
+
+// The answer for taps that read texels whose centres lie within `low` ..
+// `high` (texels from the first centre, on a face `size` texels wide
+// whose first cell is `origin`) and compare depths within `least_depth`
+// .. `greatest_depth`: a bilinear read takes the texel below and the one
+// above, and one more texel each side allows for the sampler's rounding.
+float map_bounds_answer(sampler2D bounds, ivec2 origin, int size, vec2 low, vec2 high, float least_depth,
+                        float greatest_depth) {
+    ivec2 last = ivec2(size - 1);
+    ivec2 first_texel = clamp(ivec2(floor(low)) - MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
+    ivec2 last_texel = clamp(ivec2(floor(high)) + 1 + MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
+    ivec2 first_cell = first_texel / MAP_BOUNDS_CELL_TEXELS, last_cell = last_texel / MAP_BOUNDS_CELL_TEXELS;
+    if (any(greaterThanEqual(last_cell - first_cell, ivec2(MAP_BOUNDS_SPAN_CELLS))))
+        return MAP_BOUNDS_UNSURE;
+    float least = 1.0, greatest = 0.0;
+    for (int y = 0; y < MAP_BOUNDS_SPAN_CELLS; y++)
+        for (int x = 0; x < MAP_BOUNDS_SPAN_CELLS; x++) {
+            vec2 cell = texelFetch(bounds, origin + min(first_cell + ivec2(x, y), last_cell), 0).rg;
+            least = min(least, cell.x);
+            greatest = max(greatest, cell.y);
+        }
+    if (greatest_depth + MAP_BOUNDS_DEPTH_MARGIN <= least)
+        return 1.0;
+    if (min(least_depth, 1.0) - MAP_BOUNDS_DEPTH_MARGIN > greatest)
+        return 0.0;
+    return MAP_BOUNDS_UNSURE;
 }
 
 // The early-out (map_early_out, for kernels of more than four taps): four

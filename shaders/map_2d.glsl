@@ -60,56 +60,30 @@ float map_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) {
     return map_projective_texel(i, p);
 }
 
-// The depth bounds' answer (demos/lib/map_bounds.c): what the kernel
-// would say where that is sure, without reading it, from the least and
-// greatest depth of the cells (2 x 2 at most) that hold every texel any
-// tap's bilinear comparison reads, one more on each side for the
-// sampler's rounding: 1 where every tap's depth, the receiver's plane
-// across the kernel's reach, lies at or before the least; 0 where all lie
-// past the greatest; MAP_BOUNDS_UNSURE (strictly between: the pixel is
-// marked for the kernel and the rays) elsewhere, and where the reads span
-// more cells. MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose depth rounds to a
-// texel's out of both. Outside the map, lit, as map_flat_filter says.
-const float MAP_BOUNDS_UNSURE = 0.5;
-const float MAP_BOUNDS_DEPTH_MARGIN = 1e-6;
-const int MAP_BOUNDS_ROUNDING_TEXELS = 1;
-
+// The depth bounds' answer (map.glsl) for the cells that hold every
+// texel any tap's bilinear comparison reads (taps within the kernel's
+// reach, its receiver plane across it), one more on each side for the
+// sampler's rounding. Outside the map, lit, as map_flat_filter says.
 float map_bounds_visibility(sampler2D bounds, int i, vec3 uvz, vec2 gradient, float depth_bias) {
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
     float reach = map_kernel_reach(), size = u_map_size[i];
     vec2 point = uvz.xy * size - 0.5; // from the first texel's centre
-    ivec2 last = ivec2(size) - 1;
-    ivec2 low = clamp(ivec2(floor(point - reach)) - MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
-    ivec2 high = clamp(ivec2(floor(point + reach)) + 1 + MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
-    ivec2 first_cell = low / MAP_BOUNDS_CELL_TEXELS, last_cell = high / MAP_BOUNDS_CELL_TEXELS;
-    if (any(greaterThan(last_cell - first_cell, ivec2(1))))
-        return MAP_BOUNDS_UNSURE;
-    vec2 a = texelFetch(bounds, first_cell, 0).rg, b = texelFetch(bounds, ivec2(last_cell.x, first_cell.y), 0).rg;
-    vec2 c = texelFetch(bounds, ivec2(first_cell.x, last_cell.y), 0).rg, d = texelFetch(bounds, last_cell, 0).rg;
-    float least = min(min(a.x, b.x), min(c.x, d.x)), greatest = max(max(a.y, b.y), max(c.y, d.y));
     float depth = min(uvz.z - depth_bias, 1.0);
     float spread = (abs(gradient.x) + abs(gradient.y)) * reach / size;
-    if (depth + spread + MAP_BOUNDS_DEPTH_MARGIN <= least)
-        return 1.0;
-    if (min(depth - spread, 1.0) - MAP_BOUNDS_DEPTH_MARGIN > greatest)
-        return 0.0;
-    return MAP_BOUNDS_UNSURE;
+    return map_bounds_answer(bounds, ivec2(0), int(size), point - reach, point + reach, depth - spread,
+                             depth + spread);
 }
 
-// Light i's marking pass reads its depth bounds (in `raw`'s place) for
-// the kernel: map.frag's MAP_PASS_BOUNDS_LIGHTS.
-bool map_bounds_light(int i) { return ((MAP_PASS_BOUNDS_LIGHTS >> i) & 1) != 0; }
-
-float map_visibility(sampler2DShadow map, sampler2D raw, int i, vec3 p, float depth_bias, bool soft,
-                            bool moments, float texel, bool needed) {
+float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i, vec3 p, float depth_bias,
+                     bool soft, bool moments, float texel, bool needed) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
     vec2 gradient = map_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
     if (!needed || clip.w <= 0.0)
         return 1.0;
     if (map_bounds_light(i))
-        return map_bounds_visibility(raw, i, uvz, gradient, depth_bias);
+        return map_bounds_visibility(bounds, i, uvz, gradient, depth_bias);
     return map_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, moments, texel);
 }
 

@@ -1,19 +1,42 @@
 #version 330 core
-// A 2D map's depth bounds (demos/lib/map_bounds.c): each texel the least
-// (r) and greatest (g) depth of its cell, MAP_BOUNDS_CELL_TEXELS texels on
-// a side (a cell past the map's edge repeats the edge's texels, as the
-// map's clamped reads do).
-uniform sampler2D u_depths; // the map's depths as stored (compare mode off)
+// A map's depth bounds (demos/lib/map_bounds.c; shaders/map.glsl reads
+// them): each texel the least (r) and greatest (g) depth of its cell,
+// MAP_BOUNDS_CELL_TEXELS texels on a side (a cell past the map's edge
+// repeats the edge's texels, as the map's clamped reads do). A 2D map's
+// cells in one square; with MAP_BOUNDS_CUBE a cube map's, its six faces
+// side by side (+X -X +Y -Y +Z -Z), each texel read by the direction
+// through its centre (GL's face table, map_cube.glsl's map_cube_face
+// the other way).
+#if MAP_BOUNDS_CUBE
+uniform samplerCube u_depths; // the map's depths as stored (compare mode off, nearest)
+#else
+uniform sampler2D u_depths;
+#endif
+uniform int u_size; // the map's texels on a side
 
 out vec4 out_bounds;
 
+#if MAP_BOUNDS_CUBE
+// Texel q of face `face`'s depth.
+float map_bounds_depth(int face, ivec2 q) {
+    vec2 c = (vec2(q) + 0.5) / float(u_size) * 2.0 - 1.0;
+    vec3 directions[6] = vec3[](vec3(1.0, -c.y, -c.x), vec3(-1.0, -c.y, c.x), vec3(c.x, 1.0, c.y),
+                                vec3(c.x, -1.0, -c.y), vec3(c.x, -c.y, 1.0), vec3(-c.x, -c.y, -1.0));
+    return texture(u_depths, directions[face]).r;
+}
+#else
+float map_bounds_depth(int face, ivec2 q) { return texelFetch(u_depths, q, 0).r; }
+#endif
+
 void main() {
-    ivec2 first = ivec2(gl_FragCoord.xy) * MAP_BOUNDS_CELL_TEXELS;
-    ivec2 last = textureSize(u_depths, 0) - 1;
+    int cells = (u_size + MAP_BOUNDS_CELL_TEXELS - 1) / MAP_BOUNDS_CELL_TEXELS;
+    ivec2 cell = ivec2(gl_FragCoord.xy);
+    int face = cell.x / cells;
+    ivec2 first = ivec2(cell.x - face * cells, cell.y) * MAP_BOUNDS_CELL_TEXELS;
     float least = 1.0, greatest = 0.0;
     for (int y = 0; y < MAP_BOUNDS_CELL_TEXELS; y++)
         for (int x = 0; x < MAP_BOUNDS_CELL_TEXELS; x++) {
-            float depth = texelFetch(u_depths, min(first + ivec2(x, y), last), 0).r;
+            float depth = map_bounds_depth(face, min(first + ivec2(x, y), ivec2(u_size - 1)));
             least = min(least, depth);
             greatest = max(greatest, depth);
         }

@@ -68,6 +68,61 @@ float map_soft_distance(samplerCube raw, int i, float depth) {
     return 2.0 * far * near / ((far + near) - ndc * (far - near));
 }
 
+// GL's face of direction d (its index: +X -X +Y -Y +Z -Z) and d's (s, t)
+// on it, 0..1: the specification's table of sc, tc over |ma|.
+int map_cube_face(vec3 d, out vec2 st) {
+    vec3 a = abs(d);
+    int face;
+    vec2 across;
+    float major;
+    if (a.x >= a.y && a.x >= a.z) {
+        face = d.x >= 0.0 ? 0 : 1;
+        major = a.x;
+        across = d.x >= 0.0 ? vec2(-d.z, -d.y) : vec2(d.z, -d.y);
+    } else if (a.y >= a.z) {
+        face = d.y >= 0.0 ? 2 : 3;
+        major = a.y;
+        across = d.y >= 0.0 ? vec2(d.x, d.z) : vec2(d.x, -d.z);
+    } else {
+        face = d.z >= 0.0 ? 4 : 5;
+        major = a.z;
+        across = d.z >= 0.0 ? vec2(d.x, -d.y) : vec2(-d.x, -d.y);
+    }
+    st = (across / major + 1.0) * 0.5;
+    return face;
+}
+
+// The depth bounds' answer (map.glsl) for the kernel's own taps, about
+// the point map_visibility set up: where every tap reads the point's face
+// away from its edges (seamless reads cross them), from the cells that
+// hold the texels their directions read, against the depths they compare.
+float map_cube_bounds_visibility(sampler2D bounds, int i) {
+    float size = u_map_size[i];
+    vec2 st;
+    int face = map_cube_face(map_direction, st);
+    vec2 low = vec2(size), high = vec2(-1.0);
+    float least_depth = 1.0, greatest_depth = 0.0;
+    mat2 rotation = map_kernel_rotation();
+    if (map_shape == MAP_KERNEL_TENT)
+        map_tent_place(vec2(0.0));
+    for (int k = 0; k < map_kernel_taps(); k++) {
+        vec2 offset = map_kernel_tap(k, rotation, 1.0).xy;
+        if (map_cube_face(map_tap_direction(offset), st) != face)
+            return MAP_BOUNDS_UNSURE;
+        vec2 texel = st * size - 0.5; // from the first texel's centre
+        low = min(low, texel);
+        high = max(high, texel);
+        float depth = map_tap_depth(offset);
+        least_depth = min(least_depth, depth);
+        greatest_depth = max(greatest_depth, depth);
+    }
+    int edge = MAP_BOUNDS_ROUNDING_TEXELS + 1;
+    if (any(lessThan(floor(low), vec2(edge))) || any(greaterThan(floor(high), vec2(size - 1.0 - float(edge)))))
+        return MAP_BOUNDS_UNSURE;
+    int cells = (int(size) + MAP_BOUNDS_CELL_TEXELS - 1) / MAP_BOUNDS_CELL_TEXELS;
+    return map_bounds_answer(bounds, ivec2(face * cells, 0), int(size), low, high, least_depth, greatest_depth);
+}
+
 #define MAP_SAMPLER samplerCubeShadow
 #define MAP_RAW_SAMPLER samplerCube
 #include "map_light.glsl"
@@ -86,8 +141,8 @@ float map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
 // tents take the taps and weights of a point on a texel corner (fraction
 // 0): symmetric about the point, the same tap count and footprint as on a
 // 2D map, but not following where the point lies in its texel.
-float map_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, float depth_bias, bool soft,
-                            bool moments, float texel, bool needed) {
+float map_visibility(samplerCubeShadow map, samplerCube raw, sampler2D bounds, int i, vec3 p, float depth_bias,
+                     bool soft, bool moments, float texel, bool needed) {
     vec3 d = p - lights_position[i].xyz;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (!needed)
@@ -107,6 +162,8 @@ float map_visibility(samplerCubeShadow map, samplerCube raw, int i, vec3 p, floa
     map_across_v = cross(axis, u);
     map_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
     map_plane_taps = map_receiver_plane || soft;
+    if (map_bounds_light(i))
+        return map_cube_bounds_visibility(bounds, i);
     if (soft)
         return map_soft_filter(map, raw, i, map_step, 1.0);
     return map_kernel_filter(map, vec2(0.0), 1.0);

@@ -12,13 +12,16 @@
 //   map_texel_world(map, i, k, p) world size of a texel of light i's
 //                                        map at p (k: the texel's kind, a
 //                                        MAP_TEXEL_*, for 2D maps);
-//   map_visibility(map, raw, i, p, b, soft, moments, texel, needed)
+//   map_visibility(map, raw, bounds, i, p, b, soft, moments, texel, needed)
 //                                        the filtered comparison at p, its
 //                                        map depth lowered by b first, by
 //                                        the settings' kernel or, soft, by
 //                                        map_soft.glsl's, or with
 //                                        `moments` from raw's moments
-//                                        (moments.glsl) (texel: a
+//                                        (moments.glsl), or in a marking
+//                                        pass by its depth bounds
+//                                        (map.glsl, map_bounds_light)
+//                                        (texel: a
 //                                        texel's world size there; the
 //                                        screen derivatives it takes come
 //                                        first, in uniform control flow;
@@ -29,7 +32,7 @@
 // GLSL picks each by the sampler's type: the same names for both kinds.
 
 float map_texel_world(MAP_SAMPLER map, int i, int texel_kind, vec3 p);
-float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, vec3 p, float depth_bias,
+float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, vec3 p, float depth_bias,
                             bool soft, bool moments, float texel, bool needed);
 vec2 map_texel_coord(MAP_SAMPLER map, int i, vec3 p);
 
@@ -65,7 +68,7 @@ float map_kernel_filter(MAP_SAMPLER map, vec2 fraction, float unit) {
 // unshadowed (beyond its range, outside a spot's cone, facing away) or
 // reaches only through a closed caster (map_through_closed) the
 // filter is skipped: the share is 0 whatever it would say.
-vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, int texel_kind, bool soft,
+vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, int texel_kind, bool soft,
                       bool moments, vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
     // Both biases move the point where the map is read, in world units
@@ -84,7 +87,7 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, int texel_kind, bool
     // between 0 and 1), or at every pixel without reading the map, shadow
     // rays decide, as the reference's (which needs no horizon's share).
     bool lit = unshadowed != vec3(0.0);
-    float visibility = map_visibility(map, raw, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
+    float visibility = map_visibility(map, raw, bounds, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
                                              soft, moments, texel, needed && map_rays != MAP_RAYS_ALL);
     // PCSS's search taps can miss a thin caster: an area light's pixel
     // it calls lit is sure only where no caster's box is near its cone.

@@ -78,7 +78,8 @@ static const shader_define map_defines[] = {SHADER_DEFINE(MAP_KERNEL_SINGLE),
                                             {NULL, 0}};
 
 /* The camera pass's sampler arrays, by the kind of map they read: its
- * comparisons', and a soft light's depths'. */
+ * comparisons', and a soft light's depths' (the 2D maps' first). */
+#define MAP_SAMPLER_2D 0
 static const struct {
     const char *name, *depths;
     map_light_kind kind;
@@ -439,11 +440,16 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         for (int t = 0; t < MAP_SAMPLER_TYPES; t++) {
             bool own = map_light_field(k->kinds, l) == (unsigned)map_samplers[t].kind;
-            bool soft = own && ((k->soft_lights | k->moment_lights | k->bounds_lights) >> l & 1u);
+            bool soft = own && ((k->soft_lights | k->moment_lights) >> l & 1u);
             glUniform1i(map_light_uniform(id, map_samplers[t].name, l), own ? l : MAP_IDLE_UNITS + t);
             glUniform1i(map_light_uniform(id, map_samplers[t].depths, l),
                         soft ? MAP_DEPTH_UNITS + l : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
         }
+        /* Its depth bounds (a 2D sampler for every kind), idle with the 2D
+         * maps' depths. */
+        glUniform1i(map_light_uniform(id, "u_bounds", l), k->bounds_lights >> l & 1u
+                                                              ? MAP_DEPTH_UNITS + l
+                                                              : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + MAP_SAMPLER_2D);
         p->lights[l].cascade_count = map_light_uniform(id, "u_cascade_count", l);
         p->lights[l].cascade_scale = map_light_uniform(id, "u_cascade_scale", l * MAP_MAX_ARRAY_LAYERS);
         p->lights[l].cascade_offset = map_light_uniform(id, "u_cascade_offset", l * MAP_MAX_ARRAY_LAYERS);
@@ -849,14 +855,15 @@ static bool map_shade_receivers(map_renderer *r, const map_settings *st, const t
 }
 
 /* The lights of key k whose marking pass reads their depth bounds for
- * their kernel (map_bounds_update): a 2D map's, filtered by a kernel of
- * more than one tap, hard (neither soft nor by its moments), where the GL
- * has its depth unit (the bounds take it). */
+ * their kernel (map_bounds_update): a 2D or cube map's, filtered by a
+ * kernel of more than one tap, hard (neither soft nor by its moments),
+ * where the GL has its depth unit (the bounds take it). */
 static unsigned map_bounds_lights(map_renderer *r, const map_camera_key *k) {
     unsigned lights = 0;
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         bool hard = !((k->soft_lights | k->moment_lights) >> l & 1u);
-        if (map_light_field(k->kinds, l) == MAP_LIGHT_2D && hard && k->shape != MAP_KERNEL_SINGLE &&
+        unsigned kind = map_light_field(k->kinds, l);
+        if ((kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE) && hard && k->shape != MAP_KERNEL_SINGLE &&
             MAP_DEPTH_UNITS + l < r->texture_units && map_bounds_update(r, &r->maps[l]))
             lights |= 1u << l;
     }

@@ -244,7 +244,7 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * With the frame's marked pass (skips.h, marked_pass), MAP_RAYS_UNSURE
  * draws the receivers twice: the first pass shades from the map and marks
  * the pixels rays would decide, the second shades only those, tracing
- * (map_rays.c). A hard light's 2D map is read in the first pass by its
+ * (map_rays.c). A hard light's 2D or cube map is read in the first pass by its
  * depth bounds (map_bounds.c) instead of its kernel: 0 or 1 only where
  * every tap must agree, else marked, so that the kernel too runs only in
  * the second pass. The same pixels come out of one pass without it. */
@@ -428,8 +428,8 @@ typedef struct map_texture {
     unsigned id;
     unsigned moments; /* a moment filter's blurred moments (the map's kind) */
     unsigned blur[2]; /* one layer's moments, then those blurred along x */
-    /* A 2D map's depth bounds (map_bounds.c), and whether they are the
-     * layer's as it stands. */
+    /* A 2D or cube map's depth bounds (map_bounds.c), and whether they
+     * are its layers' as they stand. */
     unsigned bounds;
     bool bounds_current;
     map_kind kind;

@@ -251,9 +251,10 @@ struct map_renderer {
     long marked_pixels;
     technique_rays counted;
     bool has_counted;
-    /* The maps' depth bounds (map_bounds.c): their program and
-     * framebuffer; failed (said once): the kernel everywhere. */
-    unsigned bounds_program, bounds_framebuffer;
+    /* The maps' depth bounds (map_bounds.c): their programs (a 2D
+     * map's, a cube map's) and framebuffer; failed (said once): the
+     * kernel everywhere. */
+    unsigned bounds_programs[2], bounds_framebuffer;
     bool bounds_failed;
 };
 
@@ -277,12 +278,14 @@ void map_ray_counts_end(map_renderer *r);
 void map_rays_destroy(map_renderer *r);
 
 /* The depth bounds' cell: texels on a side whose least and greatest depth
- * one texel of a 2D map's bounds holds (shaders/map_bounds.frag). A
- * kernel whose reads span at most this many texels reads 2 x 2 cells. */
+ * one texel of a map's bounds holds (shaders/map_bounds.frag). A kernel
+ * whose reads span at most this many texels reads 2 x 2 cells: a finer
+ * cell reads more of them and decided no more pixels on the standard
+ * scenes (test_hybrid's marked share). */
 #define MAP_BOUNDS_CELL_TEXELS 8
-/* 2D map m's depth bounds, made again where its layer was drawn since
- * (false: not a 2D map, or this GL cannot draw them, said once). Leaves
- * the target framebuffer bound, at the frame's viewport. */
+/* Map m's depth bounds, made again where a layer was drawn since (false:
+ * an array map's, which have none, or this GL cannot draw them, said
+ * once). Leaves the target framebuffer bound, at the frame's viewport. */
 bool map_bounds_update(map_renderer *r, map_light *m);
 void map_bounds_destroy(map_renderer *r);
 
