@@ -72,7 +72,7 @@ bool map_through_closed(int i, vec3 to_light) {
     return !gl_FrontFacing && (u_closed_outside & (1 << i)) != 0 && dot(map_face_normal, to_light) > 0.0;
 }
 
-out vec4 out_color;
+layout(location = 0) out vec4 out_color; // explicit: GLSL ES asks it of every output where there are two
 #if MAP_PASS_RAY_COUNTS && MAP_PASS_MARK_RAYS
 #error "the rays' counts and marks are each the camera pass's second target"
 #elif MAP_PASS_RAY_COUNTS
