@@ -194,47 +194,67 @@ float map_kernel_reach() {
 // Depth bounds (demos/lib/map_bounds.c): a marking pass's answer for a
 // hard light of MAP_PASS_BOUNDS_LIGHTS, instead of its kernel: what the
 // kernel would say where that is sure, without reading the map. A map's
-// bounds hold per cell of MAP_BOUNDS_CELL_TEXELS texels on a side the
-// least (r) and greatest (g) depth (a cube's six faces side by side).
-// The answer is 1 where every tap's depth lies at or before the least of
-// the cells the taps read, 0 where all lie past the greatest, and
-// MAP_BOUNDS_UNSURE (strictly between: the pixel is marked for the kernel
-// and the rays) elsewhere, and where the reads span more than
-// MAP_BOUNDS_SPAN_CELLS cells on an axis (a cell of 8 texels holds the
-// default kernel's reads in 2). MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose
-// depth rounds to a texel's out of both.
+// bounds hold per cell of MAP_BOUNDS_CELL_TEXELS texels on a side (a
+// cube's six faces side by side) a plane between two of whose heights
+// every texel's depth lies: its slope per texel on x and y, and its least
+// and greatest height at the cell's centre (map_bounds.frag fits it). A
+// sloped surface lies close to its cell's plane, where a cell's least
+// and greatest depth would be far apart.
+// The answer is 1 where no texel a tap reads can lie before that tap's
+// depth, 0 where every one must lie past it, and MAP_BOUNDS_UNSURE
+// (strictly between: the pixel is marked for the kernel and the rays)
+// elsewhere, and where the reads span more than MAP_BOUNDS_SPAN_CELLS
+// cells on an axis (a cell of 8 texels holds the default kernel's reads
+// in 2). MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose depth rounds to a
+// texel's out of both. A sampler places a read within
+// MAP_BOUNDS_SUBTEXEL of a texel (GPUs resolve 1/256 of one), which
+// may pick the texel beyond: the cells are read a texel wider
+// (MAP_BOUNDS_ROUNDING_TEXELS), and a texel read lies within 1 +
+// MAP_BOUNDS_SUBTEXEL of the tap.
 const float MAP_BOUNDS_UNSURE = 0.5;
 const float MAP_BOUNDS_DEPTH_MARGIN = 1e-6;
 const int MAP_BOUNDS_ROUNDING_TEXELS = 1;
+const float MAP_BOUNDS_SUBTEXEL = 1.0 / 16.0;
 const int MAP_BOUNDS_SPAN_CELLS = 2;
 
 bool map_bounds_light(int i) { return ((MAP_PASS_BOUNDS_LIGHTS >> i) & 1) != 0; }
 
-// The answer for taps that read texels whose centres lie within `low` ..
-// `high` (texels from the first centre, on a face `size` texels wide
-// whose first cell is `origin`) and compare depths within `least_depth`
-// .. `greatest_depth`: a bilinear read takes the texel below and the one
-// above, and one more texel each side allows for the sampler's rounding.
-float map_bounds_answer(sampler2D bounds, ivec2 origin, int size, vec2 low, vec2 high, float least_depth,
-                        float greatest_depth) {
+// The answer for taps at texel positions within `low` .. `high` (texels
+// from the first centre, on a face `size` texels wide whose first cell is
+// `origin`), each comparing a depth within `slack` of the linear one
+// through `depth` at `point` with `gradient` per texel. A bilinear read
+// takes the texels whose centres lie within a texel of the tap (and
+// MAP_BOUNDS_SUBTEXEL): such a texel's own linear depth is within the
+// gradient's reach of the tap's. Per cell the
+// test is linear over the texels it holds, so their box's corners decide.
+float map_bounds_answer(sampler2D bounds, ivec2 origin, int size, vec2 low, vec2 high, vec2 point, float depth,
+                        vec2 gradient, float slack) {
     ivec2 last = ivec2(size - 1);
     ivec2 first_texel = clamp(ivec2(floor(low)) - MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
     ivec2 last_texel = clamp(ivec2(floor(high)) + 1 + MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
     ivec2 first_cell = first_texel / MAP_BOUNDS_CELL_TEXELS, last_cell = last_texel / MAP_BOUNDS_CELL_TEXELS;
     if (any(greaterThanEqual(last_cell - first_cell, ivec2(MAP_BOUNDS_SPAN_CELLS))))
         return MAP_BOUNDS_UNSURE;
-    float least = 1.0, greatest = 0.0;
+    float reach = (abs(gradient.x) + abs(gradient.y)) * (1.0 + MAP_BOUNDS_SUBTEXEL) + slack + MAP_BOUNDS_DEPTH_MARGIN;
+    bool lit = true, shadowed = true;
     for (int y = 0; y < MAP_BOUNDS_SPAN_CELLS; y++)
         for (int x = 0; x < MAP_BOUNDS_SPAN_CELLS; x++) {
-            vec2 cell = texelFetch(bounds, origin + min(first_cell + ivec2(x, y), last_cell), 0).rg;
-            least = min(least, cell.x);
-            greatest = max(greatest, cell.y);
+            ivec2 cell = min(first_cell + ivec2(x, y), last_cell);
+            vec4 plane = texelFetch(bounds, origin + cell, 0); // slope x, y; least, greatest at the centre
+            vec2 centre = vec2(cell * MAP_BOUNDS_CELL_TEXELS) + 0.5 * float(MAP_BOUNDS_CELL_TEXELS - 1);
+            vec2 box_low = vec2(max(first_texel, cell * MAP_BOUNDS_CELL_TEXELS));
+            vec2 box_high = vec2(min(last_texel, cell * MAP_BOUNDS_CELL_TEXELS + MAP_BOUNDS_CELL_TEXELS - 1));
+            // The texels' depth over the taps' linear depth: plane - line.
+            vec2 slope = plane.xy - gradient;
+            float at_centre = dot(plane.xy, -centre) - depth + dot(gradient, point);
+            vec2 lowest = mix(box_high, box_low, greaterThan(slope, vec2(0.0)));
+            vec2 highest = mix(box_low, box_high, greaterThan(slope, vec2(0.0)));
+            lit = lit && plane.z + at_centre + dot(slope, lowest) >= reach;
+            shadowed = shadowed && plane.w + at_centre + dot(slope, highest) <= -reach &&
+                       plane.w + dot(plane.xy, mix(box_low, box_high, greaterThan(plane.xy, vec2(0.0))) - centre) <
+                           1.0 - MAP_BOUNDS_DEPTH_MARGIN;
         }
-    if (greatest_depth + MAP_BOUNDS_DEPTH_MARGIN <= least)
-        return 1.0;
-    if (min(least_depth, 1.0) - MAP_BOUNDS_DEPTH_MARGIN > greatest)
-        return 0.0;
-    return MAP_BOUNDS_UNSURE;
+    return lit ? 1.0 : shadowed ? 0.0 : MAP_BOUNDS_UNSURE;
 }
 
 // The early-out (map_early_out, for kernels of more than four taps): four

@@ -60,19 +60,16 @@ float map_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) {
     return map_projective_texel(i, p);
 }
 
-// The depth bounds' answer (map.glsl) for the cells that hold every
-// texel any tap's bilinear comparison reads (taps within the kernel's
-// reach, its receiver plane across it), one more on each side for the
-// sampler's rounding. Outside the map, lit, as map_flat_filter says.
+// The depth bounds' answer (map.glsl) for taps within the kernel's reach
+// of the point, each comparing the receiver plane's depth there. Outside
+// the map, lit, as map_flat_filter says.
 float map_bounds_visibility(sampler2D bounds, int i, vec3 uvz, vec2 gradient, float depth_bias) {
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
     float reach = map_kernel_reach(), size = u_map_size[i];
     vec2 point = uvz.xy * size - 0.5; // from the first texel's centre
-    float depth = min(uvz.z - depth_bias, 1.0);
-    float spread = (abs(gradient.x) + abs(gradient.y)) * reach / size;
-    return map_bounds_answer(bounds, ivec2(0), int(size), point - reach, point + reach, depth - spread,
-                             depth + spread);
+    return map_bounds_answer(bounds, ivec2(0), int(size), point - reach, point + reach, point,
+                             min(uvz.z - depth_bias, 1.0), gradient / size, 0.0);
 }
 
 float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i, vec3 p, float depth_bias,

@@ -1,8 +1,11 @@
 #version 330 core
 // A map's depth bounds (demos/lib/map_bounds.c; shaders/map.glsl reads
-// them): each texel the least (r) and greatest (g) depth of its cell,
-// MAP_BOUNDS_CELL_TEXELS texels on a side (a cell past the map's edge
-// repeats the edge's texels, as the map's clamped reads do). A 2D map's
+// them): per cell of MAP_BOUNDS_CELL_TEXELS texels on a side, the least
+// squares plane of its depths, its slope per texel on x and y (r, g), and
+// the least and greatest height at the cell's centre (b, a) of the planes
+// of that slope through its texels: every texel's depth lies between
+// those two planes (a cell past the map's edge repeats the edge's texels,
+// as the map's clamped reads do, each at its place in the cell). A 2D map's
 // cells in one square; with MAP_BOUNDS_CUBE a cube map's, its six faces
 // side by side (+X -X +Y -Y +Z -Z), each texel read by the direction
 // through its centre (GL's face table, map_cube.glsl's map_cube_face
@@ -33,12 +36,26 @@ void main() {
     ivec2 cell = ivec2(gl_FragCoord.xy);
     int face = cell.x / cells;
     ivec2 first = ivec2(cell.x - face * cells, cell.y) * MAP_BOUNDS_CELL_TEXELS;
-    float least = 1.0, greatest = 0.0;
+    // A texel's place from the cell's centre, and the sum of its squares
+    // on one axis over the whole cell: the least squares slope's divisor.
+    float middle = 0.5 * float(MAP_BOUNDS_CELL_TEXELS - 1), squares = 0.0;
+    float depths[MAP_BOUNDS_CELL_TEXELS * MAP_BOUNDS_CELL_TEXELS];
+    vec2 moment = vec2(0.0);
     for (int y = 0; y < MAP_BOUNDS_CELL_TEXELS; y++)
         for (int x = 0; x < MAP_BOUNDS_CELL_TEXELS; x++) {
+            vec2 place = vec2(x, y) - middle;
             float depth = map_bounds_depth(face, min(first + ivec2(x, y), ivec2(u_size - 1)));
-            least = min(least, depth);
-            greatest = max(greatest, depth);
+            depths[y * MAP_BOUNDS_CELL_TEXELS + x] = depth;
+            moment += place * depth;
+            squares += place.x * place.x;
         }
-    out_bounds = vec4(least, greatest, 0.0, 0.0);
+    vec2 slope = moment / squares;
+    float least = 1e30, greatest = -1e30;
+    for (int y = 0; y < MAP_BOUNDS_CELL_TEXELS; y++)
+        for (int x = 0; x < MAP_BOUNDS_CELL_TEXELS; x++) {
+            float height = depths[y * MAP_BOUNDS_CELL_TEXELS + x] - dot(slope, vec2(x, y) - middle);
+            least = min(least, height);
+            greatest = max(greatest, height);
+        }
+    out_bounds = vec4(slope, least, greatest);
 }

@@ -92,35 +92,59 @@ int map_cube_face(vec3 d, out vec2 st) {
     return face;
 }
 
+// Where the direction `offset` (texels across the point's) falls on
+// `face`, in texels from its first centre (false: on another face).
+bool map_cube_place(int face, float size, vec2 offset, out vec2 texel) {
+    vec2 st;
+    bool same = map_cube_face(map_tap_direction(offset), st) == face;
+    texel = st * size - 0.5;
+    return same;
+}
+
+// Below this the face's texels hardly move with the kernel's offsets:
+// no plane through the taps is fitted.
+const float MAP_CUBE_MIN_DETERMINANT = 1e-12;
+
 // The depth bounds' answer (map.glsl) for the kernel's own taps, about
 // the point map_visibility set up: where every tap reads the point's face
 // away from its edges (seamless reads cross them), from the cells that
-// hold the texels their directions read, against the depths they compare.
+// hold the texels their directions read. A face is a perspective view,
+// in which a plane's stored depth is linear: the taps' depths (on the
+// receiver's plane, or on the plane across the direction) lie on the line
+// through the point's and two neighbours', within the slack that the
+// depth's clamp and the taps kept off a grazing plane leave, measured.
 float map_cube_bounds_visibility(sampler2D bounds, int i) {
     float size = u_map_size[i];
     vec2 st;
     int face = map_cube_face(map_direction, st);
+    vec2 point, along_x, along_y;
+    if (!map_cube_place(face, size, vec2(0.0), point) || !map_cube_place(face, size, vec2(1.0, 0.0), along_x) ||
+        !map_cube_place(face, size, vec2(0.0, 1.0), along_y))
+        return MAP_BOUNDS_UNSURE;
+    float depth = map_tap_depth(vec2(0.0));
+    mat2 steps = mat2(along_x - point, along_y - point); // columns: texels per unit of offset
+    vec2 gradient = vec2(0.0);
+    if (abs(determinant(steps)) > MAP_CUBE_MIN_DETERMINANT)
+        gradient = inverse(transpose(steps)) *
+                   vec2(map_tap_depth(vec2(1.0, 0.0)) - depth, map_tap_depth(vec2(0.0, 1.0)) - depth);
     vec2 low = vec2(size), high = vec2(-1.0);
-    float least_depth = 1.0, greatest_depth = 0.0;
+    float slack = 0.0;
     mat2 rotation = map_kernel_rotation();
     if (map_shape == MAP_KERNEL_TENT)
         map_tent_place(vec2(0.0));
     for (int k = 0; k < map_kernel_taps(); k++) {
-        vec2 offset = map_kernel_tap(k, rotation, 1.0).xy;
-        if (map_cube_face(map_tap_direction(offset), st) != face)
+        vec2 offset = map_kernel_tap(k, rotation, 1.0).xy, texel;
+        if (!map_cube_place(face, size, offset, texel))
             return MAP_BOUNDS_UNSURE;
-        vec2 texel = st * size - 0.5; // from the first texel's centre
         low = min(low, texel);
         high = max(high, texel);
-        float depth = map_tap_depth(offset);
-        least_depth = min(least_depth, depth);
-        greatest_depth = max(greatest_depth, depth);
+        slack = max(slack, abs(map_tap_depth(offset) - depth - dot(gradient, texel - point)));
     }
     int edge = MAP_BOUNDS_ROUNDING_TEXELS + 1;
     if (any(lessThan(floor(low), vec2(edge))) || any(greaterThan(floor(high), vec2(size - 1.0 - float(edge)))))
         return MAP_BOUNDS_UNSURE;
     int cells = (int(size) + MAP_BOUNDS_CELL_TEXELS - 1) / MAP_BOUNDS_CELL_TEXELS;
-    return map_bounds_answer(bounds, ivec2(face * cells, 0), int(size), low, high, least_depth, greatest_depth);
+    return map_bounds_answer(bounds, ivec2(face * cells, 0), int(size), low, high, point, depth, gradient, slack);
 }
 
 #define MAP_SAMPLER samplerCubeShadow

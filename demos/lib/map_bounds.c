@@ -1,9 +1,10 @@
 /* A map's depth bounds (map_internal.h, map_bounds_update): per cell of
- * MAP_BOUNDS_CELL_TEXELS texels on a side, its least and greatest depth,
- * which a marking pass reads instead of the kernel (shaders/map.glsl,
- * map_bounds_answer): a pixel whose kernel could only agree is decided
- * there, and only the others run the kernel and the rays, in the marked
- * pass. */
+ * MAP_BOUNDS_CELL_TEXELS texels on a side, a plane fitted to its depths
+ * and the two heights of it between which every depth lies
+ * (shaders/map_bounds.frag), which a marking pass reads instead of the
+ * kernel (shaders/map.glsl, map_bounds_answer): a pixel whose kernel could
+ * only agree is decided there, and only the others run the kernel and the
+ * rays, in the marked pass. */
 #include <glad/gl.h>
 
 #include "map_internal.h"
@@ -34,7 +35,7 @@ bool map_bounds_update(map_renderer *r, map_light *m) {
     if (!t->bounds) {
         glGenTextures(1, &t->bounds);
         glBindTexture(GL_TEXTURE_2D, t->bounds);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, width, cells, 0, GL_RG, GL_FLOAT, NULL);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, cells, 0, GL_RGBA, GL_FLOAT, NULL);
         map_texture_filter(GL_TEXTURE_2D, GL_NEAREST);
     }
     r->bounds_failed = !map_color_target(&r->bounds_framebuffer, t->bounds, GL_TEXTURE_2D, 0,

@@ -277,8 +277,8 @@ bool map_ray_counts_begin(map_renderer *r);
 void map_ray_counts_end(map_renderer *r);
 void map_rays_destroy(map_renderer *r);
 
-/* The depth bounds' cell: texels on a side whose least and greatest depth
- * one texel of a map's bounds holds (shaders/map_bounds.frag). A kernel
+/* The depth bounds' cell: texels on a side whose depths one texel of a
+ * map's bounds holds between two planes (shaders/map_bounds.frag). A kernel
  * whose reads span at most this many texels reads 2 x 2 cells: a finer
  * cell reads more of them and decided no more pixels on the standard
  * scenes (test_hybrid's marked share). */
