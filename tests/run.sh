@@ -92,11 +92,12 @@ fi
 
 # The quick tier's sanitizer pass: every test without a GL context, then
 # the render tests that reach each technique (test_accuracy), the flags'
-# and files' errors (test_cli) and the tours (test_tour, test_mirror).
+# and files' errors (test_cli, test_gltf's broken files) and the tours
+# (test_tour, test_mirror).
 SANITIZER_QUICK="test_flags test_path test_scene test_mesh test_motion test_shadowdiff test_warp \
     test_volume_mesh test_volume_count_bound test_wedge_area test_raytrace test_raytrace_invariance test_median_interval \
     test_bvh test_truth test_report test_scenegen test_map_layers test_hud \
-    test_accuracy test_cli test_tour test_mirror"
+    test_accuracy test_cli test_tour test_mirror test_gltf"
 export TEST_TIER=${TEST_TIER:-quick}
 
 # The jobs: the sanitizer builds' programs first, then the others'.

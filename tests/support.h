@@ -153,10 +153,12 @@ shadowdiff_result support_measure_receiver(const char *program, const char *grou
  * misclassified; fails the running cmocka test otherwise. */
 #define SUPPORT_STANDARD_MIN_COMPARED 50000
 void support_standard_scenes_within(const char *program, double max_percent);
-/* The JSON of the scene file at `path` (at most SUPPORT_MAX_SCENE_BYTES),
- * for a test to change and write back (support_write_json); fails the
- * running cmocka test when it cannot. The caller cJSON_Deletes it. */
-#define SUPPORT_MAX_SCENE_BYTES (1 << 20)
+/* The JSON of the scene file at `path` (at most SUPPORT_MAX_SCENE_BYTES,
+ * the most a scene file may hold, a glTF binary's bytes too: the
+ * references' key), for a test to change and write back
+ * (support_write_json); fails the running cmocka test when it cannot.
+ * The caller cJSON_Deletes it. */
+#define SUPPORT_MAX_SCENE_BYTES (16 << 20)
 cJSON *support_read_json(const char *path);
 /* Writes the JSON `root` to DIR/NAME.json (making DIR), its path into
  * `path`; fails the running cmocka test when it cannot. */

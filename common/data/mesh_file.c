@@ -17,6 +17,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "mesh_assimp.h"
 #include "mesh_build.h"
 
 /* A header word longer than this is no count or keyword of any header read
@@ -53,7 +54,7 @@ static unsigned mesh_count_assimp_triangles(const struct aiMesh *am) {
 
 /* The colour a material of the file gives (see mesh_material): false for
  * assimp's stand-in and for a colour that is none. */
-static bool mesh_material_color(const struct aiMaterial *material, float color[3]) {
+bool mesh_material_color(const struct aiMaterial *material, float color[3]) {
     struct aiString name;
     struct aiColor4D c;
     if (aiGetMaterialString(material, AI_MATKEY_NAME, &name) != AI_SUCCESS || name.length == 0 ||
@@ -100,22 +101,22 @@ static bool mesh_find_material(const char *path, const struct aiScene *scene, me
     return ok || mesh_fail(NULL, path, "out of memory for %u materials", n);
 }
 
-/* Merges the triangles of every assimp mesh; points and lines are dropped,
- * with the vertices only they use. */
-static bool mesh_copy_assimp_triangles(mesh *m, const char *path, const struct aiScene *scene) {
+/* Merges the triangles of `count` assimp meshes; points and lines are
+ * dropped, with the vertices only they use. */
+static bool mesh_copy_assimp_triangles(mesh *m, const char *path, struct aiMesh *const *meshes, unsigned count) {
     size_t vertex_count = 0, triangle_count = 0;
-    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
-        unsigned triangles = mesh_count_assimp_triangles(scene->mMeshes[i]);
+    for (unsigned i = 0; i < count; i++) {
+        unsigned triangles = mesh_count_assimp_triangles(meshes[i]);
         triangle_count += triangles;
         if (triangles)
-            vertex_count += scene->mMeshes[i]->mNumVertices;
+            vertex_count += meshes[i]->mNumVertices;
     }
     if (triangle_count == 0)
         return mesh_fail(m, path, "no triangles");
     if (!mesh_alloc(m, path, vertex_count, 3 * triangle_count))
         return false;
-    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
-        const struct aiMesh *am = scene->mMeshes[i];
+    for (unsigned i = 0; i < count; i++) {
+        const struct aiMesh *am = meshes[i];
         if (!mesh_count_assimp_triangles(am))
             continue;
         uint32_t first = m->vertex_count;
@@ -397,46 +398,66 @@ static const struct aiScene *mesh_import(const char *path, unsigned flags) {
     return scene;
 }
 
-bool mesh_load_file(mesh *m, const char *path, mesh_material *material) {
-    *m = (mesh){0};
-    if (material)
-        *material = (mesh_material){0};
+/* The file imported (flags: assimp's steps, then welded and smoothed), or
+ * NULL after "PATH: problem" (m emptied, when given). */
+static const struct aiScene *mesh_import_checked(mesh *m, const char *path, unsigned flags) {
     /* assimp reports a directory as an unknown format, or as an empty OBJ:
      * say what it is instead. */
     struct stat info;
     if (stat(path, &info) != 0)
-        return mesh_fail(m, path, "cannot open: %s", strerror(errno));
+        return mesh_fail(m, path, "cannot open: %s", strerror(errno)), NULL;
     if (!S_ISREG(info.st_mode))
-        return mesh_fail(m, path, "not a regular file");
+        return mesh_fail(m, path, "not a regular file"), NULL;
     long bad_line = mesh_obj_single_vertex_line(path);
     if (bad_line) {
-        return mesh_fail(m, path,
-                         "line %ld: a line statement needs 2 or more vertices "
-                         "(refused: assimp 5.2 overflows a buffer on it)",
-                         bad_line);
+        mesh_fail(m, path,
+                  "line %ld: a line statement needs 2 or more vertices "
+                  "(refused: assimp 5.2 overflows a buffer on it)",
+                  bad_line);
+        return NULL;
     }
     if (!mesh_check_header_claims(m, path, (long long)info.st_size))
-        return false;
+        return NULL;
 
     /* The counts are checked after these steps, not before them from a raw
      * import: a step that fails inside the import is an error, while one
      * failing in aiApplyPostProcessing crashes assimp 5.2 in the Importer's
      * destructor (AC/nosurfaces.ac of assimp-testmodels). */
-    const struct aiScene *scene =
-        mesh_import(path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+    const struct aiScene *scene = mesh_import(path, flags);
     if (scene && !mesh_check_counts(m, path, scene)) {
         aiReleaseImport(scene);
-        return false;
+        return NULL;
     }
     if (scene && mesh_scene_positions_finite(scene)) {
         scene = aiApplyPostProcessing(scene, aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals);
     }
     if (!scene) {
         const char *why = aiGetErrorString();
-        return mesh_fail(m, path, "%s", why && *why ? why : "assimp could not import it");
+        mesh_fail(m, path, "%s", why && *why ? why : "assimp could not import it");
     }
-    bool copied =
-        (!material || mesh_find_material(path, scene, material)) && mesh_copy_assimp_triangles(m, path, scene);
+    return scene;
+}
+
+bool mesh_load_file(mesh *m, const char *path, mesh_material *material) {
+    *m = (mesh){0};
+    if (material)
+        *material = (mesh_material){0};
+    const struct aiScene *scene =
+        mesh_import_checked(m, path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+    if (!scene)
+        return false;
+    bool copied = (!material || mesh_find_material(path, scene, material)) &&
+                  mesh_copy_assimp_triangles(m, path, scene->mMeshes, scene->mNumMeshes);
     aiReleaseImport(scene);
     return copied && mesh_sanitize(m, path);
+}
+
+const struct aiScene *mesh_import_graph(const char *path) {
+    return mesh_import_checked(NULL, path, aiProcess_Triangulate | aiProcess_SortByPType);
+}
+
+bool mesh_from_assimp(mesh *m, const char *name, const struct aiMesh *am) {
+    *m = (mesh){0};
+    struct aiMesh *one[] = {(struct aiMesh *)am};
+    return mesh_copy_assimp_triangles(m, name, one, 1) && mesh_sanitize(m, name);
 }

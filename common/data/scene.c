@@ -13,9 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "json.h"
 #include "path.h"
+#include "scene_internal.h"
 
 /* Far beyond any hand-written scene: a wrong path (a device, a huge file)
  * must not be read whole. */
@@ -164,10 +166,7 @@ static bool scene_normalize(float v[3]) {
     return true;
 }
 
-/* The origin, from the camera as read (world coordinates): its eye where
- * the eye lies farther from the world's origin than SCENE_REBASE_RATIO
- * times its distance to the target, else the world's origin. */
-static void scene_choose_origin(const scene_camera *c, double origin[3]) {
+void scene_choose_origin(const scene_camera *c, double origin[3]) {
     double eye = 0, view = 0;
     for (int k = 0; k < 3; k++) {
         eye = fmax(eye, fabs((double)c->position[k]));
@@ -436,7 +435,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     if (!cJSON_IsObject(root)) {
         return json_fail(file, "", NULL, "expected an object at the top level, got %s", json_kind(root));
     }
-    glm_vec3_fill(s->ambient, 0.1f);
+    glm_vec3_fill(s->ambient, SCENE_DEFAULT_AMBIENT);
     const cJSON *lights, *objects, *entry;
     if (!json_check_keys(file, root, "", keys) || !scene_read_camera(file, root, &s->camera, s->origin) ||
         !scene_read_floats(file, root, "", "ambient", false, SCENE_NON_NEGATIVE, NULL, s->ambient, 3) ||
@@ -465,6 +464,9 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
 }
 
 bool scene_load(scene *s, const char *path) {
+    const char *extension = strrchr(path, '.');
+    if (extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0))
+        return scene_load_gltf(s, path);
     *s = (scene){0};
     cJSON *root = json_load(path, SCENE_MAX_FILE_SIZE);
     if (!root)

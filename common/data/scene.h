@@ -49,6 +49,10 @@
  *
  * Positions are relative to the scene's origin ("Large worlds", at
  * SCENE_REBASE_RATIO below); scene_load says how it fails.
+ *
+ * glTF scenes: a file named .gltf or .glb is read as a glTF 2.0 scene
+ * (scene_gltf.c): an object per node's mesh, the first camera, the
+ * punctual lights; a camera or light the file lacks is fitted and said.
  */
 #ifndef SCENE_H
 #define SCENE_H

@@ -1,0 +1,336 @@
+/* scene_gltf: a glTF 2.0 file (.gltf, .glb) as a scene (scene.h, "glTF
+ * scenes"), read through assimp, which the model files already use and
+ * which reads glTF's cameras and KHR_lights_punctual lights. */
+#include <assimp/cimport.h>
+#include <assimp/scene.h>
+#include <cglm/cglm.h>
+#include <ctype.h>
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh_assimp.h"
+#include "scene_internal.h"
+
+/* An object's name: its node's, this long at most (room for a suffix
+ * that makes it one object's). */
+#define SCENE_GLTF_NODE_NAME_MAX 40
+/* The default colour of an object whose material gives none. */
+#define SCENE_GLTF_GREY 0.8f
+/* A fitted camera: its field of view (degrees), the direction it looks
+ * from (towards the scene's centre from the front, above and to the
+ * right), how much room the bounds' sphere leaves, and its depth range
+ * about that sphere. */
+#define SCENE_GLTF_FIT_FOV_DEG 45.0f
+static const float scene_gltf_fit_from[3] = {0.6f, 0.5f, 1.0f};
+#define SCENE_GLTF_FIT_ROOM 1.1f
+#define SCENE_GLTF_FIT_NEAR_SHARE 0.5f
+#define SCENE_GLTF_FIT_FAR_SHARE 1.5f
+/* A fitted light: a sun from above, to the side. */
+static const float scene_gltf_fit_sun[3] = {-0.35f, -1.0f, -0.25f};
+/* A spot's outer cone stays under a right angle (the scene's own limit). */
+#define SCENE_GLTF_MAX_SPOT_DEG 89.0f
+
+/* Node transforms as cglm's column-major matrices. */
+static void scene_gltf_matrix(const struct aiMatrix4x4 *t, mat4 out) {
+    const float rows[4][4] = {{t->a1, t->a2, t->a3, t->a4},
+                              {t->b1, t->b2, t->b3, t->b4},
+                              {t->c1, t->c2, t->c3, t->c4},
+                              {t->d1, t->d2, t->d3, t->d4}};
+    for (int row = 0; row < 4; row++)
+        for (int column = 0; column < 4; column++)
+            out[column][row] = rows[row][column];
+}
+
+/* The world transform of the node called `name` under `node` (its
+ * parent's given): false where none is. */
+static bool scene_gltf_find(const struct aiNode *node, mat4 parent, const char *name, mat4 out) {
+    mat4 local, world;
+    scene_gltf_matrix(&node->mTransformation, local);
+    glm_mat4_mul(parent, local, world);
+    if (strcmp(node->mName.data, name) == 0) {
+        glm_mat4_copy(world, out);
+        return true;
+    }
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        if (scene_gltf_find(node->mChildren[i], world, name, out))
+            return true;
+    return false;
+}
+
+/* Where a camera or light stands, and the way it looks: glTF places it at
+ * the origin of its node (which assimp names after it), looking down the
+ * node's -Z with +Y up. assimp 5.2 also copies the node's translation into
+ * the camera's or light's own position, which its node's transform would
+ * then move twice: the node alone is read. Without such a node, assimp's
+ * own `position`, `look` and `up` (world coordinates then). */
+static void scene_gltf_place(const struct aiScene *a, const char *name, struct aiVector3D position,
+                             struct aiVector3D look, struct aiVector3D up, vec3 out_position, vec3 out_look,
+                             vec3 out_up) {
+    mat4 world, identity = GLM_MAT4_IDENTITY_INIT;
+    if (!scene_gltf_find(a->mRootNode, identity, name, world)) {
+        glm_vec3_copy((vec3){position.x, position.y, position.z}, out_position);
+        glm_vec3_copy((vec3){look.x, look.y, look.z}, out_look);
+        glm_vec3_copy((vec3){up.x, up.y, up.z}, out_up);
+        return;
+    }
+    glm_vec3_copy(world[3], out_position);
+    glm_mat4_mulv3(world, (vec3){0, 0, -1}, 0, out_look);
+    glm_mat4_mulv3(world, (vec3){0, 1, 0}, 0, out_up);
+}
+
+/* ---- objects ---- */
+
+typedef struct scene_gltf_reader {
+    const char *file;
+    const struct aiScene *a;
+    scene *s;
+    int capacity;
+} scene_gltf_reader;
+
+/* A name for the object of node `node` that no earlier object has. */
+static void scene_gltf_name(const scene *s, const struct aiNode *node, char out[SCENE_NAME_MAX]) {
+    char base[SCENE_GLTF_NODE_NAME_MAX + 1] = "mesh";
+    if (node->mName.length)
+        memcpy(base, node->mName.data, strnlen(node->mName.data, SCENE_GLTF_NODE_NAME_MAX) + 1);
+    base[SCENE_GLTF_NODE_NAME_MAX] = '\0';
+    for (char *c = base; *c; c++)
+        if (iscntrl((unsigned char)*c))
+            *c = '_';
+    snprintf(out, SCENE_NAME_MAX, "%s", base);
+    for (int i = 0; i < s->object_count; i++)
+        if (strcmp(s->objects[i].name, out) == 0) {
+            snprintf(out, SCENE_NAME_MAX, "%s_%d", base, s->object_count);
+            return;
+        }
+}
+
+/* Mesh i of the file as an object placed by `world`. A mirroring
+ * transform goes into the mesh, as a scene file's negative scale does
+ * (scene_object's model keeps a positive determinant). */
+static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, unsigned i, mat4 world) {
+    const struct aiMesh *am = r->a->mMeshes[i];
+    if (!am->mNumFaces || !(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+        return true; /* points and lines: nothing to shade */
+    if (r->s->object_count == r->capacity) {
+        int capacity = r->capacity ? 2 * r->capacity : 16;
+        scene_object *grown = realloc(r->s->objects, (size_t)capacity * sizeof *grown);
+        if (!grown) {
+            fprintf(stderr, "%s: out of memory for %d objects\n", r->file, capacity);
+            return false;
+        }
+        r->s->objects = grown;
+        r->capacity = capacity;
+    }
+    scene_object *o = &r->s->objects[r->s->object_count];
+    *o = (scene_object){.mesh_kind = SCENE_MESH_MODEL,
+                        .color = {SCENE_GLTF_GREY, SCENE_GLTF_GREY, SCENE_GLTF_GREY},
+                        .casts = true,
+                        .receives = true};
+    scene_gltf_name(r->s, node, o->name);
+    char where[PATH_MAX + SCENE_NAME_MAX + 16];
+    snprintf(where, sizeof where, "%s: node \"%s\"", r->file, o->name);
+    if (!mesh_from_assimp(&o->mesh, where, am))
+        return false;
+    if (am->mMaterialIndex < r->a->mNumMaterials)
+        mesh_material_color(r->a->mMaterials[am->mMaterialIndex], o->color);
+    mat4 model;
+    glm_mat4_copy(world, model);
+    if (glm_mat4_det(model) < 0) {
+        mesh_reflect_x(&o->mesh);
+        glm_vec4_negate(model[0]);
+    }
+    memcpy(o->model, model, sizeof model);
+    r->s->object_count++;
+    return true;
+}
+
+static bool scene_gltf_objects(scene_gltf_reader *r, const struct aiNode *node, mat4 parent) {
+    mat4 local, world;
+    scene_gltf_matrix(&node->mTransformation, local);
+    glm_mat4_mul(parent, local, world);
+    for (unsigned k = 0; k < node->mNumMeshes; k++)
+        if (node->mMeshes[k] < r->a->mNumMeshes && !scene_gltf_object(r, node, node->mMeshes[k], world))
+            return false;
+    for (unsigned i = 0; i < node->mNumChildren; i++)
+        if (!scene_gltf_objects(r, node->mChildren[i], world))
+            return false;
+    return true;
+}
+
+/* ---- the camera ---- */
+
+/* Every object's world bounds. */
+static void scene_gltf_bounds(const scene *s, vec3 lo, vec3 hi) {
+    glm_vec3_fill(lo, INFINITY);
+    glm_vec3_fill(hi, -INFINITY);
+    for (int i = 0; i < s->object_count; i++) {
+        float min[3], max[3];
+        scene_object_world_bounds(&s->objects[i], min, max);
+        glm_vec3_minv(lo, min, lo);
+        glm_vec3_maxv(hi, max, hi);
+    }
+}
+
+/* A camera that sees the bounds' sphere whole, from scene_gltf_fit_from. */
+static void scene_gltf_fit_camera(const scene *s, scene_camera *c) {
+    vec3 lo, hi, centre, from;
+    scene_gltf_bounds(s, lo, hi);
+    glm_vec3_center(lo, hi, centre);
+    float radius = fmaxf(0.5f * glm_vec3_distance(lo, hi), FLT_MIN);
+    float distance = SCENE_GLTF_FIT_ROOM * radius / sinf(glm_rad(0.5f * SCENE_GLTF_FIT_FOV_DEG));
+    glm_vec3_normalize_to((float *)scene_gltf_fit_from, from);
+    *c = (scene_camera){.up = {0, 1, 0},
+                        .fov_deg = SCENE_GLTF_FIT_FOV_DEG,
+                        .near_plane = SCENE_GLTF_FIT_NEAR_SHARE * (distance - radius),
+                        .far_plane = SCENE_GLTF_FIT_FAR_SHARE * (distance + radius)};
+    glm_vec3_copy(centre, c->target);
+    glm_vec3_copy(centre, c->position);
+    glm_vec3_muladds(from, distance, c->position);
+}
+
+/* Camera `index` of the file, where its node places it. assimp 5.2's glTF
+ * reader stores yfov times the aspect ratio as the horizontal field of
+ * view, and 0 for an orthographic camera, which is taken as a fitted
+ * one's field of view (said once). */
+static bool scene_gltf_camera(const scene_gltf_reader *r, unsigned index, scene_camera *c) {
+    const struct aiCamera *ac = r->a->mCameras[index];
+    vec3 look;
+    scene_gltf_place(r->a, ac->mName.data, ac->mPosition, ac->mLookAt, ac->mUp, c->position, look, c->up);
+    float aspect = ac->mAspect > 0 ? ac->mAspect : 1;
+    c->fov_deg = glm_deg(ac->mHorizontalFOV / aspect);
+    if (!(ac->mHorizontalFOV > 0)) {
+        fprintf(stderr, "%s: camera %u is orthographic: taken as a perspective camera of %g degrees\n", r->file,
+                index, SCENE_GLTF_FIT_FOV_DEG);
+        c->fov_deg = SCENE_GLTF_FIT_FOV_DEG;
+    }
+    c->near_plane = ac->mClipPlaneNear;
+    c->far_plane = ac->mClipPlaneFar;
+    if (!glm_vec3_norm2(look) || !isfinite(glm_vec3_norm2(look)) || !(c->fov_deg > 0 && c->fov_deg < 180) ||
+        !(c->near_plane > 0 && c->far_plane > c->near_plane && isfinite(c->far_plane))) {
+        fprintf(stderr, "%s: camera %u: no view (direction, field of view or depth range): not read\n", r->file,
+                index);
+        return false;
+    }
+    /* The target: where the view passes the scene's centre (its bounds
+     * radius ahead where the centre lies behind), so that the origin
+     * chosen from it (scene_choose_origin) stays the world's for a
+     * camera near the scene. */
+    vec3 lo, hi, centre, to_centre;
+    scene_gltf_bounds(r->s, lo, hi);
+    glm_vec3_center(lo, hi, centre);
+    glm_vec3_sub(centre, c->position, to_centre);
+    glm_vec3_normalize(look);
+    float ahead = glm_vec3_dot(to_centre, look);
+    glm_vec3_copy(c->position, c->target);
+    glm_vec3_muladds(look, ahead > 0 ? ahead : fmaxf(0.5f * glm_vec3_distance(lo, hi), FLT_MIN), c->target);
+    vec3 side;
+    glm_vec3_cross(look, c->up, side);
+    if (!(glm_vec3_norm2(side) > 0))
+        glm_vec3_copy((vec3){0, 1, 0}, c->up);
+    return true;
+}
+
+/* ---- lights ---- */
+
+/* Light `index` of the file into l, where its node places it (false:
+ * not a punctual light). Its colour is the file's (assimp's: times its
+ * intensity), scaled later. */
+static bool scene_gltf_light(const scene_gltf_reader *r, unsigned index, scene_light *l) {
+    const struct aiLight *al = r->a->mLights[index];
+    *l = (scene_light){.color = {al->mColorDiffuse.r, al->mColorDiffuse.g, al->mColorDiffuse.b}, .intensity = 1};
+    vec3 up;
+    scene_gltf_place(r->a, al->mName.data, al->mPosition, al->mDirection, al->mUp, l->position, l->direction, up);
+    glm_vec3_normalize(l->direction);
+    switch (al->mType) {
+    case aiLightSource_DIRECTIONAL: l->type = SCENE_LIGHT_DIRECTIONAL; break;
+    case aiLightSource_POINT: l->type = SCENE_LIGHT_POINT; break;
+    case aiLightSource_SPOT:
+        l->type = SCENE_LIGHT_SPOT;
+        l->outer_angle_deg = fminf(glm_deg(al->mAngleOuterCone), SCENE_GLTF_MAX_SPOT_DEG);
+        l->inner_angle_deg = fminf(glm_deg(al->mAngleInnerCone), l->outer_angle_deg);
+        break;
+    default:
+        fprintf(stderr, "%s: light %u is not a punctual light (type %d): left out\n", r->file, index, al->mType);
+        return false;
+    }
+    return true;
+}
+
+/* The file's lights, the first SCENE_MAX_LIGHTS (the rest said once),
+ * their colours scaled so that the brightest channel of any is 1: the
+ * lighting model has no falloff, so glTF's physical intensities keep only
+ * their ratios. */
+static void scene_gltf_lights(const scene_gltf_reader *r) {
+    scene *s = r->s;
+    float brightest = 0;
+    for (unsigned i = 0; i < r->a->mNumLights && s->light_count < SCENE_MAX_LIGHTS; i++)
+        if (scene_gltf_light(r, i, &s->lights[s->light_count]))
+            brightest = fmaxf(brightest, glm_vec3_max(s->lights[s->light_count++].color));
+    if (r->a->mNumLights > SCENE_MAX_LIGHTS)
+        fprintf(stderr, "%s: %u lights: the first %d taken\n", r->file, r->a->mNumLights, SCENE_MAX_LIGHTS);
+    for (int l = 0; l < s->light_count && brightest > 0; l++)
+        glm_vec3_scale(s->lights[l].color, 1 / brightest, s->lights[l].color);
+}
+
+/* ---- the scene ---- */
+
+/* Everything relative to the origin scene_choose_origin picks from the
+ * camera. */
+static void scene_gltf_rebase(scene *s) {
+    scene_choose_origin(&s->camera, s->origin);
+    for (int k = 0; k < 3; k++) {
+        s->camera.position[k] = (float)(s->camera.position[k] - s->origin[k]);
+        s->camera.target[k] = (float)(s->camera.target[k] - s->origin[k]);
+        for (int l = 0; l < s->light_count; l++)
+            s->lights[l].position[k] = (float)(s->lights[l].position[k] - s->origin[k]);
+        for (int i = 0; i < s->object_count; i++)
+            s->objects[i].model[3][k] = (float)(s->objects[i].model[3][k] - s->origin[k]);
+    }
+}
+
+static bool scene_gltf_read(scene_gltf_reader *r) {
+    scene *s = r->s;
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    if (!scene_gltf_objects(r, r->a->mRootNode, identity))
+        return false;
+    if (s->object_count == 0) {
+        fprintf(stderr, "%s: no triangles in any node's mesh\n", r->file);
+        return false;
+    }
+    glm_vec3_fill(s->ambient, SCENE_DEFAULT_AMBIENT);
+    if (r->a->mNumCameras == 0 || !scene_gltf_camera(r, 0, &s->camera)) {
+        fprintf(stderr, "%s: no camera: one fitted to the scene's bounds\n", r->file);
+        scene_gltf_fit_camera(s, &s->camera);
+    }
+    scene_gltf_lights(r);
+    if (s->light_count == 0) {
+        fprintf(stderr, "%s: no light: a sun from above added\n", r->file);
+        s->lights[s->light_count++] =
+            (scene_light){.type = SCENE_LIGHT_DIRECTIONAL,
+                          .direction = {scene_gltf_fit_sun[0], scene_gltf_fit_sun[1], scene_gltf_fit_sun[2]},
+                          .color = {1, 1, 1},
+                          .intensity = 1};
+        glm_vec3_normalize(s->lights[0].direction);
+    }
+    scene_gltf_rebase(s);
+    return true;
+}
+
+bool scene_load_gltf(scene *s, const char *path) {
+    *s = (scene){0};
+    const struct aiScene *a = mesh_import_graph(path);
+    if (!a)
+        return false;
+    scene_gltf_reader r = {.file = path, .a = a, .s = s};
+    bool read = a->mRootNode && scene_gltf_read(&r);
+    if (!a->mRootNode)
+        fprintf(stderr, "%s: no node\n", path);
+    aiReleaseImport(a);
+    if (!read)
+        scene_free(s);
+    return read;
+}

@@ -1,0 +1,19 @@
+/* scene_internal: what the scene loaders share (scene.c's JSON files,
+ * scene_gltf.c's glTF files). Not for other modules. */
+#ifndef SCENE_INTERNAL_H
+#define SCENE_INTERNAL_H
+
+#include "scene.h"
+
+/* The ambient light where a file gives none. */
+#define SCENE_DEFAULT_AMBIENT 0.1f
+
+/* The origin ("Large worlds", scene.h), from the camera as read (world
+ * coordinates): its eye where the eye lies farther from the world's
+ * origin than SCENE_REBASE_RATIO times its distance to the target, else
+ * the world's origin. */
+void scene_choose_origin(const scene_camera *c, double origin[3]);
+/* A glTF 2.0 file (.gltf, .glb) as a scene: scene_load's contract. */
+bool scene_load_gltf(scene *s, const char *path);
+
+#endif

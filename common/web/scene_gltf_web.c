@@ -1,0 +1,12 @@
+/* The page's glTF scenes: none. assimp, which reads them natively
+ * (common/data/scene_gltf.c), is not built for the browser; the page's
+ * scenes are its JSON ones, their models baked into mesh packs. */
+#include <stdio.h>
+
+#include "scene_internal.h"
+
+bool scene_load_gltf(scene *s, const char *path) {
+    *s = (scene){0};
+    fprintf(stderr, "%s: glTF scenes are read by the native programs only (assimp is not in the page)\n", path);
+    return false;
+}

@@ -1,0 +1,190 @@
+/* glTF 2.0 files as scenes (common/data/scene_gltf.c): what a file of a
+ * ground, a box and its mirror image, a camera, a spot and a sun
+ * (tests/data/gltf_scene.gltf) becomes; the camera and light fitted to a
+ * file without them, said once; Debian's broken glTF files, one line each;
+ * and the shadows of the file's scene and of a real model's against the
+ * reference. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "scene.h"
+#include "support.h"
+
+#define GLTF_SCENE "tests/data/gltf_scene.gltf"
+#define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
+#define GLTF_TOLERANCE 1e-4f
+/* The goal of hard shadows on real models (volumes and hybrid are exact
+ * but for the pixels where the rasterizer and the reference round apart). */
+#define GLTF_MAX_MISCLASSIFIED_PERCENT 0.01
+
+static void assert_vec3_near(const float *got, float x, float y, float z, const char *what) {
+    if (fabsf(got[0] - x) > GLTF_TOLERANCE || fabsf(got[1] - y) > GLTF_TOLERANCE ||
+        fabsf(got[2] - z) > GLTF_TOLERANCE)
+        fail_msg("%s: (%g, %g, %g), expected (%g, %g, %g)", what, got[0], got[1], got[2], x, y, z);
+}
+
+static void assert_direction_near(const float *got, float x, float y, float z, const char *what) {
+    vec3 expected = {x, y, z};
+    glm_vec3_normalize(expected);
+    assert_vec3_near(got, expected[0], expected[1], expected[2], what);
+}
+
+/* The file's nodes: each mesh an object of its material's colour, placed
+ * by its node (the mirrored one's mesh mirrored, its matrix's determinant
+ * positive); the camera where its node stands, looking down its -Z with
+ * the file's yfov; the spot and the sun from their nodes, cones in
+ * degrees, colours times intensity over the brightest channel. */
+static void test_gltf_scene_read(void **state) {
+    (void)state;
+    scene s;
+    support_capture_stderr();
+    bool loaded = scene_load(&s, GLTF_SCENE);
+    const char *said = support_release_stderr();
+    assert_true(loaded);
+    assert_string_equal(said, "");
+    assert_int_equal(s.object_count, 3);
+    static const char *const names[] = {"ground", "box", "mirrored_box"};
+    static const float colours[][3] = {{0.7f, 0.7f, 0.7f}, {0.8f, 0.2f, 0.2f}, {0.2f, 0.3f, 0.8f}};
+    for (int i = 0; i < 3; i++) {
+        assert_string_equal(s.objects[i].name, names[i]);
+        assert_vec3_near(s.objects[i].color, colours[i][0], colours[i][1], colours[i][2], names[i]);
+        assert_true(glm_mat4_det(s.objects[i].model) > 0);
+    }
+    float lo[3], hi[3];
+    scene_object_world_bounds(&s.objects[2], lo, hi);
+    assert_vec3_near(lo, 1.5f, 0, 0.5f, "mirrored box's low corner");
+    assert_vec3_near(hi, 2.5f, 1, 1.5f, "mirrored box's high corner");
+    vec3 view;
+    glm_vec3_sub(s.camera.target, s.camera.position, view);
+    glm_vec3_normalize(view);
+    assert_vec3_near(s.camera.position, 0, 4, 8, "camera position");
+    assert_direction_near(view, 0, -4, -8, "camera view");
+    assert_float_equal(s.camera.fov_deg, glm_deg(0.8f), GLTF_TOLERANCE);
+    assert_float_equal(s.camera.near_plane, 0.1f, GLTF_TOLERANCE);
+    assert_float_equal(s.camera.far_plane, 100, GLTF_TOLERANCE);
+    assert_int_equal(s.light_count, 2);
+    const scene_light *spot = &s.lights[0], *sun = &s.lights[1];
+    assert_int_equal(spot->type, SCENE_LIGHT_SPOT);
+    assert_vec3_near(spot->position, 3, 6, 2, "spot position");
+    assert_direction_near(spot->direction, -3, -6, -2, "spot direction");
+    assert_float_equal(spot->inner_angle_deg, glm_deg(0.3f), GLTF_TOLERANCE);
+    assert_float_equal(spot->outer_angle_deg, glm_deg(0.5f), GLTF_TOLERANCE);
+    assert_vec3_near(spot->color, 1, 0.9f, 0.8f, "spot colour");
+    assert_int_equal(sun->type, SCENE_LIGHT_DIRECTIONAL);
+    assert_direction_near(sun->direction, 0.3f, -1, -0.2f, "sun direction");
+    assert_vec3_near(sun->color, 0.1f, 0.1f, 0.1f, "sun colour");
+    scene_free(&s);
+}
+
+/* A file without a camera or a light gets both, each said in one line: a
+ * camera looking at the bounds' centre with all of them in view, a sun. */
+static void test_gltf_fitted(void **state) {
+    (void)state;
+    const char *path = TESTMODELS_GLTF "/BoxTextured-glTF/BoxTextured.gltf";
+    if (access(path, R_OK) != 0) {
+        print_message("%s missing (Debian package assimp-testmodels): skipped\n", path);
+        skip();
+    }
+    scene s;
+    support_capture_stderr();
+    bool loaded = scene_load(&s, path);
+    const char *said = support_release_stderr();
+    assert_true(loaded);
+    char expected[1024];
+    snprintf(expected, sizeof expected,
+             "%s: no camera: one fitted to the scene's bounds\n%s: no light: a sun from above added\n", path, path);
+    assert_string_equal(said, expected);
+    float lo[3], hi[3], centre[3];
+    scene_object_world_bounds(&s.objects[0], lo, hi);
+    glm_vec3_center(lo, hi, centre);
+    assert_vec3_near(s.camera.target, centre[0], centre[1], centre[2], "fitted camera's target");
+    float distance = glm_vec3_distance(s.camera.position, s.camera.target);
+    float radius = 0.5f * glm_vec3_distance(lo, hi);
+    assert_true(radius / distance < sinf(glm_rad(0.5f * s.camera.fov_deg)));
+    assert_true(s.camera.near_plane < distance - radius && s.camera.far_plane > distance + radius);
+    assert_int_equal(s.light_count, 1);
+    assert_int_equal(s.lights[0].type, SCENE_LIGHT_DIRECTIONAL);
+    scene_free(&s);
+}
+
+/* Debian's broken glTF files: each one line naming the file and the
+ * problem, and no scene. */
+static void test_gltf_bad_files(void **state) {
+    (void)state;
+    static const struct {
+        const char *path, *problem;
+    } cases[] = {
+        {"/MissingBin/BoxTextured.gltf", ": GLTF: could not open referenced file \"BoxTextured0.bin\""},
+        {"/IndexOutOfRange/AllIndicesOutOfRange.gltf", ": Mesh \"Mesh\" has no faces"},
+        {"/RecursiveNodes/RecursiveNodes.gltf", ": GLTF: Object at index 0 in array \"nodes\" has recursive"},
+        {"/TestNoRootNode/NoScene.gltf", ": GLTF: No scene"},
+        {"/TestNoRootNode/SceneWithoutNodes.gltf", ": no triangles in any node's mesh"},
+        {"/wrongTypes/badArray.gltf", ": Member \"primitives\" was not of type \"array\""},
+        {"/SchemaFailures/sceneWrongType.gltf", ": Member \"scene\" was not of type \"uint\""},
+        {"/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", ": node \"nodes_1\": no triangles left"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char path[512], expected[1024];
+        snprintf(path, sizeof path, TESTMODELS_GLTF "%s", cases[i].path);
+        if (access(path, R_OK) != 0) {
+            print_message("%s missing (Debian package assimp-testmodels): skipped\n", path);
+            continue;
+        }
+        scene s;
+        support_capture_stderr();
+        bool loaded = scene_load(&s, path);
+        const char *said = support_release_stderr();
+        assert_false(loaded);
+        assert_int_equal(s.object_count, 0);
+        snprintf(expected, sizeof expected, "%s%s", path, cases[i].problem);
+        const char *newline = strchr(said, '\n');
+        if (!newline || newline[1] != '\0' || strncmp(said, expected, strlen(expected)) != 0)
+            fail_msg("%s: expected one line starting \"%s\", got \"%s\"", path, expected, said);
+        fprintf(stderr, "    %s", said);
+    }
+}
+
+/* The shadows: volumes and hybrid against the reference on a real model
+ * nobody tuned for (its fitted sun) and on the file's scene (its spot);
+ * the sweep takes every support_sweep_stride()th case, the real model's
+ * hybrid first. */
+static void test_gltf_shadows_match_reference(void **state) {
+    (void)state;
+    static const struct {
+        const char *scene, *program;
+    } cases[] = {
+        {TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "hybrid"},
+        {GLTF_SCENE, "volumes"},
+        {TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "volumes"},
+        {GLTF_SCENE, "hybrid"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i += (size_t)support_sweep_stride()) {
+        if (access(cases[i].scene, R_OK) != 0) {
+            print_message("%s missing (Debian package assimp-testmodels): skipped\n", cases[i].scene);
+            continue;
+        }
+        char name[64];
+        snprintf(name, sizeof name, "gltf_%zu", i);
+        shadowdiff_result r = support_measure(cases[i].program, cases[i].scene, "", "", name);
+        assert_true(r.compared > 0 && r.misclassified_percent <= GLTF_MAX_MISCLASSIFIED_PERCENT);
+    }
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_gltf_scene_read),
+        cmocka_unit_test(test_gltf_fitted),
+        cmocka_unit_test(test_gltf_bad_files),
+        cmocka_unit_test(test_gltf_shadows_match_reference),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
