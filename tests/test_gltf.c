@@ -85,24 +85,30 @@ static void test_gltf_scene_read(void **state) {
     scene_free(&s);
 }
 
-/* A file without a camera or a light gets both, each said in one line: a
- * camera looking at the bounds' centre with all of them in view, a sun. */
-static void test_gltf_fitted(void **state) {
-    (void)state;
-    const char *path = TESTMODELS_GLTF "/BoxTextured-glTF/BoxTextured.gltf";
+/* The scene of testmodels file `path` (the test skipped where the package
+ * is missing), loaded; fails unless its stderr is exactly `expected`, in
+ * which each %s is the path. */
+static void gltf_load_saying(const char *path, const char *expected, scene *s) {
     if (access(path, R_OK) != 0) {
         print_message("%s missing (Debian package assimp-testmodels): skipped\n", path);
         skip();
     }
-    scene s;
     support_capture_stderr();
-    bool loaded = scene_load(&s, path);
+    bool loaded = scene_load(s, path);
     const char *said = support_release_stderr();
     assert_true(loaded);
-    char expected[1024];
-    snprintf(expected, sizeof expected,
-             "%s: no camera: one fitted to the scene's bounds\n%s: no light: a sun from above added\n", path, path);
-    assert_string_equal(said, expected);
+    char text[1024];
+    snprintf(text, sizeof text, expected, path, path);
+    assert_string_equal(said, text);
+}
+
+/* A file without a camera or a light gets both, each said in one line: a
+ * camera looking at the bounds' centre with all of them in view, a sun. */
+static void test_gltf_fitted(void **state) {
+    (void)state;
+    scene s;
+    gltf_load_saying(TESTMODELS_GLTF "/BoxTextured-glTF/BoxTextured.gltf",
+                     "%s: no camera: one fitted to the scene's bounds\n%s: no light: a sun from above added\n", &s);
     float lo[3], hi[3], centre[3];
     scene_object_world_bounds(&s.objects[0], lo, hi);
     glm_vec3_center(lo, hi, centre);
@@ -113,6 +119,20 @@ static void test_gltf_fitted(void **state) {
     assert_true(s.camera.near_plane < distance - radius && s.camera.far_plane > distance + radius);
     assert_int_equal(s.light_count, 1);
     assert_int_equal(s.lights[0].type, SCENE_LIGHT_DIRECTIONAL);
+    scene_free(&s);
+}
+
+/* A real model of many meshes, some with degenerate triangles: what its
+ * meshes lost is said in one line for the file, not one per mesh; it has a
+ * camera, and no light. */
+static void test_gltf_says_each_thing_once(void **state) {
+    (void)state;
+    scene s;
+    gltf_load_saying(TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+                     "warning: %s: removed 11160 degenerate and 0 non-finite triangles from its meshes\n"
+                     "%s: no light: a sun from above added\n",
+                     &s);
+    assert_true(s.object_count > 1);
     scene_free(&s);
 }
 
@@ -183,6 +203,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gltf_scene_read),
         cmocka_unit_test(test_gltf_fitted),
+        cmocka_unit_test(test_gltf_says_each_thing_once),
         cmocka_unit_test(test_gltf_bad_files),
         cmocka_unit_test(test_gltf_shadows_match_reference),
     };

@@ -638,6 +638,17 @@ static bool mesh_remove_unused_vertices(mesh *m, const char *name) {
 }
 
 bool mesh_sanitize(mesh *m, const char *name) {
+    mesh_removed removed = {0};
+    if (!mesh_sanitize_quietly(m, name, &removed))
+        return false;
+    if (removed.degenerate + removed.non_finite > 0) {
+        fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles\n", name, removed.degenerate,
+                removed.non_finite);
+    }
+    return true;
+}
+
+bool mesh_sanitize_quietly(mesh *m, const char *name, mesh_removed *removed) {
     m->index_count -= m->index_count % 3;
     uint32_t non_finite = mesh_remove_triangles(m, mesh_triangle_non_finite, NULL);
     if (!mesh_remove_unused_vertices(m, name))
@@ -664,10 +675,8 @@ bool mesh_sanitize(mesh *m, const char *name) {
     }
     if (!mesh_remove_unused_vertices(m, name))
         return false;
-    if (degenerate + non_finite > 0) {
-        fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles\n", name, degenerate,
-                non_finite);
-    }
+    removed->degenerate += degenerate;
+    removed->non_finite += non_finite;
     return true;
 }
 

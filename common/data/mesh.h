@@ -102,6 +102,13 @@ bool mesh_load_file(mesh *m, const char *path, mesh_material *material);
 /* Removes degenerate and non-finite triangles (warning "name: removed ..."),
  * recomputes bounds; an error if no triangle is left. */
 bool mesh_sanitize(mesh *m, const char *name);
+/* What mesh_sanitize removed. */
+typedef struct mesh_removed {
+    uint32_t degenerate, non_finite;
+} mesh_removed;
+/* mesh_sanitize without its warning: what it removed is added to
+ * *removed, for a caller that sanitizes many meshes to say once. */
+bool mesh_sanitize_quietly(mesh *m, const char *name, mesh_removed *removed);
 
 /* The mesh's mirror image in its x = 0 plane: every position's and
  * normal's x negated and every triangle's winding reversed, so the faces

@@ -14,9 +14,9 @@
  * kept: each node's meshes in the node's space. NULL after "PATH:
  * problem". Free with aiReleaseImport. */
 const struct aiScene *mesh_import_graph(const char *path);
-/* One of its meshes' triangles into m, sanitized (mesh_sanitize; name:
- * for the messages). */
-bool mesh_from_assimp(mesh *m, const char *name, const struct aiMesh *am);
+/* One of its meshes' triangles into m, sanitized (mesh_sanitize_quietly,
+ * adding to *removed; name: for the messages). */
+bool mesh_from_assimp(mesh *m, const char *name, const struct aiMesh *am, mesh_removed *removed);
 /* The colour a material gives (mesh_material's rule for one material):
  * false for assimp's stand-in and for a colour that is none. */
 bool mesh_material_color(const struct aiMaterial *material, float color[3]);

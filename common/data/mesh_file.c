@@ -456,8 +456,8 @@ const struct aiScene *mesh_import_graph(const char *path) {
     return mesh_import_checked(NULL, path, aiProcess_Triangulate | aiProcess_SortByPType);
 }
 
-bool mesh_from_assimp(mesh *m, const char *name, const struct aiMesh *am) {
+bool mesh_from_assimp(mesh *m, const char *name, const struct aiMesh *am, mesh_removed *removed) {
     *m = (mesh){0};
     struct aiMesh *one[] = {(struct aiMesh *)am};
-    return mesh_copy_assimp_triangles(m, name, one, 1) && mesh_sanitize(m, name);
+    return mesh_copy_assimp_triangles(m, name, one, 1) && mesh_sanitize_quietly(m, name, removed);
 }

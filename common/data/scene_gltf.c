@@ -89,6 +89,7 @@ typedef struct scene_gltf_reader {
     const struct aiScene *a;
     scene *s;
     int capacity;
+    mesh_removed removed; /* by every object's mesh_sanitize_quietly, said once */
 } scene_gltf_reader;
 
 /* A name for the object of node `node` that no earlier object has. */
@@ -133,7 +134,7 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
     scene_gltf_name(r->s, node, o->name);
     char where[PATH_MAX + SCENE_NAME_MAX + 16];
     snprintf(where, sizeof where, "%s: node \"%s\"", r->file, o->name);
-    if (!mesh_from_assimp(&o->mesh, where, am))
+    if (!mesh_from_assimp(&o->mesh, where, am, &r->removed))
         return false;
     if (am->mMaterialIndex < r->a->mNumMaterials)
         mesh_material_color(r->a->mMaterials[am->mMaterialIndex], o->color);
@@ -301,6 +302,9 @@ static bool scene_gltf_read(scene_gltf_reader *r) {
         fprintf(stderr, "%s: no triangles in any node's mesh\n", r->file);
         return false;
     }
+    if (r->removed.degenerate + r->removed.non_finite > 0)
+        fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles from its meshes\n", r->file,
+                r->removed.degenerate, r->removed.non_finite);
     glm_vec3_fill(s->ambient, SCENE_DEFAULT_AMBIENT);
     if (r->a->mNumCameras == 0 || !scene_gltf_camera(r, 0, &s->camera)) {
         fprintf(stderr, "%s: no camera: one fitted to the scene's bounds\n", r->file);
