@@ -748,6 +748,7 @@ static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
     }
     k.soft_lights &= ~lights;
     k.moment_lights &= ~lights;
+    k.bounds_lights &= ~lights;
     return k;
 }
 
