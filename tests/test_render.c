@@ -760,6 +760,41 @@ static void test_tours_match_goldens(void **state) {
         fail_msg("tour %s rendered twice: %s differs", golden_tours[0].name, different);
 }
 
+/* "no golden case NAME" on stderr, and the cases whose names contain it
+ * (a technique's or a scene's name: its cases), or none. */
+static void golden_say_unknown(const char *name) {
+    fprintf(stderr, "test_render --record: no golden case %s; the cases containing it:", name);
+    int listed = 0;
+    for (int i = 0; i < golden_case_count; i++) {
+        if (!strstr(golden_cases[i].name, name))
+            continue;
+        fprintf(stderr, " %s", golden_cases[i].name);
+        listed++;
+    }
+    for (int i = 0; i < golden_tour_count; i++) {
+        if (!strstr(golden_tours[i].name, name))
+            continue;
+        fprintf(stderr, " " TOUR_GOLDEN_PREFIX "%s", golden_tours[i].name);
+        listed++;
+    }
+    fprintf(stderr, "%s\n", listed ? "" : " none (the names are tests/golden/'s, without .png)");
+}
+
+/* `make update-golden ONLY=NAME` with a technique's name (not a case's)
+ * lists that technique's cases; a name no case contains says so. */
+static void test_record_lists_the_cases_a_name_matches(void **state) {
+    (void)state;
+    support_capture_stderr();
+    golden_say_unknown("hybrid");
+    const char *said = support_release_stderr();
+    assert_non_null(strstr(said, "no golden case hybrid; the cases containing it: hybrid_simple hybrid_bunny"));
+    assert_non_null(strstr(said, " hybrid-lecture_bunny\n"));
+    support_capture_stderr();
+    golden_say_unknown("no_such_case");
+    said = support_release_stderr();
+    assert_non_null(strstr(said, "no golden case no_such_case; the cases containing it: none"));
+}
+
 /* --record [NAME...]: each case, or the named ones, on EGL into its golden. */
 static int golden_record(int name_count, char **names) {
     int tours_named = 0;
@@ -778,7 +813,7 @@ static int golden_record(int name_count, char **names) {
     }
     for (int i = 0; i < name_count; i++) {
         if (!golden_find(names[i]) && strncmp(names[i], TOUR_GOLDEN_PREFIX, strlen(TOUR_GOLDEN_PREFIX)) != 0) {
-            fprintf(stderr, "test_render --record: no golden case %s\n", names[i]);
+            golden_say_unknown(names[i]);
             return 1;
         }
     }
@@ -825,6 +860,7 @@ int main(int argc, char **argv) {
         cmocka_unit_test(test_gallery_writes_every_technique),
         cmocka_unit_test(test_gallery_soft_scene_has_penumbra),
         cmocka_unit_test(test_tours_match_goldens),
+        cmocka_unit_test(test_record_lists_the_cases_a_name_matches),
     };
     enum { OTHER_COUNT = sizeof others / sizeof *others };
     static struct CMUnitTest tests[1 + GOLDEN_MAX_CASES + OTHER_COUNT];
