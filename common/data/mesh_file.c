@@ -384,8 +384,11 @@ static bool mesh_node_mirrors(const struct aiNode *node, bool mirrored_above) {
  * it merges nothing, so meshes are welded and smoothed each on its own.
  * So that every other file loads exactly as it always has, that mode is
  * for files with a mirrored instance only, found by reading the file as it
- * stands first (its read errors are the import's own). */
+ * stands first (its read errors are the import's own). An import without
+ * the step (a node graph kept) reads the file once. */
 static const struct aiScene *mesh_import(const char *path, unsigned flags) {
+    if (!(flags & aiProcess_PreTransformVertices))
+        return aiImportFile(path, flags);
     const struct aiScene *read = aiImportFile(path, 0);
     if (!read)
         return NULL;

@@ -164,24 +164,20 @@ static bool scene_gltf_objects(scene_gltf_reader *r, const struct aiNode *node, 
 
 /* ---- the camera ---- */
 
-/* Every object's world bounds. */
-static void scene_gltf_bounds(const scene *s, vec3 lo, vec3 hi) {
-    glm_vec3_fill(lo, INFINITY);
-    glm_vec3_fill(hi, -INFINITY);
-    for (int i = 0; i < s->object_count; i++) {
-        float min[3], max[3];
-        scene_object_world_bounds(&s->objects[i], min, max);
-        glm_vec3_minv(lo, min, lo);
-        glm_vec3_maxv(hi, max, hi);
-    }
+/* The sphere about every object's world bounds: its centre and radius
+ * (every object of a glTF scene receives, so the receivers' bounds are
+ * all of them). */
+static float scene_gltf_sphere(const scene *s, vec3 centre) {
+    vec3 lo, hi;
+    scene_receivers_bounds(s, lo, hi);
+    glm_vec3_center(lo, hi, centre);
+    return fmaxf(0.5f * glm_vec3_distance(lo, hi), FLT_MIN);
 }
 
 /* A camera that sees the bounds' sphere whole, from scene_gltf_fit_from. */
 static void scene_gltf_fit_camera(const scene *s, scene_camera *c) {
-    vec3 lo, hi, centre, from;
-    scene_gltf_bounds(s, lo, hi);
-    glm_vec3_center(lo, hi, centre);
-    float radius = fmaxf(0.5f * glm_vec3_distance(lo, hi), FLT_MIN);
+    vec3 centre, from;
+    float radius = scene_gltf_sphere(s, centre);
     float distance = SCENE_GLTF_FIT_ROOM * radius / sinf(glm_rad(0.5f * SCENE_GLTF_FIT_FOV_DEG));
     glm_vec3_normalize_to((float *)scene_gltf_fit_from, from);
     *c = (scene_camera){.up = {0, 1, 0},
@@ -220,14 +216,13 @@ static bool scene_gltf_camera(const scene_gltf_reader *r, unsigned index, scene_
      * radius ahead where the centre lies behind), so that the origin
      * chosen from it (scene_choose_origin) stays the world's for a
      * camera near the scene. */
-    vec3 lo, hi, centre, to_centre;
-    scene_gltf_bounds(r->s, lo, hi);
-    glm_vec3_center(lo, hi, centre);
+    vec3 centre, to_centre;
+    float radius = scene_gltf_sphere(r->s, centre);
     glm_vec3_sub(centre, c->position, to_centre);
     glm_vec3_normalize(look);
     float ahead = glm_vec3_dot(to_centre, look);
     glm_vec3_copy(c->position, c->target);
-    glm_vec3_muladds(look, ahead > 0 ? ahead : fmaxf(0.5f * glm_vec3_distance(lo, hi), FLT_MIN), c->target);
+    glm_vec3_muladds(look, ahead > 0 ? ahead : radius, c->target);
     vec3 side;
     glm_vec3_cross(look, c->up, side);
     if (!(glm_vec3_norm2(side) > 0))
