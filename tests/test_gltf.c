@@ -1,7 +1,7 @@
 /* glTF 2.0 files as scenes (common/data/scene_gltf.c): what a file of a
- * ground, a box and its mirror image, a camera, a spot and a sun
- * (tests/data/gltf_scene.gltf) becomes; the camera and light fitted to a
- * file without them, said once; Debian's broken glTF files, one line each;
+ * ground, a box and its mirror image, two cameras, a spot and a sun
+ * (tests/data/gltf_scene.gltf) becomes, through either camera; the
+ * camera and light fitted to a file without them, said once; Debian's broken glTF files, one line each;
  * and the shadows of the file's scene and of a real model's against the
  * reference. */
 #include <setjmp.h>
@@ -100,6 +100,41 @@ static void gltf_load_saying(const char *path, const char *expected, scene *s) {
     char text[1024];
     snprintf(text, sizeof text, expected, path, path);
     assert_string_equal(said, text);
+}
+
+/* --camera N: the file's camera N, where its node places it (the second
+ * a street-level view); one the file lacks, or any but 0 of a JSON scene,
+ * is one line naming the file and the cameras there are. */
+static void test_gltf_camera_flag(void **state) {
+    (void)state;
+    scene s;
+    support_capture_stderr();
+    bool loaded = scene_load_camera(&s, GLTF_SCENE, 1);
+    assert_string_equal(support_release_stderr(), "");
+    assert_true(loaded);
+    vec3 view;
+    glm_vec3_sub(s.camera.target, s.camera.position, view);
+    glm_vec3_normalize(view);
+    assert_vec3_near(s.camera.position, -3, 0.3f, 4, "camera 1's position");
+    assert_direction_near(view, 3, 0.2f, -4, "camera 1's view");
+    assert_float_equal(s.camera.fov_deg, glm_deg(1.0f), GLTF_TOLERANCE);
+    assert_float_equal(s.camera.near_plane, 0.05f, GLTF_TOLERANCE);
+    scene_free(&s);
+    static const struct {
+        const char *path;
+        int camera;
+        const char *said;
+    } cases[] = {
+        {GLTF_SCENE, 2, GLTF_SCENE ": --camera 2: the file has cameras 0 to 1\n"},
+        {"assets/scenes/simple.json", 1, "assets/scenes/simple.json: --camera 1: the scene has camera 0 only\n"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        support_capture_stderr();
+        loaded = scene_load_camera(&s, cases[i].path, cases[i].camera);
+        assert_string_equal(support_release_stderr(), cases[i].said);
+        assert_false(loaded);
+        assert_int_equal(s.object_count, 0);
+    }
 }
 
 /* A file without a camera or a light gets both, each said in one line: a
@@ -202,6 +237,7 @@ static void test_gltf_shadows_match_reference(void **state) {
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gltf_scene_read),
+        cmocka_unit_test(test_gltf_camera_flag),
         cmocka_unit_test(test_gltf_fitted),
         cmocka_unit_test(test_gltf_says_each_thing_once),
         cmocka_unit_test(test_gltf_bad_files),

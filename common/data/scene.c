@@ -463,11 +463,17 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     return true;
 }
 
-bool scene_load(scene *s, const char *path) {
+bool scene_load(scene *s, const char *path) { return scene_load_camera(s, path, 0); }
+
+bool scene_load_camera(scene *s, const char *path, int camera) {
     const char *extension = strrchr(path, '.');
     if (extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0))
-        return scene_load_gltf(s, path);
+        return scene_load_gltf(s, path, camera);
     *s = (scene){0};
+    if (camera != 0) {
+        fprintf(stderr, "%s: --camera %d: the scene has camera 0 only\n", path, camera);
+        return false;
+    }
     cJSON *root = json_load(path, SCENE_MAX_FILE_SIZE);
     if (!root)
         return false;

@@ -161,6 +161,13 @@ typedef struct scene {
  * (FILE:LINE for JSON syntax) on stderr and returns false, leaving the
  * scene empty (safe to scene_free). */
 bool scene_load(scene *s, const char *path);
+/* scene_load with the file's camera `camera` (a program's --camera N): a
+ * glTF file's cameras in its order from 0, a JSON scene's only camera 0;
+ * another is an error, "FILE: --camera N: the file has cameras 0 to M"
+ * (or "camera 0 only"). */
+bool scene_load_camera(scene *s, const char *path, int camera);
+/* The largest N a program's --camera N takes. */
+#define SCENE_MAX_CAMERA_INDEX 65535
 void scene_free(scene *s);
 
 /* Whether the scene loaded from `file` has light `light` (a program's

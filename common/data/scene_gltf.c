@@ -88,6 +88,7 @@ typedef struct scene_gltf_reader {
     const char *file;
     const struct aiScene *a;
     scene *s;
+    unsigned camera; /* the file's camera to read (--camera) */
     int capacity;
     mesh_removed removed; /* by every object's mesh_sanitize_quietly, said once */
 } scene_gltf_reader;
@@ -301,7 +302,7 @@ static bool scene_gltf_read(scene_gltf_reader *r) {
         fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles from its meshes\n", r->file,
                 r->removed.degenerate, r->removed.non_finite);
     glm_vec3_fill(s->ambient, SCENE_DEFAULT_AMBIENT);
-    if (r->a->mNumCameras == 0 || !scene_gltf_camera(r, 0, &s->camera)) {
+    if (r->a->mNumCameras == 0 || !scene_gltf_camera(r, r->camera, &s->camera)) {
         fprintf(stderr, "%s: no camera: one fitted to the scene's bounds\n", r->file);
         scene_gltf_fit_camera(s, &s->camera);
     }
@@ -319,12 +320,30 @@ static bool scene_gltf_read(scene_gltf_reader *r) {
     return true;
 }
 
-bool scene_load_gltf(scene *s, const char *path) {
+/* Whether the file has camera `camera`, said where it has not. Camera 0
+ * of a file without cameras is the fitted one. */
+static bool scene_gltf_has_camera(const char *path, const struct aiScene *a, int camera) {
+    if (camera == 0 || (unsigned)camera < a->mNumCameras)
+        return true;
+    if (a->mNumCameras == 0)
+        fprintf(stderr, "%s: --camera %d: the file has no camera (camera 0 is fitted to its bounds)\n", path, camera);
+    else if (a->mNumCameras == 1)
+        fprintf(stderr, "%s: --camera %d: the file has camera 0 only\n", path, camera);
+    else
+        fprintf(stderr, "%s: --camera %d: the file has cameras 0 to %u\n", path, camera, a->mNumCameras - 1);
+    return false;
+}
+
+bool scene_load_gltf(scene *s, const char *path, int camera) {
     *s = (scene){0};
     const struct aiScene *a = mesh_import_graph(path);
     if (!a)
         return false;
-    scene_gltf_reader r = {.file = path, .a = a, .s = s};
+    if (!scene_gltf_has_camera(path, a, camera)) {
+        aiReleaseImport(a);
+        return false;
+    }
+    scene_gltf_reader r = {.file = path, .a = a, .s = s, .camera = (unsigned)camera};
     bool read = a->mRootNode && scene_gltf_read(&r);
     if (!a->mRootNode)
         fprintf(stderr, "%s: no node\n", path);

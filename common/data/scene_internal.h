@@ -13,7 +13,7 @@
  * origin than SCENE_REBASE_RATIO times its distance to the target, else
  * the world's origin. */
 void scene_choose_origin(const scene_camera *c, double origin[3]);
-/* A glTF 2.0 file (.gltf, .glb) as a scene: scene_load's contract. */
-bool scene_load_gltf(scene *s, const char *path);
+/* A glTF 2.0 file (.gltf, .glb) as a scene: scene_load_camera's contract. */
+bool scene_load_gltf(scene *s, const char *path, int camera);
 
 #endif

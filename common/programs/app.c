@@ -72,6 +72,7 @@ static struct {
     render_skips skips;
     const char *scene_path, *screenshot, *dump_dir, *shader_dir, *record_path;
     int light;
+    int camera;                                      /* --camera: scene_path's (0 once Page Up/Down leaves it) */
     const char *gallery[1 + APP_MAX_GALLERY_SCENES]; /* DIR SCENE... */
     int gallery_count;
     char default_shader_dir[PATH_MAX], default_scene[PATH_MAX];
@@ -126,6 +127,8 @@ static const flags_param app_flags[] = {
      0, FLAGS_STRING, .text = &app.dump_dir, .value_name = "DIR"},
     {"light", "the light --dump reports (0)", 0, FLAGS_INT, .integer = &app.light, .min = 0,
      .max = SCENE_MAX_LIGHTS - 1, .what = "a light index", .value_name = "K"},
+    {"camera", "the --scene file's camera: a glTF file's in its order (0)", 0, FLAGS_INT, .integer = &app.camera,
+     .min = 0, .max = SCENE_MAX_CAMERA_INDEX, .what = "a camera index", .value_name = "N"},
     {"shader-dir", "where the GLSL files are (shaders/ beside build/)", 0, FLAGS_STRING, .text = &app.shader_dir,
      .value_name = "DIR"},
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
@@ -294,8 +297,8 @@ static int app_parse_flags(int argc, char **argv, const flags_elsewhere *elsewhe
 
 static const technique *app_technique(void) { return app.techniques[app.current]; }
 
-static bool app_load_scene(const char *path) {
-    if (!scene_load(&app.scene, path))
+static bool app_load_scene(const char *path, int camera) {
+    if (!scene_load_camera(&app.scene, path, camera))
         return false;
     if (!camera_check_depth(&app.scene, path, depth_reversed_available())) {
         scene_free(&app.scene);
@@ -566,7 +569,7 @@ static bool app_enter_step(int k) {
     app.scene_path = s->scene;
     if (!app_set_compare(app.compare_given || s->compare))
         return false;
-    if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene)) ||
+    if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene, 0)) ||
         !tour_step_check_views(app.tour_path, k, s, app.scene.origin, &app.scene.camera))
         return false;
     tour_step_camera(s, 0, app.scene.origin, &app.base_camera);
@@ -696,7 +699,7 @@ static bool app_run_gallery(void) {
     bool ok = true;
     for (int s = 1; s < app.gallery_count && ok; s++) {
         const char *scene_path = app.gallery[s];
-        if (!app_load_scene(scene_path)) {
+        if (!app_load_scene(scene_path, 0)) {
             ok = false;
             break;
         }
@@ -887,7 +890,7 @@ static bool app_load_scene_saying(const char *path, char *problem, size_t size) 
     FILE *said = tmpfile();
     int saved = said ? dup(STDERR_FILENO) : -1;
     bool redirected = saved >= 0 && dup2(fileno(said), STDERR_FILENO) >= 0;
-    bool loaded = app_load_scene(path);
+    bool loaded = app_load_scene(path, 0);
     fflush(stderr);
     if (redirected)
         dup2(saved, STDERR_FILENO);
@@ -921,13 +924,14 @@ static void app_switch_scene(int step) {
     if (loaded) {
         snprintf(app.paged_scene, sizeof app.paged_scene, "%s", path);
         app.scene_path = app.paged_scene;
+        app.camera = 0;
         snprintf(app.note, sizeof app.note, "scene %s", path);
     } else {
         snprintf(app.note, sizeof app.note, "did NOT load: %s", problem);
     }
     app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
     app.time = 0;
-    if ((!loaded && !app_load_scene(app.scene_path)) || !app_start_technique(app.current))
+    if ((!loaded && !app_load_scene(app.scene_path, app.camera)) || !app_start_technique(app.current))
         glfwSetWindowShouldClose(app.ctx.window, GLFW_TRUE);
 }
 
@@ -1179,7 +1183,7 @@ static bool app_run(void) {
             printf("%s: %d steps of %s rendered headless (%s), nothing written: --screenshot PATH.png saves step "
                    "K's picture to PATH-K.png, --record PATH.mp4 every frame of every step\n",
                    app.program, app.tour.step_count, app.tour_path, context_backend_name(app.ctx.backend));
-    } else if (ok && (ok = app_load_scene(app.scene_path))) {
+    } else if (ok && (ok = app_load_scene(app.scene_path, app.camera))) {
         ok = app_start_technique(app.current) && (!app.record_path || app_start_recording());
         if (ok && app.ctx.window)
             ok = app_run_window(app.frames) && (!app.screenshot || app_save_screenshot(app.screenshot));

@@ -24,7 +24,7 @@
 static struct {
     const char *program;
     /* flags */
-    int width, height, light_index;
+    int width, height, light_index, camera;
     int motion; /* motion_kind */
     int frames; /* 0: not given, the scene as it is (frame 0) */
     raytrace_settings settings;
@@ -42,6 +42,8 @@ static const flags_param main_flag_table[] = {
      .text = &main_flags.dump_dir, .value_name = "DIR"},
     {"light", "the light whose visibility is dumped, from 0 (0)", 0, FLAGS_INT, .integer = &main_flags.light_index,
      .min = 0, .max = SCENE_MAX_LIGHTS - 1, .what = "a light index", .value_name = "K"},
+    {"camera", "the scene's camera: a glTF file's in its order (0)", 0, FLAGS_INT, .integer = &main_flags.camera,
+     .min = 0, .max = SCENE_MAX_CAMERA_INDEX, .what = "a camera index", .value_name = "N"},
     {"light-samples",
      "shadow rays per pixel for each area light (radius > 0),\n"
      "stratified, 1.." FLAGS_TEXT(RAYTRACE_MAX_LIGHT_SAMPLES) " (" FLAGS_TEXT(RAYTRACE_DEFAULT_LIGHT_SAMPLES) ")",
@@ -74,7 +76,7 @@ static void main_usage(void) {
 
 static int main_run(void) {
     scene s;
-    if (!scene_load(&s, main_flags.scene_path))
+    if (!scene_load_camera(&s, main_flags.scene_path, main_flags.camera))
         return MAIN_EXIT_RUNTIME;
     if (!scene_check_light_flag(&s, main_flags.scene_path, main_flags.light_index)) {
         scene_free(&s);

@@ -5,7 +5,8 @@
 
 #include "scene_internal.h"
 
-bool scene_load_gltf(scene *s, const char *path) {
+bool scene_load_gltf(scene *s, const char *path, int camera) {
+    (void)camera;
     *s = (scene){0};
     fprintf(stderr, "%s: glTF scenes are read by the native programs only (assimp is not in the page)\n", path);
     return false;
