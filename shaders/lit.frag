@@ -1,5 +1,6 @@
 #version 330 core
 #include "lighting.glsl"
+#include "surface.glsl"
 // The lights of the set LIT_LIGHTS (bit i: light i, render_use_lit's
 // SCENE_LIGHT_BIT set, common/data/scene.h), fully visible, plus ambient
 // when u_ambient is 1: the unshadowed picture, or one light's share of it.
@@ -11,7 +12,6 @@
 in vec3 v_position;
 in vec3 v_normal;
 
-uniform vec3 u_albedo;
 uniform float u_ambient;
 #ifdef LIT_SOFT_VISIBILITY
 // Light u_soft_light's share scaled by the fraction of its area light
@@ -29,7 +29,7 @@ out vec4 out_color;
 
 // Light i's share at this fragment, whose normal (towards the eye) is n.
 vec3 lit_light(int i, vec3 n) {
-    vec3 light = lighting_unshadowed(i, v_position, n, u_albedo);
+    vec3 light = lighting_unshadowed(i, v_position, n, surface_albedo);
 #ifdef LIT_SOFT_VISIBILITY
     if (i == u_soft_light)
         light *= clamp(texelFetch(u_soft_visibility, ivec2(gl_FragCoord.xy), 0).r * u_soft_scale, 0.0, 1.0);
@@ -48,7 +48,8 @@ vec3 lit_light(int i, vec3 n) {
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
-    vec3 c = u_ambient * lighting_ambient(u_albedo);
+    surface_begin();
+    vec3 c = u_ambient * lighting_ambient(surface_albedo);
     LIT_LIGHT(0);
     LIT_LIGHT(1);
     LIT_LIGHT(2);

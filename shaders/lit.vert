@@ -3,6 +3,7 @@
 // which redraw a surface with depth test GL_EQUAL hit exactly the same depth.
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
 
 uniform mat4 u_model;
 uniform mat3 u_normal_matrix;
@@ -10,6 +11,7 @@ uniform mat4 u_view_projection;
 
 out vec3 v_position;
 out vec3 v_normal;
+out vec2 v_uv;
 invariant gl_Position;
 #ifdef LIT_PROJECTED
 // demos/projective.c's receiver pass: the point in the light's image,
@@ -26,6 +28,7 @@ void main() {
     vec4 world = u_model * vec4(in_position, 1.0);
     v_position = world.xyz;
     v_normal = u_normal_matrix * in_normal;
+    v_uv = in_uv;
     gl_Position = u_view_projection * world;
 #ifdef LIT_PROJECTED
     v_projected = u_light_texture * world;

@@ -44,11 +44,11 @@
 // The other MAP_* names are the C constants these are compared with
 // (map.c, map_defines).
 #include "lighting.glsl"
+#include "surface.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
 
-uniform vec3 u_albedo;
 uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
 uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
@@ -214,7 +214,7 @@ bool map_light_cone_clear(int i) {
 #define MAP_MOMENTS(i) (((MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
 #define MAP_LIGHT(i, kind, texel_kind) \
     if (kind == MAP_LIGHT_UNSHADOWED) \
-        c += lighting_unshadowed(i, v_position, n, u_albedo); \
+        c += lighting_unshadowed(i, v_position, n, surface_albedo); \
     else if (kind == MAP_LIGHT_2D) \
         c += map_share(u_maps_2d[i], u_depths_2d[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
                               MAP_MOMENTS(i), n); \
@@ -228,12 +228,13 @@ bool map_light_cone_clear(int i) {
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.
     vec3 n = normalize(gl_FrontFacing ? v_normal : -v_normal);
+    surface_begin();
     map_face_normal = cross(dFdx(v_position), dFdy(v_position));
     if (dot(map_face_normal, n) < 0.0)
         map_face_normal = -map_face_normal;
     if (map_rays != MAP_RAYS_OFF)
         map_set_ray_origin();
-    vec3 c = lighting_ambient(u_albedo);
+    vec3 c = lighting_ambient(surface_albedo);
     MAP_LIGHT(0, MAP_LIGHT_KIND_0, MAP_TEXEL_KIND_0);
     MAP_LIGHT(1, MAP_LIGHT_KIND_1, MAP_TEXEL_KIND_1);
     MAP_LIGHT(2, MAP_LIGHT_KIND_2, MAP_TEXEL_KIND_2);

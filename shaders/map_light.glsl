@@ -80,7 +80,7 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, in
     float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
     vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
     vec3 unshadowed =
-        map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, u_albedo);
+        map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, surface_albedo);
     bool needed = unshadowed != vec3(0.0) || map_show_texel_size;
     map_penumbra_estimate = MAP_NO_PENUMBRA;
     // Rays (map.h, "Rays"): where the map's filter is unsure (strictly

@@ -225,7 +225,9 @@ static void test_face_diagonals_block(void **state) {
  * split halves it, and the paths stay within BVH_MAX_DEPTH. */
 static void test_pile_stays_within_the_stack(void **state) {
     (void)state;
-    mesh_vertex vertices[3] = {{{0, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}}};
+    mesh_vertex vertices[3] = {{.position = {0, 0, 0}, .normal = {0, 0, 1}},
+                               {.position = {1, 0, 0}, .normal = {0, 0, 1}},
+                               {.position = {0, 1, 0}, .normal = {0, 0, 1}}};
     uint32_t *indices = malloc(3 * TEST_BVH_PILE * sizeof *indices);
     assert_non_null(indices);
     for (int i = 0; i < 3 * TEST_BVH_PILE; i++)

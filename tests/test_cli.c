@@ -106,14 +106,14 @@ static void test_pictures_must_be_png(void **state) {
                 0, "out/test/upper_case.PNG");
 }
 
-/* --verbose: each model file's object, its triangles and its box in the
- * scene's world coordinates. */
+/* --verbose: each model file's object, its triangles, its box in the
+ * scene's world coordinates and its colour. */
 static void test_verbose_prints_models(void **state) {
     (void)state;
     const char *line = support_verbose_line("unshadowed", "tests/data/scene_model_color.json", "",
                                             "tests/data/scene_model_color.json: objects[1]");
     const char *expected = "tests/data/scene_model_color.json: objects[1] \"repainted\": model of 5 triangles, "
-                           "bounds (0, 0, -1) to (5, 1, -1)\n";
+                           "bounds (0, 0, -1) to (5, 1, -1), colour (0, 1, 0)\n";
     assert_non_null(line);
     assert_int_equal(strncmp(line, expected, strlen(expected)), 0);
 }

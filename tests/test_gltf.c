@@ -16,15 +16,25 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "image.h"
 #include "scene.h"
 #include "support.h"
 
 #define GLTF_SCENE "tests/data/gltf_scene.gltf"
+#define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
 #define GLTF_TOLERANCE 1e-4f
 /* The goal of hard shadows on real models (volumes and hybrid are exact
  * but for the pixels where the rasterizer and the reference round apart). */
 #define GLTF_MAX_MISCLASSIFIED_PERCENT 0.01
+/* Textured pictures against the reference's, which applies the same texel
+ * rule (texture.h): the pixels off by more than GLTF_COLOR_TOLERANCE
+ * (of 255) in a channel, at most this share (the rasterizer's level of
+ * detail is its own approximation of the rule's, per 2x2 pixels), and the
+ * mean difference of a channel. */
+#define GLTF_COLOR_TOLERANCE 8
+#define GLTF_MAX_COLOR_PERCENT 0.02
+#define GLTF_MAX_MEAN_COLOR_DIFFERENCE 0.5
 
 static void assert_vec3_near(const float *got, float x, float y, float z, const char *what) {
     if (fabsf(got[0] - x) > GLTF_TOLERANCE || fabsf(got[1] - y) > GLTF_TOLERANCE ||
@@ -100,6 +110,93 @@ static void gltf_load_saying(const char *path, const char *expected, scene *s) {
     char text[1024];
     snprintf(text, sizeof text, expected, path, path);
     assert_string_equal(said, text);
+}
+
+/* Base-colour textures: one per image and sampler (the arrow twice, with
+ * two wrap modes), their levels, the image's top row last (v up), the
+ * meshes' texture coordinates (assimp's v = 1 - glTF's); an image file
+ * that is missing. */
+static void test_gltf_textures_read(void **state) {
+    (void)state;
+    scene s;
+    support_capture_stderr();
+    bool loaded = scene_load(&s, GLTF_TEXTURED);
+    assert_string_equal(support_release_stderr(), "");
+    assert_true(loaded);
+    assert_int_equal(s.texture_count, 3);
+    static const struct {
+        const char *name;
+        texture_wrap wrap;
+        int size;
+    } objects[] = {{"ground", TEXTURE_REPEAT, 64},
+                   {"mirrored_box", TEXTURE_MIRRORED_REPEAT, 32},
+                   {"clamped_box", TEXTURE_CLAMP_TO_EDGE, 32}};
+    assert_int_equal(s.object_count, 3);
+    for (int i = 0; i < 3; i++) {
+        const texture *t = s.objects[i].base_color;
+        assert_string_equal(s.objects[i].name, objects[i].name);
+        assert_non_null(t);
+        assert_int_equal(t->wrap[0], objects[i].wrap);
+        assert_int_equal(t->wrap[1], objects[i].wrap);
+        assert_int_equal(t->levels[0].width, objects[i].size);
+        assert_int_equal(t->level_count, 1 + (int)log2(objects[i].size));
+    }
+    assert_ptr_not_equal(s.objects[1].base_color, s.objects[2].base_color);
+    /* The checker's marker, in the image's top left corner. */
+    const texture_level *checker = &s.objects[0].base_color->levels[0];
+    const unsigned char *top_left = checker->rgba + 4 * (size_t)(checker->height - 1) * (size_t)checker->width;
+    assert_int_equal(top_left[0], 40);
+    assert_int_equal(top_left[2], 200);
+    bool far_corner = false;
+    for (uint32_t v = 0; v < s.objects[0].mesh.vertex_count; v++) {
+        const float *uv = s.objects[0].mesh.vertices[v].uv;
+        far_corner |= fabsf(uv[0] - 20) < GLTF_TOLERANCE && fabsf(uv[1] - (1 - 20)) < GLTF_TOLERANCE;
+    }
+    assert_true(far_corner);
+    scene_free(&s);
+    /* An image that is not there: one line naming the file and the image,
+     * and no scene. */
+    support_capture_stderr();
+    loaded = scene_load(&s, "tests/data/gltf_missing_image.gltf");
+    assert_string_equal(support_release_stderr(), "tests/data/gltf_missing_image.gltf: image "
+                                                  "tests/data/missing_checker.png: not an image: can't fopen\n");
+    assert_false(loaded);
+    assert_int_equal(s.object_count, 0);
+}
+
+/* The textured file at street level (a checkered ground to the horizon,
+ * the mirrored and clamped arrows): the pictures' colours are the
+ * reference's, and the shadows too; the sweep takes every
+ * support_sweep_stride()th technique. */
+static void test_gltf_textures_match_reference(void **state) {
+    (void)state;
+    static const char *const programs[] = {"volumes", "hybrid"};
+    for (size_t i = 0; i < sizeof programs / sizeof *programs; i += (size_t)support_sweep_stride()) {
+        char name[64];
+        snprintf(name, sizeof name, "gltf_textured_%s", programs[i]);
+        dump_frame reference, test;
+        unsigned char *heatmap;
+        shadowdiff_result r =
+            support_measure_dumps(programs[i], GLTF_TEXTURED, "", "", name, &reference, &test, &heatmap);
+        assert_true(r.compared > 0 && r.misclassified_percent <= GLTF_MAX_MISCLASSIFIED_PERCENT);
+        long pixels = (long)reference.width * reference.height;
+        double off = 100.0 *
+                     (double)image_compare(reference.color, test.color, reference.width, reference.height,
+                                           GLTF_COLOR_TOLERANCE, NULL) /
+                     (double)pixels;
+        double sum = 0;
+        for (long p = 0; p < pixels; p++)
+            for (int c = 0; c < 3; c++)
+                sum += abs(reference.color[4 * p + c] - test.color[4 * p + c]);
+        double mean = sum / (3.0 * (double)pixels);
+        print_message("    %s: colours off by more than %d/255: %.4f %% of the pixels; mean difference %.3f/255\n",
+                      programs[i], GLTF_COLOR_TOLERANCE, off, mean);
+        assert_true(off <= GLTF_MAX_COLOR_PERCENT);
+        assert_true(mean <= GLTF_MAX_MEAN_COLOR_DIFFERENCE);
+        dump_frame_free(&reference);
+        dump_frame_free(&test);
+        free(heatmap);
+    }
 }
 
 /* --camera N: the file's camera N, where its node places it (the second
@@ -236,12 +333,10 @@ static void test_gltf_shadows_match_reference(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_gltf_scene_read),
-        cmocka_unit_test(test_gltf_camera_flag),
-        cmocka_unit_test(test_gltf_fitted),
-        cmocka_unit_test(test_gltf_says_each_thing_once),
-        cmocka_unit_test(test_gltf_bad_files),
-        cmocka_unit_test(test_gltf_shadows_match_reference),
+        cmocka_unit_test(test_gltf_scene_read),    cmocka_unit_test(test_gltf_camera_flag),
+        cmocka_unit_test(test_gltf_textures_read), cmocka_unit_test(test_gltf_textures_match_reference),
+        cmocka_unit_test(test_gltf_fitted),        cmocka_unit_test(test_gltf_says_each_thing_once),
+        cmocka_unit_test(test_gltf_bad_files),     cmocka_unit_test(test_gltf_shadows_match_reference),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

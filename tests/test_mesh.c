@@ -328,9 +328,10 @@ static void test_weld_joins_copies_within_tolerance(void **state) {
      * bit-identical, one off by far less than the tolerance (1e-6 of the
      * diagonal). The last vertex is near (1,0,0) but well outside it. */
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}},      {{1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {0, 0, 1}},
-        {{1, 0, 0}, {0, 0, 1}},      {{1, 1, 0}, {0, 0, 1}}, {{0, 1.0f + 1e-9f, 0}, {0, 0, 1}},
-        {{1.001f, 0, 0}, {0, 0, 1}},
+        {{0, 0, 0}, {0, 0, 1}, {0, 0}},      {{1, 0, 0}, {0, 0, 1}, {0, 0}},
+        {{0, 1, 0}, {0, 0, 1}, {0, 0}},      {{1, 0, 0}, {0, 0, 1}, {0, 0}},
+        {{1, 1, 0}, {0, 0, 1}, {0, 0}},      {{0, 1.0f + 1e-9f, 0}, {0, 0, 1}, {0, 0}},
+        {{1.001f, 0, 0}, {0, 0, 1}, {0, 0}},
     };
     uint32_t indices[] = {0, 1, 2, 3, 4, 5};
     mesh m = {vertices, indices, 7, 6, {0, 0, 0}, {1, 1, 0}};
@@ -351,8 +352,8 @@ static void test_edge_counts_see_non_manifold_edges(void **state) {
     (void)state;
     /* Three triangles on one edge, like pages of a book. */
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
-        {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}},
+        {{0, 0, 0}, {0, 0, 1}, {0, 0}},  {{0, 1, 0}, {0, 0, 1}, {0, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, 0}},
+        {{-1, 0, 0}, {0, 0, 1}, {0, 0}}, {{0, 0, 1}, {1, 0, 0}, {0, 0}},
     };
     uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4};
     mesh m = {vertices, indices, 5, 9, {-1, 0, 0}, {1, 1, 1}};
@@ -422,8 +423,8 @@ static void test_edge_table_of_closed_box(void **state) {
 static void test_edge_table_of_open_and_non_manifold_meshes(void **state) {
     (void)state;
     mesh_vertex vertices[] = {
-        {{0, 0, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}},
-        {{-1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}},
+        {{0, 0, 0}, {0, 0, 1}, {0, 0}},  {{0, 1, 0}, {0, 0, 1}, {0, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, 0}},
+        {{-1, 0, 0}, {0, 0, 1}, {0, 0}}, {{0, 0, 1}, {1, 0, 0}, {0, 0}},
     };
     uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 4};
     mesh book = {vertices, indices, 5, 9, {-1, 0, 0}, {1, 1, 1}};
@@ -462,8 +463,8 @@ static void test_sanitize_repairs_hand_made_mesh(void **state) {
     assert_non_null(m.vertices);
     assert_non_null(m.indices);
     const mesh_vertex vertices[] = {
-        {{0, 0, 0}, {NAN, 0, 0}}, {{2, 0, 0}, {0, 0, 1}}, {{0, 2, 0}, {0, 0, 0}},
-        {{NAN, 0, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}}, {{1000, 1000, 1000}, {0, 0, 1}},
+        {{0, 0, 0}, {NAN, 0, 0}, {0, 0}}, {{2, 0, 0}, {0, 0, 1}, {0, 0}}, {{0, 2, 0}, {0, 0, 0}, {0, 0}},
+        {{NAN, 0, 0}, {0, 0, 1}, {0, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, 0}}, {{1000, 1000, 1000}, {0, 0, 1}, {0, 0}},
     };
     const uint32_t indices[] = {0, 1, 2, 0, 3, 1, 0, 1, 99, 0, 4, 1};
     memcpy(m.vertices, vertices, sizeof vertices);

@@ -232,7 +232,7 @@ static void test_defaults(void **state) {
 /* A model without "color" takes its file's (the material covering the
  * most triangles: mesh_material), one with it keeps its own, and a model
  * whose file names no material the default; --verbose's lines give each
- * model's triangles and world bounds. */
+ * model's triangles, world bounds and colour. */
 static void test_model_colour_and_models_printed(void **state) {
     (void)state;
     scene s;
@@ -244,10 +244,12 @@ static void test_model_colour_and_models_printed(void **state) {
     scene_print_models(&s, "scene.json");
     const char *text = support_release_stderr();
     assert_string_equal(text,
-                        "scene.json: objects[0] \"painted\": model of 5 triangles, bounds (0, 0, 0) to (5, 1, 0)\n"
+                        "scene.json: objects[0] \"painted\": model of 5 triangles, bounds (0, 0, 0) to (5, 1, 0), "
+                        "colour (0.1, 0.2, 0.9)\n"
                         "scene.json: objects[1] \"repainted\": model of 5 triangles, bounds (0, 0, -1) to (5, 1, "
-                        "-1)\n"
-                        "scene.json: objects[2] \"plain\": model of 4 triangles, bounds (0, 0, -2) to (1, 1, -1)\n");
+                        "-1), colour (0, 1, 0)\n"
+                        "scene.json: objects[2] \"plain\": model of 4 triangles, bounds (0, 0, -2) to (1, 1, -1), "
+                        "colour (0.8, 0.8, 0.8)\n");
     scene_free(&s);
     /* Rebased on its camera (scene.h, "Large worlds"), a scene's bounds
      * are still the file's world coordinates. */
@@ -259,7 +261,18 @@ static void test_model_colour_and_models_printed(void **state) {
     scene_free(&s);
     assert_string_equal(text,
                         "rebased.json: objects[0] \"tetrahedron\": model of 4 triangles, bounds (1000, 0, 0) to "
-                        "(1001, 1, 1)\n");
+                        "(1001, 1, 1), colour (0.8, 0.8, 0.8)\n");
+    /* A model whose materials have textures, drawn in its own colour:
+     * said, once for the object; with the scene's colour, nothing. */
+    support_capture_stderr();
+    bool loaded = scene_load(&s, "tests/data/scene_model_textured.json");
+    text = support_release_stderr();
+    assert_true(loaded);
+    assert_string_equal(text,
+                        "tests/data/scene_model_textured.json: objects[0]: 1 of the model's materials have textures, "
+                        "which only a glTF scene reads: drawn in the colour (0.5, 0.25, 0.125) alone\n");
+    assert_null(s.objects[0].base_color);
+    scene_free(&s);
 }
 
 /* A light's range: read from the file, and the window it sets (1 at the

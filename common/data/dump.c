@@ -246,5 +246,14 @@ bool dump_read(dump_frame *d, const char *dir) {
             return false;
         }
     }
+    int w, h;
+    snprintf(path, sizeof path, "%s/color.png", dir);
+    d->color = image_read_png(path, &w, &h);
+    if (d->color && (w != d->width || h != d->height))
+        fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
+    if (!d->color || w != d->width || h != d->height) {
+        dump_frame_free(d);
+        return false;
+    }
     return true;
 }

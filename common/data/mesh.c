@@ -78,6 +78,7 @@ uint32_t mesh_push_vertex(mesh *m, const float position[3], const float normal[3
     mesh_vertex *v = &m->vertices[m->vertex_count];
     memcpy(v->position, position, sizeof v->position);
     memcpy(v->normal, normal, sizeof v->normal);
+    v->uv[0] = v->uv[1] = 0;
     return m->vertex_count++;
 }
 

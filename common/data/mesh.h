@@ -1,7 +1,7 @@
 /* mesh: one triangle-mesh layout for every technique.
  *
- * A mesh is an indexed triangle list of mesh_vertex (position + shading
- * normal), with its axis-aligned bounds. Meshes come from procedural
+ * A mesh is an indexed triangle list of mesh_vertex (position, shading
+ * normal, texture coordinates), with its axis-aligned bounds. Meshes come from procedural
  * generators (mesh_make_*) or from model files through assimp
  * (mesh_load_file). Every constructor ends in mesh_sanitize, which removes
  * triangles that are degenerate (zero area once positions are welded) or
@@ -28,6 +28,7 @@
 typedef struct mesh_vertex {
     float position[3];
     float normal[3];
+    float uv[2]; /* texture coordinates (texture.h's convention); 0 where the mesh has none */
 } mesh_vertex;
 
 typedef struct mesh {
@@ -85,6 +86,9 @@ bool mesh_make_cylinder(mesh *m, float radius, float height, int segments);
 typedef struct mesh_material {
     bool has_color; /* false: no material of the file gives one */
     float color[3]; /* linear RGB, as the file gives it */
+    /* The file's materials that name a base-colour or diffuse texture,
+     * which a model does not read (a glTF scene does: scene.h). */
+    unsigned textured;
 } mesh_material;
 
 /* Loads every triangle of a model file (all its meshes, node transforms

@@ -82,8 +82,12 @@ static bool mesh_find_material(const char *path, const struct aiScene *scene, me
     for (unsigned i = 0; ok && i < scene->mNumMeshes; i++)
         if (scene->mMeshes[i]->mMaterialIndex < n)
             triangles[scene->mMeshes[i]->mMaterialIndex] += mesh_count_assimp_triangles(scene->mMeshes[i]);
-    for (unsigned i = 0; ok && i < n; i++)
+    for (unsigned i = 0; ok && i < n; i++) {
         colored[i] = mesh_material_color(scene->mMaterials[i], colors[i]);
+        out->textured += aiGetMaterialTextureCount(scene->mMaterials[i], aiTextureType_BASE_COLOR) +
+                             aiGetMaterialTextureCount(scene->mMaterials[i], aiTextureType_DIFFUSE) >
+                         0;
+    }
     unsigned long long best = 0;
     for (unsigned i = 0; ok && i < n; i++) {
         unsigned long long covered = 0;
@@ -124,7 +128,12 @@ static bool mesh_copy_assimp_triangles(mesh *m, const char *path, struct aiMesh 
             const struct aiVector3D *p = &am->mVertices[v];
             /* A zero normal marks it missing: mesh_sanitize computes one. */
             const struct aiVector3D n = am->mNormals ? am->mNormals[v] : (struct aiVector3D){0, 0, 0};
-            mesh_push_vertex(m, (const float[3]){p->x, p->y, p->z}, (const float[3]){n.x, n.y, n.z});
+            uint32_t pushed =
+                mesh_push_vertex(m, (const float[3]){p->x, p->y, p->z}, (const float[3]){n.x, n.y, n.z});
+            if (am->mTextureCoords[0]) {
+                m->vertices[pushed].uv[0] = am->mTextureCoords[0][v].x;
+                m->vertices[pushed].uv[1] = am->mTextureCoords[0][v].y;
+            }
         }
         for (unsigned f = 0; f < am->mNumFaces; f++) {
             const struct aiFace *face = &am->mFaces[f];

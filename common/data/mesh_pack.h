@@ -4,7 +4,7 @@
  *
  * The file: MESH_PACK_MAGIC (8 bytes), then little-endian uint32 vertex
  * and index counts, a uint32 0 or 1 (mesh_material.has_color), float
- * colour[3], bounds_min[3], bounds_max[3], the vertices (mesh_vertex: six
+ * colour[3], bounds_min[3], bounds_max[3], the vertices (mesh_vertex: eight
  * floats each) and the indices (uint32). Floats are IEEE 754 binary32 as
  * the mesh holds them, so the mesh read back is the one written, bit for
  * bit. The hosts that build and read it (x86-64, wasm32) are
@@ -18,7 +18,7 @@
 
 #include "mesh.h"
 
-#define MESH_PACK_MAGIC "SHMESH1"
+#define MESH_PACK_MAGIC "SHMESH2"
 
 /* material may be NULL (no colour). */
 bool mesh_pack_write(const char *path, const mesh *m, const mesh_material *material);

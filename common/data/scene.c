@@ -423,8 +423,17 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     if (!scene_build_mesh(file, mesh_json, mesh_where, where, o, &material))
         return false;
     /* The model's own colour where the object gives none. */
-    if (material.has_color && !cJSON_GetObjectItemCaseSensitive(json, "color"))
+    bool own_color = !cJSON_GetObjectItemCaseSensitive(json, "color");
+    if (material.has_color && own_color)
         memcpy(o->color, material.color, sizeof o->color);
+    /* Where the scene gives no colour, the picture is the model's own
+     * colour without its textures: said, since it may look nothing like
+     * the model. */
+    if (material.textured && own_color)
+        fprintf(stderr,
+                "%s: %s: %u of the model's materials have textures, which only a glTF scene reads: drawn in the "
+                "colour (%g, %g, %g) alone\n",
+                file, where, material.textured, o->color[0], o->color[1], o->color[2]);
     if (mirrored)
         mesh_reflect_x(&o->mesh);
     return true;
@@ -488,6 +497,9 @@ void scene_free(scene *s) {
     for (int i = 0; i < s->object_count; i++)
         mesh_free(&s->objects[i].mesh);
     free(s->objects);
+    for (int t = 0; t < s->texture_count; t++)
+        texture_free(&s->textures[t]);
+    free(s->textures);
     *s = (scene){0};
 }
 
@@ -508,9 +520,16 @@ void scene_print_models(const scene *s, const char *file) {
         if (o->mesh_kind != SCENE_MESH_MODEL)
             continue;
         scene_object_world_bounds(o, lo, hi);
-        fprintf(stderr, "%s: objects[%d] \"%s\": model of %u triangles, bounds (%g, %g, %g) to (%g, %g, %g)\n", file,
-                i, o->name, o->mesh.index_count / 3, lo[0] + s->origin[0], lo[1] + s->origin[1], lo[2] + s->origin[2],
-                hi[0] + s->origin[0], hi[1] + s->origin[1], hi[2] + s->origin[2]);
+        char texture[64] = "";
+        if (o->base_color)
+            snprintf(texture, sizeof texture, " times a %dx%d texture", o->base_color->levels[0].width,
+                     o->base_color->levels[0].height);
+        fprintf(stderr,
+                "%s: objects[%d] \"%s\": model of %u triangles, bounds (%g, %g, %g) to (%g, %g, %g), colour (%g, %g, "
+                "%g)%s\n",
+                file, i, o->name, o->mesh.index_count / 3, lo[0] + s->origin[0], lo[1] + s->origin[1],
+                lo[2] + s->origin[2], hi[0] + s->origin[0], hi[1] + s->origin[1], hi[2] + s->origin[2], o->color[0],
+                o->color[1], o->color[2], texture);
     }
 }
 

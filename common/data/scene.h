@@ -51,14 +51,17 @@
  * SCENE_REBASE_RATIO below); scene_load says how it fails.
  *
  * glTF scenes: a file named .gltf or .glb is read as a glTF 2.0 scene
- * (scene_gltf.c): an object per node's mesh, the first camera, the
- * punctual lights; a camera or light the file lacks is fitted and said.
+ * (scene_gltf.c): an object per node's mesh, its material's colour and
+ * base-colour texture (the scene's textures), the first camera (or the
+ * one scene_load_camera names), the punctual lights; a camera or light
+ * the file lacks is fitted and said.
  */
 #ifndef SCENE_H
 #define SCENE_H
 
 #include <stdbool.h>
 #include "mesh.h"
+#include "texture.h"
 
 #define SCENE_MAX_LIGHTS 8
 /* A set of lights as bits: bit l is light l (render_use_lit, the skips). */
@@ -122,6 +125,9 @@ typedef struct scene_object {
      * space, sees counter-clockwise faces from outside. */
     _Alignas(16) float model[4][4];
     float color[3];
+    /* NULL, or one of the scene's textures (texture.h): its base colour
+     * then color times the texture's at the mesh's texture coordinates. */
+    const texture *base_color;
     bool casts;
     bool receives;
 } scene_object;
@@ -155,6 +161,8 @@ typedef struct scene {
     int light_count;
     scene_object *objects;
     int object_count;
+    texture *textures; /* what objects' base_color point to */
+    int texture_count;
 } scene;
 
 /* Reports the first problem as one line "FILE: where: problem"
@@ -177,8 +185,10 @@ bool scene_check_light_flag(const scene *s, const char *file, int light);
 
 /* --verbose: one line on stderr for each object whose mesh is a model
  * file, "FILE: objects[i] "NAME": model of N triangles, bounds (x, y, z)
- * to (x, y, z)", the corners of its box in the file's world coordinates
- * (the origin added back), for placing and scaling it. */
+ * to (x, y, z), colour (r, g, b) times a WxH texture", the corners of its
+ * box in the file's world coordinates (the origin added back), for
+ * placing and scaling it, and its base colour (the texture where it has
+ * one). */
 void scene_print_models(const scene *s, const char *file);
 
 /* A light's reach: what its contribution at `distance` from its position

@@ -13,7 +13,9 @@
 #include <string.h>
 
 #include "mesh_assimp.h"
+#include "path.h"
 #include "scene_internal.h"
+#include "texture.h"
 
 /* An object's name: its node's, this long at most (room for a suffix
  * that makes it one object's). */
@@ -91,7 +93,14 @@ typedef struct scene_gltf_reader {
     unsigned camera; /* the file's camera to read (--camera) */
     int capacity;
     mesh_removed removed; /* by every object's mesh_sanitize_quietly, said once */
+    /* Per material: its base-colour texture's index in s->textures, or
+     * SCENE_GLTF_UNTEXTURED, once looked up (SCENE_GLTF_UNSEEN before). */
+    int *material_texture;
+    unsigned without_coordinates; /* textured meshes with no texture coordinates, said once */
 } scene_gltf_reader;
+
+#define SCENE_GLTF_UNSEEN (-2)
+#define SCENE_GLTF_UNTEXTURED (-1)
 
 /* A name for the object of node `node` that no earlier object has. */
 static void scene_gltf_name(const scene *s, const struct aiNode *node, char out[SCENE_NAME_MAX]) {
@@ -108,6 +117,95 @@ static void scene_gltf_name(const scene *s, const struct aiNode *node, char out[
             snprintf(out, SCENE_NAME_MAX, "%s_%d", base, s->object_count);
             return;
         }
+}
+
+/* ---- base-colour textures ---- */
+
+/* The image `path` names (a material's texture: "*N" for the file's
+ * embedded image N, else a file beside the glTF file) into t. */
+static bool scene_gltf_image(const scene_gltf_reader *r, const char *path, texture *t) {
+    char name[PATH_MAX + 64];
+    if (path[0] == '*') {
+        char *end;
+        unsigned long n = strtoul(path + 1, &end, 10);
+        snprintf(name, sizeof name, "%s: embedded image %s", r->file, path + 1);
+        if (*end || n >= r->a->mNumTextures) {
+            fprintf(stderr, "%s: not in the file\n", name);
+            return false;
+        }
+        const struct aiTexture *at = r->a->mTextures[n];
+        if (at->mHeight == 0) /* compressed: mWidth bytes of a PNG, JPEG... */
+            return texture_from_memory(t, name, (const unsigned char *)at->pcData, at->mWidth);
+        size_t count = (size_t)at->mWidth * at->mHeight;
+        unsigned char *rgba = malloc(4 * count);
+        if (!rgba) {
+            fprintf(stderr, "%s: out of memory\n", name);
+            return false;
+        }
+        /* aiTexel is BGRA, top row first. */
+        for (unsigned y = 0; y < at->mHeight; y++)
+            for (unsigned x = 0; x < at->mWidth; x++) {
+                const struct aiTexel *texel = &at->pcData[(size_t)(at->mHeight - 1 - y) * at->mWidth + x];
+                unsigned char *out = rgba + 4 * ((size_t)y * at->mWidth + x);
+                out[0] = texel->r, out[1] = texel->g, out[2] = texel->b, out[3] = texel->a;
+            }
+        bool made = texture_from_pixels(t, name, (int)at->mWidth, (int)at->mHeight, rgba);
+        free(rgba);
+        return made;
+    }
+    char beside[PATH_MAX];
+    if (!path_beside(r->file, path, beside, sizeof beside)) {
+        fprintf(stderr, "%s: image \"%s\": path too long\n", r->file, path);
+        return false;
+    }
+    snprintf(name, sizeof name, "%s: image %s", r->file, beside);
+    return texture_load_file(t, name, beside);
+}
+
+/* The base-colour texture material m names (glTF's baseColorTexture,
+ * which assimp gives as both base colour and diffuse): its image's path
+ * and wrap modes; false where it names none. */
+static bool scene_gltf_texture_of(const struct aiMaterial *material, struct aiString *path, texture_wrap wrap[2]) {
+    enum aiTextureMapMode modes[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+    if (aiGetMaterialTexture(material, aiTextureType_BASE_COLOR, 0, path, NULL, NULL, NULL, NULL, modes, NULL) !=
+            aiReturn_SUCCESS &&
+        aiGetMaterialTexture(material, aiTextureType_DIFFUSE, 0, path, NULL, NULL, NULL, NULL, modes, NULL) !=
+            aiReturn_SUCCESS)
+        return false;
+    for (int k = 0; k < 2; k++)
+        wrap[k] = modes[k] == aiTextureMapMode_Mirror  ? TEXTURE_MIRRORED_REPEAT
+                  : modes[k] == aiTextureMapMode_Clamp ? TEXTURE_CLAMP_TO_EDGE
+                                                       : TEXTURE_REPEAT;
+    return true;
+}
+
+/* Material m's base-colour texture, loaded on its first use, an image and
+ * sampler that several materials name once; *index its place in the
+ * scene's textures or SCENE_GLTF_UNTEXTURED. False after a line where its
+ * image does not load. */
+static bool scene_gltf_texture(scene_gltf_reader *r, unsigned m, int *index) {
+    if (r->material_texture[m] != SCENE_GLTF_UNSEEN) {
+        *index = r->material_texture[m];
+        return true;
+    }
+    struct aiString path, other;
+    texture_wrap wrap[2], other_wrap[2];
+    *index = r->material_texture[m] = SCENE_GLTF_UNTEXTURED;
+    if (!scene_gltf_texture_of(r->a->mMaterials[m], &path, wrap))
+        return true;
+    for (unsigned k = 0; k < r->a->mNumMaterials; k++)
+        if (r->material_texture[k] >= 0 && scene_gltf_texture_of(r->a->mMaterials[k], &other, other_wrap) &&
+            strcmp(other.data, path.data) == 0 && memcmp(wrap, other_wrap, sizeof wrap) == 0) {
+            *index = r->material_texture[m] = r->material_texture[k];
+            return true;
+        }
+    scene *s = r->s;
+    texture *t = &s->textures[s->texture_count];
+    if (!scene_gltf_image(r, path.data, t))
+        return false;
+    memcpy(t->wrap, wrap, sizeof t->wrap);
+    *index = r->material_texture[m] = s->texture_count++;
+    return true;
 }
 
 /* Mesh i of the file as an object placed by `world`. A mirroring
@@ -137,8 +235,16 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
     snprintf(where, sizeof where, "%s: node \"%s\"", r->file, o->name);
     if (!mesh_from_assimp(&o->mesh, where, am, &r->removed))
         return false;
-    if (am->mMaterialIndex < r->a->mNumMaterials)
+    if (am->mMaterialIndex < r->a->mNumMaterials) {
         mesh_material_color(r->a->mMaterials[am->mMaterialIndex], o->color);
+        int texture;
+        if (!scene_gltf_texture(r, am->mMaterialIndex, &texture))
+            return false;
+        if (texture >= 0 && !am->mTextureCoords[0])
+            r->without_coordinates++;
+        else if (texture >= 0)
+            o->base_color = &r->s->textures[texture];
+    }
     mat4 model;
     glm_mat4_copy(world, model);
     if (glm_mat4_det(model) < 0) {
@@ -301,6 +407,9 @@ static bool scene_gltf_read(scene_gltf_reader *r) {
     if (r->removed.degenerate + r->removed.non_finite > 0)
         fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles from its meshes\n", r->file,
                 r->removed.degenerate, r->removed.non_finite);
+    if (r->without_coordinates)
+        fprintf(stderr, "%s: %u textured meshes have no texture coordinates: their base colour alone\n", r->file,
+                r->without_coordinates);
     glm_vec3_fill(s->ambient, SCENE_DEFAULT_AMBIENT);
     if (r->a->mNumCameras == 0 || !scene_gltf_camera(r, r->camera, &s->camera)) {
         fprintf(stderr, "%s: no camera: one fitted to the scene's bounds\n", r->file);
@@ -344,7 +453,21 @@ bool scene_load_gltf(scene *s, const char *path, int camera) {
         return false;
     }
     scene_gltf_reader r = {.file = path, .a = a, .s = s, .camera = (unsigned)camera};
+    /* A texture per material at most: the objects point into s->textures,
+     * which never moves. */
+    r.material_texture = malloc((a->mNumMaterials + 1) * sizeof *r.material_texture);
+    s->textures = calloc(a->mNumMaterials + 1, sizeof *s->textures);
+    if (!r.material_texture || !s->textures) {
+        fprintf(stderr, "%s: out of memory for %u materials\n", path, a->mNumMaterials);
+        free(r.material_texture);
+        aiReleaseImport(a);
+        scene_free(s);
+        return false;
+    }
+    for (unsigned m = 0; m < a->mNumMaterials; m++)
+        r.material_texture[m] = SCENE_GLTF_UNSEEN;
     bool read = a->mRootNode && scene_gltf_read(&r);
+    free(r.material_texture);
     if (!a->mRootNode)
         fprintf(stderr, "%s: no node\n", path);
     aiReleaseImport(a);

@@ -45,6 +45,7 @@ bool render_program_load(render_program *p, const char *const *files, int count,
     p->model = shader_uniform_optional(p->id, "u_model");
     p->normal_matrix = shader_uniform_optional(p->id, "u_normal_matrix");
     p->albedo = shader_uniform_optional(p->id, "u_albedo");
+    p->base_color = shader_uniform_optional(p->id, "u_base_color");
     p->view_projection = shader_uniform_optional(p->id, "u_view_projection");
     return true;
 }
@@ -67,6 +68,12 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
     glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
     glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const float *)m->normal_matrix);
     glUniform3fv(p->albedo, 1, o->color);
+    if (p->base_color >= 0) {
+        glUniform1i(p->base_color, RENDER_BASE_COLOR_UNIT);
+        glActiveTexture(GL_TEXTURE0 + RENDER_BASE_COLOR_UNIT);
+        glBindTexture(GL_TEXTURE_2D, o->base_color ? r->textures[o->base_color - r->scene->textures] : r->white);
+        glActiveTexture(GL_TEXTURE0);
+    }
     glBindVertexArray(m->vao);
     glDrawElements(GL_TRIANGLES, m->index_count, GL_UNSIGNED_INT, NULL);
     if (r->inject_gl_error)
@@ -155,10 +162,52 @@ static void render_mesh_upload(render_mesh *g, const scene_object *o) {
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(mesh_vertex), (void *)offsetof(mesh_vertex, position));
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(mesh_vertex), (void *)offsetof(mesh_vertex, normal));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(mesh_vertex), (void *)offsetof(mesh_vertex, uv));
     glBindVertexArray(0);
     g->index_count = (int)m->index_count;
     scene_object_normal_matrix(o, g->normal_matrix);
     g->longest_edge = render_longest_edge(o);
+}
+
+/* Texture t's levels, as texture.h made them, sampled as it samples. */
+static void render_texture_upload(unsigned name, const texture *t) {
+    glBindTexture(GL_TEXTURE_2D, name);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int l = 0; l < t->level_count; l++)
+        glTexImage2D(GL_TEXTURE_2D, l, GL_SRGB8_ALPHA8, t->levels[l].width, t->levels[l].height, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, t->levels[l].rgba);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, t->level_count - 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    static const GLint wraps[] = {[TEXTURE_REPEAT] = GL_REPEAT,
+                                  [TEXTURE_MIRRORED_REPEAT] = GL_MIRRORED_REPEAT,
+                                  [TEXTURE_CLAMP_TO_EDGE] = GL_CLAMP_TO_EDGE};
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wraps[t->wrap[0]]);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wraps[t->wrap[1]]);
+}
+
+/* The scene's textures and the white texel; false when out of memory. */
+static bool render_textures_create(render_scene *r) {
+    const scene *s = r->scene;
+    r->textures = calloc((size_t)s->texture_count + 1, sizeof *r->textures);
+    if (!r->textures)
+        return false;
+    glGenTextures(s->texture_count, r->textures);
+    for (int t = 0; t < s->texture_count; t++)
+        render_texture_upload(r->textures[t], &s->textures[t]);
+    /* Nearest, one level: exactly 1 in every channel, so that the colour
+     * of an object without a texture is its own to the bit. */
+    static const unsigned char white[4] = {255, 255, 255, 255};
+    glGenTextures(1, &r->white);
+    glBindTexture(GL_TEXTURE_2D, r->white);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return true;
 }
 
 bool render_scene_create(render_scene *r, const scene *s) {
@@ -169,7 +218,7 @@ bool render_scene_create(render_scene *r, const scene *s) {
     r->in_frustum = r->in_view ? r->in_view + s->object_count : NULL;
     for (int l = 0; r->in_view && l < SCENE_MAX_LIGHTS; l++)
         r->lit_by[l] = r->in_view + (size_t)s->object_count * (size_t)(2 + l);
-    if (!r->meshes || !r->in_view) {
+    if (!r->meshes || !r->in_view || !render_textures_create(r)) {
         free(r->meshes);
         free(r->in_view);
         fprintf(stderr, "render: out of memory\n");
@@ -220,6 +269,11 @@ void render_scene_destroy(render_scene *r) {
     }
     free(r->meshes);
     free(r->in_view);
+    if (r->textures) {
+        glDeleteTextures(r->scene->texture_count, r->textures);
+        glDeleteTextures(1, &r->white);
+    }
+    free(r->textures);
     glDeleteBuffers(1, &r->lights_buffer);
     for (int v = 0; r->lit && v < RENDER_LIT_VARIANTS; v++)
         for (unsigned set = 0; set < RENDER_LIGHT_SETS; set++)

@@ -1,7 +1,9 @@
 /* render: a scene on the GPU and the drawing every technique shares.
  *
  * render_scene_create uploads each object's mesh (one VAO each: attribute
- * 0 position, 1 normal), creates the uniform block of lights that
+ * 0 position, 1 normal, 2 texture coordinates) and the scene's textures
+ * (texture.h: every level as made there, sRGB, trilinear, wrapped),
+ * creates the uniform block of lights that
  * shaders/lighting.glsl reads, and loads the depth pre-pass's program;
  * the "lit" programs (lit.vert, lit.frag: Lambert plus ambient with no
  * shadows, of a set of lights) are compiled per set on first use
@@ -12,8 +14,12 @@
  *
  * Techniques load their own programs with render_program_load, which finds
  * the uniforms every scene-drawing program has (u_model, u_normal_matrix,
- * u_albedo, u_view_projection; any may be absent), then draw objects with
- * render_draw_object, or render_draw_objects for those of a mask.
+ * u_albedo, u_base_color, u_view_projection; any may be absent), then draw
+ * objects with render_draw_object, or render_draw_objects for those of a
+ * mask. A program that shades (shaders/surface.glsl) reads each object's
+ * base-colour texture on RENDER_BASE_COLOR_UNIT, where
+ * render_draw_object binds it, or a white texel for an object without
+ * one (its colour then exactly the object's).
  *
  * View culling, the first of the skips (a scene's cost should follow what
  * the camera sees): the frame's owner calls render_cull_view once per
@@ -41,9 +47,15 @@
 #include "scene.h"
 #include "shader.h"
 
+/* The texture unit of u_base_color. The units below it are the
+ * techniques' (a shadow map's camera pass takes every one, with the
+ * units above it for its soft lights: demos/lib/map_internal.h); GL 3.3
+ * promises 16. */
+#define RENDER_BASE_COLOR_UNIT 14
+
 typedef struct render_program {
     unsigned id;
-    int model, normal_matrix, albedo, view_projection;
+    int model, normal_matrix, albedo, base_color, view_projection;
 } render_program;
 
 typedef struct render_mesh {
@@ -108,6 +120,8 @@ typedef struct render_scene {
     bool *in_frustum;               /* one per scene object: its box meets the view, whatever the skips */
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
     unsigned lights_buffer;
+    unsigned *textures;       /* one per scene texture (GL names) */
+    unsigned white;           /* the texture of an object without one: a white texel */
     render_lit_programs *lit; /* compiled on use, through a const render_scene too */
     render_program depth;     /* lit.vert with depth.frag: render_depth_prepass */
     bool inject_gl_error;     /* test hook: see RENDER_INJECT_GL_ERROR_ENV */

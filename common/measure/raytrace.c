@@ -507,6 +507,68 @@ static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit 
     return (float)unoccluded / (float)t->light_samples;
 }
 
+/* The texture coordinates at p (from the eye) in the plane of corners v,
+ * of coordinates uv: by p's barycentric coordinates, extrapolated beyond
+ * the triangle (a neighbour pixel's point may lie outside it, as the
+ * rasterizer's derivatives extrapolate too). */
+static void raytrace_uv_at(const double v[3][3], const float uv[3][2], const double p[3], float out[2]) {
+    double e1[3], e2[3], d[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = v[1][k] - v[0][k];
+        e2[k] = v[2][k] - v[0][k];
+        d[k] = p[k] - v[0][k];
+    }
+    double d11 = raytrace_dot_d(e1, e1), d12 = raytrace_dot_d(e1, e2), d22 = raytrace_dot_d(e2, e2);
+    double d1 = raytrace_dot_d(d, e1), d2 = raytrace_dot_d(d, e2);
+    double denominator = d11 * d22 - d12 * d12;
+    double b1 = denominator != 0 ? (d22 * d1 - d12 * d2) / denominator : 0;
+    double b2 = denominator != 0 ? (d11 * d2 - d12 * d1) / denominator : 0;
+    for (int k = 0; k < 2; k++)
+        out[k] = (float)((1 - b1 - b2) * uv[0][k] + b1 * uv[1][k] + b2 * uv[2][k]);
+}
+
+/* The hit's base colour (shaders/surface.glsl): the object's colour, times
+ * its texture's (texture.h's rule) at the hit's texture coordinates, the
+ * level of detail from where the rays of the pixels to the right and
+ * above meet the hit triangle's plane (ray differentials). */
+static void raytrace_albedo(const raytrace_tracer *t, const struct RTCRayHit *ray, const raytrace_hit *h, int x,
+                            int y, float albedo[3]) {
+    const scene_object *object = &t->scene->objects[h->object];
+    glm_vec3_copy((float *)object->color, albedo);
+    if (!object->base_color)
+        return;
+    const raytrace_object *o = &t->objects[h->object];
+    const uint32_t *corner = object->mesh.indices + 3 * (size_t)ray->hit.primID;
+    double v[3][3], normal[3];
+    float uv[3][2];
+    raytrace_corners(o, ray->hit.primID, v);
+    raytrace_plane_normal(v, normal);
+    for (int c = 0; c < 3; c++)
+        memcpy(uv[c], object->mesh.vertices[corner[c]].uv, sizeof uv[c]);
+    float at[2], beside[2][2], duv[2][2];
+    raytrace_uv_at(v, uv, h->position, at);
+    const int step[2][2] = {{1, 0}, {0, -1}};
+    for (int d = 0; d < 2; d++) {
+        double direction[3], p[3];
+        raytrace_pixel_direction(t, x + step[d][0], y + step[d][1], direction);
+        double approach = raytrace_dot_d(direction, normal);
+        double along = approach != 0 ? raytrace_dot_d(v[0], normal) / approach : INFINITY;
+        for (int k = 0; k < 3; k++)
+            p[k] = along * direction[k];
+        raytrace_uv_at(v, uv, p, beside[d]);
+        for (int k = 0; k < 2; k++) {
+            duv[d][k] = beside[d][k] - at[k];
+            /* A plane the neighbour's ray misses (or meets behind the
+             * eye): the widest footprint, the last level. */
+            if (!(along > 0) || !isfinite(duv[d][k]))
+                duv[d][k] = FLT_MAX;
+        }
+    }
+    float texel[4];
+    texture_sample(object->base_color, at, texture_lod(object->base_color, duv[0], duv[1]), texel);
+    glm_vec3_mul(albedo, texel, albedo);
+}
+
 static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext *primary,
                            raytrace_shadow_context *shadow, int x, int y, dump_frame *out) {
     size_t i = (size_t)y * (size_t)t->width + (size_t)x;
@@ -521,9 +583,9 @@ static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext 
     }
     raytrace_hit h;
     raytrace_surface(t, &ray, direction, &h);
-    const float *albedo = t->scene->objects[h.object].color;
-    vec3 color;
-    glm_vec3_mul((float *)albedo, (float *)t->scene->ambient, color);
+    vec3 albedo, color;
+    raytrace_albedo(t, &ray, &h, x, y, albedo);
+    glm_vec3_mul(albedo, (float *)t->scene->ambient, color);
     for (int l = 0; l < t->scene->light_count; l++) {
         const raytrace_light *light = &t->lights[l];
         double towards[3];

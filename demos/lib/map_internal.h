@@ -79,14 +79,17 @@ _Static_assert(SCENE_MAX_LIGHTS *MAP_LIGHT_KIND_BITS <= 32, "a combination of ki
 #define MAP_IDLE_UNITS SCENE_MAX_LIGHTS
 /* A soft light's map is also read as depth (compare mode off, by
  * r->depth_sampler): light i's on unit MAP_DEPTH_UNITS + i, after
- * the idle units of the comparison and the depth samplers' types; a
+ * the idle units of the comparison and the depth samplers' types and the
+ * base colour's (render.h's RENDER_BASE_COLOR_UNIT); a
  * moment filter's light reads its moments there (the same sampler
- * types). GL 3.3 promises 16 units, which hold the depth units of the
- * first lights only: a light whose depth unit the GL lacks
+ * types). GL 3.3 promises 16 units, which hold the first light's depth
+ * unit only: a light whose depth unit the GL lacks
  * (r->texture_units) is drawn hard (a moment filter's with one bilinear
  * test), and says so. */
 #define MAP_SAMPLER_TYPES 3
-#define MAP_DEPTH_UNITS (MAP_IDLE_UNITS + 2 * MAP_SAMPLER_TYPES)
+_Static_assert(RENDER_BASE_COLOR_UNIT == MAP_IDLE_UNITS + 2 * MAP_SAMPLER_TYPES,
+               "the base colour's unit follows the idle ones");
+#define MAP_DEPTH_UNITS (RENDER_BASE_COLOR_UNIT + 1)
 /* The casters' hierarchy for the rays (a sampler2D) shares the idle unit
  * of the 2D maps' depths (sampler2D too, never read there): no unit
  * beyond GL 3.3's 16 is needed. */

@@ -1,0 +1,16 @@
+// A surface's base colour (linear RGB): the object's colour times its
+// base-colour texture's at the fragment's texture coordinates, decoded from
+// sRGB by the GL, trilinear from the levels common/data/texture.h makes,
+// wrapped by its modes; the reference (common/measure/raytrace.c) samples the same
+// levels by the same rule. An object without a texture reads a white
+// texel: its colour exactly.
+uniform vec3 u_albedo;
+uniform sampler2D u_base_color; // on render.h's RENDER_BASE_COLOR_UNIT
+
+in vec2 v_uv;
+
+// The fragment's base colour: set first in main (surface_begin), where the
+// texture's level of detail has its derivatives.
+vec3 surface_albedo;
+
+void surface_begin() { surface_albedo = u_albedo * texture(u_base_color, v_uv).rgb; }
