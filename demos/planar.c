@@ -124,6 +124,13 @@ static bool planar_init(const render_scene *gpu) {
     planar.shadow = shader_uniform(planar.flatten.id, "u_shadow");
     planar.plane = shader_uniform(planar.flatten.id, "u_plane");
     planar.reject = shader_uniform(planar.flatten.id, "u_reject");
+    /* Shadows land on planes only (a glTF scene's ground is a mesh). */
+    bool any_plane = false;
+    for (int i = 0; i < gpu->scene->object_count; i++)
+        any_plane |= gpu->scene->objects[i].receives && gpu->scene->objects[i].mesh_kind == SCENE_MESH_PLANE;
+    if (!any_plane)
+        fprintf(stderr, "planar: no object is a receiving plane (mesh \"plane\" of a scene file): no shadows are "
+                        "drawn\n");
     planar.casters = malloc((size_t)gpu->scene->object_count * sizeof *planar.casters);
     if (!planar.casters) {
         fprintf(stderr, "planar: out of memory\n");
@@ -201,8 +208,9 @@ static void planar_stencil_receiver(const technique_frame *f, int r, GLenum func
     glStencilFunc(func, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, op);
     glDepthFunc(GL_EQUAL);
-    render_program_use(&f->gpu->depth, f->view);
-    render_draw_object(f->gpu, &f->gpu->depth, r);
+    /* A receiver is a plane of the scene file's: never cut out. */
+    render_program_use(&f->gpu->depth.solid, f->view);
+    render_draw_object(f->gpu, &f->gpu->depth.solid, r);
 }
 
 /* Stencil 2 where light l is blocked: each visible receiver pixel is

@@ -254,6 +254,14 @@ static bool projective_init(const render_scene *gpu) {
     projective.nearest = shader_uniform(id, "u_nearest");
     projective.cut = shader_uniform(id, "u_cut");
     int n = gpu->scene->object_count;
+    /* The split the technique needs (see the top): a glTF scene's objects
+     * all cast and receive. */
+    bool any_textured = false;
+    for (int i = 0; i < n; i++)
+        any_textured |= projective_is_textured(&gpu->scene->objects[i]);
+    if (!any_textured)
+        fprintf(stderr, "projective: every receiver casts too, and takes no projected shadow without --self-shadow "
+                        "on (key C): no shadows are drawn\n");
     projective.wanted = calloc((size_t)n + 1, sizeof *projective.wanted);
     projective.boxes = calloc((size_t)n + 1, sizeof *projective.boxes);
     projective.corners = calloc((size_t)n * 8 + 1, sizeof *projective.corners);

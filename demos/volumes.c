@@ -160,6 +160,10 @@ static bool volumes_init(const render_scene *gpu) {
     }
     if (!volume_draw_init(&volumes.draw, gpu) || !volume_receivers_init(&volumes.receivers, gpu))
         return false;
+    /* A volume is bounded by a caster's silhouette: it has no holes. */
+    if (scene_has_cut_outs(gpu->scene))
+        fprintf(stderr, "volumes: cut-out objects (alphaMode MASK) cast the shadow of their whole surface: a "
+                        "shadow volume has no holes (the shadow maps cut them out)\n");
     volumes.casters = calloc((size_t)gpu->scene->object_count, sizeof *volumes.casters);
     volumes.group = calloc((size_t)gpu->scene->object_count, sizeof *volumes.group);
     if (!volumes.casters || !volumes.group) {

@@ -10,11 +10,20 @@ uniform float u_object;
 // its triangle's plane instead.
 uniform bool u_exact;
 #include "eye_ray.glsl"
+// A cut-out object's program (SURFACE_CUT_OUT): no surface where it has
+// none.
+#ifdef SURFACE_CUT_OUT
+#include "surface.glsl"
+#endif
 
 layout(location = 0) out vec4 out_normal_distance; // face normal towards the eye, distance
 layout(location = 1) out vec4 out_position_id;     // world position, object index
 
 void main() {
+#ifdef SURFACE_CUT_OUT
+    if (surface_cut_out())
+        discard;
+#endif
     vec3 n = normalize(g_face_normal);
     vec3 to_eye = u_eye - g_world;
     vec3 world = g_world;

@@ -6,6 +6,8 @@
 // texel: its colour exactly.
 uniform vec3 u_albedo;
 uniform sampler2D u_base_color; // on render.h's RENDER_BASE_COLOR_UNIT
+uniform float u_base_alpha;     // a cut-out object's: its base colour's alpha
+uniform float u_alpha_cutoff;   // a cut-out object's (glTF's alphaMode MASK)
 
 in vec2 v_uv;
 
@@ -14,3 +16,9 @@ in vec2 v_uv;
 vec3 surface_albedo;
 
 void surface_begin() { surface_albedo = u_albedo * texture(u_base_color, v_uv).rgb; }
+
+// Whether a cut-out object has no surface here (the programs compiled with
+// SURFACE_CUT_OUT discard there: common/gl/render.h): its alpha read at
+// level 0, bilinear, whatever the distance (the cut-out's shape is the
+// texture's own), below the cutoff; scene_object_cut_out is the same rule.
+bool surface_cut_out() { return u_base_alpha * textureLod(u_base_color, v_uv, 0.0).a < u_alpha_cutoff; }

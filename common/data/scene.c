@@ -513,6 +513,28 @@ bool scene_check_light_flag(const scene *s, const char *file, int light) {
     return false;
 }
 
+bool scene_object_cut_out(const scene_object *o, uint32_t triangle, const float weight[3]) {
+    if (!(o->alpha_cutoff > 0))
+        return false;
+    float alpha = o->base_alpha;
+    if (o->base_color) {
+        float uv[2] = {0, 0}, texel[4];
+        for (int c = 0; c < 3; c++)
+            for (int k = 0; k < 2; k++)
+                uv[k] += weight[c] * o->mesh.vertices[o->mesh.indices[3 * triangle + (uint32_t)c]].uv[k];
+        texture_sample(o->base_color, uv, 0, texel);
+        alpha *= texel[3];
+    }
+    return alpha < o->alpha_cutoff;
+}
+
+bool scene_has_cut_outs(const scene *s) {
+    for (int i = 0; i < s->object_count; i++)
+        if (s->objects[i].alpha_cutoff > 0)
+            return true;
+    return false;
+}
+
 void scene_print_models(const scene *s, const char *file) {
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];

@@ -128,6 +128,10 @@ typedef struct scene_object {
     /* NULL, or one of the scene's textures (texture.h): its base colour
      * then color times the texture's at the mesh's texture coordinates. */
     const texture *base_color;
+    /* A cut-out object (glTF's alphaMode MASK) where alpha_cutoff > 0: it
+     * has no surface where its alpha, base_alpha times the texture's, is
+     * below the cutoff (scene_object_cut_out); 0: opaque. */
+    float alpha_cutoff, base_alpha;
     bool casts;
     bool receives;
 } scene_object;
@@ -182,6 +186,15 @@ void scene_free(scene *s);
  * --light K); false after "FILE: --light K: the scene has lights 0 to
  * N" (or "light 0 only"). */
 bool scene_check_light_flag(const scene *s, const char *file, int light);
+
+/* Whether object o is cut out (see scene_object) at the point of triangle
+ * `triangle` whose barycentric weights (of its three corners) are
+ * `weight`: its alpha read at the texture's level 0, bilinear, whatever
+ * the distance (the cut-out's shape is the texture's own), as
+ * shaders/surface.glsl reads it. False for an opaque object. */
+bool scene_object_cut_out(const scene_object *o, uint32_t triangle, const float weight[3]);
+/* Whether any object of s is cut out. */
+bool scene_has_cut_outs(const scene *s);
 
 /* --verbose: one line on stderr for each object whose mesh is a model
  * file, "FILE: objects[i] "NAME": model of N triangles, bounds (x, y, z)

@@ -1,6 +1,7 @@
 /* scene_gltf: a glTF 2.0 file (.gltf, .glb) as a scene (scene.h, "glTF
  * scenes"), read through assimp, which the model files already use and
  * which reads glTF's cameras and KHR_lights_punctual lights. */
+#include <assimp/GltfMaterial.h>
 #include <assimp/cimport.h>
 #include <assimp/scene.h>
 #include <cglm/cglm.h>
@@ -20,6 +21,8 @@
 /* An object's name: its node's, this long at most (room for a suffix
  * that makes it one object's). */
 #define SCENE_GLTF_NODE_NAME_MAX 40
+/* glTF's alphaCutoff where a MASK material gives none. */
+#define SCENE_GLTF_ALPHA_CUTOFF 0.5f
 /* The default colour of an object whose material gives none. */
 #define SCENE_GLTF_GREY 0.8f
 /* A fitted camera: its field of view (degrees), the direction it looks
@@ -97,6 +100,7 @@ typedef struct scene_gltf_reader {
      * SCENE_GLTF_UNTEXTURED, once looked up (SCENE_GLTF_UNSEEN before). */
     int *material_texture;
     unsigned without_coordinates; /* textured meshes with no texture coordinates, said once */
+    unsigned blended;             /* meshes of alphaMode BLEND, drawn opaque, said once */
 } scene_gltf_reader;
 
 #define SCENE_GLTF_UNSEEN (-2)
@@ -208,6 +212,25 @@ static bool scene_gltf_texture(scene_gltf_reader *r, unsigned m, int *index) {
     return true;
 }
 
+/* The material's alphaMode: MASK makes o a cut-out (scene_object), of
+ * alphaCutoff (glTF's default 0.5) and the base colour's alpha; BLEND is
+ * drawn opaque, counted to be said once. */
+static void scene_gltf_alpha(scene_gltf_reader *r, const struct aiMaterial *material, scene_object *o) {
+    struct aiString mode;
+    if (aiGetMaterialString(material, AI_MATKEY_GLTF_ALPHAMODE, &mode) != AI_SUCCESS)
+        return;
+    if (strcmp(mode.data, "BLEND") == 0)
+        r->blended++;
+    if (strcmp(mode.data, "MASK") != 0)
+        return;
+    struct aiColor4D base = {1, 1, 1, 1};
+    float cutoff = SCENE_GLTF_ALPHA_CUTOFF;
+    aiGetMaterialColor(material, AI_MATKEY_BASE_COLOR, &base);
+    aiGetMaterialFloatArray(material, AI_MATKEY_GLTF_ALPHACUTOFF, &cutoff, NULL);
+    o->base_alpha = isfinite(base.a) ? fminf(fmaxf(base.a, 0), 1) : 1;
+    o->alpha_cutoff = isfinite(cutoff) ? fmaxf(cutoff, 0) : SCENE_GLTF_ALPHA_CUTOFF;
+}
+
 /* Mesh i of the file as an object placed by `world`. A mirroring
  * transform goes into the mesh, as a scene file's negative scale does
  * (scene_object's model keeps a positive determinant). */
@@ -225,6 +248,11 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
         r->s->objects = grown;
         r->capacity = capacity;
     }
+    /* The material's texture first: what fails there leaves no mesh. */
+    bool material = am->mMaterialIndex < r->a->mNumMaterials;
+    int texture = SCENE_GLTF_UNTEXTURED;
+    if (material && !scene_gltf_texture(r, am->mMaterialIndex, &texture))
+        return false;
     scene_object *o = &r->s->objects[r->s->object_count];
     *o = (scene_object){.mesh_kind = SCENE_MESH_MODEL,
                         .color = {SCENE_GLTF_GREY, SCENE_GLTF_GREY, SCENE_GLTF_GREY},
@@ -235,16 +263,14 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
     snprintf(where, sizeof where, "%s: node \"%s\"", r->file, o->name);
     if (!mesh_from_assimp(&o->mesh, where, am, &r->removed))
         return false;
-    if (am->mMaterialIndex < r->a->mNumMaterials) {
+    if (material) {
         mesh_material_color(r->a->mMaterials[am->mMaterialIndex], o->color);
-        int texture;
-        if (!scene_gltf_texture(r, am->mMaterialIndex, &texture))
-            return false;
-        if (texture >= 0 && !am->mTextureCoords[0])
-            r->without_coordinates++;
-        else if (texture >= 0)
-            o->base_color = &r->s->textures[texture];
+        scene_gltf_alpha(r, r->a->mMaterials[am->mMaterialIndex], o);
     }
+    if (texture >= 0 && !am->mTextureCoords[0])
+        r->without_coordinates++;
+    else if (texture >= 0)
+        o->base_color = &r->s->textures[texture];
     mat4 model;
     glm_mat4_copy(world, model);
     if (glm_mat4_det(model) < 0) {
@@ -407,6 +433,9 @@ static bool scene_gltf_read(scene_gltf_reader *r) {
     if (r->removed.degenerate + r->removed.non_finite > 0)
         fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles from its meshes\n", r->file,
                 r->removed.degenerate, r->removed.non_finite);
+    if (r->blended)
+        fprintf(stderr, "%s: %u meshes are translucent (alphaMode BLEND): drawn opaque, their shadows whole\n",
+                r->file, r->blended);
     if (r->without_coordinates)
         fprintf(stderr, "%s: %u textured meshes have no texture coordinates: their base colour alone\n", r->file,
                 r->without_coordinates);

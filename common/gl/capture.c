@@ -96,12 +96,16 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
     bool geometry_stage = context_current_features()->desktop_gl;
     static const char *const staged[] = {"geometry.vert", "geometry.geom", "geometry.frag"};
     static const char *const unshared[] = {"geometry_faces.vert", "geometry.frag"};
-    render_program program = {0};
+    render_programs programs = {0};
     capture_buffers b = {0};
     size_t n = (size_t)out->width * (size_t)out->height;
     float *normal_distance = malloc(n * 4 * sizeof(float)), *position_id = malloc(n * 4 * sizeof(float));
+    /* Cut-out objects through their variant (render.h); without a
+     * geometry stage (the page, which reads no glTF) none is made, and
+     * they are captured whole. */
     bool ok = normal_distance && position_id &&
-              render_program_load(&program, geometry_stage ? staged : unshared, geometry_stage ? 3 : 2, NULL);
+              (geometry_stage ? render_programs_load(&programs, gpu->scene, staged, 3, NULL)
+                              : render_program_load(&programs.solid, unshared, 2, NULL));
     if (ok && (ok = capture_buffers_create(&b, out->width, out->height, view->reversed_depth))) {
         static const float none[4] = {0, 0, 0, -1};
         glViewport(0, 0, out->width, out->height);
@@ -111,20 +115,26 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
         glClear(GL_DEPTH_BUFFER_BIT);
         render_reset_state();
         depth_use_camera(view); /* the nearest surface, as the frame's depth test finds it */
-        render_program_use(&program, view);
-        glUniform3fv(shader_uniform(program.id, "u_eye"), 1, view->eye);
-        render_eye_ray_uniforms(program.id, view, out->width, out->height);
-        int object = shader_uniform(program.id, "u_object"), exact = shader_uniform(program.id, "u_exact");
         bool every_exact = !context_current_features()->close_interpolation;
-        /* Every object, never the frame's culling: the dump's geometry is
-         * the scene's, the ground truth that culling is checked against. */
-        for (int i = 0; ok && i < gpu->scene->object_count; i++) {
-            glUniform1f(object, (float)i);
-            glUniform1i(exact, every_exact || render_object_huge(gpu, i, view->eye));
-            if (geometry_stage)
-                render_draw_object(gpu, &program, i);
-            else
-                ok = capture_draw_faces(gpu, &program, i);
+        for (int pass = 0; pass < render_programs_passes(&programs); pass++) {
+            const render_program *program = render_programs_pass(&programs, pass);
+            render_program_use(program, view);
+            glUniform3fv(shader_uniform(program->id, "u_eye"), 1, view->eye);
+            render_eye_ray_uniforms(program->id, view, out->width, out->height);
+            int object = shader_uniform(program->id, "u_object"), exact = shader_uniform(program->id, "u_exact");
+            /* Every object, never the frame's culling: the dump's geometry
+             * is the scene's, the ground truth that culling is checked
+             * against. */
+            for (int i = 0; ok && i < gpu->scene->object_count; i++) {
+                if (!render_programs_draws(&programs, pass, &gpu->scene->objects[i]))
+                    continue;
+                glUniform1f(object, (float)i);
+                glUniform1i(exact, every_exact || render_object_huge(gpu, i, view->eye));
+                if (geometry_stage)
+                    render_draw_object(gpu, program, i);
+                else
+                    ok = capture_draw_faces(gpu, program, i);
+            }
         }
         capture_read_floats(GL_COLOR_ATTACHMENT0, out->width, out->height, normal_distance);
         capture_read_floats(GL_COLOR_ATTACHMENT1, out->width, out->height, position_id);
@@ -145,7 +155,7 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
     if (!normal_distance || !position_id)
         fprintf(stderr, "capture: out of memory for a %dx%d frame\n", out->width, out->height);
     capture_buffers_destroy(&b);
-    render_program_destroy(&program);
+    render_programs_destroy(&programs);
     free(normal_distance);
     free(position_id);
     return ok;

@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "context.h"
 #include "frustum.h"
@@ -46,6 +47,8 @@ bool render_program_load(render_program *p, const char *const *files, int count,
     p->normal_matrix = shader_uniform_optional(p->id, "u_normal_matrix");
     p->albedo = shader_uniform_optional(p->id, "u_albedo");
     p->base_color = shader_uniform_optional(p->id, "u_base_color");
+    p->base_alpha = shader_uniform_optional(p->id, "u_base_alpha");
+    p->alpha_cutoff = shader_uniform_optional(p->id, "u_alpha_cutoff");
     p->view_projection = shader_uniform_optional(p->id, "u_view_projection");
     return true;
 }
@@ -53,6 +56,48 @@ bool render_program_load(render_program *p, const char *const *files, int count,
 void render_program_destroy(render_program *p) {
     shader_delete_program(p->id);
     *p = (render_program){0};
+}
+
+bool render_programs_load(render_programs *p, const scene *s, const char *const *files, int count,
+                          const shader_define *defines) {
+    *p = (render_programs){0};
+    if (!render_program_load(&p->solid, files, count, defines))
+        return false;
+    if (!scene_has_cut_outs(s))
+        return true;
+    /* The defines given, then SURFACE_CUT_OUT. */
+    int n = 0;
+    while (defines && defines[n].name)
+        n++;
+    shader_define *all = calloc((size_t)n + 2, sizeof *all);
+    if (!all) {
+        fprintf(stderr, "render: out of memory\n");
+        render_program_destroy(&p->solid);
+        return false;
+    }
+    if (n)
+        memcpy(all, defines, (size_t)n * sizeof *all);
+    all[n] = (shader_define){"SURFACE_CUT_OUT", 1};
+    bool loaded = render_program_load(&p->cut_out, files, count, all);
+    free(all);
+    if (!loaded)
+        render_program_destroy(&p->solid);
+    return loaded;
+}
+
+void render_programs_destroy(render_programs *p) {
+    render_program_destroy(&p->solid);
+    render_program_destroy(&p->cut_out);
+}
+
+int render_programs_passes(const render_programs *p) { return p->cut_out.id ? 2 : 1; }
+
+const render_program *render_programs_pass(const render_programs *p, int pass) {
+    return pass ? &p->cut_out : &p->solid;
+}
+
+bool render_programs_draws(const render_programs *p, int pass, const scene_object *o) {
+    return !p->cut_out.id || (o->alpha_cutoff > 0) == (pass == 1);
 }
 
 void render_program_use(const render_program *p, const camera_view *v) {
@@ -68,6 +113,8 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
     glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
     glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const float *)m->normal_matrix);
     glUniform3fv(p->albedo, 1, o->color);
+    glUniform1f(p->base_alpha, o->base_alpha);
+    glUniform1f(p->alpha_cutoff, o->alpha_cutoff);
     if (p->base_color >= 0) {
         glUniform1i(p->base_color, RENDER_BASE_COLOR_UNIT);
         glActiveTexture(GL_TEXTURE0 + RENDER_BASE_COLOR_UNIT);
@@ -233,7 +280,7 @@ bool render_scene_create(render_scene *r, const scene *s) {
     render_scene_update_lights(r, -1);
     static const char *const depth_files[] = {"lit.vert", "depth.frag"};
     r->lit = calloc(1, sizeof *r->lit);
-    if (!r->lit || !render_program_load(&r->depth, depth_files, 2, NULL)) {
+    if (!r->lit || !render_programs_load(&r->depth, s, depth_files, 2, NULL)) {
         if (!r->lit)
             fprintf(stderr, "render: out of memory\n");
         render_scene_destroy(r);
@@ -279,7 +326,7 @@ void render_scene_destroy(render_scene *r) {
         for (unsigned set = 0; set < RENDER_LIGHT_SETS; set++)
             render_program_destroy(&r->lit->programs[v][set].program);
     free(r->lit);
-    render_program_destroy(&r->depth);
+    render_programs_destroy(&r->depth);
     *r = (render_scene){0};
 }
 
@@ -325,8 +372,13 @@ const render_program *render_use_lit(const render_scene *r, const camera_view *v
 
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask) {
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    render_program_use(&r->depth, v);
-    render_draw_objects(r, &r->depth, mask);
+    for (int pass = 0; pass < render_programs_passes(&r->depth); pass++) {
+        const render_program *p = render_programs_pass(&r->depth, pass);
+        render_program_use(p, v);
+        for (int i = 0; i < r->scene->object_count; i++)
+            if (render_in_mask(mask, i) && render_programs_draws(&r->depth, pass, &r->scene->objects[i]))
+                render_draw_object(r, p, i);
+    }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);

@@ -55,8 +55,21 @@
 
 typedef struct render_program {
     unsigned id;
-    int model, normal_matrix, albedo, base_color, view_projection;
+    int model, normal_matrix, albedo, base_color, base_alpha, alpha_cutoff, view_projection;
 } render_program;
+
+/* Cut-out objects (scene_object's alpha_cutoff: glTF's alphaMode MASK)
+ * have no surface where their alpha is below the cutoff. A pass whose
+ * pixels are where a surface lies (the depth pre-pass, a shadow map's
+ * depth, the dumps' geometry, a caster's shape) draws them through its
+ * program's variant with SURFACE_CUT_OUT defined, which discards there
+ * (shaders/surface.glsl); the passes with depth test GL_EQUAL after the
+ * pre-pass need none. The variant is compiled only for a scene that has
+ * cut-out objects, and draws only those: a shader that may discard tests
+ * depth after it runs, not before, and no other object pays for it. */
+typedef struct render_programs {
+    render_program solid, cut_out; /* cut_out.id 0: the scene has no cut-out object */
+} render_programs;
 
 typedef struct render_mesh {
     unsigned vao, vertex_buffer, index_buffer;
@@ -123,7 +136,7 @@ typedef struct render_scene {
     unsigned *textures;       /* one per scene texture (GL names) */
     unsigned white;           /* the texture of an object without one: a white texel */
     render_lit_programs *lit; /* compiled on use, through a const render_scene too */
-    render_program depth;     /* lit.vert with depth.frag: render_depth_prepass */
+    render_programs depth;    /* lit.vert with depth.frag: render_depth_prepass */
     bool inject_gl_error;     /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
 
@@ -160,6 +173,19 @@ void render_scene_destroy(render_scene *r);
 bool render_program_load(render_program *p, const char *const *files, int count, const shader_define *defines);
 void render_program_destroy(render_program *p);
 void render_program_use(const render_program *p, const camera_view *v);
+/* The program of files with defines as p->solid, and for a scene with
+ * cut-out objects (scene_has_cut_outs) its SURFACE_CUT_OUT variant as
+ * p->cut_out. */
+bool render_programs_load(render_programs *p, const scene *s, const char *const *files, int count,
+                          const shader_define *defines);
+void render_programs_destroy(render_programs *p);
+/* A pass draws through p in passes: pass 0 the solid objects through
+ * p->solid, and where there is a variant, pass 1 the cut-out ones through
+ * it. */
+int render_programs_passes(const render_programs *p);
+const render_program *render_programs_pass(const render_programs *p, int pass);
+/* Whether pass `pass` of p draws object o. */
+bool render_programs_draws(const render_programs *p, int pass, const scene_object *o);
 /* p NULL (a lit program that failed to compile, said once): nothing. */
 void render_draw_object(const render_scene *r, const render_program *p, int object);
 /* Object i where mask is NULL or mask[i] holds. */

@@ -222,6 +222,18 @@ static void raytrace_confirm_occlusion(const struct RTCFilterFunctionNArguments 
         args->valid[0] = 0;
 }
 
+/* Embree's hits on a cut-out object where it has no surface
+ * (scene_object_cut_out: the rule of the raster's cut-out programs),
+ * for camera and shadow rays alike; N is 1 (rtcIntersect1,
+ * rtcOccluded1). */
+static void raytrace_cut_out(const struct RTCFilterFunctionNArguments *args) {
+    const scene_object *o = (const scene_object *)args->geometryUserPtr;
+    const struct RTCHit *hit = (const struct RTCHit *)args->hit;
+    const float weight[3] = {1.0f - hit->u - hit->v, hit->u, hit->v};
+    if (scene_object_cut_out(o, hit->primID, weight))
+        args->valid[0] = 0;
+}
+
 /* The object's world vertices less the eye, in double, then stored as
  * floats (see the top). False, after one line, where one is beyond what
  * Embree accepts. */
@@ -255,6 +267,11 @@ static bool raytrace_add_object(raytrace_tracer *t, int index) {
     if (!geometry)
         return false;
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+    if (o->alpha_cutoff > 0) {
+        rtcSetGeometryUserData(geometry, (void *)o);
+        rtcSetGeometryIntersectFilterFunction(geometry, raytrace_cut_out);
+        rtcSetGeometryOccludedFilterFunction(geometry, raytrace_cut_out);
+    }
     /* Embree's own buffers, padded as its SIMD loads need. */
     float *vertices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                               3 * sizeof(float), m->vertex_count);

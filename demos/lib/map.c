@@ -230,7 +230,6 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
         glPolygonOffset(map_setting(settings->slope_factor, MAP_SLOPE_FACTOR),
                         map_setting(settings->slope_units, MAP_SLOPE_UNITS));
     }
-    glUseProgram(r->depth.id);
 }
 
 /* One layer from its matrix, with the casters of `casters` (NULL: every
@@ -244,10 +243,17 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
     const scene *s = gpu->scene;
     map_attach_layer(m, layer);
     glClear(GL_DEPTH_BUFFER_BIT);
-    glUniformMatrix4fv(r->depth.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
-    for (int i = 0; i < s->object_count; i++)
-        if (s->objects[i].casts ? !casters || casters[i] : receivers && s->objects[i].receives)
-            render_draw_object(gpu, &r->depth, i);
+    /* The solid objects, then the cut-out ones through their program
+     * (render_programs). */
+    for (int pass = 0; pass < render_programs_passes(&r->depth); pass++) {
+        const render_program *p = render_programs_pass(&r->depth, pass);
+        glUseProgram(p->id);
+        glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
+        for (int i = 0; i < s->object_count; i++)
+            if (render_programs_draws(&r->depth, pass, &s->objects[i]) &&
+                (s->objects[i].casts ? !casters || casters[i] : receivers && s->objects[i].receives))
+                render_draw_object(gpu, p, i);
+    }
 }
 
 void map_render_depth(map_renderer *r, const map_settings *settings, const render_scene *gpu, map_light *m) {
@@ -599,7 +605,7 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
     map_camera_key scene_key = map_scene_key(gpu->scene, settings);
     static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
     if (!map_alloc_sets(r, gpu->scene->object_count) || !map_find_closed(r, gpu->scene) ||
-        !render_program_load(&r->depth, depth_files, 2, NULL) ||
+        !render_programs_load(&r->depth, gpu->scene, depth_files, 2, NULL) ||
         /* The scene's own combination now, so that a shader that does not
          * compile fails init; the others as frames need them. */
         !map_camera_program_for(r, &scene_key) || !map_overlay_programs_load(r))
@@ -653,7 +659,7 @@ void map_trace_with(map_renderer *r, const bvh_gpu *casters) { r->casters = cast
 void map_destroy(map_renderer *r) {
     if (!r)
         return;
-    render_program_destroy(&r->depth);
+    render_programs_destroy(&r->depth);
     for (int i = 0; i < r->camera_count; i++)
         render_program_destroy(&r->camera[i].program);
     render_program_destroy(&r->lines.program);

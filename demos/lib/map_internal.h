@@ -195,7 +195,7 @@ typedef struct map_cache {
 
 /* A technique's maps and their GL objects. */
 struct map_renderer {
-    render_program depth;
+    render_programs depth;
     map_camera_program camera[MAP_CAMERA_PROGRAMS];
     int camera_count, camera_oldest;
     map_lines_program lines;

@@ -176,11 +176,14 @@ void volume_receivers_depth(const volume_receivers *r, const technique_frame *f,
         return;
     }
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    const render_program *depth = &f->gpu->depth;
-    render_program_use(depth, f->view);
-    for (int i = 0; i < r->object_count; i++)
-        if (render_in_mask(f->skips->in_view, i) && !r->huge[i])
-            render_draw_object(f->gpu, depth, i);
+    const render_programs *depth = &f->gpu->depth;
+    for (int pass = 0; pass < render_programs_passes(depth); pass++) {
+        render_program_use(render_programs_pass(depth, pass), f->view);
+        for (int i = 0; i < r->object_count; i++)
+            if (render_in_mask(f->skips->in_view, i) && !r->huge[i] &&
+                render_programs_draws(depth, pass, &f->gpu->scene->objects[i]))
+                render_draw_object(f->gpu, render_programs_pass(depth, pass), i);
+    }
     volume_receivers_use(r, f);
     volume_receivers_binding was = volume_receivers_bind(0);
     for (int i = 0; i < r->object_count; i++) {
