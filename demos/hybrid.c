@@ -66,10 +66,6 @@ static bool hybrid_init(const render_scene *gpu) {
         !bvh_gpu_upload(&hybrid.casters_gpu, &hybrid.casters, "hybrid"))
         return false;
     map_trace_with(hybrid.maps, &hybrid.casters_gpu);
-    /* The casters' hierarchy holds triangles, not their textures. */
-    if (scene_has_cut_outs(gpu->scene))
-        fprintf(stderr, "hybrid: its rays meet cut-out objects (alphaMode MASK) whole: where rays decide, those "
-                        "cast the shadow of their whole surface\n");
     return true;
 }
 

@@ -17,6 +17,70 @@ const float BVH_FAR_WIDENING = 1.0 + 3.0 * BVH_FLOAT_EPSILON / (1.0 - 1.5 * BVH_
 
 vec4 bvh_texel(int k) { return texelFetch(u_bvh, ivec2(k % BVH_GPU_TEXTURE_WIDTH, k / BVH_GPU_TEXTURE_WIDTH), 0); }
 
+#if BVH_CUT_OUTS
+// Cut-out casters (common/data/bvh.h): a triangle whose first vertex's w
+// is r > 0 has record r - 1 at u_bvh_cut_outs_first, three texels, and its
+// texture's alphas at u_bvh_alphas_first, four a texel
+// (common/gl/bvh_gpu.h). A ray passes it where scene_object_cut_out
+// (common/data/scene.c) says it has no surface: the same bilinear read of
+// level 0, the same wrap (common/data/texture.c).
+uniform int u_bvh_cut_outs_first;
+uniform int u_bvh_alphas_first;
+
+// texture.h's texture_wrap and bvh_gpu.h's packing of two of them.
+const int BVH_WRAP_MIRRORED_REPEAT = 1;
+const int BVH_WRAP_CLAMP_TO_EDGE = 2;
+const int BVH_WRAP_BASE = 4;
+// Beyond this a texel coordinate says nothing of where it lands
+// (texture.c's guard).
+const float BVH_TEXEL_RANGE = 1073741823.0;
+
+float bvh_alpha(int i) {
+    vec4 t = bvh_texel(u_bvh_alphas_first + i / 4);
+    int c = i - 4 * (i / 4);
+    return c == 0 ? t.x : (c == 1 ? t.y : (c == 2 ? t.z : t.w));
+}
+
+// Texel index i of n by the wrap mode.
+int bvh_wrap(int mode, int i, int n) {
+    if (mode == BVH_WRAP_CLAMP_TO_EDGE)
+        return clamp(i, 0, n - 1);
+    int period = mode == BVH_WRAP_MIRRORED_REPEAT ? 2 * n : n;
+    int r = i - period * int(floor(float(i) / float(period)));
+    if (mode != BVH_WRAP_MIRRORED_REPEAT)
+        return r;
+    int a = r - n;
+    return (n - 1) - (a >= 0 ? a : -(1 + a));
+}
+
+// Whether cut-out record `record`'s triangle has no surface at the
+// barycentric weights `weight` of its corners.
+bool bvh_cut_out(int record, vec3 weight) {
+    int k = u_bvh_cut_outs_first + 3 * record;
+    vec4 r0 = bvh_texel(k), r1 = bvh_texel(k + 1), r2 = bvh_texel(k + 2);
+    vec2 uv = weight.x * r0.xy + weight.y * r0.zw + weight.z * r1.xy;
+    float alpha = 1.0;
+    int width = int(r2.y), height = int(r2.z);
+    if (width > 0) {
+        int first = int(r2.x), wraps = int(r2.w);
+        int wrap_u = wraps / BVH_WRAP_BASE, wrap_v = wraps - BVH_WRAP_BASE * wrap_u;
+        float x = uv.x * float(width) - 0.5, y = uv.y * float(height) - 0.5;
+        float fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
+        if (!(abs(fx) < BVH_TEXEL_RANGE && abs(fy) < BVH_TEXEL_RANGE)) {
+            fx = fy = ax = ay = 0.0;
+        }
+        int x0 = bvh_wrap(wrap_u, int(fx), width), x1 = bvh_wrap(wrap_u, int(fx) + 1, width);
+        int y0 = bvh_wrap(wrap_v, int(fy), height), y1 = bvh_wrap(wrap_v, int(fy) + 1, height);
+        alpha = 0.0;
+        alpha += (1.0 - ax) * (1.0 - ay) * bvh_alpha(first + y0 * width + x0);
+        alpha += ax * (1.0 - ay) * bvh_alpha(first + y0 * width + x1);
+        alpha += (1.0 - ax) * ay * bvh_alpha(first + y1 * width + x0);
+        alpha += ax * ay * bvh_alpha(first + y1 * width + x1);
+    }
+    return r1.z * alpha < r1.w;
+}
+#endif
+
 // One component of v by index (GLSL ES indexes vectors by constants only
 // in some drivers' eyes; a select is safe everywhere).
 float bvh_component(vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
@@ -115,8 +179,14 @@ bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {
                     if (abs(dot(normal, pa)) <= surface * length(normal))
                         continue;
                     float t = shear.z * (u * az + v * bz + w * cz);
-                    if (det > 0.0 ? (t > 0.0 && t < t_max * det) : (t < 0.0 && t > t_max * det))
+                    if (det > 0.0 ? (t > 0.0 && t < t_max * det) : (t < 0.0 && t > t_max * det)) {
+#if BVH_CUT_OUTS
+                        float record = bvh_texel(k).w;
+                        if (record > 0.0 && bvh_cut_out(int(record) - 1, vec3(u, v, w) / det))
+                            continue;
+#endif
                         return true;
+                    }
                 }
             } else {
                 stack[top++] = int(lo.w);

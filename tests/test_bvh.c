@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdbool.h>
 #include <stdlib.h>
 
 #include <cglm/cglm.h>
@@ -260,6 +261,45 @@ static void test_no_casters_block_nothing(void **state) {
     scene_free(&s);
 }
 
+/* A cut-out fence (tests/data/gltf_cut_out.gltf: boards cut out of a
+ * quad from (-2, 0, 0) to (2, 1.5, 0), its texture twice across): a ray
+ * through it is blocked where the fence has a surface, by its texture's
+ * alpha (texture.h's rule), and passes through the gaps. Points whose
+ * alpha lies within TEST_BVH_ALPHA_MARGIN of the cutoff are left out:
+ * which side rounding puts them on is not the question. */
+#define TEST_BVH_FENCE_STEPS 97
+#define TEST_BVH_ALPHA_MARGIN 0.02f
+static void test_cut_outs_let_rays_through(void **state) {
+    (void)state;
+    scene s;
+    assert_true(scene_load(&s, "tests/data/gltf_cut_out.gltf"));
+    const scene_object *fence = &s.objects[1];
+    assert_true(fence->alpha_cutoff > 0 && fence->base_color);
+    bvh b;
+    assert_true(bvh_build(&s, "fence", &b));
+    assert_true(b.cut_out_count > 0);
+    int blocked = 0, passed = 0;
+    for (int i = 1; i < TEST_BVH_FENCE_STEPS; i++)
+        for (int j = 1; j < TEST_BVH_FENCE_STEPS; j++) {
+            float x = -2 + 4.0f * (float)i / TEST_BVH_FENCE_STEPS, y = 1.5f * (float)j / TEST_BVH_FENCE_STEPS;
+            /* assimp's texture coordinates: u across twice, v up. */
+            float uv[2] = {(x + 2) / 2, y / 1.5f}, texel[4];
+            texture_sample(fence->base_color, uv, 0, texel);
+            if (fabsf(texel[3] - fence->alpha_cutoff) < TEST_BVH_ALPHA_MARGIN)
+                continue;
+            bool solid = texel[3] >= fence->alpha_cutoff;
+            bool occluded = bvh_occluded(&b, (float[]){x, y, 1}, (float[]){0, 0, -2}, 1);
+            if (occluded != solid)
+                fail_msg("the ray through (%g, %g) is %s, where the fence's alpha is %g", x, y,
+                         occluded ? "blocked" : "let through", texel[3]);
+            blocked += occluded;
+            passed += !occluded;
+        }
+    assert_true(blocked > 0 && passed > 0);
+    bvh_free(&b);
+    scene_free(&s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bunny_agrees_with_every_triangle),
@@ -268,6 +308,7 @@ int main(void) {
         cmocka_unit_test(test_face_diagonals_block),
         cmocka_unit_test(test_pile_stays_within_the_stack),
         cmocka_unit_test(test_no_casters_block_nothing),
+        cmocka_unit_test(test_cut_outs_let_rays_through),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

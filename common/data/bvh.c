@@ -18,6 +18,7 @@
 typedef struct bvh_triangle {
     float vertices[3][3];
     float lo[3], hi[3], centroid[3];
+    bvh_cut_out source; /* its object and index there */
 } bvh_triangle;
 
 /* A triangle's centroid along the median split's axis. */
@@ -187,7 +188,8 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
                      malloc((size_t)n * sizeof *b.keys), out};
     out->nodes = malloc((size_t)(2 * n) * sizeof *out->nodes);
     out->triangles = malloc((size_t)n * sizeof *out->triangles);
-    if (!b.triangles || !b.order || !b.keys || !out->nodes || !out->triangles) {
+    out->cut_outs = malloc((size_t)n * sizeof *out->cut_outs);
+    if (!b.triangles || !b.order || !b.keys || !out->nodes || !out->triangles || !out->cut_outs) {
         fprintf(stderr, "%s: out of memory for the ray hierarchy of %d triangles\n", who, n);
         bvh_builder_free(&b);
         bvh_free(out);
@@ -198,6 +200,7 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
         const scene_object *o = &s->objects[i];
         for (uint32_t k = 0; o->casts && k < o->mesh.index_count / 3; k++, t++) {
             bvh_triangle *tri = &b.triangles[t];
+            tri->source = (bvh_cut_out){o, k};
             for (int v = 0; v < 3; v++) {
                 double corner[3];
                 scene_object_world_corner(o, k, v, corner);
@@ -214,11 +217,17 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
     }
     out->triangle_count = n;
     out->node_count = bvh_build_node(&b, 0, 0, n, 1);
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
+        const bvh_triangle *tri = &b.triangles[b.order[i]];
         for (int v = 0; v < 3; v++) {
-            memcpy(out->triangles[i][v], b.triangles[b.order[i]].vertices[v], 3 * sizeof(float));
+            memcpy(out->triangles[i][v], tri->vertices[v], 3 * sizeof(float));
             out->triangles[i][v][3] = 0;
         }
+        if (tri->source.object->alpha_cutoff > 0) {
+            out->cut_outs[out->cut_out_count++] = tri->source;
+            out->triangles[i][0][3] = (float)out->cut_out_count;
+        }
+    }
     bvh_builder_free(&b);
     return true;
 }
@@ -226,6 +235,7 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
 void bvh_free(bvh *b) {
     free(b->nodes);
     free(b->triangles);
+    free(b->cut_outs);
     *b = (bvh){0};
 }
 
@@ -271,7 +281,9 @@ static bool bvh_ray_box(const bvh_ray *r, const float lo[4], const float hi[4]) 
     return near <= far;
 }
 
-static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4]) {
+/* Whether the ray meets triangle v; its barycentric weights there (of
+ * its vertices, in order) into weight where it does. */
+static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4], float weight[3]) {
     float a[3], b[3], c[3];
     for (int k = 0; k < 3; k++) {
         a[k] = v[0][k] - r->origin[k];
@@ -294,8 +306,18 @@ static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4]) {
     if (fabsf(normal[0] * a[0] + normal[1] * a[1] + normal[2] * a[2]) <= r->surface * length)
         return false;
     float t = r->shear[2] * (u * a[r->kz] + v_ * b[r->kz] + w * c[r->kz]);
+    weight[0] = u / det;
+    weight[1] = v_ / det;
+    weight[2] = w / det;
     /* t / det in (0, t_max), without the division: the signs agree. */
     return det > 0 ? t > 0 && t < r->t_max * det : t < 0 && t > r->t_max * det;
+}
+
+/* Whether triangle i (in leaf order) is there where the ray meets it at
+ * weight: a cut-out object's is not where the object has no surface. */
+static bool bvh_solid_at(const bvh *b, int i, const float weight[3]) {
+    int record = (int)b->triangles[i][0][3] - 1;
+    return record < 0 || !scene_object_cut_out(b->cut_outs[record].object, b->cut_outs[record].triangle, weight);
 }
 
 /* Whether the segment meets the box lo..hi grown by the cone's radius
@@ -347,9 +369,12 @@ bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float
         const float(*n)[4] = b->nodes[node];
         if (bvh_ray_box(&r, n[0], n[1])) {
             if (n[1][3] > 0) {
-                for (int i = (int)n[0][3], end = i + (int)n[1][3]; i < end; i++)
-                    if (bvh_ray_triangle(&r, (const float(*)[4])b->triangles[i]))
+                for (int i = (int)n[0][3], end = i + (int)n[1][3]; i < end; i++) {
+                    float weight[3];
+                    if (bvh_ray_triangle(&r, (const float(*)[4])b->triangles[i], weight) &&
+                        bvh_solid_at(b, i, weight))
                         return true;
+                }
             } else {
                 stack[top++] = (int)n[0][3];
                 node++;

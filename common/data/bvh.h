@@ -19,8 +19,11 @@
  * Layout, depth first, node 0 the root: a node is two vec4, (lo, a) and
  * (hi, b); an inner node's first child follows it and a is its second
  * child's index, b 0; a leaf has a its first triangle and b (> 0) its
- * triangle count. A triangle is three vec4, its vertices, w unused.
- * Indices are stored as floats, exact below BVH_MAX_INDEX.
+ * triangle count. A triangle is three vec4, its vertices; the first
+ * vertex's w is 0, or for a triangle of a cut-out object (scene.h) 1 +
+ * its index in cut_outs: a ray passes it where the object has no surface
+ * (scene_object_cut_out at the hit's barycentric weights); the others' w
+ * are unused. Indices are stored as floats, exact below BVH_MAX_INDEX.
  *
  * A ray meets a triangle by Woop, Benthin and Wald's watertight test
  * ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013): no ray slips
@@ -48,10 +51,18 @@
 /* Floats hold integers exactly up to 2^24. */
 #define BVH_MAX_INDEX (1 << 24)
 
+/* A cut-out object's triangle: the object, the triangle's index in its
+ * mesh. */
+typedef struct bvh_cut_out {
+    const scene_object *object;
+    uint32_t triangle;
+} bvh_cut_out;
+
 typedef struct bvh {
     float (*nodes)[2][4];     /* node_count */
     float (*triangles)[3][4]; /* triangle_count, in leaf order */
-    int node_count, triangle_count;
+    bvh_cut_out *cut_outs;    /* cut_out_count, in leaf order */
+    int node_count, triangle_count, cut_out_count;
     int depth; /* the longest path, in nodes */
 } bvh;
 

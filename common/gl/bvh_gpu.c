@@ -6,25 +6,104 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* BVH_GPU_RECORD_TEXELS a cut-out triangle's record (see the top). */
+#define BVH_GPU_RECORD_TEXELS 3
+#define BVH_GPU_ALPHAS_PER_TEXEL 4
+#define BVH_GPU_WRAP_BASE 4
+
+/* The alphas that b's cut-out triangles' textures need, each texture's
+ * once (a tree's leaves share one): each record's first alpha into
+ * first[] (-1 without texture), and whether it writes them into writes[];
+ * returns their count, or -1 out of memory. */
+static long long bvh_gpu_alpha_count(const bvh *b, long long *first, bool *writes) {
+    const texture **seen = calloc((size_t)b->cut_out_count + 1, sizeof *seen);
+    long long *seen_first = calloc((size_t)b->cut_out_count + 1, sizeof *seen_first);
+    long long count = seen && seen_first ? 0 : -1;
+    for (int i = 0, distinct = 0; count >= 0 && i < b->cut_out_count; i++) {
+        const texture *t = b->cut_outs[i].object->base_color;
+        int k = 0;
+        while (k < distinct && seen[k] != t)
+            k++;
+        writes[i] = t && k == distinct;
+        if (writes[i]) {
+            seen[distinct] = t;
+            seen_first[distinct++] = count;
+            count += (long long)t->levels[0].width * t->levels[0].height;
+        }
+        first[i] = t ? seen_first[k] : -1;
+    }
+    free(seen);
+    free(seen_first);
+    return count;
+}
+
+/* The records and the alphas into data, from texel g->cut_outs_first. */
+static void bvh_gpu_cut_outs(const bvh_gpu *g, const bvh *b, const long long *first, const bool *writes,
+                             float (*data)[4]) {
+    float(*record)[4] = data + g->cut_outs_first;
+    float *alphas = data[g->alphas_first];
+    for (int i = 0; i < b->cut_out_count; i++, record += BVH_GPU_RECORD_TEXELS) {
+        const scene_object *o = b->cut_outs[i].object;
+        const uint32_t *corner = o->mesh.indices + 3 * b->cut_outs[i].triangle;
+        const float *uv0 = o->mesh.vertices[corner[0]].uv, *uv1 = o->mesh.vertices[corner[1]].uv,
+                    *uv2 = o->mesh.vertices[corner[2]].uv;
+        const texture *t = o->base_color;
+        memcpy(record[0], (const float[4]){uv0[0], uv0[1], uv1[0], uv1[1]}, sizeof record[0]);
+        memcpy(record[1], (const float[4]){uv2[0], uv2[1], o->base_alpha, o->alpha_cutoff}, sizeof record[1]);
+        if (!t)
+            continue;
+        const texture_level *level = &t->levels[0];
+        memcpy(record[2],
+               (const float[4]){(float)first[i], (float)level->width, (float)level->height,
+                                (float)(BVH_GPU_WRAP_BASE * (int)t->wrap[0] + (int)t->wrap[1])},
+               sizeof record[2]);
+        for (long long k = 0; writes[i] && k < (long long)level->width * level->height; k++)
+            alphas[first[i] + k] = level->rgba[4 * k + 3] / 255.0f;
+    }
+}
+
 bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
-    long long texels = 2LL * b->node_count + 3LL * b->triangle_count;
+    long long *first = calloc((size_t)b->cut_out_count + 1, sizeof *first);
+    bool *writes = calloc((size_t)b->cut_out_count + 1, sizeof *writes);
+    long long alphas = first && writes ? bvh_gpu_alpha_count(b, first, writes) : -1;
+    if (alphas < 0) {
+        fprintf(stderr, "%s: out of memory for the ray texture of %d triangles\n", who, b->triangle_count);
+        free(first);
+        free(writes);
+        return false;
+    }
+    long long cut_outs_first = 2LL * b->node_count + 3LL * b->triangle_count;
+    long long alphas_first = cut_outs_first + (long long)BVH_GPU_RECORD_TEXELS * b->cut_out_count;
+    long long texels = alphas_first + (alphas + BVH_GPU_ALPHAS_PER_TEXEL - 1) / BVH_GPU_ALPHAS_PER_TEXEL;
     long long rows = texels / BVH_GPU_TEXTURE_WIDTH + 1;
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (rows > max_size) {
-        fprintf(stderr, "%s: %d triangles need a ray texture of %lld rows, more than this GL's %d\n", who,
-                b->triangle_count, rows, max_size);
+    if (rows > max_size || texels >= BVH_MAX_INDEX) {
+        fprintf(stderr,
+                "%s: %d triangles and their cut-outs' alphas need a ray texture of %lld rows, more than "
+                "this GL's %d or the %d texels indices reach\n",
+                who, b->triangle_count, rows, max_size, BVH_MAX_INDEX);
+        free(first);
+        free(writes);
         return false;
     }
     float(*data)[4] = calloc((size_t)(rows * BVH_GPU_TEXTURE_WIDTH), sizeof *data);
     if (!data) {
         fprintf(stderr, "%s: out of memory for the ray texture of %d triangles\n", who, b->triangle_count);
+        free(first);
+        free(writes);
         return false;
     }
+    g->cut_out_count = b->cut_out_count;
+    g->cut_outs_first = (int)cut_outs_first;
+    g->alphas_first = (int)alphas_first;
     if (b->node_count > 0) { /* a scene without casters has no arrays */
         memcpy(data, b->nodes, (size_t)b->node_count * sizeof *b->nodes);
         memcpy(data + 2 * b->node_count, b->triangles, (size_t)b->triangle_count * sizeof *b->triangles);
+        bvh_gpu_cut_outs(g, b, first, writes, data);
     }
+    free(first);
+    free(writes);
     if (!g->texture)
         glGenTextures(1, &g->texture);
     glBindTexture(GL_TEXTURE_2D, g->texture);
@@ -49,6 +128,8 @@ void bvh_gpu_bind(const bvh_gpu *g, unsigned program, int unit) {
     glUniform1i(shader_uniform(program, "u_bvh"), unit);
     glUniform1i(shader_uniform(program, "u_bvh_node_count"), g->node_count);
     glUniform1f(shader_uniform(program, "u_bvh_reach"), g->reach);
+    glUniform1i(shader_uniform_optional(program, "u_bvh_cut_outs_first"), g->cut_outs_first);
+    glUniform1i(shader_uniform_optional(program, "u_bvh_alphas_first"), g->alphas_first);
 }
 
 void bvh_gpu_destroy(bvh_gpu *g) {

@@ -404,6 +404,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
+        {"BVH_CUT_OUTS", (int)k->ray_cut_outs},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's two, then the list's end ({NULL}, zeroed). */
@@ -1023,6 +1024,7 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
     map_camera_key key = map_settings_key(settings);
     if (!r->casters)
         key.rays = MAP_RAYS_OFF;
+    key.ray_cut_outs = key.rays != MAP_RAYS_OFF && r->casters->cut_out_count > 0;
     for (int l = 0; l < s->light_count; l++) {
         bool fitted = r->fitted[l];
         if (fitted && map_soft_unit(r, settings, &s->lights[l], l))
