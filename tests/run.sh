@@ -22,8 +22,9 @@
 # dumps), the sanitizer build's first, since they take longest. Each job
 # runs in its own directory out/run/BUILD/PROGRAM that links to everything
 # here but has its own out/ (the tests write under out/test/, and two
-# programs must not share it). Its log, ending with its time, is printed
-# whole when every job is done, in the builds' order.
+# programs must not share it). Each says one line as it ends ("[3/58]
+# build/tests/test_scene: ok (10 tests, 1 s)"); its log, ending with its
+# time, is printed whole when every job is done, in the builds' order.
 set -u
 cd "$(dirname "$0")/.."
 
@@ -87,6 +88,18 @@ if [ "${1:-}" = --job ]; then
         echo "== $t: $((SECONDS - started)) s"
         echo "${p:-0} ${f:-0} ${s:-0} $((SECONDS - started))"
     } >"../$name.log"
+    # One line as each job ends (the logs follow whole at the end): how
+    # many have ended of how many, with this one's figures and time.
+    {
+        flock 9
+        ended=$(($(cat ../../ended) + 1))
+        echo "$ended" >../../ended
+        if [ "${f:-0}" -eq 0 ]; then
+            echo "[$ended/$TEST_JOB_COUNT] $t: ok (${p:-0} tests, $((SECONDS - started)) s)"
+        else
+            echo "[$ended/$TEST_JOB_COUNT] $t: FAILED (${f:-0} of $((${p:-0} + ${f:-0})) tests, $((SECONDS - started)) s)"
+        fi
+    } 9>>../../ended.lock
     exit 0
 fi
 
@@ -119,6 +132,8 @@ for build in "$@"; do
     rm -f "out/run/$build"/test_*.log
 done
 rm -rf out/run/references
+echo 0 >out/run/ended
+export TEST_JOB_COUNT=${#jobs[@]}
 printf '%s\n' "${jobs[@]}" | xargs -P "${TEST_JOBS:-$(nproc)}" -L 1 bash tests/run.sh --job
 
 passed=0 failed=0 skipped=0
