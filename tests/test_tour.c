@@ -59,7 +59,7 @@ static void test_bad_tours(void **state) {
         const char *file, *line;
     } cases[] = {
         {"tour_unknown_key.json", "steps[1]: unknown key \"captoin\" (expected scene, technique, flags, caption, "
-                                  "seconds, motion, frame, camera, path or compare)"},
+                                  "seconds, motion, frame, camera, path or compare), did you mean \"caption\"?"},
         {"tour_bad_motion.json",
          "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)"},
         {"tour_bad_frame.json", "steps[0].frame: must be a frame of the step, 0 to 59 (got 60)"},
@@ -96,7 +96,7 @@ static void test_bad_tours(void **state) {
 #define SEVERAL_ERRORS TOUR_DATA "tour_several_errors.json"
 static const char *const file_errors[] = {
     SEVERAL_ERRORS ": steps[0]: unknown key \"captoin\" (expected scene, technique, flags, caption, seconds, motion, "
-                   "frame, camera, path or compare)\n",
+                   "frame, camera, path or compare), did you mean \"caption\"?\n",
     SEVERAL_ERRORS ": steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)\n",
     SEVERAL_ERRORS ": steps[1].seconds: expected a number, got a string\n",
     SEVERAL_ERRORS ": steps[2].frame: must be a frame of the step, 0 to 119 (got 999)\n",

@@ -6,15 +6,14 @@
 #include <string.h>
 #include <strings.h>
 
+#include "typo.h"
+
 #define FLAGS_MAX_SIZE 16384
 #define FLAGS_NAME_MAX 64   /* a flag as typed, before any '=' */
 #define FLAGS_LINE_MAX 1024 /* an error line; a flag's text in --help */
 /* The widest flag text that keeps its help on its own line in --help;
  * wider ones (long choice lists) put the help on the next. */
 #define FLAGS_HELP_WIDTH 32
-/* A near miss: an unknown flag this many edits or fewer from a known one,
- * and fewer than half its letters (a short flag is near everything). */
-#define FLAGS_SUGGEST_MAX_EDITS 2
 
 const char *flags_program_name(const char *argv0) {
     const char *slash = strrchr(argv0, '/');
@@ -155,48 +154,25 @@ static const flags_param *flags_find(const flags_param *params, int count, const
     return NULL;
 }
 
-/* The optimal string alignment distance: insertions, deletions,
- * substitutions and swaps of two neighbours, one edit each (up to
- * FLAGS_NAME_MAX characters of each). */
-static int flags_distance(const char *a, const char *b) {
-    int n = (int)strnlen(a, FLAGS_NAME_MAX), m = (int)strnlen(b, FLAGS_NAME_MAX);
-    int d[FLAGS_NAME_MAX + 1][FLAGS_NAME_MAX + 1];
-    for (int i = 0; i <= n; i++)
-        d[i][0] = i;
-    for (int j = 0; j <= m; j++)
-        d[0][j] = j;
-    for (int i = 1; i <= n; i++) {
-        for (int j = 1; j <= m; j++) {
-            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-            best = d[i - 1][j] + 1 < best ? d[i - 1][j] + 1 : best;
-            best = d[i][j - 1] + 1 < best ? d[i][j - 1] + 1 : best;
-            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
-                best = d[i - 2][j - 2] + 1;
-            d[i][j] = best;
-        }
-    }
-    return d[n][m];
-}
-
 /* The table's flag nearest the unknown `flag`, as it is typed, into out;
  * false when none is a near miss. A toggle is near as --no-NAME and as
  * --NAME, what it turns off. */
 static bool flags_suggest(const flags_param *params, int count, const char *flag, char *out, size_t size) {
-    int letters = (int)strlen(flag + strspn(flag, "-")), best = FLAGS_SUGGEST_MAX_EDITS + 1;
+    int letters = (int)strlen(flag + strspn(flag, "-")), best = TYPO_MAX_EDITS + 1;
     for (const flags_param *p = params; p < params + count; p++) {
         if (!p->name)
             continue;
         char typed[FLAGS_NAME_MAX], plain[FLAGS_NAME_MAX];
         snprintf(typed, sizeof typed, "--%s%s", p->kind == FLAGS_TOGGLE ? "no-" : "", p->name);
         snprintf(plain, sizeof plain, "--%s", p->name);
-        int distance = flags_distance(flag, typed), to_plain = flags_distance(flag, plain);
+        int distance = typo_distance(flag, typed), to_plain = typo_distance(flag, plain);
         distance = to_plain < distance ? to_plain : distance;
-        if (distance < best && 2 * distance < letters) {
+        if (distance < best && typo_near(distance, letters)) {
             best = distance;
             snprintf(out, size, "%s", typed);
         }
     }
-    return best <= FLAGS_SUGGEST_MAX_EDITS;
+    return best <= TYPO_MAX_EDITS;
 }
 
 /* "unknown flag '--warpp', did you mean --warp?", then the other programs

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "path.h"
+#include "typo.h"
 
 /* Reports "FILE: WHERE.KEY: problem"; where may be "" and key NULL. */
 bool json_fail(const char *file, const char *where, const char *key, const char *format, ...) {
@@ -67,9 +68,13 @@ bool json_check_keys(const char *file, const cJSON *object, const char *where, c
         for (int i = 0; allowed[i] && !known; i++)
             known = strcmp(allowed[i], item->string) == 0;
         if (!known) {
-            char expected[256];
+            char expected[256], suggestion[TYPO_NAME_MAX + 32] = "";
             json_join_names(allowed, expected, sizeof expected);
-            return json_fail(file, where, NULL, "unknown key \"%s\" (expected %s)", item->string, expected);
+            const char *near = typo_nearest(item->string, allowed);
+            if (near)
+                snprintf(suggestion, sizeof suggestion, ", did you mean \"%s\"?", near);
+            return json_fail(file, where, NULL, "unknown key \"%s\" (expected %s)%s", item->string, expected,
+                             suggestion);
         }
         if (cJSON_GetObjectItemCaseSensitive(object, item->string) != item) {
             return json_fail(file, where, item->string, "duplicate key");

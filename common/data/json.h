@@ -31,8 +31,9 @@ void json_join_names(const char *const names[], char *out, size_t size);
 /* object's `key` into *item (NULL when absent); fails when required. */
 bool json_lookup(const char *file, const cJSON *object, const char *where, const char *key, bool required,
                  const cJSON **item);
-/* Fails on a key not in `allowed` (NULL-terminated: usually a typo) or a
- * repeated one (which hides a value). */
+/* Fails on a key not in `allowed` (NULL-terminated: usually a typo, so
+ * the nearest allowed one is suggested: typo.h) or a repeated one (which
+ * hides a value). */
 bool json_check_keys(const char *file, const cJSON *object, const char *where, const char *const allowed[]);
 bool json_read_int(const char *file, const cJSON *object, const char *where, const char *key, int *out);
 bool json_read_bool(const char *file, const cJSON *object, const char *where, const char *key, bool *out);
