@@ -124,7 +124,7 @@ static const flags_param volumes_params[] = {
      "move by rounding)",
      GLFW_KEY_T, FLAGS_CHOICE, .index = &volumes.settings.extrude, .choices = volumes_extrusions},
     {"depth-bounds", "volumes also count where no receiver in the light's reach is (no decision changes)", GLFW_KEY_B,
-     FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_bounds},
+     FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_bounds, .available = &volumes.has_depth_bounds},
     {"exact-depth",
      "volumes counted against the exact depth of receivers huge seen from the eye (else their "
      "shadow edges move)",

@@ -80,12 +80,13 @@ static void test_scale_follows_height(void **state) {
 
 static char err[16384];
 
-/* build/shadows' HUD text with `flags` (its "hud: " lines), into hud. */
-static void hud_of(const char *flags, char *hud, size_t size) {
+/* build/shadows' HUD text of `technique` on long_view with `flags` (its
+ * "hud: " lines), into hud. */
+static void hud_of(const char *technique, const char *flags, char *hud, size_t size) {
     char command[1024];
     snprintf(command, sizeof command,
-             "%s --backend egl --technique psm --scene assets/scenes/long_view.json --frames 1 --verbose %s",
-             support_program("shadows"), flags);
+             "%s --backend egl --technique %s --scene assets/scenes/long_view.json --frames 1 --verbose %s",
+             support_program("shadows"), technique, flags);
     assert_int_equal(support_run(command, err, sizeof err), 0);
     size_t n = 0;
     hud[0] = '\0';
@@ -101,7 +102,7 @@ static void hud_of(const char *flags, char *hud, size_t size) {
 static void test_lecture_hud(void **state) {
     (void)state;
     char hud[8192], wrapped[8192];
-    hud_of("--warp lispsm", hud, sizeof hud);
+    hud_of("psm", "--warp lispsm", hud, sizeof hud);
     assert_non_null(strstr(hud, "scene long_view "));
     assert_null(strstr(hud, "assets/scenes"));
     assert_non_null(strstr(hud, "2D map auto: 4096 "));
@@ -113,11 +114,27 @@ static void test_lecture_hud(void **state) {
     printf("    %d lines at %d pixels\n", lines, LECTURE_WIDTH);
     assert_true(lines <= LECTURE_MAX_LINES);
 
-    hud_of("--warp lispsm --hud-compact", hud, sizeof hud);
+    hud_of("psm", "--warp lispsm --hud-compact", hud, sizeof hud);
     assert_non_null(strstr(hud, "psm on long_view "));
     assert_non_null(strstr(hud, "[W] warp: lispsm"));
     assert_null(strstr(hud, "skips"));
     assert_null(strstr(hud, "light 0:"));
+}
+
+/* A toggle whose feature the GL lacks says so, rather than "on" beside
+ * a state line that says the feature is off: volumes' depth bounds, which
+ * WebGL 2 lacks (--webgl2 keeps to what the page has), and llvmpipe
+ * too. */
+static void test_missing_feature_is_not_on(void **state) {
+    (void)state;
+    char hud[8192];
+    hud_of("volumes", "--webgl2", hud, sizeof hud);
+    assert_non_null(strstr(hud, "depth bounds off (no GL_EXT_depth_bounds_test)"));
+    assert_non_null(strstr(hud, "[B] depth-bounds: not on this GL"));
+    /* The GL's own: the toggle and the state line agree. */
+    hud_of("volumes", "", hud, sizeof hud);
+    bool lacks = strstr(hud, "depth bounds off (no GL_EXT_depth_bounds_test)") != NULL;
+    assert_non_null(strstr(hud, lacks ? "[B] depth-bounds: not on this GL" : "[B] depth-bounds: on"));
 }
 
 int main(void) {
@@ -125,6 +142,7 @@ int main(void) {
         cmocka_unit_test(test_wrapped_lines_fit_and_lose_nothing),
         cmocka_unit_test(test_scale_follows_height),
         cmocka_unit_test(test_lecture_hud),
+        cmocka_unit_test(test_missing_feature_is_not_on),
     };
     return cmocka_run_group_tests_name("hud", tests, NULL, NULL);
 }

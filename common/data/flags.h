@@ -72,6 +72,7 @@ typedef struct flags_param {
     int key;          /* the window's key for it (GLFW_KEY_*), or 0 */
     flags_kind kind;
     bool *disabled;             /* TOGGLE */
+    const bool *available;      /* TOGGLE: NULL, or false where this GL lacks the feature (the HUD says so) */
     int *index;                 /* CHOICE */
     const char *const *choices; /* CHOICE: NULL-terminated */
     float *number;              /* NUMBER */

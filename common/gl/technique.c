@@ -42,7 +42,9 @@ void technique_config_label(const char *config, char *out, size_t size) {
 }
 
 void technique_param_text(const flags_param *p, char *out, size_t size) {
-    if (p->kind == FLAGS_TOGGLE)
+    if (p->kind == FLAGS_TOGGLE && p->available && !*p->available)
+        snprintf(out, size, "%s", "not on this GL");
+    else if (p->kind == FLAGS_TOGGLE)
         snprintf(out, size, "%s", *p->disabled ? "OFF" : "on");
     else if (p->kind == FLAGS_CHOICE)
         snprintf(out, size, "%s", p->choices[*p->index]);

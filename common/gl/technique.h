@@ -156,7 +156,8 @@ bool technique_apply_config_as(const technique *t, const char *config, const cha
 /* What a configuration is called in reports: its label, its flags, or
  * "defaults". */
 void technique_config_label(const char *config, char *out, size_t size);
-/* "on", "OFF", the choice's name or the number, for the HUD. */
+/* "on", "OFF" ("not on this GL" for a toggle whose feature the GL
+ * lacks), the choice's name or the number, for the HUD. */
 void technique_param_text(const flags_param *p, char *out, size_t size);
 /* Whether a setting differs from its default (zero). */
 bool technique_param_changed(const flags_param *p);
