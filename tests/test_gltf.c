@@ -21,6 +21,7 @@
 #include "support.h"
 
 #define GLTF_SCENE "tests/data/gltf_scene.gltf"
+#define GLTF_SCENE_BINARY "tests/data/gltf_scene.glb" /* the same scene, binary */
 #define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define GLTF_CUT_OUT "tests/data/gltf_cut_out.gltf"
 #define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
@@ -62,12 +63,12 @@ static void assert_direction_near(const float *got, float x, float y, float z, c
  * by its node (the mirrored one's mesh mirrored, its matrix's determinant
  * positive); the camera where its node stands, looking down its -Z with
  * the file's yfov; the spot and the sun from their nodes, cones in
- * degrees, colours times intensity over the brightest channel. */
-static void test_gltf_scene_read(void **state) {
-    (void)state;
+ * degrees, colours times intensity over the brightest channel, the spot's
+ * range (which assimp drops: read from the file's own JSON). */
+static void gltf_scene_read(const char *path) {
     scene s;
     support_capture_stderr();
-    bool loaded = scene_load(&s, GLTF_SCENE);
+    bool loaded = scene_load(&s, path);
     const char *said = support_release_stderr();
     assert_true(loaded);
     assert_string_equal(said, "");
@@ -102,7 +103,16 @@ static void test_gltf_scene_read(void **state) {
     assert_int_equal(sun->type, SCENE_LIGHT_DIRECTIONAL);
     assert_direction_near(sun->direction, 0.3f, -1, -0.2f, "sun direction");
     assert_vec3_near(sun->color, 0.1f, 0.1f, 0.1f, "sun colour");
+    assert_float_equal(spot->range, 15, 0);
+    assert_float_equal(sun->range, 0, 0);
     scene_free(&s);
+}
+
+/* The file, as text and as binary glTF. */
+static void test_gltf_scene_read(void **state) {
+    (void)state;
+    gltf_scene_read(GLTF_SCENE);
+    gltf_scene_read(GLTF_SCENE_BINARY);
 }
 
 /* The scene of testmodels file `path` (the test skipped where the package

@@ -5,10 +5,12 @@
 #include <assimp/cimport.h>
 #include <assimp/scene.h>
 #include <cglm/cglm.h>
+#include <cjson/cJSON.h>
 #include <ctype.h>
 #include <float.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -365,6 +367,85 @@ static bool scene_gltf_camera(const scene_gltf_reader *r, unsigned index, scene_
 
 /* ---- lights ---- */
 
+/* assimp 5.2 drops KHR_lights_punctual's "range", so the file's own JSON
+ * document is read for it: a .gltf's text, or a .glb's first chunk
+ * (little-endian: its header's magic, version and length, then each
+ * chunk's length and type). */
+#define SCENE_GLTF_MAX_DOCUMENT_BYTES (256u << 20)
+#define SCENE_GLTF_GLB_MAGIC 0x46546c67u /* "glTF" */
+#define SCENE_GLTF_GLB_JSON 0x4e4f534au  /* "JSON" */
+#define SCENE_GLTF_GLB_HEADER_BYTES 20   /* the file's header and the first chunk's */
+
+static uint32_t scene_gltf_u32(const unsigned char *p) {
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The file's JSON document, or NULL after a line. */
+static cJSON *scene_gltf_document(const char *path) {
+    FILE *f = fopen(path, "rb");
+    unsigned char header[SCENE_GLTF_GLB_HEADER_BYTES];
+    if (!f) {
+        fprintf(stderr, "%s: cannot open to read its lights' ranges\n", path);
+        return NULL;
+    }
+    size_t got = fread(header, 1, sizeof header, f);
+    bool binary = got >= 4 && scene_gltf_u32(header) == SCENE_GLTF_GLB_MAGIC;
+    size_t length = 0;
+    if (binary) {
+        length = got == sizeof header && scene_gltf_u32(header + 16) == SCENE_GLTF_GLB_JSON
+                     ? scene_gltf_u32(header + 12)
+                     : SIZE_MAX;
+    } else if (fseek(f, 0, SEEK_END) == 0) {
+        long size = ftell(f);
+        length = size >= 0 ? (size_t)size : SIZE_MAX;
+        rewind(f);
+    }
+    char *text = length <= SCENE_GLTF_MAX_DOCUMENT_BYTES ? malloc(length + 1) : NULL;
+    bool read = text && fread(text, 1, length, f) == length;
+    fclose(f);
+    cJSON *document = read ? cJSON_ParseWithLength(text, length) : NULL;
+    free(text);
+    if (!document)
+        fprintf(stderr, "%s: its JSON document (%zu bytes) does not read as JSON: no lights' ranges\n", path, length);
+    return document;
+}
+
+/* The range the file gives the light of the node assimp names `name`
+ * (an unnamed node "nodes_K"): 0 where it gives none, a number not above
+ * 0 said and taken as none (the light reaches everywhere). */
+static float scene_gltf_light_range(const char *file, const cJSON *document, const char *name) {
+    const cJSON *nodes = cJSON_GetObjectItemCaseSensitive(document, "nodes");
+    const cJSON *lights = cJSON_GetObjectItemCaseSensitive(
+        cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(document, "extensions"),
+                                         "KHR_lights_punctual"),
+        "lights");
+    int k = 0;
+    for (const cJSON *node = nodes ? nodes->child : NULL; node; node = node->next, k++) {
+        const cJSON *node_name = cJSON_GetObjectItemCaseSensitive(node, "name");
+        char id[32];
+        snprintf(id, sizeof id, "nodes_%d", k);
+        if (strcmp(cJSON_IsString(node_name) && node_name->valuestring[0] ? node_name->valuestring : id, name) != 0)
+            continue;
+        const cJSON *light = cJSON_GetObjectItemCaseSensitive(
+            cJSON_GetObjectItemCaseSensitive(cJSON_GetObjectItemCaseSensitive(node, "extensions"),
+                                             "KHR_lights_punctual"),
+            "light");
+        const cJSON *range =
+            cJSON_IsNumber(light)
+                ? cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(lights, light->valueint), "range")
+                : NULL;
+        if (!range)
+            return 0;
+        if (cJSON_IsNumber(range) && isfinite(range->valuedouble) && range->valuedouble > 0 &&
+            range->valuedouble <= FLT_MAX)
+            return (float)range->valuedouble;
+        fprintf(stderr, "%s: the light of node \"%s\": its range is not a number above 0: it reaches everywhere\n",
+                file, name);
+        return 0;
+    }
+    return 0;
+}
+
 /* Light `index` of the file into l, where its node places it (false:
  * not a punctual light). Its colour is the file's (assimp's: times its
  * intensity), scaled later. */
@@ -390,15 +471,23 @@ static bool scene_gltf_light(const scene_gltf_reader *r, unsigned index, scene_l
 }
 
 /* The file's lights, the first SCENE_MAX_LIGHTS (the rest said once),
- * their colours scaled so that the brightest channel of any is 1: the
+ * with their ranges, their colours scaled so that the brightest channel of any is 1: the
  * lighting model has no falloff, so glTF's physical intensities keep only
  * their ratios. */
 static void scene_gltf_lights(const scene_gltf_reader *r) {
     scene *s = r->s;
     float brightest = 0;
-    for (unsigned i = 0; i < r->a->mNumLights && s->light_count < SCENE_MAX_LIGHTS; i++)
-        if (scene_gltf_light(r, i, &s->lights[s->light_count]))
-            brightest = fmaxf(brightest, glm_vec3_max(s->lights[s->light_count++].color));
+    cJSON *document = r->a->mNumLights ? scene_gltf_document(r->file) : NULL;
+    for (unsigned i = 0; i < r->a->mNumLights && s->light_count < SCENE_MAX_LIGHTS; i++) {
+        scene_light *l = &s->lights[s->light_count];
+        if (!scene_gltf_light(r, i, l))
+            continue;
+        if (l->type != SCENE_LIGHT_DIRECTIONAL && document)
+            l->range = scene_gltf_light_range(r->file, document, r->a->mLights[i]->mName.data);
+        brightest = fmaxf(brightest, glm_vec3_max(l->color));
+        s->light_count++;
+    }
+    cJSON_Delete(document);
     if (r->a->mNumLights > SCENE_MAX_LIGHTS)
         fprintf(stderr, "%s: %u lights: the first %d taken\n", r->file, r->a->mNumLights, SCENE_MAX_LIGHTS);
     for (int l = 0; l < s->light_count && brightest > 0; l++)
