@@ -271,6 +271,43 @@ static void test_readme_flags_current(void **state) {
     assert_true(current);
 }
 
+/* Long work says how far it is, on a terminal only: build/raytrace's
+ * rows done, on one line each band rewrites (through `script`, which
+ * gives it a terminal); nothing under --quiet, nor where stderr is not a
+ * terminal; the picture the same either way. */
+static void test_raytrace_progress(void **state) {
+    (void)state;
+    if (!support_have_command("script")) {
+        print_message("script (util-linux) is not installed here: skipped\n");
+        skip();
+    }
+    static const struct {
+        bool terminal;
+        const char *flags, *picture;
+        bool progress;
+    } cases[] = {
+        {true, "", "out/test/progress_terminal.png", true},
+        {true, "--quiet", "out/test/progress_quiet.png", false},
+        {false, "", "out/test/progress_pipe.png", false},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char run[512], command[1024];
+        snprintf(run, sizeof run, "%s --size 64x36 --screenshot %s %s", support_program("raytrace"), cases[i].picture,
+                 cases[i].flags);
+        if (cases[i].terminal)
+            snprintf(command, sizeof command, "{ script -qec \"%s\" /dev/null 1>&2; }", run);
+        else
+            snprintf(command, sizeof command, "%s", run);
+        assert_int_equal(support_run(command, err, sizeof err), 0);
+        bool said = strstr(err, "raytrace: rows 36 of 36") != NULL;
+        if (said != cases[i].progress)
+            fail_msg("%s: expected %s, said \"%s\"", command, cases[i].progress ? "its rows" : "no rows", err);
+        char same[512];
+        snprintf(same, sizeof same, "cmp -s %s %s", cases[0].picture, cases[i].picture);
+        assert_int_equal(system(same), 0);
+    }
+}
+
 /* A headless run that writes nothing says so, and names the flags that
  * would write something. */
 static void test_headless_run_says_nothing_written(void **state) {
@@ -362,6 +399,7 @@ int main(void) {
         cmocka_unit_test(test_help_lists_flags_and_toggles),
         cmocka_unit_test(test_readme_flags_current),
         cmocka_unit_test(test_headless_run_says_nothing_written),
+        cmocka_unit_test(test_raytrace_progress),
         cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
         cmocka_unit_test(test_record_writes_a_video),
         cmocka_unit_test(test_gl_error_in_any_technique_fails),

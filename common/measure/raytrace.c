@@ -749,7 +749,14 @@ bool raytrace_render(const scene *s, int width, int height, int light_index, con
     }
     for (int y = 0; y < height; y++)
         rows[y] = y;
-    raytrace_rows(t, rows, height, out);
+    int bands = !settings->progress ? 1 : height < RAYTRACE_PROGRESS_BANDS ? height : RAYTRACE_PROGRESS_BANDS;
+    for (int b = 0, done = 0; b < bands; b++) {
+        int end = (int)((long long)height * (b + 1) / bands);
+        raytrace_rows(t, rows + done, end - done, out);
+        done = end;
+        if (settings->progress)
+            settings->progress(done, height);
+    }
     free(rows);
     bool ok = raytrace_end(t);
     if (!ok)

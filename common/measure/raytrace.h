@@ -30,7 +30,12 @@ typedef struct raytrace_settings {
     int light_samples; /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
     bool verbose;
     const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
+    /* NULL, or called with the rows done so far after each of
+     * RAYTRACE_PROGRESS_BANDS bands (at most one a row; raytrace_render
+     * only): the picture is the same. */
+    void (*progress)(int rows_done, int rows);
 } raytrace_settings;
+#define RAYTRACE_PROGRESS_BANDS 50
 
 /* What raytrace_render computes, pixel by pixel:
  *   camera    one primary ray through the centre of each pixel of the

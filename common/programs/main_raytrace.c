@@ -8,6 +8,7 @@
  * 2 a bad command line. Every error is one line on stderr.
  */
 #include <limits.h>
+#include <unistd.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +29,7 @@ static struct {
     int motion; /* motion_kind */
     int frames; /* 0: not given, the scene as it is (frame 0) */
     raytrace_settings settings;
+    bool quiet; /* --quiet: no progress */
     const char *scene_path, *screenshot, *dump_dir;
     char default_scene[PATH_MAX];
 } main_flags;
@@ -55,6 +57,8 @@ static const flags_param main_flag_table[] = {
      0, FLAGS_INT, .integer = &main_flags.frames, .min = 1, .max = INT_MAX, .what = "a count"},
     {"verbose", "print the Embree version, thread count and timings, and\neach model's triangles and bounds", 0,
      FLAGS_SWITCH, .on = &main_flags.settings.verbose},
+    {"quiet", "no progress (the rows done, on stderr where it is a terminal)", 0, FLAGS_SWITCH,
+     .on = &main_flags.quiet},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
 };
 enum { main_flag_count = sizeof main_flag_table / sizeof *main_flag_table };
@@ -72,6 +76,13 @@ static void main_usage(void) {
            "double: nothing depends on the scene's size.\n"
            "Threads: OMP_NUM_THREADS (default: every core).\n",
            RAYTRACE_SURFACE_ULPS);
+}
+
+/* The rows done, on one line that each band rewrites, then ended. */
+static void main_progress(int rows_done, int rows) {
+    fprintf(stderr, "\r%s: rows %d of %d", main_flags.program, rows_done, rows);
+    if (rows_done == rows)
+        fputc('\n', stderr);
 }
 
 static int main_run(void) {
@@ -92,6 +103,8 @@ static int main_run(void) {
     motion_lights((motion_kind)main_flags.motion, time, base_camera.target, base_lights, s.light_count, s.lights);
     motion_camera((motion_kind)main_flags.motion, time, &base_camera, &s.camera);
     main_flags.settings.scene_name = main_flags.scene_path;
+    if (!main_flags.quiet && isatty(STDERR_FILENO))
+        main_flags.settings.progress = main_progress;
     double start = omp_get_wtime();
     dump_frame frame;
     bool ok = raytrace_render(&s, main_flags.width, main_flags.height, main_flags.light_index, &main_flags.settings,
