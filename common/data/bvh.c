@@ -173,9 +173,12 @@ static void bvh_builder_free(bvh_builder *b) {
 
 bool bvh_build(const scene *s, const char *who, bvh *out) {
     *out = (bvh){0};
-    long long count = 0;
-    for (int i = 0; i < s->object_count; i++)
-        count += s->objects[i].casts ? s->objects[i].mesh.index_count / 3 : 0;
+    long long count = 0, cut_outs = 0;
+    for (int i = 0; i < s->object_count; i++) {
+        long long triangles = s->objects[i].casts ? s->objects[i].mesh.index_count / 3 : 0;
+        count += triangles;
+        cut_outs += s->objects[i].alpha_cutoff > 0 ? triangles : 0;
+    }
     if (count == 0)
         return true;
     if (count >= BVH_MAX_INDEX / 2) {
@@ -188,7 +191,7 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
                      malloc((size_t)n * sizeof *b.keys), out};
     out->nodes = malloc((size_t)(2 * n) * sizeof *out->nodes);
     out->triangles = malloc((size_t)n * sizeof *out->triangles);
-    out->cut_outs = malloc((size_t)n * sizeof *out->cut_outs);
+    out->cut_outs = malloc((size_t)(cut_outs + 1) * sizeof *out->cut_outs);
     if (!b.triangles || !b.order || !b.keys || !out->nodes || !out->triangles || !out->cut_outs) {
         fprintf(stderr, "%s: out of memory for the ray hierarchy of %d triangles\n", who, n);
         bvh_builder_free(&b);
