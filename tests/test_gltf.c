@@ -59,6 +59,23 @@ static void assert_direction_near(const float *got, float x, float y, float z, c
     assert_vec3_near(got, expected[0], expected[1], expected[2], what);
 }
 
+/* The scene of file `path`, loaded; fails unless its stderr is exactly
+ * `expected`, in which each %s is the path. A file of assimp-testmodels
+ * skips the test where the package is missing. */
+static void gltf_load_saying(const char *path, const char *expected, scene *s) {
+    if (access(path, R_OK) != 0) {
+        print_message("%s missing (Debian package assimp-testmodels): skipped\n", path);
+        skip();
+    }
+    support_capture_stderr();
+    bool loaded = scene_load(s, path);
+    const char *said = support_release_stderr();
+    assert_true(loaded);
+    char text[1024];
+    snprintf(text, sizeof text, expected, path, path);
+    assert_string_equal(said, text);
+}
+
 /* The file's nodes: each mesh an object of its material's colour, placed
  * by its node (the mirrored one's mesh mirrored, its matrix's determinant
  * positive); the camera where its node stands, looking down its -Z with
@@ -67,11 +84,7 @@ static void assert_direction_near(const float *got, float x, float y, float z, c
  * range (which assimp drops: read from the file's own JSON). */
 static void gltf_scene_read(const char *path) {
     scene s;
-    support_capture_stderr();
-    bool loaded = scene_load(&s, path);
-    const char *said = support_release_stderr();
-    assert_true(loaded);
-    assert_string_equal(said, "");
+    gltf_load_saying(path, "", &s);
     assert_int_equal(s.object_count, 3);
     static const char *const names[] = {"ground", "box", "mirrored_box"};
     static const float colours[][3] = {{0.7f, 0.7f, 0.7f}, {0.8f, 0.2f, 0.2f}, {0.2f, 0.3f, 0.8f}};
@@ -115,23 +128,6 @@ static void test_gltf_scene_read(void **state) {
     gltf_scene_read(GLTF_SCENE_BINARY);
 }
 
-/* The scene of testmodels file `path` (the test skipped where the package
- * is missing), loaded; fails unless its stderr is exactly `expected`, in
- * which each %s is the path. */
-static void gltf_load_saying(const char *path, const char *expected, scene *s) {
-    if (access(path, R_OK) != 0) {
-        print_message("%s missing (Debian package assimp-testmodels): skipped\n", path);
-        skip();
-    }
-    support_capture_stderr();
-    bool loaded = scene_load(s, path);
-    const char *said = support_release_stderr();
-    assert_true(loaded);
-    char text[1024];
-    snprintf(text, sizeof text, expected, path, path);
-    assert_string_equal(said, text);
-}
-
 /* Base-colour textures: one per image and sampler (the arrow twice, with
  * two wrap modes), their levels, the image's top row last (v up), the
  * meshes' texture coordinates (assimp's v = 1 - glTF's); an image file
@@ -139,10 +135,7 @@ static void gltf_load_saying(const char *path, const char *expected, scene *s) {
 static void test_gltf_textures_read(void **state) {
     (void)state;
     scene s;
-    support_capture_stderr();
-    bool loaded = scene_load(&s, GLTF_TEXTURED);
-    assert_string_equal(support_release_stderr(), "");
-    assert_true(loaded);
+    gltf_load_saying(GLTF_TEXTURED, "", &s);
     assert_int_equal(s.texture_count, 3);
     static const struct {
         const char *name;
@@ -177,7 +170,7 @@ static void test_gltf_textures_read(void **state) {
     /* An image that is not there: one line naming the file and the image,
      * and no scene. */
     support_capture_stderr();
-    loaded = scene_load(&s, "tests/data/gltf_missing_image.gltf");
+    bool loaded = scene_load(&s, "tests/data/gltf_missing_image.gltf");
     assert_string_equal(support_release_stderr(), "tests/data/gltf_missing_image.gltf: image "
                                                   "tests/data/missing_checker.png: not an image: can't fopen\n");
     assert_false(loaded);
@@ -237,10 +230,7 @@ static void test_gltf_textures_match_reference(void **state) {
 static void test_gltf_cut_outs(void **state) {
     (void)state;
     scene s;
-    support_capture_stderr();
-    bool loaded = scene_load(&s, GLTF_CUT_OUT);
-    assert_string_equal(support_release_stderr(), "");
-    assert_true(loaded);
+    gltf_load_saying(GLTF_CUT_OUT, "", &s);
     assert_float_equal(s.objects[0].alpha_cutoff, 0, 0);
     assert_float_equal(s.objects[1].alpha_cutoff, 0.4f, GLTF_TOLERANCE);
     assert_float_equal(s.objects[2].alpha_cutoff, 0.5f, GLTF_TOLERANCE);
