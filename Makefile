@@ -81,7 +81,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test test-all web web-bench bench stress ruler report readme-report scenes update-golden readme-flags format clean help
+.PHONY: all deps demo gallery test test-all web web-bench bench stress ruler report readme-report scenes update-golden test-technique readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -96,7 +96,8 @@ help:
 	@echo "make report         make test-all, make bench, make stress, make ruler, then make readme-report (QUICK=1: short runs)"
 	@echo "make readme-report  out/report/ and README.md's current figures from the runs already in out/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json, stacked_*)"
-	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case; say why in the commit)"
+	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case, or a technique's; say why in the commit)"
+	@echo "make test-technique one technique's checks, ONLY=NAME: its golden cases, tests/test_NAME.c, the flags' table"
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
 	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"
 	@echo "make web            out/web/: every technique in a web page (Emscripten, WebGL 2)"
@@ -247,6 +248,15 @@ scenes: $(BUILD)/scenegen
 # flags it checks with); ONLY="NAME..." re-records just those cases.
 update-golden: $(PROGRAMS) $(BUILD)/tests/test_render
 	BUILD=$(BUILD) $(BUILD)/tests/test_render --record $(ONLY)
+
+# A technique's own checks while it is written (README, "Adding a
+# technique"), ONLY=NAME: its golden cases (test_render --check), its
+# tests/test_NAME.c and the flags' table (test_cli).
+test-technique: $(PROGRAMS) $(BUILD)/tests/test_render $(BUILD)/tests/test_cli \
+		$(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_$(ONLY).c))
+	@test -n "$(ONLY)" || { echo "make test-technique: which technique? ONLY=NAME"; exit 2; }
+	BUILD=$(BUILD) $(BUILD)/tests/test_render --check $(ONLY)
+	ONLY="test_$(ONLY) test_cli" tests/run.sh $(BUILD)
 
 # README.md's "Keys and flags": what build/shadows --flags-markdown prints,
 # between the lines <!-- flags:begin --> and <!-- flags:end -->, a blank
