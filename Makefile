@@ -87,7 +87,7 @@ all: $(PROGRAMS) $(TESTS)
 help:
 	@echo "make deps           install the Debian packages (apt-get; sudo when not root)"
 	@echo "make demo           build, then the interactive window (with a display) or the gallery"
-	@echo "make gallery        render every technique on each standard and soft scene to out/gallery/"
+	@echo "make gallery        render every technique on each standard and soft scene and two real models to out/gallery/"
 	@echo "make test           build and run the quick tier of the tests, plain and under ASan+UBSan"
 	@echo "make test-all       the whole matrix of the tests (make report runs it)"
 	@echo "make bench          time and measure every technique: out/bench/ (QUICK=1: a short run)"
@@ -118,8 +118,13 @@ deps:
 demo: $(PROGRAMS)
 	@if [ -n "$$DISPLAY$$WAYLAND_DISPLAY" ]; then $(BUILD)/shadows; else $(MAKE) --no-print-directory gallery; fi
 
+# Real glTF models from assimp-testmodels (make deps): a textured one a
+# scene file includes over a ground, one seen by its own camera.
+GALLERY_MODELS := $(if $(wildcard /usr/share/assimp/models/glTF/CesiumMilkTruck),assets/scenes/truck.json) \
+	$(wildcard /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb)
 gallery: $(PROGRAMS)
-	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json $(SOFT_SCENES)
+	$(BUILD)/shadows --gallery out/gallery $(STANDARD_SCENES) assets/scenes/long_view.json $(SOFT_SCENES) \
+		$(GALLERY_MODELS)
 
 # First the C files' format (.clang-format), the comments' check
 # (tests/check_comments.sh: no measured figure or tracker number in a

@@ -24,7 +24,11 @@
 #define GLTF_SCENE_BINARY "tests/data/gltf_scene.glb" /* the same scene, binary */
 #define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define GLTF_CUT_OUT "tests/data/gltf_cut_out.gltf"
+#define GLTF_INCLUDED "tests/data/gltf_included.json" /* the three files above in one scene file */
 #define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
+#define GLTF_ENGINE TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
+/* glTF 1.0, which assimp reads too (assets/scenes/truck.json includes it). */
+#define GLTF_TRUCK "/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf"
 #define GLTF_TOLERANCE 1e-4f
 /* The goal of hard shadows on real models (volumes and hybrid are exact
  * but for the pixels where the rasterizer and the reference round apart). */
@@ -343,12 +347,90 @@ static void test_gltf_fitted(void **state) {
 static void test_gltf_says_each_thing_once(void **state) {
     (void)state;
     scene s;
-    gltf_load_saying(TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+    gltf_load_saying(GLTF_ENGINE,
                      "warning: %s: removed 11160 degenerate and 0 non-finite triangles from its meshes\n"
                      "%s: no light: a sun from above added\n",
                      &s);
     assert_true(s.object_count > 1);
     scene_free(&s);
+}
+
+/* A scene file's object of mesh kind "gltf" (tests/data/gltf_included.json):
+ * each node's mesh an object named after the scene file's object, placed
+ * by its transform times the node's, casting as it says; textures and
+ * cut-outs as a glTF scene's, after the textures of the files before; a
+ * bad include one line. */
+static void test_gltf_included_by_a_scene_file(void **state) {
+    (void)state;
+    scene included, alone;
+    assert_true(scene_load(&included, GLTF_INCLUDED));
+    assert_true(scene_load(&alone, GLTF_SCENE));
+    mat4 placed, expected;
+    glm_translate_make(placed, (vec3){6, 0, -2});
+    glm_rotate_y(placed, glm_rad(90), placed);
+    glm_scale_uni(placed, 0.5f);
+    for (int i = 0; i < alone.object_count; i++) {
+        char name[SCENE_NAME_MAX + sizeof "boxes/"];
+        snprintf(name, sizeof name, "boxes/%s", alone.objects[i].name);
+        const scene_object *o = NULL;
+        for (int k = 0; k < included.object_count; k++)
+            if (strcmp(included.objects[k].name, name) == 0)
+                o = &included.objects[k];
+        if (!o)
+            fail_msg("%s: no object %s", GLTF_INCLUDED, name);
+        assert_false(o->casts);
+        assert_true(o->receives);
+        assert_int_equal(o->mesh.index_count, alone.objects[i].mesh.index_count);
+        glm_mat4_mul(placed, (vec4 *)alone.objects[i].model, expected);
+        for (int column = 0; column < 4; column++)
+            assert_vec3_near(o->model[column], expected[column][0], expected[column][1], expected[column][2], name);
+    }
+    int textured = 0, cut_out = 0;
+    for (int k = 0; k < included.object_count; k++) {
+        const scene_object *o = &included.objects[k];
+        if (o->base_color) {
+            assert_true(o->base_color >= included.textures &&
+                        o->base_color < included.textures + included.texture_count);
+            assert_true(o->base_color->level_count > 0);
+            textured++;
+        }
+        cut_out += o->alpha_cutoff > 0;
+    }
+    /* The fence's two cut-out objects; the checker's three textured. */
+    assert_int_equal(cut_out, 2);
+    assert_true(textured >= 5);
+    scene_free(&included);
+    scene_free(&alone);
+
+    static const struct {
+        const char *object, *problem;
+    } bad[] = {
+        {"{\"name\": \"g\", \"mesh\": {\"kind\": \"gltf\", \"path\": \"gltf_scene.gltf\"}, \"color\": [1, 0, 0]}",
+         ": objects[0].color: a glTF file's objects take their materials' colours\n"},
+        {"{\"name\": \"g\", \"mesh\": {\"kind\": \"gltf\", \"path\": \"no_such.gltf\"}}",
+         ": objects[0].mesh.path: out/test/gltf/no_such.gltf: No such file or directory\n"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char text[1024];
+        snprintf(text, sizeof text,
+                 "{\"camera\": {\"position\": [0, 2, 5], \"target\": [0, 0, 0]}, \"lights\": [{\"type\": "
+                 "\"directional\", \"direction\": [0, -1, 0]}], \"objects\": [%s]}",
+                 bad[i].object);
+        cJSON *root = cJSON_Parse(text);
+        assert_non_null(root);
+        char path[256];
+        support_write_json(root, "out/test/gltf", "included_bad", path, sizeof path);
+        cJSON_Delete(root);
+        scene s;
+        support_capture_stderr();
+        bool loaded = scene_load(&s, path);
+        const char *said = support_release_stderr();
+        assert_false(loaded);
+        const char *newline = strchr(said, '\n');
+        if (!newline || newline[1] != '\0' || !strstr(said, bad[i].problem))
+            fail_msg("expected one line with \"%s\", got \"%s\"", bad[i].problem, said);
+        fprintf(stderr, "    %s", said);
+    }
 }
 
 /* Debian's broken glTF files: each one line naming the file and the
@@ -389,22 +471,25 @@ static void test_gltf_bad_files(void **state) {
 }
 
 /* The shadows: volumes and hybrid against the reference on a real model
- * nobody tuned for (its fitted sun) and on the file's scene (its spot);
+ * nobody tuned for (its fitted sun), on the file's scene (its spot) and
+ * on a textured real model a scene file includes over a ground;
  * the sweep takes every support_sweep_stride()th case, the real model's
  * hybrid first. */
 static void test_gltf_shadows_match_reference(void **state) {
     (void)state;
     static const struct {
         const char *scene, *program;
+        const char *model; /* the file the scene needs */
     } cases[] = {
-        {TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "hybrid"},
-        {GLTF_SCENE, "volumes"},
-        {TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "volumes"},
-        {GLTF_SCENE, "hybrid"},
+        {GLTF_ENGINE, "hybrid", GLTF_ENGINE},
+        {GLTF_SCENE, "volumes", GLTF_SCENE},
+        {GLTF_ENGINE, "volumes", GLTF_ENGINE},
+        {GLTF_SCENE, "hybrid", GLTF_SCENE},
+        {"assets/scenes/truck.json", "volumes", GLTF_TRUCK},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i += (size_t)support_sweep_stride()) {
-        if (access(cases[i].scene, R_OK) != 0) {
-            print_message("%s missing (Debian package assimp-testmodels): skipped\n", cases[i].scene);
+        if (access(cases[i].model, R_OK) != 0) {
+            print_message("%s missing (Debian package assimp-testmodels): skipped\n", cases[i].model);
             continue;
         }
         char name[64];
@@ -423,6 +508,7 @@ int main(void) {
         cmocka_unit_test(test_gltf_cut_outs),
         cmocka_unit_test(test_gltf_fitted),
         cmocka_unit_test(test_gltf_says_each_thing_once),
+        cmocka_unit_test(test_gltf_included_by_a_scene_file),
         cmocka_unit_test(test_gltf_bad_files),
         cmocka_unit_test(test_gltf_shadows_match_reference),
     };

@@ -405,7 +405,7 @@ static const bad_scene bad_scenes[] = {
     {"tests/data/scene_missing_field.json", ": camera.target: missing required field"},
     {"tests/data/scene_wrong_type.json", ": lights[0].intensity: expected a number, got a string"},
     {"tests/data/scene_unknown_mesh_kind.json",
-     ": objects[1].mesh.kind: unknown mesh kind \"cone\" (expected plane, box, sphere, torus, cylinder or model)"},
+     ": objects[1].mesh.kind: unknown mesh kind \"cone\" (expected plane, box, sphere, torus, cylinder, model or gltf)"},
     {"tests/data/scene_unknown_key.json", ": objects[0]: unknown key \"colour\" (expected name, mesh, translate, "
                                           "rotate, scale, color, casts or receives), did you mean \"color\"?"},
     {"tests/data/scene_key_of_other_light_type.json",

@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <unistd.h>
 #include <string.h>
 #include <strings.h>
 
@@ -50,6 +51,10 @@ static const scene_variant scene_light_types[] = {
     {NULL, 0, {NULL}},
 };
 
+/* The mesh kind "gltf": not an object's kind but a file of objects
+ * (scene_include_gltf), each of kind SCENE_MESH_MODEL. */
+#define SCENE_MESH_GLTF_FILE (-1)
+
 static const scene_variant scene_mesh_kinds[] = {
     {"plane", SCENE_MESH_PLANE, {"kind", "size", NULL}},
     {"box", SCENE_MESH_BOX, {"kind", "size", NULL}},
@@ -57,6 +62,7 @@ static const scene_variant scene_mesh_kinds[] = {
     {"torus", SCENE_MESH_TORUS, {"kind", "major_radius", "minor_radius", "segments", NULL}},
     {"cylinder", SCENE_MESH_CYLINDER, {"kind", "radius", "height", "segments", NULL}},
     {"model", SCENE_MESH_MODEL, {"kind", "path", NULL}},
+    {"gltf", SCENE_MESH_GLTF_FILE, {"kind", "path", NULL}},
     {NULL, 0, {NULL}},
 };
 
@@ -375,10 +381,30 @@ static void scene_model_matrix(vec3 translate, const float rotate_deg[3], vec3 s
     memcpy(out, model, sizeof model);
 }
 
-/* Object `count` into objects[count], after the `count` before it. */
-static bool scene_read_object(const char *file, const cJSON *json, const char *where, const double origin[3],
-                              scene_object *objects, int count) {
-    scene_object *o = &objects[count];
+/* A scene file's object of mesh kind "gltf": the file's objects, placed by
+ * the object's transform, named after it. */
+static bool scene_include_file(const char *file, const cJSON *json, const cJSON *mesh_json, const char *where,
+                               const char *mesh_where, const scene_object *o, scene *s, int *capacity) {
+    const char *path;
+    char resolved[PATH_MAX];
+    if (!json_read_string(file, mesh_json, mesh_where, "path", true, &path))
+        return false;
+    if (cJSON_GetObjectItemCaseSensitive(json, "color"))
+        return json_fail(file, where, "color", "a glTF file's objects take their materials' colours");
+    if (!path_beside(file, path, resolved, sizeof resolved))
+        return json_fail(file, mesh_where, "path", "too long");
+    if (access(resolved, R_OK) != 0)
+        return json_fail(file, mesh_where, "path", "%s: %s", resolved, strerror(errno));
+    return scene_include_gltf(s, capacity, resolved, o->model, o->name, o->casts, o->receives);
+}
+
+/* The object `json` after the s->object_count before it, s->objects grown
+ * within *capacity. */
+static bool scene_read_object(const char *file, const cJSON *json, const char *where, scene *s, int *capacity) {
+    const double *origin = s->origin;
+    scene_object *objects = s->objects, object;
+    int count = s->object_count;
+    scene_object *o = &object;
     static const char *const keys[] = {"name",  "mesh",  "translate", "rotate", "scale",
                                        "color", "casts", "receives",  NULL};
     vec3 translate = {(float)-origin[0], (float)-origin[1], (float)-origin[2]}, rotate_deg = {0, 0, 0},
@@ -405,7 +431,6 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
         return false;
     }
     snprintf(o->name, sizeof o->name, "%s", name);
-    o->mesh_kind = (scene_mesh_kind)kind->value;
     /* An odd number of negative factors mirrors (a negative determinant),
      * which would turn the triangles clockwise seen from outside: the GL's
      * and the reference's front faces, and the volumes' facing, computed
@@ -415,9 +440,23 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
      * keeps a positive determinant: its x column only changes sign, so
      * every world position is bit for bit the mirrored matrix's. */
     bool mirrored = ((scale[0] < 0) ^ (scale[1] < 0) ^ (scale[2] < 0)) != 0;
+    if (kind->value == SCENE_MESH_GLTF_FILE) {
+        /* Each of its objects turns a mirroring matrix as a glTF scene's. */
+        scene_model_matrix(translate, rotate_deg, scale, o->model);
+        return scene_include_file(file, json, mesh_json, where, mesh_where, o, s, capacity);
+    }
+    o->mesh_kind = (scene_mesh_kind)kind->value;
     if (mirrored)
         scale[0] = -scale[0];
     scene_model_matrix(translate, rotate_deg, scale, o->model);
+    if (count == *capacity) {
+        int grown_capacity = 2 * *capacity + 1;
+        scene_object *grown = realloc(objects, (size_t)grown_capacity * sizeof *grown);
+        if (!grown)
+            return json_fail(file, where, NULL, "out of memory");
+        s->objects = grown;
+        *capacity = grown_capacity;
+    }
     /* Last: loading a model is the slow part, and every cheap check passed. */
     mesh_material material = {0};
     if (!scene_build_mesh(file, mesh_json, mesh_where, where, o, &material))
@@ -436,6 +475,7 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
                 file, where, material.textured, o->color[0], o->color[1], o->color[2]);
     if (mirrored)
         mesh_reflect_x(&o->mesh);
+    s->objects[s->object_count++] = object;
     return true;
 }
 
@@ -459,15 +499,15 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
             return false;
         s->light_count++;
     }
-    s->objects = calloc((size_t)cJSON_GetArraySize(objects), sizeof *s->objects);
+    int capacity = cJSON_GetArraySize(objects), index = 0;
+    s->objects = calloc((size_t)capacity, sizeof *s->objects);
     if (!s->objects)
         return json_fail(file, "", "objects", "out of memory");
     cJSON_ArrayForEach(entry, objects) {
-        snprintf(where, sizeof where, "objects[%d]", s->object_count);
+        snprintf(where, sizeof where, "objects[%d]", index++);
         /* A failed object owns nothing: mesh constructors leave it empty. */
-        if (!scene_read_object(file, entry, where, s->origin, s->objects, s->object_count))
+        if (!scene_read_object(file, entry, where, s, &capacity))
             return false;
-        s->object_count++;
     }
     return true;
 }

@@ -32,6 +32,11 @@
  *                              "segments": n }
  *                          | { "kind": "model", "path": "file.obj" }
  *                            (path relative to the scene file, or absolute)
+ *                          | { "kind": "gltf", "path": "file.glb" }
+ *                            (the file's objects, as a glTF scene's, named
+ *                             "NAME/NODE", placed by this transform times
+ *                             their nodes', casting and receiving as this
+ *                             says; no "color": theirs are the materials')
  *                          ("segments": 0 or absent is the default, 32,
  *                           else MESH_MIN_SEGMENTS..MESH_MAX_SEGMENTS)
  *                  "translate": [0,0,0], "rotate": [0,0,0] (degrees about

@@ -21,8 +21,10 @@
 #include "texture.h"
 
 /* An object's name: its node's, this long at most (room for a suffix
- * that makes it one object's). */
+ * that makes it one object's, SCENE_GLTF_SUFFIX_MAX bytes with its
+ * ending, and for a scene file's prefix). */
 #define SCENE_GLTF_NODE_NAME_MAX 40
+#define SCENE_GLTF_SUFFIX_MAX 12
 /* glTF's alphaCutoff where a MASK material gives none. */
 #define SCENE_GLTF_ALPHA_CUTOFF 0.5f
 /* The default colour of an object whose material gives none. */
@@ -95,32 +97,46 @@ typedef struct scene_gltf_reader {
     const char *file;
     const struct aiScene *a;
     scene *s;
-    unsigned camera; /* the file's camera to read (--camera) */
-    int capacity;
+    unsigned camera;      /* the file's camera to read (--camera) */
+    int *capacity;        /* of s->objects */
     mesh_removed removed; /* by every object's mesh_sanitize_quietly, said once */
     /* Per material: its base-colour texture's index in s->textures, or
      * SCENE_GLTF_UNTEXTURED, once looked up (SCENE_GLTF_UNSEEN before). */
     int *material_texture;
     unsigned without_coordinates; /* textured meshes with no texture coordinates, said once */
     unsigned blended;             /* meshes of alphaMode BLEND, drawn opaque, said once */
+    /* A file a scene file includes (scene_include_gltf): its objects'
+     * names begin "PREFIX/", and they cast and receive as it says. NULL:
+     * the file is the scene, every object casts and receives. */
+    const char *prefix;
+    bool casts, receives;
 } scene_gltf_reader;
 
 #define SCENE_GLTF_UNSEEN (-2)
 #define SCENE_GLTF_UNTEXTURED (-1)
 
 /* A name for the object of node `node` that no earlier object has. */
-static void scene_gltf_name(const scene *s, const struct aiNode *node, char out[SCENE_NAME_MAX]) {
-    char base[SCENE_GLTF_NODE_NAME_MAX + 1] = "mesh";
+static void scene_gltf_name(const scene_gltf_reader *r, const struct aiNode *node, char out[SCENE_NAME_MAX]) {
+    char node_name[SCENE_GLTF_NODE_NAME_MAX + 1] = "mesh", base[SCENE_NAME_MAX];
     if (node->mName.length)
-        memcpy(base, node->mName.data, strnlen(node->mName.data, SCENE_GLTF_NODE_NAME_MAX) + 1);
-    base[SCENE_GLTF_NODE_NAME_MAX] = '\0';
-    for (char *c = base; *c; c++)
+        memcpy(node_name, node->mName.data, strnlen(node->mName.data, SCENE_GLTF_NODE_NAME_MAX) + 1);
+    node_name[SCENE_GLTF_NODE_NAME_MAX] = '\0';
+    for (char *c = node_name; *c; c++)
         if (iscntrl((unsigned char)*c))
             *c = '_';
+    /* The prefix is a scene file's object name, of SCENE_NAME_MAX bytes at
+     * most: what the node's name leaves of it. */
+    if (r->prefix)
+        snprintf(base, sizeof base, "%.*s/%s", (int)(SCENE_NAME_MAX - SCENE_GLTF_NODE_NAME_MAX - 2), r->prefix,
+                 node_name);
+    else
+        snprintf(base, sizeof base, "%s", node_name);
     snprintf(out, SCENE_NAME_MAX, "%s", base);
+    const scene *s = r->s;
     for (int i = 0; i < s->object_count; i++)
         if (strcmp(s->objects[i].name, out) == 0) {
-            snprintf(out, SCENE_NAME_MAX, "%s_%d", base, s->object_count);
+            snprintf(out, SCENE_NAME_MAX, "%.*s_%d", (int)(SCENE_NAME_MAX - SCENE_GLTF_SUFFIX_MAX), base,
+                     s->object_count);
             return;
         }
 }
@@ -240,15 +256,15 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
     const struct aiMesh *am = r->a->mMeshes[i];
     if (!am->mNumFaces || !(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
         return true; /* points and lines: nothing to shade */
-    if (r->s->object_count == r->capacity) {
-        int capacity = r->capacity ? 2 * r->capacity : 16;
+    if (r->s->object_count == *r->capacity) {
+        int capacity = *r->capacity ? 2 * *r->capacity : 16;
         scene_object *grown = realloc(r->s->objects, (size_t)capacity * sizeof *grown);
         if (!grown) {
             fprintf(stderr, "%s: out of memory for %d objects\n", r->file, capacity);
             return false;
         }
         r->s->objects = grown;
-        r->capacity = capacity;
+        *r->capacity = capacity;
     }
     /* The material's texture first: what fails there leaves no mesh. */
     bool material = am->mMaterialIndex < r->a->mNumMaterials;
@@ -258,9 +274,9 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
     scene_object *o = &r->s->objects[r->s->object_count];
     *o = (scene_object){.mesh_kind = SCENE_MESH_MODEL,
                         .color = {SCENE_GLTF_GREY, SCENE_GLTF_GREY, SCENE_GLTF_GREY},
-                        .casts = true,
-                        .receives = true};
-    scene_gltf_name(r->s, node, o->name);
+                        .casts = r->casts,
+                        .receives = r->receives};
+    scene_gltf_name(r, node, o->name);
     char where[PATH_MAX + SCENE_NAME_MAX + 16];
     snprintf(where, sizeof where, "%s: node \"%s\"", r->file, o->name);
     if (!mesh_from_assimp(&o->mesh, where, am, &r->removed))
@@ -510,12 +526,13 @@ static void scene_gltf_rebase(scene *s) {
     }
 }
 
-static bool scene_gltf_read(scene_gltf_reader *r) {
-    scene *s = r->s;
-    mat4 identity = GLM_MAT4_IDENTITY_INIT;
-    if (!scene_gltf_objects(r, r->a->mRootNode, identity))
+/* The file's objects, placed by `model`, after those s has; what was
+ * left out or drawn otherwise said once. */
+static bool scene_gltf_read_objects(scene_gltf_reader *r, mat4 model) {
+    int before = r->s->object_count;
+    if (!scene_gltf_objects(r, r->a->mRootNode, model))
         return false;
-    if (s->object_count == 0) {
+    if (r->s->object_count == before) {
         fprintf(stderr, "%s: no triangles in any node's mesh\n", r->file);
         return false;
     }
@@ -528,6 +545,14 @@ static bool scene_gltf_read(scene_gltf_reader *r) {
     if (r->without_coordinates)
         fprintf(stderr, "%s: %u textured meshes have no texture coordinates: their base colour alone\n", r->file,
                 r->without_coordinates);
+    return true;
+}
+
+static bool scene_gltf_read(scene_gltf_reader *r) {
+    scene *s = r->s;
+    mat4 identity = GLM_MAT4_IDENTITY_INIT;
+    if (!scene_gltf_read_objects(r, identity))
+        return false;
     glm_vec3_fill(s->ambient, SCENE_DEFAULT_AMBIENT);
     if (r->a->mNumCameras == 0 || !scene_gltf_camera(r, r->camera, &s->camera)) {
         fprintf(stderr, "%s: no camera: one fitted to the scene's bounds\n", r->file);
@@ -561,6 +586,30 @@ static bool scene_gltf_has_camera(const char *path, const struct aiScene *a, int
     return false;
 }
 
+/* Room in s->textures for a texture per material of the file (what it
+ * may add), and r's table of them; false after a line. The objects'
+ * textures are pointers into s->textures, turned to the new place. */
+static bool scene_gltf_reader_begin(scene_gltf_reader *r) {
+    scene *s = r->s;
+    unsigned materials = r->a->mNumMaterials;
+    r->material_texture = malloc((materials + 1) * sizeof *r->material_texture);
+    texture *grown = realloc(s->textures, ((size_t)s->texture_count + materials + 1) * sizeof *grown);
+    if (!r->material_texture || !grown) {
+        fprintf(stderr, "%s: out of memory for %u materials\n", r->file, materials);
+        free(r->material_texture);
+        r->material_texture = NULL;
+        return false;
+    }
+    for (int i = 0; i < s->object_count; i++)
+        if (s->objects[i].base_color)
+            s->objects[i].base_color = grown + (s->objects[i].base_color - s->textures);
+    s->textures = grown;
+    memset(grown + s->texture_count, 0, (materials + 1) * sizeof *grown);
+    for (unsigned m = 0; m < materials; m++)
+        r->material_texture[m] = SCENE_GLTF_UNSEEN;
+    return true;
+}
+
 bool scene_load_gltf(scene *s, const char *path, int camera) {
     *s = (scene){0};
     const struct aiScene *a = mesh_import_graph(path);
@@ -570,26 +619,37 @@ bool scene_load_gltf(scene *s, const char *path, int camera) {
         aiReleaseImport(a);
         return false;
     }
-    scene_gltf_reader r = {.file = path, .a = a, .s = s, .camera = (unsigned)camera};
-    /* A texture per material at most: the objects point into s->textures,
-     * which never moves. */
-    r.material_texture = malloc((a->mNumMaterials + 1) * sizeof *r.material_texture);
-    s->textures = calloc(a->mNumMaterials + 1, sizeof *s->textures);
-    if (!r.material_texture || !s->textures) {
-        fprintf(stderr, "%s: out of memory for %u materials\n", path, a->mNumMaterials);
-        free(r.material_texture);
-        aiReleaseImport(a);
-        scene_free(s);
-        return false;
-    }
-    for (unsigned m = 0; m < a->mNumMaterials; m++)
-        r.material_texture[m] = SCENE_GLTF_UNSEEN;
-    bool read = a->mRootNode && scene_gltf_read(&r);
+    int capacity = 0;
+    scene_gltf_reader r = {.file = path,
+                           .a = a,
+                           .s = s,
+                           .camera = (unsigned)camera,
+                           .capacity = &capacity,
+                           .casts = true,
+                           .receives = true};
+    bool read = scene_gltf_reader_begin(&r) && a->mRootNode && scene_gltf_read(&r);
     free(r.material_texture);
     if (!a->mRootNode)
         fprintf(stderr, "%s: no node\n", path);
     aiReleaseImport(a);
     if (!read)
         scene_free(s);
+    return read;
+}
+
+bool scene_include_gltf(scene *s, int *capacity, const char *path, const float model[4][4], const char *prefix,
+                        bool casts, bool receives) {
+    const struct aiScene *a = mesh_import_graph(path);
+    if (!a)
+        return false;
+    scene_gltf_reader r = {
+        .file = path, .a = a, .s = s, .capacity = capacity, .prefix = prefix, .casts = casts, .receives = receives};
+    mat4 placed;
+    memcpy(placed, model, sizeof placed);
+    bool read = scene_gltf_reader_begin(&r) && a->mRootNode && scene_gltf_read_objects(&r, placed);
+    free(r.material_texture);
+    if (!a->mRootNode)
+        fprintf(stderr, "%s: no node\n", path);
+    aiReleaseImport(a);
     return read;
 }

@@ -15,5 +15,13 @@
 void scene_choose_origin(const scene_camera *c, double origin[3]);
 /* A glTF 2.0 file (.gltf, .glb) as a scene: scene_load_camera's contract. */
 bool scene_load_gltf(scene *s, const char *path, int camera);
+/* A glTF file's objects appended to s (a scene file's object of mesh kind
+ * "gltf"), s->objects grown within *capacity: each node's mesh placed by
+ * `model` times the node's transform, named "PREFIX/NODE", casting and
+ * receiving as given; the file's cameras and lights are not read. False
+ * after a line naming the file and the problem; what was appended before
+ * is s's to free. */
+bool scene_include_gltf(scene *s, int *capacity, const char *path, const float model[4][4], const char *prefix,
+                        bool casts, bool receives);
 
 #endif

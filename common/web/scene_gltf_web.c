@@ -11,3 +11,10 @@ bool scene_load_gltf(scene *s, const char *path, int camera) {
     fprintf(stderr, "%s: glTF scenes are read by the native programs only (assimp is not in the page)\n", path);
     return false;
 }
+
+bool scene_include_gltf(scene *s, int *capacity, const char *path, const float model[4][4], const char *prefix,
+                        bool casts, bool receives) {
+    (void)s, (void)capacity, (void)model, (void)prefix, (void)casts, (void)receives;
+    fprintf(stderr, "%s: glTF files are read by the native programs only (assimp is not in the page)\n", path);
+    return false;
+}
