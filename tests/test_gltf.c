@@ -24,6 +24,7 @@
 #define GLTF_SCENE_BINARY "tests/data/gltf_scene.glb" /* the same scene, binary */
 #define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define GLTF_CUT_OUT "tests/data/gltf_cut_out.gltf"
+#define GLTF_STAINED_GLASS "tests/data/gltf_stained_glass.gltf"
 #define GLTF_INCLUDED "tests/data/gltf_included.json" /* the three files above in one scene file */
 #define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
 #define GLTF_ENGINE TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
@@ -50,6 +51,15 @@
 /* The hybrid's goal there: its rays cut them out as the reference does. */
 #define GLTF_CUT_OUT_HYBRID_MAX_PERCENT 0.01
 #define GLTF_CUT_OUT_WHOLE_MIN_PERCENT 1.0
+/* Translucent casters' shadows: a transmittance is read to within a
+ * float's rounding of the product; a shadow drawn whole (every technique
+ * yet) misses the coloured one by at least this MAE in each channel over
+ * the stained-glass scene's compared pixels. */
+#define GLTF_TRANSMITTANCE_TOLERANCE 1e-5f
+#define GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE 0.05
+/* Each shade of the stained-glass ground covers at least this many of its
+ * 640x360 pixels. */
+#define GLTF_MIN_SHADE_PIXELS 1000
 
 static void assert_vec3_near(const float *got, float x, float y, float z, const char *what) {
     if (fabsf(got[0] - x) > GLTF_TOLERANCE || fabsf(got[1] - y) > GLTF_TOLERANCE ||
@@ -355,6 +365,93 @@ static void test_gltf_says_each_thing_once(void **state) {
     scene_free(&s);
 }
 
+/* The ground's pixels of the reference whose channels are `rgb`. */
+static long gltf_pixels_of(const dump_frame *d, const float rgb[3]) {
+    long count = 0;
+    for (long p = 0; p < (long)d->width * d->height; p++) {
+        bool same = d->ids[p] == 0;
+        for (int k = 0; k < 3 && same; k++)
+            same = fabsf(d->visibility_rgb[3 * p + k] - rgb[k]) <= GLTF_TRANSMITTANCE_TOLERANCE;
+        count += same;
+    }
+    return count;
+}
+
+/* Translucent casters (alphaMode BLEND, tests/data/gltf_stained_glass.gltf:
+ * a red pane over a blue one, a window of four colours, an opaque box):
+ * the reference's shadow rays filter the spot's light through each pane
+ * they cross (scene_object_transmittance), so the ground under the red
+ * pane alone, the blue alone and both holds their transmittances and
+ * their product, the box's shadow none; the one figure is the channels'
+ * mean where they differ. No technique colours a shadow yet: each says
+ * so once, and shadowdiff measures what that costs per channel. A scene
+ * without translucent casters has no coloured dump. */
+static void test_gltf_translucent_shadows(void **state) {
+    (void)state;
+    scene s;
+    gltf_load_saying(GLTF_STAINED_GLASS, "", &s);
+    static const bool translucent[] = {false, true, true, true, false}; /* ground, red, blue, window, box */
+    assert_int_equal(s.object_count, sizeof translucent / sizeof *translucent);
+    for (int i = 0; i < s.object_count; i++)
+        assert_int_equal(s.objects[i].translucent, translucent[i]);
+    float red[3], blue[3], both[3];
+    const float corner[3] = {1, 0, 0};
+    scene_object_transmittance(&s.objects[1], 0, corner, red);
+    scene_object_transmittance(&s.objects[2], 0, corner, blue);
+    /* (1 - a) + a C of each material's factors: a 0.7 of (0.95, 0.15, 0.1), a 0.6 of (0.2, 0.35, 0.95). */
+    assert_vec3_near(red, 0.965f, 0.405f, 0.37f, "red glass");
+    assert_vec3_near(blue, 0.52f, 0.61f, 0.97f, "blue glass");
+    glm_vec3_mul(red, blue, both);
+    scene_free(&s);
+
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result r =
+        support_measure_dumps("shadowmap", GLTF_STAINED_GLASS, "", "", "gltf_glass", &reference, &test, &heatmap);
+    free(heatmap);
+    assert_non_null(reference.visibility_rgb);
+    assert_non_null(test.visibility_rgb);
+    const float *shades[] = {red, blue, both, (const float[3]){0, 0, 0}};
+    for (size_t k = 0; k < sizeof shades / sizeof *shades; k++) {
+        long pixels = gltf_pixels_of(&reference, shades[k]);
+        fprintf(stderr, "    ground under (%g, %g, %g): %ld pixels\n", shades[k][0], shades[k][1], shades[k][2],
+                pixels);
+        assert_true(pixels > GLTF_MIN_SHADE_PIXELS);
+    }
+    for (long p = 0; p < (long)reference.width * reference.height; p++) {
+        const float *c = reference.visibility_rgb + 3 * p;
+        if (c[0] != c[1] || c[1] != c[2])
+            assert_float_equal(reference.visibility[p], (c[0] + c[1] + c[2]) / 3.0f, 0);
+    }
+    fprintf(stderr, "    shadowmap, whole shadows: channel MAE %.4f %.4f %.4f\n", r.channel_mae[0], r.channel_mae[1],
+            r.channel_mae[2]);
+    assert_true(r.coloured);
+    for (int k = 0; k < 3; k++)
+        assert_true(r.channel_mae[k] >= GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+
+    static const char *const programs[] = {"shadowmap", "cascades", "psm", "volumes", "hybrid"};
+    for (size_t i = 0; i < sizeof programs / sizeof *programs; i++) {
+        char command[512], said[4096], expected[256];
+        snprintf(command, sizeof command,
+                 "%s --size 64x36 --frames 2 --screenshot out/test/gltf_glass.png --scene %s",
+                 support_program(programs[i]), GLTF_STAINED_GLASS);
+        snprintf(expected, sizeof expected,
+                 "%s: 3 translucent objects (alphaMode BLEND) cast the shadow of their whole surface: %s draws no "
+                 "coloured shadows\n",
+                 programs[i], programs[i]);
+        assert_int_equal(support_run(command, said, sizeof said), 0);
+        if (strcmp(said, expected) != 0)
+            fail_msg("%s: expected \"%s\", got \"%s\"", programs[i], expected, said);
+    }
+    /* The same directory, dumped again from a scene without them. */
+    assert_int_equal(support_dump("shadowmap", GLTF_STAINED_GLASS, "", "out/test/gltf_rgb"), 0);
+    assert_int_equal(access("out/test/gltf_rgb/visibility_rgb.pfm", R_OK), 0);
+    assert_int_equal(support_dump("shadowmap", GLTF_SCENE, "", "out/test/gltf_rgb"), 0);
+    assert_int_not_equal(access("out/test/gltf_rgb/visibility_rgb.pfm", F_OK), 0);
+}
+
 /* A scene file's object of mesh kind "gltf" (tests/data/gltf_included.json):
  * each node's mesh an object named after the scene file's object, placed
  * by its transform times the node's, casting as it says; textures and
@@ -508,6 +605,7 @@ int main(void) {
         cmocka_unit_test(test_gltf_cut_outs),
         cmocka_unit_test(test_gltf_fitted),
         cmocka_unit_test(test_gltf_says_each_thing_once),
+        cmocka_unit_test(test_gltf_translucent_shadows),
         cmocka_unit_test(test_gltf_included_by_a_scene_file),
         cmocka_unit_test(test_gltf_bad_files),
         cmocka_unit_test(test_gltf_shadows_match_reference),

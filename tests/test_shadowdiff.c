@@ -137,6 +137,50 @@ static void test_mean_abs_error_on_fractions(void **state) {
     free_pair(&reference, &test);
 }
 
+/* Coloured dumps (a scene with a translucent caster): each channel's MAE
+ * over the compared pixels, where both dumps have channels; the one
+ * figure decides and classes as before; a dump without them, none. */
+static void test_channel_mae_of_coloured_dumps(void **state) {
+    (void)state;
+    scene_object objects[2] = {{.name = "ground"}, {.name = "box", .translucent = true, .casts = true}};
+    scene s = {.lights = {point_light}, .light_count = 1, .objects = objects, .object_count = 2};
+    dump_frame reference, test, grey;
+    make_pair(&reference, &test, point_light);
+    make_frame(&grey, SIZE, SIZE, point_light);
+    assert_null(reference.visibility_rgb);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    assert_true(dump_frame_create(&reference, SIZE, SIZE, &s, 0));
+    assert_true(dump_frame_create(&test, SIZE, SIZE, &s, 0));
+    assert_non_null(reference.visibility_rgb);
+    for (size_t i = 0; i < PIXELS; i++) {
+        dump_frame *frames[2] = {&reference, &test};
+        for (int f = 0; f < 2; f++) {
+            frames[f]->ids[i] = GROUND;
+            frames[f]->depth[i] = DEPTH;
+            set_vec3(frames[f]->normal, i, 0, 1, 0);
+            set_vec3(frames[f]->position, i, (float)(i % SIZE), 0, (float)(i / SIZE));
+        }
+        /* A red glass's shadow on 16 pixels, drawn whole by the test. */
+        bool under = i < 16;
+        set_vec3(reference.visibility_rgb, i, 1, under ? 0.5f : 1, under ? 0.25f : 1);
+        reference.visibility[i] = under ? (1 + 0.5f + 0.25f) / 3 : 1;
+        test.visibility[i] = under ? 0 : 1;
+        dump_frame_grey_rgb(&test);
+    }
+    shadowdiff_result r = compare(&reference, &test, NULL);
+    assert_true(r.coloured);
+    assert_counts(&r, PIXELS, 16, 0);
+    assert_float_equal(r.channel_mae[0], 16 * 1.0 / PIXELS, 1e-12);
+    assert_float_equal(r.channel_mae[1], 16 * 0.5 / PIXELS, 1e-12);
+    assert_float_equal(r.channel_mae[2], 16 * 0.25 / PIXELS, 1e-12);
+    /* Against a dump without channels: no channel figure. */
+    r = compare(&reference, &grey, NULL);
+    assert_false(r.coloured);
+    dump_frame_free(&grey);
+    free_pair(&reference, &test);
+}
+
 static void test_excludes_pixels_without_surface_in_either(void **state) {
     (void)state;
     dump_frame reference, test;
@@ -1118,6 +1162,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_counts_false_shadow_and_false_lit),
         cmocka_unit_test(test_mean_abs_error_on_fractions),
+        cmocka_unit_test(test_channel_mae_of_coloured_dumps),
         cmocka_unit_test(test_excludes_pixels_without_surface_in_either),
         cmocka_unit_test(test_depth_tolerance),
         cmocka_unit_test(test_excludes_back_facing_point_light),

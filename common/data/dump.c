@@ -7,12 +7,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "image.h"
 #include "json.h"
 #include "path.h"
 
 #define DUMP_MAX_META_SIZE (1 << 20)
+#define DUMP_VISIBILITY_RGB "visibility_rgb.pfm"
 
 bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int light_index) {
     size_t n = (size_t)width * (size_t)height;
@@ -29,7 +31,11 @@ bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int
     d->normal = calloc(n * 3, sizeof *d->normal);
     d->position = calloc(n * 3, sizeof *d->position);
     d->color = calloc(n * 4, 1);
-    if (!d->object_names || !d->visibility || !d->depth || !d->ids || !d->normal || !d->position || !d->color) {
+    bool coloured = scene_translucent_casters(s) > 0;
+    if (coloured)
+        d->visibility_rgb = malloc(3 * n * sizeof *d->visibility_rgb);
+    if (!d->object_names || !d->visibility || !d->depth || !d->ids || !d->normal || !d->position || !d->color ||
+        (coloured && !d->visibility_rgb)) {
         fprintf(stderr, "dump: out of memory for a %dx%d frame\n", width, height);
         dump_frame_free(d);
         return false;
@@ -38,12 +44,20 @@ bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int
         memcpy(d->object_names[i], s->objects[i].name, SCENE_NAME_MAX);
     for (size_t i = 0; i < n; i++)
         d->visibility[i] = d->depth[i] = d->ids[i] = -1;
+    dump_frame_grey_rgb(d);
     return true;
+}
+
+void dump_frame_grey_rgb(dump_frame *d) {
+    for (size_t i = 0; d->visibility_rgb && i < (size_t)d->width * (size_t)d->height; i++)
+        for (int k = 0; k < 3; k++)
+            d->visibility_rgb[3 * i + (size_t)k] = d->visibility[i];
 }
 
 void dump_frame_free(dump_frame *d) {
     free(d->object_names);
     free(d->visibility);
+    free(d->visibility_rgb);
     free(d->depth);
     free(d->ids);
     free(d->normal);
@@ -140,6 +154,15 @@ bool dump_write(const dump_frame *d, const char *dir) {
         snprintf(path, sizeof path, "%s/%s", dir, files[i].name);
         if (!dump_write_pfm(path, d->width, d->height, files[i].channels, files[i].data))
             return false;
+    }
+    /* Written for a scene with translucent casters; else none is left
+     * from an earlier dump of another scene, which dump_read would take. */
+    snprintf(path, sizeof path, "%s/" DUMP_VISIBILITY_RGB, dir);
+    if (d->visibility_rgb && !dump_write_pfm(path, d->width, d->height, 3, d->visibility_rgb))
+        return false;
+    if (!d->visibility_rgb && remove(path) != 0 && errno != ENOENT) {
+        fprintf(stderr, "%s: cannot remove: %s\n", path, strerror(errno));
+        return false;
     }
     snprintf(path, sizeof path, "%s/color.png", dir);
     if (!image_write_png(path, d->width, d->height, d->color))
@@ -252,6 +275,16 @@ bool dump_read(dump_frame *d, const char *dir) {
     if (d->color && (w != d->width || h != d->height))
         fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
     if (!d->color || w != d->width || h != d->height) {
+        dump_frame_free(d);
+        return false;
+    }
+    snprintf(path, sizeof path, "%s/" DUMP_VISIBILITY_RGB, dir);
+    if (access(path, F_OK) != 0)
+        return true;
+    d->visibility_rgb = dump_read_pfm(path, &w, &h, 3);
+    if (d->visibility_rgb && (w != d->width || h != d->height))
+        fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
+    if (!d->visibility_rgb || w != d->width || h != d->height) {
         dump_frame_free(d);
         return false;
     }

@@ -4,7 +4,12 @@
  *
  *   DIR/visibility.pfm  fraction of light K reaching the visible surface
  *                       (1 lit, 0 shadowed; a spot light reaches nothing
- *                       outside its outer cone); -1 where no surface
+ *                       outside its outer cone); -1 where no surface.
+ *                       Under translucent casters, the mean of
+ *                       visibility_rgb's channels where they differ
+ *   DIR/visibility_rgb.pfm  the same per channel (translucent casters
+ *                       filter it: scene_object_transmittance); only for a
+ *                       scene with translucent casters
  *   DIR/depth.pfm       distance from the eye to the visible surface; -1
  *   DIR/normal.pfm      world geometric (face) normal, unit, turned
  *                       towards the eye (the side that is seen); 0 if none
@@ -41,21 +46,28 @@ typedef struct dump_frame {
     scene_camera camera; /* reversed_depth is not stored: false when read */
     int object_count;
     char (*object_names)[SCENE_NAME_MAX];
-    float *visibility;    /* width * height */
-    float *depth;         /* width * height */
-    float *normal;        /* 3 * width * height */
-    float *position;      /* 3 * width * height */
-    float *ids;           /* width * height */
-    unsigned char *color; /* 4 * width * height, RGBA */
+    float *visibility;     /* width * height */
+    float *visibility_rgb; /* 3 * width * height; NULL but for a scene with translucent casters */
+    float *depth;          /* width * height */
+    float *normal;         /* 3 * width * height */
+    float *position;       /* 3 * width * height */
+    float *ids;            /* width * height */
+    unsigned char *color;  /* 4 * width * height, RGBA */
 } dump_frame;
 
 /* Allocates every array for a frame of scene `s` (its camera as it is
  * now) and light `light_index`, filled as "no surface": visibility, depth
- * and ids -1, the rest 0. */
+ * and ids -1, the rest 0; visibility_rgb only where s has translucent
+ * casters. */
 bool dump_frame_create(dump_frame *d, int width, int height, const scene *s, int light_index);
 void dump_frame_free(dump_frame *d);
 
-/* Creates DIR (and parents) if needed. Errors name the file. */
+/* Fills visibility_rgb, where the frame has it, with the visibility in
+ * every channel: a producer that colours no shadow. */
+void dump_frame_grey_rgb(dump_frame *d);
+
+/* Creates DIR (and parents) if needed. Errors name the file.
+ * visibility_rgb.pfm is read where the directory has it. */
 bool dump_write(const dump_frame *d, const char *dir);
 bool dump_read(dump_frame *d, const char *dir);
 

@@ -553,19 +553,41 @@ bool scene_check_light_flag(const scene *s, const char *file, int light) {
     return false;
 }
 
+/* The object's texel at the point of `triangle` of barycentric `weight`,
+ * read at level 0; white where it has no texture. */
+static void scene_object_texel(const scene_object *o, uint32_t triangle, const float weight[3], float texel[4]) {
+    if (!o->base_color) {
+        glm_vec4_one(texel);
+        return;
+    }
+    float uv[2] = {0, 0};
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 2; k++)
+            uv[k] += weight[c] * o->mesh.vertices[o->mesh.indices[3 * triangle + (uint32_t)c]].uv[k];
+    texture_sample(o->base_color, uv, 0, texel);
+}
+
 bool scene_object_cut_out(const scene_object *o, uint32_t triangle, const float weight[3]) {
     if (!(o->alpha_cutoff > 0))
         return false;
-    float alpha = o->base_alpha;
-    if (o->base_color) {
-        float uv[2] = {0, 0}, texel[4];
-        for (int c = 0; c < 3; c++)
-            for (int k = 0; k < 2; k++)
-                uv[k] += weight[c] * o->mesh.vertices[o->mesh.indices[3 * triangle + (uint32_t)c]].uv[k];
-        texture_sample(o->base_color, uv, 0, texel);
-        alpha *= texel[3];
-    }
-    return alpha < o->alpha_cutoff;
+    float texel[4];
+    scene_object_texel(o, triangle, weight, texel);
+    return o->base_alpha * texel[3] < o->alpha_cutoff;
+}
+
+void scene_object_transmittance(const scene_object *o, uint32_t triangle, const float weight[3], float out[3]) {
+    float texel[4];
+    scene_object_texel(o, triangle, weight, texel);
+    float alpha = o->base_alpha * texel[3];
+    for (int k = 0; k < 3; k++)
+        out[k] = 1.0f - alpha + alpha * o->color[k] * texel[k];
+}
+
+int scene_translucent_casters(const scene *s) {
+    int count = 0;
+    for (int i = 0; i < s->object_count; i++)
+        count += s->objects[i].translucent && s->objects[i].casts;
+    return count;
 }
 
 bool scene_has_cut_outs(const scene *s) {

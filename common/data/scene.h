@@ -137,6 +137,11 @@ typedef struct scene_object {
      * has no surface where its alpha, base_alpha times the texture's, is
      * below the cutoff (scene_object_cut_out); 0: opaque. */
     float alpha_cutoff, base_alpha;
+    /* A translucent caster (glTF's alphaMode BLEND): drawn opaque where it
+     * is seen, it lets through, per channel, the share
+     * scene_object_transmittance gives of the light its shadow rays cross
+     * it with. */
+    bool translucent;
     bool casts;
     bool receives;
 } scene_object;
@@ -200,6 +205,14 @@ bool scene_check_light_flag(const scene *s, const char *file, int light);
 bool scene_object_cut_out(const scene_object *o, uint32_t triangle, const float weight[3]);
 /* Whether any object of s is cut out. */
 bool scene_has_cut_outs(const scene *s);
+/* The share of light, per channel, that translucent object o lets through
+ * at the point of `triangle` of barycentric `weight`: (1 - a) + a C, C
+ * its colour times its texture's and a base_alpha times the texture's
+ * alpha, read at level 0 (the cut-outs' rule), as blending would filter a
+ * view through it. */
+void scene_object_transmittance(const scene_object *o, uint32_t triangle, const float weight[3], float out[3]);
+/* How many objects of s are translucent casters. */
+int scene_translucent_casters(const scene *s);
 
 /* --verbose: one line on stderr for each object whose mesh is a model
  * file, "FILE: objects[i] "NAME": model of N triangles, bounds (x, y, z)

@@ -104,7 +104,6 @@ typedef struct scene_gltf_reader {
      * SCENE_GLTF_UNTEXTURED, once looked up (SCENE_GLTF_UNSEEN before). */
     int *material_texture;
     unsigned without_coordinates; /* textured meshes with no texture coordinates, said once */
-    unsigned blended;             /* meshes of alphaMode BLEND, drawn opaque, said once */
     /* A file a scene file includes (scene_include_gltf): its objects'
      * names begin "PREFIX/", and they cast and receive as it says. NULL:
      * the file is the scene, every object casts and receives. */
@@ -231,22 +230,23 @@ static bool scene_gltf_texture(scene_gltf_reader *r, unsigned m, int *index) {
 }
 
 /* The material's alphaMode: MASK makes o a cut-out (scene_object), of
- * alphaCutoff (glTF's default 0.5) and the base colour's alpha; BLEND is
- * drawn opaque, counted to be said once. */
-static void scene_gltf_alpha(scene_gltf_reader *r, const struct aiMaterial *material, scene_object *o) {
+ * alphaCutoff (glTF's default 0.5) and the base colour's alpha; BLEND a
+ * translucent caster of that alpha. */
+static void scene_gltf_alpha(const struct aiMaterial *material, scene_object *o) {
     struct aiString mode;
     if (aiGetMaterialString(material, AI_MATKEY_GLTF_ALPHAMODE, &mode) != AI_SUCCESS)
         return;
-    if (strcmp(mode.data, "BLEND") == 0)
-        r->blended++;
-    if (strcmp(mode.data, "MASK") != 0)
+    bool mask = strcmp(mode.data, "MASK") == 0, blend = strcmp(mode.data, "BLEND") == 0;
+    if (!mask && !blend)
         return;
     struct aiColor4D base = {1, 1, 1, 1};
     float cutoff = SCENE_GLTF_ALPHA_CUTOFF;
     aiGetMaterialColor(material, AI_MATKEY_BASE_COLOR, &base);
     aiGetMaterialFloatArray(material, AI_MATKEY_GLTF_ALPHACUTOFF, &cutoff, NULL);
     o->base_alpha = isfinite(base.a) ? fminf(fmaxf(base.a, 0), 1) : 1;
-    o->alpha_cutoff = isfinite(cutoff) ? fmaxf(cutoff, 0) : SCENE_GLTF_ALPHA_CUTOFF;
+    o->translucent = blend;
+    if (mask)
+        o->alpha_cutoff = isfinite(cutoff) ? fmaxf(cutoff, 0) : SCENE_GLTF_ALPHA_CUTOFF;
 }
 
 /* Mesh i of the file as an object placed by `world`. A mirroring
@@ -283,7 +283,7 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
         return false;
     if (material) {
         mesh_material_color(r->a->mMaterials[am->mMaterialIndex], o->color);
-        scene_gltf_alpha(r, r->a->mMaterials[am->mMaterialIndex], o);
+        scene_gltf_alpha(r->a->mMaterials[am->mMaterialIndex], o);
     }
     if (texture >= 0 && !am->mTextureCoords[0])
         r->without_coordinates++;
@@ -539,9 +539,6 @@ static bool scene_gltf_read_objects(scene_gltf_reader *r, mat4 model) {
     if (r->removed.degenerate + r->removed.non_finite > 0)
         fprintf(stderr, "warning: %s: removed %u degenerate and %u non-finite triangles from its meshes\n", r->file,
                 r->removed.degenerate, r->removed.non_finite);
-    if (r->blended)
-        fprintf(stderr, "%s: %u meshes are translucent (alphaMode BLEND): drawn opaque, their shadows whole\n",
-                r->file, r->blended);
     if (r->without_coordinates)
         fprintf(stderr, "%s: %u textured meshes have no texture coordinates: their base colour alone\n", r->file,
                 r->without_coordinates);

@@ -170,6 +170,7 @@ bool capture_dump(const render_scene *gpu, const camera_view *view, const target
     ok = rgba && target_read_rgba(t, rgba);
     for (long i = 0; ok && i < (long)t->width * t->height; i++)
         out->visibility[i] = out->ids[i] < 0 ? -1.0f : rgba[i * 4] / 255.0f;
+    dump_frame_grey_rgb(out); /* no technique colours a shadow */
     free(rgba);
     /* Leave the target as it was: the picture, not the visibility. */
     ok = ok && render_frame(-1);

@@ -61,6 +61,10 @@
  * visible point is the barycentric one (see the top): the plane's
  * intersection then loses up to 1e-16 / cosine of the ray's length. */
 #define RAYTRACE_MIN_PLANE_COSINE 1e-6
+/* The most translucent triangles a shadow ray filters its light through;
+ * one that crosses more is blocked (a light that far filtered is all but
+ * gone). */
+#define RAYTRACE_MAX_CROSSED 64
 /* Embree's limit on a ray's coordinates (FLT_LARGE in its sources): past it
  * its ray.valid() check fails, an assertion in some builds. */
 #define RAYTRACE_MAX_COORDINATE 1.844e18f
@@ -78,6 +82,7 @@ typedef struct raytrace_object {
     const uint32_t *indices; /* the mesh's, 3 a triangle */
     mat3 normal_matrix;      /* scene_object_normal_matrix, as the raster side uses */
     bool casts;
+    const scene_object *translucent; /* the scene's object where it is a translucent caster, else NULL */
 } raytrace_object;
 
 struct raytrace_tracer {
@@ -118,6 +123,16 @@ typedef struct raytrace_shadow_context {
     double direction[3];      /* towards the light; unit for a point light */
     double end;               /* the ray's length along `direction` (infinite to a direction) */
     double surface_tolerance; /* the hit's (raytrace_hit) */
+    /* What the translucent triangles crossed so far let through, per
+     * channel, and which they are: Embree may report one triangle more
+     * than once (a high-quality build's spatial splits), and each filters
+     * the light once. Past RAYTRACE_MAX_CROSSED the ray is taken as
+     * blocked. */
+    float transmittance[3];
+    int crossed_count;
+    struct {
+        unsigned object, triangle;
+    } crossed[RAYTRACE_MAX_CROSSED];
 } raytrace_shadow_context;
 
 static float raytrace_dot(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -210,15 +225,35 @@ static bool raytrace_crosses_plane(const raytrace_shadow_context *c, const raytr
     return t > 0 && t <= c->end;
 }
 
+/* A translucent triangle the ray crosses: its light filtered by the
+ * triangle's transmittance at the crossing, once; false where the ray has
+ * crossed too many to follow (it is then blocked). */
+static bool raytrace_filter_through(raytrace_shadow_context *c, const struct RTCHit *hit, const scene_object *o) {
+    for (int k = 0; k < c->crossed_count; k++)
+        if (c->crossed[k].object == hit->geomID && c->crossed[k].triangle == hit->primID)
+            return true;
+    if (c->crossed_count == RAYTRACE_MAX_CROSSED)
+        return false;
+    c->crossed[c->crossed_count].object = hit->geomID;
+    c->crossed[c->crossed_count++].triangle = hit->primID;
+    const float weight[3] = {1.0f - hit->u - hit->v, hit->u, hit->v};
+    float through[3];
+    scene_object_transmittance(o, hit->primID, weight, through);
+    glm_vec3_mul(c->transmittance, through, c->transmittance);
+    return true;
+}
+
 /* The occlusion filter of every shadow ray: objects with "casts": false
- * block nothing, and every other hit is confirmed in double (see the top).
- * Shadow rays go through rtcOccluded1, so N is 1 and the hit is a plain
- * RTCHit. */
+ * block nothing, and every other hit is confirmed in double (see the top);
+ * a translucent caster's confirmed hit filters the light and lets the ray
+ * go on. Shadow rays go through rtcOccluded1, so N is 1 and the hit is a
+ * plain RTCHit. */
 static void raytrace_confirm_occlusion(const struct RTCFilterFunctionNArguments *args) {
-    const raytrace_shadow_context *c = (const raytrace_shadow_context *)args->context;
+    raytrace_shadow_context *c = (raytrace_shadow_context *)args->context;
     const struct RTCHit *hit = (const struct RTCHit *)args->hit;
     const raytrace_object *o = &c->tracer->objects[hit->geomID];
-    if (!o->casts || !raytrace_crosses_plane(c, o, hit->primID))
+    if (!o->casts || !raytrace_crosses_plane(c, o, hit->primID) ||
+        (o->translucent && raytrace_filter_through(c, hit, o->translucent)))
         args->valid[0] = 0;
 }
 
@@ -263,6 +298,7 @@ static bool raytrace_add_object(raytrace_tracer *t, int index) {
     scene_object_normal_matrix(o, r->normal_matrix);
     r->indices = m->indices;
     r->casts = o->casts;
+    r->translucent = o->translucent ? o : NULL;
     RTCGeometry geometry = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry)
         return false;
@@ -465,11 +501,14 @@ static void raytrace_surface(const raytrace_tracer *t, const struct RTCRayHit *r
         glm_vec3_negate(h->shading_normal);
 }
 
-/* Whether nothing that casts lies between the hit and `target`, a point
- * (w 1) or a direction to infinity (w 0), from the eye. A ray Embree would
- * refuse (the light nearer the surface than the margin, or beyond Embree's
- * range) is not traced: nothing is taken to block it. */
-static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *h, const float target[4]) {
+/* The share of light, per channel, that reaches the hit from `target`, a
+ * point (w 1) or a direction to infinity (w 0), from the eye: 0 where an
+ * opaque caster lies between, else what the translucent ones between let
+ * through (1 where none is). A ray Embree would refuse (the light nearer
+ * the surface than the margin, or beyond Embree's range) is not traced:
+ * nothing is taken to block it. */
+static void raytrace_transmitted(raytrace_shadow_context *c, const raytrace_hit *h, const float target[4],
+                                 float out[3]) {
     bool directional = target[3] == 0;
     for (int k = 0; k < 3; k++) {
         c->origin[k] = h->position[k];
@@ -491,23 +530,31 @@ static bool raytrace_unoccluded(raytrace_shadow_context *c, const raytrace_hit *
                          .dir_z = (float)c->direction[2],
                          .tfar = (float)c->end,
                          .mask = UINT32_MAX};
-    if (!raytrace_ray_valid(&ray))
-        return true;
-    rtcOccluded1(c->tracer->rtc, &c->embree, &ray);
-    return ray.tfar >= 0; /* Embree sets -inf on a hit */
+    glm_vec3_one(c->transmittance);
+    c->crossed_count = 0;
+    if (raytrace_ray_valid(&ray))
+        rtcOccluded1(c->tracer->rtc, &c->embree, &ray);
+    if (ray.tfar >= 0) /* Embree sets -inf on a hit */
+        glm_vec3_copy(c->transmittance, out);
+    else
+        glm_vec3_zero(out);
 }
 
-/* Fraction of light `index` reaching the hit: one ray for a hard light,
- * light_samples for an area light (area_light.h) spread about `to_light`,
- * the unit vector to its centre (0 at the centre itself). */
-static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *h, int index,
-                                 const float to_light[3], uint32_t pixel) {
+/* Fraction of light `index` reaching the hit, per channel: one ray for a
+ * hard light, light_samples for an area light (area_light.h) spread about
+ * `to_light`, the unit vector to its centre (0 at the centre itself). */
+static void raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *h, int index, const float to_light[3],
+                                uint32_t pixel, float out[3]) {
     const raytrace_tracer *t = c->tracer;
     const raytrace_light *l = &t->lights[index];
-    if (!t->scene->objects[h->object].receives)
-        return 1;
-    if (l->light->radius == 0)
-        return raytrace_unoccluded(c, h, l->position) ? 1.0f : 0.0f;
+    if (!t->scene->objects[h->object].receives) {
+        glm_vec3_one(out);
+        return;
+    }
+    if (l->light->radius == 0) {
+        raytrace_transmitted(c, h, l->position, out);
+        return;
+    }
     vec3 axis;
     glm_vec3_copy((float *)to_light, axis);
     if (raytrace_normalize(axis) == 0) /* at the centre every axis is as good */
@@ -515,13 +562,15 @@ static float raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit 
     area_light_frame frame;
     area_light_frame_for(l->light, l->position, axis, &frame);
     uint32_t seed = area_light_hash(pixel ^ area_light_hash((uint32_t)index));
-    int unoccluded = 0;
+    glm_vec3_zero(out);
     for (int k = 0; k < t->light_samples; k++) {
         vec4 target;
+        float through[3];
         area_light_sample(&frame, k, t->light_samples, area_light_hash(seed + (uint32_t)k), target);
-        unoccluded += raytrace_unoccluded(c, h, target);
+        raytrace_transmitted(c, h, target, through);
+        glm_vec3_add(out, through, out);
     }
-    return (float)unoccluded / (float)t->light_samples;
+    glm_vec3_divs(out, (float)t->light_samples, out);
 }
 
 /* The texture coordinates at p (from the eye) in the plane of corners v,
@@ -586,6 +635,16 @@ static void raytrace_albedo(const raytrace_tracer *t, const struct RTCRayHit *ra
     glm_vec3_mul(albedo, texel, albedo);
 }
 
+/* Light K's visibility at pixel i: its channels where the frame has
+ * them, and one figure, their own where they agree (every pixel of a
+ * scene without translucent casters, bit for bit), else their mean. */
+static void raytrace_store_visibility(const float visibility[3], size_t i, dump_frame *out) {
+    bool grey = visibility[0] == visibility[1] && visibility[1] == visibility[2];
+    out->visibility[i] = grey ? visibility[0] : (visibility[0] + visibility[1] + visibility[2]) / 3.0f;
+    if (out->visibility_rgb)
+        memcpy(out->visibility_rgb + 3 * i, visibility, 3 * sizeof *visibility);
+}
+
 static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext *primary,
                            raytrace_shadow_context *shadow, int x, int y, dump_frame *out) {
     size_t i = (size_t)y * (size_t)t->width + (size_t)x;
@@ -618,13 +677,13 @@ static void raytrace_pixel(const raytrace_tracer *t, struct RTCIntersectContext 
         bool reaches = (!spot || cos_axis > light->cos_outer) && window > 0;
         /* Light K's visibility is dumped wherever it reaches; the others
          * are traced only where they would add light. */
-        float visibility = 0;
+        float visibility[3] = {0, 0, 0};
         if (reaches && (l == t->light_index || unshadowed > 0))
-            visibility = raytrace_visibility(shadow, &h, l, to_light, (uint32_t)i);
+            raytrace_visibility(shadow, &h, l, to_light, (uint32_t)i, visibility);
         if (l == t->light_index)
-            out->visibility[i] = visibility;
+            raytrace_store_visibility(visibility, i, out);
         for (int k = 0; k < 3; k++)
-            color[k] += albedo[k] * light->radiance[k] * unshadowed * visibility;
+            color[k] += albedo[k] * light->radiance[k] * unshadowed * visibility[k];
     }
     out->depth[i] = (float)h.distance;
     out->ids[i] = (float)h.object;

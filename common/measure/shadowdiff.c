@@ -220,6 +220,7 @@ static long shadowdiff_count_non_finite(const dump_frame *d, const shadowdiff_ar
  * naming the first bad value's file and pixel. */
 static bool shadowdiff_check_finite(const dump_frame *d, const char *name, bool is_reference) {
     const shadowdiff_array arrays[] = {
+        {"visibility_rgb.pfm", d->visibility_rgb, 3, false, false},
         {"ids.pfm", d->ids, 1, true, false},
         {"depth.pfm", d->depth, 1, false, false},
         {"visibility.pfm", d->visibility, 1, false, false},
@@ -227,7 +228,7 @@ static bool shadowdiff_check_finite(const dump_frame *d, const char *name, bool 
         {"position.pfm", d->position, 3, false, true},
     };
     for (size_t a = 0; a < sizeof arrays / sizeof *arrays; a++) {
-        if (arrays[a].reference_only && !is_reference)
+        if ((arrays[a].reference_only && !is_reference) || !arrays[a].values)
             continue;
         size_t pixel = 0;
         float value = 0;
@@ -279,6 +280,8 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         return false;
     out->problem = SHADOWDIFF_PROBLEM_NONE;
     double error_sum = 0, class_error_sum[SHADOWDIFF_CLASS_COUNT] = {0}, min_cosine = shadowdiff_min_cosine(&s);
+    double channel_error_sum[3] = {0, 0, 0};
+    out->coloured = reference->visibility_rgb && test->visibility_rgb;
     size_t n = (size_t)reference->width * (size_t)reference->height;
     for (size_t i = 0; i < n; i++) {
         shadowdiff_pixel pixel = shadowdiff_classify(reference, test, i, receiver, min_cosine);
@@ -291,6 +294,9 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
             out->class_pixels[c]++;
             error_sum += error;
             class_error_sum[c] += error;
+            for (int k = 0; out->coloured && k < 3; k++)
+                channel_error_sum[k] += fabs((double)reference->visibility_rgb[3 * i + (size_t)k] -
+                                             test->visibility_rgb[3 * i + (size_t)k]);
         }
         if (heatmap_rgba)
             shadowdiff_paint(heatmap_rgba + 4 * i, pixel, reference->visibility[i]);
@@ -304,6 +310,8 @@ bool shadowdiff_compare(const dump_frame *reference, const dump_frame *test, con
         return false;
     }
     shadowdiff_result_figures(out, error_sum, class_error_sum);
+    for (int k = 0; out->coloured && k < 3; k++)
+        out->channel_mae[k] = channel_error_sum[k] / (double)out->compared;
     return true;
 }
 
@@ -316,6 +324,15 @@ void shadowdiff_result_add(shadowdiff_result *total, const shadowdiff_result *fr
                              frame->class_mae[c] * (double)frame->class_pixels[c];
         total->class_pixels[c] += frame->class_pixels[c];
     }
+    /* Coloured where every frame added is. */
+    bool coloured = frame->coloured && (total->coloured || total->compared == 0);
+    for (int k = 0; k < 3; k++)
+        total->channel_mae[k] = coloured && total->compared + frame->compared > 0
+                                    ? (total->channel_mae[k] * (double)total->compared +
+                                       frame->channel_mae[k] * (double)frame->compared) /
+                                          (double)(total->compared + frame->compared)
+                                    : 0;
+    total->coloured = coloured;
     total->compared += frame->compared;
     total->false_shadow += frame->false_shadow;
     total->false_lit += frame->false_lit;

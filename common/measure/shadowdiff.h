@@ -164,6 +164,13 @@ typedef struct shadowdiff_result {
     double mean_abs_error;
     long class_pixels[SHADOWDIFF_CLASS_COUNT]; /* of compared, by the reference's visibility */
     double class_mae[SHADOWDIFF_CLASS_COUNT];  /* over the class's pixels; 0 where it has none */
+    /* Coloured visibility (dump.h's visibility_rgb: a scene with
+     * translucent casters), where both dumps have it: the mean of
+     * |v_ref - v_test| of each channel, red, green, blue, over the
+     * compared pixels; the classes and decisions above read the one
+     * figure. */
+    bool coloured;
+    double channel_mae[3];
 } shadowdiff_result;
 
 /* No figure is given (shadowdiff_compare prints one line naming the dumps

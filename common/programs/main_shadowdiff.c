@@ -121,6 +121,10 @@ static void main_print_text(const shadowdiff_result *r, const dump_frame *refere
                shadowdiff_class_mae_text(r, (shadowdiff_class)c, MAIN_MAE_DECIMALS, mae, sizeof mae),
                r->class_pixels[c], meaning[c]);
     }
+    if (r->coloured)
+        printf("channel MAE      %.*f %.*f %.*f (red, green, blue: the light translucent casters colour)\n",
+               MAIN_MAE_DECIMALS, r->channel_mae[0], MAIN_MAE_DECIMALS, r->channel_mae[1], MAIN_MAE_DECIMALS,
+               r->channel_mae[2]);
 }
 
 /* Each class's "CLASS_mae" (null where it has no pixel) and
@@ -162,6 +166,11 @@ static bool main_print_json(const shadowdiff_result *r, const shadowdiff_shimmer
          cJSON_AddNumberToObject(root, "false_lit_percent", r->false_lit_percent) &&
          cJSON_AddNumberToObject(root, "misclassified_percent", r->misclassified_percent) &&
          cJSON_AddNumberToObject(root, "mean_abs_error", r->mean_abs_error) && main_add_class_json(root, r);
+    /* "channel_mae": [red, green, blue] where both dumps are coloured. */
+    if (ok && r->coloured) {
+        cJSON *channels = cJSON_CreateDoubleArray(r->channel_mae, 3);
+        ok = channels && cJSON_AddItemToObject(root, "channel_mae", channels);
+    }
     char *text = ok ? cJSON_PrintUnformatted(root) : NULL;
     cJSON_Delete(root);
     if (!text) {
