@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "path.h"
+#include "progress.h"
 #include "registry.h"
 #include "render.h"
 #include "support.h"
@@ -271,41 +272,61 @@ static void test_readme_flags_current(void **state) {
     assert_true(current);
 }
 
-/* Long work says how far it is, on a terminal only: build/raytrace's
- * rows done, on one line each band rewrites (through `script`, which
- * gives it a terminal); nothing under --quiet, nor where stderr is not a
- * terminal; the picture the same either way. */
-static void test_raytrace_progress(void **state) {
+/* Long work says how far it is, on a terminal only, on one line each
+ * step rewrites (through `script`, which gives it a terminal):
+ * build/raytrace's rows; build/shadows' frames headless, recording a
+ * video, a tour's (its steps' frames), and baking a truth (the rows traced
+ * while it waits for one). Nothing under --quiet, nor where stderr is not
+ * a terminal; the picture the same either way. */
+static void test_long_work_progress(void **state) {
     (void)state;
     if (!support_have_command("script")) {
         print_message("script (util-linux) is not installed here: skipped\n");
         skip();
     }
     static const struct {
-        bool terminal;
-        const char *flags, *picture;
-        bool progress;
-    } cases[] = {
-        {true, "", "out/test/progress_terminal.png", true},
-        {true, "--quiet", "out/test/progress_quiet.png", false},
-        {false, "", "out/test/progress_pipe.png", false},
+        const char *name, *program, *flags;
+        const char *said, *said_too; /* on a terminal (said_too: or NULL) */
+        const char *picture;         /* --screenshot's file, after out/test/progress_NAME_MODE */
+    } works[] = {
+        {"raytrace", "raytrace", "--size 64x36", "raytrace: rows 36 of 36", NULL, ".png"},
+        {"record", "shadows", "--backend egl --size 64x36 --frames 3 --record out/test/progress_record.mp4",
+         "shadows: frames 3 of 3", NULL, ".png"},
+        /* two steps of 3 frames each */
+        {"tour", "shadows",
+         "--backend egl --size 160x90 --tour tests/data/progress_tour.json --record out/test/progress_tour.mp4",
+         "shadows: frames 6 of 6", "shadows: frames 3 of 6, truth rows 17 of 17", "-2.png"},
+        {"bake", "shadows", "--backend egl --size 160x90 --compare --bake-truths out/test/progress_truths",
+         "shadows: frames 0 of 1, truth rows 17 of 17", "shadows: frames 1 of 1", ".png"},
     };
-    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        char run[512], command[1024];
-        snprintf(run, sizeof run, "%s --size 64x36 --screenshot %s %s", support_program("raytrace"), cases[i].picture,
-                 cases[i].flags);
-        if (cases[i].terminal)
-            snprintf(command, sizeof command, "{ script -qec \"%s\" /dev/null 1>&2; }", run);
-        else
-            snprintf(command, sizeof command, "%s", run);
-        assert_int_equal(support_run(command, err, sizeof err), 0);
-        bool said = strstr(err, "raytrace: rows 36 of 36") != NULL;
-        if (said != cases[i].progress)
-            fail_msg("%s: expected %s, said \"%s\"", command, cases[i].progress ? "its rows" : "no rows", err);
-        char same[512];
-        snprintf(same, sizeof same, "cmp -s %s %s", cases[0].picture, cases[i].picture);
-        assert_int_equal(system(same), 0);
-    }
+    static const struct {
+        const char *name;
+        bool terminal;
+        const char *flags;
+    } modes[] = {{"terminal", true, ""}, {"quiet", true, "--quiet"}, {"pipe", false, ""}};
+    for (size_t w = 0; w < sizeof works / sizeof *works; w++)
+        for (size_t m = 0; m < sizeof modes / sizeof *modes; m++) {
+            char run[1024], command[1200];
+            snprintf(run, sizeof run, "%s %s --screenshot out/test/progress_%s_%s.png %s",
+                     support_program(works[w].program), works[w].flags, works[w].name, modes[m].name, modes[m].flags);
+            if (modes[m].terminal)
+                snprintf(command, sizeof command, "{ script -qec \"%s\" /dev/null 1>&2; }", run);
+            else
+                snprintf(command, sizeof command, "%s", run);
+            int status = support_run(command, err, sizeof err);
+            if (status != 0)
+                fail_msg("%s: exit %d, said \"%s\"", command, status, err);
+            bool expected = modes[m].terminal && !modes[m].flags[0];
+            bool said = strstr(err, works[w].said) && (!works[w].said_too || strstr(err, works[w].said_too));
+            bool any = strstr(err, PROGRESS_REWRITE) != NULL;
+            if (expected ? !said : any)
+                fail_msg("%s: expected %s, said \"%s\"", command, expected ? works[w].said : "no progress", err);
+            char same[512];
+            snprintf(same, sizeof same, "cmp -s out/test/progress_%s_%s%s out/test/progress_%s_%s%s", works[w].name,
+                     modes[0].name, works[w].picture, works[w].name, modes[m].name, works[w].picture);
+            if (system(same) != 0)
+                fail_msg("%s: the picture differs from the terminal's", command);
+        }
 }
 
 /* A headless run that writes nothing says so, and names the flags that
@@ -399,7 +420,7 @@ int main(void) {
         cmocka_unit_test(test_help_lists_flags_and_toggles),
         cmocka_unit_test(test_readme_flags_current),
         cmocka_unit_test(test_headless_run_says_nothing_written),
-        cmocka_unit_test(test_raytrace_progress),
+        cmocka_unit_test(test_long_work_progress),
         cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
         cmocka_unit_test(test_record_writes_a_video),
         cmocka_unit_test(test_gl_error_in_any_technique_fails),

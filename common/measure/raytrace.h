@@ -31,8 +31,8 @@ typedef struct raytrace_settings {
     bool verbose;
     const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
     /* NULL, or called with the rows done so far after each of
-     * RAYTRACE_PROGRESS_BANDS bands (at most one a row; raytrace_render
-     * only): the picture is the same. */
+     * RAYTRACE_PROGRESS_BANDS bands (at most one a row; raytrace_render,
+     * and truth_wait while it waits, truth.h): the picture is the same. */
     void (*progress)(int rows_done, int rows);
 } raytrace_settings;
 #define RAYTRACE_PROGRESS_BANDS 50

@@ -196,8 +196,16 @@ bool truth_take(truth *t, truth_frame *shown) {
 
 void truth_wait(truth *t) {
     mtx_lock(&t->lock);
-    while (t->has_request && (t->busy || t->tracing != t->request_count))
+    int shown = -1; /* the rows last handed to the settings' progress */
+    for (;;) {
+        if (t->settings.progress && t->has_request && t->tracing == t->request_count && t->traced_rows != shown) {
+            shown = t->traced_rows;
+            t->settings.progress(shown, t->height);
+        }
+        if (!t->has_request || (!t->busy && t->tracing == t->request_count))
+            break;
         cnd_wait(&t->changed, &t->lock);
+    }
     mtx_unlock(&t->lock);
 }
 

@@ -101,7 +101,9 @@ void truth_request(truth *t, const scene *s, int light_index);
  * at the end) what is new since its last take: returns whether anything
  * changed. */
 bool truth_take(truth *t, truth_frame *shown);
-/* Until the latest request is traced (or failed). */
+/* Until the latest request is traced (or failed); meanwhile the
+ * settings' progress, where given, hears the rows traced of it as they
+ * grow, the last count always (from this thread, not the tracing one). */
 void truth_wait(truth *t);
 /* Drops the request and waits until the thread holds nothing of the scene
  * (before it changes or is freed); the next request starts afresh. */

@@ -23,6 +23,7 @@
 #include "json.h"
 #include "motion.h"
 #include "path.h"
+#include "progress.h"
 #include "raytrace.h"
 #include "shader.h"
 #include "shadowdiff.h"
@@ -58,6 +59,7 @@ static struct {
     int width, height;
     int frames;            /* 0: not given, so one frame headless or a window */
     bool verbose, animate; /* animate: --motion light, the space key flips it */
+    bool quiet;            /* --quiet: no progress */
     bool hud_in_pictures;  /* --hud: headless pictures carry the HUD too */
     bool hud_compact;      /* --hud-compact, Tab: the caption, technique and settings only */
     bool hud_counters;     /* --verbose, F3: the skips' counters and the hybrid's rays on the HUD */
@@ -98,6 +100,8 @@ static struct {
     double time;
     video video;               /* --record: open while recording */
     unsigned char *frame_rgba; /* the picture read back for the video */
+    progress progress;         /* headless: the frames done (app_show_progress) */
+    int frames_done, frames_total;
     /* window */
     bool show_help, dragging, resized;
     double drag_x, drag_y, frame_ms;
@@ -187,6 +191,9 @@ static const flags_param app_flags[] = {
     {"verbose",
      "print the backend and GL renderer, each model's triangles\nand bounds, and at the end the technique's state line and\nthe skips' lines; the skips' counters and the rays a\ntechnique casts on the HUD too (F3)",
      0, FLAGS_SWITCH, .on = &app.verbose},
+    {"quiet",
+     "no progress (headless, the frames done and the truth's rows\nwhile waiting for it, on stderr where it is a terminal)",
+     0, FLAGS_SWITCH, .on = &app.quiet},
     {"flags-markdown", "print every flag and key as the README's markdown tables\n(make readme-flags), then exit", 0,
      FLAGS_SWITCH, .on = &app.flags_markdown},
     {.name = "help", .help = "this text", .kind = FLAGS_HELP},
@@ -404,6 +411,47 @@ static bool app_dump(const char *dir) {
     return ok;
 }
 
+/* ---- progress ---- */
+
+/* Headless, the frames done of the run's, and while a compare frame waits
+ * for its truth (truth_rows of truth_height; 0 of 0: none) the rows traced
+ * of it: raytrace_settings' progress. A finished truth's line is erased
+ * at once: compare mode may print the folder it bakes it into next. */
+static void app_show_progress(int truth_rows, int truth_height) {
+    if (truth_height > 0)
+        progress_show(&app.progress, "frames %d of %d, truth rows %d of %d", app.frames_done, app.frames_total,
+                      truth_rows, truth_height);
+    else
+        progress_show(&app.progress, "frames %d of %d", app.frames_done, app.frames_total);
+    if (truth_height > 0 && truth_rows == truth_height)
+        progress_clear(&app.progress);
+}
+
+/* The frames tour step s renders headless, [*first, *end): with a video
+ * each of its frames; else only the one it shows (the same picture:
+ * frames are a function of their time). */
+static void app_step_frames(const tour_step *s, int *first, int *end) {
+    *first = app.record_path ? 0 : s->shown_frame;
+    *end = app.record_path ? s->frame_count : s->shown_frame + 1;
+}
+
+/* The run's progress: headless only, where it renders more than one frame
+ * or has a truth to wait for. */
+static void app_start_progress(void) {
+    int frames = app.frames ? app.frames : APP_HEADLESS_FRAMES;
+    if (app.tour_path)
+        frames = 0;
+    for (int k = 0; app.tour_path && k < app.tour.step_count; k++) {
+        int first, end;
+        app_step_frames(&app.tour.steps[k], &first, &end);
+        frames += end - first;
+    }
+    app.frames_done = 0;
+    app.frames_total = frames;
+    bool wanted = !app.ctx.window && !app.gallery_count && (frames > 1 || app.compare_on || app.tour_path);
+    progress_start(&app.progress, app.program, app.quiet || !wanted);
+}
+
 /* ---- compare mode ---- */
 
 /* The frame's targets for a picture of width x height: in compare mode the
@@ -411,7 +459,8 @@ static bool app_dump(const char *dir) {
 static bool app_create_targets(int width, int height) {
     if (!app.compare_on)
         return target_create(&app.target, width, height);
-    const raytrace_settings settings = {.scene_name = app.scene_path};
+    const raytrace_settings settings = {.scene_name = app.scene_path,
+                                        .progress = app.progress.on ? app_show_progress : NULL};
     if (!compare_create(&app.comparing, width, height, &settings, raytrace_available() ? NULL : app.baked_truths))
         return false;
     app.comparing.bake_into = app.bake_truths_dir;
@@ -456,6 +505,7 @@ static bool app_render_picture(bool wait) {
 
 /* Headless, what a compare picture measured. */
 static void app_print_compared(void) {
+    progress_clear(&app.progress);
     char figures[512];
     compare_figures_text(&app.comparing, figures, sizeof figures);
     printf("compare: %s on %s: %s\n", app_technique()->name, app.scene_path, figures);
@@ -500,23 +550,27 @@ static bool app_stop_recording(void) {
 }
 
 /* Headless frame i at time i/60 s; `kept` (a screenshot's) or a video's
- * carries the HUD with --hud. */
+ * carries the HUD with --hud. Counted in the run's progress. */
 static bool app_headless_frame(int i, bool kept) {
     app.time = i / APP_HEADLESS_FPS;
     kept = kept || app.video.pipe;
     /* Only a kept frame needs the truth. */
-    return (kept ? app_render_picture(true) : app_render_frame(-1)) && (!kept || app_hud_in_picture(i)) &&
-           (!app.video.pipe || app_record_frame());
+    bool ok = (kept ? app_render_picture(true) : app_render_frame(-1)) && (!kept || app_hud_in_picture(i)) &&
+              (!app.video.pipe || app_record_frame());
+    app.frames_done++;
+    app_show_progress(0, 0);
+    return ok;
 }
 
 /* Renders `frames` frames at the fixed headless rate, each into the video
  * when recording, then the screenshot (with --hud, the HUD drawn over
  * what is kept). */
 static bool app_run_headless(int frames, const char *screenshot) {
-    for (int i = 0; i < frames; i++)
-        if (!app_headless_frame(i, screenshot && i == frames - 1))
-            return false;
-    return !screenshot || app_save_screenshot(screenshot);
+    bool ok = true;
+    for (int i = 0; i < frames && ok; i++)
+        ok = app_headless_frame(i, screenshot && i == frames - 1);
+    progress_end(&app.progress);
+    return ok && (!screenshot || app_save_screenshot(screenshot));
 }
 
 /* ---- tours ---- */
@@ -594,18 +648,20 @@ static bool app_step_screenshot(int k) {
     snprintf(path, sizeof path, "%.*s-%d.png", stem, app.screenshot, k + 1);
     if (!app_save_screenshot(path))
         return false;
+    progress_clear(&app.progress);
     printf("%s\n", path);
     return true;
 }
 
-/* Every step headless: with a video, each of its frames; else only the
- * one it shows (the same picture: frames are a function of their time). */
+/* Every step headless, its frames app_step_frames'. */
 static bool app_run_tour_headless(void) {
     bool ok = true;
     for (int k = 0; k < app.tour.step_count && ok; k++) {
         const tour_step *s = &app.tour.steps[k];
+        progress_clear(&app.progress); /* loading the step's scene may say something */
         ok = app_enter_step(k);
-        int first = app.video.pipe ? 0 : s->shown_frame, end = app.video.pipe ? s->frame_count : s->shown_frame + 1;
+        int first, end;
+        app_step_frames(s, &first, &end);
         for (int i = first; i < end && ok; i++)
             ok = app_headless_frame(i, app.screenshot && i == s->shown_frame) &&
                  (!app.screenshot || i != s->shown_frame || app_step_screenshot(k));
@@ -613,6 +669,7 @@ static bool app_run_tour_headless(void) {
             app_print_compared();
         app_leave_step();
     }
+    progress_end(&app.progress);
     return ok;
 }
 
@@ -1165,6 +1222,7 @@ static bool app_run(void) {
     int width = app.width, height = app.height;
     if (app.ctx.window)
         glfwGetFramebufferSize(app.ctx.window, &width, &height);
+    app_start_progress();
     /* The HUD's text is also every legend's (compare mode's, the
      * techniques' overlays'), so it is there in every run. */
     bool ok = app_create_targets(width, height) && hud_init();

@@ -8,7 +8,6 @@
  * 2 a bad command line. Every error is one line on stderr.
  */
 #include <limits.h>
-#include <unistd.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +17,7 @@
 #include "image.h"
 #include "motion.h"
 #include "path.h"
+#include "progress.h"
 #include "raytrace.h"
 
 #define MAIN_EXIT_RUNTIME 1
@@ -30,6 +30,7 @@ static struct {
     int frames; /* 0: not given, the scene as it is (frame 0) */
     raytrace_settings settings;
     bool quiet; /* --quiet: no progress */
+    progress progress;
     const char *scene_path, *screenshot, *dump_dir;
     char default_scene[PATH_MAX];
 } main_flags;
@@ -78,11 +79,9 @@ static void main_usage(void) {
            RAYTRACE_SURFACE_ULPS);
 }
 
-/* The rows done, on one line that each band rewrites, then ended. */
+/* The rows done, on the line each band rewrites. */
 static void main_progress(int rows_done, int rows) {
-    fprintf(stderr, "\r%s: rows %d of %d", main_flags.program, rows_done, rows);
-    if (rows_done == rows)
-        fputc('\n', stderr);
+    progress_show(&main_flags.progress, "rows %d of %d", rows_done, rows);
 }
 
 static int main_run(void) {
@@ -103,12 +102,14 @@ static int main_run(void) {
     motion_lights((motion_kind)main_flags.motion, time, base_camera.target, base_lights, s.light_count, s.lights);
     motion_camera((motion_kind)main_flags.motion, time, &base_camera, &s.camera);
     main_flags.settings.scene_name = main_flags.scene_path;
-    if (!main_flags.quiet && isatty(STDERR_FILENO))
+    progress_start(&main_flags.progress, main_flags.program, main_flags.quiet);
+    if (main_flags.progress.on)
         main_flags.settings.progress = main_progress;
     double start = omp_get_wtime();
     dump_frame frame;
     bool ok = raytrace_render(&s, main_flags.width, main_flags.height, main_flags.light_index, &main_flags.settings,
                               &frame);
+    progress_end(&main_flags.progress);
     double seconds = omp_get_wtime() - start;
     if (ok) {
         ok = (!main_flags.screenshot ||
