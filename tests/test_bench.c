@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "image.h"
+#include "plot.h"
 #include "support.h"
 
 #define OUT "out/test/bench"
@@ -171,7 +172,7 @@ static int csv_fields(char *line, char **fields, int max) {
 
 /* What the tests look at in a row of results.csv. */
 typedef struct csv_row {
-    char technique[32], parameters[256], motion[16], skips[8], shimmer[16];
+    char scene[64], technique[32], parameters[256], motion[16], skips[8], shimmer[16];
     double misclassified, mae;
     long compared;
     long class_pixels[3];
@@ -242,6 +243,7 @@ static int read_csv(const char *dir, csv_row *rows) {
         assert_true(n < CSV_MAX_ROWS);
         csv_row *r = &rows[n++];
         r->interval = interval;
+        snprintf(r->scene, sizeof r->scene, "%s", fields[0]);
         snprintf(r->technique, sizeof r->technique, "%s", fields[1]);
         snprintf(r->parameters, sizeof r->parameters, "%s", fields[2]);
         snprintf(r->motion, sizeof r->motion, "%s", fields[CSV_MOTION]);
@@ -636,6 +638,40 @@ static void test_plots_are_images(void **state) {
         check_plots(OUT, scenes[i], hard_plot_prefixes, HARD_PLOTS);
 }
 
+/* Each scene's misclassified plot has a log axis where its figures span
+ * decades (the floor's percents against a few thousandths), and a linear
+ * one where they lie within a decade; the CSV's rounding is kept away
+ * from the boundary by a factor of PLOT_AXIS_MARGIN either way. Some
+ * scene of the run spans decades, so the check is not empty. */
+#define PLOT_AXIS_MARGIN 2.0
+static void test_plots_log_axis_where_figures_span_decades(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(OUT, rows), spanning = 0;
+    for (size_t s = 0; s < SCENE_COUNT; s += SCENE_STRIDE) {
+        double low = INFINITY, high = 0;
+        bool zero = false;
+        for (int i = 0; i < n; i++)
+            if (strcmp(rows[i].scene, scenes[s]) == 0) {
+                if (rows[i].misclassified > 0)
+                    low = fmin(low, rows[i].misclassified), high = fmax(high, rows[i].misclassified);
+                else
+                    zero = true;
+            }
+        char path[256];
+        snprintf(path, sizeof path, "%s/pareto_%s.gp", OUT, scenes[s]);
+        bool log = strstr(read_file(path), "set logscale y\n") != NULL;
+        if (high / low > PLOT_LOG_SPAN * PLOT_AXIS_MARGIN) {
+            spanning++;
+            if (!log)
+                fail_msg("%s: misclassified from %g %% to %g %%, but a linear axis", path, low, high);
+        } else if (!zero && high / low < PLOT_LOG_SPAN / PLOT_AXIS_MARGIN && log) {
+            fail_msg("%s: misclassified from %g %% to %g %%, but a log axis", path, low, high);
+        }
+    }
+    assert_true(spanning > 0);
+}
+
 /* An area light's scene: every row has penumbra pixels (the truth's) and
  * their MAE; the penumbra's plot and fronts are there; shadowmap's soft
  * default draws the penumbra closer to the truth than itself drawn hard
@@ -673,6 +709,7 @@ int main(void) {
         cmocka_unit_test(test_csv_has_every_configuration),
         cmocka_unit_test(test_report_has_a_table_front_and_comparison_per_scene),
         cmocka_unit_test(test_plots_are_images),
+        cmocka_unit_test(test_plots_log_axis_where_figures_span_decades),
         cmocka_unit_test(test_soft_scene_measures_the_penumbra),
         cmocka_unit_test(test_selection_keeps_the_floor),
         cmocka_unit_test(test_interval_needs_the_frames),

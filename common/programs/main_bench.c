@@ -54,6 +54,7 @@
 #include "median_interval.h"
 #include "motion.h"
 #include "path.h"
+#include "plot.h"
 #include "raytrace.h"
 #include "registry.h"
 #include "results_csv.h"
@@ -71,7 +72,6 @@
 /* Frame k is at k / BENCH_FRAME_RATE seconds, as the app's headless frames
  * are (app.c), so a bench frame is the frame `--frames` renders there. */
 #define BENCH_FRAME_RATE MOTION_FRAME_RATE
-#define BENCH_SCALING_MARGIN 1.5
 /* The MAE's decimals: results.csv's, the report's. */
 #define BENCH_MAE_DECIMALS 6
 #define BENCH_REPORT_MAE_DECIMALS 5
@@ -971,18 +971,15 @@ static int bench_selected_techniques(const technique **out) {
     return n;
 }
 
-/* Writes OUT/NAME.gp's head (terminal, output OUT/NAME.png, title, axis
- * labels) and leaves it open for the plot command; NULL on failure. */
-static FILE *bench_open_script(const char *name, char *path, size_t size, const char *title, const char *xlabel,
-                               const char *ylabel) {
-    char file[160];
+/* Opens OUT/NAME.gp with its head (plot_write_head: OUT/NAME.png and the
+ * title) for the axes and the plot command; NULL on failure. */
+static FILE *bench_open_script(const char *name, char *path, size_t size, const char *title) {
+    char file[160], picture[PATH_MAX];
     snprintf(file, sizeof file, "%s.gp", name);
+    snprintf(picture, sizeof picture, "%s/%s.png", bench.out_dir, name);
     FILE *g = bench_open(file, path, size);
     if (g)
-        fprintf(g,
-                "set terminal pngcairo size 960,640 font ',11'\nset output '%s/%s.png'\n"
-                "set title '%s' noenhanced\nset xlabel '%s'\nset ylabel '%s'\nset grid\nset key outside right\n",
-                bench.out_dir, name, title, xlabel, ylabel);
+        plot_write_head(g, picture, title);
     return g;
 }
 
@@ -998,54 +995,68 @@ static bool bench_run_script(FILE *g, const char *script) {
     return ok;
 }
 
-/* Time against `error` on the scene: one gnuplot data block per
- * technique (its configurations), then that figure's front, as a line from
- * the fastest to the most accurate. */
+/* Time against `error` on the scene (plot.h): each technique's
+ * configurations, a symbol per technique, and that figure's front,
+ * numbered from the fastest to the most accurate. */
 static bool bench_plot(const char *scene, bench_error error) {
-    /* "pareto_mae_" and a scene name (scene_names: 128) */
-    char name[144], data_name[160], data[PATH_MAX], script[PATH_MAX];
-    snprintf(name, sizeof name, "%s_%s", bench_errors[error].plot, scene);
-    snprintf(data_name, sizeof data_name, "%s.dat", name);
-    FILE *d = bench_open(data_name, data, sizeof data);
-    if (!d)
-        return false;
     const technique *techniques[BENCH_MAX_TECHNIQUES];
-    int blocks = bench_selected_techniques(techniques);
-    for (int t = 0; t < blocks; t++) {
+    const char *series[BENCH_MAX_TECHNIQUES];
+    int series_count = bench_selected_techniques(techniques);
+    for (int t = 0; t < series_count; t++)
+        series[t] = techniques[t]->name;
+    static plot_point points[BENCH_MAX_ROWS];
+    static const bench_row *plotted[BENCH_MAX_ROWS];
+    int point_count = 0;
+    for (int t = 0; t < series_count; t++)
         for (int i = 0; i < bench.row_count; i++) {
             const bench_row *r = &bench.rows[i];
             if (strcmp(r->scene, scene) == 0 && strcmp(r->technique, techniques[t]->name) == 0 &&
-                bench_in_front_set(r) && bench_has_error(r, error))
-                fprintf(d, "%g %g \"%s\"\n", r->frame_ms, bench_error_of(r, error), bench_config_label(r->config));
+                bench_in_front_set(r) && bench_has_error(r, error)) {
+                plotted[point_count] = r;
+                points[point_count++] = (plot_point){r->frame_ms, bench_error_of(r, error), t};
+            }
         }
-        fprintf(d, "\n\n");
-    }
-    const bench_row *front[BENCH_MAX_ROWS];
+    static const bench_row *front_rows[BENCH_MAX_ROWS];
+    static int front[BENCH_MAX_ROWS];
+    static char names[BENCH_MAX_ROWS][160];
+    static const char *front_names[BENCH_MAX_ROWS];
     int front_count = 0;
     for (int i = 0; i < bench.row_count; i++)
         if (strcmp(bench.rows[i].scene, scene) == 0 && bench_on_front(&bench.rows[i], false, error))
-            front[front_count++] = &bench.rows[i];
-    qsort(front, (size_t)front_count, sizeof *front, bench_compare_rows_by_time);
-    for (int i = 0; i < front_count; i++)
-        fprintf(d, "%g %g\n", front[i]->frame_ms, bench_error_of(front[i], error));
-    char title[512], xlabel[64];
+            front_rows[front_count++] = &bench.rows[i];
+    qsort(front_rows, (size_t)front_count, sizeof *front_rows, bench_compare_rows_by_time);
+    for (int k = 0; k < front_count; k++) {
+        for (int i = 0; i < point_count; i++)
+            if (plotted[i] == front_rows[k])
+                front[k] = i;
+        snprintf(names[k], sizeof names[k], "%s: %s", front_rows[k]->technique,
+                 bench_config_label(front_rows[k]->config));
+        front_names[k] = names[k];
+    }
+    char name[144], script[PATH_MAX], title[512], xlabel[64];
+    snprintf(name, sizeof name, "%s_%s", bench_errors[error].plot, scene);
     snprintf(title, sizeof title, "%s: run time against %s (%s, motion %s, skips %s)", scene,
              bench_errors[error].name, bench.ctx.renderer, motion_names[bench.motion],
              bench_skips_text(bench.no_skip_settings[0]));
     snprintf(xlabel, sizeof xlabel, "%s ms per frame (median)", bench_time_basis());
-    FILE *g = bench_close(d, data)
-                  ? bench_open_script(name, script, sizeof script, title, xlabel, bench_errors[error].label)
-                  : NULL;
+    const plot_pareto plot = {
+        .xlabel = xlabel,
+        .ylabel = bench_errors[error].label,
+        .series = series,
+        .series_count = series_count,
+        .points = points,
+        .point_count = point_count,
+        .front = front,
+        .front_names = front_names,
+        .front_count = front_count,
+    };
+    FILE *g = bench_open_script(name, script, sizeof script, title);
     if (!g)
         return false;
-    fprintf(g, "set offsets graph 0.05, graph 0.25, graph 0.1, 0\nset yrange [0:*]\nplot ");
-    for (int t = 0; t < blocks; t++)
-        fprintf(g,
-                "'%s' index %d using 1:2 with points pointsize 2 pointtype %d title '%s', "
-                "'' index %d using 1:2:3 with labels offset 1,0.7 font ',8' left notitle, ",
-                data, t, 5 + 2 * t, techniques[t]->name, t);
-    fprintf(g, "'%s' index %d using 1:2 with lines dashtype 2 linecolor 'grey40' title 'Pareto front'\n", data,
-            blocks);
+    if (!plot_pareto_write(g, &plot)) {
+        bench_close(g, script);
+        return false;
+    }
     return bench_run_script(g, script);
 }
 
@@ -1056,15 +1067,19 @@ static int bench_compare_scenes_by_objects(const void *a, const void *b) {
 
 /* --scaling: one data block per technique and skips setting, its
  * defaults' ms per frame on each scene in order of object count; a line
- * each, solid with skips on, dashed off. */
+ * each, solid with skips on, dashed off; each axis as plot.h fits it. */
 static bool bench_plot_scaling(void) {
     char data[PATH_MAX], script[PATH_MAX];
     FILE *d = bench_open("scaling.dat", data, sizeof data);
     if (!d)
         return false;
     int order[BENCH_MAX_SCENES];
-    for (int s = 0; s < bench.scene_count; s++)
+    double objects[BENCH_MAX_SCENES], ms[BENCH_MAX_ROWS];
+    int ms_count = 0;
+    for (int s = 0; s < bench.scene_count; s++) {
         order[s] = s;
+        objects[s] = bench.scene_objects[s];
+    }
     qsort(order, (size_t)bench.scene_count, sizeof *order, bench_compare_scenes_by_objects);
     const technique *techniques[BENCH_MAX_TECHNIQUES];
     int technique_count = bench_selected_techniques(techniques);
@@ -1073,8 +1088,10 @@ static bool bench_plot_scaling(void) {
             for (int s = 0; s < bench.scene_count; s++) {
                 const bench_row *r =
                     bench_find_row(bench.scene_names[order[s]], techniques[t]->name, "", bench.no_skip_settings[k]);
-                if (r)
+                if (r) {
                     fprintf(d, "%d %g\n", bench.scene_objects[order[s]], r->frame_ms);
+                    ms[ms_count++] = r->frame_ms;
+                }
             }
             fprintf(d, "\n\n");
         }
@@ -1082,16 +1099,13 @@ static bool bench_plot_scaling(void) {
     snprintf(title, sizeof title, "time per frame against object count (%s, motion %s, %s time)", bench.ctx.renderer,
              motion_names[bench.motion], bench_time_basis());
     snprintf(ylabel, sizeof ylabel, "%s ms per frame (median), defaults", bench_time_basis());
-    FILE *g = bench_close(d, data) ? bench_open_script("scaling", script, sizeof script, title,
-                                                       "objects in the scene (log scale)", ylabel)
-                                   : NULL;
+    FILE *g = bench_close(d, data) ? bench_open_script("scaling", script, sizeof script, title) : NULL;
     if (!g)
         return false;
-    /* A factor of BENCH_SCALING_MARGIN of room either side on the log
-     * axis, which also gives a run of one scene a range. */
-    fprintf(g, "set logscale x\nset xrange [%g:%g]\nset yrange [0:*]\nplot ",
-            bench.scene_objects[order[0]] / BENCH_SCALING_MARGIN,
-            bench.scene_objects[order[bench.scene_count - 1]] * BENCH_SCALING_MARGIN);
+    const plot_axis x = plot_axis_fit(objects, bench.scene_count), y = plot_axis_fit(ms, ms_count);
+    plot_axis_write(g, &x, 'x', "objects in the scene");
+    plot_axis_write(g, &y, 'y', ylabel);
+    fprintf(g, "plot ");
     for (int t = 0, block = 0; t < technique_count; t++)
         for (int k = 0; k < bench.setting_count; k++, block++) {
             bool no_skip = bench.no_skip_settings[k];
