@@ -327,6 +327,36 @@ static double determinant3(const float m[4][4]) {
            (double)m[2][0] * ((double)m[0][1] * m[1][2] - (double)m[1][1] * m[0][2]);
 }
 
+/* A light inside a closed caster, with the eye outside it, lights nothing
+ * the eye sees: the load says so in one line and succeeds. Not for a light
+ * just outside the caster though within its bounds, nor one on its surface,
+ * nor one in a closed room the eye is in too, nor one in a closed object
+ * that casts nothing. */
+static void test_light_inside_closed_caster_is_said(void **state) {
+    (void)state;
+    static const struct {
+        const char *path, *said;
+    } cases[] = {
+        {"tests/data/vol_light_inside_bunny.json",
+         "tests/data/vol_light_inside_bunny.json: light 0 lies inside object 1 (bunny): it lights nothing outside "
+         "it\n"},
+        {"tests/data/vol_light_inside_box.json",
+         "tests/data/vol_light_inside_box.json: light 0 lies inside object 1 (box): it lights nothing outside it\n"},
+        {"tests/data/scene_light_outside_bunny.json", ""},
+        {"tests/data/vol_light_on_box_face.json", ""},
+        {"tests/data/scene_light_in_room.json", ""},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        scene s;
+        support_capture_stderr();
+        bool loaded = scene_load(&s, cases[i].path);
+        const char *text = support_release_stderr();
+        if (!loaded || strcmp(text, cases[i].said) != 0)
+            fail_msg("%s: loaded %d, said \"%s\"; expected \"%s\"", cases[i].path, loaded, text, cases[i].said);
+        scene_free(&s);
+    }
+}
+
 /* tests/data/mirror_mirrored.json and mirror_unmirrored.json are each
  * other's mirror image in x = 0 (see tests/test_mirror.c), mirrored
  * objects in both. Every object gets a positive determinant, its world
@@ -478,6 +508,7 @@ int main(void) {
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_model_colour_and_models_printed),
         cmocka_unit_test(test_light_range),
+        cmocka_unit_test(test_light_inside_closed_caster_is_said),
         cmocka_unit_test(test_mirrored_objects),
         cmocka_unit_test(test_far_from_origin),
         cmocka_unit_test(test_bad_scenes),

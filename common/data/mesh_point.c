@@ -49,9 +49,9 @@ static double mesh_point_solid_angle(const float *a, const float *b, const float
     return 2 * atan2(det, denominator);
 }
 
-bool mesh_point_inside(const mesh *m, const float point[4]) {
+double mesh_point_winding(const mesh *m, const float point[4]) {
     if (point[3] == 0)
-        return false; /* a direction: at infinity, outside every mesh */
+        return 0; /* a direction: at infinity, outside every mesh */
     /* A point on a triangle edge-on to it lies within this of the
      * triangle: its distances to the corners sum to at most 3 diagonals
      * (and a little: 4). */
@@ -59,16 +59,18 @@ bool mesh_point_inside(const mesh *m, const float point[4]) {
         4 * glm_vec3_distance((float *)m->bounds_min, (float *)m->bounds_max) / MESH_POINT_EDGE_ON_RECIPROCAL;
     for (int k = 0; k < 3; k++)
         if (!(point[k] >= m->bounds_min[k] - margin && point[k] <= m->bounds_max[k] + margin))
-            return false;
+            return 0;
     double total = 0;
     for (uint32_t t = 0; t < m->index_count / 3; t++) {
         const uint32_t *corner = &m->indices[t * 3];
         total += mesh_point_solid_angle(m->vertices[corner[0]].position, m->vertices[corner[1]].position,
                                         m->vertices[corner[2]].position, point);
     }
-    /* The winding number: 1 inside, 0 outside, 1/2 on the surface (-1
-     * inside a mesh wound inwards). */
-    return total / (4 * GLM_PI) > MESH_POINT_INSIDE_WINDING;
+    return total / (4 * GLM_PI);
+}
+
+bool mesh_point_inside(const mesh *m, const float point[4]) {
+    return mesh_point_winding(m, point) > MESH_POINT_INSIDE_WINDING;
 }
 
 void mesh_point_to_object(const mat4 model, const float point[4], float out[4]) {

@@ -3,7 +3,8 @@
  * triangle faces it, whether it lies inside the mesh, and the point in an
  * object's own space. The shadow volumes weigh triangles by it
  * (demos/lib/volume_mesh.h); the shadow maps ask whether the eye or a
- * light is inside a closed caster. No GL.
+ * light is inside a closed caster, and a scene's load whether a light is
+ * (scene.h). No GL.
  */
 #ifndef MESH_POINT_H
 #define MESH_POINT_H
@@ -31,16 +32,20 @@ void mesh_point_from(const float *p, const float point[4], float out[3]);
 int mesh_point_facing(const float *a, const float *b, const float *c, const float point[4]);
 
 /* The winding number above which a point is inside a closed mesh, or on
- * it (1/2). */
+ * it (1/2); and above which it is inside, off its surface. */
 #define MESH_POINT_INSIDE_WINDING 0.25
+#define MESH_POINT_WITHIN_WINDING 0.75
+/* The generalized winding number of mesh m (closed, wound outwards) about
+ * the point (m's space): the triangles' signed solid angles over 4 pi
+ * (Jacobson et al. 2013), 1 inside, 0 outside, 1/2 on the surface, where
+ * the triangle holding the point is edge-on and counts 0, whichever side
+ * of it rounding put the point (-1 inside a mesh wound inwards). 0 for a
+ * point outside the mesh's bounds (and a margin for that rounding), where
+ * it costs nothing, and for a direction. */
+double mesh_point_winding(const mesh *m, const float point[4]);
 /* Whether the point (m's space) lies inside mesh m (closed, wound
- * outwards) or on its surface: the generalized winding number (the
- * triangles' signed solid angles over 4 pi, Jacobson et al. 2013) above
- * MESH_POINT_INSIDE_WINDING: 1 inside, 0 outside, 1/2 on the surface,
- * where the triangle holding the point is edge-on and counts 0, whichever
- * side of it rounding put the point. Only for a point within the mesh's
- * bounds (and a margin for that rounding): elsewhere the test costs
- * nothing. A direction is outside every mesh. */
+ * outwards) or on its surface: its winding number above
+ * MESH_POINT_INSIDE_WINDING. */
 bool mesh_point_inside(const mesh *m, const float point[4]);
 
 /* The point (world) in the space of an object whose model matrix is

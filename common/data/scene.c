@@ -17,6 +17,7 @@
 #include <strings.h>
 
 #include "json.h"
+#include "mesh_point.h"
 #include "path.h"
 #include "scene_internal.h"
 
@@ -514,10 +515,7 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
 
 bool scene_load(scene *s, const char *path) { return scene_load_camera(s, path, 0); }
 
-bool scene_load_camera(scene *s, const char *path, int camera) {
-    const char *extension = strrchr(path, '.');
-    if (extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0))
-        return scene_load_gltf(s, path, camera);
+static bool scene_load_json(scene *s, const char *path, int camera) {
     *s = (scene){0};
     if (camera != 0) {
         fprintf(stderr, "%s: --camera %d: the scene has camera 0 only\n", path, camera);
@@ -531,6 +529,62 @@ bool scene_load_camera(scene *s, const char *path, int camera) {
     if (!loaded)
         scene_free(s);
     return loaded;
+}
+
+/* Whether the point (world, w 1) lies within object o's world bounds. */
+static bool scene_object_bounds_hold(const scene_object *o, const float point[4]) {
+    float lo[3], hi[3];
+    scene_object_world_bounds(o, lo, hi);
+    for (int k = 0; k < 3; k++)
+        if (!(point[k] >= lo[k] && point[k] <= hi[k]))
+            return false;
+    return true;
+}
+
+/* Whether the point (world, w 1) lies inside closed object o, off its
+ * surface: its bounds first, the winding number only within them. */
+static bool scene_object_holds(const scene_object *o, const float point[4]) {
+    float local[4];
+    if (!scene_object_bounds_hold(o, point))
+        return false;
+    mesh_point_to_object(o->model, point, local);
+    return mesh_point_winding(&o->mesh, local) > MESH_POINT_WITHIN_WINDING;
+}
+
+/* The first caster whose closed mesh holds light l while the eye is
+ * outside it, or -1: such a light lights nothing the eye can see of the
+ * scene. */
+static int scene_light_holder(const scene *s, int l) {
+    float light[4];
+    scene_light_homogeneous(&s->lights[l], light);
+    const float eye[4] = {s->camera.position[0], s->camera.position[1], s->camera.position[2], 1};
+    for (int i = 0; light[3] != 0 && i < s->object_count; i++) {
+        const scene_object *o = &s->objects[i];
+        if (!o->casts || !scene_object_holds(o, light) || scene_object_holds(o, eye))
+            continue;
+        mesh_edges edges;
+        if (!mesh_edges_build_welded(&o->mesh, &edges))
+            continue; /* said; the hint is not worth failing the load */
+        bool closed = edges.closed;
+        mesh_edges_free(&edges);
+        if (closed)
+            return i;
+    }
+    return -1;
+}
+
+bool scene_load_camera(scene *s, const char *path, int camera) {
+    const char *extension = strrchr(path, '.');
+    bool gltf = extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0);
+    if (!(gltf ? scene_load_gltf(s, path, camera) : scene_load_json(s, path, camera)))
+        return false;
+    for (int l = 0; l < s->light_count; l++) {
+        int i = scene_light_holder(s, l);
+        if (i >= 0)
+            fprintf(stderr, "%s: light %d lies inside object %d (%s): it lights nothing outside it\n", path, l, i,
+                    s->objects[i].name);
+    }
+    return true;
 }
 
 void scene_free(scene *s) {

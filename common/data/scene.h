@@ -181,7 +181,12 @@ typedef struct scene {
 
 /* Reports the first problem as one line "FILE: where: problem"
  * (FILE:LINE for JSON syntax) on stderr and returns false, leaving the
- * scene empty (safe to scene_free). */
+ * scene empty (safe to scene_free). A light (not a sun) inside a caster
+ * whose mesh is closed (mesh_edges_build_welded), off its surface
+ * (mesh_point_winding), while the eye is outside it, lights nothing the
+ * eye sees: said in one line, "FILE: light N lies inside object M (NAME):
+ * it lights nothing outside it", and the scene loads. Each object's world
+ * bounds are tried first, so the check costs little in a large scene. */
 bool scene_load(scene *s, const char *path);
 /* scene_load with the file's camera `camera` (a program's --camera N): a
  * glTF file's cameras in its order from 0, a JSON scene's only camera 0;
