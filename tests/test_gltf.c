@@ -24,7 +24,8 @@
 #define GLTF_SCENE_BINARY "tests/data/gltf_scene.glb" /* the same scene, binary */
 #define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define GLTF_CUT_OUT "tests/data/gltf_cut_out.gltf"
-#define GLTF_STAINED_GLASS "tests/data/gltf_stained_glass.gltf"
+#define GLTF_STAINED_GLASS "assets/scenes/stained_glass.gltf" /* build/scenegen's */
+#define GLTF_FENCE "assets/scenes/fence.gltf"
 #define GLTF_INCLUDED "tests/data/gltf_included.json" /* the three files above in one scene file */
 #define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
 #define GLTF_ENGINE TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
@@ -377,7 +378,7 @@ static long gltf_pixels_of(const dump_frame *d, const float rgb[3]) {
     return count;
 }
 
-/* Translucent casters (alphaMode BLEND, tests/data/gltf_stained_glass.gltf:
+/* Translucent casters (alphaMode BLEND, assets/scenes/stained_glass.gltf:
  * a red pane over a blue one, a window of four colours, an opaque box):
  * the reference's shadow rays filter the spot's light through each pane
  * they cross (scene_object_transmittance), so the ground under the red
@@ -568,8 +569,10 @@ static void test_gltf_bad_files(void **state) {
 }
 
 /* The shadows: volumes and hybrid against the reference on a real model
- * nobody tuned for (its fitted sun), on the file's scene (its spot) and
- * on a textured real model a scene file includes over a ground;
+ * nobody tuned for (its fitted sun), on the file's scene (its spot), on
+ * the generated fence and tree of cut-out leaves (the hybrid's rays cut
+ * them out) and on a textured real model a scene file includes over a
+ * ground;
  * the sweep takes every support_sweep_stride()th case, the real model's
  * hybrid first. */
 static void test_gltf_shadows_match_reference(void **state) {
@@ -578,11 +581,9 @@ static void test_gltf_shadows_match_reference(void **state) {
         const char *scene, *program;
         const char *model; /* the file the scene needs */
     } cases[] = {
-        {GLTF_ENGINE, "hybrid", GLTF_ENGINE},
-        {GLTF_SCENE, "volumes", GLTF_SCENE},
-        {GLTF_ENGINE, "volumes", GLTF_ENGINE},
-        {GLTF_SCENE, "hybrid", GLTF_SCENE},
-        {"assets/scenes/truck.json", "volumes", GLTF_TRUCK},
+        {GLTF_ENGINE, "hybrid", GLTF_ENGINE},  {GLTF_SCENE, "volumes", GLTF_SCENE},
+        {GLTF_ENGINE, "volumes", GLTF_ENGINE}, {GLTF_SCENE, "hybrid", GLTF_SCENE},
+        {GLTF_FENCE, "hybrid", GLTF_FENCE},    {"assets/scenes/truck.json", "volumes", GLTF_TRUCK},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i += (size_t)support_sweep_stride()) {
         if (access(cases[i].model, R_OK) != 0) {

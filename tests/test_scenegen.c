@@ -3,7 +3,8 @@
  * they are what the generator promises: cities of N objects plus the
  * ground with a sun and street lamps of limited range, most of the lamps
  * out of view and most of the city outside the camera's frustum; a dense
- * scene of closed meshes. Run from the repository root. */
+ * scene of closed meshes; glTF scenes of cut-out and translucent casters.
+ * Run from the repository root. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -29,8 +30,9 @@
 #define MIN_LIMITED_LIGHTS 3
 #define MIN_DENSE_TRIANGLES 100000
 
-static const char *const files[] = {"city_100.json", "city_300.json",    "city_1000.json",     "city_3000.json",
-                                    "dense.json",    "stacked_300.json", "stacked_10000.json", "stacked_10000.obj"};
+static const char *const files[] = {"city_100.json", "city_300.json",     "city_1000.json",     "city_3000.json",
+                                    "dense.json",    "stacked_300.json",  "stacked_10000.json", "stacked_10000.obj",
+                                    "fence.gltf",    "stained_glass.gltf"};
 static const int city_counts[] = {100, 300, 1000, 3000};
 
 static char err[16384];
@@ -185,11 +187,51 @@ static void test_dense_is_closed_and_large(void **state) {
     scene_free(&s);
 }
 
+/* The glTF scenes: the fence's boards and the tree's leaves cut out by
+ * textures (alphaMode MASK), its trunk and ground opaque, under a sun; the
+ * stained glass's three panes translucent (BLEND), one textured, over an
+ * opaque ground and box, under a spot; each seen by its file's camera. */
+static void test_gltf_scenes_cut_out_and_translucent(void **state) {
+    (void)state;
+    static const struct {
+        const char *file;
+        int objects, cut_out, translucent, textured;
+        scene_light_type light;
+    } scenes[] = {
+        {"fence.gltf", 4, 2, 0, 2, SCENE_LIGHT_DIRECTIONAL},
+        {"stained_glass.gltf", 5, 0, 3, 1, SCENE_LIGHT_SPOT},
+    };
+    for (size_t i = 0; i < sizeof scenes / sizeof *scenes; i++) {
+        scene s;
+        support_capture_stderr();
+        load(&s, scenes[i].file);
+        const char *said = support_release_stderr();
+        if (said[0])
+            fail_msg("%s: said \"%s\" (a camera or light fitted?)", scenes[i].file, said);
+        int cut_out = 0, translucent = 0, textured = 0;
+        for (int o = 0; o < s.object_count; o++) {
+            cut_out += s.objects[o].alpha_cutoff > 0;
+            translucent += s.objects[o].translucent;
+            textured += s.objects[o].base_color != NULL;
+        }
+        assert_int_equal(s.object_count, scenes[i].objects);
+        assert_int_equal(cut_out, scenes[i].cut_out);
+        assert_int_equal(translucent, scenes[i].translucent);
+        assert_int_equal(textured, scenes[i].textured);
+        assert_int_equal(s.light_count, 1);
+        assert_int_equal(s.lights[0].type, scenes[i].light);
+        scene_free(&s);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_generated_match_committed),     cmocka_unit_test(test_city_counts_and_lights),
-        cmocka_unit_test(test_city_lamps_mostly_out_of_view), cmocka_unit_test(test_city_view_is_small_and_shared),
+        cmocka_unit_test(test_generated_match_committed),
+        cmocka_unit_test(test_city_counts_and_lights),
+        cmocka_unit_test(test_city_lamps_mostly_out_of_view),
+        cmocka_unit_test(test_city_view_is_small_and_shared),
         cmocka_unit_test(test_dense_is_closed_and_large),
+        cmocka_unit_test(test_gltf_scenes_cut_out_and_translucent),
     };
     return cmocka_run_group_tests_name("generated scenes", tests, generate, NULL);
 }

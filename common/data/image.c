@@ -15,6 +15,36 @@ bool image_write_png(const char *path, int width, int height, const unsigned cha
     return true;
 }
 
+/* stb_image_write's output, gathered. */
+typedef struct image_bytes {
+    unsigned char *data;
+    size_t size;
+    bool out_of_memory;
+} image_bytes;
+
+static void image_append(void *context, void *data, int size) {
+    image_bytes *b = context;
+    unsigned char *grown = b->out_of_memory ? NULL : realloc(b->data, b->size + (size_t)size);
+    if (!grown) {
+        b->out_of_memory = true;
+        return;
+    }
+    memcpy(grown + b->size, data, (size_t)size);
+    b->data = grown;
+    b->size += (size_t)size;
+}
+
+unsigned char *image_png_bytes(int width, int height, const unsigned char *rgba, size_t *size) {
+    image_bytes b = {0};
+    if (!stbi_write_png_to_func(image_append, &b, width, height, 4, rgba, width * 4) || b.out_of_memory) {
+        fprintf(stderr, "image: out of memory for a %dx%d PNG\n", width, height);
+        free(b.data);
+        return NULL;
+    }
+    *size = b.size;
+    return b.data;
+}
+
 unsigned char *image_read_png(const char *path, int *width, int *height) {
     int channels;
     unsigned char *rgba = stbi_load(path, width, height, &channels, 4);

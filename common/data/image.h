@@ -10,8 +10,12 @@
 #define IMAGE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 bool image_write_png(const char *path, int width, int height, const unsigned char *rgba);
+/* The PNG file's bytes, malloc'ed (free them), their count in *size; NULL
+ * after one line when out of memory. */
+unsigned char *image_png_bytes(int width, int height, const unsigned char *rgba, size_t *size);
 /* Returns malloc'ed pixels (free them), or NULL after printing why. */
 unsigned char *image_read_png(const char *path, int *width, int *height);
 long image_compare(const unsigned char *a, const unsigned char *b, int width, int height, int tolerance,

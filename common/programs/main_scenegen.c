@@ -19,7 +19,13 @@
  *                stacked triangles, 256 of each size, smaller up the
  *                stack: every triangle its own occluder, so the ground
  *                lies in up to 10,000 volumes, in bands of multiples of
- *                256.
+ *                256;
+ *   fence.gltf   a fence of boards and a tree whose crown is leaf cards,
+ *                cut out by their textures' alpha, under a low sun;
+ *   stained_glass.gltf  two overlapping panes of coloured glass and a
+ *                window of four colours, translucent, and a box, under a
+ *                spot: coloured shadows. The glTF files hold their
+ *                buffers and textures (common/data/gltf_write.h).
  *
  * Deterministic: one seeded PRNG (splitmix64), no clock, numbers rounded
  * to a few decimals, so the files are byte for byte the same on every run
@@ -38,6 +44,7 @@
 #include <string.h>
 
 #include "flags.h"
+#include "gltf_write.h"
 #include "path.h"
 
 #define SCENEGEN_EXIT_RUNTIME 1
@@ -125,6 +132,46 @@
 #define STACKED_SHRINK 0.8 /* of the radius, lost up to the last group */
 #define STACKED_OBJ_DECIMALS 5
 #define STACKED_GROUND 20.0 /* the ground plane's side */
+
+/* ---- the glTF scenes (world units: metres) ---- */
+#define GLTF_MAX_VERTICES 4096 /* of one mesh */
+#define GLTF_MAX_INDICES 8192
+#define GLTF_ASPECT (16.0 / 9.0)
+#define GLTF_NEAR 0.1
+#define GLTF_FAR 50.0
+/* fence.gltf: a fence of boards (a texture whose gaps are cut out) and a
+ * tree whose crown is leaf cards (each a leaf cut out of its square),
+ * under a low sun from behind the fence. */
+#define FENCE_GROUND 16.0
+#define FENCE_BOARDS_W 64 /* the boards' texture: a board 5 texels wide every 8, a rail across the middle */
+#define FENCE_BOARDS_H 16
+#define FENCE_BOARD_PITCH 8
+#define FENCE_BOARD_WIDTH 5
+#define FENCE_RAIL_FROM 6
+#define FENCE_RAIL_TO 9
+#define FENCE_CUTOFF 0.4f
+#define FENCE_LEFT (-4.0)
+#define FENCE_RIGHT 2.0
+#define FENCE_HEIGHT 1.5
+#define FENCE_REPEATS 3.0  /* the texture along the fence */
+#define FENCE_LEAF_SIZE 32 /* the leaf's texture: a disc with a notch */
+#define FENCE_LEAF_RADIUS 14.0
+#define FENCE_LEAF_NOTCH 2.5
+#define FENCE_TRUNK_HEIGHT 2.4
+#define FENCE_TRUNK_HALF 0.15
+#define FENCE_LEAVES 90
+#define FENCE_CARD_HALF 0.22
+#define FENCE_CROWN_RADIUS 1.3
+static const double fence_tree[3] = {3.5, 0, -1.5};
+#define FENCE_CROWN_HEIGHT 3.2
+/* stained_glass.gltf: a red pane over a blue one, overlapping, a window
+ * of four colours (a texture of their colours and alphas) and an opaque
+ * box, translucent (alphaMode BLEND) but the box, under a spot. */
+#define GLASS_GROUND 12.0
+#define GLASS_SIZE 8 /* the window's texture: four panes of 4x4 texels */
+#define GLASS_SPOT_INTENSITY 40.0
+#define GLASS_SPOT_INNER 0.6 /* radians */
+#define GLASS_SPOT_OUTER 0.95
 
 /* Out of memory anywhere while building a tree sets this: one check at
  * the end instead of one per cJSON call. */
@@ -525,6 +572,209 @@ static cJSON *scenegen_stacked_mesh(const char *obj) {
     return root;
 }
 
+/* ---- the glTF scenes ---- */
+
+/* One mesh's vertices and triangles as they are built. */
+typedef struct scenegen_mesh {
+    gltf_vertex vertices[GLTF_MAX_VERTICES];
+    uint16_t indices[GLTF_MAX_INDICES];
+    int vertex_count, index_count;
+} scenegen_mesh;
+
+/* A quad of corners c (counter-clockwise seen from its normal's side)
+ * and texture coordinates uv. */
+static void scenegen_quad(scenegen_mesh *m, const double c[4][3], const double uv[4][2]) {
+    double e1[3], e2[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = c[1][k] - c[0][k];
+        e2[k] = c[2][k] - c[0][k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    uint16_t first = (uint16_t)m->vertex_count;
+    for (int v = 0; v < 4; v++) {
+        gltf_vertex *out = &m->vertices[m->vertex_count++];
+        for (int k = 0; k < 3; k++) {
+            out->position[k] = (float)scenegen_round(c[v][k], SCENEGEN_DIRECTION_DECIMALS);
+            out->normal[k] = (float)scenegen_round(n[k] / length, SCENEGEN_DIRECTION_DECIMALS);
+        }
+        out->uv[0] = (float)uv[v][0];
+        out->uv[1] = (float)uv[v][1];
+    }
+    static const int corners[6] = {0, 1, 2, 0, 2, 3};
+    for (int k = 0; k < 6; k++)
+        m->indices[m->index_count++] = (uint16_t)(first + corners[k]);
+}
+
+/* A quad of the unit square's texture coordinates, v down. */
+static void scenegen_square(scenegen_mesh *m, const double c[4][3]) {
+    static const double uv[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    scenegen_quad(m, c, uv);
+}
+
+/* A horizontal quad at height y over [x0, x1] x [z0, z1], facing up. */
+static void scenegen_level(scenegen_mesh *m, double x0, double x1, double y, double z0, double z1) {
+    const double c[4][3] = {{x0, y, z1}, {x1, y, z1}, {x1, y, z0}, {x0, y, z0}};
+    scenegen_square(m, c);
+}
+
+/* An axis-aligned box of half-sizes h about `centre`. */
+static void scenegen_box(scenegen_mesh *m, const double centre[3], const double h[3]) {
+    /* Each face: its normal's axis and sign; the quad's corners go round
+     * it counter-clockwise seen from outside. */
+    for (int axis = 0; axis < 3; axis++)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            static const double steps[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+            double c[4][3];
+            for (int q = 0; q < 4; q++) {
+                c[q][axis] = centre[axis] + sign * h[axis];
+                c[q][u] = centre[u] + steps[q][0] * h[u] * sign;
+                c[q][v] = centre[v] + steps[q][1] * h[v];
+            }
+            scenegen_square(m, c);
+        }
+}
+
+/* The mesh into the file as a node named `name` of `material`. */
+static void scenegen_put_mesh(gltf_write *w, const char *name, const scenegen_mesh *m, int material) {
+    int mesh = gltf_write_mesh(w, m->vertices, m->vertex_count, m->indices, m->index_count, material);
+    gltf_write_mesh_node(w, name, mesh);
+}
+
+static void scenegen_texel(unsigned char *rgba, int width, int x, int y, const unsigned char texel[4]) {
+    memcpy(rgba + 4 * ((size_t)y * (size_t)width + (size_t)x), texel, 4);
+}
+
+static cJSON *scenegen_fence(void) {
+    gltf_write *w = gltf_write_begin("build/scenegen: a fence of boards and a tree of leaf cards, cut out by their "
+                                     "textures' alpha (alphaMode MASK), under a low sun");
+    if (!w)
+        return NULL;
+    static unsigned char boards[FENCE_BOARDS_H][FENCE_BOARDS_W][4], leaf[FENCE_LEAF_SIZE][FENCE_LEAF_SIZE][4];
+    static const unsigned char wood[4] = {150, 110, 70, 255}, green[4] = {60, 140, 50, 255}, none[4] = {0, 0, 0, 0};
+    for (int y = 0; y < FENCE_BOARDS_H; y++)
+        for (int x = 0; x < FENCE_BOARDS_W; x++) {
+            bool solid = x % FENCE_BOARD_PITCH < FENCE_BOARD_WIDTH || (y >= FENCE_RAIL_FROM && y < FENCE_RAIL_TO);
+            scenegen_texel(&boards[0][0][0], FENCE_BOARDS_W, x, y, solid ? wood : none);
+        }
+    for (int y = 0; y < FENCE_LEAF_SIZE; y++)
+        for (int x = 0; x < FENCE_LEAF_SIZE; x++) {
+            double dx = x - (FENCE_LEAF_SIZE - 1) / 2.0, dy = y - (FENCE_LEAF_SIZE - 1) / 2.0;
+            bool inside =
+                dx * dx + dy * dy < FENCE_LEAF_RADIUS * FENCE_LEAF_RADIUS && !(fabs(dx) < FENCE_LEAF_NOTCH && dy < 0);
+            scenegen_texel(&leaf[0][0][0], FENCE_LEAF_SIZE, x, y, inside ? green : none);
+        }
+    int boards_texture = gltf_write_texture(w, FENCE_BOARDS_W, FENCE_BOARDS_H, &boards[0][0][0], false);
+    int leaf_texture = gltf_write_texture(w, FENCE_LEAF_SIZE, FENCE_LEAF_SIZE, &leaf[0][0][0], true);
+    int grass =
+        gltf_write_material(w, &(gltf_material){.name = "grass", .color = {0.62f, 0.72f, 0.5f, 1}, .texture = -1});
+    int bark =
+        gltf_write_material(w, &(gltf_material){.name = "bark", .color = {0.35f, 0.25f, 0.18f, 1}, .texture = -1});
+    int wood_material = gltf_write_material(
+        w, &(gltf_material){"boards", {1, 1, 1, 1}, boards_texture, GLTF_MASK, FENCE_CUTOFF, .double_sided = true});
+    int leaf_material =
+        gltf_write_material(w, &(gltf_material){"leaf", {1, 1, 1, 1}, leaf_texture, GLTF_MASK, .double_sided = true});
+
+    static scenegen_mesh m;
+    m = (scenegen_mesh){0};
+    scenegen_level(&m, -FENCE_GROUND / 2, FENCE_GROUND / 2, 0, -FENCE_GROUND / 2, FENCE_GROUND / 2);
+    scenegen_put_mesh(w, "ground", &m, grass);
+    m = (scenegen_mesh){0};
+    const double fence[4][3] = {
+        {FENCE_LEFT, 0, 0}, {FENCE_RIGHT, 0, 0}, {FENCE_RIGHT, FENCE_HEIGHT, 0}, {FENCE_LEFT, FENCE_HEIGHT, 0}};
+    const double fence_uv[4][2] = {{0, 1}, {FENCE_REPEATS, 1}, {FENCE_REPEATS, 0}, {0, 0}};
+    scenegen_quad(&m, fence, fence_uv);
+    scenegen_put_mesh(w, "fence", &m, wood_material);
+    m = (scenegen_mesh){0};
+    const double trunk[3] = {fence_tree[0], FENCE_TRUNK_HEIGHT / 2, fence_tree[2]};
+    scenegen_box(&m, trunk, (const double[3]){FENCE_TRUNK_HALF, FENCE_TRUNK_HEIGHT / 2, FENCE_TRUNK_HALF});
+    scenegen_put_mesh(w, "trunk", &m, bark);
+    /* The crown: each card's centre uniform in a ball, its normal
+     * uniform on the sphere, its edges any two perpendicular to it. */
+    m = (scenegen_mesh){0};
+    uint64_t rng = SCENEGEN_SEED;
+    for (int i = 0; i < FENCE_LEAVES; i++) {
+        double p[3], n[3], t[3], b[3];
+        do {
+            for (int k = 0; k < 3; k++)
+                p[k] = scenegen_uniform(&rng, -1, 1);
+        } while (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1);
+        double z = scenegen_uniform(&rng, -1, 1), angle = scenegen_uniform(&rng, 0, 2 * M_PI);
+        n[0] = sqrt(1 - z * z) * cos(angle), n[1] = z, n[2] = sqrt(1 - z * z) * sin(angle);
+        const double *helper = fabs(n[1]) < 0.9 ? (const double[3]){0, 1, 0} : (const double[3]){1, 0, 0};
+        t[0] = helper[1] * n[2] - helper[2] * n[1];
+        t[1] = helper[2] * n[0] - helper[0] * n[2];
+        t[2] = helper[0] * n[1] - helper[1] * n[0];
+        double length = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+        for (int k = 0; k < 3; k++)
+            t[k] /= length;
+        b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
+        static const double steps[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        double c[4][3];
+        for (int q = 0; q < 4; q++)
+            for (int k = 0; k < 3; k++)
+                c[q][k] = fence_tree[k] + (k == 1 ? FENCE_CROWN_HEIGHT : 0) + FENCE_CROWN_RADIUS * p[k] +
+                          FENCE_CARD_HALF * (steps[q][0] * t[k] + steps[q][1] * b[k]);
+        scenegen_square(&m, c);
+    }
+    scenegen_put_mesh(w, "leaves", &m, leaf_material);
+    const double eye[3] = {1.5, 3.2, 9.0}, target[3] = {0.5, 1.0, -1.0};
+    gltf_write_camera(w, "camera", eye, target, 0.8, GLTF_ASPECT, GLTF_NEAR, GLTF_FAR);
+    gltf_write_light(w, "sun", "directional", (const float[3]){1, 0.97f, 0.92f}, 3, 0, 0,
+                     &(gltf_place){.look = {-0.25, -0.62, 0.75}});
+    return gltf_write_end(w);
+}
+
+static cJSON *scenegen_stained_glass(void) {
+    gltf_write *w = gltf_write_begin("build/scenegen: two overlapping panes of coloured glass, a stained-glass "
+                                     "window of four colours and an opaque box over a ground, translucent "
+                                     "(alphaMode BLEND), under a spot");
+    if (!w)
+        return NULL;
+    static const unsigned char panes[4][4] = {
+        {255, 210, 40, 150}, {40, 110, 255, 210}, {60, 200, 80, 120}, {230, 60, 200, 230}};
+    unsigned char window[GLASS_SIZE][GLASS_SIZE][4];
+    for (int y = 0; y < GLASS_SIZE; y++)
+        for (int x = 0; x < GLASS_SIZE; x++)
+            scenegen_texel(&window[0][0][0], GLASS_SIZE, x, y,
+                           panes[x / (GLASS_SIZE / 2) + 2 * (y / (GLASS_SIZE / 2))]);
+    int window_texture = gltf_write_texture(w, GLASS_SIZE, GLASS_SIZE, &window[0][0][0], true);
+    const gltf_material materials[] = {
+        {.name = "floor", .color = {0.85f, 0.85f, 0.82f, 1}, .texture = -1},
+        {"red", {0.95f, 0.15f, 0.1f, 0.7f}, -1, GLTF_BLEND, .double_sided = true},
+        {"blue", {0.2f, 0.35f, 0.95f, 0.6f}, -1, GLTF_BLEND, .double_sided = true},
+        {"stained", {1, 1, 1, 1}, window_texture, GLTF_BLEND, .double_sided = true},
+        {.name = "stone", .color = {0.6f, 0.6f, 0.65f, 1}, .texture = -1},
+    };
+    int material[sizeof materials / sizeof *materials];
+    for (size_t i = 0; i < sizeof materials / sizeof *materials; i++)
+        material[i] = gltf_write_material(w, &materials[i]);
+    static scenegen_mesh m;
+    m = (scenegen_mesh){0};
+    scenegen_level(&m, -GLASS_GROUND / 2, GLASS_GROUND / 2, 0, -GLASS_GROUND / 2, GLASS_GROUND / 2);
+    scenegen_put_mesh(w, "ground", &m, material[0]);
+    m = (scenegen_mesh){0};
+    scenegen_level(&m, -2, 0.5, 2.5, -1, 1);
+    scenegen_put_mesh(w, "red_glass", &m, material[1]);
+    m = (scenegen_mesh){0};
+    scenegen_level(&m, -0.5, 2, 2.0, -1, 1);
+    scenegen_put_mesh(w, "blue_glass", &m, material[2]);
+    m = (scenegen_mesh){0};
+    scenegen_level(&m, -3, -1.2, 1.5, 1.4, 3.2);
+    scenegen_put_mesh(w, "window", &m, material[3]);
+    m = (scenegen_mesh){0};
+    scenegen_box(&m, (const double[3]){2.2, 0.5, 2.2}, (const double[3]){0.5, 0.5, 0.5});
+    scenegen_put_mesh(w, "box", &m, material[4]);
+    const double eye[3] = {0.5, 7.5, 8.5}, target[3] = {0, 0, 0};
+    gltf_write_camera(w, "camera", eye, target, 0.8, GLTF_ASPECT, GLTF_NEAR, GLTF_FAR);
+    gltf_write_light(w, "spot", "spot", (const float[3]){1, 1, 1}, GLASS_SPOT_INTENSITY, GLASS_SPOT_INNER,
+                     GLASS_SPOT_OUTER, &(gltf_place){{0.3, 5.5, 0.4}, {0, -1, 0.05}});
+    return gltf_write_end(w);
+}
+
 /* ---- main ---- */
 
 static const int scenegen_city_counts[] = {100, 300, 1000, 3000};
@@ -549,7 +799,9 @@ static bool scenegen_run(const char *dir) {
            scenegen_emit(scenegen_dense(), dir, "dense.json") &&
            scenegen_emit(scenegen_stacked_slabs(), dir, "stacked_300.json") &&
            scenegen_write_file(dir, "stacked_10000.obj", scenegen_stacked_obj_body, NULL) &&
-           scenegen_emit(scenegen_stacked_mesh("stacked_10000.obj"), dir, "stacked_10000.json");
+           scenegen_emit(scenegen_stacked_mesh("stacked_10000.obj"), dir, "stacked_10000.json") &&
+           scenegen_emit(scenegen_fence(), dir, "fence.gltf") &&
+           scenegen_emit(scenegen_stained_glass(), dir, "stained_glass.gltf");
 }
 
 int main(int argc, char **argv) {
@@ -566,7 +818,8 @@ int main(int argc, char **argv) {
                "Writes the generated scenes, the same bytes on every run: city_100, city_300,\n"
                "city_1000 and city_3000.json (that many objects plus the ground), street.json\n"
                "(city_1000 seen to the far side, unranged lamps), dense.json, and stacked_300.json\n"
-               "and stacked_10000.json (with its .obj), deeper than the 8-bit stencil counts.\n",
+               "and stacked_10000.json (with its .obj), deeper than the 8-bit stencil counts, and the\n"
+               "glTF scenes fence.gltf (cut-out boards and leaves) and stained_glass.gltf (translucent panes).\n",
                program);
         flags_print_help(stdout, params, count, 2, 0);
         return 0;

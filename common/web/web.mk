@@ -39,7 +39,7 @@ WEB_BAKED := $(patsubst assets/tours/%.json,$(WEB_BAKING)/tours/%/done,$(WEB_TOU
 # Native sources the page has no use for or cannot link; common/web/ has
 # the browser's versions of what it needs of them.
 WEB_NATIVE_ONLY := common/gl/context_glfw.c common/gl/context_egl.c common/gl/context_osmesa.c \
-	common/data/mesh_file.c common/data/scene_gltf.c common/measure/raytrace.c
+	common/data/mesh_file.c common/data/scene_gltf.c common/data/gltf_write.c common/measure/raytrace.c
 WEB_SRC := $(filter-out $(WEB_NATIVE_ONLY),$(COMMON_SRC)) $(DEMO_SRC) $(wildcard demos/lib/*.c) demos/registry.c \
 	$(wildcard common/web/*.c) common/programs/main_registry.c
 WEB_OBJ := $(patsubst %.c,$(WEB_BUILD)/%.o,$(WEB_SRC)) $(WEB_BUILD)/glad/gl.o
