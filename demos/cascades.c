@@ -274,6 +274,8 @@ static void cascades_describe(char *out, size_t size) {
             n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
         if ((size_t)n < size)
             snprintf(out + n, size - (size_t)n, "; nearest texel %.3g", m->texel_scale);
+    } else if ((size_t)n < size) { /* the settings' cascades, splits and blend are a directional light's */
+        snprintf(out + n, size - (size_t)n, ", no cascades: only a directional light's map is cut in cascades");
     }
     map_describe_filter(&cascades.settings, out, size);
 }

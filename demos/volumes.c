@@ -97,6 +97,8 @@ static struct {
     volume_plan_caster *group;   /* per object: the wedges' casters of one rule (volume_wedges.h) */
     int trim_kept;               /* whether the kept volumes are trimmed; -1: none kept yet */
     bool has_depth_bounds;       /* GL_EXT_depth_bounds_test */
+    bool has_exact_depth;        /* gl_PrimitiveID, which the exact depth's program reads */
+    bool has_depth_clamp;        /* GL_DEPTH_CLAMP */
     /* Light 0, last frame: */
     int built_count, reused_count;
     int huge_count;        /* objects counted against their exact depth (volume_receivers.h) */
@@ -128,11 +130,11 @@ static const flags_param volumes_params[] = {
     {"exact-depth",
      "volumes counted against the exact depth of receivers huge seen from the eye (else their "
      "shadow edges move)",
-     GLFW_KEY_E, FLAGS_TOGGLE, .disabled = &volumes.settings.no_exact_depth},
+     GLFW_KEY_E, FLAGS_TOGGLE, .disabled = &volumes.settings.no_exact_depth, .available = &volumes.has_exact_depth},
     {"depth-clamp",
      "volumes clamped to the depth range while they count; off: clipped by the near and far planes, as without "
      "depth clamp (the near plane cuts volumes before the eye, z-fail's caps at infinity are lost)",
-     GLFW_KEY_C, FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_clamp},
+     GLFW_KEY_C, FLAGS_TOGGLE, .disabled = &volumes.settings.no_depth_clamp, .available = &volumes.has_depth_clamp},
     {"light-samples",
      "points of each area light, each a hard shadow, averaged (Brotman & Badler 1984); 1: hard, from its centre",
      GLFW_KEY_L, FLAGS_CHOICE, .index = &volumes.settings.light_samples, .choices = soft_visibility_sample_counts},
@@ -172,6 +174,8 @@ static bool volumes_init(const render_scene *gpu) {
     }
     volumes.trim_kept = -1;
     volumes.has_depth_bounds = context_current_features()->depth_bounds;
+    volumes.has_exact_depth = context_current_features()->primitive_id;
+    volumes.has_depth_clamp = context_current_features()->depth_clamp;
     volumes.soft_warned = 0;
     memset(volumes.samples, 0, sizeof volumes.samples);
     return soft_visibility_init(&volumes.soft) && volume_wedges_init(&volumes.wedges) &&
@@ -409,7 +413,9 @@ static void volumes_describe(char *out, size_t size) {
                       : volumes.settings.no_depth_bounds ? "OFF"
                                                          : "on");
     if (n > 0 && (size_t)n < size) {
-        if (volumes.settings.no_exact_depth)
+        if (!volumes.has_exact_depth)
+            n += snprintf(out + n, size - (size_t)n, "; exact depth off (no gl_PrimitiveID)");
+        else if (volumes.settings.no_exact_depth)
             n += snprintf(out + n, size - (size_t)n, "; exact depth OFF");
         else
             n += snprintf(out + n, size - (size_t)n, "; exact depth of %d huge objects", volumes.huge_count);

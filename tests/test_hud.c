@@ -5,7 +5,7 @@
  * LECTURE_MAX_LINES lines at 1280x720 with the counters left out; the
  * compact HUD keeps the technique's settings and drops the counters; the
  * scene is named, not its path; a map's size says whether it was
- * chosen. */
+ * chosen; no line contradicts another. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -80,23 +80,33 @@ static void test_scale_follows_height(void **state) {
 
 static char err[16384];
 
-/* build/shadows' HUD text of `technique` on long_view with `flags` (its
- * "hud: " lines), into hud. */
-static void hud_of(const char *technique, const char *flags, char *hud, size_t size) {
-    char command[1024];
-    snprintf(command, sizeof command,
-             "%s --backend egl --technique %s --scene assets/scenes/long_view.json --frames 1 --verbose %s",
-             support_program("shadows"), technique, flags);
-    assert_int_equal(support_run(command, err, sizeof err), 0);
+/* The "hud: " lines of `text` without the prefix, into hud. */
+static void hud_lines(const char *text, char *hud, size_t size) {
     size_t n = 0;
     hud[0] = '\0';
-    for (const char *at = err; (at = strstr(at, HUD_PREFIX)); at++) {
+    for (const char *at = text; (at = strstr(at, HUD_PREFIX)); at++) {
         at += strlen(HUD_PREFIX);
         size_t length = strcspn(at, "\n");
         n += (size_t)snprintf(hud + n, size - n, "%.*s\n", (int)length, at);
         assert_true(n < size);
     }
-    printf("    HUD with %s:\n%s", flags, hud);
+}
+
+/* build/shadows' HUD text of `technique` on the scene with `flags` (its
+ * "hud: " lines), into hud. */
+static void hud_on(const char *scene, const char *technique, const char *flags, char *hud, size_t size) {
+    char command[1024];
+    snprintf(command, sizeof command,
+             "%s --backend egl --technique %s --scene assets/scenes/%s.json --frames 1 --verbose %s",
+             support_program("shadows"), technique, scene, flags);
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    hud_lines(err, hud, size);
+    printf("    HUD of %s on %s with %s:\n%s", technique, scene, flags, hud);
+}
+
+/* The same on long_view. */
+static void hud_of(const char *technique, const char *flags, char *hud, size_t size) {
+    hud_on("long_view", technique, flags, hud, size);
 }
 
 static void test_lecture_hud(void **state) {
@@ -122,19 +132,41 @@ static void test_lecture_hud(void **state) {
 }
 
 /* A toggle whose feature the GL lacks says so, rather than "on" beside
- * a state line that says the feature is off: volumes' depth bounds, which
- * WebGL 2 lacks (--webgl2 keeps to what the page has), and llvmpipe
- * too. */
+ * a state line that says the feature is off: volumes' depth bounds, exact
+ * depth (gl_PrimitiveID) and depth clamp, which WebGL 2 lacks (--webgl2
+ * keeps to what the page has), and llvmpipe the depth bounds too. */
 static void test_missing_feature_is_not_on(void **state) {
     (void)state;
     char hud[8192];
     hud_of("volumes", "--webgl2", hud, sizeof hud);
     assert_non_null(strstr(hud, "depth bounds off (no GL_EXT_depth_bounds_test)"));
     assert_non_null(strstr(hud, "[B] depth-bounds: not on this GL"));
+    assert_non_null(strstr(hud, "exact depth off (no gl_PrimitiveID)"));
+    assert_non_null(strstr(hud, "[E] exact-depth: not on this GL"));
+    assert_non_null(strstr(hud, "[C] depth-clamp: not on this GL"));
     /* The GL's own: the toggle and the state line agree. */
     hud_of("volumes", "", hud, sizeof hud);
     bool lacks = strstr(hud, "depth bounds off (no GL_EXT_depth_bounds_test)") != NULL;
     assert_non_null(strstr(hud, lacks ? "[B] depth-bounds: not on this GL" : "[B] depth-bounds: on"));
+    assert_non_null(strstr(hud, "[E] exact-depth: on"));
+    assert_non_null(strstr(hud, "[C] depth-clamp: on"));
+}
+
+/* A setting another one overrides: the line that says what is drawn says
+ * why, so that it never contradicts the setting's. A moment filter blurs
+ * an area light's shadow whatever --soft says; cascades cut only a
+ * directional light's map (simple's is a spot). */
+static void test_overridden_setting_says_why(void **state) {
+    (void)state;
+    char hud[8192];
+    hud_on("soft_sun", "shadowmap", "--soft off --filter msm", hud, sizeof hud);
+    assert_non_null(strstr(hud, "[Y] soft: off"));
+    assert_non_null(strstr(hud, "area light, radius 3 degrees: soft by its moment filter, whatever --soft says"));
+    hud_on("simple", "cascades", "", hud, sizeof hud);
+    assert_non_null(strstr(hud, "[N] cascades: 4"));
+    assert_non_null(strstr(hud, ", no cascades: only a directional light's map is cut in cascades"));
+    hud_on("soft_sun", "cascades", "", hud, sizeof hud);
+    assert_non_null(strstr(hud, ", 4 cascades ("));
 }
 
 int main(void) {
@@ -143,6 +175,7 @@ int main(void) {
         cmocka_unit_test(test_scale_follows_height),
         cmocka_unit_test(test_lecture_hud),
         cmocka_unit_test(test_missing_feature_is_not_on),
+        cmocka_unit_test(test_overridden_setting_says_why),
     };
     return cmocka_run_group_tests_name("hud", tests, NULL, NULL);
 }

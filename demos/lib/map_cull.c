@@ -41,7 +41,8 @@ bool map_light_soft(const map_settings *settings, const scene_light *light) {
 
 const char *map_area_light_text(const map_settings *settings, const scene_light *light) {
     if (map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE)
-        return "soft: its moment map blurred to its casters' mean penumbra, one width (no contact hardening)";
+        return "soft by its moment filter, whatever --soft says: the moment map blurred to its casters' mean "
+               "penumbra, one width (no contact hardening)";
     if (map_light_soft(settings, light))
         return "soft: pcss, a blocker search then a filter of the penumbra's width";
     return map_shows_acne(settings) ? "hard, from its centre: a bias is off, and --filter auto shows acne"
