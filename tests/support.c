@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "hud.h"
 #include "image.h"
 #include "path.h"
 #include "map_internal.h"
@@ -281,6 +282,58 @@ const char *support_xvfb_run(void) {
      * together can take the same display, where one script's keys reach
      * the other's window. */
     return "flock " SUPPORT_XVFB_LOCK " env -u LD_PRELOAD xvfb-run -a -s '-screen 0 1024x768x24'";
+}
+
+/* What each F12 of support_expect_captions finds changed; NULL: nothing. */
+static const char *const support_caption_changes[SUPPORT_CAPTION_PICTURES] = {NULL, "technique volumes", NULL,
+                                                                              "constant-bias OFF"};
+
+/* The brightest grey (the least of a pixel's channels) where the HUD's
+ * first line begins ("step"), at the scale the HUD takes at `height`. */
+static int support_caption_brightness(const unsigned char *rgba, int width, int height) {
+    int scale = hud_scale_for(height), brightest = 0;
+    int x0 = HUD_MARGIN * scale, x1 = x0 + hud_text_width("step") * scale;
+    for (int y = HUD_MARGIN * scale; y < (HUD_MARGIN + HUD_LETTER_UNITS) * scale; y++)
+        for (int x = x0; x < x1 && x < width; x++) {
+            const unsigned char *p = rgba + ((size_t)y * (size_t)width + (size_t)x) * 4;
+            int grey = p[0] < p[1] ? p[0] : p[1];
+            grey = grey < p[2] ? grey : p[2];
+            brightest = grey > brightest ? grey : brightest;
+        }
+    return brightest;
+}
+
+void support_expect_captions(const char *log, const char *const pictures[SUPPORT_CAPTION_PICTURES]) {
+    const char *block = strstr(log, "hud: step ");
+    for (int k = 0; k < SUPPORT_CAPTION_PICTURES; k++) {
+        if (!block)
+            fail_msg("F12 %d printed no HUD: %s", k + 1, log);
+        const char *next = strstr(block + 1, "hud: step ");
+        int length = next ? (int)(next - block) : (int)strlen(block);
+        char expected[128];
+        snprintf(expected, sizeof expected, "hud: step %d/", SUPPORT_CAPTION_STEP);
+        const char *changed = strstr(block, "hud: changed: ");
+        bool said = changed && changed < block + length;
+        printf("    F12 %d: %.*s", k + 1, length, block);
+        assert_true(strncmp(block, expected, strlen(expected)) == 0);
+        if (support_caption_changes[k]) {
+            snprintf(expected, sizeof expected, "hud: changed: %s\n", support_caption_changes[k]);
+            assert_true(said && strncmp(changed, expected, strlen(expected)) == 0);
+        } else {
+            assert_false(said);
+        }
+        int width, height;
+        unsigned char *rgba = image_read_png(pictures[k], &width, &height);
+        assert_non_null(rgba);
+        int brightest = support_caption_brightness(rgba, width, height);
+        free(rgba);
+        printf("    %s: the caption's brightest grey %d\n", pictures[k], brightest);
+        if (support_caption_changes[k])
+            assert_true(brightest <= HUD_DIMMED_GREY);
+        else
+            assert_int_equal(brightest, HUD_WHITE);
+        block = next;
+    }
 }
 
 static FILE *support_capture_file;

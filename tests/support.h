@@ -108,6 +108,22 @@ bool support_have_command(const char *name);
  * processes; skips the running cmocka test, saying so, where xvfb-run is
  * not installed. */
 const char *support_xvfb_run(void);
+/* A tour's caption kept true in the window and in the page: the tour
+ * SUPPORT_CAPTION_TOUR at SUPPORT_CAPTION_SIZE with its HUD and
+ * --verbose, stepped to step SUPPORT_CAPTION_STEP (from 1), F12 there, then
+ * key 6 (volumes), F12, key 3 (the step's technique again), F12, key C
+ * (its constant bias off), F12: SUPPORT_CAPTION_PICTURES pictures.
+ * support_expect_captions fails the running cmocka test unless the HUD
+ * text each F12 printed (`log`'s "hud: " lines, one block from each
+ * "hud: step") names what changed (nothing, "technique volumes",
+ * nothing, "constant-bias OFF"), and each picture's caption line (the
+ * first of the HUD) is drawn white where nothing changed and dimmed
+ * where something did. */
+#define SUPPORT_CAPTION_TOUR "assets/tours/overview.json"
+#define SUPPORT_CAPTION_SIZE "640x360"
+#define SUPPORT_CAPTION_STEP 4 /* shadow maps on the bunny */
+#define SUPPORT_CAPTION_PICTURES 4
+void support_expect_captions(const char *log, const char *const pictures[SUPPORT_CAPTION_PICTURES]);
 /* The first of the count files `names` that differs between directories
  * a and b (or is missing from one), or NULL when all are byte-identical. */
 const char *support_first_difference(const char *a, const char *b, const char *const *names, size_t count);

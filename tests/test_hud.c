@@ -5,18 +5,24 @@
  * LECTURE_MAX_LINES lines at 1280x720 with the counters left out; the
  * compact HUD keeps the technique's settings and drops the counters; the
  * scene is named, not its path; a map's size says whether it was
- * chosen; no line contradicts another. */
+ * chosen; compare mode's caption strip keeps every tour step's settings;
+ * no line contradicts another. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include <ctype.h>
+#include <dirent.h>
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "compare.h"
 #include "hud.h"
 #include "support.h"
+#include "tour.h"
 
 #define LECTURE_WIDTH 1280
 #define LECTURE_SCALE 2 /* hud_scale_for(720) */
@@ -169,6 +175,99 @@ static void test_overridden_setting_says_why(void **state) {
     assert_non_null(strstr(hud, ", 4 cascades ("));
 }
 
+/* The HUD sizes compare mode's caption strip is checked at: a projector's. */
+static const struct {
+    const char *size;
+    int width, height;
+} hud_strip_sizes[] = {{"1280x720", 1280, 720}, {"1920x1080", 1920, 1080}};
+
+/* Each flag of `flags` ("--filter vsm --no-depth-clamp") as the HUD's
+ * settings show it ("filter: vsm", "depth-clamp: OFF") must be in hud. */
+static void hud_expect_settings(const char *hud, const char *flags) {
+    char *copy = strdup(flags), shown[TOUR_TEXT_MAX + 16];
+    assert_non_null(copy);
+    for (char *rest = copy, *flag; (flag = strtok_r(rest, " ", &rest));) {
+        assert_true(strncmp(flag, "--", 2) == 0);
+        if (strncmp(flag, "--no-", 5) == 0)
+            snprintf(shown, sizeof shown, "%s: OFF", flag + 5);
+        else
+            snprintf(shown, sizeof shown, "%s: %s", flag + 2, strtok_r(rest, " ", &rest));
+        if (!strstr(hud, shown))
+            fail_msg("\"%s\" is not on the HUD", shown);
+    }
+    free(copy);
+}
+
+/* Compare mode's caption strip (compare.h) over every tour's compare
+ * steps, at a projector's sizes: the caption, the technique and its
+ * settings (all of them, or those not at their defaults) fit in its
+ * COMPARE_STRIP_LINES lines at the picture's HUD scale, each setting the
+ * step's flags make among them. The steps are played as one tour, whose
+ * headless run prints each step's HUD (--verbose). */
+static void test_compare_strip_keeps_the_settings(void **state) {
+    (void)state;
+    static tour t;
+    static char step_flags[TOUR_MAX_STEPS][TOUR_TEXT_MAX];
+    cJSON *root = cJSON_CreateObject(), *steps = cJSON_AddArrayToObject(root, "steps");
+    cJSON_AddStringToObject(root, "title", "every tour's compare steps");
+    int count = 0;
+    DIR *tours = opendir("assets/tours");
+    assert_non_null(tours);
+    for (const struct dirent *e; (e = readdir(tours));) {
+        char path[PATH_MAX], scene[PATH_MAX];
+        if (!strstr(e->d_name, ".json"))
+            continue;
+        snprintf(path, sizeof path, "assets/tours/%s", e->d_name);
+        assert_true(tour_load(&t, path));
+        for (int k = 0; k < t.step_count; k++) {
+            const tour_step *s = &t.steps[k];
+            if (!s->compare)
+                continue;
+            assert_true(count < TOUR_MAX_STEPS);
+            assert_non_null(realpath(s->scene, scene));
+            cJSON *step = cJSON_CreateObject();
+            cJSON_AddStringToObject(step, "scene", scene);
+            cJSON_AddStringToObject(step, "technique", s->technique);
+            cJSON_AddStringToObject(step, "flags", s->flags);
+            cJSON_AddStringToObject(step, "caption", s->caption);
+            cJSON_AddBoolToObject(step, "compare", true);
+            cJSON_AddItemToArray(steps, step);
+            snprintf(step_flags[count++], TOUR_TEXT_MAX, "%s", s->flags);
+        }
+    }
+    closedir(tours);
+    assert_true(count > 0);
+    char file[PATH_MAX];
+    support_write_json(root, "out/test/hud", "compare_steps", file, sizeof file);
+    cJSON_Delete(root);
+    static char log[1 << 17], hud[1 << 16], wrapped[8192];
+    for (size_t i = 0; i < sizeof hud_strip_sizes / sizeof *hud_strip_sizes; i++) {
+        char command[PATH_MAX + 256];
+        snprintf(command, sizeof command, "%s --backend egl --size %s --tour %s --verbose",
+                 support_program("shadows"), hud_strip_sizes[i].size, file);
+        assert_int_equal(support_run(command, log, sizeof log), 0);
+        hud_lines(log, hud, sizeof hud);
+        for (int k = 0; k < count; k++) {
+            char start[64];
+            snprintf(start, sizeof start, "step %d/%d ", k + 1, count);
+            char *block = strstr(hud, start);
+            if (!block)
+                fail_msg("at %s, no HUD of step %d: %s", hud_strip_sizes[i].size, k + 1, hud);
+            char *end = strstr(block, "\nstep ");
+            if (end)
+                *end = '\0';
+            int scale = hud_scale_for(hud_strip_sizes[i].height);
+            int lines = hud_wrap(block, hud_strip_sizes[i].width, scale, wrapped, sizeof wrapped);
+            printf("    %s, %d lines at scale %d:\n%s\n", hud_strip_sizes[i].size, lines, scale, wrapped);
+            assert_true(lines <= COMPARE_STRIP_LINES);
+            hud_expect_settings(block, step_flags[k]);
+            assert_true(step_flags[k][0] || strstr(block, "] ") || strstr(block, "settings: the defaults"));
+            if (end)
+                *end = '\n';
+        }
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wrapped_lines_fit_and_lose_nothing),
@@ -176,6 +275,7 @@ int main(void) {
         cmocka_unit_test(test_lecture_hud),
         cmocka_unit_test(test_missing_feature_is_not_on),
         cmocka_unit_test(test_overridden_setting_says_why),
+        cmocka_unit_test(test_compare_strip_keeps_the_settings),
     };
     return cmocka_run_group_tests_name("hud", tests, NULL, NULL);
 }

@@ -1,6 +1,7 @@
 /* Tests of common/data/tour.c (tour files, good and bad; a step's camera
- * and its path's interpolation) and of how build/shadows --tour checks a
- * tour's techniques, flags and views. Run from the repository root. */
+ * and its path's interpolation), of how build/shadows --tour checks a
+ * tour's techniques, flags and views, and of what a step's caption is
+ * measured against (technique_settings). Run from the repository root. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,7 +12,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <GLFW/glfw3.h>
+
+#include "registry.h"
 #include "support.h"
+#include "technique.h"
 #include "tour.h"
 
 #define TOUR_DATA "tests/data/"
@@ -297,6 +302,52 @@ static void test_tour_records_every_frame(void **state) {
     assert_int_equal(support_run(command, err, sizeof err), 0);
 }
 
+static const technique *tour_technique(const char *name) {
+    for (int i = 0; i < registry_technique_count; i++)
+        if (strcmp(registry_techniques[i]->name, name) == 0)
+            return registry_techniques[i];
+    fail_msg("no technique %s", name);
+    return NULL;
+}
+
+/* A step's settings against the live ones: each setting the keys moved
+ * away from the step's is named with its value, whichever way it went,
+ * and another technique by its name; back at the step's, nothing is. A
+ * toggle whose feature the GL lacks changes nothing drawn: volumes' depth
+ * bounds, never started here (no GL), so lacking. */
+static void test_step_settings_changes(void **state) {
+    (void)state;
+    const technique *shadowmap = tour_technique("shadowmap"), *volumes = tour_technique("volumes");
+    technique_settings step;
+    char changes[TOUR_TEXT_MAX];
+    assert_true(technique_apply_config(shadowmap, "--no-constant-bias --filter pcf3"));
+    technique_settings_save(shadowmap, &step);
+    assert_false(technique_settings_changes(&step, shadowmap, changes, sizeof changes));
+    assert_string_equal(changes, "");
+    assert_true(technique_press_key(shadowmap, GLFW_KEY_C)); /* the fix the step turned off, on */
+    assert_true(technique_settings_changes(&step, shadowmap, changes, sizeof changes));
+    assert_string_equal(changes, "constant-bias on");
+    assert_true(technique_press_key(shadowmap, GLFW_KEY_F));
+    assert_true(technique_settings_changes(&step, shadowmap, changes, sizeof changes));
+    assert_string_equal(changes, "filter pcf5, constant-bias on");
+    assert_true(technique_press_key(shadowmap, GLFW_KEY_C));
+    assert_true(technique_settings_changes(&step, shadowmap, changes, sizeof changes));
+    assert_string_equal(changes, "filter pcf5");
+    assert_true(technique_settings_changes(&step, volumes, changes, sizeof changes));
+    assert_string_equal(changes, "technique volumes");
+    assert_true(technique_apply_config(shadowmap, "--filter pcf3 --no-constant-bias"));
+    assert_false(technique_settings_changes(&step, shadowmap, changes, sizeof changes));
+    assert_true(technique_apply_config(shadowmap, ""));
+
+    technique_settings_save(volumes, &step);
+    assert_true(technique_press_key(volumes, GLFW_KEY_B)); /* depth bounds */
+    assert_false(technique_settings_changes(&step, volumes, changes, sizeof changes));
+    assert_true(technique_press_key(volumes, GLFW_KEY_Z)); /* the mode */
+    assert_true(technique_settings_changes(&step, volumes, changes, sizeof changes));
+    assert_string_equal(changes, "mode zpass");
+    assert_true(technique_apply_config(volumes, ""));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_tour),
@@ -307,6 +358,7 @@ int main(void) {
         cmocka_unit_test(test_step_views_against_the_scene),
         cmocka_unit_test(test_tour_checks_techniques_and_flags),
         cmocka_unit_test(test_tour_records_every_frame),
+        cmocka_unit_test(test_step_settings_changes),
     };
     return cmocka_run_group_tests_name("tours", tests, NULL, NULL);
 }

@@ -297,6 +297,30 @@ static void web_tour_steps(void **state) {
     assert_true(differing >= 0 && differing <= WEB_MAX_DIFFERING);
 }
 
+/* A tour's caption in the page, as in the window (tests/window_input.sh):
+ * the keys of support_expect_captions, which checks what each F12's HUD
+ * said (the page's console) and how its caption is drawn. The step is
+ * reached at frame 4; a key that changes the technique starts it, a frame
+ * before F12 shows it. */
+static void web_tour_caption_stays_true(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    const char *dir = OUT "/caption";
+    web_run_page("--verbose --size " SUPPORT_CAPTION_SIZE " --tour /" SUPPORT_CAPTION_TOUR,
+                 "&keys=2:Space,3:Space,4:Space,6:F12,7:6,9:F12,10:3,12:F12,13:C,15:F12&frames=16",
+                 "screenshot-shadowmap-1.png,screenshot-volumes-1.png,screenshot-shadowmap-2.png,"
+                 "screenshot-shadowmap-3.png",
+                 "frames 16", dir);
+    char *console = path_read_text(OUT "/caption/console.txt", WEB_MAX_DOM, NULL);
+    assert_non_null(console);
+    static const char *const pictures[SUPPORT_CAPTION_PICTURES] = {
+        OUT "/caption/screenshot-shadowmap-1.png", OUT "/caption/screenshot-volumes-1.png",
+        OUT "/caption/screenshot-shadowmap-2.png", OUT "/caption/screenshot-shadowmap-3.png"};
+    support_expect_captions(console, pictures);
+    free(console);
+}
+
 /* Every tour, every step headless in the page at the page's own size
  * (build/shadows' default, the canvas's), and each standard and soft
  * scene's loaded view in compare mode, against the native EGL run that
@@ -408,6 +432,7 @@ int main(void) {
         cmocka_unit_test(web_matches_native),
         cmocka_unit_test(web_keys_switch_and_toggle),
         cmocka_unit_test(web_tour_steps),
+        cmocka_unit_test(web_tour_caption_stays_true),
         cmocka_unit_test(web_baked_runs_match_native),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -6,7 +6,10 @@
  * back exactly as loaded; 3 switches to the third technique; Escape
  * closes the window with exit 0. Without --no-hud, F12's picture is the
  * window's with its HUD (the rows below the HUD as without it), and a
- * scene that does not load (Page Down) says why on the HUD. */
+ * scene that does not load (Page Down) says why on the HUD. In a tour,
+ * the step's caption is dimmed and says what changed while the technique
+ * or a setting differs from the step's, and is itself again once they
+ * are the step's (support_expect_captions). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -41,8 +44,8 @@ static void test_keys_and_mouse_in_a_real_window(void **state) {
                      0);
     char command[2048];
     snprintf(command, sizeof command,
-             "timeout 240 %s bash tests/window_input.sh \"%s\" " WINDOW_SCENE " " WINDOW_SCENES
-             "/a_simple.json " WINDOW_DIR,
+             "timeout 300 %s bash tests/window_input.sh \"%s\" " WINDOW_SCENE " " WINDOW_SCENES
+             "/a_simple.json " SUPPORT_CAPTION_TOUR " " SUPPORT_CAPTION_SIZE " " WINDOW_DIR,
              xvfb, support_program("shadows"));
     int status = support_run(command, err, sizeof err);
     if (status != 0) {
@@ -102,6 +105,15 @@ static void test_keys_and_mouse_in_a_real_window(void **state) {
     const char *note = strstr(hud, "hud: did NOT load: ");
     if (!note || !strstr(note, "b_broken.json:"))
         fail_msg("the HUD does not say why the scene did not load: %s", hud);
+    free(hud);
+
+    /* The tour's caption, true, changed and true again. */
+    hud = path_read_text(WINDOW_DIR "/stderr3.txt", 1 << 20, NULL);
+    assert_non_null(hud);
+    static const char *const captions[SUPPORT_CAPTION_PICTURES] = {
+        WINDOW_DIR "/screenshot-shadowmap-2.png", WINDOW_DIR "/screenshot-volumes-1.png",
+        WINDOW_DIR "/screenshot-shadowmap-3.png", WINDOW_DIR "/screenshot-shadowmap-4.png"};
+    support_expect_captions(hud, captions);
     free(hud);
 }
 

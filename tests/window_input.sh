@@ -15,15 +15,27 @@
 #   F12                 screenshot-planar-5.png: the same view, HUD included
 #   Page Down           the broken scene does not load: the HUD says why
 #   Escape              exit 0, the HUD's last text on stderr2.txt
+# then TOUR (tests/support.h, SUPPORT_CAPTION_TOUR), with the HUD and
+# --verbose, each F12 printing the HUD's text on stderr3.txt:
+#   Space x3            the step of SUPPORT_CAPTION_STEP, shadowmap
+#   F12                 screenshot-shadowmap-2.png: its caption
+#   6                   volumes: the caption no longer says what is shown
+#   F12                 screenshot-volumes-1.png
+#   3                   shadowmap again, as the step sets it
+#   F12                 screenshot-shadowmap-3.png
+#   C                   its constant bias off
+#   F12                 screenshot-shadowmap-4.png
+#   Escape              exit 0
 # Each step waits SETTLE seconds, so that frames are drawn between events
 # (F12 saves the last drawn picture).
-# Usage: tests/window_input.sh PROGRAM SCENE SCENE2 DIR, from the project's
-# root (the scenes relative to it);
+# Usage: tests/window_input.sh PROGRAM SCENE SCENE2 TOUR SIZE DIR, from
+# the project's root (the scenes and the tour relative to it; SIZE the
+# tour's window);
 # PROGRAM is a command (tests/support.h's support_program: it may start
 # with env LD_PRELOAD=...) whose build directory DIR links to, since the
 # app runs in DIR (where F12 writes).
 set -eu
-program=$1 scene=$PWD/$2 scene2=$PWD/$3 dir=$4
+program=$1 scene=$PWD/$2 scene2=$PWD/$3 tour=$PWD/$4 tour_size=$5 dir=$6
 SETTLE=2
 for build in build build-san; do
     [ ! -e "$build" ] || ln -sfn "$PWD/$build" "$dir/$build"
@@ -73,5 +85,16 @@ window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
 sleep "$SETTLE"
 press F12
 press Next
+quit
+wait "$app"
+timeout 30 bash -c "while xdotool search --name '^shadows\$' >/dev/null; do sleep 0.2; done"
+
+eval "$program --tour '$tour' --size $tour_size --verbose >stdout3.txt 2>stderr3.txt &"
+app=$!
+window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
+sleep "$SETTLE"
+for key in space space space F12 6 F12 3 F12 c F12; do
+    press "$key"
+done
 quit
 wait "$app"

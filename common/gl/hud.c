@@ -139,6 +139,15 @@ static int hud_add_panel(int quads, float x0, float y0, float x1, float y1) {
     return quads + 1;
 }
 
+/* Appends `text`'s quads from font unit `top` down, in the grey `grey`
+ * (HUD_WHITE, HUD_DIMMED_GREY); returns the quads then. */
+static int hud_add_text(int quads, int top, char *text, unsigned char grey) {
+    unsigned char rgba[4] = {grey, grey, grey, 255}; /* opaque */
+    return quads + stb_easy_font_print(HUD_MARGIN, (float)top, text, rgba,
+                                       hud.vertices + (size_t)quads * 4 * HUD_VERTEX_BYTES,
+                                       (int)sizeof hud.vertices - quads * 4 * HUD_VERTEX_BYTES);
+}
+
 int hud_scale_to_fit(const char *text, int width, int height, int scale, int framebuffer_height) {
     char wrapped[HUD_MAX_TEXT];
     scale = scale > 0 ? scale : hud_scale_for(framebuffer_height);
@@ -148,16 +157,27 @@ int hud_scale_to_fit(const char *text, int width, int height, int scale, int fra
     return scale;
 }
 
-void hud_draw(const char *text, int width, int height, int scale) {
-    char wrapped[HUD_MAX_TEXT];
+void hud_draw(const char *text, int width, int height, int scale, int dimmed_lines) {
+    char dimmed[HUD_MAX_TEXT] = "", rest[HUD_MAX_TEXT], joined[2 * HUD_MAX_TEXT];
     scale = scale > 0 ? scale : hud_scale_to_fit(text, width, height, 0, height);
-    hud_wrap(text, width, scale, wrapped, sizeof wrapped);
-    float text_width = (float)hud_text_width(wrapped), text_height = (float)stb_easy_font_height(wrapped);
+    /* The dimmed lines and the rest wrapped apart (each line wraps
+     * alone), the rest drawn from the row after the dimmed ones'. */
+    const char *split = text;
+    for (int k = 0; k < dimmed_lines && *split; k++) {
+        split += strcspn(split, "\n");
+        split += *split == '\n';
+    }
+    int dimmed_rows = 0;
+    if (split > text) {
+        snprintf(joined, sizeof joined, "%.*s", (int)(split - text) - (split[-1] == '\n'), text);
+        dimmed_rows = hud_wrap(joined, width, scale, dimmed, sizeof dimmed);
+    }
+    hud_wrap(split, width, scale, rest, sizeof rest);
+    snprintf(joined, sizeof joined, "%s%s%s", dimmed, dimmed_rows ? "\n" : "", rest);
+    float text_width = (float)hud_text_width(joined), text_height = (float)stb_easy_font_height(joined);
     int quads = hud_add_panel(0, 0, 0, text_width + 2 * HUD_MARGIN, text_height + HUD_MARGIN + 2);
-    unsigned char white[4] = {255, 255, 255, 255};
-    quads += stb_easy_font_print(HUD_MARGIN, HUD_MARGIN, wrapped, white,
-                                 hud.vertices + (size_t)quads * 4 * HUD_VERTEX_BYTES,
-                                 (int)sizeof hud.vertices - quads * 4 * HUD_VERTEX_BYTES);
+    quads = hud_add_text(quads, HUD_MARGIN, dimmed, HUD_DIMMED_GREY);
+    quads = hud_add_text(quads, HUD_MARGIN + dimmed_rows * HUD_LINE_UNITS, rest, HUD_WHITE);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);
     glEnable(GL_BLEND);

@@ -23,6 +23,11 @@
 #define HUD_LINE_UNITS 12  /* stb_easy_font's line height, in font units */
 #define HUD_LETTER_UNITS 8 /* how tall its capitals are */
 #define HUD_INDENT "  "    /* what a wrapped line's continuation starts with */
+/* The text's grey, of 255: white, and a dimmed line's, brighter than
+ * anything the panel lets through (under two fifths of the picture
+ * behind it), so legible, yet nowhere as bright as white. */
+#define HUD_WHITE 255
+#define HUD_DIMMED_GREY 150
 
 /* max(1, round(height / HUD_LINES_PER_SCALE)), at most HUD_MAX_SCALE. */
 int hud_scale_for(int height);
@@ -41,8 +46,10 @@ int hud_text_width(const char *text);
 bool hud_init(void);
 /* Draws `text` (lines separated by '\n'), wrapped, at the top-left of the
  * viewport of the given size, `scale` pixels per font unit; 0:
- * hud_scale_to_fit(text, width, height, 0, height). */
-void hud_draw(const char *text, int width, int height, int scale);
+ * hud_scale_to_fit(text, width, height, 0, height). Its first
+ * `dimmed_lines` lines are drawn HUD_DIMMED_GREY, the rest white: a
+ * caption that no longer describes the picture. */
+void hud_draw(const char *text, int width, int height, int scale, int dimmed_lines);
 void hud_destroy(void);
 
 #endif

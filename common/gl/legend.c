@@ -53,7 +53,7 @@ void legend_draw(const legend_line *lines, int count, int x, int y, int scale) {
     legend_rect(viewport, x, y, column + text_width, height, legend_panel_color);
     glDisable(GL_SCISSOR_TEST);
     glViewport(viewport[0] + x + column, viewport[1] + viewport[3] - y - height, text_width, height);
-    hud_draw(text, text_width, height, scale);
+    hud_draw(text, text_width, height, scale, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glEnable(GL_SCISSOR_TEST);
     int size = HUD_LETTER_UNITS * scale, half = size / 2;

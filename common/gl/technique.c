@@ -52,15 +52,42 @@ void technique_param_text(const flags_param *p, char *out, size_t size) {
         snprintf(out, size, "%g", flags_number(p));
 }
 
-bool technique_param_changed(const flags_param *p) {
+/* A setting as a number, 0 its default: a toggle's disabled, a choice's
+ * index, a number as set (0: its fallback). */
+static double technique_param_value(const flags_param *p) {
     switch (p->kind) {
     case FLAGS_TOGGLE: return *p->disabled;
-    case FLAGS_CHOICE: return *p->index != 0;
-    case FLAGS_NUMBER: return *p->number != 0;
-    case FLAGS_INT: return *p->integer != 0;
+    case FLAGS_CHOICE: return *p->index;
+    case FLAGS_NUMBER: return *p->number;
+    case FLAGS_INT: return *p->integer;
     case FLAGS_SWITCH: return *p->on;
-    default: return false;
+    default: return 0;
     }
+}
+
+bool technique_param_changed(const flags_param *p) { return technique_param_value(p) != 0; }
+
+void technique_settings_save(const technique *t, technique_settings *out) {
+    *out = (technique_settings){.technique = t};
+    for (int k = 0; k < t->param_count; k++)
+        out->values[k] = technique_param_value(&t->params[k]);
+}
+
+bool technique_settings_changes(const technique_settings *saved, const technique *t, char *out, size_t size) {
+    if (saved->technique != t)
+        return snprintf(out, size, "technique %s", t->name) > 0;
+    int n = 0;
+    out[0] = '\0';
+    for (int k = 0; k < t->param_count && n < (int)size; k++) {
+        const flags_param *p = &t->params[k];
+        bool lacking = p->kind == FLAGS_TOGGLE && p->available && !*p->available;
+        if (technique_param_value(p) == saved->values[k] || lacking)
+            continue;
+        char value[32];
+        technique_param_text(p, value, sizeof value);
+        n += snprintf(out + n, size - (size_t)n, "%s%s %s", n ? ", " : "", p->name, value);
+    }
+    return n > 0;
 }
 
 bool technique_press_key(const technique *t, int key) { return flags_press_key(t->params, t->param_count, key); }

@@ -161,6 +161,22 @@ void technique_config_label(const char *config, char *out, size_t size);
 void technique_param_text(const flags_param *p, char *out, size_t size);
 /* Whether a setting differs from its default (zero). */
 bool technique_param_changed(const flags_param *p);
+
+/* A technique's settings as they stood once (a tour step's, as its flags
+ * set them), to say later which of them the window's keys have changed. */
+#define TECHNIQUE_MAX_PARAMS 32 /* app_main refuses a technique with more */
+typedef struct technique_settings {
+    const technique *technique;
+    double values[TECHNIQUE_MAX_PARAMS]; /* each parameter's: a toggle's disabled, a choice's index */
+} technique_settings;
+void technique_settings_save(const technique *t, technique_settings *out);
+/* What differs between `saved` and technique t as set now, into out: the
+ * technique ("technique volumes") where t is another, else each setting
+ * that differs as "NAME VALUE" (technique_param_text's), ", " between
+ * them ("constant-bias OFF, filter pcf5"); a toggle whose feature this GL
+ * lacks changes nothing drawn and is left out. False, out "", where
+ * nothing differs. */
+bool technique_settings_changes(const technique_settings *saved, const technique *t, char *out, size_t size);
 /* The window's key press: flips a toggle or steps a choice; false if no
  * parameter has the key. */
 bool technique_press_key(const technique *t, int key);

@@ -83,9 +83,10 @@ static struct {
     char paged_scene[PATH_MAX];  /* Page Up/Down's: the scene_path then */
     const char *tour_path;       /* --tour */
     tour tour;
-    int tour_step;                   /* the step shown */
-    bool step_scene, step_technique; /* what the step has loaded and started, for leaving it */
-    bool tour_failed;                /* a step did not start in the window */
+    int tour_step;                    /* the step shown */
+    technique_settings step_settings; /* its technique's, as its flags set them */
+    bool step_scene, step_technique;  /* what the step has loaded and started, for leaving it */
+    bool tour_failed;                 /* a step did not start in the window */
     /* run */
     context ctx;
     target target;     /* the technique's frame: the picture, or compare mode's cell */
@@ -189,7 +190,7 @@ static const flags_param app_flags[] = {
      "--glsl-es, and nothing beyond WebGL 2's core: what it has\nonly as extensions (clip distances, depth clamp, polygon\nmode, clip control) off, so the browser's fallbacks run",
      0, FLAGS_SWITCH, .on = &app.webgl2},
     {"verbose",
-     "print the backend and GL renderer, each model's triangles\nand bounds, and at the end the technique's state line and\nthe skips' lines; the skips' counters and the rays a\ntechnique casts on the HUD too (F3)",
+     "print the backend and GL renderer, each model's triangles\nand bounds, the HUD's text of each tour step, each F12 and\nthe last frame, and at the end the technique's state line\nand the skips' lines; the skips' counters and the rays a\ntechnique casts on the HUD too (F3)",
      0, FLAGS_SWITCH, .on = &app.verbose},
     {"quiet",
      "no progress (headless, the frames done and the truth's rows\nwhile waiting for it, on stderr where it is a terminal)",
@@ -512,6 +513,7 @@ static void app_print_compared(void) {
 }
 
 static void app_hud(int width, int height, int frame);
+static void app_print_hud(int width, int height, int frame);
 
 /* With --hud, the HUD drawn into the picture (frame: as app_hud). */
 static bool app_hud_in_picture(int frame) {
@@ -610,6 +612,25 @@ static bool app_load_tour(void) {
     return ok;
 }
 
+/* Whether step s is shown in compare mode: its own "compare", or
+ * --compare's for every step. */
+static bool app_step_compare(const tour_step *s) { return app.compare_given || s->compare; }
+
+/* What differs between the tour's step and what is shown: the technique
+ * and its settings (technique_settings_changes), and compare mode, into
+ * out ("technique volumes", "constant-bias OFF, compare off"); false, out
+ * "", where nothing does and the step's caption describes the picture.
+ * The view and the lights are no setting of the step's: moving them
+ * leaves its caption as it is. */
+static bool app_step_changes(char *out, size_t size) {
+    bool changed = technique_settings_changes(&app.step_settings, app_technique(), out, size);
+    if (app.compare_on != app_step_compare(&app.tour.steps[app.tour_step])) {
+        size_t n = strlen(out);
+        snprintf(out + n, size - n, "%scompare %s", changed ? ", " : "", app.compare_on ? "on" : "off");
+    }
+    return out[0] != '\0';
+}
+
 /* Step k's scene loaded, its camera (or its path's start) the one motion
  * and the window's keys start from, its technique configured and started,
  * its motion from time 0. */
@@ -621,11 +642,12 @@ static bool app_enter_step(int k) {
     app.animate = false;
     app.time = 0;
     app.scene_path = s->scene;
-    if (!app_set_compare(app.compare_given || s->compare))
+    if (!app_set_compare(app_step_compare(s)))
         return false;
     if (!technique_apply_config(app_technique(), s->flags) || !(app.step_scene = app_load_scene(s->scene, 0)) ||
         !tour_step_check_views(app.tour_path, k, s, app.scene.origin, &app.scene.camera))
         return false;
+    technique_settings_save(app_technique(), &app.step_settings);
     tour_step_camera(s, 0, app.scene.origin, &app.base_camera);
     app.loaded_camera = app.base_camera;
     app.step_technique = true; /* destroy() follows a failed init too */
@@ -662,9 +684,12 @@ static bool app_run_tour_headless(void) {
         ok = app_enter_step(k);
         int first, end;
         app_step_frames(s, &first, &end);
-        for (int i = first; i < end && ok; i++)
+        for (int i = first; i < end && ok; i++) {
             ok = app_headless_frame(i, app.screenshot && i == s->shown_frame) &&
                  (!app.screenshot || i != s->shown_frame || app_step_screenshot(k));
+            if (ok && app.verbose && i == s->shown_frame)
+                app_print_hud(app_picture()->width, app_picture()->height, i);
+        }
         if (ok && app.compare_on && (app.screenshot || app.video.pipe)) /* a kept frame was compared */
             app_print_compared();
         app_leave_step();
@@ -848,13 +873,14 @@ static int app_skips_text(char *out, size_t size) {
 
 /* The technique's settings for the HUD: each one a key changes, and
  * each other one that is not at its default (a flag's), as "[K] name:
- * value" (the key where it has one). */
-static int app_settings_text(const technique *t, char *out, size_t size) {
+ * value" (the key where it has one); with `defaults_left_out` only those
+ * not at their defaults, or that they all are. */
+static int app_settings_text(const technique *t, bool defaults_left_out, char *out, size_t size) {
     int n = 0;
     out[0] = '\0';
     for (int k = 0; k < t->param_count && n < (int)size; k++) {
         const flags_param *p = &t->params[k];
-        if (!p->key && !technique_param_changed(p))
+        if ((defaults_left_out || !p->key) && !technique_param_changed(p))
             continue;
         char value[32], key[8] = "";
         technique_param_text(p, value, sizeof value);
@@ -862,19 +888,25 @@ static int app_settings_text(const technique *t, char *out, size_t size) {
             snprintf(key, sizeof key, "[%c] ", p->key);
         n += snprintf(out + n, size - (size_t)n, "%s%s%s: %s", n ? "   " : "", key, p->name, value);
     }
+    if (n == 0 && defaults_left_out && t->param_count)
+        n = snprintf(out, size, "settings: the defaults");
     return n < (int)size ? n : (int)size - 1;
 }
 
-/* The HUD's text, for a lecture (--verbose prints it at the end): the
- * tour's caption, the technique (its title outside a tour: the caption
- * says what it would) and scene, the technique's state line and its
- * settings; compact (Tab, and compare mode's caption strip) the caption,
- * the technique and its settings alone. The skips' counters follow with
- * --verbose or F3. In the window (frame < 0) with the frame time, the
- * help and the last note (a saved screenshot, a scene that did not load);
- * in a headless picture with the frame's number and time instead, so
- * that the same command gives the same picture. */
-static void app_hud_text(char *text, size_t size, int frame, bool settings) {
+/* The HUD's text, for a lecture: the tour's caption, the technique (its
+ * title outside a tour: the caption says what it would) and scene, the
+ * technique's state line and its settings; compact (Tab, and compare
+ * mode's caption strip) the caption, the technique and its settings
+ * alone, and with `defaults_left_out` (compact only) the settings not at
+ * their defaults (app_settings_text) on the technique's line. A caption
+ * the picture no longer shows (app_step_changes) is followed by
+ * "changed: ..." and is its first line, which the HUD dims: returns 1
+ * then, else 0. The skips' counters follow with --verbose or F3. In the
+ * window (frame < 0) with the frame time, the help and the last note (a
+ * saved screenshot, a scene that did not load); in a headless picture
+ * with the frame's number and time instead, so that the same command
+ * gives the same picture. */
+static int app_hud_text(char *text, size_t size, int frame, bool defaults_left_out) {
     const technique *t = app_technique();
     bool compact = app.hud_compact || app.compare_on;
     char timing[64], scene_name[PATH_MAX];
@@ -884,12 +916,19 @@ static void app_hud_text(char *text, size_t size, int frame, bool settings) {
         snprintf(timing, sizeof timing, "frame %d at %.3f s", frame, app.time);
     if (!path_stem(app.scene_path, scene_name, sizeof scene_name))
         snprintf(scene_name, sizeof scene_name, "%s", app.scene_path);
-    int n = 0;
+    int n = 0, dimmed = 0;
 #define APP_HUD(...) (n += n < (int)size ? snprintf(text + n, size - (size_t)n, __VA_ARGS__) : 0)
-    if (app.tour_path)
+    if (app.tour_path) {
+        char changes[TOUR_TEXT_MAX];
         APP_HUD("step %d/%d   %s\n", app.tour_step + 1, app.tour.step_count, app.tour.steps[app.tour_step].caption);
+        if (app_step_changes(changes, sizeof changes)) {
+            APP_HUD("changed: %s\n", changes);
+            dimmed = 1;
+        }
+    }
     if (compact || app.tour_path)
-        APP_HUD("%s on %s   %dx%d   %s\n", t->name, scene_name, app.target.width, app.target.height, timing);
+        APP_HUD("%s on %s   %dx%d   %s%s", t->name, scene_name, app.target.width, app.target.height, timing,
+                defaults_left_out && t->param_count ? "   " : "\n");
     else
         APP_HUD("%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1, app.technique_count, t->name, t->title,
                 scene_name, app.target.width, app.target.height, timing, app_motion() ? "   moving: " : "",
@@ -905,8 +944,8 @@ static void app_hud_text(char *text, size_t size, int frame, bool settings) {
             APP_HUD("light %d: area light, radius %g%s: %s\n", l, s->lights[l].radius,
                     s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
                     technique_area_light_text(t, &s->lights[l], l));
-    if (settings && n < (int)size)
-        n += app_settings_text(t, text + n, size - (size_t)n);
+    if (n < (int)size)
+        n += app_settings_text(t, defaults_left_out, text + n, size - (size_t)n);
     if (!compact && app.hud_counters && n < (int)size) {
         APP_HUD("\n");
         if (n < (int)size)
@@ -922,21 +961,49 @@ static void app_hud_text(char *text, size_t size, int frame, bool settings) {
     if (frame < 0 && glfwGetTime() < app.note_until)
         APP_HUD("\n%s", app.note);
 #undef APP_HUD
+    return dimmed;
 }
 
-/* The HUD (app_hud_text) over a frame of `width` x `height`. */
-static void app_hud(int width, int height, int frame) {
-    char text[4096];
-    app_hud_text(text, sizeof text, frame, true);
-    /* In compare mode in its caption strip, over no cell, at the scale
-     * of the whole picture's HUD: without the settings where they would
-     * not fit, smaller only where the rest would not either. */
-    int room = app.compare_on ? app.comparing.strip_height * height / app.comparing.picture.height : height;
+/* How the HUD lies over a picture of `width` x `height`. */
+typedef struct app_hud_layout {
+    char text[4096]; /* app_hud_text's */
+    int dimmed_lines;
+    int room;  /* pixels from the picture's top */
+    int scale; /* hud_draw's */
+} app_hud_layout;
+
+/* The HUD over a picture of `width` x `height` (frame: as app_hud_text).
+ * In compare mode in its caption strip, over no cell, at the scale of the
+ * whole picture's HUD: where all of it would not fit, the settings at
+ * their defaults left out and the others on the technique's line (the
+ * caption, the technique and the settings that differ from the defaults
+ * always stay), smaller only where that would not fit either. */
+static void app_hud_lay_out(int width, int height, int frame, app_hud_layout *out) {
+    out->dimmed_lines = app_hud_text(out->text, sizeof out->text, frame, false);
+    out->room = app.compare_on ? app.comparing.strip_height * height / app.comparing.picture.height : height;
     int full = app.hud_scale ? app.hud_scale : hud_scale_for(height);
-    if (app.compare_on && hud_scale_to_fit(text, width, room, full, height) < full)
-        app_hud_text(text, sizeof text, frame, false);
-    glViewport(0, height - room, width, room);
-    hud_draw(text, width, room, hud_scale_to_fit(text, width, room, full, height));
+    if (app.compare_on && hud_scale_to_fit(out->text, width, out->room, full, height) < full)
+        out->dimmed_lines = app_hud_text(out->text, sizeof out->text, frame, true);
+    out->scale = hud_scale_to_fit(out->text, width, out->room, full, height);
+}
+
+static void app_hud(int width, int height, int frame) {
+    app_hud_layout hud;
+    app_hud_lay_out(width, height, frame, &hud);
+    glViewport(0, height - hud.room, width, hud.room);
+    hud_draw(hud.text, width, hud.room, hud.scale, hud.dimmed_lines);
+}
+
+/* --verbose: the HUD's text as app_hud draws it over a picture of `width`
+ * x `height`, a line "hud: ..." each on stderr. */
+static void app_print_hud(int width, int height, int frame) {
+    progress_clear(&app.progress); /* not on the progress line */
+    app_hud_layout hud;
+    app_hud_lay_out(width, height, frame, &hud);
+    for (char *line = hud.text, *end; *line; line = end + (*end == '\n')) {
+        end = line + strcspn(line, "\n");
+        fprintf(stderr, "hud: %.*s\n", (int)(end - line), line);
+    }
 }
 
 /* app_load_scene, what it says on stderr also kept: its first line into
@@ -1109,7 +1176,8 @@ static void app_on_resize(GLFWwindow *w, int width, int height) {
 }
 
 /* F12's picture: the window as it is about to be shown, HUD included;
- * its path printed and noted on the HUD, or why not. */
+ * its path printed and noted on the HUD, or why not; with --verbose, the
+ * text of the HUD it holds. */
 static void app_save_window(int width, int height) {
     const char *path = app.screenshot_asked;
     unsigned char *rgba = malloc((size_t)width * (size_t)height * 4);
@@ -1117,6 +1185,10 @@ static void app_save_window(int width, int height) {
     if (!rgba)
         fprintf(stderr, "%s: out of memory for a %dx%d screenshot\n", path, width, height);
     free(rgba);
+    if (saved && app.verbose && app.hud_in_pictures)
+        app_print_hud(app_picture()->width, app_picture()->height, -1);
+    else if (saved && app.verbose && !app.no_hud)
+        app_print_hud(width, height, -1);
     snprintf(app.note, sizeof app.note, saved ? "saved %s" : "screenshot %s NOT saved (see stderr)", path);
     app.note_until = glfwGetTime() + APP_NOTE_SECONDS;
     if (saved)
@@ -1259,15 +1331,12 @@ static bool app_run(void) {
             fprintf(stderr, "%s: %s\n", app_technique()->name, line);
         }
         if (ok && app.verbose) {
-            char skips[512], hud[4096];
+            char skips[512];
             app_skips_text(skips, sizeof skips);
             fprintf(stderr, "%s\n", skips);
             bool interactive = app.ctx.window && app.frames <= 0; /* its HUD's as the window's last */
-            app_hud_text(hud, sizeof hud, interactive ? -1 : (app.frames > 0 ? app.frames : 1) - 1, true);
-            for (char *line = hud, *end; *line; line = end + (*end == '\n')) {
-                end = line + strcspn(line, "\n");
-                fprintf(stderr, "hud: %.*s\n", (int)(end - line), line);
-            }
+            app_print_hud(app_picture()->width, app_picture()->height,
+                          interactive ? -1 : (app.frames > 0 ? app.frames : 1) - 1);
         }
         technique_host_stop(&app.host);
         app_unload_scene();
@@ -1285,6 +1354,12 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
         fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count, APP_MAX_TECHNIQUES);
         return APP_EXIT_RUNTIME;
     }
+    for (int i = 0; i < technique_count; i++)
+        if (techniques[i]->param_count > TECHNIQUE_MAX_PARAMS) { /* a tour step's are saved (technique_settings) */
+            fprintf(stderr, "%s: %s has %d settings, more than %d\n", app.program, techniques[i]->name,
+                    techniques[i]->param_count, TECHNIQUE_MAX_PARAMS);
+            return APP_EXIT_RUNTIME;
+        }
     app.techniques = techniques;
     app.technique_count = technique_count;
     for (int i = 0; i < technique_count; i++)
