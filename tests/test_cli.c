@@ -343,6 +343,17 @@ static void test_headless_run_says_nothing_written(void **state) {
     assert_non_null(strstr(err, "--screenshot"));
 }
 
+/* --fullscreen is the window's: a headless run, whether its backend or
+ * its output makes it so, refuses it in one line, and every program
+ * takes it. */
+static void test_headless_run_refuses_fullscreen(void **state) {
+    (void)state;
+    expect_line("shadows", "--backend egl --size 64x36 --fullscreen", EXIT_RUNTIME,
+                "shadows: --fullscreen: this run is headless (egl), with no window to fill");
+    expect_line("planar", "--fullscreen --size 64x36 --screenshot out/test/fullscreen.png", EXIT_RUNTIME,
+                "planar: --fullscreen: this run is headless");
+}
+
 /* The gallery's list of scenes ends at the next flag: --technique there
  * picks the one technique to show; a flag before any scene is exit 2. */
 static void test_gallery_takes_flags_after_its_scenes(void **state) {
@@ -421,6 +432,7 @@ int main(void) {
         cmocka_unit_test(test_readme_flags_current),
         cmocka_unit_test(test_headless_run_says_nothing_written),
         cmocka_unit_test(test_long_work_progress),
+        cmocka_unit_test(test_headless_run_refuses_fullscreen),
         cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
         cmocka_unit_test(test_record_writes_a_video),
         cmocka_unit_test(test_gl_error_in_any_technique_fails),

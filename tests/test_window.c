@@ -9,7 +9,9 @@
  * scene that does not load (Page Down) says why on the HUD. In a tour,
  * the step's caption is dimmed and says what changed while the technique
  * or a setting differs from the step's, and is itself again once they
- * are the step's (support_expect_captions). */
+ * are the step's (support_expect_captions). --fullscreen starts on
+ * the whole screen, and F11 goes back to the window as it was (the same
+ * picture) and to the whole screen again. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -27,7 +29,9 @@
 #define WINDOW_SCENE "assets/scenes/simple.json"
 #define WINDOW_SCENES "tests/data/window_scenes" /* simple's copy, then a broken scene */
 #define WINDOW_HEIGHT 360
-#define WINDOW_HUD_ROWS 120 /* the full HUD's at most, at 640x360 */
+#define WINDOW_HUD_ROWS 120      /* the full HUD's at most, at 640x360 */
+#define WINDOW_SCREEN_WIDTH 1024 /* support_xvfb_run's screen */
+#define WINDOW_SCREEN_HEIGHT 768
 
 static char err[16384];
 
@@ -115,6 +119,24 @@ static void test_keys_and_mouse_in_a_real_window(void **state) {
         WINDOW_DIR "/screenshot-shadowmap-3.png", WINDOW_DIR "/screenshot-shadowmap-4.png"};
     support_expect_captions(hud, captions);
     free(hud);
+
+    /* Fullscreen, the window, fullscreen again. */
+    const struct {
+        const char *path;
+        int width, height;
+    } fullscreen[] = {
+        {WINDOW_DIR "/screenshot-planar-6.png", WINDOW_SCREEN_WIDTH, WINDOW_SCREEN_HEIGHT},
+        {WINDOW_DIR "/screenshot-planar-7.png", width, WINDOW_HEIGHT},
+        {WINDOW_DIR "/screenshot-planar-8.png", WINDOW_SCREEN_WIDTH, WINDOW_SCREEN_HEIGHT},
+    };
+    for (size_t k = 0; k < sizeof fullscreen / sizeof *fullscreen; k++) {
+        unsigned char *picture = image_read_png(fullscreen[k].path, &hud_width, &hud_height);
+        if (!picture || hud_width != fullscreen[k].width || hud_height != fullscreen[k].height)
+            fail_msg("%s: %dx%d, not %dx%d", fullscreen[k].path, picture ? hud_width : 0, picture ? hud_height : 0,
+                     fullscreen[k].width, fullscreen[k].height);
+        free(picture);
+    }
+    assert_true(support_compare_images(loaded, fullscreen[1].path) == 0);
 }
 
 int main(void) {

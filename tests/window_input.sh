@@ -26,6 +26,11 @@
 #   C                   its constant bias off
 #   F12                 screenshot-shadowmap-4.png
 #   Escape              exit 0
+# then with --fullscreen and --no-hud, on SCENE:
+#   F12                 screenshot-planar-6.png: the whole screen
+#   F11, F12            screenshot-planar-7.png: the window as it was (the same picture as -2)
+#   F11, F12            screenshot-planar-8.png: the whole screen again
+#   Escape              exit 0
 # Each step waits SETTLE seconds, so that frames are drawn between events
 # (F12 saves the last drawn picture).
 # Usage: tests/window_input.sh PROGRAM SCENE SCENE2 TOUR SIZE DIR, from
@@ -41,8 +46,6 @@ for build in build build-san; do
     [ ! -e "$build" ] || ln -sfn "$PWD/$build" "$dir/$build"
 done
 cd "$dir"
-eval "$program --scene '$scene' --size 640x360 --no-hud >stdout.txt 2>stderr.txt &"
-app=$!
 # A failed step says whether the app was still running, or how it ended.
 report_app() {
     if kill -0 "$app" 2>/dev/null; then
@@ -53,17 +56,27 @@ report_app() {
     fi
 }
 trap 'echo "window_input.sh: line $LINENO failed on display $DISPLAY: $BASH_COMMAND" >&2; report_app' ERR
-window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
-sleep "$SETTLE"
+# The app with ARGS, its outputs to stdoutN.txt and stderrN.txt (N: the
+# run's suffix), once its window is there; its size SIZE (640x360).
+start() {
+    eval "$program $1 --size ${3:-640x360} >stdout$2.txt 2>stderr$2.txt &"
+    app=$!
+    window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
+    sleep "$SETTLE"
+}
 press() {
     xdotool key --window "$window" "$1"
     sleep "$SETTLE"
 }
 # Escape pressed only: the app closes its window on the press, so a
-# release sent after it would find no window.
+# release sent after it would find no window. The server may list the
+# closed window a moment longer: the next start must not find it.
 quit() {
     xdotool keydown --window "$window" Escape
+    wait "$app"
+    timeout 30 bash -c "while xdotool search --name '^shadows\$' >/dev/null; do sleep 0.2; done"
 }
+start "--scene '$scene' --no-hud" ""
 press F12
 xdotool mousemove --window "$window" 320 100 mousedown 1 mousemove --window "$window" 320 180 \
     mousemove --window "$window" 320 250 mouseup 1
@@ -74,27 +87,22 @@ press F12
 press 3
 press F12
 quit
-wait "$app"
-# The server may list the closed window a moment longer: the next search
-# must not find it.
-timeout 30 bash -c "while xdotool search --name '^shadows\$' >/dev/null; do sleep 0.2; done"
 
-eval "$program --scene '$scene2' --size 640x360 --verbose >stdout2.txt 2>stderr2.txt &"
-app=$!
-window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
-sleep "$SETTLE"
+start "--scene '$scene2' --verbose" 2
 press F12
 press Next
 quit
-wait "$app"
-timeout 30 bash -c "while xdotool search --name '^shadows\$' >/dev/null; do sleep 0.2; done"
 
-eval "$program --tour '$tour' --size $tour_size --verbose >stdout3.txt 2>stderr3.txt &"
-app=$!
-window=$(timeout 60 xdotool search --sync --name '^shadows$' | head -1)
-sleep "$SETTLE"
+start "--tour '$tour' --verbose" 3 "$tour_size"
 for key in space space space F12 6 F12 3 F12 c F12; do
     press "$key"
 done
 quit
-wait "$app"
+
+start "--scene '$scene' --no-hud --fullscreen" 4
+press F12
+press F11
+press F12
+press F11
+press F12
+quit

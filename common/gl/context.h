@@ -95,6 +95,12 @@ const context_features *context_current_features(void);
  * current: context_create then keeps them (the settings' glsl_es and
  * webgl2 unused). */
 void context_set_features(const context_features *f);
+/* The window (context_glfw.c; in the web build, the page's canvas:
+ * context_browser.c) on the whole screen, or back as it was before.
+ * False, having said why, where that cannot be; the page asks the
+ * browser, which says later, on the console, when it refuses. */
+bool context_set_fullscreen(context *c, bool on);
+bool context_fullscreen(const context *c);
 /* Whether GL_RENDERER names one of Mesa's software rasterizers, whose
  * timer queries see only the submission: time is then the CPU's. */
 bool context_software_renderer(const char *renderer);

@@ -4,6 +4,9 @@
 #include <GLFW/glfw3.h>
 #include <stdio.h>
 
+/* Where the window was, and how large, before it took the whole screen. */
+static struct { int x, y, width, height; } context_glfw_windowed;
+
 static void context_glfw_error(int code, const char *description) {
     fprintf(stderr, "GLFW error 0x%x: %s\n", code, description);
 }
@@ -37,4 +40,27 @@ void context_glfw_destroy(context *c) {
     if (c->window)
         glfwDestroyWindow(c->window);
     glfwTerminate();
+}
+
+bool context_fullscreen(const context *c) { return glfwGetWindowMonitor(c->window) != NULL; }
+
+/* Fullscreen on the primary monitor, in its current video mode. */
+bool context_set_fullscreen(context *c, bool on) {
+    if (on == context_fullscreen(c))
+        return true;
+    if (!on) {
+        glfwSetWindowMonitor(c->window, NULL, context_glfw_windowed.x, context_glfw_windowed.y,
+                             context_glfw_windowed.width, context_glfw_windowed.height, GLFW_DONT_CARE);
+        return true;
+    }
+    GLFWmonitor *monitor = glfwGetPrimaryMonitor();
+    const GLFWvidmode *mode = monitor ? glfwGetVideoMode(monitor) : NULL;
+    if (!mode) {
+        fprintf(stderr, "context: glfw: no monitor to fill, so the window stays as it is\n");
+        return false;
+    }
+    glfwGetWindowPos(c->window, &context_glfw_windowed.x, &context_glfw_windowed.y);
+    glfwGetWindowSize(c->window, &context_glfw_windowed.width, &context_glfw_windowed.height);
+    glfwSetWindowMonitor(c->window, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+    return true;
 }

@@ -57,6 +57,7 @@ static struct {
     /* flags (zero: the default) */
     int backend; /* context_backend */
     int width, height;
+    bool fullscreen;       /* --fullscreen: the window on the whole screen (F11 toggles it) */
     int frames;            /* 0: not given, so one frame headless or a window */
     bool verbose, animate; /* animate: --motion light, the space key flips it */
     bool quiet;            /* --quiet: no progress */
@@ -117,6 +118,8 @@ static const flags_param app_flags[] = {
     {"backend", "context (auto: a window if interactive and a display\nis there, else EGL, else OSMesa)", 0,
      FLAGS_CHOICE, .index = &app.backend, .choices = context_backend_names},
     {"size", "framebuffer size (1280x720)", 0, FLAGS_SIZE, .width = &app.width, .height = &app.height},
+    {"fullscreen", "the window on the whole screen (F11); a headless run\nrefuses it in one line", 0, FLAGS_SWITCH,
+     .on = &app.fullscreen},
     {"scene", "scene file (assets/scenes/simple.json)", 0, FLAGS_STRING, .text = &app.scene_path,
      .value_name = "PATH"},
     {"frames", "render N frames headless (time i/60 s), then exit", 0, FLAGS_INT, .integer = &app.frames, .min = 1,
@@ -221,6 +224,7 @@ static const app_window_key app_window_keys[] = {
     {0, "Tab", "the HUD's caption, technique and settings only (--hud-compact)"},
     {0, "F3", "the skips' counters and the rays cast on the HUD (--verbose)"},
     {GLFW_KEY_H, NULL, "help on the HUD"},
+    {0, "F11", "the window on the whole screen, or back (--fullscreen)"},
     {0, "F12", "the window's picture, HUD included (screenshot-TECHNIQUE-N.png, never overwritten)"},
     {0, "Esc", "quit"},
 };
@@ -1107,6 +1111,7 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
     case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
     case GLFW_KEY_F3: app.hud_counters = !app.hud_counters; return;
+    case GLFW_KEY_F11: context_set_fullscreen(&app.ctx, !context_fullscreen(&app.ctx)); return;
     case APP_COMPARE_KEY:
         if (!app_set_compare(!app.compare_on))
             glfwSetWindowShouldClose(w, GLFW_TRUE);
@@ -1290,6 +1295,13 @@ static bool app_run(void) {
     };
     if (!context_create(&app.ctx, &settings))
         return false;
+    if (app.fullscreen && (!app.ctx.window || !context_set_fullscreen(&app.ctx, true))) {
+        if (!app.ctx.window)
+            fprintf(stderr, "%s: --fullscreen: this run is headless (%s), with no window to fill\n", app.program,
+                    context_backend_name(app.ctx.backend));
+        context_destroy(&app.ctx);
+        return false;
+    }
     app.host.light_points = app.ctx.window ? TECHNIQUE_HOST_PROGRESSIVE_POINTS : 0;
     int width = app.width, height = app.height;
     if (app.ctx.window)

@@ -14,7 +14,9 @@
  *
  * A run that is not interactive (--frames, --screenshot, --dump: what the
  * browser tests run) gets the canvas's context without a window, so the
- * program runs it as native programs run EGL: headless. */
+ * program runs it as native programs run EGL: headless.
+ *
+ * Fullscreen is the browser's, of the canvas alone. */
 #include <GLFW/glfw3.h>
 #include <emscripten/emscripten.h>
 #include <emscripten/html5_webgl.h>
@@ -124,4 +126,28 @@ context_loader context_browser_create(context *c, const context_settings *s) {
 void context_browser_destroy(context *c) {
     glfwDestroyWindow(c->window ? c->window : c->impl);
     glfwTerminate();
+}
+
+EM_JS(int, context_browser_canvas_fullscreen, (void), { return document.fullscreenElement == Module.canvas; });
+
+/* A browser goes fullscreen only while handling a click or a key (F11):
+ * asked at any other time, it refuses, which its promise says. */
+EM_JS(void, context_browser_request_fullscreen, (int on), {
+    if (!on)
+        document.exitFullscreen();
+    else
+        Module.canvas.requestFullscreen().catch(function() {
+            err("fullscreen: the browser refused: it goes fullscreen at a click or a key only (F11)");
+        });
+});
+
+bool context_fullscreen(const context *c) {
+    (void)c;
+    return context_browser_canvas_fullscreen();
+}
+
+bool context_set_fullscreen(context *c, bool on) {
+    if (on != context_fullscreen(c))
+        context_browser_request_fullscreen(on);
+    return true;
 }
