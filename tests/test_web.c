@@ -4,7 +4,9 @@
  * WebGL 2) against native EGL's. At most WEB_MAX_DIFFERING of the pixels
  * may differ by more than SUPPORT_TOLERANCE, and at most WEB_MAX_DECISIONS
  * of the visibility decisions (no surface, lit, shadowed) may differ. A
- * page that fails fails the test with the browser console's lines.
+ * page that fails fails the test with the browser console's lines. The
+ * page's own parts too: its window, menu and HUD, and what it says
+ * without WebGL 2.
  *
  * Skipped where the page is not built (make test builds it where Debian's
  * emscripten is installed) or Chromium is missing, and in the sanitizer
@@ -23,6 +25,9 @@
 #include <unistd.h>
 
 #include "dump.h"
+#include "flags.h"
+#include "hud.h"
+#include "image.h"
 #include "path.h"
 #include "registry.h"
 #include "support.h"
@@ -121,12 +126,14 @@ static bool web_write_base64(const char *text, size_t length, const char *path) 
 }
 
 /* Runs the page with the program's `args` and the page's `query` (keys,
- * frames: index.html) in headless Chromium; the files it wrote under /out/
- * (of the names in `exported`) and its console's lines (console.txt) into
- * dir. Fails the running test, with the page's console, unless its status
- * starts with `expected`. */
-static void web_run_page(const char *args, const char *query, const char *exported, const char *expected,
-                         const char *dir) {
+ * frames: index.html) in headless Chromium, with its own `browser` flags
+ * too; the files it wrote under /out/ (of the names in `exported`), its
+ * console's lines (console.txt) and its DOM (page.html) into dir, made
+ * anew (no picture of an earlier run stays to be found there). Fails
+ * the running test, with the page's console, unless its status starts
+ * with `expected`. */
+static void web_run_page(const char *args, const char *query, const char *exported, const char *browser,
+                         const char *expected, const char *dir) {
     char encoded[2048], dom_path[PATH_MAX + 16], command[4 * PATH_MAX + 4096];
     web_url_encode(args, encoded, sizeof encoded);
     snprintf(dom_path, sizeof dom_path, "%s/page.html", dir);
@@ -134,9 +141,9 @@ static void web_run_page(const char *args, const char *query, const char *export
      * notes) to another: support_run redirects the command's outputs. */
     snprintf(
         command, sizeof command,
-        "{ mkdir -p %s && " WEB_CHROMIUM
-        " --user-data-dir=\"$PWD/%s/profile\" 'file://%s?args=%s&export=%s%s' > %s 2> %s/chromium.log; rm -rf %s/profile; }",
-        dir, dir, web_page, encoded, exported, query, dom_path, dir, dir);
+        "{ rm -rf %s && mkdir -p %s && " WEB_CHROMIUM
+        " %s --user-data-dir=\"$PWD/%s/profile\" 'file://%s?args=%s&export=%s%s' > %s 2> %s/chromium.log; rm -rf %s/profile; }",
+        dir, dir, browser, dir, web_page, encoded, exported, query, dom_path, dir, dir);
     char errors[4096];
     int status = support_run(command, errors, sizeof errors);
     size_t length;
@@ -176,7 +183,7 @@ static void web_run_page(const char *args, const char *query, const char *export
 
 /* A headless run of the program in the page, which must exit 0. */
 static void web_run(const char *args, const char *exported, const char *dir) {
-    web_run_page(args, "", exported, "exit 0 ", dir);
+    web_run_page(args, "", exported, "", "exit 0 ", dir);
 }
 
 /* The share of pixels whose decision (no surface, lit, shadowed at half
@@ -244,7 +251,7 @@ static void web_keys_switch_and_toggle(void **state) {
     const char *dir = OUT "/keys";
     web_run_page("--no-hud --size " WEB_SIZE " --scene /assets/scenes/simple.json",
                  "&keys=2:3,4:F12,5:C,5:L,7:F12&frames=8", "screenshot-shadowmap-1.png,screenshot-shadowmap-2.png",
-                 "frames 8", dir);
+                 "", "frames 8", dir);
     static const struct {
         const char *web, *flags;
     } pictures[] = {
@@ -269,6 +276,96 @@ static void web_keys_switch_and_toggle(void **state) {
     assert_true(support_compare_images(before, after) > WEB_MAX_DIFFERING);
 }
 
+/* The page's window without --size, in a Chromium window
+ * WEB_WINDOW_WIDTH wide at WEB_PIXEL_RATIO device pixels to a CSS pixel:
+ * the canvas spans the page's width in device pixels, and is less tall
+ * than the window (the menu and the status share it). The menu's
+ * technique button starts its technique (F12's picture is named by it)
+ * and shows it pressed; Esc does not stop the page. The HUD shows no frame time, which the browser's
+ * clock cannot measure: its second line ends with the picture's size,
+ * nothing in white after it. The menu's compare button turns compare
+ * mode on, whose picture takes the size its truths are baked at (make
+ * web: build/shadows' default) whatever the window's. */
+#define WEB_WINDOW_WIDTH 1000
+#define WEB_WINDOW_HEIGHT 700
+#define WEB_PIXEL_RATIO 1.5
+#define WEB_WINDOW_FLAGS "--window-size=1000,700 --force-device-scale-factor=1.5"
+#define WEB_HUD_SCALE 2
+#define WEB_HUD_WHITE 250 /* the HUD's text is white; its panel and the sky behind it dark */
+#define WEB_MENU_TECHNIQUE "shadowmap"
+#define WEB_BAKED_WIDTH 1280
+#define WEB_BAKED_HEIGHT 720
+
+/* The pixels of `picture` in [x0, x1) x [y0, y1) that are white in every
+ * channel. */
+static long web_white_pixels(const unsigned char *picture, int width, int x0, int x1, int y0, int y1) {
+    long white = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1 && x < width; x++) {
+            const unsigned char *p = picture + 4 * ((size_t)y * (size_t)width + (size_t)x);
+            white += p[0] >= WEB_HUD_WHITE && p[1] >= WEB_HUD_WHITE && p[2] >= WEB_HUD_WHITE;
+        }
+    return white;
+}
+
+static void web_window_fills_the_page_and_menu_drives_it(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    const char *dir = OUT "/menu";
+    web_run_page("--hud-scale " FLAGS_TEXT(WEB_HUD_SCALE),
+                 "&click=2:technique-" WEB_MENU_TECHNIQUE ",5:compare&keys=3:Escape,4:F12,7:F12&frames=7",
+                 "screenshot-" WEB_MENU_TECHNIQUE "-1.png,screenshot-" WEB_MENU_TECHNIQUE "-2.png", WEB_WINDOW_FLAGS,
+                 "frames 7", dir);
+    int width, height;
+    unsigned char *picture = image_read_png(OUT "/menu/screenshot-" WEB_MENU_TECHNIQUE "-1.png", &width, &height);
+    if (!picture)
+        fail_msg("the menu's %s button did not start it: no F12 picture of it", WEB_MENU_TECHNIQUE);
+    printf("web: the page's window: %dx%d device pixels\n", width, height);
+    assert_int_equal(width, (int)(WEB_WINDOW_WIDTH * WEB_PIXEL_RATIO));
+    assert_true(height > 0 && height < (int)(WEB_WINDOW_HEIGHT * WEB_PIXEL_RATIO));
+    char *dom = path_read_text(OUT "/menu/page.html", WEB_MAX_DOM, NULL);
+    assert_non_null(dom);
+    assert_non_null(strstr(dom, "id=\"technique-" WEB_MENU_TECHNIQUE "\" aria-pressed=\"true\""));
+    free(dom);
+    char size_line[64];
+    snprintf(size_line, sizeof size_line, "scene simple   %dx%d", width, height);
+    int top = (HUD_MARGIN + HUD_LINE_UNITS) * WEB_HUD_SCALE, bottom = top + HUD_LINE_UNITS * WEB_HUD_SCALE;
+    int end = (HUD_MARGIN + hud_text_width(size_line)) * WEB_HUD_SCALE;
+    long said = web_white_pixels(picture, width, HUD_MARGIN * WEB_HUD_SCALE, end, top, bottom);
+    long after = web_white_pixels(picture, width, end, width, top, bottom);
+    printf("web: the HUD's second line: %ld white pixels in \"%s\", %ld after it\n", said, size_line, after);
+    assert_true(said > 0);
+    assert_int_equal(after, 0);
+    free(picture);
+    picture = image_read_png(OUT "/menu/screenshot-" WEB_MENU_TECHNIQUE "-2.png", &width, &height);
+    assert_non_null(picture);
+    printf("web: the page's window in compare mode: %dx%d device pixels\n", width, height);
+    assert_int_equal(width, WEB_BAKED_WIDTH);
+    assert_int_equal(height, WEB_BAKED_HEIGHT);
+    free(picture);
+}
+
+/* Without WebGL 2 (Chromium's --disable-webgl) the page says so in one
+ * sentence and starts nothing: no line of the program's. */
+#define WEB_NO_WEBGL2 "This page needs WebGL 2, which this browser does not offer."
+static void web_without_webgl2_says_so(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    web_run_page("", "", "", "--disable-webgl", WEB_NO_WEBGL2, OUT "/no_webgl2");
+    char *status = path_read_text(OUT "/no_webgl2/page.html", WEB_MAX_DOM, NULL);
+    assert_non_null(status);
+    char *said = web_element(status, "status"),
+         *console = path_read_text(OUT "/no_webgl2/console.txt", 1 << 16, NULL);
+    assert_string_equal(said, WEB_NO_WEBGL2);
+    assert_non_null(console);
+    assert_string_equal(console, "");
+    free(said);
+    free(console);
+    free(status);
+}
+
 /* A tour in the page: Space steps it, and the step shown is the native
  * headless tour's picture of that step. */
 #define WEB_TOUR "shadowmap"
@@ -281,7 +378,7 @@ static void web_tour_steps(void **state) {
         skip();
     const char *dir = OUT "/tour";
     web_run_page("--no-hud --size " WEB_SIZE " --tour /assets/tours/" WEB_TOUR ".json",
-                 "&keys=2:Space,3:Space,4:Space,6:F12&frames=7", WEB_TOUR_PICTURE, "frames 7", dir);
+                 "&keys=2:Space,3:Space,4:Space,6:F12&frames=7", WEB_TOUR_PICTURE, "", "frames 7", dir);
     char command[512], errors[4096];
     snprintf(command, sizeof command,
              "%s --backend egl --size " WEB_SIZE " --tour assets/tours/" WEB_TOUR ".json --screenshot " OUT
@@ -322,8 +419,8 @@ static void web_tour_caption_stays_true(void **state) {
 }
 
 /* Every tour, every step headless in the page at the page's own size
- * (build/shadows' default, the canvas's), and each standard and soft
- * scene's loaded view in compare mode, against the native EGL run that
+ * (build/shadows' default, the canvas's in compare mode), and each
+ * standard and soft scene's loaded view in compare mode, against the native EGL run that
  * baked their truths (make web: build-web/baking/RUN/, its pictures and
  * figures.txt): each picture within WEB_MAX_TOUR_DIFFERING, the lecture's
  * artifacts (z-fighting, acne) being each rasterizer's own coin tosses;
@@ -431,6 +528,8 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(web_matches_native),
         cmocka_unit_test(web_keys_switch_and_toggle),
+        cmocka_unit_test(web_window_fills_the_page_and_menu_drives_it),
+        cmocka_unit_test(web_without_webgl2_says_so),
         cmocka_unit_test(web_tour_steps),
         cmocka_unit_test(web_tour_caption_stays_true),
         cmocka_unit_test(web_baked_runs_match_native),

@@ -101,6 +101,11 @@ void context_set_features(const context_features *f);
  * browser, which says later, on the console, when it refuses. */
 bool context_set_fullscreen(context *c, bool on);
 bool context_fullscreen(const context *c);
+/* The window's framebuffer, in pixels. A native window's size is its
+ * user's; the page's canvas this first makes fixed_width x fixed_height,
+ * or, where fixed_width is 0, its box on the page times the device's
+ * pixel ratio (the page shows it whole in its box). */
+void context_window_size(context *c, int fixed_width, int fixed_height, int *width, int *height);
 /* Whether GL_RENDERER names one of Mesa's software rasterizers, whose
  * timer queries see only the submission: time is then the CPU's. */
 bool context_software_renderer(const char *renderer);

@@ -42,6 +42,11 @@ void context_glfw_destroy(context *c) {
     glfwTerminate();
 }
 
+void context_window_size(context *c, int fixed_width, int fixed_height, int *width, int *height) {
+    (void)fixed_width, (void)fixed_height;
+    glfwGetFramebufferSize(c->window, width, height);
+}
+
 bool context_fullscreen(const context *c) { return glfwGetWindowMonitor(c->window) != NULL; }
 
 /* Fullscreen on the primary monitor, in its current video mode. */

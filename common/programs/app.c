@@ -47,6 +47,19 @@
 #define APP_NOTE_SECONDS 4.0 /* how long the HUD shows "saved PATH" */
 #define APP_RESET_KEY GLFW_KEY_0
 #define APP_COMPARE_KEY GLFW_KEY_A /* "against the truth": C is the constant bias */
+#define APP_DEFAULT_WIDTH 1280
+#define APP_DEFAULT_HEIGHT 720
+/* In the page (the web build) the window differs in two things. Its HUD
+ * shows no frame time: the browser draws a frame after the frame's code
+ * has returned, and paces the frames to the display, so that its clock
+ * would time neither the drawing nor the frame (make web-bench times the
+ * page's frames). And Esc, which leaves the browser's fullscreen, does
+ * not stop it: a page has nothing to quit to. */
+#ifdef __EMSCRIPTEN__
+#define APP_IN_PAGE 1
+#else
+#define APP_IN_PAGE 0
+#endif
 
 static struct {
     const char *program;
@@ -55,8 +68,9 @@ static struct {
     bool technique_given;                                /* --technique: the gallery shows that one only */
     const char *technique_names[APP_MAX_TECHNIQUES + 1]; /* --technique's choices */
     /* flags (zero: the default) */
-    int backend; /* context_backend */
-    int width, height;
+    int backend;           /* context_backend */
+    int width, height;     /* 0 until parsed: not given, so APP_DEFAULT_* */
+    bool size_given;       /* --size: else the page's canvas follows its box (app_window_size) */
     bool fullscreen;       /* --fullscreen: the window on the whole screen (F11 toggles it) */
     int frames;            /* 0: not given, so one frame headless or a window */
     bool verbose, animate; /* animate: --motion light, the space key flips it */
@@ -105,7 +119,7 @@ static struct {
     progress progress;         /* headless: the frames done (app_show_progress) */
     int frames_done, frames_total;
     /* window */
-    bool show_help, dragging, resized;
+    bool show_help, dragging;
     double drag_x, drag_y, frame_ms;
     double last_frame;               /* glfwGetTime at the last frame's end */
     char note[PATH_MAX + 64];        /* the HUD's last line until note_until (glfwGetTime) */
@@ -117,7 +131,9 @@ static struct {
 static const flags_param app_flags[] = {
     {"backend", "context (auto: a window if interactive and a display\nis there, else EGL, else OSMesa)", 0,
      FLAGS_CHOICE, .index = &app.backend, .choices = context_backend_names},
-    {"size", "framebuffer size (1280x720)", 0, FLAGS_SIZE, .width = &app.width, .height = &app.height},
+    {"size",
+     "framebuffer size (1280x720; without it the page's canvas\nfills the page, following the browser window's size)",
+     0, FLAGS_SIZE, .width = &app.width, .height = &app.height},
     {"fullscreen", "the window on the whole screen (F11); a headless run\nrefuses it in one line", 0, FLAGS_SWITCH,
      .on = &app.fullscreen},
     {"scene", "scene file (assets/scenes/simple.json)", 0, FLAGS_STRING, .text = &app.scene_path,
@@ -913,11 +929,11 @@ static int app_settings_text(const technique *t, bool defaults_left_out, char *o
 static int app_hud_text(char *text, size_t size, int frame, bool defaults_left_out) {
     const technique *t = app_technique();
     bool compact = app.hud_compact || app.compare_on;
-    char timing[64], scene_name[PATH_MAX];
-    if (frame < 0)
-        snprintf(timing, sizeof timing, "%.2f ms/frame (CPU)", app.frame_ms);
-    else
-        snprintf(timing, sizeof timing, "frame %d at %.3f s", frame, app.time);
+    char timing[64] = "", scene_name[PATH_MAX];
+    if (frame < 0 && !APP_IN_PAGE)
+        snprintf(timing, sizeof timing, "   %.2f ms/frame (CPU)", app.frame_ms);
+    else if (frame >= 0)
+        snprintf(timing, sizeof timing, "   frame %d at %.3f s", frame, app.time);
     if (!path_stem(app.scene_path, scene_name, sizeof scene_name))
         snprintf(scene_name, sizeof scene_name, "%s", app.scene_path);
     int n = 0, dimmed = 0;
@@ -931,10 +947,10 @@ static int app_hud_text(char *text, size_t size, int frame, bool defaults_left_o
         }
     }
     if (compact || app.tour_path)
-        APP_HUD("%s on %s   %dx%d   %s%s", t->name, scene_name, app.target.width, app.target.height, timing,
+        APP_HUD("%s on %s   %dx%d%s%s", t->name, scene_name, app.target.width, app.target.height, timing,
                 defaults_left_out && t->param_count ? "   " : "\n");
     else
-        APP_HUD("%d/%d %s: %s\nscene %s   %dx%d   %s%s%s\n", app.current + 1, app.technique_count, t->name, t->title,
+        APP_HUD("%d/%d %s: %s\nscene %s   %dx%d%s%s%s\n", app.current + 1, app.technique_count, t->name, t->title,
                 scene_name, app.target.width, app.target.height, timing, app_motion() ? "   moving: " : "",
                 app_motion() ? motion_names[app_motion()] : "");
     if (!compact && t->describe && n < (int)size) {
@@ -1107,7 +1123,7 @@ static void app_on_key(GLFWwindow *w, int key, int scancode, int action, int mod
         return;
     float yaw = 0, pitch = 0;
     switch (key) {
-    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); return;
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, !APP_IN_PAGE); return;
     case GLFW_KEY_H: app.show_help = !app.show_help; return;
     case GLFW_KEY_TAB: app.hud_compact = !app.hud_compact; return;
     case GLFW_KEY_F3: app.hud_counters = !app.hud_counters; return;
@@ -1175,9 +1191,12 @@ static void app_on_scroll(GLFWwindow *w, double dx, double dy) {
     camera_orbit(&app.base_camera, 0, 0, powf(0.9f, (float)dy), CAMERA_ORBIT_ANY);
 }
 
-static void app_on_resize(GLFWwindow *w, int width, int height) {
-    (void)w, (void)width, (void)height;
-    app.resized = true;
+/* The window's size. The page's canvas follows its box on the page,
+ * except at --size, and in compare mode where the truths are baked (make
+ * web bakes them at the default size). */
+static void app_window_size(int *width, int *height) {
+    bool fixed = app.size_given || (app.compare_on && !raytrace_available());
+    context_window_size(&app.ctx, fixed ? app.width : 0, fixed ? app.height : 0, width, height);
 }
 
 /* F12's picture: the window as it is about to be shown, HUD included;
@@ -1207,11 +1226,11 @@ static bool app_window_frame(int frame, int frames) {
     GLFWwindow *w = app.ctx.window;
     bool ok = true;
     int width, height;
-    glfwGetFramebufferSize(w, &width, &height);
-    if (app.resized && width > 0 && height > 0 && !app.video.pipe) { /* a video keeps its size */
+    app_window_size(&width, &height);
+    bool resized = width != app_picture()->width || height != app_picture()->height;
+    if (resized && width > 0 && height > 0 && !app.video.pipe) { /* a video keeps its size */
         app_destroy_targets();
         ok = app_create_targets(width, height);
-        app.resized = false;
     }
     if (frames > 0)
         app.time = frame / APP_HEADLESS_FPS;
@@ -1240,6 +1259,16 @@ static bool app_window_frame(int frame, int frames) {
 }
 
 #ifdef __EMSCRIPTEN__
+/* What the page's menu shows (common/web/index.html): the techniques by
+ * their numbers from 0 (NULL past the last), the one shown, whether
+ * compare mode is on, and the scene's file. */
+EMSCRIPTEN_KEEPALIVE const char *app_technique_name(int index) {
+    return index >= 0 && index < app.technique_count ? app.technique_names[index] : NULL;
+}
+EMSCRIPTEN_KEEPALIVE int app_technique_shown(void) { return app.current; }
+EMSCRIPTEN_KEEPALIVE int app_compare_shown(void) { return app.compare_on; }
+EMSCRIPTEN_KEEPALIVE const char *app_scene_shown(void) { return app.scene_path; }
+
 /* The page's frame, called by the browser for each frame it shows; a
  * frame that fails stops the page's loop (its line is on the console). */
 static void app_browser_frame(void) {
@@ -1259,7 +1288,6 @@ static bool app_run_window(int frames) {
     glfwSetMouseButtonCallback(w, app_on_mouse_button);
     glfwSetCursorPosCallback(w, app_on_cursor);
     glfwSetScrollCallback(w, app_on_scroll);
-    glfwSetFramebufferSizeCallback(w, app_on_resize);
     app.last_frame = glfwGetTime();
 #ifdef __EMSCRIPTEN__
     if (frames <= 0)
@@ -1305,7 +1333,7 @@ static bool app_run(void) {
     app.host.light_points = app.ctx.window ? TECHNIQUE_HOST_PROGRESSIVE_POINTS : 0;
     int width = app.width, height = app.height;
     if (app.ctx.window)
-        glfwGetFramebufferSize(app.ctx.window, &width, &height);
+        app_window_size(&width, &height);
     app_start_progress();
     /* The HUD's text is also every legend's (compare mode's, the
      * techniques' overlays'), so it is there in every run. */
@@ -1376,13 +1404,16 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
     app.technique_count = technique_count;
     for (int i = 0; i < technique_count; i++)
         app.technique_names[i] = techniques[i]->name;
-    app.width = 1280;
-    app.height = 720;
     app.current = -1; /* until --technique says */
     int status = app_parse_flags(argc, argv, elsewhere, elsewhere_count);
     if (status)
         return status == FLAGS_HELP_ASKED ? 0 : status;
     app.technique_given = app.current >= 0;
+    app.size_given = app.width > 0;
+    if (!app.size_given) {
+        app.width = APP_DEFAULT_WIDTH;
+        app.height = APP_DEFAULT_HEIGHT;
+    }
     app.compare_given = app.compare_on;
     if (!app.technique_given)
         app.current = 0;

@@ -16,10 +16,14 @@
  * browser tests run) gets the canvas's context without a window, so the
  * program runs it as native programs run EGL: headless.
  *
- * Fullscreen is the browser's, of the canvas alone. */
+ * The window is the canvas as the page lays it out: its drawing buffer
+ * follows its box unless the program fixes its size, and fullscreen is
+ * the browser's, of the canvas alone. */
 #include <GLFW/glfw3.h>
 #include <emscripten/emscripten.h>
+#include <emscripten/html5.h>
 #include <emscripten/html5_webgl.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -28,6 +32,8 @@
 
 /* GL_VERSION: this file includes no GL header. */
 #define CONTEXT_BROWSER_GL_VERSION 0x1F02
+/* The page's canvas, as Emscripten's html5 functions name it. */
+#define CONTEXT_BROWSER_CANVAS "#canvas"
 
 /* What WebGL 2 offers only as extensions, enabled where the browser has
  * them: float colour targets, their blending and linear filtering (the
@@ -128,16 +134,42 @@ void context_browser_destroy(context *c) {
     glfwTerminate();
 }
 
+/* The box's size times the device's pixel ratio, in whole pixels, or the
+ * fixed size; the drawing buffer resized only when that changes (which
+ * clears it). */
+void context_window_size(context *c, int fixed_width, int fixed_height, int *width, int *height) {
+    (void)c;
+    int now_width, now_height, wanted_width = fixed_width, wanted_height = fixed_height;
+    double box_width, box_height;
+    emscripten_get_canvas_element_size(CONTEXT_BROWSER_CANVAS, &now_width, &now_height);
+    if (fixed_width <= 0 && emscripten_get_element_css_size(CONTEXT_BROWSER_CANVAS, &box_width, &box_height) ==
+                                EMSCRIPTEN_RESULT_SUCCESS) {
+        double ratio = emscripten_get_device_pixel_ratio();
+        wanted_width = (int)lround(box_width * ratio);
+        wanted_height = (int)lround(box_height * ratio);
+    }
+    if (wanted_width > 0 && wanted_height > 0 && (wanted_width != now_width || wanted_height != now_height) &&
+        emscripten_set_canvas_element_size(CONTEXT_BROWSER_CANVAS, wanted_width, wanted_height) ==
+            EMSCRIPTEN_RESULT_SUCCESS) {
+        now_width = wanted_width;
+        now_height = wanted_height;
+    }
+    *width = now_width;
+    *height = now_height;
+}
+
 EM_JS(int, context_browser_canvas_fullscreen, (void), { return document.fullscreenElement == Module.canvas; });
 
-/* A browser goes fullscreen only while handling a click or a key (F11):
- * asked at any other time, it refuses, which its promise says. */
+/* A browser goes fullscreen only while handling a click or a key (the
+ * page's Fullscreen button presses F11): asked at any other time, it
+ * refuses, which its promise says. */
 EM_JS(void, context_browser_request_fullscreen, (int on), {
     if (!on)
         document.exitFullscreen();
     else
         Module.canvas.requestFullscreen().catch(function() {
-            err("fullscreen: the browser refused: it goes fullscreen at a click or a key only (F11)");
+            err("fullscreen: the browser refused: it goes fullscreen at a click or a key only " +
+                "(the page's Fullscreen button)");
         });
 });
 

@@ -52,8 +52,10 @@ out=out/web/bench.md
 declare -A frame_ms first_s
 techniques=$(build/shadows --help | sed -n 's/^  [0-9] \([a-z]*\) .*/\1/p')
 for t in $techniques; do
-    one=$(median_seconds "technique=$t&frames=1")
-    many=$(median_seconds "technique=$t&frames=$((FRAMES + 1))")
+    # At a fixed size: without --size the canvas follows the window's.
+    args="args=--technique%20$t%20--size%201280x720"
+    one=$(median_seconds "$args&frames=1")
+    many=$(median_seconds "$args&frames=$((FRAMES + 1))")
     first_s[$t]=$one
     frame_ms[$t]=$(awk -v a="$one" -v b="$many" -v n="$FRAMES" 'BEGIN { print (b - a) * 1000 / n }')
 done

@@ -27,10 +27,10 @@ WEB_SCENES := $(sort $(STANDARD_SCENES) $(SOFT_SCENES) $(WEB_TOUR_SCENES))
 WEB_MODELS := assets/bunny.obj assets/teapot.obj
 # The truths compare mode shows in the page: every tour, and each
 # standard and soft scene in compare mode, run natively (EGL) at
-# build/shadows' default size, the page's canvas, baking the truths of its
-# compare steps into WEB_BAKING/RUN/truths/ beside its pictures and
-# compare figures (figures.txt), which test_web holds the page's to; then
-# all of them in WEB_TRUTHS.
+# build/shadows' default size, the page's canvas in compare mode, baking
+# the truths of its compare steps into WEB_BAKING/RUN/truths/ beside its
+# pictures and compare figures (figures.txt), which test_web holds the
+# page's to; then all of them in WEB_TRUTHS.
 WEB_TRUTHS := $(WEB_BUILD)/truths
 WEB_BAKING := $(WEB_BUILD)/baking
 WEB_BAKED := $(patsubst assets/tours/%.json,$(WEB_BAKING)/tours/%/done,$(WEB_TOURS)) \
@@ -56,9 +56,11 @@ WEB_CFLAGS := -std=c11 -O2 -Wall -Wextra -Werror -Wno-align-mismatch -D_XOPEN_SO
 	-I$(WEB_INCLUDE) \
 	-I$(WEB_INCLUDE)/cjson -I$(WEB_INCLUDE)/stb \
 	-I$(WEB_BUILD)/glad/include -Icommon/data -Icommon/measure -Icommon/gl -Icommon/programs -Idemos -Idemos/lib
+# What the page's menu asks the program (common/programs/app.c).
+WEB_MENU_FUNCTIONS := _app_technique_name,_app_technique_shown,_app_compare_shown,_app_scene_shown
 WEB_LDFLAGS := -O2 -sUSE_GLFW=3 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sALLOW_MEMORY_GROWTH=1 \
-	-sSINGLE_FILE=1 -sINVOKE_RUN=0 -sEXPORTED_RUNTIME_METHODS=callMain,FS \
-	-sEXPORTED_FUNCTIONS=_main,_emscripten_set_main_loop_timing
+	-sSINGLE_FILE=1 -sINVOKE_RUN=0 -sEXPORTED_RUNTIME_METHODS=callMain,FS,UTF8ToString \
+	-sEXPORTED_FUNCTIONS=_main,_emscripten_set_main_loop_timing,$(WEB_MENU_FUNCTIONS)
 # Embedded at the paths the programs look for (path_in_project: /shaders,
 # /assets/scenes; a tour's scenes relative to it); the models as packs at
 # the models' own paths.
