@@ -1,6 +1,6 @@
 /* Tests of common/gl/hud.c's layout (no GL): the HUD's lines are wrapped
- * at the framebuffer's width, so nothing is cut at any size, and its
- * scale follows the framebuffer's height. Then the HUD build/shadows draws
+ * at the framebuffer's width, so nothing is cut at any size, its
+ * scale follows the framebuffer's height, and its panel holds them. Then the HUD build/shadows draws
  * for a lecture (its text, which --verbose prints): at most
  * LECTURE_MAX_LINES lines at 1280x720 with the counters left out; the
  * compact HUD keeps the technique's settings and drops the counters; the
@@ -72,6 +72,25 @@ static void test_wrapped_lines_fit_and_lose_nothing(void **state) {
     char wrapped[8192];
     assert_int_equal(hud_wrap("one line", 1920, 1, wrapped, sizeof wrapped), 1);
     assert_string_equal(wrapped, "one line");
+}
+
+/* The panel hud_draw puts behind the text holds every wrapped line, its
+ * margins included, within the framebuffer's width; what it hides grows
+ * with the scale. */
+static void test_panel_holds_the_text(void **state) {
+    (void)state;
+    static const int sizes[][2] = {{640, 360}, {1280, 720}, {1920, 1080}};
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+        int width = sizes[i][0], height = sizes[i][1], scale = hud_scale_to_fit(hud_text, width, height, 0, height);
+        char wrapped[8192];
+        int lines = hud_wrap(hud_text, width, scale, wrapped, sizeof wrapped), panel_width, panel_height;
+        hud_panel_size(hud_text, width, height, 0, 0, &panel_width, &panel_height);
+        printf("    %dx%d: %d lines at scale %d, panel %dx%d\n", width, height, lines, scale, panel_width,
+               panel_height);
+        assert_true(panel_height >= (lines * HUD_LINE_UNITS + HUD_MARGIN) * scale);
+        assert_true(panel_width >= (hud_text_width(wrapped) + 2 * HUD_MARGIN) * scale);
+        assert_true(panel_width <= width && panel_height < height);
+    }
 }
 
 static void test_scale_follows_height(void **state) {
@@ -272,6 +291,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_wrapped_lines_fit_and_lose_nothing),
         cmocka_unit_test(test_scale_follows_height),
+        cmocka_unit_test(test_panel_holds_the_text),
         cmocka_unit_test(test_lecture_hud),
         cmocka_unit_test(test_missing_feature_is_not_on),
         cmocka_unit_test(test_overridden_setting_says_why),

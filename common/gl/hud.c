@@ -15,6 +15,9 @@
 #define HUD_MAX_QUADS 8000 /* about 32 lines of 80 characters */
 #define HUD_MAX_TEXT 8192
 #define HUD_VERTEX_BYTES 16 /* stb_easy_font: x, y, z floats and RGBA bytes */
+/* Font units of panel below the text's last line (HUD_LINE_UNITS tall;
+ * the text starts HUD_MARGIN below the panel's top). */
+#define HUD_PANEL_BOTTOM_UNITS 2
 
 static struct {
     unsigned program, vao, vertex_buffer, index_buffer;
@@ -157,25 +160,46 @@ int hud_scale_to_fit(const char *text, int width, int height, int scale, int fra
     return scale;
 }
 
-void hud_draw(const char *text, int width, int height, int scale, int dimmed_lines) {
-    char dimmed[HUD_MAX_TEXT] = "", rest[HUD_MAX_TEXT], joined[2 * HUD_MAX_TEXT];
+/* hud_draw's layout of `text`: its scale (0: fitted), its first
+ * `dimmed_lines` lines and the rest wrapped apart (each line wraps alone)
+ * into `dimmed` (its rows in *dimmed_rows) and `rest`, and the panel's
+ * size in font units. */
+static int hud_layout(const char *text, int width, int height, int scale, int dimmed_lines, char dimmed[HUD_MAX_TEXT],
+                      char rest[HUD_MAX_TEXT], int *dimmed_rows, int panel_units[2]) {
+    char joined[2 * HUD_MAX_TEXT];
     scale = scale > 0 ? scale : hud_scale_to_fit(text, width, height, 0, height);
-    /* The dimmed lines and the rest wrapped apart (each line wraps
-     * alone), the rest drawn from the row after the dimmed ones'. */
     const char *split = text;
     for (int k = 0; k < dimmed_lines && *split; k++) {
         split += strcspn(split, "\n");
         split += *split == '\n';
     }
-    int dimmed_rows = 0;
+    dimmed[0] = '\0';
+    *dimmed_rows = 0;
     if (split > text) {
         snprintf(joined, sizeof joined, "%.*s", (int)(split - text) - (split[-1] == '\n'), text);
-        dimmed_rows = hud_wrap(joined, width, scale, dimmed, sizeof dimmed);
+        *dimmed_rows = hud_wrap(joined, width, scale, dimmed, HUD_MAX_TEXT);
     }
-    hud_wrap(split, width, scale, rest, sizeof rest);
-    snprintf(joined, sizeof joined, "%s%s%s", dimmed, dimmed_rows ? "\n" : "", rest);
-    float text_width = (float)hud_text_width(joined), text_height = (float)stb_easy_font_height(joined);
-    int quads = hud_add_panel(0, 0, 0, text_width + 2 * HUD_MARGIN, text_height + HUD_MARGIN + 2);
+    hud_wrap(split, width, scale, rest, HUD_MAX_TEXT);
+    snprintf(joined, sizeof joined, "%s%s%s", dimmed, *dimmed_rows ? "\n" : "", rest);
+    panel_units[0] = hud_text_width(joined) + 2 * HUD_MARGIN;
+    panel_units[1] = stb_easy_font_height(joined) + HUD_MARGIN + HUD_PANEL_BOTTOM_UNITS;
+    return scale;
+}
+
+void hud_panel_size(const char *text, int width, int height, int scale, int dimmed_lines, int *panel_width,
+                    int *panel_height) {
+    char dimmed[HUD_MAX_TEXT], rest[HUD_MAX_TEXT];
+    int panel_units[2], dimmed_rows;
+    scale = hud_layout(text, width, height, scale, dimmed_lines, dimmed, rest, &dimmed_rows, panel_units);
+    *panel_width = panel_units[0] * scale;
+    *panel_height = panel_units[1] * scale;
+}
+
+void hud_draw(const char *text, int width, int height, int scale, int dimmed_lines) {
+    char dimmed[HUD_MAX_TEXT], rest[HUD_MAX_TEXT];
+    int panel_units[2], dimmed_rows;
+    scale = hud_layout(text, width, height, scale, dimmed_lines, dimmed, rest, &dimmed_rows, panel_units);
+    int quads = hud_add_panel(0, 0, 0, (float)panel_units[0], (float)panel_units[1]);
     quads = hud_add_text(quads, HUD_MARGIN, dimmed, HUD_DIMMED_GREY);
     quads = hud_add_text(quads, HUD_MARGIN + dimmed_rows * HUD_LINE_UNITS, rest, HUD_WHITE);
     glDisable(GL_DEPTH_TEST);

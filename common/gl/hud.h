@@ -50,6 +50,11 @@ bool hud_init(void);
  * `dimmed_lines` lines are drawn HUD_DIMMED_GREY, the rest white: a
  * caption that no longer describes the picture. */
 void hud_draw(const char *text, int width, int height, int scale, int dimmed_lines);
+/* The dark panel hud_draw puts behind the same `text` (the same
+ * arguments), in pixels from the viewport's top-left corner: the
+ * rectangle the HUD hides. No GL. */
+void hud_panel_size(const char *text, int width, int height, int scale, int dimmed_lines, int *panel_width,
+                    int *panel_height);
 void hud_destroy(void);
 
 #endif

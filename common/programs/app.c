@@ -533,7 +533,7 @@ static void app_print_compared(void) {
 }
 
 static void app_hud(int width, int height, int frame);
-static void app_print_hud(int width, int height, int frame);
+static void app_say_frame(int width, int height, int frame);
 
 /* With --hud, the HUD drawn into the picture (frame: as app_hud). */
 static bool app_hud_in_picture(int frame) {
@@ -695,7 +695,8 @@ static bool app_step_screenshot(int k) {
     return true;
 }
 
-/* Every step headless, its frames app_step_frames'. */
+/* Every step headless, its frames app_step_frames'; with --verbose each
+ * step's shown frame is said as a single run's last. */
 static bool app_run_tour_headless(void) {
     bool ok = true;
     for (int k = 0; k < app.tour.step_count && ok; k++) {
@@ -708,7 +709,7 @@ static bool app_run_tour_headless(void) {
             ok = app_headless_frame(i, app.screenshot && i == s->shown_frame) &&
                  (!app.screenshot || i != s->shown_frame || app_step_screenshot(k));
             if (ok && app.verbose && i == s->shown_frame)
-                app_print_hud(app_picture()->width, app_picture()->height, i);
+                app_say_frame(app_picture()->width, app_picture()->height, i);
         }
         if (ok && app.compare_on && (app.screenshot || app.video.pipe)) /* a kept frame was compared */
             app_print_compared();
@@ -1024,6 +1025,22 @@ static void app_print_hud(int width, int height, int frame) {
         end = line + strcspn(line, "\n");
         fprintf(stderr, "hud: %.*s\n", (int)(end - line), line);
     }
+}
+
+/* --verbose, after a run or at a headless tour step's shown frame: the
+ * technique's state line, the skips' counters and the HUD's text (as
+ * app_print_hud), on stderr. */
+static void app_say_frame(int width, int height, int frame) {
+    progress_clear(&app.progress);
+    if (app_technique()->describe) {
+        char line[512];
+        app_technique()->describe(line, sizeof line);
+        fprintf(stderr, "%s: %s\n", app_technique()->name, line);
+    }
+    char skips[512];
+    app_skips_text(skips, sizeof skips);
+    fprintf(stderr, "%s\n", skips);
+    app_print_hud(width, height, frame);
 }
 
 /* app_load_scene, what it says on stderr also kept: its first line into
@@ -1365,19 +1382,10 @@ static bool app_run(void) {
         if (ok && !app.ctx.window && !app.screenshot && !app.dump_dir && !app.record_path)
             app_say_nothing_written(interactive);
         ok = ok && (!app.dump_dir || app_dump(app.dump_dir));
-        if (ok && app.verbose && app_technique()->describe) {
-            char line[512];
-            app_technique()->describe(line, sizeof line);
-            fprintf(stderr, "%s: %s\n", app_technique()->name, line);
-        }
-        if (ok && app.verbose) {
-            char skips[512];
-            app_skips_text(skips, sizeof skips);
-            fprintf(stderr, "%s\n", skips);
-            bool interactive = app.ctx.window && app.frames <= 0; /* its HUD's as the window's last */
-            app_print_hud(app_picture()->width, app_picture()->height,
+        bool interactive = app.ctx.window && app.frames <= 0; /* its HUD's as the window's last */
+        if (ok && app.verbose)
+            app_say_frame(app_picture()->width, app_picture()->height,
                           interactive ? -1 : (app.frames > 0 ? app.frames : 1) - 1);
-        }
         technique_host_stop(&app.host);
         app_unload_scene();
     }
