@@ -49,6 +49,9 @@ static void test_good_tour(void **state) {
     assert_int_equal(b->view_count, 1);
     assert_false(tour_step_has_path(b));
     assert_true(b->views[0].position[1] == 2 && b->views[0].target[2] == -1e6);
+    assert_false(a->has_subject);
+    assert_true(b->has_subject);
+    assert_true(b->subject.min[2] == -2 && b->subject.max[2] == 2.5);
     const tour_step *c = &t.steps[2];
     assert_int_equal(t.step_count, 3);
     assert_int_equal(c->motion, MOTION_LIGHT);
@@ -64,7 +67,8 @@ static void test_bad_tours(void **state) {
         const char *file, *line;
     } cases[] = {
         {"tour_unknown_key.json", "steps[1]: unknown key \"captoin\" (expected scene, technique, flags, caption, "
-                                  "seconds, motion, frame, camera, path or compare), did you mean \"caption\"?"},
+                                  "seconds, motion, frame, camera, path, compare or subject), did you mean "
+                                  "\"caption\"?"},
         {"tour_bad_motion.json",
          "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)"},
         {"tour_bad_frame.json", "steps[0].frame: must be a frame of the step, 0 to 59 (got 60)"},
@@ -80,6 +84,7 @@ static void test_bad_tours(void **state) {
         {"tour_camera_infinite.json", "steps[0].camera.position[1]: must be a finite number (got inf)"},
         {"tour_camera_at_target.json", "steps[0].camera.target: must differ from position"},
         {"tour_camera_short.json", "steps[0].camera.position: expected an array of 3 numbers"},
+        {"tour_bad_subject.json", "steps[0].subject.max: below min (axis 1: 0.5 < 1)"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         static tour t;
@@ -101,7 +106,7 @@ static void test_bad_tours(void **state) {
 #define SEVERAL_ERRORS TOUR_DATA "tour_several_errors.json"
 static const char *const file_errors[] = {
     SEVERAL_ERRORS ": steps[0]: unknown key \"captoin\" (expected scene, technique, flags, caption, seconds, motion, "
-                   "frame, camera, path or compare), did you mean \"caption\"?\n",
+                   "frame, camera, path, compare or subject), did you mean \"caption\"?\n",
     SEVERAL_ERRORS ": steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)\n",
     SEVERAL_ERRORS ": steps[1].seconds: expected a number, got a string\n",
     SEVERAL_ERRORS ": steps[2].frame: must be a frame of the step, 0 to 119 (got 999)\n",

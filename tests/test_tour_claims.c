@@ -144,10 +144,10 @@ static const claim claims[] = {
     {"psm", 4, STEP, STEP, CLAIM_WARM, 1000, "warp on: no texel larger than a few pixels"},
     /* soft */
     {"soft", 1, STEP, STEP, CLAIM_FALSE_LIT, 0.1, "the thin poles' far shadows speckle"},
-    {"soft", 2, {NULL, ""}, STEP, CLAIM_LIGHTER_ON_SHADOW, 2000, "hard: one sharp edge, no penumbra in"},
+    {"soft", 2, {NULL, ""}, STEP, CLAIM_LIGHTER_ON_SHADOW, 700, "hard: one sharp edge, no penumbra in"},
     {"soft", 3, STEP, {NULL, ""}, CLAIM_DARKER_ON_LIT, 60, "wide PCF: soft at the foot, where PCSS is sharp"},
-    {"soft", 4, STEP, {NULL, "--soft off"}, CLAIM_DARKER_ON_LIT, 2000, "PCSS: wide far from the pole"},
-    {"soft", 6, STEP, {NULL, "--soft off"}, CLAIM_DARKER_ON_LIT, 1000, "the ears' shadows soft at their tips"},
+    {"soft", 4, STEP, {NULL, "--soft off"}, CLAIM_DARKER_ON_LIT, 1000, "PCSS: wide far from the pole"},
+    {"soft", 6, STEP, {NULL, "--soft off"}, CLAIM_DARKER_ON_LIT, 250, "the ears' shadows soft at their tips"},
     {"soft", 7, STEP, STEP, CLAIM_FALSE_LIT, 1, "VSM: light bleeds through the bunny's shadow"},
     {"soft", 8, STEP, {NULL, "--filter vsm"}, CLAIM_LESS_FALSE_LIT, 1.5, "MSM: far less bleeding"},
     {"soft", 8, STEP, {NULL, "--filter vsm"}, CLAIM_LESS_FALSE_SHADOW, 2, "MSM: thinner rims"},
@@ -156,16 +156,16 @@ static const claim claims[] = {
      STEP,
      {NULL, "--light-samples 64"},
      CLAIM_LIGHTER_ON_SHADOW,
-     5000,
+     1400,
      "volumes from the centre: one hard edge"},
     {"soft",
      10,
      STEP,
      {NULL, "--light-samples 1"},
      CLAIM_DARKER_ON_LIT,
-     3000,
+     1000,
      "four points: a penumbra past the hard edge"},
-    {"soft", 11, STEP, {NULL, "--light-samples 4"}, CLAIM_LIGHTER, 2000, "sixteen points: the penumbra filling in"},
+    {"soft", 11, STEP, {NULL, "--light-samples 4"}, CLAIM_LIGHTER, 700, "sixteen points: the penumbra filling in"},
     {"soft", 12, STEP, STEP, CLAIM_MISCLASSIFIED, 200, "sixty-four points: the truth's penumbra"},
     {"soft", 13, STEP, STEP, CLAIM_MISCLASSIFIED, 120, "wedges beside the truth: smooth"},
     {"soft", 14, STEP, STEP, CLAIM_MISCLASSIFIED, 200, "wedges under the sun beside the truth"},
@@ -179,7 +179,7 @@ static const claim claims[] = {
      2,
      "wedges: the rim darker than sixty-four points'"},
     /* volumes */
-    {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_DARKER, 100, "a map's texels show along the edge: out"},
+    {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_DARKER, 50, "a map's texels show along the edge: out"},
     {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_LIGHTER, 200, "a map's texels show along the edge: in"},
     {"volumes", 2, STEP, UNSHADOWED, CLAIM_DARKER, 1000, "the fix: volumes counted in the stencil"},
     {"volumes", 6, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "against the truth: exact"},
@@ -209,14 +209,15 @@ static const claim claims[] = {
      "and shadow lost"},
     {"volumes", 10, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "ZP+: exact"},
     {"volumes", 11, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "z-fail: exact"},
-    {"volumes", 12, STEP, {"volumes", ""}, CLAIM_LIGHTER_ON_SHADOW, 3000, "8 bits wrap: under 256 slabs, lit"},
+    {"volumes", 12, STEP, {"volumes", ""}, CLAIM_LIGHTER_ON_SHADOW, 1000, "8 bits wrap: under 256 slabs, lit"},
 };
 enum { CLAIM_COUNT = sizeof claims / sizeof *claims };
 
 /* ---- pictures ---- */
 
 /* The pictures rendered so far, by what decides them: the one-step
- * tour's text, less the caption (steps showing the same picture share it). */
+ * tour's text, less the caption and subject (steps showing the same
+ * picture share it). */
 static struct {
     char *key;
     char png[160], printed[160];
@@ -240,7 +241,7 @@ static int picture(const char *tour_name, int step, claim_variant v) {
     assert_non_null(one);
     char scene[PATH_MAX];
     assert_non_null(realpath(s->scene, scene));
-    static const char *const replaced[] = {"scene", "technique", "flags", "caption"};
+    static const char *const replaced[] = {"scene", "technique", "flags", "caption", "subject"};
     for (size_t k = 0; k < sizeof replaced / sizeof *replaced; k++)
         cJSON_DeleteItemFromObject(one, replaced[k]);
     cJSON_AddStringToObject(one, "scene", scene);

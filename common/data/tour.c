@@ -18,8 +18,9 @@
 
 static const char *const tour_keys[] = {"title", "steps", NULL};
 static const char *const tour_step_keys[] = {"scene", "technique", "flags", "caption", "seconds", "motion",
-                                             "frame", "camera",    "path",  "compare", NULL};
+                                             "frame", "camera",    "path",  "compare", "subject", NULL};
 static const char *const tour_view_keys[] = {"position", "target", NULL};
+static const char *const tour_box_keys[] = {"min", "max", NULL};
 
 /* An optional or required string into a fixed buffer, which it must fit. */
 static bool tour_read_text(const char *file, const cJSON *object, const char *where, const char *key, bool required,
@@ -125,6 +126,30 @@ static bool tour_read_views(const char *file, const cJSON *json, const char *whe
     return true;
 }
 
+/* "subject", if the step has one: a box whose max is nowhere below its
+ * min. */
+static bool tour_read_subject(const char *file, const cJSON *json, const char *where, tour_step *s) {
+    const cJSON *subject;
+    if (!json_lookup(file, json, where, "subject", false, &subject))
+        return false;
+    if (!subject)
+        return true;
+    char inner[64];
+    snprintf(inner, sizeof inner, "%s.subject", where);
+    if (!cJSON_IsObject(subject))
+        return json_fail(file, where, "subject", "expected an object, got %s", json_kind(subject));
+    tour_box *box = &s->subject;
+    if (!json_check_keys(file, subject, inner, tour_box_keys) ||
+        !json_read_numbers(file, subject, inner, "min", box->min, 3) ||
+        !json_read_numbers(file, subject, inner, "max", box->max, 3))
+        return false;
+    for (int k = 0; k < 3; k++)
+        if (box->max[k] < box->min[k])
+            return json_fail(file, inner, "max", "below min (axis %d: %g < %g)", k, box->max[k], box->min[k]);
+    s->has_subject = true;
+    return true;
+}
+
 /* Every key of the step is read, each problem said in its line: a
  * file's problems all at once. The frame is checked against the seconds
  * where they were read (a motion that failed stays static, which refuses
@@ -143,6 +168,7 @@ static bool tour_read_step(const char *file, const cJSON *json, const char *wher
     bool framed = json_read_int(file, json, where, "frame", &frame);
     ok = tour_read_views(file, json, where, s) && ok;
     ok = json_read_bool(file, json, where, "compare", &s->compare) && ok;
+    ok = tour_read_subject(file, json, where, s) && ok;
     if (timed && framed && cJSON_GetObjectItemCaseSensitive(json, "frame") && (frame < 0 || frame >= s->frame_count))
         framed = json_fail(file, where, "frame", "must be a frame of the step, 0 to %d (got %d)", s->frame_count - 1,
                            frame);

@@ -23,7 +23,13 @@
  *                              tour_path_view; not with "camera" nor with
  *                              a motion that moves the camera)
  *                "compare": true  (compare mode, as --compare: the step
- *                                  beside the ray-traced truth) } ]
+ *                                  beside the ray-traced truth)
+ *                "subject": {"min": [x,y,z], "max": [x,y,z]}
+ *                             (what the caption speaks of, its casters and
+ *                              their shadows, as a box in the scene file's
+ *                              world coordinates; nothing renders it: the
+ *                              tours' test keeps it in view and clear of
+ *                              the HUD, tests/test_tour_views.c) } ]
  * Unknown keys and wrong types are errors, each reported as one line
  * "FILE: steps[i].key: problem" (json.h), every one the file has (a JSON
  * syntax error, or "steps" not a list of steps, is the only one). The
@@ -62,6 +68,11 @@ typedef struct tour_view {
     double position[3], target[3];
 } tour_view;
 
+/* A box in the scene file's world coordinates, max nowhere below min. */
+typedef struct tour_box {
+    double min[3], max[3];
+} tour_box;
+
 typedef struct tour_step {
     char scene[PATH_MAX]; /* resolved against the tour file's folder */
     char technique[TOUR_TEXT_MAX], flags[TOUR_TEXT_MAX], caption[TOUR_TEXT_MAX];
@@ -74,6 +85,8 @@ typedef struct tour_step {
      * "path" */
     int view_count;
     tour_view views[TOUR_MAX_PATH_VIEWS];
+    bool has_subject; /* "subject" */
+    tour_box subject;
 } tour_step;
 
 typedef struct tour {
