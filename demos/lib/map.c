@@ -987,8 +987,9 @@ void map_begin(map_renderer *r, const technique_frame *f) {
 
 void map_describe_filter(const map_settings *settings, char *out, size_t size) {
     size_t n = strlen(out);
-    if (map_shows_acne(settings) && n < size)
-        snprintf(out + n, size - n, ", filter: %s (shows acne)", map_filters[MAP_FILTER_NONE]);
+    if (map_auto_unfiltered(settings) && n < size)
+        snprintf(out + n, size - n, ", filter: %s (%s)", map_filters[MAP_FILTER_NONE],
+                 map_shows_acne(settings) ? "shows acne" : "a bias is off");
 }
 
 bool map_fit_light(map_renderer *r, const map_settings *settings, const technique_frame *f, int l,

@@ -171,10 +171,17 @@ typedef struct map_settings {
 /* The filter that reads the map: settings->filter, or what auto stands
  * for (above, "The camera pass"). */
 map_filter map_filter_in_use(const map_settings *settings);
-/* Auto stands for none because a bias is off: acne shows unblurred. */
+/* Auto stands for none because a bias is off: what acne there is shows
+ * unblurred. */
+bool map_auto_unfiltered(const map_settings *settings);
+/* Auto stands for none and the slope-scaled bias is off: acne shows, on
+ * every standard scene, where surfaces turn away from the light. With
+ * the constant bias alone off next to none shows (test_shadowmap's
+ * test_state_line_claims_acne_where_it_shows). */
 bool map_shows_acne(const map_settings *settings);
 /* Appends ", filter: none (shows acne)" to a technique's state line (its
- * describe) while map_shows_acne; nothing otherwise. */
+ * describe) while map_shows_acne, ", filter: none (a bias is off)" while
+ * map_auto_unfiltered otherwise; nothing else. */
 void map_describe_filter(const map_settings *settings, char *out, size_t size);
 
 /* Overlays, for lectures (map_overlay.c), drawn into the picture:
@@ -646,7 +653,7 @@ typedef struct map_reads {
 float map_read_reach(const map_settings *settings, map_kind kind, bool area);
 /* Light `light` of the settings' technique gets soft shadows: an area
  * light, with --soft pcss, read by no moment filter, and not while auto
- * shows acne. */
+ * is unfiltered. */
 bool map_light_soft(const map_settings *settings, const scene_light *light);
 /* The technique's area_light words (technique.h) under the settings. */
 const char *map_area_light_text(const map_settings *settings, const scene_light *light);

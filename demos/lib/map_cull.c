@@ -24,18 +24,20 @@
  * point is at the map's centre of projection, where it sees everything. */
 #define MAP_MIN_W FRUSTUM_FLOAT_TOLERANCE
 
-bool map_shows_acne(const map_settings *settings) {
+bool map_auto_unfiltered(const map_settings *settings) {
     return settings->filter == MAP_FILTER_AUTO && (settings->no_constant_bias || settings->no_slope_bias);
 }
+
+bool map_shows_acne(const map_settings *settings) { return map_auto_unfiltered(settings) && settings->no_slope_bias; }
 
 map_filter map_filter_in_use(const map_settings *settings) {
     if (settings->filter != MAP_FILTER_AUTO)
         return (map_filter)settings->filter;
-    return map_shows_acne(settings) ? MAP_FILTER_NONE : MAP_FILTER_POISSON;
+    return map_auto_unfiltered(settings) ? MAP_FILTER_NONE : MAP_FILTER_POISSON;
 }
 
 bool map_light_soft(const map_settings *settings, const scene_light *light) {
-    return light->radius > 0 && settings->soft == MAP_SOFT_PCSS && !map_shows_acne(settings) &&
+    return light->radius > 0 && settings->soft == MAP_SOFT_PCSS && !map_auto_unfiltered(settings) &&
            map_filter_moments(map_filter_in_use(settings)) == MAP_MOMENTS_NONE;
 }
 
@@ -45,8 +47,10 @@ const char *map_area_light_text(const map_settings *settings, const scene_light 
                "penumbra, one width (no contact hardening)";
     if (map_light_soft(settings, light))
         return "soft: pcss, a blocker search then a filter of the penumbra's width";
-    return map_shows_acne(settings) ? "hard, from its centre: a bias is off, and --filter auto shows acne"
-                                    : "hard, from its centre: --soft off";
+    if (map_shows_acne(settings))
+        return "hard, from its centre: the slope bias is off, and --filter auto shows acne";
+    return map_auto_unfiltered(settings) ? "hard, from its centre: a bias is off, and --filter auto is none"
+                                         : "hard, from its centre: --soft off";
 }
 
 float map_read_reach(const map_settings *settings, map_kind kind, bool area) {
