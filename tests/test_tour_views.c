@@ -150,7 +150,7 @@ static void views_check_tour(const char *path, int width, int height, char *prob
         if (!views_hud_text(text, j + 1, kept_count, hud, sizeof hud))
             fail_msg("%s: no HUD said", where);
         int panel_width, panel_height;
-        hud_panel_size(hud, width, height, 0, &panel_width, &panel_height);
+        hud_panel_size(hud, width, height, 0, 0, &panel_width, &panel_height);
         static scene sc;
         assert_true(scene_load(&sc, s->scene));
         views_rect r = views_project(&sc, s, &s->subject, width, height);

@@ -408,7 +408,7 @@ static void web_tour_caption_stays_true(void **state) {
                  "&keys=2:Space,3:Space,4:Space,6:F12,7:6,9:F12,10:3,12:F12,13:C,15:F12&frames=16",
                  "screenshot-shadowmap-1.png,screenshot-volumes-1.png,screenshot-shadowmap-2.png,"
                  "screenshot-shadowmap-3.png",
-                 "frames 16", dir);
+                 "", "frames 16", dir);
     char *console = path_read_text(OUT "/caption/console.txt", WEB_MAX_DOM, NULL);
     assert_non_null(console);
     static const char *const pictures[SUPPORT_CAPTION_PICTURES] = {
