@@ -4,10 +4,11 @@
  * names its subject, a box in its scene (tour.h), and the rectangle round
  * the box's eight corners, projected through the camera of the frame the
  * step shows, lies inside the picture and below or beside the panel of
- * the full HUD. That HUD is the one a headless --hud picture carries (the
- * window's says the frame time instead of the frame): its text is what
- * build/shadows --tour --verbose says of each step ("hud: " lines, less
- * the skips' counters, which only F3 adds), its panel hud_panel_size's,
+ * the full HUD. That HUD is the window's: its text is what build/shadows
+ * --tour --verbose says of each step ("hud: " lines, less the skips'
+ * counters, which only F3 adds; the frame's number where the window says
+ * its time), with the help's hint (APP_HELP_HINT) the window adds, its
+ * panel hud_panel_size's,
  * the size hud_draw draws. The rectangle holds every pixel of the box, so
  * no pixel of the subject is hidden. */
 #include <setjmp.h>
@@ -22,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app.h"
 #include "camera.h"
 #include "hud.h"
 #include "path.h"
@@ -96,6 +98,12 @@ static bool views_hud_text(const char *said, int step, int count, char *out, siz
     char *counters = strstr(out, VIEWS_COUNTERS);
     if (counters)
         *counters = '\0';
+    /* The window's HUD: its last line ends with the help's hint. */
+    n = strlen(out);
+    while (n > 0 && out[n - 1] == '\n')
+        out[--n] = '\0';
+    assert_true(n + strlen(APP_HELP_HINT) < size);
+    strcat(out, APP_HELP_HINT);
     return true;
 }
 

@@ -978,7 +978,7 @@ static int app_hud_text(char *text, size_t size, int frame, bool defaults_left_o
                 "counters   Tab: compact HUD   F12: screenshot   H: hide help   Esc: quit",
                 app.technique_count);
     else if (frame < 0)
-        APP_HUD("   H: help");
+        APP_HUD(APP_HELP_HINT);
     if (frame < 0 && glfwGetTime() < app.note_until)
         APP_HUD("\n%s", app.note);
 #undef APP_HUD

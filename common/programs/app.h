@@ -27,6 +27,10 @@
 
 #include "technique.h"
 
+/* The window's HUD ends its last line with this while the keys' help is
+ * hidden (H); a headless picture's HUD has none. */
+#define APP_HELP_HINT "   H: help"
+
 int app_main(int argc, char **argv, const technique *const *techniques, int technique_count,
              const flags_elsewhere *elsewhere, int elsewhere_count);
 

@@ -300,8 +300,9 @@ typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
          FLAGS_CHOICE,                                                                                                            \
          .index = &(s).depth,                                                                                                     \
          .choices = map_depths},                                                                                                  \
-        {"constant-bias", "acne: surfaces shadow themselves in stripes", GLFW_KEY_C, FLAGS_TOGGLE,                                \
-         .disabled = &(s).no_constant_bias},                                                                                      \
+        {"constant-bias",                                                                                                         \
+         "acne: stripes where the slope-scaled bias alone is too little (everywhere with it off too)", GLFW_KEY_C,                \
+         FLAGS_TOGGLE, .disabled = &(s).no_constant_bias},                                                                        \
         {"slope-bias", "acne where surfaces turn away from the light", GLFW_KEY_L, FLAGS_TOGGLE,                                  \
          .disabled = &(s).no_slope_bias},                                                                                         \
         {"early-out", "wide kernels: four rim taps first, the whole kernel only where they disagree", GLFW_KEY_E,                 \
