@@ -306,8 +306,10 @@ static int support_caption_brightness(const unsigned char *rgba, int width, int 
 void support_expect_captions(const char *log, const char *const pictures[SUPPORT_CAPTION_PICTURES]) {
     const char *block = strstr(log, "hud: step ");
     for (int k = 0; k < SUPPORT_CAPTION_PICTURES; k++) {
-        if (!block)
+        if (!block) {
             fail_msg("F12 %d printed no HUD: %s", k + 1, log);
+            return;
+        }
         const char *next = strstr(block + 1, "hud: step ");
         int length = next ? (int)(next - block) : (int)strlen(block);
         char expected[128];
