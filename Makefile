@@ -97,7 +97,7 @@ help:
 	@echo "make readme-report  out/report/ and README.md's current figures from the runs already in out/"
 	@echo "make scenes         regenerate the generated scenes in assets/scenes/ (city_*.json, dense.json, stacked_*)"
 	@echo "make update-golden  re-record tests/golden/*.png on purpose (ONLY=NAME: that case, or a technique's; say why in the commit)"
-	@echo "make test-technique one technique's checks, ONLY=NAME: its golden cases, tests/test_NAME.c, the flags' table"
+	@echo "make test-technique one technique's checks, ONLY=NAME: its golden cases and tests/test_NAME.c"
 	@echo "make readme-flags   rewrite README.md's table of keys and flags from the programs' flag tables"
 	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"
 	@echo "make web            out/web/: every technique in a web page (Emscripten, WebGL 2)"
@@ -255,13 +255,14 @@ update-golden: $(PROGRAMS) $(BUILD)/tests/test_render
 	BUILD=$(BUILD) $(BUILD)/tests/test_render --record $(ONLY)
 
 # A technique's own checks while it is written (README, "Adding a
-# technique"), ONLY=NAME: its golden cases (test_render --check), its
-# tests/test_NAME.c and the flags' table (test_cli).
-test-technique: $(PROGRAMS) $(BUILD)/tests/test_render $(BUILD)/tests/test_cli \
+# technique"), ONLY=NAME: its golden cases (test_render --check) and its
+# tests/test_NAME.c; make test then checks the rest (its flags in the
+# README's table among them).
+test-technique: $(PROGRAMS) $(BUILD)/tests/test_render \
 		$(patsubst tests/%.c,$(BUILD)/tests/%,$(wildcard tests/test_$(ONLY).c))
 	@test -n "$(ONLY)" || { echo "make test-technique: which technique? ONLY=NAME"; exit 2; }
 	BUILD=$(BUILD) $(BUILD)/tests/test_render --check $(ONLY)
-	ONLY="test_$(ONLY) test_cli" tests/run.sh $(BUILD)
+	ONLY="test_$(ONLY)" tests/run.sh $(BUILD)
 
 # README.md's "Keys and flags": what build/shadows --flags-markdown prints,
 # between the lines <!-- flags:begin --> and <!-- flags:end -->, a blank
