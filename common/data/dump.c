@@ -236,6 +236,15 @@ static bool dump_read_meta(dump_frame *d, const char *path) {
     return ok;
 }
 
+/* Whether the file at `path`, w x h, is the size of visibility.pfm, read
+ * first; says so where it is not. */
+static bool dump_same_size(const dump_frame *d, const char *path, int w, int h) {
+    if (w == d->width && h == d->height)
+        return true;
+    fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
+    return false;
+}
+
 bool dump_read(dump_frame *d, const char *dir) {
     *d = (dump_frame){0};
     char path[PATH_MAX];
@@ -260,11 +269,8 @@ bool dump_read(dump_frame *d, const char *dir) {
         if (ok && i == 0) {
             d->width = w;
             d->height = h;
-        } else if (ok && (w != d->width || h != d->height)) {
-            fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
-            ok = false;
         }
-        if (!ok) {
+        if (!ok || !dump_same_size(d, path, w, h)) {
             dump_frame_free(d);
             return false;
         }
@@ -272,9 +278,7 @@ bool dump_read(dump_frame *d, const char *dir) {
     int w, h;
     snprintf(path, sizeof path, "%s/color.png", dir);
     d->color = image_read_png(path, &w, &h);
-    if (d->color && (w != d->width || h != d->height))
-        fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
-    if (!d->color || w != d->width || h != d->height) {
+    if (!d->color || !dump_same_size(d, path, w, h)) {
         dump_frame_free(d);
         return false;
     }
@@ -282,9 +286,7 @@ bool dump_read(dump_frame *d, const char *dir) {
     if (access(path, F_OK) != 0)
         return true;
     d->visibility_rgb = dump_read_pfm(path, &w, &h, 3);
-    if (d->visibility_rgb && (w != d->width || h != d->height))
-        fprintf(stderr, "%s: %dx%d, but visibility.pfm is %dx%d\n", path, w, h, d->width, d->height);
-    if (!d->visibility_rgb || w != d->width || h != d->height) {
+    if (!d->visibility_rgb || !dump_same_size(d, path, w, h)) {
         dump_frame_free(d);
         return false;
     }

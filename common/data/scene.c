@@ -450,14 +450,8 @@ static bool scene_read_object(const char *file, const cJSON *json, const char *w
     if (mirrored)
         scale[0] = -scale[0];
     scene_model_matrix(translate, rotate_deg, scale, o->model);
-    if (count == *capacity) {
-        int grown_capacity = 2 * *capacity + 1;
-        scene_object *grown = realloc(objects, (size_t)grown_capacity * sizeof *grown);
-        if (!grown)
-            return json_fail(file, where, NULL, "out of memory");
-        s->objects = grown;
-        *capacity = grown_capacity;
-    }
+    if (!scene_reserve_object(s, capacity, file))
+        return false;
     /* Last: loading a model is the slow part, and every cheap check passed. */
     mesh_material material = {0};
     if (!scene_build_mesh(file, mesh_json, mesh_where, where, o, &material))
@@ -510,6 +504,20 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
         if (!scene_read_object(file, entry, where, s, &capacity))
             return false;
     }
+    return true;
+}
+
+bool scene_reserve_object(scene *s, int *capacity, const char *file) {
+    if (s->object_count < *capacity)
+        return true;
+    int grown_capacity = *capacity > 0 ? 2 * *capacity : SCENE_FIRST_CAPACITY;
+    scene_object *grown = realloc(s->objects, (size_t)grown_capacity * sizeof *grown);
+    if (!grown) {
+        fprintf(stderr, "%s: out of memory for %d objects\n", file, grown_capacity);
+        return false;
+    }
+    s->objects = grown;
+    *capacity = grown_capacity;
     return true;
 }
 

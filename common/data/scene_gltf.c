@@ -256,16 +256,8 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
     const struct aiMesh *am = r->a->mMeshes[i];
     if (!am->mNumFaces || !(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
         return true; /* points and lines: nothing to shade */
-    if (r->s->object_count == *r->capacity) {
-        int capacity = *r->capacity ? 2 * *r->capacity : 16;
-        scene_object *grown = realloc(r->s->objects, (size_t)capacity * sizeof *grown);
-        if (!grown) {
-            fprintf(stderr, "%s: out of memory for %d objects\n", r->file, capacity);
-            return false;
-        }
-        r->s->objects = grown;
-        *r->capacity = capacity;
-    }
+    if (!scene_reserve_object(r->s, r->capacity, r->file))
+        return false;
     /* The material's texture first: what fails there leaves no mesh. */
     bool material = am->mMaterialIndex < r->a->mNumMaterials;
     int texture = SCENE_GLTF_UNTEXTURED;

@@ -13,6 +13,11 @@
  * origin than SCENE_REBASE_RATIO times its distance to the target, else
  * the world's origin. */
 void scene_choose_origin(const scene_camera *c, double origin[3]);
+/* Room in s->objects (of *capacity) for one more object, the array
+ * doubled where full (SCENE_FIRST_CAPACITY from none); false after
+ * "FILE: out of memory for N objects". */
+#define SCENE_FIRST_CAPACITY 16
+bool scene_reserve_object(scene *s, int *capacity, const char *file);
 /* A glTF 2.0 file (.gltf, .glb) as a scene: scene_load_camera's contract. */
 bool scene_load_gltf(scene *s, const char *path, int camera);
 /* A glTF file's objects appended to s (a scene file's object of mesh kind
