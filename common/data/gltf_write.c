@@ -45,8 +45,10 @@ static char *gltf_data_uri(const char *type, const unsigned char *bytes, size_t 
     return uri;
 }
 
-/* `item` into an array (key NULL) or an object; a NULL item or a failure
- * marks the writer out of memory. */
+/* `item` into an array (key NULL) or an object; a NULL item, a NULL `to`
+ * (one whose making failed) or a failure marks the writer out of memory,
+ * so that a part's fields need no check of their own: gltf_write_end
+ * returns NULL. */
 static cJSON *gltf_add(gltf_write *w, cJSON *to, const char *key, cJSON *item) {
     bool added = item && (key ? cJSON_AddItemToObject(to, key, item) : cJSON_AddItemToArray(to, item));
     if (!added) {
@@ -65,13 +67,13 @@ static void gltf_numbers(gltf_write *w, cJSON *to, const char *key, const double
     gltf_add(w, to, key, cJSON_CreateDoubleArray(x, count));
 }
 
-/* A new object at the end of `list`; its index, or -1. */
+/* A new object at the end of `list`; its index, or -1 (and NULL). */
 static cJSON *gltf_entry(gltf_write *w, cJSON *list, int *index) {
-    *index = w->out_of_memory ? -1 : cJSON_GetArraySize(list);
+    *index = cJSON_GetArraySize(list);
     cJSON *entry = gltf_add(w, list, NULL, cJSON_CreateObject());
     if (!entry)
         *index = -1;
-    return entry ? entry : list; /* out of memory: later additions go nowhere that matters */
+    return entry;
 }
 
 /* `size` bytes into the buffer, aligned; a buffer view of them, its index. */
@@ -118,26 +120,23 @@ gltf_write *gltf_write_begin(const char *generator) {
         return NULL;
     w->root = cJSON_CreateObject();
     cJSON *asset = gltf_add(w, w->root, "asset", cJSON_CreateObject());
-    if (asset) {
-        gltf_add(w, asset, "version", cJSON_CreateString("2.0"));
-        gltf_add(w, asset, "generator", cJSON_CreateString(generator));
-    }
+    gltf_add(w, asset, "version", cJSON_CreateString("2.0"));
+    gltf_add(w, asset, "generator", cJSON_CreateString(generator));
     cJSON *used = gltf_add(w, w->root, "extensionsUsed", cJSON_CreateArray());
-    if (used)
-        gltf_add(w, used, NULL, cJSON_CreateString("KHR_lights_punctual"));
+    gltf_add(w, used, NULL, cJSON_CreateString("KHR_lights_punctual"));
     cJSON *extensions = gltf_add(w, w->root, "extensions", cJSON_CreateObject());
-    cJSON *punctual = extensions ? gltf_add(w, extensions, "KHR_lights_punctual", cJSON_CreateObject()) : NULL;
-    w->lights = punctual ? gltf_add(w, punctual, "lights", cJSON_CreateArray()) : NULL;
+    cJSON *punctual = gltf_add(w, extensions, "KHR_lights_punctual", cJSON_CreateObject());
+    w->lights = gltf_add(w, punctual, "lights", cJSON_CreateArray());
     gltf_number(w, w->root, "scene", 0);
     cJSON *scenes = gltf_add(w, w->root, "scenes", cJSON_CreateArray());
-    cJSON *scene = scenes ? gltf_add(w, scenes, NULL, cJSON_CreateObject()) : NULL;
-    w->scene_nodes = scene ? gltf_add(w, scene, "nodes", cJSON_CreateArray()) : NULL;
+    cJSON *scene = gltf_add(w, scenes, NULL, cJSON_CreateObject());
+    w->scene_nodes = gltf_add(w, scene, "nodes", cJSON_CreateArray());
     static const char *const lists[] = {"nodes",    "cameras", "meshes",      "materials", "textures",
                                         "samplers", "images",  "bufferViews", "accessors"};
     cJSON **slots[] = {&w->nodes,    &w->cameras, &w->meshes, &w->materials, &w->textures,
                        &w->samplers, &w->images,  &w->views,  &w->accessors};
     for (size_t i = 0; i < sizeof lists / sizeof *lists; i++)
-        *slots[i] = w->root ? gltf_add(w, w->root, lists[i], cJSON_CreateArray()) : NULL;
+        *slots[i] = gltf_add(w, w->root, lists[i], cJSON_CreateArray());
     if (!w->root || w->out_of_memory) {
         cJSON_Delete(w->root);
         free(w);
@@ -171,13 +170,10 @@ int gltf_write_material(gltf_write *w, const gltf_material *m) {
     gltf_add(w, material, "name", cJSON_CreateString(m->name));
     cJSON *pbr = gltf_add(w, material, "pbrMetallicRoughness", cJSON_CreateObject());
     const double color[4] = {m->color[0], m->color[1], m->color[2], m->color[3]};
-    if (pbr) {
-        gltf_numbers(w, pbr, "baseColorFactor", color, 4);
-        gltf_number(w, pbr, "metallicFactor", 0);
-        cJSON *texture = m->texture >= 0 ? gltf_add(w, pbr, "baseColorTexture", cJSON_CreateObject()) : NULL;
-        if (texture)
-            gltf_number(w, texture, "index", m->texture);
-    }
+    gltf_numbers(w, pbr, "baseColorFactor", color, 4);
+    gltf_number(w, pbr, "metallicFactor", 0);
+    if (m->texture >= 0)
+        gltf_number(w, gltf_add(w, pbr, "baseColorTexture", cJSON_CreateObject()), "index", m->texture);
     if (m->alpha != GLTF_OPAQUE)
         gltf_add(w, material, "alphaMode", cJSON_CreateString(modes[m->alpha]));
     if (m->alpha == GLTF_MASK && m->cutoff > 0)
@@ -214,23 +210,19 @@ int gltf_write_mesh(gltf_write *w, const gltf_vertex *vertices, int vertex_count
     free(columns);
     int index_accessor = gltf_accessor(w, indices, (size_t)index_count * sizeof *indices, index_count, "SCALAR",
                                        GLTF_UNSIGNED_SHORT, GLTF_ELEMENT_ARRAY_BUFFER);
-    cJSON *bounds = w->out_of_memory ? NULL : cJSON_GetArrayItem(w->accessors, position);
-    if (bounds) {
-        gltf_numbers(w, bounds, "min", low, 3);
-        gltf_numbers(w, bounds, "max", high, 3);
-    }
+    cJSON *bounds = cJSON_GetArrayItem(w->accessors, position);
+    gltf_numbers(w, bounds, "min", low, 3);
+    gltf_numbers(w, bounds, "max", high, 3);
     int index;
     cJSON *mesh = gltf_entry(w, w->meshes, &index);
     cJSON *primitives = gltf_add(w, mesh, "primitives", cJSON_CreateArray());
-    cJSON *primitive = primitives ? gltf_add(w, primitives, NULL, cJSON_CreateObject()) : NULL;
-    cJSON *attributes = primitive ? gltf_add(w, primitive, "attributes", cJSON_CreateObject()) : NULL;
-    if (attributes) {
-        gltf_number(w, attributes, "POSITION", position);
-        gltf_number(w, attributes, "NORMAL", normal);
-        gltf_number(w, attributes, "TEXCOORD_0", uv);
-        gltf_number(w, primitive, "indices", index_accessor);
-        gltf_number(w, primitive, "material", material);
-    }
+    cJSON *primitive = gltf_add(w, primitives, NULL, cJSON_CreateObject());
+    cJSON *attributes = gltf_add(w, primitive, "attributes", cJSON_CreateObject());
+    gltf_number(w, attributes, "POSITION", position);
+    gltf_number(w, attributes, "NORMAL", normal);
+    gltf_number(w, attributes, "TEXCOORD_0", uv);
+    gltf_number(w, primitive, "indices", index_accessor);
+    gltf_number(w, primitive, "material", material);
     return w->out_of_memory ? -1 : index;
 }
 
@@ -277,12 +269,10 @@ int gltf_write_camera(gltf_write *w, const char *name, const double eye[3], cons
     cJSON *c = gltf_entry(w, w->cameras, &camera);
     gltf_add(w, c, "type", cJSON_CreateString("perspective"));
     cJSON *p = gltf_add(w, c, "perspective", cJSON_CreateObject());
-    if (p) {
-        gltf_number(w, p, "yfov", yfov);
-        gltf_number(w, p, "aspectRatio", aspect);
-        gltf_number(w, p, "znear", znear);
-        gltf_number(w, p, "zfar", zfar);
-    }
+    gltf_number(w, p, "yfov", yfov);
+    gltf_number(w, p, "aspectRatio", aspect);
+    gltf_number(w, p, "znear", znear);
+    gltf_number(w, p, "zfar", zfar);
     cJSON *node = gltf_node(w, name, &index);
     gltf_number(w, node, "camera", camera);
     gltf_place place = {{eye[0], eye[1], eye[2]}, {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]}};
@@ -299,8 +289,8 @@ int gltf_write_light(gltf_write *w, const char *name, const char *type, const fl
     gltf_add(w, l, "type", cJSON_CreateString(type));
     gltf_numbers(w, l, "color", rgb, 3);
     gltf_number(w, l, "intensity", intensity);
-    cJSON *spot = strcmp(type, "spot") == 0 ? gltf_add(w, l, "spot", cJSON_CreateObject()) : NULL;
-    if (spot) {
+    if (strcmp(type, "spot") == 0) {
+        cJSON *spot = gltf_add(w, l, "spot", cJSON_CreateObject());
         gltf_number(w, spot, "innerConeAngle", inner_cone);
         gltf_number(w, spot, "outerConeAngle", outer_cone);
     }
@@ -309,24 +299,21 @@ int gltf_write_light(gltf_write *w, const char *name, const char *type, const fl
     cJSON *node = gltf_node(w, node_name, &index);
     gltf_place_node(w, node, place);
     cJSON *extensions = gltf_add(w, node, "extensions", cJSON_CreateObject());
-    cJSON *punctual = extensions ? gltf_add(w, extensions, "KHR_lights_punctual", cJSON_CreateObject()) : NULL;
-    if (punctual)
-        gltf_number(w, punctual, "light", light);
+    cJSON *punctual = gltf_add(w, extensions, "KHR_lights_punctual", cJSON_CreateObject());
+    gltf_number(w, punctual, "light", light);
     return w->out_of_memory ? -1 : index;
 }
 
 cJSON *gltf_write_end(gltf_write *w) {
     char *uri = w->out_of_memory ? NULL : gltf_data_uri("application/octet-stream", w->buffer, w->size);
-    cJSON *buffers = uri ? gltf_add(w, w->root, "buffers", cJSON_CreateArray()) : NULL;
-    cJSON *buffer = buffers ? gltf_add(w, buffers, NULL, cJSON_CreateObject()) : NULL;
-    if (buffer) {
-        gltf_number(w, buffer, "byteLength", (double)w->size);
-        gltf_add(w, buffer, "uri", cJSON_CreateString(uri));
-    }
+    cJSON *buffers = gltf_add(w, w->root, "buffers", cJSON_CreateArray());
+    cJSON *buffer = gltf_add(w, buffers, NULL, cJSON_CreateObject());
+    gltf_number(w, buffer, "byteLength", (double)w->size);
+    gltf_add(w, buffer, "uri", uri ? cJSON_CreateString(uri) : NULL);
     free(uri);
     free(w->buffer);
     cJSON *root = w->root;
-    bool failed = w->out_of_memory || !buffer;
+    bool failed = w->out_of_memory;
     free(w);
     if (failed) {
         fprintf(stderr, "gltf_write: out of memory\n");

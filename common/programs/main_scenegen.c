@@ -581,6 +581,10 @@ typedef struct scenegen_mesh {
     int vertex_count, index_count;
 } scenegen_mesh;
 
+/* A square's corners about its centre along its two edges, counter-
+ * clockwise. */
+static const double scenegen_quad_corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+
 /* A quad of corners c (counter-clockwise seen from its normal's side)
  * and texture coordinates uv. */
 static void scenegen_quad(scenegen_mesh *m, const double c[4][3], const double uv[4][2]) {
@@ -627,12 +631,11 @@ static void scenegen_box(scenegen_mesh *m, const double centre[3], const double 
     for (int axis = 0; axis < 3; axis++)
         for (int sign = -1; sign <= 1; sign += 2) {
             int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            static const double steps[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
             double c[4][3];
             for (int q = 0; q < 4; q++) {
                 c[q][axis] = centre[axis] + sign * h[axis];
-                c[q][u] = centre[u] + steps[q][0] * h[u] * sign;
-                c[q][v] = centre[v] + steps[q][1] * h[v];
+                c[q][u] = centre[u] + scenegen_quad_corners[q][0] * h[u] * sign;
+                c[q][v] = centre[v] + scenegen_quad_corners[q][1] * h[v];
             }
             scenegen_square(m, c);
         }
@@ -712,12 +715,11 @@ static cJSON *scenegen_fence(void) {
         for (int k = 0; k < 3; k++)
             t[k] /= length;
         b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
-        static const double steps[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
         double c[4][3];
         for (int q = 0; q < 4; q++)
             for (int k = 0; k < 3; k++)
                 c[q][k] = fence_tree[k] + (k == 1 ? FENCE_CROWN_HEIGHT : 0) + FENCE_CROWN_RADIUS * p[k] +
-                          FENCE_CARD_HALF * (steps[q][0] * t[k] + steps[q][1] * b[k]);
+                          FENCE_CARD_HALF * (scenegen_quad_corners[q][0] * t[k] + scenegen_quad_corners[q][1] * b[k]);
         scenegen_square(&m, c);
     }
     scenegen_put_mesh(w, "leaves", &m, leaf_material);
