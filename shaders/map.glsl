@@ -205,7 +205,8 @@ float map_kernel_reach() {
 // (strictly between: the pixel is marked for the kernel and the rays)
 // elsewhere, and where the reads span more than MAP_BOUNDS_SPAN_CELLS
 // cells on an axis (a cell of 8 texels holds the default kernel's reads
-// in 2). MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose depth rounds to a
+// in 2). Lit is asked at the depth lit_shift deeper (map_share's sure-lit
+// point), shadowed at the taps' own. MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose depth rounds to a
 // texel's out of both. A sampler places a read within
 // MAP_BOUNDS_SUBTEXEL of a texel (GPUs resolve 1/256 of one), which
 // may pick the texel beyond: the cells are read a texel wider
@@ -222,13 +223,14 @@ bool map_bounds_light(int i) { return ((MAP_PASS_BOUNDS_LIGHTS >> i) & 1) != 0; 
 // The answer for taps at texel positions within `low` .. `high` (texels
 // from the first centre, on a face `size` texels wide whose first cell is
 // `origin`), each comparing a depth within `slack` of the linear one
-// through `depth` at `point` with `gradient` per texel. A bilinear read
+// through `depth` at `point` with `gradient` per texel (for lit, through
+// depth + lit_shift). A bilinear read
 // takes the texels whose centres lie within a texel of the tap (and
 // MAP_BOUNDS_SUBTEXEL): such a texel's own linear depth is within the
 // gradient's reach of the tap's. Per cell the
 // test is linear over the texels it holds, so their box's corners decide.
 float map_bounds_answer(sampler2D bounds, ivec2 origin, int size, vec2 low, vec2 high, vec2 point, float depth,
-                        vec2 gradient, float slack) {
+                        vec2 gradient, float slack, float lit_shift) {
     ivec2 last = ivec2(size - 1);
     ivec2 first_texel = clamp(ivec2(floor(low)) - MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
     ivec2 last_texel = clamp(ivec2(floor(high)) + 1 + MAP_BOUNDS_ROUNDING_TEXELS, ivec2(0), last);
@@ -249,7 +251,7 @@ float map_bounds_answer(sampler2D bounds, ivec2 origin, int size, vec2 low, vec2
             float at_centre = dot(plane.xy, -centre) - depth + dot(gradient, point);
             vec2 lowest = mix(box_high, box_low, greaterThan(slope, vec2(0.0)));
             vec2 highest = mix(box_low, box_high, greaterThan(slope, vec2(0.0)));
-            lit = lit && plane.z + at_centre + dot(slope, lowest) >= reach;
+            lit = lit && plane.z + at_centre - lit_shift + dot(slope, lowest) >= reach;
             shadowed = shadowed && plane.w + at_centre + dot(slope, highest) <= -reach &&
                        plane.w + dot(plane.xy, mix(box_low, box_high, greaterThan(plane.xy, vec2(0.0))) - centre) <
                            1.0 - MAP_BOUNDS_DEPTH_MARGIN;
@@ -351,6 +353,15 @@ const float MAP_TEXEL_LINE_MIN_PIXELS = 4.0;
 // The penumbra overlay's floor on the radius (a blocker at the receiver's
 // own depth casts none), so that its log2 is finite.
 const float MAP_MIN_PENUMBRA = 1e-6;
+// With rays, the share of the constant bias a hard light's map must say
+// lit with too where the full bias says lit, for the pixel to be sure
+// (map_light.glsl, map_share): the larger the bias, the surer a shadow,
+// the smaller, the surer the light. Acne the smaller bias lets through
+// only sends pixels to the rays; a caster nearer to its receiver than
+// this share of a texel stays hidden (test_gltf's truck: window frames
+// about a texel over the body).
+const float MAP_SURE_LIT_BIAS_SHARE = 0.25;
+
 // The unsure overlay: magenta, over half of the pixel's colour, so that
 // the shading still shows through.
 const vec3 MAP_UNSURE_TINT = vec3(1.0, 0.0, 1.0);

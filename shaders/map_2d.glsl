@@ -61,26 +61,32 @@ float map_texel_world(sampler2DShadow map, int i, int texel_kind, vec3 p) {
 }
 
 // The depth bounds' answer (map.glsl) for taps within the kernel's reach
-// of the point, each comparing the receiver plane's depth there. Outside
-// the map, lit, as map_flat_filter says.
-float map_bounds_visibility(sampler2D bounds, int i, vec3 uvz, vec2 gradient, float depth_bias) {
+// of the point, each comparing the receiver plane's depth there (lit:
+// lit_shift deeper). Outside the map, lit, as map_flat_filter says.
+float map_bounds_visibility(sampler2D bounds, int i, vec3 uvz, vec2 gradient, float depth_bias, float lit_shift) {
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
         return 1.0;
     float reach = map_kernel_reach(), size = u_map_size[i];
     vec2 point = uvz.xy * size - 0.5; // from the first texel's centre
     return map_bounds_answer(bounds, ivec2(0), int(size), point - reach, point + reach, point,
-                             min(uvz.z - depth_bias, 1.0), gradient / size, 0.0);
+                             min(uvz.z - depth_bias, 1.0), gradient / size, 0.0, lit_shift);
 }
 
-float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i, vec3 p, float depth_bias,
-                     bool soft, bool moments, float texel, bool needed) {
+// The depth of p in light i's map (0..1).
+float map_2d_depth(int i, vec3 p) {
+    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
+    return clip.z / clip.w * 0.5 + 0.5;
+}
+
+float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i, vec3 p, vec3 lit_p,
+                     float depth_bias, bool soft, bool moments, float texel, bool needed) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
     vec2 gradient = map_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
     if (!needed || clip.w <= 0.0)
         return 1.0;
     if (map_bounds_light(i))
-        return map_bounds_visibility(bounds, i, uvz, gradient, depth_bias);
+        return map_bounds_visibility(bounds, i, uvz, gradient, depth_bias, map_2d_depth(i, lit_p) - uvz.z);
     return map_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, moments, texel);
 }
 

@@ -92,7 +92,8 @@ float map_texel_world(sampler2DArrayShadow map, int i, int texel_kind, vec3 p) {
 
 // Layer k's filtered comparison at p, with the receiver plane from the
 // screen derivatives of p in light view (per layer: its scale).
-float map_visibility(sampler2DArrayShadow map, sampler2DArray raw, sampler2D bounds, int i, vec3 p,
+// (Arrays have no depth bounds: lit_p is not read.)
+float map_visibility(sampler2DArrayShadow map, sampler2DArray raw, sampler2D bounds, int i, vec3 p, vec3 lit_p,
                      float depth_bias, bool soft, bool moments, float texel, bool needed) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz; /* an orthonormal view: w is 1 */
     vec3 dx = dFdx(light_p), dy = dFdy(light_p);           /* derivatives: before any branch */

@@ -112,8 +112,9 @@ const float MAP_CUBE_MIN_DETERMINANT = 1e-12;
 // in which a plane's stored depth is linear: the taps' depths (on the
 // receiver's plane, or on the plane across the direction) lie on the line
 // through the point's and two neighbours', within the slack that the
-// depth's clamp and the taps kept off a grazing plane leave, measured.
-float map_cube_bounds_visibility(sampler2D bounds, int i) {
+// depth's clamp and the taps kept off a grazing plane leave, measured
+// (lit: lit_shift deeper).
+float map_cube_bounds_visibility(sampler2D bounds, int i, float lit_shift) {
     float size = u_map_size[i];
     vec2 st;
     int face = map_cube_face(map_direction, st);
@@ -144,7 +145,8 @@ float map_cube_bounds_visibility(sampler2D bounds, int i) {
     if (any(lessThan(floor(low), vec2(edge))) || any(greaterThan(floor(high), vec2(size - 1.0 - float(edge)))))
         return MAP_BOUNDS_UNSURE;
     int cells = (int(size) + MAP_BOUNDS_CELL_TEXELS - 1) / MAP_BOUNDS_CELL_TEXELS;
-    return map_bounds_answer(bounds, ivec2(face * cells, 0), int(size), low, high, point, depth, gradient, slack);
+    return map_bounds_answer(bounds, ivec2(face * cells, 0), int(size), low, high, point, depth, gradient, slack,
+                             lit_shift);
 }
 
 #define MAP_SAMPLER samplerCubeShadow
@@ -165,8 +167,8 @@ float map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
 // tents take the taps and weights of a point on a texel corner (fraction
 // 0): symmetric about the point, the same tap count and footprint as on a
 // 2D map, but not following where the point lies in its texel.
-float map_visibility(samplerCubeShadow map, samplerCube raw, sampler2D bounds, int i, vec3 p, float depth_bias,
-                     bool soft, bool moments, float texel, bool needed) {
+float map_visibility(samplerCubeShadow map, samplerCube raw, sampler2D bounds, int i, vec3 p, vec3 lit_p,
+                     float depth_bias, bool soft, bool moments, float texel, bool needed) {
     vec3 d = p - lights_position[i].xyz;
     vec3 receiver_normal = normalize(cross(dFdx(p), dFdy(p))); /* before any branch */
     if (!needed)
@@ -187,7 +189,8 @@ float map_visibility(samplerCubeShadow map, samplerCube raw, sampler2D bounds, i
     map_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
     map_plane_taps = map_receiver_plane || soft;
     if (map_bounds_light(i))
-        return map_cube_bounds_visibility(bounds, i);
+        return map_cube_bounds_visibility(
+            bounds, i, map_face_depth(lit_p - lights_position[i].xyz, range) - map_face_depth(d, range));
     if (soft)
         return map_soft_filter(map, raw, i, map_step, 1.0);
     return map_kernel_filter(map, vec2(0.0), 1.0);

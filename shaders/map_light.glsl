@@ -12,7 +12,8 @@
 //   map_texel_world(map, i, k, p) world size of a texel of light i's
 //                                        map at p (k: the texel's kind, a
 //                                        MAP_TEXEL_*, for 2D maps);
-//   map_visibility(map, raw, bounds, i, p, b, soft, moments, texel, needed)
+//   map_visibility(map, raw, bounds, i, p, lit_p, b, soft, moments,
+//                  texel, needed)
 //                                        the filtered comparison at p, its
 //                                        map depth lowered by b first, by
 //                                        the settings' kernel or, soft, by
@@ -20,8 +21,10 @@
 //                                        `moments` from raw's moments
 //                                        (moments.glsl), or in a marking
 //                                        pass by its depth bounds
-//                                        (map.glsl, map_bounds_light)
-//                                        (texel: a
+//                                        (map.glsl, map_bounds_light),
+//                                        which say lit only where lit at
+//                                        lit_p (on the ray from p to the
+//                                        light) too (texel: a
 //                                        texel's world size there; the
 //                                        screen derivatives it takes come
 //                                        first, in uniform control flow;
@@ -32,8 +35,8 @@
 // GLSL picks each by the sampler's type: the same names for both kinds.
 
 float map_texel_world(MAP_SAMPLER map, int i, int texel_kind, vec3 p);
-float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, vec3 p, float depth_bias,
-                            bool soft, bool moments, float texel, bool needed);
+float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, vec3 p, vec3 lit_p,
+                            float depth_bias, bool soft, bool moments, float texel, bool needed);
 vec2 map_texel_coord(MAP_SAMPLER map, int i, vec3 p);
 
 // The kernel's visibility: the early-out's rim, then where it disagrees
@@ -78,7 +81,8 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, in
     float texel = map_texel_world(map, i, texel_kind, v_position);
     float cos_theta = clamp(dot(n, to_light), 0.0, 1.0);
     float sin_theta = sqrt(1.0 - cos_theta * cos_theta);
-    vec3 p = v_position + to_light * (u_constant_bias * texel) + n * (u_normal_offset * texel * sin_theta);
+    vec3 normal_offset = n * (u_normal_offset * texel * sin_theta);
+    vec3 p = v_position + to_light * (u_constant_bias * texel) + normal_offset;
     vec3 unshadowed =
         map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, surface_albedo);
     bool needed = unshadowed != vec3(0.0) || map_show_texel_size;
@@ -86,12 +90,23 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, in
     // Rays (map.h, "Rays"): where the map's filter is unsure (strictly
     // between 0 and 1), or at every pixel without reading the map, shadow
     // rays decide, as the reference's (which needs no horizon's share).
+    // A hard light's map lit by the full bias is sure only where it is
+    // lit by MAP_SURE_LIT_BIAS_SHARE of it too: the depth bounds ask that
+    // of p_near at once, the kernel in a second read.
     bool lit = unshadowed != vec3(0.0);
-    float visibility = map_visibility(map, raw, bounds, i, p, max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y),
-                                             soft, moments, texel, needed && map_rays != MAP_RAYS_ALL);
+    bool sure_lit_read = !soft && map_rays == MAP_RAYS_UNSURE;
+    vec3 p_near = v_position + to_light * (MAP_SURE_LIT_BIAS_SHARE * u_constant_bias * texel) + normal_offset;
+    float depth_bias = max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y);
+    float visibility = map_visibility(map, raw, bounds, i, p, sure_lit_read ? p_near : p, depth_bias, soft, moments,
+                                      texel, needed && map_rays != MAP_RAYS_ALL);
     // PCSS's search taps can miss a thin caster: an area light's pixel
     // it calls lit is sure only where no caster's box is near its cone.
     bool unsure = lit && visibility > 0.0 && visibility < 1.0;
+    if (sure_lit_read && !map_mark_rays) { /* unconditional: its screen derivatives need uniform control flow */
+        float near_visibility = map_visibility(map, raw, bounds, i, p_near, p_near, depth_bias, soft, moments, texel,
+                                               needed);
+        unsure = unsure || (lit && visibility == 1.0 && near_visibility < 1.0);
+    }
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
         unsure = !map_light_cone_clear(i);
     bool traced = lit && (map_rays == MAP_RAYS_ALL || (map_rays == MAP_RAYS_UNSURE && unsure));

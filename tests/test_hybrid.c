@@ -58,9 +58,10 @@ static shadowdiff_result hybrid_measure(const char *scene, const char *flags, co
 
 /* With the rays off and every tap read, as the rays read them, the
  * camera pass leaves the map's own visibility: strictly between 0 and 1
- * exactly where it is unsure (the pixels the rays would take). Those
- * take the reference's value, so that only the sure pixels are judged:
- * none may be misclassified. */
+ * where its kernel is unsure (the rays take those, and also the pixels
+ * the sure-lit read doubts: map.h, "Rays"). Those take the reference's
+ * value, so that only the kernel's sure pixels, a superset of the
+ * hybrid's, are judged: none may be misclassified. */
 static void test_sure_pixels_agree_with_the_reference(void **state) {
     (void)state;
     for (size_t s = 0; s < HYBRID_SCENE_COUNT; s++) {

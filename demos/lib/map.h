@@ -242,7 +242,10 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * (MAP_RAYS_ALL, a plain ray tracer), or only where the map is unsure
  * (MAP_RAYS_UNSURE): where its filter, the kernel or PCSS, gives a
  * visibility strictly between 0 and 1 (a shadow's edge within the
- * kernel's reach; a blocker found but the light not wholly hidden).
+ * kernel's reach; a blocker found but the light not wholly hidden), and
+ * where a hard light's kernel says 1 but not with a share of the
+ * constant bias (shaders/map.glsl, MAP_SURE_LIT_BIAS_SHARE: a caster
+ * within the bias of its receiver).
  * Where the filter says 0 or 1 the map decides: with rays the kernel reads
  * every tap, as if with --no-early-out (four rim taps agreeing prove
  * nothing of the rest: test_hybrid's sure pixels on wuson need all of
