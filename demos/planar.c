@@ -121,6 +121,7 @@ static bool planar_init(const render_scene *gpu) {
     static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
     if (!render_program_load(&planar.flatten, files, 2, NULL))
         return false;
+    planar.flatten.both_sides = true; /* the casters' shape on a plane (render.h) */
     planar.shadow = shader_uniform(planar.flatten.id, "u_shadow");
     planar.plane = shader_uniform(planar.flatten.id, "u_plane");
     planar.reject = shader_uniform(planar.flatten.id, "u_reject");

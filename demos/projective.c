@@ -247,6 +247,7 @@ static bool projective_init(const render_scene *gpu) {
     if (!render_program_load(&projective.caster, caster_files, 2, NULL) ||
         !render_program_load(&projective.receiver, receiver_files, 2, defines))
         return false;
+    projective.caster.both_sides = true; /* the casters' shape from the light (render.h) */
     unsigned id = projective.receiver.id;
     projective.light_texture = shader_uniform(id, "u_light_texture");
     projective.projected = shader_uniform(id, "u_projected");

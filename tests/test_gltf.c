@@ -24,6 +24,12 @@
 #define GLTF_SCENE_BINARY "tests/data/gltf_scene.glb" /* the same scene, binary */
 #define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define GLTF_CUT_OUT "tests/data/gltf_cut_out.gltf"
+/* A single-sided wall seen from behind (object GLTF_SIDED_WALL) between
+ * the camera and a box (GLTF_SIDED_BOX) that the sun, from the camera's
+ * side, shadows through it; a double-sided panel seen from behind. */
+#define GLTF_SIDED "tests/data/gltf_sided.gltf"
+#define GLTF_SIDED_BOX 1
+#define GLTF_SIDED_WALL 2
 #define GLTF_STAINED_GLASS "assets/scenes/stained_glass.gltf" /* build/scenegen's */
 #define GLTF_FENCE "assets/scenes/fence.gltf"
 #define GLTF_INCLUDED "tests/data/gltf_included.json" /* the three files above in one scene file */
@@ -50,6 +56,9 @@
  * waits for finer maps or the hybrid's rays there); and what volumes,
  * which cast a cut-out object's whole shadow, miss by at least. */
 #define GLTF_CUT_OUT_MAP_MAX_PERCENT 0.4
+/* The shadow maps on the single-sided wall's shadow: the edges of its
+ * shadow, at their resolution. */
+#define GLTF_SIDED_MAP_MAX_PERCENT 0.3
 /* The hybrid's goal there: its rays cut them out as the reference does. */
 #define GLTF_CUT_OUT_HYBRID_MAX_PERCENT 0.01
 #define GLTF_CUT_OUT_WHOLE_MIN_PERCENT 1.0
@@ -193,29 +202,35 @@ static void test_gltf_textures_read(void **state) {
     assert_int_equal(s.object_count, 0);
 }
 
-/* PROGRAM's picture and decisions of `scene_path` against the
- * reference's: at most max_percent misclassified, and the colours within
- * GLTF_COLOR_TOLERANCE (the cut-outs and textures drawn by the reference's
- * rule). */
-static void gltf_expect_reference(const char *program, const char *scene_path, const char *name, double max_percent) {
-    dump_frame reference, test;
-    unsigned char *heatmap;
-    shadowdiff_result r = support_measure_dumps(program, scene_path, "", "", name, &reference, &test, &heatmap);
-    assert_true(r.compared > 0 && r.misclassified_percent <= max_percent);
-    long pixels = (long)reference.width * reference.height;
+/* PROGRAM's picture against the reference's: the colours within
+ * GLTF_COLOR_TOLERANCE (the cut-outs and textures drawn by the
+ * reference's rule). */
+static void gltf_expect_colors(const char *program, const dump_frame *reference, const dump_frame *test) {
+    long pixels = (long)reference->width * reference->height;
     double off = 100.0 *
-                 (double)image_compare(reference.color, test.color, reference.width, reference.height,
+                 (double)image_compare(reference->color, test->color, reference->width, reference->height,
                                        GLTF_COLOR_TOLERANCE, NULL) /
                  (double)pixels;
     double sum = 0;
     for (long p = 0; p < pixels; p++)
         for (int c = 0; c < 3; c++)
-            sum += abs(reference.color[4 * p + c] - test.color[4 * p + c]);
+            sum += abs(reference->color[4 * p + c] - test->color[4 * p + c]);
     double mean = sum / (3.0 * (double)pixels);
     print_message("    %s: colours off by more than %d/255: %.4f %% of the pixels; mean difference %.3f/255\n",
                   program, GLTF_COLOR_TOLERANCE, off, mean);
     assert_true(off <= GLTF_MAX_COLOR_PERCENT);
     assert_true(mean <= GLTF_MAX_MEAN_COLOR_DIFFERENCE);
+}
+
+/* PROGRAM's picture and decisions of `scene_path` against the
+ * reference's: at most max_percent misclassified, and the colours
+ * (gltf_expect_colors). */
+static void gltf_expect_reference(const char *program, const char *scene_path, const char *name, double max_percent) {
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result r = support_measure_dumps(program, scene_path, "", "", name, &reference, &test, &heatmap);
+    assert_true(r.compared > 0 && r.misclassified_percent <= max_percent);
+    gltf_expect_colors(program, &reference, &test);
     dump_frame_free(&reference);
     dump_frame_free(&test);
     free(heatmap);
@@ -233,6 +248,23 @@ static void test_gltf_textures_match_reference(void **state) {
         snprintf(name, sizeof name, "gltf_textured_%s", programs[i]);
         gltf_expect_reference(programs[i], GLTF_TEXTURED, name, GLTF_MAX_MISCLASSIFIED_PERCENT);
     }
+}
+
+/* PROGRAM's dumps of `scene_path` against the reference's, named
+ * PREFIX_PROGRAM: at most max_percent misclassified, and every pixel sees
+ * the object the reference's does. The caller frees the dumps. */
+static void gltf_expect_objects(const char *program, const char *scene_path, const char *prefix, double max_percent,
+                                dump_frame *reference, dump_frame *test) {
+    char name[64];
+    snprintf(name, sizeof name, "%s_%s", prefix, program);
+    unsigned char *heatmap;
+    shadowdiff_result r = support_measure_dumps(program, scene_path, "", "", name, reference, test, &heatmap);
+    free(heatmap);
+    assert_true(r.compared > 0 && r.misclassified_percent <= max_percent);
+    long pixels = (long)reference->width * reference->height, other = 0;
+    for (long p = 0; p < pixels; p++)
+        other += reference->ids[p] != test->ids[p];
+    assert_int_equal(other, 0);
 }
 
 /* Cut-out objects (alphaMode MASK): a fence of boards and three leaf
@@ -261,21 +293,11 @@ static void test_gltf_cut_outs(void **state) {
         {"psm", GLTF_CUT_OUT_MAP_MAX_PERCENT},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i += (size_t)support_sweep_stride()) {
-        char name[64];
-        snprintf(name, sizeof name, "gltf_cut_out_%s", cases[i].program);
-        dump_frame reference, test;
-        unsigned char *heatmap;
-        shadowdiff_result r =
-            support_measure_dumps(cases[i].program, GLTF_CUT_OUT, "", "", name, &reference, &test, &heatmap);
-        assert_true(r.compared > 0 && r.misclassified_percent <= cases[i].max_percent);
         /* What each pixel sees: the same object, through the gaps too. */
-        long pixels = (long)reference.width * reference.height, other = 0;
-        for (long p = 0; p < pixels; p++)
-            other += reference.ids[p] != test.ids[p];
-        assert_int_equal(other, 0);
+        dump_frame reference, test;
+        gltf_expect_objects(cases[i].program, GLTF_CUT_OUT, "gltf_cut_out", cases[i].max_percent, &reference, &test);
         dump_frame_free(&reference);
         dump_frame_free(&test);
-        free(heatmap);
     }
     /* What each technique that cannot honour the scene says, once. */
     static const struct {
@@ -296,6 +318,51 @@ static void test_gltf_cut_outs(void **state) {
     }
     shadowdiff_result whole = support_measure("volumes", GLTF_CUT_OUT, "", "", "gltf_cut_out_volumes");
     assert_true(whole.misclassified_percent > GLTF_CUT_OUT_WHOLE_MIN_PERCENT);
+}
+
+/* doubleSided (glTF's material): a single-sided object is seen from its
+ * front only, and casts from both sides. Every pixel sees through the
+ * wall, which the camera sees from behind, to the object the reference
+ * sees; the wall shadows the box all the same; the double-sided panel's
+ * back is lit as the reference lights it (its normal reversed). The
+ * sweep takes every support_sweep_stride()th technique, the hybrid
+ * first; the maps' colours differ at their shadows' edges, so only the
+ * exact techniques' colours are compared. */
+static void test_gltf_sided(void **state) {
+    (void)state;
+    scene s;
+    gltf_load_saying(GLTF_SIDED, "", &s);
+    static const bool single_sided[] = {true, true, true, false}; /* ground, box, wall, panel */
+    assert_int_equal(s.object_count, 4);
+    for (int i = 0; i < s.object_count; i++)
+        assert_int_equal(s.objects[i].single_sided, single_sided[i]);
+    scene_free(&s);
+    static const struct {
+        const char *program;
+        double max_percent;
+        bool colors;
+    } cases[] = {
+        {"hybrid", GLTF_MAX_MISCLASSIFIED_PERCENT, true},  {"shadowmap", GLTF_SIDED_MAP_MAX_PERCENT, false},
+        {"cascades", GLTF_SIDED_MAP_MAX_PERCENT, false},   {"psm", GLTF_SIDED_MAP_MAX_PERCENT, false},
+        {"volumes", GLTF_MAX_MISCLASSIFIED_PERCENT, true},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i += (size_t)support_sweep_stride()) {
+        dump_frame reference, test;
+        gltf_expect_objects(cases[i].program, GLTF_SIDED, "gltf_sided", cases[i].max_percent, &reference, &test);
+        long pixels = (long)reference.width * reference.height, wall = 0, shadowed = 0;
+        for (long p = 0; p < pixels; p++) {
+            wall += reference.ids[p] == GLTF_SIDED_WALL;
+            shadowed += reference.ids[p] == GLTF_SIDED_BOX && reference.visibility[p] < 0.5f;
+        }
+        print_message("    %s: %ld pixels see the wall; %ld of the box's shadowed\n", cases[i].program, wall,
+                      shadowed);
+        assert_int_equal(wall, 0);
+        assert_true(shadowed >= GLTF_MIN_SHADE_PIXELS);
+        if (cases[i].colors)
+            gltf_expect_colors(cases[i].program, &reference, &test);
+        dump_frame_free(&reference);
+        dump_frame_free(&test);
+    }
 }
 
 /* --camera N: the file's camera N, where its node places it (the second
@@ -607,6 +674,7 @@ int main(void) {
         cmocka_unit_test(test_gltf_textures_read),
         cmocka_unit_test(test_gltf_textures_match_reference),
         cmocka_unit_test(test_gltf_cut_outs),
+        cmocka_unit_test(test_gltf_sided),
         cmocka_unit_test(test_gltf_fitted),
         cmocka_unit_test(test_gltf_says_each_thing_once),
         cmocka_unit_test(test_gltf_translucent_shadows),

@@ -142,6 +142,11 @@ typedef struct scene_object {
      * scene_object_transmittance gives of the light its shadow rays cross
      * it with. */
     bool translucent;
+    /* Seen from its front only (glTF's doubleSided false): the camera's
+     * passes and rays see none of its triangles from behind; its shadow
+     * is cast from both sides. False: both sides seen, the back lit with
+     * the normal reversed (a JSON scene's objects). */
+    bool single_sided;
     bool casts;
     bool receives;
 } scene_object;

@@ -105,8 +105,10 @@ typedef struct scene_gltf_reader {
     int *material_texture;
     unsigned without_coordinates; /* textured meshes with no texture coordinates, said once */
     /* A file a scene file includes (scene_include_gltf): its objects'
-     * names begin "PREFIX/", and they cast and receive as it says. NULL:
-     * the file is the scene, every object casts and receives. */
+     * names begin "PREFIX/", they cast and receive as it says and, as
+     * every object of a scene file, are seen from both sides. NULL: the
+     * file is the scene, every object casts and receives, seen from the
+     * sides its material says (scene_gltf_single_sided). */
     const char *prefix;
     bool casts, receives;
 } scene_gltf_reader;
@@ -249,6 +251,14 @@ static void scene_gltf_alpha(const struct aiMaterial *material, scene_object *o)
         o->alpha_cutoff = isfinite(cutoff) ? fmaxf(cutoff, 0) : SCENE_GLTF_ALPHA_CUTOFF;
 }
 
+/* Whether the material is single-sided: glTF's doubleSided false, its
+ * default (assimp's two-sided key, 0 where the file gives none). */
+static bool scene_gltf_single_sided(const struct aiMaterial *material) {
+    int two_sided = 0;
+    aiGetMaterialInteger(material, AI_MATKEY_TWOSIDED, &two_sided);
+    return !two_sided;
+}
+
 /* Mesh i of the file as an object placed by `world`. A mirroring
  * transform goes into the mesh, as a scene file's negative scale does
  * (scene_object's model keeps a positive determinant). */
@@ -277,6 +287,7 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
         mesh_material_color(r->a->mMaterials[am->mMaterialIndex], o->color);
         scene_gltf_alpha(r->a->mMaterials[am->mMaterialIndex], o);
     }
+    o->single_sided = !r->prefix && (!material || scene_gltf_single_sided(r->a->mMaterials[am->mMaterialIndex]));
     if (texture >= 0 && !am->mTextureCoords[0])
         r->without_coordinates++;
     else if (texture >= 0)

@@ -122,7 +122,14 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
         glActiveTexture(GL_TEXTURE0);
     }
     glBindVertexArray(m->vao);
+    bool cull = o->single_sided && !p->both_sides;
+    if (cull) {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+    }
     glDrawElements(GL_TRIANGLES, m->index_count, GL_UNSIGNED_INT, NULL);
+    if (cull)
+        glDisable(GL_CULL_FACE);
     if (r->inject_gl_error)
         glEnable(RENDER_NOT_A_CAPABILITY);
 }

@@ -53,9 +53,16 @@
  * promises 16. */
 #define RENDER_BASE_COLOR_UNIT 14
 
+/* Single-sided objects (scene_object's single_sided): render_draw_object
+ * culls their back faces, so that a camera's pass sees them from the
+ * front only, as the reference's camera rays do; a program that draws a
+ * shadow's shape instead (from a light, or projected onto a plane or the
+ * near plane) sets both_sides after loading, since every object casts
+ * from both sides. */
 typedef struct render_program {
     unsigned id;
     int model, normal_matrix, albedo, base_color, base_alpha, alpha_cutoff, view_projection;
+    bool both_sides;
 } render_program;
 
 /* Cut-out objects (scene_object's alpha_cutoff: glTF's alphaMode MASK)

@@ -83,6 +83,8 @@ typedef struct raytrace_object {
     mat3 normal_matrix;      /* scene_object_normal_matrix, as the raster side uses */
     bool casts;
     const scene_object *translucent; /* the scene's object where it is a translucent caster, else NULL */
+    const scene_object *cut_out;     /* the scene's object where it is cut out, else NULL */
+    bool single_sided;               /* scene_object's: camera rays pass through its back faces */
 } raytrace_object;
 
 struct raytrace_tracer {
@@ -257,15 +259,36 @@ static void raytrace_confirm_occlusion(const struct RTCFilterFunctionNArguments 
         args->valid[0] = 0;
 }
 
-/* Embree's hits on a cut-out object where it has no surface
- * (scene_object_cut_out: the rule of the raster's cut-out programs),
- * for camera and shadow rays alike; N is 1 (rtcIntersect1,
- * rtcOccluded1). */
-static void raytrace_cut_out(const struct RTCFilterFunctionNArguments *args) {
-    const scene_object *o = (const scene_object *)args->geometryUserPtr;
-    const struct RTCHit *hit = (const struct RTCHit *)args->hit;
+/* Whether the hit is on a cut-out object where it has no surface
+ * (scene_object_cut_out: the rule of the raster's cut-out programs). */
+static bool raytrace_cut_away(const raytrace_object *o, const struct RTCHit *hit) {
     const float weight[3] = {1.0f - hit->u - hit->v, hit->u, hit->v};
-    if (scene_object_cut_out(o, hit->primID, weight))
+    return o->cut_out && scene_object_cut_out(o->cut_out, hit->primID, weight);
+}
+
+/* Whether the eye (the local origin) sees the triangle from behind: not in
+ * front of its counter-clockwise face, as GL culls a back face (an
+ * edge-on triangle, which GL draws no pixel of, too). */
+static bool raytrace_seen_from_behind(const raytrace_object *o, unsigned triangle) {
+    double v[3][3], normal[3];
+    raytrace_corners(o, triangle, v);
+    raytrace_plane_normal(v, normal);
+    return raytrace_dot_d(v[0], normal) >= 0;
+}
+
+/* Camera rays' hits (rtcIntersect1: N is 1) that are no surface: a
+ * cut-out's holes, and a single-sided object's back faces. */
+static void raytrace_camera_filter(const struct RTCFilterFunctionNArguments *args) {
+    const raytrace_object *o = (const raytrace_object *)args->geometryUserPtr;
+    const struct RTCHit *hit = (const struct RTCHit *)args->hit;
+    if (raytrace_cut_away(o, hit) || (o->single_sided && raytrace_seen_from_behind(o, hit->primID)))
+        args->valid[0] = 0;
+}
+
+/* Shadow rays' hits (rtcOccluded1: N is 1) on a cut-out's holes; every
+ * object casts from both sides. */
+static void raytrace_shadow_filter(const struct RTCFilterFunctionNArguments *args) {
+    if (raytrace_cut_away((const raytrace_object *)args->geometryUserPtr, (const struct RTCHit *)args->hit))
         args->valid[0] = 0;
 }
 
@@ -299,15 +322,17 @@ static bool raytrace_add_object(raytrace_tracer *t, int index) {
     r->indices = m->indices;
     r->casts = o->casts;
     r->translucent = o->translucent ? o : NULL;
+    r->cut_out = o->alpha_cutoff > 0 ? o : NULL;
+    r->single_sided = o->single_sided;
     RTCGeometry geometry = rtcNewGeometry(t->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geometry)
         return false;
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
-    if (o->alpha_cutoff > 0) {
-        rtcSetGeometryUserData(geometry, (void *)o);
-        rtcSetGeometryIntersectFilterFunction(geometry, raytrace_cut_out);
-        rtcSetGeometryOccludedFilterFunction(geometry, raytrace_cut_out);
-    }
+    rtcSetGeometryUserData(geometry, r);
+    if (r->cut_out || r->single_sided)
+        rtcSetGeometryIntersectFilterFunction(geometry, raytrace_camera_filter);
+    if (r->cut_out)
+        rtcSetGeometryOccludedFilterFunction(geometry, raytrace_shadow_filter);
     /* Embree's own buffers, padded as its SIMD loads need. */
     float *vertices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                               3 * sizeof(float), m->vertex_count);

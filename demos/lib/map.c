@@ -611,6 +611,8 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
          * compile fails init; the others as frames need them. */
         !map_camera_program_for(r, &scene_key) || !map_overlay_programs_load(r))
         return false;
+    /* The light's view: a shadow's shape, cast from both sides (render.h). */
+    r->depth.solid.both_sides = r->depth.cut_out.both_sides = true;
     glGenVertexArrays(1, &r->screen_vao);
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);

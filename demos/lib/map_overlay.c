@@ -457,6 +457,7 @@ bool map_warp_view_init(map_warp_view *w) {
     static const char *const files[] = {"post_perspective.vert", "post_perspective.frag"};
     if (!render_program_load(&w->program, files, 2, NULL))
         return false;
+    w->program.both_sides = true; /* a diagram of the warp's space, which may mirror (render.h) */
     w->space = shader_uniform(w->program.id, "u_warp_space");
     return true;
 }

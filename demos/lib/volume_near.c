@@ -15,6 +15,7 @@ static bool volume_near_load(render_program *p, bool wide, int *projection, int 
         {VOLUME_NEAR_DEFINE, 1}, {wide ? VOLUME_SILHOUETTE_WIDE_DEFINE : NULL, 1}, {NULL, 0}};
     if (!render_program_load(p, files, (int)(sizeof files / sizeof *files), defines))
         return false;
+    p->both_sides = true; /* the caster's shape on the near plane, culled as it says (render.h) */
     *projection = shader_uniform(p->id, "u_near_projection");
     *plane = shader_uniform(p->id, "u_near_plane");
     return true;

@@ -10,7 +10,9 @@ bool volume_plan_forced_zpass(volume_plan_mode mode) {
     return mode == VOLUME_PLAN_ZPASS || mode == VOLUME_PLAN_EYE_COUNT;
 }
 
-bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe) {
+bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe, bool seen_through) {
+    if (seen_through && !volume_plan_forced_zpass(mode))
+        return true;
     if (mode != VOLUME_PLAN_AUTO)
         return mode == VOLUME_PLAN_ZFAIL;
     return !zpass_safe;
@@ -48,7 +50,7 @@ static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mo
         return;
     }
     bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, near_rectangle);
-    c->zfail = volume_plan_zfail(mode, zpass_safe);
+    c->zfail = volume_plan_zfail(mode, zpass_safe, o->single_sided);
     if (volume_plan_forced_zpass(mode) && !zpass_safe) {
         f->skips->counts->casters_drawn[plan->light]++;
         c->needed = true;
@@ -56,7 +58,7 @@ static void volume_plan_caster_for(const technique_frame *f, volume_plan_mode mo
     }
     c->needed = skips_caster_needed(f->skips, &plan->hull, i);
     c->narrowed = c->needed && volume_bounds_caster(f, &plan->hull, i, &plan->bounds, &c->bounds);
-    c->near = c->needed && mode == VOLUME_PLAN_ZP_PLUS && !zpass_safe;
+    c->near = c->needed && mode == VOLUME_PLAN_ZP_PLUS && !zpass_safe && !c->zfail;
 }
 
 void volume_plan_light(const technique_frame *f, int l, const float point[4], volume_plan_mode mode,
@@ -95,8 +97,8 @@ void volume_plan_every_caster(const technique_frame *f, int l, const float posit
         float lo[3], hi[3];
         scene_object_world_bounds(&s->objects[i], lo, hi);
         bool zpass_safe = volume_mesh_zpass_safe(lo, hi, plan->position, (const vec3 *)near_rectangle);
-        c->zfail = volume_plan_zfail(mode, zpass_safe);
-        c->near = mode == VOLUME_PLAN_ZP_PLUS && !zpass_safe;
+        c->zfail = volume_plan_zfail(mode, zpass_safe, s->objects[i].single_sided);
+        c->near = mode == VOLUME_PLAN_ZP_PLUS && !zpass_safe && !c->zfail;
     }
 }
 

@@ -69,8 +69,13 @@ typedef struct volume_plan {
 } volume_plan;
 
 /* Whether a caster takes z-fail, with caps, given whether z-pass is safe
- * for it (volume_mesh_zpass_safe). */
-bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe);
+ * for it (volume_mesh_zpass_safe) and whether the eye may see through it:
+ * a single-sided object (scene_object) seen from behind. z-pass, from 0
+ * or from the near plane's count, counts the sides in front of the
+ * visible surface, and an eye ray that enters a volume through its caster
+ * crosses none; z-fail counts behind the surface, where the caps close
+ * every volume, so such a caster takes it unless z-pass is forced. */
+bool volume_plan_zfail(volume_plan_mode mode, bool zpass_safe, bool seen_through);
 /* Light l's plan with every skip, for its centre (point NULL) or one
  * point of its area (homogeneous, world; the masks of what is seen are
  * the centre's, so a point's plan culls by its hull alone);
