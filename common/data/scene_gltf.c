@@ -610,6 +610,18 @@ static bool scene_gltf_reader_begin(scene_gltf_reader *r) {
     return true;
 }
 
+/* Reads r's imported file, whole (placed NULL: nodes, cameras, lights) or
+ * its objects placed by `placed` (an include), and releases the import. */
+static bool scene_gltf_import(scene_gltf_reader *r, mat4 placed) {
+    bool read = scene_gltf_reader_begin(r) && r->a->mRootNode &&
+                (placed ? scene_gltf_read_objects(r, placed) : scene_gltf_read(r));
+    free(r->material_texture);
+    if (!r->a->mRootNode)
+        fprintf(stderr, "%s: no node\n", r->file);
+    aiReleaseImport(r->a);
+    return read;
+}
+
 bool scene_load_gltf(scene *s, const char *path, int camera) {
     *s = (scene){0};
     const struct aiScene *a = mesh_import_graph(path);
@@ -627,11 +639,7 @@ bool scene_load_gltf(scene *s, const char *path, int camera) {
                            .capacity = &capacity,
                            .casts = true,
                            .receives = true};
-    bool read = scene_gltf_reader_begin(&r) && a->mRootNode && scene_gltf_read(&r);
-    free(r.material_texture);
-    if (!a->mRootNode)
-        fprintf(stderr, "%s: no node\n", path);
-    aiReleaseImport(a);
+    bool read = scene_gltf_import(&r, NULL);
     if (!read)
         scene_free(s);
     return read;
@@ -646,10 +654,5 @@ bool scene_include_gltf(scene *s, int *capacity, const char *path, const float m
         .file = path, .a = a, .s = s, .capacity = capacity, .prefix = prefix, .casts = casts, .receives = receives};
     mat4 placed;
     memcpy(placed, model, sizeof placed);
-    bool read = scene_gltf_reader_begin(&r) && a->mRootNode && scene_gltf_read_objects(&r, placed);
-    free(r.material_texture);
-    if (!a->mRootNode)
-        fprintf(stderr, "%s: no node\n", path);
-    aiReleaseImport(a);
-    return read;
+    return scene_gltf_import(&r, placed);
 }
