@@ -278,6 +278,7 @@ static void cascades_describe(char *out, size_t size) {
         snprintf(out + n, size - (size_t)n, ", no cascades: only a directional light's map is cut in cascades");
     }
     map_describe_filter(&cascades.settings, out, size);
+    map_describe_transmittance(cascades.maps, out, size);
 }
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count
@@ -312,5 +313,6 @@ const technique cascades_technique = {
     .destroy = cascades_destroy,
     .area_light = cascades_area_light,
     .describe = cascades_describe,
+    .coloured_shadows = true, /* the transmittance maps (map.h, "Translucent casters") */
     .gallery_config = "--overlay cascades",
 };

@@ -242,6 +242,7 @@ static void psm_describe(char *out, size_t size) {
         snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px",
                  c->texel_pixels[0] * scale, c->texel_pixels[1] * scale);
     map_describe_filter(&psm.settings, out, size);
+    map_describe_transmittance(psm.maps, out, size);
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the
@@ -275,5 +276,6 @@ const technique psm_technique = {
     .destroy = psm_destroy,
     .area_light = psm_area_light,
     .describe = psm_describe,
+    .coloured_shadows = true, /* the transmittance maps (map.h, "Translucent casters") */
     .gallery_config = "--overlay post-perspective",
 };

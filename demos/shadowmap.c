@@ -110,6 +110,7 @@ static void shadowmap_describe(char *out, size_t size) {
     if (map_filter_moments(map_filter_in_use(&shadowmap.settings)) != MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
     map_describe_filter(&shadowmap.settings, out, size);
+    map_describe_transmittance(shadowmap.maps, out, size);
 }
 
 /* The sweep: map size x filter x bias (the tents, the early-out off, the
@@ -164,6 +165,7 @@ const technique shadowmap_technique = {
     .destroy = shadowmap_destroy,
     .area_light = shadowmap_area_light,
     .describe = shadowmap_describe,
+    .coloured_shadows = true, /* the transmittance maps (map.h, "Translucent casters") */
     /* The lecture picture: the texel boundaries, the frusta and the inset,
      * as the overlay goldens show them. */
     .gallery_config = "--overlay all",

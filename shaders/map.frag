@@ -28,6 +28,8 @@
 //       light i is soft (map_soft.glsl's filter), or reads its
 //       moment map: here, MAP_SOFT and MAP_MOMENTS;
 //   MAP_PASS_MOMENTS   which moments: moments.glsl;
+//   MAP_PASS_TRANSMIT_LIGHTS   bit i: light i reads its transmittance
+//       map (translucent casters' colour): here, MAP_TRANSMITS;
 //   MAP_PASS_SHOW_*   the lecture's overlays: here (map_show_*),
 //       for map_light.glsl's map_share, map_soft.glsl
 //       (the penumbra) and main (the cascades' tint);
@@ -212,18 +214,21 @@ bool map_light_cone_clear(int i) {
 // where its bit of MAP_PASS_MOMENT_LIGHTS is set.
 #define MAP_SOFT(i) (((MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
 #define MAP_MOMENTS(i) (((MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
+// Light i reads its transmittance map where its bit of
+// MAP_PASS_TRANSMIT_LIGHTS is set.
+#define MAP_TRANSMITS(i) (((MAP_PASS_TRANSMIT_LIGHTS >> i) & 1) != 0)
 #define MAP_LIGHT(i, kind, texel_kind) \
     if (kind == MAP_LIGHT_UNSHADOWED) \
         c += lighting_unshadowed(i, v_position, n, surface_albedo); \
     else if (kind == MAP_LIGHT_2D) \
-        c += map_share(u_maps_2d[i], u_depths_2d[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
-                              MAP_MOMENTS(i), n); \
+        c += map_share(u_maps_2d[i], u_depths_2d[i], u_transmittances_2d[i], u_bounds[i], i, texel_kind, \
+                       MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n); \
     else if (kind == MAP_LIGHT_CUBE) \
-        c += map_share(u_maps_cube[i], u_depths_cube[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
-                              MAP_MOMENTS(i), n); \
+        c += map_share(u_maps_cube[i], u_depths_cube[i], u_transmittances_cube[i], u_bounds[i], i, texel_kind, \
+                       MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n); \
     else if (kind == MAP_LIGHT_ARRAY) \
-        c += map_share(u_maps_array[i], u_depths_array[i], u_bounds[i], i, texel_kind, MAP_SOFT(i), \
-                              MAP_MOMENTS(i), n)
+        c += map_share(u_maps_array[i], u_depths_array[i], u_transmittances_array[i], u_bounds[i], i, \
+                       texel_kind, MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.

@@ -367,3 +367,20 @@ const float MAP_SURE_LIT_BIAS_SHARE = 0.25;
 const vec3 MAP_UNSURE_TINT = vec3(1.0, 0.0, 1.0);
 const float MAP_UNSURE_TINT_SHARE = 0.5;
 #include "texel_heat.glsl"
+
+// Translucent casters (demos/lib/map.h): a transmittance map's texel (rgb
+// the share of each channel its casters let through, alpha the nearest
+// one's depth, a half float) filters a point at map depth `depth` where
+// the point lies beyond that caster by more than MAP_TRANSMIT_ROUNDING,
+// twice a half float's rounding below 1 (2^-12). A translucent receiver
+// (u_translucent) lying beyond it is one of the texel's casters: its own
+// transmittance is divided out (where a channel of it is 0, so is the
+// product's), so that a pane under another is filtered by that one alone.
+uniform bool u_translucent;
+const float MAP_TRANSMIT_ROUNDING = 2.0 / 4096.0;
+const float MAP_MIN_TRANSMITTANCE = 1e-6;
+vec3 map_transmitted(vec4 texel, float depth) {
+    if (depth <= texel.a + MAP_TRANSMIT_ROUNDING)
+        return vec3(1.0);
+    return u_translucent ? min(texel.rgb / max(surface_transmittance(), MAP_MIN_TRANSMITTANCE), 1.0) : texel.rgb;
+}

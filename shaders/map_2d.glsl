@@ -8,6 +8,7 @@ uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's cli
 uniform float u_texel_scale[SCENE_MAX_LIGHTS];       // world texel: this (orthographic) or this x depth along the axis (perspective)
 uniform sampler2D u_depths_2d[SCENE_MAX_LIGHTS];     // a soft light's map read as depth (compare mode off)
 uniform mat4 u_light_inverse[SCENE_MAX_LIGHTS];      // a soft light's clip space -> world
+uniform sampler2D u_transmittances_2d[SCENE_MAX_LIGHTS]; // translucent casters' (map_transmitted)
 
 // A matrix whose map coordinates hardly change with p (degenerate there)
 // gives a huge texel rather than a division by zero.
@@ -93,4 +94,13 @@ float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i
 vec2 map_texel_coord(sampler2DShadow map, int i, vec3 p) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     return (clip.xy / clip.w * 0.5 + 0.5) * u_map_size[i];
+}
+
+// Outside the map, or behind the light, nothing filters.
+vec3 map_transmittance(sampler2D transmittance, int i, vec3 p, float depth_bias) {
+    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
+    vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
+    if (clip.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
+        return vec3(1.0);
+    return map_transmitted(textureLod(transmittance, uvz.xy, 0.0), uvz.z - depth_bias);
 }

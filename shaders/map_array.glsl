@@ -8,6 +8,7 @@
 
 uniform sampler2DArrayShadow u_maps_array[SCENE_MAX_LIGHTS];
 uniform sampler2DArray u_depths_array[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
+uniform sampler2DArray u_transmittances_array[SCENE_MAX_LIGHTS]; // translucent casters' (map_transmitted)
 // xyz: scale and offset; w: the view depths where the layer's slice ends and starts.
 uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * MAP_MAX_ARRAY_LAYERS];
 uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * MAP_MAX_ARRAY_LAYERS];
@@ -110,6 +111,15 @@ float map_visibility(sampler2DArrayShadow map, sampler2DArray raw, sampler2D bou
 vec2 map_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz;
     return map_cascade_uvz(i, int(map_cascade_at(i, p).x), light_p).xy * u_map_size[i];
+}
+
+// The layer the kernel reads (the same pixel's hash), outside it nothing.
+vec3 map_transmittance(sampler2DArray transmittance, int i, vec3 p, float depth_bias) {
+    int k = map_pixel_cascade(i);
+    vec3 uvz = map_cascade_uvz(i, k, (u_light_matrix[i] * vec4(p, 1.0)).xyz);
+    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
+        return vec3(1.0);
+    return map_transmitted(textureLod(transmittance, vec3(uvz.xy, float(k)), 0.0), uvz.z - depth_bias);
 }
 
 // The lecture's cascade overlay: each layer's colour, the blend band

@@ -4,6 +4,7 @@
 
 uniform samplerCubeShadow u_maps_cube[SCENE_MAX_LIGHTS];
 uniform samplerCube u_depths_cube[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
+uniform samplerCube u_transmittances_cube[SCENE_MAX_LIGHTS]; // translucent casters' (map_transmitted)
 uniform float u_near[SCENE_MAX_LIGHTS];
 uniform float u_far[SCENE_MAX_LIGHTS];
 
@@ -202,4 +203,10 @@ vec2 map_texel_coord(samplerCubeShadow map, int i, vec3 p) {
     vec3 d = p - lights_position[i].xyz, a = abs(d);
     vec2 face = a.x >= a.y && a.x >= a.z ? d.yz / a.x : a.y >= a.z ? d.xz / a.y : d.xy / a.z;
     return (face * 0.5 + 0.5) * u_map_size[i];
+}
+
+// The face the direction falls on, at the depth that face stores.
+vec3 map_transmittance(samplerCube transmittance, int i, vec3 p, float depth_bias) {
+    vec3 d = p - lights_position[i].xyz;
+    return map_transmitted(textureLod(transmittance, d, 0.0), map_face_depth(d, vec2(u_near[i], u_far[i])) - depth_bias);
 }

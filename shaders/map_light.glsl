@@ -31,13 +31,18 @@
 //                                        needed false then reads no map: the
 //                                        share is 0 there whatever it says);
 //   map_texel_coord(map, i, p)    p's position in the map, in texels
-//                                        (the lecture's texel overlays).
+//                                        (the lecture's texel overlays);
+//   map_transmittance(transmittance, i, p, b)  the share of each channel
+//                                        light i's translucent casters let
+//                                        through to p, its map depth lowered
+//                                        by b (map.glsl, map_transmitted).
 // GLSL picks each by the sampler's type: the same names for both kinds.
 
 float map_texel_world(MAP_SAMPLER map, int i, int texel_kind, vec3 p);
 float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, vec3 p, vec3 lit_p,
                             float depth_bias, bool soft, bool moments, float texel, bool needed);
 vec2 map_texel_coord(MAP_SAMPLER map, int i, vec3 p);
+vec3 map_transmittance(MAP_RAW_SAMPLER transmittance, int i, vec3 p, float depth_bias);
 
 // The kernel's visibility: the early-out's rim, then where it disagrees
 // (or without the early-out) the weighted sum of every tap.
@@ -67,12 +72,13 @@ float map_kernel_filter(MAP_SAMPLER map, vec2 fraction, float unit) {
 // Light i's share at this fragment (normal n) where its map (texels of
 // kind texel_kind) lets it through, filtered as a soft light's where
 // `soft` (an area light: map_soft.glsl), from its moment map where
-// `moments`, with the lecture's overlays. Where the light adds nothing
+// `moments`, filtered per channel by its transmittance map where
+// `transmits` (map.h, "Translucent casters"), with the lecture's overlays. Where the light adds nothing
 // unshadowed (beyond its range, outside a spot's cone, facing away) or
 // reaches only through a closed caster (map_through_closed) the
 // filter is skipped: the share is 0 whatever it would say.
-vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, int texel_kind, bool soft,
-                      bool moments, vec3 n) {
+vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittance, sampler2D bounds, int i,
+               int texel_kind, bool soft, bool moments, bool transmits, vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
     // Both biases move the point where the map is read, in world units
     // scaled by the map's texel there, so they hold at any map size,
@@ -119,6 +125,8 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int i, in
     else if (soft)
         visibility *= map_horizon_share(i, normalize(map_face_normal), to_light, v_position);
     vec3 c = visibility * unshadowed;
+    if (transmits && needed && visibility > 0.0)
+        c *= map_transmittance(transmittance, i, p, depth_bias);
     if (map_show_unsure && (unsure || traced))
         c = mix(c, MAP_UNSURE_TINT, MAP_UNSURE_TINT_SHARE);
     // Lines one pixel wide where texels meet: how big a texel is on screen

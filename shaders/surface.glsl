@@ -22,3 +22,13 @@ void surface_begin() { surface_albedo = u_albedo * texture(u_base_color, v_uv).r
 // level 0, bilinear, whatever the distance (the cut-out's shape is the
 // texture's own), below the cutoff; scene_object_cut_out is the same rule.
 bool surface_cut_out() { return u_base_alpha * textureLod(u_base_color, v_uv, 0.0).a < u_alpha_cutoff; }
+
+// The share of each channel a translucent object (glTF's alphaMode BLEND)
+// lets through here, (1 - a) + a C: C its base colour, a its alpha, the
+// texture read at level 0 as for cut-outs; scene_object_transmittance is
+// the same rule.
+vec3 surface_transmittance() {
+    vec4 texel = textureLod(u_base_color, v_uv, 0.0);
+    float a = u_base_alpha * texel.a;
+    return 1.0 - a + a * u_albedo * texel.rgb;
+}

@@ -161,7 +161,7 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
     return ok;
 }
 
-bool capture_dump(const render_scene *gpu, const camera_view *view, const target *t, int light_index,
+bool capture_dump(const render_scene *gpu, const camera_view *view, const target *t, int light_index, bool coloured,
                   capture_render_frame render_frame, dump_frame *out) {
     if (!dump_frame_create(out, t->width, t->height, gpu->scene, light_index))
         return false;
@@ -170,7 +170,14 @@ bool capture_dump(const render_scene *gpu, const camera_view *view, const target
     ok = rgba && target_read_rgba(t, rgba);
     for (long i = 0; ok && i < (long)t->width * t->height; i++)
         out->visibility[i] = out->ids[i] < 0 ? -1.0f : rgba[i * 4] / 255.0f;
-    dump_frame_grey_rgb(out); /* no technique colours a shadow */
+    dump_frame_grey_rgb(out);
+    for (long i = 0; ok && coloured && out->visibility_rgb && i < (long)t->width * t->height; i++) {
+        float *rgb = out->visibility_rgb + 3 * i;
+        for (int k = 0; k < 3 && out->ids[i] >= 0; k++)
+            rgb[k] = rgba[i * 4 + k] / 255.0f;
+        if (rgb[0] != rgb[1] || rgb[1] != rgb[2])
+            out->visibility[i] = (rgb[0] + rgb[1] + rgb[2]) / 3.0f;
+    }
     free(rgba);
     /* Leave the target as it was: the picture, not the visibility. */
     ok = ok && render_frame(-1);

@@ -12,7 +12,11 @@
  *               can reach and nothing else adds anything; what the
  *               technique's shadow test took away is what is missing.
  *               8-bit precision (steps of 1/255), enough for 0/1 and for
- *               the fractions of filtered shadows.
+ *               the fractions of filtered shadows. Read from the red
+ *               channel, or, `coloured` (a technique whose translucent
+ *               casters filter its shadows: technique.h's
+ *               coloured_shadows), per channel into visibility_rgb, where
+ *               the frame has it, with their mean where they differ.
  *
  * render_frame is the app's frame function: it must render the same frame
  * again (frames are deterministic), with render_scene_update_lights(gpu,
@@ -30,7 +34,7 @@
  * `visibility_of` (or -1 for normal lights); false on a GL error. */
 typedef bool (*capture_render_frame)(int visibility_of);
 
-bool capture_dump(const render_scene *gpu, const camera_view *view, const target *t, int light_index,
+bool capture_dump(const render_scene *gpu, const camera_view *view, const target *t, int light_index, bool coloured,
                   capture_render_frame render_frame, dump_frame *out);
 
 #endif

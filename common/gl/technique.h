@@ -129,6 +129,11 @@ typedef struct technique {
     /* The benchmark's cost floor (demos/unshadowed.c): every ratio is to
      * this technique's frame. One technique in the registry has it. */
     bool cost_floor;
+    /* Translucent casters (scene_object's translucent) filter its shadows
+     * per channel, as the reference's: its visibility is coloured
+     * (capture.h). Else they cast their whole surface's shadow, which
+     * technique_host_start says once on stderr. */
+    bool coloured_shadows;
     /* Optional: how the technique, as set now, draws an area light (a
      * scene light with radius > 0): a few words for the HUD ("soft: pcss").
      * NULL: it cannot draw soft shadows and draws every light hard from its

@@ -420,7 +420,8 @@ static bool app_start_technique(int index) {
 static bool app_capture(int light, dump_frame *dump) {
     camera_view view;
     app_view(&view);
-    return capture_dump(&app.gpu, &view, &app.target, light, app_render_frame, dump);
+    return capture_dump(&app.gpu, &view, &app.target, light, app_technique()->coloured_shadows, app_render_frame,
+                        dump);
 }
 
 static bool app_dump(const char *dir) {

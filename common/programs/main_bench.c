@@ -503,12 +503,14 @@ static bool bench_dumps(double time, dump_frame *held, dump_frame *last) {
         motion_camera((motion_kind)bench.motion, time - 1 / BENCH_FRAME_RATE, &bench.base_camera, &camera);
         camera_view_compute(&camera, (float)bench.width / (float)bench.height, &bench.fit_view);
         bench.hold_fit = true;
-        bool held_ok = capture_dump(&bench.gpu, &bench.view, &bench.target, bench.light, bench_render_frame, held);
+        bool held_ok = capture_dump(&bench.gpu, &bench.view, &bench.target, bench.light,
+                                    bench.current->coloured_shadows, bench_render_frame, held);
         bench.hold_fit = false;
         if (!held_ok)
             return false;
     }
-    if (capture_dump(&bench.gpu, &bench.view, &bench.target, bench.light, bench_render_frame, last))
+    if (capture_dump(&bench.gpu, &bench.view, &bench.target, bench.light, bench.current->coloured_shadows,
+                     bench_render_frame, last))
         return true;
     dump_frame_free(held);
     return false;

@@ -16,9 +16,8 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
                     "%s: light %d is an area light (radius %g): drawn hard, from its centre: %s draws no soft "
                     "shadows\n",
                     t->name, l, s->lights[l].radius, t->name);
-    /* No technique colours a shadow yet: the reference alone does. */
     int translucent = scene_translucent_casters(s);
-    if (translucent && !t->cost_floor)
+    if (translucent && !t->cost_floor && !t->coloured_shadows)
         fprintf(stderr,
                 "%s: %d translucent objects (alphaMode BLEND) cast the shadow of their whole surface: %s draws no "
                 "coloured shadows\n",

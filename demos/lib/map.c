@@ -78,15 +78,16 @@ static const shader_define map_defines[] = {SHADER_DEFINE(MAP_KERNEL_SINGLE),
                                             {NULL, 0}};
 
 /* The camera pass's sampler arrays, by the kind of map they read: its
- * comparisons', and a soft light's depths' (the 2D maps' first). */
+ * comparisons', a soft light's depths' and the transmittance maps' (the
+ * 2D maps' first). */
 #define MAP_SAMPLER_2D 0
 static const struct {
-    const char *name, *depths;
+    const char *name, *depths, *transmittances;
     map_light_kind kind;
 } map_samplers[MAP_SAMPLER_TYPES] = {
-    {"u_maps_2d", "u_depths_2d", MAP_LIGHT_2D},
-    {"u_maps_cube", "u_depths_cube", MAP_LIGHT_CUBE},
-    {"u_maps_array", "u_depths_array", MAP_LIGHT_ARRAY},
+    {"u_maps_2d", "u_depths_2d", "u_transmittances_2d", MAP_LIGHT_2D},
+    {"u_maps_cube", "u_depths_cube", "u_transmittances_cube", MAP_LIGHT_CUBE},
+    {"u_maps_array", "u_depths_array", "u_transmittances_array", MAP_LIGHT_ARRAY},
 };
 
 static float map_setting(float value, float fallback) { return value != 0 ? value : fallback; }
@@ -176,20 +177,33 @@ static void map_attach_layer(const map_light *m, int layer) {
 
 /* ---- storage ---- */
 
+/* Storage of a map's kind, size and layers for the bound texture of
+ * `target`: depth of that format and type, or RGBA16F colour. */
+static void map_texture_storage(const map_light *m, GLenum target, GLenum format, GLenum pixels, GLenum type) {
+    if (m->kind == MAP_ARRAY)
+        glTexImage3D(target, 0, (GLint)format, m->size, m->size, m->layer_count, 0, pixels, type, NULL);
+    else
+        for (int layer = 0; layer < m->layer_count; layer++)
+            glTexImage2D(map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0, pixels, type, NULL);
+}
+
 /* (Re)creates a map's depth texture when its kind, size, layer count,
- * format or filter changed: compare mode on, so that every read is a depth
- * test; outside the map reads are clamped (the shader calls them lit).
- * A moment filter's textures are made with it.
+ * format or filter changed, or whether it `transmits` (a transmittance
+ * map beside it: map.h, "Translucent casters"): compare mode on, so that
+ * every read is a depth test; outside the map reads are clamped (the
+ * shader calls them lit). A moment filter's textures and the
+ * transmittance map are made with it.
  * Returns whether it made one (what the layers held is gone). */
-static bool map_prepare_texture(map_light *m, const map_settings *settings) {
+static bool map_prepare_texture(map_light *m, const map_settings *settings, bool transmits) {
     map_texture *t = &m->texture;
     int depth = settings->depth, filter = map_filter_in_use(settings);
     if (t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count && t->depth == depth &&
-        t->filter == filter)
+        t->filter == filter && (t->transmittance != 0) == transmits)
         return false;
     glDeleteTextures(1, &t->id);
     glDeleteTextures(1, &t->bounds);
-    t->bounds = 0;
+    glDeleteTextures(1, &t->transmittance);
+    t->bounds = t->transmittance = 0;
     t->bounds_current = false;
     GLenum target = map_target(m->kind);
     GLenum format = depth == MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
@@ -197,15 +211,16 @@ static bool map_prepare_texture(map_light *m, const map_settings *settings) {
     GLint texel_filter = filter == MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
     glGenTextures(1, &t->id);
     glBindTexture(target, t->id);
-    if (m->kind == MAP_ARRAY)
-        glTexImage3D(target, 0, (GLint)format, m->size, m->size, m->layer_count, 0, GL_DEPTH_COMPONENT, type, NULL);
-    else
-        for (int layer = 0; layer < m->layer_count; layer++)
-            glTexImage2D(map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0, GL_DEPTH_COMPONENT,
-                         type, NULL);
+    map_texture_storage(m, target, format, GL_DEPTH_COMPONENT, type);
     map_texture_filter(target, texel_filter);
     glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    if (transmits) {
+        glGenTextures(1, &t->transmittance);
+        glBindTexture(target, t->transmittance);
+        map_texture_storage(m, target, GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT);
+        map_texture_filter(target, GL_NEAREST);
+    }
     t->kind = m->kind;
     t->size = m->size;
     t->layer_count = m->layer_count;
@@ -230,6 +245,44 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
         glPolygonOffset(map_setting(settings->slope_factor, MAP_SLOPE_FACTOR),
                         map_setting(settings->slope_units, MAP_SLOPE_UNITS));
     }
+    if (m->texture.transmittance) {
+        glUseProgram(r->transmit.id);
+        glUniform1f(r->transmit_slope,
+                    settings->no_slope_bias ? 0 : map_setting(settings->slope_factor, MAP_SLOPE_FACTOR));
+    }
+}
+
+/* Layer `layer`'s transmittance map (map.h, "Translucent casters"), after
+ * its depths: the translucent casters of `casters` (NULL: every one) over
+ * a clear of 1, tested against those depths without writing them;
+ * r->transmit_failed where the GL cannot draw into it (said once). Leaves
+ * r->framebuffer bound, depth writes on and blending off. */
+static void map_transmit_layer(map_renderer *r, const render_scene *gpu, const map_light *m, int layer,
+                               const bool *casters) {
+    const scene *s = gpu->scene;
+    GLenum image = m->kind == MAP_ARRAY ? GL_TEXTURE_2D_ARRAY : map_layer_image(m->kind, layer);
+    glBindFramebuffer(GL_FRAMEBUFFER, r->transmit_framebuffer);
+    map_attach_layer(m, layer);
+    bool ok = map_color_target(&r->transmit_framebuffer, m->texture.transmittance, image, layer,
+                               "translucent casters cast their whole shadow");
+    if (ok) {
+        static const float clear[4] = {1, 1, 1, 1};
+        glClearBufferfv(GL_COLOR, 0, clear);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);
+        glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);
+        glUseProgram(r->transmit.id);
+        glUniformMatrix4fv(r->transmit.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
+        for (int i = 0; i < s->object_count; i++)
+            if (s->objects[i].translucent && s->objects[i].casts && (!casters || casters[i]))
+                render_draw_object(gpu, &r->transmit, i);
+        glDisable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glDepthMask(GL_TRUE);
+    }
+    r->transmit_failed = !ok;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
 }
 
 /* One layer from its matrix, with the casters of `casters` (NULL: every
@@ -241,23 +294,57 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
 static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_light *m, int layer,
                             const bool *casters, bool receivers) {
     const scene *s = gpu->scene;
+    bool transmits = m->texture.transmittance != 0;
     map_attach_layer(m, layer);
     glClear(GL_DEPTH_BUFFER_BIT);
     /* The solid objects, then the cut-out ones through their program
-     * (render_programs). */
+     * (render_programs); translucent casters into the transmittance map
+     * instead, where the map has one. */
     for (int pass = 0; pass < render_programs_passes(&r->depth); pass++) {
         const render_program *p = render_programs_pass(&r->depth, pass);
         glUseProgram(p->id);
         glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
-        for (int i = 0; i < s->object_count; i++)
-            if (render_programs_draws(&r->depth, pass, &s->objects[i]) &&
-                (s->objects[i].casts ? !casters || casters[i] : receivers && s->objects[i].receives))
+        for (int i = 0; i < s->object_count; i++) {
+            const scene_object *o = &s->objects[i];
+            if (render_programs_draws(&r->depth, pass, o) && !(transmits && o->translucent && o->casts) &&
+                (o->casts ? !casters || casters[i] : receivers && o->receives))
                 render_draw_object(gpu, p, i);
+        }
     }
+    if (transmits)
+        map_transmit_layer(r, gpu, m, layer, casters);
+}
+
+/* The frame's maps take transmittance maps (map.h, "Translucent
+ * casters"): the scene has translucent casters, no rays are traced and
+ * the GL draws into them. */
+static bool map_scene_transmits(const map_renderer *r) {
+    return r->transmit.id && !r->casters && !r->transmit_failed;
+}
+
+/* Light l's texture unit `unit` is one this GL has; else said once per
+ * light (bit l of *said): it lacks the unit for the light's `what`, and
+ * does `instead`. */
+static bool map_light_unit(const map_renderer *r, int unit, int l, unsigned *said, const char *what,
+                           const char *instead) {
+    if (unit < r->texture_units)
+        return true;
+    if (!(*said >> l & 1u))
+        fprintf(stderr, "shadow maps: light %d: this GL has too few texture units for its %s: %s\n", l, what,
+                instead);
+    *said |= 1u << l;
+    return false;
+}
+
+/* Light l's map takes one: the frame's do and the GL has its unit. */
+static bool map_light_transmits(map_renderer *r, int l) {
+    return map_scene_transmits(r) &&
+           map_light_unit(r, MAP_TRANSMIT_UNITS + l, l, &r->transmit_warned, "transmittance map",
+                          "translucent casters cast their whole shadow");
 }
 
 void map_render_depth(map_renderer *r, const map_settings *settings, const render_scene *gpu, map_light *m) {
-    map_prepare_texture(m, settings);
+    map_prepare_texture(m, settings, map_scene_transmits(r));
     map_depth_begin(r, settings, m);
     map_moments moments = map_filter_moments(map_filter_in_use(settings));
     for (int layer = 0; layer < m->layer_count; layer++)
@@ -287,7 +374,7 @@ void map_draw_depth(map_renderer *r, const map_settings *st, const technique_fra
     map_cache *c = &r->caches[l];
     if (f->changed.scene || (f->changed.lights & SCENE_LIGHT_BIT(l)))
         map_forget(c);
-    bool remade = map_prepare_texture(m, st);
+    bool remade = map_prepare_texture(m, st, map_light_transmits(r, l));
     map_depth_key key = {.texture = m->texture.id,
                          .size = m->size,
                          .depth = st->depth,
@@ -404,6 +491,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_SOFT_LIGHTS", (int)k->soft_lights},
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
+        {"MAP_PASS_TRANSMIT_LIGHTS", (int)k->transmit_lights},
         {"BVH_CUT_OUTS", (int)k->ray_cut_outs},
     };
     /* This key's defines, then the enums every camera program compares
@@ -434,6 +522,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {&p->frame, "u_frame"},
         {&p->eye, "u_eye"},
         {&p->exact_surface, "u_exact_surface"},
+        {&p->translucent, "u_translucent"},
     };
     map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on a unit, those of lights without a map too: an
@@ -451,6 +540,9 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
             glUniform1i(map_light_uniform(id, map_samplers[t].name, l), own ? l : MAP_IDLE_UNITS + t);
             glUniform1i(map_light_uniform(id, map_samplers[t].depths, l),
                         soft ? MAP_DEPTH_UNITS + l : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
+            glUniform1i(map_light_uniform(id, map_samplers[t].transmittances, l),
+                        own && (k->transmit_lights >> l & 1u) ? MAP_TRANSMIT_UNITS + l
+                                                              : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
         }
         /* Its depth bounds (a 2D sampler for every kind), idle with the 2D
          * maps' depths. */
@@ -613,6 +705,15 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
         return false;
     /* The light's view: a shadow's shape, cast from both sides (render.h). */
     r->depth.solid.both_sides = r->depth.cut_out.both_sides = true;
+    /* The transmittance maps' program, for a scene that needs them. */
+    static const char *const transmit_files[] = {"shadow_depth.vert", "transmittance.frag"};
+    if (scene_translucent_casters(gpu->scene) > 0) {
+        if (!render_program_load(&r->transmit, transmit_files, 2, NULL))
+            return false;
+        r->transmit.both_sides = true;
+        r->transmit_slope = shader_uniform(r->transmit.id, "u_slope_factor");
+        glGenFramebuffers(1, &r->transmit_framebuffer);
+    }
     glGenVertexArrays(1, &r->screen_vao);
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);
@@ -677,12 +778,15 @@ void map_destroy(map_renderer *r) {
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);
     glDeleteSamplers(1, &r->depth_sampler);
+    render_program_destroy(&r->transmit);
+    glDeleteFramebuffers(1, &r->transmit_framebuffer);
     map_moments_destroy(r);
     map_rays_destroy(r);
     map_bounds_destroy(r);
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         glDeleteTextures(1, &r->maps[l].texture.id);
         glDeleteTextures(1, &r->maps[l].texture.bounds);
+        glDeleteTextures(1, &r->maps[l].texture.transmittance);
         map_moments_prepare(&r->maps[l], MAP_MOMENTS_NONE);
     }
     free(r->needed[0]);
@@ -758,6 +862,7 @@ static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
     k.soft_lights &= ~lights;
     k.moment_lights &= ~lights;
     k.bounds_lights &= ~lights;
+    k.transmit_lights &= ~lights;
     return k;
 }
 
@@ -802,6 +907,10 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
             glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)l);
             glBindTexture(GL_TEXTURE_2D, m->texture.bounds);
         }
+        if (k->transmit_lights >> l & 1u) {
+            glActiveTexture(GL_TEXTURE0 + MAP_TRANSMIT_UNITS + (GLenum)l);
+            glBindTexture(map_target(m->kind), m->texture.transmittance);
+        }
         if (m->kind != MAP_ARRAY) {
             glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
             continue;
@@ -834,6 +943,8 @@ static void map_draw_receivers(const map_renderer *r, const technique_frame *f, 
         if (!render_in_mask(objects, i) || !s->objects[i].receives)
             continue;
         glUniform1i(p->closed_outside, (GLint)map_closed_outside(r, f, k, i));
+        if (k->transmit_lights)
+            glUniform1i(p->translucent, s->objects[i].translucent && s->objects[i].casts);
         if (k->rays != MAP_RAYS_OFF)
             glUniform1i(p->exact_surface, !context_current_features()->close_interpolation ||
                                               render_object_huge(f->gpu, i, f->view->eye));
@@ -937,15 +1048,9 @@ static bool map_moment_unit(map_renderer *r, const map_settings *settings, int l
     map_filter filter = map_filter_in_use(settings);
     if (map_filter_moments(filter) == MAP_MOMENTS_NONE || r->blur_failed)
         return false;
-    if (MAP_DEPTH_UNITS + l < r->texture_units)
-        return true;
-    if (!(r->moments_warned >> l & 1u))
-        fprintf(stderr,
-                "shadow maps: light %d: this GL has too few texture units for its moment map (--filter %s): "
-                "one bilinear depth test instead\n",
-                l, map_filters[filter]);
-    r->moments_warned |= 1u << l;
-    return false;
+    char what[64];
+    snprintf(what, sizeof what, "moment map (--filter %s)", map_filters[filter]);
+    return map_light_unit(r, MAP_DEPTH_UNITS + l, l, &r->moments_warned, what, "one bilinear depth test instead");
 }
 
 /* Light l's moment blur per layer (map_moments_blur_texels), a
@@ -994,6 +1099,12 @@ void map_describe_filter(const map_settings *settings, char *out, size_t size) {
                  map_shows_acne(settings) ? "shows acne" : "a bias is off");
 }
 
+void map_describe_transmittance(const map_renderer *r, char *out, size_t size) {
+    size_t n = strlen(out);
+    if (r->maps[0].texture.transmittance && n < size)
+        snprintf(out + n, size - n, ", transmittance map: coloured shadows");
+}
+
 bool map_fit_light(map_renderer *r, const map_settings *settings, const technique_frame *f, int l,
                    map_fit_function fit) {
     const scene *s = f->gpu->scene;
@@ -1034,6 +1145,8 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
             key.soft_lights |= 1u << l;
         if (fitted && map_moment_unit(r, settings, l))
             key.moment_lights |= 1u << l;
+        if (fitted && r->maps[l].texture.transmittance)
+            key.transmit_lights |= 1u << l;
         if (fitted)
             map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
         else if (skips_light_on(f->skips, l)) /* nothing visible receives: no map needed, nothing shadowed */

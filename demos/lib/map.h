@@ -428,6 +428,30 @@ enum {
     MAP_FACE_NEGATIVE_Z,
     MAP_CUBE_FACES
 };
+/* Translucent casters (scene_object's translucent: glTF's alphaMode
+ * BLEND) leave the depth pass where the scene has them and the camera
+ * pass traces no rays (map_trace_with: the rays would meet them whole).
+ * A transmittance map beside the depth texture, of its kind, size and
+ * layers, RGBA16F and read nearest, takes them instead: after each
+ * layer's depth pass, cleared to 1, they are drawn into it
+ * (shaders/transmittance.frag) depth-tested against the layer's opaque
+ * depths without writing them, rgb multiplied by each caster's
+ * transmittance (1 - a) + a C, the texture read at level 0 by the
+ * reference's rule, so that a texel holds the product of every pane the
+ * light crosses before the nearest opaque caster; alpha, blended by MIN,
+ * the nearest of their depths, raised by its slope across the texel as
+ * the slope-scaled bias raises the opaque ones. The camera pass multiplies
+ * a light's share by the rgb where the biased point lies beyond that
+ * depth by more than a half float's rounding, a translucent receiver's
+ * own transmittance divided out (shaders/map.glsl, map_transmitted): a
+ * pane does not filter itself, and one under another is filtered by that
+ * one alone. The shadow is coloured as the reference's (a red pane's
+ * pink, two panes' the product), with the texel's hard edge: the kernel
+ * filters the opaque shadow alone. The cache holds a layer's
+ * transmittance with its depths. A light whose unit the GL lacks
+ * (MAP_TRANSMIT_UNITS), or a GL that cannot draw into the texture, casts
+ * them whole: said once. */
+
 /* An array map's most layers: the most cascades. */
 #define MAP_MAX_ARRAY_LAYERS 8
 /* Room for the layers of any kind. */
@@ -443,6 +467,7 @@ typedef struct map_texture {
      * are its layers' as they stand. */
     unsigned bounds;
     bool bounds_current;
+    unsigned transmittance; /* its transmittance map, of its kind (below); 0: none */
     map_kind kind;
     int size, layer_count, depth, filter;
 } map_texture;
@@ -515,8 +540,13 @@ map_renderer *map_create(const map_settings *settings, const render_scene *gpu);
 void map_destroy(map_renderer *r);
 /* Light l's map as this frame's fit left it. */
 const map_light *map_of_light(const map_renderer *r, int l);
+/* Appends ", transmittance map: coloured shadows" where light 0's map has
+ * one (see "Translucent casters" above); nothing else. */
+void map_describe_transmittance(const map_renderer *r, char *out, size_t size);
 /* The casters' hierarchy the camera pass's rays trace against (kept, not
- * copied: it outlives r's frames); NULL: no rays, whatever the settings. */
+ * copied: it outlives r's frames); NULL: no rays, whatever the settings.
+ * With one, translucent casters cast their whole shadow in the maps too
+ * (see "Translucent casters"). */
 void map_trace_with(map_renderer *r, const bvh_gpu *casters);
 /* The frame's steps (see the top of this file), in their order. Step 1:
  * the camera's depth pre-pass; notes the target the camera pass will draw

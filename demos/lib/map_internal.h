@@ -90,6 +90,12 @@ _Static_assert(SCENE_MAX_LIGHTS *MAP_LIGHT_KIND_BITS <= 32, "a combination of ki
 _Static_assert(RENDER_BASE_COLOR_UNIT == MAP_IDLE_UNITS + 2 * MAP_SAMPLER_TYPES,
                "the base colour's unit follows the idle ones");
 #define MAP_DEPTH_UNITS (RENDER_BASE_COLOR_UNIT + 1)
+/* Light i's transmittance map (map.h, "Translucent casters") on unit
+ * MAP_TRANSMIT_UNITS + i, after every light's depth unit; its sampler
+ * types are the depths', whose idle units the unused elements share. A
+ * light whose unit the GL lacks casts its translucent casters' whole
+ * shadow, and says so. */
+#define MAP_TRANSMIT_UNITS (MAP_DEPTH_UNITS + SCENE_MAX_LIGHTS)
 /* The casters' hierarchy for the rays (a sampler2D) shares the idle unit
  * of the 2D maps' depths (sampler2D too, never read there): no unit
  * beyond GL 3.3's 16 is needed. */
@@ -113,6 +119,7 @@ typedef struct map_camera_key {
     unsigned ray_counts;        /* each pixel's rays into the counts' target */
     unsigned mark_rays;         /* the pixels rays decide marked, not traced */
     unsigned bounds_lights;     /* bit i: light i read by its depth bounds (a marking pass) */
+    unsigned transmit_lights;   /* bit i: light i reads its transmittance map */
 } map_camera_key;
 
 /* A texture the frame's size, attached beside its colour for the
@@ -131,6 +138,7 @@ typedef struct map_camera_program {
     map_camera_key key;
     int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend, ray_samples, frame;
     int eye, exact_surface; /* the rays' start (shaders/map.frag, map_ray_origin) */
+    int translucent;        /* the receiver is a translucent caster (shaders/map.glsl, map_transmitted) */
     struct {
         int map_size, light_matrix, light_inverse, light_size, light_area, texel_scale, near_plane, far_plane,
             cascade_count;
@@ -260,6 +268,15 @@ struct map_renderer {
      * kernel everywhere. */
     unsigned bounds_programs[2], bounds_framebuffer;
     bool bounds_failed;
+    /* The transmittance maps (map.h, "Translucent casters"):
+     * shadow_depth.vert with transmittance.frag and its slope uniform,
+     * loaded where the scene has translucent casters (else id 0), and
+     * their framebuffer; failed (said once): whole shadows. */
+    render_program transmit;
+    int transmit_slope;
+    unsigned transmit_framebuffer;
+    bool transmit_failed;
+    unsigned transmit_warned; /* bit i: light i's lack of a unit said on stderr */
 };
 
 /* Where a light of the frame's takes rays only where the map is unsure,
