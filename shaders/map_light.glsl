@@ -73,10 +73,11 @@ float map_kernel_filter(MAP_SAMPLER map, vec2 fraction, float unit) {
 // kind texel_kind) lets it through, filtered as a soft light's where
 // `soft` (an area light: map_soft.glsl), from its moment map where
 // `moments`, filtered per channel by its transmittance map where
-// `transmits` (map.h, "Translucent casters"), with the lecture's overlays. Where the light adds nothing
-// unshadowed (beyond its range, outside a spot's cone, facing away) or
-// reaches only through a closed caster (map_through_closed) the
-// filter is skipped: the share is 0 whatever it would say.
+// `transmits` (map.h, "Translucent casters"), with the lecture's
+// overlays. Where the light adds nothing unshadowed (beyond its range,
+// outside a spot's cone, facing away) or reaches only through a closed
+// caster (map_through_closed) the filter is skipped: the share is 0
+// whatever it would say.
 vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittance, sampler2D bounds, int i,
                int texel_kind, bool soft, bool moments, bool transmits, vec3 n) {
     vec3 to_light = lighting_to_light(i, v_position);
