@@ -25,6 +25,10 @@
  * cost the map spares. The overlay "unsure" tints the pixels the map
  * could not decide.
  *
+ * Translucent casters (glTF's BLEND) are the transmittance maps' alone
+ * (map.h, "Translucent casters"): the rays meet the opaque ones, and the
+ * light they let through is filtered by the panes the map holds.
+ *
  * The casters' hierarchy is built once, at init: objects do not move.
  */
 #include <stdio.h>
@@ -64,7 +68,7 @@ static const flags_param hybrid_params[] = {
 static bool hybrid_init(const render_scene *gpu) {
     hybrid.settings.rays = hybrid_ray_modes[hybrid.rays];
     hybrid.maps = map_create(&hybrid.settings, gpu);
-    if (!hybrid.maps || !bvh_build(gpu->scene, "hybrid", &hybrid.casters) ||
+    if (!hybrid.maps || !bvh_build(gpu->scene, map_takes_translucent(hybrid.maps), "hybrid", &hybrid.casters) ||
         !bvh_gpu_upload(&hybrid.casters_gpu, &hybrid.casters, "hybrid"))
         return false;
     map_trace_with(hybrid.maps, &hybrid.casters_gpu);
@@ -122,6 +126,7 @@ static void hybrid_describe(char *out, size_t size) {
     snprintf(out, size, "light 0: %s; rays %s (%s), %d casting triangles", map, hybrid_rays[hybrid.rays], counted,
              hybrid.casters.triangle_count);
     map_describe_filter(&hybrid.settings, out, size);
+    map_describe_transmittance(hybrid.maps, out, size);
 }
 
 /* The sweep: the map alone, the hybrid at three map sizes, and the ray
@@ -144,4 +149,5 @@ const technique hybrid_technique = {
     .describe = hybrid_describe,
     .rays = hybrid_counted_rays,
     .gallery_config = "--overlay unsure",
+    .coloured_shadows = true, /* the rays' opaque casters, filtered by the transmittance maps */
 };

@@ -60,7 +60,7 @@ static void test_bvh_agrees_with_flat(const char *path) {
     scene s;
     assert_true(scene_load(&s, path));
     bvh b;
-    assert_true(bvh_build(&s, path, &b));
+    assert_true(bvh_build(&s, false, path, &b));
     assert_true(b.node_count > 1);
     assert_true(b.depth <= BVH_MAX_DEPTH);
     float root[2][4];
@@ -111,7 +111,7 @@ static void test_clear_cones_let_every_ray_through(void **state) {
     scene s;
     assert_true(scene_load(&s, "assets/scenes/bunny.json"));
     bvh b;
-    assert_true(bvh_build(&s, "bunny", &b));
+    assert_true(bvh_build(&s, false, "bunny", &b));
     float lo[3], hi[3], size = 0;
     for (int k = 0; k < 3; k++) {
         lo[k] = b.nodes[0][0][k];
@@ -173,7 +173,7 @@ static void test_face_diagonals_block(void **state) {
         /* The box alone: nothing else lies on the rays. */
         scene alone = {.objects = &s.objects[i], .object_count = 1};
         bvh b;
-        assert_true(bvh_build(&alone, "flat_boxes", &b));
+        assert_true(bvh_build(&alone, false, "flat_boxes", &b));
         float lo[3], hi[3];
         scene_object_world_bounds(o, lo, hi);
         float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
@@ -237,7 +237,7 @@ static void test_pile_stays_within_the_stack(void **state) {
     glm_mat4_identity(pile.model);
     scene s = {.objects = &pile, .object_count = 1};
     bvh b;
-    assert_true(bvh_build(&s, "pile", &b));
+    assert_true(bvh_build(&s, false, "pile", &b));
     assert_int_equal(b.triangle_count, TEST_BVH_PILE);
     assert_true(b.depth <= BVH_MAX_DEPTH);
     assert_true(bvh_occluded(&b, (float[]){0.25f, 0.25f, 1}, (float[]){0, 0, -1}, 2));
@@ -254,7 +254,7 @@ static void test_no_casters_block_nothing(void **state) {
     for (int i = 0; i < s.object_count; i++)
         s.objects[i].casts = false;
     bvh b;
-    assert_true(bvh_build(&s, "bunny", &b));
+    assert_true(bvh_build(&s, false, "bunny", &b));
     assert_int_equal(b.node_count, 0);
     assert_false(bvh_occluded(&b, (float[]){0, 1, 0}, (float[]){0, -1, 0}, INFINITY));
     bvh_free(&b);
@@ -276,7 +276,7 @@ static void test_cut_outs_let_rays_through(void **state) {
     const scene_object *fence = &s.objects[1];
     assert_true(fence->alpha_cutoff > 0 && fence->base_color);
     bvh b;
-    assert_true(bvh_build(&s, "fence", &b));
+    assert_true(bvh_build(&s, false, "fence", &b));
     assert_true(b.cut_out_count > 0);
     int blocked = 0, passed = 0;
     for (int i = 1; i < TEST_BVH_FENCE_STEPS; i++)

@@ -479,10 +479,10 @@ static void gltf_glass_channels(const char *program, bool coloured, dump_frame *
  * their product, the box's shadow none; the one figure is the channels'
  * mean where they differ. The shadow maps colour theirs through their
  * transmittance maps (their dumps coloured too, their state lines naming
- * the maps); volumes and hybrid cast
- * whole shadows, say so once, and shadowdiff measures what that costs
- * per channel. A scene without translucent casters has no coloured
- * dump. */
+ * the maps), and so does hybrid, whose rays meet the opaque casters
+ * alone; volumes cast whole shadows, say so once, and shadowdiff
+ * measures what that costs per channel. A scene without translucent
+ * casters has no coloured dump. */
 static void test_gltf_translucent_shadows(void **state) {
     (void)state;
     scene s;
@@ -518,12 +518,13 @@ static void test_gltf_translucent_shadows(void **state) {
     dump_frame_free(&reference);
     gltf_glass_channels("psm", true, NULL);
     gltf_glass_channels("cascades", true, NULL);
+    gltf_glass_channels("hybrid", true, NULL);
     gltf_glass_channels("volumes", false, NULL);
 
     static const struct {
         const char *program;
         bool coloured;
-    } programs[] = {{"shadowmap", true}, {"cascades", true}, {"psm", true}, {"volumes", false}, {"hybrid", false}};
+    } programs[] = {{"shadowmap", true}, {"cascades", true}, {"psm", true}, {"volumes", false}, {"hybrid", true}};
     for (size_t i = 0; i < sizeof programs / sizeof *programs; i += (size_t)support_sweep_stride()) {
         char command[512], said[4096], expected[256] = "";
         const char *name = programs[i].program;

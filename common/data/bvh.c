@@ -171,11 +171,16 @@ static void bvh_builder_free(bvh_builder *b) {
     free(b->keys);
 }
 
-bool bvh_build(const scene *s, const char *who, bvh *out) {
+/* Whether o's triangles go into the hierarchy (bvh_build). */
+static bool bvh_takes(const scene_object *o, bool opaque_only) {
+    return o->casts && !(opaque_only && o->translucent);
+}
+
+bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out) {
     *out = (bvh){0};
     long long count = 0, cut_outs = 0;
     for (int i = 0; i < s->object_count; i++) {
-        long long triangles = s->objects[i].casts ? s->objects[i].mesh.index_count / 3 : 0;
+        long long triangles = bvh_takes(&s->objects[i], opaque_only) ? s->objects[i].mesh.index_count / 3 : 0;
         count += triangles;
         cut_outs += s->objects[i].alpha_cutoff > 0 ? triangles : 0;
     }
@@ -201,7 +206,7 @@ bool bvh_build(const scene *s, const char *who, bvh *out) {
     int t = 0;
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
-        for (uint32_t k = 0; o->casts && k < o->mesh.index_count / 3; k++, t++) {
+        for (uint32_t k = 0; bvh_takes(o, opaque_only) && k < o->mesh.index_count / 3; k++, t++) {
             bvh_triangle *tri = &b.triangles[t];
             tri->source = (bvh_cut_out){o, k};
             for (int v = 0; v < 3; v++) {

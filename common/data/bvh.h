@@ -66,11 +66,13 @@ typedef struct bvh {
     int depth; /* the longest path, in nodes */
 } bvh;
 
-/* The hierarchy of every triangle of the objects of `s` that cast; false
- * after printing one line naming `who` and the problem (out of memory,
- * more triangles than BVH_MAX_INDEX), with nothing to free. A scene
- * without casters has an empty one (no nodes): every ray gets through. */
-bool bvh_build(const scene *s, const char *who, bvh *out);
+/* The hierarchy of every triangle of the objects of `s` that cast (but
+ * the translucent ones where `opaque_only`: a transmittance map takes
+ * those); false after printing one line naming `who` and the problem (out
+ * of memory, more triangles than BVH_MAX_INDEX), with nothing to free. A
+ * scene without casters has an empty one (no nodes): every ray gets
+ * through. */
+bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out);
 void bvh_free(bvh *b);
 
 /* Whether a triangle meets the segment origin + t dir, 0 < t < t_max

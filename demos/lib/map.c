@@ -316,11 +316,9 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
 }
 
 /* The frame's maps take transmittance maps (map.h, "Translucent
- * casters"): the scene has translucent casters, no rays are traced and
- * the GL draws into them. */
-static bool map_scene_transmits(const map_renderer *r) {
-    return r->transmit.id && !r->casters && !r->transmit_failed;
-}
+ * casters"): the scene has translucent casters and the GL draws into
+ * them. */
+static bool map_scene_transmits(const map_renderer *r) { return map_takes_translucent(r) && !r->transmit_failed; }
 
 /* Light l's texture unit `unit` is one this GL has; else said once per
  * light (bit l of *said): it lacks the unit for the light's `what`, and
@@ -757,6 +755,8 @@ map_renderer *map_create(const map_settings *settings, const render_scene *gpu) 
 }
 
 const map_light *map_of_light(const map_renderer *r, int l) { return &r->maps[l]; }
+
+bool map_takes_translucent(const map_renderer *r) { return r->transmit.id != 0; }
 
 void map_trace_with(map_renderer *r, const bvh_gpu *casters) { r->casters = casters; }
 

@@ -429,9 +429,8 @@ enum {
     MAP_CUBE_FACES
 };
 /* Translucent casters (scene_object's translucent: glTF's alphaMode
- * BLEND) leave the depth pass where the scene has them and the camera
- * pass traces no rays (map_trace_with: the rays would meet them whole).
- * A transmittance map beside the depth texture, of its kind, size and
+ * BLEND) leave the depth pass where the scene has them, and the rays'
+ * hierarchy (map_takes_translucent). A transmittance map beside the depth texture, of its kind, size and
  * layers, RGBA16F and read nearest, takes them instead: after each
  * layer's depth pass, cleared to 1, they are drawn into it
  * (shaders/transmittance.frag) depth-tested against the layer's opaque
@@ -543,10 +542,13 @@ const map_light *map_of_light(const map_renderer *r, int l);
 /* Appends ", transmittance map: coloured shadows" where light 0's map has
  * one (see "Translucent casters" above); nothing else. */
 void map_describe_transmittance(const map_renderer *r, char *out, size_t size);
+/* Whether the maps take the scene's translucent casters (it has some) into
+ * transmittance maps (see "Translucent casters"): the rays' hierarchy
+ * then leaves them out (bvh_build's opaque_only), the rays deciding the
+ * opaque casters' shadow and the transmittance map filtering it. */
+bool map_takes_translucent(const map_renderer *r);
 /* The casters' hierarchy the camera pass's rays trace against (kept, not
- * copied: it outlives r's frames); NULL: no rays, whatever the settings.
- * With one, translucent casters cast their whole shadow in the maps too
- * (see "Translucent casters"). */
+ * copied: it outlives r's frames); NULL: no rays, whatever the settings. */
 void map_trace_with(map_renderer *r, const bvh_gpu *casters);
 /* The frame's steps (see the top of this file), in their order. Step 1:
  * the camera's depth pre-pass; notes the target the camera pass will draw
