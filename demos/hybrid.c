@@ -25,9 +25,11 @@
  * cost the map spares. The overlay "unsure" tints the pixels the map
  * could not decide.
  *
- * Translucent casters (glTF's BLEND) are the transmittance maps' alone
- * (map.h, "Translucent casters"): the rays meet the opaque ones, and the
- * light they let through is filtered by the panes the map holds.
+ * Translucent casters (glTF's BLEND): the map's transmittance map colours
+ * the sure pixels (map.h, "Translucent casters"); a hard light's pixel
+ * within a texel of a pane, or an area light's whose cone meets a pane's
+ * box, is unsure, and its rays filter their light through the panes as
+ * the reference's do.
  *
  * The casters' hierarchy is built once, at init: objects do not move.
  */
@@ -68,7 +70,7 @@ static const flags_param hybrid_params[] = {
 static bool hybrid_init(const render_scene *gpu) {
     hybrid.settings.rays = hybrid_ray_modes[hybrid.rays];
     hybrid.maps = map_create(&hybrid.settings, gpu);
-    if (!hybrid.maps || !bvh_build(gpu->scene, map_takes_translucent(hybrid.maps), "hybrid", &hybrid.casters) ||
+    if (!hybrid.maps || !bvh_build(gpu->scene, "hybrid", &hybrid.casters) ||
         !bvh_gpu_upload(&hybrid.casters_gpu, &hybrid.casters, "hybrid"))
         return false;
     map_trace_with(hybrid.maps, &hybrid.casters_gpu);
@@ -149,5 +151,5 @@ const technique hybrid_technique = {
     .describe = hybrid_describe,
     .rays = hybrid_counted_rays,
     .gallery_config = "--overlay unsure",
-    .coloured_shadows = true, /* the rays' opaque casters, filtered by the transmittance maps */
+    .coloured_shadows = true, /* the transmittance maps, and rays through the panes */
 };

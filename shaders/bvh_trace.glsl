@@ -1,5 +1,5 @@
 // Shadow rays against the casters' hierarchy (common/data/bvh.h: its
-// layout, and the same tests in the same order as bvh_occluded), read from
+// layout, and the same tests in the same order as bvh_transmittance), read from
 // one RGBA32F texture BVH_GPU_TEXTURE_WIDTH texels wide
 // (common/gl/bvh_gpu.h): the nodes, two texels each, then the triangles,
 // three each. u_bvh_node_count 0: no casters, every ray gets through.
@@ -17,15 +17,17 @@ const float BVH_FAR_WIDENING = 1.0 + 3.0 * BVH_FLOAT_EPSILON / (1.0 - 1.5 * BVH_
 
 vec4 bvh_texel(int k) { return texelFetch(u_bvh, ivec2(k % BVH_GPU_TEXTURE_WIDTH, k / BVH_GPU_TEXTURE_WIDTH), 0); }
 
-#if BVH_CUT_OUTS
-// Cut-out casters (common/data/bvh.h): a triangle whose first vertex's w
-// is r > 0 has record r - 1 at u_bvh_cut_outs_first, three texels, and its
-// texture's alphas at u_bvh_alphas_first, four a texel
-// (common/gl/bvh_gpu.h). A ray passes it where scene_object_cut_out
-// (common/data/scene.c) says it has no surface: the same bilinear read of
-// level 0, the same wrap (common/data/texture.c).
-uniform int u_bvh_cut_outs_first;
-uniform int u_bvh_alphas_first;
+#if BVH_RECORDS
+// Casters whose surface the rays read (common/data/bvh.h: cut-out or
+// translucent): a triangle whose first vertex's w is r > 0 has record
+// r - 1 at u_bvh_records_first, four texels, and its texture's texels at
+// u_bvh_texels_first, linear colour and alpha (common/gl/bvh_gpu.h). A ray
+// passes a cut-out where scene_object_cut_out (common/data/scene.c) says
+// it has no surface, and a translucent one filtered by
+// scene_object_transmittance: the same bilinear read of level 0, the same
+// wrap (common/data/texture.c).
+uniform int u_bvh_records_first;
+uniform int u_bvh_texels_first;
 
 // texture.h's texture_wrap and bvh_gpu.h's packing of two of them.
 const int BVH_WRAP_MIRRORED_REPEAT = 1;
@@ -34,12 +36,6 @@ const int BVH_WRAP_BASE = 4;
 // Beyond this a texel coordinate says nothing of where it lands
 // (texture.c's guard).
 const float BVH_TEXEL_RANGE = 1073741823.0;
-
-float bvh_alpha(int i) {
-    vec4 t = bvh_texel(u_bvh_alphas_first + i / 4);
-    int c = i - 4 * (i / 4);
-    return c == 0 ? t.x : (c == 1 ? t.y : (c == 2 ? t.z : t.w));
-}
 
 // Texel index i of n by the wrap mode.
 int bvh_wrap(int mode, int i, int n) {
@@ -53,16 +49,18 @@ int bvh_wrap(int mode, int i, int n) {
     return (n - 1) - (a >= 0 ? a : -(1 + a));
 }
 
-// Whether cut-out record `record`'s triangle has no surface at the
-// barycentric weights `weight` of its corners.
-bool bvh_cut_out(int record, vec3 weight) {
-    int k = u_bvh_cut_outs_first + 3 * record;
-    vec4 r0 = bvh_texel(k), r1 = bvh_texel(k + 1), r2 = bvh_texel(k + 2);
+// What record `record`'s triangle lets through at the barycentric
+// weights `weight` of its corners: everything where a cut-out has no
+// surface, nothing where it has, a translucent one's transmittance
+// (1 - a) + a C.
+vec3 bvh_surface(int record, vec3 weight) {
+    int k = u_bvh_records_first + 4 * record;
+    vec4 r0 = bvh_texel(k), r1 = bvh_texel(k + 1), r2 = bvh_texel(k + 2), r3 = bvh_texel(k + 3);
     vec2 uv = weight.x * r0.xy + weight.y * r0.zw + weight.z * r1.xy;
-    float alpha = 1.0;
+    vec4 texel = vec4(1.0);
     int width = int(r2.y), height = int(r2.z);
     if (width > 0) {
-        int first = int(r2.x), wraps = int(r2.w);
+        int first = u_bvh_texels_first + int(r2.x), wraps = int(r2.w);
         int wrap_u = wraps / BVH_WRAP_BASE, wrap_v = wraps - BVH_WRAP_BASE * wrap_u;
         float x = uv.x * float(width) - 0.5, y = uv.y * float(height) - 0.5;
         float fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
@@ -71,13 +69,15 @@ bool bvh_cut_out(int record, vec3 weight) {
         }
         int x0 = bvh_wrap(wrap_u, int(fx), width), x1 = bvh_wrap(wrap_u, int(fx) + 1, width);
         int y0 = bvh_wrap(wrap_v, int(fy), height), y1 = bvh_wrap(wrap_v, int(fy) + 1, height);
-        alpha = 0.0;
-        alpha += (1.0 - ax) * (1.0 - ay) * bvh_alpha(first + y0 * width + x0);
-        alpha += ax * (1.0 - ay) * bvh_alpha(first + y0 * width + x1);
-        alpha += (1.0 - ax) * ay * bvh_alpha(first + y1 * width + x0);
-        alpha += ax * ay * bvh_alpha(first + y1 * width + x1);
+        texel = (1.0 - ax) * (1.0 - ay) * bvh_texel(first + y0 * width + x0);
+        texel += ax * (1.0 - ay) * bvh_texel(first + y0 * width + x1);
+        texel += (1.0 - ax) * ay * bvh_texel(first + y1 * width + x0);
+        texel += ax * ay * bvh_texel(first + y1 * width + x1);
     }
-    return r1.z * alpha < r1.w;
+    float alpha = r1.z * texel.a;
+    if (alpha < r1.w)
+        return vec3(1.0);
+    return r3.w > 0.0 ? 1.0 - alpha + alpha * r3.rgb * texel.rgb : vec3(0.0);
 }
 #endif
 
@@ -130,11 +130,15 @@ bool bvh_cone_clear(vec3 origin, vec3 dir, float t_max, float end_radius) {
     return true;
 }
 
-// Whether a caster's triangle other than the surface the ray leaves
-// (BVH_SURFACE_ULPS) meets origin + t dir, 0 < t < t_max.
-bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {
+// The share of each channel of light that gets through origin + t dir,
+// 0 < t < t_max, past every caster's triangle other than the surface the
+// ray leaves (BVH_SURFACE_ULPS): 0 where an opaque one meets it, else the
+// product of the translucent ones' transmittances (bvh.h's
+// bvh_transmittance).
+vec3 bvh_transmittance(vec3 origin, vec3 dir, float t_max) {
+    vec3 through = vec3(1.0);
     if (u_bvh_node_count == 0)
-        return false;
+        return through;
     vec3 inverse = bvh_inverse(dir);
     // Woop et al.'s shear: kz the largest axis, kx and ky the others,
     // swapped where dir[kz] < 0 to keep the winding.
@@ -180,12 +184,14 @@ bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {
                         continue;
                     float t = shear.z * (u * az + v * bz + w * cz);
                     if (det > 0.0 ? (t > 0.0 && t < t_max * det) : (t < 0.0 && t > t_max * det)) {
-#if BVH_CUT_OUTS
+#if BVH_RECORDS
                         float record = bvh_texel(k).w;
-                        if (record > 0.0 && bvh_cut_out(int(record) - 1, vec3(u, v, w) / det))
-                            continue;
+                        through *= record > 0.0 ? bvh_surface(int(record) - 1, vec3(u, v, w) / det) : vec3(0.0);
+#else
+                        through = vec3(0.0);
 #endif
-                        return true;
+                        if (through == vec3(0.0))
+                            return through;
                     }
                 }
             } else {
@@ -195,8 +201,8 @@ bool bvh_occluded(vec3 origin, vec3 dir, float t_max) {
             }
         }
         if (top == 0)
-            return false;
+            return through;
         node = stack[--top];
     }
-    return false;
+    return through;
 }

@@ -136,51 +136,57 @@ uniform int u_ray_samples;
 uniform ivec4 u_frame;
 uniform vec2 u_light_area[SCENE_MAX_LIGHTS];
 
-// Whether nothing casts between the visible point itself and `target`, a
-// point (w 1) or a direction towards a sun (w 0); bvh_occluded leaves the
-// point's surface. A ray to a point ends as many ulps of the target's
-// coordinates and of its length short of it as the reference's, so that a
-// light on a surface is not shadowed by it; a sun's ray runs past every
-// caster.
-bool map_ray_reaches(vec4 target) {
+// What gets through, per channel, between the visible point itself and
+// `target`, a point (w 1) or a direction towards a sun (w 0): 0 where an
+// opaque caster stands between, the translucent ones' transmittances
+// (bvh_transmittance, which leaves the point's surface). A ray to a point
+// ends as many ulps of the target's coordinates and of its length short
+// of it as the reference's, so that a light on a surface is not shadowed
+// by it; a sun's ray runs past every caster.
+vec3 map_ray_through(vec4 target) {
     vec3 o = map_ray_origin;
     if (target.w == 0.0)
-        return !bvh_occluded(o, target.xyz * (length(o) + u_bvh_reach), 1.0);
+        return bvh_transmittance(o, target.xyz * (length(o) + u_bvh_reach), 1.0);
     vec3 dir = target.xyz - o, a = abs(target.xyz);
     float len = length(dir);
     float t_max = 1.0 - float(BVH_SURFACE_ULPS) * BVH_FLOAT_EPSILON * (max(max(a.x, a.y), a.z) + len) / len;
-    return !bvh_occluded(o, dir, t_max);
+    return bvh_transmittance(o, dir, t_max);
 }
 
-// Light i at this fragment by shadow rays: one to a hard light's centre
-// (1 lit, 0 shadowed); an area light's share of the reference's samples
-// for this pixel (the same points: its seed from the pixel and the light),
+// Light i at this fragment by shadow rays, per channel: one to a hard
+// light's centre; an area light's mean over the reference's samples for
+// this pixel (the same points: its seed from the pixel and the light),
 // taken in area_light_progressive_index's order and stopped after
 // MAP_RAY_FIRST_SAMPLES where those all agree.
-float map_ray_visibility(int i, bool soft) {
+vec3 map_ray_visibility(int i, bool soft) {
     vec4 centre = lights_position[i];
     vec4 towards = centre.w == 0.0 ? vec4(-lights_direction[i].xyz, 0.0) : centre;
     map_lights_traced++;
     if (!soft) {
         map_rays_cast++;
-        return map_ray_reaches(towards) ? 1.0 : 0.0;
+        return map_ray_through(towards);
     }
     ivec2 q = ivec2(gl_FragCoord.xy) - u_frame.xy;
     uint pixel = uint((u_frame.w - 1 - q.y) * u_frame.z + q.x);
     uint seed = area_light_hash(pixel ^ area_light_hash(uint(i)));
     vec3 axis = lighting_to_light(i, map_ray_origin);
-    int lit = 0, traced = 0;
+    vec3 sum = vec3(0.0), first = vec3(0.0);
+    bool agree = true;
+    int traced = 0;
     for (int j = 0; j < u_ray_samples; j++) {
         int k = area_light_progressive_index(j, u_ray_samples);
         vec4 target = area_light_sample(centre.w == 0.0 ? vec4(axis, 0.0) : centre, axis, u_light_area[i].x,
                                         u_light_area[i].y, k, u_ray_samples, area_light_hash(seed + uint(k)));
-        lit += map_ray_reaches(target) ? 1 : 0;
+        vec3 through = map_ray_through(target);
+        first = traced == 0 ? through : first;
+        agree = agree && through == first;
+        sum += through;
         traced++;
-        if (traced == MAP_RAY_FIRST_SAMPLES && (lit == 0 || lit == traced))
+        if (traced == MAP_RAY_FIRST_SAMPLES && agree)
             break;
     }
     map_rays_cast += traced;
-    return float(lit) / float(traced);
+    return sum / float(traced);
 }
 
 #include "moments.glsl"

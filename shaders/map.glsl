@@ -379,8 +379,11 @@ const float MAP_UNSURE_TINT_SHARE = 0.5;
 uniform bool u_translucent;
 const float MAP_TRANSMIT_ROUNDING = 2.0 / 4096.0;
 const float MAP_MIN_TRANSMITTANCE = 1e-6;
+// Whether the texel's translucent casters lie before a point at `depth`.
+bool map_translucent_before(vec4 texel, float depth) { return depth > texel.a + MAP_TRANSMIT_ROUNDING; }
+
 vec3 map_transmitted(vec4 texel, float depth) {
-    if (depth <= texel.a + MAP_TRANSMIT_ROUNDING)
+    if (!map_translucent_before(texel, depth))
         return vec3(1.0);
     return u_translucent ? min(texel.rgb / max(surface_transmittance(), MAP_MIN_TRANSMITTANCE), 1.0) : texel.rgb;
 }

@@ -22,6 +22,9 @@ float map_kernel_read(sampler2DShadow map, vec2 offset) {
 // The raw map's texel an offset away: a depth (.r), or moments.
 vec4 map_raw_read(sampler2D raw, vec2 offset) { return texture(raw, map_point.xy + offset); }
 
+// A texel of a transmittance map (map_flat.glsl).
+vec4 map_transmit_fetch(sampler2D transmittance, ivec2 texel) { return texelFetch(transmittance, texel, 0); }
+
 // Un-projected at the point's place in the map: any projective map's
 // depth (a warp's is not distance) back to the world.
 float map_soft_distance(sampler2D raw, int i, float depth) {
@@ -94,6 +97,12 @@ float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i
 vec2 map_texel_coord(sampler2DShadow map, int i, vec3 p) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
     return (clip.xy / clip.w * 0.5 + 0.5) * u_map_size[i];
+}
+
+// The 3 x 3 texels about p's (map_flat.glsl).
+bool map_translucent_near(sampler2D transmittance, int i, vec3 p, float depth_bias) {
+    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
+    return clip.w > 0.0 && map_flat_translucent_near(transmittance, i, clip.xyz / clip.w * 0.5 + 0.5, depth_bias);
 }
 
 // Outside the map, or behind the light, nothing filters.

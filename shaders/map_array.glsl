@@ -26,6 +26,11 @@ float map_kernel_read(sampler2DArrayShadow map, vec2 offset) {
 }
 
 // The raw map's texel an offset away: a depth (.r), or moments.
+// A texel of the layer's transmittance map (map_flat.glsl).
+vec4 map_transmit_fetch(sampler2DArray transmittance, ivec2 texel) {
+    return texelFetch(transmittance, ivec3(texel, int(map_array_layer)), 0);
+}
+
 vec4 map_raw_read(sampler2DArray raw, vec2 offset) {
     return texture(raw, vec3(map_point.xy + offset, map_array_layer));
 }
@@ -111,6 +116,14 @@ float map_visibility(sampler2DArrayShadow map, sampler2DArray raw, sampler2D bou
 vec2 map_texel_coord(sampler2DArrayShadow map, int i, vec3 p) {
     vec3 light_p = (u_light_matrix[i] * vec4(p, 1.0)).xyz;
     return map_cascade_uvz(i, int(map_cascade_at(i, p).x), light_p).xy * u_map_size[i];
+}
+
+// The 3 x 3 texels about p's in the layer it reads (map_flat.glsl).
+bool map_translucent_near(sampler2DArray transmittance, int i, vec3 p, float depth_bias) {
+    int k = map_pixel_cascade(i);
+    map_array_layer = float(k);
+    return map_flat_translucent_near(transmittance, i, map_cascade_uvz(i, k, (u_light_matrix[i] * vec4(p, 1.0)).xyz),
+                                     depth_bias);
 }
 
 // The layer the kernel reads (the same pixel's hash), outside it nothing.

@@ -205,6 +205,21 @@ vec2 map_texel_coord(samplerCubeShadow map, int i, vec3 p) {
     return (face * 0.5 + 0.5) * u_map_size[i];
 }
 
+// The directions a texel apart about p's, 3 x 3 across it (a face's
+// texel at the major axis' length), each read nearest.
+bool map_translucent_near(samplerCube transmittance, int i, vec3 p, float depth_bias) {
+    vec3 d = p - lights_position[i].xyz, axis = normalize(d);
+    vec3 u = normalize(cross(abs(axis.y) < MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis)), v = cross(axis, u);
+    float step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    float depth = map_face_depth(d, vec2(u_near[i], u_far[i])) - depth_bias;
+    bool near = false;
+    for (int y = -1; y <= 1; y++)
+        for (int x = -1; x <= 1; x++)
+            near = near || map_translucent_before(
+                               textureLod(transmittance, d + step * (float(x) * u + float(y) * v), 0.0), depth);
+    return near;
+}
+
 // The face the direction falls on, at the depth that face stores.
 vec3 map_transmittance(samplerCube transmittance, int i, vec3 p, float depth_bias) {
     vec3 d = p - lights_position[i].xyz;

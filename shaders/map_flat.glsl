@@ -34,3 +34,18 @@ float map_flat_filter(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, vec3 uvz, vec
     vec2 map_texel = uvz.xy * u_map_size[i];
     return map_kernel_filter(map, map_texel - floor(map_texel + 0.5), u_map_size[i]);
 }
+
+// Whether a texel of the 3 x 3 about uvz's (map coordinates and depth,
+// clamped to the map) holds translucent casters before the point, its
+// depth lowered by depth_bias: the type's map_transmit_fetch reads them.
+bool map_flat_translucent_near(MAP_RAW_SAMPLER transmittance, int i, vec3 uvz, float depth_bias) {
+    int size = int(u_map_size[i]);
+    ivec2 centre = ivec2(floor(uvz.xy * float(size)));
+    bool near = false;
+    for (int y = -1; y <= 1; y++)
+        for (int x = -1; x <= 1; x++) {
+            ivec2 texel = clamp(centre + ivec2(x, y), ivec2(0), ivec2(size - 1));
+            near = near || map_translucent_before(map_transmit_fetch(transmittance, texel), uvz.z - depth_bias);
+        }
+    return near;
+}

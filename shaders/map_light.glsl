@@ -32,6 +32,9 @@
 //                                        share is 0 there whatever it says);
 //   map_texel_coord(map, i, p)    p's position in the map, in texels
 //                                        (the lecture's texel overlays);
+//   map_translucent_near(transmittance, i, p, b)  whether a texel within
+//                                        one of p's holds translucent
+//                                        casters before p;
 //   map_transmittance(transmittance, i, p, b)  the share of each channel
 //                                        light i's translucent casters let
 //                                        through to p, its map depth lowered
@@ -43,6 +46,7 @@ float map_visibility(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, sampler2D bounds, int
                             float depth_bias, bool soft, bool moments, float texel, bool needed);
 vec2 map_texel_coord(MAP_SAMPLER map, int i, vec3 p);
 vec3 map_transmittance(MAP_RAW_SAMPLER transmittance, int i, vec3 p, float depth_bias);
+bool map_translucent_near(MAP_RAW_SAMPLER transmittance, int i, vec3 p, float depth_bias);
 
 // The kernel's visibility: the early-out's rim, then where it disagrees
 // (or without the early-out) the weighted sum of every tap.
@@ -116,18 +120,28 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     }
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
         unsure = !map_light_cone_clear(i);
+    // A translucent caster's shadow is the texel's, hard and unfiltered:
+    // with rays, a hard light's pixel within a texel of one is unsure
+    // (the rays filter through the panes as the reference's do; an area
+    // light's cone meets their boxes).
+    if (transmits && !soft && lit && map_rays == MAP_RAYS_UNSURE && visibility > 0.0)
+        unsure = unsure || map_translucent_near(transmittance, i, p, depth_bias);
     bool traced = lit && (map_rays == MAP_RAYS_ALL || (map_rays == MAP_RAYS_UNSURE && unsure));
     // A marking pass leaves the pixel to the tracing pass after it, which
     // draws it again whole: what it shades here is drawn over.
     map_rays_marked = map_rays_marked || (map_mark_rays && traced);
     traced = traced && !map_mark_rays;
-    if (traced)
-        visibility = map_ray_visibility(i, soft);
-    else if (soft)
-        visibility *= map_horizon_share(i, normalize(map_face_normal), to_light, v_position);
-    vec3 c = visibility * unshadowed;
-    if (transmits && needed && visibility > 0.0)
-        c *= map_transmittance(transmittance, i, p, depth_bias);
+    vec3 through;
+    if (traced) {
+        through = map_ray_visibility(i, soft);
+    } else {
+        if (soft)
+            visibility *= map_horizon_share(i, normalize(map_face_normal), to_light, v_position);
+        through = vec3(visibility);
+        if (transmits && needed && visibility > 0.0)
+            through *= map_transmittance(transmittance, i, p, depth_bias);
+    }
+    vec3 c = through * unshadowed;
     if (map_show_unsure && (unsure || traced))
         c = mix(c, MAP_UNSURE_TINT, MAP_UNSURE_TINT_SHARE);
     // Lines one pixel wide where texels meet: how big a texel is on screen

@@ -60,7 +60,7 @@ static void test_bvh_agrees_with_flat(const char *path) {
     scene s;
     assert_true(scene_load(&s, path));
     bvh b;
-    assert_true(bvh_build(&s, false, path, &b));
+    assert_true(bvh_build(&s, path, &b));
     assert_true(b.node_count > 1);
     assert_true(b.depth <= BVH_MAX_DEPTH);
     float root[2][4];
@@ -111,7 +111,7 @@ static void test_clear_cones_let_every_ray_through(void **state) {
     scene s;
     assert_true(scene_load(&s, "assets/scenes/bunny.json"));
     bvh b;
-    assert_true(bvh_build(&s, false, "bunny", &b));
+    assert_true(bvh_build(&s, "bunny", &b));
     float lo[3], hi[3], size = 0;
     for (int k = 0; k < 3; k++) {
         lo[k] = b.nodes[0][0][k];
@@ -173,7 +173,7 @@ static void test_face_diagonals_block(void **state) {
         /* The box alone: nothing else lies on the rays. */
         scene alone = {.objects = &s.objects[i], .object_count = 1};
         bvh b;
-        assert_true(bvh_build(&alone, false, "flat_boxes", &b));
+        assert_true(bvh_build(&alone, "flat_boxes", &b));
         float lo[3], hi[3];
         scene_object_world_bounds(o, lo, hi);
         float size = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
@@ -237,7 +237,7 @@ static void test_pile_stays_within_the_stack(void **state) {
     glm_mat4_identity(pile.model);
     scene s = {.objects = &pile, .object_count = 1};
     bvh b;
-    assert_true(bvh_build(&s, false, "pile", &b));
+    assert_true(bvh_build(&s, "pile", &b));
     assert_int_equal(b.triangle_count, TEST_BVH_PILE);
     assert_true(b.depth <= BVH_MAX_DEPTH);
     assert_true(bvh_occluded(&b, (float[]){0.25f, 0.25f, 1}, (float[]){0, 0, -1}, 2));
@@ -247,6 +247,57 @@ static void test_pile_stays_within_the_stack(void **state) {
     free(indices);
 }
 
+/* Translucent panes (scene_object's translucent): a ray through both
+ * keeps each channel's product of their transmittances (1 - a) + a C,
+ * one through neither keeps all of it, one that also meets an opaque
+ * square none; bvh_occluded only that last. */
+static void test_translucent_panes_filter_rays(void **state) {
+    (void)state;
+    /* A unit square at height z, two triangles. */
+    mesh_vertex squares[3][4];
+    static uint32_t square_indices[6] = {0, 1, 2, 0, 2, 3};
+    static const float heights[3] = {1, 2, 3};
+    static const float corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    scene_object objects[3] = {
+        {.color = {0.95f, 0.15f, 0.1f}, .base_alpha = 0.7f, .translucent = true, .casts = true},
+        {.color = {0.2f, 0.35f, 0.95f}, .base_alpha = 0.6f, .translucent = true, .casts = true},
+        {.color = {1, 1, 1}, .base_alpha = 1, .casts = true},
+    };
+    for (int o = 0; o < 3; o++) {
+        for (int v = 0; v < 4; v++)
+            squares[o][v] =
+                (mesh_vertex){.position = {corners[v][0], corners[v][1], heights[o]}, .normal = {0, 0, 1}};
+        objects[o].mesh =
+            (mesh){.vertices = squares[o], .indices = square_indices, .vertex_count = 4, .index_count = 6};
+        glm_mat4_identity(objects[o].model);
+    }
+    /* The opaque square covers x > 0.5 alone. */
+    for (int v = 0; v < 4; v++)
+        squares[2][v].position[0] = 0.5f + 0.5f * corners[v][0];
+    scene s = {.objects = objects, .object_count = 3};
+    bvh b;
+    assert_true(bvh_build(&s, "panes", &b));
+    assert_int_equal(b.record_count, 4);
+    float red[3], blue[3], through[3];
+    scene_object_transmittance(&objects[0], 0, (const float[3]){1, 0, 0}, red);
+    scene_object_transmittance(&objects[1], 0, (const float[3]){1, 0, 0}, blue);
+    bvh_transmittance(&b, (float[]){0.25f, 0.5f, 0}, (float[]){0, 0, 1}, 4, through);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(through[k], red[k] * blue[k], 1e-6);
+    assert_false(bvh_occluded(&b, (float[]){0.25f, 0.5f, 0}, (float[]){0, 0, 1}, 4));
+    bvh_transmittance(&b, (float[]){0.25f, 0.5f, 0}, (float[]){0, 0, 1}, 1.5f, through);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(through[k], red[k], 1e-6);
+    bvh_transmittance(&b, (float[]){1.5f, 0.5f, 0}, (float[]){0, 0, 1}, 4, through);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(through[k], 1, 0);
+    bvh_transmittance(&b, (float[]){0.75f, 0.5f, 0}, (float[]){0, 0, 1}, 4, through);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(through[k], 0, 0);
+    assert_true(bvh_occluded(&b, (float[]){0.75f, 0.5f, 0}, (float[]){0, 0, 1}, 4));
+    bvh_free(&b);
+}
+
 static void test_no_casters_block_nothing(void **state) {
     (void)state;
     scene s;
@@ -254,7 +305,7 @@ static void test_no_casters_block_nothing(void **state) {
     for (int i = 0; i < s.object_count; i++)
         s.objects[i].casts = false;
     bvh b;
-    assert_true(bvh_build(&s, false, "bunny", &b));
+    assert_true(bvh_build(&s, "bunny", &b));
     assert_int_equal(b.node_count, 0);
     assert_false(bvh_occluded(&b, (float[]){0, 1, 0}, (float[]){0, -1, 0}, INFINITY));
     bvh_free(&b);
@@ -276,8 +327,8 @@ static void test_cut_outs_let_rays_through(void **state) {
     const scene_object *fence = &s.objects[1];
     assert_true(fence->alpha_cutoff > 0 && fence->base_color);
     bvh b;
-    assert_true(bvh_build(&s, false, "fence", &b));
-    assert_true(b.cut_out_count > 0);
+    assert_true(bvh_build(&s, "fence", &b));
+    assert_true(b.record_count > 0);
     int blocked = 0, passed = 0;
     for (int i = 1; i < TEST_BVH_FENCE_STEPS; i++)
         for (int j = 1; j < TEST_BVH_FENCE_STEPS; j++) {
@@ -309,6 +360,7 @@ int main(void) {
         cmocka_unit_test(test_pile_stays_within_the_stack),
         cmocka_unit_test(test_no_casters_block_nothing),
         cmocka_unit_test(test_cut_outs_let_rays_through),
+        cmocka_unit_test(test_translucent_panes_filter_rays),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -32,7 +32,12 @@
 #define GLTF_SIDED_WALL 2
 #define GLTF_STAINED_GLASS "assets/scenes/stained_glass.gltf" /* build/scenegen's */
 #define GLTF_FENCE "assets/scenes/fence.gltf"
-#define GLTF_INCLUDED "tests/data/gltf_included.json" /* the three files above in one scene file */
+#define GLTF_INCLUDED "tests/data/gltf_included.json"     /* the three files above in one scene file */
+#define GLTF_GLASS_AREA "tests/data/gltf_glass_area.json" /* the stained glass under an area point light */
+/* Small and with a quarter of the reference's samples: hybrid traces
+ * every pixel near a pane's box. */
+#define GLTF_GLASS_AREA_SIZE "--size 320x180"
+#define GLTF_GLASS_AREA_FLAGS "--ray-samples 64"
 #define TESTMODELS_GLTF "/usr/share/assimp/models/glTF2"
 #define GLTF_ENGINE TESTMODELS_GLTF "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"
 /* glTF 1.0, which assimp reads too (assets/scenes/truck.json includes it). */
@@ -65,11 +70,16 @@
 /* Translucent casters' shadows: a transmittance is read to within a
  * float's rounding of the product; the shadow maps' transmittance maps
  * colour the shadows to within the goal's MAE in each channel over the
- * stained-glass scene's compared pixels, and a shadow drawn whole (the
- * volumes') misses the coloured one by at least the other. */
+ * stained-glass scene's compared pixels, hybrid's rays through the panes
+ * to within a twentieth of it (the maps' texel edges miss by more), and
+ * a shadow drawn whole (the volumes') misses the coloured one by at least
+ * the other. Under an area light, hybrid keeps its penumbra goal
+ * (test_hybrid's) with glass too. */
 #define GLTF_TRANSMITTANCE_TOLERANCE 1e-5f
 #define GLTF_COLOURED_SHADOW_MAX_CHANNEL_MAE 0.02
+#define GLTF_TRACED_SHADOW_MAX_CHANNEL_MAE 0.001
 #define GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE 0.05
+#define GLTF_GLASS_AREA_HYBRID_MAX_PENUMBRA_MAE 0.01
 /* Each shade of the stained-glass ground covers at least this many of its
  * 640x360 pixels. */
 #define GLTF_MIN_SHADE_PIXELS 1000
@@ -448,10 +458,14 @@ static long gltf_pixels_of(const dump_frame *d, const float rgb[3]) {
     return count;
 }
 
-/* Stained glass's channel MAE of `program`, within the goal where it
- * colours shadows, else at least a whole shadow's; the reference's dump
- * left in *reference where it is not NULL. */
-static void gltf_glass_channels(const char *program, bool coloured, dump_frame *reference) {
+/* How a technique draws a translucent caster's shadow. */
+typedef enum gltf_glass_shadow { GLTF_GLASS_WHOLE, GLTF_GLASS_COLOURED, GLTF_GLASS_TRACED } gltf_glass_shadow;
+
+/* Stained glass's channel MAE of `program`: within the goal where it
+ * colours shadows, within GLTF_TRACED_SHADOW_MAX_CHANNEL_MAE where rays
+ * filter them, else at least a whole shadow's; the reference's dump left
+ * in *reference where it is not NULL. */
+static void gltf_glass_channels(const char *program, gltf_glass_shadow shadow, dump_frame *reference) {
     dump_frame kept, test;
     unsigned char *heatmap;
     shadowdiff_result r =
@@ -462,12 +476,15 @@ static void gltf_glass_channels(const char *program, bool coloured, dump_frame *
     else
         dump_frame_free(&kept);
     dump_frame_free(&test);
-    fprintf(stderr, "    %s, %s shadows: channel MAE %.4f %.4f %.4f\n", program, coloured ? "coloured" : "whole",
-            r.channel_mae[0], r.channel_mae[1], r.channel_mae[2]);
+    static const char *const names[] = {"whole", "coloured", "traced"};
+    fprintf(stderr, "    %s, %s shadows: channel MAE %.4f %.4f %.4f\n", program, names[shadow], r.channel_mae[0],
+            r.channel_mae[1], r.channel_mae[2]);
     assert_true(r.coloured);
     for (int k = 0; k < 3; k++)
-        if (coloured ? r.channel_mae[k] > GLTF_COLOURED_SHADOW_MAX_CHANNEL_MAE
-                     : r.channel_mae[k] < GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE)
+        if (shadow == GLTF_GLASS_WHOLE
+                ? r.channel_mae[k] < GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE
+                : r.channel_mae[k] > (shadow == GLTF_GLASS_TRACED ? GLTF_TRACED_SHADOW_MAX_CHANNEL_MAE
+                                                                  : GLTF_COLOURED_SHADOW_MAX_CHANNEL_MAE))
             fail_msg("%s: channel %d's MAE %.4f", program, k, r.channel_mae[k]);
 }
 
@@ -479,10 +496,10 @@ static void gltf_glass_channels(const char *program, bool coloured, dump_frame *
  * their product, the box's shadow none; the one figure is the channels'
  * mean where they differ. The shadow maps colour theirs through their
  * transmittance maps (their dumps coloured too, their state lines naming
- * the maps), and so does hybrid, whose rays meet the opaque casters
- * alone; volumes cast whole shadows, say so once, and shadowdiff
- * measures what that costs per channel. A scene without translucent
- * casters has no coloured dump. */
+ * the maps), and hybrid's rays filter their light through the panes
+ * where a pane lies within a texel; volumes cast whole shadows, say so
+ * once, and shadowdiff measures what that costs per channel. A scene
+ * without translucent casters has no coloured dump. */
 static void test_gltf_translucent_shadows(void **state) {
     (void)state;
     scene s;
@@ -502,7 +519,7 @@ static void test_gltf_translucent_shadows(void **state) {
     scene_free(&s);
 
     dump_frame reference;
-    gltf_glass_channels("shadowmap", true, &reference);
+    gltf_glass_channels("shadowmap", GLTF_GLASS_COLOURED, &reference);
     const float *shades[] = {red, blue, both, (const float[3]){0, 0, 0}};
     for (size_t k = 0; k < sizeof shades / sizeof *shades; k++) {
         long pixels = gltf_pixels_of(&reference, shades[k]);
@@ -516,10 +533,10 @@ static void test_gltf_translucent_shadows(void **state) {
             assert_float_equal(reference.visibility[p], (c[0] + c[1] + c[2]) / 3.0f, 0);
     }
     dump_frame_free(&reference);
-    gltf_glass_channels("psm", true, NULL);
-    gltf_glass_channels("cascades", true, NULL);
-    gltf_glass_channels("hybrid", true, NULL);
-    gltf_glass_channels("volumes", false, NULL);
+    gltf_glass_channels("psm", GLTF_GLASS_COLOURED, NULL);
+    gltf_glass_channels("cascades", GLTF_GLASS_COLOURED, NULL);
+    gltf_glass_channels("hybrid", GLTF_GLASS_TRACED, NULL);
+    gltf_glass_channels("volumes", GLTF_GLASS_WHOLE, NULL);
 
     static const struct {
         const char *program;
@@ -561,6 +578,27 @@ static void test_gltf_translucent_shadows(void **state) {
     assert_int_equal(access("out/test/gltf_rgb/visibility_rgb.pfm", R_OK), 0);
     assert_int_equal(support_dump("shadowmap", GLTF_SCENE, "", "out/test/gltf_rgb"), 0);
     assert_int_not_equal(access("out/test/gltf_rgb/visibility_rgb.pfm", F_OK), 0);
+}
+
+/* The stained glass under an area light (GLTF_GLASS_AREA): hybrid's rays
+ * average each channel over the reference's points of the light, so its
+ * coloured penumbrae keep its goal, where the transmittance map's hard
+ * texel edge misses it (shadowmap's PCSS filters the opaque shadow
+ * alone). */
+static void test_gltf_glass_under_an_area_light(void **state) {
+    (void)state;
+    dump_frame reference, test;
+    unsigned char *heatmap;
+    shadowdiff_result r =
+        support_measure_dumps("hybrid", GLTF_GLASS_AREA, GLTF_GLASS_AREA_SIZE, GLTF_GLASS_AREA_FLAGS,
+                              "gltf_glass_area", &reference, &test, &heatmap);
+    free(heatmap);
+    dump_frame_free(&reference);
+    dump_frame_free(&test);
+    fprintf(stderr, "    hybrid, glass under an area light: penumbra MAE %.4f over %ld pixels\n",
+            r.class_mae[SHADOWDIFF_CLASS_PENUMBRA], r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA]);
+    assert_true(r.coloured && r.class_pixels[SHADOWDIFF_CLASS_PENUMBRA] > 0);
+    assert_true(r.class_mae[SHADOWDIFF_CLASS_PENUMBRA] <= GLTF_GLASS_AREA_HYBRID_MAX_PENUMBRA_MAE);
 }
 
 /* A scene file's object of mesh kind "gltf" (tests/data/gltf_included.json):
@@ -720,6 +758,7 @@ int main(void) {
         cmocka_unit_test(test_gltf_fitted),
         cmocka_unit_test(test_gltf_says_each_thing_once),
         cmocka_unit_test(test_gltf_translucent_shadows),
+        cmocka_unit_test(test_gltf_glass_under_an_area_light),
         cmocka_unit_test(test_gltf_included_by_a_scene_file),
         cmocka_unit_test(test_gltf_bad_files),
         cmocka_unit_test(test_gltf_shadows_match_reference),

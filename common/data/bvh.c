@@ -18,7 +18,7 @@
 typedef struct bvh_triangle {
     float vertices[3][3];
     float lo[3], hi[3], centroid[3];
-    bvh_cut_out source; /* its object and index there */
+    bvh_record source; /* its object and index there */
 } bvh_triangle;
 
 /* A triangle's centroid along the median split's axis. */
@@ -172,17 +172,16 @@ static void bvh_builder_free(bvh_builder *b) {
 }
 
 /* Whether o's triangles go into the hierarchy (bvh_build). */
-static bool bvh_takes(const scene_object *o, bool opaque_only) {
-    return o->casts && !(opaque_only && o->translucent);
-}
+/* Whether the rays read o's surface (bvh_record). */
+static bool bvh_reads_surface(const scene_object *o) { return o->alpha_cutoff > 0 || o->translucent; }
 
-bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out) {
+bool bvh_build(const scene *s, const char *who, bvh *out) {
     *out = (bvh){0};
-    long long count = 0, cut_outs = 0;
+    long long count = 0, records = 0;
     for (int i = 0; i < s->object_count; i++) {
-        long long triangles = bvh_takes(&s->objects[i], opaque_only) ? s->objects[i].mesh.index_count / 3 : 0;
+        long long triangles = s->objects[i].casts ? s->objects[i].mesh.index_count / 3 : 0;
         count += triangles;
-        cut_outs += s->objects[i].alpha_cutoff > 0 ? triangles : 0;
+        records += bvh_reads_surface(&s->objects[i]) ? triangles : 0;
     }
     if (count == 0)
         return true;
@@ -196,8 +195,8 @@ bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out) {
                      malloc((size_t)n * sizeof *b.keys), out};
     out->nodes = malloc((size_t)(2 * n) * sizeof *out->nodes);
     out->triangles = malloc((size_t)n * sizeof *out->triangles);
-    out->cut_outs = malloc((size_t)(cut_outs + 1) * sizeof *out->cut_outs);
-    if (!b.triangles || !b.order || !b.keys || !out->nodes || !out->triangles || !out->cut_outs) {
+    out->records = malloc((size_t)(records + 1) * sizeof *out->records);
+    if (!b.triangles || !b.order || !b.keys || !out->nodes || !out->triangles || !out->records) {
         fprintf(stderr, "%s: out of memory for the ray hierarchy of %d triangles\n", who, n);
         bvh_builder_free(&b);
         bvh_free(out);
@@ -206,9 +205,9 @@ bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out) {
     int t = 0;
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];
-        for (uint32_t k = 0; bvh_takes(o, opaque_only) && k < o->mesh.index_count / 3; k++, t++) {
+        for (uint32_t k = 0; o->casts && k < o->mesh.index_count / 3; k++, t++) {
             bvh_triangle *tri = &b.triangles[t];
-            tri->source = (bvh_cut_out){o, k};
+            tri->source = (bvh_record){o, k};
             for (int v = 0; v < 3; v++) {
                 double corner[3];
                 scene_object_world_corner(o, k, v, corner);
@@ -231,9 +230,9 @@ bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out) {
             memcpy(out->triangles[i][v], tri->vertices[v], 3 * sizeof(float));
             out->triangles[i][v][3] = 0;
         }
-        if (tri->source.object->alpha_cutoff > 0) {
-            out->cut_outs[out->cut_out_count++] = tri->source;
-            out->triangles[i][0][3] = (float)out->cut_out_count;
+        if (bvh_reads_surface(tri->source.object)) {
+            out->records[out->record_count++] = tri->source;
+            out->triangles[i][0][3] = (float)out->record_count;
         }
     }
     bvh_builder_free(&b);
@@ -243,7 +242,7 @@ bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out) {
 void bvh_free(bvh *b) {
     free(b->nodes);
     free(b->triangles);
-    free(b->cut_outs);
+    free(b->records);
     *b = (bvh){0};
 }
 
@@ -321,11 +320,17 @@ static bool bvh_ray_triangle(const bvh_ray *r, const float (*v)[4], float weight
     return det > 0 ? t > 0 && t < r->t_max * det : t < 0 && t > r->t_max * det;
 }
 
-/* Whether triangle i (in leaf order) is there where the ray meets it at
- * weight: a cut-out object's is not where the object has no surface. */
-static bool bvh_solid_at(const bvh *b, int i, const float weight[3]) {
+/* What triangle i (in leaf order) lets through where the ray meets it at
+ * weight, into out: nothing (an opaque surface), everything (a cut-out's
+ * hole) or a translucent surface's transmittance. */
+static void bvh_surface_at(const bvh *b, int i, const float weight[3], float out[3]) {
     int record = (int)b->triangles[i][0][3] - 1;
-    return record < 0 || !scene_object_cut_out(b->cut_outs[record].object, b->cut_outs[record].triangle, weight);
+    const bvh_record *r = record >= 0 ? &b->records[record] : NULL;
+    bool hole = r && scene_object_cut_out(r->object, r->triangle, weight);
+    for (int k = 0; k < 3; k++)
+        out[k] = hole ? 1.0f : 0.0f;
+    if (r && !hole && r->object->translucent)
+        scene_object_transmittance(r->object, r->triangle, weight, out);
 }
 
 /* Whether the segment meets the box lo..hi grown by the cone's radius
@@ -368,9 +373,10 @@ bool bvh_cone_clear(const bvh *b, const float origin[3], const float dir[3], flo
     }
 }
 
-bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max) {
+void bvh_transmittance(const bvh *b, const float origin[3], const float dir[3], float t_max, float out[3]) {
+    out[0] = out[1] = out[2] = 1.0f;
     if (b->node_count == 0)
-        return false;
+        return;
     bvh_ray r = bvh_ray_make(origin, dir, t_max);
     int stack[BVH_MAX_DEPTH], top = 0, node = 0;
     for (;;) {
@@ -378,10 +384,14 @@ bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float
         if (bvh_ray_box(&r, n[0], n[1])) {
             if (n[1][3] > 0) {
                 for (int i = (int)n[0][3], end = i + (int)n[1][3]; i < end; i++) {
-                    float weight[3];
-                    if (bvh_ray_triangle(&r, (const float(*)[4])b->triangles[i], weight) &&
-                        bvh_solid_at(b, i, weight))
-                        return true;
+                    float weight[3], through[3];
+                    if (!bvh_ray_triangle(&r, (const float(*)[4])b->triangles[i], weight))
+                        continue;
+                    bvh_surface_at(b, i, weight, through);
+                    for (int k = 0; k < 3; k++)
+                        out[k] *= through[k];
+                    if (out[0] == 0 && out[1] == 0 && out[2] == 0)
+                        return;
                 }
             } else {
                 stack[top++] = (int)n[0][3];
@@ -390,7 +400,13 @@ bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float
             }
         }
         if (top == 0)
-            return false;
+            return;
         node = stack[--top];
     }
+}
+
+bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max) {
+    float through[3];
+    bvh_transmittance(b, origin, dir, t_max, through);
+    return through[0] == 0 && through[1] == 0 && through[2] == 0;
 }

@@ -20,10 +20,12 @@
  * (hi, b); an inner node's first child follows it and a is its second
  * child's index, b 0; a leaf has a its first triangle and b (> 0) its
  * triangle count. A triangle is three vec4, its vertices; the first
- * vertex's w is 0, or for a triangle of a cut-out object (scene.h) 1 +
- * its index in cut_outs: a ray passes it where the object has no surface
- * (scene_object_cut_out at the hit's barycentric weights); the others' w
- * are unused. Indices are stored as floats, exact below BVH_MAX_INDEX.
+ * vertex's w is 0, or for a triangle of a cut-out or translucent object
+ * (scene.h) 1 + its index in records: a ray passes it where a cut-out
+ * has no surface (scene_object_cut_out at the hit's barycentric
+ * weights), and through a translucent one filtered by its transmittance
+ * there (scene_object_transmittance), as the reference's rays; the
+ * others' w are unused. Indices are stored as floats, exact below BVH_MAX_INDEX.
  *
  * A ray meets a triangle by Woop, Benthin and Wald's watertight test
  * ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013): no ray slips
@@ -51,34 +53,37 @@
 /* Floats hold integers exactly up to 2^24. */
 #define BVH_MAX_INDEX (1 << 24)
 
-/* A cut-out object's triangle: the object, the triangle's index in its
- * mesh. */
-typedef struct bvh_cut_out {
+/* A triangle whose surface the rays read (a cut-out or translucent
+ * object's): the object, the triangle's index in its mesh. */
+typedef struct bvh_record {
     const scene_object *object;
     uint32_t triangle;
-} bvh_cut_out;
+} bvh_record;
 
 typedef struct bvh {
     float (*nodes)[2][4];     /* node_count */
     float (*triangles)[3][4]; /* triangle_count, in leaf order */
-    bvh_cut_out *cut_outs;    /* cut_out_count, in leaf order */
-    int node_count, triangle_count, cut_out_count;
+    bvh_record *records;      /* record_count, in leaf order */
+    int node_count, triangle_count, record_count;
     int depth; /* the longest path, in nodes */
 } bvh;
 
-/* The hierarchy of every triangle of the objects of `s` that cast (but
- * the translucent ones where `opaque_only`: a transmittance map takes
- * those); false after printing one line naming `who` and the problem (out
- * of memory, more triangles than BVH_MAX_INDEX), with nothing to free. A
- * scene without casters has an empty one (no nodes): every ray gets
- * through. */
-bool bvh_build(const scene *s, bool opaque_only, const char *who, bvh *out);
+/* The hierarchy of every triangle of the objects of `s` that cast; false
+ * after printing one line naming `who` and the problem (out of memory,
+ * more triangles than BVH_MAX_INDEX), with nothing to free. A scene
+ * without casters has an empty one (no nodes): every ray gets through. */
+bool bvh_build(const scene *s, const char *who, bvh *out);
 void bvh_free(bvh *b);
 
-/* Whether a triangle meets the segment origin + t dir, 0 < t < t_max
- * (dir need not be unit; t_max INFINITY for a directional light), other
- * than the surface the ray leaves (BVH_SURFACE_ULPS). The same tests, in
- * the same order of operations, as the shader's. */
+/* The share of each channel of light that gets through the segment
+ * origin + t dir, 0 < t < t_max (dir need not be unit; t_max INFINITY
+ * for a directional light), past every triangle other than the surface
+ * the ray leaves (BVH_SURFACE_ULPS): 0 where an opaque one meets it, else
+ * the product of the transmittances of the translucent ones it crosses
+ * (1 where none). The same tests, in the same order of operations, as the
+ * shader's. */
+void bvh_transmittance(const bvh *b, const float origin[3], const float dir[3], float t_max, float out[3]);
+/* Whether no light gets through the segment (bvh_transmittance 0). */
 bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float t_max);
 /* Whether no caster can meet the cone from origin along the segment
  * origin + t dir, 0 < t < t_max, whose radius grows linearly from 0 to

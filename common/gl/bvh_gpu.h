@@ -3,13 +3,14 @@
  * triangles from texel 2 x node_count, three a triangle, in rows of
  * BVH_GPU_TEXTURE_WIDTH texels (read with texelFetch, so one path serves
  * GL 3.3 and WebGL 2, which has no texture buffers). Then, where the
- * casters are cut out (bvh.h's cut_outs), three texels a cut-out
- * triangle, its record: its corners' texture coordinates (u0, v0, u1,
- * v1), (u2, v2, base alpha, alpha cutoff), and its texture's (first
- * alpha, width, height, 4 x wrap along u + wrap along v: texture_wrap; a
- * width of 0 has no texture); then the alphas of those textures' level
- * 0, four a texel, bottom row first: what scene_object_cut_out reads, on
- * the same unit as the rest.
+ * rays read casters' surfaces (bvh.h's records: cut-out or translucent),
+ * four texels a record: its corners' texture coordinates (u0, v0, u1,
+ * v1), (u2, v2, base alpha, alpha cutoff), its texture's (first texel,
+ * width, height, 4 x wrap along u + wrap along v: texture_wrap; a width
+ * of 0 has no texture) and (base colour, 1 translucent or 0); then those
+ * textures' level 0, a texel each, bottom row first, the colour decoded
+ * to linear light: what scene_object_cut_out and
+ * scene_object_transmittance read, on the same unit as the rest.
  *
  *   bvh_gpu g = {0};
  *   bvh_gpu_upload(&g, &hierarchy, "hybrid");   once per scene
@@ -32,10 +33,10 @@
 
 typedef struct bvh_gpu {
     unsigned texture;
-    int node_count;                   /* 0: no casters, every ray gets through */
-    int cut_out_count;                /* > 0: the programs that trace need BVH_CUT_OUTS 1 */
-    int cut_outs_first, alphas_first; /* texels */
-    float reach;                      /* the farthest corner of the casters' box from the origin */
+    int node_count;                  /* 0: no casters, every ray gets through */
+    int record_count;                /* > 0: the programs that trace need BVH_RECORDS 1 */
+    int records_first, texels_first; /* texels */
+    float reach;                     /* the farthest corner of the casters' box from the origin */
 } bvh_gpu;
 
 /* b's arrays into g's texture (made, or made again); false after

@@ -318,7 +318,7 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
 /* The frame's maps take transmittance maps (map.h, "Translucent
  * casters"): the scene has translucent casters and the GL draws into
  * them. */
-static bool map_scene_transmits(const map_renderer *r) { return map_takes_translucent(r) && !r->transmit_failed; }
+static bool map_scene_transmits(const map_renderer *r) { return r->transmit.id && !r->transmit_failed; }
 
 /* Light l's texture unit `unit` is one this GL has; else said once per
  * light (bit l of *said): it lacks the unit for the light's `what`, and
@@ -490,7 +490,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
         {"MAP_PASS_TRANSMIT_LIGHTS", (int)k->transmit_lights},
-        {"BVH_CUT_OUTS", (int)k->ray_cut_outs},
+        {"BVH_RECORDS", (int)k->ray_records},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's two, then the list's end ({NULL}, zeroed). */
@@ -755,8 +755,6 @@ map_renderer *map_create(const map_settings *settings, const render_scene *gpu) 
 }
 
 const map_light *map_of_light(const map_renderer *r, int l) { return &r->maps[l]; }
-
-bool map_takes_translucent(const map_renderer *r) { return r->transmit.id != 0; }
 
 void map_trace_with(map_renderer *r, const bvh_gpu *casters) { r->casters = casters; }
 
@@ -1138,7 +1136,7 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
     map_camera_key key = map_settings_key(settings);
     if (!r->casters)
         key.rays = MAP_RAYS_OFF;
-    key.ray_cut_outs = key.rays != MAP_RAYS_OFF && r->casters->cut_out_count > 0;
+    key.ray_records = key.rays != MAP_RAYS_OFF && r->casters->record_count > 0;
     for (int l = 0; l < s->light_count; l++) {
         bool fitted = r->fitted[l];
         if (fitted && map_soft_unit(r, settings, &s->lights[l], l))

@@ -245,7 +245,10 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * kernel's reach; a blocker found but the light not wholly hidden), and
  * where a hard light's kernel says 1 but not with a share of the
  * constant bias (shaders/map.glsl, MAP_SURE_LIT_BIAS_SHARE: a caster
- * within the bias of its receiver).
+ * within the bias of its receiver), and where a hard light's
+ * transmittance map holds a pane within a texel of the point (its
+ * coloured edge is the texel's). A ray's light is filtered through the
+ * translucent casters it crosses (bvh_trace.glsl's bvh_transmittance).
  * Where the filter says 0 or 1 the map decides: with rays the kernel reads
  * every tap, as if with --no-early-out (four rim taps agreeing prove
  * nothing of the rest: test_hybrid's sure pixels on wuson need all of
@@ -429,9 +432,9 @@ enum {
     MAP_CUBE_FACES
 };
 /* Translucent casters (scene_object's translucent: glTF's alphaMode
- * BLEND) leave the depth pass where the scene has them, and the rays'
- * hierarchy (map_takes_translucent). A transmittance map beside the depth texture, of its kind, size and
- * layers, RGBA16F and read nearest, takes them instead: after each
+ * BLEND) leave the depth pass where the scene has them. A transmittance
+ * map beside the depth texture, of its kind, size and layers, RGBA16F and
+ * read nearest, takes them instead: after each
  * layer's depth pass, cleared to 1, they are drawn into it
  * (shaders/transmittance.frag) depth-tested against the layer's opaque
  * depths without writing them, rgb multiplied by each caster's
@@ -542,11 +545,6 @@ const map_light *map_of_light(const map_renderer *r, int l);
 /* Appends ", transmittance map: coloured shadows" where light 0's map has
  * one (see "Translucent casters" above); nothing else. */
 void map_describe_transmittance(const map_renderer *r, char *out, size_t size);
-/* Whether the maps take the scene's translucent casters (it has some) into
- * transmittance maps (see "Translucent casters"): the rays' hierarchy
- * then leaves them out (bvh_build's opaque_only), the rays deciding the
- * opaque casters' shadow and the transmittance map filtering it. */
-bool map_takes_translucent(const map_renderer *r);
 /* The casters' hierarchy the camera pass's rays trace against (kept, not
  * copied: it outlives r's frames); NULL: no rays, whatever the settings. */
 void map_trace_with(map_renderer *r, const bvh_gpu *casters);
