@@ -171,7 +171,9 @@ static void test_rays_counted(void **state) {
  * pass of their own) changes no decision: the dumps with it and with
  * --no-marked-pass are identical, on every hard scene, with the light
  * moving (the bounds made again each frame), on the city (ranged lights,
- * each shaded again in its own rectangle) and under an area light. The
+ * each shaded again in its own rectangle), under an area light, and
+ * under translucent casters (their transmittance maps' pixels traced)
+ * with a hard light and an area light. The
  * quick tier takes the first HYBRID_QUICK_MARKED_CASES: a 2D map, the
  * city, a cube map made again. */
 #define HYBRID_QUICK_MARKED_CASES 3
@@ -180,23 +182,25 @@ static void test_marked_pass_changes_no_decision(void **state) {
     static const struct {
         const char *scene, *flags;
     } cases[] = {
-        {"simple", ""},
-        {"city_1000", ""},
-        {"bunny", "--motion light --frames 3"},
-        {"bunny", ""},
-        {"simple", "--motion light --frames 3"},
-        {"long_view", ""},
-        {"soft_table", "--ray-samples 64"},
-        {"teapot", ""},
-        {"street", ""},
-        {"wuson", ""},
+        {"assets/scenes/simple.json", ""},
+        {"assets/scenes/city_1000.json", ""},
+        {"assets/scenes/bunny.json", "--motion light --frames 3"},
+        {"assets/scenes/bunny.json", ""},
+        {"assets/scenes/simple.json", "--motion light --frames 3"},
+        {"assets/scenes/long_view.json", ""},
+        {"assets/scenes/soft_table.json", "--ray-samples 64"},
+        {"assets/scenes/teapot.json", ""},
+        {"assets/scenes/street.json", ""},
+        {"assets/scenes/wuson.json", ""},
+        {"assets/scenes/stained_glass.gltf", ""},
+        {"tests/data/gltf_glass_area.json", "--size 320x180 --ray-samples 64"},
     };
     size_t count = sizeof cases / sizeof *cases;
     if (support_sweep_stride() > 1)
         count = HYBRID_QUICK_MARKED_CASES;
     for (size_t i = 0; i < count; i++) {
-        char path[256], on[256], off[256], off_flags[128];
-        snprintf(path, sizeof path, "assets/scenes/%s.json", cases[i].scene);
+        char on[256], off[256], off_flags[128];
+        const char *path = cases[i].scene;
         const char *flags = cases[i].flags;
         snprintf(off_flags, sizeof off_flags, "%s --no-marked-pass", flags);
         snprintf(on, sizeof on, "out/test/hybrid/marked_%zu", i);
