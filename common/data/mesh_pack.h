@@ -15,6 +15,7 @@
 #define MESH_PACK_H
 
 #include <stdbool.h>
+#include <stdio.h>
 
 #include "mesh.h"
 
@@ -25,5 +26,12 @@ bool mesh_pack_write(const char *path, const mesh *m, const mesh_material *mater
 /* The mesh and its material as written; a file that is not one, is
  * truncated, or whose indices leave the vertices is an error. */
 bool mesh_pack_read(mesh *m, const char *path, mesh_material *material);
+
+/* The same pack within a larger file (a scene pack's meshes,
+ * scene_pack.h), at f's position, which it leaves after the pack. Writing
+ * says nothing (false: a write failed, errno says why); reading's lines
+ * name `path`, and what follows the pack is the caller's to read. */
+bool mesh_pack_put(FILE *f, const mesh *m, const mesh_material *material);
+bool mesh_pack_get(FILE *f, const char *path, mesh *m, mesh_material *material);
 
 #endif

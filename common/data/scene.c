@@ -521,6 +521,22 @@ bool scene_reserve_object(scene *s, int *capacity, const char *file) {
     return true;
 }
 
+bool scene_reserve_textures(scene *s, size_t more, const char *file) {
+    if (more == 0)
+        return true;
+    texture *grown = realloc(s->textures, ((size_t)s->texture_count + more) * sizeof *grown);
+    if (!grown) {
+        fprintf(stderr, "%s: out of memory for %zu textures\n", file, (size_t)s->texture_count + more);
+        return false;
+    }
+    for (int i = 0; i < s->object_count; i++)
+        if (s->objects[i].base_color)
+            s->objects[i].base_color = grown + (s->objects[i].base_color - s->textures);
+    s->textures = grown;
+    memset(grown + s->texture_count, 0, more * sizeof *grown);
+    return true;
+}
+
 bool scene_load(scene *s, const char *path) { return scene_load_camera(s, path, 0); }
 
 static bool scene_load_json(scene *s, const char *path, int camera) {
@@ -581,10 +597,13 @@ static int scene_light_holder(const scene *s, int l) {
     return -1;
 }
 
-bool scene_load_camera(scene *s, const char *path, int camera) {
+bool scene_is_gltf(const char *path) {
     const char *extension = strrchr(path, '.');
-    bool gltf = extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0);
-    if (!(gltf ? scene_load_gltf(s, path, camera) : scene_load_json(s, path, camera)))
+    return extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0);
+}
+
+bool scene_load_camera(scene *s, const char *path, int camera) {
+    if (!(scene_is_gltf(path) ? scene_load_gltf(s, path, camera) : scene_load_json(s, path, camera)))
         return false;
     for (int l = 0; l < s->light_count; l++) {
         int i = scene_light_holder(s, l);

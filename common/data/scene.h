@@ -198,6 +198,9 @@ bool scene_load(scene *s, const char *path);
  * another is an error, "FILE: --camera N: the file has cameras 0 to M"
  * (or "camera 0 only"). */
 bool scene_load_camera(scene *s, const char *path, int camera);
+/* Whether path names a glTF file (.gltf, .glb): scene_load reads it as
+ * a glTF scene, any other as a JSON scene file. */
+bool scene_is_gltf(const char *path);
 /* The largest N a program's --camera N takes. */
 #define SCENE_MAX_CAMERA_INDEX 65535
 void scene_free(scene *s);

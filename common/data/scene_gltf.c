@@ -20,10 +20,8 @@
 #include "scene_internal.h"
 #include "texture.h"
 
-/* An object's name: its node's, this long at most (room for a suffix
- * that makes it one object's, SCENE_GLTF_SUFFIX_MAX bytes with its
- * ending, and for a scene file's prefix). */
-#define SCENE_GLTF_NODE_NAME_MAX 40
+/* Room for a suffix that makes a name one object's, this many bytes
+ * with its ending. */
 #define SCENE_GLTF_SUFFIX_MAX 12
 /* glTF's alphaCutoff where a MASK material gives none. */
 #define SCENE_GLTF_ALPHA_CUTOFF 0.5f
@@ -128,8 +126,7 @@ static void scene_gltf_name(const scene_gltf_reader *r, const struct aiNode *nod
     /* The prefix is a scene file's object name, of SCENE_NAME_MAX bytes at
      * most: what the node's name leaves of it. */
     if (r->prefix)
-        snprintf(base, sizeof base, "%.*s/%s", (int)(SCENE_NAME_MAX - SCENE_GLTF_NODE_NAME_MAX - 2), r->prefix,
-                 node_name);
+        snprintf(base, sizeof base, "%.*s/%s", SCENE_GLTF_PREFIX_MAX, r->prefix, node_name);
     else
         snprintf(base, sizeof base, "%s", node_name);
     snprintf(out, SCENE_NAME_MAX, "%s", base);
@@ -587,24 +584,21 @@ static bool scene_gltf_has_camera(const char *path, const struct aiScene *a, int
 }
 
 /* Room in s->textures for a texture per material of the file (what it
- * may add), and r's table of them; false after a line. The objects'
- * textures are pointers into s->textures, turned to the new place. */
+ * may add: scene_reserve_textures), and r's table of them; false after a
+ * line. */
 static bool scene_gltf_reader_begin(scene_gltf_reader *r) {
     scene *s = r->s;
     unsigned materials = r->a->mNumMaterials;
     r->material_texture = malloc((materials + 1) * sizeof *r->material_texture);
-    texture *grown = realloc(s->textures, ((size_t)s->texture_count + materials + 1) * sizeof *grown);
-    if (!r->material_texture || !grown) {
+    if (!r->material_texture) {
         fprintf(stderr, "%s: out of memory for %u materials\n", r->file, materials);
+        return false;
+    }
+    if (!scene_reserve_textures(s, (size_t)materials + 1, r->file)) {
         free(r->material_texture);
         r->material_texture = NULL;
         return false;
     }
-    for (int i = 0; i < s->object_count; i++)
-        if (s->objects[i].base_color)
-            s->objects[i].base_color = grown + (s->objects[i].base_color - s->textures);
-    s->textures = grown;
-    memset(grown + s->texture_count, 0, (materials + 1) * sizeof *grown);
     for (unsigned m = 0; m < materials; m++)
         r->material_texture[m] = SCENE_GLTF_UNSEEN;
     return true;

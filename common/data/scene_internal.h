@@ -1,5 +1,6 @@
 /* scene_internal: what the scene loaders share (scene.c's JSON files,
- * scene_gltf.c's glTF files). Not for other modules. */
+ * scene_gltf.c's glTF files, scene_pack.c's packs of them, and the page's
+ * glTF loader over those). Not for other modules. */
 #ifndef SCENE_INTERNAL_H
 #define SCENE_INTERNAL_H
 
@@ -18,6 +19,16 @@ void scene_choose_origin(const scene_camera *c, double origin[3]);
  * "FILE: out of memory for N objects". */
 #define SCENE_FIRST_CAPACITY 16
 bool scene_reserve_object(scene *s, int *capacity, const char *file);
+/* Room in s->textures for `more` zeroed textures after its own, the
+ * array moved where it must be and its objects' base_color with it;
+ * false after "FILE: out of memory for N textures". */
+bool scene_reserve_textures(scene *s, size_t more, const char *file);
+/* A glTF file's object's name: its node's, this long at most (room for a
+ * suffix that makes it one object's), after a scene file's prefix of
+ * SCENE_GLTF_PREFIX_MAX bytes at most and a slash where a scene file
+ * includes the file. */
+#define SCENE_GLTF_NODE_NAME_MAX 40
+#define SCENE_GLTF_PREFIX_MAX (SCENE_NAME_MAX - SCENE_GLTF_NODE_NAME_MAX - 2)
 /* A glTF 2.0 file (.gltf, .glb) as a scene: scene_load_camera's contract. */
 bool scene_load_gltf(scene *s, const char *path, int camera);
 /* A glTF file's objects appended to s (a scene file's object of mesh kind

@@ -1,20 +1,21 @@
-/* The page's glTF scenes: none. assimp, which reads them natively
- * (common/data/scene_gltf.c), is not built for the browser; the page's
- * scenes are its JSON ones, their models baked into mesh packs. */
+/* The page's glTF scenes: scene packs (scene_pack.h) that build/bake
+ * wrote from the glTF files natively, through their camera 0, embedded in
+ * the page at the files' own paths, since assimp, which reads them
+ * natively (common/data/scene_gltf.c), cannot be linked there. */
 #include <stdio.h>
 
 #include "scene_internal.h"
+#include "scene_pack.h"
 
 bool scene_load_gltf(scene *s, const char *path, int camera) {
-    (void)camera;
+    if (camera == 0)
+        return scene_pack_read(s, path);
     *s = (scene){0};
-    fprintf(stderr, "%s: glTF scenes are read by the native programs only (assimp is not in the page)\n", path);
+    fprintf(stderr, "%s: --camera %d: the page's glTF scenes are baked through their camera 0 only\n", path, camera);
     return false;
 }
 
 bool scene_include_gltf(scene *s, int *capacity, const char *path, const float model[4][4], const char *prefix,
                         bool casts, bool receives) {
-    (void)s, (void)capacity, (void)model, (void)prefix, (void)casts, (void)receives;
-    fprintf(stderr, "%s: glTF files are read by the native programs only (assimp is not in the page)\n", path);
-    return false;
+    return scene_pack_include(s, capacity, path, model, prefix, casts, receives);
 }
