@@ -7,6 +7,7 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_corner0;
 layout(location = 2) in vec3 in_corner1;
 layout(location = 3) in vec3 in_corner2;
+layout(location = 4) in vec2 in_uv;
 
 uniform mat4 u_model;
 uniform mat4 u_view_projection;
@@ -16,11 +17,13 @@ uniform vec3 u_eye;
 out vec3 g_world;
 flat out vec3 g_face_normal;
 flat out vec4 g_plane;
+out vec2 v_uv; // for a cut-out object's fragments (geometry.frag)
 invariant gl_Position;
 
 void main() {
     vec4 world = u_model * vec4(in_position, 1.0);
     g_world = world.xyz;
+    v_uv = in_uv;
     geometry_face((u_model * vec4(in_corner0, 1.0)).xyz, (u_model * vec4(in_corner1, 1.0)).xyz,
                   (u_model * vec4(in_corner2, 1.0)).xyz, u_eye, g_face_normal, g_plane);
     gl_Position = u_view_projection * world;

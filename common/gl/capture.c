@@ -49,10 +49,12 @@ static void capture_read_floats(GLenum attachment, int width, int height, float 
     glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rgba);
 }
 
-/* Object i's triangles unshared, each vertex with its own position and the
- * triangle's three corners (shaders/geometry_faces.vert), drawn with p:
- * the geometry pass where there are no geometry shaders. */
-enum { capture_face_floats = 12 };
+/* Object i's triangles unshared, each vertex with its own position, the
+ * triangle's three corners and its texture coordinates
+ * (shaders/geometry_faces.vert), drawn with p as render_draw_object
+ * would draw them: the geometry pass where there are no geometry
+ * shaders. */
+enum { capture_corner_floats = 3, capture_uv_floats = 2, capture_face_floats = 4 * 3 + 2 };
 static bool capture_draw_faces(const render_scene *gpu, const render_program *p, int i) {
     const scene_object *o = &gpu->scene->objects[i];
     const mesh *m = &o->mesh;
@@ -64,9 +66,12 @@ static bool capture_draw_faces(const render_scene *gpu, const render_program *p,
     for (uint32_t c = 0; c < m->index_count; c++) {
         float *v = vertices + (size_t)c * capture_face_floats;
         uint32_t first = c - c % 3;
-        memcpy(v, m->vertices[m->indices[c]].position, 3 * sizeof(float));
+        const mesh_vertex *own = &m->vertices[m->indices[c]];
+        memcpy(v, own->position, sizeof own->position);
         for (int k = 0; k < 3; k++)
-            memcpy(v + 3 * (k + 1), m->vertices[m->indices[first + k]].position, 3 * sizeof(float));
+            memcpy(v + capture_corner_floats * (k + 1), m->vertices[m->indices[first + k]].position,
+                   sizeof own->position);
+        memcpy(v + 4 * capture_corner_floats, own->uv, sizeof own->uv);
     }
     unsigned vao, buffer;
     glGenVertexArrays(1, &vao);
@@ -76,13 +81,16 @@ static bool capture_draw_faces(const render_scene *gpu, const render_program *p,
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)m->index_count * capture_face_floats * sizeof(float)),
                  vertices, GL_STREAM_DRAW);
     free(vertices);
-    for (unsigned a = 0; a < 4; a++) {
+    /* Attributes 0 to 3 the position and the corners, 4 the coordinates. */
+    for (unsigned a = 0; a <= 4; a++) {
         glEnableVertexAttribArray(a);
-        glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, capture_face_floats * sizeof(float),
-                              (const void *)(a * 3 * sizeof(float)));
+        glVertexAttribPointer(a, a < 4 ? capture_corner_floats : capture_uv_floats, GL_FLOAT, GL_FALSE,
+                              capture_face_floats * sizeof(float),
+                              (const void *)(a * capture_corner_floats * sizeof(float)));
     }
-    glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
+    bool culled = render_object_begin(gpu, p, i);
     glDrawArrays(GL_TRIANGLES, 0, (GLsizei)m->index_count);
+    render_object_end(gpu, culled);
     glBindVertexArray(0);
     glDeleteBuffers(1, &buffer);
     glDeleteVertexArrays(1, &vao);
@@ -100,12 +108,11 @@ static bool capture_geometry(const render_scene *gpu, const camera_view *view, d
     capture_buffers b = {0};
     size_t n = (size_t)out->width * (size_t)out->height;
     float *normal_distance = malloc(n * 4 * sizeof(float)), *position_id = malloc(n * 4 * sizeof(float));
-    /* Cut-out objects through their variant (render.h); without a
-     * geometry stage (the page, which reads no glTF) none is made, and
-     * they are captured whole. */
+    /* Cut-out objects through their variant (render.h), with a geometry
+     * stage or without. */
     bool ok = normal_distance && position_id &&
               (geometry_stage ? render_programs_load(&programs, gpu->scene, staged, 3, NULL)
-                              : render_program_load(&programs.solid, unshared, 2, NULL));
+                              : render_programs_load(&programs, gpu->scene, unshared, 2, NULL));
     if (ok && (ok = capture_buffers_create(&b, out->width, out->height, view->reversed_depth))) {
         static const float none[4] = {0, 0, 0, -1};
         glViewport(0, 0, out->width, out->height);

@@ -105,13 +105,10 @@ void render_program_use(const render_program *p, const camera_view *v) {
     glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)v->raster_view_projection);
 }
 
-void render_draw_object(const render_scene *r, const render_program *p, int object) {
-    if (!p)
-        return;
+bool render_object_begin(const render_scene *r, const render_program *p, int object) {
     const scene_object *o = &r->scene->objects[object];
-    const render_mesh *m = &r->meshes[object];
     glUniformMatrix4fv(p->model, 1, GL_FALSE, (const float *)o->model);
-    glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const float *)m->normal_matrix);
+    glUniformMatrix3fv(p->normal_matrix, 1, GL_FALSE, (const float *)r->meshes[object].normal_matrix);
     glUniform3fv(p->albedo, 1, o->color);
     glUniform1f(p->base_alpha, o->base_alpha);
     glUniform1f(p->alpha_cutoff, o->alpha_cutoff);
@@ -121,17 +118,28 @@ void render_draw_object(const render_scene *r, const render_program *p, int obje
         glBindTexture(GL_TEXTURE_2D, o->base_color ? r->textures[o->base_color - r->scene->textures] : r->white);
         glActiveTexture(GL_TEXTURE0);
     }
-    glBindVertexArray(m->vao);
     bool cull = o->single_sided && !p->both_sides;
     if (cull) {
         glEnable(GL_CULL_FACE);
         glCullFace(GL_BACK);
     }
-    glDrawElements(GL_TRIANGLES, m->index_count, GL_UNSIGNED_INT, NULL);
-    if (cull)
+    return cull;
+}
+
+void render_object_end(const render_scene *r, bool culled) {
+    if (culled)
         glDisable(GL_CULL_FACE);
     if (r->inject_gl_error)
         glEnable(RENDER_NOT_A_CAPABILITY);
+}
+
+void render_draw_object(const render_scene *r, const render_program *p, int object) {
+    if (!p)
+        return;
+    bool culled = render_object_begin(r, p, object);
+    glBindVertexArray(r->meshes[object].vao);
+    glDrawElements(GL_TRIANGLES, r->meshes[object].index_count, GL_UNSIGNED_INT, NULL);
+    render_object_end(r, culled);
 }
 
 bool render_in_mask(const bool *mask, int object) { return !mask || mask[object]; }

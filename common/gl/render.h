@@ -195,6 +195,13 @@ const render_program *render_programs_pass(const render_programs *p, int pass);
 bool render_programs_draws(const render_programs *p, int pass, const scene_object *o);
 /* p NULL (a lit program that failed to compile, said once): nothing. */
 void render_draw_object(const render_scene *r, const render_program *p, int object);
+/* What render_draw_object sets before it draws object `object` through p
+ * (in use), for a draw of the object's triangles laid out otherwise: its
+ * uniforms, its base-colour texture, and back faces culled for a
+ * single-sided object unless p draws both sides (returned: whether they
+ * are); render_object_end after the draw undoes the culling. */
+bool render_object_begin(const render_scene *r, const render_program *p, int object);
+void render_object_end(const render_scene *r, bool culled);
 /* Object i where mask is NULL or mask[i] holds. */
 bool render_in_mask(const bool *mask, int object);
 /* Every object in `mask` (NULL: all), in scene order. */
