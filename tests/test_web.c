@@ -1,7 +1,7 @@
 /* The web page (make web, out/web/) in headless Chromium against the
- * native programs: each technique on each standard scene at 640x360, the
- * page's picture and decisions (its own --dump, run in the browser on
- * WebGL 2) against native EGL's. At most WEB_MAX_DIFFERING of the pixels
+ * native programs: each technique on each standard scene, and a glTF
+ * scene from its scene pack, at 640x360, the page's picture and decisions
+ * (its own --dump, run in the browser on WebGL 2) against native EGL's. At most WEB_MAX_DIFFERING of the pixels
  * may differ by more than SUPPORT_TOLERANCE, and at most WEB_MAX_DECISIONS
  * of the visibility decisions (no surface, lit, shadowed) may differ. A
  * page that fails fails the test with the browser console's lines. The
@@ -207,6 +207,28 @@ static double web_decisions_differing(const char *a_dir, const char *b_dir) {
     return (double)differing / ((double)aw * ah);
 }
 
+/* `technique` on the scene file at `scene` (from the repository's root,
+ * the page's own path too): the page's picture and decisions against
+ * native EGL's, in OUT/NAME_native and OUT/NAME_web. */
+static void web_compare_with_native(const char *technique, const char *scene, const char *name) {
+    char flags[256], native_dir[PATH_MAX], web_dir[PATH_MAX], args[512];
+    snprintf(native_dir, sizeof native_dir, OUT "/%s_native", name);
+    snprintf(web_dir, sizeof web_dir, OUT "/%s_web", name);
+    snprintf(flags, sizeof flags, "--backend egl --technique %s", technique);
+    assert_int_equal(support_dump("shadows", scene, flags, native_dir), 0);
+    snprintf(args, sizeof args, "--technique %s --scene /%s --size " WEB_SIZE " --dump /out/dump", technique, scene);
+    web_run(args, "color.png,visibility.pfm", web_dir);
+    char native_png[PATH_MAX + 16], web_png[PATH_MAX + 16];
+    snprintf(native_png, sizeof native_png, "%s/color.png", native_dir);
+    snprintf(web_png, sizeof web_png, "%s/color.png", web_dir);
+    double pixels = support_compare_images(native_png, web_png);
+    double decisions = web_decisions_differing(native_dir, web_dir);
+    printf("web: %s on %s: %.3f %% of the pixels differ, %.4f %% of the decisions\n", technique, scene, 100 * pixels,
+           100 * decisions);
+    assert_true(pixels >= 0 && pixels <= WEB_MAX_DIFFERING);
+    assert_true(decisions <= WEB_MAX_DECISIONS);
+}
+
 /* Every technique on every standard scene (in make test's quick tier, each
  * technique on one scene in turn): the page against native EGL. */
 static void web_matches_native(void **state) {
@@ -218,26 +240,25 @@ static void web_matches_native(void **state) {
             if (!support_sweep_takes(t, s, web_scene_count))
                 continue;
             const char *technique = registry_techniques[t]->name;
-            char scene[128], flags[256], native_dir[PATH_MAX], web_dir[PATH_MAX], args[512];
+            char scene[128], name[256];
             snprintf(scene, sizeof scene, "assets/scenes/%s.json", web_scenes[s]);
-            snprintf(native_dir, sizeof native_dir, OUT "/%s_%s_native", technique, web_scenes[s]);
-            snprintf(web_dir, sizeof web_dir, OUT "/%s_%s_web", technique, web_scenes[s]);
-            snprintf(flags, sizeof flags, "--backend egl --technique %s", technique);
-            assert_int_equal(support_dump("shadows", scene, flags, native_dir), 0);
-            snprintf(args, sizeof args, "--technique %s --scene /%s --size " WEB_SIZE " --dump /out/dump", technique,
-                     scene);
-            web_run(args, "color.png,visibility.pfm", web_dir);
-            char native_png[PATH_MAX + 16], web_png[PATH_MAX + 16];
-            snprintf(native_png, sizeof native_png, "%s/color.png", native_dir);
-            snprintf(web_png, sizeof web_png, "%s/color.png", web_dir);
-            double pixels = support_compare_images(native_png, web_png);
-            double decisions = web_decisions_differing(native_dir, web_dir);
-            printf("web: %s on %s: %.3f %% of the pixels differ, %.4f %% of the decisions\n", technique,
-                   web_scenes[s], 100 * pixels, 100 * decisions);
-            assert_true(pixels >= 0 && pixels <= WEB_MAX_DIFFERING);
-            assert_true(decisions <= WEB_MAX_DECISIONS);
+            snprintf(name, sizeof name, "%s_%s", technique, web_scenes[s]);
+            web_compare_with_native(technique, scene, name);
         }
     }
+}
+
+/* A glTF scene in the page, its scene pack baked from the file (its
+ * cut-out leaves, textures and single-sided boards): one technique
+ * (volumes, whose cut-out casters cast their whole shadow in both) against
+ * native EGL, which reads the glTF file itself. */
+#define WEB_GLTF_SCENE "assets/scenes/fence.gltf"
+#define WEB_GLTF_TECHNIQUE "volumes"
+static void web_gltf_scene_matches_native(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    web_compare_with_native(WEB_GLTF_TECHNIQUE, WEB_GLTF_SCENE, WEB_GLTF_TECHNIQUE "_fence");
 }
 
 /* The window's keys in the page (each a GLFW key through Emscripten's
@@ -281,7 +302,8 @@ static void web_keys_switch_and_toggle(void **state) {
  * the canvas spans the page's width in device pixels, and is less tall
  * than the window (the menu and the status share it). The menu's
  * technique button starts its technique (F12's picture is named by it)
- * and shows it pressed; Esc does not stop the page. The HUD shows no frame time, which the browser's
+ * and shows it pressed; the scene menu lists the glTF scenes; Esc does
+ * not stop the page. The HUD shows no frame time, which the browser's
  * clock cannot measure: its second line ends with the picture's size,
  * nothing in white after it. The menu's compare button turns compare
  * mode on, whose picture takes the size its truths are baked at (make
@@ -308,6 +330,9 @@ static long web_white_pixels(const unsigned char *picture, int width, int x0, in
     return white;
 }
 
+/* The glTF scenes the page embeds, which its scene menu lists. */
+static const char *const web_menu_gltf_scenes[] = {"fence.gltf", "stained_glass.gltf"};
+
 static void web_window_fills_the_page_and_menu_drives_it(void **state) {
     (void)state;
     if (!web_available())
@@ -327,6 +352,12 @@ static void web_window_fills_the_page_and_menu_drives_it(void **state) {
     char *dom = path_read_text(OUT "/menu/page.html", WEB_MAX_DOM, NULL);
     assert_non_null(dom);
     assert_non_null(strstr(dom, "id=\"technique-" WEB_MENU_TECHNIQUE "\" aria-pressed=\"true\""));
+    for (size_t k = 0; k < sizeof web_menu_gltf_scenes / sizeof *web_menu_gltf_scenes; k++) {
+        char option[128];
+        snprintf(option, sizeof option, "<option value=\"%s\">", web_menu_gltf_scenes[k]);
+        if (!strstr(dom, option))
+            fail_msg("the scene menu has no %s", option);
+    }
     free(dom);
     char size_line[64];
     snprintf(size_line, sizeof size_line, "scene simple   %dx%d", width, height);
@@ -452,6 +483,7 @@ static const struct {
     {"tours/volumes", "--tour /assets/tours/volumes.json --screenshot /out/step.png", 0},
     {"scenes/bunny", "--scene /assets/scenes/bunny.json --compare --screenshot /out/compare.png", 0},
     {"scenes/soft_sun", "--scene /assets/scenes/soft_sun.json --compare --screenshot /out/compare.png", 0},
+    {"scenes/fence", "--scene /assets/scenes/fence.gltf --compare --screenshot /out/compare.png", 0},
 };
 
 /* A compare picture's figures, as compare_figures_text writes them. */
@@ -526,13 +558,10 @@ static void web_baked_runs_match_native(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(web_matches_native),
-        cmocka_unit_test(web_keys_switch_and_toggle),
-        cmocka_unit_test(web_window_fills_the_page_and_menu_drives_it),
-        cmocka_unit_test(web_without_webgl2_says_so),
-        cmocka_unit_test(web_tour_steps),
-        cmocka_unit_test(web_tour_caption_stays_true),
-        cmocka_unit_test(web_baked_runs_match_native),
+        cmocka_unit_test(web_matches_native),          cmocka_unit_test(web_gltf_scene_matches_native),
+        cmocka_unit_test(web_keys_switch_and_toggle),  cmocka_unit_test(web_window_fills_the_page_and_menu_drives_it),
+        cmocka_unit_test(web_without_webgl2_says_so),  cmocka_unit_test(web_tour_steps),
+        cmocka_unit_test(web_tour_caption_stays_true), cmocka_unit_test(web_baked_runs_match_native),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

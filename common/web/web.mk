@@ -6,8 +6,9 @@
 #
 # The same sources as the native programs, except the platform's:
 # the browser's context (common/web/context_browser.c) instead of GLFW's
-# window, EGL and OSMesa; model files as mesh packs written natively by
-# build/bake (common/web/mesh_file_web.c) instead of assimp; no ray
+# window, EGL and OSMesa; model files as mesh packs and glTF scenes as
+# scene packs, written natively by build/bake (common/web/mesh_file_web.c,
+# common/web/scene_gltf_web.c), instead of assimp; no ray
 # tracer (Embree is native only: common/web/raytrace_web.c), so compare
 # mode shows truths baked natively (common/measure/truth_bake.h); cJSON's
 # API over the browser's JSON (common/web/cjson_browser.c).
@@ -20,13 +21,16 @@ EMCC := env PATH=/usr/bin:$$PATH NODE_PATH=/usr/share/nodejs emcc
 WEB_HAVE_EMCC := $(shell command -v emcc >/dev/null 2>&1 && echo yes)
 
 # What the page shows: the tours, the scenes they step through, the
-# standard and soft scenes, and the models these use.
+# standard and soft scenes, build/scenegen's glTF scenes, and the models
+# these use; the models and glTF scenes as packs (WEB_PACKS).
 WEB_TOURS := $(wildcard assets/tours/*.json)
 WEB_TOUR_SCENES := $(patsubst ../scenes/%,assets/scenes/%,$(shell sed -n 's/.*"scene": *"\([^"]*\)".*/\1/p' $(WEB_TOURS)))
 WEB_SCENES := $(sort $(STANDARD_SCENES) $(SOFT_SCENES) $(WEB_TOUR_SCENES))
 WEB_MODELS := assets/bunny.obj assets/teapot.obj
+WEB_GLTF_SCENES := assets/scenes/fence.gltf assets/scenes/stained_glass.gltf
+WEB_PACKS := $(WEB_MODELS) $(WEB_GLTF_SCENES)
 # The truths compare mode shows in the page: every tour, and each
-# standard and soft scene in compare mode, run natively (EGL) at
+# standard, soft and glTF scene in compare mode, run natively (EGL) at
 # build/shadows' default size, the page's canvas in compare mode, baking
 # the truths of its compare steps into WEB_BAKING/RUN/truths/ beside its
 # pictures and compare figures (figures.txt), which test_web holds the
@@ -34,7 +38,8 @@ WEB_MODELS := assets/bunny.obj assets/teapot.obj
 WEB_TRUTHS := $(WEB_BUILD)/truths
 WEB_BAKING := $(WEB_BUILD)/baking
 WEB_BAKED := $(patsubst assets/tours/%.json,$(WEB_BAKING)/tours/%/done,$(WEB_TOURS)) \
-	$(patsubst assets/scenes/%.json,$(WEB_BAKING)/scenes/%/done,$(STANDARD_SCENES) $(SOFT_SCENES))
+	$(patsubst assets/scenes/%.json,$(WEB_BAKING)/scenes/%/done,$(STANDARD_SCENES) $(SOFT_SCENES)) \
+	$(patsubst assets/scenes/%.gltf,$(WEB_BAKING)/scenes/%/done,$(WEB_GLTF_SCENES))
 
 # Native sources the page has no use for or cannot link; common/web/ has
 # the browser's versions of what it needs of them.
@@ -62,10 +67,10 @@ WEB_LDFLAGS := -O2 -sUSE_GLFW=3 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2 -sAL
 	-sSINGLE_FILE=1 -sINVOKE_RUN=0 -sEXPORTED_RUNTIME_METHODS=callMain,FS,UTF8ToString \
 	-sEXPORTED_FUNCTIONS=_main,_emscripten_set_main_loop_timing,$(WEB_MENU_FUNCTIONS)
 # Embedded at the paths the programs look for (path_in_project: /shaders,
-# /assets/scenes; a tour's scenes relative to it); the models as packs at
-# the models' own paths.
+# /assets/scenes; a tour's scenes relative to it); the models and glTF
+# scenes as packs at their files' own paths.
 WEB_EMBED := --embed-file shaders@/shaders $(foreach f,$(WEB_TOURS) $(WEB_SCENES),--embed-file $(f)@/$(f)) \
-	$(foreach m,$(WEB_MODELS),--embed-file $(WEB_BUILD)/$(m)@/$(m)) --embed-file $(WEB_TRUTHS)@/truths
+	$(foreach p,$(WEB_PACKS),--embed-file $(WEB_BUILD)/$(p)@/$(p)) --embed-file $(WEB_TRUTHS)@/truths
 
 .PHONY: web web-bench
 ifeq ($(WEB_HAVE_EMCC),yes)
@@ -83,7 +88,7 @@ $(WEB_OUT)/index.html: common/web/index.html
 	@mkdir -p $(dir $@)
 	cp $< $@
 
-$(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_MODELS)) $(wildcard shaders/*) $(WEB_TOURS) common/web/web.mk \
+$(WEB_OUT)/shadows.js: $(WEB_OBJ) $(addprefix $(WEB_BUILD)/,$(WEB_PACKS)) $(wildcard shaders/*) $(WEB_TOURS) common/web/web.mk \
 		$(WEB_SCENES) $(WEB_BAKING)/done
 	@mkdir -p $(dir $@)
 	@echo "emcc -o $@" && $(EMCC) $(WEB_LDFLAGS) $(WEB_OBJ) $(WEB_EMBED) -o $@
@@ -99,12 +104,15 @@ $(WEB_BAKING)/tours/%/done: assets/tours/%.json $(BUILD)/shadows $(WEB_SCENES) $
 $(WEB_BAKING)/scenes/%/done: assets/scenes/%.json $(BUILD)/shadows $(WEB_MODELS)
 	$(call WEB_BAKE,--scene $< --compare,compare.png)
 
+$(WEB_BAKING)/scenes/%/done: assets/scenes/%.gltf $(BUILD)/shadows
+	$(call WEB_BAKE,--scene $< --compare,compare.png)
+
 $(WEB_BAKING)/done: $(WEB_BAKED)
 	rm -rf $(WEB_TRUTHS) && mkdir -p $(WEB_TRUTHS)
 	for run in $(WEB_BAKED:/done=/truths); do cp -R $$run/. $(WEB_TRUTHS); done
 	touch $@
 
-$(WEB_BUILD)/assets/%.obj: assets/%.obj $(BUILD)/bake
+$(addprefix $(WEB_BUILD)/,$(WEB_PACKS)): $(WEB_BUILD)/%: % $(BUILD)/bake
 	@mkdir -p $(dir $@)
 	$(BUILD)/bake $< $@
 
