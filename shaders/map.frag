@@ -18,6 +18,8 @@
 //       map (a map_light_kind): here, MAP_LIGHT;
 //   MAP_TEXEL_KIND_<i>   how light i's 2D map's texel is measured
 //       (a map_texel_kind): map_2d.glsl, map_texel_world;
+//   MAP_TRANSMIT_SLOT_<i>   light i's element of its kind's
+//       transmittance samplers: here, MAP_LIGHT;
 //   MAP_PASS_SHAPE, MAP_PASS_KERNEL   the kernel's shape and
 //       size: map.glsl (map_shape, map_kernel_size);
 //   MAP_PASS_EARLY_OUT   the rim's taps first: map.glsl
@@ -221,19 +223,23 @@ bool map_light_cone_clear(int i) {
 #define MAP_SOFT(i) (((MAP_PASS_SOFT_LIGHTS >> i) & 1) != 0)
 #define MAP_MOMENTS(i) (((MAP_PASS_MOMENT_LIGHTS >> i) & 1) != 0)
 // Light i reads its transmittance map where its bit of
-// MAP_PASS_TRANSMIT_LIGHTS is set.
+// MAP_PASS_TRANSMIT_LIGHTS is set, in element MAP_TRANSMIT_SLOT_<i> of
+// its kind's samplers (MAP_PASS_TRANSMIT_SLOTS of them: one a light
+// that reads one). Without any, their names stand for the depths'
+// (map_2d.glsl...). A WebGL program counts every sampler its code names
+// against its units, read or not.
 #define MAP_TRANSMITS(i) (((MAP_PASS_TRANSMIT_LIGHTS >> i) & 1) != 0)
-#define MAP_LIGHT(i, kind, texel_kind) \
+#define MAP_LIGHT(i, kind, texel_kind, slot) \
     if (kind == MAP_LIGHT_UNSHADOWED) \
         c += lighting_unshadowed(i, v_position, n, surface_albedo); \
     else if (kind == MAP_LIGHT_2D) \
-        c += map_share(u_maps_2d[i], u_depths_2d[i], u_transmittances_2d[i], u_bounds[i], i, texel_kind, \
+        c += map_share(u_maps_2d[i], u_depths_2d[i], u_transmittances_2d[slot], u_bounds[i], i, texel_kind, \
                        MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n); \
     else if (kind == MAP_LIGHT_CUBE) \
-        c += map_share(u_maps_cube[i], u_depths_cube[i], u_transmittances_cube[i], u_bounds[i], i, texel_kind, \
+        c += map_share(u_maps_cube[i], u_depths_cube[i], u_transmittances_cube[slot], u_bounds[i], i, texel_kind, \
                        MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n); \
     else if (kind == MAP_LIGHT_ARRAY) \
-        c += map_share(u_maps_array[i], u_depths_array[i], u_transmittances_array[i], u_bounds[i], i, \
+        c += map_share(u_maps_array[i], u_depths_array[i], u_transmittances_array[slot], u_bounds[i], i, \
                        texel_kind, MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n)
 
 void main() {
@@ -246,14 +252,14 @@ void main() {
     if (map_rays != MAP_RAYS_OFF)
         map_set_ray_origin();
     vec3 c = lighting_ambient(surface_albedo);
-    MAP_LIGHT(0, MAP_LIGHT_KIND_0, MAP_TEXEL_KIND_0);
-    MAP_LIGHT(1, MAP_LIGHT_KIND_1, MAP_TEXEL_KIND_1);
-    MAP_LIGHT(2, MAP_LIGHT_KIND_2, MAP_TEXEL_KIND_2);
-    MAP_LIGHT(3, MAP_LIGHT_KIND_3, MAP_TEXEL_KIND_3);
-    MAP_LIGHT(4, MAP_LIGHT_KIND_4, MAP_TEXEL_KIND_4);
-    MAP_LIGHT(5, MAP_LIGHT_KIND_5, MAP_TEXEL_KIND_5);
-    MAP_LIGHT(6, MAP_LIGHT_KIND_6, MAP_TEXEL_KIND_6);
-    MAP_LIGHT(7, MAP_LIGHT_KIND_7, MAP_TEXEL_KIND_7);
+    MAP_LIGHT(0, MAP_LIGHT_KIND_0, MAP_TEXEL_KIND_0, MAP_TRANSMIT_SLOT_0);
+    MAP_LIGHT(1, MAP_LIGHT_KIND_1, MAP_TEXEL_KIND_1, MAP_TRANSMIT_SLOT_1);
+    MAP_LIGHT(2, MAP_LIGHT_KIND_2, MAP_TEXEL_KIND_2, MAP_TRANSMIT_SLOT_2);
+    MAP_LIGHT(3, MAP_LIGHT_KIND_3, MAP_TEXEL_KIND_3, MAP_TRANSMIT_SLOT_3);
+    MAP_LIGHT(4, MAP_LIGHT_KIND_4, MAP_TEXEL_KIND_4, MAP_TRANSMIT_SLOT_4);
+    MAP_LIGHT(5, MAP_LIGHT_KIND_5, MAP_TEXEL_KIND_5, MAP_TRANSMIT_SLOT_5);
+    MAP_LIGHT(6, MAP_LIGHT_KIND_6, MAP_TEXEL_KIND_6, MAP_TRANSMIT_SLOT_6);
+    MAP_LIGHT(7, MAP_LIGHT_KIND_7, MAP_TEXEL_KIND_7, MAP_TRANSMIT_SLOT_7);
     if (map_show_cascades && MAP_LIGHT_KIND_0 == MAP_LIGHT_ARRAY)
         c = map_cascade_tint(0, c);
     out_color = vec4(c, 1.0);

@@ -8,7 +8,11 @@ uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's cli
 uniform float u_texel_scale[SCENE_MAX_LIGHTS];       // world texel: this (orthographic) or this x depth along the axis (perspective)
 uniform sampler2D u_depths_2d[SCENE_MAX_LIGHTS];     // a soft light's map read as depth (compare mode off)
 uniform mat4 u_light_inverse[SCENE_MAX_LIGHTS];      // a soft light's clip space -> world
-uniform sampler2D u_transmittances_2d[SCENE_MAX_LIGHTS]; // translucent casters' (map_transmitted)
+#if MAP_PASS_TRANSMIT_LIGHTS
+uniform sampler2D u_transmittances_2d[MAP_PASS_TRANSMIT_SLOTS]; // translucent casters' (map_transmitted)
+#else
+#define u_transmittances_2d u_depths_2d // no light reads one: no sampler of its own (map.frag)
+#endif
 
 // A matrix whose map coordinates hardly change with p (degenerate there)
 // gives a huge texel rather than a division by zero.

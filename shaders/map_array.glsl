@@ -8,7 +8,11 @@
 
 uniform sampler2DArrayShadow u_maps_array[SCENE_MAX_LIGHTS];
 uniform sampler2DArray u_depths_array[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
-uniform sampler2DArray u_transmittances_array[SCENE_MAX_LIGHTS]; // translucent casters' (map_transmitted)
+#if MAP_PASS_TRANSMIT_LIGHTS
+uniform sampler2DArray u_transmittances_array[MAP_PASS_TRANSMIT_SLOTS]; // translucent casters' (map_transmitted)
+#else
+#define u_transmittances_array u_depths_array // no light reads one: no sampler of its own (map.frag)
+#endif
 // xyz: scale and offset; w: the view depths where the layer's slice ends and starts.
 uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * MAP_MAX_ARRAY_LAYERS];
 uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * MAP_MAX_ARRAY_LAYERS];

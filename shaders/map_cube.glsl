@@ -4,7 +4,11 @@
 
 uniform samplerCubeShadow u_maps_cube[SCENE_MAX_LIGHTS];
 uniform samplerCube u_depths_cube[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
-uniform samplerCube u_transmittances_cube[SCENE_MAX_LIGHTS]; // translucent casters' (map_transmitted)
+#if MAP_PASS_TRANSMIT_LIGHTS
+uniform samplerCube u_transmittances_cube[MAP_PASS_TRANSMIT_SLOTS]; // translucent casters' (map_transmitted)
+#else
+#define u_transmittances_cube u_depths_cube // no light reads one: no sampler of its own (map.frag)
+#endif
 uniform float u_near[SCENE_MAX_LIGHTS];
 uniform float u_far[SCENE_MAX_LIGHTS];
 

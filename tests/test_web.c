@@ -248,17 +248,22 @@ static void web_matches_native(void **state) {
     }
 }
 
-/* A glTF scene in the page, its scene pack baked from the file (its
- * cut-out leaves, textures and single-sided boards): one technique
- * (volumes, whose cut-out casters cast their whole shadow in both) against
- * native EGL, which reads the glTF file itself. */
+/* The glTF scenes in the page, their scene packs baked from the files
+ * (the fence's cut-out leaves, textures and single-sided boards; the
+ * stained glass's translucent panes), each with one technique against
+ * native EGL, which reads the glTF file itself: volumes, whose cut-out
+ * casters cast their whole shadow in both, and shadowmap, whose
+ * transmittance maps must fit the page's sampler units. */
 #define WEB_GLTF_SCENE "assets/scenes/fence.gltf"
 #define WEB_GLTF_TECHNIQUE "volumes"
+#define WEB_GLASS_SCENE "assets/scenes/stained_glass.gltf"
+#define WEB_GLASS_TECHNIQUE "shadowmap"
 static void web_gltf_scene_matches_native(void **state) {
     (void)state;
     if (!web_available())
         skip();
     web_compare_with_native(WEB_GLTF_TECHNIQUE, WEB_GLTF_SCENE, WEB_GLTF_TECHNIQUE "_fence");
+    web_compare_with_native(WEB_GLASS_TECHNIQUE, WEB_GLASS_SCENE, WEB_GLASS_TECHNIQUE "_glass");
 }
 
 /* The window's keys in the page (each a GLFW key through Emscripten's

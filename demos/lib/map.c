@@ -447,9 +447,18 @@ void map_texel_units(unsigned program) {
 }
 
 /* The names of the per-light defines: light i's kind, its map's texel
- * kind. */
+ * kind, its transmittance map's slot. */
 static char map_kind_names[SCENE_MAX_LIGHTS][sizeof "MAP_LIGHT_KIND_" + 3];
 static char map_texel_kind_names[SCENE_MAX_LIGHTS][sizeof "MAP_TEXEL_KIND_" + 3];
+static char map_transmit_slot_names[SCENE_MAX_LIGHTS][sizeof "MAP_TRANSMIT_SLOT_" + 3];
+
+/* Light l's element of the transmittance samplers: the transmitting
+ * lights' in their order, so that each kind's array holds only as many
+ * as light (a WebGL program counts every element against its units);
+ * a light that reads none names the first, unread. */
+static int map_transmit_slot(unsigned transmit_lights, int l) {
+    return transmit_lights >> l & 1u ? __builtin_popcount(transmit_lights & ((1u << l) - 1)) : 0;
+}
 
 /* Light `light`'s field of a key's kinds or texel_kinds. */
 static unsigned map_light_bits(int light, unsigned value) { return value << (MAP_LIGHT_KIND_BITS * light); }
@@ -490,20 +499,24 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_MOMENTS", (int)k->moments},
         {"MAP_PASS_MOMENT_LIGHTS", (int)k->moment_lights},
         {"MAP_PASS_TRANSMIT_LIGHTS", (int)k->transmit_lights},
+        {"MAP_PASS_TRANSMIT_SLOTS", k->transmit_lights ? __builtin_popcount(k->transmit_lights) : 1},
         {"BVH_RECORDS", (int)k->ray_records},
     };
     /* This key's defines, then the enums every camera program compares
-     * with, then each light's two, then the list's end ({NULL}, zeroed). */
+     * with, then each light's three, then the list's end ({NULL}, zeroed). */
     enum { PASS = sizeof pass / sizeof *pass, COMMON = sizeof map_defines / sizeof *map_defines - 1 };
-    shader_define defines[PASS + COMMON + 2 * SCENE_MAX_LIGHTS + 1] = {{NULL, 0}};
+    shader_define defines[PASS + COMMON + 3 * SCENE_MAX_LIGHTS + 1] = {{NULL, 0}};
     memcpy(defines, pass, sizeof pass);
     memcpy(defines + PASS, map_defines, COMMON * sizeof *defines);
     shader_define *light_defines = defines + PASS + COMMON;
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
         snprintf(map_kind_names[l], sizeof map_kind_names[l], "MAP_LIGHT_KIND_%d", l);
         snprintf(map_texel_kind_names[l], sizeof map_texel_kind_names[l], "MAP_TEXEL_KIND_%d", l);
-        light_defines[2 * l] = (shader_define){map_kind_names[l], (int)map_light_field(k->kinds, l)};
-        light_defines[2 * l + 1] = (shader_define){map_texel_kind_names[l], (int)map_light_field(k->texel_kinds, l)};
+        snprintf(map_transmit_slot_names[l], sizeof map_transmit_slot_names[l], "MAP_TRANSMIT_SLOT_%d", l);
+        light_defines[3 * l] = (shader_define){map_kind_names[l], (int)map_light_field(k->kinds, l)};
+        light_defines[3 * l + 1] = (shader_define){map_texel_kind_names[l], (int)map_light_field(k->texel_kinds, l)};
+        light_defines[3 * l + 2] =
+            (shader_define){map_transmit_slot_names[l], map_transmit_slot(k->transmit_lights, l)};
     }
     static const char *const files[] = {"lit.vert", "map.frag"};
     if (!render_program_load(&p->program, files, 2, defines))
@@ -538,9 +551,10 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
             glUniform1i(map_light_uniform(id, map_samplers[t].name, l), own ? l : MAP_IDLE_UNITS + t);
             glUniform1i(map_light_uniform(id, map_samplers[t].depths, l),
                         soft ? MAP_DEPTH_UNITS + l : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
-            glUniform1i(map_light_uniform(id, map_samplers[t].transmittances, l),
-                        own && (k->transmit_lights >> l & 1u) ? MAP_TRANSMIT_UNITS + l
-                                                              : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
+            if (k->transmit_lights >> l & 1u)
+                glUniform1i(
+                    map_light_uniform(id, map_samplers[t].transmittances, map_transmit_slot(k->transmit_lights, l)),
+                    own ? MAP_TRANSMIT_UNITS + l : MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t);
         }
         /* Its depth bounds (a 2D sampler for every kind), idle with the 2D
          * maps' depths. */
