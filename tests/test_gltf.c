@@ -518,8 +518,20 @@ static void test_gltf_translucent_shadows(void **state) {
     glm_vec3_mul(red, blue, both);
     scene_free(&s);
 
+    /* shadowmap's channels (its reference dump kept) and hybrid's in
+     * every tier; the whole tier adds psm and cascades (on this scene both
+     * fall back to shadowmap's spot map) and volumes. */
+    static const struct {
+        const char *program;
+        gltf_glass_shadow shadow;
+    } glass[] = {{"shadowmap", GLTF_GLASS_COLOURED},
+                 {"hybrid", GLTF_GLASS_TRACED},
+                 {"psm", GLTF_GLASS_COLOURED},
+                 {"cascades", GLTF_GLASS_COLOURED},
+                 {"volumes", GLTF_GLASS_WHOLE}};
+    enum { GLTF_GLASS_EVERY_TIER = 2 };
     dump_frame reference;
-    gltf_glass_channels("shadowmap", GLTF_GLASS_COLOURED, &reference);
+    gltf_glass_channels(glass[0].program, glass[0].shadow, &reference);
     const float *shades[] = {red, blue, both, (const float[3]){0, 0, 0}};
     for (size_t k = 0; k < sizeof shades / sizeof *shades; k++) {
         long pixels = gltf_pixels_of(&reference, shades[k]);
@@ -533,10 +545,9 @@ static void test_gltf_translucent_shadows(void **state) {
             assert_float_equal(reference.visibility[p], (c[0] + c[1] + c[2]) / 3.0f, 0);
     }
     dump_frame_free(&reference);
-    gltf_glass_channels("psm", GLTF_GLASS_COLOURED, NULL);
-    gltf_glass_channels("cascades", GLTF_GLASS_COLOURED, NULL);
-    gltf_glass_channels("hybrid", GLTF_GLASS_TRACED, NULL);
-    gltf_glass_channels("volumes", GLTF_GLASS_WHOLE, NULL);
+    for (size_t i = 1; i < sizeof glass / sizeof *glass; i++)
+        if (i < GLTF_GLASS_EVERY_TIER || support_sweep_stride() == 1)
+            gltf_glass_channels(glass[i].program, glass[i].shadow, NULL);
 
     static const struct {
         const char *program;
@@ -587,6 +598,13 @@ static void test_gltf_translucent_shadows(void **state) {
  * alone). */
 static void test_gltf_glass_under_an_area_light(void **state) {
     (void)state;
+    /* In the plain pass alone: what it checks is the shaders' arithmetic;
+     * the sanitizers watch the same records' packing in the stained
+     * glass's hybrid dump. */
+    if (getenv("TEST_SANITIZER")) {
+        print_message("glass under an area light: the plain pass checks it\n");
+        skip();
+    }
     dump_frame reference, test;
     unsigned char *heatmap;
     shadowdiff_result r =
