@@ -112,11 +112,24 @@ SANITIZER_QUICK="test_flags test_path test_scene test_mesh test_motion test_shad
     test_bvh test_truth test_report test_scenegen test_map_layers test_hud \
     test_accuracy test_cli test_tour test_mirror test_gltf test_texture test_scene_pack"
 export TEST_TIER=${TEST_TIER:-quick}
+# The quick tier's longest tests, longest first: they start first, so
+# that the cores end together (longest processing time first) rather
+# than one waiting on the last long test alone.
+LONGEST_FIRST="test_web test_skip test_shadowmap test_volumes_skips test_volumes test_render test_window \
+    test_moments test_hybrid test_glsl_es"
 
-# The jobs: the sanitizer builds' programs first, then the others'.
+# The jobs: the sanitizer builds' programs first, then the others', the
+# longest of those first.
 jobs=()
 for build in $(printf '%s\n' "$@" | grep san) $(printf '%s\n' "$@" | grep -v san); do
+    tests=()
+    for name in $LONGEST_FIRST; do
+        [ -x "$build/tests/$name" ] && tests+=("$build/tests/$name")
+    done
     for t in "$build"/tests/test_*; do
+        [[ " $LONGEST_FIRST " == *" $(basename "$t") "* ]] || tests+=("$t")
+    done
+    for t in "${tests[@]}"; do
         [ -x "$t" ] || continue
         name=$(basename "$t")
         # ONLY="test_a test_b": those programs alone (a quick check).
