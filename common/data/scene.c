@@ -507,6 +507,14 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     return true;
 }
 
+void scene_object_place(scene_object *o, mat4 world) {
+    memcpy(o->model, world, sizeof o->model);
+    if (glm_mat4_det(world) < 0) {
+        mesh_reflect_x(&o->mesh);
+        glm_vec4_negate(o->model[0]);
+    }
+}
+
 bool scene_reserve_object(scene *s, int *capacity, const char *file) {
     if (s->object_count < *capacity)
         return true;

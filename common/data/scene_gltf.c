@@ -289,13 +289,7 @@ static bool scene_gltf_object(scene_gltf_reader *r, const struct aiNode *node, u
         r->without_coordinates++;
     else if (texture >= 0)
         o->base_color = &r->s->textures[texture];
-    mat4 model;
-    glm_mat4_copy(world, model);
-    if (glm_mat4_det(model) < 0) {
-        mesh_reflect_x(&o->mesh);
-        glm_vec4_negate(model[0]);
-    }
-    memcpy(o->model, model, sizeof model);
+    scene_object_place(o, world);
     r->s->object_count++;
     return true;
 }

@@ -217,8 +217,7 @@ bool scene_pack_read(scene *s, const char *path) {
 }
 
 /* Object o of a pack placed by `model`, as scene_include_gltf places a
- * node's mesh: the world matrix's determinant kept positive by mirroring
- * the mesh. */
+ * node's mesh (scene_object_place). */
 static void scene_pack_place(scene_object *o, const double origin[3], const float model[4][4]) {
     mat4 own, placed, world;
     memcpy(own, o->model, sizeof own);
@@ -226,11 +225,7 @@ static void scene_pack_place(scene_object *o, const double origin[3], const floa
         own[3][k] = (float)(own[3][k] + origin[k]);
     memcpy(placed, model, sizeof placed);
     glm_mat4_mul(placed, own, world);
-    if (glm_mat4_det(world) < 0) {
-        mesh_reflect_x(&o->mesh);
-        glm_vec4_negate(world[0]);
-    }
-    memcpy(o->model, world, sizeof world);
+    scene_object_place(o, world);
 }
 
 bool scene_pack_include(scene *s, int *capacity, const char *path, const float model[4][4], const char *prefix,
