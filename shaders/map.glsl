@@ -206,8 +206,8 @@ float map_kernel_reach() {
 // elsewhere, and where the reads span more than MAP_BOUNDS_SPAN_CELLS
 // cells on an axis (a cell of 8 texels holds the default kernel's reads
 // in 2). Lit is asked at the depth lit_shift deeper (map_share's sure-lit
-// point), shadowed at the taps' own. MAP_BOUNDS_DEPTH_MARGIN keeps a tap whose depth rounds to a
-// texel's out of both. A sampler places a read within
+// point), shadowed at the taps' own. MAP_BOUNDS_DEPTH_MARGIN keeps a tap
+// whose depth rounds to a texel's out of both. A sampler places a read within
 // MAP_BOUNDS_SUBTEXEL of a texel (GPUs resolve 1/256 of one), which
 // may pick the texel beyond: the cells are read a texel wider
 // (MAP_BOUNDS_ROUNDING_TEXELS), and a texel read lies within 1 +

@@ -80,40 +80,39 @@ float map_bounds_visibility(sampler2D bounds, int i, vec3 uvz, vec2 gradient, fl
                              min(uvz.z - depth_bias, 1.0), gradient / size, 0.0, lit_shift);
 }
 
-// The depth of p in light i's map (0..1).
-float map_2d_depth(int i, vec3 p) {
+// p in light i's map: its map coordinates and depth (0..1), and its clip
+// w (not positive behind the light).
+vec4 map_2d_point(int i, vec3 p) {
     vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
-    return clip.z / clip.w * 0.5 + 0.5;
+    return vec4(clip.xyz / clip.w * 0.5 + 0.5, clip.w);
 }
 
 float map_visibility(sampler2DShadow map, sampler2D raw, sampler2D bounds, int i, vec3 p, vec3 lit_p,
                      float depth_bias, bool soft, bool moments, float texel, bool needed) {
-    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
-    vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
+    vec4 point = map_2d_point(i, p);
+    vec3 uvz = point.xyz;
     vec2 gradient = map_depth_gradient(dFdx(uvz), dFdy(uvz), soft); /* derivatives: before any branch */
-    if (!needed || clip.w <= 0.0)
+    if (!needed || point.w <= 0.0)
         return 1.0;
     if (map_bounds_light(i))
-        return map_bounds_visibility(bounds, i, uvz, gradient, depth_bias, map_2d_depth(i, lit_p) - uvz.z);
+        return map_bounds_visibility(bounds, i, uvz, gradient, depth_bias, map_2d_point(i, lit_p).z - uvz.z);
     return map_flat_filter(map, raw, i, uvz, gradient, depth_bias, soft, moments, texel);
 }
 
 vec2 map_texel_coord(sampler2DShadow map, int i, vec3 p) {
-    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
-    return (clip.xy / clip.w * 0.5 + 0.5) * u_map_size[i];
+    return map_2d_point(i, p).xy * u_map_size[i];
 }
 
 // The 3 x 3 texels about p's (map_flat.glsl).
 bool map_translucent_near(sampler2D transmittance, int i, vec3 p, float depth_bias) {
-    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
-    return clip.w > 0.0 && map_flat_translucent_near(transmittance, i, clip.xyz / clip.w * 0.5 + 0.5, depth_bias);
+    vec4 point = map_2d_point(i, p);
+    return point.w > 0.0 && map_flat_translucent_near(transmittance, i, point.xyz, depth_bias);
 }
 
 // Outside the map, or behind the light, nothing filters.
 vec3 map_transmittance(sampler2D transmittance, int i, vec3 p, float depth_bias) {
-    vec4 clip = u_light_matrix[i] * vec4(p, 1.0);
-    vec3 uvz = clip.xyz / clip.w * 0.5 + 0.5;
-    if (clip.w <= 0.0 || any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0))))
+    vec4 point = map_2d_point(i, p);
+    if (point.w <= 0.0 || any(lessThan(point.xy, vec2(0.0))) || any(greaterThan(point.xy, vec2(1.0))))
         return vec3(1.0);
-    return map_transmitted(textureLod(transmittance, uvz.xy, 0.0), uvz.z - depth_bias);
+    return map_transmitted(textureLod(transmittance, point.xy, 0.0), point.z - depth_bias);
 }

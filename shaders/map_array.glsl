@@ -29,12 +29,12 @@ float map_kernel_read(sampler2DArrayShadow map, vec2 offset) {
                              map_point.z + dot(map_gradient, offset)));
 }
 
-// The raw map's texel an offset away: a depth (.r), or moments.
 // A texel of the layer's transmittance map (map_flat.glsl).
 vec4 map_transmit_fetch(sampler2DArray transmittance, ivec2 texel) {
     return texelFetch(transmittance, ivec3(texel, int(map_array_layer)), 0);
 }
 
+// The raw map's texel an offset away: a depth (.r), or moments.
 vec4 map_raw_read(sampler2DArray raw, vec2 offset) {
     return texture(raw, vec3(map_point.xy + offset, map_array_layer));
 }

@@ -20,6 +20,17 @@ const float MAP_MIN_PLANE_FACING = 0.05;
 // product with up vanishes).
 const float MAP_NEAR_UP = 0.9;
 
+// A face's texel at direction d from light i: a 90-degree face spans
+// 2 |major axis| over the map's size.
+float map_cube_step(int i, vec3 d) { return 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i]; }
+
+// The plane across direction d: two unit axes (MAP_NEAR_UP).
+void map_cube_across(vec3 d, out vec3 u, out vec3 v) {
+    vec3 axis = normalize(d);
+    u = normalize(cross(abs(axis.y) < MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
+    v = cross(axis, u);
+}
+
 // The point's direction from the light, the receiver's normal, the depth
 // bias, the plane across the direction (two unit axes), a texel's size
 // there and the light's depth range: set by map_visibility for
@@ -161,10 +172,8 @@ float map_cube_bounds_visibility(sampler2D bounds, int i, float lit_shift) {
 #undef MAP_RAW_SAMPLER
 #undef MAP_SAMPLER
 
-// A 90-degree face spans 2 |major axis| over the map's size.
 float map_texel_world(samplerCubeShadow map, int i, int texel_kind, vec3 p) {
-    vec3 d = abs(p - lights_position[i].xyz);
-    return 2.0 * max(d.x, max(d.y, d.z)) / u_map_size[i];
+    return map_cube_step(i, p - lights_position[i].xyz);
 }
 
 // The kernels' offsets lie in the plane across the direction, a texel
@@ -183,15 +192,12 @@ float map_visibility(samplerCubeShadow map, samplerCube raw, sampler2D bounds, i
         return moments_visibility(texture(raw, d), map_face_depth(d, range) - depth_bias);
     if (map_shape == MAP_KERNEL_SINGLE && !soft)
         return texture(map, vec4(d, map_face_depth(d, range) - depth_bias));
-    vec3 axis = normalize(d);
-    vec3 u = normalize(cross(abs(axis.y) < MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis));
     map_direction = d;
     map_receiver_normal = receiver_normal;
     map_depth_bias = depth_bias;
     map_cube_depth_range = range;
-    map_across_u = u;
-    map_across_v = cross(axis, u);
-    map_step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    map_cube_across(d, map_across_u, map_across_v);
+    map_step = map_cube_step(i, d);
     map_plane_taps = map_receiver_plane || soft;
     if (map_bounds_light(i))
         return map_cube_bounds_visibility(
@@ -212,9 +218,9 @@ vec2 map_texel_coord(samplerCubeShadow map, int i, vec3 p) {
 // The directions a texel apart about p's, 3 x 3 across it (a face's
 // texel at the major axis' length), each read nearest.
 bool map_translucent_near(samplerCube transmittance, int i, vec3 p, float depth_bias) {
-    vec3 d = p - lights_position[i].xyz, axis = normalize(d);
-    vec3 u = normalize(cross(abs(axis.y) < MAP_NEAR_UP ? vec3(0, 1, 0) : vec3(1, 0, 0), axis)), v = cross(axis, u);
-    float step = 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i];
+    vec3 d = p - lights_position[i].xyz, u, v;
+    map_cube_across(d, u, v);
+    float step = map_cube_step(i, d);
     float depth = map_face_depth(d, vec2(u_near[i], u_far[i])) - depth_bias;
     bool near = false;
     for (int y = -1; y <= 1; y++)
