@@ -507,9 +507,9 @@ static bool scene_read_root(const char *file, const cJSON *root, scene *s) {
     return true;
 }
 
-void scene_object_place(scene_object *o, mat4 world) {
+void scene_object_place(scene_object *o, const float world[4][4]) {
     memcpy(o->model, world, sizeof o->model);
-    if (glm_mat4_det(world) < 0) {
+    if (glm_mat4_det(o->model) < 0) {
         mesh_reflect_x(&o->mesh);
         glm_vec4_negate(o->model[0]);
     }

@@ -27,7 +27,7 @@ bool scene_reserve_textures(scene *s, size_t more, const char *file);
  * negative determinant) the mirror moved into the mesh (mesh_reflect_x)
  * and the matrix's x column negated, so that the model keeps a positive
  * determinant and every world position is the same. */
-void scene_object_place(scene_object *o, mat4 world);
+void scene_object_place(scene_object *o, const float world[4][4]);
 /* A glTF file's object's name: its node's, this long at most (room for a
  * suffix that makes it one object's), after a scene file's prefix of
  * SCENE_GLTF_PREFIX_MAX bytes at most and a slash where a scene file
