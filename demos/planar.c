@@ -76,9 +76,9 @@ static struct {
     planar_settings settings;
     render_program flatten;
     int shadow, plane, reject;
-    bool *casters;        /* per object: it casts for the light at hand (caster culling) */
-    soft_visibility soft; /* an area light's visibility, sampled */
-    unsigned soft_warned; /* bit l: light l's area said drawn hard */
+    bool *casters;               /* per object: it casts for the light at hand (caster culling) */
+    soft_visibility soft;        /* an area light's visibility, sampled */
+    scene_light_set soft_warned; /* bit l: light l's area said drawn hard */
 } planar;
 
 static const flags_param planar_params[] = {

@@ -76,10 +76,10 @@ static struct {
     int light_texture, projected, depth_plane, nearest, cut;
     unsigned framebuffer;
     projective_light lights[SCENE_MAX_LIGHTS];
-    bool *wanted;            /* per object: a caster the lookups may read, this light, this frame */
-    float (*corners)[3];     /* the casters' box corners, 8 per object, for the fit */
-    float (*boxes)[2][3];    /* the visible receivers' boxes, for caster culling */
-    unsigned clamped_warned; /* bit l: light l's clamped frustum said */
+    bool *wanted;                   /* per object: a caster the lookups may read, this light, this frame */
+    float (*corners)[3];            /* the casters' box corners, 8 per object, for the fit */
+    float (*boxes)[2][3];           /* the visible receivers' boxes, for caster culling */
+    scene_light_set clamped_warned; /* bit l: light l's clamped frustum said */
 } projective;
 
 static const flags_param projective_params[] = {
@@ -311,12 +311,12 @@ static void projective_render(const technique_frame *f) {
         /* 2. A frustum from the light fitted to its casters: a cone round
          * their bounding sphere, or a box along a directional light. */
         projective_fit(s, &s->lights[l], !projective.settings.no_receivers_cast, projective.corners, &t->frustum);
-        if (t->frustum.clamped && !(projective.clamped_warned >> l & 1u))
+        if (t->frustum.clamped && !(projective.clamped_warned & SCENE_LIGHT_BIT(l)))
             fprintf(stderr,
                     "projective: light %d lies among its casters: a %g-degree frustum, casters beyond it cast "
                     "nothing\n",
                     l, (double)PROJECTIVE_FIT_MAX_HALF_ANGLE_DEG * 2);
-        projective.clamped_warned |= t->frustum.clamped ? 1u << l : 0;
+        projective.clamped_warned |= t->frustum.clamped ? SCENE_LIGHT_BIT(l) : 0;
         /* 3. The casters black on white into the light's texture (those
          * the visible receivers' lookups may read; kept while nothing
          * moves). */

@@ -30,15 +30,23 @@ static void unshadowed_render(const technique_frame *f) {
 
     /* 2. One shading pass of every object in view, with the ambient term
      *    and the lights not split from it. */
-    unsigned split = shading_split_lights(f);
+    scene_light_set split = shading_split_lights(f);
     const bool *objects = shading_all_begin(f);
     render_unshadowed(f->gpu, f->view, objects, f->skips->lights & ~split);
 
     /* 3. Each split light's own pass: what it reaches in its rectangle,
-     *    shaded again with every light. */
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        if (split & SCENE_LIGHT_BIT(l))
-            render_unshadowed(f->gpu, f->view, shading_light_pass(f, l), f->skips->lights);
+     *    shaded again with every light, or past one light group its own
+     *    light added (shading_split_lights). */
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+        if (!(split & SCENE_LIGHT_BIT(l)))
+            continue;
+        objects = shading_split_pass(f, l);
+        if (render_light_groups(f->gpu) == 1)
+            render_unshadowed(f->gpu, f->view, objects, f->skips->lights);
+        else
+            render_draw_objects(f->gpu, render_use_lit(f->gpu, f->view, SCENE_LIGHT_BIT(l), false), objects);
+    }
+    glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
 }
 

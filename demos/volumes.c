@@ -106,7 +106,7 @@ static struct {
     soft_visibility soft;  /* an area light's visibility, sampled or from wedges */
     volume_wedges wedges;
     volume_counter counter;        /* the stencil's counts (volume_counter.h) */
-    unsigned soft_warned;          /* bit l: light l's area said drawn hard */
+    scene_light_set soft_warned;   /* bit l: light l's area said drawn hard */
     int samples[SCENE_MAX_LIGHTS]; /* this frame's points of light l: 1 drawn hard */
     bool point_reported;           /* the HUD's counts are of this frame's first point */
 } volumes;

@@ -1,7 +1,7 @@
 // Shared lighting model: Lambert diffuse plus a constant ambient term, the
 // same model the ray-traced reference evaluates, so that pictures compare.
-// The lights live in one uniform block that common/gl/render.c fills once per
-// frame for every program.
+// The lights live in uniform blocks, one per light group, that
+// common/gl/render.c fills once per frame for every program.
 //
 // Visibility mode (lights_count.y = K >= 0) turns any technique's picture
 // into its own shadow decision for light K, without the technique knowing:
@@ -9,16 +9,19 @@
 // cone and the light's range), every other light and the ambient term 0, so whatever the technique
 // does to shadow light K leaves its visibility in the red channel (see
 // common/gl/capture.c).
-
-// SCENE_MAX_LIGHTS comes from C (common/data/scene.h), injected by the
-// shader loader; the block's layout is checked in common/gl/render.c.
+//
+// The block holds one group of the scene's lights, SHADER_PASS_LIGHTS of
+// them in their slots (common/gl/render.h, "Light groups"), and K is
+// light K's slot, or SHADER_PASS_LIGHTS in a group without it. The
+// constant comes from C (common/gl/shader.h), injected by the shader
+// loader; the block's layout is checked in common/gl/render.c.
 layout(std140) uniform Lights {
     vec4 lights_ambient;                      // rgb
-    ivec4 lights_count;                       // x: count, y: visibility mode light or -1
-    vec4 lights_position[SCENE_MAX_LIGHTS];  // xyz; w = 1 positional, 0 directional
-    vec4 lights_direction[SCENE_MAX_LIGHTS]; // xyz: the way the light travels
-    vec4 lights_color[SCENE_MAX_LIGHTS];     // rgb: colour times intensity
-    vec4 lights_reach[SCENE_MAX_LIGHTS];     // x: cos(outer), y: cos(inner) (a point light has x < -1);
+    ivec4 lights_count;                       // x: count, y: visibility mode slot or -1
+    vec4 lights_position[SHADER_PASS_LIGHTS];  // xyz; w = 1 positional, 0 directional
+    vec4 lights_direction[SHADER_PASS_LIGHTS]; // xyz: the way the light travels
+    vec4 lights_color[SHADER_PASS_LIGHTS];     // rgb: colour times intensity
+    vec4 lights_reach[SHADER_PASS_LIGHTS];     // x: cos(outer), y: cos(inner) (a point light has x < -1);
                                              // z: range, 0 unlimited
 };
 

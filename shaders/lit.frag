@@ -1,8 +1,8 @@
 #version 330 core
 #include "lighting.glsl"
 #include "surface.glsl"
-// The lights of the set LIT_LIGHTS (bit i: light i, render_use_lit's
-// SCENE_LIGHT_BIT set, common/data/scene.h), fully visible, plus ambient
+// The lights of the set LIT_LIGHTS (bit i: slot i of the bound light
+// group, common/gl/render.h), fully visible, plus ambient
 // when u_ambient is 1: the unshadowed picture, or one light's share of it.
 // C compiles one program per set on its first use (render_lit_load), so
 // that each light's code is there only when it is in the set and reads
@@ -37,8 +37,8 @@ vec3 lit_light(int i, vec3 n) {
     return light;
 }
 
-#if SCENE_MAX_LIGHTS != 8
-#error "lit.frag lists SCENE_MAX_LIGHTS lights one by one: one LIT_LIGHT line each"
+#if SHADER_PASS_LIGHTS != 8
+#error "lit.frag lists SHADER_PASS_LIGHTS lights one by one: one LIT_LIGHT line each"
 #endif
 // Light i's share where it is in the set (a constant: else no code).
 #define LIT_LIGHT(i) \

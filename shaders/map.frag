@@ -11,8 +11,9 @@
 // only for its kind and the kernel's only for its shape: read from
 // uniforms, every pixel would run every kind's code (llvmpipe runs both
 // sides of a branch, masked). Samplers can be indexed only by constant
-// expressions in GLSL 3.30, so the lights are listed one by one. The
-// permutation's axes, and where each is read:
+// expressions in GLSL 3.30, so the lights are listed one by one: light i
+// is slot i of the light group the pass draws (common/gl/render.h,
+// "Light groups"). The permutation's axes, and where each is read:
 //   MAP_LIGHT_KIND_<i>   light i: off, on without a map (nothing it
 //       reaches receives: added unshadowed), or with a 2D, cube or array
 //       map (a map_light_kind): here, MAP_LIGHT;
@@ -57,6 +58,7 @@ uniform float u_constant_bias;   // texels of world distance, towards the light
 uniform float u_normal_offset;   // texels, along the normal, times the slope
 uniform vec2 u_depth_bias;       // max(x (1 - N.L), y) in map depth (0..1): the tutorials' bias
 uniform int u_closed_outside;    // bit i: a closed caster with the eye inside it and light i outside
+uniform float u_ambient;         // 1: the pass draws the ambient term too; 0: it adds its lights alone
 
 // The triangle's own (flat) normal, on the side the eye sees: set first in
 // main, where derivatives are defined, for map_share.
@@ -136,7 +138,7 @@ void map_set_ray_origin() {
 // angular radius).
 uniform int u_ray_samples;
 uniform ivec4 u_frame;
-uniform vec2 u_light_area[SCENE_MAX_LIGHTS];
+uniform vec2 u_light_area[SHADER_PASS_LIGHTS];
 
 // What gets through, per channel, between the visible point itself and
 // `target`, a point (w 1) or a direction towards a sun (w 0): 0 where an
@@ -212,8 +214,8 @@ bool map_light_cone_clear(int i) {
 #include "map_cube.glsl"
 #include "map_array.glsl"
 
-#if SCENE_MAX_LIGHTS != 8
-#error "map.frag lists SCENE_MAX_LIGHTS lights one by one: one MAP_LIGHT line each"
+#if SHADER_PASS_LIGHTS != 8
+#error "map.frag lists SHADER_PASS_LIGHTS lights one by one: one MAP_LIGHT line each"
 #endif
 // Light i's share by its kind (a constant: the other kinds' code is dropped).
 // Light i is soft (an area light, filtered by map_soft.glsl) where
@@ -251,7 +253,7 @@ void main() {
         map_face_normal = -map_face_normal;
     if (map_rays != MAP_RAYS_OFF)
         map_set_ray_origin();
-    vec3 c = lighting_ambient(surface_albedo);
+    vec3 c = u_ambient * lighting_ambient(surface_albedo);
     MAP_LIGHT(0, MAP_LIGHT_KIND_0, MAP_TEXEL_KIND_0, MAP_TRANSMIT_SLOT_0);
     MAP_LIGHT(1, MAP_LIGHT_KIND_1, MAP_TEXEL_KIND_1, MAP_TRANSMIT_SLOT_1);
     MAP_LIGHT(2, MAP_LIGHT_KIND_2, MAP_TEXEL_KIND_2, MAP_TRANSMIT_SLOT_2);

@@ -57,8 +57,8 @@ const int map_kernel_size = MAP_PASS_KERNEL; // N, or the disc's scale in texels
 const bool map_early_out = MAP_PASS_EARLY_OUT != 0;
 // Each tap compares the receiver plane's depth there, not the centre's.
 const bool map_receiver_plane = MAP_PASS_RECEIVER_PLANE != 0;
-uniform float u_map_size[SCENE_MAX_LIGHTS]; // light i's map: texels on a side
-uniform sampler2D u_bounds[SCENE_MAX_LIGHTS]; // light i's depth bounds, in a marking pass (below)
+uniform float u_map_size[SHADER_PASS_LIGHTS]; // light i's map: texels on a side
+uniform sampler2D u_bounds[SHADER_PASS_LIGHTS]; // light i's depth bounds, in a marking pass (below)
 
 // A flat map's (2D, or an array's layer) point the kernel reads about (map
 // coordinates and depth) and its depth gradient: set by
@@ -303,7 +303,7 @@ float map_rim_agreement(vec4 rim) {
 
 // Light i's disc: its radius (world units) for a point or spot light, the
 // tangent of its angular radius for a directional one.
-uniform float u_light_size[SCENE_MAX_LIGHTS];
+uniform float u_light_size[SHADER_PASS_LIGHTS];
 
 // The radius in world units on the receiver of the penumbra that a
 // blocker at distance d_b casts from light i on a receiver at d_r.

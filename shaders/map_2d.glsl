@@ -3,11 +3,11 @@
 // lights), or any light's warped map (demos/psm.c). Light i's map is
 // u_maps_2d[i] and the uniforms of index i.
 
-uniform sampler2DShadow u_maps_2d[SCENE_MAX_LIGHTS]; // compare mode on: every read is a test
-uniform mat4 u_light_matrix[SCENE_MAX_LIGHTS];       // world -> the light's clip space (an array map: its light view)
-uniform float u_texel_scale[SCENE_MAX_LIGHTS];       // world texel: this (orthographic) or this x depth along the axis (perspective)
-uniform sampler2D u_depths_2d[SCENE_MAX_LIGHTS];     // a soft light's map read as depth (compare mode off)
-uniform mat4 u_light_inverse[SCENE_MAX_LIGHTS];      // a soft light's clip space -> world
+uniform sampler2DShadow u_maps_2d[SHADER_PASS_LIGHTS]; // compare mode on: every read is a test
+uniform mat4 u_light_matrix[SHADER_PASS_LIGHTS];       // world -> the light's clip space (an array map: its light view)
+uniform float u_texel_scale[SHADER_PASS_LIGHTS];       // world texel: this (orthographic) or this x depth along the axis (perspective)
+uniform sampler2D u_depths_2d[SHADER_PASS_LIGHTS];     // a soft light's map read as depth (compare mode off)
+uniform mat4 u_light_inverse[SHADER_PASS_LIGHTS];      // a soft light's clip space -> world
 #if MAP_PASS_TRANSMIT_LIGHTS
 uniform sampler2D u_transmittances_2d[MAP_PASS_TRANSMIT_SLOTS]; // translucent casters' (map_transmitted)
 #else

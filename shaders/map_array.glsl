@@ -6,17 +6,17 @@
 // arrays: a scale and an offset from light view to the layer's clip space
 // (a diagonal and a translation, not a mat4 each: half the uniforms).
 
-uniform sampler2DArrayShadow u_maps_array[SCENE_MAX_LIGHTS];
-uniform sampler2DArray u_depths_array[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
+uniform sampler2DArrayShadow u_maps_array[SHADER_PASS_LIGHTS];
+uniform sampler2DArray u_depths_array[SHADER_PASS_LIGHTS]; // a soft light's map read as depth (compare mode off)
 #if MAP_PASS_TRANSMIT_LIGHTS
 uniform sampler2DArray u_transmittances_array[MAP_PASS_TRANSMIT_SLOTS]; // translucent casters' (map_transmitted)
 #else
 #define u_transmittances_array u_depths_array // no light reads one: no sampler of its own (map.frag)
 #endif
 // xyz: scale and offset; w: the view depths where the layer's slice ends and starts.
-uniform vec4 u_cascade_scale[SCENE_MAX_LIGHTS * MAP_MAX_ARRAY_LAYERS];
-uniform vec4 u_cascade_offset[SCENE_MAX_LIGHTS * MAP_MAX_ARRAY_LAYERS];
-uniform int u_cascade_count[SCENE_MAX_LIGHTS];
+uniform vec4 u_cascade_scale[SHADER_PASS_LIGHTS * MAP_MAX_ARRAY_LAYERS];
+uniform vec4 u_cascade_offset[SHADER_PASS_LIGHTS * MAP_MAX_ARRAY_LAYERS];
+uniform int u_cascade_count[SHADER_PASS_LIGHTS];
 uniform float u_cascade_blend; // the far fraction of a slice mixed into the next layer (0: a hard switch)
 uniform vec4 u_view_depth;     // the camera's view depth of a world point p: dot(this, vec4(p, 1))
 

@@ -2,15 +2,15 @@
 // six 90-degree faces, read by direction with seamless filtering across
 // face edges. Light i's map is u_maps_cube[i] and the uniforms of index i.
 
-uniform samplerCubeShadow u_maps_cube[SCENE_MAX_LIGHTS];
-uniform samplerCube u_depths_cube[SCENE_MAX_LIGHTS]; // a soft light's map read as depth (compare mode off)
+uniform samplerCubeShadow u_maps_cube[SHADER_PASS_LIGHTS];
+uniform samplerCube u_depths_cube[SHADER_PASS_LIGHTS]; // a soft light's map read as depth (compare mode off)
 #if MAP_PASS_TRANSMIT_LIGHTS
 uniform samplerCube u_transmittances_cube[MAP_PASS_TRANSMIT_SLOTS]; // translucent casters' (map_transmitted)
 #else
 #define u_transmittances_cube u_depths_cube // no light reads one: no sampler of its own (map.frag)
 #endif
-uniform float u_near[SCENE_MAX_LIGHTS];
-uniform float u_far[SCENE_MAX_LIGHTS];
+uniform float u_near[SHADER_PASS_LIGHTS];
+uniform float u_far[SHADER_PASS_LIGHTS];
 
 // A tap ray this close to parallel with the receiver's plane would slide
 // far along it onto the plane: such taps keep their own point.

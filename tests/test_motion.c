@@ -1,7 +1,8 @@
 /* Tests of common/data/motion.c: the camera orbit's frames as they were
  * (yaw about the target), and dolly's walk: eye and target translate
  * together along the view at MOTION_DOLLY_SPEED of their distance a
- * second, turn after MOTION_DOLLY_LEG_S and come back. */
+ * second, turn after MOTION_DOLLY_LEG_S and come back; lamp's one light
+ * on its circle, the others where they are. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -76,10 +77,38 @@ static void test_dolly_walks_forward_and_back(void **state) {
         assert_float_equal(b.position[k] - a.position[k], c.position[k] - b.position[k], TOLERANCE);
 }
 
+/* --motion lamp moves light `lamp` alone, on a horizontal circle through
+ * its place of MOTION_LAMP_RADIUS_SHARE of its range. */
+static void test_lamp_circles_one_light(void **state) {
+    (void)state;
+    assert_false(motion_moves_camera(MOTION_LAMP));
+    const scene_light base_lights[3] = {
+        {.type = SCENE_LIGHT_POINT, .position = {0, 5, 0}, .range = 10},
+        {.type = SCENE_LIGHT_POINT, .position = {4, 6, -2}, .range = 20},
+        {.type = SCENE_LIGHT_POINT, .position = {-3, 5, 1}, .range = 10},
+    };
+    const float radius = MOTION_LAMP_RADIUS_SHARE * base_lights[1].range;
+    scene_light moved[3];
+    motion_lights(MOTION_LAMP, 0, base.target, base_lights, 3, 1, moved);
+    assert_vec3(moved[1].position, 4, 6, -2);
+    bool moves = false;
+    for (int frame = 1; frame <= 30; frame++) {
+        motion_lights(MOTION_LAMP, frame / 60.0, base.target, base_lights, 3, 1, moved);
+        for (int i = 0; i < 3; i += 2)
+            assert_memory_equal(moved[i].position, base_lights[i].position, sizeof moved[i].position);
+        const float middle[3] = {4 - radius, 6, -2};
+        assert_float_equal(moved[1].position[1], 6, TOLERANCE);
+        assert_float_equal(glm_vec3_distance(moved[1].position, (float *)middle), radius, TOLERANCE);
+        moves |= glm_vec3_distance(moved[1].position, (float *)base_lights[1].position) > radius / 2;
+    }
+    assert_true(moves);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_camera_is_the_orbit),
         cmocka_unit_test(test_dolly_walks_forward_and_back),
+        cmocka_unit_test(test_lamp_circles_one_light),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

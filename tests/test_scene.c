@@ -461,7 +461,7 @@ static const bad_scene bad_scenes[] = {
      ": objects[0].mesh.segments: must be 3 to 1024, or 0 for the default (got -4)"},
     {"tests/data/scene_duplicate_name.json",
      ": objects[2].name: \"box\" is objects[1]'s name too: each must be one object's"},
-    {"tests/data/scene_too_many_lights.json", ": lights: too many entries: 9 (at most 8)"},
+    {"tests/data/scene_too_many_lights.json", ": lights: too many entries: 65 (at most 64)"},
     {"tests/data/scene_no_objects.json", ": objects: must not be empty"},
     {"tests/data/scene_spot_outer_below_inner.json",
      ": lights[0].outer_angle: must not be less than inner_angle (20 < 30)"},

@@ -3,7 +3,8 @@
  * they are what the generator promises: cities of N objects plus the
  * ground with a sun and street lamps of limited range, most of the lamps
  * out of view and most of the city outside the camera's frustum; a dense
- * scene of closed meshes; glTF scenes of cut-out and translucent casters.
+ * scene of closed meshes; glTF scenes of cut-out and translucent casters;
+ * a night street of as many lamps as a scene may have.
  * Run from the repository root. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -29,10 +30,12 @@
 #define MAX_SEEN_SHARE 0.15
 #define MIN_LIMITED_LIGHTS 3
 #define MIN_DENSE_TRIANGLES 100000
+/* lamps_64's buildings: city_300's. */
+#define LAMPS_CITY_COUNT 300
 
-static const char *const files[] = {"city_100.json", "city_300.json",     "city_1000.json",     "city_3000.json",
-                                    "dense.json",    "stacked_300.json",  "stacked_10000.json", "stacked_10000.obj",
-                                    "fence.gltf",    "stained_glass.gltf"};
+static const char *const files[] = {"city_100.json", "city_300.json",      "city_1000.json",     "city_3000.json",
+                                    "dense.json",    "stacked_300.json",   "stacked_10000.json", "stacked_10000.obj",
+                                    "fence.gltf",    "stained_glass.gltf", "lamps_64.json"};
 static const int city_counts[] = {100, 300, 1000, 3000};
 
 static char err[16384];
@@ -187,6 +190,33 @@ static void test_dense_is_closed_and_large(void **state) {
     scene_free(&s);
 }
 
+/* The night street: SCENE_MAX_LIGHTS point lamps of limited range and no
+ * other light, a pole for each, no lamp inside any pole (its own pole
+ * would shadow everything), and the city's buildings and ground. */
+static void test_lamps_fill_the_light_limit(void **state) {
+    (void)state;
+    scene s;
+    load(&s, "lamps_64.json");
+    assert_int_equal(s.light_count, SCENE_MAX_LIGHTS);
+    int poles = 0;
+    for (int o = 0; o < s.object_count; o++)
+        poles += strncmp(s.objects[o].name, "pole_", strlen("pole_")) == 0;
+    assert_int_equal(poles, SCENE_MAX_LIGHTS);
+    assert_int_equal(s.object_count, LAMPS_CITY_COUNT + 1 + poles);
+    for (int l = 0; l < s.light_count; l++) {
+        assert_true(s.lights[l].type == SCENE_LIGHT_POINT && limited(&s.lights[l]));
+        for (int o = 0; o < poles; o++) {
+            vec3 box[2], world[2];
+            glm_vec3_copy(s.objects[o].mesh.bounds_min, box[0]);
+            glm_vec3_copy(s.objects[o].mesh.bounds_max, box[1]);
+            glm_aabb_transform(box, (vec4 *)s.objects[o].model, world);
+            if (glm_aabb_point(world, s.lights[l].position))
+                fail_msg("lamps_64.json: lamp %d inside %s", l, s.objects[o].name);
+        }
+    }
+    scene_free(&s);
+}
+
 /* The glTF scenes: the fence's boards and the tree's leaves cut out by
  * textures (alphaMode MASK), its trunk and ground opaque, under a sun; the
  * stained glass's three panes translucent (BLEND), one textured, over an
@@ -232,6 +262,7 @@ int main(void) {
         cmocka_unit_test(test_city_view_is_small_and_shared),
         cmocka_unit_test(test_dense_is_closed_and_large),
         cmocka_unit_test(test_gltf_scenes_cut_out_and_translucent),
+        cmocka_unit_test(test_lamps_fill_the_light_limit),
     };
     return cmocka_run_group_tests_name("generated scenes", tests, generate, NULL);
 }

@@ -4,14 +4,26 @@
 
 #include "camera.h"
 
-const char *const motion_names[] = {"static", "light", "camera", "dolly", NULL};
+const char *const motion_names[] = {"static", "light", "camera", "dolly", "lamp", NULL};
 
-void motion_lights(motion_kind kind, double time, const float center[3], const scene_light *base, int count,
+/* Light `light` (at its place at time 0) on its circle at `time`: it
+ * turns about the circle's centre, beside its place along -x. */
+static void motion_lamp(scene_light *light, double time, const float center[3]) {
+    float reach = light->range > 0 ? light->range : glm_vec3_distance(light->position, (float *)center);
+    float radius = MOTION_LAMP_RADIUS_SHARE * reach;
+    float middle[3] = {light->position[0] - radius, light->position[1], light->position[2]};
+    camera_orbit_light(light, light->type == SCENE_LIGHT_DIRECTIONAL ? center : middle,
+                       (float)time * MOTION_LAMP_RAD_PER_S, 0);
+}
+
+void motion_lights(motion_kind kind, double time, const float center[3], const scene_light *base, int count, int lamp,
                    scene_light *out) {
     for (int i = 0; i < count; i++) {
         out[i] = base[i];
         if (kind == MOTION_LIGHT)
             camera_orbit_light(&out[i], center, (float)time * MOTION_LIGHT_RAD_PER_S, 0);
+        if (kind == MOTION_LAMP && i == lamp)
+            motion_lamp(&out[i], time, center);
     }
 }
 

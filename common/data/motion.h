@@ -5,6 +5,11 @@
  *   static  nothing moves;
  *   light   every light turns about the camera's target, yaw
  *           MOTION_LIGHT_RAD_PER_S radians a second (the app's --animate);
+ *   lamp    one light alone (the programs' --light K) circles its own
+ *           place, MOTION_LAMP_RAD_PER_S radians a second on a
+ *           horizontal circle of MOTION_LAMP_RADIUS_SHARE of its range
+ *           (of its distance from the camera's target without one): a
+ *           lamp moving among many still ones, whose maps a cache keeps;
  *   camera  the eye turns about its target, yaw MOTION_CAMERA_RAD_PER_S;
  *   dolly   the eye and its target move together along the view direction,
  *           MOTION_DOLLY_SPEED of their distance a second, forward for
@@ -26,7 +31,7 @@
 #include <stdbool.h>
 #include "scene.h"
 
-typedef enum motion_kind { MOTION_STATIC, MOTION_LIGHT, MOTION_CAMERA, MOTION_DOLLY } motion_kind;
+typedef enum motion_kind { MOTION_STATIC, MOTION_LIGHT, MOTION_CAMERA, MOTION_DOLLY, MOTION_LAMP } motion_kind;
 /* The kinds' names in order, NULL-terminated (a FLAGS_CHOICE list). */
 extern const char *const motion_names[];
 
@@ -37,13 +42,16 @@ extern const char *const motion_names[];
 #define MOTION_CAMERA_RAD_PER_S 0.5f
 #define MOTION_DOLLY_SPEED 0.5f
 #define MOTION_DOLLY_LEG_S 1.0
+#define MOTION_LAMP_RAD_PER_S 3.0f
+#define MOTION_LAMP_RADIUS_SHARE 0.1f
 
 /* Whether `kind` moves the camera (camera, dolly): what a tour's path
  * excludes, and where the benchmark measures shimmer. */
 bool motion_moves_camera(motion_kind kind);
 
-/* The count lights of `base` at `time`, into `out`. */
-void motion_lights(motion_kind kind, double time, const float center[3], const scene_light *base, int count,
+/* The count lights of `base` at `time`, into `out`; `lamp`: the light
+ * MOTION_LAMP moves. */
+void motion_lights(motion_kind kind, double time, const float center[3], const scene_light *base, int count, int lamp,
                    scene_light *out);
 /* The camera `base` at `time`, into `out`. */
 void motion_camera(motion_kind kind, double time, const scene_camera *base, scene_camera *out);

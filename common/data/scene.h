@@ -65,14 +65,17 @@
 #define SCENE_H
 
 #include <stdbool.h>
+#include <stdint.h>
+
 #include "mesh.h"
 #include "texture.h"
 
-#define SCENE_MAX_LIGHTS 8
+#define SCENE_MAX_LIGHTS 64
 /* A set of lights as bits: bit l is light l (render_use_lit, the skips). */
-#define SCENE_LIGHT_BIT(l) (1u << (l))
-#define SCENE_ALL_LIGHTS(count) ((count) >= 32 ? ~0u : SCENE_LIGHT_BIT(count) - 1u)
-_Static_assert(SCENE_MAX_LIGHTS <= 32, "a light set is 32 bits");
+typedef uint64_t scene_light_set;
+#define SCENE_LIGHT_BIT(l) ((scene_light_set)1 << (l))
+#define SCENE_ALL_LIGHTS(count) ((count) >= 64 ? ~(scene_light_set)0 : SCENE_LIGHT_BIT(count) - 1)
+_Static_assert(SCENE_MAX_LIGHTS <= 64, "a light set is 64 bits");
 #define SCENE_NAME_MAX 64
 /* What every picture shows where no object is: the rasterizer clears to
  * it, the reference paints it. */

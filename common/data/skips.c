@@ -23,7 +23,7 @@ static void skips_slab_bounds(const float slab[8][3], vec3 lo, vec3 hi) {
 void skips_narrow_light_rects(const skips *s) {
     const scene *sc = s->scene;
     skips_seen *seen = s->seen;
-    unsigned narrowed = 0;
+    scene_light_set narrowed = 0;
     float lo[SCENE_MAX_LIGHTS][2], hi[SCENE_MAX_LIGHTS][2];
     for (int l = 0; l < sc->light_count; l++) {
         memcpy(seen->light_rect[l], s->light_rect[l], sizeof seen->light_rect[l]);

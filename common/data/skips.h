@@ -53,7 +53,7 @@ typedef struct skips_counts {
     /* Bit l: a pass of light l drew in its rectangle as technique_see
      * narrowed it to SHADING_NARROW_LIGHT_SHARE of the frame or less
      * (shading_light_pass). */
-    unsigned lights_narrowed;
+    scene_light_set lights_narrowed;
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
     int marked_passes;                  /* passes over marked pixels alone (skips.marked_pass) */
 } skips_counts;
@@ -71,9 +71,9 @@ typedef struct skips_seen {
     /* Light l's pixels: its frame rectangle narrowed to the tiles whose
      * slabs it reaches (skips_light_rect). */
     int light_rect[SCENE_MAX_LIGHTS][4];
-    unsigned masks_made; /* bit l: light l's masks */
+    scene_light_set masks_made; /* bit l: light l's masks */
     int mask_count[SCENE_MAX_LIGHTS];
-    light_mask masks[SCENE_MAX_LIGHTS][LIGHT_MASK_MAX_LAYERS];
+    light_mask (*masks)[LIGHT_MASK_MAX_LAYERS]; /* one row per scene light, the host's */
 } skips_seen;
 
 /* A frame's skips (see the top of this file). */
@@ -87,7 +87,7 @@ typedef struct skips {
      * every light with --no-light-reach. A technique renders neither a
      * shadow pass nor a lighting pass for the others: they add exactly 0
      * to every visible pixel (skips_light_on). */
-    unsigned lights;
+    scene_light_set lights;
     /* Per light on: the objects in view that it reaches (in_view without
      * the skip), and the pixel rectangle (x, y, width, height) outside of
      * which it adds 0 (its range's screen bounds; the whole frame without

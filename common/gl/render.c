@@ -13,14 +13,15 @@
 
 #define RENDER_NOT_A_CAPABILITY 0 /* glEnable(0): GL_INVALID_ENUM, for the test hook */
 
-/* std140 mirror of the Lights block in shaders/lighting.glsl. */
+/* std140 mirror of the Lights block in shaders/lighting.glsl: one light
+ * group's. */
 typedef struct render_lights_block {
     float ambient[4];
     int count[4];
-    float position[SCENE_MAX_LIGHTS][4];
-    float direction[SCENE_MAX_LIGHTS][4];
-    float color[SCENE_MAX_LIGHTS][4];
-    float reach[SCENE_MAX_LIGHTS][4];
+    float position[SHADER_PASS_LIGHTS][4];
+    float direction[SHADER_PASS_LIGHTS][4];
+    float color[SHADER_PASS_LIGHTS][4];
+    float reach[SHADER_PASS_LIGHTS][4];
 } render_lights_block;
 
 /* std140: a vec4 or ivec4 and each element of an array of them take 16
@@ -29,13 +30,13 @@ typedef struct render_lights_block {
 _Static_assert(offsetof(render_lights_block, ambient) == 0, "Lights.lights_ambient");
 _Static_assert(offsetof(render_lights_block, count) == RENDER_STD140_VEC4, "Lights.lights_count");
 _Static_assert(offsetof(render_lights_block, position) == 2 * RENDER_STD140_VEC4, "Lights.lights_position");
-_Static_assert(offsetof(render_lights_block, direction) == (2 + SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+_Static_assert(offsetof(render_lights_block, direction) == (2 + SHADER_PASS_LIGHTS) * RENDER_STD140_VEC4,
                "Lights.lights_direction");
-_Static_assert(offsetof(render_lights_block, color) == (2 + 2 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+_Static_assert(offsetof(render_lights_block, color) == (2 + 2 * SHADER_PASS_LIGHTS) * RENDER_STD140_VEC4,
                "Lights.lights_color");
-_Static_assert(offsetof(render_lights_block, reach) == (2 + 3 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4,
+_Static_assert(offsetof(render_lights_block, reach) == (2 + 3 * SHADER_PASS_LIGHTS) * RENDER_STD140_VEC4,
                "Lights.lights_reach");
-_Static_assert(sizeof(render_lights_block) == (2 + 4 * SCENE_MAX_LIGHTS) * RENDER_STD140_VEC4, "Lights size");
+_Static_assert(sizeof(render_lights_block) == (2 + 4 * SHADER_PASS_LIGHTS) * RENDER_STD140_VEC4, "Lights size");
 
 bool render_program_load(render_program *p, const char *const *files, int count, const shader_define *defines) {
     *p = (render_program){.id = shader_load_program(files, count, defines)};
@@ -288,10 +289,12 @@ bool render_scene_create(render_scene *r, const scene *s) {
     }
     for (int i = 0; i < s->object_count; i++)
         render_mesh_upload(&r->meshes[i], &s->objects[i]);
-    glGenBuffers(1, &r->lights_buffer);
-    glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffer);
-    glBufferData(GL_UNIFORM_BUFFER, sizeof(render_lights_block), NULL, GL_DYNAMIC_DRAW);
-    glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffer);
+    glGenBuffers(render_light_groups(r), r->lights_buffers);
+    for (int g = 0; g < render_light_groups(r); g++) {
+        glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffers[g]);
+        glBufferData(GL_UNIFORM_BUFFER, sizeof(render_lights_block), NULL, GL_DYNAMIC_DRAW);
+    }
+    render_bind_light_group(r, 0);
     render_scene_update_lights(r, -1);
     static const char *const depth_files[] = {"lit.vert", "depth.frag"};
     r->lit = calloc(1, sizeof *r->lit);
@@ -304,12 +307,48 @@ bool render_scene_create(render_scene *r, const scene *s) {
     return context_gl_ok("render_scene_create");
 }
 
-void render_scene_update_lights(const render_scene *r, int visibility_of) {
+int render_light_groups(const render_scene *r) {
+    int count = r->scene->light_count;
+    return count > 0 ? RENDER_LIGHT_GROUP(count - 1) + 1 : 1;
+}
+
+unsigned render_group_slots(scene_light_set lights, int g) {
+    return (unsigned)(lights >> (g * SHADER_PASS_LIGHTS)) & (RENDER_LIGHT_SETS - 1);
+}
+
+void render_bind_light_group(const render_scene *r, int g) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffers[g]);
+}
+
+void render_group_pass_begin(int g, bool *blending) {
+    if (g == 0) {
+        *blending = glIsEnabled(GL_BLEND);
+        return;
+    }
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+}
+
+void render_group_pass_end(bool blending) {
+    if (!blending)
+        glDisable(GL_BLEND);
+}
+
+/* Group g's block: its lights in their slots, the ambient term in group
+ * 0's alone, and visibility mode's light as its slot here (past the
+ * slots where it is another group's: then nothing here adds). */
+static void render_update_group(const render_scene *r, int g, int visibility_of) {
     const scene *s = r->scene;
-    render_lights_block b = {.count = {s->light_count, visibility_of}};
-    glm_vec3_copy((float *)s->ambient, b.ambient);
-    for (int i = 0; i < s->light_count; i++) {
-        const scene_light *l = &s->lights[i];
+    int first = g * SHADER_PASS_LIGHTS, count = s->light_count - first;
+    count = count < SHADER_PASS_LIGHTS ? count : SHADER_PASS_LIGHTS;
+    int visible = visibility_of < 0                        ? -1
+                  : RENDER_LIGHT_GROUP(visibility_of) == g ? RENDER_LIGHT_SLOT(visibility_of)
+                                                           : SHADER_PASS_LIGHTS;
+    render_lights_block b = {.count = {count, visible}};
+    if (g == 0)
+        glm_vec3_copy((float *)s->ambient, b.ambient);
+    for (int i = 0; i < count; i++) {
+        const scene_light *l = &s->lights[first + i];
         scene_light_homogeneous(l, b.position[i]);
         glm_vec3_copy((float *)l->direction, b.direction[i]);
         glm_vec3_scale((float *)l->color, l->intensity, b.color[i]);
@@ -319,8 +358,13 @@ void render_scene_update_lights(const render_scene *r, int visibility_of) {
         b.reach[i][1] = spot ? cosf(glm_rad(l->inner_angle_deg)) : -2.0f;
         b.reach[i][2] = l->type == SCENE_LIGHT_DIRECTIONAL ? 0 : l->range;
     }
-    glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffer);
+    glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffers[g]);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof b, &b);
+}
+
+void render_scene_update_lights(const render_scene *r, int visibility_of) {
+    for (int g = 0; g < render_light_groups(r); g++)
+        render_update_group(r, g, visibility_of);
 }
 
 void render_scene_destroy(render_scene *r) {
@@ -336,7 +380,8 @@ void render_scene_destroy(render_scene *r) {
         glDeleteTextures(1, &r->white);
     }
     free(r->textures);
-    glDeleteBuffers(1, &r->lights_buffer);
+    if (r->scene)
+        glDeleteBuffers(render_light_groups(r), r->lights_buffers);
     for (int v = 0; r->lit && v < RENDER_LIT_VARIANTS; v++)
         for (unsigned set = 0; set < RENDER_LIGHT_SETS; set++)
             render_program_destroy(&r->lit->programs[v][set].program);
@@ -370,8 +415,16 @@ static bool render_lit_load(render_lit_programs *lit, render_lit_variant variant
 }
 
 const render_lit_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant,
-                                                 const camera_view *v, unsigned lights, bool ambient) {
-    unsigned set = lights & SCENE_ALL_LIGHTS(r->scene->light_count);
+                                                 const camera_view *v, scene_light_set lights, bool ambient) {
+    lights &= SCENE_ALL_LIGHTS(r->scene->light_count);
+    int g = lights ? RENDER_LIGHT_GROUP(__builtin_ctzll(lights)) : 0;
+    unsigned set = render_group_slots(lights, g);
+    if (lights != (scene_light_set)set << (g * SHADER_PASS_LIGHTS)) {
+        fprintf(stderr, "render: the lit program's lights 0x%llx span groups of %d\n", (unsigned long long)lights,
+                SHADER_PASS_LIGHTS);
+        return NULL;
+    }
+    render_bind_light_group(r, g);
     render_lit_program *p = &r->lit->programs[variant][set];
     if (!p->loaded && (r->lit->failed || !render_lit_load(r->lit, variant, set)))
         return NULL;
@@ -380,7 +433,8 @@ const render_lit_program *render_use_lit_variant(const render_scene *r, render_l
     return p;
 }
 
-const render_program *render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient) {
+const render_program *render_use_lit(const render_scene *r, const camera_view *v, scene_light_set lights,
+                                     bool ambient) {
     const render_lit_program *p = render_use_lit_variant(r, RENDER_LIT_PLAIN, v, lights, ambient);
     return p ? &p->program : NULL;
 }
@@ -399,8 +453,16 @@ void render_depth_prepass(const render_scene *r, const camera_view *v, const boo
     glDepthMask(GL_FALSE);
 }
 
-void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights) {
-    render_draw_objects(r, render_use_lit(r, v, lights, true), mask);
+void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, scene_light_set lights) {
+    bool blending;
+    for (int g = 0; g < render_light_groups(r); g++) {
+        unsigned slots = render_group_slots(lights, g);
+        render_group_pass_begin(g, &blending);
+        if (g == 0 || slots)
+            render_draw_objects(r, render_use_lit(r, v, (scene_light_set)slots << (g * SHADER_PASS_LIGHTS), g == 0),
+                                mask);
+    }
+    render_group_pass_end(blending);
 }
 
 void render_reset_state(void) {

@@ -12,6 +12,15 @@
  * With visibility_of = K >= 0 the block is in visibility mode for light K
  * (see lighting.glsl): the frame then shows the technique's visibility.
  *
+ * Light groups. A shader holds SHADER_PASS_LIGHTS lights (its slots, one
+ * by one: samplers take only constant indices), and a scene may have up to
+ * SCENE_MAX_LIGHTS: light l is slot l % SHADER_PASS_LIGHTS of group
+ * l / SHADER_PASS_LIGHTS, and each group has a block of its own, bound
+ * for its passes (render_bind_light_group; render_use_lit binds its set's).
+ * Only group 0's block holds the ambient term. A scene of one group is
+ * shaded as if groups did not exist; past one, each group's pass adds its
+ * lights to the first's (render_unshadowed, the shading passes).
+ *
  * Techniques load their own programs with render_program_load, which finds
  * the uniforms every scene-drawing program has (u_model, u_normal_matrix,
  * u_albedo, u_base_color, u_view_projection; any may be absent), then draw
@@ -101,8 +110,13 @@ typedef struct render_mesh {
  * long_view's, so none of those is huge. */
 #define RENDER_HUGE_RATIO 1024.0
 
-/* Every set of the scene's lights. */
-#define RENDER_LIGHT_SETS (1u << SCENE_MAX_LIGHTS)
+/* The groups of SHADER_PASS_LIGHTS a scene's lights can fill (see the
+ * top). */
+#define RENDER_LIGHT_GROUPS ((SCENE_MAX_LIGHTS + SHADER_PASS_LIGHTS - 1) / SHADER_PASS_LIGHTS)
+#define RENDER_LIGHT_GROUP(l) ((l) / SHADER_PASS_LIGHTS)
+#define RENDER_LIGHT_SLOT(l) ((l) % SHADER_PASS_LIGHTS)
+/* Every set of a group's lights, as slot bits. */
+#define RENDER_LIGHT_SETS (1u << SHADER_PASS_LIGHTS)
 
 /* lit.frag's variants: plain, and with one light scaled by a soft
  * visibility sum (LIT_SOFT_VISIBILITY, soft_visibility.h). */
@@ -139,12 +153,12 @@ typedef struct render_scene {
     bool *in_view;                  /* one per scene object: render_cull_view's mask */
     bool *in_frustum;               /* one per scene object: its box meets the view, whatever the skips */
     bool *lit_by[SCENE_MAX_LIGHTS]; /* one per scene object: in view and in light l's reach (technique.h) */
-    unsigned lights_buffer;
-    unsigned *textures;       /* one per scene texture (GL names) */
-    unsigned white;           /* the texture of an object without one: a white texel */
-    render_lit_programs *lit; /* compiled on use, through a const render_scene too */
-    render_programs depth;    /* lit.vert with depth.frag: render_depth_prepass */
-    bool inject_gl_error;     /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
+    unsigned lights_buffers[RENDER_LIGHT_GROUPS]; /* each group's block; those the scene fills */
+    unsigned *textures;                           /* one per scene texture (GL names) */
+    unsigned white;                               /* the texture of an object without one: a white texel */
+    render_lit_programs *lit;                     /* compiled on use, through a const render_scene too */
+    render_programs depth;                        /* lit.vert with depth.frag: render_depth_prepass */
+    bool inject_gl_error;                         /* test hook: see RENDER_INJECT_GL_ERROR_ENV */
 } render_scene;
 
 /* A test-only hook: with this variable set in the environment, every
@@ -220,14 +234,27 @@ bool render_skip_on(const render_skips *skips, bool own_off);
  * culling is off. Returns how many objects are in the view mask. */
 int render_cull_view(render_scene *r, const camera_view *v, const render_skips *skips);
 
+/* How many light groups the scene's lights fill: at least one. */
+int render_light_groups(const render_scene *r);
+/* The lights of `lights` in group g, as slot bits. */
+unsigned render_group_slots(scene_light_set lights, int g);
+/* Binds group g's block of lights for the passes that follow. */
+void render_bind_light_group(const render_scene *r, int g);
+/* The passes of a pass's groups after its first add their light
+ * (GL_ONE, GL_ONE): on for g > 0 (the state *blending was, at g 0,
+ * kept for render_group_pass_end). */
+void render_group_pass_begin(int g, bool *blending);
+void render_group_pass_end(bool blending);
 /* Binds the lit program of `variant` for the set `lights`
- * (SCENE_LIGHT_BIT; those the scene has), with or without the ambient
- * term, and returns it (its program to draw with); NULL where it failed
- * to compile. */
+ * (SCENE_LIGHT_BIT; those the scene has, all of one group) and its
+ * group's block, with or without the ambient term, and returns it (its
+ * program to draw with); NULL where it failed to compile, or after one
+ * line on stderr where the set spans groups. */
 const render_lit_program *render_use_lit_variant(const render_scene *r, render_lit_variant variant,
-                                                 const camera_view *v, unsigned lights, bool ambient);
+                                                 const camera_view *v, scene_light_set lights, bool ambient);
 /* The plain one's program. */
-const render_program *render_use_lit(const render_scene *r, const camera_view *v, unsigned lights, bool ambient);
+const render_program *render_use_lit(const render_scene *r, const camera_view *v, scene_light_set lights,
+                                     bool ambient);
 /* The depth of the objects in `mask` (NULL: all), nothing else written:
  * the pre-pass after which every shading pass meets each visible pixel
  * once (GL_EQUAL), so a costly fragment stage (a shadow map's filter) runs
@@ -237,11 +264,13 @@ const render_program *render_use_lit(const render_scene *r, const camera_view *v
  * GL_EQUAL with depth writes off. */
 void render_depth_prepass(const render_scene *r, const camera_view *v, const bool *mask);
 /* The scene lit by the set `lights`, nothing shadowed, under the depth
- * test as it is: the cost floor's lit pass after its pre-pass, which
+ * test as it is, with the ambient term; past one group, each group's
+ * pass after the first adds its lights: the cost floor's lit pass after
+ * its pre-pass, which
  * skips as the techniques' camera passes do (mask: the frame's in_view,
  * NULL: all; lights: those that reach the view), so that ratios to it
  * measure shadows, not culling. */
-void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, unsigned lights);
+void render_unshadowed(const render_scene *r, const camera_view *v, const bool *mask, scene_light_set lights);
 void render_reset_state(void);
 
 #endif

@@ -23,7 +23,7 @@
 static char shader_dir[4096] = "shaders";
 
 /* What every program sees (the lights block's size, shaders/lighting.glsl). */
-static const shader_define shader_common_defines[] = {SHADER_DEFINE(SCENE_MAX_LIGHTS), {NULL, 0}};
+static const shader_define shader_common_defines[] = {SHADER_DEFINE(SHADER_PASS_LIGHTS), {NULL, 0}};
 
 /* GLSL ES 3.00's first lines, in place of a source's "#version 330 core":
  * a default precision for every type that has none or a lower one in

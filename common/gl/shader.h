@@ -24,12 +24,13 @@
  * negative instead.
  *
  * A uniform block named "Lights" is bound to SHADER_LIGHTS_BINDING, where
- * render.c keeps the scene's lights (see shaders/lighting.glsl).
+ * render.c keeps a group of the scene's lights, SHADER_PASS_LIGHTS of
+ * them (see shaders/lighting.glsl and render.h, "Light groups").
  *
  * The C/GLSL contract: every enum value and limit a shader shares with C
  * is defined once, in C, and reaches the shader as "#define NAME VALUE"
  * right after its #version line (so #line numbers stay true): the limits
- * every program needs (SCENE_MAX_LIGHTS) always, a program's own through
+ * every program needs (SHADER_PASS_LIGHTS) always, a program's own through
  * `defines`, a list ended by {NULL} built with SHADER_DEFINE(CONSTANT),
  * which names the constant as C does. A shader compares with those names,
  * never with a bare number; one that uses a name it was not given fails
@@ -41,6 +42,8 @@
 #include <stdbool.h>
 
 #define SHADER_LIGHTS_BINDING 0
+/* The lights one program holds: its slots (render.h, "Light groups"). */
+#define SHADER_PASS_LIGHTS 8
 
 typedef struct shader_define {
     const char *name; /* NULL ends a list */

@@ -56,12 +56,22 @@ const bool *shading_all_begin(const technique_frame *f) {
     return f->skips->in_view;
 }
 
-unsigned shading_split_lights(const technique_frame *f) {
-    unsigned split = 0;
+scene_light_set shading_split_lights(const technique_frame *f) {
+    scene_light_set split = 0;
+    bool groups = render_light_groups(f->gpu) > 1;
     for (int l = 0; l < f->gpu->scene->light_count; l++)
-        if (skips_light_on(f->skips, l) && shading_light_narrow(f, l))
+        if (skips_light_on(f->skips, l) && (groups || shading_light_narrow(f, l)))
             split |= SCENE_LIGHT_BIT(l);
     return split;
+}
+
+const bool *shading_split_pass(const technique_frame *f, int l) {
+    const bool *objects = shading_light_pass(f, l);
+    if (render_light_groups(f->gpu) > 1) {
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+    }
+    return objects;
 }
 
 void shading_ambient(const technique_frame *f) {
@@ -72,7 +82,7 @@ void shading_ambient(const technique_frame *f) {
 /* Light l's share on the objects of `objects` the stencil tests (or on
  * the others, `tested` false), through stencil test `func`; with the
  * ambient term when `ambient`. */
-static void shading_objects(const technique_frame *f, const bool *objects, unsigned lights, bool ambient,
+static void shading_objects(const technique_frame *f, const bool *objects, scene_light_set lights, bool ambient,
                             const shading_stencil *stencil, unsigned func, bool tested) {
     const scene *s = f->gpu->scene;
     const render_program *p = render_use_lit(f->gpu, f->view, lights, ambient);

@@ -47,8 +47,15 @@ const bool *shading_all_begin(const technique_frame *f);
  * shades again what it reaches in its rectangle. A light adds exactly 0
  * outside its rectangle, so each pixel's sum is the one pass's with every
  * light, bit for bit. None with the skips off (every rectangle the whole
- * frame). */
-unsigned shading_split_lights(const technique_frame *f);
+ * frame). Past one light group (render.h), every light on is split, and
+ * light l's pass adds its own light alone (shading_split_pass): shading
+ * every light again would cost every light in every split rectangle, and
+ * a group's pass over the whole frame every light of the group on every
+ * pixel. */
+scene_light_set shading_split_lights(const technique_frame *f);
+/* Split light l's pass: shading_light_pass's, and past one light group
+ * additive blending on (GL_ONE, GL_ONE), which the caller turns off. */
+const bool *shading_split_pass(const technique_frame *f, int l);
 /* The frame's only shading pass when no light is on: the ambient term on
  * every object in view. */
 void shading_ambient(const technique_frame *f);

@@ -9,12 +9,13 @@
 
 const char *const soft_visibility_sample_counts[] = {"1", "4", "16", "64", "256", NULL};
 
-int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l, unsigned *warned) {
+int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l,
+                            scene_light_set *warned) {
     int samples = atoi(soft_visibility_sample_counts[choice]);
-    if (light->radius > 0 && samples == 1 && !(*warned >> l & 1u))
+    if (light->radius > 0 && samples == 1 && !(*warned & SCENE_LIGHT_BIT(l)))
         fprintf(stderr, "%s: light %d is an area light (radius %g), drawn hard from its centre: --light-samples\n",
                 technique, l, light->radius);
-    *warned |= light->radius > 0 && samples == 1 ? 1u << l : 0;
+    *warned |= light->radius > 0 && samples == 1 ? SCENE_LIGHT_BIT(l) : 0;
     return light->radius > 0 ? samples : 1;
 }
 
@@ -135,12 +136,13 @@ void soft_visibility_add(soft_visibility *v, int l, float weight) {
 }
 
 const render_program *soft_visibility_use_lit(const soft_visibility *v, const render_scene *r,
-                                              const camera_view *view, int light, unsigned lights, bool ambient) {
+                                              const camera_view *view, int light, scene_light_set lights,
+                                              bool ambient) {
     const render_lit_program *p = render_use_lit_variant(r, RENDER_LIT_SOFT_VISIBILITY, view, lights, ambient);
     if (!p)
         return NULL;
     const soft_visibility_light *sum = &v->lights[light];
-    glUniform1i(p->soft_light, light);
+    glUniform1i(p->soft_light, RENDER_LIGHT_SLOT(light));
     glUniform1i(p->soft_visibility, SOFT_VISIBILITY_UNIT);
     glUniform1f(p->soft_scale, 1.0f / (float)(sum->points > 0 ? sum->points : 1));
     glActiveTexture(GL_TEXTURE0 + SOFT_VISIBILITY_UNIT);

@@ -65,7 +65,8 @@ extern const char *const soft_visibility_sample_counts[];
 /* How many points light l (of `technique`, whose --light-samples is
  * `choice`) is sampled at: 1 for a hard light, or an area light drawn
  * hard, which is said once on stderr (bit l of *warned). */
-int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l, unsigned *warned);
+int soft_visibility_samples(const char *technique, int choice, const scene_light *light, int l,
+                            scene_light_set *warned);
 /* How area light l is drawn at `choice`, for the HUD: with the points in
  * its sum so far while they are fewer than it takes (progressive). */
 const char *soft_visibility_area_light_text(const soft_visibility *v, int choice, int l);
@@ -85,7 +86,8 @@ void soft_visibility_add(soft_visibility *v, int l, float weight);
  * set `lights`, as render_use_lit does, and returns it (NULL where it
  * failed to compile). */
 const render_program *soft_visibility_use_lit(const soft_visibility *v, const render_scene *r,
-                                              const camera_view *view, int light, unsigned lights, bool ambient);
+                                              const camera_view *view, int light, scene_light_set lights,
+                                              bool ambient);
 void soft_visibility_destroy(soft_visibility *v);
 
 #endif

@@ -51,10 +51,10 @@
  * compares): a cache keeps what did not. All set on a technique's first
  * frame and, with --no-cache, on every frame. */
 typedef struct technique_changes {
-    bool scene;      /* first frame: nothing is cached yet */
-    bool camera;     /* the view moved (camera, zoom, frame size) */
-    unsigned lights; /* SCENE_LIGHT_BIT(l): light l moved, turned or changed reach */
-    bool settings;   /* a setting of the technique changed (technique_host_settings_changed) */
+    bool scene;             /* first frame: nothing is cached yet */
+    bool camera;            /* the view moved (camera, zoom, frame size) */
+    scene_light_set lights; /* SCENE_LIGHT_BIT(l): light l moved, turned or changed reach */
+    bool settings;          /* a setting of the technique changed (technique_host_settings_changed) */
 } technique_changes;
 
 /* One frame as the frame's owner (technique_host.h) hands it to a

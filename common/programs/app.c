@@ -158,7 +158,7 @@ static const flags_param app_flags[] = {
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
      .choices = app.technique_names},
     {"motion",
-     "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), or the\ncamera forward and back along its view (dolly)",
+     "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), the\ncamera forward and back along its view (dolly), or\nlight --light K alone on a small circle (lamp)",
      0, FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
     {"animate", "--motion light (space in the window)", 0, FLAGS_SWITCH, .on = &app.animate},
     {"hold-fit",
@@ -375,7 +375,8 @@ static void app_camera_at(double time, scene_camera *camera, camera_view *view) 
 /* This frame's lights and camera (app.time), and the view. */
 static void app_view(camera_view *view) {
     scene *s = &app.scene;
-    motion_lights(app_motion(), app.time, app.base_camera.target, app.base_lights, s->light_count, s->lights);
+    motion_lights(app_motion(), app.time, app.base_camera.target, app.base_lights, s->light_count, app.light,
+                  s->lights);
     app_camera_at(app.time, &s->camera, view);
 }
 
@@ -876,7 +877,7 @@ static int app_skips_text(char *out, size_t size) {
                      c->casters_narrowed[l]);
     if (render_skip_on(k, k->no_hidden_cull) && app.host.hidden_idle == 0)
         APP_TEXT("; objects hidden %d; lights narrowed %d", c->objects_hidden,
-                 __builtin_popcount(c->lights_narrowed));
+                 __builtin_popcountll(c->lights_narrowed));
     APP_TEXT("   [J] caching: ");
     if (render_skip_on(k, k->no_cache))
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);

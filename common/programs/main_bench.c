@@ -197,7 +197,7 @@ static const flags_param bench_flags[] = {
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
     {"motion",
-     "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, or along its view (dolly);\nframe k is at k/60 s",
+     "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, along its view (dolly), or\nthe measured light alone (lamp, --light K); frame k is at k/60 s",
      0, FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
     {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
      .choices = bench_config_choices},
@@ -302,7 +302,7 @@ static void bench_move(double time) {
     scene *s = &bench.scene;
     bench.time = time;
     motion_lights((motion_kind)bench.motion, time, bench.base_camera.target, bench.base_lights, s->light_count,
-                  s->lights);
+                  bench.light, s->lights);
     motion_camera((motion_kind)bench.motion, time, &bench.base_camera, &s->camera);
     camera_view_compute(&s->camera, (float)bench.width / (float)bench.height, &bench.view);
 }

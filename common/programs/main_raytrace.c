@@ -99,7 +99,8 @@ static int main_run(void) {
     const scene_camera base_camera = s.camera;
     scene_light base_lights[SCENE_MAX_LIGHTS];
     memcpy(base_lights, s.lights, sizeof base_lights);
-    motion_lights((motion_kind)main_flags.motion, time, base_camera.target, base_lights, s.light_count, s.lights);
+    motion_lights((motion_kind)main_flags.motion, time, base_camera.target, base_lights, s.light_count,
+                  main_flags.light_index, s.lights);
     motion_camera((motion_kind)main_flags.motion, time, &base_camera, &s.camera);
     main_flags.settings.scene_name = main_flags.scene_path;
     progress_start(&main_flags.progress, main_flags.program, main_flags.quiet);

@@ -9,6 +9,10 @@
  *                into the sun, the far plane across it, a sun and three spot lamps
  *                without a range, so that nothing is culled for being out
  *                of view or out of reach and only what is hidden can be;
+ *   lamps_64.json  city_300 at night: 64 point lamps of limited range on
+ *                poles along both kerbs of the street the camera looks
+ *                down and of the street that crosses it, no sun: many
+ *                shadowed lights, each lighting a small part of the frame;
  *   dense.json   a field of high-segment spheres and tori on a ground slab,
  *                every mesh closed, over 100k triangles, one light;
  *   stacked_300.json  300 thin slabs stacked under a sun, 256 wide ones
@@ -105,6 +109,22 @@
 #define CITY_LAMP_INTENSITY 0.8
 #define CITY_SPOT_INNER 35.0
 #define CITY_SPOT_OUTER 55.0
+
+/* The night street: LAMPS_PER_KERB lamps a kerb, LAMPS_SPACING apart,
+ * centred on the crossing in front of the eye, each on a pole at the
+ * kerb with its lamp on an arm over the street (the pole casts, the lamp
+ * is outside it). */
+#define LAMPS_COUNT 300
+#define LAMPS_PER_KERB 16
+#define LAMPS_SPACING 12.0
+#define LAMPS_KERB_OFFSET (CITY_STREET / 2 - 0.5) /* a pole's distance from the street's middle */
+#define LAMPS_ARM 1.2                             /* the lamp's, from its pole, over the street */
+#define LAMPS_HEIGHT 6.0
+#define LAMPS_POLE_RADIUS 0.12
+#define LAMPS_POLE_SEGMENTS 8
+#define LAMPS_RANGE 14.0
+#define LAMPS_INTENSITY 0.9
+#define LAMPS_AMBIENT 0.06
 
 /* ---- the dense scene ---- */
 #define DENSE_GRID 5 /* a 5 x 5 field */
@@ -380,6 +400,48 @@ static void scenegen_street_setting(cJSON *root) {
                       STREET_SPOT_OUTER);
 }
 
+/* The night street's: the city's camera, a faint ambient term, and
+ * 64 point lamps on poles along the kerbs of the street the eye looks
+ * down (x = CITY_PITCH / 2) and of the one crossing it in front
+ * (z = -CITY_PITCH / 2). */
+static void scenegen_lamps_setting(cJSON *root) {
+    scenegen_city_camera(root, CITY_EYE_Z, -1, CITY_NEAR, CITY_FAR);
+    scenegen_vec3(root, "ambient", LAMPS_AMBIENT, LAMPS_AMBIENT, LAMPS_AMBIENT * 1.3, SCENEGEN_DECIMALS);
+    cJSON *lights = cJSON_CreateArray();
+    scenegen_put(root, "lights", lights);
+    cJSON *objects = cJSON_CreateArray();
+    scenegen_put(root, "objects", objects);
+    const double street_x = CITY_PITCH / 2, street_z = -CITY_PITCH / 2;
+    int number = 0;
+    for (int street = 0; street < 2; street++)
+        for (int kerb = -1; kerb <= 1; kerb += 2)
+            for (int i = 0; i < LAMPS_PER_KERB; i++) {
+                /* Along the street, staggered half a spacing on one kerb. */
+                double along = (i - (LAMPS_PER_KERB - 1) / 2.0 + (kerb > 0 ? 0.25 : -0.25)) * LAMPS_SPACING;
+                double across = kerb * LAMPS_KERB_OFFSET, arm = -kerb * LAMPS_ARM;
+                double pole[2] = {street_x + across, street_z + along}, lamp[2] = {pole[0] + arm, pole[1]};
+                if (street == 1) {
+                    pole[0] = street_x + along;
+                    pole[1] = street_z + across;
+                    lamp[0] = pole[0];
+                    lamp[1] = pole[1] + arm;
+                }
+                cJSON *l = scenegen_light(lights, "point", LAMPS_INTENSITY);
+                scenegen_vec3(l, "position", lamp[0], LAMPS_HEIGHT, lamp[1], SCENEGEN_DECIMALS);
+                scenegen_vec3(l, "color", 1, 0.82, 0.6, SCENEGEN_DECIMALS);
+                scenegen_number(l, "range", LAMPS_RANGE);
+                char name[32];
+                cJSON *mesh;
+                snprintf(name, sizeof name, "pole_%d", number++);
+                cJSON *o = scenegen_object(objects, name, "cylinder", &mesh);
+                scenegen_number(mesh, "radius", LAMPS_POLE_RADIUS);
+                scenegen_number(mesh, "height", LAMPS_HEIGHT + 0.5);
+                scenegen_put(mesh, "segments", cJSON_CreateNumber(LAMPS_POLE_SEGMENTS));
+                scenegen_vec3(o, "translate", pole[0], (LAMPS_HEIGHT + 0.5) / 2, pole[1], SCENEGEN_DECIMALS);
+                scenegen_vec3(o, "color", 0.3, 0.32, 0.3, SCENEGEN_DECIMALS);
+            }
+}
+
 /* The block `index` in ring order: ring 0 is block (0, 0), ring r the 8r
  * blocks at Chebyshev distance r, walked from its top-left corner round. */
 static void scenegen_block_at(int index, int *bx, int *bz, int *ring) {
@@ -440,8 +502,11 @@ static void scenegen_lot(cJSON *objects, uint64_t *rng, double cx, double cz, in
 static cJSON *scenegen_city(int count, void (*setting)(cJSON *root)) {
     cJSON *root = cJSON_CreateObject();
     setting(root);
-    cJSON *objects = cJSON_CreateArray();
-    scenegen_put(root, "objects", objects);
+    cJSON *objects = cJSON_GetObjectItem(root, "objects"); /* a setting may have put some */
+    if (!objects) {
+        objects = cJSON_CreateArray();
+        scenegen_put(root, "objects", objects);
+    }
     cJSON *mesh, *ground = scenegen_object(objects, "ground", "plane", &mesh);
     int made = 0, ring = 0;
     for (int block = 0; made < count; block++) {
@@ -798,6 +863,7 @@ static bool scenegen_run(const char *dir) {
         ok = scenegen_emit(scenegen_city(scenegen_city_counts[i], scenegen_city_setting), dir, name);
     }
     return ok && scenegen_emit(scenegen_city(STREET_COUNT, scenegen_street_setting), dir, "street.json") &&
+           scenegen_emit(scenegen_city(LAMPS_COUNT, scenegen_lamps_setting), dir, "lamps_64.json") &&
            scenegen_emit(scenegen_dense(), dir, "dense.json") &&
            scenegen_emit(scenegen_stacked_slabs(), dir, "stacked_300.json") &&
            scenegen_write_file(dir, "stacked_10000.obj", scenegen_stacked_obj_body, NULL) &&
@@ -819,7 +885,8 @@ int main(int argc, char **argv) {
         printf("usage: %s [flags]\n"
                "Writes the generated scenes, the same bytes on every run: city_100, city_300,\n"
                "city_1000 and city_3000.json (that many objects plus the ground), street.json\n"
-               "(city_1000 seen to the far side, unranged lamps), dense.json, and stacked_300.json\n"
+               "(city_1000 seen to the far side, unranged lamps), lamps_64.json (city_300 at night\n"
+               "under 64 shadowed point lamps), dense.json, and stacked_300.json\n"
                "and stacked_10000.json (with its .obj), deeper than the 8-bit stencil counts, and the\n"
                "glTF scenes fence.gltf (cut-out boards and leaves) and stained_glass.gltf (translucent panes).\n",
                program);

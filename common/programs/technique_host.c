@@ -2,6 +2,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* A light's pixel rectangle is grown by this many pixels each side: the
@@ -22,13 +23,23 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
                 "%s: %d translucent objects (alphaMode BLEND) cast the shadow of their whole surface: %s draws no "
                 "coloured shadows\n",
                 t->name, translucent, t->name);
+    /* Each light's masks: a scene's, not every light a scene may have. */
+    h->seen.masks = calloc((size_t)(s->light_count > 0 ? s->light_count : 1), sizeof *h->seen.masks);
+    if (!h->seen.masks) {
+        fprintf(stderr, "%s: out of memory for the lights' masks\n", t->name);
+        return false;
+    }
     h->technique = t;
     h->gpu = gpu;
     h->skips = skips;
     h->started = false;
     h->hidden_idle = 0;
     h->settings_changed = false;
-    return technique_init(t, gpu);
+    if (technique_init(t, gpu))
+        return true;
+    free(h->seen.masks);
+    h->seen.masks = NULL;
+    return false;
 }
 
 void technique_host_settings_changed(technique_host *h) { h->settings_changed = true; }
@@ -36,6 +47,8 @@ void technique_host_settings_changed(technique_host *h) { h->settings_changed = 
 void technique_host_stop(technique_host *h) {
     h->technique->destroy();
     visible_destroy(&h->seen.pixels);
+    free(h->seen.masks);
+    h->seen.masks = NULL;
 }
 
 /* Whether a light moved in any way a shadow depends on (not its colour). */
@@ -101,8 +114,8 @@ int technique_host_receiver_points(const scene *s, const camera_view *view, floa
 
 /* The lights worth testing against the visible objects: all but those
  * whose range sphere lies outside the view's frustum. */
-static unsigned technique_host_lights_near_view(const scene *s, const camera_view *view) {
-    unsigned lights = 0;
+static scene_light_set technique_host_lights_near_view(const scene *s, const camera_view *view) {
+    scene_light_set lights = 0;
     for (int l = 0; l < s->light_count; l++) {
         const scene_light *light = &s->lights[l];
         bool bounded = light->type != SCENE_LIGHT_DIRECTIONAL && light->range > 0;
@@ -132,9 +145,9 @@ static void technique_host_set_receivers(skips *k, const float (*points)[3], int
  * reaches nothing on screen). */
 static void technique_host_visible(technique_host *h, const camera_view *view, skips *k) {
     const scene *s = h->gpu->scene;
-    unsigned all = SCENE_ALL_LIGHTS(s->light_count);
+    scene_light_set all = SCENE_ALL_LIGHTS(s->light_count);
     bool reach_skip = render_skip_on(h->skips, h->skips->no_light_reach);
-    unsigned candidates = reach_skip ? technique_host_lights_near_view(s, view) : 0, reached = 0;
+    scene_light_set candidates = reach_skip ? technique_host_lights_near_view(s, view) : 0, reached = 0;
     float part[SKIPS_MAX_PART_POINTS][3];
     int n = 0;
     for (int i = 0; i < s->object_count; i++) {

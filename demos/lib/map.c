@@ -323,21 +323,21 @@ static bool map_scene_transmits(const map_renderer *r) { return r->transmit.id &
 /* Light l's texture unit `unit` is one this GL has; else said once per
  * light (bit l of *said): it lacks the unit for the light's `what`, and
  * does `instead`. */
-static bool map_light_unit(const map_renderer *r, int unit, int l, unsigned *said, const char *what,
+static bool map_light_unit(const map_renderer *r, int unit, int l, scene_light_set *said, const char *what,
                            const char *instead) {
     if (unit < r->texture_units)
         return true;
-    if (!(*said >> l & 1u))
+    if (!(*said & SCENE_LIGHT_BIT(l)))
         fprintf(stderr, "shadow maps: light %d: this GL has too few texture units for its %s: %s\n", l, what,
                 instead);
-    *said |= 1u << l;
+    *said |= SCENE_LIGHT_BIT(l);
     return false;
 }
 
 /* Light l's map takes one: the frame's do and the GL has its unit. */
 static bool map_light_transmits(map_renderer *r, int l) {
     return map_scene_transmits(r) &&
-           map_light_unit(r, MAP_TRANSMIT_UNITS + l, l, &r->transmit_warned, "transmittance map",
+           map_light_unit(r, MAP_TRANSMIT_UNITS + RENDER_LIGHT_SLOT(l), l, &r->transmit_warned, "transmittance map",
                           "translucent casters cast their whole shadow");
 }
 
@@ -448,9 +448,9 @@ void map_texel_units(unsigned program) {
 
 /* The names of the per-light defines: light i's kind, its map's texel
  * kind, its transmittance map's slot. */
-static char map_kind_names[SCENE_MAX_LIGHTS][sizeof "MAP_LIGHT_KIND_" + 3];
-static char map_texel_kind_names[SCENE_MAX_LIGHTS][sizeof "MAP_TEXEL_KIND_" + 3];
-static char map_transmit_slot_names[SCENE_MAX_LIGHTS][sizeof "MAP_TRANSMIT_SLOT_" + 3];
+static char map_kind_names[SHADER_PASS_LIGHTS][sizeof "MAP_LIGHT_KIND_" + 3];
+static char map_texel_kind_names[SHADER_PASS_LIGHTS][sizeof "MAP_TEXEL_KIND_" + 3];
+static char map_transmit_slot_names[SHADER_PASS_LIGHTS][sizeof "MAP_TRANSMIT_SLOT_" + 3];
 
 /* Light l's element of the transmittance samplers: the transmitting
  * lights' in their order, so that each kind's array holds only as many
@@ -505,11 +505,11 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
     /* This key's defines, then the enums every camera program compares
      * with, then each light's three, then the list's end ({NULL}, zeroed). */
     enum { PASS = sizeof pass / sizeof *pass, COMMON = sizeof map_defines / sizeof *map_defines - 1 };
-    shader_define defines[PASS + COMMON + 3 * SCENE_MAX_LIGHTS + 1] = {{NULL, 0}};
+    shader_define defines[PASS + COMMON + 3 * SHADER_PASS_LIGHTS + 1] = {{NULL, 0}};
     memcpy(defines, pass, sizeof pass);
     memcpy(defines + PASS, map_defines, COMMON * sizeof *defines);
     shader_define *light_defines = defines + PASS + COMMON;
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+    for (int l = 0; l < SHADER_PASS_LIGHTS; l++) {
         snprintf(map_kind_names[l], sizeof map_kind_names[l], "MAP_LIGHT_KIND_%d", l);
         snprintf(map_texel_kind_names[l], sizeof map_texel_kind_names[l], "MAP_TEXEL_KIND_%d", l);
         snprintf(map_transmit_slot_names[l], sizeof map_transmit_slot_names[l], "MAP_TRANSMIT_SLOT_%d", l);
@@ -534,6 +534,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {&p->eye, "u_eye"},
         {&p->exact_surface, "u_exact_surface"},
         {&p->translucent, "u_translucent"},
+        {&p->ambient, "u_ambient"},
     };
     map_find_uniforms(id, uniforms, sizeof uniforms / sizeof *uniforms);
     /* Each sampler on a unit, those of lights without a map too: an
@@ -544,7 +545,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
      * the others idle (MAP_IDLE_UNITS, the comparisons' types, then
      * the depths'). */
     glUseProgram(id);
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+    for (int l = 0; l < SHADER_PASS_LIGHTS; l++) {
         for (int t = 0; t < MAP_SAMPLER_TYPES; t++) {
             bool own = map_light_field(k->kinds, l) == (unsigned)map_samplers[t].kind;
             bool soft = own && ((k->soft_lights | k->moment_lights) >> l & 1u);
@@ -626,10 +627,11 @@ static bool map_light_mapped(unsigned kind) {
     return kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE || kind == MAP_LIGHT_ARRAY;
 }
 
-/* Light l in key k, with a map of that kind and texel kind. */
-static void map_key_light(map_camera_key *k, int l, map_kind kind, map_texel_kind texel) {
-    k->kinds |= map_light_bits(l, map_light_kind_of(kind));
-    k->texel_kinds |= map_light_bits(l, texel);
+/* The light in slot `slot` of key k, with a map of that kind and texel
+ * kind. */
+static void map_key_light(map_camera_key *k, int slot, map_kind kind, map_texel_kind texel) {
+    k->kinds |= map_light_bits(slot, map_light_kind_of(kind));
+    k->texel_kinds |= map_light_bits(slot, texel);
 }
 
 /* Every light of the scene with its uniform map (a cube for a point light,
@@ -637,7 +639,7 @@ static void map_key_light(map_camera_key *k, int l, map_kind kind, map_texel_kin
  * the settings' kernel: the first frame's program, most often. */
 static map_camera_key map_scene_key(const scene *s, const map_settings *st) {
     map_camera_key k = map_settings_key(st);
-    for (int l = 0; l < s->light_count; l++) {
+    for (int l = 0; l < s->light_count && l < SHADER_PASS_LIGHTS; l++) {
         scene_light_type type = s->lights[l].type;
         map_key_light(&k, l, type == SCENE_LIGHT_POINT ? MAP_CUBE : MAP_2D,
                       type == SCENE_LIGHT_DIRECTIONAL ? MAP_TEXEL_ORTHOGRAPHIC : MAP_TEXEL_PERSPECTIVE);
@@ -674,11 +676,12 @@ static bool map_alloc_sets(map_renderer *r, int object_count) {
     size_t n = (size_t)object_count, layers = MAP_MAX_LAYERS;
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
+    r->unmapped = calloc(n + 1, sizeof *r->unmapped);
     r->closed = calloc(n + 1, sizeof *r->closed);
     r->masks = malloc(layers * sizeof *r->masks);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes || !r->closed || !r->masks) {
+    if (!sets || !r->receiver_boxes || !r->unmapped || !r->closed || !r->masks) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
     }
@@ -803,6 +806,7 @@ void map_destroy(map_renderer *r) {
     }
     free(r->needed[0]);
     free(r->receiver_boxes);
+    free(r->unmapped);
     free(r->closed);
     free(r->masks);
     free(r);
@@ -811,14 +815,15 @@ void map_destroy(map_renderer *r) {
 /* ---- the camera pass ---- */
 
 /* Where the eye is inside object i, a closed caster, the lights with a
- * map in key k that are outside it (bit l: light l), for
+ * map in group g's key k that are outside it (bit i: slot i), for
  * shaders/map.frag's u_closed_outside: a face that such a light
  * reaches on the eye's side is in the mesh's shadow. Only with the eye
  * inside: from outside, a triangle whose back the eye sees wins the
  * depth test at a few silhouette pixels, and the reference may see the
  * lit front there (long_view_behind and test_psm's low point light would
  * read shadowed there). */
-static unsigned map_closed_outside(const map_renderer *r, const technique_frame *f, const map_camera_key *k, int i) {
+static unsigned map_closed_outside(const map_renderer *r, const technique_frame *f, const map_camera_key *k, int g,
+                                   int i) {
     const scene *s = f->gpu->scene;
     const float eye[4] = {f->view->eye[0], f->view->eye[1], f->view->eye[2], 1};
     float object_eye[4];
@@ -827,46 +832,47 @@ static unsigned map_closed_outside(const map_renderer *r, const technique_frame 
     mesh_point_to_object(s->objects[i].model, eye, object_eye);
     if (!mesh_point_inside(&s->objects[i].mesh, object_eye))
         return 0;
-    unsigned lights = 0;
-    for (int l = 0; l < s->light_count; l++) {
+    unsigned slots = 0;
+    for (int slot = 0; slot < SHADER_PASS_LIGHTS; slot++) {
         float light[4], object_light[4];
-        if (!map_light_mapped(map_light_field(k->kinds, l)))
+        if (!map_light_mapped(map_light_field(k->kinds, slot)))
             continue;
-        scene_light_homogeneous(&s->lights[l], light);
+        scene_light_homogeneous(&s->lights[g * SHADER_PASS_LIGHTS + slot], light);
         mesh_point_to_object(s->objects[i].model, light, object_light);
         if (!mesh_point_inside(&s->objects[i].mesh, object_light))
-            lights |= 1u << l;
+            slots |= 1u << slot;
     }
-    return lights;
+    return slots;
 }
 
-/* Soft light l's map on its depth unit too, read through the depth
- * sampler, and its disc: a radius, or a sun's tangent of its angular
- * radius (degrees in the scene); a 2D map's inverse, for its depths'
- * distances. */
+/* Soft light l's map on its slot's depth unit too, read through the
+ * depth sampler, and its disc: a radius, or a sun's tangent of its
+ * angular radius (degrees in the scene); a 2D map's inverse, for its
+ * depths' distances. */
 static void map_bind_soft(const map_renderer *r, const map_camera_program *p, const scene *s, int l) {
     const map_light *m = &r->maps[l];
     const scene_light *light = &s->lights[l];
-    GLuint unit = MAP_DEPTH_UNITS + (GLuint)l;
+    int slot = RENDER_LIGHT_SLOT(l);
+    GLuint unit = MAP_DEPTH_UNITS + (GLuint)slot;
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(map_target(m->kind), m->texture.id);
     glBindSampler(unit, r->depth_sampler);
-    glUniform1f(p->lights[l].light_size,
+    glUniform1f(p->lights[slot].light_size,
                 light->type == SCENE_LIGHT_DIRECTIONAL ? tanf(glm_rad(light->radius)) : light->radius);
     mat4 inverse;
     glm_mat4_inv((vec4 *)m->layer_view_projection[0], inverse);
-    glUniformMatrix4fv(p->lights[l].light_inverse, 1, GL_FALSE, (const float *)inverse);
+    glUniformMatrix4fv(p->lights[slot].light_inverse, 1, GL_FALSE, (const float *)inverse);
     /* The rays' disk: area_light.h's radius and a sun's cap. */
     area_light_frame disk;
     area_light_frame_for(light, (const float[4]){0, 0, 0, 1}, (const float[3]){0, 0, 1}, &disk);
-    glUniform2f(p->lights[l].light_area, disk.radius, disk.cap);
+    glUniform2f(p->lights[slot].light_area, disk.radius, disk.cap);
 }
 
-/* Key k without the lights of `lights` (SCENE_LIGHT_BIT). */
+/* Key k without the lights of `lights` (slot bits). */
 static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
+    for (int l = 0; l < SHADER_PASS_LIGHTS; l++) {
         unsigned field = map_light_bits(l, (1u << MAP_LIGHT_KIND_BITS) - 1);
-        if (lights & SCENE_LIGHT_BIT(l)) {
+        if (lights >> l & 1u) {
             k.kinds &= ~field;
             k.texel_kinds &= ~field;
         }
@@ -878,11 +884,12 @@ static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
     return k;
 }
 
-/* Camera program p in use, with every light of its key's map, matrices
- * and settings. */
+/* Camera program p in use for light group g, with every light of its
+ * key's map, matrices and settings. */
 static void map_camera_use(map_renderer *r, const map_settings *st, const technique_frame *f,
-                           const map_camera_program *p) {
+                           const map_camera_program *p, int g) {
     const map_camera_key *k = &p->key;
+    render_bind_light_group(f->gpu, g);
     render_program_use(&p->program, f->view);
     if (k->rays != MAP_RAYS_OFF) {
         bvh_gpu_bind(r->casters, p->program.id, MAP_RAY_UNIT);
@@ -898,33 +905,34 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
      * z, as the fit measured the cascades' splits. */
     const mat4 *view = &map_fit_frame(f)->view->view;
     glUniform4f(p->view_depth, -(*view)[0][2], -(*view)[1][2], -(*view)[2][2], -(*view)[3][2]);
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        if (!map_light_mapped(map_light_field(k->kinds, l)))
+    for (int slot = 0; slot < SHADER_PASS_LIGHTS; slot++) {
+        if (!map_light_mapped(map_light_field(k->kinds, slot)))
             continue;
+        int l = g * SHADER_PASS_LIGHTS + slot;
         const map_light *m = &r->maps[l];
-        glActiveTexture(GL_TEXTURE0 + (GLenum)l);
+        glActiveTexture(GL_TEXTURE0 + (GLenum)slot);
         glBindTexture(map_target(m->kind), m->texture.id);
-        glUniform1f(p->lights[l].map_size, (float)m->size);
-        glUniform1f(p->lights[l].texel_scale, m->texel_scale);
-        glUniform1f(p->lights[l].near_plane, m->near_plane);
-        glUniform1f(p->lights[l].far_plane, m->far_plane);
-        if (k->soft_lights >> l & 1u)
+        glUniform1f(p->lights[slot].map_size, (float)m->size);
+        glUniform1f(p->lights[slot].texel_scale, m->texel_scale);
+        glUniform1f(p->lights[slot].near_plane, m->near_plane);
+        glUniform1f(p->lights[slot].far_plane, m->far_plane);
+        if (k->soft_lights >> slot & 1u)
             map_bind_soft(r, p, f->gpu->scene, l);
-        if (k->moment_lights >> l & 1u) {
+        if (k->moment_lights >> slot & 1u) {
             /* Its moments, bilinear (the texture's own filter). */
-            glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)l);
+            glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)slot);
             glBindTexture(map_target(m->kind), m->texture.moments);
         }
-        if (k->bounds_lights >> l & 1u) {
-            glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)l);
+        if (k->bounds_lights >> slot & 1u) {
+            glActiveTexture(GL_TEXTURE0 + MAP_DEPTH_UNITS + (GLenum)slot);
             glBindTexture(GL_TEXTURE_2D, m->texture.bounds);
         }
-        if (k->transmit_lights >> l & 1u) {
-            glActiveTexture(GL_TEXTURE0 + MAP_TRANSMIT_UNITS + (GLenum)l);
+        if (k->transmit_lights >> slot & 1u) {
+            glActiveTexture(GL_TEXTURE0 + MAP_TRANSMIT_UNITS + (GLenum)slot);
             glBindTexture(map_target(m->kind), m->texture.transmittance);
         }
         if (m->kind != MAP_ARRAY) {
-            glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
+            glUniformMatrix4fv(p->lights[slot].light_matrix, 1, GL_FALSE, (const float *)m->layer_view_projection[0]);
             continue;
         }
         /* Layer k's scale and offset, w its slice's far and near ends. */
@@ -935,26 +943,26 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
             scale[layer][3] = m->cascade_split[layer + 1];
             offset[layer][3] = m->cascade_split[layer];
         }
-        glUniformMatrix4fv(p->lights[l].light_matrix, 1, GL_FALSE, (const float *)m->cascade_view);
-        glUniform4fv(p->lights[l].cascade_scale, m->layer_count, (const float *)scale);
-        glUniform4fv(p->lights[l].cascade_offset, m->layer_count, (const float *)offset);
-        glUniform1i(p->lights[l].cascade_count, m->layer_count);
+        glUniformMatrix4fv(p->lights[slot].light_matrix, 1, GL_FALSE, (const float *)m->cascade_view);
+        glUniform4fv(p->lights[slot].cascade_scale, m->layer_count, (const float *)scale);
+        glUniform4fv(p->lights[slot].cascade_offset, m->layer_count, (const float *)offset);
+        glUniform1i(p->lights[slot].cascade_count, m->layer_count);
         glUniform1f(p->cascade_blend, m->cascade_blend);
     }
     glActiveTexture(GL_TEXTURE0);
 }
 
-/* The receivers of `objects` through camera program p, in use: every light
- * of its key by its kind (shadowed where its map lets it through, or
- * unshadowed), and the ambient term. */
-static void map_draw_receivers(const map_renderer *r, const technique_frame *f, const map_camera_program *p,
+/* The receivers of `objects` through camera program p, in use for light
+ * group g: every light of its key by its kind (shadowed where its map
+ * lets it through, or unshadowed), and the ambient term of group 0's. */
+static void map_draw_receivers(const map_renderer *r, const technique_frame *f, const map_camera_program *p, int g,
                                const bool *objects) {
     const map_camera_key *k = &p->key;
     const scene *s = f->gpu->scene;
     for (int i = 0; i < s->object_count; i++) {
         if (!render_in_mask(objects, i) || !s->objects[i].receives)
             continue;
-        glUniform1i(p->closed_outside, (GLint)map_closed_outside(r, f, k, i));
+        glUniform1i(p->closed_outside, (GLint)map_closed_outside(r, f, k, g, i));
         if (k->transmit_lights)
             glUniform1i(p->translucent, s->objects[i].translucent && s->objects[i].casts);
         if (k->rays != MAP_RAYS_OFF)
@@ -964,74 +972,111 @@ static void map_draw_receivers(const map_renderer *r, const technique_frame *f, 
     }
 }
 
-/* Every light on, by its kind in key k, and the ambient term, on
- * `objects`' receivers: the one shading pass, with the lights
- * shading_split_lights leaves out shaded again each in its own rectangle.
- * False where a program failed (said once on stderr). */
+/* Every light on, by its kind in its group's key (keys[g]), and the
+ * ambient term, on `objects`' receivers: the one shading pass, with the
+ * lights shading_split_lights leaves out shaded each in its own
+ * rectangle (shading_split_pass: again with every light, or past one
+ * group its own light added). Past one group, each group's part of the
+ * one pass after the first adds its lights (render_group_pass_begin;
+ * the second targets of the rays' marks and counts add too). False where
+ * a program failed (said once on stderr). */
 static bool map_shade_receivers(map_renderer *r, const map_settings *st, const technique_frame *f,
-                                const map_camera_key *k, const bool *objects) {
-    unsigned split = shading_split_lights(f);
-    map_camera_key first_key = map_key_without(*k, split);
-    const map_camera_program *first = map_camera_program_for(r, &first_key);
-    const map_camera_program *p = split ? map_camera_program_for(r, k) : first;
-    if (!first || !p)
-        return false;
-    map_camera_use(r, st, f, first);
-    map_draw_receivers(r, f, first, objects);
-    if (split)
-        map_camera_use(r, st, f, p);
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        if (split & SCENE_LIGHT_BIT(l))
-            map_draw_receivers(r, f, p, shading_light_pass(f, l));
+                                const map_camera_key *keys, const bool *objects) {
+    scene_light_set split = shading_split_lights(f);
+    bool blending;
+    for (int g = 0; g < render_light_groups(f->gpu); g++) {
+        render_group_pass_begin(g, &blending);
+        if (g > 0 && !render_group_slots(f->skips->lights & ~split, g))
+            continue;
+        map_camera_key key = map_key_without(keys[g], render_group_slots(split, g));
+        const map_camera_program *p = map_camera_program_for(r, &key);
+        if (!p)
+            return false;
+        map_camera_use(r, st, f, p, g);
+        glUniform1f(p->ambient, g == 0 ? 1.0f : 0.0f);
+        map_draw_receivers(r, f, p, g, objects);
+    }
+    const map_camera_program *used = NULL;
+    int used_group = 0;
+    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+        if (!(split & SCENE_LIGHT_BIT(l)))
+            continue;
+        int g = RENDER_LIGHT_GROUP(l);
+        map_camera_key key = keys[g];
+        if (render_light_groups(f->gpu) > 1)
+            key = map_key_without(key, ~(1u << RENDER_LIGHT_SLOT(l)));
+        const map_camera_program *p = map_camera_program_for(r, &key);
+        if (!p)
+            return false;
+        if (p != used || g != used_group)
+            map_camera_use(r, st, f, p, g);
+        used = p;
+        used_group = g;
+        glUniform1f(p->ambient, render_light_groups(f->gpu) > 1 ? 0.0f : 1.0f);
+        map_draw_receivers(r, f, p, g, shading_split_pass(f, l));
+    }
+    render_group_pass_end(blending);
     glDisable(GL_SCISSOR_TEST);
     return true;
 }
 
-/* The lights of key k whose marking pass reads their depth bounds for
- * their kernel (map_bounds_update): a 2D or cube map's, filtered by a
- * kernel of more than one tap, hard (neither soft nor by its moments),
- * where the GL has its depth unit (the bounds take it). */
-static unsigned map_bounds_lights(map_renderer *r, const map_camera_key *k) {
-    unsigned lights = 0;
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++) {
-        bool hard = !((k->soft_lights | k->moment_lights) >> l & 1u);
-        unsigned kind = map_light_field(k->kinds, l);
+/* The lights of group g's key k whose marking pass reads their depth
+ * bounds for their kernel (map_bounds_update), as slot bits: a 2D or cube
+ * map's, filtered by a kernel of more than one tap, hard (neither soft
+ * nor by its moments), where the GL has its depth unit (the bounds take
+ * it). */
+static unsigned map_bounds_lights(map_renderer *r, const map_camera_key *k, int g) {
+    unsigned slots = 0;
+    for (int slot = 0; slot < SHADER_PASS_LIGHTS; slot++) {
+        bool hard = !((k->soft_lights | k->moment_lights) >> slot & 1u);
+        unsigned kind = map_light_field(k->kinds, slot);
         if ((kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE) && hard && k->shape != MAP_KERNEL_SINGLE &&
-            MAP_DEPTH_UNITS + l < r->texture_units && map_bounds_update(r, &r->maps[l]))
-            lights |= 1u << l;
+            MAP_DEPTH_UNITS + slot < r->texture_units &&
+            map_bounds_update(r, &r->maps[g * SHADER_PASS_LIGHTS + slot]))
+            slots |= 1u << slot;
     }
-    return lights;
+    return slots;
 }
 
-/* The camera pass by key k: the receivers (where rays decide only the
- * unsure pixels, marked first, then traced alone: map.h, "Rays"), then
- * the objects that take no shadows, every light unshadowed as in the
- * reference. Only receivers read maps (the caster culling is for them
- * too). */
-static void map_shade_lights(map_renderer *r, const map_settings *st, const technique_frame *f, map_camera_key *k) {
+/* The camera pass by each group's key: the receivers (where rays decide
+ * only the unsure pixels, marked first, then traced alone: map.h,
+ * "Rays"), then the objects that take no shadows, every light
+ * unshadowed as in the reference. Only receivers read maps (the caster
+ * culling is for them too). */
+static void map_shade_lights(map_renderer *r, const map_settings *st, const technique_frame *f,
+                             map_camera_key *keys) {
     const bool *objects = shading_all_begin(f);
-    bool mapped = true;
-    if (k->rays == MAP_RAYS_UNSURE && f->skips->marked_pass && map_ray_marks_begin(r)) {
+    int groups = render_light_groups(f->gpu);
+    bool mapped = true, rays = keys[0].rays != MAP_RAYS_OFF;
+    if (keys[0].rays == MAP_RAYS_UNSURE && f->skips->marked_pass && map_ray_marks_begin(r)) {
         f->skips->counts->marked_passes++;
-        map_camera_key marking = *k;
-        marking.mark_rays = true;
-        marking.bounds_lights = map_bounds_lights(r, k);
-        mapped = map_shade_receivers(r, st, f, &marking, objects);
+        map_camera_key marking[RENDER_LIGHT_GROUPS];
+        for (int g = 0; g < groups; g++) {
+            marking[g] = keys[g];
+            marking[g].mark_rays = true;
+            marking[g].bounds_lights = map_bounds_lights(r, &keys[g], g);
+        }
+        mapped = map_shade_receivers(r, st, f, marking, objects);
         map_ray_marks_end(r, f->counters);
     }
-    k->ray_counts = f->counters && k->rays != MAP_RAYS_OFF && map_ray_counts_begin(r);
-    mapped = mapped && map_shade_receivers(r, st, f, k, objects);
+    bool counts = f->counters && rays && map_ray_counts_begin(r);
+    for (int g = 0; g < groups; g++)
+        keys[g].ray_counts = counts;
+    mapped = mapped && map_shade_receivers(r, st, f, keys, objects);
     glDisable(GL_STENCIL_TEST);
-    if (k->ray_counts)
+    if (counts)
         map_ray_counts_end(r);
-    for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        if (k->soft_lights >> l & 1u)
-            glBindSampler(MAP_DEPTH_UNITS + (GLuint)l, 0);
-    const render_program *lit = render_use_lit(f->gpu, f->view, f->skips->lights, true);
+    unsigned soft = 0;
+    for (int g = 0; g < groups; g++)
+        soft |= keys[g].soft_lights;
+    for (int slot = 0; slot < SHADER_PASS_LIGHTS; slot++)
+        if (soft >> slot & 1u)
+            glBindSampler(MAP_DEPTH_UNITS + (GLuint)slot, 0);
     /* Without a program (said once on stderr) receivers are lit too. */
+    bool *unmapped = r->unmapped;
     for (int i = 0; i < f->gpu->scene->object_count; i++)
-        if (render_in_mask(objects, i) && (!mapped || !f->gpu->scene->objects[i].receives))
-            render_draw_object(f->gpu, lit, i);
+        unmapped[i] = render_in_mask(objects, i) && (!mapped || !f->gpu->scene->objects[i].receives);
+    render_unshadowed(f->gpu, f->view, unmapped, f->skips->lights);
 }
 
 /* ---- the frame ---- */
@@ -1042,13 +1087,13 @@ const technique_frame *map_fit_frame(const technique_frame *f) { return f->fit ?
  * the GL has. An area light drawn hard is said once on stderr. */
 static bool map_soft_unit(map_renderer *r, const map_settings *settings, const scene_light *light, int l) {
     bool soft = map_light_soft(settings, light);
-    if (soft && MAP_DEPTH_UNITS + l < r->texture_units)
+    if (soft && MAP_DEPTH_UNITS + RENDER_LIGHT_SLOT(l) < r->texture_units)
         return true;
     bool moments = map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE;
-    if (light->radius > 0 && !moments && !(r->soft_warned >> l & 1u))
+    if (light->radius > 0 && !moments && !(r->soft_warned & SCENE_LIGHT_BIT(l)))
         fprintf(stderr, "shadow maps: light %d is an area light (radius %g), drawn hard from its centre: %s\n", l,
                 light->radius, soft ? "this GL has too few texture units for its soft filter" : "--soft off");
-    r->soft_warned |= light->radius > 0 && !moments ? 1u << l : 0;
+    r->soft_warned |= light->radius > 0 && !moments ? SCENE_LIGHT_BIT(l) : 0;
     return false;
 }
 
@@ -1062,7 +1107,8 @@ static bool map_moment_unit(map_renderer *r, const map_settings *settings, int l
         return false;
     char what[64];
     snprintf(what, sizeof what, "moment map (--filter %s)", map_filters[filter]);
-    return map_light_unit(r, MAP_DEPTH_UNITS + l, l, &r->moments_warned, what, "one bilinear depth test instead");
+    return map_light_unit(r, MAP_DEPTH_UNITS + RENDER_LIGHT_SLOT(l), l, &r->moments_warned, what,
+                          "one bilinear depth test instead");
 }
 
 /* Light l's moment blur per layer (map_moments_blur_texels), a
@@ -1147,25 +1193,31 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
     glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     depth_use_camera(f->view);
-    map_camera_key key = map_settings_key(settings);
+    /* Each light group's key, its lights in their slots. */
+    map_camera_key keys[RENDER_LIGHT_GROUPS];
+    keys[0] = map_settings_key(settings);
     if (!r->casters)
-        key.rays = MAP_RAYS_OFF;
-    key.ray_records = key.rays != MAP_RAYS_OFF && r->casters->record_count > 0;
+        keys[0].rays = MAP_RAYS_OFF;
+    keys[0].ray_records = keys[0].rays != MAP_RAYS_OFF && r->casters->record_count > 0;
+    for (int g = 1; g < render_light_groups(f->gpu); g++)
+        keys[g] = keys[0];
     for (int l = 0; l < s->light_count; l++) {
+        map_camera_key *key = &keys[RENDER_LIGHT_GROUP(l)];
+        int slot = RENDER_LIGHT_SLOT(l);
         bool fitted = r->fitted[l];
         if (fitted && map_soft_unit(r, settings, &s->lights[l], l))
-            key.soft_lights |= 1u << l;
+            key->soft_lights |= 1u << slot;
         if (fitted && map_moment_unit(r, settings, l))
-            key.moment_lights |= 1u << l;
+            key->moment_lights |= 1u << slot;
         if (fitted && r->maps[l].texture.transmittance)
-            key.transmit_lights |= 1u << l;
+            key->transmit_lights |= 1u << slot;
         if (fitted)
-            map_key_light(&key, l, r->maps[l].kind, r->maps[l].texel_kind);
+            map_key_light(key, slot, r->maps[l].kind, r->maps[l].texel_kind);
         else if (skips_light_on(f->skips, l)) /* nothing visible receives: no map needed, nothing shadowed */
-            key.kinds |= map_light_bits(l, MAP_LIGHT_UNSHADOWED);
+            key->kinds |= map_light_bits(slot, MAP_LIGHT_UNSHADOWED);
     }
     if (f->skips->lights)
-        map_shade_lights(r, settings, f, &key);
+        map_shade_lights(r, settings, f, keys);
     else
         shading_ambient(f);
 }

@@ -487,7 +487,7 @@ typedef struct map_texture {
  * switch of texel size shows no seam; the box of layer k + 1 covers that
  * band. Per layer the shader has 2 vec4 (scale, offset; their w the
  * slice's ends), not a mat4: a program with array lights holds 2 x
- * SCENE_MAX_LIGHTS x MAP_MAX_ARRAY_LAYERS vec4 of them, where mat4s
+ * SHADER_PASS_LIGHTS x MAP_MAX_ARRAY_LAYERS vec4 of them, where mat4s
  * would take twice that. A layer's world texel is 2 / (size x its smaller
  * xy scale): the constant and normal-offset biases are measured in the
  * texel of the layer read. An array light's sampler is on its own unit,

@@ -64,19 +64,20 @@ typedef enum map_light_kind {
 /* Light i's kind, and its map's map_texel_kind, in bits
  * MAP_LIGHT_KIND_BITS i and up of a key's kinds and texel_kinds. */
 #define MAP_LIGHT_KIND_BITS 3
-_Static_assert(SCENE_MAX_LIGHTS *MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
+_Static_assert(SHADER_PASS_LIGHTS *MAP_LIGHT_KIND_BITS <= 32, "a combination of kinds fits an unsigned");
 /* The camera programs kept: the keys a run goes through (lights coming
  * into reach, a point light's warp falling back to a cube, the kernels a
  * lecturer or the benchmark tries) are compiled once each, the oldest
  * dropped beyond this many. */
 #define MAP_CAMERA_PROGRAMS 16
-/* Texture units: light i's map, of any kind, on unit i; the samplers a
+/* Texture units, light i being slot i of the pass's light group
+ * (render.h, "Light groups"): light i's map, of any kind, on unit i; the samplers a
  * program holds but does not read (an array's elements below the last one
  * used stay active) on one unit per sampler type after those, the
  * comparisons' at MAP_IDLE_UNITS + t, the depths' at
  * MAP_IDLE_UNITS + MAP_SAMPLER_TYPES + t: samplers of two
  * types on one unit would fail every draw. */
-#define MAP_IDLE_UNITS SCENE_MAX_LIGHTS
+#define MAP_IDLE_UNITS SHADER_PASS_LIGHTS
 /* A soft light's map is also read as depth (compare mode off, by
  * r->depth_sampler): light i's on unit MAP_DEPTH_UNITS + i, after
  * the idle units of the comparison and the depth samplers' types and the
@@ -95,7 +96,7 @@ _Static_assert(RENDER_BASE_COLOR_UNIT == MAP_IDLE_UNITS + 2 * MAP_SAMPLER_TYPES,
  * types are the depths', whose idle units the unused elements share. A
  * light whose unit the GL lacks casts its translucent casters' whole
  * shadow, and says so. */
-#define MAP_TRANSMIT_UNITS (MAP_DEPTH_UNITS + SCENE_MAX_LIGHTS)
+#define MAP_TRANSMIT_UNITS (MAP_DEPTH_UNITS + SHADER_PASS_LIGHTS)
 /* The casters' hierarchy for the rays (a sampler2D) shares the idle unit
  * of the 2D maps' depths (sampler2D too, never read there): no unit
  * beyond GL 3.3's 16 is needed. */
@@ -139,11 +140,12 @@ typedef struct map_camera_program {
     int constant_bias, normal_offset, depth_bias, closed_outside, view_depth, cascade_blend, ray_samples, frame;
     int eye, exact_surface; /* the rays' start (shaders/map.frag, map_ray_origin) */
     int translucent;        /* the receiver is a translucent caster (shaders/map.glsl, map_transmitted) */
+    int ambient;            /* the pass draws the ambient term (map_shade_receivers) */
     struct {
         int map_size, light_matrix, light_inverse, light_size, light_area, texel_scale, near_plane, far_plane,
             cascade_count;
         int cascade_scale, cascade_offset; /* the light's first layer's element */
-    } lights[SCENE_MAX_LIGHTS];
+    } lights[SHADER_PASS_LIGHTS];
 } map_camera_program;
 
 /* overlay.vert with overlay_lines.frag: world-space lines in one colour. */
@@ -231,16 +233,17 @@ struct map_renderer {
     int inset_blocks, inset_layers, inset_factor;
     float inset_held[MAP_MAX_LAYERS][2];
     bool inset_current, inset_failed;
-    bool blur_failed;        /* said once: moment filters read one bilinear depth test */
-    unsigned depth_sampler;  /* a map read as depth: compare mode off, nearest */
-    int texture_units;       /* GL_MAX_TEXTURE_IMAGE_UNITS */
-    unsigned soft_warned;    /* bit i: light i's treatment said on stderr */
-    unsigned moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
+    bool blur_failed;               /* said once: moment filters read one bilinear depth test */
+    unsigned depth_sampler;         /* a map read as depth: compare mode off, nearest */
+    int texture_units;              /* GL_MAX_TEXTURE_IMAGE_UNITS */
+    scene_light_set soft_warned;    /* bit i: light i's treatment said on stderr */
+    scene_light_set moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
     map_light maps[SCENE_MAX_LIGHTS];
     map_cache caches[SCENE_MAX_LIGHTS];
     int object_count;              /* the scene's, at init: the sets' size */
     bool *needed[MAP_MAX_LAYERS];  /* this frame's casters of each layer of one light */
     float (*receiver_boxes)[2][3]; /* one light's visible receivers' boxes within its range */
+    bool *unmapped;                /* per object: drawn by the camera pass's lit programs, not its maps */
     light_mask *masks;             /* one light's layers' masks of the visible pixels */
     bool *closed;                  /* per object: a caster whose mesh is closed */
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
@@ -276,7 +279,7 @@ struct map_renderer {
     int transmit_slope;
     unsigned transmit_framebuffer;
     bool transmit_failed;
-    unsigned transmit_warned; /* bit i: light i's lack of a unit said on stderr */
+    scene_light_set transmit_warned; /* bit i: light i's lack of a unit said on stderr */
 };
 
 /* Where a light of the frame's takes rays only where the map is unsure,

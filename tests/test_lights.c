@@ -1,0 +1,99 @@
+/* Many lights: a scene of more lights than a shader holds is shaded in
+ * light groups (common/gl/render.h, "Light groups"), and every light of
+ * every group is lit and shadowed as the reference has it.
+ * assets/scenes/lamps_64.json (build/scenegen): 64 point lamps on poles,
+ * eight groups. Run from the repository root. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "render.h"
+#include "support.h"
+
+#define LAMPS "assets/scenes/lamps_64.json"
+/* Decisions as exact as each technique's on the standard scenes (the
+ * volumes' exact, the maps' within a texel's edge: test_shadowmap's
+ * bound); a lamp read from another's slot or block misclassifies its
+ * whole pool of light. */
+#define VOLUMES_MAX_MISCLASSIFIED 0.01
+#define MAPS_MAX_MISCLASSIFIED 0.5
+/* A lamp's shadow decisions are compared only where it reaches: at least
+ * this many pixels of the 640x360 frame, so that a lamp that lit nothing
+ * would fail rather than pass. */
+#define LAMPS_MIN_LIT_PIXELS 500
+/* The picture against the reference's: share of pixels off by more than
+ * support_compare_images' step. A lamp read from another group's block,
+ * or the ambient term added again by one lamp's pass, shows over the
+ * lamp's pool of light (hundreds of pixels at least); what is left is a
+ * few pixels of the maps' shadow edges. */
+#define LAMPS_MAX_PICTURE_PERCENT 0.02
+
+/* The lamps measured, each lighting thousands of pixels, a sweep
+ * (support_sweep_stride): a lamp of the last groups first, whose every
+ * slot, unit and block the quick tier proves, then one of group 0's, as
+ * every scene of up to eight lights has them, and one of a middle
+ * group's. */
+static const int lamps[] = {55, 7, 27};
+/* The volumes': a lamp of another later group. */
+#define VOLUMES_LAMP 41
+
+/* Technique `program`'s decisions for lamp `light` against the
+ * reference's: at most max_percent misclassified. */
+static void expect_lamp_within(const char *program, int light, double max_percent) {
+    char name[64], flags[64];
+    snprintf(name, sizeof name, "lamp_%d", light);
+    snprintf(flags, sizeof flags, "--light %d", light);
+    long pixels;
+    shadowdiff_result r = support_measure_receiver(program, "lights", name, LAMPS, flags, flags, NULL, &pixels);
+    long lit = r.class_pixels[SHADOWDIFF_CLASS_LIT];
+    printf("    %s, lamp %d (group %d): %ld lit of %ld compared, misclassified %.4f %%\n", program, light,
+           RENDER_LIGHT_GROUP(light), lit, r.compared, r.misclassified_percent);
+    assert_true(lit >= LAMPS_MIN_LIT_PIXELS);
+    assert_true(r.misclassified_percent <= max_percent);
+}
+
+/* The shadow maps (one camera pass per lamp, its map in its group's
+ * slot) decide every measured lamp as the reference does. */
+static void test_maps_shadow_every_group(void **state) {
+    (void)state;
+    for (size_t i = 0; i < sizeof lamps / sizeof *lamps; i += (size_t)support_sweep_stride())
+        expect_lamp_within("shadowmap", lamps[i], MAPS_MAX_MISCLASSIFIED);
+}
+
+/* The volumes (a stencil pass per lamp, lit through its group's block)
+ * too: a lamp of the last groups. */
+static void test_volumes_shadow_a_later_group(void **state) {
+    (void)state;
+    expect_lamp_within("volumes", VOLUMES_LAMP, VOLUMES_MAX_MISCLASSIFIED);
+}
+
+/* The shadow maps' picture, every lamp summed over the groups with the
+ * ambient term once, is the reference's. */
+static void test_picture_sums_every_group(void **state) {
+    (void)state;
+    char command[1024], err[4096];
+    snprintf(command, sizeof command,
+             "mkdir -p out/test/lights && %s --scene " LAMPS
+             " --size 640x360 --screenshot out/test/lights/reference.png",
+             support_program("raytrace"));
+    assert_int_equal(support_run(command, err, sizeof err), 0);
+    unsigned char *picture = support_screenshot("shadows", LAMPS, "--technique shadowmap", "lights/shadowmap");
+    assert_non_null(picture);
+    free(picture);
+    double percent = support_compare_images("out/test/lights/reference.png", "out/test/lights/shadowmap.png");
+    printf("    shadowmap's picture: %.3f %% of pixels off the reference's\n", percent);
+    assert_true(percent >= 0 && percent <= LAMPS_MAX_PICTURE_PERCENT);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_maps_shadow_every_group),
+        cmocka_unit_test(test_volumes_shadow_a_later_group),
+        cmocka_unit_test(test_picture_sums_every_group),
+    };
+    return cmocka_run_group_tests_name("many lights", tests, NULL, NULL);
+}
