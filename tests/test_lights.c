@@ -2,7 +2,8 @@
  * light groups (common/gl/render.h, "Light groups"), and every light of
  * every group is lit and shadowed as the reference has it.
  * assets/scenes/lamps_64.json (build/scenegen): 64 point lamps on poles,
- * eight groups. Run from the repository root. */
+ * eight groups; and the shadow maps' budget (demos/lib/map.h,
+ * "Budget"). Run from the repository root. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -89,11 +90,55 @@ static void test_picture_sums_every_group(void **state) {
     assert_true(percent >= 0 && percent <= LAMPS_MAX_PICTURE_PERCENT);
 }
 
+/* The budget's tests' frames: small, since what they compare is exact. */
+#define BUDGET_FLAGS "--technique shadowmap --size 320x180 --light 27"
+
+/* Dumps of `flags` (BUDGET_FLAGS with more) into out/test/lights/NAME. */
+static void budget_dump(const char *name, const char *flags, char *dir, size_t size) {
+    char all[256];
+    snprintf(dir, size, "out/test/lights/%s", name);
+    snprintf(all, sizeof all, BUDGET_FLAGS " %s", flags);
+    assert_int_equal(support_dump("shadows", LAMPS, all, dir), 0);
+}
+
+static const char *const dump_files[] = {"visibility.pfm", "color.png"};
+
+/* While nothing moves no map is due: a budget changes no pixel. */
+static void test_budget_changes_nothing_while_still(void **state) {
+    (void)state;
+    char free_dir[128], budget_dir[128];
+    budget_dump("still_free", "--frames 3", free_dir, sizeof free_dir);
+    budget_dump("still_budget", "--frames 3 --shadow-budget 1", budget_dir, sizeof budget_dir);
+    const char *differs = support_first_difference(free_dir, budget_dir, dump_files, 2);
+    if (differs)
+        fail_msg("%s differs with --shadow-budget 1, nothing moving", differs);
+}
+
+/* Every lamp moving, one map a frame: the first frame draws every map
+ * (a light's first is drawn whatever the budget), the next the longest
+ * waiting in their order, lamp 0 first; lamp 27 keeps its first map and
+ * is drawn as it was then, its light and its shadow alike, so its
+ * decisions on frame 3 are frame 1's, and the HUD counts the kept maps. */
+static void test_budget_draws_a_kept_light_as_it_was(void **state) {
+    (void)state;
+    char first_dir[128], kept_dir[128];
+    budget_dump("moving_first", "--motion light --frames 1", first_dir, sizeof first_dir);
+    budget_dump("moving_kept", "--motion light --frames 3 --shadow-budget 1", kept_dir, sizeof kept_dir);
+    const char *differs = support_first_difference(first_dir, kept_dir, dump_files, 1);
+    if (differs)
+        fail_msg("lamp 27's %s on frame 3 past the budget is not frame 1's", differs);
+    const char *line = support_verbose_line(
+        "shadows", LAMPS, BUDGET_FLAGS " --motion light --frames 3 --shadow-budget 1", "maps kept past the budget");
+    assert_non_null(line);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_maps_shadow_every_group),
         cmocka_unit_test(test_volumes_shadow_a_later_group),
         cmocka_unit_test(test_picture_sums_every_group),
+        cmocka_unit_test(test_budget_changes_nothing_while_still),
+        cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),
     };
     return cmocka_run_group_tests_name("many lights", tests, NULL, NULL);
 }

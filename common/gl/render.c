@@ -334,6 +334,18 @@ void render_group_pass_end(bool blending) {
         glDisable(GL_BLEND);
 }
 
+/* Light l's entries of the block: slot i's. */
+static void render_light_entries(const scene_light *l, render_lights_block *b, int i) {
+    scene_light_homogeneous(l, b->position[i]);
+    glm_vec3_copy((float *)l->direction, b->direction[i]);
+    glm_vec3_scale((float *)l->color, l->intensity, b->color[i]);
+    bool spot = l->type == SCENE_LIGHT_SPOT;
+    /* Outside any cone: smoothstep(-3, -2, cos) is 1 for every angle. */
+    b->reach[i][0] = spot ? cosf(glm_rad(l->outer_angle_deg)) : -3.0f;
+    b->reach[i][1] = spot ? cosf(glm_rad(l->inner_angle_deg)) : -2.0f;
+    b->reach[i][2] = l->type == SCENE_LIGHT_DIRECTIONAL ? 0 : l->range;
+}
+
 /* Group g's block: its lights in their slots, the ambient term in group
  * 0's alone, and visibility mode's light as its slot here (past the
  * slots where it is another group's: then nothing here adds). */
@@ -347,17 +359,8 @@ static void render_update_group(const render_scene *r, int g, int visibility_of)
     render_lights_block b = {.count = {count, visible}};
     if (g == 0)
         glm_vec3_copy((float *)s->ambient, b.ambient);
-    for (int i = 0; i < count; i++) {
-        const scene_light *l = &s->lights[first + i];
-        scene_light_homogeneous(l, b.position[i]);
-        glm_vec3_copy((float *)l->direction, b.direction[i]);
-        glm_vec3_scale((float *)l->color, l->intensity, b.color[i]);
-        bool spot = l->type == SCENE_LIGHT_SPOT;
-        /* Outside any cone: smoothstep(-3, -2, cos) is 1 for every angle. */
-        b.reach[i][0] = spot ? cosf(glm_rad(l->outer_angle_deg)) : -3.0f;
-        b.reach[i][1] = spot ? cosf(glm_rad(l->inner_angle_deg)) : -2.0f;
-        b.reach[i][2] = l->type == SCENE_LIGHT_DIRECTIONAL ? 0 : l->range;
-    }
+    for (int i = 0; i < count; i++)
+        render_light_entries(&s->lights[first + i], &b, i);
     glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffers[g]);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof b, &b);
 }
@@ -365,6 +368,19 @@ static void render_update_group(const render_scene *r, int g, int visibility_of)
 void render_scene_update_lights(const render_scene *r, int visibility_of) {
     for (int g = 0; g < render_light_groups(r); g++)
         render_update_group(r, g, visibility_of);
+}
+
+void render_scene_light_as(const render_scene *r, int l, const scene_light *as) {
+    render_lights_block b;
+    int slot = RENDER_LIGHT_SLOT(l);
+    render_light_entries(as, &b, slot);
+    glBindBuffer(GL_UNIFORM_BUFFER, r->lights_buffers[RENDER_LIGHT_GROUP(l)]);
+    const size_t entries[] = {offsetof(render_lights_block, position), offsetof(render_lights_block, direction),
+                              offsetof(render_lights_block, color), offsetof(render_lights_block, reach)};
+    for (size_t e = 0; e < sizeof entries / sizeof *entries; e++) {
+        size_t at = entries[e] + (size_t)slot * RENDER_STD140_VEC4;
+        glBufferSubData(GL_UNIFORM_BUFFER, (GLintptr)at, RENDER_STD140_VEC4, (const char *)&b + at);
+    }
 }
 
 void render_scene_destroy(render_scene *r) {

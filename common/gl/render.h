@@ -187,6 +187,10 @@ void render_eye_ray_uniforms(unsigned program, const camera_view *v, int width, 
 
 bool render_scene_create(render_scene *r, const scene *s);
 void render_scene_update_lights(const render_scene *r, int visibility_of);
+/* Light l's entries of its group's block as `as` has it, until the next
+ * render_scene_update_lights: a light drawn where it was (a shadow map's
+ * budget, demos/lib/map.h). */
+void render_scene_light_as(const render_scene *r, int l, const scene_light *as);
 void render_scene_destroy(render_scene *r);
 
 /* files: count shader files; defines: NULL or the program's own C

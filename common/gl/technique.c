@@ -48,6 +48,8 @@ void technique_param_text(const flags_param *p, char *out, size_t size) {
         snprintf(out, size, "%s", *p->disabled ? "OFF" : "on");
     else if (p->kind == FLAGS_CHOICE)
         snprintf(out, size, "%s", p->choices[*p->index]);
+    else if (p->kind == FLAGS_INT)
+        snprintf(out, size, "%d", *p->integer);
     else
         snprintf(out, size, "%g", flags_number(p));
 }

@@ -883,6 +883,8 @@ static int app_skips_text(char *out, size_t size) {
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);
     else
         APP_TEXT("%s", off);
+    if (c->maps_kept)
+        APP_TEXT("; maps kept past the budget %d", c->maps_kept);
     APP_TEXT("   [Q] marked pass: ");
     if (render_skip_on(k, k->no_marked_pass))
         APP_TEXT("passes %d", c->marked_passes);

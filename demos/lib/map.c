@@ -194,11 +194,18 @@ static void map_texture_storage(const map_light *m, GLenum target, GLenum format
  * shader calls them lit). A moment filter's textures and the
  * transmittance map are made with it.
  * Returns whether it made one (what the layers held is gone). */
+/* m's texture is the one its fit and the settings ask for. */
+static bool map_texture_fits(const map_light *m, const map_settings *settings, bool transmits) {
+    const map_texture *t = &m->texture;
+    return t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count &&
+           t->depth == settings->depth && t->filter == (int)map_filter_in_use(settings) &&
+           (t->transmittance != 0) == transmits;
+}
+
 static bool map_prepare_texture(map_light *m, const map_settings *settings, bool transmits) {
     map_texture *t = &m->texture;
     int depth = settings->depth, filter = map_filter_in_use(settings);
-    if (t->id && t->kind == m->kind && t->size == m->size && t->layer_count == m->layer_count && t->depth == depth &&
-        t->filter == filter && (t->transmittance != 0) == transmits)
+    if (map_texture_fits(m, settings, transmits))
         return false;
     glDeleteTextures(1, &t->id);
     glDeleteTextures(1, &t->bounds);
@@ -367,23 +374,44 @@ static bool map_layer_cached(const map_renderer *r, const map_cache *c, const ma
     return true;
 }
 
-void map_draw_depth(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
+/* What light l's map would be drawn with now, but its casters. */
+static map_depth_key map_depth_key_of(const map_light *m, const map_settings *st) {
+    return (map_depth_key){.texture = m->texture.id,
+                           .size = m->size,
+                           .depth = st->depth,
+                           .filter = map_filter_in_use(st),
+                           .no_slope_bias = st->no_slope_bias,
+                           .slope_factor = st->slope_factor,
+                           .slope_units = st->slope_units};
+}
+
+/* Light l's whole map is in its cache as it would be drawn now (its
+ * casters planned): nothing to draw. */
+static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
+    const map_light *m = &r->maps[l];
+    const map_cache *c = &r->caches[l];
+    map_depth_key key = map_depth_key_of(m, st);
+    if (f->changed.scene || (f->changed.lights & SCENE_LIGHT_BIT(l)) ||
+        !map_texture_fits(m, st, map_light_transmits(r, l)) || memcmp(&key, &c->key, sizeof key) != 0)
+        return false;
+    for (int layer = 0; layer < m->layer_count; layer++)
+        if (!map_layer_cached(r, c, m, layer))
+            return false;
+    return true;
+}
+
+/* Light l's layers its cache cannot give, with the casters planned in
+ * r->needed; its map is then whole, drawn with its fit. */
+static void map_draw_layers(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     map_light *m = &r->maps[l];
     map_cache *c = &r->caches[l];
     if (f->changed.scene || (f->changed.lights & SCENE_LIGHT_BIT(l)))
         map_forget(c);
     bool remade = map_prepare_texture(m, st, map_light_transmits(r, l));
-    map_depth_key key = {.texture = m->texture.id,
-                         .size = m->size,
-                         .depth = st->depth,
-                         .filter = map_filter_in_use(st),
-                         .no_slope_bias = st->no_slope_bias,
-                         .slope_factor = st->slope_factor,
-                         .slope_units = st->slope_units};
+    map_depth_key key = map_depth_key_of(m, st);
     if (remade || memcmp(&key, &c->key, sizeof key) != 0)
         map_forget(c);
     c->key = key;
-    map_plan_casters(r, st, f, l);
     map_moments moments = map_filter_moments(map_filter_in_use(st));
     bool begun = false, rendered[MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
@@ -408,6 +436,53 @@ void map_draw_depth(map_renderer *r, const map_settings *st, const technique_fra
     for (int layer = 0; moments != MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
         if (rendered[layer])
             map_moments_blur(r, m, moments, layer);
+    r->drawn_fit[l] = *m;
+    r->drawn_light[l] = f->gpu->scene->lights[l];
+    r->drawn[l] = true;
+    r->waited[l] = 0;
+}
+
+/* Light l's planned casters of each layer in r->waiting_needed. */
+static bool *map_waiting_needed(const map_renderer *r, int l, int layer) {
+    return r->waiting_needed + ((size_t)l * MAP_MAX_LAYERS + (size_t)layer) * (size_t)r->object_count;
+}
+
+void map_draw_depth(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
+    map_plan_casters(r, st, f, l);
+    if (st->shadow_budget && r->drawn[l] && !map_whole_in_cache(r, st, f, l)) {
+        /* Its turn is map_shade's to give (map_budget_draw). */
+        for (int layer = 0; layer < r->maps[l].layer_count; layer++)
+            memcpy(map_waiting_needed(r, l, layer), r->needed[layer], (size_t)r->object_count * sizeof(bool));
+        r->waiting |= SCENE_LIGHT_BIT(l);
+        return;
+    }
+    map_draw_layers(r, st, f, l);
+}
+
+/* The waiting lights' maps, within the budget (map.h, "Budget"): those
+ * that waited the most frames drawn, the others back to their maps as
+ * drawn. */
+static void map_budget_draw(map_renderer *r, const map_settings *st, const technique_frame *f) {
+    for (int drawn = 0; r->waiting; drawn++) {
+        int next = -1;
+        for (int l = 0; l < f->gpu->scene->light_count; l++)
+            if ((r->waiting & SCENE_LIGHT_BIT(l)) && (next < 0 || r->waited[l] > r->waited[next]))
+                next = l;
+        r->waiting &= ~SCENE_LIGHT_BIT(next);
+        map_light *m = &r->maps[next];
+        if (drawn < st->shadow_budget) {
+            for (int layer = 0; layer < m->layer_count; layer++)
+                memcpy(r->needed[layer], map_waiting_needed(r, next, layer), (size_t)r->object_count * sizeof(bool));
+            map_draw_layers(r, st, f, next);
+            continue;
+        }
+        map_texture texture = m->texture;
+        *m = r->drawn_fit[next];
+        m->texture = texture;
+        render_scene_light_as(f->gpu, next, &r->drawn_light[next]);
+        r->waited[next]++;
+        f->skips->counts->maps_kept++;
+    }
 }
 
 /* ---- programs ---- */
@@ -677,11 +752,12 @@ static bool map_alloc_sets(map_renderer *r, int object_count) {
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
     r->unmapped = calloc(n + 1, sizeof *r->unmapped);
+    r->waiting_needed = calloc(SCENE_MAX_LIGHTS * layers * n + 1, sizeof *r->waiting_needed);
     r->closed = calloc(n + 1, sizeof *r->closed);
     r->masks = malloc(layers * sizeof *r->masks);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes || !r->unmapped || !r->closed || !r->masks) {
+    if (!sets || !r->receiver_boxes || !r->unmapped || !r->waiting_needed || !r->closed || !r->masks) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
     }
@@ -807,6 +883,7 @@ void map_destroy(map_renderer *r) {
     free(r->needed[0]);
     free(r->receiver_boxes);
     free(r->unmapped);
+    free(r->waiting_needed);
     free(r->closed);
     free(r->masks);
     free(r);
@@ -1186,10 +1263,14 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
 
 void map_shade(map_renderer *r, const map_settings *settings, const technique_frame *f) {
     const scene *s = f->gpu->scene;
+    map_budget_draw(r, settings, f);
     /* A light without a map this frame may change unseen before the next. */
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
-        if (!r->fitted[l])
+        if (!r->fitted[l]) {
             map_forget(&r->caches[l]);
+            r->drawn[l] = false;
+            r->waited[l] = 0;
+        }
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
     glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     depth_use_camera(f->view);

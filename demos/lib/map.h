@@ -157,6 +157,7 @@ typedef struct map_settings {
     bool no_constant_bias, no_slope_bias, no_early_out;
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
     float depth_bias_slope, depth_bias_min;                          /* the tutorials' bias; 0: none */
+    int shadow_budget; /* lights whose maps are redrawn per frame, at most; 0: every one (see "Budget") */
     /* Not a flag: the technique's overlay list goes on with
      * MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on
      * with its own). */
@@ -370,9 +371,20 @@ typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
          .fallback = 0,                                                                                                           \
          .min = 0,                                                                                                                \
          .max = 1},                                                                                                               \
+        {"depth-bias-min",                                                                                                        \
+         "tutorial bias: minimum, in map depth (0: off)",                                                                         \
+         0,                                                                                                                       \
+         FLAGS_NUMBER,                                                                                                            \
+         .number = &(s).depth_bias_min,                                                                                           \
+         .fallback = 0,                                                                                                           \
+         .min = 0,                                                                                                                \
+         .max = 1},                                                                                                               \
     {                                                                                                                             \
-        "depth-bias-min", "tutorial bias: minimum, in map depth (0: off)", 0, FLAGS_NUMBER,                                       \
-            .number = &(s).depth_bias_min, .fallback = 0, .min = 0, .max = 1                                                      \
+        "shadow-budget",                                                                                                          \
+            "lights whose maps are redrawn in a frame, at most, the longest waiting first; the others drawn as when "             \
+            "their maps were (0: no budget)",                                                                                     \
+            0, FLAGS_INT, .integer = &(s).shadow_budget, .min = 0, .max = SCENE_MAX_LIGHTS, .what = "a light count",              \
+                          .value_name = "N"                                                                                       \
     }
 /* clang-format on */
 
@@ -531,6 +543,18 @@ typedef bool (*map_fit_function)(const technique_frame *f, int light, map_light 
  * with the light skipped or unfitted, or any change empties the light's
  * cache. Counted in f->skips->counts (casters per light: drawn into any layer, or
  * culled; layers rendered and reused).
+ *
+ * Budget (--shadow-budget N; 0, the default: none). A light whose map
+ * the cache cannot give whole (it moved, the scene changed, its fit did)
+ * waits for map_shade, which redraws the maps of N of the waiting lights,
+ * those that waited the most frames first (then in their order); each
+ * other is drawn for a frame more as it was when its map was: its map,
+ * the fit it was drawn with and the light where it was then
+ * (render_scene_light_as), so that its light and its shadow update at a
+ * lower rate together. A light's first map is drawn whatever the budget.
+ * Unlike the skips, the budget changes decisions: a kept light lags,
+ * which the bench's figures under motion measure. Counted in
+ * f->skips->counts->maps_kept.
  *
  * A technique's maps and their GL objects (map_internal.h). */
 typedef struct map_renderer map_renderer;

@@ -256,6 +256,17 @@ struct map_renderer {
      * draws into, and which lights have a map. */
     int target_framebuffer, viewport[4];
     bool fitted[SCENE_MAX_LIGHTS];
+    /* The budget (map.h, "Budget"): per light, the fit its whole map was
+     * last drawn with (while drawn[l]) and the frames it has waited since
+     * its map was due; the lights waiting this frame, each with the
+     * casters of each layer it planned (MAP_MAX_LAYERS x objects per
+     * light). */
+    map_light drawn_fit[SCENE_MAX_LIGHTS];
+    scene_light drawn_light[SCENE_MAX_LIGHTS]; /* the light as it was then */
+    bool drawn[SCENE_MAX_LIGHTS];
+    int waited[SCENE_MAX_LIGHTS];
+    scene_light_set waiting;
+    bool *waiting_needed;
     const bvh_gpu *casters; /* map_trace_with's; NULL: no rays */
     /* The camera pass's second targets (map_rays.c): the rays' marks,
      * R8, the program that makes them the stencil, and the marked pixels
