@@ -2,13 +2,15 @@
  * (yaw about the target), and dolly's walk: eye and target translate
  * together along the view at MOTION_DOLLY_SPEED of their distance a
  * second, turn after MOTION_DOLLY_LEG_S and come back; lamp's one light
- * on its circle, the others where they are. */
+ * on its circle, the others where they are, and lamps' every light on
+ * its own. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include <math.h>
+#include <string.h>
 
 #include "camera.h"
 #include "motion.h"
@@ -102,6 +104,15 @@ static void test_lamp_circles_one_light(void **state) {
         moves |= glm_vec3_distance(moved[1].position, (float *)base_lights[1].position) > radius / 2;
     }
     assert_true(moves);
+    /* --motion lamps: every light on its own circle. */
+    motion_lights(MOTION_LAMPS, 10 / 60.0, base.target, base_lights, 3, 1, moved);
+    for (int i = 0; i < 3; i++) {
+        const float middle[3] = {base_lights[i].position[0] - MOTION_LAMP_RADIUS_SHARE * base_lights[i].range,
+                                 base_lights[i].position[1], base_lights[i].position[2]};
+        assert_float_equal(glm_vec3_distance(moved[i].position, (float *)middle),
+                           MOTION_LAMP_RADIUS_SHARE * base_lights[i].range, TOLERANCE);
+        assert_true(memcmp(moved[i].position, base_lights[i].position, sizeof moved[i].position) != 0);
+    }
 }
 
 int main(void) {

@@ -4,7 +4,7 @@
 
 #include "camera.h"
 
-const char *const motion_names[] = {"static", "light", "camera", "dolly", "lamp", NULL};
+const char *const motion_names[] = {"static", "light", "camera", "dolly", "lamp", "lamps", NULL};
 
 /* Light `light` (at its place at time 0) on its circle at `time`: it
  * turns about the circle's centre, beside its place along -x. */
@@ -22,7 +22,7 @@ void motion_lights(motion_kind kind, double time, const float center[3], const s
         out[i] = base[i];
         if (kind == MOTION_LIGHT)
             camera_orbit_light(&out[i], center, (float)time * MOTION_LIGHT_RAD_PER_S, 0);
-        if (kind == MOTION_LAMP && i == lamp)
+        if ((kind == MOTION_LAMP && i == lamp) || kind == MOTION_LAMPS)
             motion_lamp(&out[i], time, center);
     }
 }

@@ -10,6 +10,9 @@
  *           horizontal circle of MOTION_LAMP_RADIUS_SHARE of its range
  *           (of its distance from the camera's target without one): a
  *           lamp moving among many still ones, whose maps a cache keeps;
+ *   lamps   every light on its own such circle: many lights moving, each
+ *           staying where it was (a street lamp on its pole, not in the
+ *           next building), every map due every frame;
  *   camera  the eye turns about its target, yaw MOTION_CAMERA_RAD_PER_S;
  *   dolly   the eye and its target move together along the view direction,
  *           MOTION_DOLLY_SPEED of their distance a second, forward for
@@ -31,7 +34,14 @@
 #include <stdbool.h>
 #include "scene.h"
 
-typedef enum motion_kind { MOTION_STATIC, MOTION_LIGHT, MOTION_CAMERA, MOTION_DOLLY, MOTION_LAMP } motion_kind;
+typedef enum motion_kind {
+    MOTION_STATIC,
+    MOTION_LIGHT,
+    MOTION_CAMERA,
+    MOTION_DOLLY,
+    MOTION_LAMP,
+    MOTION_LAMPS
+} motion_kind;
 /* The kinds' names in order, NULL-terminated (a FLAGS_CHOICE list). */
 extern const char *const motion_names[];
 
@@ -43,7 +53,7 @@ extern const char *const motion_names[];
 #define MOTION_DOLLY_SPEED 0.5f
 #define MOTION_DOLLY_LEG_S 1.0
 #define MOTION_LAMP_RAD_PER_S 3.0f
-#define MOTION_LAMP_RADIUS_SHARE 0.1f
+#define MOTION_LAMP_RADIUS_SHARE 0.05f
 
 /* Whether `kind` moves the camera (camera, dolly): what a tour's path
  * excludes, and where the benchmark measures shimmer. */

@@ -158,7 +158,7 @@ static const flags_param app_flags[] = {
     {"technique", "which technique to start with", 0, FLAGS_CHOICE, .index = &app.current,
      .choices = app.technique_names},
     {"motion",
-     "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), the\ncamera forward and back along its view (dolly), or\nlight --light K alone on a small circle (lamp)",
+     "what moves over time: nothing, the lights (about the\ncamera target), the camera (about its target), the\ncamera forward and back along its view (dolly),\nlight --light K alone on a small circle (lamp), or\nevery light on its own (lamps)",
      0, FLAGS_CHOICE, .index = &app.motion, .choices = motion_names},
     {"animate", "--motion light (space in the window)", 0, FLAGS_SWITCH, .on = &app.animate},
     {"hold-fit",

@@ -141,9 +141,10 @@ static struct {
     /* flags (zero: the default, which --quick makes small) */
     const char *out_dir;
     int width, height, frames, warmup, light_samples, error_frames;
-    int motion;  /* motion_kind */
-    int configs; /* bench_configs */
-    int light;   /* --light: the light measured */
+    int motion;               /* motion_kind */
+    int configs;              /* bench_configs */
+    const char *configs_with; /* --configs-with: only the sweep's configurations whose text holds it */
+    int light;                /* --light: the light measured */
     bool quick, verbose, no_skip, skips_compare, scaling;
     const char *scenes[BENCH_MAX_SCENES];
     char scene_names[BENCH_MAX_SCENES][128];
@@ -197,8 +198,11 @@ static const flags_param bench_flags[] = {
     {"light-samples", "reference shadow rays per area light (256; --quick: 16)", 0, FLAGS_INT,
      .integer = &bench.light_samples, .min = 1, .max = RAYTRACE_MAX_LIGHT_SAMPLES, .what = "a count"},
     {"motion",
-     "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, along its view (dolly), or\nthe measured light alone (lamp, --light K); frame k is at k/60 s",
+     "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, along its view (dolly), or\nthe measured light alone (lamp, --light K) or every light\n(lamps) on a small circle; frame k is at k/60 s",
      0, FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
+    {"configs-with",
+     "of each sweep, only the defaults and the configurations\nwhose text holds TEXT (--configs-with budget)", 0,
+     FLAGS_STRING, .text = &bench.configs_with, .value_name = "TEXT"},
     {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
      .choices = bench_config_choices},
     {"quick", "small and short: a smoke test of the whole pipeline", 0, FLAGS_SWITCH, .on = &bench.quick},
@@ -241,6 +245,20 @@ static bool bench_selected(const technique *t) {
 
 static int bench_config_count(const technique *t) {
     return bench.configs == BENCH_CONFIGS_DEFAULTS ? 1 : t->bench_config_count;
+}
+
+/* Technique t's configuration c is timed: the defaults (the first)
+ * always, the others unless --configs-with leaves them out. */
+static bool bench_config_taken(const technique *t, int c) {
+    return c == 0 || !bench.configs_with || strstr(t->bench_configs[c], bench.configs_with);
+}
+
+/* The configurations of t timed on each scene and setting. */
+static int bench_configs_taken(const technique *t) {
+    int n = 0;
+    for (int c = 0; c < bench_config_count(t); c++)
+        n += bench_config_taken(t, c);
+    return n;
 }
 
 static int bench_parse_flags(int argc, char **argv) {
@@ -608,6 +626,8 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
     for (int t = 0; ok && t < registry_technique_count; t++) {
         bench.current = registry_techniques[t];
         for (int c = 0; ok && bench_selected(bench.current) && c < bench_config_count(bench.current); c++) {
+            if (!bench_config_taken(bench.current, c))
+                continue;
             const char *config = bench.current->bench_configs[c];
             for (int s = 0; ok && s < bench.setting_count; s++) {
                 bool no_skip = bench.no_skip_settings[s];
@@ -1146,7 +1166,7 @@ int main(int argc, char **argv) {
     int total = 0, done = 0;
     for (int t = 0; t < registry_technique_count; t++)
         if (bench_selected(registry_techniques[t]))
-            total += bench_config_count(registry_techniques[t]) * bench.setting_count * bench.scene_count;
+            total += bench_configs_taken(registry_techniques[t]) * bench.setting_count * bench.scene_count;
     /* The HUD's text is the techniques' legends' (legend.h). */
     bool ok =
         path_make_directories(bench.out_dir) && target_create(&bench.target, bench.width, bench.height) && hud_init();
