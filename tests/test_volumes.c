@@ -275,17 +275,23 @@ static void test_300_overlapping_casters(void **state) {
  * triangles (bands of multiples of 256, up to 10,000 deep), counted wide
  * within the bound in every mode; with --counter stencil the wrapped
  * stencil reads those bands lit, far past the bound, which shows the test
- * can fail. */
+ * can fail. The mesh's every frame draws 10,000 volumes over the view:
+ * the quick tier counts it in the default mode alone, the slabs in every
+ * mode and wrapped (the same wide count, the same proof that a wrapped
+ * count fails), and the whole tier adds the mesh's z-fail with GPU
+ * silhouettes and its wrapped count. */
 static void test_deeper_than_stencil(void **state) {
     (void)state;
     assert_within_bound(STACKED_SLABS, "", "stacked_300_auto");
     assert_within_bound(STACKED_SLABS, "--mode zfail", "stacked_300_zfail");
     assert_within_bound(STACKED_SLABS, "--silhouette gpu", "stacked_300_gpu");
     assert_within_bound(STACKED_MESH, "", "stacked_10000_auto");
-    assert_within_bound(STACKED_MESH, "--mode zfail --silhouette gpu", "stacked_10000_zfail_gpu");
     shadowdiff_result slabs = measure(STACKED_SLABS, "--counter stencil", "stacked_300_wrapped");
-    shadowdiff_result layers = measure(STACKED_MESH, "--counter stencil", "stacked_10000_wrapped");
     assert_true(slabs.false_lit_percent > WRAPPED_MIN_FALSE_LIT_PERCENT);
+    if (support_sweep_stride() > 1)
+        return;
+    assert_within_bound(STACKED_MESH, "--mode zfail --silhouette gpu", "stacked_10000_zfail_gpu");
+    shadowdiff_result layers = measure(STACKED_MESH, "--counter stencil", "stacked_10000_wrapped");
     assert_true(layers.false_lit_percent > WRAPPED_MIN_FALSE_LIT_PERCENT);
 }
 

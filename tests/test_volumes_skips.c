@@ -26,12 +26,17 @@
 
 static const char *const dump_files[] = {"visibility.pfm", "depth.pfm", "ids.pfm", "color.png"};
 
-/* Three frames of `scene` with `flags` and `--motion motion`, and with
- * `off` (flags turning skips off) too: the same dump. */
+/* tests/test_skip.c's size for its runs with and without the skips: what
+ * a skip leaves out does not depend on the pixels, and a small frame keeps
+ * the runs short (a volume's cost is mostly its fill). */
+#define DUMP_SIZE "--size 320x180"
+
+/* Three frames of `scene` at DUMP_SIZE with `flags` and `--motion motion`,
+ * and with `off` (flags turning skips off) too: the same dump. */
 static void assert_same_with_and_without(const char *scene, const char *motion, const char *flags,
                                          const char *off_flag, const char *name) {
     char on_flags[256], off_flags[512], on[256], off[256];
-    snprintf(on_flags, sizeof on_flags, "--frames 3 --motion %s %s", motion, flags);
+    snprintf(on_flags, sizeof on_flags, DUMP_SIZE " --frames 3 --motion %s %s", motion, flags);
     snprintf(off_flags, sizeof off_flags, "%s %s", on_flags, off_flag);
     snprintf(on, sizeof on, OUT "/%s_on", name);
     snprintf(off, sizeof off, OUT "/%s_off", name);
@@ -113,7 +118,9 @@ static void test_area_light_points(void **state) {
  * volumes, they differ: the comparison can fail. Counted wide, the skips
  * change no decision either (the light moving: each caster's bound is
  * found again for the light's new position). The forced cases are swept
- * (support_sweep_stride). */
+ * (support_sweep_stride), and the quick tier counts the engine under
+ * z-pass alone (tests/test_volumes.c measures the wide count under z-fail
+ * against the reference, on volumes deeper than the stencil). */
 static void test_wide_count_decides_the_same(void **state) {
     (void)state;
     static const char *const standard[] = {"simple", "bunny", "teapot", "long_view"};
@@ -143,8 +150,9 @@ static void test_wide_count_decides_the_same(void **state) {
         assert_same_with_and_without(forced[i].scene, forced[i].motion, forced[i].flags, "--counter float",
                                      forced[i].name);
     assert_same_with_and_without("assets/scenes/engine.json", "static", "", "--counter stencil", "engine_wide");
-    assert_same_with_and_without("assets/scenes/engine.json", "static", "--mode zfail", "--counter stencil",
-                                 "engine_wide_zfail");
+    if (support_sweep_stride() == 1)
+        assert_same_with_and_without("assets/scenes/engine.json", "static", "--mode zfail", "--counter stencil",
+                                     "engine_wide_zfail");
     assert_same_with_and_without("tests/data/volumes_300_casters.json", "light", "", "--counter stencil",
                                  "casters_300_wide");
     assert_same_with_and_without("assets/scenes/stacked_300.json", "light", "", "--no-skip", "stacked_300_skips");
