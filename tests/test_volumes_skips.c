@@ -117,10 +117,14 @@ static void test_area_light_points(void **state) {
  * (--counter stencil). On stacked_300, whose ground lies in exactly 256
  * volumes, they differ: the comparison can fail. Counted wide, the skips
  * change no decision either (the light moving: each caster's bound is
- * found again for the light's new position). The forced cases are swept
- * (support_sweep_stride), and the quick tier counts the engine under
- * z-pass alone (tests/test_volumes.c measures the wide count under z-fail
- * against the reference, on volumes deeper than the stencil). */
+ * found again for the light's new position), on the slabs and, under
+ * z-fail, on the open mesh of 10,000 stacked triangles. The forced cases
+ * are swept (support_sweep_stride). The quick tier counts the engine
+ * under z-pass alone (tests/test_volumes.c measures the wide count under
+ * z-fail against the reference, on volumes deeper than the stencil), and
+ * the skips counted wide on the slabs alone (the same bounds found again
+ * as the light moves; the mesh's 10,000 volumes over the view are the
+ * whole tier's). */
 static void test_wide_count_decides_the_same(void **state) {
     (void)state;
     static const char *const standard[] = {"simple", "bunny", "teapot", "long_view"};
@@ -156,8 +160,9 @@ static void test_wide_count_decides_the_same(void **state) {
     assert_same_with_and_without("tests/data/volumes_300_casters.json", "light", "", "--counter stencil",
                                  "casters_300_wide");
     assert_same_with_and_without("assets/scenes/stacked_300.json", "light", "", "--no-skip", "stacked_300_skips");
-    assert_same_with_and_without("assets/scenes/stacked_10000.json", "light", "--mode zfail", "--no-skip",
-                                 "stacked_10000_skips");
+    if (support_sweep_stride() == 1)
+        assert_same_with_and_without("assets/scenes/stacked_10000.json", "light", "--mode zfail", "--no-skip",
+                                     "stacked_10000_skips");
     char on[256], off[256];
     snprintf(on, sizeof on, OUT "/stacked_wide");
     snprintf(off, sizeof off, OUT "/stacked_wrapped");
