@@ -103,9 +103,9 @@ static void test_settings_identical(void **state) {
             for (int s = 0; s < n; s++, step++) {
                 if (step % support_sweep_stride() != 0)
                     continue;
-                /* Settings take the two scenes in turn: each
-                     * program's shaders compile on either. */
-                const char *scene = step % 2 ? "soft_table" : "simple";
+                /* The settings taken take the two scenes in turn:
+                 * each program's shaders compile on either. */
+                const char *scene = step / support_sweep_stride() % 2 ? "soft_table" : "simple";
                 if (strcmp(settings[s], "--silhouette gpu") == 0)
                     continue; /* test_geometry_shader_refused */
                 char flags[2400], es_flags[2500];
