@@ -70,7 +70,7 @@ static void test_bad_tours(void **state) {
                                   "seconds, motion, frame, camera, path, compare or subject), did you mean "
                                   "\"caption\"?"},
         {"tour_bad_motion.json",
-         "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)"},
+         "steps[0].motion: unknown motion \"orbit\" (expected static, light, camera, dolly, lamp or lamps)"},
         {"tour_bad_frame.json", "steps[0].frame: must be a frame of the step, 0 to 59 (got 60)"},
         {"tour_bad_seconds.json", "steps[0].seconds: expected a number, got a string"},
         {"tour_no_scene.json", "steps[0].scene: missing required field"},
@@ -107,7 +107,8 @@ static void test_bad_tours(void **state) {
 static const char *const file_errors[] = {
     SEVERAL_ERRORS ": steps[0]: unknown key \"captoin\" (expected scene, technique, flags, caption, seconds, motion, "
                    "frame, camera, path, compare or subject), did you mean \"caption\"?\n",
-    SEVERAL_ERRORS ": steps[0].motion: unknown motion \"orbit\" (expected static, light, camera or dolly)\n",
+    SEVERAL_ERRORS
+    ": steps[0].motion: unknown motion \"orbit\" (expected static, light, camera, dolly, lamp or lamps)\n",
     SEVERAL_ERRORS ": steps[1].seconds: expected a number, got a string\n",
     SEVERAL_ERRORS ": steps[2].frame: must be a frame of the step, 0 to 119 (got 999)\n",
     SEVERAL_ERRORS ": steps[3].scene: missing required field\n",
