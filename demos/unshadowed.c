@@ -40,11 +40,10 @@ static void unshadowed_render(const technique_frame *f) {
     for (int l = 0; l < f->gpu->scene->light_count; l++) {
         if (!(split & SCENE_LIGHT_BIT(l)))
             continue;
-        objects = shading_split_pass(f, l);
-        if (render_light_groups(f->gpu) == 1)
-            render_unshadowed(f->gpu, f->view, objects, f->skips->lights);
-        else
-            render_draw_objects(f->gpu, render_use_lit(f->gpu, f->view, SCENE_LIGHT_BIT(l), false), objects);
+        scene_light_set lights;
+        bool ambient;
+        objects = shading_split_pass(f, l, &lights, &ambient);
+        render_draw_objects(f->gpu, render_use_lit(f->gpu, f->view, lights, ambient), objects);
     }
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);

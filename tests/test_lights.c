@@ -103,13 +103,21 @@ static void budget_dump(const char *name, const char *flags, char *dir, size_t s
 
 static const char *const dump_files[] = {"visibility.pfm", "color.png"};
 
+/* The first of the first `files` of dump_files that differ between the
+ * dumps of two runs (budget_dump's), or NULL. */
+static const char *budget_dumps_differ(const char *name_a, const char *flags_a, const char *name_b,
+                                       const char *flags_b, size_t files) {
+    char a[128], b[128];
+    budget_dump(name_a, flags_a, a, sizeof a);
+    budget_dump(name_b, flags_b, b, sizeof b);
+    return support_first_difference(a, b, dump_files, files);
+}
+
 /* While nothing moves no map is due: a budget changes no pixel. */
 static void test_budget_changes_nothing_while_still(void **state) {
     (void)state;
-    char free_dir[128], budget_dir[128];
-    budget_dump("still_free", "--frames 3", free_dir, sizeof free_dir);
-    budget_dump("still_budget", "--frames 3 --shadow-budget 1", budget_dir, sizeof budget_dir);
-    const char *differs = support_first_difference(free_dir, budget_dir, dump_files, 2);
+    const char *differs =
+        budget_dumps_differ("still_free", "--frames 3", "still_budget", "--frames 3 --shadow-budget 1", 2);
     if (differs)
         fail_msg("%s differs with --shadow-budget 1, nothing moving", differs);
 }
@@ -121,10 +129,8 @@ static void test_budget_changes_nothing_while_still(void **state) {
  * decisions on frame 3 are frame 1's, and the HUD counts the kept maps. */
 static void test_budget_draws_a_kept_light_as_it_was(void **state) {
     (void)state;
-    char first_dir[128], kept_dir[128];
-    budget_dump("moving_first", "--motion light --frames 1", first_dir, sizeof first_dir);
-    budget_dump("moving_kept", "--motion light --frames 3 --shadow-budget 1", kept_dir, sizeof kept_dir);
-    const char *differs = support_first_difference(first_dir, kept_dir, dump_files, 1);
+    const char *differs = budget_dumps_differ("moving_first", "--motion light --frames 1", "moving_kept",
+                                              "--motion light --frames 3 --shadow-budget 1", 1);
     if (differs)
         fail_msg("lamp 27's %s on frame 3 past the budget is not frame 1's", differs);
     const char *line = support_verbose_line(

@@ -316,6 +316,11 @@ unsigned render_group_slots(scene_light_set lights, int g) {
     return (unsigned)(lights >> (g * SHADER_PASS_LIGHTS)) & (RENDER_LIGHT_SETS - 1);
 }
 
+/* The lights of group g's slot bits: render_group_slots undone. */
+static scene_light_set render_group_lights(unsigned slots, int g) {
+    return (scene_light_set)slots << (g * SHADER_PASS_LIGHTS);
+}
+
 void render_bind_light_group(const render_scene *r, int g) {
     glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffers[g]);
 }
@@ -435,7 +440,7 @@ const render_lit_program *render_use_lit_variant(const render_scene *r, render_l
     lights &= SCENE_ALL_LIGHTS(r->scene->light_count);
     int g = lights ? RENDER_LIGHT_GROUP(__builtin_ctzll(lights)) : 0;
     unsigned set = render_group_slots(lights, g);
-    if (lights != (scene_light_set)set << (g * SHADER_PASS_LIGHTS)) {
+    if (lights != render_group_lights(set, g)) {
         fprintf(stderr, "render: the lit program's lights 0x%llx span groups of %d\n", (unsigned long long)lights,
                 SHADER_PASS_LIGHTS);
         return NULL;
@@ -475,8 +480,7 @@ void render_unshadowed(const render_scene *r, const camera_view *v, const bool *
         unsigned slots = render_group_slots(lights, g);
         render_group_pass_begin(g, &blending);
         if (g == 0 || slots)
-            render_draw_objects(r, render_use_lit(r, v, (scene_light_set)slots << (g * SHADER_PASS_LIGHTS), g == 0),
-                                mask);
+            render_draw_objects(r, render_use_lit(r, v, render_group_lights(slots, g), g == 0), mask);
     }
     render_group_pass_end(blending);
 }

@@ -56,18 +56,25 @@ const bool *shading_all_begin(const technique_frame *f) {
     return f->skips->in_view;
 }
 
+/* Past one light group, every light on is split and its pass adds its
+ * own light alone (shading_split_lights). */
+static bool shading_split_adds(const technique_frame *f) { return render_light_groups(f->gpu) > 1; }
+
 scene_light_set shading_split_lights(const technique_frame *f) {
     scene_light_set split = 0;
-    bool groups = render_light_groups(f->gpu) > 1;
+    bool adds = shading_split_adds(f);
     for (int l = 0; l < f->gpu->scene->light_count; l++)
-        if (skips_light_on(f->skips, l) && (groups || shading_light_narrow(f, l)))
+        if (skips_light_on(f->skips, l) && (adds || shading_light_narrow(f, l)))
             split |= SCENE_LIGHT_BIT(l);
     return split;
 }
 
-const bool *shading_split_pass(const technique_frame *f, int l) {
+const bool *shading_split_pass(const technique_frame *f, int l, scene_light_set *lights, bool *ambient) {
     const bool *objects = shading_light_pass(f, l);
-    if (render_light_groups(f->gpu) > 1) {
+    bool adds = shading_split_adds(f);
+    *lights = adds ? SCENE_LIGHT_BIT(l) : f->skips->lights;
+    *ambient = !adds;
+    if (adds) {
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
     }

@@ -53,9 +53,12 @@ const bool *shading_all_begin(const technique_frame *f);
  * a group's pass over the whole frame every light of the group on every
  * pixel. */
 scene_light_set shading_split_lights(const technique_frame *f);
-/* Split light l's pass: shading_light_pass's, and past one light group
- * additive blending on (GL_ONE, GL_ONE), which the caller turns off. */
-const bool *shading_split_pass(const technique_frame *f, int l);
+/* Split light l's pass: shading_light_pass's scissor and objects, and
+ * the lights it shades into *lights, with the ambient term where
+ * *ambient: in a scene of one light group every light again, replacing
+ * the one pass's pixels; past it l alone, added (blending on, GL_ONE,
+ * GL_ONE, which the caller turns off). */
+const bool *shading_split_pass(const technique_frame *f, int l, scene_light_set *lights, bool *ambient);
 /* The frame's only shading pass when no light is on: the ambient term on
  * every object in view. */
 void shading_ambient(const technique_frame *f);

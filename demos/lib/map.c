@@ -187,13 +187,6 @@ static void map_texture_storage(const map_light *m, GLenum target, GLenum format
             glTexImage2D(map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0, pixels, type, NULL);
 }
 
-/* (Re)creates a map's depth texture when its kind, size, layer count,
- * format or filter changed, or whether it `transmits` (a transmittance
- * map beside it: map.h, "Translucent casters"): compare mode on, so that
- * every read is a depth test; outside the map reads are clamped (the
- * shader calls them lit). A moment filter's textures and the
- * transmittance map are made with it.
- * Returns whether it made one (what the layers held is gone). */
 /* m's texture is the one its fit and the settings ask for. */
 static bool map_texture_fits(const map_light *m, const map_settings *settings, bool transmits) {
     const map_texture *t = &m->texture;
@@ -202,11 +195,18 @@ static bool map_texture_fits(const map_light *m, const map_settings *settings, b
            (t->transmittance != 0) == transmits;
 }
 
-static bool map_prepare_texture(map_light *m, const map_settings *settings, bool transmits) {
+/* (Re)creates a map's depth texture when its kind, size, layer count,
+ * format or filter changed, or whether it `transmits` (a transmittance
+ * map beside it: map.h, "Translucent casters"): compare mode on, so that
+ * every read is a depth test; outside the map reads are clamped (the
+ * shader calls them lit). A moment filter's textures and the
+ * transmittance map are made with it. What the layers held is gone:
+ * a cache checks map_texture_fits before (map_cache_current). */
+static void map_prepare_texture(map_light *m, const map_settings *settings, bool transmits) {
     map_texture *t = &m->texture;
     int depth = settings->depth, filter = map_filter_in_use(settings);
     if (map_texture_fits(m, settings, transmits))
-        return false;
+        return;
     glDeleteTextures(1, &t->id);
     glDeleteTextures(1, &t->bounds);
     glDeleteTextures(1, &t->transmittance);
@@ -234,7 +234,6 @@ static bool map_prepare_texture(map_light *m, const map_settings *settings, bool
     t->depth = depth;
     t->filter = filter;
     map_moments_prepare(m, map_filter_moments(filter));
-    return true;
 }
 
 /* ---- the depth pass ---- */
@@ -385,17 +384,23 @@ static map_depth_key map_depth_key_of(const map_light *m, const map_settings *st
                            .slope_units = st->slope_units};
 }
 
+/* What light l's cache holds is still worth reading: neither the scene
+ * nor the light changed, and its texture and depth key are those it
+ * would be drawn with now. */
+static bool map_cache_current(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
+    const map_light *m = &r->maps[l];
+    map_depth_key key = map_depth_key_of(m, st);
+    return !f->changed.scene && !(f->changed.lights & SCENE_LIGHT_BIT(l)) &&
+           map_texture_fits(m, st, map_light_transmits(r, l)) && memcmp(&key, &r->caches[l].key, sizeof key) == 0;
+}
+
 /* Light l's whole map is in its cache as it would be drawn now (its
  * casters planned): nothing to draw. */
 static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
-    const map_light *m = &r->maps[l];
-    const map_cache *c = &r->caches[l];
-    map_depth_key key = map_depth_key_of(m, st);
-    if (f->changed.scene || (f->changed.lights & SCENE_LIGHT_BIT(l)) ||
-        !map_texture_fits(m, st, map_light_transmits(r, l)) || memcmp(&key, &c->key, sizeof key) != 0)
+    if (!map_cache_current(r, st, f, l))
         return false;
-    for (int layer = 0; layer < m->layer_count; layer++)
-        if (!map_layer_cached(r, c, m, layer))
+    for (int layer = 0; layer < r->maps[l].layer_count; layer++)
+        if (!map_layer_cached(r, &r->caches[l], &r->maps[l], layer))
             return false;
     return true;
 }
@@ -405,13 +410,10 @@ static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const te
 static void map_draw_layers(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     map_light *m = &r->maps[l];
     map_cache *c = &r->caches[l];
-    if (f->changed.scene || (f->changed.lights & SCENE_LIGHT_BIT(l)))
+    if (!map_cache_current(r, st, f, l))
         map_forget(c);
-    bool remade = map_prepare_texture(m, st, map_light_transmits(r, l));
-    map_depth_key key = map_depth_key_of(m, st);
-    if (remade || memcmp(&key, &c->key, sizeof key) != 0)
-        map_forget(c);
-    c->key = key;
+    map_prepare_texture(m, st, map_light_transmits(r, l));
+    c->key = map_depth_key_of(m, st);
     map_moments moments = map_filter_moments(map_filter_in_use(st));
     bool begun = false, rendered[MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
@@ -1060,41 +1062,44 @@ static void map_draw_receivers(const map_renderer *r, const technique_frame *f, 
 static bool map_shade_receivers(map_renderer *r, const map_settings *st, const technique_frame *f,
                                 const map_camera_key *keys, const bool *objects) {
     scene_light_set split = shading_split_lights(f);
-    bool blending;
+    bool blending, ok = true;
     for (int g = 0; g < render_light_groups(f->gpu); g++) {
         render_group_pass_begin(g, &blending);
         if (g > 0 && !render_group_slots(f->skips->lights & ~split, g))
             continue;
         map_camera_key key = map_key_without(keys[g], render_group_slots(split, g));
         const map_camera_program *p = map_camera_program_for(r, &key);
-        if (!p)
-            return false;
+        ok = p != NULL;
+        if (!ok)
+            break;
         map_camera_use(r, st, f, p, g);
         glUniform1f(p->ambient, g == 0 ? 1.0f : 0.0f);
         map_draw_receivers(r, f, p, g, objects);
     }
     const map_camera_program *used = NULL;
     int used_group = 0;
-    for (int l = 0; l < f->gpu->scene->light_count; l++) {
+    for (int l = 0; ok && l < f->gpu->scene->light_count; l++) {
         if (!(split & SCENE_LIGHT_BIT(l)))
             continue;
         int g = RENDER_LIGHT_GROUP(l);
-        map_camera_key key = keys[g];
-        if (render_light_groups(f->gpu) > 1)
-            key = map_key_without(key, ~(1u << RENDER_LIGHT_SLOT(l)));
+        scene_light_set lights;
+        bool ambient;
+        const bool *lit = shading_split_pass(f, l, &lights, &ambient);
+        map_camera_key key = map_key_without(keys[g], ~render_group_slots(lights, g));
         const map_camera_program *p = map_camera_program_for(r, &key);
-        if (!p)
-            return false;
+        ok = p != NULL;
+        if (!ok)
+            break;
         if (p != used || g != used_group)
             map_camera_use(r, st, f, p, g);
         used = p;
         used_group = g;
-        glUniform1f(p->ambient, render_light_groups(f->gpu) > 1 ? 0.0f : 1.0f);
-        map_draw_receivers(r, f, p, g, shading_split_pass(f, l));
+        glUniform1f(p->ambient, ambient ? 1.0f : 0.0f);
+        map_draw_receivers(r, f, p, g, lit);
     }
     render_group_pass_end(blending);
     glDisable(GL_SCISSOR_TEST);
-    return true;
+    return ok;
 }
 
 /* The lights of group g's key k whose marking pass reads their depth
