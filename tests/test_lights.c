@@ -90,11 +90,12 @@ static void test_picture_sums_every_group(void **state) {
     assert_true(percent >= 0 && percent <= LAMPS_MAX_PICTURE_PERCENT);
 }
 
-/* The budget's tests' frames: small, since what they compare is exact. */
+/* The frames of the tests that compare two runs' dumps: small, since
+ * what they compare is exact. */
 #define BUDGET_FLAGS "--technique shadowmap --size 320x180 --light 27"
 
 /* Dumps of `flags` (BUDGET_FLAGS with more) into out/test/lights/NAME. */
-static void budget_dump(const char *name, const char *flags, char *dir, size_t size) {
+static void lamps_dump(const char *name, const char *flags, char *dir, size_t size) {
     char all[256];
     snprintf(dir, size, "out/test/lights/%s", name);
     snprintf(all, sizeof all, BUDGET_FLAGS " %s", flags);
@@ -104,20 +105,29 @@ static void budget_dump(const char *name, const char *flags, char *dir, size_t s
 static const char *const dump_files[] = {"visibility.pfm", "color.png"};
 
 /* The first of the first `files` of dump_files that differ between the
- * dumps of two runs (budget_dump's), or NULL. */
-static const char *budget_dumps_differ(const char *name_a, const char *flags_a, const char *name_b,
-                                       const char *flags_b, size_t files) {
+ * dumps of two runs (lamps_dump's), or NULL. */
+static const char *lamps_dumps_differ(const char *name_a, const char *flags_a, const char *name_b,
+                                      const char *flags_b, size_t files) {
     char a[128], b[128];
-    budget_dump(name_a, flags_a, a, sizeof a);
-    budget_dump(name_b, flags_b, b, sizeof b);
+    lamps_dump(name_a, flags_a, a, sizeof a);
+    lamps_dump(name_b, flags_b, b, sizeof b);
     return support_first_difference(a, b, dump_files, files);
+}
+
+/* The caster culling leaves out the visible pixels a lamp cannot reach
+ * (map_cull.c): it changes no pixel of lamp 27's or of the picture. */
+static void test_skips_change_nothing_on_the_street(void **state) {
+    (void)state;
+    const char *differs = lamps_dumps_differ("skips_on", "--frames 1", "skips_off", "--frames 1 --no-skip", 2);
+    if (differs)
+        fail_msg("%s differs with --no-skip", differs);
 }
 
 /* While nothing moves no map is due: a budget changes no pixel. */
 static void test_budget_changes_nothing_while_still(void **state) {
     (void)state;
     const char *differs =
-        budget_dumps_differ("still_free", "--frames 3", "still_budget", "--frames 3 --shadow-budget 1", 2);
+        lamps_dumps_differ("still_free", "--frames 3", "still_budget", "--frames 3 --shadow-budget 1", 2);
     if (differs)
         fail_msg("%s differs with --shadow-budget 1, nothing moving", differs);
 }
@@ -129,8 +139,8 @@ static void test_budget_changes_nothing_while_still(void **state) {
  * decisions on frame 3 are frame 1's, and the HUD counts the kept maps. */
 static void test_budget_draws_a_kept_light_as_it_was(void **state) {
     (void)state;
-    const char *differs = budget_dumps_differ("moving_first", "--motion light --frames 1", "moving_kept",
-                                              "--motion light --frames 3 --shadow-budget 1", 1);
+    const char *differs = lamps_dumps_differ("moving_first", "--motion light --frames 1", "moving_kept",
+                                             "--motion light --frames 3 --shadow-budget 1", 1);
     if (differs)
         fail_msg("lamp 27's %s on frame 3 past the budget is not frame 1's", differs);
     const char *line = support_verbose_line(
@@ -143,6 +153,7 @@ int main(void) {
         cmocka_unit_test(test_maps_shadow_every_group),
         cmocka_unit_test(test_volumes_shadow_a_later_group),
         cmocka_unit_test(test_picture_sums_every_group),
+        cmocka_unit_test(test_skips_change_nothing_on_the_street),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),
     };

@@ -686,7 +686,11 @@ void map_cascade_layer(map_light *m, int layer, const mat4 projection);
  * point along its ray to the light, which keeps its place in every map,
  * and the depth a culled caster would have stored is never one a read
  * compares with. Not culled: with a normal offset (the point leaves its
- * surface), and light 0's map while the inset shows it. The fit never
+ * surface), and light 0's map while the inset shows it. After the depth
+ * pre-pass (technique_see) a caster must also reach the layer's mask of
+ * the visible pixels (light_mask.h), made of the slabs (visible.h) the
+ * light reaches (scene_light_reaches_box: beyond its range or outside its
+ * cone a pixel reads no map), where a layer is read at all. The fit never
  * depends on culling. */
 
 /* How a layer is read: the kernel's reach in texels from a point's
