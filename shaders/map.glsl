@@ -275,6 +275,15 @@ const int MAP_RIM_TAPS = 4;
 
 bool map_kernel_early_out() { return map_early_out && map_kernel_taps() > MAP_RIM_TAPS; }
 
+// The taps' loop after the rim stays a loop: its bound adds u_unroll_guard,
+// which is 0 (GL sets every uniform to 0 at link, and C never sets this
+// one) but unknown to the compiler, which would unroll a loop of constant
+// count. llvmpipe runs an unrolled branch's code for every pixel of a
+// block, masked, yet leaves a loop once no pixel of the block is in it: only a
+// loop lets the early-out skip the taps it promises (a GPU skips either).
+uniform int u_unroll_guard;
+int map_kernel_loop_taps() { return map_kernel_taps() + u_unroll_guard; }
+
 // Rim tap k's index, k = 0..3: the middles of the sides of the side x side
 // grid of taps (side odd), in the order the taps are listed.
 int map_kernel_rim(int k) {

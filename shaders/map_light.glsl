@@ -65,7 +65,7 @@ float map_kernel_filter(MAP_SAMPLER map, vec2 fraction, float unit) {
     // The rim's taps are not read twice: the sum takes them in their
     // place in the list, so that it is the one without the early-out.
     float sum = 0.0;
-    for (int i = 0; i < map_kernel_taps(); i++) {
+    for (int i = 0; i < map_kernel_loop_taps(); i++) {
         vec3 tap = map_kernel_tap(i, rotation, unit);
         int k = map_kernel_early_out() ? map_kernel_rim_index(i) : -1;
         sum += tap.z * (k >= 0 ? rim[k] : map_kernel_read(map, tap.xy));
