@@ -51,6 +51,9 @@
 /* A run with the fewest timed frames whose ratios have an interval
  * (median_interval_min_samples at RESULTS_CSV_RATIO_CONFIDENCE). */
 #define INTERVAL_OUT OUT "-interval"
+/* A run whose shadowmap configuration fails: its shaders, a broken copy. */
+#define BROKEN_OUT OUT "-broken"
+#define BROKEN_SHADERS OUT "-broken-shaders"
 #define INTERVAL_FRAMES 11
 #define TEXT(x) #x
 #define TEXT_OF(x) TEXT(x)
@@ -459,6 +462,31 @@ static void test_usage_errors(void **state) {
     }
 }
 
+/* A configuration that fails (here shadowmap's camera program, whose
+ * shader a copy of shaders/ breaks) is said on stderr and listed in the
+ * report, and the sweep goes on: volumes after it and the floor are
+ * measured; the run exits 1. */
+static void test_failed_configuration_does_not_stop_the_sweep(void **state) {
+    (void)state;
+    char command[1024];
+    snprintf(command, sizeof command,
+             "rm -rf " BROKEN_SHADERS " " BROKEN_OUT " && cp -r shaders " BROKEN_SHADERS
+             " && echo 'not GLSL' >> " BROKEN_SHADERS "/map.frag && %s --out " BROKEN_OUT
+             " --shader-dir " BROKEN_SHADERS " " SMALL_RUN " --technique shadowmap --technique volumes",
+             support_program("bench"));
+    assert_int_equal(support_run(command, err, sizeof err), 1);
+    assert_non_null(strstr(err, "shadowmap defaults failed; the sweep goes on"));
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(BROKEN_OUT, rows);
+    assert_int_equal(count_rows(rows, n, "shadowmap", NULL), 0);
+    assert_int_equal(count_rows(rows, n, "volumes", "on"), 1);
+    assert_int_equal(count_rows(rows, n, "unshadowed", "on"), 1);
+    const char *report = read_file(BROKEN_OUT "/report.md");
+    const char *failed = strstr(report, "## Failed configurations");
+    assert_non_null(failed);
+    assert_non_null(strstr(failed, "- simple, shadowmap defaults (skips on)"));
+}
+
 /* --light K: the reference is of light K (its cache says so) and so is
  * each technique's dump: planar agrees with it, and the floor's error,
  * the light's shadows, is that light's, not light 0's. A light the scene
@@ -719,6 +747,7 @@ int main(void) {
         cmocka_unit_test(test_scaling_plot_is_an_image),
         cmocka_unit_test(test_usage_errors),
         cmocka_unit_test(test_light_picks_the_measured_light),
+        cmocka_unit_test(test_failed_configuration_does_not_stop_the_sweep),
     };
     return cmocka_run_group_tests_name("benchmark smoke test", tests, run_bench, NULL);
 }

@@ -13,7 +13,10 @@
  * frame's time is also a cost-floor frame's, timed in the same moments
  * (bench_time_frames); a row whose ratio to the floor lies below 1 beyond
  * its interval fails the run, after everything is written (the floor
- * check, bench_write_floor_check). Writes
+ * check, bench_write_floor_check). A configuration that fails (a GL
+ * error, a program that does not compile, a scene it refuses) is said on
+ * stderr as it fails and the sweep goes on with the next; report.md lists
+ * the failed ones and the run exits 1 after writing everything. Writes
  *   OUT/results.csv         one row per scene, configuration and skips setting
  *                           (floor_ms_median: the row's floor; ratio_low and
  *                           ratio_high: its ratio's interval; the last,
@@ -137,6 +140,12 @@ static void bench_row_add_rays(bench_row *row, const technique_rays *rays) {
     row->rays_frames++;
 }
 
+/* A configuration that failed. */
+typedef struct bench_failure {
+    const char *scene, *technique, *config;
+    bool no_skip;
+} bench_failure;
+
 static struct {
     /* flags (zero: the default, which --quick makes small) */
     const char *out_dir;
@@ -179,6 +188,8 @@ static struct {
     bool software; /* a CPU rasterizer: timer queries miss its work */
     bench_row rows[BENCH_MAX_ROWS];
     int row_count;
+    bench_failure failed[BENCH_MAX_ROWS]; /* in the order they ran */
+    int failed_count;
 } bench;
 
 static const flags_param bench_flags[] = {
@@ -599,6 +610,25 @@ static bool bench_configuration(const char *scene_name, const char *config, bool
     return ok;
 }
 
+static const char *bench_config_label(const char *config) {
+    static char labels[4][128];
+    static int next;
+    char *out = labels[next++ % 4];
+    technique_config_label(config, out, sizeof labels[0]);
+    return out;
+}
+
+/* Keeps the current technique's configuration as failed (its failure is
+ * said above it on stderr), after reading and saying any GL error it left
+ * behind, so that the next configuration starts clean. */
+static void bench_failed(const char *scene_name, const char *config, bool no_skip) {
+    context_gl_ok("bench: after the failed configuration");
+    fprintf(stderr, "bench: %s, %s %s failed; the sweep goes on\n", scene_name, bench.current->name,
+            bench_config_label(config));
+    if (bench.failed_count < BENCH_MAX_ROWS)
+        bench.failed[bench.failed_count++] = (bench_failure){scene_name, bench.current->name, config, no_skip};
+}
+
 /* results.csv's `skips` of a row: every skip on, or --no-skip. */
 static const char *bench_skips_text(bool no_skip) { return no_skip ? "off" : "on"; }
 
@@ -633,7 +663,8 @@ static bool bench_scene(const char *scene_path, int scene_index, int *done, int 
                 bool no_skip = bench.no_skip_settings[s];
                 fprintf(stderr, "  [%d/%d] %s %s%s\n", ++*done, total, bench.current->name, config,
                         bench.skips_compare ? (no_skip ? " (skips off)" : " (skips on)") : "");
-                ok = bench_configuration(name, config, no_skip, references);
+                if (!bench_configuration(name, config, no_skip, references))
+                    bench_failed(name, config, no_skip);
             }
         }
     }
@@ -769,14 +800,6 @@ static bool bench_write_csv(void) {
 
 static const char *bench_time_basis(void) { return bench.software ? "CPU" : "GPU"; }
 
-static const char *bench_config_label(const char *config) {
-    static char labels[4][128];
-    static int next;
-    char *out = labels[next++ % 4];
-    technique_config_label(config, out, sizeof labels[0]);
-    return out;
-}
-
 /* a is more accurate than b: no worse by either error figure, better by
  * one. */
 static bool bench_more_accurate(const bench_row *a, const bench_row *b) {
@@ -870,6 +893,19 @@ static void bench_write_floor_check(FILE *f) {
                     bench_ratio_text(&bench.rows[i]));
     if (below)
         fprintf(f, "\n");
+}
+
+/* report.md's list of the configurations that failed, if any. */
+static void bench_write_failures(FILE *f) {
+    if (bench.failed_count == 0)
+        return;
+    fprintf(f, "\n## Failed configurations\n\nThese ran no frame to the end (why: the run's stderr); the run "
+               "exits 1.\n\n");
+    for (int i = 0; i < bench.failed_count; i++) {
+        const bench_failure *b = &bench.failed[i];
+        fprintf(f, "- %s, %s %s (skips %s)\n", b->scene, b->technique, bench_config_label(b->config),
+                bench_skips_text(b->no_skip));
+    }
 }
 
 /* Says each row below the floor on stderr; returns how many. */
@@ -975,6 +1011,7 @@ static bool bench_write_report(void) {
             bench_write_skips_comparison(f, scene);
     }
     bench_write_floor_check(f);
+    bench_write_failures(f);
     return bench_close(f, path);
 }
 
@@ -1187,6 +1224,7 @@ int main(int argc, char **argv) {
         printf("%s/results.csv\n%s/report.md\n", bench.out_dir, bench.out_dir);
     if (ok && bench.scaling)
         printf("%s/scaling.png\n", bench.out_dir);
-    /* After every output is written: a run below the floor fails. */
-    return ok && bench_floor_failures() == 0 ? 0 : 1;
+    /* After every output is written: a run below the floor, or with a
+     * failed configuration, fails. */
+    return ok && bench_floor_failures() == 0 && bench.failed_count == 0 ? 0 : 1;
 }
