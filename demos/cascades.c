@@ -261,14 +261,17 @@ static void cascades_render(const technique_frame *f) {
 /* Light 0's map, and for cascades the split distances and the world size
  * of the nearest cascade's texel. */
 static void cascades_describe(char *out, size_t size) {
-    const map_light *m = map_of_light(cascades.maps, 0);
+    int l;
+    if (!map_described_light(cascades.maps, &l, out, size))
+        return;
+    const map_light *m = map_of_light(cascades.maps, l);
     char map[64];
     map_size_text(&cascades.settings, m, map, sizeof map);
-    int n = snprintf(out, size, "light 0: %s", map);
+    int n = snprintf(out, size, "light %d: %s", l, map);
     if (m->kind == MAP_ARRAY) {
         n += snprintf(out + n, size - (size_t)n, ", %d cascades (%s%s), splits", m->layer_count,
                       cascades_schemes[cascades.scheme],
-                      cascades.grazed[0] ? ", stabilized by steps: the light grazes what is seen"
+                      cascades.grazed[l] ? ", stabilized by steps: the light grazes what is seen"
                                          : cascades_stabilized[cascades.stabilize]);
         for (int k = 0; k <= m->layer_count && (size_t)n < size; k++)
             n += snprintf(out + n, size - (size_t)n, " %.3g", m->cascade_split[k]);
@@ -278,7 +281,7 @@ static void cascades_describe(char *out, size_t size) {
         snprintf(out + n, size - (size_t)n, ", no cascades: only a directional light's map is cut in cascades");
     }
     map_describe_filter(&cascades.settings, out, size);
-    map_describe_transmittance(cascades.maps, out, size);
+    map_describe_transmittance(cascades.maps, l, out, size);
 }
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count

@@ -118,17 +118,20 @@ static bool hybrid_counted_rays(technique_rays *out) { return map_rays_counted(h
 /* The HUD: the map, the rays' mode, and with the counters (F3,
  * --verbose) the share of the pixels traced and the rays. */
 static void hybrid_describe(char *out, size_t size) {
-    const map_light *m = map_of_light(hybrid.maps, 0);
+    int l;
+    if (!map_described_light(hybrid.maps, &l, out, size))
+        return;
+    const map_light *m = map_of_light(hybrid.maps, l);
     char map[64], counted[128] = "counted with F3 or --verbose";
     map_size_text(&hybrid.settings, m, map, sizeof map);
     technique_rays rays;
     if (hybrid_counted_rays(&rays) && rays.pixels > 0)
         snprintf(counted, sizeof counted, "%ld of %ld pixels traced (%.2f %%), %ld rays, %ld marked", rays.traced,
                  rays.pixels, 100.0 * (double)rays.traced / (double)rays.pixels, rays.rays, rays.marked);
-    snprintf(out, size, "light 0: %s; rays %s (%s), %d casting triangles", map, hybrid_rays[hybrid.rays], counted,
+    snprintf(out, size, "light %d: %s; rays %s (%s), %d casting triangles", l, map, hybrid_rays[hybrid.rays], counted,
              hybrid.casters.triangle_count);
     map_describe_filter(&hybrid.settings, out, size);
-    map_describe_transmittance(hybrid.maps, out, size);
+    map_describe_transmittance(hybrid.maps, l, out, size);
 }
 
 /* The sweep: the map alone, the hybrid at three map sizes, and the ray

@@ -231,18 +231,21 @@ static void psm_render(const technique_frame *f) {
 }
 
 static void psm_describe(char *out, size_t size) {
-    const psm_choice *c = &psm.choice[0];
-    const map_light *m = map_of_light(psm.maps, 0);
+    int l;
+    if (!map_described_light(psm.maps, &l, out, size))
+        return;
+    const psm_choice *c = &psm.choice[l];
+    const map_light *m = map_of_light(psm.maps, l);
     char map[64];
     map_size_text(&psm.settings, m, map, sizeof map);
-    int n = snprintf(out, size, "light 0: %s %s (%s)", c->warp, map, c->result.why);
+    int n = snprintf(out, size, "light %d: %s %s (%s)", l, c->warp, map, c->result.why);
     /* A texel's size on screen scales as 1 / size. */
     float scale = (float)c->measured_size / (float)m->size;
     if (n > 0 && (size_t)n < size && isfinite(c->texel_pixels[1]))
         snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px",
                  c->texel_pixels[0] * scale, c->texel_pixels[1] * scale);
     map_describe_filter(&psm.settings, out, size);
-    map_describe_transmittance(psm.maps, out, size);
+    map_describe_transmittance(psm.maps, l, out, size);
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the

@@ -103,14 +103,17 @@ static void shadowmap_render(const technique_frame *f) {
 }
 
 static void shadowmap_describe(char *out, size_t size) {
-    const map_light *m = map_of_light(shadowmap.maps, 0);
+    int l;
+    if (!map_described_light(shadowmap.maps, &l, out, size))
+        return;
+    const map_light *m = map_of_light(shadowmap.maps, l);
     char map[64];
     map_size_text(&shadowmap.settings, m, map, sizeof map);
-    int n = snprintf(out, size, "light 0: %s, depth range %.3g .. %.3g", map, m->near_plane, m->far_plane);
+    int n = snprintf(out, size, "light %d: %s, depth range %.3g .. %.3g", l, map, m->near_plane, m->far_plane);
     if (map_filter_moments(map_filter_in_use(&shadowmap.settings)) != MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
     map_describe_filter(&shadowmap.settings, out, size);
-    map_describe_transmittance(shadowmap.maps, out, size);
+    map_describe_transmittance(shadowmap.maps, l, out, size);
 }
 
 /* The sweep: map size x filter x bias (the tents, the early-out off, the

@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "render.h"
@@ -123,6 +124,18 @@ static void test_skips_change_nothing_on_the_street(void **state) {
         fail_msg("%s differs with --no-skip", differs);
 }
 
+/* The state line describes a light that has a map this frame (a lamp's
+ * cube map), not light 0, which has none on the street. */
+static void test_state_line_describes_a_mapped_lamp(void **state) {
+    (void)state;
+    const char *at = support_verbose_line("shadows", LAMPS, BUDGET_FLAGS " --frames 1", "hud: light ");
+    assert_non_null(at);
+    char line[512];
+    snprintf(line, sizeof line, "%.*s", (int)strcspn(at, "\n"), at);
+    assert_non_null(strstr(line, ": cube map auto: "));
+    assert_null(strstr(line, "light 0:"));
+}
+
 /* While nothing moves no map is due: a budget changes no pixel. */
 static void test_budget_changes_nothing_while_still(void **state) {
     (void)state;
@@ -154,6 +167,7 @@ int main(void) {
         cmocka_unit_test(test_volumes_shadow_a_later_group),
         cmocka_unit_test(test_picture_sums_every_group),
         cmocka_unit_test(test_skips_change_nothing_on_the_street),
+        cmocka_unit_test(test_state_line_describes_a_mapped_lamp),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),
     };

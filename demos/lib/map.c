@@ -1239,9 +1239,17 @@ void map_describe_filter(const map_settings *settings, char *out, size_t size) {
                  map_shows_acne(settings) ? "shows acne" : "a bias is off");
 }
 
-void map_describe_transmittance(const map_renderer *r, char *out, size_t size) {
+bool map_described_light(const map_renderer *r, int *l, char *out, size_t size) {
+    for (*l = 0; *l < SCENE_MAX_LIGHTS; ++*l)
+        if (r->fitted[*l])
+            return true;
+    snprintf(out, size, "no light has a map this frame");
+    return false;
+}
+
+void map_describe_transmittance(const map_renderer *r, int l, char *out, size_t size) {
     size_t n = strlen(out);
-    if (r->maps[0].texture.transmittance && n < size)
+    if (r->maps[l].texture.transmittance && n < size)
         snprintf(out + n, size - n, ", transmittance map: coloured shadows");
 }
 

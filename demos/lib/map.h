@@ -566,9 +566,14 @@ map_renderer *map_create(const map_settings *settings, const render_scene *gpu);
 void map_destroy(map_renderer *r);
 /* Light l's map as this frame's fit left it. */
 const map_light *map_of_light(const map_renderer *r, int l);
-/* Appends ", transmittance map: coloured shadows" where light 0's map has
+/* The light a technique's state line (its describe) is about, into *l:
+ * the first with a map this frame. False, the line being "no light has a
+ * map this frame" (written into out), where none has one: before the
+ * first frame, or where no light reaches what is seen. */
+bool map_described_light(const map_renderer *r, int *l, char *out, size_t size);
+/* Appends ", transmittance map: coloured shadows" where light l's map has
  * one (see "Translucent casters" above); nothing else. */
-void map_describe_transmittance(const map_renderer *r, char *out, size_t size);
+void map_describe_transmittance(const map_renderer *r, int l, char *out, size_t size);
 /* The casters' hierarchy the camera pass's rays trace against (kept, not
  * copied: it outlives r's frames); NULL: no rays, whatever the settings. */
 void map_trace_with(map_renderer *r, const bvh_gpu *casters);
