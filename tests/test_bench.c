@@ -51,6 +51,12 @@
 /* A run with the fewest timed frames whose ratios have an interval
  * (median_interval_min_samples at RESULTS_CSV_RATIO_CONFIDENCE). */
 #define INTERVAL_OUT OUT "-interval"
+/* --configs-with twice: shadowmap's defaults and the rows holding either
+ * text, one each. */
+#define WITH_OUT OUT "-with"
+#define WITH_RUN                                                                                                     \
+    "--quick --frames 1 --technique shadowmap --configs-with budget --configs-with 'filter hw' "                     \
+    "assets/scenes/simple.json"
 /* A run whose shadowmap configuration fails: its shaders, a broken copy. */
 #define BROKEN_OUT OUT "-broken"
 #define BROKEN_SHADERS OUT "-broken-shaders"
@@ -131,6 +137,7 @@ static int run_bench(void **state) {
         {LAMP_OUT, LAMP_RUN},
         {LAMP2_OUT, LAMP_RUN " --light 2"},
         {INTERVAL_OUT, SMALL_SCENE " --technique planar --frames " INTERVAL_FRAMES_TEXT},
+        {WITH_OUT, WITH_RUN},
     };
     char strided[512] = "";
     for (size_t i = 0; SCENE_STRIDE > 1 && i < SCENE_COUNT; i += SCENE_STRIDE) {
@@ -326,6 +333,23 @@ static void test_selection_keeps_the_floor(void **state) {
     }
 }
 
+/* --configs-with budget --configs-with 'filter hw': shadowmap's defaults,
+ * its one budget row and its one hw row, and the floor. */
+static void test_configs_with_takes_each_text(void **state) {
+    (void)state;
+    static csv_row rows[CSV_MAX_ROWS];
+    int n = read_csv(WITH_OUT, rows);
+    assert_int_equal(n, 4);
+    static const char *const parameters[] = {"\"\"", "\"--filter hw\"", "\"--shadow-budget 8\""};
+    for (size_t i = 0; i < sizeof parameters / sizeof *parameters; i++) {
+        int found = 0;
+        for (int r = 0; r < n; r++)
+            found += strcmp(rows[r].technique, "shadowmap") == 0 && strcmp(rows[r].parameters, parameters[i]) == 0;
+        assert_int_equal(found, 1);
+    }
+    assert_int_equal(count_rows(rows, n, "unshadowed", "on"), 1);
+}
+
 /* A ratio's interval needs the frames for one: the --quick run's rows
  * (its five timed frames) have none, and its report says the floor check
  * was not made; a run of INTERVAL_FRAMES has one in every row, the
@@ -463,14 +487,15 @@ static void test_usage_errors(void **state) {
 }
 
 /* A configuration that fails (here shadowmap's camera program, whose
- * shader a copy of shaders/ breaks) is said on stderr and listed in the
+ * shader a copy of shaders/ breaks: a copy of its files, since a test's
+ * shaders/ may be a link to the project's) is said on stderr and listed in the
  * report, and the sweep goes on: volumes after it and the floor are
  * measured; the run exits 1. */
 static void test_failed_configuration_does_not_stop_the_sweep(void **state) {
     (void)state;
     char command[1024];
     snprintf(command, sizeof command,
-             "rm -rf " BROKEN_SHADERS " " BROKEN_OUT " && cp -r shaders " BROKEN_SHADERS
+             "rm -rf " BROKEN_SHADERS " " BROKEN_OUT " && cp -rL shaders " BROKEN_SHADERS
              " && echo 'not GLSL' >> " BROKEN_SHADERS "/map.frag && %s --out " BROKEN_OUT
              " --shader-dir " BROKEN_SHADERS " " SMALL_RUN " --technique shadowmap --technique volumes",
              support_program("bench"));
@@ -740,6 +765,7 @@ int main(void) {
         cmocka_unit_test(test_plots_log_axis_where_figures_span_decades),
         cmocka_unit_test(test_soft_scene_measures_the_penumbra),
         cmocka_unit_test(test_selection_keeps_the_floor),
+        cmocka_unit_test(test_configs_with_takes_each_text),
         cmocka_unit_test(test_interval_needs_the_frames),
         cmocka_unit_test(test_light_motion_and_skips_compare),
         cmocka_unit_test(test_dolly_measures_shimmer),

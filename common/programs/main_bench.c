@@ -66,6 +66,7 @@
 #include "technique_host.h"
 
 #define BENCH_MAX_ROWS 512
+#define BENCH_MAX_CONFIGS_WITH 8
 #define BENCH_MAX_FRAMES 1000
 #define BENCH_MAX_SCENES 16
 #define BENCH_MAX_TECHNIQUES 16
@@ -150,10 +151,11 @@ static struct {
     /* flags (zero: the default, which --quick makes small) */
     const char *out_dir;
     int width, height, frames, warmup, light_samples, error_frames;
-    int motion;               /* motion_kind */
-    int configs;              /* bench_configs */
-    const char *configs_with; /* --configs-with: only the sweep's configurations whose text holds it */
-    int light;                /* --light: the light measured */
+    int motion;                                       /* motion_kind */
+    int configs;                                      /* bench_configs */
+    const char *configs_with[BENCH_MAX_CONFIGS_WITH]; /* --configs-with: the sweep's configurations holding one */
+    int configs_with_count;
+    int light; /* --light: the light measured */
     bool quick, verbose, no_skip, skips_compare, scaling;
     const char *scenes[BENCH_MAX_SCENES];
     char scene_names[BENCH_MAX_SCENES][128];
@@ -212,8 +214,10 @@ static const flags_param bench_flags[] = {
      "what moves: nothing, the lights (as --animate turns them),\nthe camera about its target, along its view (dolly), or\nthe measured light alone (lamp, --light K) or every light\n(lamps) on a small circle; frame k is at k/60 s",
      0, FLAGS_CHOICE, .index = &bench.motion, .choices = motion_names},
     {"configs-with",
-     "of each sweep, only the defaults and the configurations\nwhose text holds TEXT (--configs-with budget)", 0,
-     FLAGS_STRING, .text = &bench.configs_with, .value_name = "TEXT"},
+     "of each sweep, only the defaults and the configurations\nwhose text holds TEXT (--configs-with budget); repeat "
+     "it\nfor more",
+     0, FLAGS_LIST, .repeat = true, .items = bench.configs_with, .count = &bench.configs_with_count, .min = 1,
+     .max = BENCH_MAX_CONFIGS_WITH, .what = "texts", .value_name = "TEXT"},
     {"configs", "each technique's whole sweep, or its defaults only", 0, FLAGS_CHOICE, .index = &bench.configs,
      .choices = bench_config_choices},
     {"quick", "small and short: a smoke test of the whole pipeline", 0, FLAGS_SWITCH, .on = &bench.quick},
@@ -259,9 +263,13 @@ static int bench_config_count(const technique *t) {
 }
 
 /* Technique t's configuration c is timed: the defaults (the first)
- * always, the others unless --configs-with leaves them out. */
+ * always, the others unless --configs-with leaves them out (none of its
+ * texts in theirs). */
 static bool bench_config_taken(const technique *t, int c) {
-    return c == 0 || !bench.configs_with || strstr(t->bench_configs[c], bench.configs_with);
+    bool taken = c == 0 || bench.configs_with_count == 0;
+    for (int i = 0; i < bench.configs_with_count && !taken; i++)
+        taken = strstr(t->bench_configs[c], bench.configs_with[i]) != NULL;
+    return taken;
 }
 
 /* The configurations of t timed on each scene and setting. */
