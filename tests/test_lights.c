@@ -93,42 +93,51 @@ static void test_picture_sums_every_group(void **state) {
 
 /* The frames of the tests that compare two runs' dumps: small, since
  * what they compare is exact. */
-#define BUDGET_FLAGS "--technique shadowmap --size 320x180 --light 27"
+#define COMPARED_FLAGS "--technique shadowmap --size 320x180 --light 27"
 
-/* Dumps of `flags` (BUDGET_FLAGS with more) into out/test/lights/NAME. */
+/* Dumps of `flags` (COMPARED_FLAGS with more) into out/test/lights/NAME. */
 static void lamps_dump(const char *name, const char *flags, char *dir, size_t size) {
     char all[256];
     snprintf(dir, size, "out/test/lights/%s", name);
-    snprintf(all, sizeof all, BUDGET_FLAGS " %s", flags);
+    snprintf(all, sizeof all, COMPARED_FLAGS " %s", flags);
     assert_int_equal(support_dump("shadows", LAMPS, all, dir), 0);
 }
 
 static const char *const dump_files[] = {"visibility.pfm", "color.png"};
 
-/* The first of the first `files` of dump_files that differ between the
- * dumps of two runs (lamps_dump's), or NULL. */
-static const char *lamps_dumps_differ(const char *name_a, const char *flags_a, const char *name_b,
-                                      const char *flags_b, size_t files) {
+/* The first `files` of dump_files are the same in the dumps of two runs
+ * (lamps_dump's); else fails naming the first that differs, and `what`. */
+static void expect_same_dumps(const char *name_a, const char *flags_a, const char *name_b, const char *flags_b,
+                              size_t files, const char *what) {
     char a[128], b[128];
     lamps_dump(name_a, flags_a, a, sizeof a);
     lamps_dump(name_b, flags_b, b, sizeof b);
-    return support_first_difference(a, b, dump_files, files);
+    const char *differs = support_first_difference(a, b, dump_files, files);
+    if (differs)
+        fail_msg("%s differs %s", differs, what);
 }
 
-/* The caster culling leaves out the visible pixels a lamp cannot reach
- * (map_cull.c): it changes no pixel of lamp 27's or of the picture. */
+/* Where `marker` starts in the verbose output of one frame of the
+ * street (COMPARED_FLAGS), or NULL. */
+static const char *street_frame_text(const char *marker) {
+    return support_verbose_line("shadows", LAMPS, COMPARED_FLAGS " --frames 1", marker);
+}
+
+/* The caster culling leaves out the visible pixels a lamp cannot reach,
+ * and cube faces no visible pixel reads are not drawn (map_cull.c): they
+ * change no pixel of lamp 27's or of the picture, and some faces are
+ * left undrawn. */
 static void test_skips_change_nothing_on_the_street(void **state) {
     (void)state;
-    const char *differs = lamps_dumps_differ("skips_on", "--frames 1", "skips_off", "--frames 1 --no-skip", 2);
-    if (differs)
-        fail_msg("%s differs with --no-skip", differs);
+    expect_same_dumps("skips_on", "--frames 1", "skips_off", "--frames 1 --no-skip", 2, "with --no-skip");
+    assert_non_null(street_frame_text("layers out of view, not drawn "));
 }
 
 /* The state line describes a light that has a map this frame (a lamp's
  * cube map), not light 0, which has none on the street. */
 static void test_state_line_describes_a_mapped_lamp(void **state) {
     (void)state;
-    const char *at = support_verbose_line("shadows", LAMPS, BUDGET_FLAGS " --frames 1", "hud: light ");
+    const char *at = street_frame_text("hud: light ");
     assert_non_null(at);
     char line[512];
     snprintf(line, sizeof line, "%.*s", (int)strcspn(at, "\n"), at);
@@ -136,13 +145,21 @@ static void test_state_line_describes_a_mapped_lamp(void **state) {
     assert_null(strstr(line, "light 0:"));
 }
 
+/* Past eight lights the maps' auto filter stands for hw (map.h, "The
+ * camera pass"): the same pixels as --filter hw, and the state line says
+ * so. */
+static void test_auto_filter_is_hw_past_eight_lights(void **state) {
+    (void)state;
+    expect_same_dumps("filter_auto", "--frames 1", "filter_hw", "--frames 1 --filter hw", 2,
+                      "between --filter auto and --filter hw");
+    assert_non_null(street_frame_text(", filter: hw (many lights)"));
+}
+
 /* While nothing moves no map is due: a budget changes no pixel. */
 static void test_budget_changes_nothing_while_still(void **state) {
     (void)state;
-    const char *differs =
-        lamps_dumps_differ("still_free", "--frames 3", "still_budget", "--frames 3 --shadow-budget 1", 2);
-    if (differs)
-        fail_msg("%s differs with --shadow-budget 1, nothing moving", differs);
+    expect_same_dumps("still_free", "--frames 3", "still_budget", "--frames 3 --shadow-budget 1", 2,
+                      "with --shadow-budget 1, nothing moving");
 }
 
 /* Every lamp moving, one map a frame: the first frame draws every map
@@ -152,12 +169,11 @@ static void test_budget_changes_nothing_while_still(void **state) {
  * decisions on frame 3 are frame 1's, and the HUD counts the kept maps. */
 static void test_budget_draws_a_kept_light_as_it_was(void **state) {
     (void)state;
-    const char *differs = lamps_dumps_differ("moving_first", "--motion light --frames 1", "moving_kept",
-                                             "--motion light --frames 3 --shadow-budget 1", 1);
-    if (differs)
-        fail_msg("lamp 27's %s on frame 3 past the budget is not frame 1's", differs);
+    expect_same_dumps("moving_first", "--motion light --frames 1", "moving_kept",
+                      "--motion light --frames 3 --shadow-budget 1", 1,
+                      "between lamp 27 on frame 1 and on frame 3 past the budget");
     const char *line = support_verbose_line(
-        "shadows", LAMPS, BUDGET_FLAGS " --motion light --frames 3 --shadow-budget 1", "maps kept past the budget");
+        "shadows", LAMPS, COMPARED_FLAGS " --motion light --frames 3 --shadow-budget 1", "maps kept past the budget");
     assert_non_null(line);
 }
 
@@ -168,6 +184,7 @@ int main(void) {
         cmocka_unit_test(test_picture_sums_every_group),
         cmocka_unit_test(test_skips_change_nothing_on_the_street),
         cmocka_unit_test(test_state_line_describes_a_mapped_lamp),
+        cmocka_unit_test(test_auto_filter_is_hw_past_eight_lights),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),
     };

@@ -55,6 +55,7 @@ typedef struct skips_counts {
      * (shading_light_pass). */
     scene_light_set lights_narrowed;
     int layers_rendered, layers_reused; /* map layers: a cube map has six */
+    int layers_unread;                  /* map layers no receiver reads, not drawn (a cube's faces out of view) */
     int maps_kept;                      /* lights past the maps' budget that kept their maps (map.h, "Budget") */
     int marked_passes;                  /* passes over marked pixels alone (skips.marked_pass) */
 } skips_counts;

@@ -883,6 +883,8 @@ static int app_skips_text(char *out, size_t size) {
         APP_TEXT("map layers reused %d of %d", c->layers_reused, c->layers_reused + c->layers_rendered);
     else
         APP_TEXT("%s", off);
+    if (c->layers_unread)
+        APP_TEXT("; layers out of view, not drawn %d", c->layers_unread);
     if (c->maps_kept)
         APP_TEXT("; maps kept past the budget %d", c->maps_kept);
     APP_TEXT("   [Q] marked pass: ");

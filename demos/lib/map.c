@@ -400,7 +400,7 @@ static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const te
     if (!map_cache_current(r, st, f, l))
         return false;
     for (int layer = 0; layer < r->maps[l].layer_count; layer++)
-        if (!map_layer_cached(r, &r->caches[l], &r->maps[l], layer))
+        if (!r->unread[l][layer] && !map_layer_cached(r, &r->caches[l], &r->maps[l], layer))
             return false;
     return true;
 }
@@ -419,6 +419,10 @@ static void map_draw_layers(map_renderer *r, const map_settings *st, const techn
     for (int layer = 0; layer < m->layer_count; layer++) {
         if (map_layer_cached(r, c, m, layer)) {
             f->skips->counts->layers_reused++;
+            continue;
+        }
+        if (r->unread[l][layer]) {
+            f->skips->counts->layers_unread++;
             continue;
         }
         if (!begun)
@@ -837,7 +841,8 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
     return true;
 }
 
-map_renderer *map_create(const map_settings *settings, const render_scene *gpu) {
+map_renderer *map_create(map_settings *settings, const render_scene *gpu) {
+    settings->many_lights = render_light_groups(gpu) > 1;
     map_renderer *r = calloc(1, sizeof *r);
     if (!r) {
         fprintf(stderr, "shadow maps: out of memory\n");
@@ -1237,6 +1242,8 @@ void map_describe_filter(const map_settings *settings, char *out, size_t size) {
     if (map_auto_unfiltered(settings) && n < size)
         snprintf(out + n, size - n, ", filter: %s (%s)", map_filters[MAP_FILTER_NONE],
                  map_shows_acne(settings) ? "shows acne" : "a bias is off");
+    else if (settings->filter == MAP_FILTER_AUTO && settings->many_lights && n < size)
+        snprintf(out + n, size - n, ", filter: %s (many lights)", map_filters[MAP_FILTER_HW]);
 }
 
 bool map_described_light(const map_renderer *r, int *l, char *out, size_t size) {

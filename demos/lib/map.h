@@ -104,8 +104,14 @@
  *            slope-scaled bias is off (--no-constant-bias, --no-slope-bias,
  *            keys C and L), area lights hard too: a kernel or PCSS
  *            averages acne's stripes into a faint darkening, one nearest
- *            test shows each stripe. Any other choice holds with the
- *            biases off (map_filter_in_use).
+ *            test shows each stripe; and hw in a scene of more lights
+ *            than a pass holds (settings->many_lights), where each light
+ *            is filtered in a pass of its own over its part of the frame
+ *            and the kernel's taps multiply with the lights (on
+ *            lamps_64 the bench's sweep puts hw on the front of time
+ *            against misclassified pixels, poisson behind both fronts).
+ *            Any other choice holds with the biases off and with many
+ *            lights (map_filter_in_use).
  * The early-out (on; --no-early-out, key E): a kernel of more than four
  * taps reads four on its rim first and stops where they agree wholly,
  * outside any penumbra (nearly every pixel): 4 taps instead of 9 to 49.
@@ -158,6 +164,10 @@ typedef struct map_settings {
     float constant_texels, slope_factor, slope_units, normal_texels; /* 0: defaults */
     float depth_bias_slope, depth_bias_min;                          /* the tutorials' bias; 0: none */
     int shadow_budget; /* lights whose maps are redrawn per frame, at most; 0: every one (see "Budget") */
+    /* Not a flag: the scene has more lights than a pass holds
+     * (render_light_groups > 1), which map_create sets; auto then stands
+     * for hw (above, "The camera pass"). */
+    bool many_lights;
     /* Not a flag: the technique's overlay list goes on with
      * MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on
      * with its own). */
@@ -541,8 +551,11 @@ typedef bool (*map_fit_function)(const technique_frame *f, int light, map_light 
  * it needs are among those drawn: a layer with more casters than needed
  * decides every read as one with exactly those. A remade texture, a frame
  * with the light skipped or unfitted, or any change empties the light's
- * cache. Counted in f->skips->counts (casters per light: drawn into any layer, or
- * culled; layers rendered and reused).
+ * cache. A layer that no receiver reads this frame (with caster culling
+ * on, its planned reads empty: a cube's face turned from all the camera
+ * sees) is not drawn at all: nothing reads what it would hold. Counted
+ * in f->skips->counts (casters per light: drawn into any layer, or
+ * culled; layers rendered, reused and left undrawn out of view).
  *
  * Budget (--shadow-budget N; 0, the default: none). A light whose map
  * the cache cannot give whole (it moved, the scene changed, its fit did)
@@ -561,7 +574,7 @@ typedef struct map_renderer map_renderer;
 /* gpu: the scene whose object count sizes the caster sets; its lights and
  * the settings give the first camera program, compiled now. NULL after
  * printing why. */
-map_renderer *map_create(const map_settings *settings, const render_scene *gpu);
+map_renderer *map_create(map_settings *settings, const render_scene *gpu);
 /* Frees r and its GL objects; nothing for NULL. */
 void map_destroy(map_renderer *r);
 /* Light l's map as this frame's fit left it. */

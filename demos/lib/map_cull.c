@@ -34,7 +34,9 @@ bool map_shows_acne(const map_settings *settings) { return map_auto_unfiltered(s
 map_filter map_filter_in_use(const map_settings *settings) {
     if (settings->filter != MAP_FILTER_AUTO)
         return (map_filter)settings->filter;
-    return map_auto_unfiltered(settings) ? MAP_FILTER_NONE : MAP_FILTER_POISSON;
+    if (map_auto_unfiltered(settings))
+        return MAP_FILTER_NONE;
+    return settings->many_lights ? MAP_FILTER_HW : MAP_FILTER_POISSON;
 }
 
 bool map_light_soft(const map_settings *settings, const scene_light *light) {
@@ -293,10 +295,15 @@ void map_plan_casters(map_renderer *r, const map_settings *st, const technique_f
     for (int i = 0; seen && i < seen->count; i++)
         if (map_slab_reached(&s->lights[l], seen, i))
             reached[reached_count++] = i;
-    /* A layer no receiver reads needs no caster: no mask either. */
-    for (int layer = 0; seen && layer < m->layer_count; layer++)
-        if (!reads[layer].empty)
+    /* A layer no receiver reads needs no caster: no mask either. Nor is
+     * it drawn, nor one whose mask no visible pixel reaches (the mask's
+     * bodies cross its sides by the kernel's reach, as taps do). */
+    for (int layer = 0; layer < m->layer_count; layer++) {
+        bool masked = seen && !reads[layer].empty;
+        if (masked)
             map_layer_mask(&r->masks[layer], m->layer_view_projection[layer], &setup, seen, reached, reached_count);
+        r->unread[l][layer] = cull && (reads[layer].empty || (masked && r->masks[layer].empty));
+    }
     free(reached);
     for (int i = 0; i < s->object_count; i++) {
         bool candidate = s->objects[i].casts && (!m->casters || m->casters[i]), drawn = false;

@@ -240,8 +240,11 @@ struct map_renderer {
     scene_light_set moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
     map_light maps[SCENE_MAX_LIGHTS];
     map_cache caches[SCENE_MAX_LIGHTS];
-    int object_count;              /* the scene's, at init: the sets' size */
-    bool *needed[MAP_MAX_LAYERS];  /* this frame's casters of each layer of one light */
+    int object_count;             /* the scene's, at init: the sets' size */
+    bool *needed[MAP_MAX_LAYERS]; /* this frame's casters of each layer of one light */
+    /* Per light and layer: no receiver reads it this frame (its planned
+     * reads are empty), so it is not drawn (map.h, "Caching"). */
+    bool unread[SCENE_MAX_LIGHTS][MAP_MAX_LAYERS];
     float (*receiver_boxes)[2][3]; /* one light's visible receivers' boxes within its range */
     bool *unmapped;                /* per object: drawn by the camera pass's lit programs, not its maps */
     light_mask *masks;             /* one light's layers' masks of the visible pixels */
