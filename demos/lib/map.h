@@ -306,7 +306,7 @@ typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
      .index = &(s).map_size,                                                                                                      \
      .choices = map_sizes},                                                                                                       \
         {"filter",                                                                                                                \
-         "what reads the map; auto: poisson, but none (area lights hard) while a bias is off, so that acne shows",                \
+         "what reads the map; auto: poisson (hw past eight lights), none (area lights hard) while a bias is off",                 \
          GLFW_KEY_F,                                                                                                              \
          FLAGS_CHOICE,                                                                                                            \
          .index = &(s).filter,                                                                                                    \
