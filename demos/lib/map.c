@@ -1242,7 +1242,7 @@ void map_describe_filter(const map_settings *settings, char *out, size_t size) {
     if (map_auto_unfiltered(settings) && n < size)
         snprintf(out + n, size - n, ", filter: %s (%s)", map_filters[MAP_FILTER_NONE],
                  map_shows_acne(settings) ? "shows acne" : "a bias is off");
-    else if (settings->filter == MAP_FILTER_AUTO && settings->many_lights && n < size)
+    else if (settings->filter == MAP_FILTER_AUTO && map_filter_in_use(settings) == MAP_FILTER_HW && n < size)
         snprintf(out + n, size - n, ", filter: %s (many lights)", map_filters[MAP_FILTER_HW]);
 }
 

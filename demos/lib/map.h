@@ -109,7 +109,10 @@
  *            is filtered in a pass of its own over its part of the frame
  *            and the kernel's taps multiply with the lights (on
  *            lamps_64 the bench's sweep puts hw on the front of time
- *            against misclassified pixels, poisson behind both fronts).
+ *            against misclassified pixels, poisson behind both fronts),
+ *            but not where rays decide the pixels the kernel is unsure
+ *            of (see "Rays"): a 2x2 test's unsure band is too narrow to
+ *            hold every pixel the map gets wrong (test_lights).
  *            Any other choice holds with the biases off and with many
  *            lights (map_filter_in_use).
  * The early-out (on; --no-early-out, key E): a kernel of more than four
@@ -166,7 +169,7 @@ typedef struct map_settings {
     int shadow_budget; /* lights whose maps are redrawn per frame, at most; 0: every one (see "Budget") */
     /* Not a flag: the scene has more lights than a pass holds
      * (render_light_groups > 1), which map_create sets; auto then stands
-     * for hw (above, "The camera pass"). */
+     * for hw without rays (above, "The camera pass"). */
     bool many_lights;
     /* Not a flag: the technique's overlay list goes on with
      * MAP_ARRAY_OVERLAY_NAMES (cascades sets it; psm's list goes on

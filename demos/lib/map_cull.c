@@ -36,7 +36,7 @@ map_filter map_filter_in_use(const map_settings *settings) {
         return (map_filter)settings->filter;
     if (map_auto_unfiltered(settings))
         return MAP_FILTER_NONE;
-    return settings->many_lights ? MAP_FILTER_HW : MAP_FILTER_POISSON;
+    return settings->many_lights && settings->rays != MAP_RAYS_UNSURE ? MAP_FILTER_HW : MAP_FILTER_POISSON;
 }
 
 bool map_light_soft(const map_settings *settings, const scene_light *light) {
