@@ -556,7 +556,8 @@ typedef bool (*map_fit_function)(const technique_frame *f, int light, map_light 
  * with the light skipped or unfitted, or any change empties the light's
  * cache. A layer that no receiver reads this frame (with caster culling
  * on, its planned reads empty: a cube's face turned from all the camera
- * sees) is not drawn at all: nothing reads what it would hold. Counted
+ * sees) is not drawn at all: nothing reads what it would hold (but under
+ * a budget, below, where a kept map is read whole). Counted
  * in f->skips->counts (casters per light: drawn into any layer, or
  * culled; layers rendered, reused and left undrawn out of view).
  *

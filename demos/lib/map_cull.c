@@ -297,12 +297,14 @@ void map_plan_casters(map_renderer *r, const map_settings *st, const technique_f
             reached[reached_count++] = i;
     /* A layer no receiver reads needs no caster: no mask either. Nor is
      * it drawn, nor one whose mask no visible pixel reaches (the mask's
-     * bodies cross its sides by the kernel's reach, as taps do). */
+     * bodies cross its sides by the kernel's reach, as taps do), but
+     * under a budget: a map kept past it is read whole, wherever the
+     * camera has turned since it was drawn. */
     for (int layer = 0; layer < m->layer_count; layer++) {
         bool masked = seen && !reads[layer].empty;
         if (masked)
             map_layer_mask(&r->masks[layer], m->layer_view_projection[layer], &setup, seen, reached, reached_count);
-        r->unread[l][layer] = cull && (reads[layer].empty || (masked && r->masks[layer].empty));
+        r->unread[l][layer] = cull && !st->shadow_budget && (reads[layer].empty || (masked && r->masks[layer].empty));
     }
     free(reached);
     for (int i = 0; i < s->object_count; i++) {
