@@ -40,13 +40,17 @@ bool frustum_box_contains(const vec3 lo, const vec3 hi, const float p[3]) {
  * negative: each is linear in the world point, so a box whose eight
  * corners are all negative on one of them lies outside, whatever the sign
  * of w (behind the eye included). */
-bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 hi) {
+/* Plane k of the six in that order (left, right, bottom, top, near, far)
+ * is tested where bit k of `planes` is set. */
+static bool frustum_box_outside_planes(const mat4 view_projection, const vec3 lo, const vec3 hi, unsigned planes) {
     vec3 box[8];
     vec4 clip[8];
     frustum_box_corners(lo, hi, box);
     for (int c = 0; c < 8; c++)
         glm_mat4_mulv((vec4 *)view_projection, (vec4){box[c][0], box[c][1], box[c][2], 1}, clip[c]);
     for (int k = 0; k < 6; k++) {
+        if (!(planes >> k & 1u))
+            continue;
         float sign = k & 1 ? -1.0f : 1.0f;
         bool all_beyond = true;
         for (int c = 0; c < 8 && all_beyond; c++)
@@ -55,6 +59,17 @@ bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 h
             return true;
     }
     return false;
+}
+
+#define FRUSTUM_NEAR_PLANE_BIT (1u << 4)
+#define FRUSTUM_ALL_PLANES 0x3fu
+
+bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 hi) {
+    return frustum_box_outside_planes(view_projection, lo, hi, FRUSTUM_ALL_PLANES);
+}
+
+bool frustum_box_outside_sides_far(const mat4 view_projection, const vec3 lo, const vec3 hi) {
+    return frustum_box_outside_planes(view_projection, lo, hi, FRUSTUM_ALL_PLANES & ~FRUSTUM_NEAR_PLANE_BIT);
 }
 
 /* Each clip plane w + x >= 0, w - x >= 0, ... is a world plane, the sum or

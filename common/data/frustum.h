@@ -51,6 +51,9 @@ int frustum_box_part(const mat4 view_projection, const vec3 corners[8], const ve
  * culling needs: a box that meets the frustum is never outside, though a
  * box beside a frustum's corner may not be found outside. */
 bool frustum_box_outside(const mat4 view_projection, const vec3 lo, const vec3 hi);
+/* The same without the near plane (w + z >= 0): for a view that draws
+ * what lies before it at its near depth (GL_DEPTH_CLAMP). */
+bool frustum_box_outside_sides_far(const mat4 view_projection, const vec3 lo, const vec3 hi);
 /* The convex hull of a light and the box lo..hi, as planes (xyz: the unit
  * outward normal, w: the offset; a point p is inside where n.p + w <= 0),
  * at most FRUSTUM_HULL_MAX_PLANES of them; returns how many. The light is

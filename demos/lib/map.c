@@ -256,6 +256,17 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
         glUniform1f(r->transmit_slope,
                     settings->no_slope_bias ? 0 : map_setting(settings->slope_factor, MAP_SLOPE_FACTOR));
     }
+    /* A cube's near plane keeps the depth's precision (MAP_NEAR_RATIO of
+     * its far plane), and a caster nearer the light than that (a lamp
+     * inside a wall's box) lies before every receiver of its face: it is
+     * drawn at the near depth, not clipped (where the GL can clamp). */
+    depth_clamp(m->kind == MAP_CUBE);
+}
+
+/* After a map's layers: the state map_depth_begin set, off. */
+static void map_depth_end(void) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    depth_clamp(false);
 }
 
 /* Layer `layer`'s transmittance map (map.h, "Translucent casters"), after
@@ -353,7 +364,7 @@ void map_render_depth(map_renderer *r, const map_settings *settings, const rende
     map_moments moments = map_filter_moments(map_filter_in_use(settings));
     for (int layer = 0; layer < m->layer_count; layer++)
         map_depth_layer(r, gpu, m, layer, m->casters, moments != MAP_MOMENTS_NONE);
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    map_depth_end();
     for (int layer = 0; moments != MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
         map_moments_blur(r, m, moments, layer);
 }
@@ -436,7 +447,7 @@ static void map_draw_layers(map_renderer *r, const map_settings *st, const techn
         glm_mat4_copy(m->layer_view_projection[layer], c->layer_view_projection[layer]);
         memcpy(c->drawn[layer], r->needed[layer], (size_t)r->object_count * sizeof(bool));
     }
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    map_depth_end();
     if (l == 0 && begun) /* the map inset's reduction is of the layers before */
         r->inset_current = false;
     for (int layer = 0; moments != MAP_MOMENTS_NONE && layer < m->layer_count; layer++)

@@ -727,9 +727,12 @@ typedef struct map_read_setup {
     float center[3];
 } map_read_setup;
 /* Where receivers read a layer: an NDC rectangle (grown by the reach,
- * within [-1, 1]) and the deepest NDC depth they compare; empty: none. */
+ * within [-1, 1]) and the deepest NDC depth they compare; empty: none.
+ * near_drawn: the layer draws the casters before its near plane (a cube
+ * face's, at its near depth: map.c's map_depth_begin), which no read
+ * then lets through. */
 typedef struct map_reads {
-    bool empty;
+    bool empty, near_drawn;
     float lo[2], hi[2], max_depth;
 } map_reads;
 /* area: the light has a radius (soft under pcss, or a moment filter's

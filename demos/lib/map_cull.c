@@ -194,10 +194,12 @@ void map_layer_reads(const mat4 layer, const map_read_setup *s, const float (*po
     }
     out->max_depth = s->any_depth ? INFINITY : fminf(by_points.max_depth, by_boxes.max_depth);
     out->empty = !(out->lo[0] <= out->hi[0] && out->lo[1] <= out->hi[1]);
+    out->near_drawn = s->cube;
 }
 
 bool map_caster_read(const map_reads *reads, const mat4 layer, const vec3 lo, const vec3 hi) {
-    if (reads->empty || frustum_box_outside(layer, lo, hi))
+    if (reads->empty ||
+        (reads->near_drawn ? frustum_box_outside_sides_far(layer, lo, hi) : frustum_box_outside(layer, lo, hi)))
         return false;
     float corners[8][3];
     frustum_box_corners(lo, hi, corners);
