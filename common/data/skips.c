@@ -19,7 +19,8 @@ static void skips_slab_bounds(const float slab[8][3], vec3 lo, vec3 hi) {
     }
 }
 
-/* One pass over the slabs, each slab's bounds made once for every light. */
+/* One pass over the slabs, each slab's bounds made once for every light:
+ * the lights on that reach it, and the narrowed lights' rectangles. */
 void skips_narrow_light_rects(const skips *s) {
     const scene *sc = s->scene;
     skips_seen *seen = s->seen;
@@ -32,12 +33,17 @@ void skips_narrow_light_rects(const skips *s) {
         lo[l][0] = lo[l][1] = INFINITY;
         hi[l][0] = hi[l][1] = -INFINITY;
     }
-    for (int i = 0; i < seen->pixels.count && narrowed; i++) {
+    for (int i = 0; i < seen->pixels.count; i++) {
         const light_mask_seen *tile = &seen->pixels.seen[i];
         vec3 slab_lo, slab_hi;
         skips_slab_bounds((const float(*)[3])seen->pixels.slabs[i], slab_lo, slab_hi);
+        scene_light_set *reached = &seen->pixels.lights[i];
+        *reached = 0;
         for (int l = 0; l < sc->light_count; l++)
-            if ((narrowed & SCENE_LIGHT_BIT(l)) && scene_light_reaches_box(&sc->lights[l], slab_lo, slab_hi))
+            if (skips_light_on(s, l) && scene_light_reaches_box(&sc->lights[l], slab_lo, slab_hi))
+                *reached |= SCENE_LIGHT_BIT(l);
+        for (int l = 0; l < sc->light_count; l++)
+            if (narrowed & *reached & SCENE_LIGHT_BIT(l))
                 for (int k = 0; k < 2; k++) {
                     lo[l][k] = fminf(lo[l][k], tile->lo[k]);
                     hi[l][k] = fmaxf(hi[l][k], tile->hi[k]);
@@ -92,6 +98,9 @@ static void skips_light_masks(skips_seen *seen, const scene_light *light, int l,
             light_mask_seen seen_swap = seen->pixels.seen[count];
             seen->pixels.seen[count] = seen->pixels.seen[i];
             seen->pixels.seen[i] = seen_swap;
+            scene_light_set lights_swap = seen->pixels.lights[count];
+            seen->pixels.lights[count] = seen->pixels.lights[i];
+            seen->pixels.lights[i] = lights_swap;
             count++;
         }
     mat4 layers[LIGHT_MASK_MAX_LAYERS];

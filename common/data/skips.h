@@ -121,9 +121,10 @@ bool skips_light_on(const skips *s, int l);
 const int *skips_light_rect(const skips *s, int l);
 /* The slabs technique_see read this frame; NULL when it read none. */
 const visible *skips_seen_pixels(const skips *s);
-/* After technique_see read s->seen's pixels: each light's rectangle
- * narrowed to the tiles of the slabs it reaches (skips_light_rect); a
- * directional light reaches every one. */
+/* After technique_see read s->seen's pixels: each slab's lights on that
+ * reach it (visible.lights), and each light's rectangle narrowed to the
+ * tiles of the slabs it reaches (skips_light_rect); a directional light
+ * reaches every one. */
 void skips_narrow_light_rects(const skips *s);
 
 /* Caster culling for one light (see the top of this file). */

@@ -20,8 +20,9 @@ static bool visible_reserve(visible *v, int width, int height) {
     v->depth = malloc((size_t)width * (size_t)height * sizeof *v->depth);
     v->slabs = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->slabs);
     v->seen = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->seen);
+    v->lights = malloc((size_t)tiles * VISIBLE_DEPTH_BINS * sizeof *v->lights);
     v->farthest = malloc((size_t)tiles * sizeof *v->farthest);
-    if (!v->depth || !v->slabs || !v->seen || !v->farthest) {
+    if (!v->depth || !v->slabs || !v->seen || !v->lights || !v->farthest) {
         fprintf(stderr, "visible: out of memory for a %dx%d frame\n", width, height);
         visible_destroy(v);
         return false;
@@ -37,6 +38,7 @@ void visible_destroy(visible *v) {
     free(v->depth);
     free(v->slabs);
     free(v->seen);
+    free(v->lights);
     free(v->farthest);
     *v = (visible){0};
 }

@@ -39,7 +39,10 @@ typedef struct visible {
     int count;             /* slabs this frame */
     float (*slabs)[8][3];  /* corners numbered as frustum_box_corners' */
     light_mask_seen *seen; /* per slab: its tile's pixels and its window depths */
-    float *farthest;       /* per tile, rows from the bottom: its farthest depth, the clear value where sky */
+    /* per slab: the lights on that reach it (SCENE_LIGHT_BIT; made by
+     * skips_narrow_light_rects, which knows the lights) */
+    scene_light_set *lights;
+    float *farthest; /* per tile, rows from the bottom: its farthest depth, the clear value where sky */
     int tiles_x, tiles_y;
     float *depth; /* the frame's window depths, bottom row first */
     int width, height;

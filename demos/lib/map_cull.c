@@ -1,7 +1,6 @@
 /* map: which casters a layer needs (see map.h, "Caster
  * culling"). Pure math on the scene: no GL. */
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "map_internal.h"
@@ -231,30 +230,18 @@ int map_light_receivers(const technique_frame *f, int light, float (*boxes)[2][3
 
 /* ---- the plan of a light's depth pass ---- */
 
-/* Whether light l reaches any point of slab i of `seen`: a slab it
- * cannot reach holds no pixel that reads its map (the filter is skipped
- * where the light adds exactly 0: scene_light_reaches_box). */
-static bool map_slab_reached(const scene_light *l, const visible *seen, int i) {
-    vec3 lo, hi;
-    glm_vec3_copy(seen->slabs[i][0], lo);
-    glm_vec3_copy(seen->slabs[i][0], hi);
-    for (int c = 1; c < 8; c++) {
-        glm_vec3_minv(lo, seen->slabs[i][c], lo);
-        glm_vec3_maxv(hi, seen->slabs[i][c], hi);
-    }
-    return scene_light_reaches_box(l, lo, hi);
-}
-
-/* The mask of where the visible pixels read the layer (light_mask.h):
- * each slab the light reaches (`reached`: the indices of seen's slabs)
- * grown by the kernel's reach, a cube's pushed away from the light as
- * map_reads_add pushes a point. */
-static void map_layer_mask(light_mask *mask, const mat4 layer, const map_read_setup *s, const visible *seen,
-                           const int *reached, int reached_count) {
+/* The mask of where the visible pixels read the layer of light l
+ * (light_mask.h): each slab the light reaches (seen->lights; a slab it
+ * cannot reach holds no pixel that reads its map: the filter is skipped
+ * where the light adds exactly 0) grown by the kernel's reach, a cube's
+ * pushed away from the light as map_reads_add pushes a point. */
+static void map_layer_mask(light_mask *mask, const mat4 layer, const map_read_setup *s, const visible *seen, int l) {
     light_mask_start(mask, layer, map_read_margin(s), s->any_depth, false);
-    for (int i = 0; i < reached_count; i++) {
+    for (int i = 0; i < seen->count; i++) {
+        if (!(seen->lights[i] & SCENE_LIGHT_BIT(l)))
+            continue;
         float slab[8][3];
-        memcpy(slab, seen->slabs[reached[i]], sizeof slab);
+        memcpy(slab, seen->slabs[i], sizeof slab);
         map_push_body(s, slab);
         light_mask_add(mask, (const float(*)[3])slab, NULL);
     }
@@ -288,15 +275,7 @@ void map_plan_casters(map_renderer *r, const map_settings *st, const technique_f
     for (int layer = 0; cull && layer < m->layer_count; layer++)
         map_layer_reads(m->layer_view_projection[layer], &setup, points, f->skips->receiver_count,
                         (const float(*)[2][3])r->receiver_boxes, box_count, &reads[layer]);
-    /* Out of memory for the slabs' list, the bounds alone cull (they
-     * keep every caster the masks keep). */
     const visible *seen = cull ? skips_seen_pixels(f->skips) : NULL;
-    int *reached = seen ? malloc((size_t)seen->count * sizeof *reached + 1) : NULL, reached_count = 0;
-    if (!reached)
-        seen = NULL;
-    for (int i = 0; seen && i < seen->count; i++)
-        if (map_slab_reached(&s->lights[l], seen, i))
-            reached[reached_count++] = i;
     /* A layer no receiver reads needs no caster: no mask either. Nor is
      * it drawn, nor one whose mask no visible pixel reaches (the mask's
      * bodies cross its sides by the kernel's reach, as taps do), but
@@ -305,10 +284,9 @@ void map_plan_casters(map_renderer *r, const map_settings *st, const technique_f
     for (int layer = 0; layer < m->layer_count; layer++) {
         bool masked = seen && !reads[layer].empty;
         if (masked)
-            map_layer_mask(&r->masks[layer], m->layer_view_projection[layer], &setup, seen, reached, reached_count);
+            map_layer_mask(&r->masks[layer], m->layer_view_projection[layer], &setup, seen, l);
         r->unread[l][layer] = cull && !st->shadow_budget && (reads[layer].empty || (masked && r->masks[layer].empty));
     }
-    free(reached);
     for (int i = 0; i < s->object_count; i++) {
         bool candidate = s->objects[i].casts && (!m->casters || m->casters[i]), drawn = false;
         vec3 lo = GLM_VEC3_ZERO_INIT, hi = GLM_VEC3_ZERO_INIT;
