@@ -356,7 +356,7 @@ static void render_light_entries(const scene_light *l, render_lights_block *b, i
  * slots where it is another group's: then nothing here adds). */
 static void render_update_group(const render_scene *r, int g, int visibility_of) {
     const scene *s = r->scene;
-    int first = g * SHADER_PASS_LIGHTS, count = s->light_count - first;
+    int first = RENDER_GROUP_LIGHT(g, 0), count = s->light_count - first;
     count = count < SHADER_PASS_LIGHTS ? count : SHADER_PASS_LIGHTS;
     int visible = visibility_of < 0                        ? -1
                   : RENDER_LIGHT_GROUP(visibility_of) == g ? RENDER_LIGHT_SLOT(visibility_of)

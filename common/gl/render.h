@@ -115,6 +115,8 @@ typedef struct render_mesh {
 #define RENDER_LIGHT_GROUPS ((SCENE_MAX_LIGHTS + SHADER_PASS_LIGHTS - 1) / SHADER_PASS_LIGHTS)
 #define RENDER_LIGHT_GROUP(l) ((l) / SHADER_PASS_LIGHTS)
 #define RENDER_LIGHT_SLOT(l) ((l) % SHADER_PASS_LIGHTS)
+/* The light in slot `slot` of group g: GROUP and SLOT undone. */
+#define RENDER_GROUP_LIGHT(g, slot) ((g)*SHADER_PASS_LIGHTS + (slot))
 /* Every set of a group's lights, as slot bits. */
 #define RENDER_LIGHT_SETS (1u << SHADER_PASS_LIGHTS)
 

@@ -932,7 +932,7 @@ static unsigned map_closed_outside(const map_renderer *r, const technique_frame 
         float light[4], object_light[4];
         if (!map_light_mapped(map_light_field(k->kinds, slot)))
             continue;
-        scene_light_homogeneous(&s->lights[g * SHADER_PASS_LIGHTS + slot], light);
+        scene_light_homogeneous(&s->lights[RENDER_GROUP_LIGHT(g, slot)], light);
         mesh_point_to_object(s->objects[i].model, light, object_light);
         if (!mesh_point_inside(&s->objects[i].mesh, object_light))
             slots |= 1u << slot;
@@ -1003,7 +1003,7 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
     for (int slot = 0; slot < SHADER_PASS_LIGHTS; slot++) {
         if (!map_light_mapped(map_light_field(k->kinds, slot)))
             continue;
-        int l = g * SHADER_PASS_LIGHTS + slot;
+        int l = RENDER_GROUP_LIGHT(g, slot);
         const map_light *m = &r->maps[l];
         glActiveTexture(GL_TEXTURE0 + (GLenum)slot);
         glBindTexture(map_target(m->kind), m->texture.id);
@@ -1129,8 +1129,7 @@ static unsigned map_bounds_lights(map_renderer *r, const map_camera_key *k, int 
         bool hard = !((k->soft_lights | k->moment_lights) >> slot & 1u);
         unsigned kind = map_light_field(k->kinds, slot);
         if ((kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE) && hard && k->shape != MAP_KERNEL_SINGLE &&
-            MAP_DEPTH_UNITS + slot < r->texture_units &&
-            map_bounds_update(r, &r->maps[g * SHADER_PASS_LIGHTS + slot]))
+            MAP_DEPTH_UNITS + slot < r->texture_units && map_bounds_update(r, &r->maps[RENDER_GROUP_LIGHT(g, slot)]))
             slots |= 1u << slot;
     }
     return slots;
