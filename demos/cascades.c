@@ -281,7 +281,7 @@ static void cascades_describe(char *out, size_t size) {
         snprintf(out + n, size - (size_t)n, ", no cascades: only a directional light's map is cut in cascades");
     }
     map_describe_filter(&cascades.settings, out, size);
-    map_describe_transmittance(cascades.maps, l, out, size);
+    map_describe_storage(cascades.maps, l, out, size);
 }
 
 /* The sweep: each split scheme at the default 4 x 1024, then the count

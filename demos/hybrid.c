@@ -131,7 +131,7 @@ static void hybrid_describe(char *out, size_t size) {
     snprintf(out, size, "light %d: %s; rays %s (%s), %d casting triangles", l, map, hybrid_rays[hybrid.rays], counted,
              hybrid.casters.triangle_count);
     map_describe_filter(&hybrid.settings, out, size);
-    map_describe_transmittance(hybrid.maps, l, out, size);
+    map_describe_storage(hybrid.maps, l, out, size);
 }
 
 /* The sweep: the map alone, the hybrid at three map sizes, and the ray

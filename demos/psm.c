@@ -245,7 +245,7 @@ static void psm_describe(char *out, size_t size) {
         snprintf(out + n, size - (size_t)n, "; texel on screen %.3g px, uniform's %.3g px",
                  c->texel_pixels[0] * scale, c->texel_pixels[1] * scale);
     map_describe_filter(&psm.settings, out, size);
-    map_describe_transmittance(psm.maps, l, out, size);
+    map_describe_storage(psm.maps, l, out, size);
 }
 
 /* The sweep: warp x map size (auto, the default, against fixed sizes); the

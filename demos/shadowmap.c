@@ -113,7 +113,7 @@ static void shadowmap_describe(char *out, size_t size) {
     if (map_filter_moments(map_filter_in_use(&shadowmap.settings)) != MAP_MOMENTS_NONE && n > 0 && (size_t)n < size)
         snprintf(out + n, size - (size_t)n, ", moment blur %.3g texels", m->blur_texels[0]);
     map_describe_filter(&shadowmap.settings, out, size);
-    map_describe_transmittance(shadowmap.maps, l, out, size);
+    map_describe_storage(shadowmap.maps, l, out, size);
 }
 
 /* The sweep: map size x filter x bias (poisson named, auto's choice but

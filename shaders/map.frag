@@ -16,7 +16,8 @@
 // "Light groups"). The permutation's axes, and where each is read:
 //   MAP_LIGHT_KIND_<i>   light i: off, on without a map (nothing it
 //       reaches receives: added unshadowed), or with a 2D, cube or array
-//       map (a map_light_kind): here, MAP_LIGHT;
+//       map or a cube's tiles in the atlas (a map_light_kind): here,
+//       MAP_LIGHT;
 //   MAP_TEXEL_KIND_<i>   how light i's 2D map's texel is measured
 //       (a map_texel_kind): map_2d.glsl, map_texel_world;
 //   MAP_TRANSMIT_SLOT_<i>   light i's element of its kind's
@@ -213,6 +214,7 @@ bool map_light_cone_clear(int i) {
 #include "map_2d.glsl"
 #include "map_cube.glsl"
 #include "map_array.glsl"
+#include "map_tiles.glsl"
 
 #if SHADER_PASS_LIGHTS != 8
 #error "map.frag lists SHADER_PASS_LIGHTS lights one by one: one MAP_LIGHT line each"
@@ -242,7 +244,9 @@ bool map_light_cone_clear(int i) {
                        MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n); \
     else if (kind == MAP_LIGHT_ARRAY) \
         c += map_share(u_maps_array[i], u_depths_array[i], u_transmittances_array[slot], u_bounds[i], i, \
-                       texel_kind, MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n)
+                       texel_kind, MAP_SOFT(i), MAP_MOMENTS(i), MAP_TRANSMITS(i), n); \
+    else if (kind == MAP_LIGHT_TILES) \
+        c += map_share(u_atlas, u_atlas, u_atlas, u_bounds[i], i, texel_kind, false, false, false, n)
 
 void main() {
     // Two-sided: open meshes (the teapot) show their inside.

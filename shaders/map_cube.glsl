@@ -38,6 +38,7 @@ void map_cube_across(vec3 d, out vec3 u, out vec3 v) {
 vec3 map_direction, map_receiver_normal, map_across_u, map_across_v;
 float map_depth_bias, map_step;
 vec2 map_cube_depth_range;
+bool map_plane_taps; // the taps slide onto the receiver's plane (map_tap_depth)
 
 // The depth a face's projection stores for a point at this direction:
 // the perspective depth of its distance along the face's axis.
@@ -47,6 +48,20 @@ float map_face_depth(vec3 d, vec2 range) {
     float z = max(a.x, max(a.y, a.z));
     float ndc = (far + near) / (far - near) - 2.0 * far * near / ((far - near) * z);
     return min(ndc * 0.5 + 0.5, 1.0);
+}
+
+// The kernel's taps about direction d (a texel `step` across it), for
+// map_kernel_read: the point's normal, depth bias and the light's depth
+// range, the taps on the receiver's plane with that bias (and for soft
+// lights).
+void map_kernel_about(vec3 d, vec3 receiver_normal, float depth_bias, vec2 range, float step, bool soft) {
+    map_direction = d;
+    map_receiver_normal = receiver_normal;
+    map_depth_bias = depth_bias;
+    map_cube_depth_range = range;
+    map_cube_across(d, map_across_u, map_across_v);
+    map_step = step;
+    map_plane_taps = map_receiver_plane || soft;
 }
 
 // A tap's direction, offset (in texels) across the point's.
@@ -59,7 +74,6 @@ vec3 map_tap_direction(vec2 offset) {
 // plane, and compares that point's own depth (as Isidoro's receiver-plane
 // bias does for 2D maps), so a slanted receiver does not shadow its own
 // kernel.
-bool map_plane_taps;
 float map_tap_depth(vec2 offset) {
     vec3 t = map_tap_direction(offset), w = t - map_direction;
     float facing = dot(normalize(t), map_receiver_normal);
@@ -192,13 +206,7 @@ float map_visibility(samplerCubeShadow map, samplerCube raw, sampler2D bounds, i
         return moments_visibility(texture(raw, d), map_face_depth(d, range) - depth_bias);
     if (map_shape == MAP_KERNEL_SINGLE && !soft)
         return texture(map, vec4(d, map_face_depth(d, range) - depth_bias));
-    map_direction = d;
-    map_receiver_normal = receiver_normal;
-    map_depth_bias = depth_bias;
-    map_cube_depth_range = range;
-    map_cube_across(d, map_across_u, map_across_v);
-    map_step = map_cube_step(i, d);
-    map_plane_taps = map_receiver_plane || soft;
+    map_kernel_about(d, receiver_normal, depth_bias, range, map_cube_step(i, d), soft);
     if (map_bounds_light(i))
         return map_cube_bounds_visibility(
             bounds, i, map_face_depth(lit_p - lights_position[i].xyz, range) - map_face_depth(d, range));

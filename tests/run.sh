@@ -109,7 +109,7 @@ fi
 # (test_tour, test_mirror).
 SANITIZER_QUICK="test_flags test_path test_scene test_mesh test_motion test_shadowdiff test_warp \
     test_volume_mesh test_volume_count_bound test_wedge_area test_raytrace test_raytrace_invariance test_median_interval test_plot \
-    test_bvh test_truth test_report test_scenegen test_map_layers test_hud \
+    test_bvh test_truth test_report test_scenegen test_map_layers test_map_atlas test_hud \
     test_accuracy test_cli test_tour test_mirror test_gltf test_texture test_scene_pack"
 export TEST_TIER=${TEST_TIER:-quick}
 # The quick tier's longest tests, longest first: they start first, so

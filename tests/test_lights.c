@@ -161,15 +161,28 @@ static void test_skips_change_nothing_on_the_street(void **state) {
 }
 
 /* The state line describes a light that has a map this frame (a lamp's
- * cube map), not light 0, which has none on the street. */
+ * cube map, in the atlas's tiles: demos/lib/map.h, "Atlas"), not light
+ * 0, which has none on the street, and the share of the atlas held. */
 static void test_state_line_describes_a_mapped_lamp(void **state) {
     (void)state;
     const char *at = street_frame_text("hud: light ");
     assert_non_null(at);
     char line[512];
     snprintf(line, sizeof line, "%.*s", (int)strcspn(at, "\n"), at);
-    assert_non_null(strstr(line, ": cube map auto: "));
+    assert_non_null(strstr(line, ": cube map in atlas tiles auto: "));
+    assert_non_null(strstr(line, " % held"));
+    assert_null(strstr(line, "atlas full"));
     assert_null(strstr(line, "light 0:"));
+}
+
+/* The atlas's tiles follow the camera across frames, each face keeping
+ * its tile while asked at the same size and its cache with it: with the
+ * camera moving, the fourth frame's decisions and picture are those of a
+ * run that caches nothing (--no-skip places the tiles the same). */
+static void test_atlas_tiles_follow_the_camera(void **state) {
+    (void)state;
+    expect_same_dumps("camera_skips_on", "--motion camera --frames 4", "camera_skips_off",
+                      "--motion camera --frames 4 --no-skip", 2, "with --no-skip, the camera moving");
 }
 
 /* Past eight lights the maps' auto filter stands for hw (map.h, "The
@@ -213,6 +226,7 @@ int main(void) {
         cmocka_unit_test(test_picture_sums_every_group),
         cmocka_unit_test(test_skips_change_nothing_on_the_street),
         cmocka_unit_test(test_state_line_describes_a_mapped_lamp),
+        cmocka_unit_test(test_atlas_tiles_follow_the_camera),
         cmocka_unit_test(test_auto_filter_is_hw_past_eight_lights),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),

@@ -95,8 +95,11 @@ static float map_setting(float value, float fallback) { return value != 0 ? valu
 int map_settings_size(const map_settings *settings) { return atoi(map_sizes[settings->map_size]); }
 
 int map_auto_size(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int grazing) {
-    if (grazing > n)
-        return MAP_AUTO_MAX_SIZE;
+    return grazing > n ? MAP_AUTO_MAX_SIZE : map_auto_size_or(m, light, samples, n, MAP_AUTO_FALLBACK_SIZE);
+}
+
+int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n,
+                     int unmeasured) {
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
@@ -111,7 +114,7 @@ int map_auto_size(const map_light *m, const scene_light *light, const warp_sampl
         }
     }
     if (measured == 0)
-        return MAP_AUTO_FALLBACK_SIZE;
+        return unmeasured;
     double needed = m->size * (sum / measured) / MAP_AUTO_TEXEL_PIXELS;
     int size = MAP_AUTO_MIN_SIZE;
     while (size < MAP_AUTO_MAX_SIZE && size < needed)
@@ -143,7 +146,8 @@ const char *map_kind_name(map_kind kind) {
 }
 
 void map_size_text(const map_settings *settings, const map_light *m, char *out, size_t size) {
-    snprintf(out, size, "%s map %s%d", map_kind_name(m->kind), settings->map_size == 0 ? "auto: " : "", m->size);
+    snprintf(out, size, "%s map %s%s%d", map_kind_name(m->kind), m->tiled ? "in atlas tiles " : "",
+             settings->map_size == 0 ? "auto: " : "", m->size);
 }
 
 unsigned map_target(map_kind kind) {
@@ -266,6 +270,7 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
 /* After a map's layers: the state map_depth_begin set, off. */
 static void map_depth_end(void) {
     glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_SCISSOR_TEST);
     depth_clamp(false);
 }
 
@@ -312,7 +317,15 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
                             const bool *casters, bool receivers) {
     const scene *s = gpu->scene;
     bool transmits = m->texture.transmittance != 0;
-    map_attach_layer(m, layer);
+    if (m->tiled) { /* its tile of the atlas alone: viewport, and the clear's scissor */
+        const map_tile *t = &m->tiles[layer];
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r->atlas_texture, 0);
+        glViewport(t->x, t->y, t->size, t->size);
+        glScissor(t->x, t->y, t->size, t->size);
+        glEnable(GL_SCISSOR_TEST);
+    } else {
+        map_attach_layer(m, layer);
+    }
     glClear(GL_DEPTH_BUFFER_BIT);
     /* The solid objects, then the cut-out ones through their program
      * (render_programs); translucent casters into the transmittance map
@@ -384,10 +397,11 @@ static bool map_layer_cached(const map_renderer *r, const map_cache *c, const ma
     return true;
 }
 
-/* What light l's map would be drawn with now, but its casters. */
-static map_depth_key map_depth_key_of(const map_light *m, const map_settings *st) {
-    return (map_depth_key){.texture = m->texture.id,
-                           .size = m->size,
+/* What light l's map would be drawn with now, but its casters (a tiled
+ * map's faces' tiles: map_tile_place). */
+static map_depth_key map_depth_key_of(const map_renderer *r, const map_light *m, const map_settings *st) {
+    return (map_depth_key){.texture = m->tiled ? r->atlas_texture : m->texture.id,
+                           .size = m->tiled ? 0 : m->size,
                            .depth = st->depth,
                            .filter = map_filter_in_use(st),
                            .no_slope_bias = st->no_slope_bias,
@@ -400,9 +414,11 @@ static map_depth_key map_depth_key_of(const map_light *m, const map_settings *st
  * would be drawn with now. */
 static bool map_cache_current(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     const map_light *m = &r->maps[l];
-    map_depth_key key = map_depth_key_of(m, st);
-    return !f->changed.scene && !(f->changed.lights & SCENE_LIGHT_BIT(l)) &&
-           map_texture_fits(m, st, map_light_transmits(r, l)) && memcmp(&key, &r->caches[l].key, sizeof key) == 0;
+    map_depth_key key = map_depth_key_of(r, m, st);
+    bool storage = m->tiled ? r->atlas_texture && r->atlas_depth == st->depth
+                            : map_texture_fits(m, st, map_light_transmits(r, l));
+    return !f->changed.scene && !(f->changed.lights & SCENE_LIGHT_BIT(l)) && storage &&
+           memcmp(&key, &r->caches[l].key, sizeof key) == 0;
 }
 
 /* Light l's whole map is in its cache as it would be drawn now (its
@@ -410,10 +426,29 @@ static bool map_cache_current(map_renderer *r, const map_settings *st, const tec
 static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     if (!map_cache_current(r, st, f, l))
         return false;
-    for (int layer = 0; layer < r->maps[l].layer_count; layer++)
-        if (!r->unread[l][layer] && !map_layer_cached(r, &r->caches[l], &r->maps[l], layer))
+    const map_light *m = &r->maps[l];
+    for (int layer = 0; layer < m->layer_count; layer++)
+        if ((m->tiled && (r->tile_nodes[l][layer] < 0 || r->tile_asked[l][layer] != m->tiles[layer].size)) ||
+            (!r->unread[l][layer] && !map_layer_cached(r, &r->caches[l], m, layer)))
             return false;
     return true;
+}
+
+/* A tiled map m of light l's faces in their tiles: a face in a new tile
+ * holds nothing cached. Where the atlas has no room for a face, or no
+ * memory for its tiles, the map is a cube of its own this frame (its
+ * largest face's size), counted in r->tiles_refused. */
+static void map_place_tiles(map_renderer *r, const map_settings *st, map_light *m, int l) {
+    for (int face = 0; m->tiled && face < MAP_CUBE_FACES; face++) {
+        map_tile_placed placed = map_atlas_prepare(r, st) ? map_tile_place(r, m, l, face) : MAP_TILE_NO_ROOM;
+        r->caches[l].valid[face] = r->caches[l].valid[face] && placed == MAP_TILE_KEPT;
+        if (placed == MAP_TILE_NO_ROOM) {
+            map_tiles_release(r, l);
+            map_forget(&r->caches[l]);
+            m->tiled = false;
+            r->tiles_refused++;
+        }
+    }
 }
 
 /* Light l's layers its cache cannot give, with the casters planned in
@@ -423,8 +458,10 @@ static void map_draw_layers(map_renderer *r, const map_settings *st, const techn
     map_cache *c = &r->caches[l];
     if (!map_cache_current(r, st, f, l))
         map_forget(c);
-    map_prepare_texture(m, st, map_light_transmits(r, l));
-    c->key = map_depth_key_of(m, st);
+    map_place_tiles(r, st, m, l);
+    if (!m->tiled)
+        map_prepare_texture(m, st, map_light_transmits(r, l));
+    c->key = map_depth_key_of(r, m, st);
     map_moments moments = map_filter_moments(map_filter_in_use(st));
     bool begun = false, rendered[MAP_MAX_LAYERS] = {false};
     for (int layer = 0; layer < m->layer_count; layer++) {
@@ -448,7 +485,7 @@ static void map_draw_layers(map_renderer *r, const map_settings *st, const techn
         memcpy(c->drawn[layer], r->needed[layer], (size_t)r->object_count * sizeof(bool));
     }
     map_depth_end();
-    if (l == 0 && begun) /* the map inset's reduction is of the layers before */
+    if ((l == 0 || m->tiled) && begun) /* the map inset's reduction is of the layers before */
         r->inset_current = false;
     for (int layer = 0; moments != MAP_MOMENTS_NONE && layer < m->layer_count; layer++)
         if (rendered[layer])
@@ -574,6 +611,8 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         SHADER_DEFINE(MAP_LIGHT_2D),
         SHADER_DEFINE(MAP_LIGHT_CUBE),
         SHADER_DEFINE(MAP_LIGHT_ARRAY),
+        SHADER_DEFINE(MAP_LIGHT_TILES),
+        SHADER_DEFINE(MAP_CUBE_FACES),
         {"MAP_PASS_SHAPE", (int)k->shape},
         {"MAP_PASS_KERNEL", (int)k->kernel},
         {"MAP_PASS_EARLY_OUT", (int)k->early_out},
@@ -665,7 +704,14 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         p->lights[l].texel_scale = map_light_uniform(id, "u_texel_scale", l);
         p->lights[l].near_plane = map_light_uniform(id, "u_near", l);
         p->lights[l].far_plane = map_light_uniform(id, "u_far", l);
+        p->lights[l].tiles = map_light_uniform(id, "u_tiles", l * MAP_CUBE_FACES);
     }
+    /* The atlas on the first tiled light's own unit (its map's, which it
+     * has not). */
+    for (int l = SHADER_PASS_LIGHTS - 1; l >= 0; l--)
+        if (map_light_field(k->kinds, l) == MAP_LIGHT_TILES)
+            glUniform1i(shader_uniform_optional(id, "u_atlas.depths"), l);
+    p->atlas_size = shader_uniform_optional(id, "u_atlas_size");
     glUniform3fv(shader_uniform(id, "u_cascade_colors"), MAP_MAX_ARRAY_LAYERS, map_cascade_colors[0]);
     glUniform1i(shader_uniform_optional(id, "u_bvh"), MAP_RAY_UNIT);
     return true;
@@ -716,25 +762,25 @@ static map_light_kind map_light_kind_of(map_kind kind) {
 
 /* A light with a map, of any kind. */
 static bool map_light_mapped(unsigned kind) {
-    return kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE || kind == MAP_LIGHT_ARRAY;
+    return kind == MAP_LIGHT_2D || kind == MAP_LIGHT_CUBE || kind == MAP_LIGHT_ARRAY || kind == MAP_LIGHT_TILES;
 }
 
-/* The light in slot `slot` of key k, with a map of that kind and texel
- * kind. */
-static void map_key_light(map_camera_key *k, int slot, map_kind kind, map_texel_kind texel) {
-    k->kinds |= map_light_bits(slot, map_light_kind_of(kind));
+/* The light in slot `slot` of key k, of that kind and texel kind. */
+static void map_key_light(map_camera_key *k, int slot, map_light_kind kind, map_texel_kind texel) {
+    k->kinds |= map_light_bits(slot, kind);
     k->texel_kinds |= map_light_bits(slot, texel);
 }
 
 /* Every light of the scene with its uniform map (a cube for a point light,
  * a perspective map for a spot, an orthographic one for the sun), with
  * the settings' kernel: the first frame's program, most often. */
-static map_camera_key map_scene_key(const scene *s, const map_settings *st) {
+static map_camera_key map_scene_key(const map_renderer *r, const scene *s, const map_settings *st) {
     map_camera_key k = map_settings_key(st);
     for (int l = 0; l < s->light_count && l < SHADER_PASS_LIGHTS; l++) {
-        scene_light_type type = s->lights[l].type;
-        map_key_light(&k, l, type == SCENE_LIGHT_POINT ? MAP_CUBE : MAP_2D,
-                      type == SCENE_LIGHT_DIRECTIONAL ? MAP_TEXEL_ORTHOGRAPHIC : MAP_TEXEL_PERSPECTIVE);
+        const scene_light *light = &s->lights[l];
+        map_kind kind = light->type == SCENE_LIGHT_POINT ? MAP_CUBE : MAP_2D;
+        map_key_light(&k, l, map_tiles_wanted(r, st, light, kind) ? MAP_LIGHT_TILES : map_light_kind_of(kind),
+                      light->type == SCENE_LIGHT_DIRECTIONAL ? MAP_TEXEL_ORTHOGRAPHIC : MAP_TEXEL_PERSPECTIVE);
         k.moment_lights |= k.moments != MAP_MOMENTS_NONE ? 1u << l : 0;
     }
     return k;
@@ -803,7 +849,7 @@ static bool map_find_closed(map_renderer *r, const scene *s) {
 
 /* The GL objects of a zeroed r; false after printing why. */
 static bool map_init(map_renderer *r, const map_settings *settings, const render_scene *gpu) {
-    map_camera_key scene_key = map_scene_key(gpu->scene, settings);
+    map_camera_key scene_key = map_scene_key(r, gpu->scene, settings);
     static const char *const depth_files[] = {"shadow_depth.vert", "depth.frag"};
     if (!map_alloc_sets(r, gpu->scene->object_count) || !map_find_closed(r, gpu->scene) ||
         !render_programs_load(&r->depth, gpu->scene, depth_files, 2, NULL) ||
@@ -840,6 +886,7 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
     glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(r->depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &r->texture_units);
+    memset(r->tile_nodes, -1, sizeof r->tile_nodes); /* no light holds a tile */
     glGenFramebuffers(1, &r->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
     static const GLenum none = GL_NONE;
@@ -898,6 +945,8 @@ void map_destroy(map_renderer *r) {
         glDeleteTextures(1, &r->maps[l].texture.transmittance);
         map_moments_prepare(&r->maps[l], MAP_MOMENTS_NONE);
     }
+    glDeleteTextures(1, &r->atlas_texture);
+    map_atlas_destroy(&r->atlas);
     free(r->needed[0]);
     free(r->receiver_boxes);
     free(r->unmapped);
@@ -963,6 +1012,17 @@ static void map_bind_soft(const map_renderer *r, const map_camera_program *p, co
     glUniform2f(p->lights[slot].light_area, disk.radius, disk.cap);
 }
 
+/* Tiled map m's faces' tiles for slot `slot` of camera program p. */
+static void map_tiles_uniforms(const map_renderer *r, const map_camera_program *p, const map_light *m, int slot) {
+    float tiles[MAP_CUBE_FACES][4];
+    for (int face = 0; face < MAP_CUBE_FACES; face++) {
+        const map_tile *t = &m->tiles[face];
+        memcpy(tiles[face], (const float[4]){(float)t->x, (float)t->y, (float)t->size, 0}, sizeof tiles[face]);
+    }
+    glUniform4fv(p->lights[slot].tiles, MAP_CUBE_FACES, tiles[0]);
+    glUniform1f(p->atlas_size, (float)r->atlas.size);
+}
+
 /* Key k without the lights of `lights` (slot bits). */
 static map_camera_key map_key_without(map_camera_key k, unsigned lights) {
     for (int l = 0; l < SHADER_PASS_LIGHTS; l++) {
@@ -1006,7 +1066,9 @@ static void map_camera_use(map_renderer *r, const map_settings *st, const techni
         int l = RENDER_GROUP_LIGHT(g, slot);
         const map_light *m = &r->maps[l];
         glActiveTexture(GL_TEXTURE0 + (GLenum)slot);
-        glBindTexture(map_target(m->kind), m->texture.id);
+        glBindTexture(m->tiled ? GL_TEXTURE_2D : map_target(m->kind), m->tiled ? r->atlas_texture : m->texture.id);
+        if (m->tiled) /* each face's corner and size, in texels of the atlas */
+            map_tiles_uniforms(r, p, m, slot);
         glUniform1f(p->lights[slot].map_size, (float)m->size);
         glUniform1f(p->lights[slot].texel_scale, m->texel_scale);
         glUniform1f(p->lights[slot].near_plane, m->near_plane);
@@ -1238,6 +1300,7 @@ void map_begin(map_renderer *r, const technique_frame *f) {
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &r->target_framebuffer);
     glGetIntegerv(GL_VIEWPORT, r->viewport);
     memset(r->fitted, 0, sizeof r->fitted);
+    r->tiles_short = r->tiles_refused = 0;
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     /* The camera's depth first: the shading pass tests against it (each
      * visible pixel filtered once), and the maps cull the casters it
@@ -1264,9 +1327,16 @@ bool map_described_light(const map_renderer *r, int *l, char *out, size_t size) 
     return false;
 }
 
-void map_describe_transmittance(const map_renderer *r, int l, char *out, size_t size) {
+void map_describe_storage(const map_renderer *r, int l, char *out, size_t size) {
     size_t n = strlen(out);
-    if (r->maps[l].texture.transmittance && n < size)
+    const map_light *m = &r->maps[l];
+    if (m->tiled && n < size)
+        n += (size_t)snprintf(out + n, size - n, ", atlas %d: %.0f %% held", r->atlas.size,
+                              100.0 * (double)map_atlas_used(&r->atlas) / ((double)r->atlas.size * r->atlas.size));
+    if ((r->tiles_short || r->tiles_refused) && n < size)
+        n += (size_t)snprintf(out + n, size - n, ", atlas full: %d faces smaller, %d lights in cube maps",
+                              r->tiles_short, r->tiles_refused);
+    if (m->texture.transmittance && n < size)
         snprintf(out + n, size - n, ", transmittance map: coloured shadows");
 }
 
@@ -1282,9 +1352,15 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
     r->fitted[l] = fit(fit_frame, l, m, fit_frame->skips->receivers, fit_frame->skips->receiver_count);
     if (!r->fitted[l])
         return false;
+    m->tiled = map_tiles_wanted(r, settings, &s->lights[l], m->kind);
+    if (!m->tiled)
+        map_tiles_release(r, l);
+    for (int face = 0; m->tiled && face < MAP_CUBE_FACES; face++)
+        m->tiles[face] = (map_tile){.size = m->size};
     if (!size && m->kind != MAP_ARRAY) {
         map_samples samples = map_light_samples(r, fit_frame, l);
-        map_resize(m, map_auto_size(m, &s->lights[l], samples.samples, samples.count, samples.grazing));
+        map_resize(m, m->tiled ? map_tiles_size(r, m, &s->lights[l], samples)
+                               : map_auto_size(m, &s->lights[l], samples.samples, samples.count, samples.grazing));
     }
     if (map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE)
         map_moments_fit(s, l, m, !size);
@@ -1297,6 +1373,7 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
     /* A light without a map this frame may change unseen before the next. */
     for (int l = 0; l < SCENE_MAX_LIGHTS; l++)
         if (!r->fitted[l]) {
+            map_tiles_release(r, l);
             map_forget(&r->caches[l]);
             r->drawn[l] = false;
             r->waited[l] = 0;
@@ -1323,7 +1400,8 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
         if (fitted && r->maps[l].texture.transmittance)
             key->transmit_lights |= 1u << slot;
         if (fitted)
-            map_key_light(key, slot, r->maps[l].kind, r->maps[l].texel_kind);
+            map_key_light(key, slot, r->maps[l].tiled ? MAP_LIGHT_TILES : map_light_kind_of(r->maps[l].kind),
+                          r->maps[l].texel_kind);
         else if (skips_light_on(f->skips, l)) /* nothing visible receives: no map needed, nothing shadowed */
             key->kinds |= map_light_bits(slot, MAP_LIGHT_UNSHADOWED);
     }

@@ -48,6 +48,7 @@
 #include <stdbool.h>
 
 #include "bvh_gpu.h"
+#include "map_atlas.h"
 #include "technique.h"
 #include "warp.h"
 
@@ -479,6 +480,32 @@ enum {
  * (MAP_TRANSMIT_UNITS), or a GL that cannot draw into the texture, casts
  * them whole: said once. */
 
+/* Atlas. In a scene of more lights than a pass holds
+ * (settings->many_lights), a hard point light's cube map is six square
+ * tiles of one shadow atlas, a 2D depth texture of MAP_ATLAS_SIZE texels
+ * on a side (or the GL's largest, if less) shared by every such light
+ * (map_atlas.h places the tiles), instead of a cube texture of its own:
+ * the memory follows what the camera sees, not the lights. A light's
+ * tiles are sized by its share of the screen, --map-size auto's rule
+ * (map_auto_size), but a face on which that rule measures no sample of
+ * the screen takes MAP_ATLAS_MIN_TILE (each face sized by its own few
+ * samples alone misclassified more of lamps_64's pixels than the light's
+ * one size); with --map-size N every face is N. A face keeps its tile
+ * while it is asked at the same size, so that the cache holds across
+ * frames. Where the atlas has no room left, a face takes the largest
+ * free tile below its size, and a light with no room at all for a face
+ * keeps a cube map of its own: both counted in the state line
+ * (map_describe_storage). Faces out of view get tiles too, but are not
+ * drawn (see "Caching"); a light the skips leave out takes none, which
+ * moves other tiles but changes no pixel (shaders/map_tiles.glsl,
+ * MAP_TILE_SUBTEXELS). The camera pass reads a face's tile by the
+ * cube's rule (its face and (s, t)), each tap clamped half a texel
+ * inside its tile, where a cube map's seamless filter would blend in
+ * the next face's texels. A light that is soft, read by moments, takes
+ * a transmittance map or rays keeps its own cube map. The map overlay
+ * shows the atlas. */
+#define MAP_ATLAS_SIZE 16384
+
 /* An array map's most layers: the most cascades. */
 #define MAP_MAX_ARRAY_LAYERS 8
 /* Room for the layers of any kind. */
@@ -538,6 +565,10 @@ typedef struct map_light {
     float cascade_blend;                           /* fraction of a slice */
     float blur_texels[MAP_MAX_LAYERS];             /* a moment filter's box radius per layer */
     map_texture texture;
+    /* A cube map in the atlas (see "Atlas"): its faces' tiles; each
+     * tile's size is asked by the fit, its place given by the depth pass. */
+    bool tiled;
+    map_tile tiles[MAP_CUBE_FACES];
 } map_light;
 
 /* The frame a fit takes: f->fit, where the host holds the fit to another
@@ -588,9 +619,12 @@ const map_light *map_of_light(const map_renderer *r, int l);
  * map this frame" (written into out), where none has one: before the
  * first frame, or where no light reaches what is seen. */
 bool map_described_light(const map_renderer *r, int *l, char *out, size_t size);
-/* Appends ", transmittance map: coloured shadows" where light l's map has
- * one (see "Translucent casters" above); nothing else. */
-void map_describe_transmittance(const map_renderer *r, int l, char *out, size_t size);
+/* Appends where light l's map is stored beyond its texture:
+ * ", transmittance map: coloured shadows" where it has one (see
+ * "Translucent casters" above); where it is in the atlas (see "Atlas"),
+ * the atlas's side, the share of it the frame's tiles hold, and the
+ * faces given less than asked this frame. */
+void map_describe_storage(const map_renderer *r, int l, char *out, size_t size);
 /* The casters' hierarchy the camera pass's rays trace against (kept, not
  * copied: it outlives r's frames); NULL: no rays, whatever the settings. */
 void map_trace_with(map_renderer *r, const bvh_gpu *casters);
@@ -640,7 +674,8 @@ int map_settings_size(const map_settings *settings);
 
 /* The map as HUD lines name it: its kind and size as chosen ("2D map
  * auto: 4096" where --map-size is auto, "cube map 1024" where it is
- * given). */
+ * given; "cube map in atlas tiles auto: 1024", its largest face's, where
+ * it is in the atlas). */
 void map_size_text(const map_settings *settings, const map_light *m, char *out, size_t size);
 
 /* ---- fitting (map_fit.c) ---- */

@@ -53,13 +53,15 @@ typedef enum map_kernel {
 
 /* What light i is in the camera pass (the shaders'
  * MAP_LIGHT_KIND_<i>): off, on without a map (nothing it reaches
- * receives: added unshadowed), with a 2D map, a cube map or an array map. */
+ * receives: added unshadowed), with a 2D map, a cube map, an array map,
+ * or a cube map's faces in the atlas (map.h, "Atlas"). */
 typedef enum map_light_kind {
     MAP_LIGHT_OFF,
     MAP_LIGHT_UNSHADOWED,
     MAP_LIGHT_2D,
     MAP_LIGHT_CUBE,
-    MAP_LIGHT_ARRAY
+    MAP_LIGHT_ARRAY,
+    MAP_LIGHT_TILES
 } map_light_kind;
 /* Light i's kind, and its map's map_texel_kind, in bits
  * MAP_LIGHT_KIND_BITS i and up of a key's kinds and texel_kinds. */
@@ -145,7 +147,9 @@ typedef struct map_camera_program {
         int map_size, light_matrix, light_inverse, light_size, light_area, texel_scale, near_plane, far_plane,
             cascade_count;
         int cascade_scale, cascade_offset; /* the light's first layer's element */
+        int tiles;                         /* its faces' tiles (u_tiles), in the atlas */
     } lights[SHADER_PASS_LIGHTS];
+    int atlas_size; /* the atlas's texels on a side */
 } map_camera_program;
 
 /* overlay.vert with overlay_lines.frag: world-space lines in one colour. */
@@ -294,7 +298,46 @@ struct map_renderer {
     unsigned transmit_framebuffer;
     bool transmit_failed;
     scene_light_set transmit_warned; /* bit i: light i's lack of a unit said on stderr */
+    /* The atlas (map.h, "Atlas"): its tiles; its depth texture (0: not
+     * made yet), of the depth format `atlas_depth`, read with the filter
+     * `atlas_filter`; per light each face's node (-1: none) and the size
+     * its tile was asked at; this frame's faces given a smaller tile than
+     * asked, and lights given no room at all (a cube map of their own
+     * instead). */
+    map_atlas atlas;
+    unsigned atlas_texture;
+    int atlas_depth, atlas_filter;
+    int tile_nodes[SCENE_MAX_LIGHTS][MAP_CUBE_FACES], tile_asked[SCENE_MAX_LIGHTS][MAP_CUBE_FACES];
+    int tiles_short, tiles_refused;
+    warp_sample face_samples[WARP_SAMPLE_COUNT]; /* one face's of a light's samples (map_tiles_size) */
 };
+
+/* ---- the atlas (map_tiles.c; map.h, "Atlas") ---- */
+
+/* A light of `kind` goes in the atlas with these settings: many lights,
+ * a cube, hard, read by a kernel, without rays or transmittance maps. */
+bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene_light *light, map_kind kind);
+/* Each face's tile size (m->tiles[face].size) of the fitted cube m at
+ * MAP_AUTO_MAX_SIZE: the light's auto size (map_auto_size), which it
+ * returns, where auto's rule measures a sample on the face, else
+ * MAP_ATLAS_MIN_TILE. */
+int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples);
+/* The atlas's texture, made for the settings' depth format (the tiles
+ * freed where it is made again) and filtered by their filter; false
+ * where memory for its tiles fails (said on stderr). */
+bool map_atlas_prepare(map_renderer *r, const map_settings *st);
+/* Where a face's tile is: the one it held (what it holds is still
+ * there), a new one, or none (no room left). */
+typedef enum map_tile_placed { MAP_TILE_KEPT, MAP_TILE_NEW, MAP_TILE_NO_ROOM } map_tile_placed;
+/* Light l's face `face` in its tile, into m->tiles[face]: the tile it
+ * holds while asked at the same size, else a new one, the largest free
+ * one up to the size asked (r->tiles_short counts those smaller). */
+map_tile_placed map_tile_place(map_renderer *r, map_light *m, int l, int face);
+/* Light l's tiles freed. */
+void map_tiles_release(map_renderer *r, int l);
+/* The atlas as a 2D map of its size (the map overlay's inset): stored
+ * depths, shown as they are. */
+map_light map_atlas_as_map(const map_renderer *r);
 
 /* Where a light of the frame's takes rays only where the map is unsure,
  * the receivers are drawn twice (map.h, "Rays"): first marking the pixels
@@ -350,6 +393,9 @@ void map_render_depth(map_renderer *r, const map_settings *settings, const rende
  * the ground follows one texel's rounding: test_shadowmap's stress
  * extremes, tests/data/shadowmap_grazing_sun.json). */
 int map_auto_size(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int grazing);
+/* The same rule without the grazing case: `unmeasured` where no sample
+ * is measured. */
+int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int unmeasured);
 /* A kind's GL texture target, and the image of a 2D map's or a cube
  * face's layer (GLenums). */
 unsigned map_target(map_kind kind);

@@ -441,8 +441,12 @@ void map_draw_overlays(map_renderer *r, const map_settings *settings, const tech
         for (int layer = 0; r->fitted[l] && layer < r->maps[l].layer_count; layer++)
             map_draw_frustum(r, r->maps[l].layer_view_projection[layer], f->view->raster_view_projection);
     bool inset = overlay == MAP_OVERLAY_ALL || overlay == MAP_OVERLAY_MAP || MAP_SHOWS_CASCADES(settings);
-    if (r->fitted[0] && inset)
-        map_draw_inset(r, &r->maps[0], r->viewport);
+    bool tiles = false;
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        tiles = tiles || (r->fitted[l] && r->maps[l].tiled);
+    map_light atlas = map_atlas_as_map(r);
+    if (inset && (tiles || r->fitted[0])) /* the atlas where lights have tiles, else light 0's map */
+        map_draw_inset(r, tiles ? &atlas : &r->maps[0], r->viewport);
     if (r->fitted[0] && MAP_SHOWS_CASCADES(settings) && r->maps[0].kind == MAP_ARRAY)
         map_draw_cascade_key(&r->maps[0], r->viewport);
     if (overlay == MAP_OVERLAY_TEXEL_SIZE)

@@ -137,6 +137,9 @@ int warp_samples(const scene *s, const camera_view *view, int width, int height,
  * faces turned away count (boxes stand for surfaces that may well face
  * the light), and outside a spot's cone the cone decides, not the map. */
 int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out, int *grazing);
+/* The cube face point p falls on from `light`: by its major axis, in GL's
+ * order (+x -x +y -y +z -z). */
+int warp_cube_face(const float light[3], const float p[3]);
 /* The size in pixels of a texel of a size x size map at one sample (on the
  * sample's face, the square root of a pixel's area over a texel's):
  * INFINITY outside the map, NAN where it cannot be measured (the face

@@ -18,16 +18,17 @@ static void warp_derivative(const mat4 m, const vec4 clip, const float t[3], con
     }
 }
 
-/* The map's matrix for point p: a cube face by p's major axis from the
- * light (GL's face order: +x -x +y -y +z -z), or the 2D map's. */
-static const vec4 *warp_map_matrix(const mat4 *layer_view_projection, int layer_count, const float light[3],
-                                   const float p[3]) {
-    if (layer_count == 1)
-        return layer_view_projection[0];
+int warp_cube_face(const float light[3], const float p[3]) {
     vec3 d;
     glm_vec3_sub((float *)p, (float *)light, d);
     int axis = fabsf(d[0]) >= fabsf(d[1]) && fabsf(d[0]) >= fabsf(d[2]) ? 0 : fabsf(d[1]) >= fabsf(d[2]) ? 1 : 2;
-    return layer_view_projection[2 * axis + (d[axis] < 0)];
+    return 2 * axis + (d[axis] < 0);
+}
+
+/* The map's matrix for point p: its cube face's, or the 2D map's. */
+static const vec4 *warp_map_matrix(const mat4 *layer_view_projection, int layer_count, const float light[3],
+                                   const float p[3]) {
+    return layer_view_projection[layer_count == 1 ? 0 : warp_cube_face(light, p)];
 }
 
 /* Where the ray eye + t direction (t in 0..1) first enters a receiver's
