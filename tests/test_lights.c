@@ -175,6 +175,14 @@ static void test_state_line_describes_a_mapped_lamp(void **state) {
     assert_null(strstr(line, "light 0:"));
 }
 
+/* The atlas's kind in the browser's dialect (shaders/map_tiles.glsl
+ * reads it through a struct that holds its sampler): --glsl-es draws the
+ * street's decisions and picture byte for byte as desktop GLSL does. */
+static void test_atlas_in_glsl_es(void **state) {
+    (void)state;
+    expect_same_dumps("desktop", "--frames 1", "glsl_es", "--frames 1 --glsl-es", 2, "with --glsl-es");
+}
+
 /* The atlas's tiles follow the camera across frames, each face keeping
  * its tile while asked at the same size and its cache with it: with the
  * camera moving, the fourth frame's decisions and picture are those of a
@@ -227,6 +235,7 @@ int main(void) {
         cmocka_unit_test(test_skips_change_nothing_on_the_street),
         cmocka_unit_test(test_state_line_describes_a_mapped_lamp),
         cmocka_unit_test(test_atlas_tiles_follow_the_camera),
+        cmocka_unit_test(test_atlas_in_glsl_es),
         cmocka_unit_test(test_auto_filter_is_hw_past_eight_lights),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),
