@@ -191,6 +191,17 @@ static void map_texture_storage(const map_light *m, GLenum target, GLenum format
             glTexImage2D(map_layer_image(m->kind, layer), 0, (GLint)format, m->size, m->size, 0, pixels, type, NULL);
 }
 
+void map_depth_format(int depth, unsigned *format, unsigned *type) {
+    *format = depth == MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
+    *type = depth == MAP_DEPTH_24 ? GL_UNSIGNED_INT : GL_FLOAT;
+}
+
+void map_depth_sampling(unsigned target, int filter) {
+    map_texture_filter(target, filter == MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR);
+    glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+}
+
 /* m's texture is the one its fit and the settings ask for. */
 static bool map_texture_fits(const map_light *m, const map_settings *settings, bool transmits) {
     const map_texture *t = &m->texture;
@@ -216,16 +227,12 @@ static void map_prepare_texture(map_light *m, const map_settings *settings, bool
     glDeleteTextures(1, &t->transmittance);
     t->bounds = t->transmittance = 0;
     t->bounds_current = false;
-    GLenum target = map_target(m->kind);
-    GLenum format = depth == MAP_DEPTH_24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F;
-    GLenum type = depth == MAP_DEPTH_24 ? GL_UNSIGNED_INT : GL_FLOAT;
-    GLint texel_filter = filter == MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
+    GLenum target = map_target(m->kind), format, type;
+    map_depth_format(depth, &format, &type);
     glGenTextures(1, &t->id);
     glBindTexture(target, t->id);
     map_texture_storage(m, target, format, GL_DEPTH_COMPONENT, type);
-    map_texture_filter(target, texel_filter);
-    glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    map_depth_sampling(target, filter);
     if (transmits) {
         glGenTextures(1, &t->transmittance);
         glBindTexture(target, t->transmittance);
@@ -428,7 +435,7 @@ static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const te
         return false;
     const map_light *m = &r->maps[l];
     for (int layer = 0; layer < m->layer_count; layer++)
-        if ((m->tiled && (r->tile_nodes[l][layer] < 0 || r->tile_asked[l][layer] != m->tiles[layer].size)) ||
+        if ((m->tiled && !map_tile_held(r, m, l, layer)) ||
             (!r->unread[l][layer] && !map_layer_cached(r, &r->caches[l], m, layer)))
             return false;
     return true;
@@ -439,8 +446,9 @@ static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const te
  * memory for its tiles, the map is a cube of its own this frame (its
  * largest face's size), counted in r->tiles_refused. */
 static void map_place_tiles(map_renderer *r, const map_settings *st, map_light *m, int l) {
+    bool ready = !m->tiled || map_atlas_prepare(r, st);
     for (int face = 0; m->tiled && face < MAP_CUBE_FACES; face++) {
-        map_tile_placed placed = map_atlas_prepare(r, st) ? map_tile_place(r, m, l, face) : MAP_TILE_NO_ROOM;
+        map_tile_placed placed = ready ? map_tile_place(r, m, l, face) : MAP_TILE_NO_ROOM;
         r->caches[l].valid[face] = r->caches[l].valid[face] && placed == MAP_TILE_KEPT;
         if (placed == MAP_TILE_NO_ROOM) {
             map_tiles_release(r, l);
@@ -708,9 +716,11 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
     }
     /* The atlas on the first tiled light's own unit (its map's, which it
      * has not). */
-    for (int l = SHADER_PASS_LIGHTS - 1; l >= 0; l--)
-        if (map_light_field(k->kinds, l) == MAP_LIGHT_TILES)
+    for (int l = 0; l < SHADER_PASS_LIGHTS; l++)
+        if (map_light_field(k->kinds, l) == MAP_LIGHT_TILES) {
             glUniform1i(shader_uniform_optional(id, "u_atlas.depths"), l);
+            break;
+        }
     p->atlas_size = shader_uniform_optional(id, "u_atlas_size");
     glUniform3fv(shader_uniform(id, "u_cascade_colors"), MAP_MAX_ARRAY_LAYERS, map_cascade_colors[0]);
     glUniform1i(shader_uniform_optional(id, "u_bvh"), MAP_RAY_UNIT);

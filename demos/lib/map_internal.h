@@ -326,6 +326,8 @@ int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_
  * freed where it is made again) and filtered by their filter; false
  * where memory for its tiles fails (said on stderr). */
 bool map_atlas_prepare(map_renderer *r, const map_settings *st);
+/* Light l's face `face` holds a tile asked at the size m asks now. */
+bool map_tile_held(const map_renderer *r, const map_light *m, int l, int face);
 /* Where a face's tile is: the one it held (what it holds is still
  * there), a new one, or none (no room left). */
 typedef enum map_tile_placed { MAP_TILE_KEPT, MAP_TILE_NEW, MAP_TILE_NO_ROOM } map_tile_placed;
@@ -403,6 +405,13 @@ unsigned map_layer_image(map_kind kind, int layer);
 /* The bound texture of `target` filtered by `filter` (GL_NEAREST or
  * GL_LINEAR), its reads clamped to its edges. */
 void map_texture_filter(unsigned target, int filter);
+/* A map's depth format (a map_depth) as a GL internal format and pixel
+ * type (GLenums). */
+void map_depth_format(int depth, unsigned *format, unsigned *type);
+/* The bound depth texture of `target` read by `filter` (a map_filter:
+ * nearest for none, else bilinear), every read a depth test (compare
+ * mode on), clamped to its edges. */
+void map_depth_sampling(unsigned target, int filter);
 /* "2D", "cube" or "array", for HUD lines. */
 const char *map_kind_name(map_kind kind);
 

@@ -35,11 +35,11 @@ static int map_atlas_side(void) {
 }
 
 bool map_atlas_prepare(map_renderer *r, const map_settings *st) {
-    int filter = map_filter_in_use(st) == MAP_FILTER_NONE ? GL_NEAREST : GL_LINEAR;
+    int filter = map_filter_in_use(st);
     if (r->atlas_texture && r->atlas_depth == st->depth) {
         if (r->atlas_filter != filter) {
             glBindTexture(GL_TEXTURE_2D, r->atlas_texture);
-            map_texture_filter(GL_TEXTURE_2D, filter);
+            map_depth_sampling(GL_TEXTURE_2D, filter);
             r->atlas_filter = filter;
         }
         return true;
@@ -54,20 +54,22 @@ bool map_atlas_prepare(map_renderer *r, const map_settings *st) {
     glDeleteTextures(1, &r->atlas_texture);
     glGenTextures(1, &r->atlas_texture);
     glBindTexture(GL_TEXTURE_2D, r->atlas_texture);
-    bool depth24 = st->depth == MAP_DEPTH_24;
-    glTexImage2D(GL_TEXTURE_2D, 0, depth24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F, r->atlas.size,
-                 r->atlas.size, 0, GL_DEPTH_COMPONENT, depth24 ? GL_UNSIGNED_INT : GL_FLOAT, NULL);
-    map_texture_filter(GL_TEXTURE_2D, filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    GLenum format, type;
+    map_depth_format(st->depth, &format, &type);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)format, r->atlas.size, r->atlas.size, 0, GL_DEPTH_COMPONENT, type, NULL);
+    map_depth_sampling(GL_TEXTURE_2D, filter);
     r->atlas_depth = st->depth;
     r->atlas_filter = filter;
     return true;
 }
 
+bool map_tile_held(const map_renderer *r, const map_light *m, int l, int face) {
+    return r->tile_nodes[l][face] >= 0 && r->tile_asked[l][face] == m->tiles[face].size;
+}
+
 map_tile_placed map_tile_place(map_renderer *r, map_light *m, int l, int face) {
     int *node = &r->tile_nodes[l][face], asked = m->tiles[face].size;
-    if (*node >= 0 && r->tile_asked[l][face] == asked) {
+    if (map_tile_held(r, m, l, face)) {
         m->tiles[face] = map_atlas_tile(&r->atlas, *node);
         return MAP_TILE_KEPT;
     }
@@ -75,8 +77,7 @@ map_tile_placed map_tile_place(map_renderer *r, map_light *m, int l, int face) {
         map_atlas_free(&r->atlas, *node);
     *node = -1;
     r->tile_asked[l][face] = asked;
-    int size = asked;
-    for (; size >= MAP_ATLAS_MIN_TILE && *node < 0; size /= 2)
+    for (int size = asked; size >= MAP_ATLAS_MIN_TILE && *node < 0; size /= 2)
         *node = map_atlas_take(&r->atlas, size);
     if (*node < 0)
         return MAP_TILE_NO_ROOM;
