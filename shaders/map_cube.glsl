@@ -39,15 +39,23 @@ vec3 map_direction, map_receiver_normal, map_across_u, map_across_v;
 float map_depth_bias, map_step;
 vec2 map_cube_depth_range;
 bool map_plane_taps; // the taps slide onto the receiver's plane (map_tap_depth)
+// For the slide: the direction's dot product with the normal, the plane
+// axes' (times a texel), and the direction's squared length.
+float map_direction_normal, map_direction_squared;
+vec2 map_across_normal;
 
-// The depth a face's projection stores for a point at this direction:
-// the perspective depth of its distance along the face's axis.
-float map_face_depth(vec3 d, vec2 range) {
+// The depth a face's projection stores at distance z along its axis: the
+// perspective depth.
+float map_axis_depth(float z, vec2 range) {
     float near = range.x, far = range.y;
-    vec3 a = abs(d);
-    float z = max(a.x, max(a.y, a.z));
     float ndc = (far + near) / (far - near) - 2.0 * far * near / ((far - near) * z);
     return min(ndc * 0.5 + 0.5, 1.0);
+}
+
+// The depth a face's projection stores for a point at this direction.
+float map_face_depth(vec3 d, vec2 range) {
+    vec3 a = abs(d);
+    return map_axis_depth(max(a.x, max(a.y, a.z)), range);
 }
 
 // The kernel's taps about direction d (a texel `step` across it), for
@@ -62,6 +70,9 @@ void map_kernel_about(vec3 d, vec3 receiver_normal, float depth_bias, vec2 range
     map_cube_across(d, map_across_u, map_across_v);
     map_step = step;
     map_plane_taps = map_receiver_plane || soft;
+    map_direction_normal = dot(d, receiver_normal);
+    map_direction_squared = dot(d, d);
+    map_across_normal = vec2(dot(map_across_u, receiver_normal), dot(map_across_v, receiver_normal)) * step;
 }
 
 // A tap's direction, offset (in texels) across the point's.
@@ -69,17 +80,29 @@ vec3 map_tap_direction(vec2 offset) {
     return map_direction + (map_across_u * offset.x + map_across_v * offset.y) * map_step;
 }
 
-// The depth a tap compares. With the receiver-plane bias (and for soft
-// lights) the tap point slides along its light ray onto the receiver's
-// plane, and compares that point's own depth (as Isidoro's receiver-plane
-// bias does for 2D maps), so a slanted receiver does not shadow its own
-// kernel.
+// The depth a tap compares, from its direction's distance along its
+// face's axis. With the receiver-plane bias (and for soft lights) the tap
+// point slides along its light ray onto the receiver's plane, and compares
+// that point's own depth (as Isidoro's receiver-plane bias does for 2D
+// maps), so a slanted receiver does not shadow its own kernel: the tap
+// direction t meets the plane through d of normal n at t (d.n) / (t.n),
+// whose distance along the axis is the tap's times |d.n / t.n| (the
+// across axes are unit and square to d, so |t|^2 = |d|^2 + |offset|^2
+// texels^2).
+float map_tap_axis_depth(vec2 offset, float axis) {
+    float scale = 1.0;
+    if (map_plane_taps) {
+        float along_normal = map_direction_normal + dot(map_across_normal, offset);
+        float facing = along_normal * inversesqrt(map_direction_squared + map_step * map_step * dot(offset, offset));
+        if (abs(facing) > MAP_MIN_PLANE_FACING)
+            scale = abs(map_direction_normal / along_normal);
+    }
+    return map_axis_depth(axis * scale, map_cube_depth_range) - map_depth_bias;
+}
+
 float map_tap_depth(vec2 offset) {
-    vec3 t = map_tap_direction(offset), w = t - map_direction;
-    float facing = dot(normalize(t), map_receiver_normal);
-    if (map_plane_taps && abs(facing) > MAP_MIN_PLANE_FACING)
-        t -= normalize(t) * (dot(w, map_receiver_normal) / facing);
-    return map_face_depth(t, map_cube_depth_range) - map_depth_bias;
+    vec3 a = abs(map_tap_direction(offset));
+    return map_tap_axis_depth(offset, max(a.x, max(a.y, a.z)));
 }
 
 float map_kernel_read(samplerCubeShadow map, vec2 offset) {
@@ -98,38 +121,32 @@ float map_soft_distance(samplerCube raw, int i, float depth) {
     return 2.0 * far * near / ((far + near) - ndc * (far - near));
 }
 
-// GL's face of direction d (its index: +X -X +Y -Y +Z -Z) and d's (s, t)
-// on it, 0..1: the specification's table of sc, tc over |ma|.
+// Direction d in the frame of face `face` (+X -X +Y -Y +Z -Z): the
+// specification's table of sc, tc and ma, its (s, t) times its distance
+// along the face's axis, and that distance. Linear in d.
+vec3 map_cube_on_face(int face, vec3 d) {
+    return face == 0   ? vec3(-d.z, -d.y, d.x)
+           : face == 1 ? vec3(d.z, -d.y, -d.x)
+           : face == 2 ? vec3(d.x, d.z, d.y)
+           : face == 3 ? vec3(d.x, -d.z, -d.y)
+           : face == 4 ? vec3(d.x, -d.y, d.z)
+                       : vec3(-d.x, -d.y, -d.z);
+}
+
+// GL's face of direction d (its index) and d's (s, t) on it, 0..1.
 int map_cube_face(vec3 d, out vec2 st) {
     vec3 a = abs(d);
-    int face;
-    vec2 across;
-    float major;
-    if (a.x >= a.y && a.x >= a.z) {
-        face = d.x >= 0.0 ? 0 : 1;
-        major = a.x;
-        across = d.x >= 0.0 ? vec2(-d.z, -d.y) : vec2(d.z, -d.y);
-    } else if (a.y >= a.z) {
-        face = d.y >= 0.0 ? 2 : 3;
-        major = a.y;
-        across = d.y >= 0.0 ? vec2(d.x, d.z) : vec2(d.x, -d.z);
-    } else {
-        face = d.z >= 0.0 ? 4 : 5;
-        major = a.z;
-        across = d.z >= 0.0 ? vec2(d.x, -d.y) : vec2(-d.x, -d.y);
-    }
-    st = (across / major + 1.0) * 0.5;
+    int face = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0 ? 0 : 1)
+               : a.y >= a.z             ? (d.y >= 0.0 ? 2 : 3)
+                                        : (d.z >= 0.0 ? 4 : 5);
+    vec3 on_face = map_cube_on_face(face, d);
+    st = (on_face.xy / on_face.z + 1.0) * 0.5;
     return face;
 }
 
-// Where the direction `offset` (texels across the point's) falls on
-// `face`, in texels from its first centre (false: on another face).
-bool map_cube_place(int face, float size, vec2 offset, out vec2 texel) {
-    vec2 st;
-    bool same = map_cube_face(map_tap_direction(offset), st) == face;
-    texel = st * size - 0.5;
-    return same;
-}
+// A direction in a face's frame (map_cube_on_face) as texels from the
+// first centre of a face `size` texels wide.
+vec2 map_cube_texel(vec3 on_face, float size) { return (on_face.xy / on_face.z + 1.0) * 0.5 * size - 0.5; }
 
 // Below this the face's texels hardly move with the kernel's offsets:
 // no plane through the taps is fitted.
@@ -138,41 +155,48 @@ const float MAP_CUBE_MIN_DETERMINANT = 1e-12;
 // The depth bounds' answer (map.glsl) for the kernel's own taps, about
 // the point map_visibility set up: where every tap reads the point's face
 // away from its edges (seamless reads cross them), from the cells that
-// hold the texels their directions read. A face is a perspective view,
-// in which a plane's stored depth is linear: the taps' depths (on the
-// receiver's plane, or on the plane across the direction) lie on the line
-// through the point's and two neighbours', within the slack that the
+// hold the texels their directions read. A tap's direction in the face's
+// frame is linear in its offset, so each tap's texel is one projection
+// of the point's frame and the two across it. A face is a perspective
+// view, in which a plane's stored depth is linear: the taps' depths (on
+// the receiver's plane, or on the plane across the direction) lie on the
+// line through the point's and two neighbours', within the slack that the
 // depth's clamp and the taps kept off a grazing plane leave, measured
-// (lit: lit_shift deeper).
+// (lit: lit_shift deeper). A tap on the face's far side of the light, or
+// off its edges, leaves the pixel unsure.
 float map_cube_bounds_visibility(sampler2D bounds, int i, float lit_shift) {
     float size = u_map_size[i];
     vec2 st;
     int face = map_cube_face(map_direction, st);
-    vec2 point, along_x, along_y;
-    if (!map_cube_place(face, size, vec2(0.0), point) || !map_cube_place(face, size, vec2(1.0, 0.0), along_x) ||
-        !map_cube_place(face, size, vec2(0.0, 1.0), along_y))
-        return MAP_BOUNDS_UNSURE;
-    float depth = map_tap_depth(vec2(0.0));
+    vec3 frame = map_cube_on_face(face, map_direction);
+    vec3 frame_x = map_cube_on_face(face, map_across_u * map_step);
+    vec3 frame_y = map_cube_on_face(face, map_across_v * map_step);
+    vec3 at_x = frame + frame_x, at_y = frame + frame_y;
+    vec2 point = map_cube_texel(frame, size);
+    vec2 along_x = map_cube_texel(at_x, size), along_y = map_cube_texel(at_y, size);
+    float depth = map_tap_axis_depth(vec2(0.0), frame.z);
     mat2 steps = mat2(along_x - point, along_y - point); // columns: texels per unit of offset
     vec2 gradient = vec2(0.0);
     if (abs(determinant(steps)) > MAP_CUBE_MIN_DETERMINANT)
-        gradient = inverse(transpose(steps)) *
-                   vec2(map_tap_depth(vec2(1.0, 0.0)) - depth, map_tap_depth(vec2(0.0, 1.0)) - depth);
+        gradient = inverse(transpose(steps)) * vec2(map_tap_axis_depth(vec2(1.0, 0.0), at_x.z) - depth,
+                                                    map_tap_axis_depth(vec2(0.0, 1.0), at_y.z) - depth);
     vec2 low = vec2(size), high = vec2(-1.0);
-    float slack = 0.0;
+    float slack = 0.0, nearest = min(frame.z, min(at_x.z, at_y.z));
     mat2 rotation = map_kernel_rotation();
     if (map_shape == MAP_KERNEL_TENT)
         map_tent_place(vec2(0.0));
     for (int k = 0; k < map_kernel_taps(); k++) {
-        vec2 offset = map_kernel_tap(k, rotation, 1.0).xy, texel;
-        if (!map_cube_place(face, size, offset, texel))
-            return MAP_BOUNDS_UNSURE;
+        vec2 offset = map_kernel_tap(k, rotation, 1.0).xy;
+        vec3 tap = frame + frame_x * offset.x + frame_y * offset.y;
+        vec2 texel = map_cube_texel(tap, size);
         low = min(low, texel);
         high = max(high, texel);
-        slack = max(slack, abs(map_tap_depth(offset) - depth - dot(gradient, texel - point)));
+        nearest = min(nearest, tap.z);
+        slack = max(slack, abs(map_tap_axis_depth(offset, tap.z) - depth - dot(gradient, texel - point)));
     }
     int edge = MAP_BOUNDS_ROUNDING_TEXELS + 1;
-    if (any(lessThan(floor(low), vec2(edge))) || any(greaterThan(floor(high), vec2(size - 1.0 - float(edge)))))
+    if (!(nearest > 0.0) || any(lessThan(floor(low), vec2(edge))) ||
+        any(greaterThan(floor(high), vec2(size - 1.0 - float(edge)))))
         return MAP_BOUNDS_UNSURE;
     int cells = (int(size) + MAP_BOUNDS_CELL_TEXELS - 1) / MAP_BOUNDS_CELL_TEXELS;
     return map_bounds_answer(bounds, ivec2(face * cells, 0), int(size), low, high, point, depth, gradient, slack,
