@@ -114,8 +114,10 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     // it calls lit is sure only where no caster's box is near its cone.
     bool unsure = lit && visibility > 0.0 && visibility < 1.0;
     if (sure_lit_read && !map_mark_rays) { /* unconditional: its screen derivatives need uniform control flow */
+        // Only a pixel the full bias calls lit asks it again (needed
+        // false reads no map, and says 1).
         float near_visibility = map_visibility(map, raw, bounds, i, p_near, p_near, depth_bias, soft, moments, texel,
-                                               needed);
+                                               needed && lit && visibility == 1.0);
         unsure = unsure || (lit && visibility == 1.0 && near_visibility < 1.0);
     }
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
