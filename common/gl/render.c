@@ -325,13 +325,17 @@ void render_bind_light_group(const render_scene *r, int g) {
     glBindBufferBase(GL_UNIFORM_BUFFER, SHADER_LIGHTS_BINDING, r->lights_buffers[g]);
 }
 
+void render_blend_add(void) {
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+}
+
 void render_group_pass_begin(int g, bool *blending) {
     if (g == 0) {
         *blending = glIsEnabled(GL_BLEND);
         return;
     }
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    render_blend_add();
 }
 
 void render_group_pass_end(bool blending) {

@@ -246,8 +246,12 @@ int render_light_groups(const render_scene *r);
 unsigned render_group_slots(scene_light_set lights, int g);
 /* Binds group g's block of lights for the passes that follow. */
 void render_bind_light_group(const render_scene *r, int g);
+/* What the passes draw from here on adds to the target's colour
+ * (GL_ONE, GL_ONE): a light's share to the picture so far, a sample's
+ * visibility to the sum. */
+void render_blend_add(void);
 /* The passes of a pass's groups after its first add their light
- * (GL_ONE, GL_ONE): on for g > 0 (the state *blending was, at g 0,
+ * (render_blend_add): on for g > 0 (the state *blending was, at g 0,
  * kept for render_group_pass_end). */
 void render_group_pass_begin(int g, bool *blending);
 void render_group_pass_end(bool blending);

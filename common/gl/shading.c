@@ -44,8 +44,7 @@ static const bool *shading_begin(const technique_frame *f, int l, bool *ambient)
         glDisable(GL_BLEND);
         return f->skips->in_view;
     }
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    render_blend_add();
     return shading_light_pass(f, l);
 }
 
@@ -74,10 +73,8 @@ const bool *shading_split_pass(const technique_frame *f, int l, scene_light_set 
     bool adds = shading_split_adds(f);
     *lights = adds ? SCENE_LIGHT_BIT(l) : f->skips->lights;
     *ambient = !adds;
-    if (adds) {
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
-    }
+    if (adds)
+        render_blend_add();
     return objects;
 }
 

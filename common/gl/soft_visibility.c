@@ -118,8 +118,7 @@ void soft_visibility_add(soft_visibility *v, int l, float weight) {
     GLboolean color_mask[4];
     glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
     glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    render_blend_add();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
     glUseProgram(v->accumulate);
