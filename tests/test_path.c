@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "path.h"
+#include "scene.h"
 
 #define DIR "out/test/path"
 
@@ -41,11 +42,12 @@ static void test_numbered_names_never_overwrite(void **state) {
     assert_false(path_numbered_unused(DIR "/shot", "png", small, sizeof small));
 }
 
-/* Page Up/Down's order: the directory's .json files by name, wrapping. */
+/* Page Up/Down's order: the directory's scene files (.json, .gltf, .glb
+ * in any case) by name, wrapping. */
 static void test_next_in_directory(void **state) {
     (void)state;
     assert_true(path_make_directories(DIR "/pages") && path_make_directories(DIR "/empty"));
-    static const char *const files[] = {"b.json", "a.json", "c.txt", "d.json"};
+    static const char *const files[] = {"b.json", "a.json", "c.txt", "d.json", "e.gltf", "f.GLB", "g.gltf.txt"};
     char path[256];
     for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
         snprintf(path, sizeof path, DIR "/pages/%s", files[i]);
@@ -56,18 +58,18 @@ static void test_next_in_directory(void **state) {
         int step;
         const char *to;
     } cases[] = {
-        {"b.json", 1, "d.json"}, {"d.json", 1, "a.json"},  {"a.json", -1, "d.json"}, {"a.json", 2, "d.json"},
-        {"c.txt", 1, "a.json"},  {"x.json", -1, "d.json"}, {"d.json", -4, "b.json"},
+        {"b.json", 1, "d.json"}, {"d.json", 1, "e.gltf"}, {"f.GLB", 1, "a.json"},  {"a.json", -1, "f.GLB"},
+        {"a.json", 2, "d.json"}, {"c.txt", 1, "a.json"},  {"x.json", -1, "f.GLB"}, {"f.GLB", -3, "b.json"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char from[256], expected[256];
         snprintf(from, sizeof from, DIR "/pages/%s", cases[i].from);
         snprintf(expected, sizeof expected, DIR "/pages/%s", cases[i].to);
-        assert_true(path_next_in_directory(from, ".json", cases[i].step, path, sizeof path));
+        assert_true(path_next_in_directory(from, scene_extensions, cases[i].step, path, sizeof path));
         assert_string_equal(path, expected);
     }
-    assert_false(path_next_in_directory(DIR "/empty/a.json", ".json", 1, path, sizeof path));
-    assert_false(path_next_in_directory(DIR "/missing/a.json", ".json", 1, path, sizeof path));
+    assert_false(path_next_in_directory(DIR "/empty/a.json", scene_extensions, 1, path, sizeof path));
+    assert_false(path_next_in_directory(DIR "/missing/a.json", scene_extensions, 1, path, sizeof path));
 }
 
 static void test_stem(void **state) {

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -99,7 +100,19 @@ bool path_numbered_unused(const char *prefix, const char *extension, char *out, 
 
 static int path_compare_names(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-bool path_next_in_directory(const char *path, const char *extension, int step, char *out, size_t size) {
+/* Whether `name` ends in one of `extensions` (NULL-terminated), in any
+ * case. */
+static bool path_has_extension(const char *name, const char *const *extensions) {
+    size_t length = strlen(name);
+    for (const char *const *e = extensions; *e; e++) {
+        size_t n = strlen(*e);
+        if (length > n && strcasecmp(name + length - n, *e) == 0)
+            return true;
+    }
+    return false;
+}
+
+bool path_next_in_directory(const char *path, const char *const *extensions, int step, char *out, size_t size) {
     char copy[PATH_MAX], dir[PATH_MAX];
     snprintf(copy, sizeof copy, "%s", path);
     snprintf(dir, sizeof dir, "%s", dirname(copy));
@@ -111,11 +124,10 @@ bool path_next_in_directory(const char *path, const char *extension, int step, c
         return false;
     }
     char **names = NULL;
-    size_t count = 0, capacity = 0, extension_length = strlen(extension);
+    size_t count = 0, capacity = 0;
     bool ok = true;
     for (struct dirent *e; ok && (e = readdir(d));) {
-        size_t length = strlen(e->d_name);
-        if (length <= extension_length || strcmp(e->d_name + length - extension_length, extension) != 0)
+        if (!path_has_extension(e->d_name, extensions))
             continue;
         if (count == capacity) {
             capacity = capacity ? 2 * capacity : 16;
@@ -130,8 +142,12 @@ bool path_next_in_directory(const char *path, const char *extension, int step, c
     closedir(d);
     if (!ok)
         fprintf(stderr, "%s: out of memory listing the directory\n", dir);
-    else if (count == 0)
-        fprintf(stderr, "%s: no *%s file\n", dir, extension);
+    else if (count == 0) {
+        fprintf(stderr, "%s: no file ending in", dir);
+        for (const char *const *e = extensions; *e; e++)
+            fprintf(stderr, " %s", *e);
+        fputc('\n', stderr);
+    }
     if (ok && count > 0) {
         qsort(names, count, sizeof *names, path_compare_names);
         long here = -1; /* before the first */

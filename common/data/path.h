@@ -30,10 +30,11 @@ bool path_numbered_unused(const char *prefix, const char *extension, char *out, 
 
 /* The file `step` places after `path` (before, for a negative step),
  * wrapping around, among the files of path's directory whose names end in
- * `extension` (".json"), sorted by name: how the window pages through
- * assets/scenes/. A path not among them counts as before the first. False
- * after printing why when the directory cannot be read or holds none. */
-bool path_next_in_directory(const char *path, const char *extension, int step, char *out, size_t size);
+ * one of `extensions` (NULL-terminated, any case: scene_extensions),
+ * sorted by name: how the window pages through assets/scenes/. A path not
+ * among them counts as before the first. False after printing why when the
+ * directory cannot be read or holds none. */
+bool path_next_in_directory(const char *path, const char *const *extensions, int step, char *out, size_t size);
 
 /* "<directory of the executable>/../<relative>", resolved when it exists:
  * the programs live in build/, their shaders and assets beside it, so they

@@ -605,6 +605,8 @@ static int scene_light_holder(const scene *s, int l) {
     return -1;
 }
 
+const char *const scene_extensions[] = {".json", ".gltf", ".glb", NULL};
+
 bool scene_is_gltf(const char *path) {
     const char *extension = strrchr(path, '.');
     return extension && (strcasecmp(extension, ".gltf") == 0 || strcasecmp(extension, ".glb") == 0);

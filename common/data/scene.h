@@ -204,6 +204,9 @@ bool scene_load_camera(scene *s, const char *path, int camera);
 /* Whether path names a glTF file (.gltf, .glb): scene_load reads it as
  * a glTF scene, any other as a JSON scene file. */
 bool scene_is_gltf(const char *path);
+/* The extensions of the files a scene is read from (JSON and glTF),
+ * NULL-terminated. */
+extern const char *const scene_extensions[];
 /* The largest N a program's --camera N takes. */
 #define SCENE_MAX_CAMERA_INDEX 65535
 void scene_free(scene *s);

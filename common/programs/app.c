@@ -235,7 +235,7 @@ static const app_window_key app_window_keys[] = {
     {0, "Space", "animate the light (--animate)"},
     {APP_RESET_KEY, NULL, "camera and lights back as the scene file has them"},
     {0, "1-" FLAGS_TEXT(APP_MAX_TECHNIQUES), "the technique of that number in --help's list"},
-    {0, "Page Down / Up", "the next / previous scene of the scene's directory"},
+    {0, "Page Down / Up", "the next / previous scene (JSON or glTF) of the scene's directory"},
     {APP_COMPARE_KEY, NULL, "compare against the ray-traced truth (--compare)"},
     {0, "Tab", "the HUD's caption, technique and settings only (--hud-compact)"},
     {0, "F3", "the skips' counters and the rays cast on the HUD (--verbose)"},
@@ -1077,12 +1077,12 @@ static bool app_load_scene_saying(const char *path, char *problem, size_t size) 
     return loaded;
 }
 
-/* Page Down / Up: the next or previous scene of the current one's
- * directory, the technique restarted on it. A scene that does not load
+/* Page Down / Up: the next or previous scene (JSON or glTF) of the
+ * current one's directory, the technique restarted on it. A scene that does not load
  * says why and the current one stays. */
 static void app_switch_scene(int step) {
     char path[PATH_MAX];
-    if (!path_next_in_directory(app.scene_path, ".json", step, path, sizeof path))
+    if (!path_next_in_directory(app.scene_path, scene_extensions, step, path, sizeof path))
         return;
     technique_host_stop(&app.host);
     app_unload_scene();
