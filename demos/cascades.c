@@ -243,14 +243,13 @@ static void cascades_render(const technique_frame *f) {
     const map_settings *settings = &cascades.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
     map_begin(r, f);
-    for (int l = 0; l < f->gpu->scene->light_count; l++) {
-        /* 2. The splits, then each cascade's box around its slice and the
-         * receivers in it (cascades_fit_array). */
-        if (!map_fit_light(r, settings, f, l, cascades_fit))
-            continue;
-        /* 3. Depth from the light into each layer. */
+    /* 2. Per light, the splits, then each cascade's box around its slice
+     * and the receivers in it (cascades_fit_array). */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        map_fit_light(r, settings, f, l, cascades_fit);
+    /* 3. Depth from each fitted light into each layer. */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
         map_draw_depth(r, settings, f, l);
-    }
     /* 4. Shading: each pixel reads the layer of its view depth, blended
      * into the next over the last part of a slice. */
     map_shade(r, settings, f);

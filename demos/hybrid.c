@@ -96,14 +96,13 @@ static void hybrid_render(const technique_frame *f) {
     map_settings *settings = &hybrid.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
     map_begin(r, f);
-    for (int l = 0; l < f->gpu->scene->light_count; l++) {
-        /* 2. The light's map fitted to the visible receivers, as
-         * shadowmap's. */
-        if (!map_fit_light(r, settings, f, l, map_fit_uniform_light))
-            continue;
-        /* 3. Depth from the light. */
+    /* 2. Each light's map fitted to the visible receivers, as
+     * shadowmap's. */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        map_fit_light(r, settings, f, l, map_fit_uniform_light);
+    /* 3. Depth from each fitted light. */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
         map_draw_depth(r, settings, f, l);
-    }
     /* 4. Shading: the map where its kernel's taps agree, a shadow ray
      * where they do not. */
     settings->rays = hybrid_ray_modes[hybrid.rays];

@@ -214,14 +214,13 @@ static void psm_render(const technique_frame *f) {
     const map_settings *settings = &psm.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
     map_begin(r, f);
-    for (int l = 0; l < f->gpu->scene->light_count; l++) {
-        /* 2. The warp (or the uniform map where it does not pay), fitted
-         * to the visible receivers and the casters that shadow them. */
-        if (!map_fit_light(r, settings, f, l, psm_fit))
-            continue;
-        /* 3. Depth from the light through the warp. */
+    /* 2. Per light, the warp (or the uniform map where it does not pay),
+     * fitted to the visible receivers and the casters that shadow them. */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        map_fit_light(r, settings, f, l, psm_fit);
+    /* 3. Depth from each fitted light through its warp. */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
         map_draw_depth(r, settings, f, l);
-    }
     /* 4. Shading: each pixel compared in the map's warped space. */
     map_shade(r, settings, f);
     /* 5. The lecture's overlays, then light 0's warp space. */

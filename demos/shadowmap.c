@@ -86,15 +86,14 @@ static void shadowmap_render(const technique_frame *f) {
     const map_settings *settings = &shadowmap.settings;
     /* 1. The camera's depth pre-pass: what is seen. */
     map_begin(r, f);
-    for (int l = 0; l < f->gpu->scene->light_count; l++) {
-        /* 2. The light's map fitted to the visible receivers: the light's
-         * own perspective (a spot), its direction (an orthographic map),
-         * or a cube map (a point light). */
-        if (!map_fit_light(r, settings, f, l, map_fit_uniform_light))
-            continue;
-        /* 3. Depth from the light (layers the cache holds are kept). */
+    /* 2. Each light's map fitted to the visible receivers: the light's
+     * own perspective (a spot), its direction (an orthographic map), or a
+     * cube map (a point light). */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
+        map_fit_light(r, settings, f, l, map_fit_uniform_light);
+    /* 3. Depth from each fitted light (layers the cache holds are kept). */
+    for (int l = 0; l < f->gpu->scene->light_count; l++)
         map_draw_depth(r, settings, f, l);
-    }
     /* 4. Shading: each pixel's depth in the light against the map, the
      * tests filtered over the kernel. */
     map_shade(r, settings, f);

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <stdlib.h>
 
+#include "map.h"
 #include "render.h"
 #include "support.h"
 
@@ -162,7 +163,10 @@ static void test_skips_change_nothing_on_the_street(void **state) {
 
 /* The state line describes a light that has a map this frame (a lamp's
  * cube map, in the atlas's tiles: demos/lib/map.h, "Atlas"), not light
- * 0, which has none on the street, and the share of the atlas held. */
+ * 0, which has none on the street, and the share of the atlas held: the
+ * atlas is sized to what its tiles ask, the least power of two that holds
+ * MAP_ATLAS_ROOM times their area (so they hold more than a fourth of
+ * that share), smaller than MAP_ATLAS_SIZE in the small frame. */
 static void test_state_line_describes_a_mapped_lamp(void **state) {
     (void)state;
     const char *at = street_frame_text("hud: light ");
@@ -170,9 +174,14 @@ static void test_state_line_describes_a_mapped_lamp(void **state) {
     char line[512];
     snprintf(line, sizeof line, "%.*s", (int)strcspn(at, "\n"), at);
     assert_non_null(strstr(line, ": cube map in atlas tiles auto: "));
-    assert_non_null(strstr(line, " % held"));
     assert_null(strstr(line, "atlas full"));
     assert_null(strstr(line, "light 0:"));
+    const char *atlas = strstr(line, ", atlas ");
+    int side = 0, held = 0;
+    assert_true(atlas && sscanf(atlas, ", atlas %d: %d %% held", &side, &held) == 2);
+    printf("    the street at 320x180: atlas %d, %d %% held\n", side, held);
+    assert_true(side < MAP_ATLAS_SIZE);
+    assert_true(held <= 100 / MAP_ATLAS_ROOM && held > 100 / (4 * MAP_ATLAS_ROOM));
 }
 
 /* The atlas's kind in the browser's dialect (shaders/map_tiles.glsl

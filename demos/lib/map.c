@@ -441,12 +441,13 @@ static bool map_whole_in_cache(map_renderer *r, const map_settings *st, const te
     return true;
 }
 
-/* A tiled map m of light l's faces in their tiles: a face in a new tile
- * holds nothing cached. Where the atlas has no room for a face, or no
- * memory for its tiles, the map is a cube of its own this frame (its
- * largest face's size), counted in r->tiles_refused. */
-static void map_place_tiles(map_renderer *r, const map_settings *st, map_light *m, int l) {
-    bool ready = !m->tiled || map_atlas_prepare(r, st);
+/* A tiled map m of light l's faces in their tiles (map_atlas_plan placed
+ * them where it made the atlas this frame): a face in a new tile holds
+ * nothing cached. Where the atlas has no room for a face, or no memory
+ * for its tiles, the map is a cube of its own this frame (its largest
+ * face's size), counted in r->tiles_refused. */
+static void map_place_tiles(map_renderer *r, map_light *m, int l) {
+    bool ready = !m->tiled || r->atlas_texture;
     for (int face = 0; m->tiled && face < MAP_CUBE_FACES; face++) {
         map_tile_placed placed = ready ? map_tile_place(r, m, l, face) : MAP_TILE_NO_ROOM;
         r->caches[l].valid[face] = r->caches[l].valid[face] && placed == MAP_TILE_KEPT;
@@ -466,7 +467,7 @@ static void map_draw_layers(map_renderer *r, const map_settings *st, const techn
     map_cache *c = &r->caches[l];
     if (!map_cache_current(r, st, f, l))
         map_forget(c);
-    map_place_tiles(r, st, m, l);
+    map_place_tiles(r, m, l);
     if (!m->tiled)
         map_prepare_texture(m, st, map_light_transmits(r, l));
     c->key = map_depth_key_of(r, m, st);
@@ -510,6 +511,19 @@ static bool *map_waiting_needed(const map_renderer *r, int l, int layer) {
 }
 
 void map_draw_depth(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
+    if (!r->fitted[l])
+        return;
+    /* Every light fitted: the atlas sized for all their tiles, before any
+     * is drawn. One made again holds nothing: its lights' caches are
+     * gone, and each is drawn this frame as a light's first is, whatever
+     * the budget. */
+    if (!r->atlas_planned && map_atlas_plan(r, st, f->gpu->scene->light_count))
+        for (int k = 0; k < f->gpu->scene->light_count; k++)
+            if (r->fitted[k] && r->maps[k].tiled) {
+                map_forget(&r->caches[k]);
+                r->drawn[k] = false;
+            }
+    r->atlas_planned = true;
     map_plan_casters(r, st, f, l);
     if (st->shadow_budget && r->drawn[l] && !map_whole_in_cache(r, st, f, l)) {
         /* Its turn is map_shade's to give (map_budget_draw). */
@@ -1310,6 +1324,7 @@ void map_begin(map_renderer *r, const technique_frame *f) {
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &r->target_framebuffer);
     glGetIntegerv(GL_VIEWPORT, r->viewport);
     memset(r->fitted, 0, sizeof r->fitted);
+    r->atlas_planned = false;
     r->tiles_short = r->tiles_refused = 0;
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     /* The camera's depth first: the shading pass tests against it (each

@@ -24,9 +24,10 @@
  *      the samples of map_light_samples) and the automatic size
  *      sizes it; false where the light is off or nothing can be shadowed
  *      (then the light is added unshadowed);
- *   3. per fitted light, map_draw_depth: the depth pass renders
- *      each layer that its cache cannot give, with the casters that layer
- *      needs;
+ *   3. per light, once every light is fitted, map_draw_depth: the
+ *      depth pass renders each layer of a fitted light that its cache
+ *      cannot give, with the casters that layer needs (the atlas sized
+ *      first for every fitted light's tiles);
  *   4. map_shade, the camera pass: one pass (GL_EQUAL depth) that
  *      shades every light on where its map lets it through, and the
  *      ambient term; each visible pixel is filtered once per light that
@@ -482,10 +483,17 @@ enum {
 
 /* Atlas. In a scene of more lights than a pass holds
  * (settings->many_lights), a hard point light's cube map is six square
- * tiles of one shadow atlas, a 2D depth texture of MAP_ATLAS_SIZE texels
- * on a side (or the GL's largest, if less) shared by every such light
- * (map_atlas.h places the tiles), instead of a cube texture of its own:
- * the memory follows what the camera sees, not the lights. A light's
+ * tiles of one shadow atlas, a 2D depth texture shared by every such
+ * light (map_atlas.h places the tiles), instead of a cube texture of its
+ * own: the memory follows what the camera sees, not the lights. The
+ * atlas's side is planned once every light is fitted, before any is
+ * drawn (map_atlas_plan): the least power of two whose square holds
+ * MAP_ATLAS_ROOM times the area the tiles ask, up to MAP_ATLAS_SIZE (or
+ * the GL's largest). It is made again, every tile placed afresh (the
+ * largest first, which packs them whole) and every tiled light drawn
+ * whatever the budget, where the tiles outgrow it or half its side would
+ * do: a GL may hold the whole texture in memory however little of it is
+ * drawn (llvmpipe does). A light's
  * tiles are sized by its share of the screen, --map-size auto's rule
  * (map_auto_size), but a face on which that rule measures no sample of
  * the screen takes MAP_ATLAS_MIN_TILE (each face sized by its own few
@@ -505,6 +513,10 @@ enum {
  * a transmittance map or rays keeps its own cube map. The map overlay
  * shows the atlas. */
 #define MAP_ATLAS_SIZE 16384
+/* The atlas's side is the least power of two up to MAP_ATLAS_SIZE whose
+ * square holds this many times the area the frame's tiles ask: room for
+ * them to change size as the camera moves before it must be made again. */
+#define MAP_ATLAS_ROOM 2
 
 /* An array map's most layers: the most cascades. */
 #define MAP_MAX_ARRAY_LAYERS 8
@@ -639,9 +651,9 @@ void map_begin(map_renderer *r, const technique_frame *f);
  * light is off, no receiver is visible or the fit fails. */
 bool map_fit_light(map_renderer *r, const map_settings *settings, const technique_frame *f, int l,
                    map_fit_function fit);
-/* Step 3: the depth pass of fitted light l (see "Caching" above): its
- * layers from its cache, or rendered with the casters each needs (and a
- * moment filter's blurred). */
+/* Step 3, after step 2 for every light: the depth pass of light l, if
+ * fitted (see "Caching" above): its layers from its cache, or rendered
+ * with the casters each needs (and a moment filter's blurred). */
 void map_draw_depth(map_renderer *r, const map_settings *settings, const technique_frame *f, int l);
 /* Step 4: the camera pass, into the target map_begin found. With
  * the eye inside a closed caster (r->closed: its welded edge table, as

@@ -307,6 +307,7 @@ struct map_renderer {
     map_atlas atlas;
     unsigned atlas_texture;
     int atlas_depth, atlas_filter;
+    bool atlas_planned; /* map_atlas_plan ran this frame */
     int tile_nodes[SCENE_MAX_LIGHTS][MAP_CUBE_FACES], tile_asked[SCENE_MAX_LIGHTS][MAP_CUBE_FACES];
     int tiles_short, tiles_refused;
     warp_sample face_samples[WARP_SAMPLE_COUNT]; /* one face's of a light's samples (map_tiles_size) */
@@ -322,10 +323,16 @@ bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene
  * returns, where auto's rule measures a sample on the face, else
  * MAP_ATLAS_MIN_TILE. */
 int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples);
-/* The atlas's texture, made for the settings' depth format (the tiles
- * freed where it is made again) and filtered by their filter; false
- * where memory for its tiles fails (said on stderr). */
-bool map_atlas_prepare(map_renderer *r, const map_settings *st);
+/* The atlas for the frame, once every light is fitted: its texture made
+ * for the settings' depth format and at the side the fitted lights'
+ * tiles want (map_atlas_side_wanted), made again where the format
+ * changed, the tiles outgrew it or it is twice the side they want or
+ * more, its tiles then freed and every fitted light's placed afresh, the
+ * largest first; filtered by the settings' filter.
+ * True where it was made again (what its tiles held is gone), or where
+ * memory for its tiles failed (said on stderr; no atlas, r->atlas_texture
+ * 0). */
+bool map_atlas_plan(map_renderer *r, const map_settings *st, int light_count);
 /* Light l's face `face` holds a tile asked at the size m asks now. */
 bool map_tile_held(const map_renderer *r, const map_light *m, int l, int face);
 /* Where a face's tile is: the one it held (what it holds is still

@@ -1,6 +1,7 @@
 /* map_tiles: the shadow atlas's GL texture and each cube face's tile in
  * it (map.h, "Atlas"; map_atlas.c places the tiles). */
 #include <glad/gl.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "map_internal.h"
@@ -24,34 +25,76 @@ int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_
     return size;
 }
 
-/* The atlas's side: MAP_ATLAS_SIZE, or the GL's largest power of two
- * below it. */
-static int map_atlas_side(void) {
-    int largest = 0, side = MAP_ATLAS_SIZE;
+/* The atlas's side for the frame's tiles: the least power of two from
+ * MAP_ATLAS_MIN_TILE whose square holds MAP_ATLAS_ROOM times the area the
+ * fitted lights' tiles ask, up to MAP_ATLAS_SIZE or the GL's largest (0:
+ * no light asks a tile). */
+static int map_atlas_side_wanted(const map_renderer *r, int light_count) {
+    double area = 0;
+    for (int l = 0; l < light_count; l++)
+        for (int layer = 0; r->fitted[l] && r->maps[l].tiled && layer < r->maps[l].layer_count; layer++)
+            area += (double)r->maps[l].tiles[layer].size * r->maps[l].tiles[layer].size;
+    if (area == 0)
+        return 0;
+    int largest = 0, side = MAP_ATLAS_MIN_TILE;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
-    while (side > largest && side > MAP_ATLAS_MIN_TILE)
-        side /= 2;
+    while (side < MAP_ATLAS_SIZE && 2 * side <= largest && (double)side * side < MAP_ATLAS_ROOM * area)
+        side *= 2;
     return side;
 }
 
-bool map_atlas_prepare(map_renderer *r, const map_settings *st) {
-    int filter = map_filter_in_use(st);
-    if (r->atlas_texture && r->atlas_depth == st->depth) {
+/* A tile a fitted light asks for: light l's layer. */
+typedef struct map_tile_ask {
+    int light, layer, size;
+} map_tile_ask;
+
+/* Larger tiles first. */
+static int map_tile_ask_larger(const void *a, const void *b) {
+    const map_tile_ask *x = a, *y = b;
+    return (y->size > x->size) - (y->size < x->size);
+}
+
+/* Into a fresh atlas, every fitted light's tiles, the largest first: a
+ * quadtree packs squares of powers of two whole in that order, so a
+ * frame's tiles fit wherever their area does. */
+static void map_atlas_place_all(map_renderer *r, int light_count) {
+    map_tile_ask asks[SCENE_MAX_LIGHTS * MAP_CUBE_FACES];
+    int count = 0;
+    for (int l = 0; l < light_count; l++)
+        for (int layer = 0; r->fitted[l] && r->maps[l].tiled && layer < r->maps[l].layer_count; layer++)
+            asks[count++] = (map_tile_ask){l, layer, r->maps[l].tiles[layer].size};
+    qsort(asks, (size_t)count, sizeof *asks, map_tile_ask_larger);
+    for (int i = 0; i < count; i++) {
+        map_light *m = &r->maps[asks[i].light];
+        int saved = m->tiles[asks[i].layer].size;
+        map_tile_place(r, m, asks[i].light, asks[i].layer);
+        m->tiles[asks[i].layer].size = saved; /* the size asked, which map_place_tiles finds held */
+    }
+}
+
+bool map_atlas_plan(map_renderer *r, const map_settings *st, int light_count) {
+    int filter = map_filter_in_use(st), side = map_atlas_side_wanted(r, light_count);
+    if (side == 0)
+        return false;
+    if (r->atlas_texture && r->atlas_depth == st->depth && r->atlas.size >= side && r->atlas.size < 2 * side) {
         if (r->atlas_filter != filter) {
             glBindTexture(GL_TEXTURE_2D, r->atlas_texture);
             map_depth_sampling(GL_TEXTURE_2D, filter);
             r->atlas_filter = filter;
         }
-        return true;
-    }
-    if (!r->atlas.nodes && !map_atlas_init(&r->atlas, map_atlas_side())) {
-        fprintf(stderr, "shadow maps: out of memory for the shadow atlas's tiles\n");
         return false;
     }
     /* A texture made again holds nothing: every tile is free. */
-    map_atlas_clear(&r->atlas);
     memset(r->tile_nodes, -1, sizeof r->tile_nodes);
     glDeleteTextures(1, &r->atlas_texture);
+    r->atlas_texture = 0;
+    if (r->atlas.nodes && r->atlas.size != side)
+        map_atlas_destroy(&r->atlas);
+    if (!r->atlas.nodes && !map_atlas_init(&r->atlas, side)) {
+        fprintf(stderr, "shadow maps: out of memory for the shadow atlas's tiles\n");
+        return true;
+    }
+    map_atlas_clear(&r->atlas);
     glGenTextures(1, &r->atlas_texture);
     glBindTexture(GL_TEXTURE_2D, r->atlas_texture);
     GLenum format, type;
@@ -60,6 +103,7 @@ bool map_atlas_prepare(map_renderer *r, const map_settings *st) {
     map_depth_sampling(GL_TEXTURE_2D, filter);
     r->atlas_depth = st->depth;
     r->atlas_filter = filter;
+    map_atlas_place_all(r, light_count);
     return true;
 }
 
