@@ -13,7 +13,7 @@
 #include <string.h>
 #include <stdlib.h>
 
-#include "map.h"
+#include "map_internal.h"
 #include "render.h"
 #include "support.h"
 
@@ -184,6 +184,27 @@ static void test_state_line_describes_a_mapped_lamp(void **state) {
     assert_true(held <= 100 / MAP_ATLAS_ROOM && held > 100 / (4 * MAP_ATLAS_ROOM));
 }
 
+/* The map overlay shows the atlas (map.h, "Atlas"): where no tile is
+ * drawn it is cleared to the far plane when made, not whatever its memory
+ * held (black on llvmpipe, over most of the inset): at most
+ * ATLAS_INSET_MAX_BLACK of the inset's pixels are black, the nearest
+ * depth's colour. */
+#define ATLAS_INSET_MAX_BLACK 0.05
+static void test_atlas_overlay_shows_no_stray_memory(void **state) {
+    (void)state;
+    unsigned char *rgba =
+        support_screenshot("shadows", LAMPS, "--technique shadowmap --overlay map", "lights/atlas_overlay");
+    assert_non_null(rgba);
+    int rect[4];
+    map_inset_rect(MAP_2D, 1, 0, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, rect);
+    static const unsigned char black[3] = {0, 0, 0};
+    long count = support_count_color(rgba, SUPPORT_SCREENSHOT_WIDTH, SUPPORT_SCREENSHOT_HEIGHT, rect, black);
+    free(rgba);
+    double share = (double)count / ((double)rect[2] * rect[3]);
+    printf("    the atlas's inset: %.1f %% black\n", 100.0 * share);
+    assert_true(share <= ATLAS_INSET_MAX_BLACK);
+}
+
 /* The atlas's kind in the browser's dialect (shaders/map_tiles.glsl
  * reads it through a struct that holds its sampler): --glsl-es draws the
  * street's decisions and picture byte for byte as desktop GLSL does. */
@@ -245,6 +266,7 @@ int main(void) {
         cmocka_unit_test(test_state_line_describes_a_mapped_lamp),
         cmocka_unit_test(test_atlas_tiles_follow_the_camera),
         cmocka_unit_test(test_atlas_in_glsl_es),
+        cmocka_unit_test(test_atlas_overlay_shows_no_stray_memory),
         cmocka_unit_test(test_auto_filter_is_hw_past_eight_lights),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),

@@ -101,6 +101,16 @@ bool map_atlas_plan(map_renderer *r, const map_settings *st, int light_count) {
     map_depth_format(st->depth, &format, &type);
     glTexImage2D(GL_TEXTURE_2D, 0, (GLint)format, r->atlas.size, r->atlas.size, 0, GL_DEPTH_COMPONENT, type, NULL);
     map_depth_sampling(GL_TEXTURE_2D, filter);
+    /* Cleared to the far plane: where no tile is drawn it holds nothing,
+     * as the map overlay shows it, not whatever the memory held. */
+    glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r->atlas_texture, 0);
+    glViewport(0, 0, r->atlas.size, r->atlas.size);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)r->target_framebuffer);
+    glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     r->atlas_depth = st->depth;
     r->atlas_filter = filter;
     map_atlas_place_all(r, light_count);
