@@ -20,9 +20,11 @@ const float MAP_MIN_PLANE_FACING = 0.05;
 // product with up vanishes).
 const float MAP_NEAR_UP = 0.9;
 
-// A face's texel at direction d from light i: a 90-degree face spans
-// 2 |major axis| over the map's size.
-float map_cube_step(int i, vec3 d) { return 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / u_map_size[i]; }
+// A face's texel at direction d, `size` texels on a side: a 90-degree
+// face spans 2 |major axis|.
+float map_face_step(vec3 d, float size) { return 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / size; }
+// Light i's map's texel at direction d.
+float map_cube_step(int i, vec3 d) { return map_face_step(d, u_map_size[i]); }
 
 // The plane across direction d: two unit axes (MAP_NEAR_UP).
 void map_cube_across(vec3 d, out vec3 u, out vec3 v) {

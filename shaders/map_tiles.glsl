@@ -37,11 +37,10 @@ vec2 map_tile_uv(int i, vec3 d) {
     return (tile.xy + floor(texel * MAP_TILE_SUBTEXELS + 0.5) / MAP_TILE_SUBTEXELS) / u_atlas_size;
 }
 
-// A texel at direction d from light i: a 90-degree face spans 2 |major
-// axis| over its tile's side.
+// A texel at direction d from light i: map_face_step over its tile's side.
 float map_tile_step(int i, vec3 d) {
     vec2 st;
-    return 2.0 * max(abs(d.x), max(abs(d.y), abs(d.z))) / map_tile_of(i, d, st).z;
+    return map_face_step(d, map_tile_of(i, d, st).z);
 }
 
 float map_kernel_read(map_atlas map, vec2 offset) {

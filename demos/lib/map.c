@@ -422,8 +422,7 @@ static map_depth_key map_depth_key_of(const map_renderer *r, const map_light *m,
 static bool map_cache_current(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     const map_light *m = &r->maps[l];
     map_depth_key key = map_depth_key_of(r, m, st);
-    bool storage = m->tiled ? r->atlas_texture && r->atlas_depth == st->depth
-                            : map_texture_fits(m, st, map_light_transmits(r, l));
+    bool storage = m->tiled ? r->atlas_texture != 0 : map_texture_fits(m, st, map_light_transmits(r, l));
     return !f->changed.scene && !(f->changed.lights & SCENE_LIGHT_BIT(l)) && storage &&
            memcmp(&key, &r->caches[l].key, sizeof key) == 0;
 }
@@ -910,6 +909,7 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
     glSamplerParameteri(r->depth_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(r->depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &r->texture_units);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &r->max_texture_size);
     memset(r->tile_nodes, -1, sizeof r->tile_nodes); /* no light holds a tile */
     glGenFramebuffers(1, &r->framebuffer);
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);

@@ -240,6 +240,7 @@ struct map_renderer {
     bool blur_failed;               /* said once: moment filters read one bilinear depth test */
     unsigned depth_sampler;         /* a map read as depth: compare mode off, nearest */
     int texture_units;              /* GL_MAX_TEXTURE_IMAGE_UNITS */
+    int max_texture_size;           /* GL_MAX_TEXTURE_SIZE */
     scene_light_set soft_warned;    /* bit i: light i's treatment said on stderr */
     scene_light_set moments_warned; /* bit i: light i's lack of a moment unit said on stderr */
     map_light maps[SCENE_MAX_LIGHTS];

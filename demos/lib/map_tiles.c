@@ -25,28 +25,35 @@ int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_
     return size;
 }
 
-/* The atlas's side for the frame's tiles: the least power of two from
- * MAP_ATLAS_MIN_TILE whose square holds MAP_ATLAS_ROOM times the area the
- * fitted lights' tiles ask, up to MAP_ATLAS_SIZE or the GL's largest (0:
- * no light asks a tile). */
-static int map_atlas_side_wanted(const map_renderer *r, int light_count) {
-    double area = 0;
-    for (int l = 0; l < light_count; l++)
-        for (int layer = 0; r->fitted[l] && r->maps[l].tiled && layer < r->maps[l].layer_count; layer++)
-            area += (double)r->maps[l].tiles[layer].size * r->maps[l].tiles[layer].size;
-    if (area == 0)
-        return 0;
-    int largest = 0, side = MAP_ATLAS_MIN_TILE;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
-    while (side < MAP_ATLAS_SIZE && 2 * side <= largest && (double)side * side < MAP_ATLAS_ROOM * area)
-        side *= 2;
-    return side;
-}
-
 /* A tile a fitted light asks for: light l's layer. */
 typedef struct map_tile_ask {
     int light, layer, size;
 } map_tile_ask;
+
+/* Every fitted light's tiles, into asks (room for a cube's faces a
+ * light): how many. */
+static int map_tile_asks(const map_renderer *r, int light_count, map_tile_ask *asks) {
+    int count = 0;
+    for (int l = 0; l < light_count; l++)
+        for (int layer = 0; r->fitted[l] && r->maps[l].tiled && layer < r->maps[l].layer_count; layer++)
+            asks[count++] = (map_tile_ask){l, layer, r->maps[l].tiles[layer].size};
+    return count;
+}
+
+/* The atlas's side for the asked tiles: the least power of two from
+ * MAP_ATLAS_MIN_TILE whose square holds MAP_ATLAS_ROOM times their area,
+ * up to MAP_ATLAS_SIZE or the GL's largest (0: no tile asked). */
+static int map_atlas_side_wanted(const map_renderer *r, const map_tile_ask *asks, int count) {
+    double area = 0;
+    for (int i = 0; i < count; i++)
+        area += (double)asks[i].size * asks[i].size;
+    if (area == 0)
+        return 0;
+    int side = MAP_ATLAS_MIN_TILE;
+    while (side < MAP_ATLAS_SIZE && 2 * side <= r->max_texture_size && (double)side * side < MAP_ATLAS_ROOM * area)
+        side *= 2;
+    return side;
+}
 
 /* Larger tiles first. */
 static int map_tile_ask_larger(const void *a, const void *b) {
@@ -54,26 +61,22 @@ static int map_tile_ask_larger(const void *a, const void *b) {
     return (y->size > x->size) - (y->size < x->size);
 }
 
-/* Into a fresh atlas, every fitted light's tiles, the largest first: a
- * quadtree packs squares of powers of two whole in that order, so a
- * frame's tiles fit wherever their area does. */
-static void map_atlas_place_all(map_renderer *r, int light_count) {
-    map_tile_ask asks[SCENE_MAX_LIGHTS * MAP_CUBE_FACES];
-    int count = 0;
-    for (int l = 0; l < light_count; l++)
-        for (int layer = 0; r->fitted[l] && r->maps[l].tiled && layer < r->maps[l].layer_count; layer++)
-            asks[count++] = (map_tile_ask){l, layer, r->maps[l].tiles[layer].size};
+/* Into a fresh atlas, the asked tiles, the largest first: a quadtree
+ * packs squares of powers of two whole in that order, so a frame's tiles
+ * fit wherever their area does. */
+static void map_atlas_place_all(map_renderer *r, map_tile_ask *asks, int count) {
     qsort(asks, (size_t)count, sizeof *asks, map_tile_ask_larger);
     for (int i = 0; i < count; i++) {
         map_light *m = &r->maps[asks[i].light];
-        int saved = m->tiles[asks[i].layer].size;
         map_tile_place(r, m, asks[i].light, asks[i].layer);
-        m->tiles[asks[i].layer].size = saved; /* the size asked, which map_place_tiles finds held */
+        m->tiles[asks[i].layer].size = asks[i].size; /* the size asked, which map_place_tiles finds held */
     }
 }
 
 bool map_atlas_plan(map_renderer *r, const map_settings *st, int light_count) {
-    int filter = map_filter_in_use(st), side = map_atlas_side_wanted(r, light_count);
+    map_tile_ask asks[SCENE_MAX_LIGHTS * MAP_CUBE_FACES];
+    int count = map_tile_asks(r, light_count, asks);
+    int filter = map_filter_in_use(st), side = map_atlas_side_wanted(r, asks, count);
     if (side == 0)
         return false;
     if (r->atlas_texture && r->atlas_depth == st->depth && r->atlas.size >= side && r->atlas.size < 2 * side) {
@@ -113,7 +116,7 @@ bool map_atlas_plan(map_renderer *r, const map_settings *st, int light_count) {
     glViewport(r->viewport[0], r->viewport[1], r->viewport[2], r->viewport[3]);
     r->atlas_depth = st->depth;
     r->atlas_filter = filter;
-    map_atlas_place_all(r, light_count);
+    map_atlas_place_all(r, asks, count);
     return true;
 }
 
