@@ -262,6 +262,16 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
         glPolygonOffset(map_setting(settings->slope_factor, MAP_SLOPE_FACTOR),
                         map_setting(settings->slope_units, MAP_SLOPE_UNITS));
     }
+    if (m->kind == MAP_CUBE && r->depth_clamped.solid.id)
+        for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++) {
+            bool offset = !settings->no_slope_bias;
+            glUseProgram(render_programs_pass(&r->depth_clamped, pass)->id);
+            glUniform1f(r->clamped_offset[pass].slope_factor,
+                        offset ? map_setting(settings->slope_factor, MAP_SLOPE_FACTOR) : 0);
+            glUniform1f(r->clamped_offset[pass].offset_units,
+                        offset ? map_setting(settings->slope_units, MAP_SLOPE_UNITS) : 0);
+            glUniform1i(r->clamped_offset[pass].depth_float, settings->depth == MAP_DEPTH_32F);
+        }
     if (m->texture.transmittance) {
         glUseProgram(r->transmit.id);
         glUniform1f(r->transmit_slope,
@@ -270,7 +280,8 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
     /* A cube's near plane keeps the depth's precision (MAP_NEAR_RATIO of
      * its far plane), and a caster nearer the light than that (a lamp
      * inside a wall's box) lies before every receiver of its face: it is
-     * drawn at the near depth, not clipped (where the GL can clamp). */
+     * drawn at the near depth, not clipped: by depth clamp, or where the
+     * GL has none by r->depth_clamped. */
     depth_clamp(m->kind == MAP_CUBE);
 }
 
@@ -337,13 +348,15 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
     /* The solid objects, then the cut-out ones through their program
      * (render_programs); translucent casters into the transmittance map
      * instead, where the map has one. */
-    for (int pass = 0; pass < render_programs_passes(&r->depth); pass++) {
-        const render_program *p = render_programs_pass(&r->depth, pass);
+    const render_programs *programs =
+        m->kind == MAP_CUBE && r->depth_clamped.solid.id ? &r->depth_clamped : &r->depth;
+    for (int pass = 0; pass < render_programs_passes(programs); pass++) {
+        const render_program *p = render_programs_pass(programs, pass);
         glUseProgram(p->id);
         glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
         for (int i = 0; i < s->object_count; i++) {
             const scene_object *o = &s->objects[i];
-            if (render_programs_draws(&r->depth, pass, o) && !(transmits && o->translucent && o->casts) &&
+            if (render_programs_draws(programs, pass, o) && !(transmits && o->translucent && o->casts) &&
                 (o->casts ? !casters || casters[i] : receivers && o->receives))
                 render_draw_object(gpu, p, i);
         }
@@ -882,6 +895,18 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
         return false;
     /* The light's view: a shadow's shape, cast from both sides (render.h). */
     r->depth.solid.both_sides = r->depth.cut_out.both_sides = true;
+    if (!context_current_features()->depth_clamp) {
+        static const shader_define clamp_defines[] = {{"MAP_DEPTH_CLAMP_EMULATED", 1}, {NULL, 0}};
+        if (!render_programs_load(&r->depth_clamped, gpu->scene, depth_files, 2, clamp_defines))
+            return false;
+        r->depth_clamped.solid.both_sides = r->depth_clamped.cut_out.both_sides = true;
+        for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++) {
+            unsigned id = render_programs_pass(&r->depth_clamped, pass)->id;
+            r->clamped_offset[pass].slope_factor = shader_uniform(id, "u_slope_factor");
+            r->clamped_offset[pass].offset_units = shader_uniform(id, "u_offset_units");
+            r->clamped_offset[pass].depth_float = shader_uniform(id, "u_depth_float");
+        }
+    }
     /* The transmittance maps' program, for a scene that needs them. */
     static const char *const transmit_files[] = {"shadow_depth.vert", "transmittance.frag"};
     if (scene_translucent_casters(gpu->scene) > 0) {
@@ -944,6 +969,7 @@ void map_destroy(map_renderer *r) {
     if (!r)
         return;
     render_programs_destroy(&r->depth);
+    render_programs_destroy(&r->depth_clamped);
     for (int i = 0; i < r->camera_count; i++)
         render_program_destroy(&r->camera[i].program);
     render_program_destroy(&r->lines.program);

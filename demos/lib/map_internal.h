@@ -211,6 +211,14 @@ typedef struct map_cache {
 /* A technique's maps and their GL objects. */
 struct map_renderer {
     render_programs depth;
+    /* A cube's depth pass where the GL has no depth clamp: the programs
+     * that write the clamped depth themselves (MAP_DEPTH_CLAMP_EMULATED,
+     * shadow_depth.vert), else ids 0, and per pass (render_programs_pass)
+     * their polygon offset's uniforms. */
+    render_programs depth_clamped;
+    struct {
+        int slope_factor, offset_units, depth_float;
+    } clamped_offset[2];
     map_camera_program camera[MAP_CAMERA_PROGRAMS];
     int camera_count, camera_oldest;
     map_lines_program lines;
