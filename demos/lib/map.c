@@ -249,6 +249,12 @@ static void map_prepare_texture(map_light *m, const map_settings *settings, bool
 
 /* ---- the depth pass ---- */
 
+/* The depth pass's programs for m: a cube's clamp the depth themselves
+ * where the GL has no depth clamp (r->depth_clamped). */
+static const render_programs *map_depth_programs(const map_renderer *r, const map_light *m) {
+    return m->kind == MAP_CUBE && r->depth_clamped.solid.id ? &r->depth_clamped : &r->depth;
+}
+
 /* The depth pass's state: its framebuffer, viewport, slope bias, program. */
 static void map_depth_begin(map_renderer *r, const map_settings *settings, const map_light *m) {
     glBindFramebuffer(GL_FRAMEBUFFER, r->framebuffer);
@@ -262,9 +268,9 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
         glPolygonOffset(map_setting(settings->slope_factor, MAP_SLOPE_FACTOR),
                         map_setting(settings->slope_units, MAP_SLOPE_UNITS));
     }
-    if (m->kind == MAP_CUBE && r->depth_clamped.solid.id)
+    if (map_depth_programs(r, m) == &r->depth_clamped) {
+        bool offset = !settings->no_slope_bias;
         for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++) {
-            bool offset = !settings->no_slope_bias;
             glUseProgram(render_programs_pass(&r->depth_clamped, pass)->id);
             glUniform1f(r->clamped_offset[pass].slope_factor,
                         offset ? map_setting(settings->slope_factor, MAP_SLOPE_FACTOR) : 0);
@@ -272,6 +278,7 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
                         offset ? map_setting(settings->slope_units, MAP_SLOPE_UNITS) : 0);
             glUniform1i(r->clamped_offset[pass].depth_float, settings->depth == MAP_DEPTH_32F);
         }
+    }
     if (m->texture.transmittance) {
         glUseProgram(r->transmit.id);
         glUniform1f(r->transmit_slope,
@@ -348,8 +355,7 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
     /* The solid objects, then the cut-out ones through their program
      * (render_programs); translucent casters into the transmittance map
      * instead, where the map has one. */
-    const render_programs *programs =
-        m->kind == MAP_CUBE && r->depth_clamped.solid.id ? &r->depth_clamped : &r->depth;
+    const render_programs *programs = map_depth_programs(r, m);
     for (int pass = 0; pass < render_programs_passes(programs); pass++) {
         const render_program *p = render_programs_pass(programs, pass);
         glUseProgram(p->id);
