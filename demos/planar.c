@@ -74,8 +74,10 @@
 
 static struct {
     planar_settings settings;
-    render_program flatten;
-    int shadow, plane, reject;
+    render_programs flatten; /* solid casters, and cut-out ones through their variant (render.h) */
+    struct {
+        int shadow, plane, reject;
+    } flatten_uniforms[RENDER_PROGRAMS_MAX_PASSES];
     bool *casters;               /* per object: it casts for the light at hand (caster culling) */
     soft_visibility soft;        /* an area light's visibility, sampled */
     scene_light_set soft_warned; /* bit l: light l's area said drawn hard */
@@ -119,12 +121,16 @@ bool planar_casts_nothing(const scene_object *o, const float plane[4]) {
 
 static bool planar_init(const render_scene *gpu) {
     static const char *const files[] = {"planar_shadow.vert", "planar_shadow.frag"};
-    if (!render_program_load(&planar.flatten, files, 2, NULL))
+    if (!render_programs_load(&planar.flatten, gpu->scene, files, 2, NULL))
         return false;
-    planar.flatten.both_sides = true; /* the casters' shape on a plane (render.h) */
-    planar.shadow = shader_uniform(planar.flatten.id, "u_shadow");
-    planar.plane = shader_uniform(planar.flatten.id, "u_plane");
-    planar.reject = shader_uniform(planar.flatten.id, "u_reject");
+    /* The casters' shape on a plane (render.h). */
+    planar.flatten.solid.both_sides = planar.flatten.cut_out.both_sides = true;
+    for (int pass = 0; pass < render_programs_passes(&planar.flatten); pass++) {
+        unsigned id = render_programs_pass(&planar.flatten, pass)->id;
+        planar.flatten_uniforms[pass].shadow = shader_uniform(id, "u_shadow");
+        planar.flatten_uniforms[pass].plane = shader_uniform(id, "u_plane");
+        planar.flatten_uniforms[pass].reject = shader_uniform(id, "u_reject");
+    }
     /* Shadows land on planes only (a glTF scene's ground is a mesh). */
     bool any_plane = false;
     for (int i = 0; i < gpu->scene->object_count; i++)
@@ -143,7 +149,7 @@ static bool planar_init(const render_scene *gpu) {
 
 static void planar_destroy(void) {
     soft_visibility_destroy(&planar.soft);
-    render_program_destroy(&planar.flatten);
+    render_programs_destroy(&planar.flatten);
     free(planar.casters);
     planar.casters = NULL;
 }
@@ -156,10 +162,6 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     const scene *s = f->gpu->scene;
     mat4 shadow;
     frustum_plane_projection(plane, light, shadow);
-    render_program_use(&planar.flatten, f->view);
-    glUniformMatrix4fv(planar.shadow, 1, GL_FALSE, (const float *)shadow);
-    glUniform4fv(planar.plane, 1, plane);
-    glUniform1i(planar.reject, !planar.settings.no_reject);
     /* Without clip distances the shaders discard instead (shader.h). */
     bool clip = context_current_features()->clip_distances;
     if (clip) {
@@ -176,11 +178,19 @@ static void planar_draw_casters(const technique_frame *f, int receiver, const fl
     }
     glDepthMask(GL_FALSE);
     /* Not only casters in view: one outside the view may shadow a
-     * receiver inside it; planar.casters are those that may. */
-    for (int i = 0; i < s->object_count; i++)
-        if (i != receiver && planar.casters[i] &&
-            (planar.settings.no_reject || !planar_casts_nothing(&s->objects[i], plane)))
-            render_draw_object(f->gpu, &planar.flatten, i);
+     * receiver inside it; planar.casters are those that may. A cut-out
+     * caster's program discards where it has no surface. */
+    for (int pass = 0; pass < render_programs_passes(&planar.flatten); pass++) {
+        const render_program *p = render_programs_pass(&planar.flatten, pass);
+        render_program_use(p, f->view);
+        glUniformMatrix4fv(planar.flatten_uniforms[pass].shadow, 1, GL_FALSE, (const float *)shadow);
+        glUniform4fv(planar.flatten_uniforms[pass].plane, 1, plane);
+        glUniform1i(planar.flatten_uniforms[pass].reject, !planar.settings.no_reject);
+        for (int i = 0; i < s->object_count; i++)
+            if (i != receiver && planar.casters[i] && render_programs_draws(&planar.flatten, pass, &s->objects[i]) &&
+                (planar.settings.no_reject || !planar_casts_nothing(&s->objects[i], plane)))
+                render_draw_object(f->gpu, p, i);
+    }
     if (clip) {
         glDisable(GL_CLIP_DISTANCE0);
         glDisable(GL_CLIP_DISTANCE1);

@@ -72,7 +72,8 @@ static const char *const projective_self_shadows[] = {"off", "on", NULL};
 
 static struct {
     projective_settings settings;
-    render_program caster, receiver;
+    render_programs caster; /* solid casters, and cut-out ones through their variant (render.h) */
+    render_program receiver;
     int light_texture, projected, depth_plane, nearest, cut;
     unsigned framebuffer;
     projective_light lights[SCENE_MAX_LIGHTS];
@@ -183,11 +184,14 @@ static bool projective_draw_texture(const technique_frame *f, int l, projective_
         glDisable(GL_STENCIL_TEST);
         glClearColor(1, 1, 1, 1);
         glClear(GL_COLOR_BUFFER_BIT);
-        glUseProgram(projective.caster.id);
-        glUniformMatrix4fv(projective.caster.view_projection, 1, GL_FALSE, (const float *)t->frustum.view_projection);
-        for (int i = 0; i < s->object_count; i++)
-            if (projective.wanted[i])
-                render_draw_object(f->gpu, &projective.caster, i);
+        for (int pass = 0; pass < render_programs_passes(&projective.caster); pass++) {
+            const render_program *p = render_programs_pass(&projective.caster, pass);
+            glUseProgram(p->id);
+            glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)t->frustum.view_projection);
+            for (int i = 0; i < s->object_count; i++)
+                if (projective.wanted[i] && render_programs_draws(&projective.caster, pass, &s->objects[i]))
+                    render_draw_object(f->gpu, p, i);
+        }
         glEnable(GL_DEPTH_TEST);
         f->skips->counts->layers_rendered++;
         for (int i = 0; i < s->object_count; i++)
@@ -244,10 +248,11 @@ static bool projective_init(const render_scene *gpu) {
     static const char *const caster_files[] = {"shadow_depth.vert", "projective_caster.frag"};
     static const char *const receiver_files[] = {"lit.vert", "projective_receiver.frag"};
     static const shader_define defines[] = {{"LIT_PROJECTED", 1}, SHADER_DEFINE(PROJECTIVE_LIT_PERCENT), {NULL, 0}};
-    if (!render_program_load(&projective.caster, caster_files, 2, NULL) ||
+    if (!render_programs_load(&projective.caster, gpu->scene, caster_files, 2, NULL) ||
         !render_program_load(&projective.receiver, receiver_files, 2, defines))
         return false;
-    projective.caster.both_sides = true; /* the casters' shape from the light (render.h) */
+    /* The casters' shape from the light (render.h). */
+    projective.caster.solid.both_sides = projective.caster.cut_out.both_sides = true;
     unsigned id = projective.receiver.id;
     projective.light_texture = shader_uniform(id, "u_light_texture");
     projective.projected = shader_uniform(id, "u_projected");
@@ -279,7 +284,7 @@ static bool projective_init(const render_scene *gpu) {
 }
 
 static void projective_destroy(void) {
-    render_program_destroy(&projective.caster);
+    render_programs_destroy(&projective.caster);
     render_program_destroy(&projective.receiver);
     glDeleteFramebuffers(1, &projective.framebuffer);
     projective.framebuffer = 0;

@@ -6,14 +6,18 @@
 // The switch is a uniform rather than glDisable(GL_CLIP_DISTANCEi), which
 // some drivers (Mesa 22's llvmpipe) ignore once the shader writes them.
 // Without clip distances (common/gl/shader.h) the fragment stage discards
-// what they would clip.
+// what they would clip. The texture coordinates are for a cut-out caster's
+// fragments (planar_shadow.frag).
 layout(location = 0) in vec3 in_position;
+layout(location = 2) in vec2 in_uv;
 
 uniform mat4 u_model;
 uniform mat4 u_view_projection;
 uniform mat4 u_shadow; // world point -> its shadow on the plane (homogeneous)
 uniform vec4 u_plane;  // receiver plane, unit normal, oriented towards the light
 uniform bool u_reject; // false: keep anti-shadows, for the lecture
+
+out vec2 v_uv;
 
 #ifdef SHADER_NO_CLIP_DISTANCES
 out vec2 v_clip_distances;
@@ -22,6 +26,7 @@ out float gl_ClipDistance[2];
 #endif
 
 void main() {
+    v_uv = in_uv;
     vec4 world = u_model * vec4(in_position, 1.0);
     vec4 flattened = u_shadow * world;
     // Above the plane, nearer the plane than the light.

@@ -24,6 +24,7 @@
 #define GLTF_SCENE_BINARY "tests/data/gltf_scene.glb" /* the same scene, binary */
 #define GLTF_TEXTURED "tests/data/gltf_textured.gltf"
 #define GLTF_CUT_OUT "tests/data/gltf_cut_out.gltf"
+#define GLTF_CUT_OUT_ON_PLANE "tests/data/gltf_cut_out_on_plane.json" /* its fence and leaves over a plane */
 /* A single-sided wall seen from behind (object GLTF_SIDED_WALL) between
  * the camera and a box (GLTF_SIDED_BOX) that the sun, from the camera's
  * side, shadows through it; a double-sided panel seen from behind. */
@@ -66,6 +67,12 @@
  * the view is near (4096 a cascade) reach it; one map over the whole view
  * (shadowmap, psm) does not at any size --map-size offers. */
 #define GLTF_FENCE_MAP_GOAL_PERCENT 0.1
+/* Planar and projective on the cut-outs over a plane: what they miss
+ * there is the leaves' shadows on one another (a leaf is no plane, and
+ * casts onto nothing in projective's texture it is drawn into), and the
+ * projective texture's texels at the edges; a caster's whole shadow
+ * misses by many times more. */
+#define GLTF_CUT_OUT_PLANE_MAX_PERCENT 0.3
 #define GLTF_FENCE_GOAL_SIZE "--size 1280x720"
 #define GLTF_FENCE_FINE_CASCADES "--map-size 4096"
 /* The shadow maps on the single-sided wall's shadow: the edges of its
@@ -337,6 +344,20 @@ static void test_gltf_cut_outs(void **state) {
     }
     shadowdiff_result whole = support_measure("volumes", GLTF_CUT_OUT, "", "", "gltf_cut_out_volumes");
     assert_true(whole.misclassified_percent > GLTF_CUT_OUT_WHOLE_MIN_PERCENT);
+}
+
+/* Planar's flattened casters and projective's caster texture cut the
+ * cut-outs out as the reference does (a cut-out caster's program discards
+ * where it has no surface). */
+static void test_gltf_cut_outs_on_a_plane(void **state) {
+    (void)state;
+    static const char *const programs[] = {"planar", "projective"};
+    for (size_t i = 0; i < sizeof programs / sizeof *programs; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "gltf_cut_out_on_plane_%s", programs[i]);
+        shadowdiff_result r = support_measure(programs[i], GLTF_CUT_OUT_ON_PLANE, "", "", name);
+        assert_true(r.compared > 0 && r.misclassified_percent <= GLTF_CUT_OUT_PLANE_MAX_PERCENT);
+    }
 }
 
 /* The fence and tree of cut-out leaves at the goal's frame: cascades with
@@ -788,6 +809,7 @@ int main(void) {
         cmocka_unit_test(test_gltf_textures_read),
         cmocka_unit_test(test_gltf_textures_match_reference),
         cmocka_unit_test(test_gltf_cut_outs),
+        cmocka_unit_test(test_gltf_cut_outs_on_a_plane),
         cmocka_unit_test(test_gltf_fence_within_goal_by_fine_cascades),
         cmocka_unit_test(test_gltf_sided),
         cmocka_unit_test(test_gltf_fitted),

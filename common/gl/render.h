@@ -208,7 +208,8 @@ bool render_programs_load(render_programs *p, const scene *s, const char *const 
 void render_programs_destroy(render_programs *p);
 /* A pass draws through p in passes: pass 0 the solid objects through
  * p->solid, and where there is a variant, pass 1 the cut-out ones through
- * it. */
+ * it; at most RENDER_PROGRAMS_MAX_PASSES (for per-pass uniforms). */
+#define RENDER_PROGRAMS_MAX_PASSES 2
 int render_programs_passes(const render_programs *p);
 const render_program *render_programs_pass(const render_programs *p, int pass);
 /* Whether pass `pass` of p draws object o. */

@@ -218,7 +218,7 @@ struct map_renderer {
     render_programs depth_clamped;
     struct {
         int slope_factor, offset_units, depth_float;
-    } clamped_offset[2];
+    } clamped_offset[RENDER_PROGRAMS_MAX_PASSES];
     map_camera_program camera[MAP_CAMERA_PROGRAMS];
     int camera_count, camera_oldest;
     map_lines_program lines;
