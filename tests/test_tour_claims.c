@@ -210,6 +210,7 @@ static const claim claims[] = {
     {"volumes", 10, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "ZP+: exact"},
     {"volumes", 11, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "z-fail: exact"},
     {"volumes", 12, STEP, {"volumes", ""}, CLAIM_LIGHTER_ON_SHADOW, 1000, "8 bits wrap: under 256 slabs, lit"},
+    {"volumes", 14, STEP, {"shadowmap", NULL}, CLAIM_DARKER_ON_LIT, 4000, "cut-outs: the fence's shadow has no gaps"},
 };
 enum { CLAIM_COUNT = sizeof claims / sizeof *claims };
 

@@ -25,9 +25,11 @@ WEB_HAVE_EMCC := $(shell command -v emcc >/dev/null 2>&1 && echo yes)
 # these use; the models and glTF scenes as packs (WEB_PACKS).
 WEB_TOURS := $(wildcard assets/tours/*.json)
 WEB_TOUR_SCENES := $(patsubst ../scenes/%,assets/scenes/%,$(shell sed -n 's/.*"scene": *"\([^"]*\)".*/\1/p' $(WEB_TOURS)))
-WEB_SCENES := $(sort $(STANDARD_SCENES) $(SOFT_SCENES) $(WEB_TOUR_SCENES))
 WEB_MODELS := assets/bunny.obj assets/teapot.obj
 WEB_GLTF_SCENES := assets/scenes/fence.gltf assets/scenes/stained_glass.gltf
+# The scene files embedded as they are: a glTF scene a tour steps through
+# goes as its pack alone, at the same path.
+WEB_SCENES := $(filter-out $(WEB_GLTF_SCENES),$(sort $(STANDARD_SCENES) $(SOFT_SCENES) $(WEB_TOUR_SCENES)))
 WEB_PACKS := $(WEB_MODELS) $(WEB_GLTF_SCENES)
 # The truths compare mode shows in the page: every tour, and each
 # standard, soft and glTF scene in compare mode, run natively (EGL) at
@@ -98,7 +100,7 @@ WEB_BAKE = rm -rf $(dir $@) && mkdir -p $(dir $@)truths && \
 	$(BUILD)/shadows --backend egl $(1) --bake-truths $(dir $@)truths --screenshot $(dir $@)$(2) > $(dir $@)figures.txt && \
 	touch $@
 
-$(WEB_BAKING)/tours/%/done: assets/tours/%.json $(BUILD)/shadows $(WEB_SCENES) $(WEB_MODELS)
+$(WEB_BAKING)/tours/%/done: assets/tours/%.json $(BUILD)/shadows $(WEB_SCENES) $(WEB_GLTF_SCENES) $(WEB_MODELS)
 	$(call WEB_BAKE,--tour $<,step.png)
 
 $(WEB_BAKING)/scenes/%/done: assets/scenes/%.json $(BUILD)/shadows $(WEB_MODELS)
