@@ -137,6 +137,7 @@ static const claim claims[] = {
     {"shadowmap", 4, STEP, {"volumes", NULL}, CLAIM_LIGHTER_ON_SHADOW, 50, "a staircase: steps into it"},
     {"shadowmap", 4, {NULL, "--map-size 256"}, STEP, CLAIM_DARKER_ON_LIT, 500, "filter off: none of its blur"},
     {"shadowmap", 6, STEP, STEP, CLAIM_MISCLASSIFIED, 20, "against the truth: errors only along edges"},
+    {"shadowmap", 8, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "rays where the map is unsure: exact"},
     /* psm */
     {"psm", 1, STEP, {NULL, ""}, CLAIM_DARKER_ON_LIT, 1000, "uniform: shadows smear near the viewer"},
     {"psm", 2, {NULL, "--warp uniform"}, STEP, CLAIM_LIGHTER_ON_SHADOW, 1000, "the fix: sharp up close"},
@@ -178,6 +179,11 @@ static const claim claims[] = {
      CLAIM_LESS_FALSE_SHADOW,
      2,
      "wedges: the rim darker than sixty-four points'"},
+    /* hybrid */
+    {"hybrid", 1, STEP, STEP, CLAIM_FALSE_LIT, 0.05, "the map alone: wrong along the edges"},
+    {"hybrid", 3, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "rays where the map is unsure: exact"},
+    {"hybrid", 4, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "every pixel traced: the same, exact"},
+    {"hybrid", 5, STEP, STEP, CLAIM_MISCLASSIFIED, 8, "cut-outs: exact"},
     /* volumes */
     {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_DARKER, 50, "a map's texels show along the edge: out"},
     {"volumes", 1, STEP, {"volumes", NULL}, CLAIM_LIGHTER, 200, "a map's texels show along the edge: in"},

@@ -486,6 +486,7 @@ static const struct {
     {"tours/psm", "--tour /assets/tours/psm.json --screenshot /out/step.png", 0.01},
     {"tours/soft", "--tour /assets/tours/soft.json --screenshot /out/step.png", 0},
     {"tours/volumes", "--tour /assets/tours/volumes.json --screenshot /out/step.png", 0},
+    {"tours/hybrid", "--tour /assets/tours/hybrid.json --screenshot /out/step.png", 0},
     {"scenes/bunny", "--scene /assets/scenes/bunny.json --compare --screenshot /out/compare.png", 0},
     {"scenes/soft_sun", "--scene /assets/scenes/soft_sun.json --compare --screenshot /out/compare.png", 0},
     {"scenes/fence", "--scene /assets/scenes/fence.gltf --compare --screenshot /out/compare.png", 0},
