@@ -261,28 +261,26 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
     glViewport(0, 0, m->size, m->size);
     glDepthFunc(GL_LESS); /* after the camera's pre-pass */
     glDepthMask(GL_TRUE);
+    /* The slope-scaled bias (glPolygonOffset's factor and units; both 0
+     * with it off), for the GL's offset and the programs that redo it. */
+    float factor = settings->no_slope_bias ? 0 : map_setting(settings->slope_factor, MAP_SLOPE_FACTOR);
+    float units = settings->no_slope_bias ? 0 : map_setting(settings->slope_units, MAP_SLOPE_UNITS);
     if (settings->no_slope_bias) {
         glDisable(GL_POLYGON_OFFSET_FILL);
     } else {
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(map_setting(settings->slope_factor, MAP_SLOPE_FACTOR),
-                        map_setting(settings->slope_units, MAP_SLOPE_UNITS));
+        glPolygonOffset(factor, units);
     }
-    if (map_depth_programs(r, m) == &r->depth_clamped) {
-        bool offset = !settings->no_slope_bias;
+    if (map_depth_programs(r, m) == &r->depth_clamped)
         for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++) {
             glUseProgram(render_programs_pass(&r->depth_clamped, pass)->id);
-            glUniform1f(r->clamped_offset[pass].slope_factor,
-                        offset ? map_setting(settings->slope_factor, MAP_SLOPE_FACTOR) : 0);
-            glUniform1f(r->clamped_offset[pass].offset_units,
-                        offset ? map_setting(settings->slope_units, MAP_SLOPE_UNITS) : 0);
+            glUniform1f(r->clamped_offset[pass].slope_factor, factor);
+            glUniform1f(r->clamped_offset[pass].offset_units, units);
             glUniform1i(r->clamped_offset[pass].depth_float, settings->depth == MAP_DEPTH_32F);
         }
-    }
     if (m->texture.transmittance) {
         glUseProgram(r->transmit.id);
-        glUniform1f(r->transmit_slope,
-                    settings->no_slope_bias ? 0 : map_setting(settings->slope_factor, MAP_SLOPE_FACTOR));
+        glUniform1f(r->transmit_slope, factor);
     }
     /* A cube's near plane keeps the depth's precision (MAP_NEAR_RATIO of
      * its far plane), and a caster nearer the light than that (a lamp
