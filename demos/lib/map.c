@@ -249,10 +249,36 @@ static void map_prepare_texture(map_light *m, const map_settings *settings, bool
 
 /* ---- the depth pass ---- */
 
-/* The depth pass's programs for m: a cube's clamp the depth themselves
- * where the GL has no depth clamp (r->depth_clamped). */
+/* m's depth pass clamps the depth itself: a cube's, where the GL has no
+ * depth clamp (r->depth_clamped, r->transmit[1]). */
+static bool map_clamp_emulated(const map_renderer *r, const map_light *m) {
+    return m->kind == MAP_CUBE && r->depth_clamped.solid.id;
+}
+
+/* The depth pass's programs for m. */
 static const render_programs *map_depth_programs(const map_renderer *r, const map_light *m) {
-    return m->kind == MAP_CUBE && r->depth_clamped.solid.id ? &r->depth_clamped : &r->depth;
+    return map_clamp_emulated(r, m) ? &r->depth_clamped : &r->depth;
+}
+
+/* The polygon offset's uniforms of program `id`: the slope's alone but
+ * where it clamps the depth itself (MAP_DEPTH_CLAMP_EMULATED). */
+static map_offset_uniforms map_offset_uniforms_of(unsigned id, bool emulated) {
+    map_offset_uniforms u = {shader_uniform(id, "u_slope_factor"), -1, -1};
+    if (emulated) {
+        u.offset_units = shader_uniform(id, "u_offset_units");
+        u.depth_float = shader_uniform(id, "u_depth_float");
+    }
+    return u;
+}
+
+/* Sets program `id`'s polygon offset: glPolygonOffset's factor and units,
+ * in a depth of `settings`' format. */
+static void map_offset_set(unsigned id, const map_offset_uniforms *u, float factor, float units,
+                           const map_settings *settings) {
+    glUseProgram(id);
+    glUniform1f(u->slope_factor, factor);
+    glUniform1f(u->offset_units, units);
+    glUniform1i(u->depth_float, settings->depth == MAP_DEPTH_32F);
 }
 
 /* The depth pass's state: its framebuffer, viewport, slope bias, program. */
@@ -271,17 +297,12 @@ static void map_depth_begin(map_renderer *r, const map_settings *settings, const
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(factor, units);
     }
-    if (map_depth_programs(r, m) == &r->depth_clamped)
-        for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++) {
-            glUseProgram(render_programs_pass(&r->depth_clamped, pass)->id);
-            glUniform1f(r->clamped_offset[pass].slope_factor, factor);
-            glUniform1f(r->clamped_offset[pass].offset_units, units);
-            glUniform1i(r->clamped_offset[pass].depth_float, settings->depth == MAP_DEPTH_32F);
-        }
-    if (m->texture.transmittance) {
-        glUseProgram(r->transmit.id);
-        glUniform1f(r->transmit_slope, factor);
-    }
+    bool emulated = map_clamp_emulated(r, m);
+    for (int pass = 0; emulated && pass < render_programs_passes(&r->depth_clamped); pass++)
+        map_offset_set(render_programs_pass(&r->depth_clamped, pass)->id, &r->clamped_offset[pass], factor, units,
+                       settings);
+    if (m->texture.transmittance)
+        map_offset_set(r->transmit[emulated].id, &r->transmit_offset[emulated], factor, units, settings);
     /* A cube's near plane keeps the depth's precision (MAP_NEAR_RATIO of
      * its far plane), and a caster nearer the light than that (a lamp
      * inside a wall's box) lies before every receiver of its face: it is
@@ -317,11 +338,12 @@ static void map_transmit_layer(map_renderer *r, const render_scene *gpu, const m
         glEnable(GL_BLEND);
         glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ONE, GL_ONE);
         glBlendEquationSeparate(GL_FUNC_ADD, GL_MIN);
-        glUseProgram(r->transmit.id);
-        glUniformMatrix4fv(r->transmit.view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
+        const render_program *p = &r->transmit[map_clamp_emulated(r, m)];
+        glUseProgram(p->id);
+        glUniformMatrix4fv(p->view_projection, 1, GL_FALSE, (const float *)m->layer_view_projection[layer]);
         for (int i = 0; i < s->object_count; i++)
             if (s->objects[i].translucent && s->objects[i].casts && (!casters || casters[i]))
-                render_draw_object(gpu, &r->transmit, i);
+                render_draw_object(gpu, p, i);
         glDisable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glDepthMask(GL_TRUE);
@@ -372,7 +394,7 @@ static void map_depth_layer(map_renderer *r, const render_scene *gpu, const map_
 /* The frame's maps take transmittance maps (map.h, "Translucent
  * casters"): the scene has translucent casters and the GL draws into
  * them. */
-static bool map_scene_transmits(const map_renderer *r) { return r->transmit.id && !r->transmit_failed; }
+static bool map_scene_transmits(const map_renderer *r) { return r->transmit[0].id && !r->transmit_failed; }
 
 /* Light l's texture unit `unit` is one this GL has; else said once per
  * light (bit l of *said): it lacks the unit for the light's `what`, and
@@ -899,27 +921,26 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
         return false;
     /* The light's view: a shadow's shape, cast from both sides (render.h). */
     r->depth.solid.both_sides = r->depth.cut_out.both_sides = true;
-    if (!context_current_features()->depth_clamp) {
-        static const shader_define clamp_defines[] = {{"MAP_DEPTH_CLAMP_EMULATED", 1}, {NULL, 0}};
+    static const shader_define clamp_defines[] = {{"MAP_DEPTH_CLAMP_EMULATED", 1}, {NULL, 0}};
+    bool emulate_clamp = !context_current_features()->depth_clamp;
+    if (emulate_clamp) {
         if (!render_programs_load(&r->depth_clamped, gpu->scene, depth_files, 2, clamp_defines))
             return false;
         r->depth_clamped.solid.both_sides = r->depth_clamped.cut_out.both_sides = true;
-        for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++) {
-            unsigned id = render_programs_pass(&r->depth_clamped, pass)->id;
-            r->clamped_offset[pass].slope_factor = shader_uniform(id, "u_slope_factor");
-            r->clamped_offset[pass].offset_units = shader_uniform(id, "u_offset_units");
-            r->clamped_offset[pass].depth_float = shader_uniform(id, "u_depth_float");
-        }
+        for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++)
+            r->clamped_offset[pass] = map_offset_uniforms_of(render_programs_pass(&r->depth_clamped, pass)->id, true);
     }
-    /* The transmittance maps' program, for a scene that needs them. */
+    /* The transmittance maps' programs, for a scene that needs them. */
     static const char *const transmit_files[] = {"shadow_depth.vert", "transmittance.frag"};
-    if (scene_translucent_casters(gpu->scene) > 0) {
-        if (!render_program_load(&r->transmit, transmit_files, 2, NULL))
+    for (int emulated = 0; scene_translucent_casters(gpu->scene) > 0 && emulated <= emulate_clamp; emulated++) {
+        render_program *p = &r->transmit[emulated];
+        if (!render_program_load(p, transmit_files, 2, emulated ? clamp_defines : NULL))
             return false;
-        r->transmit.both_sides = true;
-        r->transmit_slope = shader_uniform(r->transmit.id, "u_slope_factor");
-        glGenFramebuffers(1, &r->transmit_framebuffer);
+        p->both_sides = true;
+        r->transmit_offset[emulated] = map_offset_uniforms_of(p->id, emulated);
     }
+    if (r->transmit[0].id)
+        glGenFramebuffers(1, &r->transmit_framebuffer);
     glGenVertexArrays(1, &r->screen_vao);
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);
@@ -988,7 +1009,8 @@ void map_destroy(map_renderer *r) {
     glDeleteBuffers(1, &r->overlay_buffer);
     glDeleteFramebuffers(1, &r->framebuffer);
     glDeleteSamplers(1, &r->depth_sampler);
-    render_program_destroy(&r->transmit);
+    for (size_t i = 0; i < sizeof r->transmit / sizeof *r->transmit; i++)
+        render_program_destroy(&r->transmit[i]);
     glDeleteFramebuffers(1, &r->transmit_framebuffer);
     map_moments_destroy(r);
     map_rays_destroy(r);

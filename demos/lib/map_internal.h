@@ -208,6 +208,13 @@ typedef struct map_cache {
     bool *drawn[MAP_MAX_LAYERS]; /* per object: drawn into the layer */
 } map_cache;
 
+/* The uniforms of a program that redoes glPolygonOffset
+ * (shaders/depth_offset.glsl): -1 where it lacks one (the units and the
+ * format's, but where it clamps the depth itself). */
+typedef struct map_offset_uniforms {
+    int slope_factor, offset_units, depth_float;
+} map_offset_uniforms;
+
 /* A technique's maps and their GL objects. */
 struct map_renderer {
     render_programs depth;
@@ -216,9 +223,7 @@ struct map_renderer {
      * shadow_depth.vert), else ids 0, and per pass (render_programs_pass)
      * their polygon offset's uniforms. */
     render_programs depth_clamped;
-    struct {
-        int slope_factor, offset_units, depth_float;
-    } clamped_offset[RENDER_PROGRAMS_MAX_PASSES];
+    map_offset_uniforms clamped_offset[RENDER_PROGRAMS_MAX_PASSES];
     map_camera_program camera[MAP_CAMERA_PROGRAMS];
     int camera_count, camera_oldest;
     map_lines_program lines;
@@ -299,11 +304,13 @@ struct map_renderer {
     unsigned bounds_programs[2], bounds_framebuffer;
     bool bounds_failed;
     /* The transmittance maps (map.h, "Translucent casters"):
-     * shadow_depth.vert with transmittance.frag and its slope uniform,
-     * loaded where the scene has translucent casters (else id 0), and
-     * their framebuffer; failed (said once): whole shadows. */
-    render_program transmit;
-    int transmit_slope;
+     * shadow_depth.vert with transmittance.frag and its polygon offset's
+     * uniforms, loaded where the scene has translucent casters (else id
+     * 0), the second for a cube where the GL has no depth clamp (as
+     * depth_clamped; else id 0), and their framebuffer; failed (said
+     * once): whole shadows. */
+    render_program transmit[2];
+    map_offset_uniforms transmit_offset[2];
     unsigned transmit_framebuffer;
     bool transmit_failed;
     scene_light_set transmit_warned; /* bit i: light i's lack of a unit said on stderr */
