@@ -115,8 +115,8 @@ export TEST_TIER=${TEST_TIER:-quick}
 # The quick tier's longest tests, longest first: they start first, so
 # that the cores end together (longest processing time first) rather
 # than one waiting on the last long test alone.
-LONGEST_FIRST="test_web test_skip test_shadowmap test_volumes_skips test_volumes test_render test_window \
-    test_moments test_hybrid test_glsl_es"
+LONGEST_FIRST="test_web test_lights test_moments test_skip test_hybrid test_shadowmap test_render \
+    test_volumes_skips test_volumes test_glsl_es"
 
 # The jobs: the sanitizer builds' programs first, then the others', the
 # longest of those first.

@@ -31,8 +31,12 @@
 #   F11, F12            screenshot-planar-7.png: the window as it was (the same picture as -2)
 #   F11, F12            screenshot-planar-8.png: the whole screen again
 #   Escape              exit 0
-# Each step waits SETTLE seconds, so that frames are drawn between events
-# (F12 saves the last drawn picture).
+# F12 saves the frame drawn after it, with every key sent before it
+# applied (the app reads events in order, between frames): each F12
+# waits for its picture on disk, so that the keys after it come after
+# that frame, and no other step waits. Only what the window system does
+# on its own time waits SETTLE seconds: the window's first frames, F11's
+# new size, the broken scene's note before the app quits.
 # Usage: tests/window_input.sh PROGRAM SCENE SCENE2 TOUR SIZE DIR, from
 # the project's root (the scenes and the tour relative to it; SIZE the
 # tour's window);
@@ -66,7 +70,13 @@ start() {
 }
 press() {
     xdotool key --window "$window" "$1"
-    sleep "$SETTLE"
+}
+# F12, and its picture on disk.
+shoot() {
+    local saved
+    saved=$(find . -maxdepth 1 -name 'screenshot-*.png' | wc -l)
+    press F12
+    timeout 30 bash -c "while [ \$(find . -maxdepth 1 -name 'screenshot-*.png' | wc -l) -le $saved ]; do sleep 0.05; done"
 }
 # Escape pressed only: the app closes its window on the press, so a
 # release sent after it would find no window. The server may list the
@@ -77,32 +87,34 @@ quit() {
     timeout 30 bash -c "while xdotool search --name '^shadows\$' >/dev/null; do sleep 0.2; done"
 }
 start "--scene '$scene' --no-hud" ""
-press F12
+shoot
 xdotool mousemove --window "$window" 320 100 mousedown 1 mousemove --window "$window" 320 180 \
     mousemove --window "$window" 320 250 mouseup 1
-sleep "$SETTLE"
-press F12
+shoot
 press 0
-press F12
+shoot
 press 3
-press F12
+shoot
 quit
 
 start "--scene '$scene2' --verbose" 2
-press F12
+shoot
 press Next
+sleep "$SETTLE"
 quit
 
 start "--tour '$tour' --verbose" 3 "$tour_size"
 for key in space space space F12 6 F12 3 F12 c F12; do
-    press "$key"
+    if [ "$key" = F12 ]; then shoot; else press "$key"; fi
 done
 quit
 
 start "--scene '$scene' --no-hud --fullscreen" 4
-press F12
+shoot
 press F11
-press F12
+sleep "$SETTLE"
+shoot
 press F11
-press F12
+sleep "$SETTLE"
+shoot
 quit
