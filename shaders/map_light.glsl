@@ -113,7 +113,11 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     // PCSS's search taps can miss a thin caster: an area light's pixel
     // it calls lit is sure only where no caster's box is near its cone.
     bool unsure = lit && visibility > 0.0 && visibility < 1.0;
-    if (sure_lit_read && !map_mark_rays) { /* unconditional: its screen derivatives need uniform control flow */
+    // The second read, at p_near: a marking pass makes it too for a light
+    // its kernel reads (not its depth bounds), so that its marks hold every
+    // pixel the tracing pass would trace. Unconditional: its screen
+    // derivatives need uniform control flow.
+    if (sure_lit_read && !(map_mark_rays && map_bounds_light(i))) {
         // Only a pixel the full bias calls lit asks it again (needed
         // false reads no map, and says 1).
         float near_visibility = map_visibility(map, raw, bounds, i, p_near, p_near, depth_bias, soft, moments, texel,

@@ -181,10 +181,12 @@ static void test_rays_counted(void **state) {
  * moving (the bounds made again each frame), on the city (ranged lights,
  * each shaded again in its own rectangle), under an area light, and
  * under translucent casters (their transmittance maps' pixels traced)
- * with a hard light and an area light. The
- * quick tier takes the first HYBRID_QUICK_MARKED_CASES: a 2D map, the
- * city, a cube map made again. */
-#define HYBRID_QUICK_MARKED_CASES 3
+ * with a hard light and an area light, and with a one-tap filter, which
+ * marks by its kernel, not its depth bounds (the second read at a share
+ * of the bias included). The quick tier takes the first
+ * HYBRID_QUICK_MARKED_CASES: a 2D map, the city, a cube map made again,
+ * the one-tap filter. */
+#define HYBRID_QUICK_MARKED_CASES 4
 static void test_marked_pass_changes_no_decision(void **state) {
     (void)state;
     static const struct {
@@ -193,6 +195,7 @@ static void test_marked_pass_changes_no_decision(void **state) {
         {"assets/scenes/simple.json", ""},
         {"assets/scenes/city_1000.json", ""},
         {"assets/scenes/bunny.json", "--motion light --frames 3"},
+        {"assets/scenes/simple.json", "--filter hw"},
         {"assets/scenes/bunny.json", ""},
         {"assets/scenes/simple.json", "--motion light --frames 3"},
         {"assets/scenes/long_view.json", ""},
