@@ -80,10 +80,12 @@ static void test_volumes_shadow_a_later_group(void **state) {
 }
 
 /* The hybrid too, past eight lights: its map's filter keeps the band
- * its rays need. */
+ * its rays need, and its lamps' cube maps are the atlas's tiles
+ * (demos/lib/map.h, "Atlas"), as the maps' are. */
 static void test_hybrid_exact_past_eight_lights(void **state) {
     (void)state;
     expect_lamp_within("hybrid", HYBRID_LAMP, HYBRID_MAX_MISCLASSIFIED);
+    assert_non_null(support_verbose_line("hybrid", LAMPS, "--size 320x180 --frames 1", ": cube map in atlas tiles "));
 }
 
 /* A lamp inside a caster's box, a hair from its wall (nearer than a cube

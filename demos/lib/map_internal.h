@@ -332,7 +332,7 @@ struct map_renderer {
 /* ---- the atlas (map_tiles.c; map.h, "Atlas") ---- */
 
 /* A light of `kind` goes in the atlas with these settings: many lights,
- * a cube, hard, read by a kernel, without rays or transmittance maps. */
+ * a cube, hard, read by a kernel, without transmittance maps. */
 bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene_light *light, map_kind kind);
 /* Each face's tile size (m->tiles[face].size) of the fitted cube m at
  * MAP_AUTO_MAX_SIZE: the light's auto size (map_auto_size), which it

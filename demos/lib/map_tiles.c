@@ -8,8 +8,7 @@
 
 bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene_light *light, map_kind kind) {
     return st->many_lights && kind == MAP_CUBE && !map_light_soft(st, light) &&
-           map_filter_moments(map_filter_in_use(st)) == MAP_MOMENTS_NONE && st->rays == MAP_RAYS_OFF &&
-           !r->transmit[0].id;
+           map_filter_moments(map_filter_in_use(st)) == MAP_MOMENTS_NONE && !r->transmit[0].id;
 }
 
 int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples) {
