@@ -181,10 +181,9 @@ static void test_rays_counted(void **state) {
  * moving (the bounds made again each frame), on the city (ranged lights,
  * each shaded again in its own rectangle), under an area light, and
  * under translucent casters (their transmittance maps' pixels traced)
- * with a hard light and an area light, with a one-tap filter, which
+ * with a hard light and an area light, and with a one-tap filter, which
  * marks by its kernel, not its depth bounds (the second read at a share
- * of the bias included), and past eight lights (cube maps in the atlas's
- * tiles, marked by their kernel). The quick tier takes the first
+ * of the bias included). The quick tier takes the first
  * HYBRID_QUICK_MARKED_CASES: a 2D map, the city, a cube map made again,
  * the one-tap filter. */
 #define HYBRID_QUICK_MARKED_CASES 4
@@ -206,7 +205,6 @@ static void test_marked_pass_changes_no_decision(void **state) {
         {"assets/scenes/wuson.json", ""},
         {"assets/scenes/stained_glass.gltf", ""},
         {"tests/data/gltf_glass_area.json", "--size 320x180 --ray-samples 64"},
-        {"assets/scenes/lamps_64.json", "--size 320x180 --light 27"},
     };
     size_t count = sizeof cases / sizeof *cases;
     if (support_sweep_stride() > 1)

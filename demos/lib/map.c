@@ -1277,13 +1277,17 @@ static unsigned map_bounds_lights(map_renderer *r, const map_camera_key *k, int 
  * only the unsure pixels, marked first, then traced alone: map.h,
  * "Rays"), then the objects that take no shadows, every light
  * unshadowed as in the reference. Only receivers read maps (the caster
- * culling is for them too). */
+ * culling is for them too). The marks are the pixel's, not a light's:
+ * past one group, where each light is shaded in a pass of its own
+ * (shading_split_pass), a pixel one light marked would be shaded again,
+ * kernel and all, by every light whose pass reaches it, so the receivers
+ * are shaded in one pass there. */
 static void map_shade_lights(map_renderer *r, const map_settings *st, const technique_frame *f,
                              map_camera_key *keys) {
     const bool *objects = shading_all_begin(f);
     int groups = render_light_groups(f->gpu);
     bool mapped = true, rays = keys[0].rays != MAP_RAYS_OFF;
-    if (keys[0].rays == MAP_RAYS_UNSURE && f->skips->marked_pass && map_ray_marks_begin(r)) {
+    if (keys[0].rays == MAP_RAYS_UNSURE && f->skips->marked_pass && groups == 1 && map_ray_marks_begin(r)) {
         f->skips->counts->marked_passes++;
         map_camera_key marking[RENDER_LIGHT_GROUPS];
         for (int g = 0; g < groups; g++) {

@@ -270,13 +270,15 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * nothing of the rest: test_hybrid's sure pixels on wuson need all of
  * them).
  * MAP_RAYS_OFF is the map alone, early-out and all.
- * With the frame's marked pass (skips.h, marked_pass), MAP_RAYS_UNSURE
- * draws the receivers twice: the first pass shades from the map and marks
- * the pixels rays would decide, the second shades only those, tracing
- * (map_rays.c). A hard light's 2D or cube map is read in the first pass by its
- * depth bounds (map_bounds.c) instead of its kernel: 0 or 1 only where
- * every tap must agree, else marked, so that the kernel too runs only in
- * the second pass. The same pixels come out of one pass without it. */
+ * With the frame's marked pass (skips.h, marked_pass), in a scene of one
+ * light group (past one, map.c's map_shade_lights says why not),
+ * MAP_RAYS_UNSURE draws the receivers twice: the first pass shades from
+ * the map and marks the pixels rays would decide, the second shades only
+ * those, tracing (map_rays.c). A hard light's 2D or cube map is read in
+ * the first pass by its depth bounds (map_bounds.c) instead of its
+ * kernel: 0 or 1 only where every tap must agree, else marked, so that
+ * the kernel too runs only in the second pass. The same pixels come out
+ * of one pass without it. */
 typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
 /* The reference's samples of an area light per pixel
  * (RAYTRACE_DEFAULT_LIGHT_SAMPLES: test_hybrid checks they agree), a
