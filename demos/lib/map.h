@@ -513,12 +513,10 @@ enum {
  * inside its tile, where a cube map's seamless filter would blend in
  * the next face's texels. A light that is soft, read by moments or takes
  * a transmittance map keeps its own cube map. With rays (demos/hybrid.c)
- * a tiled light's kernel marks the pixels it is unsure of as a cube
- * map's does (it has no depth bounds); a read within half a texel of its
- * tile's edge takes that edge's texel where a cube's seamless filter
- * would blend in the next face's, whose tile the kernel's other taps
- * read. The map overlay
- * shows the atlas. */
+ * rays decide where a tiled light's kernel is unsure, as on a cube map;
+ * a read within half a texel of its tile's edge takes that edge's texel
+ * where a cube's seamless filter would blend in the next face's, whose
+ * tile the kernel's other taps read. The map overlay shows the atlas. */
 #define MAP_ATLAS_SIZE 16384
 /* The atlas's side is the least power of two up to MAP_ATLAS_SIZE whose
  * square holds this many times the area the frame's tiles ask: room for
