@@ -500,10 +500,23 @@ static long gltf_pixels_of(const dump_frame *d, const float rgb[3]) {
 /* How a technique draws a translucent caster's shadow. */
 typedef enum gltf_glass_shadow { GLTF_GLASS_WHOLE, GLTF_GLASS_COLOURED, GLTF_GLASS_TRACED } gltf_glass_shadow;
 
-/* Stained glass's channel MAE of `program`: within the goal where it
+/* r's channel MAE, printed under `label`: within the goal where `shadow`
  * colours shadows, within GLTF_TRACED_SHADOW_MAX_CHANNEL_MAE where rays
- * filter them, else at least a whole shadow's; the reference's dump left
- * in *reference where it is not NULL. */
+ * filter them, else at least a whole shadow's. */
+static void gltf_expect_channels(const char *label, const shadowdiff_result *r, gltf_glass_shadow shadow) {
+    fprintf(stderr, "    %s: channel MAE %.4f %.4f %.4f\n", label, r->channel_mae[0], r->channel_mae[1],
+            r->channel_mae[2]);
+    assert_true(r->coloured);
+    for (int k = 0; k < 3; k++)
+        if (shadow == GLTF_GLASS_WHOLE
+                ? r->channel_mae[k] < GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE
+                : r->channel_mae[k] > (shadow == GLTF_GLASS_TRACED ? GLTF_TRACED_SHADOW_MAX_CHANNEL_MAE
+                                                                   : GLTF_COLOURED_SHADOW_MAX_CHANNEL_MAE))
+            fail_msg("%s: channel %d's MAE %.4f", label, k, r->channel_mae[k]);
+}
+
+/* Stained glass's channel MAE of `program` (gltf_expect_channels); the
+ * reference's dump left in *reference where it is not NULL. */
 static void gltf_glass_channels(const char *program, gltf_glass_shadow shadow, dump_frame *reference) {
     dump_frame kept, test;
     unsigned char *heatmap;
@@ -516,15 +529,9 @@ static void gltf_glass_channels(const char *program, gltf_glass_shadow shadow, d
         dump_frame_free(&kept);
     dump_frame_free(&test);
     static const char *const names[] = {"whole", "coloured", "traced"};
-    fprintf(stderr, "    %s, %s shadows: channel MAE %.4f %.4f %.4f\n", program, names[shadow], r.channel_mae[0],
-            r.channel_mae[1], r.channel_mae[2]);
-    assert_true(r.coloured);
-    for (int k = 0; k < 3; k++)
-        if (shadow == GLTF_GLASS_WHOLE
-                ? r.channel_mae[k] < GLTF_WHOLE_SHADOW_MIN_CHANNEL_MAE
-                : r.channel_mae[k] > (shadow == GLTF_GLASS_TRACED ? GLTF_TRACED_SHADOW_MAX_CHANNEL_MAE
-                                                                  : GLTF_COLOURED_SHADOW_MAX_CHANNEL_MAE))
-            fail_msg("%s: channel %d's MAE %.4f", program, k, r.channel_mae[k]);
+    char label[128];
+    snprintf(label, sizeof label, "%s, %s shadows", program, names[shadow]);
+    gltf_expect_channels(label, &r, shadow);
 }
 
 /* Translucent casters (alphaMode BLEND, assets/scenes/stained_glass.gltf:
@@ -647,12 +654,9 @@ static void test_gltf_pane_nearer_than_the_near_plane(void **state) {
     for (size_t i = 0; i < sizeof runs / sizeof *runs; i++) {
         shadowdiff_result r = support_measure(runs[i].program, GLTF_LAMP_ON_GLASS, GLTF_LAMP_ON_GLASS_SIZE,
                                               runs[i].flags, runs[i].name);
-        fprintf(stderr, "    %s %s: channel MAE %.4f %.4f %.4f\n", runs[i].program, runs[i].flags, r.channel_mae[0],
-                r.channel_mae[1], r.channel_mae[2]);
-        assert_true(r.coloured);
-        for (int k = 0; k < 3; k++)
-            if (r.channel_mae[k] > GLTF_COLOURED_SHADOW_MAX_CHANNEL_MAE)
-                fail_msg("%s %s: channel %d's MAE %.4f", runs[i].program, runs[i].flags, k, r.channel_mae[k]);
+        char label[128];
+        snprintf(label, sizeof label, "%s %s", runs[i].program, runs[i].flags);
+        gltf_expect_channels(label, &r, GLTF_GLASS_COLOURED);
     }
 }
 
