@@ -930,17 +930,19 @@ static bool map_init(map_renderer *r, const map_settings *settings, const render
         for (int pass = 0; pass < render_programs_passes(&r->depth_clamped); pass++)
             r->clamped_offset[pass] = map_offset_uniforms_of(render_programs_pass(&r->depth_clamped, pass)->id, true);
     }
-    /* The transmittance maps' programs, for a scene that needs them. */
+    /* The transmittance maps' programs, for a scene that needs them: the
+     * plain one, and where the GL lacks depth clamp a cube's. */
     static const char *const transmit_files[] = {"shadow_depth.vert", "transmittance.frag"};
-    for (int emulated = 0; scene_translucent_casters(gpu->scene) > 0 && emulated <= emulate_clamp; emulated++) {
-        render_program *p = &r->transmit[emulated];
-        if (!render_program_load(p, transmit_files, 2, emulated ? clamp_defines : NULL))
-            return false;
-        p->both_sides = true;
-        r->transmit_offset[emulated] = map_offset_uniforms_of(p->id, emulated);
-    }
-    if (r->transmit[0].id)
+    if (scene_translucent_casters(gpu->scene) > 0) {
+        for (int emulated = 0; emulated <= emulate_clamp; emulated++) {
+            render_program *p = &r->transmit[emulated];
+            if (!render_program_load(p, transmit_files, 2, emulated ? clamp_defines : NULL))
+                return false;
+            p->both_sides = true;
+            r->transmit_offset[emulated] = map_offset_uniforms_of(p->id, emulated);
+        }
         glGenFramebuffers(1, &r->transmit_framebuffer);
+    }
     glGenVertexArrays(1, &r->screen_vao);
     glGenVertexArrays(1, &r->overlay_vao);
     glBindVertexArray(r->overlay_vao);
