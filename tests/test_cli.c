@@ -357,6 +357,31 @@ static void test_headless_run_refuses_fullscreen(void **state) {
                 "planar: --fullscreen: this run is headless");
 }
 
+/* A technique that draws an area light hard says so once in three frames,
+ * giving the radius in the scene's unit: a sun's in degrees, a point
+ * light's in the scene's units. */
+static void test_area_light_drawn_hard_said_once_with_its_unit(void **state) {
+    (void)state;
+    static const struct {
+        const char *program, *flags, *scene, *said;
+    } cases[] = {
+        {"planar", "", "soft_sun", "planar: light 0 is an area light (radius 3 degrees), drawn hard from its centre"},
+        {"volumes", "", "soft_sun", "volumes: light 0 is an area light (radius 3 degrees), drawn hard"},
+        {"shadowmap", "--soft off", "soft_sun",
+         "shadow maps: light 0 is an area light (radius 3 degrees), drawn hard"},
+        {"projective", "", "soft_sun", "projective: light 0 is an area light (radius 3 degrees): drawn hard"},
+        {"projective", "", "soft_table", "projective: light 0 is an area light (radius 0.8): drawn hard"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char args[512];
+        snprintf(args, sizeof args,
+                 "%s --backend egl --size 64x36 --frames 3 --scene assets/scenes/%s.json --screenshot "
+                 "out/test/area_light_hard.png",
+                 cases[i].flags, cases[i].scene);
+        expect_line(cases[i].program, args, 0, cases[i].said);
+    }
+}
+
 /* The gallery's list of scenes ends at the next flag: --technique there
  * picks the one technique to show; a flag before any scene is exit 2. */
 static void test_gallery_takes_flags_after_its_scenes(void **state) {
@@ -436,6 +461,7 @@ int main(void) {
         cmocka_unit_test(test_headless_run_says_nothing_written),
         cmocka_unit_test(test_long_work_progress),
         cmocka_unit_test(test_headless_run_refuses_fullscreen),
+        cmocka_unit_test(test_area_light_drawn_hard_said_once_with_its_unit),
         cmocka_unit_test(test_gallery_takes_flags_after_its_scenes),
         cmocka_unit_test(test_record_writes_a_video),
         cmocka_unit_test(test_gl_error_in_any_technique_fails),

@@ -747,6 +747,10 @@ void scene_receivers_bounds(const scene *s, float min[3], float max[3]) {
     }
 }
 
+const char *scene_light_radius_unit(const scene_light *l) {
+    return l->type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "";
+}
+
 float scene_light_range_window(const scene_light *l, float distance) {
     if (!(l->range > 0))
         return 1;

@@ -250,6 +250,10 @@ void scene_print_models(const scene *s, const char *file);
  * none), so without a range it is 1 everywhere. shaders/lighting.glsl
  * computes the same; the light reaches where this is above 0. */
 float scene_light_range_window(const scene_light *l, float distance);
+/* The unit an area light's radius is given in, as words follow a number:
+ * " degrees" for a sun's angular radius, "" for a point or spot light's
+ * (the scene's units). */
+const char *scene_light_radius_unit(const scene_light *l);
 
 /* Whether light l can reach any point of the box lo..hi: within its range
  * (a sphere) and inside a spot's outer cone; a directional light, or a

@@ -13,8 +13,8 @@ int soft_visibility_samples(const char *technique, int choice, const scene_light
                             scene_light_set *warned) {
     int samples = atoi(soft_visibility_sample_counts[choice]);
     if (light->radius > 0 && samples == 1 && !(*warned & SCENE_LIGHT_BIT(l)))
-        fprintf(stderr, "%s: light %d is an area light (radius %g), drawn hard from its centre: --light-samples\n",
-                technique, l, light->radius);
+        fprintf(stderr, "%s: light %d is an area light (radius %g%s), drawn hard from its centre: --light-samples\n",
+                technique, l, light->radius, scene_light_radius_unit(light));
     *warned |= light->radius > 0 && samples == 1 ? SCENE_LIGHT_BIT(l) : 0;
     return light->radius > 0 ? samples : 1;
 }

@@ -969,8 +969,7 @@ static int app_hud_text(char *text, size_t size, int frame, bool defaults_left_o
     for (int l = 0; !compact && l < s->light_count; l++)
         if (s->lights[l].radius > 0)
             APP_HUD("light %d: area light, radius %g%s: %s\n", l, s->lights[l].radius,
-                    s->lights[l].type == SCENE_LIGHT_DIRECTIONAL ? " degrees" : "",
-                    technique_area_light_text(t, &s->lights[l], l));
+                    scene_light_radius_unit(&s->lights[l]), technique_area_light_text(t, &s->lights[l], l));
     if (n < (int)size)
         n += app_settings_text(t, defaults_left_out, text + n, size - (size_t)n);
     if (!compact && app.hud_counters && n < (int)size) {

@@ -14,9 +14,9 @@ bool technique_host_start(technique_host *h, const technique *t, render_scene *g
     for (int l = 0; l < s->light_count && !t->area_light && !t->cost_floor; l++)
         if (s->lights[l].radius > 0)
             fprintf(stderr,
-                    "%s: light %d is an area light (radius %g): drawn hard, from its centre: %s draws no soft "
+                    "%s: light %d is an area light (radius %g%s): drawn hard, from its centre: %s draws no soft "
                     "shadows\n",
-                    t->name, l, s->lights[l].radius, t->name);
+                    t->name, l, s->lights[l].radius, scene_light_radius_unit(&s->lights[l]), t->name);
     int translucent = scene_translucent_casters(s);
     if (translucent && !t->cost_floor && !t->coloured_shadows)
         fprintf(stderr,

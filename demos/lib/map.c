@@ -1332,8 +1332,9 @@ static bool map_soft_unit(map_renderer *r, const map_settings *settings, const s
         return true;
     bool moments = map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE;
     if (light->radius > 0 && !moments && !(r->soft_warned & SCENE_LIGHT_BIT(l)))
-        fprintf(stderr, "shadow maps: light %d is an area light (radius %g), drawn hard from its centre: %s\n", l,
-                light->radius, soft ? "this GL has too few texture units for its soft filter" : "--soft off");
+        fprintf(stderr, "shadow maps: light %d is an area light (radius %g%s), drawn hard from its centre: %s\n", l,
+                light->radius, scene_light_radius_unit(light),
+                soft ? "this GL has too few texture units for its soft filter" : "--soft off");
     r->soft_warned |= light->radius > 0 && !moments ? SCENE_LIGHT_BIT(l) : 0;
     return false;
 }
