@@ -81,7 +81,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test test-all web web-bench bench stress ruler report readme-report scenes update-golden test-technique readme-flags format clean help
+.PHONY: all deps demo gallery test test-all web web-bench device-bundle bench stress ruler report readme-report scenes update-golden test-technique readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -102,6 +102,7 @@ help:
 	@echo "make format         rewrite the C files in .clang-format's style (make test checks it)"
 	@echo "make web            out/web/: every technique in a web page (Emscripten, WebGL 2)"
 	@echo "make web-bench      the page's frame time in headless Chromium: out/web/bench.md"
+	@echo "make device-bundle  out/device/: build/bench and its libraries, for tests/device_bench.sh on a GPU machine"
 	@echo "make clean          remove build/, build-san/ and out/"
 
 DEB_PACKAGES := build-essential pkg-config python3-glad libglfw3-dev libegl-dev \
@@ -241,6 +242,20 @@ ruler: $(BUILD)/raytrace $(BUILD)/shadowdiff
 # The whole matrix of the tests, then the runs, one after the other so
 # that none is timed under another's load, then the pages and the README's
 # figures from them.
+# build/bench and the shared libraries it links, but the C runtime's
+# (glibc's, libstdc++ and libgcc_s: a GPU driver loaded beside them needs
+# the machine's own), in one archive: tests/device_bench.sh runs it on a
+# machine without the build's packages.
+DEVICE_BUNDLE_KEEP_HOST := /(libc|libm|libpthread|libdl|librt|libstdc\+\+|libgcc_s|ld-linux-x86-64)\.so
+device-bundle: $(BUILD)/bench
+	rm -rf out/device && mkdir -p out/device/lib
+	cp $(BUILD)/bench out/device/
+	ldd $(BUILD)/bench | awk '$$3 ~ /^\// {print $$3}' | grep -v -E '$(DEVICE_BUNDLE_KEEP_HOST)' | \
+		xargs -I{} cp -L {} out/device/lib/
+	tar -C out/device -cJf out/device/bench.tar.xz bench lib
+	rm -rf out/device/bench out/device/lib
+	@ls -l out/device/bench.tar.xz
+
 report: $(PROGRAMS)
 	@$(MAKE) --no-print-directory test-all
 	@$(MAKE) --no-print-directory bench
