@@ -24,8 +24,11 @@ unpacked=build-device
 rm -rf "$unpacked" && mkdir -p "$unpacked"
 tar -xJf "$bundle" -C "$unpacked"
 export LD_LIBRARY_PATH="$PWD/$unpacked/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-nvidia_egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -f "$nvidia_egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$nvidia_egl"
+nvidia=/usr/local/nvidia
+if [ -f "$nvidia/share/glvnd/egl_vendor.d/10_nvidia.json" ]; then
+    export __EGL_VENDOR_LIBRARY_FILENAMES="$nvidia/share/glvnd/egl_vendor.d/10_nvidia.json"
+    export LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$nvidia/lib64:$nvidia/lib"
+fi
 
 bench() {
     local name=$1
