@@ -103,27 +103,31 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     // rays decide, as the reference's (which needs no horizon's share).
     // A hard light's map lit by the full bias is sure only where it is
     // lit by MAP_SURE_LIT_BIAS_SHARE of it too: the depth bounds ask that
-    // of p_near at once, the kernel in a second read.
+    // of p_near at once, the kernel in a read of its own, first. Where
+    // p_near lies on p's ray from the light (a sun's rays are parallel; a
+    // positional light's pass through both without a normal offset) it
+    // reads the same taps as p, each against a depth further from the
+    // light, so lit there is lit at p: only a pixel p_near does not find
+    // lit reads p.
     bool lit = unshadowed != vec3(0.0);
     bool sure_lit_read = !soft && map_rays == MAP_RAYS_UNSURE;
     vec3 p_near = v_position + to_light * (MAP_SURE_LIT_BIAS_SHARE * u_constant_bias * texel) + normal_offset;
     float depth_bias = max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y);
-    float visibility = map_visibility(map, raw, bounds, i, p, sure_lit_read ? p_near : p, depth_bias, soft, moments,
-                                      texel, needed && map_rays != MAP_RAYS_ALL);
-    // PCSS's search taps can miss a thin caster: an area light's pixel
-    // it calls lit is sure only where no caster's box is near its cone.
-    bool unsure = lit && visibility > 0.0 && visibility < 1.0;
-    // The second read, at p_near: a marking pass makes it too for a light
-    // its kernel reads (not its depth bounds), so that its marks hold every
-    // pixel the tracing pass would trace. Unconditional: its screen
-    // derivatives need uniform control flow.
-    if (sure_lit_read && !(map_mark_rays && map_bounds_light(i))) {
-        // Only a pixel the full bias calls lit asks it again (needed
-        // false reads no map, and says 1).
-        float near_visibility = map_visibility(map, raw, bounds, i, p_near, p_near, depth_bias, soft, moments, texel,
-                                               needed && lit && visibility == 1.0);
-        unsure = unsure || (lit && visibility == 1.0 && near_visibility < 1.0);
-    }
+    // The read at p_near: a marking pass makes it too for a light its
+    // kernel reads (not its depth bounds), so that its marks hold every
+    // pixel the tracing pass would trace. Both reads are unconditional:
+    // their screen derivatives need uniform control flow (needed false
+    // reads no map, and says 1).
+    bool near_read = sure_lit_read && !(map_mark_rays && map_bounds_light(i));
+    float near_visibility = 1.0;
+    if (near_read)
+        near_visibility =
+            map_visibility(map, raw, bounds, i, p_near, p_near, depth_bias, soft, moments, texel, needed && lit);
+    bool near_decides = near_read && (u_normal_offset == 0.0 || lights_position[i].w == 0.0);
+    float visibility =
+        map_visibility(map, raw, bounds, i, p, sure_lit_read ? p_near : p, depth_bias, soft, moments, texel,
+                       needed && map_rays != MAP_RAYS_ALL && !(near_decides && near_visibility == 1.0));
+    bool unsure = lit && ((visibility > 0.0 && visibility < 1.0) || (visibility == 1.0 && near_visibility < 1.0));
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
         unsure = !map_light_cone_clear(i);
     // A translucent caster's shadow is the texel's, hard and unfiltered:
