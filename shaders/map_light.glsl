@@ -115,9 +115,9 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     float depth_bias = max(u_depth_bias.x * (1.0 - cos_theta), u_depth_bias.y);
     // The read at p_near: a marking pass makes it too for a light its
     // kernel reads (not its depth bounds), so that its marks hold every
-    // pixel the tracing pass would trace. Both reads are unconditional:
-    // their screen derivatives need uniform control flow (needed false
-    // reads no map, and says 1).
+    // pixel the tracing pass would trace. Both reads stand in uniform
+    // control flow (near_read is every pixel's), which their screen
+    // derivatives need; needed false reads no map, and says 1.
     bool near_read = sure_lit_read && !(map_mark_rays && map_bounds_light(i));
     float near_visibility = 1.0;
     if (near_read)
@@ -128,6 +128,8 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
         map_visibility(map, raw, bounds, i, p, sure_lit_read ? p_near : p, depth_bias, soft, moments, texel,
                        needed && map_rays != MAP_RAYS_ALL && !(near_decides && near_visibility == 1.0));
     bool unsure = lit && ((visibility > 0.0 && visibility < 1.0) || (visibility == 1.0 && near_visibility < 1.0));
+    // PCSS's search taps can miss a thin caster: an area light's pixel
+    // it calls lit is sure only where no caster's box is near its cone.
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
         unsure = !map_light_cone_clear(i);
     // A translucent caster's shadow is the texel's, hard and unfiltered:
