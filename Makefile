@@ -246,7 +246,7 @@ ruler: $(BUILD)/raytrace $(BUILD)/shadowdiff
 # (glibc's, libstdc++ and libgcc_s: a GPU driver loaded beside them needs
 # the machine's own), in one archive: tests/device_bench.sh runs it on a
 # machine without the build's packages.
-DEVICE_BUNDLE_KEEP_HOST := /(libc|libm|libpthread|libdl|librt|libstdc\+\+|libgcc_s|ld-linux-x86-64)\.so
+DEVICE_BUNDLE_KEEP_HOST := /(libc|libm|libpthread|libdl|librt|libstdc\+\+|libgcc_s)\.so
 device-bundle: $(BUILD)/bench
 	rm -rf out/device && mkdir -p out/device/lib
 	cp $(BUILD)/bench out/device/
