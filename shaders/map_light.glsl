@@ -107,8 +107,9 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     // p_near lies on p's ray from the light (a sun's rays are parallel; a
     // positional light's pass through both without a normal offset) it
     // reads the same taps as p, each against a depth further from the
-    // light, so lit there is lit at p: only a pixel p_near does not find
-    // lit reads p.
+    // light, so a tap lit there is lit at p: p_near wholly lit makes the
+    // pixel sure and lit, partly lit unsure (p is lit at least as much),
+    // and only a pixel p_near finds wholly in shadow reads p.
     bool lit = unshadowed != vec3(0.0);
     bool sure_lit_read = !soft && map_rays == MAP_RAYS_UNSURE;
     vec3 p_near = v_position + to_light * (MAP_SURE_LIT_BIAS_SHARE * u_constant_bias * texel) + normal_offset;
@@ -126,7 +127,7 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     bool near_decides = near_read && (u_normal_offset == 0.0 || lights_position[i].w == 0.0);
     float visibility =
         map_visibility(map, raw, bounds, i, p, sure_lit_read ? p_near : p, depth_bias, soft, moments, texel,
-                       needed && map_rays != MAP_RAYS_ALL && !(near_decides && near_visibility == 1.0));
+                       needed && map_rays != MAP_RAYS_ALL && !(near_decides && near_visibility > 0.0));
     bool unsure = lit && ((visibility > 0.0 && visibility < 1.0) || (visibility == 1.0 && near_visibility < 1.0));
     // PCSS's search taps can miss a thin caster: an area light's pixel
     // it calls lit is sure only where no caster's box is near its cone.
