@@ -81,7 +81,7 @@ STANDARD_SCENES := assets/scenes/simple.json assets/scenes/bunny.json assets/sce
 # Scenes with area lights: their truth has penumbrae.
 SOFT_SCENES := assets/scenes/soft_table.json assets/scenes/soft_sun.json
 
-.PHONY: all deps demo gallery test test-all web web-bench device-bundle bench stress ruler report readme-report scenes update-golden test-technique readme-flags format clean help
+.PHONY: all deps demo gallery test test-all sanitizer-quick web web-bench device-bundle bench stress ruler report readme-report scenes update-golden test-technique readme-flags format clean help
 all: $(PROGRAMS) $(TESTS)
 
 help:
@@ -150,9 +150,14 @@ test: $(PROGRAMS) $(TESTS)
 ifeq ($(SANITIZE),1)
 	@tests/run.sh $(BUILD)
 else
-	@$(MAKE) --no-print-directory SANITIZE=1 all
+	@$(MAKE) --no-print-directory SANITIZE=1 $(if $(filter all,$(TEST_TIER)),all,sanitizer-quick)
 	@tests/run.sh $(BUILD) build-san
 endif
+
+# The programs, and the tests the quick tier runs under the sanitizers
+# (tests/sanitizer_quick.list): the sanitizer build's share of make test.
+SANITIZER_QUICK := $(shell grep -v '^\#' tests/sanitizer_quick.list)
+sanitizer-quick: $(PROGRAMS) $(addprefix $(BUILD)/tests/,$(SANITIZER_QUICK))
 
 # The standard scenes' whole sweeps, nothing moving, the lights moving, and
 # the camera moving (its yaw, and dolly's walk: where each row's shimmer is

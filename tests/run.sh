@@ -9,9 +9,10 @@
 # Two tiers. TEST_TIER=all (make test-all) is the whole matrix: every
 # program of each build, sweeps whole in the plain pass. Otherwise (make
 # test) the quick tier: the plain pass takes every fourth case of each
-# sweep (support_sweep_stride), and the sanitizer pass runs SANITIZER_QUICK
-# alone: the tests without GL and a representative subset of the render
-# tests (each technique against the reference, bad input, tours).
+# sweep (support_sweep_stride), and the sanitizer pass runs only the
+# programs tests/sanitizer_quick.list names: the tests without GL and a
+# representative subset of the render tests (each technique against the
+# reference, bad input, tours).
 #
 # References are traced once a run, under out/run/references
 # (TEST_REFERENCES; support_measure), whichever program needs one first.
@@ -103,14 +104,9 @@ if [ "${1:-}" = --job ]; then
     exit 0
 fi
 
-# The quick tier's sanitizer pass: every test without a GL context, then
-# the render tests that reach each technique (test_accuracy), the flags'
-# and files' errors (test_cli, test_gltf's broken files) and the tours
-# (test_tour, test_mirror).
-SANITIZER_QUICK="test_flags test_path test_scene test_mesh test_motion test_shadowdiff test_warp \
-    test_volume_mesh test_volume_count_bound test_wedge_area test_raytrace test_raytrace_invariance test_median_interval test_plot \
-    test_bvh test_truth test_report test_scenegen test_map_layers test_map_atlas test_hud \
-    test_accuracy test_cli test_tour test_mirror test_gltf test_texture test_scene_pack"
+# The quick tier's sanitizer pass: the programs tests/sanitizer_quick.list
+# names.
+SANITIZER_QUICK=$(grep -v '^#' tests/sanitizer_quick.list | tr '\n' ' ')
 export TEST_TIER=${TEST_TIER:-quick}
 # The quick tier's longest tests, longest first: they start first, so
 # that the cores end together (longest processing time first) rather
