@@ -257,6 +257,58 @@ static void test_relevant_casters(void **state) {
 
 /* ---- measuring ---- */
 
+/* A grid over a rectangle of the picture (a light's reach) casts
+ * WARP_RECT_SAMPLES_X x WARP_RECT_SAMPLES_Y rays, each through the
+ * rectangle, against the boxes warp_boxes_seen_in keeps for it: those
+ * whose screen bounds meet it and those that reach behind the eye, never
+ * one beside it. A camera 10 units above a plane looking straight down,
+ * a box on the plane at each side of the picture and one above the eye. */
+static void test_rectangle_grid_and_its_boxes(void **state) {
+    (void)state;
+    enum { WIDTH = 640, HEIGHT = 360, RIGHT = 2, ABOVE = 3 };
+    scene_object objects[] = {
+        {.receives = true, .mesh = {.bounds_min = {-100, 0, -100}, .bounds_max = {100, 0, 100}}},
+        {.receives = true, .mesh = {.bounds_min = {-9, 0, -0.5f}, .bounds_max = {-8, 1, 0.5f}}},
+        {.receives = true, .mesh = {.bounds_min = {8, 0, -0.5f}, .bounds_max = {9, 1, 0.5f}}},
+        {.receives = true, .mesh = {.bounds_min = {-1, 20, -1}, .bounds_max = {1, 21, 1}}},
+    };
+    enum { OBJECTS = sizeof objects / sizeof *objects };
+    for (int i = 0; i < OBJECTS; i++)
+        glm_mat4_identity(objects[i].model);
+    scene s = {.objects = objects, .object_count = OBJECTS};
+    scene_camera camera = {.position = {0, 10, 0},
+                           .target = {0, 0, 0},
+                           .up = {0, 0, -1},
+                           .fov_deg = 60,
+                           .near_plane = 0.1f,
+                           .far_plane = 100};
+    camera_view view;
+    camera_view_compute(&camera, (float)WIDTH / HEIGHT, &view);
+    float boxes[OBJECTS][2][3], seen[OBJECTS][2][3];
+    assert_int_equal(warp_receiver_boxes(&s, boxes), OBJECTS);
+    const float right[4] = {0.5f, -0.5f, 1, 0.5f};
+    int kept = warp_boxes_seen_in((const float(*)[2][3])boxes, OBJECTS, &view, right, seen);
+    assert_int_equal(kept, 3); /* the ground, the right box, the one above the eye; in their order */
+    assert_memory_equal(seen[0], boxes[0], sizeof seen[0]);
+    assert_memory_equal(seen[1], boxes[RIGHT], sizeof seen[1]);
+    assert_memory_equal(seen[2], boxes[ABOVE], sizeof seen[2]);
+    warp_sample hits[WARP_SAMPLE_COUNT];
+    int n = warp_samples((const float(*)[2][3])seen, kept, &view, WIDTH, HEIGHT, right, hits);
+    assert_int_equal(n, WARP_RECT_SAMPLES_X * WARP_RECT_SAMPLES_Y);
+    bool on_box = false;
+    for (int i = 0; i < n; i++) {
+        vec4 clip;
+        glm_mat4_mulv(view.view_projection, (vec4){hits[i].position[0], hits[i].position[1], hits[i].position[2], 1},
+                      clip);
+        for (int k = 0; k < 2; k++) {
+            float ndc = clip[k] / clip[3];
+            assert_true(ndc > right[k] && ndc < right[k + 2]);
+        }
+        on_box = on_box || hits[i].position[1] > 0.5f; /* the right box's top, a unit up */
+    }
+    assert_true(on_box);
+}
+
 /* A camera 10 units above a plane looking straight down sees it at one
  * scale everywhere: height / (2 * 10 tan 30 deg) pixels per unit. An
  * orthographic map of 2L units over S texels has texels 2L / S units
@@ -278,7 +330,11 @@ static void test_texel_size_of_orthographic_map_on_plane(void **state) {
     camera_view_compute(&camera, (float)WIDTH / HEIGHT, &view);
     scene_light light = directional(0, -1, 0);
     warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
-    int n = warp_samples_lit(hits, warp_samples(&s, &view, WIDTH, HEIGHT, hits), &light, samples, NULL);
+    float boxes[1][2][3];
+    int box_count = warp_receiver_boxes(&s, boxes);
+    int n =
+        warp_samples_lit(hits, warp_samples((const float(*)[2][3])boxes, box_count, &view, WIDTH, HEIGHT, NULL, hits),
+                         &light, samples, NULL);
     assert_int_equal(n, WARP_SAMPLE_COUNT);
     mat4 map_view, projection, map;
     frustum_look_along((vec3){0, 2 * height, 0}, light.direction, map_view);
@@ -305,6 +361,7 @@ int main(void) {
         cmocka_unit_test(test_uniform_fit_contains_receivers),
         cmocka_unit_test(test_relevant_casters),
         cmocka_unit_test(test_texel_size_of_orthographic_map_on_plane),
+        cmocka_unit_test(test_rectangle_grid_and_its_boxes),
     };
     return cmocka_run_group_tests(tests, street_setup, NULL);
 }

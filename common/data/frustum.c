@@ -19,6 +19,24 @@ void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]) 
         glm_vec3_copy((vec3){c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]}, out[c]);
 }
 
+bool frustum_box_ndc_bounds(const mat4 view_projection, const vec3 lo, const vec3 hi, vec2 ndc_lo, vec2 ndc_hi) {
+    vec3 corners[8];
+    frustum_box_corners(lo, hi, corners);
+    ndc_lo[0] = ndc_lo[1] = INFINITY;
+    ndc_hi[0] = ndc_hi[1] = -INFINITY;
+    for (int c = 0; c < 8; c++) {
+        vec4 clip;
+        glm_mat4_mulv((vec4 *)view_projection, (vec4){corners[c][0], corners[c][1], corners[c][2], 1}, clip);
+        if (clip[3] <= FRUSTUM_FLOAT_TOLERANCE)
+            return false;
+        for (int k = 0; k < 2; k++) {
+            ndc_lo[k] = fminf(ndc_lo[k], clip[k] / clip[3]);
+            ndc_hi[k] = fmaxf(ndc_hi[k], clip[k] / clip[3]);
+        }
+    }
+    return true;
+}
+
 bool frustum_contains(const mat4 view_projection, const float p[3]) {
     vec4 clip, h = {p[0], p[1], p[2], 1};
     glm_mat4_mulv((vec4 *)view_projection, h, clip);

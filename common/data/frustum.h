@@ -36,6 +36,11 @@ void frustum_plane_projection(const float plane[4], const float point[4], float 
 void frustum_near_plane(const mat4 view_projection, float out[4]);
 /* Corners of the box lo..hi. */
 void frustum_box_corners(const float lo[3], const float hi[3], float out[8][3]);
+/* The box lo..hi's bounds on screen: the least and greatest NDC x and y of
+ * its corners under `view_projection`, unclamped. False where a corner
+ * lies at or behind the eye's plane (clip w <= FRUSTUM_FLOAT_TOLERANCE):
+ * the box may then reach any pixel. */
+bool frustum_box_ndc_bounds(const mat4 view_projection, const vec3 lo, const vec3 hi, vec2 ndc_lo, vec2 ndc_hi);
 /* Corners of the frustum of `view_projection`. A camera's are in its
  * camera_view (camera.h): inverting a float projection loses a far plane
  * more than about 1e7 nears away. */

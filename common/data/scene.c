@@ -792,14 +792,25 @@ bool scene_light_reaches_box(const scene_light *l, const float lo[3], const floa
     return axis_angle <= glm_rad(l->outer_angle_deg) + subtended + SCENE_REACH_ANGLE_MARGIN_RAD;
 }
 
-bool scene_light_clip_to_range(const scene_light *l, float lo[3], float hi[3]) {
-    bool ranged = l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0;
+bool scene_light_range_box(const scene_light *l, float lo[3], float hi[3]) {
+    if (l->type == SCENE_LIGHT_DIRECTIONAL || !(l->range > 0))
+        return false;
     float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
+    for (int k = 0; k < 3; k++) {
+        lo[k] = l->position[k] - range;
+        hi[k] = l->position[k] + range;
+    }
+    return true;
+}
+
+bool scene_light_clip_to_range(const scene_light *l, float lo[3], float hi[3]) {
+    float range_lo[3], range_hi[3];
+    bool ranged = scene_light_range_box(l, range_lo, range_hi);
     bool empty = false;
     for (int k = 0; k < 3; k++) {
         if (ranged) {
-            lo[k] = fmaxf(lo[k], l->position[k] - range);
-            hi[k] = fminf(hi[k], l->position[k] + range);
+            lo[k] = fmaxf(lo[k], range_lo[k]);
+            hi[k] = fminf(hi[k], range_hi[k]);
         }
         empty = empty || !(lo[k] <= hi[k]);
     }

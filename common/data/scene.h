@@ -262,6 +262,10 @@ const char *scene_light_radius_unit(const scene_light *l);
  * 0 from the light, in lighting.glsl as here, so skipping the light there
  * changes no pixel. */
 bool scene_light_reaches_box(const scene_light *l, const float lo[3], const float hi[3]);
+/* The cube around light l's range (grown by SCENE_REACH_RANGE_MARGIN),
+ * beyond which it adds exactly 0; false for a light without one (a sun,
+ * or no range). */
+bool scene_light_range_box(const scene_light *l, float lo[3], float hi[3]);
 /* Clips the box lo..hi to the cube around light l's range (grown by
  * SCENE_REACH_RANGE_MARGIN; unchanged for a light without one): what lies
  * beyond gets exactly 0 from it. False when nothing is left. */

@@ -187,26 +187,11 @@ static void technique_host_range_rect(const scene_light *l, const camera_view *v
     rect[0] = rect[1] = 0;
     rect[2] = width;
     rect[3] = height;
-    if (!bounded || l->type == SCENE_LIGHT_DIRECTIONAL || !(l->range > 0))
+    vec3 lo, hi;
+    vec2 ndc_lo, ndc_hi;
+    if (!bounded || !scene_light_range_box(l, lo, hi) ||
+        !frustum_box_ndc_bounds(view->view_projection, lo, hi, ndc_lo, ndc_hi))
         return;
-    float range = l->range * (1 + SCENE_REACH_RANGE_MARGIN);
-    vec3 lo, hi, corners[8];
-    for (int k = 0; k < 3; k++) {
-        lo[k] = l->position[k] - range;
-        hi[k] = l->position[k] + range;
-    }
-    frustum_box_corners(lo, hi, corners);
-    vec2 ndc_lo = {INFINITY, INFINITY}, ndc_hi = {-INFINITY, -INFINITY};
-    for (int c = 0; c < 8; c++) {
-        vec4 clip;
-        glm_mat4_mulv((vec4 *)view->view_projection, (vec4){corners[c][0], corners[c][1], corners[c][2], 1}, clip);
-        if (clip[3] <= FRUSTUM_FLOAT_TOLERANCE)
-            return;
-        for (int k = 0; k < 2; k++) {
-            ndc_lo[k] = fminf(ndc_lo[k], clip[k] / clip[3]);
-            ndc_hi[k] = fmaxf(ndc_hi[k], clip[k] / clip[3]);
-        }
-    }
     int x0 = glm_max(technique_host_pixel(ndc_lo[0], width, false), 0);
     int y0 = glm_max(technique_host_pixel(ndc_lo[1], height, false), 0);
     int x1 = glm_min(technique_host_pixel(ndc_hi[0], width, true), width);

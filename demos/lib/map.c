@@ -94,8 +94,11 @@ static float map_setting(float value, float fallback) { return value != 0 ? valu
 
 int map_settings_size(const map_settings *settings) { return atoi(map_sizes[settings->map_size]); }
 
-int map_auto_size(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int grazing) {
-    return grazing > n ? MAP_AUTO_MAX_SIZE : map_auto_size_or(m, light, samples, n, MAP_AUTO_FALLBACK_SIZE);
+int map_auto_size(const map_light *m, const scene_light *light, map_samples samples) {
+    if (samples.grazing > samples.count)
+        return MAP_AUTO_MAX_SIZE;
+    return map_auto_size_or(m, light, samples.samples, samples.count,
+                            samples.range_sampled ? MAP_AUTO_MIN_SIZE : MAP_AUTO_FALLBACK_SIZE);
 }
 
 int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n,
@@ -122,15 +125,62 @@ int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sa
     return size;
 }
 
+/* Where on screen (NDC x0, y0, x1, y1, within the picture) light l may
+ * light a receiver: the bounds of the receivers' boxes clipped to the
+ * cube around its range, of those it reaches (a spot's cone). False
+ * without a range, where none is left, or where one reaches behind the
+ * eye. */
+static bool map_reach_ndc(const map_renderer *r, const scene_light *light, const camera_view *view, float ndc[4]) {
+    if (light->type == SCENE_LIGHT_DIRECTIONAL || !(light->range > 0))
+        return false;
+    ndc[0] = ndc[1] = INFINITY;
+    ndc[2] = ndc[3] = -INFINITY;
+    for (int i = 0; i < r->picture_box_count; i++) {
+        vec3 lo, hi;
+        vec2 box_lo, box_hi;
+        glm_vec3_copy(r->picture_boxes[i][0], lo);
+        glm_vec3_copy(r->picture_boxes[i][1], hi);
+        if (!scene_light_clip_to_range(light, lo, hi) || !scene_light_reaches_box(light, lo, hi))
+            continue;
+        if (!frustum_box_ndc_bounds(view->view_projection, lo, hi, box_lo, box_hi))
+            return false;
+        for (int k = 0; k < 2; k++) {
+            ndc[k] = fminf(ndc[k], box_lo[k]);
+            ndc[k + 2] = fmaxf(ndc[k + 2], box_hi[k]);
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        ndc[k] = fmaxf(ndc[k], -1);
+        ndc[k + 2] = fminf(ndc[k + 2], 1);
+    }
+    return ndc[0] < ndc[2] && ndc[1] < ndc[3];
+}
+
 map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l) {
     const scene *s = f->gpu->scene;
-    if (r->hit_count < 0)
-        r->hit_count = warp_samples(s, f->view, f->width, f->height, r->hits);
+    const scene_light *light = &s->lights[l];
+    if (r->hit_count < 0) {
+        r->picture_box_count = warp_receiver_boxes(s, r->picture_boxes);
+        r->hit_count = warp_samples((const float(*)[2][3])r->picture_boxes, r->picture_box_count, f->view, f->width,
+                                    f->height, NULL, r->hits);
+    }
     if (r->sample_light != l) {
-        r->sample_count = warp_samples_lit(r->hits, r->hit_count, &s->lights[l], r->samples, &r->grazing_count);
+        r->sample_count = warp_samples_lit(r->hits, r->hit_count, light, r->samples, &r->grazing_count);
+        /* No sample of the picture's grid in the light's reach (a far
+         * lamp's pool, between its rows): a grid again, over where on
+         * screen it may light a receiver alone. */
+        float ndc[4];
+        r->range_sampled = r->sample_count == 0 && r->grazing_count == 0 && map_reach_ndc(r, light, f->view, ndc);
+        if (r->range_sampled) {
+            int boxes = warp_boxes_seen_in((const float(*)[2][3])r->picture_boxes, r->picture_box_count, f->view, ndc,
+                                           r->range_boxes);
+            int n = warp_samples((const float(*)[2][3])r->range_boxes, boxes, f->view, f->width, f->height, ndc,
+                                 r->range_hits);
+            r->sample_count = warp_samples_lit(r->range_hits, n, light, r->samples, &r->grazing_count);
+        }
         r->sample_light = l;
     }
-    return (map_samples){r->samples, r->sample_count, r->grazing_count};
+    return (map_samples){r->samples, r->sample_count, r->grazing_count, r->range_sampled};
 }
 
 /* The fitted map m at another size: only the texel's world size follows
@@ -876,13 +926,16 @@ static bool map_alloc_sets(map_renderer *r, int object_count) {
     size_t n = (size_t)object_count, layers = MAP_MAX_LAYERS;
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
+    r->picture_boxes = calloc(n + 1, sizeof *r->picture_boxes);
+    r->range_boxes = calloc(n + 1, sizeof *r->range_boxes);
     r->unmapped = calloc(n + 1, sizeof *r->unmapped);
     r->waiting_needed = calloc(SCENE_MAX_LIGHTS * layers * n + 1, sizeof *r->waiting_needed);
     r->closed = calloc(n + 1, sizeof *r->closed);
     r->masks = malloc(layers * sizeof *r->masks);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes || !r->unmapped || !r->waiting_needed || !r->closed || !r->masks) {
+    if (!sets || !r->receiver_boxes || !r->picture_boxes || !r->range_boxes || !r->unmapped || !r->waiting_needed ||
+        !r->closed || !r->masks) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
     }
@@ -1027,6 +1080,8 @@ void map_destroy(map_renderer *r) {
     map_atlas_destroy(&r->atlas);
     free(r->needed[0]);
     free(r->receiver_boxes);
+    free(r->picture_boxes);
+    free(r->range_boxes);
     free(r->unmapped);
     free(r->waiting_needed);
     free(r->closed);
@@ -1444,7 +1499,7 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
     if (!size && m->kind != MAP_ARRAY) {
         map_samples samples = map_light_samples(r, fit_frame, l);
         map_resize(m, m->tiled ? map_tiles_size(r, m, &s->lights[l], samples)
-                               : map_auto_size(m, &s->lights[l], samples.samples, samples.count, samples.grazing));
+                               : map_auto_size(m, &s->lights[l], samples));
     }
     if (map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE)
         map_moments_fit(s, l, m, !size);

@@ -67,9 +67,14 @@
  * wide a picture, half the size (test_shadowmap's test_map_size_from_need
  * checks the sizes it picks). A cube map has one size for its six faces
  * (one cube texture, so that kernels filter across face edges): the mean
- * is over the samples on all faces. FALLBACK where nothing can be measured
- * (no sample of the pixel grid lands on a receiver the light reaches). An
- * array map is not sized here: its fit sets its size. */
+ * is over the samples on all faces. A light with a range whose reach no
+ * sample of the grid lands in (a far lamp's pool, between its rows) is
+ * measured on the same grid cast over the screen bounds of its range
+ * alone, so that a light small on screen gets a map sized by its share
+ * of it, and MIN where that grid finds nothing it lights. FALLBACK where
+ * nothing can be measured otherwise (no sample of the picture's grid
+ * lands on a receiver a light without a range reaches). An array map is
+ * not sized here: its fit sets its size. */
 #define MAP_AUTO_MIN_SIZE 256
 #define MAP_AUTO_MAX_SIZE 4096
 #define MAP_AUTO_TEXEL_PIXELS 1.0f
@@ -684,6 +689,10 @@ bool map_rays_counted(const map_renderer *r, technique_rays *out);
 typedef struct map_samples {
     const warp_sample *samples;
     int count, grazing;
+    /* The picture's grid found nothing in the light's reach and was cast
+     * again over the screen bounds of its range alone: these are that
+     * grid's (none: the light lights nothing seen larger than its cells). */
+    bool range_sampled;
 } map_samples;
 map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l);
 /* The map's size in the settings; 0: auto. */

@@ -269,10 +269,15 @@ struct map_renderer {
     bool *closed;                  /* per object: a caster whose mesh is closed */
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
      * frame), and those light sample_light is measured at
-     * (warp_samples_lit): map_light_samples. */
-    warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT];
+     * (warp_samples_lit): map_light_samples; the receivers' boxes it casts
+     * to (picture_box_count of them), and range_hits, the grid cast over
+     * one light's range alone, to the range_boxes seen there. */
+    float (*picture_boxes)[2][3], (*range_boxes)[2][3];
+    int picture_box_count;
+    warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT], range_hits[WARP_SAMPLE_COUNT];
     int hit_count, sample_count, sample_light;
-    int grazing_count; /* of sample_light's: the hits left out as edge-on to it */
+    bool range_sampled; /* sample_light's are range_hits' */
+    int grazing_count;  /* of sample_light's: the hits left out as edge-on to it */
     /* This frame's, from map_begin on: the target the camera pass
      * draws into, and which lights have a map. */
     int target_framebuffer, viewport[4];
@@ -416,8 +421,11 @@ void map_render_depth(map_renderer *r, const map_settings *settings, const rende
  * (else a sun a fraction of a degree above the ground, measured on the
  * casters' sides alone, gets a small map and every long shadow edge on
  * the ground follows one texel's rounding: test_shadowmap's stress
- * extremes, tests/data/shadowmap_grazing_sun.json). */
-int map_auto_size(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int grazing);
+ * extremes, tests/data/shadowmap_grazing_sun.json). Where none is
+ * measured: FALLBACK, or MIN where the samples are those of the grid
+ * over the light's range (samples.range_sampled), which found nothing it
+ * lights larger than a cell of that grid on screen. */
+int map_auto_size(const map_light *m, const scene_light *light, map_samples samples);
 /* The same rule without the grazing case: `unmeasured` where no sample
  * is measured. */
 int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int unmeasured);

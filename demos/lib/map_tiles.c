@@ -12,7 +12,7 @@ bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene
 }
 
 int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples) {
-    int size = map_auto_size(m, light, samples.samples, samples.count, samples.grazing);
+    int size = map_auto_size(m, light, samples);
     for (int face = 0; face < MAP_CUBE_FACES; face++) {
         int n = 0;
         for (int i = 0; i < samples.count; i++)

@@ -46,6 +46,11 @@
 #define WARP_SAMPLES_X 32
 #define WARP_SAMPLES_Y 18
 #define WARP_SAMPLE_COUNT (WARP_SAMPLES_X * WARP_SAMPLES_Y)
+/* The grid over a rectangle of the picture (warp_samples' ndc): one
+ * light's reach, a share of the picture, needs fewer cells to find where
+ * it lights (at most WARP_SAMPLE_COUNT). */
+#define WARP_RECT_SAMPLES_X 8
+#define WARP_RECT_SAMPLES_Y 8
 /* Faces within 3 degrees of edge-on to the light (sin 3 degrees) are not
  * measured: every map's texels on them are of unbounded length. */
 #define WARP_GRAZING_SINE 0.0523f
@@ -126,11 +131,24 @@ bool warp_psm(const camera_view *c, const scene_light *l, const warp_view *v, co
 bool warp_lispsm(const scene_light *l, const warp_view *v, const float (*points)[3], int receiver_count, int n,
                  float (*scratch)[3], warp_result *out);
 
-/* Rays through the pixel grid of a width x height picture of `view` to the
- * boxes of the receivers of `s`; each hit is a sample, with the pixel area
- * on the face it hit. `out` holds WARP_SAMPLE_COUNT; returns how many. The
- * same for every light: a frame takes them once. */
-int warp_samples(const scene *s, const camera_view *view, int width, int height, warp_sample *out);
+/* The world boxes (lo, hi) of the receivers of `s`, in its order, into
+ * `out` (room for its objects): how many. */
+int warp_receiver_boxes(const scene *s, float (*out)[2][3]);
+/* Of the n boxes, in their order, those a ray of `view` through the NDC
+ * rectangle `ndc` (x0, y0, x1, y1) may enter: whose screen bounds meet
+ * it, or that reach behind the eye. Into `out` (room for n): how many. */
+int warp_boxes_seen_in(const float (*boxes)[2][3], int n, const camera_view *view, const float ndc[4],
+                       float (*out)[2][3]);
+/* Rays through the pixel grid of a width x height picture of `view` to
+ * the receivers' boxes (warp_receiver_boxes); each hit is a sample, with
+ * the pixel area on the face it hit. The grid spans the picture, or with
+ * `ndc` (x0, y0, x1, y1 in NDC, within -1..1) that rectangle of it alone,
+ * WARP_RECT_SAMPLES_X x WARP_RECT_SAMPLES_Y cells (the boxes
+ * warp_boxes_seen_in keeps for it are enough). `out` holds
+ * WARP_SAMPLE_COUNT; returns how many. The picture's are the same for
+ * every light: a frame takes them once. */
+int warp_samples(const float (*boxes)[2][3], int box_count, const camera_view *view, int width, int height,
+                 const float ndc[4], warp_sample *out);
 /* Those of the n samples that light l's map is measured at, into `out`
  * (room for n); returns how many. Faces nearly edge-on to l
  * (WARP_GRAZING_SINE) are left out (how many, in *grazing unless NULL),

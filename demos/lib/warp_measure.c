@@ -1,7 +1,9 @@
 /* warp: measuring a map where the camera looks, the dp/ds of the papers
  * (see warp.h). */
 #include <math.h>
+#include <string.h>
 
+#include "frustum.h"
 #include "warp.h"
 
 /* A sample counts as inside a map within this fraction of w beyond its
@@ -31,16 +33,42 @@ static const vec4 *warp_map_matrix(const mat4 *layer_view_projection, int layer_
     return layer_view_projection[layer_count == 1 ? 0 : warp_cube_face(light, p)];
 }
 
-/* Where the ray eye + t direction (t in 0..1) first enters a receiver's
- * box: t (INFINITY if none) and the axis of the face it enters by. */
-static float warp_hit_receivers(const scene *s, const float eye[3], const vec3 direction, int *hit_axis) {
-    float best = INFINITY;
-    *hit_axis = 0;
+/* Screen bounds this far (NDC) apart still count as meeting: rounding. */
+#define WARP_NDC_MARGIN 1e-3f
+
+int warp_receiver_boxes(const scene *s, float (*out)[2][3]) {
+    int n = 0;
     for (int i = 0; i < s->object_count; i++) {
-        vec3 lo, hi;
         if (!s->objects[i].receives)
             continue;
-        scene_object_world_bounds(&s->objects[i], lo, hi);
+        scene_object_world_bounds(&s->objects[i], out[n][0], out[n][1]);
+        n++;
+    }
+    return n;
+}
+
+int warp_boxes_seen_in(const float (*boxes)[2][3], int n, const camera_view *view, const float ndc[4],
+                       float (*out)[2][3]) {
+    int kept = 0;
+    for (int i = 0; i < n; i++) {
+        vec2 lo, hi;
+        if (frustum_box_ndc_bounds(view->view_projection, boxes[i][0], boxes[i][1], lo, hi) &&
+            (lo[0] > ndc[2] + WARP_NDC_MARGIN || hi[0] < ndc[0] - WARP_NDC_MARGIN ||
+             lo[1] > ndc[3] + WARP_NDC_MARGIN || hi[1] < ndc[1] - WARP_NDC_MARGIN))
+            continue;
+        memcpy(out[kept++], boxes[i], sizeof *out);
+    }
+    return kept;
+}
+
+/* Where the ray eye + t direction (t in 0..1) first enters one of the
+ * boxes: t (INFINITY if none) and the axis of the face it enters by. */
+static float warp_hit_boxes(const float (*boxes)[2][3], int n, const float eye[3], const vec3 direction,
+                            int *hit_axis) {
+    float best = INFINITY;
+    *hit_axis = 0;
+    for (int i = 0; i < n; i++) {
+        const float *lo = boxes[i][0], *hi = boxes[i][1];
         float t0 = 0, t1 = best;
         int axis = -1;
         for (int k = 0; k < 3; k++) {
@@ -70,17 +98,24 @@ static void warp_far_point(const camera_view *view, float x, float y, vec3 out) 
     glm_vec3_lerp(bottom, top, v, out);
 }
 
-int warp_samples(const scene *s, const camera_view *view, int width, int height, warp_sample *out) {
+int warp_samples(const float (*boxes)[2][3], int box_count, const camera_view *view, int width, int height,
+                 const float ndc[4], warp_sample *out) {
     float screen_half[2] = {0.5f * (float)width, 0.5f * (float)height};
     int n = 0;
-    for (int sy = 0; sy < WARP_SAMPLES_Y; sy++) {
-        for (int sx = 0; sx < WARP_SAMPLES_X; sx++) {
+    int columns = ndc ? WARP_RECT_SAMPLES_X : WARP_SAMPLES_X, rows = ndc ? WARP_RECT_SAMPLES_Y : WARP_SAMPLES_Y;
+    for (int sy = 0; sy < rows; sy++) {
+        for (int sx = 0; sx < columns; sx++) {
             vec3 direction, far_point;
-            warp_far_point(view, (2.0f * (float)sx + 1) / WARP_SAMPLES_X - 1,
-                           (2.0f * (float)sy + 1) / WARP_SAMPLES_Y - 1, far_point);
+            /* The cell's centre in -1..1, then in ndc. */
+            float x = (2.0f * (float)sx + 1) / (float)columns - 1, y = (2.0f * (float)sy + 1) / (float)rows - 1;
+            if (ndc) {
+                x = 0.5f * (ndc[0] + ndc[2]) + 0.5f * (ndc[2] - ndc[0]) * x;
+                y = 0.5f * (ndc[1] + ndc[3]) + 0.5f * (ndc[3] - ndc[1]) * y;
+            }
+            warp_far_point(view, x, y, far_point);
             glm_vec3_sub(far_point, (float *)view->eye, direction);
             int best_axis;
-            float best = warp_hit_receivers(s, view->eye, direction, &best_axis);
+            float best = warp_hit_boxes(boxes, box_count, view->eye, direction, &best_axis);
             if (!isfinite(best) || best > 1)
                 continue;
             warp_sample *sample = &out[n];
