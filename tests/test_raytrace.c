@@ -38,6 +38,11 @@
  * penumbra: the penumbra measured loses under a pixel at its two ends. */
 #define AREA_LIGHT_SAMPLES 256
 #define PENUMBRA_TOLERANCE_PIXELS 2.0
+/* test_cone_skip_changes_nothing's frames: small, and samples enough to
+ * stratify the penumbrae. */
+#define CONE_SKIP_WIDTH 240
+#define CONE_SKIP_HEIGHT 135
+#define CONE_SKIP_SAMPLES 64
 
 static void load(scene *s, const char *path) { assert_true(scene_load(s, path)); }
 
@@ -411,6 +416,21 @@ static void test_grazing_sun_matches_double_trace(void **state) {
     scene_free(&s);
 }
 
+/* Every array of two dumps the same, byte for byte; frees both. */
+static void assert_dumps_equal_then_free(dump_frame *a, dump_frame *b) {
+    assert_int_equal(a->width, b->width);
+    assert_int_equal(a->height, b->height);
+    size_t n = (size_t)a->width * (size_t)a->height;
+    assert_memory_equal(a->visibility, b->visibility, n * sizeof *a->visibility);
+    assert_memory_equal(a->depth, b->depth, n * sizeof *a->depth);
+    assert_memory_equal(a->normal, b->normal, 3 * n * sizeof *a->normal);
+    assert_memory_equal(a->position, b->position, 3 * n * sizeof *a->position);
+    assert_memory_equal(a->ids, b->ids, n * sizeof *a->ids);
+    assert_memory_equal(a->color, b->color, 4 * n);
+    dump_frame_free(a);
+    dump_frame_free(b);
+}
+
 static void test_render_is_deterministic(void **state) {
     (void)state;
     scene s;
@@ -419,16 +439,30 @@ static void test_render_is_deterministic(void **state) {
     s.lights[0].radius = AREA_LIGHT_RADIUS; /* the jittered samples too */
     render(&s, 100, 80, 10, &a);
     render(&s, 100, 80, 10, &b);
-    size_t n = (size_t)a.width * (size_t)a.height;
-    assert_memory_equal(a.visibility, b.visibility, n * sizeof *a.visibility);
-    assert_memory_equal(a.depth, b.depth, n * sizeof *a.depth);
-    assert_memory_equal(a.normal, b.normal, 3 * n * sizeof *a.normal);
-    assert_memory_equal(a.position, b.position, 3 * n * sizeof *a.position);
-    assert_memory_equal(a.ids, b.ids, n * sizeof *a.ids);
-    assert_memory_equal(a.color, b.color, 4 * n);
-    dump_frame_free(&a);
-    dump_frame_free(&b);
+    assert_dumps_equal_then_free(&a, &b);
     scene_free(&s);
+}
+
+/* An area light's samples are not traced where the cone to its disk
+ * meets no caster's box (raytrace.c, raytrace_cone_clear): the dumps are
+ * those of every sample traced, byte for byte, under an area point light
+ * over a table (soft_table), an area sun (soft_sun) and an area point
+ * light through stained glass (gltf_glass_area). */
+static void test_cone_skip_changes_nothing(void **state) {
+    (void)state;
+    static const char *const scenes[] = {"assets/scenes/soft_table.json", "assets/scenes/soft_sun.json",
+                                         "tests/data/gltf_glass_area.json"};
+    for (size_t k = 0; k < sizeof scenes / sizeof *scenes; k++) {
+        scene s;
+        dump_frame skipping, every;
+        load(&s, scenes[k]);
+        const raytrace_settings skip = {.light_samples = CONE_SKIP_SAMPLES},
+                                all = {.light_samples = CONE_SKIP_SAMPLES, .trace_every_sample = true};
+        assert_true(raytrace_render(&s, CONE_SKIP_WIDTH, CONE_SKIP_HEIGHT, 0, &skip, &skipping));
+        assert_true(raytrace_render(&s, CONE_SKIP_WIDTH, CONE_SKIP_HEIGHT, 0, &all, &every));
+        assert_dumps_equal_then_free(&skipping, &every);
+        scene_free(&s);
+    }
 }
 
 static bool all_finite(const float *values, size_t count) {
@@ -470,6 +504,7 @@ int main(void) {
         cmocka_unit_test(test_spot_cone_respected),
         cmocka_unit_test(test_grazing_sun_matches_double_trace),
         cmocka_unit_test(test_render_is_deterministic),
+        cmocka_unit_test(test_cone_skip_changes_nothing),
         cmocka_unit_test(test_standard_scenes_are_sane),
     };
     return cmocka_run_group_tests_name("ray-traced reference", tests, NULL, NULL);

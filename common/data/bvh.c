@@ -353,6 +353,13 @@ static bool bvh_cone_box(const bvh_ray *r, const float lo[4], const float hi[4],
     return near <= far;
 }
 
+float bvh_reach(const bvh *b) {
+    float reach = 0;
+    for (int k = 0; k < 3 && b->node_count > 0; k++)
+        reach += fmaxf(b->nodes[0][0][k] * b->nodes[0][0][k], b->nodes[0][1][k] * b->nodes[0][1][k]);
+    return sqrtf(reach);
+}
+
 bool bvh_cone_clear(const bvh *b, const float origin[3], const float dir[3], float t_max, float end_radius) {
     if (b->node_count == 0)
         return true;

@@ -92,5 +92,9 @@ bool bvh_occluded(const bvh *b, const float origin[3], const float dir[3], float
  * the segment crosses it, meets the segment. Conservative: false where a
  * box is merely near. The same tests as the shader's. */
 bool bvh_cone_clear(const bvh *b, const float origin[3], const float dir[3], float t_max, float end_radius);
+/* How far from the world's origin the casters' box reaches: its farthest
+ * corner's distance (0 without casters). A ray to a sun from p meets
+ * every caster it can within |p| + this. */
+float bvh_reach(const bvh *b);
 
 #endif

@@ -121,10 +121,7 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
     glBindTexture(GL_TEXTURE_2D, 0);
     free(data);
     g->node_count = b->node_count;
-    g->reach = 0;
-    for (int k = 0; k < 3 && b->node_count > 0; k++)
-        g->reach += fmaxf(b->nodes[0][0][k] * b->nodes[0][0][k], b->nodes[0][1][k] * b->nodes[0][1][k]);
-    g->reach = sqrtf(g->reach);
+    g->reach = bvh_reach(b);
     return true;
 }
 

@@ -45,6 +45,7 @@
  * sphere elsewhere changes no tolerance. */
 #include "raytrace.h"
 
+#include "bvh.h"
 #include <cglm/cglm.h>
 #include <embree3/rtcore.h>
 #include <float.h>
@@ -104,6 +105,12 @@ struct raytrace_tracer {
     unsigned char background[4];
     bool verbose;
     double build_ms, trace_ms; /* for verbose */
+    /* Where the scene has an area light: its casters' hierarchy in world
+     * units (bvh.h), whose cone test spares an area light's samples where
+     * none can be blocked (raytrace_cone_clear). */
+    bvh casters;
+    float casters_reach;     /* bvh_reach */
+    bool trace_every_sample; /* raytrace_settings' */
 };
 
 /* The visible surface at a pixel. */
@@ -565,6 +572,43 @@ static void raytrace_transmitted(raytrace_shadow_context *c, const raytrace_hit 
         glm_vec3_zero(out);
 }
 
+/* Whether no caster can block any of area light l's samples at the hit
+ * (t->casters' bvh_cone_clear): the cone from the point to the light's
+ * disk holds every sample's ray (a sun's, as far as the casters reach),
+ * and it is widened by RAYTRACE_SURFACE_ULPS of the point's coordinates
+ * and the cone's length everywhere along it, from its apex on, for the
+ * rounding between the casters' world coordinates and Embree's from the
+ * eye: its apex moves back along the axis until its radius at the point
+ * is that margin, and its end radius grows by twice it. Every sample then
+ * gets through, the mean the samples would give exactly, so they are not
+ * traced: a skip that changes no pixel. */
+static bool raytrace_cone_clear(const raytrace_tracer *t, const raytrace_hit *h, const raytrace_light *l) {
+    if (t->casters.node_count == 0)
+        return true;
+    float origin[3], axis[3], length, radius;
+    for (int k = 0; k < 3; k++)
+        origin[k] = (float)(t->eye[k] + h->position[k]);
+    if (l->light->type == SCENE_LIGHT_DIRECTIONAL) {
+        length = glm_vec3_norm(origin) + t->casters_reach;
+        glm_vec3_negate_to((float *)l->light->direction, axis);
+        glm_vec3_normalize(axis);
+        radius = length * tanf(glm_rad(l->light->radius));
+    } else {
+        glm_vec3_sub((float *)l->light->position, origin, axis);
+        length = glm_vec3_norm(axis);
+        glm_vec3_normalize(axis);
+        radius = l->light->radius;
+    }
+    float margin = RAYTRACE_SURFACE_ULPS * FLT_EPSILON *
+                   (fmaxf(fmaxf(fabsf(origin[0]), fabsf(origin[1])), fabsf(origin[2])) + length);
+    float back = margin * length / (radius + margin), apex[3], dir[3];
+    for (int k = 0; k < 3; k++) {
+        apex[k] = origin[k] - back * axis[k];
+        dir[k] = (length + back) * axis[k];
+    }
+    return length > margin && isfinite(back) && bvh_cone_clear(&t->casters, apex, dir, 1, radius + 2 * margin);
+}
+
 /* Fraction of light `index` reaching the hit, per channel: one ray for a
  * hard light, light_samples for an area light (area_light.h) spread about
  * `to_light`, the unit vector to its centre (0 at the centre itself). */
@@ -578,6 +622,10 @@ static void raytrace_visibility(raytrace_shadow_context *c, const raytrace_hit *
     }
     if (l->light->radius == 0) {
         raytrace_transmitted(c, h, l->position, out);
+        return;
+    }
+    if (!t->trace_every_sample && raytrace_cone_clear(t, h, l)) {
+        glm_vec3_one(out);
         return;
     }
     vec3 axis;
@@ -743,6 +791,7 @@ static void raytrace_release(raytrace_tracer *t) {
     if (t->device)
         rtcReleaseDevice(t->device);
     free(t->objects);
+    bvh_free(&t->casters);
     free(t);
 }
 
@@ -763,6 +812,7 @@ raytrace_tracer *raytrace_begin(const scene *s, int width, int height, int light
         .width = width,
         .height = height,
         .verbose = settings->verbose,
+        .trace_every_sample = settings->trace_every_sample,
         .background = {raytrace_unorm8(SCENE_BACKGROUND_R), raytrace_unorm8(SCENE_BACKGROUND_G),
                        raytrace_unorm8(SCENE_BACKGROUND_B), 255},
     };
@@ -784,10 +834,16 @@ raytrace_tracer *raytrace_begin(const scene *s, int width, int height, int light
     t->objects = calloc((size_t)s->object_count, sizeof *t->objects);
     if (!t->objects)
         fprintf(stderr, "raytrace: out of memory for %d objects\n", s->object_count);
-    if (!t->objects || !raytrace_build_scene(t) || !dump_frame_create(out, width, height, s, light_index)) {
+    bool area_light = false;
+    for (int l = 0; l < s->light_count; l++)
+        area_light = area_light || s->lights[l].radius > 0;
+    bool cone_test = area_light && !t->trace_every_sample;
+    if (!t->objects || !raytrace_build_scene(t) || (cone_test && !bvh_build(s, "raytrace", &t->casters)) ||
+        !dump_frame_create(out, width, height, s, light_index)) {
         raytrace_release(t);
         return NULL;
     }
+    t->casters_reach = bvh_reach(&t->casters);
     t->build_ms = (omp_get_wtime() - start) * 1e3;
     return t;
 }

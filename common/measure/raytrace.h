@@ -28,6 +28,10 @@
 
 typedef struct raytrace_settings {
     int light_samples; /* per pixel and area light; 0 means RAYTRACE_DEFAULT_LIGHT_SAMPLES */
+    /* An area light's samples traced at every pixel, even where no caster
+     * can block them (raytrace.c, raytrace_cone_clear): the same dumps,
+     * slower; the tests' proof that the skip changes nothing. */
+    bool trace_every_sample;
     bool verbose;
     const char *scene_name; /* for messages (the scene file); NULL: "the scene" */
     /* NULL, or called with the rows done so far after each of
