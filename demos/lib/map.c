@@ -98,7 +98,7 @@ int map_auto_size(const map_light *m, const scene_light *light, map_samples samp
     if (samples.grazing > samples.count)
         return MAP_AUTO_MAX_SIZE;
     return map_auto_size_or(m, light, samples.samples, samples.count,
-                            samples.range_sampled ? MAP_AUTO_MIN_SIZE : MAP_AUTO_FALLBACK_SIZE);
+                            samples.reach_sampled ? MAP_AUTO_MIN_SIZE : MAP_AUTO_FALLBACK_SIZE);
 }
 
 int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n,
@@ -170,17 +170,17 @@ map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l) 
          * lamp's pool, between its rows): a grid again, over where on
          * screen it may light a receiver alone. */
         float ndc[4];
-        r->range_sampled = r->sample_count == 0 && r->grazing_count == 0 && map_reach_ndc(r, light, f->view, ndc);
-        if (r->range_sampled) {
+        r->reach_sampled = r->sample_count == 0 && r->grazing_count == 0 && map_reach_ndc(r, light, f->view, ndc);
+        if (r->reach_sampled) {
             int boxes = warp_boxes_seen_in((const float(*)[2][3])r->picture_boxes, r->picture_box_count, f->view, ndc,
-                                           r->range_boxes);
-            int n = warp_samples((const float(*)[2][3])r->range_boxes, boxes, f->view, f->width, f->height, ndc,
-                                 r->range_hits);
-            r->sample_count = warp_samples_lit(r->range_hits, n, light, r->samples, &r->grazing_count);
+                                           r->reach_boxes);
+            int n = warp_samples((const float(*)[2][3])r->reach_boxes, boxes, f->view, f->width, f->height, ndc,
+                                 r->reach_hits);
+            r->sample_count = warp_samples_lit(r->reach_hits, n, light, r->samples, &r->grazing_count);
         }
         r->sample_light = l;
     }
-    return (map_samples){r->samples, r->sample_count, r->grazing_count, r->range_sampled};
+    return (map_samples){r->samples, r->sample_count, r->grazing_count, r->reach_sampled};
 }
 
 /* The fitted map m at another size: only the texel's world size follows
@@ -927,14 +927,14 @@ static bool map_alloc_sets(map_renderer *r, int object_count) {
     bool *sets = calloc((SCENE_MAX_LIGHTS + 1) * layers * n + 1, sizeof(bool));
     r->receiver_boxes = calloc(n + 1, sizeof *r->receiver_boxes);
     r->picture_boxes = calloc(n + 1, sizeof *r->picture_boxes);
-    r->range_boxes = calloc(n + 1, sizeof *r->range_boxes);
+    r->reach_boxes = calloc(n + 1, sizeof *r->reach_boxes);
     r->unmapped = calloc(n + 1, sizeof *r->unmapped);
     r->waiting_needed = calloc(SCENE_MAX_LIGHTS * layers * n + 1, sizeof *r->waiting_needed);
     r->closed = calloc(n + 1, sizeof *r->closed);
     r->masks = malloc(layers * sizeof *r->masks);
     r->object_count = object_count;
     r->needed[0] = sets; /* what destroy frees */
-    if (!sets || !r->receiver_boxes || !r->picture_boxes || !r->range_boxes || !r->unmapped || !r->waiting_needed ||
+    if (!sets || !r->receiver_boxes || !r->picture_boxes || !r->reach_boxes || !r->unmapped || !r->waiting_needed ||
         !r->closed || !r->masks) {
         fprintf(stderr, "shadow maps: out of memory for %d objects' caster sets\n", object_count);
         return false;
@@ -1081,7 +1081,7 @@ void map_destroy(map_renderer *r) {
     free(r->needed[0]);
     free(r->receiver_boxes);
     free(r->picture_boxes);
-    free(r->range_boxes);
+    free(r->reach_boxes);
     free(r->unmapped);
     free(r->waiting_needed);
     free(r->closed);

@@ -69,9 +69,10 @@
  * (one cube texture, so that kernels filter across face edges): the mean
  * is over the samples on all faces. A light with a range whose reach no
  * sample of the grid lands in (a far lamp's pool, between its rows) is
- * measured on the same grid cast over the screen bounds of its range
- * alone, so that a light small on screen gets a map sized by its share
- * of it, and MIN where that grid finds nothing it lights. FALLBACK where
+ * measured on a WARP_RECT_SAMPLES_X x WARP_RECT_SAMPLES_Y grid over its
+ * reach on screen alone (the bounds of the receivers' boxes clipped to
+ * its range), so that a light small on screen gets a map sized by its
+ * share of it, and MIN where that grid finds nothing it lights. FALLBACK where
  * nothing can be measured otherwise (no sample of the picture's grid
  * lands on a receiver a light without a range reaches). An array map is
  * not sized here: its fit sets its size. */
@@ -689,10 +690,11 @@ bool map_rays_counted(const map_renderer *r, technique_rays *out);
 typedef struct map_samples {
     const warp_sample *samples;
     int count, grazing;
-    /* The picture's grid found nothing in the light's reach and was cast
-     * again over the screen bounds of its range alone: these are that
-     * grid's (none: the light lights nothing seen larger than its cells). */
-    bool range_sampled;
+    /* The picture's grid found nothing in the light's reach, and a grid
+     * was cast over that reach on screen alone (map.c, map_reach_ndc):
+     * these are its samples (none: the light lights nothing seen larger
+     * than its cells). */
+    bool reach_sampled;
 } map_samples;
 map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l);
 /* The map's size in the settings; 0: auto. */

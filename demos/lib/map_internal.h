@@ -270,13 +270,13 @@ struct map_renderer {
     /* Where the camera sees receivers (warp_samples; -1: not cast yet this
      * frame), and those light sample_light is measured at
      * (warp_samples_lit): map_light_samples; the receivers' boxes it casts
-     * to (picture_box_count of them), and range_hits, the grid cast over
-     * one light's range alone, to the range_boxes seen there. */
-    float (*picture_boxes)[2][3], (*range_boxes)[2][3];
+     * to (picture_box_count of them), and reach_hits, the grid cast over
+     * one light's reach on screen alone, to the reach_boxes seen there. */
+    float (*picture_boxes)[2][3], (*reach_boxes)[2][3];
     int picture_box_count;
-    warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT], range_hits[WARP_SAMPLE_COUNT];
+    warp_sample hits[WARP_SAMPLE_COUNT], samples[WARP_SAMPLE_COUNT], reach_hits[WARP_SAMPLE_COUNT];
     int hit_count, sample_count, sample_light;
-    bool range_sampled; /* sample_light's are range_hits' */
+    bool reach_sampled; /* sample_light's are reach_hits' */
     int grazing_count;  /* of sample_light's: the hits left out as edge-on to it */
     /* This frame's, from map_begin on: the target the camera pass
      * draws into, and which lights have a map. */
@@ -423,7 +423,7 @@ void map_render_depth(map_renderer *r, const map_settings *settings, const rende
  * the ground follows one texel's rounding: test_shadowmap's stress
  * extremes, tests/data/shadowmap_grazing_sun.json). Where none is
  * measured: FALLBACK, or MIN where the samples are those of the grid
- * over the light's range (samples.range_sampled), which found nothing it
+ * over the light's reach (samples.reach_sampled), which found nothing it
  * lights larger than a cell of that grid on screen. */
 int map_auto_size(const map_light *m, const scene_light *light, map_samples samples);
 /* The same rule without the grazing case: `unmeasured` where no sample
