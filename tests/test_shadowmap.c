@@ -515,6 +515,10 @@ static void test_map_size_from_need(void **state) {
          * the picture's grid: measured on the grid over its reach, not
          * given the fallback (test_far_lamp_drawn_from_its_small_map). */
         {"shadowmap", FAR_LAMP_SCENE, BENCH_SIZE, "2D map auto: 256,"},
+        /* The same pool behind a post whose face, all the picture's grid
+         * sees in the lamp's reach, is edge-on to it: the pool's grid
+         * decides, not the grazing rule. */
+        {"shadowmap", "tests/data/map_far_lamp_edge_on.json", BENCH_SIZE, "2D map auto: 256,"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char marker[64];

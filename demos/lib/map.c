@@ -106,9 +106,6 @@ int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sa
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
-        if (light->type != SCENE_LIGHT_DIRECTIONAL && light->range > 0 &&
-            glm_vec3_distance((float *)light->position, (float *)samples[i].position) >= light->range)
-            continue;
         float texel =
             warp_sample_texel_pixels(m->layer_view_projection, m->layer_count, m->size, light->position, &samples[i]);
         if (isfinite(texel)) {
@@ -166,11 +163,12 @@ map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l) 
     }
     if (r->sample_light != l) {
         r->sample_count = warp_samples_lit(r->hits, r->hit_count, light, r->samples, &r->grazing_count);
-        /* No sample of the picture's grid in the light's reach (a far
-         * lamp's pool, between its rows): a grid again, over where on
-         * screen it may light a receiver alone. */
+        /* No sample of the picture's grid the light's map is measured at
+         * (a far lamp's pool, between its rows; at most a wall edge-on to
+         * it): a grid again, over where on screen it may light a receiver
+         * alone, whose samples decide the grazing rule too. */
         float ndc[4];
-        r->reach_sampled = r->sample_count == 0 && r->grazing_count == 0 && map_reach_ndc(r, light, f->view, ndc);
+        r->reach_sampled = r->sample_count == 0 && map_reach_ndc(r, light, f->view, ndc);
         if (r->reach_sampled) {
             int boxes = warp_boxes_seen_in((const float(*)[2][3])r->picture_boxes, r->picture_box_count, f->view, ndc,
                                            r->reach_boxes);

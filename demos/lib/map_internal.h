@@ -412,10 +412,10 @@ void map_render_depth(map_renderer *r, const map_settings *settings, const rende
  * light_position, from the samples the light is measured at (see
  * MAP_AUTO_*): a texel's size on screen scales as 1 / size, so the
  * mean at m->size gives the size at which it is TEXEL_PIXELS, rounded up
- * to a power of two. Samples beyond the light's range (it lights nothing
- * there) and outside the map are not measured. Where more of the samples
- * were left out as edge-on to the light (`grazing`, warp_samples_lit)
- * than measured, the faces measured are not where its shadows are seen:
+ * to a power of two, from samples warp_samples_lit kept (none beyond
+ * the light's range); those outside the map are not measured. Where more
+ * of the samples were left out as edge-on to the light (`grazing`) than
+ * kept, the faces measured are not where its shadows are seen:
  * on those faces every texel is unboundedly long and only its width
  * across the light can shrink, so the map takes the most texels, MAX
  * (else a sun a fraction of a degree above the ground, measured on the

@@ -153,7 +153,10 @@ int warp_samples(const float (*boxes)[2][3], int box_count, const camera_view *v
  * (room for n); returns how many. Faces nearly edge-on to l
  * (WARP_GRAZING_SINE) are left out (how many, in *grazing unless NULL),
  * faces turned away count (boxes stand for surfaces that may well face
- * the light), and outside a spot's cone the cone decides, not the map. */
+ * the light), and outside a spot's cone the cone decides, not the map;
+ * beyond a positional light's range it lights nothing: those are
+ * dropped, not counted edge-on (a far lamp's walls seen edge-on do not
+ * make it a grazing light). */
 int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, warp_sample *out, int *grazing);
 /* The cube face point p falls on from `light`: by its major axis, in GL's
  * order (+x -x +y -y +z -z). */

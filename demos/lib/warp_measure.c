@@ -151,6 +151,8 @@ int warp_samples_lit(const warp_sample *samples, int n, const scene_light *l, wa
         if (l->type == SCENE_LIGHT_SPOT && -glm_vec3_dot(to_light, (float *)l->direction) <
                                                cosf(glm_rad(l->outer_angle_deg)) * glm_vec3_norm(to_light))
             continue;
+        if (l->type != SCENE_LIGHT_DIRECTIONAL && l->range > 0 && glm_vec3_norm(to_light) >= l->range)
+            continue;
         if (!(fabsf(glm_vec3_dot((float *)sample->normal, to_light)) > WARP_GRAZING_SINE * glm_vec3_norm(to_light)))
             edge_on++;
         else
