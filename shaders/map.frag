@@ -105,6 +105,11 @@ const bool map_mark_rays = MAP_PASS_MARK_RAYS != 0;
 // search found no blocker (or no filter ran).
 const float MAP_NO_PENUMBRA = -1.0;
 float map_penumbra_estimate = MAP_NO_PENUMBRA;
+// Whether the last soft filter's blocker search leaves the pixel unsure
+// even where the filter's narrower disc is wholly in shadow: some of its
+// taps unblocked (the light's cone partly occluded), or its region
+// clamped short of the cone (MAP_SOFT_MAX_TEXELS: not conservative).
+bool map_soft_search_unsure = false;
 
 #include "bvh_trace.glsl"
 #include "area_light.glsl"

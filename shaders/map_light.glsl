@@ -98,6 +98,7 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
         map_through_closed(i, to_light) ? vec3(0.0) : lighting_unshadowed(i, v_position, n, surface_albedo);
     bool needed = unshadowed != vec3(0.0) || map_show_texel_size;
     map_penumbra_estimate = MAP_NO_PENUMBRA;
+    map_soft_search_unsure = false;
     // Rays (map.h, "Rays"): where the map's filter is unsure (strictly
     // between 0 and 1), or at every pixel without reading the map, shadow
     // rays decide, as the reference's (which needs no horizon's share).
@@ -133,6 +134,12 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
     // it calls lit is sure only where no caster's box is near its cone.
     if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
         unsure = !map_light_cone_clear(i);
+    // The filter's disc is sized by the blockers' mean distance, narrower
+    // than the penumbra where blockers lie at several distances (a leg
+    // before a body): wholly in shadow it is sure only where the blocker
+    // search, over the whole cone, found every tap blocked too.
+    if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 0.0)
+        unsure = map_soft_search_unsure;
     // A translucent caster's shadow is the texel's, hard and unfiltered:
     // with rays, a hard light's pixel within a texel of one is unsure
     // (the rays filter through the panes as the reference's do; an area

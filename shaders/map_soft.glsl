@@ -26,7 +26,9 @@
 //      more of the light from it, so a thin caster standing on the
 //      receiver, whose top and foot both fall in the search, casts the
 //      foot's narrow penumbra where the foot is (at least a texel of gap:
-//      nearer is not resolved);
+//      nearer is not resolved); an umbra is sure only where every tap
+//      of a search not clamped short of the cone is blocked
+//      (map_soft_search_unsure: the hybrid traces the rest);
 //   2. the penumbra by similar triangles: a disc of radius R (world) at
 //      the light, a blocker at distance d_b, the receiver at d_r: a
 //      penumbra of radius R (d_r - d_b) / d_b on the receiver; a sun of
@@ -47,9 +49,10 @@ float map_soft_filter(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, float texel_w
     mat2 rotation = mat2(cos(a), sin(a), -sin(a), cos(a));
     float d_r = map_soft_distance(raw, i, map_reference_depth(raw, vec2(0.0)));
     // 1. The blocker search, over the light's cone cut at the near plane.
-    float search = map_soft_texels(map_penumbra_world(i, d_r, map_soft_distance(raw, i, 0.0)),
-                                          texel_world) / unit;
+    float cone_world = map_penumbra_world(i, d_r, map_soft_distance(raw, i, 0.0));
+    float search = map_soft_texels(cone_world, texel_world) / unit;
     float blocker_distance = 0.0, blocker_weight = 0.0;
+    int blocker_count = 0;
     for (int k = 0; k < MAP_SOFT_SEARCH_TAPS; k++) {
         vec2 offset = map_vogel_tap(k, MAP_SOFT_SEARCH_TAPS, rotation) * search;
         float depth = map_raw_read(raw, offset).r;
@@ -58,8 +61,11 @@ float map_soft_filter(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, int i, float texel_w
             float weight = 1.0 / max(d_r - distance, texel_world);
             blocker_distance += weight * distance;
             blocker_weight += weight;
+            blocker_count++;
         }
     }
+    map_soft_search_unsure =
+        blocker_count < MAP_SOFT_SEARCH_TAPS || cone_world > float(MAP_SOFT_MAX_TEXELS) * texel_world;
     if (blocker_weight == 0.0)
         return 1.0;
     // 2. The penumbra's radius from the blockers' weighted distance.

@@ -3,8 +3,8 @@
  * model's: the map's sure pixels are right (no pixel it decides alone
  * disagrees with the reference), the rays make the picture exact where the
  * map alone is not, and --rays all, every pixel traced, is the reference's
- * picture. Area lights, on the soft scenes and three real models under a
- * point light, a sun and a spot (tests/data/hybrid_soft_*.json): each class of
+ * picture. Area lights, on the soft scenes and four real models under
+ * point lights, a sun and a spot (tests/data/hybrid_soft_*.json): each class of
  * pixels within the goals, the rays taking the reference's own samples.
  * Each case prints its figures. */
 #include <setjmp.h>
@@ -37,12 +37,14 @@ _Static_assert(MAP_RAY_DEFAULT_SAMPLES == RAYTRACE_DEFAULT_LIGHT_SAMPLES,
 
 /* The quick tier takes the first HYBRID_QUICK_SOFT_SCENES: a table of
  * thin legs and a real model under a sun (each area light's rays trace
- * its reference's 256 samples; the whole tier takes all five, the last a
- * skinned figure whose head, where the file puts it, floats over its neck,
- * under a spot). */
-static const char *const hybrid_soft_scenes[] = {"assets/scenes/soft_table.json", "tests/data/hybrid_soft_wuson.json",
-                                                 "assets/scenes/soft_sun.json", "tests/data/hybrid_soft_spider.json",
-                                                 "tests/data/hybrid_soft_bcn.json"};
+ * its reference's 256 samples; the whole tier takes them all: a skinned
+ * figure whose head, where the file puts it, floats over its neck, under
+ * a spot; a walker whose near legs shadow its far ones, seen from knee
+ * height, whose umbra a filter sized by the blockers' mean distance
+ * finds too wide: map.h, "Rays"). */
+static const char *const hybrid_soft_scenes[] = {
+    "assets/scenes/soft_table.json",      "tests/data/hybrid_soft_wuson.json", "assets/scenes/soft_sun.json",
+    "tests/data/hybrid_soft_spider.json", "tests/data/hybrid_soft_bcn.json",   "tests/data/hybrid_soft_walker.json"};
 #define HYBRID_QUICK_SOFT_SCENES 2
 
 /* Hard lights of every kind, and scenes no setting was tuned on. */

@@ -267,7 +267,11 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * kernel's reach; a blocker found but the light not wholly hidden), and
  * where a hard light's kernel says 1 but not with a share of the
  * constant bias (shaders/map.glsl, MAP_SURE_LIT_BIAS_SHARE: a caster
- * within the bias of its receiver), and where a hard light's
+ * within the bias of its receiver), where PCSS says 0 but its blocker
+ * search found a tap unblocked or was clamped short of the light's cone
+ * (MAP_SOFT_MAX_TEXELS: the filter's disc, sized by the blockers' mean
+ * distance, is narrower than the penumbra where blockers lie at several
+ * distances), and where a hard light's
  * transmittance map holds a pane within a texel of the point (its
  * coloured edge is the texel's). A ray's light is filtered through the
  * translucent casters it crosses (bvh_trace.glsl's bvh_transmittance).
