@@ -160,6 +160,14 @@ static const char *street_frame_text(const char *marker) {
     return support_verbose_line("shadows", LAMPS, COMPARED_FLAGS " --frames 1", marker);
 }
 
+/* The state line (its first line alone) of one frame of the street with
+ * `flags`, into line (size bytes). */
+static void street_state_line(const char *flags, char *line, size_t size) {
+    const char *at = support_verbose_line("shadows", LAMPS, flags, "hud: light ");
+    assert_non_null(at);
+    snprintf(line, size, "%.*s", (int)strcspn(at, "\n"), at);
+}
+
 /* The caster culling leaves out the visible pixels a lamp cannot reach,
  * and cube faces no visible pixel reads are not drawn (map_cull.c): they
  * change no pixel of lamp 27's or of the picture, and some faces are
@@ -178,10 +186,8 @@ static void test_skips_change_nothing_on_the_street(void **state) {
  * that share), smaller than MAP_ATLAS_SIZE in the small frame. */
 static void test_state_line_describes_a_mapped_lamp(void **state) {
     (void)state;
-    const char *at = street_frame_text("hud: light ");
-    assert_non_null(at);
     char line[512];
-    snprintf(line, sizeof line, "%.*s", (int)strcspn(at, "\n"), at);
+    street_state_line(COMPARED_FLAGS " --frames 1", line, sizeof line);
     assert_non_null(strstr(line, ": cube map in atlas tiles auto: "));
     assert_null(strstr(line, "atlas full"));
     assert_null(strstr(line, "light 0:"));
@@ -191,6 +197,21 @@ static void test_state_line_describes_a_mapped_lamp(void **state) {
     printf("    the street at 320x180: atlas %d, %d %% held\n", side, held);
     assert_true(side < MAP_ATLAS_SIZE);
     assert_true(held <= 100 / MAP_ATLAS_ROOM && held > 100 / (4 * MAP_ATLAS_ROOM));
+}
+
+/* Lamps that ask more than the largest atlas holds share it (map.h,
+ * "Atlas"): every face of the street's lamps asked at 1024 texels is
+ * more than MAP_ATLAS_SIZE's square over MAP_ATLAS_ROOM, so the tiles are
+ * halved to fit, and no lamp is left a cube map of its own beside a full
+ * atlas (memory the atlas does not bound: lamps without a range, each
+ * asking the largest tiles, took gigabytes so). */
+static void test_lamps_past_the_atlas_share_it(void **state) {
+    (void)state;
+    char line[512];
+    street_state_line("--technique shadowmap --size 320x180 --map-size 1024", line, sizeof line);
+    printf("    %s\n", line);
+    assert_non_null(strstr(line, ", tiles halved "));
+    assert_null(strstr(line, "atlas full"));
 }
 
 /* The map overlay shows the atlas (map.h, "Atlas"): where no tile is
@@ -273,6 +294,7 @@ int main(void) {
         cmocka_unit_test(test_picture_sums_every_group),
         cmocka_unit_test(test_skips_change_nothing_on_the_street),
         cmocka_unit_test(test_state_line_describes_a_mapped_lamp),
+        cmocka_unit_test(test_lamps_past_the_atlas_share_it),
         cmocka_unit_test(test_atlas_tiles_follow_the_camera),
         cmocka_unit_test(test_atlas_in_glsl_es),
         cmocka_unit_test(test_atlas_overlay_shows_no_stray_memory),

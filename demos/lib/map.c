@@ -1437,7 +1437,7 @@ void map_begin(map_renderer *r, const technique_frame *f) {
     glGetIntegerv(GL_VIEWPORT, r->viewport);
     memset(r->fitted, 0, sizeof r->fitted);
     r->atlas_planned = false;
-    r->tiles_short = r->tiles_refused = 0;
+    r->tiles_short = r->tiles_refused = r->tiles_halved = 0;
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     /* The camera's depth first: the shading pass tests against it (each
      * visible pixel filtered once), and the maps cull the casters it
@@ -1470,6 +1470,8 @@ void map_describe_storage(const map_renderer *r, int l, char *out, size_t size) 
     if (m->tiled && n < size)
         n += (size_t)snprintf(out + n, size - n, ", atlas %d: %.0f %% held", r->atlas.size,
                               100.0 * (double)map_atlas_used(&r->atlas) / ((double)r->atlas.size * r->atlas.size));
+    if (r->tiles_halved && n < size)
+        n += (size_t)snprintf(out + n, size - n, ", tiles halved %d times to fit", r->tiles_halved);
     if ((r->tiles_short || r->tiles_refused) && n < size)
         n += (size_t)snprintf(out + n, size - n, ", atlas full: %d faces smaller, %d lights in cube maps",
                               r->tiles_short, r->tiles_refused);

@@ -510,9 +510,13 @@ enum {
  * (map_auto_size), but a face on which that rule measures no sample of
  * the screen takes MAP_ATLAS_MIN_TILE (each face sized by its own few
  * samples alone misclassified more of lamps_64's pixels than the light's
- * one size); with --map-size N every face is N. A face keeps its tile
+ * one size); with --map-size N every face asks N. A face keeps its tile
  * while it is asked at the same size, so that the cache holds across
- * frames. Where the atlas has no room left, a face takes the largest
+ * frames. Where the lights ask more than the largest atlas holds
+ * (MAP_ATLAS_ROOM times over), every tile above MAP_ATLAS_MIN_TILE is
+ * halved until they fit, so that memory stays the atlas's however many
+ * lights ask how much (the state line says how many times). Where the
+ * atlas has no room left, a face takes the largest
  * free tile below its size, and a light with no room at all for a face
  * keeps a cube map of its own: both counted in the state line
  * (map_describe_storage). Faces out of view get tiles too, but are not

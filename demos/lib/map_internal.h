@@ -331,6 +331,7 @@ struct map_renderer {
     bool atlas_planned; /* map_atlas_plan ran this frame */
     int tile_nodes[SCENE_MAX_LIGHTS][MAP_CUBE_FACES], tile_asked[SCENE_MAX_LIGHTS][MAP_CUBE_FACES];
     int tiles_short, tiles_refused;
+    int tiles_halved; /* times map_atlas_plan halved the frame's asks to fit the largest atlas */
     warp_sample face_samples[WARP_SAMPLE_COUNT]; /* one face's of a light's samples (map_tiles_size) */
 };
 
@@ -344,9 +345,11 @@ bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene
  * returns, where auto's rule measures a sample on the face, else
  * MAP_ATLAS_MIN_TILE. */
 int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples);
-/* The atlas for the frame, once every light is fitted: its texture made
- * for the settings' depth format and at the side the fitted lights'
- * tiles want (map_atlas_side_wanted), made again where the format
+/* The atlas for the frame, once every light is fitted: the fitted
+ * lights' tiles halved where they would outgrow the largest atlas
+ * (map_tile_asks_fit); its texture made for the settings' depth format
+ * and at the side those tiles want (map_atlas_side_wanted), made again
+ * where the format
  * changed, the tiles outgrew it or it is twice the side they want or
  * more, its tiles then freed and every fitted light's placed afresh, the
  * largest first; filtered by the settings' filter.

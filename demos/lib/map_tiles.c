@@ -39,19 +39,56 @@ static int map_tile_asks(const map_renderer *r, int light_count, map_tile_ask *a
     return count;
 }
 
-/* The atlas's side for the asked tiles: the least power of two from
- * MAP_ATLAS_MIN_TILE whose square holds MAP_ATLAS_ROOM times their area,
- * up to MAP_ATLAS_SIZE or the GL's largest (0: no tile asked). */
-static int map_atlas_side_wanted(const map_renderer *r, const map_tile_ask *asks, int count) {
+/* The asked tiles' area, in texels. */
+static double map_tile_asks_area(const map_tile_ask *asks, int count) {
     double area = 0;
     for (int i = 0; i < count; i++)
         area += (double)asks[i].size * asks[i].size;
-    if (area == 0)
-        return 0;
+    return area;
+}
+
+/* The atlas's largest side: MAP_ATLAS_SIZE or the GL's largest power of
+ * two below it. */
+static int map_atlas_largest_side(const map_renderer *r) {
     int side = MAP_ATLAS_MIN_TILE;
-    while (side < MAP_ATLAS_SIZE && 2 * side <= r->max_texture_size && (double)side * side < MAP_ATLAS_ROOM * area)
+    while (side < MAP_ATLAS_SIZE && 2 * side <= r->max_texture_size)
         side *= 2;
     return side;
+}
+
+/* The atlas's side for the asked tiles: the least power of two from
+ * MAP_ATLAS_MIN_TILE whose square holds MAP_ATLAS_ROOM times their area,
+ * up to the largest (0: no tile asked). */
+static int map_atlas_side_wanted(const map_renderer *r, const map_tile_ask *asks, int count) {
+    double area = map_tile_asks_area(asks, count);
+    if (area == 0)
+        return 0;
+    int side = MAP_ATLAS_MIN_TILE, largest = map_atlas_largest_side(r);
+    while (side < largest && (double)side * side < MAP_ATLAS_ROOM * area)
+        side *= 2;
+    return side;
+}
+
+/* Asks past the largest atlas (MAP_ATLAS_ROOM times their area more than
+ * its square) are halved, every tile above MAP_ATLAS_MIN_TILE at once,
+ * until they fit, each light's faces told their new size: the lights
+ * share the atlas in the proportions their shares of the screen asked,
+ * at a coarser texel, where each light's own cube map beside a full
+ * atlas would hold as much memory as the lights ask (lamps without a
+ * range, each measured over the whole street, ask for the largest). */
+static void map_tile_asks_fit(map_renderer *r, map_tile_ask *asks, int count) {
+    double largest = map_atlas_largest_side(r), room = largest * largest / MAP_ATLAS_ROOM;
+    for (bool shrunk = true; shrunk && map_tile_asks_area(asks, count) > room;) {
+        shrunk = false;
+        for (int i = 0; i < count; i++)
+            if (asks[i].size > MAP_ATLAS_MIN_TILE) {
+                asks[i].size /= 2;
+                shrunk = true;
+            }
+        r->tiles_halved += shrunk;
+    }
+    for (int i = 0; i < count; i++)
+        r->maps[asks[i].light].tiles[asks[i].layer].size = asks[i].size;
 }
 
 /* Larger tiles first. */
@@ -75,6 +112,7 @@ static void map_atlas_place_all(map_renderer *r, map_tile_ask *asks, int count) 
 bool map_atlas_plan(map_renderer *r, const map_settings *st, int light_count) {
     map_tile_ask asks[SCENE_MAX_LIGHTS * MAP_CUBE_FACES];
     int count = map_tile_asks(r, light_count, asks);
+    map_tile_asks_fit(r, asks, count);
     int filter = map_filter_in_use(st), side = map_atlas_side_wanted(r, asks, count);
     if (side == 0)
         return false;
