@@ -11,11 +11,12 @@
  * "Rays"): a pixel is unsure where the map's filter is neither 0 nor 1
  * (a hard light's kernel taps disagree; PCSS found a blocker but not an
  * umbra), where PCSS says umbra but its blocker search, over the whole
- * cone from the pixel to the light, found a tap unblocked, where a hard light's kernel says lit with the full bias but
- * not with a share of its constant bias (a caster within the bias of its
- * receiver), and, under an area light, where PCSS found no blocker but a
- * caster's box is near the cone from the pixel to the light's disk (its
- * search taps miss thin casters). Shadow rays from the visible point,
+ * cone from the pixel to the light, found a tap unblocked, where a hard
+ * light's kernel says lit with the full bias but not with a share of its
+ * constant bias (a caster within the bias of its receiver), and, under
+ * an area light, where PCSS found no blocker but a caster's box is near
+ * the cone from the pixel to the light's disk (its search taps miss thin
+ * casters). Shadow rays from the visible point,
  * against the casters' triangles (common/data/bvh.h, in a texture on the
  * GPU), decide the unsure pixels: one to a hard light, exact; an area
  * light's samples as the reference takes them for that pixel (the same

@@ -130,16 +130,19 @@ vec3 map_share(MAP_SAMPLER map, MAP_RAW_SAMPLER raw, MAP_RAW_SAMPLER transmittan
         map_visibility(map, raw, bounds, i, p, sure_lit_read ? p_near : p, depth_bias, soft, moments, texel,
                        needed && map_rays != MAP_RAYS_ALL && !(near_decides && near_visibility > 0.0));
     bool unsure = lit && ((visibility > 0.0 && visibility < 1.0) || (visibility == 1.0 && near_visibility < 1.0));
-    // PCSS's search taps can miss a thin caster: an area light's pixel
-    // it calls lit is sure only where no caster's box is near its cone.
-    if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 1.0)
-        unsure = !map_light_cone_clear(i);
-    // The filter's disc is sized by the blockers' mean distance, narrower
-    // than the penumbra where blockers lie at several distances (a leg
-    // before a body): wholly in shadow it is sure only where the blocker
-    // search, over the whole cone, found every tap blocked too.
-    if (soft && lit && map_rays != MAP_RAYS_OFF && visibility == 0.0)
-        unsure = map_soft_search_unsure;
+    // An area light's pixel PCSS calls wholly lit or wholly in shadow is
+    // sure only where its blocker search proves it too. Lit: the search
+    // taps can miss a thin caster, so only where no caster's box is near
+    // the cone. In shadow: the filter's disc is sized by the blockers'
+    // mean distance, narrower than the penumbra where blockers lie at
+    // several distances (a leg before a body), so only where the search,
+    // over the whole cone, found every tap blocked.
+    if (soft && lit && map_rays != MAP_RAYS_OFF) {
+        if (visibility == 1.0)
+            unsure = !map_light_cone_clear(i);
+        else if (visibility == 0.0)
+            unsure = map_soft_search_unsure;
+    }
     // A translucent caster's shadow is the texel's, hard and unfiltered:
     // with rays, a hard light's pixel within a texel of one is unsure
     // (the rays filter through the panes as the reference's do; an area

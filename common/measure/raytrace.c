@@ -45,7 +45,6 @@
  * sphere elsewhere changes no tolerance. */
 #include "raytrace.h"
 
-#include "bvh.h"
 #include <cglm/cglm.h>
 #include <embree3/rtcore.h>
 #include <float.h>
@@ -57,6 +56,7 @@
 #include <string.h>
 
 #include "area_light.h"
+#include "bvh.h"
 
 /* Below this cosine between a camera ray and the hit triangle's normal the
  * visible point is the barycentric one (see the top): the plane's

@@ -72,10 +72,10 @@
  * measured on a WARP_RECT_SAMPLES_X x WARP_RECT_SAMPLES_Y grid over its
  * reach on screen alone (the bounds of the receivers' boxes clipped to
  * its range), so that a light small on screen gets a map sized by its
- * share of it, and MIN where that grid finds nothing it lights. FALLBACK where
- * nothing can be measured otherwise (no sample of the picture's grid
- * lands on a receiver a light without a range reaches). An array map is
- * not sized here: its fit sets its size. */
+ * share of it, and MIN where that grid finds nothing it lights.
+ * FALLBACK where nothing can be measured otherwise (no sample of the
+ * picture's grid lands on a receiver a light without a range reaches).
+ * An array map is not sized here: its fit sets its size. */
 #define MAP_AUTO_MIN_SIZE 256
 #define MAP_AUTO_MAX_SIZE 4096
 #define MAP_AUTO_TEXEL_PIXELS 1.0f
@@ -271,9 +271,8 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * search found a tap unblocked or was clamped short of the light's cone
  * (MAP_SOFT_MAX_TEXELS: the filter's disc, sized by the blockers' mean
  * distance, is narrower than the penumbra where blockers lie at several
- * distances), and where a hard light's
- * transmittance map holds a pane within a texel of the point (its
- * coloured edge is the texel's). A ray's light is filtered through the
+ * distances), and where a hard light's transmittance map holds a pane
+ * within a texel of the point (its coloured edge is the texel's). A ray's light is filtered through the
  * translucent casters it crosses (bvh_trace.glsl's bvh_transmittance).
  * Where the filter says 0 or 1 the map decides: with rays the kernel reads
  * every tap, as if with --no-early-out (four rim taps agreeing prove
@@ -516,9 +515,9 @@ enum {
  * (MAP_ATLAS_ROOM times over), every tile above MAP_ATLAS_MIN_TILE is
  * halved until they fit, so that memory stays the atlas's however many
  * lights ask how much (the state line says how many times). Where the
- * atlas has no room left, a face takes the largest
- * free tile below its size, and a light with no room at all for a face
- * keeps a cube map of its own: both counted in the state line
+ * atlas has no room left, a face takes the largest free tile below its
+ * size, and a light with no room at all for a face keeps a cube map of
+ * its own: both counted in the state line
  * (map_describe_storage). Faces out of view get tiles too, but are not
  * drawn (see "Caching"); a light the skips leave out takes none, which
  * moves other tiles but changes no pixel (shaders/map_tiles.glsl,

@@ -349,10 +349,9 @@ int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_
  * lights' tiles halved where they would outgrow the largest atlas
  * (map_tile_asks_fit); its texture made for the settings' depth format
  * and at the side those tiles want (map_atlas_side_wanted), made again
- * where the format
- * changed, the tiles outgrew it or it is twice the side they want or
- * more, its tiles then freed and every fitted light's placed afresh, the
- * largest first; filtered by the settings' filter.
+ * where the format changed, the tiles outgrew it or it is twice the side
+ * they want or more, its tiles then freed and every fitted light's
+ * placed afresh, the largest first; filtered by the settings' filter.
  * True where it was made again (what its tiles held is gone), or where
  * memory for its tiles failed (said on stderr; no atlas, r->atlas_texture
  * 0). */
