@@ -688,6 +688,19 @@ bool scene_has_cut_outs(const scene *s) {
     return false;
 }
 
+bool scene_light_reaches_cut_out(const scene *s, const scene_light *l) {
+    for (int i = 0; i < s->object_count; i++) {
+        const scene_object *o = &s->objects[i];
+        float lo[3], hi[3];
+        if (!(o->alpha_cutoff > 0) || !o->casts)
+            continue;
+        scene_object_world_bounds(o, lo, hi);
+        if (scene_light_reaches_box(l, lo, hi))
+            return true;
+    }
+    return false;
+}
+
 void scene_print_models(const scene *s, const char *file) {
     for (int i = 0; i < s->object_count; i++) {
         const scene_object *o = &s->objects[i];

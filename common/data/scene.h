@@ -224,6 +224,9 @@ bool scene_check_light_flag(const scene *s, const char *file, int light);
 bool scene_object_cut_out(const scene_object *o, uint32_t triangle, const float weight[3]);
 /* Whether any object of s is cut out. */
 bool scene_has_cut_outs(const scene *s);
+/* Whether light l reaches (scene_light_reaches_box) the box of a cut-out
+ * object of s that casts shadows. */
+bool scene_light_reaches_cut_out(const scene *s, const scene_light *l);
 /* The share of light, per channel, that translucent object o lets through
  * at the point of `triangle` of barycentric `weight`: (1 - a) + a C, C
  * its colour times its texture's and a base_alpha times the texture's

@@ -94,15 +94,28 @@ static float map_setting(float value, float fallback) { return value != 0 ? valu
 
 int map_settings_size(const map_settings *settings) { return atoi(map_sizes[settings->map_size]); }
 
-int map_auto_size(const map_light *m, const scene_light *light, map_samples samples) {
-    if (samples.grazing > samples.count)
-        return MAP_AUTO_MAX_SIZE;
-    return map_auto_size_or(m, light, samples.samples, samples.count,
-                            samples.reach_sampled ? MAP_AUTO_MIN_SIZE : MAP_AUTO_FALLBACK_SIZE);
+int map_auto_finer(const scene *s, const scene_light *light) {
+    return scene_light_reaches_cut_out(s, light) ? MAP_AUTO_CUT_OUT_FINER : 1;
 }
 
-int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n,
-                     int unmeasured) {
+map_auto_rule map_auto_rule_for(const map_renderer *r, const scene *s, const scene_light *light, map_kind kind) {
+    int finer = map_auto_finer(s, light);
+    map_auto_rule rule = {MAP_AUTO_TEXEL_PIXELS / (float)finer,
+                          finer > 1 && kind == MAP_2D ? MAP_AUTO_CUT_OUT_MAX_SIZE : MAP_AUTO_MAX_SIZE};
+    while (rule.largest > MAP_AUTO_MIN_SIZE && rule.largest > r->max_texture_size)
+        rule.largest /= 2;
+    return rule;
+}
+
+int map_auto_size(const map_light *m, const scene_light *light, map_samples samples, map_auto_rule rule) {
+    if (samples.grazing > samples.count)
+        return rule.largest;
+    return map_auto_size_or(m, light, samples.samples, samples.count,
+                            samples.reach_sampled ? MAP_AUTO_MIN_SIZE : MAP_AUTO_FALLBACK_SIZE, rule);
+}
+
+int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sample *samples, int n, int unmeasured,
+                     map_auto_rule rule) {
     double sum = 0;
     int measured = 0;
     for (int i = 0; i < n; i++) {
@@ -115,9 +128,9 @@ int map_auto_size_or(const map_light *m, const scene_light *light, const warp_sa
     }
     if (measured == 0)
         return unmeasured;
-    double needed = m->size * (sum / measured) / MAP_AUTO_TEXEL_PIXELS;
+    double needed = m->size * (sum / measured) / rule.texel_pixels;
     int size = MAP_AUTO_MIN_SIZE;
-    while (size < MAP_AUTO_MAX_SIZE && size < needed)
+    while (size < rule.largest && size < needed)
         size *= 2;
     return size;
 }
@@ -1498,8 +1511,9 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
         m->tiles[face] = (map_tile){.size = m->size};
     if (!size && m->kind != MAP_ARRAY) {
         map_samples samples = map_light_samples(r, fit_frame, l);
-        map_resize(m, m->tiled ? map_tiles_size(r, m, &s->lights[l], samples)
-                               : map_auto_size(m, &s->lights[l], samples));
+        map_auto_rule rule = map_auto_rule_for(r, s, &s->lights[l], m->kind);
+        map_resize(m, m->tiled ? map_tiles_size(r, m, &s->lights[l], samples, rule)
+                               : map_auto_size(m, &s->lights[l], samples, rule));
     }
     if (map_filter_moments(map_filter_in_use(settings)) != MAP_MOMENTS_NONE)
         map_moments_fit(s, l, m, !size);

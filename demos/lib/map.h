@@ -75,11 +75,22 @@
  * share of it, and MIN where that grid finds nothing it lights.
  * FALLBACK where nothing can be measured otherwise (no sample of the
  * picture's grid lands on a receiver a light without a range reaches).
- * An array map is not sized here: its fit sets its size. */
+ * An array map is not sized here: its fit sets its size.
+ *
+ * A light that reaches a cut-out caster (scene_light_reaches_cut_out)
+ * gets texels CUT_OUT_FINER times finer (map_auto_finer; cascades scale
+ * their size by it): a cut-out's shadow is mostly edges (a fence's
+ * boards, a crown of leaves), and a map misclassifies a band along every
+ * edge a share of a texel wide. Its 2D map may take up to
+ * CUT_OUT_MAX_SIZE (a cube's six faces stay within MAX); every size
+ * stays within the GL's largest texture (test_gltf's
+ * test_gltf_fence_within_goal_by_auto_maps checks the fence's shadows). */
 #define MAP_AUTO_MIN_SIZE 256
 #define MAP_AUTO_MAX_SIZE 4096
 #define MAP_AUTO_TEXEL_PIXELS 1.0f
 #define MAP_AUTO_FALLBACK_SIZE 2048
+#define MAP_AUTO_CUT_OUT_FINER 4
+#define MAP_AUTO_CUT_OUT_MAX_SIZE 8192
 
 /* The defaults of the numbers, from `make bench` (see demos/shadowmap.c). */
 #define MAP_CONSTANT_TEXELS 1.0f
@@ -706,6 +717,9 @@ typedef struct map_samples {
 map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l);
 /* The map's size in the settings; 0: auto. */
 int map_settings_size(const map_settings *settings);
+/* How many times finer auto makes the texels of light's map in s:
+ * MAP_AUTO_CUT_OUT_FINER where it reaches a cut-out caster, else 1. */
+int map_auto_finer(const scene *s, const scene_light *light);
 
 /* The map as HUD lines name it: its kind and size as chosen ("2D map
  * auto: 4096" where --map-size is auto, "cube map 1024" where it is

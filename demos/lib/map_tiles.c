@@ -11,14 +11,14 @@ bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene
            map_filter_moments(map_filter_in_use(st)) == MAP_MOMENTS_NONE && !r->transmit[0].id;
 }
 
-int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples) {
-    int size = map_auto_size(m, light, samples);
+int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples, map_auto_rule rule) {
+    int size = map_auto_size(m, light, samples, rule);
     for (int face = 0; face < MAP_CUBE_FACES; face++) {
         int n = 0;
         for (int i = 0; i < samples.count; i++)
             if (warp_cube_face(light->position, samples.samples[i].position) == face)
                 r->face_samples[n++] = samples.samples[i];
-        bool seen = map_auto_size_or(m, light, r->face_samples, n, 0) > 0;
+        bool seen = map_auto_size_or(m, light, r->face_samples, n, 0, rule) > 0;
         m->tiles[face] = (map_tile){.size = seen ? size : MAP_ATLAS_MIN_TILE};
     }
     return size;
