@@ -34,8 +34,8 @@
  * sphere) or off (shadow edges crawl).
  *
  * --map-size gives each cascade's size; auto, the default, is
- * CASCADES_DEFAULT_SIZE (times map_auto_finer for a sun that reaches a
- * cut-out caster). Spot and point lights get shadowmap's uniform fit
+ * CASCADES_DEFAULT_SIZE (times map_auto_finer for a hard sun that
+ * reaches a cut-out caster). Spot and point lights get shadowmap's uniform fit
  * (cascades_fit). For lectures (--overlay): shadowmap's overlays, and
  * "cascades": each cascade's receivers tinted in its colour (the blend
  * band mixing two), a key to the colours with each slice's view depths,
@@ -170,7 +170,7 @@ static bool cascades_fit_array(const technique_frame *f, int light, map_light *m
         far_plane = seen_far;
     }
     int size = map_settings_size(&cascades.settings);
-    m->size = size ? size : CASCADES_DEFAULT_SIZE * map_auto_finer(f->gpu->scene, l);
+    m->size = size ? size : CASCADES_DEFAULT_SIZE * map_auto_finer(&cascades.settings, f->gpu->scene, l);
     m->kind = MAP_ARRAY;
     m->layer_count = count;
     m->casters = NULL;

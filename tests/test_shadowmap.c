@@ -494,10 +494,10 @@ static void test_no_cube_seams(void **state) {
 
 /* --map-size auto, the default, sizes each map so that a texel covers
  * about a pixel where the camera sees its receivers (at most 1 on average,
- * rounded up to a power of two): the same scene needs half the map in a
- * picture half as wide, a long view the most (capped at 4096), and a size
- * given stays as given; the HUD's line says which ("auto: 2048" or
- * "2048"). */
+ * rounded up to a power of two; a quarter of one for a hard light over
+ * cut-outs): the same scene needs half the map in a picture half as wide,
+ * a long view the most (capped at 4096), and a size given stays as given;
+ * the HUD's line says which ("auto: 2048" or "2048"). */
 static void test_map_size_from_need(void **state) {
     (void)state;
     static const struct {
@@ -519,6 +519,12 @@ static void test_map_size_from_need(void **state) {
          * sees in the lamp's reach, is edge-on to it: the pool's grid
          * decides, not the grazing rule. */
         {"shadowmap", "tests/data/map_far_lamp_edge_on.json", BENCH_SIZE, "2D map auto: 256,"},
+        /* A hard sun over cut-out casters: texels four times finer
+         * (test_gltf_fence_within_goal_by_auto_maps); the same fence
+         * under a sun of 2 degrees keeps its usual texels, which PCSS's
+         * blocker search needs. */
+        {"shadowmap", "assets/scenes/fence.gltf", BENCH_SIZE, "2D map auto: 8192,"},
+        {"shadowmap", "tests/data/fence_soft_sun.json", BENCH_SIZE, "2D map auto: 2048,"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char marker[64];

@@ -94,12 +94,13 @@ static float map_setting(float value, float fallback) { return value != 0 ? valu
 
 int map_settings_size(const map_settings *settings) { return atoi(map_sizes[settings->map_size]); }
 
-int map_auto_finer(const scene *s, const scene_light *light) {
-    return scene_light_reaches_cut_out(s, light) ? MAP_AUTO_CUT_OUT_FINER : 1;
+int map_auto_finer(const map_settings *settings, const scene *s, const scene_light *light) {
+    return !map_light_soft(settings, light) && scene_light_reaches_cut_out(s, light) ? MAP_AUTO_CUT_OUT_FINER : 1;
 }
 
-map_auto_rule map_auto_rule_for(const map_renderer *r, const scene *s, const scene_light *light, map_kind kind) {
-    int finer = map_auto_finer(s, light);
+map_auto_rule map_auto_rule_for(const map_renderer *r, const map_settings *settings, const scene *s,
+                                const scene_light *light, map_kind kind) {
+    int finer = map_auto_finer(settings, s, light);
     map_auto_rule rule = {MAP_AUTO_TEXEL_PIXELS / (float)finer,
                           finer > 1 && kind == MAP_2D ? MAP_AUTO_CUT_OUT_MAX_SIZE : MAP_AUTO_MAX_SIZE};
     while (rule.largest > MAP_AUTO_MIN_SIZE && rule.largest > r->max_texture_size)
@@ -1511,7 +1512,7 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
         m->tiles[face] = (map_tile){.size = m->size};
     if (!size && m->kind != MAP_ARRAY) {
         map_samples samples = map_light_samples(r, fit_frame, l);
-        map_auto_rule rule = map_auto_rule_for(r, s, &s->lights[l], m->kind);
+        map_auto_rule rule = map_auto_rule_for(r, settings, s, &s->lights[l], m->kind);
         map_resize(m, m->tiled ? map_tiles_size(r, m, &s->lights[l], samples, rule)
                                : map_auto_size(m, &s->lights[l], samples, rule));
     }

@@ -77,14 +77,17 @@
  * picture's grid lands on a receiver a light without a range reaches).
  * An array map is not sized here: its fit sets its size.
  *
- * A light that reaches a cut-out caster (scene_light_reaches_cut_out)
+ * A hard light that reaches a cut-out caster (scene_light_reaches_cut_out)
  * gets texels CUT_OUT_FINER times finer (map_auto_finer; cascades scale
  * their size by it): a cut-out's shadow is mostly edges (a fence's
  * boards, a crown of leaves), and a map misclassifies a band along every
- * edge a share of a texel wide. Its 2D map may take up to
- * CUT_OUT_MAX_SIZE (a cube's six faces stay within MAX); every size
- * stays within the GL's largest texture (test_gltf's
- * test_gltf_fence_within_goal_by_auto_maps checks the fence's shadows). */
+ * hard edge a share of a texel wide. An area light's PCSS is not made
+ * finer: its penumbra spans many texels already, and finer texels would
+ * only bring its search and filter to MAP_SOFT_MAX_TEXELS sooner. A
+ * finer 2D map may take up to CUT_OUT_MAX_SIZE (a cube's six faces stay
+ * within MAX); every size stays within the GL's largest texture
+ * (test_gltf's test_gltf_fence_within_goal_by_auto_maps checks the
+ * fence's shadows). */
 #define MAP_AUTO_MIN_SIZE 256
 #define MAP_AUTO_MAX_SIZE 4096
 #define MAP_AUTO_TEXEL_PIXELS 1.0f
@@ -718,8 +721,9 @@ map_samples map_light_samples(map_renderer *r, const technique_frame *f, int l);
 /* The map's size in the settings; 0: auto. */
 int map_settings_size(const map_settings *settings);
 /* How many times finer auto makes the texels of light's map in s:
- * MAP_AUTO_CUT_OUT_FINER where it reaches a cut-out caster, else 1. */
-int map_auto_finer(const scene *s, const scene_light *light);
+ * MAP_AUTO_CUT_OUT_FINER where it is hard (not map_light_soft) and
+ * reaches a cut-out caster, else 1. */
+int map_auto_finer(const map_settings *settings, const scene *s, const scene_light *light);
 
 /* The map as HUD lines name it: its kind and size as chosen ("2D map
  * auto: 4096" where --map-size is auto, "cube map 1024" where it is

@@ -344,7 +344,8 @@ typedef struct map_auto_rule {
     float texel_pixels;
     int largest;
 } map_auto_rule;
-map_auto_rule map_auto_rule_for(const map_renderer *r, const scene *s, const scene_light *light, map_kind kind);
+map_auto_rule map_auto_rule_for(const map_renderer *r, const map_settings *settings, const scene *s,
+                                const scene_light *light, map_kind kind);
 
 /* ---- the atlas (map_tiles.c; map.h, "Atlas") ---- */
 
