@@ -521,11 +521,12 @@ static void test_map_size_from_need(void **state) {
         {"shadowmap", "tests/data/map_far_lamp_edge_on.json", BENCH_SIZE, "2D map auto: 256,"},
         /* A hard sun over cut-out casters: texels four times finer
          * (test_gltf_fence_within_goal_by_auto_maps); a point light's
-         * cube over them as fine, within MAP_AUTO_MAX_SIZE; the same
-         * fence under a sun of 2 degrees keeps its usual texels, which
-         * PCSS's blocker search needs. */
+         * cube and a spot's map over them as fine, within
+         * MAP_AUTO_MAX_SIZE; the same fence under a sun of 2 degrees keeps
+         * its usual texels, which PCSS's blocker search needs. */
         {"shadowmap", "assets/scenes/fence.gltf", BENCH_SIZE, "2D map auto: 8192,"},
         {"shadowmap", "tests/data/fence_point_light.json", BENCH_SIZE, "cube map auto: 4096,"},
+        {"shadowmap", "tests/data/fence_spot.json", "", "2D map auto: 4096,"},
         {"shadowmap", "tests/data/fence_soft_sun.json", BENCH_SIZE, "2D map auto: 2048,"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {

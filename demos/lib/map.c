@@ -102,7 +102,9 @@ map_auto_rule map_auto_rule_for(const map_renderer *r, const map_settings *setti
                                 const scene_light *light, map_kind kind) {
     int finer = map_auto_finer(settings, s, light);
     map_auto_rule rule = {MAP_AUTO_TEXEL_PIXELS / (float)finer,
-                          finer > 1 && kind == MAP_2D ? MAP_AUTO_CUT_OUT_MAX_SIZE : MAP_AUTO_MAX_SIZE};
+                          finer > 1 && kind == MAP_2D && light->type == SCENE_LIGHT_DIRECTIONAL
+                              ? MAP_AUTO_CUT_OUT_MAX_SIZE
+                              : MAP_AUTO_MAX_SIZE};
     while (rule.largest > MAP_AUTO_MIN_SIZE && rule.largest > r->max_texture_size)
         rule.largest /= 2;
     return rule;

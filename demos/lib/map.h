@@ -84,10 +84,13 @@
  * hard edge a share of a texel wide. An area light's PCSS is not made
  * finer: its penumbra spans many texels already, and finer texels would
  * only bring its search and filter to MAP_SOFT_MAX_TEXELS sooner. A
- * finer 2D map may take up to CUT_OUT_MAX_SIZE (a cube's six faces stay
- * within MAX); every size stays within the GL's largest texture
- * (test_gltf's test_gltf_fence_within_goal_by_auto_maps checks the
- * fence's shadows). */
+ * sun's finer 2D map may take up to CUT_OUT_MAX_SIZE: one map over the
+ * whole view, of which a scene has few. A spot's map and a cube's six
+ * faces stay within MAX, the most any map took before, so that many lamps
+ * over cut-outs ask no more memory than they could without them. Every
+ * size stays within the GL's largest texture (test_gltf's
+ * test_gltf_fence_within_goal_by_auto_maps checks the fence's shadows;
+ * test_shadowmap's test_map_size_from_need the sizes). */
 #define MAP_AUTO_MIN_SIZE 256
 #define MAP_AUTO_MAX_SIZE 4096
 #define MAP_AUTO_TEXEL_PIXELS 1.0f

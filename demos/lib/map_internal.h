@@ -338,7 +338,7 @@ struct map_renderer {
 /* What --map-size auto aims at for a light's map of `kind`: a texel of
  * texel_pixels pixels on screen (MAP_AUTO_TEXEL_PIXELS, over
  * map_auto_finer), at most `largest` texels a side (MAP_AUTO_MAX_SIZE, or
- * MAP_AUTO_CUT_OUT_MAX_SIZE for a 2D map finer for cut-outs; halved to
+ * MAP_AUTO_CUT_OUT_MAX_SIZE for a sun's 2D map finer for cut-outs; halved to
  * the GL's largest texture). */
 typedef struct map_auto_rule {
     float texel_pixels;
