@@ -35,13 +35,13 @@
  *
  * --map-size gives each cascade's size; auto, the default, is
  * CASCADES_DEFAULT_SIZE (times map_auto_finer for a hard sun that
- * reaches a cut-out caster). Spot and point lights get shadowmap's uniform fit
- * (cascades_fit). For lectures (--overlay): shadowmap's overlays, and
- * "cascades": each cascade's receivers tinted in its colour (the blend
- * band mixing two), a key to the colours with each slice's view depths,
- * and every layer as an inset along the bottom, fitted to the depths it
- * holds (a spot's or point light's map as its inset); the HUD line gives
- * the splits.
+ * reaches a cut-out caster). Spot and point lights get shadowmap's
+ * uniform fit (cascades_fit). For lectures (--overlay): shadowmap's
+ * overlays, and "cascades": each cascade's receivers tinted in its colour
+ * (the blend band mixing two), a key to the colours with each slice's
+ * view depths, and every layer as an inset along the bottom, fitted to
+ * the depths it holds (a spot's or point light's map as its inset); the
+ * HUD line gives the splits.
  */
 #include <math.h>
 #include <stdio.h>

@@ -337,9 +337,9 @@ struct map_renderer {
 
 /* What --map-size auto aims at for a light's map of `kind`: a texel of
  * texel_pixels pixels on screen (MAP_AUTO_TEXEL_PIXELS, over
- * map_auto_finer), at most `largest` texels a side (MAP_AUTO_MAX_SIZE, or
- * MAP_AUTO_CUT_OUT_MAX_SIZE for a sun's 2D map finer for cut-outs; halved to
- * the GL's largest texture). */
+ * map_auto_finer), at most `largest` texels a side (MAP_AUTO_MAX_SIZE,
+ * or MAP_AUTO_CUT_OUT_MAX_SIZE for a sun's 2D map finer for cut-outs;
+ * halved to the GL's largest texture). */
 typedef struct map_auto_rule {
     float texel_pixels;
     int largest;
@@ -353,9 +353,9 @@ map_auto_rule map_auto_rule_for(const map_renderer *r, const map_settings *setti
  * a cube, hard, read by a kernel, without transmittance maps. */
 bool map_tiles_wanted(const map_renderer *r, const map_settings *st, const scene_light *light, map_kind kind);
 /* Each face's tile size (m->tiles[face].size) of the fitted cube m at
- * MAP_AUTO_MAX_SIZE: the light's auto size (map_auto_size by `rule`), which it
- * returns, where auto's rule measures a sample on the face, else
- * MAP_ATLAS_MIN_TILE. */
+ * MAP_AUTO_MAX_SIZE: the light's auto size (map_auto_size by `rule`),
+ * which it returns, where auto's rule measures a sample on the face,
+ * else MAP_ATLAS_MIN_TILE. */
 int map_tiles_size(map_renderer *r, map_light *m, const scene_light *light, map_samples samples, map_auto_rule rule);
 /* The atlas for the frame, once every light is fitted: the fitted
  * lights' tiles halved where they would outgrow the largest atlas
@@ -432,13 +432,14 @@ void map_render_depth(map_renderer *r, const map_settings *settings, const rende
  * edge-on to the light (`grazing`) than kept, the faces measured are not
  * where its shadows are seen: on those faces every texel is unboundedly
  * long and only its width across the light can shrink, so the map takes
- * the most texels, the rule's largest (else a sun a fraction of a degree above the ground, measured on the
- * casters' sides alone, gets a small map and every long shadow edge on
- * the ground follows one texel's rounding: test_shadowmap's stress
- * extremes, tests/data/shadowmap_grazing_sun.json). Where none is
- * measured: FALLBACK, or MIN where the samples are those of the grid
- * over the light's reach (samples.reach_sampled), which found nothing it
- * lights larger than a cell of that grid on screen. */
+ * the most texels, the rule's largest (else a sun a fraction of a degree
+ * above the ground, measured on the casters' sides alone, gets a small
+ * map and every long shadow edge on the ground follows one texel's
+ * rounding: test_shadowmap's stress extremes,
+ * tests/data/shadowmap_grazing_sun.json). Where none is measured:
+ * FALLBACK, or MIN where the samples are those of the grid over the
+ * light's reach (samples.reach_sampled), which found nothing it lights
+ * larger than a cell of that grid on screen. */
 int map_auto_size(const map_light *m, const scene_light *light, map_samples samples, map_auto_rule rule);
 /* The same rule without the grazing case: `unmeasured` where no sample
  * is measured. */
