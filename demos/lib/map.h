@@ -86,9 +86,9 @@
  * only bring its search and filter to MAP_SOFT_MAX_TEXELS sooner. A
  * sun's finer 2D map may take up to CUT_OUT_MAX_SIZE: one map over the
  * whole view, of which a scene has few. A spot's map and a cube's six
- * faces stay within MAX, the most any map took before, so that many lamps
- * over cut-outs ask no more memory than they could without them. Every
- * size stays within the GL's largest texture (test_gltf's
+ * faces stay within MAX, the largest auto gives any other map, so that
+ * many lamps over cut-outs ask no more memory than lamps without them.
+ * Every size stays within the GL's largest texture (test_gltf's
  * test_gltf_fence_within_goal_by_auto_maps checks the fence's shadows;
  * test_shadowmap's test_map_size_from_need the sizes). */
 #define MAP_AUTO_MIN_SIZE 256
