@@ -98,16 +98,17 @@ int map_auto_finer(const map_settings *settings, const scene *s, const scene_lig
     return !map_light_soft(settings, light) && scene_light_reaches_cut_out(s, light) ? MAP_AUTO_CUT_OUT_FINER : 1;
 }
 
+int map_side_within_gl(const map_renderer *r, int side, int least) {
+    while (side > least && side > r->max_texture_size)
+        side /= 2;
+    return side;
+}
+
 map_auto_rule map_auto_rule_for(const map_renderer *r, const map_settings *settings, const scene *s,
-                                const scene_light *light, map_kind kind) {
+                                const scene_light *light) {
     int finer = map_auto_finer(settings, s, light);
-    map_auto_rule rule = {MAP_AUTO_TEXEL_PIXELS / (float)finer,
-                          finer > 1 && kind == MAP_2D && light->type == SCENE_LIGHT_DIRECTIONAL
-                              ? MAP_AUTO_CUT_OUT_MAX_SIZE
-                              : MAP_AUTO_MAX_SIZE};
-    while (rule.largest > MAP_AUTO_MIN_SIZE && rule.largest > r->max_texture_size)
-        rule.largest /= 2;
-    return rule;
+    int largest = finer > 1 && light->type == SCENE_LIGHT_DIRECTIONAL ? MAP_AUTO_CUT_OUT_MAX_SIZE : MAP_AUTO_MAX_SIZE;
+    return (map_auto_rule){MAP_AUTO_TEXEL_PIXELS / (float)finer, map_side_within_gl(r, largest, MAP_AUTO_MIN_SIZE)};
 }
 
 int map_auto_size(const map_light *m, const scene_light *light, map_samples samples, map_auto_rule rule) {
@@ -1514,7 +1515,7 @@ bool map_fit_light(map_renderer *r, const map_settings *settings, const techniqu
         m->tiles[face] = (map_tile){.size = m->size};
     if (!size && m->kind != MAP_ARRAY) {
         map_samples samples = map_light_samples(r, fit_frame, l);
-        map_auto_rule rule = map_auto_rule_for(r, settings, s, &s->lights[l], m->kind);
+        map_auto_rule rule = map_auto_rule_for(r, settings, s, &s->lights[l]);
         map_resize(m, m->tiled ? map_tiles_size(r, m, &s->lights[l], samples, rule)
                                : map_auto_size(m, &s->lights[l], samples, rule));
     }

@@ -335,17 +335,20 @@ struct map_renderer {
     warp_sample face_samples[WARP_SAMPLE_COUNT]; /* one face's of a light's samples (map_tiles_size) */
 };
 
-/* What --map-size auto aims at for a light's map of `kind`: a texel of
+/* A power-of-two side halved, while above `least`, until the GL's
+ * largest texture holds it. */
+int map_side_within_gl(const map_renderer *r, int side, int least);
+/* What --map-size auto aims at for a light's 2D or cube map: a texel of
  * texel_pixels pixels on screen (MAP_AUTO_TEXEL_PIXELS, over
  * map_auto_finer), at most `largest` texels a side (MAP_AUTO_MAX_SIZE,
- * or MAP_AUTO_CUT_OUT_MAX_SIZE for a sun's 2D map finer for cut-outs;
- * halved to the GL's largest texture). */
+ * or MAP_AUTO_CUT_OUT_MAX_SIZE for a sun's map finer for cut-outs;
+ * within the GL's largest texture). */
 typedef struct map_auto_rule {
     float texel_pixels;
     int largest;
 } map_auto_rule;
 map_auto_rule map_auto_rule_for(const map_renderer *r, const map_settings *settings, const scene *s,
-                                const scene_light *light, map_kind kind);
+                                const scene_light *light);
 
 /* ---- the atlas (map_tiles.c; map.h, "Atlas") ---- */
 

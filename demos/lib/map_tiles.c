@@ -50,10 +50,7 @@ static double map_tile_asks_area(const map_tile_ask *asks, int count) {
 /* The atlas's largest side: MAP_ATLAS_SIZE or the GL's largest power of
  * two below it. */
 static int map_atlas_largest_side(const map_renderer *r) {
-    int side = MAP_ATLAS_MIN_TILE;
-    while (side < MAP_ATLAS_SIZE && 2 * side <= r->max_texture_size)
-        side *= 2;
-    return side;
+    return map_side_within_gl(r, MAP_ATLAS_SIZE, MAP_ATLAS_MIN_TILE);
 }
 
 /* The atlas's side for the asked tiles: the least power of two from
