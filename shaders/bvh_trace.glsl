@@ -1,10 +1,10 @@
 // Shadow rays against the casters' hierarchy (common/data/bvh.h: its
 // layout, and the same tests in the same order as bvh_transmittance), read from
-// one RGBA32F texture BVH_GPU_TEXTURE_WIDTH texels wide
-// (common/gl/bvh_gpu.h): the nodes, two texels each, then the triangles,
-// three each. u_bvh_node_count 0: no casters, every ray gets through.
+// one RGBA32F texture (common/gl/bvh_gpu.h): a texture buffer where
+// BVH_TEXTURE_BUFFER is 1, else 2D, BVH_GPU_TEXTURE_WIDTH texels wide. The
+// nodes, two texels each, then the triangles, three each.
+// u_bvh_node_count 0: no casters, every ray gets through.
 // u_bvh_reach: the farthest corner of the casters' box from the origin.
-uniform sampler2D u_bvh;
 uniform int u_bvh_node_count;
 uniform float u_bvh_reach;
 
@@ -15,7 +15,13 @@ const float BVH_TINY_DIRECTION = 1e-30;
 const float BVH_FLOAT_EPSILON = 1.1920929e-7;
 const float BVH_FAR_WIDENING = 1.0 + 3.0 * BVH_FLOAT_EPSILON / (1.0 - 1.5 * BVH_FLOAT_EPSILON);
 
+#if BVH_TEXTURE_BUFFER
+uniform samplerBuffer u_bvh;
+vec4 bvh_texel(int k) { return texelFetch(u_bvh, k); }
+#else
+uniform sampler2D u_bvh;
 vec4 bvh_texel(int k) { return texelFetch(u_bvh, ivec2(k % BVH_GPU_TEXTURE_WIDTH, k / BVH_GPU_TEXTURE_WIDTH), 0); }
+#endif
 
 #if BVH_RECORDS
 // Casters whose surface the rays read (common/data/bvh.h: cut-out or

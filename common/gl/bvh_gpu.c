@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "context.h"
+
 /* BVH_GPU_RECORD_TEXELS a record (see the top). */
 #define BVH_GPU_RECORD_TEXELS 4
 #define BVH_GPU_WRAP_BASE 4
@@ -83,9 +85,12 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
     long long texels_first = records_first + (long long)BVH_GPU_RECORD_TEXELS * b->record_count;
     long long texels = texels_first + surface_texels;
     long long rows = texels / BVH_GPU_TEXTURE_WIDTH + 1;
-    GLint max_size = 0;
+    GLint max_size = 0, max_buffer = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (rows > max_size || texels >= BVH_MAX_INDEX) {
+    if (context_current_features()->texture_buffers)
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_buffer);
+    bool buffer = texels < max_buffer && texels < BVH_MAX_INDEX;
+    if (!buffer && (rows > max_size || texels >= BVH_MAX_INDEX)) {
         fprintf(stderr,
                 "%s: %d triangles and their surfaces' textures need a ray texture of %lld rows, more than "
                 "this GL's %d or the %d texels indices reach\n",
@@ -101,6 +106,7 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
         free(writes);
         return false;
     }
+    bvh_gpu_destroy(g); /* a texture's target is fixed once bound: made anew */
     g->record_count = b->record_count;
     g->records_first = (int)records_first;
     g->texels_first = (int)texels_first;
@@ -111,14 +117,24 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
     }
     free(first);
     free(writes);
-    if (!g->texture)
-        glGenTextures(1, &g->texture);
-    glBindTexture(GL_TEXTURE_2D, g->texture);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, BVH_GPU_TEXTURE_WIDTH, (GLsizei)rows, 0, GL_RGBA, GL_FLOAT, data);
-    glBindTexture(GL_TEXTURE_2D, 0);
+    glGenTextures(1, &g->texture);
+    if (buffer) {
+        /* One texel at least: a scene without casters has none. */
+        glGenBuffers(1, &g->buffer);
+        glBindBuffer(GL_TEXTURE_BUFFER, g->buffer);
+        glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)((texels + 1) * (long long)sizeof *data), data, GL_STATIC_DRAW);
+        glBindBuffer(GL_TEXTURE_BUFFER, 0);
+        glBindTexture(GL_TEXTURE_BUFFER, g->texture);
+        glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, g->buffer);
+        glBindTexture(GL_TEXTURE_BUFFER, 0);
+    } else {
+        glBindTexture(GL_TEXTURE_2D, g->texture);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, BVH_GPU_TEXTURE_WIDTH, (GLsizei)rows, 0, GL_RGBA, GL_FLOAT, data);
+        glBindTexture(GL_TEXTURE_2D, 0);
+    }
     free(data);
     g->node_count = b->node_count;
     g->reach = bvh_reach(b);
@@ -127,7 +143,7 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
 
 void bvh_gpu_bind(const bvh_gpu *g, unsigned program, int unit) {
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
-    glBindTexture(GL_TEXTURE_2D, g->texture);
+    glBindTexture(g->buffer ? GL_TEXTURE_BUFFER : GL_TEXTURE_2D, g->texture);
     glActiveTexture(GL_TEXTURE0);
     glUniform1i(shader_uniform(program, "u_bvh"), unit);
     glUniform1i(shader_uniform(program, "u_bvh_node_count"), g->node_count);
@@ -138,5 +154,6 @@ void bvh_gpu_bind(const bvh_gpu *g, unsigned program, int unit) {
 
 void bvh_gpu_destroy(bvh_gpu *g) {
     glDeleteTextures(1, &g->texture);
+    glDeleteBuffers(1, &g->buffer);
     *g = (bvh_gpu){0};
 }

@@ -1,8 +1,12 @@
 /* bvh_gpu: a ray hierarchy (bvh.h) in one RGBA32F texture, for
  * shaders/bvh_trace.glsl: its nodes from texel 0, two a node, then its
- * triangles from texel 2 x node_count, three a triangle, in rows of
- * BVH_GPU_TEXTURE_WIDTH texels (read with texelFetch, so one path serves
- * GL 3.3 and WebGL 2, which has no texture buffers). Then, where the
+ * triangles from texel 2 x node_count, three a triangle. The texture is a
+ * texture buffer where the GL has them (context_features.texture_buffers)
+ * and they hold every texel (GL_MAX_TEXTURE_BUFFER_SIZE): a read is one
+ * index, where a 2D texture's is a row and a column. Elsewhere (WebGL 2
+ * has none) it is a 2D texture in rows of BVH_GPU_TEXTURE_WIDTH texels.
+ * The programs that trace are told which by BVH_TEXTURE_BUFFER (1 where
+ * `buffer` is). Then, where the
  * rays read casters' surfaces (bvh.h's records: cut-out or translucent),
  * four texels a record: its corners' texture coordinates (u0, v0, u1,
  * v1), (u2, v2, base alpha, alpha cutoff), its texture's (first texel,
@@ -33,17 +37,19 @@
 
 typedef struct bvh_gpu {
     unsigned texture;
+    unsigned buffer;                 /* the texture's store where it is a texture buffer, else 0 (2D) */
     int node_count;                  /* 0: no casters, every ray gets through */
     int record_count;                /* > 0: the programs that trace need BVH_RECORDS 1 */
     int records_first, texels_first; /* texels */
     float reach;                     /* the farthest corner of the casters' box from the origin */
 } bvh_gpu;
 
-/* b's arrays into g's texture (made, or made again); false after
- * printing one line naming `who` where the GL's largest texture cannot
- * hold them. */
+/* b's arrays into g's texture (made, or made again; a texture buffer or
+ * 2D, see the top); false after printing one line naming `who` where the
+ * GL's largest 2D texture cannot hold them either. */
 bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who);
-/* The texture on texture unit `unit` and the uniforms of `program`, in use. */
+/* The texture on texture unit `unit` (its target: a texture buffer's or
+ * 2D) and the uniforms of `program`, in use. */
 void bvh_gpu_bind(const bvh_gpu *g, unsigned program, int unit);
 void bvh_gpu_destroy(bvh_gpu *g);
 

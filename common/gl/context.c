@@ -39,6 +39,7 @@ static context_features context_desktop_features(const context_settings *s) {
         .desktop_gl = true,
         .geometry_shaders = !s->glsl_es && !webgl2,
         .primitive_id = !s->glsl_es && !webgl2,
+        .texture_buffers = !s->glsl_es && !webgl2,
         .polygon_mode = !webgl2,
         .clip_distances = !webgl2,
         .depth_clamp = !webgl2,

@@ -61,6 +61,7 @@ typedef struct context_features {
     bool desktop_gl;       /* desktop GL: desktop GLSL compiles, GL_TEXTURE_CUBE_MAP_SEAMLESS is a switch */
     bool geometry_shaders; /* the techniques' programs may have a geometry stage */
     bool primitive_id;     /* gl_PrimitiveID in a fragment shader: desktop GLSL's, not ES 3.00's */
+    bool texture_buffers;  /* GL_TEXTURE_BUFFER and samplerBuffer: desktop GLSL's, not ES 3.00's */
     bool polygon_mode;     /* glPolygonMode (WEBGL_polygon_mode) */
     bool clip_distances;   /* gl_ClipDistance, GL_CLIP_DISTANCEi (WEBGL_clip_cull_distance) */
     bool depth_clamp;      /* GL_DEPTH_CLAMP (EXT_depth_clamp) */

@@ -757,6 +757,7 @@ static bool map_camera_program_load(map_camera_program *p, const map_camera_key 
         {"MAP_PASS_TRANSMIT_LIGHTS", (int)k->transmit_lights},
         {"MAP_PASS_TRANSMIT_SLOTS", k->transmit_lights ? __builtin_popcount(k->transmit_lights) : 1},
         {"BVH_RECORDS", (int)k->ray_records},
+        {"BVH_TEXTURE_BUFFER", (int)k->ray_buffer},
     };
     /* This key's defines, then the enums every camera program compares
      * with, then each light's three, then the list's end ({NULL}, zeroed). */
@@ -1544,6 +1545,7 @@ void map_shade(map_renderer *r, const map_settings *settings, const technique_fr
     if (!r->casters)
         keys[0].rays = MAP_RAYS_OFF;
     keys[0].ray_records = keys[0].rays != MAP_RAYS_OFF && r->casters->record_count > 0;
+    keys[0].ray_buffer = keys[0].rays != MAP_RAYS_OFF && r->casters->buffer != 0;
     for (int g = 1; g < render_light_groups(f->gpu); g++)
         keys[g] = keys[0];
     for (int l = 0; l < s->light_count; l++) {

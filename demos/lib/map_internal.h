@@ -119,6 +119,7 @@ typedef struct map_camera_key {
     unsigned early_out, receiver_plane, show_texels, show_texel_size, show_cascades, show_penumbra;
     unsigned rays, show_unsure; /* map_rays; the unsure overlay */
     unsigned ray_records;       /* the rays read cut-out or translucent surfaces (BVH_RECORDS) */
+    unsigned ray_buffer;        /* the casters are in a texture buffer (BVH_TEXTURE_BUFFER) */
     unsigned ray_counts;        /* each pixel's rays into the counts' target */
     unsigned mark_rays;         /* the pixels rays decide marked, not traced */
     unsigned bounds_lights;     /* bit i: light i read by its depth bounds (a marking pass) */
