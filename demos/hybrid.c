@@ -62,7 +62,8 @@ static const flags_param hybrid_params[] = {
      GLFW_KEY_R, FLAGS_CHOICE, .index = &hybrid.rays, .choices = hybrid_rays},
     {"ray-samples",
      "an area light's rays at an unsure pixel, the reference's points for it (256, its count, by default); a pixel "
-     "stops after " FLAGS_TEXT(MAP_RAY_FIRST_SAMPLES) " where they all agree",
+     "stops after " FLAGS_TEXT(MAP_RAY_FIRST_SAMPLES) " where they all get through, after " FLAGS_TEXT(
+         MAP_RAY_BLOCKED_SAMPLES) " where they are all blocked",
      GLFW_KEY_N, FLAGS_CHOICE, .index = &hybrid.ray_samples, .choices = hybrid_ray_samples},
     {"overlay",
      "for lectures: the map's overlays (see shadowmap), and the pixels where the map is unsure, which rays decide",

@@ -166,8 +166,10 @@ vec3 map_ray_through(vec4 target) {
 // Light i at this fragment by shadow rays, per channel: one to a hard
 // light's centre; an area light's mean over the reference's samples for
 // this pixel (the same points: its seed from the pixel and the light),
-// taken in area_light_progressive_index's order and stopped after
-// MAP_RAY_FIRST_SAMPLES where those all agree.
+// taken in area_light_progressive_index's order and stopped where the
+// first ones all agree: after MAP_RAY_FIRST_SAMPLES where they get
+// through, after MAP_RAY_BLOCKED_SAMPLES where they are blocked (map.h,
+// "Rays").
 vec3 map_ray_visibility(int i, bool soft) {
     vec4 centre = lights_position[i];
     vec4 towards = centre.w == 0.0 ? vec4(-lights_direction[i].xyz, 0.0) : centre;
@@ -192,7 +194,7 @@ vec3 map_ray_visibility(int i, bool soft) {
         agree = agree && through == first;
         sum += through;
         traced++;
-        if (traced == MAP_RAY_FIRST_SAMPLES && agree)
+        if (agree && traced == (first == vec3(0.0) ? MAP_RAY_BLOCKED_SAMPLES : MAP_RAY_FIRST_SAMPLES))
             break;
     }
     map_rays_cast += traced;

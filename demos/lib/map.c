@@ -73,6 +73,7 @@ static const shader_define map_defines[] = {SHADER_DEFINE(MAP_KERNEL_SINGLE),
                                             SHADER_DEFINE(MAP_RAYS_UNSURE),
                                             SHADER_DEFINE(MAP_RAYS_ALL),
                                             SHADER_DEFINE(MAP_RAY_FIRST_SAMPLES),
+                                            SHADER_DEFINE(MAP_RAY_BLOCKED_SAMPLES),
                                             SHADER_DEFINE(MAP_BOUNDS_CELL_TEXELS),
                                             BVH_GPU_DEFINES,
                                             {NULL, 0}};

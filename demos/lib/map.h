@@ -276,8 +276,13 @@ enum { MAP_OVERLAY_UNSURE = MAP_OVERLAY_COUNT };
  * light by the reference's own samples for that pixel
  * (shaders/area_light.glsl, area_light.h's points: ray_samples of them,
  * the reference's count by default), in area_light_progressive_index's
- * order, stopped after MAP_RAY_FIRST_SAMPLES where those all agree (the
- * pixel is then taken as wholly lit or in umbra). At every pixel
+ * order, stopped where the first ones all agree (the pixel is then taken
+ * as wholly lit, lit through the same panes, or in umbra): after
+ * MAP_RAY_FIRST_SAMPLES where they get through, after
+ * MAP_RAY_BLOCKED_SAMPLES where they are all blocked. At an umbra's rim
+ * the part of the disk still in sight is a sliver a few samples wide,
+ * which an even quarter of the disk's samples can miss (test_hybrid's
+ * umbra rim). At every pixel
  * (MAP_RAYS_ALL, a plain ray tracer), or only where the map is unsure
  * (MAP_RAYS_UNSURE): where its filter, the kernel or PCSS, gives a
  * visibility strictly between 0 and 1 (a shadow's edge within the
@@ -309,9 +314,11 @@ typedef enum map_rays { MAP_RAYS_OFF, MAP_RAYS_UNSURE, MAP_RAYS_ALL } map_rays;
 /* The reference's samples of an area light per pixel
  * (RAYTRACE_DEFAULT_LIGHT_SAMPLES: test_hybrid checks they agree), a
  * power of 4, so that every first 4^i samples cover the disk evenly; and
- * the samples after which a pixel whose rays all agree stops. */
+ * the samples after which a pixel whose rays all agree stops: where they
+ * get through, and where they are all blocked ("Rays" above). */
 #define MAP_RAY_DEFAULT_SAMPLES 256
 #define MAP_RAY_FIRST_SAMPLES 64
+#define MAP_RAY_BLOCKED_SAMPLES 128
 
 /* The map inset. Light 0's map is reduced on the GPU
  * (shaders/overlay_reduce.frag) to blocks of texels, a block to at most
