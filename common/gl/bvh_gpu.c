@@ -89,8 +89,8 @@ bool bvh_gpu_upload(bvh_gpu *g, const bvh *b, const char *who) {
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (context_current_features()->texture_buffers)
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_buffer);
-    bool buffer = texels < max_buffer && texels < BVH_MAX_INDEX;
-    if (!buffer && (rows > max_size || texels >= BVH_MAX_INDEX)) {
+    bool buffer = texels < max_buffer;
+    if (texels >= BVH_MAX_INDEX || (!buffer && rows > max_size)) {
         fprintf(stderr,
                 "%s: %d triangles and their surfaces' textures need a ray texture of %lld rows, more than "
                 "this GL's %d or the %d texels indices reach\n",
