@@ -167,6 +167,23 @@ echo "== each test's time (tier $TEST_TIER), in seconds:"
 printf '%s\n' "${times[@]}" | awk '{ printf "%6d %s\n", $1, $2 }'
 echo "== the slowest ten:"
 printf '%s\n' "${times[@]}" | sort -rn | head -n 10 | awk '{ printf "%6d %s\n", $1, $2 }'
+# The failures again, last, where a log that keeps only the output's tail
+# (CI's) still shows them: each failed program with cmocka's lines that
+# name the failed assertion and the few lines its test printed before.
+if [ "$failed" -gt 0 ]; then
+    echo "== what failed:"
+    for build in "$@"; do
+        for job in "${jobs[@]}"; do
+            read -r job_build name <<<"$job"
+            log=out/run/$build/$name.log
+            [ "$job_build" = "$build" ] && [ -f "$log" ] || continue
+            read -r p f s seconds < <(tail -n 1 "$log")
+            [ "$f" -gt 0 ] || continue
+            echo "-- $build/tests/$name"
+            grep -B 3 -E '^\[ +(ERROR|LINE|FAILED) +\]|exited with status' "$log" | grep -v -E '^--$|^\[ +(OK|PASSED) +\]|^\[=+\]' | head -n 40
+        done
+    done
+fi
 if [ "$skipped" -gt 0 ]; then
     echo "$passed passed, $failed failed, $skipped skipped"
 else
