@@ -6,7 +6,8 @@
  * of the visibility decisions (no surface, lit, shadowed) may differ. A
  * page that fails fails the test with the browser console's lines. The
  * page's own parts too: its window, menu and HUD, and what it says
- * without WebGL 2.
+ * without WebGL 2. Headless runs go several to a page (web_run), each
+ * from a fresh start, which web_batched_runs_start_afresh proves.
  *
  * Skipped where the page is not built (make test builds it where Debian's
  * emscripten is installed) or Chromium is missing, and in the sanitizer
@@ -125,65 +126,119 @@ static bool web_write_base64(const char *text, size_t length, const char *path) 
     return fclose(f) == 0;
 }
 
-/* Runs the page with the program's `args` and the page's `query` (keys,
- * frames: index.html) in headless Chromium, with its own `browser` flags
- * too; the files it wrote under /out/ (of the names in `exported`), its
- * console's lines (console.txt) and its DOM (page.html) into dir, made
- * anew (no picture of an earlier run stays to be found there). Fails
- * the running test, with the page's console, unless its status starts
- * with `expected`. */
-static void web_run_page(const char *args, const char *query, const char *exported, const char *browser,
-                         const char *expected, const char *dir) {
-    char encoded[2048], dom_path[PATH_MAX + 16], command[4 * PATH_MAX + 4096];
-    web_url_encode(args, encoded, sizeof encoded);
-    snprintf(dom_path, sizeof dom_path, "%s/page.html", dir);
+/* The most headless runs one page takes (?args= once each, index.html):
+ * each run but the first is spared the browser's start and the page's
+ * load, and a bound keeps one page well within the virtual time budget. */
+#define WEB_BATCH_RUNS 8
+
+/* Run K's part of the page's console: the lines after its "== run K: "
+ * line, up to the next run's (the page's whole console for one run). */
+static char *web_run_console(const char *console, int k, int count) {
+    if (count == 1)
+        return strdup(console);
+    char marker[32];
+    snprintf(marker, sizeof marker, "== run %d: ", k);
+    const char *start = strstr(console, marker);
+    if (!start)
+        return strdup("");
+    start += strcspn(start, "\n");
+    start += *start == '\n';
+    const char *end = strstr(start, "== run ");
+    return strndup(start, end ? (size_t)(end - start) : strlen(start));
+}
+
+/* Runs the page in headless Chromium with the program's args[0..count)
+ * (one run, or up to WEB_BATCH_RUNS headless ones, one after another),
+ * the page's `query` (keys, frames: index.html) and its own `browser`
+ * flags. Run K's files under /out (of the names in `exported`) and its
+ * console's lines (console.txt) go into dirs[K], made anew (no picture of
+ * an earlier run stays to be found there), the page's DOM (page.html)
+ * into dirs[0]. Fails the running test, with the page's console, unless
+ * each run's status line starts with `expected`. */
+static void web_run_page(const char *const *args, int count, const char *query, const char *exported,
+                         const char *browser, const char *expected, const char *const *dirs) {
+    assert_true(count >= 1 && count <= WEB_BATCH_RUNS);
+    char url[8192], dom_path[PATH_MAX + 16], command[16384];
+    int n = snprintf(url, sizeof url, "file://%s?", web_page);
+    for (int k = 0; k < count; k++) {
+        char encoded[2048];
+        web_url_encode(args[k], encoded, sizeof encoded);
+        n += snprintf(url + n, sizeof url - (size_t)n, "%sargs=%s", k ? "&" : "", encoded);
+    }
+    n += snprintf(url + n, sizeof url - (size_t)n, "&export=%s%s", exported, query);
+    assert_true(n < (int)sizeof url);
+    n = snprintf(command, sizeof command, "{ ");
+    for (int k = 0; k < count; k++)
+        n += snprintf(command + n, sizeof command - (size_t)n, "rm -rf %s && mkdir -p %s && ", dirs[k], dirs[k]);
     /* The DOM to a file, and Chromium's own log (its sandbox and bus
      * notes) to another: support_run redirects the command's outputs. */
-    snprintf(
-        command, sizeof command,
-        "{ rm -rf %s && mkdir -p %s && " WEB_CHROMIUM
-        " %s --user-data-dir=\"$PWD/%s/profile\" 'file://%s?args=%s&export=%s%s' > %s 2> %s/chromium.log; rm -rf %s/profile; }",
-        dir, dir, browser, dir, web_page, encoded, exported, query, dom_path, dir, dir);
+    snprintf(dom_path, sizeof dom_path, "%s/page.html", dirs[0]);
+    n += snprintf(command + n, sizeof command - (size_t)n,
+                  WEB_CHROMIUM
+                  " %s --user-data-dir=\"$PWD/%s/profile\" '%s' > %s 2> %s/chromium.log; rm -rf %s/profile; }",
+                  browser, dirs[0], url, dom_path, dirs[0], dirs[0]);
+    assert_true(n < (int)sizeof command);
     char errors[4096];
     int status = support_run(command, errors, sizeof errors);
     size_t length;
     char *dom = path_read_text(dom_path, WEB_MAX_DOM, &length);
     assert_non_null(dom);
-    char *exit_line = web_element(dom, "status"), *console = web_element(dom, "console");
+    char *exit_lines = web_element(dom, "status"), *console = web_element(dom, "console");
     char *files = web_element(dom, "files");
     free(dom);
-    char console_path[PATH_MAX + 16];
-    snprintf(console_path, sizeof console_path, "%s/console.txt", dir);
-    FILE *console_file = fopen(console_path, "w");
-    bool ok = console_file && fputs(console, console_file) >= 0;
-    ok = (console_file && fclose(console_file) == 0) && ok;
-    ok = ok && status == 0 && strncmp(exit_line, expected, strlen(expected)) == 0;
+    bool ok = status == 0;
+    const char *line = exit_lines;
+    for (int k = 0; k < count; k++) {
+        char console_path[PATH_MAX + 16];
+        snprintf(console_path, sizeof console_path, "%s/console.txt", dirs[k]);
+        char *said = web_run_console(console, k, count);
+        FILE *console_file = fopen(console_path, "w");
+        bool written = console_file && fputs(said, console_file) >= 0;
+        written = (console_file && fclose(console_file) == 0) && written;
+        free(said);
+        size_t line_length = strcspn(line, "\n");
+        bool run_ok = written && strncmp(line, expected, strlen(expected)) == 0;
+        printf("web: %s: %s%.*s\n", args[k], run_ok ? "" : "failed: ", (int)line_length, line);
+        ok = ok && run_ok;
+        line += line_length + (line[line_length] == '\n');
+    }
     if (!ok)
-        printf("web: %s: chromium %d, page: \"%s\"\n%s\n", args, status, exit_line, console);
-    else
-        printf("web: %s: %s\n", args, exit_line);
-    for (char *line = files, *next; ok && *line; line = next) {
-        next = line + strcspn(line, "\n");
+        printf("web: chromium %d, the page's console:\n%s\n", status, console);
+    for (char *entry = files, *next; ok && *entry; entry = next) {
+        next = entry + strcspn(entry, "\n");
         if (*next)
             *next++ = '\0';
-        char *space = strchr(line, ' ');
+        char *space = strchr(entry, ' ');
         if (!space)
             continue;
         *space = '\0';
-        const char *name = strrchr(line, '/') ? strrchr(line, '/') + 1 : line;
+        /* "/out-K/..." for run K of several, "/out/..." for one. */
+        int k = count > 1 ? atoi(entry + strlen("/out-")) : 0;
+        const char *name = strrchr(entry, '/') ? strrchr(entry, '/') + 1 : entry;
         char path[2 * PATH_MAX];
-        snprintf(path, sizeof path, "%s/%s", dir, name);
+        snprintf(path, sizeof path, "%s/%s", dirs[k >= 0 && k < count ? k : 0], name);
         ok = web_write_base64(space + 1, strlen(space + 1), path);
     }
-    free(exit_line);
+    free(exit_lines);
     free(console);
     free(files);
     assert_true(ok);
 }
 
-/* A headless run of the program in the page, which must exit 0. */
-static void web_run(const char *args, const char *exported, const char *dir) {
-    web_run_page(args, "", exported, "", "exit 0 ", dir);
+/* One run of the page (a window, or what the page says without one):
+ * web_run_page's with one run, whose files go into dir. */
+static void web_open_page(const char *args, const char *query, const char *exported, const char *browser,
+                          const char *expected, const char *dir) {
+    web_run_page(&args, 1, query, exported, browser, expected, &dir);
+}
+
+/* Headless runs of the program in pages of up to WEB_BATCH_RUNS runs
+ * each, which must exit 0: run K's files in dirs[K]. */
+static void web_run(const char *const *args, int count, const char *exported, const char *const *dirs) {
+    for (int first = 0; first < count; first += WEB_BATCH_RUNS) {
+        int batch = count - first < WEB_BATCH_RUNS ? count - first : WEB_BATCH_RUNS;
+        web_run_page(args + first, batch, "", exported, "", "exit 0 ", dirs + first);
+    }
 }
 
 /* The share of pixels whose decision (no surface, lit, shadowed at half
@@ -207,26 +262,47 @@ static double web_decisions_differing(const char *a_dir, const char *b_dir) {
     return (double)differing / ((double)aw * ah);
 }
 
-/* `technique` on the scene file at `scene` (from the repository's root,
- * the page's own path too): the page's picture and decisions against
- * native EGL's, in OUT/NAME_native and OUT/NAME_web. */
-static void web_compare_with_native(const char *technique, const char *scene, const char *name) {
-    char flags[256], native_dir[PATH_MAX], web_dir[PATH_MAX], args[512];
-    snprintf(native_dir, sizeof native_dir, OUT "/%s_native", name);
-    snprintf(web_dir, sizeof web_dir, OUT "/%s_web", name);
-    snprintf(flags, sizeof flags, "--backend egl --technique %s", technique);
-    assert_int_equal(support_dump("shadows", scene, flags, native_dir), 0);
-    snprintf(args, sizeof args, "--technique %s --scene /%s --size " WEB_SIZE " --dump /out/dump", technique, scene);
-    web_run(args, "color.png,visibility.pfm", web_dir);
-    char native_png[PATH_MAX + 16], web_png[PATH_MAX + 16];
-    snprintf(native_png, sizeof native_png, "%s/color.png", native_dir);
-    snprintf(web_png, sizeof web_png, "%s/color.png", web_dir);
-    double pixels = support_compare_images(native_png, web_png);
-    double decisions = web_decisions_differing(native_dir, web_dir);
-    printf("web: %s on %s: %.3f %% of the pixels differ, %.4f %% of the decisions\n", technique, scene, 100 * pixels,
-           100 * decisions);
-    assert_true(pixels >= 0 && pixels <= WEB_MAX_DIFFERING);
-    assert_true(decisions <= WEB_MAX_DECISIONS);
+/* A technique on a scene file (from the repository's root, the page's
+ * own path too), its pictures and decisions in OUT/NAME_native and
+ * OUT/NAME_web. */
+typedef struct web_case {
+    char technique[64], scene[128], name[256];
+    char native_dir[PATH_MAX], web_dir[PATH_MAX], args[512];
+} web_case;
+/* Every technique on every standard scene, at most. */
+#define WEB_MAX_CASES 64
+
+/* The page's picture and decisions against native EGL's, for each of
+ * `count` cases: the native runs, then the page's (in batches: web_run),
+ * then each case's figures. */
+static void web_compare_with_native(web_case *cases, int count) {
+    const char *args[WEB_MAX_CASES], *dirs[WEB_MAX_CASES];
+    assert_true(count <= WEB_MAX_CASES);
+    for (int c = 0; c < count; c++) {
+        web_case *w = &cases[c];
+        char flags[256];
+        snprintf(w->native_dir, sizeof w->native_dir, OUT "/%s_native", w->name);
+        snprintf(w->web_dir, sizeof w->web_dir, OUT "/%s_web", w->name);
+        snprintf(flags, sizeof flags, "--backend egl --technique %s", w->technique);
+        assert_int_equal(support_dump("shadows", w->scene, flags, w->native_dir), 0);
+        snprintf(w->args, sizeof w->args, "--technique %s --scene /%s --size " WEB_SIZE " --dump dump", w->technique,
+                 w->scene);
+        args[c] = w->args;
+        dirs[c] = w->web_dir;
+    }
+    web_run(args, count, "color.png,visibility.pfm", dirs);
+    for (int c = 0; c < count; c++) {
+        const web_case *w = &cases[c];
+        char native_png[PATH_MAX + 16], web_png[PATH_MAX + 16];
+        snprintf(native_png, sizeof native_png, "%s/color.png", w->native_dir);
+        snprintf(web_png, sizeof web_png, "%s/color.png", w->web_dir);
+        double pixels = support_compare_images(native_png, web_png);
+        double decisions = web_decisions_differing(w->native_dir, w->web_dir);
+        printf("web: %s on %s: %.3f %% of the pixels differ, %.4f %% of the decisions\n", w->technique, w->scene,
+               100 * pixels, 100 * decisions);
+        assert_true(pixels >= 0 && pixels <= WEB_MAX_DIFFERING);
+        assert_true(decisions <= WEB_MAX_DECISIONS);
+    }
 }
 
 /* Every technique on every standard scene (in make test's quick tier, each
@@ -235,17 +311,20 @@ static void web_matches_native(void **state) {
     (void)state;
     if (!web_available())
         skip();
+    static web_case cases[WEB_MAX_CASES];
+    int count = 0;
+    assert_true(registry_technique_count * web_scene_count <= WEB_MAX_CASES);
     for (int t = 0; t < registry_technique_count; t++) {
         for (int s = 0; s < web_scene_count; s++) {
             if (!support_sweep_takes(t, s, web_scene_count))
                 continue;
-            const char *technique = registry_techniques[t]->name;
-            char scene[128], name[256];
-            snprintf(scene, sizeof scene, "assets/scenes/%s.json", web_scenes[s]);
-            snprintf(name, sizeof name, "%s_%s", technique, web_scenes[s]);
-            web_compare_with_native(technique, scene, name);
+            web_case *w = &cases[count++];
+            snprintf(w->technique, sizeof w->technique, "%s", registry_techniques[t]->name);
+            snprintf(w->scene, sizeof w->scene, "assets/scenes/%s.json", web_scenes[s]);
+            snprintf(w->name, sizeof w->name, "%s_%s", registry_techniques[t]->name, web_scenes[s]);
         }
     }
+    web_compare_with_native(cases, count);
 }
 
 /* The glTF scenes in the page, their scene packs baked from the files
@@ -262,8 +341,11 @@ static void web_gltf_scene_matches_native(void **state) {
     (void)state;
     if (!web_available())
         skip();
-    web_compare_with_native(WEB_GLTF_TECHNIQUE, WEB_GLTF_SCENE, WEB_GLTF_TECHNIQUE "_fence");
-    web_compare_with_native(WEB_GLASS_TECHNIQUE, WEB_GLASS_SCENE, WEB_GLASS_TECHNIQUE "_glass");
+    static web_case cases[] = {
+        {.technique = WEB_GLTF_TECHNIQUE, .scene = WEB_GLTF_SCENE, .name = WEB_GLTF_TECHNIQUE "_fence"},
+        {.technique = WEB_GLASS_TECHNIQUE, .scene = WEB_GLASS_SCENE, .name = WEB_GLASS_TECHNIQUE "_glass"},
+    };
+    web_compare_with_native(cases, sizeof cases / sizeof *cases);
 }
 
 /* The window's keys in the page (each a GLFW key through Emscripten's
@@ -275,9 +357,9 @@ static void web_keys_switch_and_toggle(void **state) {
     if (!web_available())
         skip();
     const char *dir = OUT "/keys";
-    web_run_page("--no-hud --size " WEB_SIZE " --scene /assets/scenes/simple.json",
-                 "&keys=2:3,4:F12,5:C,5:L,7:F12&frames=8", "screenshot-shadowmap-1.png,screenshot-shadowmap-2.png",
-                 "", "frames 8", dir);
+    web_open_page("--no-hud --size " WEB_SIZE " --scene /assets/scenes/simple.json",
+                  "&keys=2:3,4:F12,5:C,5:L,7:F12&frames=8", "screenshot-shadowmap-1.png,screenshot-shadowmap-2.png",
+                  "", "frames 8", dir);
     static const struct {
         const char *web, *flags;
     } pictures[] = {
@@ -343,10 +425,10 @@ static void web_window_fills_the_page_and_menu_drives_it(void **state) {
     if (!web_available())
         skip();
     const char *dir = OUT "/menu";
-    web_run_page("--hud-scale " FLAGS_TEXT(WEB_HUD_SCALE),
-                 "&click=2:technique-" WEB_MENU_TECHNIQUE ",5:compare&keys=3:Escape,4:F12,7:F12&frames=7",
-                 "screenshot-" WEB_MENU_TECHNIQUE "-1.png,screenshot-" WEB_MENU_TECHNIQUE "-2.png", WEB_WINDOW_FLAGS,
-                 "frames 7", dir);
+    web_open_page("--hud-scale " FLAGS_TEXT(WEB_HUD_SCALE),
+                  "&click=2:technique-" WEB_MENU_TECHNIQUE ",5:compare&keys=3:Escape,4:F12,7:F12&frames=7",
+                  "screenshot-" WEB_MENU_TECHNIQUE "-1.png,screenshot-" WEB_MENU_TECHNIQUE "-2.png", WEB_WINDOW_FLAGS,
+                  "frames 7", dir);
     int width, height;
     unsigned char *picture = image_read_png(OUT "/menu/screenshot-" WEB_MENU_TECHNIQUE "-1.png", &width, &height);
     if (!picture)
@@ -389,7 +471,7 @@ static void web_without_webgl2_says_so(void **state) {
     (void)state;
     if (!web_available())
         skip();
-    web_run_page("", "", "", "--disable-webgl", WEB_NO_WEBGL2, OUT "/no_webgl2");
+    web_open_page("", "", "", "--disable-webgl", WEB_NO_WEBGL2, OUT "/no_webgl2");
     char *status = path_read_text(OUT "/no_webgl2/page.html", WEB_MAX_DOM, NULL);
     assert_non_null(status);
     char *said = web_element(status, "status"),
@@ -400,6 +482,27 @@ static void web_without_webgl2_says_so(void **state) {
     free(said);
     free(console);
     free(status);
+}
+
+/* Runs batched in one page start afresh: a run after another that set
+ * other flags, another technique's, and compare mode (whose layout a
+ * program that kept it would draw) dumps the same files as the same run
+ * before it. */
+#define WEB_FRESH_RUN "--technique shadowmap --scene /assets/scenes/simple.json --size 320x180 --dump dump"
+#define WEB_OTHER_RUN                                                                                                \
+    "--technique shadowmap --filter hw --no-constant-bias --map-size 256 --scene /assets/scenes/bunny.json "         \
+    "--compare --size 320x180 --screenshot other.png"
+static void web_batched_runs_start_afresh(void **state) {
+    (void)state;
+    if (!web_available())
+        skip();
+    const char *args[] = {WEB_FRESH_RUN, WEB_OTHER_RUN, WEB_FRESH_RUN};
+    const char *dirs[] = {OUT "/fresh_first", OUT "/fresh_other", OUT "/fresh_after"};
+    web_run(args, 3, "color.png,visibility.pfm,other.png", dirs);
+    static const char *const files[] = {"color.png", "visibility.pfm"};
+    const char *differs = support_first_difference(dirs[0], dirs[2], files, 2);
+    if (differs)
+        fail_msg("%s differs between a run and the same run after " WEB_OTHER_RUN, differs);
 }
 
 /* A tour in the page: Space steps it, and the step shown is the native
@@ -413,8 +516,8 @@ static void web_tour_steps(void **state) {
     if (!web_available())
         skip();
     const char *dir = OUT "/tour";
-    web_run_page("--no-hud --size " WEB_SIZE " --tour /assets/tours/" WEB_TOUR ".json",
-                 "&keys=2:Space,3:Space,4:Space,6:F12&frames=7", WEB_TOUR_PICTURE, "", "frames 7", dir);
+    web_open_page("--no-hud --size " WEB_SIZE " --tour /assets/tours/" WEB_TOUR ".json",
+                  "&keys=2:Space,3:Space,4:Space,6:F12&frames=7", WEB_TOUR_PICTURE, "", "frames 7", dir);
     char command[512], errors[4096];
     snprintf(command, sizeof command,
              "%s --backend egl --size " WEB_SIZE " --tour assets/tours/" WEB_TOUR ".json --screenshot " OUT
@@ -440,11 +543,11 @@ static void web_tour_caption_stays_true(void **state) {
     if (!web_available())
         skip();
     const char *dir = OUT "/caption";
-    web_run_page("--verbose --size " SUPPORT_CAPTION_SIZE " --tour /" SUPPORT_CAPTION_TOUR,
-                 "&keys=2:Space,3:Space,4:Space,6:F12,7:6,9:F12,10:3,12:F12,13:C,15:F12&frames=16",
-                 "screenshot-shadowmap-1.png,screenshot-volumes-1.png,screenshot-shadowmap-2.png,"
-                 "screenshot-shadowmap-3.png",
-                 "", "frames 16", dir);
+    web_open_page("--verbose --size " SUPPORT_CAPTION_SIZE " --tour /" SUPPORT_CAPTION_TOUR,
+                  "&keys=2:Space,3:Space,4:Space,6:F12,7:6,9:F12,10:3,12:F12,13:C,15:F12&frames=16",
+                  "screenshot-shadowmap-1.png,screenshot-volumes-1.png,screenshot-shadowmap-2.png,"
+                  "screenshot-shadowmap-3.png",
+                  "", "frames 16", dir);
     char *console = path_read_text(OUT "/caption/console.txt", WEB_MAX_DOM, NULL);
     assert_non_null(console);
     static const char *const pictures[SUPPORT_CAPTION_PICTURES] = {
@@ -475,21 +578,21 @@ static const struct {
     const char *args;         /* the same run in the page, its pictures named as native's */
     double misclassified_gap; /* a share; 0: WEB_MAX_DECISIONS */
 } web_baked_runs[] = {
-    {"tours/overview", "--tour /assets/tours/overview.json --screenshot /out/step.png", 0},
-    {"tours/planar", "--tour /assets/tours/planar.json --screenshot /out/step.png", 0},
-    {"tours/projective", "--tour /assets/tours/projective.json --screenshot /out/step.png", 0},
-    {"tours/shadowmap", "--tour /assets/tours/shadowmap.json --screenshot /out/step.png", 0},
+    {"tours/overview", "--tour /assets/tours/overview.json --screenshot step.png", 0},
+    {"tours/planar", "--tour /assets/tours/planar.json --screenshot step.png", 0},
+    {"tours/projective", "--tour /assets/tours/projective.json --screenshot step.png", 0},
+    {"tours/shadowmap", "--tour /assets/tours/shadowmap.json --screenshot step.png", 0},
     /* SwiftShader places psm's warped map on long_view a little otherwise
      * than Mesa (which, under --webgl2, matches native): the page's psm
      * itself decides some pixels otherwise, so its compare step's
      * misclassified share may differ by up to a hundredth. */
-    {"tours/psm", "--tour /assets/tours/psm.json --screenshot /out/step.png", 0.01},
-    {"tours/soft", "--tour /assets/tours/soft.json --screenshot /out/step.png", 0},
-    {"tours/volumes", "--tour /assets/tours/volumes.json --screenshot /out/step.png", 0},
-    {"tours/hybrid", "--tour /assets/tours/hybrid.json --screenshot /out/step.png", 0},
-    {"scenes/bunny", "--scene /assets/scenes/bunny.json --compare --screenshot /out/compare.png", 0},
-    {"scenes/soft_sun", "--scene /assets/scenes/soft_sun.json --compare --screenshot /out/compare.png", 0},
-    {"scenes/fence", "--scene /assets/scenes/fence.gltf --compare --screenshot /out/compare.png", 0},
+    {"tours/psm", "--tour /assets/tours/psm.json --screenshot step.png", 0.01},
+    {"tours/soft", "--tour /assets/tours/soft.json --screenshot step.png", 0},
+    {"tours/volumes", "--tour /assets/tours/volumes.json --screenshot step.png", 0},
+    {"tours/hybrid", "--tour /assets/tours/hybrid.json --screenshot step.png", 0},
+    {"scenes/bunny", "--scene /assets/scenes/bunny.json --compare --screenshot compare.png", 0},
+    {"scenes/soft_sun", "--scene /assets/scenes/soft_sun.json --compare --screenshot compare.png", 0},
+    {"scenes/fence", "--scene /assets/scenes/fence.gltf --compare --screenshot compare.png", 0},
 };
 
 /* A compare picture's figures, as compare_figures_text writes them. */
@@ -520,11 +623,23 @@ static void web_baked_runs_match_native(void **state) {
     (void)state;
     if (!web_available())
         skip();
-    for (size_t r = 0; r < sizeof web_baked_runs / sizeof *web_baked_runs; r += (size_t)support_sweep_stride()) {
-        char native_dir[2 * PATH_MAX], dir[256], native[3 * PATH_MAX], web[3 * PATH_MAX];
+    enum { run_count = sizeof web_baked_runs / sizeof *web_baked_runs };
+    const char *args[run_count], *dirs[run_count];
+    char dir_names[run_count][256];
+    size_t taken[run_count];
+    int count = 0;
+    for (size_t r = 0; r < run_count; r += (size_t)support_sweep_stride()) {
+        snprintf(dir_names[count], sizeof dir_names[count], OUT "/%s", web_baked_runs[r].baked);
+        args[count] = web_baked_runs[r].args;
+        dirs[count] = dir_names[count];
+        taken[count++] = r;
+    }
+    web_run(args, count, "", dirs);
+    for (int c = 0; c < count; c++) {
+        size_t r = taken[c];
+        const char *dir = dirs[c];
+        char native_dir[2 * PATH_MAX], native[3 * PATH_MAX], web[3 * PATH_MAX];
         snprintf(native_dir, sizeof native_dir, "%s/" WEB_BAKING "/%s", web_root, web_baked_runs[r].baked);
-        snprintf(dir, sizeof dir, OUT "/%s", web_baked_runs[r].baked);
-        web_run(web_baked_runs[r].args, "", dir);
         DIR *pictures = opendir(native_dir);
         if (!pictures)
             fail_msg("%s: not baked (make web)", native_dir);
@@ -564,10 +679,15 @@ static void web_baked_runs_match_native(void **state) {
 
 int main(void) {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(web_matches_native),          cmocka_unit_test(web_gltf_scene_matches_native),
-        cmocka_unit_test(web_keys_switch_and_toggle),  cmocka_unit_test(web_window_fills_the_page_and_menu_drives_it),
-        cmocka_unit_test(web_without_webgl2_says_so),  cmocka_unit_test(web_tour_steps),
-        cmocka_unit_test(web_tour_caption_stays_true), cmocka_unit_test(web_baked_runs_match_native),
+        cmocka_unit_test(web_matches_native),
+        cmocka_unit_test(web_gltf_scene_matches_native),
+        cmocka_unit_test(web_keys_switch_and_toggle),
+        cmocka_unit_test(web_window_fills_the_page_and_menu_drives_it),
+        cmocka_unit_test(web_without_webgl2_says_so),
+        cmocka_unit_test(web_batched_runs_start_afresh),
+        cmocka_unit_test(web_tour_steps),
+        cmocka_unit_test(web_tour_caption_stays_true),
+        cmocka_unit_test(web_baked_runs_match_native),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

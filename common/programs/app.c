@@ -61,7 +61,9 @@
 #define APP_IN_PAGE 0
 #endif
 
-static struct {
+/* The program's state, all of it zero when app_main starts: the page
+ * runs one program after another in the same instance (index.html). */
+static struct app_state {
     const char *program;
     const technique *const *techniques;
     int technique_count, current;
@@ -1402,6 +1404,7 @@ static bool app_run(void) {
 
 int app_main(int argc, char **argv, const technique *const *techniques, int technique_count,
              const flags_elsewhere *elsewhere, int elsewhere_count) {
+    app = (struct app_state){0};
     app.program = flags_program_name(argv[0]);
     if (technique_count > APP_MAX_TECHNIQUES) {
         fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count, APP_MAX_TECHNIQUES);
@@ -1415,8 +1418,10 @@ int app_main(int argc, char **argv, const technique *const *techniques, int tech
         }
     app.techniques = techniques;
     app.technique_count = technique_count;
-    for (int i = 0; i < technique_count; i++)
+    for (int i = 0; i < technique_count; i++) {
         app.technique_names[i] = techniques[i]->name;
+        flags_reset(techniques[i]->params, techniques[i]->param_count); /* as a run before this one left them */
+    }
     app.current = -1; /* until --technique says */
     int status = app_parse_flags(argc, argv, elsewhere, elsewhere_count);
     if (status)
