@@ -285,6 +285,42 @@ static void test_budget_draws_a_kept_light_as_it_was(void **state) {
     assert_non_null(line);
 }
 
+/* Many spots, each asking a map of SPOTS_SIZE (--map-size), ask more
+ * than the lights' own maps may hold (map.h, "Memory"): the first of the
+ * largest are halved, one at a time, until the sum fits, as many times as
+ * that sum says, and the state line says how many (light 0, the first,
+ * is one of them). At the automatic sizes the same spots fit whole. */
+#define SPOTS "tests/data/many_spots.json"
+#define SPOTS_COUNT 24
+#define SPOTS_SIZE 4096
+#define SPOTS_FLAGS "--technique shadowmap --size 320x180"
+/* Whether the first line of `text` holds `part`. */
+static bool first_line_has(const char *text, const char *part) {
+    const char *at = strstr(text, part);
+    return at && at + strlen(part) <= text + strcspn(text, "\n");
+}
+
+static void test_own_maps_halved_to_fit_the_memory(void **state) {
+    (void)state;
+    int halvings = 0;
+    double side = SPOTS_SIZE;
+    for (double texels = SPOTS_COUNT * side * side; texels > MAP_MEMORY_TEXELS; halvings++)
+        texels -= side * side - side / 2 * side / 2;
+    assert_true(halvings > 0 && halvings < SPOTS_COUNT);
+    const char *line =
+        support_verbose_line("shadows", SPOTS, SPOTS_FLAGS " --map-size " FLAGS_TEXT(SPOTS_SIZE), "hud: light 0: ");
+    assert_non_null(line);
+    printf("    %.*s\n", (int)strcspn(line, "\n"), line);
+    char expected[64];
+    snprintf(expected, sizeof expected, "maps halved %d times to fit the memory", halvings);
+    assert_true(first_line_has(line, expected));
+    snprintf(expected, sizeof expected, "2D map %d, ", SPOTS_SIZE / 2);
+    assert_true(first_line_has(line, expected));
+    line = support_verbose_line("shadows", SPOTS, SPOTS_FLAGS, "hud: light 0: ");
+    assert_non_null(line);
+    assert_false(first_line_has(line, "maps halved"));
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_maps_shadow_every_group),
@@ -301,6 +337,7 @@ int main(void) {
         cmocka_unit_test(test_auto_filter_is_hw_past_eight_lights),
         cmocka_unit_test(test_budget_changes_nothing_while_still),
         cmocka_unit_test(test_budget_draws_a_kept_light_as_it_was),
+        cmocka_unit_test(test_own_maps_halved_to_fit_the_memory),
     };
     return cmocka_run_group_tests_name("many lights", tests, NULL, NULL);
 }

@@ -614,9 +614,38 @@ static bool *map_waiting_needed(const map_renderer *r, int l, int layer) {
     return r->waiting_needed + ((size_t)l * MAP_MAX_LAYERS + (size_t)layer) * (size_t)r->object_count;
 }
 
+/* The fitted lights' own maps within the GL's largest texture and,
+ * together, MAP_MEMORY_TEXELS (map.h, "Memory"): the largest above
+ * MAP_AUTO_MIN_SIZE halved (the first of equals) until they fit. */
+static void map_bound_memory(map_renderer *r, int light_count) {
+    for (int l = 0; l < light_count; l++)
+        if (r->fitted[l] && !r->maps[l].tiled && r->maps[l].size > r->max_texture_size) {
+            map_resize(&r->maps[l], map_side_within_gl(r, r->maps[l].size, MAP_AUTO_MIN_SIZE));
+            r->maps_halved++;
+        }
+    for (;;) {
+        double texels = 0;
+        int largest = -1;
+        for (int l = 0; l < light_count; l++) {
+            const map_light *m = &r->maps[l];
+            if (!r->fitted[l] || m->tiled)
+                continue;
+            texels += (double)m->layer_count * m->size * m->size;
+            if (m->size > MAP_AUTO_MIN_SIZE && (largest < 0 || m->size > r->maps[largest].size))
+                largest = l;
+        }
+        if (texels <= MAP_MEMORY_TEXELS || largest < 0)
+            return;
+        map_resize(&r->maps[largest], r->maps[largest].size / 2);
+        r->maps_halved++;
+    }
+}
+
 void map_draw_depth(map_renderer *r, const map_settings *st, const technique_frame *f, int l) {
     if (!r->fitted[l])
         return;
+    if (!r->atlas_planned)
+        map_bound_memory(r, f->gpu->scene->light_count);
     /* Every light fitted: the atlas sized for all their tiles, before any
      * is drawn. One made again holds nothing: its lights' caches are
      * gone, and each is drawn this frame as a light's first is, whatever
@@ -1456,7 +1485,7 @@ void map_begin(map_renderer *r, const technique_frame *f) {
     glGetIntegerv(GL_VIEWPORT, r->viewport);
     memset(r->fitted, 0, sizeof r->fitted);
     r->atlas_planned = false;
-    r->tiles_short = r->tiles_refused = r->tiles_halved = 0;
+    r->tiles_short = r->tiles_refused = r->tiles_halved = r->maps_halved = 0;
     r->hit_count = r->sample_light = -1; /* nothing measured yet this frame */
     /* The camera's depth first: the shading pass tests against it (each
      * visible pixel filtered once), and the maps cull the casters it
@@ -1491,6 +1520,8 @@ void map_describe_storage(const map_renderer *r, int l, char *out, size_t size) 
                               100.0 * (double)map_atlas_used(&r->atlas) / ((double)r->atlas.size * r->atlas.size));
     if (r->tiles_halved && n < size)
         n += (size_t)snprintf(out + n, size - n, ", tiles halved %d times to fit", r->tiles_halved);
+    if (r->maps_halved && n < size)
+        n += (size_t)snprintf(out + n, size - n, ", maps halved %d times to fit the memory", r->maps_halved);
     if ((r->tiles_short || r->tiles_refused) && n < size)
         n += (size_t)snprintf(out + n, size - n, ", atlas full: %d faces smaller, %d lights in cube maps",
                               r->tiles_short, r->tiles_refused);

@@ -93,6 +93,15 @@
  * test_shadowmap's test_map_size_from_need the sizes). */
 #define MAP_AUTO_MIN_SIZE 256
 #define MAP_AUTO_MAX_SIZE 4096
+/* Memory. The lights' own maps (all but the atlas's tiles) hold at most
+ * MAP_MEMORY_TEXELS depth texels together, each layer counted, and none
+ * has a side beyond the GL's largest texture: once every light is fitted,
+ * before any is drawn (map_bound_memory), the largest map above MIN is
+ * halved until they fit, a fixed --map-size's and a cascade's too, and
+ * the state line says how many times. So a scene of many spot lights
+ * asks at most that memory of the GL however large their maps are asked:
+ * two cube maps of MAX, or sixteen 2D maps. */
+#define MAP_MEMORY_TEXELS (1 << 28)
 #define MAP_AUTO_TEXEL_PIXELS 1.0f
 #define MAP_AUTO_FALLBACK_SIZE 2048
 #define MAP_AUTO_CUT_OUT_FINER 4

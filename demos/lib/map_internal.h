@@ -333,6 +333,7 @@ struct map_renderer {
     int tile_nodes[SCENE_MAX_LIGHTS][MAP_CUBE_FACES], tile_asked[SCENE_MAX_LIGHTS][MAP_CUBE_FACES];
     int tiles_short, tiles_refused;
     int tiles_halved; /* times map_atlas_plan halved the frame's asks to fit the largest atlas */
+    int maps_halved;  /* times map_bound_memory halved the frame's own maps (map.h, "Memory") */
     warp_sample face_samples[WARP_SAMPLE_COUNT]; /* one face's of a light's samples (map_tiles_size) */
 };
 
