@@ -63,7 +63,7 @@
 
 /* The program's state, all of it zero when app_main starts: the page
  * runs one program after another in the same instance (index.html). */
-static struct app_state {
+static struct {
     const char *program;
     const technique *const *techniques;
     int technique_count, current;
@@ -1404,7 +1404,7 @@ static bool app_run(void) {
 
 int app_main(int argc, char **argv, const technique *const *techniques, int technique_count,
              const flags_elsewhere *elsewhere, int elsewhere_count) {
-    app = (struct app_state){0};
+    memset(&app, 0, sizeof app);
     app.program = flags_program_name(argv[0]);
     if (technique_count > APP_MAX_TECHNIQUES) {
         fprintf(stderr, "%s: %d techniques, more than keys 1-%d\n", app.program, technique_count, APP_MAX_TECHNIQUES);
