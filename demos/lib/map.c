@@ -616,13 +616,9 @@ static bool *map_waiting_needed(const map_renderer *r, int l, int layer) {
 
 /* The fitted lights' own maps within the GL's largest texture and,
  * together, MAP_MEMORY_TEXELS (map.h, "Memory"): the largest above
- * MAP_AUTO_MIN_SIZE halved (the first of equals) until they fit. */
+ * MAP_AUTO_MIN_SIZE (the first of equals), which is also the widest,
+ * halved until they fit. */
 static void map_bound_memory(map_renderer *r, int light_count) {
-    for (int l = 0; l < light_count; l++)
-        if (r->fitted[l] && !r->maps[l].tiled && r->maps[l].size > r->max_texture_size) {
-            map_resize(&r->maps[l], map_side_within_gl(r, r->maps[l].size, MAP_AUTO_MIN_SIZE));
-            r->maps_halved++;
-        }
     for (;;) {
         double texels = 0;
         int largest = -1;
@@ -634,7 +630,7 @@ static void map_bound_memory(map_renderer *r, int light_count) {
             if (m->size > MAP_AUTO_MIN_SIZE && (largest < 0 || m->size > r->maps[largest].size))
                 largest = l;
         }
-        if (texels <= MAP_MEMORY_TEXELS || largest < 0)
+        if (largest < 0 || (texels <= MAP_MEMORY_TEXELS && r->maps[largest].size <= r->max_texture_size))
             return;
         map_resize(&r->maps[largest], r->maps[largest].size / 2);
         r->maps_halved++;
